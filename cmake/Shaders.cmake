@@ -1,0 +1,29 @@
+# Embeds every GLSL file into the binary with VTK's vtk_encode_string (no runtime shader paths).
+# The C symbol is derived from the path (shaders/pcf/PcfVisibility.glsl -> pcf_PcfVisibility), and a
+# generated table lets the ShaderLibrary resolve `#include "pcf/PcfVisibility.glsl"` lines by path.
+# Files are listed explicitly, in shaders/shaders.cmake (no glob).
+include("${VTK_DIR}/vtkEncodeString.cmake")
+include(${CMAKE_CURRENT_LIST_DIR}/../shaders/shaders.cmake)
+
+set(SL_SHADER_INCLUDE_DIR ${CMAKE_CURRENT_BINARY_DIR}/shaders)
+set(SL_SHADER_SOURCES "")
+set(_sl_table_includes "")
+set(_sl_table_entries "")
+foreach(shader IN LISTS SL_SHADER_FILES)
+  string(REGEX REPLACE "\\.glsl$" "" stem "${shader}")
+  string(REPLACE "/" "_" symbol "${stem}")
+  get_filename_component(subdir "${shader}" DIRECTORY)
+  file(MAKE_DIRECTORY ${SL_SHADER_INCLUDE_DIR}/${subdir})
+  set(_saved_binary_dir ${CMAKE_CURRENT_BINARY_DIR})
+  vtk_encode_string(
+    INPUT ${CMAKE_CURRENT_SOURCE_DIR}/shaders/${shader}
+    NAME ${symbol}
+    HEADER_OUTPUT header
+    SOURCE_OUTPUT source)
+  list(APPEND SL_SHADER_SOURCES ${source})
+  get_filename_component(header_name "${header}" NAME)
+  string(APPEND _sl_table_includes "#include \"${header_name}\"\n")
+  string(APPEND _sl_table_entries "  { \"${shader}\", ${symbol} },\n")
+endforeach()
+configure_file(${CMAKE_CURRENT_LIST_DIR}/ShaderTable.cxx.in ${SL_SHADER_INCLUDE_DIR}/ShaderTable.cxx @ONLY)
+list(APPEND SL_SHADER_SOURCES ${SL_SHADER_INCLUDE_DIR}/ShaderTable.cxx)

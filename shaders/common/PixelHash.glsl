@@ -1,0 +1,18 @@
+// Per-pixel pseudo-random rotation for sampling patterns (a 32-bit integer hash, "lowbias32" by Chris
+// Wellons), exact in integer arithmetic so the CPU mirror (sl::pixelHash) reproduces it bit for bit.
+uint pixelHash(uvec2 pixel)
+{
+  uint v = pixel.x * 1664525u + pixel.y * 1013904223u;
+  v ^= v >> 16;
+  v *= 0x7feb352du;
+  v ^= v >> 15;
+  v *= 0x846ca68bu;
+  v ^= v >> 16;
+  return v;
+}
+
+// Angle in [0, 2 pi).
+float pixelHashAngle(uvec2 pixel)
+{
+  return float(pixelHash(pixel)) * (6.283185307179586 / 4294967296.0);
+}

@@ -1,0 +1,55 @@
+// Shadow-map lookups shared by every shadow-map technique. Mirrors src/lightspace/ShadowMapMath.cpp line
+// for line (tests compare the two on read-back buffers).
+// Conventions: texel (i, j) spans [i, i+1) x [j, j+1) in uvTexels; depthLin is the distance along the
+// light axis; a receiver is lit by a texel when (depthLin - bias) <= stored depthLin.
+// Bias parameters param_bias_constant_texels, param_bias_slope_texels, param_bias_max_slope are declared
+// by the technique's generated preamble.
+uniform sampler2D shadowMapLinear;
+uniform mat4 lightViewFromWorld;
+uniform mat4 lightClipFromWorld;
+uniform int shadowMapSize;
+uniform int lightIsPerspective;
+uniform float shadowTexelExtent; // texel size in window units (tangent for perspective, world for ortho)
+
+// xy = uvTexels, z = depthLin
+vec3 projectToShadowMap(vec3 pWs)
+{
+  vec4 clip = lightClipFromWorld * vec4(pWs, 1.0);
+  vec2 ndc = clip.xy / clip.w;
+  float depthLin = -(lightViewFromWorld * vec4(pWs, 1.0)).z;
+  return vec3((ndc * 0.5 + 0.5) * float(shadowMapSize), depthLin);
+}
+
+float tanAngleToLight(vec3 nWs, vec3 toLight)
+{
+  float cosTheta = clamp(dot(nWs, toLight), 1e-4, 1.0);
+  return sqrt(max(0.0, 1.0 - cosTheta * cosTheta)) / cosTheta;
+}
+
+float texelWorldSize(float depthLin)
+{
+  return lightIsPerspective != 0 ? shadowTexelExtent * depthLin : shadowTexelExtent;
+}
+
+// Survey §5: constant + slope-scaled bias, in texel-footprint units (see ShadowMapMath.h).
+float depthBias(float tanTheta, float depthLin)
+{
+  return texelWorldSize(depthLin) *
+    (param_bias_constant_texels + param_bias_slope_texels * min(tanTheta, param_bias_max_slope));
+}
+
+ivec2 shadowMapTexel(vec2 uvTexels)
+{
+  return clamp(ivec2(floor(uvTexels)), ivec2(0), ivec2(shadowMapSize - 1));
+}
+
+float storedDepth(vec2 uvTexels)
+{
+  return texelFetch(shadowMapLinear, shadowMapTexel(uvTexels), 0).r;
+}
+
+// 1 = lit, 0 = shadowed, for one texel.
+float shadowTest(vec2 uvTexels, float comparisonDepthLin)
+{
+  return comparisonDepthLin <= storedDepth(uvTexels) ? 1.0 : 0.0;
+}

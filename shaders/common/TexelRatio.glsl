@@ -1,0 +1,52 @@
+// The survey's aliasing error m (Eq. 2), exact per pixel: screen pixels spanned by one shadow-map texel
+// along its most stretched direction, 1 / sigma_min of d(texel)/d(pixel) on the surface's tangent plane.
+// Mirrors sl::texelRatio (src/lightspace/ShadowMapMath.cpp), which documents the derivation.
+// The camera ray through a pixel is N + s R, both affine in the pixel position (see sl::CameraView).
+uniform vec3 cameraNearOrigin;
+uniform vec3 cameraNearStepX;
+uniform vec3 cameraNearStepY;
+uniform vec3 cameraRayOrigin;
+uniform vec3 cameraRayStepX;
+uniform vec3 cameraRayStepY;
+
+float texelRatio(vec2 pixel, vec3 pWs, vec3 nWs)
+{
+  vec3 nearPoint = cameraNearOrigin + pixel.x * cameraNearStepX + pixel.y * cameraNearStepY;
+  vec3 ray = cameraRayOrigin + pixel.x * cameraRayStepX + pixel.y * cameraRayStepY;
+  vec3 nearStepX = cameraNearStepX;
+  vec3 nearStepY = cameraNearStepY;
+  vec3 rayStepX = cameraRayStepX;
+  vec3 rayStepY = cameraRayStepY;
+  float normalDotRay = dot(nWs, ray);
+  if (abs(normalDotRay) < 1e-12 * length(ray))
+  {
+    return 0.0;
+  }
+  float s = dot(pWs - nearPoint, ray) / dot(ray, ray);
+  vec3 stepX = nearStepX + s * rayStepX;
+  vec3 stepY = nearStepY + s * rayStepY;
+  vec3 dpdx = stepX - ray * (dot(nWs, stepX) / normalDotRay);
+  vec3 dpdy = stepY - ray * (dot(nWs, stepY) / normalDotRay);
+
+  mat4 m = lightClipFromWorld;
+  vec4 clip = m * vec4(pWs, 1.0);
+  vec2 ndc = clip.xy / clip.w;
+  vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]);
+  vec3 rowY = vec3(m[0][1], m[1][1], m[2][1]);
+  vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
+  float scale = 0.5 * float(shadowMapSize) / clip.w;
+  vec3 gradU = scale * (rowX - ndc.x * rowW);
+  vec3 gradV = scale * (rowY - ndc.y * rowW);
+  float j00 = dot(gradU, dpdx);
+  float j01 = dot(gradU, dpdy);
+  float j10 = dot(gradV, dpdx);
+  float j11 = dot(gradV, dpdy);
+  float frobenius2 = j00 * j00 + j01 * j01 + j10 * j10 + j11 * j11;
+  float determinant = j00 * j11 - j01 * j10;
+  float sigmaMax = sqrt(0.5 * (frobenius2 + sqrt(max(0.0, frobenius2 * frobenius2 - 4.0 * determinant * determinant))));
+  if (abs(determinant) * 1e6 <= sigmaMax)
+  {
+    return 1e6;
+  }
+  return min(1e6, sigmaMax / abs(determinant));
+}

@@ -1,0 +1,26 @@
+// Writes linear depth along the light axis (R32F) besides the hardware depth. Linear depth keeps the
+// comparison precision uniform over the range (Brabec et al., survey §5) and is exactly what the CPU
+// reference compares against. CASTER_FACES selects first-depth (front faces, the default) or second-depth
+// shadow mapping (Wang & Molnar, survey §5: only faces turned away from the light are stored, which acts
+// as an adaptive bias of the caster's thickness; needs closed casters).
+#include "common/AlphaMask.glsl"
+
+in vec2 uv;
+in float depthLin;
+
+layout(location = 0) out float outDepthLin;
+
+void main()
+{
+  if (isPerforated(uv))
+  {
+    discard;
+  }
+#if CASTER_FACES == CASTER_FACES_BACK
+  if (gl_FrontFacing)
+  {
+    discard;
+  }
+#endif
+  outDepthLin = depthLin;
+}

@@ -1,0 +1,163 @@
+#include "cli/Commands.h"
+
+#include "core/Error.h"
+#include "io/OutputWriter.h"
+#include "passes/ShadowRenderer.h"
+#include "scene/Scene.h"
+#include "techniques/Technique.h"
+
+#include <nlohmann/json.hpp>
+
+#include <iomanip>
+#include <regex>
+
+namespace sl
+{
+namespace
+{
+
+glm::ivec2 parseResolution(const std::string& text)
+{
+  static const std::regex pattern(R"((\d{1,6})x(\d{1,6}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern))
+  {
+    throw InputError("--resolution " + text + ": expected WxH, e.g. 512x512");
+  }
+  return { std::stoi(match[1]), std::stoi(match[2]) };
+}
+
+std::string describeRange(const ParameterSpec& spec)
+{
+  if (!spec.choices.empty())
+  {
+    std::string choices;
+    for (const std::string& choice : spec.choices)
+    {
+      choices += (choices.empty() ? "" : "|") + choice;
+    }
+    return choices;
+  }
+  std::ostringstream range;
+  range << spec.minValue << " .. " << spec.maxValue;
+  return range.str();
+}
+
+std::string describeDefault(const ParameterSpec& spec)
+{
+  if (!spec.choices.empty())
+  {
+    return spec.choices.at(static_cast<std::size_t>(spec.defaultValue));
+  }
+  std::ostringstream value;
+  value << spec.defaultValue;
+  return value.str();
+}
+
+} // namespace
+
+int runRender(const RenderOptions& options, std::ostream& log)
+{
+  // Validate everything the user typed before touching the GPU or the disk.
+  RenderRequest request;
+  request.technique = options.technique;
+  request.settings = options.settings;
+  request.lightIndex = options.lightIndex;
+  if (!options.resolution.empty())
+  {
+    request.resolution = parseResolution(options.resolution);
+  }
+  ParameterValues check(findTechnique(request.technique));
+  for (const std::string& assignment : request.settings)
+  {
+    check.set(assignment);
+  }
+  const Scene scene = loadScene(options.sceneFile);
+  std::size_t dropped = 0;
+  for (const SceneObject& object : scene.objects)
+  {
+    if (object.droppedDegenerateTriangles > 0)
+    {
+      log << "shadowlab: warning: " << options.sceneFile << ": " << object.name << ": dropped "
+          << object.droppedDegenerateTriangles << " degenerate triangle(s)\n";
+      dropped += object.droppedDegenerateTriangles;
+    }
+  }
+  ShadowRenderer renderer;
+  const FrameResult frame = renderer.render(scene, request);
+  OutputContext context;
+  context.sceneFile = options.sceneFile;
+  context.lightIndex = options.lightIndex;
+  context.droppedDegenerateTriangles = dropped;
+  writeFrameOutputs(frame, context, options.outDir);
+  if (!options.quiet)
+  {
+    double gpuMs = 0.0;
+    for (const StageTiming& stage : frame.stages)
+    {
+      gpuMs += stage.gpuMs;
+    }
+    log << "shadowlab: rendered " << options.sceneFile << " with " << frame.technique << " at " << frame.resolution.x
+        << "x" << frame.resolution.y << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)
+        << gpuMs << " ms, frame " << frame.frameWallMs << " ms -> " << options.outDir << "\n";
+  }
+  return 0;
+}
+
+int runList(bool asJson, std::ostream& out)
+{
+  if (asJson)
+  {
+    nlohmann::json techniques = nlohmann::json::array();
+    for (const TechniqueDescriptor& technique : techniqueRegistry())
+    {
+      nlohmann::json parameters = nlohmann::json::array();
+      for (const ParameterSpec& spec : technique.parameters)
+      {
+        parameters.push_back({ { "name", spec.name }, { "default", describeDefault(spec) },
+          { "min", spec.minValue }, { "max", spec.maxValue }, { "unit", spec.unit }, { "choices", spec.choices },
+          { "integer", spec.integer }, { "doc", spec.doc } });
+      }
+      nlohmann::json buffers = nlohmann::json::array();
+      for (const BufferSpec& buffer : technique.buffers)
+      {
+        buffers.push_back({ { "name", buffer.name }, { "unit", buffer.unit }, { "doc", buffer.doc } });
+      }
+      nlohmann::json structures = nlohmann::json::array();
+      for (LightStructure structure : technique.lightStructures)
+      {
+        structures.push_back(lightStructureName(structure));
+      }
+      techniques.push_back({ { "name", technique.name }, { "title", technique.title }, { "paper", technique.paper },
+        { "parameters", parameters }, { "buffers", buffers }, { "light_structures", structures } });
+    }
+    out << techniques.dump(2) << "\n";
+    return 0;
+  }
+  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  {
+    out << technique.name << " - " << technique.title << " (" << technique.paper << ")\n";
+    std::string structures;
+    for (LightStructure structure : technique.lightStructures)
+    {
+      structures += (structures.empty() ? "" : ", ") + lightStructureName(structure);
+    }
+    out << "  light-space structures: " << (structures.empty() ? "none" : structures) << "\n";
+    out << "  parameters:\n";
+    for (const ParameterSpec& spec : technique.parameters)
+    {
+      out << "    " << std::left << std::setw(22) << spec.name << " default " << std::setw(8) << describeDefault(spec)
+          << " range " << std::setw(22) << describeRange(spec) << " " << spec.unit << "\n"
+          << "      " << spec.doc << "\n";
+    }
+    out << "  buffers: visibility, position, normal, depth, coverage, albedo";
+    for (const BufferSpec& buffer : technique.buffers)
+    {
+      out << ", " << buffer.name;
+    }
+    out << "\n\n";
+  }
+  return 0;
+}
+
+} // namespace sl

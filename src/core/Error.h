@@ -1,0 +1,68 @@
+// Errors in ShadowLab come in two kinds (see STYLE.md, "Errors"):
+//  - InputError: something the user gave us (scene file, mesh, CLI, parameter) is wrong. It carries a
+//    one-line message naming the file / JSON path / key / value; the CLI catches it once, prints it and
+//    exits nonzero.
+//  - Invariant violations (SL_CHECK): a bug in ShadowLab itself. They abort with expression and location.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace sl
+{
+
+class InputError : public std::runtime_error
+{
+public:
+  explicit InputError(const std::string& message)
+    : std::runtime_error(message)
+  {
+  }
+};
+
+// An error from the graphics stack (no EGL display, GL version too old, shader compile failure).
+class GraphicsError : public std::runtime_error
+{
+public:
+  explicit GraphicsError(const std::string& message)
+    : std::runtime_error(message)
+  {
+  }
+};
+
+[[noreturn]] void checkFailed(const char* expression, const char* file, int line, const std::string& message);
+
+// Builds a message from stream-style arguments: format("value ", x, " out of range").
+template <typename... Args>
+std::string format(const Args&... args)
+{
+  std::ostringstream stream;
+  (stream << ... << args);
+  return stream.str();
+}
+
+} // namespace sl
+
+#define SL_CHECK(condition)                                                                        \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(condition))                                                                              \
+      ::sl::checkFailed(#condition, __FILE__, __LINE__, std::string());                            \
+  } while (false)
+
+#define SL_CHECK_MSG(condition, ...)                                                               \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(condition))                                                                              \
+      ::sl::checkFailed(#condition, __FILE__, __LINE__, ::sl::format(__VA_ARGS__));                \
+  } while (false)
+
+#ifdef NDEBUG
+#define SL_DCHECK(condition)                                                                       \
+  do                                                                                               \
+  {                                                                                                \
+  } while (false)
+#else
+#define SL_DCHECK(condition) SL_CHECK(condition)
+#endif

@@ -1,0 +1,48 @@
+// A plain CPU image: width x height pixels of `components` values each.
+// Convention (same as OpenGL read-back and vtkImageData): row 0 is the BOTTOM row, x grows right.
+#pragma once
+
+#include "core/Error.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace sl
+{
+
+template <typename T>
+struct Image
+{
+  int width = 0;
+  int height = 0;
+  int components = 1;
+  std::vector<T> data;
+
+  Image() = default;
+  Image(int w, int h, int c, T fill = T())
+    : width(w)
+    , height(h)
+    , components(c)
+    , data(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(c), fill)
+  {
+    SL_CHECK(w >= 0 && h >= 0 && c > 0);
+  }
+
+  bool empty() const { return data.empty(); }
+  std::size_t pixelCount() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+  std::size_t index(int x, int y, int c = 0) const
+  {
+    SL_DCHECK(x >= 0 && x < width && y >= 0 && y < height && c >= 0 && c < components);
+    return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
+      static_cast<std::size_t>(components) +
+      static_cast<std::size_t>(c);
+  }
+  T& at(int x, int y, int c = 0) { return data[index(x, y, c)]; }
+  const T& at(int x, int y, int c = 0) const { return data[index(x, y, c)]; }
+};
+
+using ImageF = Image<float>;
+using ImageU8 = Image<std::uint8_t>;
+
+} // namespace sl

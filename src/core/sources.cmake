@@ -1,0 +1,1 @@
+set(SL_CORE_SOURCES src/core/Error.cpp)

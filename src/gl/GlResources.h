@@ -1,0 +1,116 @@
+// Small helpers over VTK's OpenGL objects: render targets, read-back, GPU timers, the scene on the GPU.
+#pragma once
+
+#include "core/Image.h"
+#include "scene/Scene.h"
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLBufferObject;
+class vtkOpenGLRenderTimer;
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
+class vtkTextureObject;
+
+namespace sl
+{
+
+// A float render target (R32F / RG32F / RGBA32F), nearest filtering, clamp to edge.
+vtkSmartPointer<vtkTextureObject> makeFloatTarget(vtkOpenGLRenderWindow* window, int width, int height, int components);
+// A 32-bit float depth target, nearest filtering, clamp to edge, no compare mode.
+vtkSmartPointer<vtkTextureObject> makeDepthTarget(vtkOpenGLRenderWindow* window, int width, int height);
+// An RGBA8 target for the shaded image.
+vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height);
+
+// Reads a whole texture back (glGetTextureImage). Row 0 is the bottom row.
+ImageF readFloatTexture(vtkTextureObject* texture, int components);
+ImageF readDepthTexture(vtkTextureObject* texture);
+ImageU8 readColorTexture(vtkTextureObject* texture); // RGB
+
+// Throws GraphicsError naming `stage` if OpenGL recorded an error since the last check.
+void checkGlErrors(const std::string& stage);
+
+// Compiles (through VTK's shader cache) a program from embedded shader files; throws GraphicsError with
+// the compiler log on failure. The program is bound on return.
+vtkShaderProgram* readyProgram(vtkOpenGLRenderWindow* window, const std::string& vertexSource,
+  const std::string& fragmentSource, const std::string& label);
+
+// GPU time (GL_TIME_ELAPSED via vtkOpenGLRenderTimer) and wall time of one stage of a frame.
+class StageTimer
+{
+public:
+  StageTimer();
+  ~StageTimer();
+  void start();
+  void stop();
+  double gpuMilliseconds(); // waits for the query result
+  double wallMilliseconds() const { return wallMs_; }
+
+private:
+  std::unique_ptr<vtkOpenGLRenderTimer> timer_; // not a vtkObject
+  std::chrono::steady_clock::time_point wallStart_;
+  double wallMs_ = 0.0;
+};
+
+// One scene object on the GPU: interleaved vertices (pWs xyz, nWs xyz, uv) + triangle indices, and the
+// object's alpha texture when it has one.
+struct GpuMesh
+{
+  vtkSmartPointer<vtkOpenGLBufferObject> vertices;
+  vtkSmartPointer<vtkOpenGLBufferObject> indices;
+  vtkSmartPointer<vtkTextureObject> alphaTexture; // null when the object is not perforated
+  std::size_t indexCount = 0;
+  const SceneObject* object = nullptr;
+};
+
+class GpuScene
+{
+public:
+  GpuScene(vtkOpenGLRenderWindow* window, const Scene& scene);
+  ~GpuScene();
+  const std::vector<GpuMesh>& meshes() const { return meshes_; }
+  void releaseGraphicsResources(vtkOpenGLRenderWindow* window);
+
+private:
+  std::vector<GpuMesh> meshes_;
+};
+
+// Draws every mesh selected by `include` with `program`, binding attributes pWsIn/nWsIn/uvIn and the
+// per-object uniforms the geometry shaders share (objectAlbedo, objectReceivesShadows, hasAlphaTexture,
+// alphaTexture). `vaos` caches one VAO per mesh for this program.
+class MeshDrawer
+{
+public:
+  MeshDrawer();
+  ~MeshDrawer();
+  template <typename Predicate>
+  void draw(vtkShaderProgram* program, const GpuScene& scene, Predicate include);
+  void releaseGraphicsResources(vtkOpenGLRenderWindow* window);
+
+private:
+  void drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::size_t index);
+  std::vector<vtkSmartPointer<vtkOpenGLVertexArrayObject>> vaos_;
+  vtkShaderProgram* boundProgram_ = nullptr;
+};
+
+template <typename Predicate>
+void MeshDrawer::draw(vtkShaderProgram* program, const GpuScene& scene, Predicate include)
+{
+  for (std::size_t i = 0; i < scene.meshes().size(); ++i)
+  {
+    if (include(*scene.meshes()[i].object))
+    {
+      drawOne(program, scene.meshes()[i], i);
+    }
+  }
+  boundProgram_ = program;
+}
+
+} // namespace sl

@@ -1,0 +1,5 @@
+set(SL_GL_SOURCES
+  src/gl/EglContext.cpp
+  src/gl/vtkSLEglRenderWindow.cxx
+  src/gl/ShaderLibrary.cpp
+  src/gl/GlResources.cpp)

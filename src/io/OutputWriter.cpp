@@ -1,0 +1,279 @@
+#include "io/OutputWriter.h"
+
+#include "core/Error.h"
+#include "io/ImageIO.h"
+#include "vis/HeatMap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <unistd.h>
+
+namespace sl
+{
+namespace
+{
+
+ColorMapKind colorMapFor(BufferKind kind)
+{
+  switch (kind)
+  {
+    case BufferKind::Signed: return ColorMapKind::Diverging;
+    case BufferKind::Categorical: return ColorMapKind::Categorical;
+    case BufferKind::Continuous: return ColorMapKind::Viridis;
+  }
+  return ColorMapKind::Viridis;
+}
+
+void writeHeatMaps(const std::vector<NamedImage>& images, const ImageU8* mask, const std::filesystem::path& dir,
+  const std::string& prefix)
+{
+  for (const NamedImage& named : images)
+  {
+    if (named.image.components != 1)
+    {
+      continue;
+    }
+    HeatMapOptions options;
+    options.title = named.name;
+    options.unit = named.unit;
+    options.colorMap = colorMapFor(named.kind);
+    options.categoryLabels = named.categoryLabels;
+    if (named.name == "visibility" || named.name == "coverage")
+    {
+      options.rangeMin = 0.0;
+      options.rangeMax = 1.0;
+    }
+    else if (named.kind == BufferKind::Continuous)
+    {
+      // A few extreme values (texel_ratio where a surface runs parallel to the light) would flatten the
+      // colour scale; clip the scale at the 99th percentile then. The title still gives the true range.
+      std::vector<float> valid;
+      for (std::size_t i = 0; i < named.image.pixelCount(); ++i)
+      {
+        if ((!mask || mask->data[i]) && std::isfinite(named.image.data[i]))
+        {
+          valid.push_back(named.image.data[i]);
+        }
+      }
+      if (valid.size() > 100)
+      {
+        const auto percentile = valid.begin() + static_cast<std::ptrdiff_t>(0.99 * (valid.size() - 1));
+        std::nth_element(valid.begin(), percentile, valid.end());
+        const double p99 = *percentile;
+        const double maximum = *std::max_element(percentile, valid.end());
+        const double minimum = *std::min_element(valid.begin(), percentile + 1);
+        if (maximum - minimum > 4.0 * (p99 - minimum) && p99 > minimum)
+        {
+          options.rangeMin = minimum;
+          options.rangeMax = p99;
+        }
+      }
+    }
+    writeHeatMapPng(named.image, mask, options, dir / (prefix + named.name + ".png"));
+  }
+}
+
+nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
+{
+  double minimum = 0.0;
+  double maximum = 0.0;
+  double sum = 0.0;
+  std::size_t count = 0;
+  std::size_t nonFinite = 0;
+  const ImageF& image = named.image;
+  for (std::size_t i = 0; i < image.pixelCount(); ++i)
+  {
+    if (coverage && coverage->data[i] <= 0.5f)
+    {
+      continue;
+    }
+    for (int c = 0; c < image.components; ++c)
+    {
+      const double value = image.data[i * image.components + c];
+      if (!std::isfinite(value))
+      {
+        ++nonFinite;
+        continue;
+      }
+      minimum = count == 0 ? value : std::min(minimum, value);
+      maximum = count == 0 ? value : std::max(maximum, value);
+      sum += value;
+      ++count;
+    }
+  }
+  return { { "components", image.components }, { "min", minimum }, { "max", maximum },
+    { "mean", count ? sum / static_cast<double>(count) : 0.0 }, { "non_finite", nonFinite }, { "unit", named.unit },
+    { "doc", named.doc } };
+}
+
+} // namespace
+
+nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context)
+{
+  const TechniqueDescriptor& technique = frame.parameters.descriptor();
+  nlohmann::json parameters = nlohmann::json::object();
+  for (const ParameterSpec& spec : technique.parameters)
+  {
+    if (spec.choices.empty())
+    {
+      parameters[spec.name] = frame.parameters.get(spec.name);
+    }
+    else
+    {
+      parameters[spec.name] = frame.parameters.choice(spec.name);
+    }
+  }
+  nlohmann::json stages = nlohmann::json::array();
+  double totalGpuMs = 0.0;
+  for (const StageTiming& stage : frame.stages)
+  {
+    stages.push_back({ { "stage", stage.stage }, { "gpu_ms", stage.gpuMs }, { "wall_ms", stage.wallMs } });
+    totalGpuMs += stage.gpuMs;
+  }
+  nlohmann::json stats = {
+    { "technique", technique.name },
+    { "title", technique.title },
+    { "paper", technique.paper },
+    { "parameters", parameters },
+    { "scene", context.sceneFile.string() },
+    { "light_index", context.lightIndex },
+    { "resolution", { frame.resolution.x, frame.resolution.y } },
+    { "gl_renderer", frame.glRenderer },
+    { "gl_version", frame.glVersion },
+    { "egl_platform", frame.eglPlatform },
+    { "stages", stages },
+    { "total_gpu_ms", totalGpuMs },
+    { "frame_wall_ms", frame.frameWallMs },
+    { "dropped_degenerate_triangles", context.droppedDegenerateTriangles },
+  };
+  nlohmann::json structures = nlohmann::json::array();
+  for (LightStructure structure : technique.lightStructures)
+  {
+    structures.push_back(lightStructureName(structure));
+  }
+  stats["light_structures"] = structures;
+  if (frame.lightView)
+  {
+    const LightView& view = *frame.lightView;
+    stats["light_view"] = {
+      { "projection", view.projection == LightProjection::Perspective ? "perspective" : "orthographic" },
+      { "resolution", view.resolution },
+      { "near_depth", view.nearDepth },
+      { "far_depth", view.farDepth },
+      { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
+      { "receiver_samples", view.receiverSampleCount },
+    };
+  }
+  const NamedImage* coverage = frame.find("coverage");
+  nlohmann::json buffers = nlohmann::json::object();
+  for (const NamedImage& named : frame.buffers)
+  {
+    buffers[named.name] = bufferSummary(named, coverage ? &coverage->image : nullptr);
+  }
+  stats["buffers"] = buffers;
+  nlohmann::json lightSpace = nlohmann::json::object();
+  for (const NamedImage& named : frame.lightSpace)
+  {
+    lightSpace[named.name] = bufferSummary(named, nullptr);
+  }
+  stats["light_space"] = lightSpace;
+  return stats;
+}
+
+void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const std::filesystem::path& outDir)
+{
+  writeDirectoryAtomically(outDir, [&](const std::filesystem::path& dir) {
+    writeVti(dir / "buffers.vti", frame.buffers);
+    if (!frame.lightSpace.empty())
+    {
+      writeVti(dir / "light_space.vti", frame.lightSpace);
+    }
+    writePng(dir / "image.png", frame.image);
+    writeExr(dir / "visibility.exr", frame.find("visibility")->image);
+    const NamedImage* coverage = frame.find("coverage");
+    ImageU8 mask(coverage->image.width, coverage->image.height, 1);
+    for (std::size_t i = 0; i < mask.data.size(); ++i)
+    {
+      mask.data[i] = coverage->image.data[i] > 0.5f ? 1 : 0;
+    }
+    writeHeatMaps(frame.buffers, &mask, dir, "heatmap_");
+    writeHeatMaps(frame.lightSpace, nullptr, dir, "heatmap_");
+    std::ofstream statsFile(dir / "stats.json");
+    statsFile << frameStats(frame, context).dump(2) << "\n";
+    if (!statsFile)
+    {
+      throw InputError((dir / "stats.json").string() + ": cannot write");
+    }
+  });
+}
+
+std::filesystem::path makeTemporarySibling(const std::filesystem::path& outDir)
+{
+  std::filesystem::path absolute = std::filesystem::absolute(outDir).lexically_normal();
+  if (absolute.filename().empty())
+  {
+    absolute = absolute.parent_path();
+  }
+  if (std::filesystem::exists(absolute) && !std::filesystem::is_directory(absolute))
+  {
+    throw InputError("--out " + outDir.string() + ": exists and is not a directory");
+  }
+  std::error_code error;
+  std::filesystem::create_directories(absolute.parent_path(), error);
+  if (error)
+  {
+    throw InputError("--out " + outDir.string() + ": cannot create " + absolute.parent_path().string() + " (" +
+      error.message() + ")");
+  }
+  const std::filesystem::path temporary =
+    absolute.parent_path() / ("." + absolute.filename().string() + ".partial-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(temporary, error);
+  if (!std::filesystem::create_directory(temporary, error) || error)
+  {
+    throw InputError("--out " + outDir.string() + ": cannot create a directory next to it (" + error.message() + ")");
+  }
+  return temporary;
+}
+
+void replaceDirectory(const std::filesystem::path& temporary, const std::filesystem::path& outDir)
+{
+  std::filesystem::path absolute = std::filesystem::absolute(outDir).lexically_normal();
+  if (absolute.filename().empty())
+  {
+    absolute = absolute.parent_path();
+  }
+  std::error_code error;
+  std::filesystem::path previous;
+  if (std::filesystem::exists(absolute))
+  {
+    previous = absolute.parent_path() / ("." + absolute.filename().string() + ".previous-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(previous, error);
+    std::filesystem::rename(absolute, previous, error);
+    if (error)
+    {
+      throw InputError("--out " + outDir.string() + ": cannot replace the existing directory (" + error.message() + ")");
+    }
+  }
+  std::filesystem::rename(temporary, absolute, error);
+  if (error)
+  {
+    if (!previous.empty())
+    {
+      std::filesystem::rename(previous, absolute);
+    }
+    throw InputError("--out " + outDir.string() + ": cannot move the results into place (" + error.message() + ")");
+  }
+  if (!previous.empty())
+  {
+    removeQuietly(previous);
+  }
+}
+
+void removeQuietly(const std::filesystem::path& path)
+{
+  std::error_code ignored;
+  std::filesystem::remove_all(path, ignored);
+}
+
+} // namespace sl

@@ -1,0 +1,53 @@
+// Writes a rendered frame into an output directory, atomically: everything goes to a temporary sibling
+// directory first, which replaces `outDir` only when every file was written. A failure leaves no partial
+// output (an existing `outDir` is kept as it was).
+//
+// Files: buffers.vti, light_space.vti (when a light-space structure was built), image.png,
+// visibility.exr, heatmap_<buffer>.png per scalar buffer, stats.json. README.md documents each.
+#pragma once
+
+#include "passes/ShadowRenderer.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+namespace sl
+{
+
+struct OutputContext
+{
+  std::filesystem::path sceneFile;
+  int lightIndex = 0;
+  std::size_t droppedDegenerateTriangles = 0;
+};
+
+nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context);
+void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const std::filesystem::path& outDir);
+
+// Runs `writeFiles(tempDir)` and then moves tempDir to outDir (replacing it). Used by every command that
+// writes a directory of results.
+template <typename WriteFiles>
+void writeDirectoryAtomically(const std::filesystem::path& outDir, WriteFiles writeFiles);
+
+// Implementation detail of writeDirectoryAtomically.
+std::filesystem::path makeTemporarySibling(const std::filesystem::path& outDir);
+void replaceDirectory(const std::filesystem::path& temporary, const std::filesystem::path& outDir);
+void removeQuietly(const std::filesystem::path& path);
+
+template <typename WriteFiles>
+void writeDirectoryAtomically(const std::filesystem::path& outDir, WriteFiles writeFiles)
+{
+  const std::filesystem::path temporary = makeTemporarySibling(outDir);
+  try
+  {
+    writeFiles(temporary);
+    replaceDirectory(temporary, outDir);
+  }
+  catch (...)
+  {
+    removeQuietly(temporary);
+    throw;
+  }
+}
+
+} // namespace sl

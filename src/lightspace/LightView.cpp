@@ -1,0 +1,296 @@
+#include "lightspace/LightView.h"
+
+#include "core/Error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+glm::dvec3 anyPerpendicular(const glm::dvec3& axis)
+{
+  const glm::dvec3 helper = std::abs(axis.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(1.0, 0.0, 0.0);
+  return glm::normalize(helper - axis * glm::dot(helper, axis));
+}
+
+// Linear depth and the light-space x/y coordinate used for the window (tangent or world units).
+struct LightCoords
+{
+  double x;
+  double y;
+  double depthLin;
+};
+
+LightCoords toLightCoords(const glm::dmat4& viewFromWorld, LightProjection projection, const glm::dvec3& pWs)
+{
+  const glm::dvec4 pLs = viewFromWorld * glm::dvec4(pWs, 1.0);
+  const double depthLin = -pLs.z;
+  if (projection == LightProjection::Perspective)
+  {
+    return { pLs.x / depthLin, pLs.y / depthLin, depthLin };
+  }
+  return { pLs.x, pLs.y, depthLin };
+}
+
+// Sutherland-Hodgman: keeps the part of a convex polygon (light view space) where dot(plane, (p,1)) >= 0.
+std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& polygon, const glm::dvec4& plane)
+{
+  std::vector<glm::dvec3> kept;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    const glm::dvec3& a = polygon[i];
+    const glm::dvec3& b = polygon[(i + 1) % polygon.size()];
+    const double da = glm::dot(plane, glm::dvec4(a, 1.0));
+    const double db = glm::dot(plane, glm::dvec4(b, 1.0));
+    if (da >= 0.0)
+    {
+      kept.push_back(a);
+    }
+    if ((da >= 0.0) != (db >= 0.0))
+    {
+      kept.push_back(a + (b - a) * (da / (da - db)));
+    }
+  }
+  return kept;
+}
+
+} // namespace
+
+double LightView::texelWorldSize(double depthLin) const
+{
+  const double extent = std::max(window.y - window.x, window.w - window.z) / resolution;
+  return projection == LightProjection::Perspective ? extent * depthLin : extent;
+}
+
+glm::dvec3 directionToLight(const Light& light, const glm::dvec3& pWs)
+{
+  if (light.type == LightType::Directional)
+  {
+    return -light.direction;
+  }
+  return glm::normalize(light.center - pWs);
+}
+
+bool lightCanReach(const Light& light, const glm::dvec3& pWs, const glm::dvec3& nWs)
+{
+  if (glm::dot(nWs, directionToLight(light, pWs)) <= 0.0)
+  {
+    return false;
+  }
+  switch (light.type)
+  {
+    case LightType::Area:
+      return glm::dot(light.normal, pWs - light.center) > 0.0;
+    case LightType::Spot:
+      return glm::dot(light.normal, glm::normalize(pWs - light.center)) > std::cos(glm::radians(light.coneAngleDeg));
+    case LightType::Point:
+    case LightType::Directional:
+      return true;
+  }
+  return true;
+}
+
+LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbufferPosition,
+  const ImageF& gbufferNormal, const FocusSettings& settings)
+{
+  SL_CHECK(gbufferPosition.components == 4 && gbufferNormal.components == 4);
+  SL_CHECK(settings.resolution > 2.0 * settings.marginTexels);
+
+  // The receivers the map must cover.
+  std::vector<glm::dvec3> receivers;
+  for (std::size_t i = 0; i < gbufferPosition.pixelCount(); ++i)
+  {
+    const float* position = &gbufferPosition.data[i * 4];
+    const float* normal = &gbufferNormal.data[i * 4];
+    if (position[3] <= 0.5f || normal[3] <= 0.5f)
+    {
+      continue;
+    }
+    const glm::dvec3 pWs(position[0], position[1], position[2]);
+    const glm::dvec3 nWs(normal[0], normal[1], normal[2]);
+    if (lightCanReach(light, pWs, nWs))
+    {
+      receivers.push_back(pWs);
+    }
+  }
+  const Bounds sceneBounds = scene.bounds();
+
+  LightView view;
+  view.resolution = settings.resolution;
+  view.receiverSampleCount = static_cast<int>(receivers.size());
+  glm::dvec3 forward;
+  glm::dvec3 up;
+  switch (light.type)
+  {
+    case LightType::Area:
+      view.projection = LightProjection::Perspective;
+      view.eyeWs = light.center;
+      forward = light.normal;
+      up = light.up;
+      break;
+    case LightType::Spot:
+      view.projection = LightProjection::Perspective;
+      view.eyeWs = light.center;
+      forward = light.normal;
+      up = anyPerpendicular(forward);
+      break;
+    case LightType::Point:
+    {
+      view.projection = LightProjection::Perspective;
+      view.eyeWs = light.center;
+      glm::dvec3 towardReceivers(0.0);
+      for (const glm::dvec3& p : receivers)
+      {
+        towardReceivers += glm::normalize(p - light.center);
+      }
+      forward = glm::length(towardReceivers) > 1e-9 ? glm::normalize(towardReceivers)
+                                                    : glm::normalize(sceneBounds.center() - light.center);
+      up = anyPerpendicular(forward);
+      break;
+    }
+    case LightType::Directional:
+      view.projection = LightProjection::Orthographic;
+      forward = light.direction;
+      up = anyPerpendicular(forward);
+      view.eyeWs = sceneBounds.center() - forward * (2.0 * sceneBounds.radius() + 1.0);
+      break;
+  }
+  view.viewFromWorld = glm::lookAt(view.eyeWs, view.eyeWs + forward, up);
+
+  // Window: bounding rectangle of the receivers in light x/y.
+  double xMin = std::numeric_limits<double>::max();
+  double xMax = -xMin;
+  double yMin = xMin;
+  double yMax = -xMin;
+  double receiverFar = 0.0;
+  double receiverNear = std::numeric_limits<double>::max();
+  for (const glm::dvec3& p : receivers)
+  {
+    const LightCoords c = toLightCoords(view.viewFromWorld, view.projection, p);
+    if (c.depthLin <= 0.0)
+    {
+      continue;
+    }
+    if (light.type == LightType::Point && std::hypot(c.x, c.y) > std::tan(glm::radians(80.0)))
+    {
+      throw InputError(format("point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
+        ") sees visible receivers more than 80 degrees off its mean direction; one shadow map cannot cover them "
+        "(cube shadow maps are not supported): use a spot or area light"));
+    }
+    xMin = std::min(xMin, c.x);
+    xMax = std::max(xMax, c.x);
+    yMin = std::min(yMin, c.y);
+    yMax = std::max(yMax, c.y);
+    receiverFar = std::max(receiverFar, c.depthLin);
+    receiverNear = std::min(receiverNear, c.depthLin);
+  }
+  if (receiverFar <= 0.0)
+  {
+    // Nothing visible can receive light: keep a valid (tiny) frustum so every stage still runs.
+    xMin = yMin = -1e-3;
+    xMax = yMax = 1e-3;
+    receiverNear = 1.0;
+    receiverFar = 2.0;
+  }
+  // Degenerate extents (a single receiver point) still need a non-empty window.
+  const double minExtent = 1e-6 * std::max({ 1.0, std::abs(xMax), std::abs(yMax) });
+  if (xMax - xMin < minExtent)
+  {
+    xMin -= minExtent;
+    xMax += minExtent;
+  }
+  if (yMax - yMin < minExtent)
+  {
+    yMin -= minExtent;
+    yMax += minExtent;
+  }
+  // Grow so that `marginTexels` texels of the final map lie outside the receivers on each side.
+  const double grow = settings.resolution / (settings.resolution - 2.0 * settings.marginTexels);
+  const double xCenter = 0.5 * (xMin + xMax);
+  const double yCenter = 0.5 * (yMin + yMax);
+  const double xHalf = 0.5 * (xMax - xMin) * grow;
+  const double yHalf = 0.5 * (yMax - yMin) * grow;
+  view.window = { xCenter - xHalf, xCenter + xHalf, yCenter - yHalf, yCenter + yHalf };
+
+  // Depth range: receivers, plus casters clipped to the frustum (only the part inside can occlude).
+  const double depthEpsilon = 1e-5 * receiverFar;
+  double nearDepth = receiverNear;
+  std::vector<glm::dvec4> sidePlanes; // in light view space, dot(plane, (p, 1)) >= 0 inside
+  if (view.projection == LightProjection::Perspective)
+  {
+    // x >= xMin * depth  <=>  x + xMin * z >= 0 (z = -depth), etc.
+    sidePlanes = { { 1.0, 0.0, view.window.x, 0.0 }, { -1.0, 0.0, -view.window.y, 0.0 },
+      { 0.0, 1.0, view.window.z, 0.0 }, { 0.0, -1.0, -view.window.w, 0.0 } };
+  }
+  else
+  {
+    sidePlanes = { { 1.0, 0.0, 0.0, -view.window.x }, { -1.0, 0.0, 0.0, view.window.y },
+      { 0.0, 1.0, 0.0, -view.window.z }, { 0.0, -1.0, 0.0, view.window.w } };
+  }
+  const glm::dvec4 inFrontPlane(0.0, 0.0, -1.0, -depthEpsilon); // depth >= depthEpsilon
+  const glm::dvec4 beforeFarPlane(0.0, 0.0, 1.0, receiverFar);  // depth <= receiverFar
+  for (const SceneObject& object : scene.objects)
+  {
+    if (!object.castShadows)
+    {
+      continue;
+    }
+    const TriangleMesh& mesh = object.mesh;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      std::vector<glm::dvec3> polygon;
+      for (int k = 0; k < 3; ++k)
+      {
+        const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
+        polygon.push_back(glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0)));
+      }
+      if (view.projection == LightProjection::Perspective)
+      {
+        polygon = clipPolygon(polygon, inFrontPlane);
+      }
+      polygon = clipPolygon(polygon, beforeFarPlane);
+      for (const glm::dvec4& plane : sidePlanes)
+      {
+        if (polygon.empty())
+        {
+          break;
+        }
+        polygon = clipPolygon(polygon, plane);
+      }
+      for (const glm::dvec3& pLs : polygon)
+      {
+        nearDepth = std::min(nearDepth, -pLs.z);
+      }
+    }
+  }
+  // A little slack so geometry exactly at the range ends is not clipped by the rasteriser.
+  view.nearDepth = std::max(depthEpsilon, nearDepth * (1.0 - 1e-3));
+  view.farDepth = receiverFar * (1.0 + 1e-3) + depthEpsilon;
+  if (view.projection == LightProjection::Orthographic)
+  {
+    view.nearDepth = nearDepth - 1e-3 * (receiverFar - nearDepth) - depthEpsilon;
+  }
+
+  if (view.projection == LightProjection::Perspective)
+  {
+    view.clipFromView = glm::frustum(view.window.x * view.nearDepth, view.window.y * view.nearDepth,
+      view.window.z * view.nearDepth, view.window.w * view.nearDepth, view.nearDepth, view.farDepth);
+  }
+  else
+  {
+    view.clipFromView =
+      glm::ortho(view.window.x, view.window.y, view.window.z, view.window.w, view.nearDepth, view.farDepth);
+  }
+  view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+  return view;
+}
+
+} // namespace sl

@@ -1,0 +1,46 @@
+// The shadow-map math shared by every shadow-map technique, in double precision. It mirrors, line for
+// line, shaders/common/ShadowMapCommon.glsl; tests check the GLSL against it on read-back buffers.
+#pragma once
+
+#include "lightspace/CameraView.h"
+#include "lightspace/LightView.h"
+
+#include <glm/glm.hpp>
+
+namespace sl
+{
+
+// Where a receiver falls in the shadow map: continuous texel coordinates (texel (i, j) spans
+// [i, i+1) x [j, j+1)) and its linear depth along the light axis.
+struct ShadowMapSample
+{
+  glm::dvec2 uvTexels;
+  double depthLin;
+};
+
+ShadowMapSample projectToShadowMap(const LightView& view, const glm::dvec3& pWs);
+
+// Depth bias (survey §5): constant plus slope-scaled, both in units of the world-space size of one
+// shadow-map texel at the receiver, so one setting works at any scene scale and map resolution.
+//   bias = texelWorldSize(depthLin) * (constantTexels + slopeTexels * min(tan(theta), maxSlope))
+// theta is the angle between the receiver normal and the direction to the light: a receiver tilted by
+// theta changes depth by tan(theta) per unit of lateral distance, and the stored depth is sampled up
+// to half a texel diagonal (~0.71 texel) away, so slopeTexels >= 0.71 removes acne.
+struct BiasSettings
+{
+  double constantTexels = 0.5;
+  double slopeTexels = 1.0;
+  double maxSlope = 10.0;
+};
+
+double depthBias(const LightView& view, const BiasSettings& bias, double tanTheta, double depthLin);
+double tanAngleToLight(const glm::dvec3& nWs, const glm::dvec3& toLight);
+
+// The survey's aliasing error m (Eq. 2), evaluated exactly for the pixel: the Jacobian J of
+// shadow-map texel coordinates with respect to screen pixel coordinates, following the surface's tangent
+// plane, gives texel_ratio = 1 / sigma_min(J): how many screen pixels one shadow-map texel spans along
+// its most stretched direction. m > 1 means undersampling (jagged shadow edges). Clamped to [0, 1e6].
+double texelRatio(const CameraView& camera, const LightView& light, double pixelX, double pixelY,
+  const glm::dvec3& pWs, const glm::dvec3& nWs);
+
+} // namespace sl

@@ -1,0 +1,4 @@
+set(SL_LIGHTSPACE_SOURCES
+  src/lightspace/CameraView.cpp
+  src/lightspace/LightView.cpp
+  src/lightspace/ShadowMapMath.cpp)

@@ -1,0 +1,61 @@
+// Everything the passes of one frame share: inputs (scene, light, technique, camera), the targets each
+// stage writes, and the light view fitted for this frame. The pipeline owns it; passes hold a pointer.
+//
+// G-buffer layout (all RGBA32F, cleared to 0, so w = 0 marks an uncovered pixel):
+//   gbufferPosition   xyz = pWs (world position),            w = coverage (1 where a surface is seen)
+//   gbufferNormal     xyz = nWs (unit, facing the camera),   w = 1 if the surface receives shadows
+//   gbufferAlbedoDepth xyz = albedo,                          w = view depth (linear, along the camera axis)
+#pragma once
+
+#include "gl/GlResources.h"
+#include "lightspace/CameraView.h"
+#include "lightspace/LightView.h"
+#include "scene/Scene.h"
+#include "techniques/Technique.h"
+
+#include <vtkSmartPointer.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+class vtkTextureObject;
+
+namespace sl
+{
+
+struct FrameResources
+{
+  // Inputs.
+  const Scene* scene = nullptr;
+  const Light* light = nullptr;
+  const TechniqueDescriptor* technique = nullptr;
+  ParameterValues parameters;
+  CameraView camera;
+  std::unique_ptr<GpuScene> gpuScene;
+
+  // G-buffer stage.
+  vtkSmartPointer<vtkTextureObject> gbufferPosition;
+  vtkSmartPointer<vtkTextureObject> gbufferNormal;
+  vtkSmartPointer<vtkTextureObject> gbufferAlbedoDepth;
+  vtkSmartPointer<vtkTextureObject> gbufferDepth;
+  ImageF positionReadback; // read back by the light-space stage for focusing
+  ImageF normalReadback;
+
+  // Light-space stage (only when the technique needs the shadow map).
+  bool hasLightView = false;
+  LightView lightView;
+  vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
+  vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
+
+  // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F.
+  std::map<std::string, vtkSmartPointer<vtkTextureObject>> techniqueTargets;
+
+  // Shading stage.
+  vtkSmartPointer<vtkTextureObject> shadedImage; // RGBA8
+
+  int width() const { return camera.resolution.x; }
+  int height() const { return camera.resolution.y; }
+};
+
+} // namespace sl

@@ -1,0 +1,191 @@
+#include "passes/ShadowRenderer.h"
+
+#include "core/Error.h"
+#include "gl/vtkSLEglRenderWindow.h"
+#include "passes/FrameResources.h"
+#include "passes/vtkSLGBufferPass.h"
+#include "passes/vtkSLLightDepthPass.h"
+#include "passes/vtkSLShadingPass.h"
+#include "passes/vtkSLTechniquePass.h"
+
+#include <vtkNew.h>
+#include <vtkRenderPassCollection.h>
+#include <vtkRenderer.h>
+#include <vtkSequencePass.h>
+#include <vtkTextureObject.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace sl
+{
+
+const NamedImage* FrameResult::find(const std::string& name) const
+{
+  for (const NamedImage& buffer : buffers)
+  {
+    if (buffer.name == name)
+    {
+      return &buffer;
+    }
+  }
+  return nullptr;
+}
+
+const std::vector<BufferSpec>& commonBufferSpecs()
+{
+  static const std::vector<BufferSpec> specs = {
+    { "visibility", "", "fraction of the light visible from the surface point, in [0, 1] (1 = fully lit); hard/pcf "
+                        "sample area lights from their centre. 0 where coverage = 0" },
+    { "position", "world units", "world-space position of the surface seen in the pixel (3 components)" },
+    { "normal", "", "unit world-space normal, facing the camera (3 components)" },
+    { "depth", "world units", "linear view depth along the camera axis" },
+    { "coverage", "", "1 where a surface covers the pixel centre, 0 for background" },
+    { "albedo", "", "surface albedo (3 components)" },
+  };
+  return specs;
+}
+
+ShadowRenderer::ShadowRenderer()
+  : window_(vtkSmartPointer<vtkSLEglRenderWindow>::New())
+  , renderer_(vtkSmartPointer<vtkRenderer>::New())
+{
+  window_->InitializeOffscreen(64, 64);
+  window_->AddRenderer(renderer_);
+}
+
+ShadowRenderer::~ShadowRenderer()
+{
+  window_->MakeCurrent();
+  renderer_->SetPass(nullptr);
+}
+
+FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& request)
+{
+  const TechniqueDescriptor& technique = findTechnique(request.technique);
+  if (request.lightIndex < 0 || request.lightIndex >= static_cast<int>(scene.lights.size()))
+  {
+    throw InputError(format("--light ", request.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
+  }
+  const Light& light = scene.lights[static_cast<std::size_t>(request.lightIndex)];
+  if (std::find(technique.supportedLights.begin(), technique.supportedLights.end(), light.type) ==
+    technique.supportedLights.end())
+  {
+    throw InputError(format("technique '", technique.name, "' does not support the scene's light ",
+      request.lightIndex, " (", scene.file.string(), ")"));
+  }
+  FrameResources frame;
+  frame.scene = &scene;
+  frame.light = &light;
+  frame.technique = &technique;
+  frame.parameters = ParameterValues(technique);
+  for (const std::string& assignment : request.settings)
+  {
+    frame.parameters.set(assignment);
+  }
+  const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
+  if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > 16384 || resolution.y > 16384)
+  {
+    throw InputError(format("--resolution ", resolution.x, "x", resolution.y, ": each side must be in 1..16384"));
+  }
+  frame.camera = makeCameraView(scene.camera, scene.bounds(), resolution);
+
+  window_->MakeCurrent();
+  window_->SetSize(resolution.x, resolution.y);
+  frame.gpuScene = std::make_unique<GpuScene>(window_, scene);
+  const std::vector<std::string> outputs = vtkSLTechniquePass::OutputNames(technique);
+  for (const std::string& output : outputs)
+  {
+    frame.techniqueTargets[output] = makeFloatTarget(window_, resolution.x, resolution.y, 1);
+  }
+
+  // Assemble the frame's passes: only the structures this technique needs.
+  std::vector<vtkSmartPointer<vtkSLStagePass>> stages;
+  stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
+  if (technique.needs(LightStructure::ShadowMap))
+  {
+    stages.push_back(vtkSmartPointer<vtkSLLightDepthPass>::New());
+  }
+  stages.push_back(technique.createPass());
+  stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
+  vtkNew<vtkRenderPassCollection> collection;
+  for (const auto& stage : stages)
+  {
+    stage->SetFrame(&frame);
+    collection->AddItem(stage);
+  }
+  vtkNew<vtkSequencePass> sequence;
+  sequence->SetPasses(collection);
+  renderer_->SetPass(sequence);
+
+  const auto frameStart = std::chrono::steady_clock::now();
+  window_->Render();
+  FrameResult result;
+  result.frameWallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+
+  for (const auto& stage : stages)
+  {
+    result.stages.push_back({ stage->GetStageName(), stage->GetGpuMilliseconds(), stage->GetWallMilliseconds() });
+  }
+  result.technique = technique.name;
+  result.parameters = frame.parameters;
+  result.resolution = resolution;
+  result.camera = frame.camera;
+  if (frame.hasLightView)
+  {
+    result.lightView = frame.lightView;
+  }
+  result.glRenderer = window_->GetRendererString();
+  result.glVersion = window_->GetVersionString();
+  result.eglPlatform = window_->GetEglContext()->platformName();
+
+  // Read everything back.
+  const ImageF position = frame.positionReadback.empty() ? readFloatTexture(frame.gbufferPosition, 4) : frame.positionReadback;
+  const ImageF normal = frame.normalReadback.empty() ? readFloatTexture(frame.gbufferNormal, 4) : frame.normalReadback;
+  const ImageF albedoDepth = readFloatTexture(frame.gbufferAlbedoDepth, 4);
+  const auto channels = [](const ImageF& source, int first, int count) {
+    ImageF out(source.width, source.height, count);
+    for (std::size_t i = 0; i < source.pixelCount(); ++i)
+    {
+      for (int c = 0; c < count; ++c)
+      {
+        out.data[i * count + c] = source.data[i * source.components + first + c];
+      }
+    }
+    return out;
+  };
+  const auto& common = commonBufferSpecs();
+  const auto commonBuffer = [&](const std::string& name, ImageF image) {
+    const auto spec = std::find_if(common.begin(), common.end(), [&](const BufferSpec& s) { return s.name == name; });
+    result.buffers.push_back({ name, std::move(image), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
+  };
+  commonBuffer("visibility", readFloatTexture(frame.techniqueTargets.at("visibility"), 1));
+  commonBuffer("position", channels(position, 0, 3));
+  commonBuffer("normal", channels(normal, 0, 3));
+  commonBuffer("depth", channels(albedoDepth, 3, 1));
+  commonBuffer("coverage", channels(position, 3, 1));
+  commonBuffer("albedo", channels(albedoDepth, 0, 3));
+  for (const BufferSpec& spec : technique.buffers)
+  {
+    result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
+      spec.doc, spec.kind, spec.categoryLabels });
+  }
+  if (frame.hasLightView)
+  {
+    result.lightSpace.push_back({ "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
+      "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" });
+    result.lightSpace.push_back({ "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
+      "hardware depth buffer of the shadow map, window coordinates in [0, 1]" });
+  }
+  result.image = readColorTexture(frame.shadedImage);
+
+  renderer_->SetPass(nullptr);
+  for (const auto& stage : stages)
+  {
+    stage->ReleaseGraphicsResources(window_);
+  }
+  frame.gpuScene->releaseGraphicsResources(window_);
+  return result;
+}
+
+} // namespace sl

@@ -1,0 +1,91 @@
+// Renders one frame of a scene with one technique and returns every buffer, read back to the CPU.
+//
+// The frame is a vtkSequencePass on a vtkRenderer of an offscreen EGL window:
+//   gbuffer -> [shadow_map, when the technique needs it] -> technique -> shading
+// Only the light-space structures the technique's descriptor lists are built.
+#pragma once
+
+#include "core/Image.h"
+#include "lightspace/CameraView.h"
+#include "lightspace/LightView.h"
+#include "scene/Scene.h"
+#include "techniques/Technique.h"
+
+#include <vtkSmartPointer.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gl/vtkSLEglRenderWindow.h"
+#include <vtkRenderer.h>
+
+namespace sl
+{
+
+struct RenderRequest
+{
+  std::string technique = "hard";
+  std::vector<std::string> settings;   // "key=value", as given to --set
+  std::optional<glm::ivec2> resolution; // overrides the scene camera's
+  int lightIndex = 0;                   // which of the scene's lights casts the shadows
+};
+
+struct StageTiming
+{
+  std::string stage;
+  double gpuMs = 0.0;
+  double wallMs = 0.0;
+};
+
+struct NamedImage
+{
+  std::string name;
+  ImageF image;
+  std::string unit;
+  std::string doc;
+  BufferKind kind = BufferKind::Continuous;
+  std::vector<std::string> categoryLabels;
+};
+
+struct FrameResult
+{
+  std::string technique;
+  ParameterValues parameters;
+  glm::ivec2 resolution{ 0 };
+  CameraView camera;
+  std::optional<LightView> lightView;
+  std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
+  std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
+  ImageU8 image;                      // shaded, RGB, row 0 at the bottom
+  std::vector<StageTiming> stages;
+  double frameWallMs = 0.0;
+  std::string glRenderer;
+  std::string glVersion;
+  std::string eglPlatform;
+
+  const NamedImage* find(const std::string& name) const;
+};
+
+// The buffers every technique's buffers.vti has, with their documentation (README lists them).
+const std::vector<BufferSpec>& commonBufferSpecs();
+
+class ShadowRenderer
+{
+public:
+  ShadowRenderer(); // creates the EGL context; throws GraphicsError naming what was tried
+  ~ShadowRenderer();
+  ShadowRenderer(const ShadowRenderer&) = delete;
+  ShadowRenderer& operator=(const ShadowRenderer&) = delete;
+
+  // Throws InputError for bad requests (unknown technique/parameter, out-of-range value, unsupported light).
+  FrameResult render(const Scene& scene, const RenderRequest& request);
+
+  vtkSLEglRenderWindow* window() const { return window_; }
+
+private:
+  vtkSmartPointer<vtkSLEglRenderWindow> window_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+};
+
+} // namespace sl

@@ -1,0 +1,104 @@
+#include "passes/vtkSLLightDepthPass.h"
+
+#include "core/Error.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLState.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkSLLightDepthPass);
+
+vtkSLLightDepthPass::vtkSLLightDepthPass() = default;
+vtkSLLightDepthPass::~vtkSLLightDepthPass() = default;
+
+void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  const sl::ParameterValues& parameters = frame.parameters;
+
+  // Focusing needs the visible receivers: read the G-buffer back (it is also exported later).
+  frame.positionReadback = sl::readFloatTexture(frame.gbufferPosition, 4);
+  frame.normalReadback = sl::readFloatTexture(frame.gbufferNormal, 4);
+  sl::FocusSettings focus;
+  focus.resolution = parameters.getInt("shadow_map_size");
+  const sl::ParameterSpec* kernel = frame.technique->findParameter("kernel_texels");
+  // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
+  focus.marginTexels = kernel ? std::ceil(0.5 * parameters.get("kernel_texels")) + 1.0 : 1.0;
+  frame.lightView = sl::fitLightView(*frame.light, *frame.scene, frame.positionReadback, frame.normalReadback, focus);
+  frame.hasLightView = true;
+  const sl::LightView& view = frame.lightView;
+
+  frame.shadowMapLinear = sl::makeFloatTarget(window, view.resolution, view.resolution, 1);
+  frame.shadowMapDepth = sl::makeDepthTarget(window, view.resolution, view.resolution);
+
+  vtkOpenGLState* glState = window->GetState();
+  vtkOpenGLState::ScopedglViewport viewportSaver(glState);
+  vtkOpenGLState::ScopedglEnableDisable depthTestSaver(glState, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(glState, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(glState, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissorSaver(glState, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(glState);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(glState);
+  glState->PushFramebufferBindings();
+
+  this->Framebuffer->SetContext(window);
+  this->Framebuffer->Bind();
+  this->Framebuffer->AddColorAttachment(0, frame.shadowMapLinear);
+  this->Framebuffer->AddDepthAttachment(frame.shadowMapDepth);
+  this->Framebuffer->ActivateDrawBuffers(1);
+  if (!this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
+  {
+    throw sl::GraphicsError("shadow-map framebuffer is incomplete");
+  }
+  glState->vtkglViewport(0, 0, view.resolution, view.resolution);
+  glState->vtkglDisable(GL_SCISSOR_TEST);
+  glState->vtkglDisable(GL_BLEND);
+  glState->vtkglDisable(GL_CULL_FACE); // facing is decided in the shader (caster_faces)
+  glState->vtkglEnable(GL_DEPTH_TEST);
+  glState->vtkglDepthFunc(GL_LESS);
+  glState->vtkglDepthMask(GL_TRUE);
+  // Texels no caster covers hold a depth beyond every receiver: they never shadow anything.
+  const float emptyDepth = static_cast<float>(2.0 * view.farDepth);
+  glClearBufferfv(GL_COLOR, 0, &emptyDepth);
+  const float farthest = 1.0f;
+  glClearBufferfv(GL_DEPTH, 0, &farthest);
+
+  sl::ShaderDefines defines = sl::commonDefines();
+  defines.push_back({ "CASTER_FACES_FRONT", "0" });
+  defines.push_back({ "CASTER_FACES_BACK", "1" });
+  const bool secondDepth =
+    frame.technique->findParameter("caster_faces") && parameters.choice("caster_faces") == "back";
+  defines.push_back({ "CASTER_FACES", secondDepth ? "1" : "0" });
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("lightspace/LightDepthVertex.glsl", defines),
+    sl::assembleShader("lightspace/LightDepthFragment.glsl", defines), "light depth");
+  sl::setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
+  sl::setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
+  this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject& object) { return object.castShadows; });
+
+  this->Framebuffer->RemoveColorAttachments(1);
+  this->Framebuffer->RemoveDepthAttachment();
+  glState->PopFramebufferBindings();
+}
+
+void vtkSLLightDepthPass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Drawer.releaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(window));
+  this->Framebuffer->ReleaseGraphicsResources(window);
+}
+
+void vtkSLLightDepthPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}

@@ -1,0 +1,191 @@
+#include "passes/vtkSLTechniquePass.h"
+
+#include "core/Error.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLQuadHelper.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLState.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <algorithm>
+#include <cctype>
+
+namespace
+{
+
+std::string upperCase(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
+  return text;
+}
+
+} // namespace
+
+vtkSLTechniquePass::vtkSLTechniquePass() = default;
+vtkSLTechniquePass::~vtkSLTechniquePass() = default;
+
+std::vector<std::string> vtkSLTechniquePass::OutputNames(const sl::TechniqueDescriptor& descriptor)
+{
+  std::vector<std::string> names{ "visibility" };
+  for (const sl::BufferSpec& buffer : descriptor.buffers)
+  {
+    names.push_back(buffer.name);
+  }
+  return names;
+}
+
+sl::ShaderDefines vtkSLTechniquePass::TechniqueDefines() const
+{
+  const sl::FrameResources& frame = *this->Frame;
+  sl::ShaderDefines defines = sl::commonDefines();
+  const std::vector<std::string> outputs = OutputNames(*frame.technique);
+  for (std::size_t location = 0; location < outputs.size(); ++location)
+  {
+    defines.push_back({ "OUT_" + upperCase(outputs[location]), std::to_string(location) });
+  }
+  for (const sl::ParameterSpec& spec : frame.technique->parameters)
+  {
+    if (spec.choices.empty())
+    {
+      continue;
+    }
+    for (std::size_t i = 0; i < spec.choices.size(); ++i)
+    {
+      defines.push_back({ upperCase(spec.name + "_" + spec.choices[i]), std::to_string(i) });
+    }
+    defines.push_back({ upperCase(spec.name), std::to_string(frame.parameters.getInt(spec.name)) });
+  }
+  const sl::ShaderDefines extra = this->GetExtraDefines();
+  defines.insert(defines.end(), extra.begin(), extra.end());
+  return defines;
+}
+
+std::string vtkSLTechniquePass::ParameterDeclarations() const
+{
+  std::string declarations;
+  for (const sl::ParameterSpec& spec : this->Frame->technique->parameters)
+  {
+    if (spec.choices.empty())
+    {
+      declarations += "uniform float param_" + spec.name + ";\n";
+    }
+  }
+  return declarations;
+}
+
+void vtkSLTechniquePass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  const std::vector<std::string> outputs = OutputNames(*frame.technique);
+
+  vtkOpenGLState* glState = window->GetState();
+  vtkOpenGLState::ScopedglViewport viewportSaver(glState);
+  vtkOpenGLState::ScopedglEnableDisable depthTestSaver(glState, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(glState, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissorSaver(glState, GL_SCISSOR_TEST);
+  glState->PushFramebufferBindings();
+  this->Framebuffer->SetContext(window);
+  this->Framebuffer->Bind();
+  for (std::size_t location = 0; location < outputs.size(); ++location)
+  {
+    this->Framebuffer->AddColorAttachment(
+      static_cast<unsigned>(location), frame.techniqueTargets.at(outputs[location]));
+  }
+  this->Framebuffer->ActivateDrawBuffers(static_cast<unsigned>(outputs.size()));
+  if (!this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
+  {
+    throw sl::GraphicsError("technique framebuffer is incomplete");
+  }
+  glState->vtkglViewport(0, 0, frame.width(), frame.height());
+  glState->vtkglDisable(GL_DEPTH_TEST);
+  glState->vtkglDisable(GL_BLEND);
+  glState->vtkglDisable(GL_SCISSOR_TEST);
+
+  const std::string fragmentSource =
+    sl::assembleShader(this->GetFragmentShaderPath(), this->TechniqueDefines(), this->ParameterDeclarations());
+  if (!this->Quad || fragmentSource != this->QuadFragmentSource)
+  {
+    const std::string vertexSource = sl::assembleShader("common/FullScreenVertex.glsl");
+    this->Quad = std::make_unique<vtkOpenGLQuadHelper>(window, vertexSource.c_str(), fragmentSource.c_str(), "");
+    this->QuadFragmentSource = fragmentSource;
+  }
+  vtkShaderProgram* program = this->Quad->Program;
+  if (!program || !program->GetCompiled())
+  {
+    throw sl::GraphicsError(frame.technique->name + ": cannot build the technique shader (GLSL log above)");
+  }
+  window->GetShaderCache()->ReadyShaderProgram(program);
+
+  std::vector<vtkTextureObject*> bound;
+  bound.push_back(sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition));
+  bound.push_back(sl::bindTexture(program, "gbufferNormal", frame.gbufferNormal));
+  sl::setLightUniforms(program, *frame.light);
+  const sl::CameraView& camera = frame.camera;
+  if (program->IsUniformUsed("cameraNearOrigin"))
+  {
+    sl::setVector(program, "cameraNearOrigin", camera.nearOrigin);
+    sl::setVector(program, "cameraNearStepX", camera.nearStepX);
+    sl::setVector(program, "cameraNearStepY", camera.nearStepY);
+    sl::setVector(program, "cameraRayOrigin", camera.rayOrigin);
+    sl::setVector(program, "cameraRayStepX", camera.rayStepX);
+    sl::setVector(program, "cameraRayStepY", camera.rayStepY);
+  }
+  if (frame.hasLightView)
+  {
+    const sl::LightView& view = frame.lightView;
+    if (program->IsUniformUsed("shadowMapLinear"))
+    {
+      bound.push_back(sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear));
+    }
+    sl::setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
+    sl::setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
+    sl::setIntIfUsed(program, "shadowMapSize", view.resolution);
+    sl::setIntIfUsed(program, "lightIsPerspective", view.projection == sl::LightProjection::Perspective ? 1 : 0);
+    // texelWorldSize(depthLin) = shadowTexelExtent * depthLin (perspective) or shadowTexelExtent.
+    sl::setFloatIfUsed(program, "shadowTexelExtent",
+      view.projection == sl::LightProjection::Perspective ? view.texelWorldSize(1.0) : view.texelWorldSize(0.0));
+  }
+  for (const sl::ParameterSpec& spec : frame.technique->parameters)
+  {
+    if (spec.choices.empty())
+    {
+      sl::setFloatIfUsed(program, ("param_" + spec.name).c_str(), frame.parameters.get(spec.name));
+    }
+  }
+  const std::vector<vtkTextureObject*> extra = this->SetTechniqueUniforms(program);
+  bound.insert(bound.end(), extra.begin(), extra.end());
+
+  this->Quad->Render();
+  this->AfterDraw();
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+  this->Framebuffer->RemoveColorAttachments(static_cast<unsigned>(outputs.size()));
+  glState->PopFramebufferBindings();
+}
+
+void vtkSLTechniquePass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Quad)
+  {
+    this->Quad->ReleaseGraphicsResources(window);
+    this->Quad.reset();
+  }
+  this->Framebuffer->ReleaseGraphicsResources(window);
+}
+
+void vtkSLTechniquePass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FragmentShader: " << (this->Frame ? this->GetFragmentShaderPath() : std::string("(none)")) << "\n";
+}

@@ -1,0 +1,62 @@
+// Stage 3: a technique's visibility pass. It writes "visibility" and every buffer its descriptor
+// publishes into FrameResources::techniqueTargets (R32F each, allocated by the pipeline).
+//
+// This base class implements the common case, a full-screen fragment shader over the G-buffer:
+//  - outputs: one `layout(location = OUT_<BUFFER>)` per target, locations generated from the descriptor;
+//  - variants: each enumeration parameter P with choices c_i becomes `#define P i` plus
+//    `#define P_C_i i` (upper case), so shaders write `#if FILTER == FILTER_HARDWARE_BILINEAR`;
+//  - numeric parameters become `uniform float param_<name>;`, declared and set automatically;
+//  - the G-buffer, light, camera (texel ratio) and shadow-map uniforms of shaders/common are set.
+// A technique subclass names its fragment shader and may add uniforms or defines. Techniques that are not
+// a full-screen shader (the `vtk` technique) override Execute() instead.
+#pragma once
+
+#include "gl/ShaderLibrary.h"
+#include "passes/vtkSLStagePass.h"
+#include "techniques/Technique.h"
+
+#include <vtkNew.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLQuadHelper;
+class vtkShaderProgram;
+class vtkTextureObject;
+
+class vtkSLTechniquePass : public vtkSLStagePass
+{
+public:
+  vtkTypeMacro(vtkSLTechniquePass, vtkSLStagePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  const char* GetStageName() const override { return "technique"; }
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  // Names of the targets in output-location order: "visibility", then the descriptor's buffers.
+  static std::vector<std::string> OutputNames(const sl::TechniqueDescriptor& descriptor);
+
+protected:
+  vtkSLTechniquePass();
+  ~vtkSLTechniquePass() override;
+  void Execute(const vtkRenderState* state) override;
+
+  virtual std::string GetFragmentShaderPath() const = 0;
+  virtual sl::ShaderDefines GetExtraDefines() const { return {}; }
+  // Called with the program bound, after the common uniforms; returns textures to deactivate afterwards.
+  virtual std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram*) { return {}; }
+  // Called after drawing (restore sampler bindings and the like).
+  virtual void AfterDraw() {}
+
+  sl::ShaderDefines TechniqueDefines() const;
+  std::string ParameterDeclarations() const;
+
+private:
+  vtkSLTechniquePass(const vtkSLTechniquePass&) = delete;
+  void operator=(const vtkSLTechniquePass&) = delete;
+
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  std::string QuadFragmentSource;
+};

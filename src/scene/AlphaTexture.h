@@ -1,0 +1,45 @@
+// Alpha (perforation) textures: from a PNG, or one of two procedural patterns.
+//
+// All produce a 1-component ImageF with values in [0,1], row 0 = v near 0 (the bottom row of the picture,
+// as in OpenGL and vtkImageData). Texel (x, y) covers u in [x, x+1)/width, v in [y, y+1)/height; the
+// procedural patterns are evaluated at texel centres and tile seamlessly under repeat wrap. Renderers treat
+// alpha < 0.5 as a hole (see AlphaTexture in Scene.h).
+//
+// Procedural patterns (kProceduralAlphaSize x kProceduralAlphaSize):
+//  - "fence": a chain-link-like diamond grid. With u' = u + v and v' = u - v (the grid rotated by 45
+//    degrees), a texel is a hole (alpha 0) where both fract(8u') and fract(8v') lie in the open interval
+//    (0.15, 0.85), and a wire (alpha 1) elsewhere. About 49% of the texture is holes (0.7^2).
+//  - "leaves": kLeavesEllipseCount opaque ellipses (alpha 1) of random position, size and orientation on
+//    a transparent background (alpha 0), from a fixed-seed splitmix64 sequence, so the pattern is the same
+//    on every platform and run. Ellipses wrap around the texture edges (it tiles); they overlap, and their
+//    sizes are chosen so that about half of the texture is opaque.
+#pragma once
+
+#include "core/Image.h"
+#include "scene/Scene.h"
+
+#include <filesystem>
+#include <string>
+
+namespace sl
+{
+
+constexpr int kProceduralAlphaSize = 256;
+constexpr int kLeavesEllipseCount = 60;
+
+// Alpha of a PNG through vtkPNGReader: the alpha channel when the PNG has one (gray+alpha or RGBA),
+// otherwise its luminance (Rec. 709 weights for RGB). 8- and 16-bit PNGs are normalised to [0,1].
+// Throws InputError "cannot read '<file>' (<why>)" for a missing, non-PNG or corrupt file.
+ImageF readAlphaPng(const std::filesystem::path& file);
+
+ImageF makeFenceAlpha(int size = kProceduralAlphaSize);
+ImageF makeLeavesAlpha(int size = kProceduralAlphaSize);
+
+// True for the names the scene format reserves for procedural patterns ("fence", "leaves").
+bool isProceduralAlphaName(const std::string& source);
+
+// The alpha texture a scene's `alpha_texture` string names: a procedural pattern, or a PNG path resolved
+// relative to `baseDir`. Throws InputError as readAlphaPng does.
+AlphaTexture makeAlphaTexture(const std::string& source, const std::filesystem::path& baseDir);
+
+} // namespace sl

@@ -1,0 +1,46 @@
+#include "scene/Scene.h"
+
+#include <glm/gtc/constants.hpp>
+
+namespace sl
+{
+
+namespace
+{
+
+Bounds boundsOf(const std::vector<SceneObject>& objects, bool castersOnly)
+{
+  Bounds bounds;
+  for (const SceneObject& object : objects)
+  {
+    if (castersOnly && !object.castShadows)
+      continue;
+    for (const glm::vec3& position : object.mesh.positions)
+      bounds.extend(glm::dvec3(position));
+  }
+  return bounds;
+}
+
+} // namespace
+
+double Light::area() const
+{
+  if (type != LightType::Area)
+    return 0.0; // point, spot and directional lights are ideal: no extent
+  if (shape == LightShape::Square)
+    return size * size;
+  const double radius = 0.5 * size; // `size` is the disk's diameter
+  return glm::pi<double>() * radius * radius;
+}
+
+Bounds Scene::bounds() const
+{
+  return boundsOf(objects, false);
+}
+
+Bounds Scene::casterBounds() const
+{
+  return boundsOf(objects, true);
+}
+
+} // namespace sl

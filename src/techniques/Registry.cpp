@@ -1,0 +1,19 @@
+// The technique registry: one entry per technique. Adding a technique means adding its folder under
+// src/techniques/, its shaders, one line here, and its tests.
+#include "techniques/Technique.h"
+#include "techniques/hard/HardTechnique.h"
+#include "techniques/pcf/PcfTechnique.h"
+
+namespace sl
+{
+
+const std::vector<TechniqueDescriptor>& techniqueRegistry()
+{
+  static const std::vector<TechniqueDescriptor> registry = {
+    hardTechnique(),
+    pcfTechnique(),
+  };
+  return registry;
+}
+
+} // namespace sl

@@ -1,0 +1,24 @@
+// Parameters every shadow-map technique shares (declared once, listed by each descriptor).
+//   shadow_map_size       texels per side of the (square) shadow map
+//   caster_faces          front: first-depth shadow map; back: second-depth (Wang & Molnar 1994, survey §5)
+//   bias_constant_texels  constant depth bias, in shadow-map texel footprints at the receiver (survey §5)
+//   bias_slope_texels     slope-scaled bias: texel footprints per unit tan(angle to light) (survey §5)
+//   bias_max_slope        clamp on tan(angle to light), so grazing receivers do not push the bias to infinity
+// Units are texel footprints (world size of one texel at the receiver's depth), so one setting works at
+// any scene scale and map resolution; see lightspace/ShadowMapMath.h.
+#pragma once
+
+#include "techniques/Technique.h"
+
+#include <vector>
+
+namespace sl
+{
+
+std::vector<ParameterSpec> shadowMapParameters();
+std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot, directional
+
+struct BiasSettings;
+BiasSettings biasSettings(const ParameterValues& values);
+
+} // namespace sl

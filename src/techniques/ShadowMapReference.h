@@ -1,0 +1,60 @@
+// What a CPU reference of a shadow-map technique needs: the read-back inputs the GPU used (G-buffer,
+// shadow map, light view) and a way to report, per pixel, how close a decision was to flipping, so tests
+// can separate real disagreements from float-vs-double rounding at a decision boundary.
+#pragma once
+
+#include "core/Image.h"
+#include "lightspace/CameraView.h"
+#include "lightspace/LightView.h"
+#include "lightspace/ShadowMapMath.h"
+#include "scene/Scene.h"
+
+#include <optional>
+
+namespace sl
+{
+
+struct ShadowMapInputs
+{
+  const Light* light = nullptr;
+  CameraView camera;
+  LightView lightView;
+  ImageF position;       // 3 components, from buffers (pWs)
+  ImageF normal;         // 3 components (nWs)
+  ImageF coverage;       // 1 component
+  ImageF receives;       // 1 component: 1 if the surface receives shadows (G-buffer normal.w)
+  ImageF shadowMapLinear; // linear depth per texel
+  ImageF shadowMapWindow; // hardware depth per texel (window coordinates)
+};
+
+// The result of a reference evaluation at one pixel.
+struct ReferenceSample
+{
+  double visibility = 0.0;
+  // Smallest distance of any comparison in this pixel to its decision boundary: depth distance relative
+  // to the depth, and tap distance to a texel edge in texels. Tiny values mean float rounding on the GPU
+  // may legitimately flip the decision.
+  double depthMargin = 1e300;
+  double texelEdgeMargin = 1e300;
+  double reachMargin = 1e300; // |cos| of the light-reach tests (facing, area-light plane)
+  double bias = 0.0;
+  double texelRatio = 0.0;
+  bool evaluated = false; // false when the pixel never reaches a shadow test (uncovered, facing away, ...)
+};
+
+// Shared per-pixel preamble of hard and pcf: returns nullopt-equivalent `evaluated = false` with the
+// final visibility for pixels decided without the shadow map; otherwise fills bias and the shadow-map
+// sample and returns evaluated = true.
+struct ShadowLookup
+{
+  ReferenceSample sample;
+  ShadowMapSample sm;
+  double comparisonDepth = 0.0;
+};
+ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y);
+
+// One nearest-texel comparison with margins (texel index clamped to the map like texelFetch).
+double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth,
+  ReferenceSample& sample);
+
+} // namespace sl

@@ -1,0 +1,100 @@
+// The technique registry's vocabulary (STYLE.md, "Adding a technique touches one place").
+//
+// A technique is described by data: its parameters (bgfx-style table: default, range, unit, doc), the
+// light-space structures it needs (the pipeline builds only those), the instrumentation buffers it
+// publishes, and how to make its visibility pass. The CLI (`list`, `--set`), the renderer, the outputs
+// and the regression suite iterate the registry; nothing else switches on technique names.
+#pragma once
+
+#include "scene/Scene.h"
+
+#include <vtkSmartPointer.h>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+class vtkSLTechniquePass;
+
+namespace sl
+{
+
+struct ParameterSpec
+{
+  std::string name;
+  double defaultValue = 0.0;
+  double minValue = 0.0;
+  double maxValue = 0.0;
+  std::string unit;                 // "texels", "", ...
+  std::string doc;                  // one line, cites the paper where it comes from
+  std::vector<std::string> choices; // non-empty: an enumeration, the value is the index of the choice
+  bool integer = false;             // integer-valued numeric parameter
+};
+
+// Light-space structures a technique can ask for. Each is built by its own pass, only when needed, and
+// exported in light_space.vti.
+enum class LightStructure
+{
+  ShadowMap, // linear depth (R32F) + hardware depth (D32F) from the light's centre, focused (survey §4.1)
+};
+std::string lightStructureName(LightStructure structure);
+
+enum class BufferKind
+{
+  Continuous, // heat map with a sequential colour map
+  Signed,     // diverging colour map about 0
+  Categorical // integer classes with labels
+};
+
+struct BufferSpec
+{
+  std::string name; // array name in buffers.vti, e.g. "kernel_texels"
+  std::string unit;
+  std::string doc;
+  BufferKind kind = BufferKind::Continuous;
+  std::vector<std::string> categoryLabels;
+};
+
+struct TechniqueDescriptor
+{
+  std::string name;    // CLI name: "pcf"
+  std::string title;   // "Percentage-closer filtering"
+  std::string paper;   // "Reeves et al. 1987; survey (Scherzer et al. 2011) §6"
+  std::vector<ParameterSpec> parameters;
+  std::vector<LightStructure> lightStructures;
+  std::vector<BufferSpec> buffers; // published in addition to the common ones (visibility, position, ...)
+  std::vector<LightType> supportedLights;
+  std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
+
+  const ParameterSpec* findParameter(const std::string& parameterName) const;
+  bool needs(LightStructure structure) const;
+};
+
+// Parameter values resolved against a descriptor: every parameter has a value, all within range.
+class ParameterValues
+{
+public:
+  ParameterValues() = default;
+  explicit ParameterValues(const TechniqueDescriptor& descriptor);
+
+  double get(const std::string& name) const;        // SL_CHECKs the name exists
+  int getInt(const std::string& name) const;
+  const std::string& choice(const std::string& name) const; // enumeration's chosen name
+  // Parses "key=value" (a number, or a choice name for enumerations, or true/false for 0..1 integers).
+  // Throws InputError naming the technique, key and value when unknown or out of range.
+  void set(const std::string& assignment);
+  void set(const std::string& key, double value);
+  const std::map<std::string, double>& values() const { return values_; }
+  const TechniqueDescriptor& descriptor() const { return *descriptor_; }
+
+private:
+  const TechniqueDescriptor* descriptor_ = nullptr;
+  std::map<std::string, double> values_;
+};
+
+const std::vector<TechniqueDescriptor>& techniqueRegistry();
+// Throws InputError listing the available techniques when `name` is unknown.
+const TechniqueDescriptor& findTechnique(const std::string& name);
+
+} // namespace sl

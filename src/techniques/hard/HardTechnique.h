@@ -1,0 +1,21 @@
+// Technique `hard`: shadow mapping with one depth comparison per pixel (Williams 1978), with the survey's
+// depth biasing (Scherzer et al. 2011, §5): constant + slope-scaled bias, or second-depth shadow maps.
+//
+// Parameters (see ShadowMapParameters.h): shadow_map_size [texels], caster_faces (front|back),
+// bias_constant_texels, bias_slope_texels [texel footprints], bias_max_slope.
+// Buffers: kernel_texels (1: one texel), texel_ratio (survey Eq. 2, screen pixels per texel),
+// depth_bias [world], depth_margin [world] = receiver depth - bias - stored depth (> 0: shadowed).
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor hardTechnique();
+
+// CPU reference (double precision) of HardVisibility.glsl at pixel (x, y).
+ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y);
+
+} // namespace sl

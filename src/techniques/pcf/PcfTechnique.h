@@ -1,0 +1,39 @@
+// Technique `pcf`: percentage-closer filtering (Reeves, Salesin & Cook 1987; survey §6, Fig. 23).
+//
+// Parameters: the shadow-map ones (ShadowMapParameters.h) and
+//   kernel_texels    [texels]  grid: kernel_texels x kernel_texels taps one texel apart, centred on the
+//                              receiver's exact shadow-map position; poisson: disk diameter
+//   pattern          grid | poisson (rotated per pixel by PixelHash.glsl)
+//   poisson_samples  taps of the Poisson disk (poisson only)
+//   filter           nearest: each tap is one texel comparison; hardware_bilinear: each tap is the
+//                    hardware's bilinearly weighted 2x2 comparison (sampler2DShadow, GL_LINEAR)
+// Buffers: kernel_texels (footprint width, +1 for the bilinear taps), taps (depth comparisons per pixel),
+// texel_ratio (survey Eq. 2), depth_bias.
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace sl
+{
+
+TechniqueDescriptor pcfTechnique();
+
+constexpr int maxPoissonSamples = 64;
+// A fixed Poisson-disk pattern in the unit disk (best-candidate sampling, fixed seed), maxPoissonSamples
+// points; any prefix of it is well distributed.
+const std::vector<glm::dvec2>& poissonDisk();
+
+// The per-pixel hash of shaders/common/PixelHash.glsl, bit for bit.
+std::uint32_t pixelHash(std::uint32_t x, std::uint32_t y);
+double pixelHashAngle(std::uint32_t x, std::uint32_t y);
+
+// CPU reference (double precision) of PcfVisibility.glsl at pixel (x, y).
+ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+
+} // namespace sl

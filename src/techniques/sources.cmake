@@ -1,0 +1,9 @@
+set(SL_TECHNIQUES_SOURCES
+  src/techniques/Technique.cpp
+  src/techniques/Registry.cpp
+  src/techniques/ShadowMapParameters.cpp
+  src/techniques/ShadowMapReference.cpp
+  src/techniques/hard/HardTechnique.cpp
+  src/techniques/hard/vtkSLHardShadowPass.cxx
+  src/techniques/pcf/PcfTechnique.cpp
+  src/techniques/pcf/vtkSLPcfPass.cxx)

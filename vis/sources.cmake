@@ -1,0 +1,6 @@
+# Heat maps and their colour keys (see vis/HeatMap.h). Needs VTK RenderingFreeType (text) and IOImage (PNG).
+set(SL_VIS_SOURCES
+  vis/Canvas.cxx
+  vis/ColorKey.cxx
+  vis/ColorMap.cxx
+  vis/HeatMap.cxx)
