@@ -151,8 +151,16 @@ LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbu
       {
         towardReceivers += glm::normalize(p - light.center);
       }
-      forward = glm::length(towardReceivers) > 1e-9 ? glm::normalize(towardReceivers)
-                                                    : glm::normalize(sceneBounds.center() - light.center);
+      if (glm::length(towardReceivers) > 1e-9)
+      {
+        forward = glm::normalize(towardReceivers);
+      }
+      else
+      {
+        // Receivers all around the light (or none): any axis; the coverage check below decides.
+        const glm::dvec3 towardScene = sceneBounds.empty() ? glm::dvec3(0.0) : sceneBounds.center() - light.center;
+        forward = glm::length(towardScene) > 1e-9 ? glm::normalize(towardScene) : glm::dvec3(0.0, -1.0, 0.0);
+      }
       up = anyPerpendicular(forward);
       break;
     }
@@ -172,18 +180,21 @@ LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbu
   double yMax = -xMin;
   double receiverFar = 0.0;
   double receiverNear = std::numeric_limits<double>::max();
+  const double cosMaxPointAngle = std::cos(glm::radians(80.0));
   for (const glm::dvec3& p : receivers)
   {
-    const LightCoords c = toLightCoords(view.viewFromWorld, view.projection, p);
-    if (c.depthLin <= 0.0)
-    {
-      continue;
-    }
-    if (light.type == LightType::Point && std::hypot(c.x, c.y) > std::tan(glm::radians(80.0)))
+    // One perspective map covers less than a hemisphere: a point light whose visible receivers spread
+    // wider (some even behind it) would need a cube map.
+    if (light.type == LightType::Point && glm::dot(forward, glm::normalize(p - light.center)) < cosMaxPointAngle)
     {
       throw InputError(format("point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
         ") sees visible receivers more than 80 degrees off its mean direction; one shadow map cannot cover them "
         "(cube shadow maps are not supported): use a spot or area light"));
+    }
+    const LightCoords c = toLightCoords(view.viewFromWorld, view.projection, p);
+    if (c.depthLin <= 0.0)
+    {
+      continue;
     }
     xMin = std::min(xMin, c.x);
     xMax = std::max(xMax, c.x);

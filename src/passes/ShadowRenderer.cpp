@@ -42,6 +42,7 @@ const std::vector<BufferSpec>& commonBufferSpecs()
     { "depth", "world units", "linear view depth along the camera axis" },
     { "coverage", "", "1 where a surface covers the pixel centre, 0 for background" },
     { "albedo", "", "surface albedo (3 components)" },
+    { "receives_shadows", "", "1 where the surface receives shadows (the object's receive_shadows), else 0" },
   };
   return specs;
 }
@@ -165,6 +166,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   commonBuffer("depth", channels(albedoDepth, 3, 1));
   commonBuffer("coverage", channels(position, 3, 1));
   commonBuffer("albedo", channels(albedoDepth, 0, 3));
+  commonBuffer("receives_shadows", channels(normal, 3, 1));
   for (const BufferSpec& spec : technique.buffers)
   {
     result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,

@@ -44,14 +44,32 @@ double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexel
   ReferenceSample& sample)
 {
   const int size = inputs.shadowMapLinear.width;
-  const int i = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
-  const int j = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
-  const double stored = inputs.shadowMapLinear.at(i, j);
-  const double fractionX = uvTexels.x - std::floor(uvTexels.x);
-  const double fractionY = uvTexels.y - std::floor(uvTexels.y);
-  sample.texelEdgeMargin = std::min({ sample.texelEdgeMargin, fractionX, 1.0 - fractionX, fractionY, 1.0 - fractionY });
+  const auto testTexel = [&](int i, int j) {
+    const double stored = inputs.shadowMapLinear.at(std::clamp(i, 0, size - 1), std::clamp(j, 0, size - 1));
+    return std::make_pair(comparisonDepth <= stored ? 1.0 : 0.0, stored);
+  };
+  const int i = static_cast<int>(std::floor(uvTexels.x));
+  const int j = static_cast<int>(std::floor(uvTexels.y));
+  const auto [result, stored] = testTexel(i, j);
   sample.depthMargin = std::min(sample.depthMargin, std::abs(comparisonDepth - stored) / std::max(1e-30, std::abs(stored)));
-  return comparisonDepth <= stored ? 1.0 : 0.0;
+  // A tap this close to a texel edge could land in the neighbour on the GPU (float coordinates); that
+  // only matters when the neighbour's test gives the other answer.
+  const double fractionX = uvTexels.x - i;
+  const double fractionY = uvTexels.y - j;
+  const struct
+  {
+    double distance;
+    int di;
+    int dj;
+  } edges[] = { { fractionX, -1, 0 }, { 1.0 - fractionX, 1, 0 }, { fractionY, 0, -1 }, { 1.0 - fractionY, 0, 1 } };
+  for (const auto& edge : edges)
+  {
+    if (edge.distance < 1e-3 && testTexel(i + edge.di, j + edge.dj).first != result)
+    {
+      sample.texelEdgeMargin = std::min(sample.texelEdgeMargin, edge.distance);
+    }
+  }
+  return result;
 }
 
 } // namespace sl

@@ -99,8 +99,8 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
   const int size = inputs.shadowMapWindow.width;
   const glm::dvec2 shifted = uvTexels - 0.5;
   const glm::dvec2 base = glm::floor(shifted);
+  // The filtered result is continuous in the weights, so no texel-edge ambiguity here (only depth).
   const glm::dvec2 weight = shifted - base;
-  sample.texelEdgeMargin = std::min({ sample.texelEdgeMargin, weight.x, 1.0 - weight.x, weight.y, 1.0 - weight.y });
   double result = 0.0;
   for (int dj = 0; dj <= 1; ++dj)
   {
@@ -109,7 +109,7 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
       const int i = std::clamp(static_cast<int>(base.x) + di, 0, size - 1);
       const int j = std::clamp(static_cast<int>(base.y) + dj, 0, size - 1);
       const double stored = inputs.shadowMapWindow.at(i, j);
-      sample.depthMargin = std::min(sample.depthMargin, std::abs(referenceWindowDepth - stored));
+      sample.depthMargin = std::min(sample.depthMargin, std::abs(referenceWindowDepth - stored) / std::max(1e-30, stored));
       const double texelWeight = (di ? weight.x : 1.0 - weight.x) * (dj ? weight.y : 1.0 - weight.y);
       result += texelWeight * (referenceWindowDepth <= stored ? 1.0 : 0.0);
     }

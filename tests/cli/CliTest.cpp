@@ -1,0 +1,2 @@
+// Skeleton; filled in below.
+#include <gtest/gtest.h>

@@ -1,0 +1,193 @@
+// The GLSL of each technique against its CPU implementation (double precision), pixel by pixel, on the
+// buffers the GPU read back: same G-buffer, same shadow map, same light view.
+//
+// Tolerances and why:
+//  - hard: identical (0 or 1). The GPU evaluates in float, the reference in double, so a comparison whose
+//    operands are within float rounding of each other (|depth difference| < 2e-6 relative, or a tap
+//    within 1e-4 texel of a texel edge, or a light-reach cosine < 1e-5) may legitimately go either way.
+//    Those pixels are counted ("ambiguous") and must stay under 1% of the image; all others must match.
+//  - pcf nearest (grid, poisson): <= 1e-5 on unambiguous pixels (a sum of 0/1 taps divided by the count).
+//  - pcf hardware_bilinear: the 2x2 weights come from the texture unit, whose sub-texel precision the GL
+//    spec leaves to the implementation (8 bits on llvmpipe and most GPUs): <= 2^-7 on unambiguous pixels.
+//  - texel_ratio: 1e-3 relative (float evaluation of survey Eq. 2); depth_bias: 1e-3 relative (tan(theta)
+//    amplifies float error like eps / cos^2(theta) at grazing receivers).
+#include "support/TestSupport.h"
+#include "techniques/ShadowMapParameters.h"
+#include "techniques/hard/HardTechnique.h"
+#include "techniques/pcf/PcfTechnique.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <functional>
+
+namespace sl
+{
+namespace
+{
+
+struct Agreement
+{
+  int evaluated = 0;  // pixels that reached a shadow test
+  int ambiguous = 0;  // within float rounding of a decision boundary
+  int mismatched = 0; // unambiguous pixels that differ beyond tolerance
+  int partial = 0;    // 0 < visibility < 1 on the CPU side
+  int shadowed = 0;   // visibility == 0 on the CPU side
+  int lit = 0;        // visibility == 1 on the CPU side
+  double maxDifference = 0.0;
+  std::string firstMismatch;
+};
+
+bool isAmbiguous(const ReferenceSample& sample)
+{
+  return sample.depthMargin < 2e-6 || sample.texelEdgeMargin < 1e-4 || sample.reachMargin < 1e-5;
+}
+
+using Reference = std::function<ReferenceSample(const ShadowMapInputs&, int, int)>;
+
+Agreement compare(const FrameResult& frame, const ShadowMapInputs& inputs, const Reference& reference, double tolerance)
+{
+  Agreement agreement;
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& texelRatio = frame.find("texel_ratio")->image;
+  const ImageF& depthBias = frame.find("depth_bias")->image;
+  for (int y = 0; y < visibility.height; ++y)
+  {
+    for (int x = 0; x < visibility.width; ++x)
+    {
+      const ReferenceSample cpu = reference(inputs, x, y);
+      const double gpu = visibility.at(x, y);
+      const bool ambiguous = cpu.evaluated && isAmbiguous(cpu);
+      if (cpu.evaluated)
+      {
+        ++agreement.evaluated;
+        agreement.ambiguous += ambiguous ? 1 : 0;
+        agreement.partial += (cpu.visibility > 0.0 && cpu.visibility < 1.0) ? 1 : 0;
+        agreement.shadowed += cpu.visibility == 0.0 ? 1 : 0;
+        agreement.lit += cpu.visibility == 1.0 ? 1 : 0;
+        // Instrumentation: the GPU's texel ratio and bias are the same formulas.
+        if (cpu.texelRatio < 1e4)
+        {
+          EXPECT_NEAR(texelRatio.at(x, y), cpu.texelRatio, 1e-3 * cpu.texelRatio + 1e-6)
+            << "texel_ratio at pixel " << x << "," << y;
+        }
+        EXPECT_NEAR(depthBias.at(x, y), cpu.bias, 1e-3 * cpu.bias + 1e-9) << "depth_bias at pixel " << x << "," << y;
+      }
+      if (ambiguous)
+      {
+        continue;
+      }
+      const double difference = std::abs(gpu - cpu.visibility);
+      agreement.maxDifference = std::max(agreement.maxDifference, difference);
+      if (difference > tolerance)
+      {
+        if (agreement.mismatched == 0)
+        {
+          agreement.firstMismatch = format("pixel ", x, ",", y, " gpu ", gpu, " cpu ", cpu.visibility,
+            " depth margin ", cpu.depthMargin, " texel-edge margin ", cpu.texelEdgeMargin);
+        }
+        ++agreement.mismatched;
+      }
+    }
+  }
+  return agreement;
+}
+
+void expectAgreement(const Agreement& agreement, int pixelCount, const std::string& label, bool expectPartial)
+{
+  std::cout << "[ measured ] " << label << ": evaluated " << agreement.evaluated << ", ambiguous "
+            << agreement.ambiguous << ", partial " << agreement.partial << ", max |gpu - cpu| "
+            << agreement.maxDifference << "\n";
+  EXPECT_EQ(agreement.mismatched, 0) << label << ": first mismatch " << agreement.firstMismatch << " (max diff "
+                                     << agreement.maxDifference << ")";
+  EXPECT_LT(agreement.ambiguous, pixelCount / 100) << label << ": too many pixels at a decision boundary";
+  // Not vacuous: many pixels were tested, and both lit and shadowed (or partial) results occurred.
+  EXPECT_GT(agreement.evaluated, pixelCount / 4) << label;
+  EXPECT_GT(agreement.lit, 0) << label;
+  EXPECT_GT(agreement.shadowed + agreement.partial, pixelCount / 200) << label;
+  if (expectPartial)
+  {
+    EXPECT_GT(agreement.partial, 0) << label << ": a filter should produce partial visibility";
+  }
+}
+
+class GpuCpu : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(GpuCpu, HardMatchesExactly)
+{
+  const Scene scene = test::loadDataset(GetParam());
+  const FrameResult frame = test::renderDataset(scene, "hard", 128, 112, { "shadow_map_size=512" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const BiasSettings bias = biasSettings(frame.parameters);
+  const Agreement agreement = compare(
+    frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return hardReference(in, bias, x, y); }, 0.0);
+  expectAgreement(agreement, 128 * 112, GetParam() + " hard", false);
+}
+
+TEST_P(GpuCpu, PcfGridMatches)
+{
+  const Scene scene = test::loadDataset(GetParam());
+  const FrameResult frame = test::renderDataset(scene, "pcf", 128, 112, { "shadow_map_size=512", "kernel_texels=5" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const Agreement agreement = compare(
+    frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); },
+    1e-5);
+  expectAgreement(agreement, 128 * 112, GetParam() + " pcf grid", true);
+}
+
+TEST_P(GpuCpu, PcfRotatedPoissonMatches)
+{
+  const Scene scene = test::loadDataset(GetParam());
+  const FrameResult frame = test::renderDataset(
+    scene, "pcf", 128, 112, { "shadow_map_size=512", "kernel_texels=9", "pattern=poisson", "poisson_samples=24" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const Agreement agreement = compare(
+    frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); },
+    1e-5);
+  expectAgreement(agreement, 128 * 112, GetParam() + " pcf poisson", true);
+}
+
+TEST_P(GpuCpu, PcfHardwareBilinearMatchesWithinSubTexelPrecision)
+{
+  const Scene scene = test::loadDataset(GetParam());
+  const FrameResult frame = test::renderDataset(
+    scene, "pcf", 128, 112, { "shadow_map_size=512", "kernel_texels=3", "filter=hardware_bilinear" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const Agreement agreement = compare(
+    frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); },
+    1.0 / 128.0);
+  expectAgreement(agreement, 128 * 112, GetParam() + " pcf hardware", true);
+}
+
+std::string datasetTestName(const ::testing::TestParamInfo<std::string>& info)
+{
+  std::string name = info.param;
+  for (char& c : name)
+  {
+    c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  }
+  return name;
+}
+
+// Every light type and a perforated caster: area (bunny, stacked, contact, grazing, fence) and point.
+INSTANTIATE_TEST_SUITE_P(Datasets, GpuCpu,
+  ::testing::Values("bunny", "stacked-occluders", "contact", "grazing", "fence", "sphere-point"), datasetTestName);
+
+TEST(GpuCpuBias, SecondDepthShadowMapMatches)
+{
+  const Scene scene = test::loadDataset("contact");
+  const FrameResult frame =
+    test::renderDataset(scene, "hard", 128, 112, { "shadow_map_size=512", "caster_faces=back", "bias_constant_texels=0",
+                                                   "bias_slope_texels=0" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const BiasSettings bias = biasSettings(frame.parameters);
+  const Agreement agreement = compare(
+    frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return hardReference(in, bias, x, y); }, 0.0);
+  expectAgreement(agreement, 128 * 112, "contact hard second-depth", false);
+}
+
+} // namespace
+} // namespace sl

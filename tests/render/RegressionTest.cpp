@@ -1,0 +1,588 @@
+// Offscreen regression: every dataset x every registered technique (today: hard, pcf) rendered at 128x128
+// with default parameters and compared with the committed baselines in
+//   tests/baselines/<dataset>/<technique>/image.png        shaded RGB, 8 bit
+//   tests/baselines/<dataset>/<technique>/visibility.exr   visibility, 32-bit float
+// Tolerances are data, next to the baselines: tests/baselines/tolerance.json ("default" plus optional
+// per-case entries "<dataset>/<technique>"; each gives, for "image" and "visibility", max_abs_diff and
+// max_failing_fraction = fraction of pixels allowed to differ by more than max_abs_diff).
+//
+// On a failure the actual outputs and the differences are written to
+//   <build>/test-output/regression/<dataset>/<technique>/{actual.png, actual_visibility.exr, diff.png,
+//   diff_visibility.png}
+// and their paths and the numbers are in the failure message. A missing baseline is a failure.
+//
+// Re-blessing (after an intended change; review the new images before committing them). Either
+//   SHADOWLAB_BLESS=1 ctest --test-dir build -R Regression
+// or
+//   SHADOWLAB_BLESS=1 ./build/tests/gpu_tests --gtest_filter='*Regression*'
+// writes the current outputs as the new baselines (creating the directories) and passes. The ctest test
+// names are "Baselines/RegressionTest.Matches/<dataset>_<technique>" (dataset '-' becomes '_'), e.g.
+// "Baselines/RegressionTest.Matches/planar_occluder_pcf", so -R Regression selects them all.
+#include "core/Error.h"
+#include "io/ImageIO.h"
+#include "support/TestSupport.h"
+#include "techniques/Technique.h"
+#include "vis/HeatMap.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+constexpr int kWidth = 128;
+constexpr int kHeight = 128;
+const char* const kBlessCommand = "SHADOWLAB_BLESS=1 ctest --test-dir build -R Regression";
+
+fs::path baselineRoot()
+{
+  return test::sourceDir() / "tests" / "baselines";
+}
+
+bool blessRequested()
+{
+  const char* value = std::getenv("SHADOWLAB_BLESS");
+  return value != nullptr && std::string(value) == "1";
+}
+
+// ---- tolerance (data: tests/baselines/tolerance.json) ----------------------------------------------------
+
+struct Tolerance
+{
+  double maxAbsDiff = 0.0;
+  double maxFailingFraction = 0.0;
+};
+
+struct CaseTolerance
+{
+  Tolerance image;      // max_abs_diff in 0..255 units, per channel
+  Tolerance visibility; // max_abs_diff in visibility units (0..1)
+};
+
+Tolerance parseTolerance(const Json& entry, const std::string& where, Tolerance base)
+{
+  for (const auto& [key, value] : entry.items())
+  {
+    if (key == "max_abs_diff")
+    {
+      base.maxAbsDiff = value.get<double>();
+    }
+    else if (key == "max_failing_fraction")
+    {
+      base.maxFailingFraction = value.get<double>();
+    }
+    else
+    {
+      throw InputError("tolerance.json: " + where + ": unknown key '" + key + "'");
+    }
+  }
+  if (!(base.maxAbsDiff >= 0.0) || !(base.maxFailingFraction >= 0.0) || !(base.maxFailingFraction <= 1.0))
+  {
+    throw InputError("tolerance.json: " + where + ": needs max_abs_diff >= 0 and max_failing_fraction in [0, 1]");
+  }
+  return base;
+}
+
+CaseTolerance parseCaseTolerance(const Json& entry, const std::string& where, CaseTolerance base)
+{
+  for (const auto& [key, value] : entry.items())
+  {
+    if (key == "image")
+    {
+      base.image = parseTolerance(value, where + ".image", base.image);
+    }
+    else if (key == "visibility")
+    {
+      base.visibility = parseTolerance(value, where + ".visibility", base.visibility);
+    }
+    else if (key != "_comment")
+    {
+      throw InputError("tolerance.json: " + where + ": unknown key '" + key + "'");
+    }
+  }
+  return base;
+}
+
+Json loadToleranceFile()
+{
+  const fs::path path = baselineRoot() / "tolerance.json";
+  std::ifstream stream(path);
+  if (!stream)
+  {
+    throw InputError(path.string() + ": cannot read the regression tolerances");
+  }
+  return Json::parse(stream);
+}
+
+// The default entry, overridden field by field by the "<dataset>/<technique>" entry when there is one.
+CaseTolerance toleranceFor(const std::string& dataset, const std::string& technique)
+{
+  const Json file = loadToleranceFile();
+  if (!file.contains("default"))
+  {
+    throw InputError("tolerance.json: no \"default\" entry");
+  }
+  CaseTolerance tolerance = parseCaseTolerance(file.at("default"), "default", CaseTolerance{});
+  const std::string key = dataset + "/" + technique;
+  if (file.contains(key))
+  {
+    tolerance = parseCaseTolerance(file.at(key), key, tolerance);
+  }
+  return tolerance;
+}
+
+// ---- the comparator ----------------------------------------------------------------------------------------
+
+struct Comparison
+{
+  bool sameSize = true;
+  double maxAbsDiff = 0.0;
+  std::size_t failingPixels = 0;
+  std::size_t pixels = 0;
+  double failingFraction() const { return pixels ? static_cast<double>(failingPixels) / static_cast<double>(pixels) : 0.0; }
+  bool passes(const Tolerance& tolerance) const
+  {
+    return sameSize && failingFraction() <= tolerance.maxFailingFraction;
+  }
+};
+
+// Per pixel: the largest absolute difference over the components. A pixel fails when that exceeds
+// tolerance.maxAbsDiff; a non-finite value on either side always fails (and counts as an infinite difference).
+template <typename T>
+Comparison compareImages(const Image<T>& actual, const Image<T>& expected, const Tolerance& tolerance,
+  ImageF* perPixelDiff = nullptr)
+{
+  Comparison result;
+  if (actual.width != expected.width || actual.height != expected.height || actual.components != expected.components)
+  {
+    result.sameSize = false;
+    return result;
+  }
+  result.pixels = actual.pixelCount();
+  if (perPixelDiff)
+  {
+    *perPixelDiff = ImageF(actual.width, actual.height, 1);
+  }
+  for (std::size_t i = 0; i < result.pixels; ++i)
+  {
+    double pixelDiff = 0.0;
+    for (int c = 0; c < actual.components; ++c)
+    {
+      const std::size_t k = i * static_cast<std::size_t>(actual.components) + static_cast<std::size_t>(c);
+      const double a = static_cast<double>(actual.data[k]);
+      const double e = static_cast<double>(expected.data[k]);
+      const double diff = (std::isfinite(a) && std::isfinite(e)) ? std::abs(a - e) : HUGE_VAL;
+      pixelDiff = std::max(pixelDiff, diff);
+    }
+    result.maxAbsDiff = std::max(result.maxAbsDiff, pixelDiff);
+    if (pixelDiff > tolerance.maxAbsDiff)
+    {
+      ++result.failingPixels;
+    }
+    if (perPixelDiff)
+    {
+      perPixelDiff->data[i] = static_cast<float>(std::min(pixelDiff, 1e30));
+    }
+  }
+  return result;
+}
+
+std::string describe(const char* what, const Comparison& comparison, const Tolerance& tolerance)
+{
+  std::ostringstream text;
+  text << what << ": ";
+  if (!comparison.sameSize)
+  {
+    text << "size differs from the baseline";
+    return text.str();
+  }
+  text << "max abs diff " << comparison.maxAbsDiff << " (tolerance " << tolerance.maxAbsDiff << "), "
+       << comparison.failingPixels << "/" << comparison.pixels << " pixels over it = fraction "
+       << comparison.failingFraction() << " (allowed " << tolerance.maxFailingFraction << ")";
+  return text.str();
+}
+
+// |actual - expected| per channel, times 8, as RGB (a difference of 32/255 or more is white).
+ImageU8 amplifiedDiff(const ImageU8& actual, const ImageU8& expected)
+{
+  ImageU8 diff(actual.width, actual.height, actual.components);
+  for (std::size_t k = 0; k < diff.data.size(); ++k)
+  {
+    const int d = std::abs(static_cast<int>(actual.data[k]) - static_cast<int>(expected.data[k]));
+    diff.data[k] = static_cast<std::uint8_t>(std::min(255, 8 * d));
+  }
+  return diff;
+}
+
+// ---- one regression case -----------------------------------------------------------------------------------
+
+struct CaseOutcome
+{
+  bool passed = false;
+  std::string message;
+};
+
+// Compares (or, with bless, writes) the baseline of one case. Failure artefacts go to `outputDir`, which is
+// emptied first so nothing stale is left from an earlier run.
+CaseOutcome checkAgainstBaseline(const ImageU8& image, const ImageF& visibility, const fs::path& baselineDir,
+  const fs::path& outputDir, const CaseTolerance& tolerance, bool bless)
+{
+  const fs::path imagePath = baselineDir / "image.png";
+  const fs::path visibilityPath = baselineDir / "visibility.exr";
+  std::error_code ignored;
+  fs::remove_all(outputDir, ignored);
+
+  CaseOutcome outcome;
+  if (bless)
+  {
+    fs::create_directories(baselineDir);
+    writePng(imagePath, image);
+    writeExr(visibilityPath, visibility);
+    outcome.passed = true;
+    outcome.message = "blessed: wrote " + imagePath.string() + " and " + visibilityPath.string();
+    return outcome;
+  }
+
+  const auto writeActual = [&](std::ostringstream& message) {
+    fs::create_directories(outputDir);
+    writePng(outputDir / "actual.png", image);
+    writeExr(outputDir / "actual_visibility.exr", visibility);
+    message << "\n  actual image:      " << (outputDir / "actual.png").string()
+            << "\n  actual visibility: " << (outputDir / "actual_visibility.exr").string();
+  };
+
+  std::ostringstream message;
+  if (!fs::is_regular_file(imagePath) || !fs::is_regular_file(visibilityPath))
+  {
+    message << "missing baseline " << (fs::is_regular_file(imagePath) ? visibilityPath : imagePath).string()
+            << "\n  to create it run: " << kBlessCommand
+            << "\n  (or SHADOWLAB_BLESS=1 ./build/tests/gpu_tests --gtest_filter='*Regression*'), then review and commit "
+            << baselineDir.string();
+    writeActual(message);
+    outcome.message = message.str();
+    return outcome;
+  }
+
+  const ImageU8 expectedImage = readPng(imagePath);
+  const ImageF expectedVisibility = readExr(visibilityPath);
+  ImageF visibilityDiff;
+  const Comparison imageResult = compareImages(image, expectedImage, tolerance.image);
+  const Comparison visibilityResult =
+    compareImages(visibility, expectedVisibility, tolerance.visibility, &visibilityDiff);
+  outcome.passed = imageResult.passes(tolerance.image) && visibilityResult.passes(tolerance.visibility);
+
+  message << describe("image", imageResult, tolerance.image) << "\n"
+          << describe("visibility", visibilityResult, tolerance.visibility);
+  if (!imageResult.sameSize)
+  {
+    message << "\n  image size " << image.width << "x" << image.height << "x" << image.components << ", baseline "
+            << expectedImage.width << "x" << expectedImage.height << "x" << expectedImage.components;
+  }
+  if (!visibilityResult.sameSize)
+  {
+    message << "\n  visibility size " << visibility.width << "x" << visibility.height << ", baseline "
+            << expectedVisibility.width << "x" << expectedVisibility.height;
+  }
+  if (!outcome.passed)
+  {
+    message << "\n  baseline: " << baselineDir.string();
+    writeActual(message);
+    if (imageResult.sameSize)
+    {
+      writePng(outputDir / "diff.png", amplifiedDiff(image, expectedImage));
+      message << "\n  |image diff| x8:   " << (outputDir / "diff.png").string();
+    }
+    if (visibilityResult.sameSize)
+    {
+      HeatMapOptions options;
+      options.title = "|visibility - baseline|";
+      options.rangeMin = 0.0;
+      options.rangeMax = std::max(tolerance.visibility.maxAbsDiff * 4.0, 1e-6);
+      writeHeatMapPng(visibilityDiff, nullptr, options, outputDir / "diff_visibility.png");
+      message << "\n  |visibility diff|: " << (outputDir / "diff_visibility.png").string();
+    }
+    message << "\n  if the change is intended, re-bless: " << kBlessCommand;
+  }
+  outcome.message = message.str();
+  return outcome;
+}
+
+// ---- the parameterised suite -------------------------------------------------------------------------------
+
+struct RegressionCase
+{
+  std::string dataset;
+  std::string technique;
+};
+
+// gtest prints the parameter of a failing case with this instead of a byte dump.
+void PrintTo(const RegressionCase& c, std::ostream* os)
+{
+  *os << c.dataset << "/" << c.technique;
+}
+
+std::vector<RegressionCase> regressionCases()
+{
+  std::vector<RegressionCase> cases;
+  for (const std::string& dataset : test::datasetNames())
+  {
+    for (const TechniqueDescriptor& technique : techniqueRegistry())
+    {
+      cases.push_back({ dataset, technique.name });
+    }
+  }
+  return cases;
+}
+
+std::string caseName(const testing::TestParamInfo<RegressionCase>& info)
+{
+  std::string name = info.param.dataset + "_" + info.param.technique;
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
+}
+
+class RegressionTest : public testing::TestWithParam<RegressionCase>
+{
+};
+
+TEST_P(RegressionTest, Matches)
+{
+  const RegressionCase& param = GetParam();
+  const Scene scene = test::loadDataset(param.dataset);
+  const FrameResult frame = test::renderDataset(scene, param.technique, kWidth, kHeight);
+  const NamedImage* visibility = frame.find("visibility");
+  ASSERT_NE(visibility, nullptr) << param.dataset << "/" << param.technique << ": no visibility buffer";
+  ASSERT_EQ(frame.image.width, kWidth);
+  ASSERT_EQ(frame.image.height, kHeight);
+  ASSERT_EQ(frame.image.components, 3);
+
+  const CaseTolerance tolerance = toleranceFor(param.dataset, param.technique);
+  const bool bless = blessRequested();
+  const CaseOutcome outcome = checkAgainstBaseline(frame.image, visibility->image,
+    baselineRoot() / param.dataset / param.technique,
+    test::testOutputDir() / "regression" / param.dataset / param.technique, tolerance, bless);
+  if (bless)
+  {
+    std::cout << "[ BLESS    ] " << param.dataset << "/" << param.technique << ": " << outcome.message << "\n";
+  }
+  EXPECT_TRUE(outcome.passed) << param.dataset << "/" << param.technique << " on " << frame.glRenderer << ":\n"
+                              << outcome.message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Baselines, RegressionTest, testing::ValuesIn(regressionCases()), caseName);
+
+// ---- the comparator and the tolerance data themselves --------------------------------------------------------
+
+// The reference visibility for the comparator tests: the committed baseline when there is one (the point is
+// a realistic image with shadow edges), else a fresh render so this test does not depend on blessing order.
+ImageF referenceVisibility(const std::string& dataset, const std::string& technique)
+{
+  const fs::path path = baselineRoot() / dataset / technique / "visibility.exr";
+  if (fs::is_regular_file(path))
+  {
+    return readExr(path);
+  }
+  const FrameResult frame = test::renderDataset(test::loadDataset(dataset), technique, kWidth, kHeight);
+  return frame.find("visibility")->image;
+}
+
+TEST(RegressionComparator, FlagsAnInvertedBlockAndAcceptsChangesWithinTolerance)
+{
+  const ImageF baseline = referenceVisibility("planar-occluder", "pcf");
+  ASSERT_EQ(baseline.width, kWidth);
+  ASSERT_EQ(baseline.height, kHeight);
+  const Tolerance tolerance = toleranceFor("planar-occluder", "pcf").visibility;
+  ASSERT_GT(tolerance.maxAbsDiff, 0.0);
+  const std::size_t allowedPixels =
+    static_cast<std::size_t>(std::floor(tolerance.maxFailingFraction * static_cast<double>(baseline.pixelCount())));
+  ASSERT_LT(allowedPixels, 100u) << "tolerance.json allows " << allowedPixels
+                                 << " failing pixels: a 10x10 block could hide in it";
+
+  const Comparison identical = compareImages(baseline, baseline, tolerance);
+  EXPECT_TRUE(identical.passes(tolerance)) << describe("identical", identical, tolerance);
+  EXPECT_EQ(identical.maxAbsDiff, 0.0);
+
+  // A 10x10 block set to 1 - v. Pick a block whose visibility is far from 0.5 so that every pixel changes by
+  // much more than the tolerance (in a fully lit or fully shadowed area, by 1).
+  ImageF inverted = baseline;
+  int blockX = -1;
+  int blockY = -1;
+  for (int y = 0; y + 10 <= baseline.height && blockX < 0; y += 5)
+  {
+    for (int x = 0; x + 10 <= baseline.width && blockX < 0; x += 5)
+    {
+      bool allFar = true;
+      for (int j = 0; j < 10 && allFar; ++j)
+      {
+        for (int i = 0; i < 10 && allFar; ++i)
+        {
+          allFar = std::abs(1.0 - 2.0 * baseline.at(x + i, y + j)) > 4.0 * tolerance.maxAbsDiff;
+        }
+      }
+      if (allFar)
+      {
+        blockX = x;
+        blockY = y;
+      }
+    }
+  }
+  ASSERT_GE(blockX, 0) << "no 10x10 block with visibility away from 0.5 in the reference";
+  for (int j = 0; j < 10; ++j)
+  {
+    for (int i = 0; i < 10; ++i)
+    {
+      inverted.at(blockX + i, blockY + j) = 1.0f - inverted.at(blockX + i, blockY + j);
+    }
+  }
+  const Comparison invertedResult = compareImages(inverted, baseline, tolerance);
+  EXPECT_FALSE(invertedResult.passes(tolerance))
+    << "block at " << blockX << "," << blockY << ": " << describe("inverted", invertedResult, tolerance);
+  EXPECT_EQ(invertedResult.failingPixels, 100u);
+  EXPECT_GT(invertedResult.maxAbsDiff, 4.0 * tolerance.maxAbsDiff);
+
+  // Within tolerance: every pixel moved by 3/4 of max_abs_diff, plus `allowedPixels` pixels moved by a lot.
+  ImageF nudged = baseline;
+  for (float& value : nudged.data)
+  {
+    value += static_cast<float>(0.75 * tolerance.maxAbsDiff);
+  }
+  for (std::size_t k = 0; k < allowedPixels; ++k)
+  {
+    nudged.data[k * 97 % nudged.data.size()] += 0.5f;
+  }
+  const Comparison nudgedResult = compareImages(nudged, baseline, tolerance);
+  EXPECT_TRUE(nudgedResult.passes(tolerance)) << describe("nudged", nudgedResult, tolerance);
+  EXPECT_EQ(nudgedResult.failingPixels, allowedPixels);
+
+  // One failing pixel more than allowed fails; a NaN counts as failing; a size change fails.
+  nudged.data[nudged.data.size() - 1] += 0.5f;
+  const Comparison overResult = compareImages(nudged, baseline, tolerance);
+  EXPECT_FALSE(overResult.passes(tolerance)) << describe("one over", overResult, tolerance);
+  ImageF withNan = baseline;
+  withNan.data[0] = std::nanf("");
+  EXPECT_EQ(compareImages(withNan, baseline, tolerance).failingPixels, 1u);
+  const ImageF smaller(kWidth - 1, kHeight, 1, 1.0f);
+  EXPECT_FALSE(compareImages(smaller, baseline, tolerance).passes(tolerance));
+
+  // The RGB comparator counts a pixel once, by its worst channel.
+  ImageU8 rgb(4, 4, 3, 100);
+  ImageU8 rgbChanged = rgb;
+  rgbChanged.at(1, 2, 2) = 100 + 5;
+  rgbChanged.at(3, 3, 0) = 100 - 3;
+  const Tolerance rgbTolerance{ 4.0, 0.0 };
+  const Comparison rgbResult = compareImages(rgbChanged, rgb, rgbTolerance);
+  EXPECT_EQ(rgbResult.failingPixels, 1u);
+  EXPECT_EQ(rgbResult.maxAbsDiff, 5.0);
+  EXPECT_FALSE(rgbResult.passes(rgbTolerance));
+}
+
+// The missing-baseline, failure-artefact and bless paths, on a scratch baseline directory (never the real one).
+TEST(RegressionComparator, MissingBaselineFailsAndBlessCreatesIt)
+{
+  const fs::path scratch = test::testOutputDir() / "regression-selftest";
+  std::error_code ignored;
+  fs::remove_all(scratch, ignored);
+  const fs::path baselineDir = scratch / "baselines" / "case" / "tech";
+  const fs::path outputDir = scratch / "output";
+
+  ImageU8 image(16, 8, 3, 0);
+  ImageF visibility(16, 8, 1, 0.0f);
+  for (int y = 0; y < 8; ++y)
+  {
+    for (int x = 0; x < 16; ++x)
+    {
+      visibility.at(x, y) = x < 8 ? 1.0f : 0.25f;
+      image.at(x, y, 0) = static_cast<std::uint8_t>(16 * x);
+      image.at(x, y, 1) = static_cast<std::uint8_t>(32 * y);
+    }
+  }
+  const CaseTolerance tolerance{ { 4.0, 0.0 }, { 0.02, 0.0 } };
+
+  const CaseOutcome missing = checkAgainstBaseline(image, visibility, baselineDir, outputDir, tolerance, false);
+  EXPECT_FALSE(missing.passed);
+  EXPECT_NE(missing.message.find("missing baseline"), std::string::npos) << missing.message;
+  EXPECT_NE(missing.message.find(kBlessCommand), std::string::npos) << missing.message;
+  EXPECT_TRUE(fs::is_regular_file(outputDir / "actual.png")) << missing.message;
+  EXPECT_TRUE(fs::is_regular_file(outputDir / "actual_visibility.exr")) << missing.message;
+  EXPECT_FALSE(fs::exists(baselineDir)) << "a failing comparison must not create a baseline";
+
+  const CaseOutcome blessed = checkAgainstBaseline(image, visibility, baselineDir, outputDir, tolerance, true);
+  EXPECT_TRUE(blessed.passed) << blessed.message;
+  ASSERT_TRUE(fs::is_regular_file(baselineDir / "image.png"));
+  ASSERT_TRUE(fs::is_regular_file(baselineDir / "visibility.exr"));
+  EXPECT_FALSE(fs::exists(outputDir)) << "stale failure artefacts must be cleared";
+
+  // The written baseline round-trips exactly (row order included), so the same frame passes.
+  const CaseOutcome same = checkAgainstBaseline(image, visibility, baselineDir, outputDir, tolerance, false);
+  EXPECT_TRUE(same.passed) << same.message;
+  EXPECT_FALSE(fs::exists(outputDir));
+
+  // A changed frame fails, names the numbers and writes every artefact it names.
+  ImageF changedVisibility = visibility;
+  changedVisibility.at(15, 7) = 1.0f;
+  ImageU8 changedImage = image;
+  changedImage.at(0, 0, 2) = 200;
+  const CaseOutcome changed =
+    checkAgainstBaseline(changedImage, changedVisibility, baselineDir, outputDir, tolerance, false);
+  EXPECT_FALSE(changed.passed);
+  EXPECT_NE(changed.message.find("max abs diff 0.75"), std::string::npos) << changed.message;
+  EXPECT_NE(changed.message.find("max abs diff 200"), std::string::npos) << changed.message;
+  for (const char* file : { "actual.png", "actual_visibility.exr", "diff.png", "diff_visibility.png" })
+  {
+    EXPECT_TRUE(fs::is_regular_file(outputDir / file)) << file;
+    EXPECT_NE(changed.message.find((outputDir / file).string()), std::string::npos) << file << "\n" << changed.message;
+  }
+  const ImageU8 diff = readPng(outputDir / "diff.png");
+  ASSERT_EQ(diff.width, 16);
+  ASSERT_EQ(diff.height, 8);
+  EXPECT_EQ(diff.at(0, 0, 2), 255) << "200 levels x8 saturates";
+  EXPECT_EQ(diff.at(1, 0, 2), 0);
+  fs::remove_all(scratch, ignored);
+}
+
+// Every per-case entry of tolerance.json names a case that exists, so a renamed dataset cannot leave a stale,
+// loosened tolerance behind; and the default is tight enough to catch a real change.
+TEST(RegressionComparator, ToleranceFileIsConsistent)
+{
+  const Json file = loadToleranceFile();
+  ASSERT_TRUE(file.contains("default"));
+  ASSERT_TRUE(file.contains("_comment")) << "tolerance.json must say why its numbers are what they are";
+  const CaseTolerance defaults = parseCaseTolerance(file.at("default"), "default", CaseTolerance{});
+  EXPECT_LE(defaults.visibility.maxAbsDiff, 0.05);
+  EXPECT_LE(defaults.visibility.maxFailingFraction, 0.005);
+  EXPECT_LE(defaults.image.maxAbsDiff, 8.0);
+  EXPECT_LE(defaults.image.maxFailingFraction, 0.005);
+  std::vector<std::string> known;
+  for (const RegressionCase& c : regressionCases())
+  {
+    known.push_back(c.dataset + "/" + c.technique);
+  }
+  for (const auto& [key, value] : file.items())
+  {
+    if (key == "default" || key == "_comment")
+    {
+      continue;
+    }
+    EXPECT_NE(std::find(known.begin(), known.end(), key), known.end())
+      << "tolerance.json entry '" << key << "' is not a regression case";
+    EXPECT_NO_THROW(parseCaseTolerance(value, key, defaults)) << key;
+  }
+}
+
+} // namespace
+} // namespace sl

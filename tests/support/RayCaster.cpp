@@ -1,0 +1,101 @@
+#include "support/RayCaster.h"
+
+#include "lightspace/LightView.h"
+
+#include <cmath>
+
+namespace sl::test
+{
+
+RayCaster::RayCaster(const Scene& scene)
+{
+  for (const SceneObject& object : scene.objects)
+  {
+    if (!object.castShadows)
+    {
+      continue;
+    }
+    const TriangleMesh& mesh = object.mesh;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      const auto index = [&](int k) { return mesh.indices[3 * t + k]; };
+      Triangle triangle;
+      const glm::dvec3 a(mesh.positions[index(0)]);
+      triangle.a = a;
+      triangle.edge1 = glm::dvec3(mesh.positions[index(1)]) - a;
+      triangle.edge2 = glm::dvec3(mesh.positions[index(2)]) - a;
+      if (!mesh.uvs.empty())
+      {
+        triangle.uvA = mesh.uvs[index(0)];
+        triangle.uvB = mesh.uvs[index(1)];
+        triangle.uvC = mesh.uvs[index(2)];
+      }
+      triangle.alpha = object.hasAlphaTexture ? &object.alphaTexture : nullptr;
+      triangles_.push_back(triangle);
+    }
+  }
+}
+
+bool RayCaster::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const
+{
+  for (const Triangle& triangle : triangles_)
+  {
+    const glm::dvec3 p = glm::cross(direction, triangle.edge2);
+    const double determinant = glm::dot(triangle.edge1, p);
+    if (std::abs(determinant) < 1e-15)
+    {
+      continue;
+    }
+    const double inverse = 1.0 / determinant;
+    const glm::dvec3 s = origin - triangle.a;
+    const double u = glm::dot(s, p) * inverse;
+    if (u < 0.0 || u > 1.0)
+    {
+      continue;
+    }
+    const glm::dvec3 q = glm::cross(s, triangle.edge1);
+    const double v = glm::dot(direction, q) * inverse;
+    if (v < 0.0 || u + v > 1.0)
+    {
+      continue;
+    }
+    const double t = glm::dot(triangle.edge2, q) * inverse;
+    if (t <= tMin || t >= tMax)
+    {
+      continue;
+    }
+    if (triangle.alpha)
+    {
+      const glm::dvec2 uv = (1.0 - u - v) * triangle.uvA + u * triangle.uvB + v * triangle.uvC;
+      const ImageF& alpha = triangle.alpha->alpha;
+      const auto wrap = [](double coordinate, int size) {
+        const int texel = static_cast<int>(std::floor(coordinate * size));
+        return ((texel % size) + size) % size;
+      };
+      if (alpha.at(wrap(uv.x, alpha.width), wrap(uv.y, alpha.height)) < 0.5f)
+      {
+        continue; // a hole: the ray passes
+      }
+    }
+    return true;
+  }
+  return false;
+}
+
+double RayCaster::pointVisibility(const Light& light, const glm::dvec3& pWs, const glm::dvec3& nWs, double offset) const
+{
+  if (!lightCanReach(light, pWs, nWs))
+  {
+    return 0.0;
+  }
+  const glm::dvec3 origin = pWs + offset * nWs;
+  if (light.type == LightType::Directional)
+  {
+    return occluded(origin, -light.direction, 0.0, 1e30) ? 0.0 : 1.0;
+  }
+  const glm::dvec3 toLight = light.center - origin;
+  const double distance = glm::length(toLight);
+  return occluded(origin, toLight / distance, 0.0, distance) ? 0.0 : 1.0;
+}
+
+} // namespace sl::test

@@ -1,0 +1,31 @@
+// Shared helpers for ShadowLab's tests: datasets by name, one renderer per test process, and the
+// read-back buffers of a frame as CPU-reference inputs.
+#pragma once
+
+#include "passes/ShadowRenderer.h"
+#include "scene/Scene.h"
+#include "techniques/ShadowMapReference.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sl::test
+{
+
+std::filesystem::path sourceDir();           // the repository root
+std::filesystem::path testOutputDir();        // <build>/test-output, created on demand
+std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/scene.json
+Scene loadDataset(const std::string& name);
+std::vector<std::string> datasetNames();      // every datasets/*/scene.json
+
+// One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
+ShadowRenderer& sharedRenderer();
+
+FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
+  const std::vector<std::string>& settings = {});
+
+// The read-back inputs a CPU reference of a shadow-map technique needs, from a rendered frame.
+ShadowMapInputs shadowMapInputs(const FrameResult& frame, const Scene& scene, int lightIndex = 0);
+
+} // namespace sl::test

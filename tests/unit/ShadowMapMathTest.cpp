@@ -1,0 +1,251 @@
+// Shadow-map math against closed forms (pbrt style): the aliasing measure of survey Eq. 2 in
+// configurations where it can be written down, the bias formula, and the focused light frustum.
+#include "core/Error.h"
+#include "lightspace/CameraView.h"
+#include "lightspace/LightView.h"
+#include "lightspace/ShadowMapMath.h"
+#include "scene/Scene.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sl
+{
+namespace
+{
+
+constexpr double pi = 3.14159265358979323846;
+
+Camera orthographicCameraLookingDown(double parallelScale)
+{
+  Camera camera;
+  camera.projection = Projection::Orthographic;
+  camera.position = { 0.0, 5.0, 0.0 };
+  camera.focalPoint = { 0.0, 0.0, 0.0 };
+  camera.viewUp = { 0.0, 0.0, -1.0 };
+  camera.parallelScale = parallelScale;
+  return camera;
+}
+
+Bounds unitBounds()
+{
+  Bounds bounds;
+  bounds.extend({ -2.0, -0.5, -2.0 });
+  bounds.extend({ 2.0, 0.5, 2.0 });
+  return bounds;
+}
+
+// An orthographic light looking at the origin from `direction` (unit, toward the light), window
+// [-1, 1]^2 in world units.
+LightView orthographicLight(const glm::dvec3& towardLight, int resolution)
+{
+  LightView view;
+  view.projection = LightProjection::Orthographic;
+  view.eyeWs = 10.0 * towardLight;
+  view.viewFromWorld = glm::lookAt(view.eyeWs, glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0));
+  view.window = { -1.0, 1.0, -1.0, 1.0 };
+  view.nearDepth = 1.0;
+  view.farDepth = 20.0;
+  view.resolution = resolution;
+  view.clipFromView = glm::ortho(-1.0, 1.0, -1.0, 1.0, 1.0, 20.0);
+  view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+  return view;
+}
+
+TEST(TexelRatio, OrthographicCameraAndLightStraightDown)
+{
+  // Camera: 4 world units tall over 100 pixels -> 0.04 per pixel. Light: 2 units over 100 texels -> 0.02
+  // per texel. One texel spans half a pixel.
+  const CameraView camera = makeCameraView(orthographicCameraLookingDown(2.0), unitBounds(), { 200, 100 });
+  const LightView light = orthographicLight({ 0.0, 1.0, 0.0 }, 100);
+  for (const glm::dvec2 pixel : { glm::dvec2(100.5, 50.5), glm::dvec2(10.5, 90.5) })
+  {
+    const glm::dvec3 pWs = unprojectPixel(camera, pixel.x, pixel.y, 0.0) * glm::dvec3(1.0, 0.0, 1.0);
+    EXPECT_NEAR(texelRatio(camera, light, pixel.x, pixel.y, pWs, { 0.0, 1.0, 0.0 }), 0.5, 1e-9);
+  }
+}
+
+TEST(TexelRatio, TiltedLightStretchesTexelsByOneOverCosine)
+{
+  // Projection aliasing (survey §3.2): a light at angle theta from the normal stretches a texel's
+  // footprint on the ground by 1/cos(theta) along the tilt: m = 0.02 / cos(theta) / 0.04.
+  const CameraView camera = makeCameraView(orthographicCameraLookingDown(2.0), unitBounds(), { 100, 100 });
+  for (const double thetaDeg : { 30.0, 60.0, 75.0 })
+  {
+    const double theta = thetaDeg * pi / 180.0;
+    const LightView light = orthographicLight({ 0.0, std::cos(theta), std::sin(theta) }, 100);
+    const double expected = 0.02 / std::cos(theta) / 0.04;
+    EXPECT_NEAR(texelRatio(camera, light, 50.5, 50.5, { 0.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }), expected, 1e-9)
+      << "theta " << thetaDeg;
+  }
+}
+
+TEST(TexelRatio, PerspectiveMatchesFiniteDifferences)
+{
+  // General case: perspective camera and perspective light over a tilted plane. The reference
+  // differentiates "pixel -> ray/plane hit -> texel" numerically (central differences).
+  Camera camera;
+  camera.position = { 2.0, 3.0, 4.0 };
+  camera.focalPoint = { 0.0, 0.0, 0.0 };
+  camera.viewAngleDeg = 40.0;
+  const CameraView cameraView = makeCameraView(camera, unitBounds(), { 160, 120 });
+  LightView light;
+  light.projection = LightProjection::Perspective;
+  light.eyeWs = { -1.0, 4.0, 1.0 };
+  light.viewFromWorld = glm::lookAt(light.eyeWs, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0));
+  light.window = { -0.6, 0.5, -0.4, 0.7 };
+  light.nearDepth = 1.0;
+  light.farDepth = 10.0;
+  light.resolution = 512;
+  light.clipFromView = glm::frustum(-0.6, 0.5, -0.4, 0.7, 1.0, 10.0);
+  light.clipFromWorld = light.clipFromView * light.viewFromWorld;
+  const glm::dvec3 normal = glm::normalize(glm::dvec3(0.2, 1.0, -0.3));
+
+  const auto texelAt = [&](double x, double y) {
+    const glm::dvec3 nearPoint = unprojectPixel(cameraView, x, y, -1.0);
+    const glm::dvec3 ray = unprojectPixel(cameraView, x, y, 1.0) - nearPoint;
+    const double s = -glm::dot(normal, nearPoint) / glm::dot(normal, ray); // plane through the origin
+    return projectToShadowMap(light, nearPoint + s * ray).uvTexels;
+  };
+  for (const glm::dvec2 pixel : { glm::dvec2(80.5, 60.5), glm::dvec2(30.5, 20.5), glm::dvec2(140.5, 100.5) })
+  {
+    const double h = 1e-3;
+    const glm::dvec2 du = (texelAt(pixel.x + h, pixel.y) - texelAt(pixel.x - h, pixel.y)) / (2.0 * h);
+    const glm::dvec2 dv = (texelAt(pixel.x, pixel.y + h) - texelAt(pixel.x, pixel.y - h)) / (2.0 * h);
+    const double frobenius2 = glm::dot(du, du) + glm::dot(dv, dv);
+    const double determinant = du.x * dv.y - du.y * dv.x;
+    const double sigmaMax = std::sqrt(0.5 * (frobenius2 + std::sqrt(frobenius2 * frobenius2 - 4.0 * determinant * determinant)));
+    const double expected = sigmaMax / std::abs(determinant);
+
+    const glm::dvec3 nearPoint = unprojectPixel(cameraView, pixel.x, pixel.y, -1.0);
+    const glm::dvec3 ray = unprojectPixel(cameraView, pixel.x, pixel.y, 1.0) - nearPoint;
+    const glm::dvec3 pWs = nearPoint + (-glm::dot(normal, nearPoint) / glm::dot(normal, ray)) * ray;
+    EXPECT_NEAR(texelRatio(cameraView, light, pixel.x, pixel.y, pWs, normal), expected, 1e-6 * expected)
+      << "pixel " << pixel.x << "," << pixel.y;
+  }
+}
+
+TEST(DepthBias, ConstantPlusSlopeInTexelFootprints)
+{
+  LightView light;
+  light.projection = LightProjection::Perspective;
+  light.window = { -0.5, 0.5, -0.25, 0.25 };
+  light.resolution = 100;
+  // Texel footprint at depth 2: max(1.0, 0.5) / 100 * 2 = 0.02.
+  EXPECT_NEAR(light.texelWorldSize(2.0), 0.02, 1e-15);
+  BiasSettings bias;
+  bias.constantTexels = 0.5;
+  bias.slopeTexels = 1.0;
+  bias.maxSlope = 10.0;
+  const double tan45 = tanAngleToLight({ 0.0, 1.0, 0.0 }, glm::normalize(glm::dvec3(1.0, 1.0, 0.0)));
+  EXPECT_NEAR(tan45, 1.0, 1e-12);
+  EXPECT_NEAR(depthBias(light, bias, tan45, 2.0), 0.02 * 1.5, 1e-15);
+  // Grazing: the slope term is clamped.
+  const double tanGrazing = tanAngleToLight({ 0.0, 1.0, 0.0 }, glm::normalize(glm::dvec3(100.0, 1.0, 0.0)));
+  EXPECT_NEAR(tanGrazing, 100.0, 1e-9);
+  EXPECT_NEAR(depthBias(light, bias, tanGrazing, 2.0), 0.02 * 10.5, 1e-12);
+}
+
+// A synthetic G-buffer: a grid of ground points (y = 0, normal +y) covering [-extent, extent]^2.
+void groundGBuffer(double extent, int size, ImageF& position, ImageF& normal)
+{
+  position = ImageF(size, size, 4, 0.0f);
+  normal = ImageF(size, size, 4, 0.0f);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      position.at(x, y, 0) = static_cast<float>(-extent + 2.0 * extent * (x + 0.5) / size);
+      position.at(x, y, 2) = static_cast<float>(-extent + 2.0 * extent * (y + 0.5) / size);
+      position.at(x, y, 3) = 1.0f;
+      normal.at(x, y, 1) = 1.0f;
+      normal.at(x, y, 3) = 1.0f;
+    }
+  }
+}
+
+TEST(FitLightView, CoversEveryReceiverWithTheMarginAndTightDepth)
+{
+  // Square area light 3 above the ground, an occluder quad at height 1 (depth 2 from the light).
+  Scene scene;
+  Light light;
+  light.center = { 0.0, 3.0, 0.0 };
+  light.normal = { 0.0, -1.0, 0.0 };
+  light.up = { 0.0, 0.0, -1.0 };
+  scene.lights.push_back(light);
+  SceneObject occluder;
+  occluder.mesh.positions = { { -0.5f, 1.0f, -0.5f }, { 0.5f, 1.0f, -0.5f }, { 0.5f, 1.0f, 0.5f } };
+  occluder.mesh.normals.assign(3, glm::vec3(0.0f, 1.0f, 0.0f));
+  occluder.mesh.indices = { 0, 1, 2 };
+  scene.objects.push_back(occluder);
+  // A caster far outside the receivers' frustum, nearer to the light: must not pull the near plane.
+  SceneObject outside = occluder;
+  for (glm::vec3& p : outside.mesh.positions)
+  {
+    p += glm::vec3(30.0f, 1.5f, 0.0f);
+  }
+  scene.objects.push_back(outside);
+
+  ImageF position;
+  ImageF normal;
+  groundGBuffer(1.5, 32, position, normal);
+  FocusSettings focus;
+  focus.resolution = 256;
+  focus.marginTexels = 3.0;
+  const LightView view = fitLightView(light, scene, position, normal, focus);
+  EXPECT_EQ(view.receiverSampleCount, 32 * 32);
+  double minTexel = 1e300;
+  double maxTexel = -1e300;
+  for (std::size_t i = 0; i < position.pixelCount(); ++i)
+  {
+    const glm::dvec3 pWs(position.data[i * 4], position.data[i * 4 + 1], position.data[i * 4 + 2]);
+    const ShadowMapSample sample = projectToShadowMap(view, pWs);
+    minTexel = std::min({ minTexel, sample.uvTexels.x, sample.uvTexels.y });
+    maxTexel = std::max({ maxTexel, sample.uvTexels.x, sample.uvTexels.y });
+    EXPECT_LT(sample.depthLin, view.farDepth);
+  }
+  // Receivers fill the map up to the margin (the extreme receivers sit exactly 3 texels from the edge).
+  EXPECT_NEAR(minTexel, 3.0, 1e-6);
+  EXPECT_NEAR(maxTexel, 256.0 - 3.0, 1e-6);
+  // Near plane: the occluder (depth 2), not the outside caster (depth 0.5), with 0.1% slack.
+  EXPECT_GT(view.nearDepth, 2.0 * (1.0 - 2e-3));
+  EXPECT_LE(view.nearDepth, 2.0);
+  EXPECT_NEAR(view.farDepth, 3.0, 0.01);
+}
+
+TEST(FitLightView, PointLightSurroundedByReceiversIsAnInputError)
+{
+  Scene scene;
+  Light light;
+  light.type = LightType::Point;
+  light.center = { 0.0, 0.0, 0.0 };
+  scene.lights.push_back(light);
+  // Receivers on the six sides of a cube around the light, facing it.
+  ImageF position(6, 1, 4, 0.0f);
+  ImageF normal(6, 1, 4, 0.0f);
+  const glm::dvec3 directions[6] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
+  for (int i = 0; i < 6; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      position.at(i, 0, c) = static_cast<float>(2.0 * directions[i][c]);
+      normal.at(i, 0, c) = static_cast<float>(-directions[i][c]);
+    }
+    position.at(i, 0, 3) = 1.0f;
+    normal.at(i, 0, 3) = 1.0f;
+  }
+  try
+  {
+    fitLightView(light, scene, position, normal, FocusSettings());
+    FAIL() << "expected an InputError";
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("point light"), std::string::npos) << error.what();
+  }
+}
+
+} // namespace
+} // namespace sl
