@@ -13,4 +13,5 @@ set(SL_SHADER_FILES
   lightspace/LightDepthFragment.glsl
   hard/HardVisibility.glsl
   pcf/PcfVisibility.glsl
-  shading/ShadingFragment.glsl)
+  shading/ShadingFragment.glsl
+  vtk/VtkVisibilityRatio.glsl)

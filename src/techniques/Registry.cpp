@@ -3,6 +3,7 @@
 #include "techniques/Technique.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
+#include "techniques/vtk/VtkTechnique.h"
 
 namespace sl
 {
@@ -12,6 +13,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
   static const std::vector<TechniqueDescriptor> registry = {
     hardTechnique(),
     pcfTechnique(),
+    vtkTechnique(),
   };
   return registry;
 }

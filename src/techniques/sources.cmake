@@ -6,4 +6,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/hard/HardTechnique.cpp
   src/techniques/hard/vtkSLHardShadowPass.cxx
   src/techniques/pcf/PcfTechnique.cpp
-  src/techniques/pcf/vtkSLPcfPass.cxx)
+  src/techniques/pcf/vtkSLPcfPass.cxx
+  src/techniques/vtk/VtkTechnique.cpp
+  src/techniques/vtk/vtkSLVtkShadowMapPass.cxx)

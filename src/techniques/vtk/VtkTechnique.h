@@ -1,0 +1,21 @@
+// Technique `vtk`: VTK's own shadow mapping (vtkShadowMapBakerPass + vtkShadowMapPass, VTK 9.1), run on
+// the same scene and camera, so the in-ecosystem peer is measured with the same buffers and metrics.
+//
+// How visibility is obtained: see shaders/vtk/VtkVisibilityRatio.glsl (shadowed / unshadowed radiance
+// of a white diffuse material, both rendered by VTK into float targets).
+// What VTK does differently, by design of its passes (kept as is — this is the point of the comparison):
+//  - the shadow map frustum is a spot cone at the light's position (area lights: their centre), fitted to
+//    the scene's bounding box rather than focused on visible receivers;
+//  - alpha textures are ignored (VTK bakes opaque geometry), so perforated casters shadow like solids;
+//  - its filtering and bias are VTK's (exponential shadow-map style), not configurable here.
+// Parameters: shadow_map_size (VTK's baker resolution). Buffers: vtk_shadowed, vtk_unshadowed.
+#pragma once
+
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor vtkTechnique();
+
+} // namespace sl
