@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# ShadowLab set-up on a fresh Debian 12 machine, as root: installs the missing Debian packages, configures
+# and builds, then either renders the default dataset (`render`) or runs every test (`test`, what CI runs).
+#
+#   bash scripts/bootstrap.sh render   # -> out/ (image, buffers.vti, heat maps, stats.json)
+#   bash scripts/bootstrap.sh test     # -> ctest, every suite (unit, GPU on llvmpipe, CLI)
+#
+# Environment: BUILD_DIR (default build), JOBS (default: number of cores).
+set -euo pipefail
+
+mode="${1:-}"
+if [[ "$mode" != "render" && "$mode" != "test" && "$mode" != "build" ]]; then
+  echo "usage: bash scripts/bootstrap.sh render|test|build" >&2
+  exit 2
+fi
+cd "$(dirname "$0")/.."
+build_dir="${BUILD_DIR:-build}"
+jobs="${JOBS:-$(nproc)}"
+
+# Build tools, the libraries of the stack, and Mesa's EGL/llvmpipe for headless rendering.
+# python3-imath only silences a Debian packaging warning from Imath's CMake config (it names that file).
+packages=(
+  cmake g++ make pkg-config
+  libvtk9-dev libglm-dev libopenmesh-dev libopenexr-dev python3-imath libgtest-dev
+  libegl-dev libgl-dev libglew-dev libegl-mesa0 libgl1-mesa-dri
+  nlohmann-json3-dev libcli11-dev
+)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]})); then
+  echo "bootstrap: installing ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build_dir" -j "$jobs"
+
+case "$mode" in
+  render)
+    "$build_dir/shadowlab" render datasets/bunny/scene.json --out out
+    ;;
+  test)
+    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+    ;;
+  build) ;;
+esac
