@@ -6,6 +6,7 @@ set(SL_SHADER_FILES
   common/LightModel.glsl
   common/PixelHash.glsl
   common/ShadowMapCommon.glsl
+  common/ShadowReceiver.glsl
   common/TexelRatio.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl

@@ -3,6 +3,7 @@
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
+#include "common/ShadowReceiver.glsl"
 #include "common/TexelRatio.glsl"
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
@@ -13,32 +14,19 @@ layout(location = OUT_DEPTH_MARGIN) out float outDepthMargin;
 
 void main()
 {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
-  Surface surface = readSurface(pixel);
-  outVisibility = 0.0;
+  ShadowReceiver receiver = prepareShadowReceiver(ivec2(gl_FragCoord.xy));
+  outVisibility = receiver.visibility;
   outKernelTexels = 0.0;
   outTexelRatio = 0.0;
   outDepthBias = 0.0;
   outDepthMargin = 0.0;
-  if (!surface.covered)
+  if (!receiver.needsShadowTest)
   {
     return;
   }
-  if (!surface.receivesShadows)
-  {
-    outVisibility = 1.0;
-    return;
-  }
-  if (!lightCanReach(surface.pWs, surface.nWs))
-  {
-    return;
-  }
-  vec3 sm = projectToShadowMap(surface.pWs);
-  float bias = depthBias(tanAngleToLight(surface.nWs, directionToLight(surface.pWs)), sm.z);
-  float comparisonDepth = sm.z - bias;
-  outVisibility = shadowTest(sm.xy, comparisonDepth);
+  outVisibility = shadowTest(receiver.uvTexels, receiver.comparisonDepth);
   outKernelTexels = 1.0;
-  outTexelRatio = texelRatio(gl_FragCoord.xy, surface.pWs, surface.nWs);
-  outDepthBias = bias;
-  outDepthMargin = comparisonDepth - storedDepth(sm.xy);
+  outTexelRatio = texelRatio(gl_FragCoord.xy, receiver.pWs, receiver.nWs);
+  outDepthBias = receiver.bias;
+  outDepthMargin = receiver.comparisonDepth - storedDepth(receiver.uvTexels);
 }

@@ -7,6 +7,7 @@
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
+#include "common/ShadowReceiver.glsl"
 #include "common/TexelRatio.glsl"
 #include "common/PixelHash.glsl"
 
@@ -39,28 +40,18 @@ float tap(vec2 uvTexels, float comparisonDepthLin)
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  Surface surface = readSurface(pixel);
-  outVisibility = 0.0;
+  ShadowReceiver receiver = prepareShadowReceiver(pixel);
+  outVisibility = receiver.visibility;
   outKernelTexels = 0.0;
   outTaps = 0.0;
   outTexelRatio = 0.0;
   outDepthBias = 0.0;
-  if (!surface.covered)
+  if (!receiver.needsShadowTest)
   {
     return;
   }
-  if (!surface.receivesShadows)
-  {
-    outVisibility = 1.0;
-    return;
-  }
-  if (!lightCanReach(surface.pWs, surface.nWs))
-  {
-    return;
-  }
-  vec3 sm = projectToShadowMap(surface.pWs);
-  float bias = depthBias(tanAngleToLight(surface.nWs, directionToLight(surface.pWs)), sm.z);
-  float comparisonDepth = sm.z - bias;
+  vec2 uvTexels = receiver.uvTexels;
+  float comparisonDepth = receiver.comparisonDepth;
   int kernelTexels = int(param_kernel_texels);
   float litSum = 0.0;
 #if PATTERN == PATTERN_GRID
@@ -70,7 +61,7 @@ void main()
   {
     for (int i = 0; i < kernelTexels; ++i)
     {
-      litSum += tap(sm.xy + vec2(firstOffset + float(i), firstOffset + float(j)), comparisonDepth);
+      litSum += tap(uvTexels + vec2(firstOffset + float(i), firstOffset + float(j)), comparisonDepth);
     }
   }
 #else
@@ -80,7 +71,7 @@ void main()
   float radiusTexels = 0.5 * float(kernelTexels);
   for (int k = 0; k < tapCount; ++k)
   {
-    litSum += tap(sm.xy + radiusTexels * (rotation * poissonDisk[k]), comparisonDepth);
+    litSum += tap(uvTexels + radiusTexels * (rotation * poissonDisk[k]), comparisonDepth);
   }
 #endif
   outVisibility = litSum / float(tapCount);
@@ -91,6 +82,6 @@ void main()
   outKernelTexels = float(kernelTexels);
   outTaps = float(tapCount);
 #endif
-  outTexelRatio = texelRatio(gl_FragCoord.xy, surface.pWs, surface.nWs);
-  outDepthBias = bias;
+  outTexelRatio = texelRatio(gl_FragCoord.xy, receiver.pWs, receiver.nWs);
+  outDepthBias = receiver.bias;
 }

@@ -1,5 +1,7 @@
 set(SL_PASSES_SOURCES
   src/passes/PassUtilities.cpp
+  src/passes/ScopedRenderTarget.cpp
+  src/passes/FullScreenQuad.cpp
   src/passes/vtkSLStagePass.cxx
   src/passes/vtkSLGBufferPass.cxx
   src/passes/vtkSLLightDepthPass.cxx

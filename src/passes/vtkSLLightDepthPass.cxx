@@ -4,6 +4,7 @@
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>
@@ -43,37 +44,10 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
   frame.shadowMapLinear = sl::makeFloatTarget(window, view.resolution, view.resolution, 1);
   frame.shadowMapDepth = sl::makeDepthTarget(window, view.resolution, view.resolution);
 
-  vtkOpenGLState* glState = window->GetState();
-  vtkOpenGLState::ScopedglViewport viewportSaver(glState);
-  vtkOpenGLState::ScopedglEnableDisable depthTestSaver(glState, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullSaver(glState, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable blendSaver(glState, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable scissorSaver(glState, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(glState);
-  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(glState);
-  glState->PushFramebufferBindings();
-
-  this->Framebuffer->SetContext(window);
-  this->Framebuffer->Bind();
-  this->Framebuffer->AddColorAttachment(0, frame.shadowMapLinear);
-  this->Framebuffer->AddDepthAttachment(frame.shadowMapDepth);
-  this->Framebuffer->ActivateDrawBuffers(1);
-  if (!this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
-  {
-    throw sl::GraphicsError("shadow-map framebuffer is incomplete");
-  }
-  glState->vtkglViewport(0, 0, view.resolution, view.resolution);
-  glState->vtkglDisable(GL_SCISSOR_TEST);
-  glState->vtkglDisable(GL_BLEND);
-  glState->vtkglDisable(GL_CULL_FACE); // facing is decided in the shader (caster_faces)
-  glState->vtkglEnable(GL_DEPTH_TEST);
-  glState->vtkglDepthFunc(GL_LESS);
-  glState->vtkglDepthMask(GL_TRUE);
+  const sl::ScopedRenderTarget target(window, this->Framebuffer, { frame.shadowMapLinear }, frame.shadowMapDepth);
   // Texels no caster covers hold a depth beyond every receiver: they never shadow anything.
-  const float emptyDepth = static_cast<float>(2.0 * view.farDepth);
-  glClearBufferfv(GL_COLOR, 0, &emptyDepth);
-  const float farthest = 1.0f;
-  glClearBufferfv(GL_DEPTH, 0, &farthest);
+  target.clearColor(0, static_cast<float>(2.0 * view.farDepth));
+  target.clearDepth();
 
   sl::ShaderDefines defines = sl::commonDefines();
   defines.push_back({ "CASTER_FACES_FRONT", "0" });
@@ -87,9 +61,6 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
   sl::setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
   this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject& object) { return object.castShadows; });
 
-  this->Framebuffer->RemoveColorAttachments(1);
-  this->Framebuffer->RemoveDepthAttachment();
-  glState->PopFramebufferBindings();
 }
 
 void vtkSLLightDepthPass::ReleaseGraphicsResources(vtkWindow* window)

@@ -1,6 +1,7 @@
 // Stage 4: the shaded image from the G-buffer and the technique's visibility (Lambert + ambient, sRGB).
 #pragma once
 
+#include "passes/FullScreenQuad.h"
 #include "passes/vtkSLStagePass.h"
 
 #include <vtkNew.h>
@@ -8,7 +9,6 @@
 #include <memory>
 
 class vtkOpenGLFramebufferObject;
-class vtkOpenGLQuadHelper;
 
 class vtkSLShadingPass : public vtkSLStagePass
 {
@@ -29,5 +29,5 @@ private:
   void operator=(const vtkSLShadingPass&) = delete;
 
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
-  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  sl::FullScreenQuad Quad;
 };

@@ -3,12 +3,10 @@
 #include "core/Error.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
 
 #include <vtkOpenGLFramebufferObject.h>
-#include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
-#include <vtkOpenGLShaderCache.h>
-#include <vtkOpenGLState.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
@@ -87,43 +85,15 @@ void vtkSLTechniquePass::Execute(const vtkRenderState* state)
   sl::FrameResources& frame = *this->Frame;
   const std::vector<std::string> outputs = OutputNames(*frame.technique);
 
-  vtkOpenGLState* glState = window->GetState();
-  vtkOpenGLState::ScopedglViewport viewportSaver(glState);
-  vtkOpenGLState::ScopedglEnableDisable depthTestSaver(glState, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blendSaver(glState, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable scissorSaver(glState, GL_SCISSOR_TEST);
-  glState->PushFramebufferBindings();
-  this->Framebuffer->SetContext(window);
-  this->Framebuffer->Bind();
-  for (std::size_t location = 0; location < outputs.size(); ++location)
+  std::vector<vtkTextureObject*> targets;
+  for (const std::string& output : outputs)
   {
-    this->Framebuffer->AddColorAttachment(
-      static_cast<unsigned>(location), frame.techniqueTargets.at(outputs[location]));
+    targets.push_back(frame.techniqueTargets.at(output));
   }
-  this->Framebuffer->ActivateDrawBuffers(static_cast<unsigned>(outputs.size()));
-  if (!this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
-  {
-    throw sl::GraphicsError("technique framebuffer is incomplete");
-  }
-  glState->vtkglViewport(0, 0, frame.width(), frame.height());
-  glState->vtkglDisable(GL_DEPTH_TEST);
-  glState->vtkglDisable(GL_BLEND);
-  glState->vtkglDisable(GL_SCISSOR_TEST);
-
+  const sl::ScopedRenderTarget target(window, this->Framebuffer, targets);
   const std::string fragmentSource =
     sl::assembleShader(this->GetFragmentShaderPath(), this->TechniqueDefines(), this->ParameterDeclarations());
-  if (!this->Quad || fragmentSource != this->QuadFragmentSource)
-  {
-    const std::string vertexSource = sl::assembleShader("common/FullScreenVertex.glsl");
-    this->Quad = std::make_unique<vtkOpenGLQuadHelper>(window, vertexSource.c_str(), fragmentSource.c_str(), "");
-    this->QuadFragmentSource = fragmentSource;
-  }
-  vtkShaderProgram* program = this->Quad->Program;
-  if (!program || !program->GetCompiled())
-  {
-    throw sl::GraphicsError(frame.technique->name + ": cannot build the technique shader (GLSL log above)");
-  }
-  window->GetShaderCache()->ReadyShaderProgram(program);
+  vtkShaderProgram* program = this->Quad.ready(window, fragmentSource, frame.technique->name);
 
   std::vector<vtkTextureObject*> bound;
   bound.push_back(sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition));
@@ -164,23 +134,17 @@ void vtkSLTechniquePass::Execute(const vtkRenderState* state)
   const std::vector<vtkTextureObject*> extra = this->SetTechniqueUniforms(program);
   bound.insert(bound.end(), extra.begin(), extra.end());
 
-  this->Quad->Render();
+  this->Quad.render();
   this->AfterDraw();
   for (vtkTextureObject* texture : bound)
   {
     texture->Deactivate();
   }
-  this->Framebuffer->RemoveColorAttachments(static_cast<unsigned>(outputs.size()));
-  glState->PopFramebufferBindings();
 }
 
 void vtkSLTechniquePass::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->Quad)
-  {
-    this->Quad->ReleaseGraphicsResources(window);
-    this->Quad.reset();
-  }
+  this->Quad.releaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
 }
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "gl/ShaderLibrary.h"
+#include "passes/FullScreenQuad.h"
 #include "passes/vtkSLStagePass.h"
 #include "techniques/Technique.h"
 
@@ -22,7 +23,6 @@
 #include <vector>
 
 class vtkOpenGLFramebufferObject;
-class vtkOpenGLQuadHelper;
 class vtkShaderProgram;
 class vtkTextureObject;
 
@@ -57,6 +57,5 @@ private:
   void operator=(const vtkSLTechniquePass&) = delete;
 
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
-  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
-  std::string QuadFragmentSource;
+  sl::FullScreenQuad Quad;
 };

@@ -23,7 +23,9 @@ struct ProcessRun
 
 ProcessRun runShadowlab(const std::string& environment, const std::string& arguments)
 {
-  const std::filesystem::path errorFile = test::testOutputDir() / "graphics-error-stderr.txt";
+  // One file per test: ctest runs tests in parallel processes.
+  const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::filesystem::path errorFile = test::testOutputDir() / ("stderr-" + testName + ".txt");
   const std::string command =
     environment + " " + std::string(SL_SHADOWLAB_EXE) + " " + arguments + " 2> " + errorFile.string() + " > /dev/null";
   const int status = std::system(command.c_str());

@@ -4,6 +4,7 @@
 #include "gl/GlResources.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -160,28 +161,14 @@ void vtkSLVtkShadowMapPass::BuildVtkScene(vtkRenderWindow* window)
 void vtkSLVtkShadowMapPass::RenderVtk(vtkRenderPass* pass, vtkTextureObject* target, vtkRenderWindow* window)
 {
   auto* openGLWindow = vtkOpenGLRenderWindow::SafeDownCast(window);
-  vtkOpenGLState* glState = openGLWindow->GetState();
   vtkNew<vtkOpenGLFramebufferObject> framebuffer;
-  framebuffer->SetContext(openGLWindow);
   const auto depth = sl::makeDepthTarget(openGLWindow, this->Frame->width(), this->Frame->height());
-  glState->PushFramebufferBindings();
-  framebuffer->Bind();
-  framebuffer->AddColorAttachment(0, target);
-  framebuffer->AddDepthAttachment(depth);
-  framebuffer->ActivateDrawBuffers(1);
-  if (!framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
-  {
-    throw sl::GraphicsError("vtk technique: framebuffer is incomplete");
-  }
+  const sl::ScopedRenderTarget renderTarget(openGLWindow, framebuffer, { target }, depth);
   std::vector<vtkProp*> props(this->Actors.begin(), this->Actors.end());
   vtkRenderState renderState(this->VtkRenderer);
   renderState.SetPropArrayAndCount(props.data(), static_cast<int>(props.size()));
   renderState.SetFrameBuffer(framebuffer);
   pass->Render(&renderState);
-  framebuffer->RemoveColorAttachments(1);
-  framebuffer->RemoveDepthAttachment();
-  glState->PopFramebufferBindings();
-  framebuffer->ReleaseGraphicsResources(window);
 }
 
 void vtkSLVtkShadowMapPass::Execute(const vtkRenderState* state)
