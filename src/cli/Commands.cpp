@@ -114,7 +114,9 @@ int runList(bool asJson, std::ostream& out)
       nlohmann::json parameters = nlohmann::json::array();
       for (const ParameterSpec& spec : technique.parameters)
       {
-        parameters.push_back({ { "name", spec.name }, { "default", describeDefault(spec) },
+        const nlohmann::json defaultValue =
+          spec.choices.empty() ? nlohmann::json(spec.defaultValue) : nlohmann::json(describeDefault(spec));
+        parameters.push_back({ { "name", spec.name }, { "default", defaultValue },
           { "min", spec.minValue }, { "max", spec.maxValue }, { "unit", spec.unit }, { "choices", spec.choices },
           { "integer", spec.integer }, { "doc", spec.doc } });
       }

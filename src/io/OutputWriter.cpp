@@ -169,7 +169,9 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
   nlohmann::json buffers = nlohmann::json::object();
   for (const NamedImage& named : frame.buffers)
   {
-    buffers[named.name] = bufferSummary(named, coverage ? &coverage->image : nullptr);
+    // Summaries cover the pixels a surface covers, except coverage itself (over the whole image).
+    const bool overCovered = coverage && named.name != "coverage";
+    buffers[named.name] = bufferSummary(named, overCovered ? &coverage->image : nullptr);
   }
   stats["buffers"] = buffers;
   nlohmann::json lightSpace = nlohmann::json::object();

@@ -1,2 +1,615 @@
-// Skeleton; filled in below.
+// The shadowlab executable end to end, run as a subprocess (SL_SHADOWLAB_EXE): the files `render` writes and
+// what they contain, a clean stderr on success (no false GL/VTK errors), one-line errors naming the offending
+// input with no partial output, atomic replacement of --out, and `list` / `list --json` / `--help`.
+// Every test works in a fresh temporary directory; resolutions and shadow maps are small to keep the suite fast
+// on llvmpipe.
+#include "io/ImageIO.h"
+#include "passes/ShadowRenderer.h"
+#include "support/TestSupport.h"
+#include "techniques/Technique.h"
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// ---- helpers --------------------------------------------------------------------------------------------
+
+class TempDir
+{
+public:
+  TempDir()
+  {
+    static std::atomic<int> counter{ 0 };
+    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
+    path_ = fs::temp_directory_path() /
+      ("shadowlab-cli-test-" + std::to_string(std::random_device{}()) + "-" + std::to_string(now) + "-" +
+        std::to_string(counter++));
+    fs::create_directories(path_);
+  }
+  ~TempDir()
+  {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+
+private:
+  fs::path path_;
+};
+
+std::string readFile(const fs::path& path)
+{
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+void writeFile(const fs::path& path, const std::string& content)
+{
+  std::ofstream stream(path, std::ios::binary);
+  stream << content;
+  ASSERT_TRUE(stream.good()) << "could not write " << path;
+}
+
+// Single-quoted for /bin/sh.
+std::string shellQuote(const std::string& argument)
+{
+  std::string quoted = "'";
+  for (char c : argument)
+  {
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return quoted + "'";
+}
+
+struct RunResult
+{
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+  std::string commandLine;
+
+  std::size_t errLines() const { return static_cast<std::size_t>(std::count(err.begin(), err.end(), '\n')); }
+  // For failure messages.
+  std::string describe() const
+  {
+    return "command: " + commandLine + "\nexit: " + std::to_string(exitCode) + "\nstderr:\n" + err +
+      "\nstdout (first 2000 chars):\n" + out.substr(0, 2000);
+  }
+};
+
+// Runs shadowlab with `arguments` in `workDir`, stdout and stderr captured to files there.
+RunResult runShadowlab(const std::vector<std::string>& arguments, const fs::path& workDir)
+{
+  RunResult result;
+  const fs::path outFile = workDir / ".stdout.txt";
+  const fs::path errFile = workDir / ".stderr.txt";
+  std::string command = "cd " + shellQuote(workDir.string()) + " && " + shellQuote(SL_SHADOWLAB_EXE);
+  for (const std::string& argument : arguments)
+  {
+    command += " " + shellQuote(argument);
+  }
+  result.commandLine = command;
+  command += " >" + shellQuote(outFile.string()) + " 2>" + shellQuote(errFile.string()) + " </dev/null";
+  const int status = std::system(command.c_str());
+  result.exitCode = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  result.out = readFile(outFile);
+  result.err = readFile(errFile);
+  std::error_code ignored;
+  fs::remove(outFile, ignored);
+  fs::remove(errFile, ignored);
+  return result;
+}
+
+fs::path datasetScene(const std::string& name)
+{
+  return test::datasetPath(name);
+}
+
+std::vector<std::string> entriesOf(const fs::path& dir)
+{
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+  {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& names)
+{
+  std::string text;
+  for (const std::string& name : names)
+  {
+    text += (text.empty() ? "" : ", ") + name;
+  }
+  return text;
+}
+
+const NamedImage* findArray(const std::vector<NamedImage>& arrays, const std::string& name)
+{
+  for (const NamedImage& array : arrays)
+  {
+    if (array.name == name)
+    {
+      return &array;
+    }
+  }
+  return nullptr;
+}
+
+// The failure contract: nonzero exit, exactly one line on stderr containing every `mentions`, and no output
+// directory (nor a leftover temporary sibling of it) created.
+void expectCleanFailure(const std::vector<std::string>& arguments, const std::vector<std::string>& mentions)
+{
+  TempDir temp;
+  const fs::path outDir = temp.path() / "out";
+  std::vector<std::string> full = arguments;
+  full.push_back("--out");
+  full.push_back(outDir.string());
+  const RunResult run = runShadowlab(full, temp.path());
+  EXPECT_NE(run.exitCode, 0) << run.describe();
+  EXPECT_EQ(run.errLines(), 1u) << "expected exactly one line on stderr\n" << run.describe();
+  EXPECT_FALSE(run.err.empty() || run.err.back() != '\n') << run.describe();
+  for (const std::string& mention : mentions)
+  {
+    EXPECT_NE(run.err.find(mention), std::string::npos) << "stderr should mention '" << mention << "'\n"
+                                                        << run.describe();
+  }
+  EXPECT_FALSE(fs::exists(outDir)) << "a failed run created " << outDir << "\n" << run.describe();
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{})
+    << "a failed run left files next to --out: " << joined(entriesOf(temp.path())) << "\n" << run.describe();
+}
+
+// ---- render: outputs --------------------------------------------------------------------------------------
+
+TEST(CliRender, HardWritesEveryDocumentedOutput)
+{
+  TempDir temp;
+  const fs::path outDir = temp.path() / "ok";
+  const RunResult run = runShadowlab({ "render", datasetScene("planar-occluder").string(), "--technique", "hard",
+                                       "--resolution", "96x64", "--out", outDir.string() },
+    temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  for (const char* file : { "buffers.vti", "light_space.vti", "image.png", "visibility.exr", "stats.json",
+         "heatmap_visibility.png", "heatmap_texel_ratio.png" })
+  {
+    EXPECT_TRUE(fs::is_regular_file(outDir / file)) << file << " missing; " << outDir << " has "
+                                                    << joined(entriesOf(outDir));
+  }
+  // Only the directory itself next to it: the temporary ".ok.partial-*" sibling has been moved into place.
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "ok" }) << joined(entriesOf(temp.path()));
+
+  const ImageU8 image = readPng(outDir / "image.png");
+  EXPECT_EQ(image.width, 96);
+  EXPECT_EQ(image.height, 64);
+  EXPECT_EQ(image.components, 3);
+
+  const ImageF visibility = readExr(outDir / "visibility.exr");
+  ASSERT_EQ(visibility.width, 96);
+  ASSERT_EQ(visibility.height, 64);
+  float minVisibility = 1.0f;
+  float maxVisibility = 0.0f;
+  for (std::size_t i = 0; i < visibility.data.size(); ++i)
+  {
+    const float v = visibility.data[i];
+    ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f)
+      << "visibility " << v << " at " << i % 96 << "," << i / 96;
+    minVisibility = std::min(minVisibility, v);
+    maxVisibility = std::max(maxVisibility, v);
+  }
+  // The quad above the ground casts a shadow in view: both shadowed and lit pixels.
+  EXPECT_EQ(minVisibility, 0.0f);
+  EXPECT_EQ(maxVisibility, 1.0f);
+
+  const std::vector<NamedImage> arrays = readVti(outDir / "buffers.vti");
+  const std::vector<std::pair<std::string, int>> expectedArrays = { { "visibility", 1 }, { "position", 3 },
+    { "normal", 3 }, { "depth", 1 }, { "coverage", 1 }, { "kernel_texels", 1 }, { "texel_ratio", 1 } };
+  for (const auto& [name, components] : expectedArrays)
+  {
+    const NamedImage* array = findArray(arrays, name);
+    ASSERT_NE(array, nullptr) << "buffers.vti has no array '" << name << "'";
+    EXPECT_EQ(array->image.width, 96) << name;
+    EXPECT_EQ(array->image.height, 64) << name;
+    EXPECT_EQ(array->image.components, components) << name;
+    const auto nonFinite = std::find_if(array->image.data.begin(), array->image.data.end(),
+      [](float value) { return !std::isfinite(value); });
+    EXPECT_EQ(nonFinite, array->image.data.end())
+      << name << ": non-finite value at index " << (nonFinite - array->image.data.begin());
+  }
+  // The .vti's visibility is the .exr's, pixel for pixel (same row order).
+  const NamedImage* vtiVisibility = findArray(arrays, "visibility");
+  ASSERT_NE(vtiVisibility, nullptr);
+  EXPECT_EQ(vtiVisibility->image.data, visibility.data) << "buffers.vti visibility differs from visibility.exr";
+  // Hard shadows filter nothing: one texel on every covered pixel (the plane faces the light), 0 on background.
+  const NamedImage* kernel = findArray(arrays, "kernel_texels");
+  const NamedImage* coverage = findArray(arrays, "coverage");
+  ASSERT_NE(kernel, nullptr);
+  ASSERT_NE(coverage, nullptr);
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < kernel->image.data.size(); ++i)
+  {
+    const bool isCovered = coverage->image.data[i] > 0.5f;
+    covered += isCovered ? 1 : 0;
+    ASSERT_EQ(kernel->image.data[i], isCovered ? 1.0f : 0.0f)
+      << "kernel_texels at " << i % 96 << "," << i / 96 << " coverage " << coverage->image.data[i];
+  }
+  EXPECT_GT(covered, 96u * 64u / 2) << "the ground plane should fill most of the view";
+
+  const std::vector<NamedImage> lightSpace = readVti(outDir / "light_space.vti");
+  EXPECT_NE(findArray(lightSpace, "shadow_map_depth"), nullptr) << "light_space.vti lacks shadow_map_depth";
+
+  for (const char* heatMap : { "heatmap_visibility.png", "heatmap_texel_ratio.png" })
+  {
+    const ImageU8 png = readPng(outDir / heatMap);
+    EXPECT_GE(png.width, 96) << heatMap;
+    EXPECT_GE(png.height, 64) << heatMap;
+  }
+
+  Json stats;
+  ASSERT_NO_THROW(stats = Json::parse(readFile(outDir / "stats.json"))) << readFile(outDir / "stats.json");
+  EXPECT_EQ(stats.value("technique", ""), "hard");
+  EXPECT_EQ(stats.at("resolution"), Json::array({ 96, 64 }));
+  EXPECT_FALSE(stats.value("gl_renderer", "").empty()) << stats.dump(2);
+  const TechniqueDescriptor& hard = findTechnique("hard");
+  ASSERT_TRUE(stats.at("parameters").is_object());
+  EXPECT_EQ(stats.at("parameters").size(), hard.parameters.size()) << stats.at("parameters").dump();
+  for (const ParameterSpec& spec : hard.parameters)
+  {
+    ASSERT_TRUE(stats.at("parameters").contains(spec.name)) << spec.name << " missing from stats.json parameters";
+    const Json& value = stats.at("parameters").at(spec.name);
+    if (spec.choices.empty())
+    {
+      ASSERT_TRUE(value.is_number()) << spec.name << ": " << value.dump();
+      EXPECT_DOUBLE_EQ(value.get<double>(), spec.defaultValue) << spec.name;
+    }
+    else
+    {
+      EXPECT_EQ(value, spec.choices.at(static_cast<std::size_t>(spec.defaultValue))) << spec.name;
+    }
+  }
+  const std::vector<std::string> expectedStages = { "gbuffer", "shadow_map", "technique", "shading" };
+  std::vector<std::string> stageNames;
+  for (const Json& stage : stats.at("stages"))
+  {
+    const std::string name = stage.value("stage", "");
+    stageNames.push_back(name);
+    EXPECT_TRUE(stage.at("gpu_ms").is_number()) << stage.dump();
+    EXPECT_GE(stage.value("gpu_ms", -1.0), 0.0) << stage.dump();
+    EXPECT_GT(stage.value("wall_ms", 0.0), 0.0) << stage.dump();
+  }
+  EXPECT_EQ(stageNames, expectedStages) << stats.at("stages").dump(2);
+}
+
+// The false-error requirement: a successful run prints no GLEW/VTK error or warning (and here one line, the
+// summary); also covers the pcf outputs.
+TEST(CliRender, SuccessfulRunHasCleanStderr)
+{
+  TempDir temp;
+  const fs::path outDir = temp.path() / "pcf";
+  const RunResult run =
+    runShadowlab({ "render", datasetScene("planar-occluder").string(), "--technique", "pcf", "--resolution", "64x64",
+                   "--set", "shadow_map_size=512", "--set", "kernel_texels=5", "--out", outDir.string() },
+      temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  for (const char* marker : { "GLEW could not be initialized", "ERR|", "WARN|", "rror", "arning" })
+  {
+    EXPECT_EQ(run.err.find(marker), std::string::npos) << "stderr contains '" << marker << "'\n" << run.describe();
+  }
+  EXPECT_EQ(run.errLines(), 1u) << run.describe();
+  EXPECT_NE(run.err.find("rendered"), std::string::npos) << run.describe();
+  EXPECT_NE(run.err.find("pcf"), std::string::npos) << run.describe();
+
+  const Json stats = Json::parse(readFile(outDir / "stats.json"));
+  EXPECT_EQ(stats.value("technique", ""), "pcf");
+  EXPECT_EQ(stats.at("parameters").value("shadow_map_size", 0.0), 512.0) << stats.at("parameters").dump();
+  EXPECT_EQ(stats.at("parameters").value("kernel_texels", 0.0), 5.0) << stats.at("parameters").dump();
+  EXPECT_EQ(stats.at("parameters").value("pattern", ""), "grid") << stats.at("parameters").dump();
+  const std::vector<NamedImage> arrays = readVti(outDir / "buffers.vti");
+  const NamedImage* kernel = findArray(arrays, "kernel_texels");
+  ASSERT_NE(kernel, nullptr);
+  EXPECT_EQ(*std::max_element(kernel->image.data.begin(), kernel->image.data.end()), 5.0f)
+    << "--set kernel_texels=5 did not reach the shader";
+  EXPECT_NE(findArray(arrays, "taps"), nullptr) << "pcf publishes 'taps'";
+
+  // --quiet: nothing at all on stderr.
+  const RunResult quiet =
+    runShadowlab({ "render", datasetScene("planar-occluder").string(), "--technique", "hard", "--resolution", "32x32",
+                   "--set", "shadow_map_size=256", "--quiet", "--out", (temp.path() / "quiet").string() },
+      temp.path());
+  EXPECT_EQ(quiet.exitCode, 0) << quiet.describe();
+  EXPECT_EQ(quiet.err, "") << quiet.describe();
+}
+
+// ---- render: errors ---------------------------------------------------------------------------------------
+
+TEST(CliRenderErrors, UnknownTechniqueListsTheAvailableOnes)
+{
+  std::vector<std::string> mentions = { "nope" };
+  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  {
+    mentions.push_back(technique.name);
+  }
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--technique", "nope" }, mentions);
+}
+
+TEST(CliRenderErrors, UnknownParameter)
+{
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--technique", "pcf", "--set", "nope=1" },
+    { "nope", "pcf" });
+}
+
+TEST(CliRenderErrors, OutOfRangeParameters)
+{
+  expectCleanFailure(
+    { "render", datasetScene("planar-occluder").string(), "--technique", "pcf", "--set", "kernel_texels=0" },
+    { "kernel_texels", "0", "1", "64" });
+  expectCleanFailure(
+    { "render", datasetScene("planar-occluder").string(), "--technique", "hard", "--set", "shadow_map_size=999999" },
+    { "shadow_map_size", "999999", "8192" });
+}
+
+TEST(CliRenderErrors, BadEnumerationChoice)
+{
+  expectCleanFailure(
+    { "render", datasetScene("planar-occluder").string(), "--technique", "pcf", "--set", "pattern=spiral" },
+    { "pattern", "spiral", "grid", "poisson" });
+}
+
+TEST(CliRenderErrors, MalformedResolution)
+{
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--resolution", "12by5" },
+    { "--resolution", "12by5" });
+}
+
+TEST(CliRenderErrors, MissingSceneFile)
+{
+  TempDir temp;
+  const fs::path missing = temp.path() / "no-such-scene.json";
+  expectCleanFailure({ "render", missing.string() }, { missing.string() });
+}
+
+TEST(CliRenderErrors, MalformedJsonScene)
+{
+  TempDir temp;
+  const fs::path scene = temp.path() / "broken.json";
+  writeFile(scene, "{\n  \"camera\": {\n    \"projection\": \"perspective\",\n");
+  expectCleanFailure({ "render", scene.string(), "--resolution", "32x32" }, { scene.string() });
+}
+
+TEST(CliRenderErrors, SceneWhoseMeshIsMissing)
+{
+  TempDir temp;
+  Json scene = Json::parse(readFile(datasetScene("bunny")));
+  bool replaced = false;
+  for (Json& object : scene.at("objects"))
+  {
+    if (object.contains("mesh"))
+    {
+      object["mesh"] = "missing-bunny.ply";
+      replaced = true;
+    }
+  }
+  ASSERT_TRUE(replaced) << "datasets/bunny/scene.json has no mesh object any more";
+  const fs::path scenePath = temp.path() / "scene.json";
+  writeFile(scenePath, scene.dump(2));
+  expectCleanFailure({ "render", scenePath.string(), "--resolution", "32x32" }, { "missing-bunny.ply" });
+}
+
+// ---- render: atomic output directory ------------------------------------------------------------------------
+
+TEST(CliRenderOutput, SuccessReplacesTheWholeDirectoryFailureLeavesItUntouched)
+{
+  TempDir temp;
+  const fs::path outDir = temp.path() / "results";
+  fs::create_directories(outDir / "sub");
+  writeFile(outDir / "old.txt", "from an earlier run");
+  writeFile(outDir / "sub" / "nested.txt", "nested");
+
+  // A failure, early (bad parameter) and late (after the scene loaded and the GL context was made: a light
+  // index the scene does not have), keeps the directory exactly as it was.
+  for (const std::vector<std::string>& badArguments :
+    { std::vector<std::string>{ "--set", "nope=1" }, std::vector<std::string>{ "--light", "7" } })
+  {
+    std::vector<std::string> arguments = { "render", datasetScene("planar-occluder").string(), "--technique", "hard",
+      "--resolution", "32x32", "--set", "shadow_map_size=256", "--out", outDir.string() };
+    arguments.insert(arguments.end(), badArguments.begin(), badArguments.end());
+    const RunResult failed = runShadowlab(arguments, temp.path());
+    EXPECT_NE(failed.exitCode, 0) << failed.describe();
+    EXPECT_EQ(failed.errLines(), 1u) << failed.describe();
+    EXPECT_EQ(entriesOf(outDir), (std::vector<std::string>{ "old.txt", "sub" })) << failed.describe();
+    EXPECT_EQ(readFile(outDir / "old.txt"), "from an earlier run");
+    EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "results" })
+      << "leftover next to --out: " << joined(entriesOf(temp.path()));
+  }
+
+  const RunResult ok =
+    runShadowlab({ "render", datasetScene("planar-occluder").string(), "--technique", "hard", "--resolution", "32x32",
+                   "--set", "shadow_map_size=256", "--out", outDir.string() },
+      temp.path());
+  ASSERT_EQ(ok.exitCode, 0) << ok.describe();
+  EXPECT_FALSE(fs::exists(outDir / "old.txt")) << "old file survived a successful run";
+  EXPECT_FALSE(fs::exists(outDir / "sub")) << "old subdirectory survived a successful run";
+  EXPECT_TRUE(fs::is_regular_file(outDir / "image.png"));
+  EXPECT_TRUE(fs::is_regular_file(outDir / "stats.json"));
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "results" })
+    << "leftover next to --out: " << joined(entriesOf(temp.path()));
+}
+
+TEST(CliRenderOutput, OutPathThatIsAFileIsAnError)
+{
+  TempDir temp;
+  const fs::path file = temp.path() / "taken";
+  writeFile(file, "not a directory");
+  const RunResult run = runShadowlab({ "render", datasetScene("planar-occluder").string(), "--resolution", "32x32",
+                                       "--set", "shadow_map_size=256", "--out", file.string() },
+    temp.path());
+  EXPECT_NE(run.exitCode, 0) << run.describe();
+  EXPECT_EQ(run.errLines(), 1u) << run.describe();
+  EXPECT_NE(run.err.find("taken"), std::string::npos) << run.describe();
+  EXPECT_EQ(readFile(file), "not a directory");
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "taken" }) << joined(entriesOf(temp.path()));
+}
+
+// ---- list and help ------------------------------------------------------------------------------------------
+
+std::string formatNumber(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+TEST(CliList, TextListsEveryParameterWithDefaultAndRange)
+{
+  TempDir temp;
+  const RunResult run = runShadowlab({ "list" }, temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  EXPECT_EQ(run.err, "") << run.describe();
+  std::vector<std::string> lines;
+  std::istringstream stream(run.out);
+  for (std::string line; std::getline(stream, line);)
+  {
+    lines.push_back(line);
+  }
+  ASSERT_FALSE(techniqueRegistry().empty());
+  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  {
+    // The technique's block: from "<name> - ..." to the next line that starts in column 0.
+    const auto header = std::find_if(lines.begin(), lines.end(),
+      [&](const std::string& line) { return line.rfind(technique.name + " - ", 0) == 0; });
+    ASSERT_NE(header, lines.end()) << "no '" << technique.name << " - ...' line\n" << run.out;
+    const auto end = std::find_if(header + 1, lines.end(),
+      [](const std::string& line) { return !line.empty() && line[0] != ' '; });
+    for (const ParameterSpec& spec : technique.parameters)
+    {
+      std::string expectedDefault;
+      std::string expectedRange;
+      if (spec.choices.empty())
+      {
+        expectedDefault = formatNumber(spec.defaultValue);
+        expectedRange = formatNumber(spec.minValue) + " .. " + formatNumber(spec.maxValue);
+      }
+      else
+      {
+        expectedDefault = spec.choices.at(static_cast<std::size_t>(spec.defaultValue));
+        for (const std::string& choice : spec.choices)
+        {
+          expectedRange += (expectedRange.empty() ? "" : "|") + choice;
+        }
+      }
+      // Parameter lines are indented by 4 spaces, their doc lines by 6.
+      const auto line = std::find_if(header + 1, end,
+        [&](const std::string& text) { return text.rfind("    " + spec.name + " ", 0) == 0; });
+      ASSERT_NE(line, end) << technique.name << ": no line for parameter " << spec.name << "\n" << run.out;
+      EXPECT_NE(line->find("default " + expectedDefault + " "), std::string::npos)
+        << technique.name << "." << spec.name << " expected default " << expectedDefault << " in: " << *line;
+      EXPECT_NE(line->find("range " + expectedRange), std::string::npos)
+        << technique.name << "." << spec.name << " expected range " << expectedRange << " in: " << *line;
+    }
+  }
+  // Spot checks against the values written in the descriptors (not derived from the registry).
+  EXPECT_NE(run.out.find("kernel_texels          default 3        range 1 .. 64"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("pattern                default grid     range grid|poisson"), std::string::npos) << run.out;
+}
+
+TEST(CliList, JsonListsTechniquesWithParameterTables)
+{
+  TempDir temp;
+  const RunResult run = runShadowlab({ "list", "--json" }, temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  EXPECT_EQ(run.err, "") << run.describe();
+  Json list;
+  ASSERT_NO_THROW(list = Json::parse(run.out)) << run.out;
+  ASSERT_TRUE(list.is_array()) << run.out;
+  std::set<std::string> names;
+  for (const Json& technique : list)
+  {
+    const std::string name = technique.value("name", "");
+    names.insert(name);
+    const TechniqueDescriptor& descriptor = findTechnique(name);
+    ASSERT_TRUE(technique.at("parameters").is_array()) << technique.dump(2);
+    ASSERT_EQ(technique.at("parameters").size(), descriptor.parameters.size()) << name;
+    for (std::size_t p = 0; p < descriptor.parameters.size(); ++p)
+    {
+      const ParameterSpec& spec = descriptor.parameters[p];
+      const Json& parameter = technique.at("parameters").at(p);
+      for (const char* key : { "name", "default", "min", "max" })
+      {
+        ASSERT_TRUE(parameter.contains(key)) << name << " parameter " << p << " lacks '" << key << "': "
+                                             << parameter.dump();
+      }
+      EXPECT_EQ(parameter.at("name"), spec.name);
+      EXPECT_EQ(parameter.at("min").get<double>(), spec.minValue) << spec.name;
+      EXPECT_EQ(parameter.at("max").get<double>(), spec.maxValue) << spec.name;
+      const Json& defaultValue = parameter.at("default");
+      if (spec.choices.empty())
+      {
+        // The default of a numeric parameter: a JSON number would be natural; a numeric string is accepted,
+        // its value must be the descriptor's.
+        const double value = defaultValue.is_number() ? defaultValue.get<double>()
+                                                      : std::stod(defaultValue.get<std::string>());
+        EXPECT_EQ(value, spec.defaultValue) << name << "." << spec.name << ": " << defaultValue.dump();
+        EXPECT_TRUE(value >= spec.minValue && value <= spec.maxValue) << name << "." << spec.name;
+      }
+      else
+      {
+        EXPECT_EQ(defaultValue, spec.choices.at(static_cast<std::size_t>(spec.defaultValue))) << spec.name;
+        EXPECT_EQ(parameter.at("choices"), Json(spec.choices)) << spec.name;
+      }
+    }
+  }
+  EXPECT_EQ(names.count("hard"), 1u) << run.out.substr(0, 2000);
+  EXPECT_EQ(names.count("pcf"), 1u) << run.out.substr(0, 2000);
+  EXPECT_EQ(names.size(), techniqueRegistry().size());
+}
+
+TEST(CliHelp, HelpExitsZeroAndNamesTheCommands)
+{
+  TempDir temp;
+  const RunResult help = runShadowlab({ "--help" }, temp.path());
+  EXPECT_EQ(help.exitCode, 0) << help.describe();
+  EXPECT_NE(help.out.find("render"), std::string::npos) << help.describe();
+  EXPECT_NE(help.out.find("list"), std::string::npos) << help.describe();
+
+  const RunResult renderHelp = runShadowlab({ "render", "--help" }, temp.path());
+  EXPECT_EQ(renderHelp.exitCode, 0) << renderHelp.describe();
+  for (const char* option : { "--technique", "--set", "--resolution", "--out" })
+  {
+    EXPECT_NE(renderHelp.out.find(option), std::string::npos) << option << "\n" << renderHelp.describe();
+  }
+
+  // No subcommand is a usage error, not a silent success.
+  const RunResult none = runShadowlab({}, temp.path());
+  EXPECT_NE(none.exitCode, 0) << none.describe();
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{});
+}
+
+} // namespace
+} // namespace sl
