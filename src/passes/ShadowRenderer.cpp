@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "gl/vtkSLEglRenderWindow.h"
 #include "passes/FrameResources.h"
+#include "passes/vtkSLFocusPass.h"
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLLightDepthPass.h"
 #include "passes/vtkSLShadingPass.h"
@@ -105,6 +106,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
   if (technique.needs(LightStructure::ShadowMap))
   {
+    stages.push_back(vtkSmartPointer<vtkSLFocusPass>::New());
     stages.push_back(vtkSmartPointer<vtkSLLightDepthPass>::New());
   }
   stages.push_back(technique.createPass());

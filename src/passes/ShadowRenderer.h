@@ -1,7 +1,7 @@
 // Renders one frame of a scene with one technique and returns every buffer, read back to the CPU.
 //
 // The frame is a vtkSequencePass on a vtkRenderer of an offscreen EGL window:
-//   gbuffer -> [shadow_map, when the technique needs it] -> technique -> shading
+//   gbuffer -> [focus -> shadow_map, when the technique needs a shadow map] -> technique -> shading
 // Only the light-space structures the technique's descriptor lists are built.
 #pragma once
 

@@ -16,7 +16,6 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
-#include <cmath>
 
 vtkStandardNewMacro(vtkSLLightDepthPass);
 
@@ -29,16 +28,7 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
   sl::FrameResources& frame = *this->Frame;
   const sl::ParameterValues& parameters = frame.parameters;
 
-  // Focusing needs the visible receivers: read the G-buffer back (it is also exported later).
-  frame.positionReadback = sl::readFloatTexture(frame.gbufferPosition, 4);
-  frame.normalReadback = sl::readFloatTexture(frame.gbufferNormal, 4);
-  sl::FocusSettings focus;
-  focus.resolution = parameters.getInt("shadow_map_size");
-  const sl::ParameterSpec* kernel = frame.technique->findParameter("kernel_texels");
-  // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
-  focus.marginTexels = kernel ? std::ceil(0.5 * parameters.get("kernel_texels")) + 1.0 : 1.0;
-  frame.lightView = sl::fitLightView(*frame.light, *frame.scene, frame.positionReadback, frame.normalReadback, focus);
-  frame.hasLightView = true;
+  SL_CHECK_MSG(frame.hasLightView, "the focus stage must run before the shadow map");
   const sl::LightView& view = frame.lightView;
 
   frame.shadowMapLinear = sl::makeFloatTarget(window, view.resolution, view.resolution, 1);

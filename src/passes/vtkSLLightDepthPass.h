@@ -1,7 +1,5 @@
-// Stage 2 (when the technique needs a shadow map): focuses the light frustum on the visible receivers
-// (survey §4.1, see lightspace/LightView.h) and renders the casters' linear and hardware depth from the
-// light. Parameters it reads from the technique: shadow_map_size, caster_faces, and the kernel margin
-// the technique declares (kernel_texels / 2 + 1 when present).
+// Stage 2b (when the technique needs a shadow map): renders the casters' linear and hardware depth from
+// the light view the focus stage fitted. Parameter it reads: caster_faces (first- or second-depth).
 #pragma once
 
 #include "passes/vtkSLStagePass.h"

@@ -294,7 +294,7 @@ TEST(CliRender, HardWritesEveryDocumentedOutput)
       EXPECT_EQ(value, spec.choices.at(static_cast<std::size_t>(spec.defaultValue))) << spec.name;
     }
   }
-  const std::vector<std::string> expectedStages = { "gbuffer", "shadow_map", "technique", "shading" };
+  const std::vector<std::string> expectedStages = { "gbuffer", "focus", "shadow_map", "technique", "shading" };
   std::vector<std::string> stageNames;
   for (const Json& stage : stats.at("stages"))
   {

@@ -1,0 +1,35 @@
+#include "passes/vtkSLFocusPass.h"
+
+#include "passes/FrameResources.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkTextureObject.h>
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkSLFocusPass);
+
+void vtkSLFocusPass::Execute(const vtkRenderState*)
+{
+  sl::FrameResources& frame = *this->Frame;
+  const sl::ParameterValues& parameters = frame.parameters;
+  frame.positionReadback = sl::readFloatTexture(frame.gbufferPosition, 4);
+  frame.normalReadback = sl::readFloatTexture(frame.gbufferNormal, 4);
+  sl::FocusSettings focus;
+  focus.resolution = parameters.getInt("shadow_map_size");
+  // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
+  focus.marginTexels =
+    frame.technique->findParameter("kernel_texels") ? std::ceil(0.5 * parameters.get("kernel_texels")) + 1.0 : 1.0;
+  frame.lightView = sl::fitLightView(*frame.light, *frame.scene, frame.positionReadback, frame.normalReadback, focus);
+  frame.hasLightView = true;
+}
+
+void vtkSLFocusPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  if (this->Frame && this->Frame->hasLightView)
+  {
+    os << indent << "ShadowMapSize: " << this->Frame->lightView.resolution << "\n";
+    os << indent << "DepthRange: " << this->Frame->lightView.nearDepth << " .. " << this->Frame->lightView.farDepth << "\n";
+  }
+}
