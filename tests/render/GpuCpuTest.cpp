@@ -5,7 +5,10 @@
 //  - hard: identical (0 or 1). The GPU evaluates in float, the reference in double, so a comparison whose
 //    operands are within float rounding of each other (|depth difference| < 2e-6 relative, or a tap
 //    within 1e-4 texel of a texel edge, or a light-reach cosine < 1e-5) may legitimately go either way.
-//    Those pixels are counted ("ambiguous") and must stay under 1% of the image; all others must match.
+//    Those pixels are counted ("ambiguous", broken down by cause in the [ measured ] line) and must stay
+//    under 2% of the image; all others must match. PCF makes such pixels more common than hard: on a
+//    receiver sloped relative to the light, the taps compare against the receiver's own depth at growing
+//    offsets, and the one where slope x offset ~ bias sits at its decision boundary.
 //  - pcf nearest (grid, poisson): <= 1e-5 on unambiguous pixels (a sum of 0/1 taps divided by the count).
 //  - pcf hardware_bilinear: the 2x2 weights come from the texture unit, whose sub-texel precision the GL
 //    spec leaves to the implementation (8 bits on llvmpipe and most GPUs): <= 2^-7 on unambiguous pixels.
@@ -31,6 +34,7 @@ struct Agreement
 {
   int evaluated = 0;  // pixels that reached a shadow test
   int ambiguous = 0;  // within float rounding of a decision boundary
+  int ambiguousDepth = 0, ambiguousTexelEdge = 0, ambiguousReach = 0; // by cause (a pixel may have several)
   int mismatched = 0; // unambiguous pixels that differ beyond tolerance
   int partial = 0;    // 0 < visibility < 1 on the CPU side
   int shadowed = 0;   // visibility == 0 on the CPU side
@@ -63,6 +67,9 @@ Agreement compare(const FrameResult& frame, const ShadowMapInputs& inputs, const
       {
         ++agreement.evaluated;
         agreement.ambiguous += ambiguous ? 1 : 0;
+        agreement.ambiguousDepth += cpu.depthMargin < 2e-6 ? 1 : 0;
+        agreement.ambiguousTexelEdge += cpu.texelEdgeMargin < 1e-4 ? 1 : 0;
+        agreement.ambiguousReach += cpu.reachMargin < 1e-5 ? 1 : 0;
         agreement.partial += (cpu.visibility > 0.0 && cpu.visibility < 1.0) ? 1 : 0;
         agreement.shadowed += cpu.visibility == 0.0 ? 1 : 0;
         agreement.lit += cpu.visibility == 1.0 ? 1 : 0;
@@ -97,11 +104,12 @@ Agreement compare(const FrameResult& frame, const ShadowMapInputs& inputs, const
 void expectAgreement(const Agreement& agreement, int pixelCount, const std::string& label, bool expectPartial)
 {
   std::cout << "[ measured ] " << label << ": evaluated " << agreement.evaluated << ", ambiguous "
-            << agreement.ambiguous << ", partial " << agreement.partial << ", max |gpu - cpu| "
+            << agreement.ambiguous << " (depth " << agreement.ambiguousDepth << ", texel edge "
+            << agreement.ambiguousTexelEdge << ", reach " << agreement.ambiguousReach << "), partial " << agreement.partial << ", max |gpu - cpu| "
             << agreement.maxDifference << "\n";
   EXPECT_EQ(agreement.mismatched, 0) << label << ": first mismatch " << agreement.firstMismatch << " (max diff "
                                      << agreement.maxDifference << ")";
-  EXPECT_LT(agreement.ambiguous, pixelCount / 100) << label << ": too many pixels at a decision boundary";
+  EXPECT_LT(agreement.ambiguous, pixelCount / 50) << label << ": too many pixels at a decision boundary";
   // Not vacuous: many pixels were tested, and both lit and shadowed (or partial) results occurred.
   EXPECT_GT(agreement.evaluated, pixelCount / 4) << label;
   EXPECT_GT(agreement.lit, 0) << label;
@@ -175,6 +183,40 @@ std::string datasetTestName(const ::testing::TestParamInfo<std::string>& info)
 // Every light type and a perforated caster: area (bunny, stacked, contact, grazing, fence) and point.
 INSTANTIATE_TEST_SUITE_P(Datasets, GpuCpu,
   ::testing::Values("bunny", "stacked-occluders", "contact", "grazing", "fence", "sphere-point"), datasetTestName);
+
+// Light types no dataset uses: directional (orthographic map) and spot (cone-limited perspective map).
+class GpuCpuLights : public ::testing::TestWithParam<std::pair<std::string, std::string>>
+{
+};
+
+TEST_P(GpuCpuLights, HardAndPcfMatch)
+{
+  const Scene scene = test::stackedOccludersUnder(GetParam().second);
+  const std::string label = GetParam().first;
+  {
+    const FrameResult frame = test::renderDataset(scene, "hard", 128, 112, { "shadow_map_size=512" });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const BiasSettings bias = biasSettings(frame.parameters);
+    const Agreement agreement = compare(
+      frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return hardReference(in, bias, x, y); }, 0.0);
+    expectAgreement(agreement, 128 * 112, label + " hard", false);
+  }
+  {
+    const FrameResult frame = test::renderDataset(scene, "pcf", 128, 112, { "shadow_map_size=512", "kernel_texels=4" });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const Agreement agreement = compare(
+      frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); },
+      1e-5);
+    expectAgreement(agreement, 128 * 112, label + " pcf", true);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(LightTypes, GpuCpuLights,
+  ::testing::Values(std::make_pair(std::string("directional"),
+                      std::string(R"({ "type": "directional", "direction": [0.3, -1, 0.2] })")),
+    std::make_pair(std::string("spot"),
+      std::string(R"({ "type": "spot", "center": [0.4, 3.2, 0.3], "normal": [-0.1, -1, -0.05], "cone_angle_deg": 40 })"))),
+  [](const ::testing::TestParamInfo<std::pair<std::string, std::string>>& info) { return info.param.first; });
 
 TEST(GpuCpuBias, SecondDepthShadowMapMatches)
 {

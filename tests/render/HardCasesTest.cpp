@@ -192,6 +192,24 @@ TEST(HardCases, NonSquareImagesRenderTheSameShadows)
   }
 }
 
+TEST(HardCases, DirectionalAndSpotLightsShadowWhereTheRayCasterDoes)
+{
+  const std::pair<const char*, const char*> lights[] = {
+    { "directional", R"({ "type": "directional", "direction": [0.3, -1, 0.2] })" },
+    { "spot", R"({ "type": "spot", "center": [0.4, 3.2, 0.3], "normal": [-0.1, -1, -0.05], "cone_angle_deg": 40 })" },
+  };
+  for (const auto& [name, lightJson] : lights)
+  {
+    const Scene scene = test::stackedOccludersUnder(lightJson);
+    const FrameResult frame = test::renderDataset(scene, "hard", 160, 120);
+    const ImageF rayCast = rayCastVisibility(scene, frame);
+    const Disagreement result = disagreement(frame, rayCast, 1, &scene.lights[0], 0.2);
+    EXPECT_GT(result.rayShadowed, 160 * 120 / 50) << name;
+    EXPECT_GT(result.rayLit, 160 * 120 / 4) << name;
+    EXPECT_EQ(result.wrongShadow + result.wrongLight, 0) << name;
+  }
+}
+
 TEST(HardCases, NoNanOrInfInAnyBufferOfAnyDatasetOrTechnique)
 {
   // Every registered technique with its defaults, and with each non-default choice of each enumeration

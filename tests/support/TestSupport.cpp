@@ -43,6 +43,20 @@ std::vector<std::string> datasetNames()
   return names;
 }
 
+Scene stackedOccludersUnder(const std::string& lightJson)
+{
+  const std::string text = R"({
+    "camera": { "position": [0, 4.5, 3.5], "focal_point": [0, 0, 0], "view_angle": 35 },
+    "lights": [ )" + lightJson + R"( ],
+    "objects": [
+      { "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "quad", "center": [-0.35, 0.6, 0], "size": [0.8, 0.8], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "quad", "center": [0.35, 1.5, 0.1], "size": [0.8, 0.8], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "sphere", "center": [1.2, 0.4, -0.6], "size": 0.4 }
+    ] })";
+  return parseScene(text, "stacked-occluders (test variant)", sourceDir());
+}
+
 ShadowRenderer& sharedRenderer()
 {
   static ShadowRenderer renderer;

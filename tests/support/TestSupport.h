@@ -19,6 +19,10 @@ std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/s
 Scene loadDataset(const std::string& name);
 std::vector<std::string> datasetNames();      // every datasets/*/scene.json
 
+// The stacked-occluders geometry under a light given as JSON (e.g. a directional or spot light), for the
+// light types no dataset uses.
+Scene stackedOccludersUnder(const std::string& lightJson);
+
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer();
 
