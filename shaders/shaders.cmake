@@ -12,6 +12,7 @@ set(SL_SHADER_FILES
   gbuffer/GBufferFragment.glsl
   lightspace/LightDepthVertex.glsl
   lightspace/LightDepthFragment.glsl
+  lightspace/FocusReduction.glsl
   hard/HardVisibility.glsl
   pcf/PcfVisibility.glsl
   shading/ShadingFragment.glsl

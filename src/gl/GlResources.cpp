@@ -183,6 +183,8 @@ double StageTimer::gpuMilliseconds()
 
 GpuScene::GpuScene(vtkOpenGLRenderWindow* window, const Scene& scene)
 {
+  static std::uint64_t nextGeneration = 1;
+  generation_ = nextGeneration++;
   for (const SceneObject& object : scene.objects)
   {
     const TriangleMesh& mesh = object.mesh;

@@ -8,6 +8,7 @@
 #include <vtkSmartPointer.h>
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -76,10 +77,13 @@ public:
   GpuScene(vtkOpenGLRenderWindow* window, const Scene& scene);
   ~GpuScene();
   const std::vector<GpuMesh>& meshes() const { return meshes_; }
+  // Distinct for every GpuScene ever made, so cached per-mesh state (VAOs) can tell scenes apart.
+  std::uint64_t generation() const { return generation_; }
   void releaseGraphicsResources(vtkOpenGLRenderWindow* window);
 
 private:
   std::vector<GpuMesh> meshes_;
+  std::uint64_t generation_ = 0;
 };
 
 // Draws every mesh selected by `include` with `program`, binding attributes pWsIn/nWsIn/uvIn and the
@@ -98,11 +102,18 @@ private:
   void drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::size_t index);
   std::vector<vtkSmartPointer<vtkOpenGLVertexArrayObject>> vaos_;
   vtkShaderProgram* boundProgram_ = nullptr;
+  std::uint64_t sceneGeneration_ = 0;
 };
 
 template <typename Predicate>
 void MeshDrawer::draw(vtkShaderProgram* program, const GpuScene& scene, Predicate include)
 {
+  if (scene.generation() != sceneGeneration_)
+  {
+    // VAOs point into the previous scene's buffers.
+    releaseGraphicsResources(nullptr);
+    sceneGeneration_ = scene.generation();
+  }
   for (std::size_t i = 0; i < scene.meshes().size(); ++i)
   {
     if (include(*scene.meshes()[i].object))

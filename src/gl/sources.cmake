@@ -2,4 +2,5 @@ set(SL_GL_SOURCES
   src/gl/EglContext.cpp
   src/gl/vtkSLEglRenderWindow.cxx
   src/gl/ShaderLibrary.cpp
-  src/gl/GlResources.cpp)
+  src/gl/GlResources.cpp
+  src/gl/ComputeProgram.cpp)

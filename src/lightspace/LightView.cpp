@@ -98,34 +98,84 @@ bool lightCanReach(const Light& light, const glm::dvec3& pWs, const glm::dvec3& 
   return true;
 }
 
-LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbufferPosition,
-  const ImageF& gbufferNormal, const FocusSettings& settings)
+ImageReceivers::ImageReceivers(const ImageF& gbufferPosition, const ImageF& gbufferNormal)
 {
   SL_CHECK(gbufferPosition.components == 4 && gbufferNormal.components == 4);
-  SL_CHECK(settings.resolution > 2.0 * settings.marginTexels);
-
-  // The receivers the map must cover.
-  std::vector<glm::dvec3> receivers;
   for (std::size_t i = 0; i < gbufferPosition.pixelCount(); ++i)
   {
     const float* position = &gbufferPosition.data[i * 4];
     const float* normal = &gbufferNormal.data[i * 4];
-    if (position[3] <= 0.5f || normal[3] <= 0.5f)
+    if (position[3] > 0.5f && normal[3] > 0.5f)
+    {
+      // Keep the normal's test for later: which receivers count depends on the light.
+      receivers_.push_back(glm::dvec3(position[0], position[1], position[2]));
+      receivers_.push_back(glm::dvec3(normal[0], normal[1], normal[2]));
+    }
+  }
+}
+
+ReceiverSummary ImageReceivers::summary(const Light& light)
+{
+  ReceiverSummary result;
+  for (std::size_t i = 0; i < receivers_.size(); i += 2)
+  {
+    if (lightCanReach(light, receivers_[i], receivers_[i + 1]))
+    {
+      ++result.count;
+      result.worldBounds.extend(receivers_[i]);
+    }
+  }
+  return result;
+}
+
+ReceiverExtent ImageReceivers::extent(const Light& light, const LightView& view, const glm::dvec3& axis)
+{
+  ReceiverExtent result;
+  result.minXY = glm::dvec2(std::numeric_limits<double>::max());
+  result.maxXY = glm::dvec2(-std::numeric_limits<double>::max());
+  result.minDepth = std::numeric_limits<double>::max();
+  result.maxDepth = -std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < receivers_.size(); i += 2)
+  {
+    const glm::dvec3& pWs = receivers_[i];
+    if (!lightCanReach(light, pWs, receivers_[i + 1]))
     {
       continue;
     }
-    const glm::dvec3 pWs(position[0], position[1], position[2]);
-    const glm::dvec3 nWs(normal[0], normal[1], normal[2]);
-    if (lightCanReach(light, pWs, nWs))
+    ++result.reachable;
+    if (view.projection == LightProjection::Perspective)
     {
-      receivers.push_back(pWs);
+      result.minCosToAxis = std::min(result.minCosToAxis, glm::dot(axis, glm::normalize(pWs - view.eyeWs)));
     }
+    const LightCoords c = toLightCoords(view.viewFromWorld, view.projection, pWs);
+    if (c.depthLin <= 0.0)
+    {
+      continue;
+    }
+    ++result.inFront;
+    result.minXY = glm::min(result.minXY, glm::dvec2(c.x, c.y));
+    result.maxXY = glm::max(result.maxXY, glm::dvec2(c.x, c.y));
+    result.minDepth = std::min(result.minDepth, c.depthLin);
+    result.maxDepth = std::max(result.maxDepth, c.depthLin);
   }
+  return result;
+}
+
+LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbufferPosition,
+  const ImageF& gbufferNormal, const FocusSettings& settings)
+{
+  ImageReceivers receivers(gbufferPosition, gbufferNormal);
+  return fitLightView(light, scene, receivers, settings);
+}
+
+LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings)
+{
+  SL_CHECK(settings.resolution > 2.0 * settings.marginTexels);
+  const ReceiverSummary summary = light.type == LightType::Point ? receivers.summary(light) : ReceiverSummary();
   const Bounds sceneBounds = scene.bounds();
 
   LightView view;
   view.resolution = settings.resolution;
-  view.receiverSampleCount = static_cast<int>(receivers.size());
   glm::dvec3 forward;
   glm::dvec3 up;
   switch (light.type)
@@ -144,23 +194,13 @@ LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbu
       break;
     case LightType::Point:
     {
+      // Aim at the centre of the receivers' bounding box; if the light sits at that centre (receivers all
+      // around it) any axis will do: the coverage check below rejects the configuration.
       view.projection = LightProjection::Perspective;
       view.eyeWs = light.center;
-      glm::dvec3 towardReceivers(0.0);
-      for (const glm::dvec3& p : receivers)
-      {
-        towardReceivers += glm::normalize(p - light.center);
-      }
-      if (glm::length(towardReceivers) > 1e-9)
-      {
-        forward = glm::normalize(towardReceivers);
-      }
-      else
-      {
-        // Receivers all around the light (or none): any axis; the coverage check below decides.
-        const glm::dvec3 towardScene = sceneBounds.empty() ? glm::dvec3(0.0) : sceneBounds.center() - light.center;
-        forward = glm::length(towardScene) > 1e-9 ? glm::normalize(towardScene) : glm::dvec3(0.0, -1.0, 0.0);
-      }
+      const glm::dvec3 towardReceivers =
+        summary.count > 0 ? summary.worldBounds.center() - light.center : sceneBounds.center() - light.center;
+      forward = glm::length(towardReceivers) > 1e-9 ? glm::normalize(towardReceivers) : glm::dvec3(0.0, -1.0, 0.0);
       up = anyPerpendicular(forward);
       break;
     }
@@ -174,36 +214,23 @@ LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbu
   view.viewFromWorld = glm::lookAt(view.eyeWs, view.eyeWs + forward, up);
 
   // Window: bounding rectangle of the receivers in light x/y.
-  double xMin = std::numeric_limits<double>::max();
-  double xMax = -xMin;
-  double yMin = xMin;
-  double yMax = -xMin;
-  double receiverFar = 0.0;
-  double receiverNear = std::numeric_limits<double>::max();
-  const double cosMaxPointAngle = std::cos(glm::radians(80.0));
-  for (const glm::dvec3& p : receivers)
+  const ReceiverExtent extent = receivers.extent(light, view, forward);
+  view.receiverSampleCount = extent.reachable;
+  // One perspective map covers less than a hemisphere: a point light whose visible receivers spread
+  // wider (some even behind it) would need a cube map.
+  if (light.type == LightType::Point && extent.reachable > 0 && extent.minCosToAxis < std::cos(glm::radians(80.0)))
   {
-    // One perspective map covers less than a hemisphere: a point light whose visible receivers spread
-    // wider (some even behind it) would need a cube map.
-    if (light.type == LightType::Point && glm::dot(forward, glm::normalize(p - light.center)) < cosMaxPointAngle)
-    {
-      throw InputError(format("point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
-        ") sees visible receivers more than 80 degrees off its mean direction; one shadow map cannot cover them "
-        "(cube shadow maps are not supported): use a spot or area light"));
-    }
-    const LightCoords c = toLightCoords(view.viewFromWorld, view.projection, p);
-    if (c.depthLin <= 0.0)
-    {
-      continue;
-    }
-    xMin = std::min(xMin, c.x);
-    xMax = std::max(xMax, c.x);
-    yMin = std::min(yMin, c.y);
-    yMax = std::max(yMax, c.y);
-    receiverFar = std::max(receiverFar, c.depthLin);
-    receiverNear = std::min(receiverNear, c.depthLin);
+    throw InputError(format("point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
+      ") sees visible receivers more than 80 degrees off its axis; one shadow map cannot cover them "
+      "(cube shadow maps are not supported): use a spot or area light"));
   }
-  if (receiverFar <= 0.0)
+  double xMin = extent.minXY.x;
+  double xMax = extent.maxXY.x;
+  double yMin = extent.minXY.y;
+  double yMax = extent.maxXY.y;
+  double receiverNear = extent.minDepth;
+  double receiverFar = extent.maxDepth;
+  if (extent.inFront == 0 || receiverFar <= 0.0)
   {
     // Nothing visible can receive light: keep a valid (tiny) frustum so every stage still runs.
     xMin = yMin = -1e-3;

@@ -16,6 +16,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace sl
 {
 
@@ -56,9 +58,53 @@ bool lightCanReach(const Light& light, const glm::dvec3& pWs, const glm::dvec3& 
 // Direction from pWs toward the light's centre (or against a directional light's direction), unit.
 glm::dvec3 directionToLight(const Light& light, const glm::dvec3& pWs);
 
-// Fits the light view. `gbufferPosition` is RGBA (xyz = pWs, w = coverage), `gbufferNormal` RGBA
-// (xyz = nWs, w = receives shadows). Throws InputError when the light cannot be handled by one
-// shadow map (a point light surrounded by the visible receivers).
+// What the fit needs to know about the visible receivers (covered pixels that receive shadows and that
+// the light can reach), in two questions. A ReceiverSource answers them: on the CPU from read-back
+// G-buffer images (ImageReceivers, the reference), or on the GPU by a compute-shader reduction
+// (passes/GpuReceivers.h) that reads back a few numbers instead of the whole G-buffer.
+struct ReceiverSummary
+{
+  int count = 0;
+  Bounds worldBounds;
+};
+
+struct ReceiverExtent
+{
+  int reachable = 0;          // all visible receivers the light can reach
+  int inFront = 0;            // of those, the ones with depthLin > 0 (the others cannot be in the map)
+  glm::dvec2 minXY{ 0.0 };    // light x/y over those: tangents (perspective) or world units (orthographic)
+  glm::dvec2 maxXY{ 0.0 };
+  double minDepth = 0.0;      // linear depth range over those
+  double maxDepth = 0.0;
+  double minCosToAxis = 1.0;  // perspective: min over all receivers of dot(axis, unit(p - eye))
+};
+
+class ReceiverSource
+{
+public:
+  virtual ~ReceiverSource() = default;
+  // Only asked for point lights (their axis aims at the receivers' bounding box).
+  virtual ReceiverSummary summary(const Light& light) = 0;
+  virtual ReceiverExtent extent(const Light& light, const LightView& view, const glm::dvec3& axis) = 0;
+};
+
+// The CPU reference: gbufferPosition RGBA (xyz = pWs, w = coverage), gbufferNormal RGBA (xyz = nWs,
+// w = receives shadows).
+class ImageReceivers : public ReceiverSource
+{
+public:
+  ImageReceivers(const ImageF& gbufferPosition, const ImageF& gbufferNormal);
+  ReceiverSummary summary(const Light& light) override;
+  ReceiverExtent extent(const Light& light, const LightView& view, const glm::dvec3& axis) override;
+
+private:
+  std::vector<glm::dvec3> receivers_;
+};
+
+// Fits the light view. Throws InputError when one shadow map cannot cover the receivers (a point light
+// surrounded by them: some lie more than 80 degrees off its axis).
+LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings);
+// Convenience: the CPU reference on G-buffer images.
 LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbufferPosition,
   const ImageF& gbufferNormal, const FocusSettings& settings);
 

@@ -60,6 +60,31 @@ ShadowRenderer::~ShadowRenderer()
 {
   window_->MakeCurrent();
   renderer_->SetPass(nullptr);
+  for (auto& [name, stages] : stagesByTechnique_)
+  {
+    for (const auto& stage : stages)
+    {
+      stage->ReleaseGraphicsResources(window_);
+    }
+  }
+}
+
+std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const TechniqueDescriptor& technique)
+{
+  auto& stages = stagesByTechnique_[technique.name];
+  if (stages.empty())
+  {
+    // Only the structures this technique needs.
+    stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
+    if (technique.needs(LightStructure::ShadowMap))
+    {
+      stages.push_back(vtkSmartPointer<vtkSLFocusPass>::New());
+      stages.push_back(vtkSmartPointer<vtkSLLightDepthPass>::New());
+    }
+    stages.push_back(technique.createPass());
+    stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
+  }
+  return stages;
 }
 
 FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& request)
@@ -101,16 +126,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     frame.techniqueTargets[output] = makeFloatTarget(window_, resolution.x, resolution.y, 1);
   }
 
-  // Assemble the frame's passes: only the structures this technique needs.
-  std::vector<vtkSmartPointer<vtkSLStagePass>> stages;
-  stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
-  if (technique.needs(LightStructure::ShadowMap))
-  {
-    stages.push_back(vtkSmartPointer<vtkSLFocusPass>::New());
-    stages.push_back(vtkSmartPointer<vtkSLLightDepthPass>::New());
-  }
-  stages.push_back(technique.createPass());
-  stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
+  const auto& stages = stagesFor(technique);
   vtkNew<vtkRenderPassCollection> collection;
   for (const auto& stage : stages)
   {
@@ -186,7 +202,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   renderer_->SetPass(nullptr);
   for (const auto& stage : stages)
   {
-    stage->ReleaseGraphicsResources(window_);
+    stage->SetFrame(nullptr); // the frame's resources end here
   }
   frame.gpuScene->releaseGraphicsResources(window_);
   return result;

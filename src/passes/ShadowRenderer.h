@@ -13,11 +13,13 @@
 
 #include <vtkSmartPointer.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "gl/vtkSLEglRenderWindow.h"
+#include "passes/vtkSLStagePass.h"
 #include <vtkRenderer.h>
 
 namespace sl
@@ -84,8 +86,13 @@ public:
   vtkSLEglRenderWindow* window() const { return window_; }
 
 private:
+  // The stage passes of each technique, built on first use and kept: their programs, framebuffers and
+  // VAOs are reused frame after frame (warm frames are what benchmarks time).
+  std::vector<vtkSmartPointer<vtkSLStagePass>>& stagesFor(const TechniqueDescriptor& technique);
+
   vtkSmartPointer<vtkSLEglRenderWindow> window_;
   vtkSmartPointer<vtkRenderer> renderer_;
+  std::map<std::string, std::vector<vtkSmartPointer<vtkSLStagePass>>> stagesByTechnique_;
 };
 
 } // namespace sl

@@ -4,6 +4,7 @@ set(SL_PASSES_SOURCES
   src/passes/FullScreenQuad.cpp
   src/passes/vtkSLStagePass.cxx
   src/passes/vtkSLGBufferPass.cxx
+  src/passes/GpuReceivers.cpp
   src/passes/vtkSLFocusPass.cxx
   src/passes/vtkSLLightDepthPass.cxx
   src/passes/vtkSLTechniquePass.cxx

@@ -13,15 +13,26 @@ void vtkSLFocusPass::Execute(const vtkRenderState*)
 {
   sl::FrameResources& frame = *this->Frame;
   const sl::ParameterValues& parameters = frame.parameters;
-  frame.positionReadback = sl::readFloatTexture(frame.gbufferPosition, 4);
-  frame.normalReadback = sl::readFloatTexture(frame.gbufferNormal, 4);
+  if (!this->Receivers)
+  {
+    this->Receivers = std::make_unique<sl::GpuReceivers>();
+  }
+  this->Receivers->setGBuffer(frame.gbufferPosition, frame.gbufferNormal);
   sl::FocusSettings focus;
   focus.resolution = parameters.getInt("shadow_map_size");
   // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
   focus.marginTexels =
     frame.technique->findParameter("kernel_texels") ? std::ceil(0.5 * parameters.get("kernel_texels")) + 1.0 : 1.0;
-  frame.lightView = sl::fitLightView(*frame.light, *frame.scene, frame.positionReadback, frame.normalReadback, focus);
+  frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
   frame.hasLightView = true;
+}
+
+vtkSLFocusPass::vtkSLFocusPass() = default;
+vtkSLFocusPass::~vtkSLFocusPass() = default;
+
+void vtkSLFocusPass::ReleaseGraphicsResources(vtkWindow*)
+{
+  this->Receivers.reset();
 }
 
 void vtkSLFocusPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -1,11 +1,14 @@
 // Stage 2a (when the technique needs a shadow map): fits the light frustum to the visible receivers and
-// the casters clipped to it (survey §4.1, see lightspace/LightView.h). It reads the G-buffer's position
-// and normal back to the CPU (kept for the outputs) and runs the fit there; its own stage so that
-// stats.json separates this cost from rendering the map. Parameters it reads: shadow_map_size, and the
+// the casters clipped to it (survey §4.1, see lightspace/LightView.h). The receivers are reduced on the
+// GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
+// own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: shadow_map_size, and the
 // technique's kernel_texels when declared (margin = ceil(kernel / 2) + 1 texels).
 #pragma once
 
+#include "passes/GpuReceivers.h"
 #include "passes/vtkSLStagePass.h"
+
+#include <memory>
 
 class vtkSLFocusPass : public vtkSLStagePass
 {
@@ -14,13 +17,16 @@ public:
   vtkTypeMacro(vtkSLFocusPass, vtkSLStagePass);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   const char* GetStageName() const override { return "focus"; }
+  void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:
-  vtkSLFocusPass() = default;
-  ~vtkSLFocusPass() override = default;
+  vtkSLFocusPass();
+  ~vtkSLFocusPass() override;
   void Execute(const vtkRenderState* state) override;
 
 private:
   vtkSLFocusPass(const vtkSLFocusPass&) = delete;
   void operator=(const vtkSLFocusPass&) = delete;
+
+  std::unique_ptr<sl::GpuReceivers> Receivers; // compiled once, reused frame after frame
 };

@@ -15,6 +15,7 @@
 //  - texel_ratio: 1e-3 relative (float evaluation of survey Eq. 2); depth_bias: 1e-3 relative (tan(theta)
 //    amplifies float error like eps / cos^2(theta) at grazing receivers).
 #include "support/TestSupport.h"
+#include "lightspace/LightView.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
@@ -217,6 +218,54 @@ INSTANTIATE_TEST_SUITE_P(LightTypes, GpuCpuLights,
     std::make_pair(std::string("spot"),
       std::string(R"({ "type": "spot", "center": [0.4, 3.2, 0.3], "normal": [-0.1, -1, -0.05], "cone_angle_deg": 40 })"))),
   [](const ::testing::TestParamInfo<std::pair<std::string, std::string>>& info) { return info.param.first; });
+
+// Focusing: the light view fitted from the GPU reduction (FocusReduction.glsl) equals the CPU reference
+// fitted from the read-back G-buffer, up to float rounding of the reduced coordinates.
+TEST(GpuCpuFocus, GpuReductionFitsTheSameLightViewAsTheCpu)
+{
+  for (const std::string& dataset : test::datasetNames())
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult frame = test::renderDataset(scene, "pcf", 96, 80, { "shadow_map_size=512" });
+    const ImageF& position = frame.find("position")->image;
+    const ImageF& normal = frame.find("normal")->image;
+    ImageF positionRgba(position.width, position.height, 4);
+    ImageF normalRgba(position.width, position.height, 4);
+    for (int y = 0; y < position.height; ++y)
+    {
+      for (int x = 0; x < position.width; ++x)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          positionRgba.at(x, y, c) = position.at(x, y, c);
+          normalRgba.at(x, y, c) = normal.at(x, y, c);
+        }
+        positionRgba.at(x, y, 3) = frame.find("coverage")->image.at(x, y);
+        normalRgba.at(x, y, 3) = frame.find("receives_shadows")->image.at(x, y);
+      }
+    }
+    FocusSettings focus;
+    focus.resolution = 512;
+    focus.marginTexels = std::ceil(0.5 * frame.parameters.get("kernel_texels")) + 1.0;
+    const LightView cpu = fitLightView(scene.lights[0], scene, positionRgba, normalRgba, focus);
+    const LightView& gpu = *frame.lightView;
+    EXPECT_EQ(gpu.receiverSampleCount, cpu.receiverSampleCount) << dataset;
+    const double extent = std::max(cpu.window.y - cpu.window.x, cpu.window.w - cpu.window.z);
+    for (int i = 0; i < 4; ++i)
+    {
+      EXPECT_NEAR(gpu.window[i], cpu.window[i], 1e-5 * extent) << dataset << " window[" << i << "]";
+    }
+    EXPECT_NEAR(gpu.nearDepth, cpu.nearDepth, 1e-5 * cpu.farDepth) << dataset;
+    EXPECT_NEAR(gpu.farDepth, cpu.farDepth, 1e-5 * cpu.farDepth) << dataset;
+    for (int column = 0; column < 4; ++column)
+    {
+      for (int row = 0; row < 4; ++row)
+      {
+        EXPECT_NEAR(gpu.viewFromWorld[column][row], cpu.viewFromWorld[column][row], 1e-6) << dataset;
+      }
+    }
+  }
+}
 
 TEST(GpuCpuBias, SecondDepthShadowMapMatches)
 {

@@ -1,0 +1,110 @@
+#include "gl/ComputeProgram.h"
+
+#include "core/Error.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <vtk_glew.h>
+
+namespace sl
+{
+
+ComputeProgram::ComputeProgram(const std::string& source, const std::string& label)
+  : label_(label)
+{
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint compiled = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
+  if (compiled != GL_TRUE)
+  {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
+    glDeleteShader(shader);
+    throw GraphicsError("cannot compile compute shader '" + label + "': " + log);
+  }
+  program_ = glCreateProgram();
+  glAttachShader(program_, shader);
+  glLinkProgram(program_);
+  glDeleteShader(shader);
+  GLint linked = GL_FALSE;
+  glGetProgramiv(program_, GL_LINK_STATUS, &linked);
+  if (linked != GL_TRUE)
+  {
+    char log[2048] = {};
+    glGetProgramInfoLog(program_, sizeof(log), nullptr, log);
+    glDeleteProgram(program_);
+    throw GraphicsError("cannot link compute shader '" + label + "': " + log);
+  }
+}
+
+ComputeProgram::~ComputeProgram()
+{
+  glDeleteProgram(program_);
+}
+
+void ComputeProgram::use() const
+{
+  glUseProgram(program_);
+}
+
+void ComputeProgram::setInt(const char* name, int value) const
+{
+  glProgramUniform1i(program_, glGetUniformLocation(program_, name), value);
+}
+
+void ComputeProgram::setFloat(const char* name, double value) const
+{
+  glProgramUniform1f(program_, glGetUniformLocation(program_, name), static_cast<float>(value));
+}
+
+void ComputeProgram::setVector(const char* name, const glm::dvec3& value) const
+{
+  const glm::vec3 single(value);
+  glProgramUniform3fv(program_, glGetUniformLocation(program_, name), 1, glm::value_ptr(single));
+}
+
+void ComputeProgram::setMatrix(const char* name, const glm::dmat4& value) const
+{
+  const glm::mat4 single(value);
+  glProgramUniformMatrix4fv(program_, glGetUniformLocation(program_, name), 1, GL_FALSE, glm::value_ptr(single));
+}
+
+void ComputeProgram::dispatch(glm::ivec2 groups) const
+{
+  glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+StorageBuffer::StorageBuffer(std::size_t words)
+  : words_(words)
+{
+  glCreateBuffers(1, &buffer_);
+  glNamedBufferData(buffer_, static_cast<GLsizeiptr>(words * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_READ);
+}
+
+StorageBuffer::~StorageBuffer()
+{
+  glDeleteBuffers(1, &buffer_);
+}
+
+void StorageBuffer::upload(const std::vector<std::uint32_t>& words) const
+{
+  SL_CHECK(words.size() == words_);
+  glNamedBufferSubData(buffer_, 0, static_cast<GLsizeiptr>(words.size() * sizeof(std::uint32_t)), words.data());
+}
+
+std::vector<std::uint32_t> StorageBuffer::download() const
+{
+  std::vector<std::uint32_t> words(words_);
+  glGetNamedBufferSubData(buffer_, 0, static_cast<GLsizeiptr>(words.size() * sizeof(std::uint32_t)), words.data());
+  return words;
+}
+
+void StorageBuffer::bind(unsigned int binding) const
+{
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_);
+}
+
+} // namespace sl

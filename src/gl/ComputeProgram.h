@@ -1,0 +1,53 @@
+// A GLSL compute program (VTK 9.1's shader cache has no compute stage), with the shader-storage
+// buffer a reduction writes its few results into. Throws GraphicsError with the compiler log on failure.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+
+class ComputeProgram
+{
+public:
+  ComputeProgram(const std::string& source, const std::string& label);
+  ~ComputeProgram();
+  ComputeProgram(const ComputeProgram&) = delete;
+  ComputeProgram& operator=(const ComputeProgram&) = delete;
+
+  void use() const;
+  void setInt(const char* name, int value) const;
+  void setFloat(const char* name, double value) const;
+  void setVector(const char* name, const glm::dvec3& value) const;
+  void setMatrix(const char* name, const glm::dmat4& value) const;
+  // Runs groups.x * groups.y work groups and waits until their storage writes are visible.
+  void dispatch(glm::ivec2 groups) const;
+
+private:
+  unsigned int program_ = 0;
+  std::string label_;
+};
+
+// A small std430 buffer of 32-bit words bound at a storage binding point.
+class StorageBuffer
+{
+public:
+  explicit StorageBuffer(std::size_t words);
+  ~StorageBuffer();
+  StorageBuffer(const StorageBuffer&) = delete;
+  StorageBuffer& operator=(const StorageBuffer&) = delete;
+
+  void upload(const std::vector<std::uint32_t>& words) const;
+  std::vector<std::uint32_t> download() const;
+  void bind(unsigned int binding) const;
+
+private:
+  unsigned int buffer_ = 0;
+  std::size_t words_ = 0;
+};
+
+} // namespace sl
