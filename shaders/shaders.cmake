@@ -16,4 +16,6 @@ set(SL_SHADER_FILES
   hard/HardVisibility.glsl
   pcf/PcfVisibility.glsl
   shading/ShadingFragment.glsl
-  vtk/VtkVisibilityRatio.glsl)
+  vtk/VtkVisibilityRatio.glsl
+  referencesm/ReferenceSmAccumulate.glsl
+  referencesm/ReferenceSmResolve.glsl)

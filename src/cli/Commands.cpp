@@ -13,9 +13,6 @@
 
 namespace sl
 {
-namespace
-{
-
 glm::ivec2 parseResolution(const std::string& text)
 {
   static const std::regex pattern(R"((\d{1,6})x(\d{1,6}))");
@@ -26,6 +23,9 @@ glm::ivec2 parseResolution(const std::string& text)
   }
   return { std::stoi(match[1]), std::stoi(match[2]) };
 }
+
+namespace
+{
 
 std::string describeRange(const ParameterSpec& spec)
 {

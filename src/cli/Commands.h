@@ -2,7 +2,11 @@
 // and reported once by main().
 #pragma once
 
+#include <glm/glm.hpp>
+
+#include <cstdint>
 #include <ostream>
+#include <vector>
 #include <string>
 #include <vector>
 
@@ -22,5 +26,61 @@ struct RenderOptions
 
 int runRender(const RenderOptions& options, std::ostream& log);
 int runList(bool asJson, std::ostream& out);
+
+struct ReferenceOptions
+{
+  std::string sceneFile;
+  int samples = 1024;
+  std::string sampling = "stratified";
+  std::uint64_t seed = 1;
+  std::string resolution; // "WxH" or empty
+  std::string outDir = "out-reference";
+  int lightIndex = 0;
+  int threads = 0; // 0: all cores
+  bool quiet = false;
+};
+int runReference(const ReferenceOptions& options, std::ostream& log);
+
+struct CompareOptions
+{
+  std::string testFile;
+  std::string referenceFile;
+  std::string array = "visibility";
+  std::string outDir = "out-compare";
+  bool quiet = false;
+};
+int runCompare(const CompareOptions& options, std::ostream& log);
+
+struct BenchOptions
+{
+  std::vector<std::string> sceneFiles;
+  std::string techniques = "hard,pcf";         // comma-separated
+  std::vector<std::string> sweeps;             // "key=v1,v2,..." (several: all combinations)
+  std::vector<std::string> settings;           // "key=value" for every configuration that has the key
+  int repeat = 5;                              // timed frames after one warm-up frame
+  std::string resolution = "256x256";
+  int referenceSamples = 1024;
+  std::string cacheDir = ".shadowlab-cache";   // ray-traced references, keyed by scene + resolution + samples
+  std::string outDir = "out-bench";
+  bool quiet = false;
+};
+int runBench(const BenchOptions& options, std::ostream& log);
+
+// One configuration, run by `bench` in a child process (hidden subcommand `bench-run`): a warm-up frame
+// and `repeat` timed frames, medians, and the error against the reference; the result is JSON in `resultFile`.
+struct BenchRunOptions
+{
+  std::string sceneFile;
+  std::string technique;
+  std::vector<std::string> settings;
+  std::string resolution;
+  int repeat = 5;
+  std::string referenceFile; // buffers.vti of the reference; empty: no error metrics
+  std::string resultFile;
+};
+int runBenchConfiguration(const BenchRunOptions& options);
+
+// "WxH" -> size; throws InputError naming --resolution.
+glm::ivec2 parseResolution(const std::string& text);
 
 } // namespace sl

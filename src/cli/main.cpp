@@ -25,6 +25,55 @@ int main(int argc, char** argv)
     ->capture_default_str();
   renderCommand->add_flag("--quiet,-q", render.quiet, "Print nothing on success");
 
+  sl::ReferenceOptions reference;
+  CLI::App* referenceCommand = app.add_subcommand("reference",
+    "Ray-traced ground truth (Embree): the visible fraction of the light for every pixel the pipeline shades");
+  referenceCommand->add_option("scene", reference.sceneFile, "Scene file (JSON)")->required();
+  referenceCommand->add_option("--samples,-n", reference.samples, "Light samples per pixel")->capture_default_str();
+  referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
+  referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")->capture_default_str();
+  referenceCommand->add_option("--resolution,-r", reference.resolution, "Image size WxH (default: the scene camera's)");
+  referenceCommand->add_option("--out,-o", reference.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  referenceCommand->add_option("--light", reference.lightIndex, "Index of the scene light")->capture_default_str();
+  referenceCommand->add_option("--threads", reference.threads, "Worker threads (0: all cores)")->capture_default_str();
+  referenceCommand->add_flag("--quiet,-q", reference.quiet, "Print nothing on success");
+
+  sl::CompareOptions compare;
+  CLI::App* compareCommand =
+    app.add_subcommand("compare", "Error metrics of TEST.vti against REF.vti (RMSE, MAE, max, >0.05; all and penumbra)");
+  compareCommand->add_option("test", compare.testFile, "buffers.vti of the technique")->required();
+  compareCommand->add_option("reference", compare.referenceFile, "buffers.vti of the reference")->required();
+  compareCommand->add_option("--array", compare.array, "Array to compare")->capture_default_str();
+  compareCommand->add_option("--out,-o", compare.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  compareCommand->add_flag("--quiet,-q", compare.quiet, "Print nothing on success");
+
+  sl::BenchOptions bench;
+  CLI::App* benchCommand = app.add_subcommand("bench",
+    "Speed against error: scenes x techniques x sweeps, each configuration in its own process");
+  benchCommand->add_option("scenes", bench.sceneFiles, "Scene files")->required();
+  benchCommand->add_option("--techniques,-t", bench.techniques, "Comma-separated technique names")->capture_default_str();
+  benchCommand->add_option("--sweep", bench.sweeps, "key=v1,v2,... (repeatable: all combinations)");
+  benchCommand->add_option("--set,-s", bench.settings, "key=value for every technique that has the key");
+  benchCommand->add_option("--repeat", bench.repeat, "Timed frames after one warm-up frame (medians reported)")
+    ->capture_default_str();
+  benchCommand->add_option("--resolution,-r", bench.resolution, "Image size WxH")->capture_default_str();
+  benchCommand->add_option("--samples", bench.referenceSamples, "Light samples of the ray-traced reference")
+    ->capture_default_str();
+  benchCommand->add_option("--cache", bench.cacheDir, "Cache of ray-traced references")->capture_default_str();
+  benchCommand->add_option("--out,-o", bench.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
+
+  sl::BenchRunOptions benchRun;
+  CLI::App* benchRunCommand = app.add_subcommand("bench-run", "One bench configuration (started by bench)");
+  benchRunCommand->group(""); // hidden from --help
+  benchRunCommand->add_option("scene", benchRun.sceneFile)->required();
+  benchRunCommand->add_option("--technique", benchRun.technique)->required();
+  benchRunCommand->add_option("--set", benchRun.settings);
+  benchRunCommand->add_option("--resolution", benchRun.resolution)->required();
+  benchRunCommand->add_option("--repeat", benchRun.repeat);
+  benchRunCommand->add_option("--reference", benchRun.referenceFile);
+  benchRunCommand->add_option("--result", benchRun.resultFile)->required();
+
   bool listJson = false;
   CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
   listCommand->add_flag("--json", listJson, "Machine-readable output");
@@ -47,6 +96,22 @@ int main(int argc, char** argv)
     if (listCommand->parsed())
     {
       return sl::runList(listJson, std::cout);
+    }
+    if (referenceCommand->parsed())
+    {
+      return sl::runReference(reference, std::cerr);
+    }
+    if (compareCommand->parsed())
+    {
+      return sl::runCompare(compare, std::cerr);
+    }
+    if (benchCommand->parsed())
+    {
+      return sl::runBench(bench, std::cerr);
+    }
+    if (benchRunCommand->parsed())
+    {
+      return sl::runBenchConfiguration(benchRun);
     }
   }
   catch (const sl::InputError& error)

@@ -74,6 +74,8 @@ void writeHeatMaps(const std::vector<NamedImage>& images, const ImageU8* mask, c
   }
 }
 
+} // namespace
+
 nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
 {
   double minimum = 0.0;
@@ -106,8 +108,6 @@ nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
     { "mean", count ? sum / static_cast<double>(count) : 0.0 }, { "non_finite", nonFinite }, { "unit", named.unit },
     { "doc", named.doc } };
 }
-
-} // namespace
 
 nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context)
 {
@@ -183,30 +183,58 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
   return stats;
 }
 
+void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,
+  const ImageU8* image, const std::filesystem::path& dir)
+{
+  writeVti(dir / "buffers.vti", buffers);
+  if (!lightSpace.empty())
+  {
+    writeVti(dir / "light_space.vti", lightSpace);
+  }
+  if (image && !image->empty())
+  {
+    writePng(dir / "image.png", *image);
+  }
+  const auto find = [&](const std::string& name) -> const NamedImage* {
+    for (const NamedImage& named : buffers)
+    {
+      if (named.name == name)
+      {
+        return &named;
+      }
+    }
+    return nullptr;
+  };
+  if (const NamedImage* visibility = find("visibility"))
+  {
+    writeExr(dir / "visibility.exr", visibility->image);
+  }
+  const NamedImage* coverage = find("coverage");
+  SL_CHECK(coverage);
+  ImageU8 mask(coverage->image.width, coverage->image.height, 1);
+  for (std::size_t i = 0; i < mask.data.size(); ++i)
+  {
+    mask.data[i] = coverage->image.data[i] > 0.5f ? 1 : 0;
+  }
+  writeHeatMaps(buffers, &mask, dir, "heatmap_");
+  writeHeatMaps(lightSpace, nullptr, dir, "heatmap_");
+}
+
+void writeJson(const nlohmann::json& json, const std::filesystem::path& path)
+{
+  std::ofstream file(path);
+  file << json.dump(2) << "\n";
+  if (!file)
+  {
+    throw InputError(path.string() + ": cannot write");
+  }
+}
+
 void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const std::filesystem::path& outDir)
 {
   writeDirectoryAtomically(outDir, [&](const std::filesystem::path& dir) {
-    writeVti(dir / "buffers.vti", frame.buffers);
-    if (!frame.lightSpace.empty())
-    {
-      writeVti(dir / "light_space.vti", frame.lightSpace);
-    }
-    writePng(dir / "image.png", frame.image);
-    writeExr(dir / "visibility.exr", frame.find("visibility")->image);
-    const NamedImage* coverage = frame.find("coverage");
-    ImageU8 mask(coverage->image.width, coverage->image.height, 1);
-    for (std::size_t i = 0; i < mask.data.size(); ++i)
-    {
-      mask.data[i] = coverage->image.data[i] > 0.5f ? 1 : 0;
-    }
-    writeHeatMaps(frame.buffers, &mask, dir, "heatmap_");
-    writeHeatMaps(frame.lightSpace, nullptr, dir, "heatmap_");
-    std::ofstream statsFile(dir / "stats.json");
-    statsFile << frameStats(frame, context).dump(2) << "\n";
-    if (!statsFile)
-    {
-      throw InputError((dir / "stats.json").string() + ": cannot write");
-    }
+    writeBufferFiles(frame.buffers, frame.lightSpace, &frame.image, dir);
+    writeJson(frameStats(frame, context), dir / "stats.json");
   });
 }
 

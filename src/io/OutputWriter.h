@@ -22,6 +22,13 @@ struct OutputContext
 };
 
 nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context);
+// min/max/mean/non-finite count of a buffer over the covered pixels (all pixels when coverage is null).
+nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage);
+// buffers.vti (+ light_space.vti when not empty), image.png (when given and not empty), visibility.exr
+// (when a visibility buffer exists) and a heat map per scalar buffer, into an existing directory.
+void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,
+  const ImageU8* image, const std::filesystem::path& dir);
+void writeJson(const nlohmann::json& json, const std::filesystem::path& path);
 void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const std::filesystem::path& outDir);
 
 // Runs `writeFiles(tempDir)` and then moves tempDir to outDir (replacing it). Used by every command that

@@ -69,8 +69,17 @@ ShadowRenderer::~ShadowRenderer()
   }
 }
 
-std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const TechniqueDescriptor& technique)
+std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const TechniqueDescriptor& technique, bool gbufferOnly)
 {
+  if (gbufferOnly)
+  {
+    auto& stages = stagesByTechnique_[""]; // no technique name is empty
+    if (stages.empty())
+    {
+      stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
+    }
+    return stages;
+  }
   auto& stages = stagesByTechnique_[technique.name];
   if (stages.empty())
   {
@@ -120,13 +129,15 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   window_->MakeCurrent();
   window_->SetSize(resolution.x, resolution.y);
   frame.gpuScene = std::make_unique<GpuScene>(window_, scene);
-  const std::vector<std::string> outputs = vtkSLTechniquePass::OutputNames(technique);
-  for (const std::string& output : outputs)
+  if (!request.gbufferOnly)
   {
-    frame.techniqueTargets[output] = makeFloatTarget(window_, resolution.x, resolution.y, 1);
+    for (const std::string& output : vtkSLTechniquePass::OutputNames(technique))
+    {
+      frame.techniqueTargets[output] = makeFloatTarget(window_, resolution.x, resolution.y, 1);
+    }
   }
 
-  const auto& stages = stagesFor(technique);
+  const auto& stages = stagesFor(technique, request.gbufferOnly);
   vtkNew<vtkRenderPassCollection> collection;
   for (const auto& stage : stages)
   {
@@ -178,14 +189,17 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     const auto spec = std::find_if(common.begin(), common.end(), [&](const BufferSpec& s) { return s.name == name; });
     result.buffers.push_back({ name, std::move(image), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
   };
-  commonBuffer("visibility", readFloatTexture(frame.techniqueTargets.at("visibility"), 1));
+  if (!request.gbufferOnly)
+  {
+    commonBuffer("visibility", readFloatTexture(frame.techniqueTargets.at("visibility"), 1));
+  }
   commonBuffer("position", channels(position, 0, 3));
   commonBuffer("normal", channels(normal, 0, 3));
   commonBuffer("depth", channels(albedoDepth, 3, 1));
   commonBuffer("coverage", channels(position, 3, 1));
   commonBuffer("albedo", channels(albedoDepth, 0, 3));
   commonBuffer("receives_shadows", channels(normal, 3, 1));
-  for (const BufferSpec& spec : technique.buffers)
+  for (const BufferSpec& spec : request.gbufferOnly ? std::vector<BufferSpec>() : technique.buffers)
   {
     result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
       spec.doc, spec.kind, spec.categoryLabels });
@@ -197,7 +211,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     result.lightSpace.push_back({ "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
       "hardware depth buffer of the shadow map, window coordinates in [0, 1]" });
   }
-  result.image = readColorTexture(frame.shadedImage);
+  if (frame.shadedImage)
+  {
+    result.image = readColorTexture(frame.shadedImage);
+  }
 
   renderer_->SetPass(nullptr);
   for (const auto& stage : stages)

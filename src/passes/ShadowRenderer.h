@@ -31,6 +31,9 @@ struct RenderRequest
   std::vector<std::string> settings;   // "key=value", as given to --set
   std::optional<glm::ivec2> resolution; // overrides the scene camera's
   int lightIndex = 0;                   // which of the scene's lights casts the shadows
+  // Only the G-buffer stage: buffers position, normal, depth, coverage, albedo, receives_shadows (no
+  // visibility, no image). The ray-traced reference shades exactly these surface points.
+  bool gbufferOnly = false;
 };
 
 struct StageTiming
@@ -88,7 +91,7 @@ public:
 private:
   // The stage passes of each technique, built on first use and kept: their programs, framebuffers and
   // VAOs are reused frame after frame (warm frames are what benchmarks time).
-  std::vector<vtkSmartPointer<vtkSLStagePass>>& stagesFor(const TechniqueDescriptor& technique);
+  std::vector<vtkSmartPointer<vtkSLStagePass>>& stagesFor(const TechniqueDescriptor& technique, bool gbufferOnly);
 
   vtkSmartPointer<vtkSLEglRenderWindow> window_;
   vtkSmartPointer<vtkRenderer> renderer_;

@@ -2,6 +2,7 @@ set(SL_PASSES_SOURCES
   src/passes/PassUtilities.cpp
   src/passes/ScopedRenderTarget.cpp
   src/passes/FullScreenQuad.cpp
+  src/passes/ShadowMapRendering.cpp
   src/passes/vtkSLStagePass.cxx
   src/passes/vtkSLGBufferPass.cxx
   src/passes/GpuReceivers.cpp

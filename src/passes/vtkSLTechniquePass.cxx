@@ -79,22 +79,9 @@ std::string vtkSLTechniquePass::ParameterDeclarations() const
   return declarations;
 }
 
-void vtkSLTechniquePass::Execute(const vtkRenderState* state)
+std::vector<vtkTextureObject*> vtkSLTechniquePass::SetCommonUniforms(vtkShaderProgram* program)
 {
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
-  sl::FrameResources& frame = *this->Frame;
-  const std::vector<std::string> outputs = OutputNames(*frame.technique);
-
-  std::vector<vtkTextureObject*> targets;
-  for (const std::string& output : outputs)
-  {
-    targets.push_back(frame.techniqueTargets.at(output));
-  }
-  const sl::ScopedRenderTarget target(window, this->Framebuffer, targets);
-  const std::string fragmentSource =
-    sl::assembleShader(this->GetFragmentShaderPath(), this->TechniqueDefines(), this->ParameterDeclarations());
-  vtkShaderProgram* program = this->Quad.ready(window, fragmentSource, frame.technique->name);
-
+  const sl::FrameResources& frame = *this->Frame;
   std::vector<vtkTextureObject*> bound;
   bound.push_back(sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition));
   bound.push_back(sl::bindTexture(program, "gbufferNormal", frame.gbufferNormal));
@@ -131,6 +118,26 @@ void vtkSLTechniquePass::Execute(const vtkRenderState* state)
       sl::setFloatIfUsed(program, ("param_" + spec.name).c_str(), frame.parameters.get(spec.name));
     }
   }
+  return bound;
+}
+
+void vtkSLTechniquePass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  const std::vector<std::string> outputs = OutputNames(*frame.technique);
+
+  std::vector<vtkTextureObject*> targets;
+  for (const std::string& output : outputs)
+  {
+    targets.push_back(frame.techniqueTargets.at(output));
+  }
+  const sl::ScopedRenderTarget target(window, this->Framebuffer, targets);
+  const std::string fragmentSource =
+    sl::assembleShader(this->GetFragmentShaderPath(), this->TechniqueDefines(), this->ParameterDeclarations());
+  vtkShaderProgram* program = this->Quad.ready(window, fragmentSource, frame.technique->name);
+
+  std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   const std::vector<vtkTextureObject*> extra = this->SetTechniqueUniforms(program);
   bound.insert(bound.end(), extra.begin(), extra.end());
 

@@ -51,6 +51,9 @@ protected:
 
   sl::ShaderDefines TechniqueDefines() const;
   std::string ParameterDeclarations() const;
+  // Binds the G-buffer and (when fitted) the frame's shadow map, and sets the light, camera, shadow-map and
+  // parameter uniforms of shaders/common for `program`; returns the textures to deactivate after drawing.
+  std::vector<vtkTextureObject*> SetCommonUniforms(vtkShaderProgram* program);
 
 private:
   vtkSLTechniquePass(const vtkSLTechniquePass&) = delete;

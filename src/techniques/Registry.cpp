@@ -3,6 +3,7 @@
 #include "techniques/Technique.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
+#include "techniques/referencesm/ReferenceSmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
 
 namespace sl
@@ -14,6 +15,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     hardTechnique(),
     pcfTechnique(),
     vtkTechnique(),
+    referenceSmTechnique(),
   };
   return registry;
 }

@@ -8,4 +8,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/pcf/PcfTechnique.cpp
   src/techniques/pcf/vtkSLPcfPass.cxx
   src/techniques/vtk/VtkTechnique.cpp
-  src/techniques/vtk/vtkSLVtkShadowMapPass.cxx)
+  src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
+  src/techniques/referencesm/ReferenceSmTechnique.cpp
+  src/techniques/referencesm/vtkSLReferenceShadowMapPass.cxx)

@@ -1,0 +1,444 @@
+// shadowlab bench: speed against error for scenes x techniques x parameter sweeps.
+//
+// Every configuration runs in its own process (`shadowlab bench-run`), so a sweep can be spread over
+// machines by any batch system and a crash in one configuration is reported while the rest go on. The
+// ray-traced reference of each scene is computed once (`shadowlab reference`, also a child process) and
+// cached under --cache, keyed by a hash of the loaded scene (geometry, lights, camera), the resolution and
+// the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md, one
+// speed_vs_error_<scene>.png per scene, runs/<n>.json (each child's result), logs/ (each child's stderr).
+// Exit status: 0 when every configuration ran, 4 when some failed (their rows say why).
+#include "cli/Commands.h"
+
+#include "core/Error.h"
+#include "io/OutputWriter.h"
+#include "scene/Scene.h"
+#include "techniques/Technique.h"
+#include "vis/SpeedErrorChart.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+extern char** environ;
+
+namespace sl
+{
+namespace
+{
+
+struct Configuration
+{
+  std::size_t sceneIndex = 0;
+  std::string technique;
+  std::vector<std::string> settings;
+};
+
+std::vector<std::string> splitList(const std::string& text, char separator)
+{
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, separator))
+  {
+    if (!item.empty())
+    {
+      items.push_back(item);
+    }
+  }
+  return items;
+}
+
+// FNV-1a over everything that changes the reference image.
+class Hasher
+{
+public:
+  void add(const void* data, std::size_t bytes)
+  {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i)
+    {
+      hash_ = (hash_ ^ p[i]) * 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void addValue(const T& value)
+  {
+    add(&value, sizeof(value));
+  }
+  std::string hex() const
+  {
+    std::ostringstream text;
+    text << std::hex << std::setw(16) << std::setfill('0') << hash_;
+    return text.str();
+  }
+
+private:
+  std::uint64_t hash_ = 1469598103934665603ull;
+};
+
+std::string referenceKey(const Scene& scene, const std::string& resolution, int samples)
+{
+  Hasher hasher;
+  for (const SceneObject& object : scene.objects)
+  {
+    const TriangleMesh& mesh = object.mesh;
+    hasher.add(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+    hasher.add(mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3));
+    hasher.add(mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2));
+    hasher.add(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+    hasher.add(object.alphaTexture.alpha.data.data(), object.alphaTexture.alpha.data.size() * sizeof(float));
+    hasher.addValue(object.castShadows);
+    hasher.addValue(object.receiveShadows);
+  }
+  for (const Light& light : scene.lights)
+  {
+    hasher.addValue(light.type);
+    hasher.addValue(light.shape);
+    hasher.addValue(light.center);
+    hasher.addValue(light.normal);
+    hasher.addValue(light.up);
+    hasher.addValue(light.direction);
+    hasher.addValue(light.size);
+    hasher.addValue(light.coneAngleDeg);
+  }
+  const Camera& camera = scene.camera;
+  hasher.addValue(camera.projection);
+  hasher.addValue(camera.position);
+  hasher.addValue(camera.focalPoint);
+  hasher.addValue(camera.viewUp);
+  hasher.addValue(camera.viewAngleDeg);
+  hasher.addValue(camera.parallelScale);
+  hasher.add(resolution.data(), resolution.size());
+  hasher.addValue(samples);
+  return hasher.hex();
+}
+
+struct ChildResult
+{
+  int exitCode = -1;
+  std::string lastLine; // of its stderr
+};
+
+// Runs this executable with `arguments`, stdout and stderr into `logFile`.
+ChildResult runChild(const std::vector<std::string>& arguments, const std::filesystem::path& logFile)
+{
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  std::vector<std::string> all{ self };
+  all.insert(all.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& argument : all)
+  {
+    argv.push_back(argument.data());
+  }
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ChildResult result;
+  if (spawned != 0)
+  {
+    result.lastLine = "cannot start a child process";
+    return result;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  std::ifstream log(logFile);
+  for (std::string line; std::getline(log, line);)
+  {
+    if (!line.empty())
+    {
+      result.lastLine = line;
+    }
+  }
+  if (WIFSIGNALED(status))
+  {
+    result.lastLine = format("crashed with signal ", WTERMSIG(status), result.lastLine.empty() ? "" : ": ", result.lastLine);
+  }
+  return result;
+}
+
+std::string csvField(const std::string& text)
+{
+  if (text.find_first_of(",\"\n") == std::string::npos)
+  {
+    return text;
+  }
+  std::string quoted = "\"";
+  for (const char c : text)
+  {
+    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  }
+  return quoted + "\"";
+}
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator)
+{
+  std::string text;
+  for (const std::string& item : items)
+  {
+    text += (text.empty() ? "" : separator) + item;
+  }
+  return text;
+}
+
+} // namespace
+
+int runBench(const BenchOptions& options, std::ostream& log)
+{
+  // Everything the user typed is checked before any child runs.
+  if (options.sceneFiles.empty())
+  {
+    throw InputError("bench: no scene given");
+  }
+  if (options.repeat < 1)
+  {
+    throw InputError("--repeat " + std::to_string(options.repeat) + ": must be >= 1");
+  }
+  if (options.referenceSamples < 1)
+  {
+    throw InputError("--samples " + std::to_string(options.referenceSamples) + ": must be >= 1");
+  }
+  parseResolution(options.resolution);
+  std::vector<Scene> scenes;
+  for (const std::string& file : options.sceneFiles)
+  {
+    scenes.push_back(loadScene(file));
+  }
+  const std::vector<std::string> techniqueNames = splitList(options.techniques, ',');
+  if (techniqueNames.empty())
+  {
+    throw InputError("--techniques '" + options.techniques + "': no technique named");
+  }
+  struct Sweep
+  {
+    std::string key;
+    std::vector<std::string> values;
+  };
+  std::vector<Sweep> sweeps;
+  for (const std::string& sweep : options.sweeps)
+  {
+    const std::size_t equals = sweep.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == sweep.size())
+    {
+      throw InputError("--sweep '" + sweep + "': expected key=v1,v2,...");
+    }
+    sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), ',') });
+  }
+
+  std::vector<Configuration> configurations;
+  for (std::size_t sceneIndex = 0; sceneIndex < scenes.size(); ++sceneIndex)
+  {
+    for (const std::string& name : techniqueNames)
+    {
+      const TechniqueDescriptor& technique = findTechnique(name);
+      // Fixed settings and sweeps apply to the techniques that declare the key.
+      std::vector<std::string> base;
+      for (const std::string& setting : options.settings)
+      {
+        const std::string key = setting.substr(0, setting.find('='));
+        if (technique.findParameter(key))
+        {
+          base.push_back(setting);
+        }
+      }
+      std::vector<std::vector<std::string>> combinations{ base };
+      for (const Sweep& sweep : sweeps)
+      {
+        if (!technique.findParameter(sweep.key))
+        {
+          continue;
+        }
+        std::vector<std::vector<std::string>> extended;
+        for (const auto& combination : combinations)
+        {
+          for (const std::string& value : sweep.values)
+          {
+            auto next = combination;
+            next.push_back(sweep.key + "=" + value);
+            extended.push_back(next);
+          }
+        }
+        combinations = extended;
+      }
+      for (const auto& settings : combinations)
+      {
+        ParameterValues check(technique);
+        for (const std::string& setting : settings)
+        {
+          check.set(setting);
+        }
+        configurations.push_back({ sceneIndex, name, settings });
+      }
+    }
+  }
+
+  int failures = 0;
+  writeDirectoryAtomically(options.outDir, [&](const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir / "runs");
+    std::filesystem::create_directories(dir / "logs");
+    std::filesystem::create_directories(options.cacheDir);
+
+    // References first, once per scene.
+    std::vector<std::string> referenceFiles(scenes.size());
+    for (std::size_t s = 0; s < scenes.size(); ++s)
+    {
+      const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
+        referenceKey(scenes[s], options.resolution, options.referenceSamples);
+      if (!std::filesystem::is_regular_file(cached / "buffers.vti"))
+      {
+        if (!options.quiet)
+        {
+          log << "bench: ray-traced reference of " << options.sceneFiles[s] << " (" << options.referenceSamples
+              << " samples) -> " << cached.string() << "\n";
+        }
+        const ChildResult child = runChild({ "reference", options.sceneFiles[s], "--samples",
+                                             std::to_string(options.referenceSamples), "--resolution", options.resolution,
+                                             "--out", cached.string(), "--quiet" },
+          dir / "logs" / format("reference-", s, ".txt"));
+        if (child.exitCode != 0)
+        {
+          log << "bench: warning: no reference for " << options.sceneFiles[s] << ": " << child.lastLine << "\n";
+          continue;
+        }
+      }
+      referenceFiles[s] = (cached / "buffers.vti").string();
+    }
+
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t c = 0; c < configurations.size(); ++c)
+    {
+      const Configuration& configuration = configurations[c];
+      const std::filesystem::path resultFile = dir / "runs" / format(c, ".json");
+      std::vector<std::string> arguments{ "bench-run", options.sceneFiles[configuration.sceneIndex], "--technique",
+        configuration.technique, "--resolution", options.resolution, "--repeat", std::to_string(options.repeat),
+        "--result", resultFile.string() };
+      if (!referenceFiles[configuration.sceneIndex].empty())
+      {
+        arguments.insert(arguments.end(), { "--reference", referenceFiles[configuration.sceneIndex] });
+      }
+      for (const std::string& setting : configuration.settings)
+      {
+        arguments.insert(arguments.end(), { "--set", setting });
+      }
+      const ChildResult child = runChild(arguments, dir / "logs" / format("run-", c, ".txt"));
+      nlohmann::json row = { { "scene", options.sceneFiles[configuration.sceneIndex] },
+        { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
+      if (child.exitCode == 0 && std::filesystem::is_regular_file(resultFile))
+      {
+        std::ifstream file(resultFile);
+        row["status"] = "ok";
+        row["result"] = nlohmann::json::parse(file);
+      }
+      else
+      {
+        ++failures;
+        row["status"] = "failed";
+        row["error"] = child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine;
+      }
+      if (!options.quiet)
+      {
+        log << "bench: [" << (c + 1) << "/" << configurations.size() << "] " << configuration.technique << " "
+            << joined(configuration.settings, " ") << " on " << options.sceneFiles[configuration.sceneIndex] << ": "
+            << (row["status"] == "ok" ? "ok" : "FAILED: " + row["error"].get<std::string>()) << "\n";
+      }
+      rows.push_back(row);
+    }
+
+    // bench.json, bench.csv, summary.md, one chart per scene.
+    writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
+                { "reference_samples", options.referenceSamples }, { "configurations", rows } },
+      dir / "bench.json");
+    const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "technique", "shading" };
+    std::ofstream csv(dir / "bench.csv");
+    csv << "scene,technique,settings,status,frame_gpu_ms,frame_wall_ms";
+    for (const std::string& stage : stages)
+    {
+      csv << "," << stage << "_gpu_ms";
+    }
+    csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
+    std::ofstream markdown(dir / "summary.md");
+    markdown << "| scene | technique | settings | GPU ms | wall ms | RMSE | penumbra RMSE | max error |\n"
+             << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
+    std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
+    for (std::size_t c = 0; c < rows.size(); ++c)
+    {
+      const nlohmann::json& row = rows[c];
+      csv << csvField(row["scene"]) << "," << row["technique"].get<std::string>() << "," << csvField(row["settings"])
+          << "," << row["status"].get<std::string>();
+      const auto number = [](const nlohmann::json& value) {
+        std::ostringstream text;
+        text << std::setprecision(6) << value.get<double>();
+        return text.str();
+      };
+      if (row["status"] == "ok")
+      {
+        const nlohmann::json& result = row["result"];
+        csv << "," << number(result["frame_gpu_ms"]) << "," << number(result["frame_wall_ms"]);
+        for (const std::string& stage : stages)
+        {
+          csv << "," << (result["stages"].contains(stage) ? number(result["stages"][stage]["gpu_ms"]) : "");
+        }
+        const bool hasError = result.contains("error");
+        if (hasError)
+        {
+          const nlohmann::json& covered = result["error"]["covered"];
+          const nlohmann::json& penumbra = result["error"]["penumbra"];
+          csv << "," << number(covered["rmse"]) << "," << number(covered["mae"]) << "," << number(covered["max_abs_error"])
+              << "," << number(covered["fraction_above_0.05"]) << "," << number(penumbra["rmse"]) << ","
+              << penumbra["pixels"].get<std::size_t>() << ",\n";
+          chartPoints[configurations[c].sceneIndex].push_back(
+            { row["technique"].get<std::string>() + (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>()),
+              result["frame_gpu_ms"].get<double>(), covered["rmse"].get<double>() });
+        }
+        else
+        {
+          csv << ",,,,,,,no reference\n";
+        }
+        markdown << std::fixed << std::setprecision(2) << "| " << row["scene"].get<std::string>() << " | "
+                 << row["technique"].get<std::string>() << " | " << row["settings"].get<std::string>() << " | "
+                 << result["frame_gpu_ms"].get<double>() << " | " << result["frame_wall_ms"].get<double>() << " | "
+                 << std::setprecision(4)
+                 << (hasError ? number(result["error"]["covered"]["rmse"]) : std::string("-")) << " | "
+                 << (hasError ? number(result["error"]["penumbra"]["rmse"]) : std::string("-")) << " | "
+                 << (hasError ? number(result["error"]["covered"]["max_abs_error"]) : std::string("-")) << " |\n";
+      }
+      else
+      {
+        csv << ",,,,,,,,,,,," << csvField(row["error"]) << "\n";
+        markdown << "| " << row["scene"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
+                 << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
+                 << " | | | | |\n";
+      }
+    }
+    if (!csv || !markdown)
+    {
+      throw InputError(options.outDir + ": cannot write bench.csv / summary.md");
+    }
+    for (const auto& [sceneIndex, points] : chartPoints)
+    {
+      const std::string stem = std::filesystem::path(options.sceneFiles[sceneIndex]).parent_path().filename().string();
+      writeSpeedErrorChart(points, "speed vs error: " + stem + " (" + options.resolution + ")",
+        dir / ("speed_vs_error_" + (stem.empty() ? std::to_string(sceneIndex) : stem) + ".png"));
+    }
+  });
+  if (!options.quiet)
+  {
+    log << "shadowlab: bench of " << configurations.size() << " configuration(s), " << failures << " failed -> "
+        << options.outDir << "\n";
+  }
+  return failures == 0 ? 0 : 4;
+}
+
+} // namespace sl

@@ -1,0 +1,114 @@
+// shadowlab bench-run (hidden, started by `bench`): one configuration in its own process.
+#include "cli/Commands.h"
+
+#include "core/Error.h"
+#include "io/ImageIO.h"
+#include "io/OutputWriter.h"
+#include "metrics/ErrorMetrics.h"
+#include "passes/ShadowRenderer.h"
+#include "scene/Scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <map>
+
+namespace sl
+{
+namespace
+{
+
+double median(std::vector<double> values)
+{
+  SL_CHECK(!values.empty());
+  std::sort(values.begin(), values.end());
+  const std::size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+nlohmann::json statisticsJson(const ErrorStatistics& statistics)
+{
+  return { { "pixels", statistics.pixels }, { "rmse", statistics.rmse }, { "mae", statistics.mae },
+    { "max_abs_error", statistics.maxAbsError }, { "fraction_above_0.05", statistics.fractionAbove005 } };
+}
+
+} // namespace
+
+int runBenchConfiguration(const BenchRunOptions& options)
+{
+  if (options.repeat < 1)
+  {
+    throw InputError("--repeat " + std::to_string(options.repeat) + ": must be >= 1");
+  }
+  const Scene scene = loadScene(options.sceneFile);
+  RenderRequest request;
+  request.technique = options.technique;
+  request.settings = options.settings;
+  request.resolution = parseResolution(options.resolution);
+  ShadowRenderer renderer;
+  renderer.render(scene, request); // warm-up: shader compilation, allocations, driver caches
+
+  std::map<std::string, std::vector<double>> stageGpu;
+  std::map<std::string, std::vector<double>> stageWall;
+  std::vector<double> frameGpu;
+  std::vector<double> frameWall;
+  FrameResult last;
+  for (int frame = 0; frame < options.repeat; ++frame)
+  {
+    last = renderer.render(scene, request);
+    double gpu = 0.0;
+    for (const StageTiming& stage : last.stages)
+    {
+      stageGpu[stage.stage].push_back(stage.gpuMs);
+      stageWall[stage.stage].push_back(stage.wallMs);
+      gpu += stage.gpuMs;
+    }
+    frameGpu.push_back(gpu);
+    frameWall.push_back(last.frameWallMs);
+  }
+
+  nlohmann::json parameters = nlohmann::json::object();
+  for (const ParameterSpec& spec : last.parameters.descriptor().parameters)
+  {
+    parameters[spec.name] = spec.choices.empty() ? nlohmann::json(last.parameters.get(spec.name))
+                                                 : nlohmann::json(last.parameters.choice(spec.name));
+  }
+  nlohmann::json stages = nlohmann::json::object();
+  for (const StageTiming& stage : last.stages)
+  {
+    stages[stage.stage] = { { "gpu_ms", median(stageGpu[stage.stage]) }, { "wall_ms", median(stageWall[stage.stage]) } };
+  }
+  nlohmann::json result = {
+    { "scene", options.sceneFile },
+    { "technique", options.technique },
+    { "settings", options.settings },
+    { "parameters", parameters },
+    { "resolution", { last.resolution.x, last.resolution.y } },
+    { "repeat", options.repeat },
+    { "gl_renderer", last.glRenderer },
+    { "stages", stages },
+    { "frame_gpu_ms", median(frameGpu) },
+    { "frame_wall_ms", median(frameWall) },
+  };
+  if (!options.referenceFile.empty())
+  {
+    const std::vector<NamedImage> reference = readVti(options.referenceFile);
+    const auto array = [&](const std::vector<NamedImage>& images, const std::string& name) -> const ImageF& {
+      for (const NamedImage& named : images)
+      {
+        if (named.name == name)
+        {
+          return named.image;
+        }
+      }
+      throw InputError(options.referenceFile + ": no array '" + name + "'");
+    };
+    const ErrorMetrics metrics = computeErrorMetrics(last.find("visibility")->image, array(reference, "visibility"),
+      last.find("coverage")->image, array(reference, "coverage"));
+    result["error"] = { { "covered", statisticsJson(metrics.covered) }, { "penumbra", statisticsJson(metrics.penumbra) } };
+  }
+  writeJson(result, options.resultFile);
+  return 0;
+}
+
+} // namespace sl

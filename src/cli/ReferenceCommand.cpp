@@ -1,0 +1,129 @@
+// shadowlab reference: the ray-traced ground truth (Embree) for the surface points the GPU pipeline
+// shades. The G-buffer is rendered by the same pipeline (G-buffer stage only), then every covered pixel's
+// visible fraction of the light is estimated with shadow rays (src/reference/ReferenceRenderer.h).
+#include "cli/Commands.h"
+
+#include "core/Error.h"
+#include "io/OutputWriter.h"
+#include "passes/ShadowRenderer.h"
+#include "reference/ReferenceRenderer.h"
+#include "scene/Scene.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <thread>
+#include <unistd.h>
+
+namespace sl
+{
+
+int runReference(const ReferenceOptions& options, std::ostream& log)
+{
+  if (options.samples < 1)
+  {
+    throw InputError("--samples " + std::to_string(options.samples) + ": must be >= 1");
+  }
+  if (options.sampling != "stratified" && options.sampling != "halton")
+  {
+    throw InputError("--sampling " + options.sampling + ": expected stratified or halton");
+  }
+  RenderRequest request;
+  request.gbufferOnly = true;
+  request.lightIndex = options.lightIndex;
+  if (!options.resolution.empty())
+  {
+    request.resolution = parseResolution(options.resolution);
+  }
+  const Scene scene = loadScene(options.sceneFile);
+  if (options.lightIndex < 0 || options.lightIndex >= static_cast<int>(scene.lights.size()))
+  {
+    throw InputError(format("--light ", options.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
+  }
+  ShadowRenderer renderer;
+  FrameResult gbuffer = renderer.render(scene, request);
+
+  ReferenceInputs inputs;
+  inputs.scene = &scene;
+  inputs.light = &scene.lights[static_cast<std::size_t>(options.lightIndex)];
+  inputs.position = gbuffer.find("position")->image;
+  inputs.normal = gbuffer.find("normal")->image;
+  inputs.coverage = gbuffer.find("coverage")->image;
+  inputs.receives = gbuffer.find("receives_shadows")->image;
+  ReferenceSettings settings;
+  settings.samples = options.samples;
+  settings.sampling = options.sampling == "halton" ? LightSampling::Halton : LightSampling::Stratified;
+  settings.seed = options.seed;
+  settings.threads = options.threads;
+
+  // A progress bar only where a person watches (a terminal), so logs and tests stay one line.
+  const bool showProgress = !options.quiet && ::isatty(STDERR_FILENO);
+  int lastPercent = -1;
+  const auto progress = [&](double fraction) {
+    const int percent = static_cast<int>(100.0 * fraction);
+    if (showProgress && percent != lastPercent)
+    {
+      lastPercent = percent;
+      const int filled = percent / 5;
+      log << "\rreference [" << std::string(static_cast<std::size_t>(filled), '#')
+          << std::string(static_cast<std::size_t>(20 - filled), ' ') << "] " << std::setw(3) << percent << "%"
+          << std::flush;
+    }
+  };
+  const ReferenceResult result = renderReference(inputs, settings, progress);
+  if (showProgress)
+  {
+    log << "\n";
+  }
+
+  std::vector<NamedImage> buffers;
+  buffers.push_back({ "visibility", result.visibility, "", "ray-traced visible fraction of the light (ground truth)" });
+  buffers.push_back({ "visibility_stderr", result.standardError, "", "standard error of the estimate (Bernoulli bound)" });
+  for (NamedImage& named : gbuffer.buffers)
+  {
+    buffers.push_back(std::move(named));
+  }
+  nlohmann::json stats = {
+    { "command", "reference" },
+    { "scene", options.sceneFile },
+    { "light_index", options.lightIndex },
+    { "resolution", { gbuffer.resolution.x, gbuffer.resolution.y } },
+    { "samples", options.samples },
+    { "sampling", options.sampling },
+    { "seed", options.seed },
+    { "threads", options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency()) },
+    { "ray_offset", settings.rayOffset >= 0.0 ? settings.rayOffset : 1e-4 * scene.bounds().radius() },
+    { "rays_traced", result.raysTraced },
+    { "seconds", result.seconds },
+    { "rays_per_second", result.raysPerSecond },
+    { "gl_renderer", gbuffer.glRenderer },
+  };
+  const NamedImage* coverage = nullptr;
+  for (const NamedImage& named : buffers)
+  {
+    if (named.name == "coverage")
+    {
+      coverage = &named;
+    }
+  }
+  nlohmann::json summaries = nlohmann::json::object();
+  for (const NamedImage& named : buffers)
+  {
+    summaries[named.name] = bufferSummary(named, coverage && named.name != "coverage" ? &coverage->image : nullptr);
+  }
+  stats["buffers"] = summaries;
+  writeDirectoryAtomically(options.outDir, [&](const std::filesystem::path& dir) {
+    writeBufferFiles(buffers, {}, nullptr, dir);
+    writeJson(stats, dir / "stats.json");
+  });
+  if (!options.quiet)
+  {
+    log << "shadowlab: reference of " << options.sceneFile << " at " << gbuffer.resolution.x << "x"
+        << gbuffer.resolution.y << ", " << options.samples << " " << options.sampling << " samples: " << std::fixed
+        << std::setprecision(2) << result.seconds << " s, " << result.raysPerSecond * 1e-6 << " Mrays/s -> "
+        << options.outDir << "\n";
+  }
+  return 0;
+}
+
+} // namespace sl

@@ -1,0 +1,8 @@
+# The shadowlab executable: main.cpp declares the subcommands; each command's work is in its own file.
+set(SL_CLI_SOURCES
+  src/cli/main.cpp
+  src/cli/Commands.cpp
+  src/cli/ReferenceCommand.cpp
+  src/cli/CompareCommand.cpp
+  src/cli/BenchCommand.cpp
+  src/cli/BenchRunCommand.cpp)

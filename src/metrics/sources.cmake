@@ -1,0 +1,5 @@
+# Error metrics of a technique against the ray-traced reference (see src/metrics/ErrorMetrics.h) and the
+# file-level comparison behind `shadowlab compare` (src/metrics/Comparison.h).
+set(SL_METRICS_SOURCES
+  src/metrics/ErrorMetrics.cpp
+  src/metrics/Comparison.cpp)

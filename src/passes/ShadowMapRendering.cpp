@@ -1,0 +1,33 @@
+#include "passes/ShadowMapRendering.h"
+
+#include "gl/ShaderLibrary.h"
+#include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
+
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkShaderProgram.h>
+
+namespace sl
+{
+
+void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* linearDepth,
+  vtkTextureObject* hardwareDepth)
+{
+  const ScopedRenderTarget target(window, framebuffer, { linearDepth }, hardwareDepth);
+  // Texels no caster covers hold a depth beyond every receiver: they never shadow anything.
+  target.clearColor(0, static_cast<float>(2.0 * view.farDepth));
+  target.clearDepth();
+
+  ShaderDefines defines = commonDefines();
+  defines.push_back({ "CASTER_FACES_FRONT", "0" });
+  defines.push_back({ "CASTER_FACES_BACK", "1" });
+  defines.push_back({ "CASTER_FACES", secondDepth ? "1" : "0" });
+  vtkShaderProgram* program = readyProgram(window, assembleShader("lightspace/LightDepthVertex.glsl", defines),
+    assembleShader("lightspace/LightDepthFragment.glsl", defines), "light depth");
+  setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
+  setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
+  drawer.draw(program, scene, [](const SceneObject& object) { return object.castShadows; });
+}
+
+} // namespace sl

@@ -1,0 +1,21 @@
+// Rendering one shadow map for a fitted light view: the casters' linear depth (R32F, cleared to 2 x far so
+// empty texels never shadow) and hardware depth (D32F). Shared by the shadow_map stage and by techniques
+// that render several maps per frame (reference-sm).
+#pragma once
+
+#include "gl/GlResources.h"
+#include "lightspace/LightView.h"
+
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+
+namespace sl
+{
+
+// secondDepth: keep only faces turned away from the light (second-depth shadow maps, survey §5).
+void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* linearDepth,
+  vtkTextureObject* hardwareDepth);
+
+} // namespace sl

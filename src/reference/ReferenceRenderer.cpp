@@ -1,0 +1,274 @@
+#include "reference/ReferenceRenderer.h"
+
+#include "core/Error.h"
+#include "lightspace/LightView.h"
+#include "reference/EmbreeScene.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+// Shadow rays stop this relative distance short of the light, so the light's own plane (or a caster lying
+// exactly in it) never blocks them.
+constexpr double kLightEndShortening = 1e-6;
+constexpr double kDefaultRayOffsetPerRadius = 1e-4;
+// The progress callback is called at most this many times (plus a final 1.0).
+constexpr int kProgressReports = 32;
+
+void validate(const ReferenceSettings& settings)
+{
+  if (settings.samples < 1)
+  {
+    throw InputError(format("--samples ", settings.samples, ": must be >= 1"));
+  }
+  if (settings.threads < 0)
+  {
+    throw InputError(format("--threads ", settings.threads, ": must be >= 0 (0 = all cores)"));
+  }
+  if (!std::isfinite(settings.rayOffset))
+  {
+    throw InputError(format("--ray-offset ", settings.rayOffset, ": must be a finite number (< 0: default)"));
+  }
+}
+
+void checkInputs(const ReferenceInputs& inputs)
+{
+  SL_CHECK(inputs.scene != nullptr && inputs.light != nullptr);
+  const int width = inputs.position.width;
+  const int height = inputs.position.height;
+  const auto sameSize = [&](const ImageF& image) { return image.width == width && image.height == height; };
+  SL_CHECK_MSG(sameSize(inputs.normal) && sameSize(inputs.coverage) && sameSize(inputs.receives),
+    "reference inputs differ in size: position ", width, "x", height, ", normal ", inputs.normal.width, "x",
+    inputs.normal.height, ", coverage ", inputs.coverage.width, "x", inputs.coverage.height, ", receives ",
+    inputs.receives.width, "x", inputs.receives.height);
+  SL_CHECK(inputs.position.components >= 3 && inputs.normal.components >= 3);
+  SL_CHECK(inputs.coverage.components >= 1 && inputs.receives.components >= 1);
+}
+
+struct PixelResult
+{
+  double visibility = 0.0;
+  double standardError = 0.0;
+};
+
+// Everything a worker needs to shade one pixel; read-only during tracing.
+struct Tracer
+{
+  const ReferenceInputs& inputs;
+  const Light& light;
+  const EmbreeScene& casters;
+  const std::optional<LightSampler>& sampler; // area lights only
+  double rayOffset;
+
+  PixelResult pixel(int x, int y, std::uint64_t& rays) const
+  {
+    if (inputs.coverage.at(x, y) <= 0.5f)
+    {
+      return { 0.0, 0.0 };
+    }
+    if (inputs.receives.at(x, y) <= 0.5f)
+    {
+      return { 1.0, 0.0 };
+    }
+    const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+    const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
+    if (!lightCanReach(light, pWs, nWs))
+    {
+      return { 0.0, 0.0 };
+    }
+    const glm::dvec3 origin = pWs + rayOffset * nWs;
+    switch (light.type)
+    {
+      case LightType::Directional:
+        ++rays;
+        return { casters.occluded(origin, -light.direction, 0.0, std::numeric_limits<double>::infinity()) ? 0.0 : 1.0,
+          0.0 };
+      case LightType::Point:
+      case LightType::Spot:
+        ++rays;
+        return { casters.occluded(origin, light.center - origin, 0.0, 1.0 - kLightEndShortening) ? 0.0 : 1.0, 0.0 };
+      case LightType::Area:
+        break;
+    }
+    const int sampleCount = sampler->sampleCount();
+    int visible = 0;
+    for (int i = 0; i < sampleCount; ++i)
+    {
+      const glm::dvec3 onLight = sampler->point(x, y, i);
+      if (glm::dot(nWs, onLight - pWs) <= 0.0)
+      {
+        continue; // below the tangent plane: the surface itself hides this part of the light
+      }
+      ++rays;
+      if (!casters.occluded(origin, onLight - origin, 0.0, 1.0 - kLightEndShortening))
+      {
+        ++visible;
+      }
+    }
+    const double visibility = static_cast<double>(visible) / sampleCount;
+    const double standardError =
+      sampleCount > 1 ? std::sqrt(visibility * (1.0 - visibility) / (sampleCount - 1)) : 0.5;
+    return { visibility, standardError };
+  }
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+double referenceRayOffset(const Scene& scene, const ReferenceSettings& settings)
+{
+  if (settings.rayOffset >= 0.0)
+  {
+    return settings.rayOffset;
+  }
+  const Bounds bounds = scene.bounds();
+  return bounds.empty() ? 0.0 : kDefaultRayOffsetPerRadius * bounds.radius();
+}
+
+ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSettings& settings,
+  const std::function<void(double fractionDone)>& progress)
+{
+  validate(settings);
+  checkInputs(inputs);
+  const auto start = std::chrono::steady_clock::now();
+  const Light& light = *inputs.light;
+  const int width = inputs.position.width;
+  const int height = inputs.position.height;
+
+  ReferenceResult result;
+  result.visibility = ImageF(width, height, 1, 0.0f);
+  result.standardError = ImageF(width, height, 1, 0.0f);
+
+  const EmbreeScene casters(*inputs.scene);
+  std::optional<LightSampler> sampler;
+  if (light.type == LightType::Area)
+  {
+    sampler.emplace(light, settings.samples, settings.sampling, settings.seed);
+  }
+  const Tracer tracer{ inputs, light, casters, sampler, referenceRayOffset(*inputs.scene, settings) };
+
+  const unsigned hardwareThreads = std::max(1u, std::thread::hardware_concurrency());
+  const int threadCount =
+    std::max(1, std::min(height, settings.threads > 0 ? settings.threads : static_cast<int>(hardwareThreads)));
+
+  const auto traceStart = std::chrono::steady_clock::now();
+  std::atomic<int> nextRow{ 0 };
+  std::atomic<bool> stop{ false };
+  std::atomic<std::uint64_t> raysTraced{ 0 };
+  std::mutex mutex;
+  std::condition_variable rowFinished;
+  int rowsDone = 0;                // guarded by mutex
+  std::exception_ptr workerError;  // guarded by mutex
+
+  const auto work = [&]() {
+    std::uint64_t rays = 0;
+    try
+    {
+      for (int y = nextRow++; y < height && !stop; y = nextRow++)
+      {
+        for (int x = 0; x < width; ++x)
+        {
+          const PixelResult pixel = tracer.pixel(x, y, rays);
+          result.visibility.at(x, y) = static_cast<float>(pixel.visibility);
+          result.standardError.at(x, y) = static_cast<float>(pixel.standardError);
+        }
+        {
+          const std::lock_guard<std::mutex> lock(mutex);
+          ++rowsDone;
+        }
+        rowFinished.notify_one();
+      }
+    }
+    catch (...)
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (!workerError)
+      {
+        workerError = std::current_exception();
+      }
+      stop = true;
+    }
+    raysTraced += rays;
+    rowFinished.notify_one();
+  };
+
+  std::vector<std::thread> workers;
+  workers.reserve(static_cast<std::size_t>(threadCount));
+  const auto joinAll = [&]() {
+    for (std::thread& worker : workers)
+    {
+      if (worker.joinable())
+      {
+        worker.join();
+      }
+    }
+  };
+  try
+  {
+    for (int i = 0; i < threadCount; ++i)
+    {
+      workers.emplace_back(work);
+    }
+    if (progress && height > 0)
+    {
+      const int rowsPerReport = std::max(1, (height + kProgressReports - 1) / kProgressReports);
+      int reported = 0;
+      while (true)
+      {
+        int done;
+        {
+          std::unique_lock<std::mutex> lock(mutex);
+          const int target = std::min(height, reported + rowsPerReport);
+          rowFinished.wait(lock, [&]() { return rowsDone >= target || stop; });
+          done = rowsDone;
+        }
+        if (stop || done >= height)
+        {
+          break;
+        }
+        reported = done;
+        progress(static_cast<double>(done) / height);
+      }
+    }
+  }
+  catch (...)
+  {
+    stop = true; // the progress callback cancelled (or a thread could not start)
+    joinAll();
+    throw;
+  }
+  joinAll();
+  if (workerError)
+  {
+    std::rethrow_exception(workerError);
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+
+  const double traceSeconds = secondsSince(traceStart);
+  result.raysTraced = raysTraced;
+  result.seconds = secondsSince(start);
+  result.raysPerSecond = traceSeconds > 0.0 ? static_cast<double>(result.raysTraced) / traceSeconds : 0.0;
+  return result;
+}
+
+} // namespace sl

@@ -1,0 +1,117 @@
+#include "techniques/referencesm/vtkSLReferenceShadowMapPass.h"
+
+#include "core/Error.h"
+#include "lightspace/LightSamples.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
+#include "passes/ShadowMapRendering.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLState.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+vtkStandardNewMacro(vtkSLReferenceShadowMapPass);
+
+vtkSLReferenceShadowMapPass::vtkSLReferenceShadowMapPass() = default;
+vtkSLReferenceShadowMapPass::~vtkSLReferenceShadowMapPass() = default;
+
+void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  const sl::ParameterValues& parameters = frame.parameters;
+  const sl::Light& light = *frame.light;
+
+  // Directional lights have no position to sample: one orthographic map, as `hard`.
+  std::vector<glm::dvec3> samples = sl::lightSamplePoints(
+    light, parameters.getInt("samples"), static_cast<std::uint64_t>(parameters.getInt("seed")));
+  const bool directional = light.type == sl::LightType::Directional;
+  const int sampleCount = directional ? 1 : static_cast<int>(samples.size());
+  this->SampleCount = sampleCount;
+
+  if (!this->Receivers)
+  {
+    this->Receivers = std::make_unique<sl::GpuReceivers>();
+  }
+  this->Receivers->setGBuffer(frame.gbufferPosition, frame.gbufferNormal);
+  sl::FocusSettings focus;
+  focus.resolution = parameters.getInt("shadow_map_size");
+  focus.marginTexels = 1.0;
+  const bool secondDepth = parameters.choice("caster_faces") == "back";
+  const auto linearDepth = sl::makeFloatTarget(window, focus.resolution, focus.resolution, 1);
+  const auto hardwareDepth = sl::makeDepthTarget(window, focus.resolution, focus.resolution);
+  this->Accumulated = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  {
+    const sl::ScopedRenderTarget clearTarget(window, this->AccumulationFramebuffer, { this->Accumulated });
+    clearTarget.clearColor(0, 0.0f);
+  }
+
+  const sl::Light* originalLight = frame.light;
+  const std::string accumulateSource = sl::assembleShader(
+    "referencesm/ReferenceSmAccumulate.glsl", this->TechniqueDefines(), this->ParameterDeclarations());
+  for (int k = 0; k < sampleCount; ++k)
+  {
+    // A point light at the sample, with the area light's orientation (the one-sided plane, the axis).
+    sl::Light sampleLight = light;
+    if (!directional)
+    {
+      sampleLight.center = samples[static_cast<std::size_t>(k)];
+    }
+    frame.light = &sampleLight;
+    frame.lightView = sl::fitLightView(sampleLight, *frame.scene, *this->Receivers, focus);
+    frame.hasLightView = true;
+    sl::renderShadowMap(
+      window, this->MapFramebuffer, this->Drawer, *frame.gpuScene, frame.lightView, secondDepth, linearDepth, hardwareDepth);
+    frame.shadowMapLinear = linearDepth;
+
+    const sl::ScopedRenderTarget target(window, this->AccumulationFramebuffer, { this->Accumulated });
+    vtkOpenGLState* glState = window->GetState();
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(glState);
+    glState->vtkglEnable(GL_BLEND);
+    glState->vtkglBlendFunc(GL_ONE, GL_ONE);
+    vtkShaderProgram* program = this->AccumulateQuad.ready(window, accumulateSource, "reference-sm accumulate");
+    const std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+    program->SetUniformf("sampleWeight", static_cast<float>(1.0 / sampleCount));
+    this->AccumulateQuad.render();
+    for (vtkTextureObject* texture : bound)
+    {
+      texture->Deactivate();
+    }
+  }
+  frame.light = originalLight;
+  // The per-sample light views are internal; the frame exports no light-space structure.
+  frame.hasLightView = false;
+  frame.shadowMapLinear = nullptr;
+
+  this->Superclass::Execute(state); // resolve
+}
+
+std::vector<vtkTextureObject*> vtkSLReferenceShadowMapPass::SetTechniqueUniforms(vtkShaderProgram* program)
+{
+  program->SetUniformi("sampleCount", this->SampleCount);
+  return { sl::bindTexture(program, "accumulatedVisibility", this->Accumulated) };
+}
+
+void vtkSLReferenceShadowMapPass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Receivers.reset();
+  this->Drawer.releaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(window));
+  this->AccumulateQuad.releaseGraphicsResources(window);
+  this->MapFramebuffer->ReleaseGraphicsResources(window);
+  this->AccumulationFramebuffer->ReleaseGraphicsResources(window);
+  this->Accumulated = nullptr;
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkSLReferenceShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleCount: " << this->SampleCount << "\n";
+}

@@ -1,0 +1,226 @@
+// shadowlab reference / compare / bench, end to end through the executable.
+#include "io/ImageIO.h"
+#include "metrics/ErrorMetrics.h"
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace sl
+{
+namespace
+{
+
+struct ProcessRun
+{
+  int exitCode = -1;
+  std::string standardError;
+};
+
+ProcessRun shadowlab(const std::string& arguments)
+{
+  const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::filesystem::path errorFile = test::testOutputDir() / ("stderr-" + testName + ".txt");
+  const std::string command = std::string(SL_SHADOWLAB_EXE) + " " + arguments + " 2> " + errorFile.string() + " > /dev/null";
+  const int status = std::system(command.c_str());
+  ProcessRun run;
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream file(errorFile);
+  std::stringstream text;
+  text << file.rdbuf();
+  run.standardError = text.str();
+  return run;
+}
+
+std::filesystem::path freshDir(const std::string& name)
+{
+  const std::filesystem::path dir = test::testOutputDir() / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+const NamedImage& arrayNamed(const std::vector<NamedImage>& images, const std::string& name)
+{
+  for (const NamedImage& named : images)
+  {
+    if (named.name == name)
+    {
+      return named;
+    }
+  }
+  throw std::runtime_error("no array " + name);
+}
+
+nlohmann::json readJson(const std::filesystem::path& path)
+{
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
+{
+  const std::filesystem::path out = freshDir("reference-out");
+  const ProcessRun run = shadowlab("reference " + test::datasetPath("stacked-occluders").string() +
+    " --samples 64 --resolution 64x48 --out " + out.string() + " --quiet");
+  ASSERT_EQ(run.exitCode, 0) << run.standardError;
+  EXPECT_TRUE(run.standardError.empty()) << run.standardError;
+  const std::vector<NamedImage> buffers = readVti(out / "buffers.vti");
+  for (const char* name : { "visibility", "visibility_stderr", "position", "normal", "depth", "coverage" })
+  {
+    const NamedImage& named = arrayNamed(buffers, name);
+    EXPECT_EQ(named.image.width, 64) << name;
+    EXPECT_EQ(named.image.height, 48) << name;
+  }
+  const ImageF& visibility = arrayNamed(buffers, "visibility").image;
+  const ImageF& standardError = arrayNamed(buffers, "visibility_stderr").image;
+  int penumbra = 0;
+  for (std::size_t i = 0; i < visibility.data.size(); ++i)
+  {
+    ASSERT_GE(visibility.data[i], 0.0f);
+    ASSERT_LE(visibility.data[i], 1.0f);
+    if (visibility.data[i] > 0.0f && visibility.data[i] < 1.0f)
+    {
+      ++penumbra;
+      EXPECT_GT(standardError.data[i], 0.0f) << "penumbra pixels have a nonzero standard error";
+    }
+  }
+  EXPECT_GT(penumbra, 20);
+  const nlohmann::json stats = readJson(out / "stats.json");
+  EXPECT_GT(stats.at("rays_per_second").get<double>(), 0.0);
+  EXPECT_EQ(stats.at("samples").get<int>(), 64);
+  EXPECT_TRUE(std::filesystem::exists(out / "visibility.exr"));
+  EXPECT_TRUE(std::filesystem::exists(out / "heatmap_visibility_stderr.png"));
+}
+
+TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
+{
+  const std::filesystem::path out = freshDir("reference-bad");
+  for (const std::string& arguments : { std::string("--samples 0"), std::string("--sampling sobol") })
+  {
+    const ProcessRun run = shadowlab("reference " + test::datasetPath("planar-occluder").string() + " " + arguments +
+      " --resolution 32x32 --out " + out.string());
+    EXPECT_NE(run.exitCode, 0) << arguments;
+    EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
+    EXPECT_NE(run.standardError.find(arguments.substr(0, arguments.find(' '))), std::string::npos) << run.standardError;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
+TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
+{
+  const std::filesystem::path hard = freshDir("compare-hard");
+  const std::filesystem::path reference = freshDir("compare-reference");
+  const std::filesystem::path out = freshDir("compare-out");
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  ASSERT_EQ(shadowlab("render " + scene + " -t hard -r 64x64 -q --out " + hard.string()).exitCode, 0);
+  ASSERT_EQ(shadowlab("reference " + scene + " --samples 64 -r 64x64 -q --out " + reference.string()).exitCode, 0);
+  const ProcessRun run = shadowlab(
+    "compare " + (hard / "buffers.vti").string() + " " + (reference / "buffers.vti").string() + " -q --out " + out.string());
+  ASSERT_EQ(run.exitCode, 0) << run.standardError;
+  const nlohmann::json metrics = readJson(out / "metrics.json");
+  const std::vector<NamedImage> a = readVti(hard / "buffers.vti");
+  const std::vector<NamedImage> b = readVti(reference / "buffers.vti");
+  const ErrorMetrics expected = computeErrorMetrics(arrayNamed(a, "visibility").image, arrayNamed(b, "visibility").image,
+    arrayNamed(a, "coverage").image, arrayNamed(b, "coverage").image);
+  EXPECT_DOUBLE_EQ(metrics.at("covered").at("rmse").get<double>(), expected.covered.rmse);
+  EXPECT_DOUBLE_EQ(metrics.at("penumbra").at("rmse").get<double>(), expected.penumbra.rmse);
+  EXPECT_GT(expected.penumbra.pixels, 50u) << "a hard shadow against a soft reference has penumbra errors";
+  EXPECT_GT(expected.penumbra.rmse, expected.covered.rmse);
+  EXPECT_TRUE(std::filesystem::exists(out / "error.vti"));
+  EXPECT_TRUE(std::filesystem::exists(out / "error.png"));
+
+  // Mismatched sizes, a missing array: one line naming the file, no output.
+  const std::filesystem::path small = freshDir("compare-small");
+  ASSERT_EQ(shadowlab("render " + scene + " -t hard -r 32x32 -q --out " + small.string()).exitCode, 0);
+  const std::filesystem::path badOut = freshDir("compare-bad-out");
+  const ProcessRun mismatched = shadowlab("compare " + (small / "buffers.vti").string() + " " +
+    (reference / "buffers.vti").string() + " --out " + badOut.string());
+  EXPECT_NE(mismatched.exitCode, 0);
+  EXPECT_EQ(std::count(mismatched.standardError.begin(), mismatched.standardError.end(), '\n'), 1) << mismatched.standardError;
+  EXPECT_NE(mismatched.standardError.find("32x32"), std::string::npos) << mismatched.standardError;
+  const ProcessRun missing = shadowlab("compare " + (hard / "buffers.vti").string() + " " +
+    (reference / "buffers.vti").string() + " --array kernel_size --out " + badOut.string());
+  EXPECT_NE(missing.exitCode, 0);
+  EXPECT_NE(missing.standardError.find("kernel_size"), std::string::npos) << missing.standardError;
+  EXPECT_FALSE(std::filesystem::exists(badOut));
+}
+
+TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
+{
+  // A scene that loads but fails at render time: a point light just above a wide ground sees visible
+  // receivers all around it, which one shadow map cannot cover.
+  const std::filesystem::path sceneDir = freshDir("bench-scenes");
+  std::filesystem::create_directories(sceneDir);
+  {
+    std::ofstream bad(sceneDir / "surrounded.json");
+    bad << R"({ "camera": { "position": [0, 6, 6], "focal_point": [0, 0, 0] },
+      "lights": [ { "type": "point", "center": [0, 0.05, 0] } ],
+      "objects": [ { "primitive": "quad", "size": [40, 40], "normal": [0, 1, 0], "up": [0, 0, -1] } ] })";
+  }
+  const std::filesystem::path out = freshDir("bench-out");
+  const std::filesystem::path cache = freshDir("bench-cache");
+  const std::string arguments = "bench " + test::datasetPath("planar-occluder").string() + " " +
+    (sceneDir / "surrounded.json").string() + " -t hard,pcf --sweep kernel_texels=1,5 --repeat 2 -r 48x48 --samples 16 --cache " +
+    cache.string() + " --out " + out.string();
+  const ProcessRun run = shadowlab(arguments);
+  EXPECT_EQ(run.exitCode, 4) << run.standardError; // some configurations failed
+  const nlohmann::json bench = readJson(out / "bench.json");
+  int ok = 0;
+  int failed = 0;
+  for (const nlohmann::json& row : bench.at("configurations"))
+  {
+    if (row.at("status") == "ok")
+    {
+      ++ok;
+      const nlohmann::json& result = row.at("result");
+      EXPECT_GT(result.at("frame_gpu_ms").get<double>(), 0.0);
+      EXPECT_TRUE(result.contains("error")) << "every good configuration is measured against the reference";
+      EXPECT_GE(result.at("error").at("covered").at("rmse").get<double>(), 0.0);
+    }
+    else
+    {
+      ++failed;
+      EXPECT_NE(row.at("error").get<std::string>().find("point light"), std::string::npos) << row.dump();
+    }
+  }
+  // hard, pcf x {1, 5} on each scene: 3 configurations per scene.
+  EXPECT_EQ(ok, 3);
+  EXPECT_EQ(failed, 3);
+  std::ifstream csv(out / "bench.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find("frame_gpu_ms"), std::string::npos);
+  EXPECT_NE(header.find("rmse"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
+  EXPECT_TRUE(std::filesystem::exists(out / "speed_vs_error_planar-occluder.png"));
+  const ImageU8 chart = readPng(out / "speed_vs_error_planar-occluder.png");
+  EXPECT_GT(chart.width, 200);
+
+  // The references are cached: a second run computes none.
+  const ProcessRun again = shadowlab(arguments + " --quiet");
+  EXPECT_EQ(again.exitCode, 4);
+  EXPECT_EQ(again.standardError.find("ray-traced reference of"), std::string::npos) << again.standardError;
+}
+
+TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
+{
+  const std::filesystem::path out = freshDir("bench-bad");
+  for (const std::string& arguments :
+    { std::string("-t hard,nope"), std::string("--sweep kernel_texels"), std::string("--sweep kernel_texels=0,3"),
+      std::string("--repeat 0") })
+  {
+    const ProcessRun run = shadowlab("bench " + test::datasetPath("planar-occluder").string() + " " + arguments +
+      " -r 32x32 --out " + out.string());
+    EXPECT_EQ(run.exitCode, 1) << arguments << ": " << run.standardError;
+    EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
+    EXPECT_FALSE(std::filesystem::exists(out)) << arguments;
+  }
+}
+
+} // namespace
+} // namespace sl
