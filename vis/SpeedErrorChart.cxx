@@ -133,18 +133,29 @@ void writeSpeedErrorChart(const std::vector<ChartPoint>& points, const std::stri
   logMax += 0.1;
   vtkNew<vtkDoubleArray> tickPositions;
   vtkNew<vtkStringArray> tickLabels;
-  for (int decade = static_cast<int>(std::floor(logMin)); decade <= static_cast<int>(std::ceil(logMax)); ++decade)
+  // Ticks at 1, 2, 5 x 10^k; over a narrow range (fewer than three of those) at every integer mantissa.
+  for (const std::vector<double>& mantissas :
+    { std::vector<double>{ 1.0, 2.0, 5.0 }, std::vector<double>{ 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0 } })
   {
-    for (const double mantissa : { 1.0, 2.0, 5.0 })
+    tickPositions->Reset();
+    tickLabels->Reset();
+    for (int decade = static_cast<int>(std::floor(logMin)); decade <= static_cast<int>(std::ceil(logMax)); ++decade)
     {
-      const double position = decade + std::log10(mantissa);
-      if (position >= logMin && position <= logMax)
+      for (const double mantissa : mantissas)
       {
-        std::ostringstream label;
-        label << mantissa * std::pow(10.0, decade);
-        tickPositions->InsertNextValue(position);
-        tickLabels->InsertNextValue(label.str());
+        const double position = decade + std::log10(mantissa);
+        if (position >= logMin && position <= logMax)
+        {
+          std::ostringstream label;
+          label << mantissa * std::pow(10.0, decade);
+          tickPositions->InsertNextValue(position);
+          tickLabels->InsertNextValue(label.str());
+        }
       }
+    }
+    if (tickPositions->GetNumberOfTuples() >= 3)
+    {
+      break;
     }
   }
   vtkAxis* timeAxis = chart->GetAxis(vtkAxis::BOTTOM);

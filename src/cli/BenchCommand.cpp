@@ -398,9 +398,9 @@ int runBench(const BenchOptions& options, std::ostream& log)
           csv << "," << number(covered["rmse"]) << "," << number(covered["mae"]) << "," << number(covered["max_abs_error"])
               << "," << number(covered["fraction_above_0.05"]) << "," << number(penumbra["rmse"]) << ","
               << penumbra["pixels"].get<std::size_t>() << ",\n";
+          // One series per technique: a sweep's configurations are points of the same series.
           chartPoints[configurations[c].sceneIndex].push_back(
-            { row["technique"].get<std::string>() + (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>()),
-              result["frame_gpu_ms"].get<double>(), covered["rmse"].get<double>() });
+            { row["technique"].get<std::string>(), result["frame_gpu_ms"].get<double>(), covered["rmse"].get<double>() });
         }
         else
         {
