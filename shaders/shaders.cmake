@@ -15,6 +15,7 @@ set(SL_SHADER_FILES
   lightspace/FocusReduction.glsl
   hard/HardVisibility.glsl
   pcf/PcfVisibility.glsl
+  pcss/PcssVisibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

@@ -250,7 +250,77 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
     yMin -= minExtent;
     yMax += minExtent;
   }
-  // Grow so that `marginTexels` texels of the final map lie outside the receivers on each side.
+  // Depth range: receivers, plus casters clipped to the frustum of a window (only the part inside can
+  // occlude). The window may still grow below, so this is a function of it.
+  const double depthEpsilon = 1e-5 * receiverFar;
+  const auto nearestDepthIn = [&](const glm::dvec4& window) {
+    double nearest = receiverNear;
+    std::vector<glm::dvec4> sidePlanes; // in light view space, dot(plane, (p, 1)) >= 0 inside
+    if (view.projection == LightProjection::Perspective)
+    {
+      // x >= xMin * depth  <=>  x + xMin * z >= 0 (z = -depth), etc.
+      sidePlanes = { { 1.0, 0.0, window.x, 0.0 }, { -1.0, 0.0, -window.y, 0.0 }, { 0.0, 1.0, window.z, 0.0 },
+        { 0.0, -1.0, -window.w, 0.0 } };
+    }
+    else
+    {
+      sidePlanes = { { 1.0, 0.0, 0.0, -window.x }, { -1.0, 0.0, 0.0, window.y }, { 0.0, 1.0, 0.0, -window.z },
+        { 0.0, -1.0, 0.0, window.w } };
+    }
+    const glm::dvec4 inFrontPlane(0.0, 0.0, -1.0, -depthEpsilon); // depth >= depthEpsilon
+    const glm::dvec4 beforeFarPlane(0.0, 0.0, 1.0, receiverFar);  // depth <= receiverFar
+    for (const SceneObject& object : scene.objects)
+    {
+      if (!object.castShadows)
+      {
+        continue;
+      }
+      const TriangleMesh& mesh = object.mesh;
+      for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+      {
+        std::vector<glm::dvec3> polygon;
+        for (int k = 0; k < 3; ++k)
+        {
+          const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
+          polygon.push_back(glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0)));
+        }
+        if (view.projection == LightProjection::Perspective)
+        {
+          polygon = clipPolygon(polygon, inFrontPlane);
+        }
+        polygon = clipPolygon(polygon, beforeFarPlane);
+        for (const glm::dvec4& plane : sidePlanes)
+        {
+          if (polygon.empty())
+          {
+            break;
+          }
+          polygon = clipPolygon(polygon, plane);
+        }
+        for (const glm::dvec3& pLs : polygon)
+        {
+          nearest = std::min(nearest, -pLs.z);
+        }
+      }
+    }
+    return nearest;
+  };
+  double nearDepth = nearestDepthIn({ xMin, xMax, yMin, yMax });
+  if (settings.lightFootprintWidth > 0.0 && view.projection == LightProjection::Perspective)
+  {
+    // Soft shadows: a caster at depth z >= near hides part of a light of width w from a receiver when
+    // its tangent is within (w / 2) (d - z) / (z d) < (w / 2) / near of the receiver's (similar
+    // triangles), so the window must hold that much more around the receivers. One refinement: the
+    // grown window's casters give the near plane (a caster nearer still, outside the first window, is
+    // the approximation's limit).
+    const double extra = 0.5 * settings.lightFootprintWidth / std::max(nearDepth, depthEpsilon);
+    xMin -= extra;
+    xMax += extra;
+    yMin -= extra;
+    yMax += extra;
+    nearDepth = nearestDepthIn({ xMin, xMax, yMin, yMax });
+  }
+  // Grow so that `marginTexels` texels of the final map lie outside on each side.
   const double grow = settings.resolution / (settings.resolution - 2.0 * settings.marginTexels);
   const double xCenter = 0.5 * (xMin + xMax);
   const double yCenter = 0.5 * (yMin + yMax);
@@ -258,57 +328,6 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
   const double yHalf = 0.5 * (yMax - yMin) * grow;
   view.window = { xCenter - xHalf, xCenter + xHalf, yCenter - yHalf, yCenter + yHalf };
 
-  // Depth range: receivers, plus casters clipped to the frustum (only the part inside can occlude).
-  const double depthEpsilon = 1e-5 * receiverFar;
-  double nearDepth = receiverNear;
-  std::vector<glm::dvec4> sidePlanes; // in light view space, dot(plane, (p, 1)) >= 0 inside
-  if (view.projection == LightProjection::Perspective)
-  {
-    // x >= xMin * depth  <=>  x + xMin * z >= 0 (z = -depth), etc.
-    sidePlanes = { { 1.0, 0.0, view.window.x, 0.0 }, { -1.0, 0.0, -view.window.y, 0.0 },
-      { 0.0, 1.0, view.window.z, 0.0 }, { 0.0, -1.0, -view.window.w, 0.0 } };
-  }
-  else
-  {
-    sidePlanes = { { 1.0, 0.0, 0.0, -view.window.x }, { -1.0, 0.0, 0.0, view.window.y },
-      { 0.0, 1.0, 0.0, -view.window.z }, { 0.0, -1.0, 0.0, view.window.w } };
-  }
-  const glm::dvec4 inFrontPlane(0.0, 0.0, -1.0, -depthEpsilon); // depth >= depthEpsilon
-  const glm::dvec4 beforeFarPlane(0.0, 0.0, 1.0, receiverFar);  // depth <= receiverFar
-  for (const SceneObject& object : scene.objects)
-  {
-    if (!object.castShadows)
-    {
-      continue;
-    }
-    const TriangleMesh& mesh = object.mesh;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    {
-      std::vector<glm::dvec3> polygon;
-      for (int k = 0; k < 3; ++k)
-      {
-        const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
-        polygon.push_back(glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0)));
-      }
-      if (view.projection == LightProjection::Perspective)
-      {
-        polygon = clipPolygon(polygon, inFrontPlane);
-      }
-      polygon = clipPolygon(polygon, beforeFarPlane);
-      for (const glm::dvec4& plane : sidePlanes)
-      {
-        if (polygon.empty())
-        {
-          break;
-        }
-        polygon = clipPolygon(polygon, plane);
-      }
-      for (const glm::dvec3& pLs : polygon)
-      {
-        nearDepth = std::min(nearDepth, -pLs.z);
-      }
-    }
-  }
   // A little slack so geometry exactly at the range ends is not clipped by the rasteriser.
   view.nearDepth = std::max(depthEpsilon, nearDepth * (1.0 - 1e-3));
   view.farDepth = receiverFar * (1.0 + 1e-3) + depthEpsilon;

@@ -50,6 +50,9 @@ struct FocusSettings
 {
   int resolution = 1024;
   double marginTexels = 1.0; // extra texels on each side, for filter kernels reaching past the receivers
+  // Soft-shadow techniques: width (world units) of the area light whose occluders the map must also hold.
+  // A perspective window then grows by (width / 2) / near on each side (see fitLightView). 0: hard shadows.
+  double lightFootprintWidth = 0.0;
 };
 
 // Can the light illuminate a point at all, ignoring occluders? False behind an area light's plane,

@@ -23,6 +23,10 @@ void vtkSLFocusPass::Execute(const vtkRenderState*)
   // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
   focus.marginTexels =
     frame.technique->findParameter("kernel_texels") ? std::ceil(0.5 * parameters.get("kernel_texels")) + 1.0 : 1.0;
+  if (frame.technique->coversLightArea && frame.light->type == sl::LightType::Area)
+  {
+    focus.lightFootprintWidth = frame.light->size;
+  }
   frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
   frame.hasLightView = true;
 }

@@ -3,6 +3,7 @@
 #include "techniques/Technique.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
+#include "techniques/pcss/PcssTechnique.h"
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
 
@@ -14,6 +15,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
   static const std::vector<TechniqueDescriptor> registry = {
     hardTechnique(),
     pcfTechnique(),
+    pcssTechnique(),
     vtkTechnique(),
     referenceSmTechnique(),
   };

@@ -65,6 +65,9 @@ struct TechniqueDescriptor
   std::vector<LightStructure> lightStructures;
   std::vector<BufferSpec> buffers; // published in addition to the common ones (visibility, position, ...)
   std::vector<LightType> supportedLights;
+  // The shadow map must hold every caster that hides any part of an area light, not only its centre
+  // (soft-shadow techniques): the focus stage widens the light frustum by the light's footprint.
+  bool coversLightArea = false;
   std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;

@@ -3,10 +3,13 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/Registry.cpp
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp
+  src/techniques/SamplingPatterns.cpp
   src/techniques/hard/HardTechnique.cpp
   src/techniques/hard/vtkSLHardShadowPass.cxx
   src/techniques/pcf/PcfTechnique.cpp
   src/techniques/pcf/vtkSLPcfPass.cxx
+  src/techniques/pcss/PcssTechnique.cpp
+  src/techniques/pcss/vtkSLPcssPass.cxx
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp

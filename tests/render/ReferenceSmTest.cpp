@@ -17,21 +17,10 @@ namespace sl
 namespace
 {
 
-double overlap1d(double aMin, double aMax, double bMin, double bMax)
-{
-  return std::max(0.0, std::min(aMax, bMax) - std::max(aMin, bMin));
-}
-
 // Visible fraction of the light from ground point (x, z) in planar-occluder.
 double planarOccluderVisibility(double x, double z)
 {
-  const double scale = 3.0 / (3.0 - 1.0) * (3.0 - 1.0) / 1.0; // (H - y_p) / (h - y_p) with y_p = 0: 3
-  const double centerX = x + (0.0 - x) * scale;
-  const double centerZ = z + (0.0 - z) * scale;
-  const double half = 0.5 * scale;
-  const double covered = overlap1d(centerX - half, centerX + half, -0.5, 0.5) *
-    overlap1d(centerZ - half, centerZ + half, -0.5, 0.5);
-  return 1.0 - covered;
+  return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z);
 }
 
 struct Errors

@@ -57,6 +57,22 @@ Scene stackedOccludersUnder(const std::string& lightJson)
   return parseScene(text, "stacked-occluders (test variant)", sourceDir());
 }
 
+double parallelSquaresVisibility(
+  double lightSize, double lightHeight, double occluderSize, double occluderHeight, double x, double z)
+{
+  const auto overlap = [](double aMin, double aMax, double bMin, double bMax) {
+    return std::max(0.0, std::min(aMax, bMax) - std::max(aMin, bMin));
+  };
+  const double scale = lightHeight / occluderHeight;
+  const double centerX = x - x * scale;
+  const double centerZ = z - z * scale;
+  const double half = 0.5 * occluderSize * scale;
+  const double lightHalf = 0.5 * lightSize;
+  const double covered = overlap(centerX - half, centerX + half, -lightHalf, lightHalf) *
+    overlap(centerZ - half, centerZ + half, -lightHalf, lightHalf);
+  return 1.0 - covered / (lightSize * lightSize);
+}
+
 ShadowRenderer& sharedRenderer()
 {
   static ShadowRenderer renderer;

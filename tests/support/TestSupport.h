@@ -23,6 +23,14 @@ std::vector<std::string> datasetNames();      // every datasets/*/scene.json
 // light types no dataset uses.
 Scene stackedOccludersUnder(const std::string& lightJson);
 
+// Closed form for a square light of side `lightSize` at height `lightHeight` over the ground (y = 0), facing
+// down, and a parallel square occluder of side `occluderSize` at `occluderHeight`, both centred over the
+// origin with edges along x and z: the visible fraction of the light from ground point (x, z) is one minus
+// the overlap of the light square with the occluder's projection through the point onto the light plane,
+// the occluder scaled by lightHeight / occluderHeight about the point.
+double parallelSquaresVisibility(
+  double lightSize, double lightHeight, double occluderSize, double occluderHeight, double x, double z);
+
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer();
 

@@ -11,6 +11,7 @@
 // texel_ratio (survey Eq. 2), depth_bias.
 #pragma once
 
+#include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/Technique.h"
 
@@ -23,15 +24,6 @@ namespace sl
 {
 
 TechniqueDescriptor pcfTechnique();
-
-constexpr int maxPoissonSamples = 64;
-// A fixed Poisson-disk pattern in the unit disk (best-candidate sampling, fixed seed), maxPoissonSamples
-// points; any prefix of it is well distributed.
-const std::vector<glm::dvec2>& poissonDisk();
-
-// The per-pixel hash of shaders/common/PixelHash.glsl, bit for bit.
-std::uint32_t pixelHash(std::uint32_t x, std::uint32_t y);
-double pixelHashAngle(std::uint32_t x, std::uint32_t y);
 
 // CPU reference (double precision) of PcfVisibility.glsl at pixel (x, y).
 ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);

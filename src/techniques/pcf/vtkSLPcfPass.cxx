@@ -24,13 +24,7 @@ std::vector<vtkTextureObject*> vtkSLPcfPass::SetTechniqueUniforms(vtkShaderProgr
   std::vector<vtkTextureObject*> bound;
   if (program->IsUniformUsed("poissonDisk"))
   {
-    std::vector<float> disk;
-    for (const glm::dvec2& point : sl::poissonDisk())
-    {
-      disk.push_back(static_cast<float>(point.x));
-      disk.push_back(static_cast<float>(point.y));
-    }
-    program->SetUniform2fv("poissonDisk", sl::maxPoissonSamples, disk.data());
+    program->SetUniform2fv("poissonDisk", sl::maxPoissonSamples, sl::poissonDiskFloats().data());
   }
   if (program->IsUniformUsed("shadowMapCompare"))
   {

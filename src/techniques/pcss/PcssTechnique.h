@@ -1,0 +1,37 @@
+// Technique `pcss`: percentage-closer soft shadows (Fernando 2005), the brute-force baseline the VSSM
+// paper (Yang et al. 2010) compares against. Steps and kernels: shaders/pcss/PcssVisibility.glsl.
+//
+// Parameters: the shadow-map ones (ShadowMapParameters.h) and
+//   blocker_search   grid (every texel of w_i, the default) | poisson
+//   filter           grid (every texel of w_p, the default) | poisson
+//   max_grid_taps    [taps per axis] grid kernels wider than this are sampled on a regular sub-grid
+//   poisson_samples  [taps] for the poisson variants (rotated per pixel)
+// Buffers: blocker_kernel_texels (w_i), blocker_samples, avg_blocker_depth, penumbra_width (w_p at the
+// receiver, world units), penumbra_kernel_texels, pcf_samples, depth_bias.
+// Lights: area (square or disk; the kernels are the bounding squares), point and spot (size 0: hard).
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor pcssTechnique();
+
+struct PcssSample
+{
+  ReferenceSample sample;   // visibility, bias, margins
+  double blockerKernelTexels = 0.0;
+  double averageBlockerDepth = 0.0;
+  double penumbraWidth = 0.0;
+  double penumbraKernelTexels = 0.0;
+  // Smallest distance (texels) of a grid kernel's edge to the texel-centre lattice: below ~1e-4 float
+  // rounding on the GPU may include or exclude a row of texels.
+  double kernelEdgeMargin = 1e300;
+};
+
+// CPU reference (double precision) of PcssVisibility.glsl at pixel (x, y).
+PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+
+} // namespace sl
