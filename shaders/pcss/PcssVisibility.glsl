@@ -10,6 +10,11 @@
 // grid = every texel whose centre lies in the kernel (the brute-force baseline of the VSSM paper), or a
 // MAX_GRID_TAPS x MAX_GRID_TAPS regular sub-grid when the kernel is wider (banding, as the paper notes);
 // poisson = poisson_samples taps of the rotated Poisson disk stretched over the kernel.
+// Receiver-plane depth bias (Isidoro 2006; not in Fernando 2005, parameter receiver_plane_bias): across a
+// wide kernel a receiver sloped relative to the light moves in depth by much more than the per-point bias,
+// so it would shadow itself. With it, each tap compares against the receiver's tangent plane where the
+// tap's light ray meets it (exact for planar receivers; clamped to [d/2, 2d] where the plane extrapolates
+// badly), minus the bias.
 // CPU mirror: src/techniques/pcss/PcssTechnique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
@@ -20,6 +25,7 @@
 uniform float lightSizeWorld;    // area light side or diameter; 0 for point and spot lights
 uniform float lightNearDepth;    // the map's near plane: the blocker-search plane of Alg. 1 L7
 uniform vec2 shadowTexelTangent; // size of a texel in tangent units (x / depth, y / depth)
+uniform vec2 shadowWindowMin;    // tangent of texel coordinate (0, 0)
 uniform vec2 poissonDisk[MAX_POISSON_SAMPLES];
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
@@ -77,6 +83,27 @@ KernelGrid kernelGrid(vec2 uv, vec2 halfTexels)
   return grid;
 }
 
+// The comparison depth of a tap at `tapTexels`: the receiver's depth, or (receiver_plane_bias) the depth
+// of its tangent plane along the tap's light ray; minus the bias either way.
+vec3 receiverPlane; // light view space normal, scaled so that dot(receiverPlane, X) = 1 on the plane
+bool hasReceiverPlane;
+
+float tapComparisonDepth(vec2 tapTexels, float d, float bias)
+{
+#if RECEIVER_PLANE_BIAS == RECEIVER_PLANE_BIAS_ON
+  if (hasReceiverPlane)
+  {
+    vec3 ray = vec3(shadowWindowMin + tapTexels * shadowTexelTangent, -1.0); // depth 1 along the axis
+    float planeDepth = 1.0 / dot(receiverPlane, ray);
+    if (planeDepth > 0.0)
+    {
+      return clamp(planeDepth, 0.5 * d, 2.0 * d) - bias;
+    }
+  }
+#endif
+  return d - bias;
+}
+
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -95,6 +122,12 @@ void main()
   }
   float d = receiver.depthLin;
   float comparison = receiver.comparisonDepth;
+  float bias = receiver.bias;
+  vec3 nLs = mat3(lightViewFromWorld) * receiver.nWs;
+  vec3 pLs = (lightViewFromWorld * vec4(receiver.pWs, 1.0)).xyz;
+  float planeOffset = dot(nLs, pLs);
+  hasReceiverPlane = abs(planeOffset) > 1e-12;
+  receiverPlane = hasReceiverPlane ? nLs / planeOffset : vec3(0.0);
   float angle = pixelHashAngle(uvec2(pixel));
   mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
 
@@ -110,8 +143,9 @@ void main()
   {
     for (int i = 0; i < search.count.x; ++i)
     {
-      float z = storedDepth(search.origin + vec2(i, j) * search.step);
-      if (z < comparison)
+      vec2 tap = search.origin + vec2(i, j) * search.step;
+      float z = storedDepth(tap);
+      if (z < tapComparisonDepth(tap, d, bias))
       {
         blockerDepthSum += z;
         ++blockerCount;
@@ -123,8 +157,9 @@ void main()
   searchTaps = int(param_poisson_samples);
   for (int k = 0; k < searchTaps; ++k)
   {
-    float z = storedDepth(receiver.uvTexels + searchHalf * (rotation * poissonDisk[k]));
-    if (z < comparison)
+    vec2 tap = receiver.uvTexels + searchHalf * (rotation * poissonDisk[k]);
+    float z = storedDepth(tap);
+    if (z < tapComparisonDepth(tap, d, bias))
     {
       blockerDepthSum += z;
       ++blockerCount;
@@ -154,7 +189,8 @@ void main()
   {
     for (int i = 0; i < kernel.count.x; ++i)
     {
-      litSum += shadowTest(kernel.origin + vec2(i, j) * kernel.step, comparison);
+      vec2 tap = kernel.origin + vec2(i, j) * kernel.step;
+      litSum += shadowTest(tap, tapComparisonDepth(tap, d, bias));
     }
   }
   filterTaps = kernel.count.x * kernel.count.y;
@@ -162,7 +198,8 @@ void main()
   filterTaps = int(param_poisson_samples);
   for (int k = 0; k < filterTaps; ++k)
   {
-    litSum += shadowTest(receiver.uvTexels + filterHalf * (rotation * poissonDisk[k]), comparison);
+    vec2 tap = receiver.uvTexels + filterHalf * (rotation * poissonDisk[k]);
+    litSum += shadowTest(tap, tapComparisonDepth(tap, d, bias));
   }
 #endif
   outPcfSamples = float(filterTaps);

@@ -1,5 +1,7 @@
 // pcss: the GLSL against its CPU implementation, and against closed forms in the configuration where
 // PCSS's planarity assumption holds exactly (a square occluder parallel to the light and the ground).
+#include "metrics/ErrorMetrics.h"
+#include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
 #include "techniques/pcss/PcssTechnique.h"
 
@@ -142,6 +144,35 @@ TEST(Pcss, ExactForParallelPlanarOccludersUpToDiscretisation)
     EXPECT_GT(penumbra, 1000) << c.dataset;
     EXPECT_LT(rmse, c.maxRmse) << c.dataset;
   }
+}
+
+TEST(Pcss, ReceiverPlaneBiasKeepsTheGrazingReceiverFromShadowingItself)
+{
+  // The light is ~80 degrees from the ground's normal: across PCSS's wide kernels the ground's own depth
+  // falls far below the per-point bias. Against the ray-traced reference, receiver-plane bias (the default)
+  // must keep the lit ground lit; without it the ground darkens (the test has teeth).
+  const Scene scene = test::loadDataset("grazing");
+  double rmse[2] = { 0.0, 0.0 };
+  const char* settings[2] = { "receiver_plane_bias=on", "receiver_plane_bias=off" };
+  for (int i = 0; i < 2; ++i)
+  {
+    const FrameResult frame = test::renderDataset(scene, "pcss", 128, 128, { settings[i] });
+    ReferenceInputs inputs;
+    inputs.scene = &scene;
+    inputs.light = &scene.lights[0];
+    inputs.position = frame.find("position")->image;
+    inputs.normal = frame.find("normal")->image;
+    inputs.coverage = frame.find("coverage")->image;
+    inputs.receives = frame.find("receives_shadows")->image;
+    ReferenceSettings referenceSettings;
+    referenceSettings.samples = 256;
+    const ReferenceResult rays = renderReference(inputs, referenceSettings);
+    rmse[i] = computeErrorMetrics(frame.find("visibility")->image, rays.visibility, inputs.coverage, inputs.coverage)
+                .covered.rmse;
+    std::cout << "[ measured ] pcss " << settings[i] << " on grazing: RMSE " << rmse[i] << " vs Embree\n";
+  }
+  EXPECT_LT(rmse[0], 0.02);
+  EXPECT_GT(rmse[1], 0.1);
 }
 
 TEST(Pcss, PointLightGivesTheHardShadow)

@@ -22,6 +22,7 @@ TechniqueDescriptor pcssTechnique()
     { "filter", 0, 0, 1, "", "grid: every texel of the penumbra kernel w_p (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true },
     { "max_grid_taps", 32, 1, 256, "taps per axis", "grid kernels wider than this are sampled on a regular sub-grid of this size (the paper's 30x30 banding limit)", {}, true },
     { "poisson_samples", 32, 1, maxPoissonSamples, "taps", "taps per step for the poisson variants", {}, true },
+    { "receiver_plane_bias", 1, 0, 1, "", "on: each tap compares against the receiver's tangent plane (Isidoro 2006), so sloped receivers do not shadow themselves across wide kernels; off: Fernando's single depth", { "off", "on" }, true },
   });
   descriptor.lightStructures = { LightStructure::ShadowMap };
   descriptor.buffers = {
@@ -107,6 +108,28 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   const auto stored = [&](const glm::dvec2& uv) { return texel(static_cast<int>(std::floor(uv.x)), static_cast<int>(std::floor(uv.y))); };
   const double d = lookup.sm.depthLin;
   const double comparison = lookup.comparisonDepth;
+  const double bias = lookup.sample.bias;
+  // Receiver-plane depth bias: the tangent plane in light view space, scaled so dot(plane, X) = 1 on it.
+  const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+  const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
+  const glm::dvec3 nLs = glm::dmat3(view.viewFromWorld) * nWs;
+  const glm::dvec3 pLs = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
+  const double planeOffset = glm::dot(nLs, pLs);
+  const bool usePlane = values.choice("receiver_plane_bias") == "on" && std::abs(planeOffset) > 1e-12;
+  const glm::dvec3 plane = usePlane ? nLs / planeOffset : glm::dvec3(0.0);
+  const glm::dvec2 windowMin(view.window.x, view.window.z);
+  const auto tapComparison = [&](const glm::dvec2& tap) {
+    if (usePlane)
+    {
+      const glm::dvec3 ray(windowMin + tap * texelTangent, -1.0);
+      const double planeDepth = 1.0 / glm::dot(plane, ray);
+      if (planeDepth > 0.0)
+      {
+        return std::clamp(planeDepth, 0.5 * d, 2.0 * d) - bias;
+      }
+    }
+    return comparison;
+  };
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const int maxTaps = values.getInt("max_grid_taps");
   const int poissonSamples = values.getInt("poisson_samples");
@@ -154,9 +177,10 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   int blockers = 0;
   const auto visitBlocker = [&](const glm::dvec2& position) {
     const double z = stored(position);
-    note(comparison, z);
-    noteEdges(position, comparison, true);
-    if (z < comparison)
+    const double compared = tapComparison(position);
+    note(compared, z);
+    noteEdges(position, compared, true);
+    if (z < compared)
     {
       blockerSum += z;
       ++blockers;
@@ -197,9 +221,10 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   int taps = 0;
   const auto visitFilter = [&](const glm::dvec2& position) {
     const double z = stored(position);
-    note(comparison, z);
-    noteEdges(position, comparison, false);
-    litSum += comparison <= z ? 1.0 : 0.0;
+    const double compared = tapComparison(position);
+    note(compared, z);
+    noteEdges(position, compared, false);
+    litSum += compared <= z ? 1.0 : 0.0;
     ++taps;
   };
   if (values.choice("filter") == "grid")

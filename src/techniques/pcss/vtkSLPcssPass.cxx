@@ -23,6 +23,8 @@ std::vector<vtkTextureObject*> vtkSLPcssPass::SetTechniqueUniforms(vtkShaderProg
   const float texelTangent[2] = { static_cast<float>((view.window.y - view.window.x) / view.resolution),
     static_cast<float>((view.window.w - view.window.z) / view.resolution) };
   program->SetUniform2f("shadowTexelTangent", texelTangent);
+  const float windowMin[2] = { static_cast<float>(view.window.x), static_cast<float>(view.window.z) };
+  program->SetUniform2f("shadowWindowMin", windowMin);
   if (program->IsUniformUsed("poissonDisk"))
   {
     program->SetUniform2fv("poissonDisk", sl::maxPoissonSamples, sl::poissonDiskFloats().data());
