@@ -8,14 +8,19 @@ set(SL_SHADER_FILES
   common/ShadowMapCommon.glsl
   common/ShadowReceiver.glsl
   common/TexelRatio.glsl
+  common/MomentLookup.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
   lightspace/LightDepthVertex.glsl
   lightspace/LightDepthFragment.glsl
   lightspace/FocusReduction.glsl
+  moments/MomentsFromDepth.glsl
+  moments/BoxBlur.glsl
   hard/HardVisibility.glsl
   pcf/PcfVisibility.glsl
   pcss/PcssVisibility.glsl
+  vsm/VsmVisibility.glsl
+  esm/EsmVisibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

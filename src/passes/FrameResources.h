@@ -47,6 +47,8 @@ struct FrameResources
   LightView lightView;
   vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
+  // Moment-map stage: RGBA32F (z, z^2, exp(c z_n), 1), box-blurred (mip-mapped when prefilter = mipmap).
+  vtkSmartPointer<vtkTextureObject> momentMap;
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F.
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> techniqueTargets;

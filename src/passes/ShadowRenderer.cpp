@@ -6,6 +6,7 @@
 #include "passes/vtkSLFocusPass.h"
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLLightDepthPass.h"
+#include "passes/vtkSLMomentMapPass.h"
 #include "passes/vtkSLShadingPass.h"
 #include "passes/vtkSLTechniquePass.h"
 
@@ -89,6 +90,10 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
     {
       stages.push_back(vtkSmartPointer<vtkSLFocusPass>::New());
       stages.push_back(vtkSmartPointer<vtkSLLightDepthPass>::New());
+    }
+    if (technique.needs(LightStructure::MomentMap))
+    {
+      stages.push_back(vtkSmartPointer<vtkSLMomentMapPass>::New());
     }
     stages.push_back(technique.createPass());
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
@@ -210,6 +215,21 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
       "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" });
     result.lightSpace.push_back({ "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
       "hardware depth buffer of the shadow map, window coordinates in [0, 1]" });
+  }
+  if (frame.momentMap)
+  {
+    const ImageF moments = readFloatTexture(frame.momentMap, 4);
+    const char* names[3] = { "moment_mean", "moment_second", "moment_exponential" };
+    const char* docs[3] = { "prefiltered E[z] (linear depth)", "prefiltered E[z^2]", "prefiltered E[exp(c z_n)] (esm)" };
+    for (int c = 0; c < 3; ++c)
+    {
+      ImageF channel(moments.width, moments.height, 1);
+      for (std::size_t i = 0; i < channel.data.size(); ++i)
+      {
+        channel.data[i] = moments.data[i * 4 + c];
+      }
+      result.lightSpace.push_back({ names[c], std::move(channel), "", docs[c] });
+    }
   }
   if (frame.shadedImage)
   {

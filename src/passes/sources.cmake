@@ -8,6 +8,7 @@ set(SL_PASSES_SOURCES
   src/passes/GpuReceivers.cpp
   src/passes/vtkSLFocusPass.cxx
   src/passes/vtkSLLightDepthPass.cxx
+  src/passes/vtkSLMomentMapPass.cxx
   src/passes/vtkSLTechniquePass.cxx
   src/passes/vtkSLShadingPass.cxx
   src/passes/ShadowRenderer.cpp)

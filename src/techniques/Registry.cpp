@@ -3,8 +3,10 @@
 #include "techniques/Technique.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
+#include "techniques/esm/EsmTechnique.h"
 #include "techniques/pcss/PcssTechnique.h"
 #include "techniques/referencesm/ReferenceSmTechnique.h"
+#include "techniques/vsm/VsmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
 
 namespace sl
@@ -16,6 +18,8 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     hardTechnique(),
     pcfTechnique(),
     pcssTechnique(),
+    vsmTechnique(),
+    esmTechnique(),
     vtkTechnique(),
     referenceSmTechnique(),
   };

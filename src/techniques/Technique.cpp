@@ -14,6 +14,7 @@ std::string lightStructureName(LightStructure structure)
   switch (structure)
   {
     case LightStructure::ShadowMap: return "shadow_map";
+    case LightStructure::MomentMap: return "moment_map";
   }
   return "unknown";
 }

@@ -37,6 +37,7 @@ struct ParameterSpec
 enum class LightStructure
 {
   ShadowMap, // linear depth (R32F) + hardware depth (D32F) from the light's centre, focused (survey §4.1)
+  MomentMap, // (z, z^2, exp(c z_n)) of the shadow map, prefiltered by a box blur or mip-mapped (survey §6)
 };
 std::string lightStructureName(LightStructure structure);
 

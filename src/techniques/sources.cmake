@@ -4,12 +4,16 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp
   src/techniques/SamplingPatterns.cpp
+  src/techniques/MomentReference.cpp
+  src/techniques/MomentTechniquePass.cxx
   src/techniques/hard/HardTechnique.cpp
   src/techniques/hard/vtkSLHardShadowPass.cxx
   src/techniques/pcf/PcfTechnique.cpp
   src/techniques/pcf/vtkSLPcfPass.cxx
   src/techniques/pcss/PcssTechnique.cpp
   src/techniques/pcss/vtkSLPcssPass.cxx
+  src/techniques/vsm/VsmTechnique.cpp
+  src/techniques/esm/EsmTechnique.cpp
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp

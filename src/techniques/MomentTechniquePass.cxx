@@ -1,0 +1,29 @@
+#include "techniques/MomentTechniquePass.h"
+
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkSLMomentTechniquePass);
+
+std::vector<vtkTextureObject*> vtkSLMomentTechniquePass::SetTechniqueUniforms(vtkShaderProgram* program)
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const int width = frame.parameters.getInt("prefilter_texels");
+  program->SetUniformi("kernelWidth", width);
+  sl::setFloatIfUsed(program, "momentLod", std::log2(static_cast<double>(width)));
+  sl::setFloatIfUsed(program, "depthNear", frame.lightView.nearDepth);
+  sl::setFloatIfUsed(program, "depthFar", frame.lightView.farDepth);
+  return { sl::bindTexture(program, "momentMap", frame.momentMap) };
+}
+
+void vtkSLMomentTechniquePass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FragmentShader: " << this->ShaderPath << "\n";
+}

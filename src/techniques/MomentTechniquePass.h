@@ -1,0 +1,26 @@
+// The visibility pass of the moment-map techniques (vsm, esm): their full-screen shader with the
+// prefiltered moment map (passes/vtkSLMomentMapPass), its mip level, the box width and the depth range.
+#pragma once
+
+#include "passes/vtkSLTechniquePass.h"
+
+class vtkSLMomentTechniquePass : public vtkSLTechniquePass
+{
+public:
+  static vtkSLMomentTechniquePass* New();
+  vtkTypeMacro(vtkSLMomentTechniquePass, vtkSLTechniquePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  void SetFragmentShaderPath(const std::string& path) { this->ShaderPath = path; }
+
+protected:
+  vtkSLMomentTechniquePass() = default;
+  ~vtkSLMomentTechniquePass() override = default;
+  std::string GetFragmentShaderPath() const override { return this->ShaderPath; }
+  std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
+
+private:
+  vtkSLMomentTechniquePass(const vtkSLMomentTechniquePass&) = delete;
+  void operator=(const vtkSLMomentTechniquePass&) = delete;
+
+  std::string ShaderPath;
+};

@@ -1,0 +1,18 @@
+// Technique `esm`: exponential shadow maps (Annen et al. 2008), prefiltered like vsm. Math:
+// shaders/esm/EsmVisibility.glsl. Parameters: the shadow-map ones and prefilter, prefilter_texels,
+// esm_exponent (c). Buffers: light_leak (visibility - true PCF over the same box), kernel_texels, depth_bias.
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor esmTechnique();
+std::vector<ParameterSpec> momentPrefilterParameters(); // shared with vsm (VsmTechnique.cpp)
+
+// CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur.
+ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+
+} // namespace sl

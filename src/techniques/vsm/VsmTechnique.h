@@ -1,0 +1,27 @@
+// Technique `vsm`: variance shadow maps (Donnelly & Lauritzen 2006), prefiltered by a box blur or by
+// mip-mapping, with light-bleeding reduction (Lauritzen 2007). Math: shaders/vsm/VsmVisibility.glsl.
+// Parameters: the shadow-map ones and prefilter (blur|mipmap), prefilter_texels, light_bleeding_reduction,
+// min_variance. Buffers: p_max (Chebyshev bound), light_leak (p_max - the true PCF over the same box),
+// kernel_texels, depth_bias.
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor vsmTechnique();
+
+struct VsmSample
+{
+  ReferenceSample sample;
+  double pMax = 0.0;
+  double lightLeak = 0.0;
+  double variance = 0.0;
+};
+
+// CPU reference (double precision) of VsmVisibility.glsl for prefilter = blur.
+VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+
+} // namespace sl
