@@ -9,6 +9,7 @@ set(SL_SHADER_FILES
   common/ShadowReceiver.glsl
   common/TexelRatio.glsl
   common/MomentLookup.glsl
+  common/SoftShadowKernels.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
   lightspace/LightDepthVertex.glsl
