@@ -10,6 +10,7 @@ set(SL_SHADER_FILES
   common/TexelRatio.glsl
   common/MomentLookup.glsl
   common/SoftShadowKernels.glsl
+  common/SatLookup.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
   lightspace/LightDepthVertex.glsl
@@ -22,6 +23,8 @@ set(SL_SHADER_FILES
   pcss/PcssVisibility.glsl
   vsm/VsmVisibility.glsl
   esm/EsmVisibility.glsl
+  sat/SatBuild.glsl
+  savsm/SavsmVisibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

@@ -104,6 +104,27 @@ ImageF readDepthTexture(vtkTextureObject* texture)
   return image;
 }
 
+Image<std::uint32_t> readUnsignedTextureExact(vtkTextureObject* texture, int components)
+{
+  static const GLenum formats[] = { 0, GL_RED_INTEGER, GL_RG_INTEGER, GL_RGB_INTEGER, GL_RGBA_INTEGER };
+  Image<std::uint32_t> image(static_cast<int>(texture->GetWidth()), static_cast<int>(texture->GetHeight()), components);
+  glGetTextureImage(texture->GetHandle(), 0, formats[components], GL_UNSIGNED_INT,
+    static_cast<GLsizei>(image.data.size() * sizeof(std::uint32_t)), image.data.data());
+  checkGlErrors("integer read-back");
+  return image;
+}
+
+ImageF readUnsignedTexture(vtkTextureObject* texture, int components)
+{
+  const Image<std::uint32_t> exact = readUnsignedTextureExact(texture, components);
+  ImageF image(exact.width, exact.height, components);
+  for (std::size_t i = 0; i < exact.data.size(); ++i)
+  {
+    image.data[i] = static_cast<float>(exact.data[i]);
+  }
+  return image;
+}
+
 ImageU8 readColorTexture(vtkTextureObject* texture)
 {
   ImageU8 rgba(static_cast<int>(texture->GetWidth()), static_cast<int>(texture->GetHeight()), 4);

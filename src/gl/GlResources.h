@@ -33,6 +33,10 @@ vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window,
 // Reads a whole texture back (glGetTextureImage). Row 0 is the bottom row.
 ImageF readFloatTexture(vtkTextureObject* texture, int components);
 ImageF readDepthTexture(vtkTextureObject* texture);
+// An unsigned-integer texture (R32UI / RG32UI ...) read back and converted to float.
+ImageF readUnsignedTexture(vtkTextureObject* texture, int components);
+// The same without conversion (tests compare integer tables exactly).
+Image<std::uint32_t> readUnsignedTextureExact(vtkTextureObject* texture, int components);
 ImageU8 readColorTexture(vtkTextureObject* texture); // RGB
 
 // Throws GraphicsError naming `stage` if OpenGL recorded an error since the last check.

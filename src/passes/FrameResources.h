@@ -49,6 +49,11 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
   // Moment-map stage: RGBA32F (z, z^2, exp(c z_n), 1), box-blurred (mip-mapped when prefilter = mipmap).
   vtkSmartPointer<vtkTextureObject> momentMap;
+  // Summed-area-table stage: RG32F (centred z, z^2) or RG32UI (16-bit fixed-point z_n, z_n^2), see
+  // shaders/sat/SatBuild.glsl.
+  vtkSmartPointer<vtkTextureObject> summedAreaTable;
+  bool summedAreaTableIsInteger = false;
+  double summedAreaTableFixedPointScale = 0.0; // int32: 2^b - 1 (vtkSLSatPass picks b)
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F.
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> techniqueTargets;

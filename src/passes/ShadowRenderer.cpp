@@ -7,6 +7,7 @@
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLLightDepthPass.h"
 #include "passes/vtkSLMomentMapPass.h"
+#include "passes/vtkSLSatPass.h"
 #include "passes/vtkSLShadingPass.h"
 #include "passes/vtkSLTechniquePass.h"
 
@@ -94,6 +95,10 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
     if (technique.needs(LightStructure::MomentMap))
     {
       stages.push_back(vtkSmartPointer<vtkSLMomentMapPass>::New());
+    }
+    if (technique.needs(LightStructure::SummedAreaTable))
+    {
+      stages.push_back(vtkSmartPointer<vtkSLSatPass>::New());
     }
     stages.push_back(technique.createPass());
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
@@ -215,6 +220,29 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
       "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" });
     result.lightSpace.push_back({ "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
       "hardware depth buffer of the shadow map, window coordinates in [0, 1]" });
+  }
+  if (frame.summedAreaTable)
+  {
+    // Exported as floats: for the int32 table these are the wrapped unsigned sums (only box differences of
+    // them are meaningful), for the float table the centred sums.
+    const ImageF table = frame.summedAreaTableIsInteger ? readUnsignedTexture(frame.summedAreaTable, 2)
+                                                        : readFloatTexture(frame.summedAreaTable, 2);
+    if (frame.summedAreaTableIsInteger)
+    {
+      result.integerSummedAreaTable = readUnsignedTextureExact(frame.summedAreaTable, 2);
+    }
+    const char* names[2] = { "sat_z", "sat_z2" };
+    const char* docs[2] = { "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)",
+      "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
+    for (int c = 0; c < 2; ++c)
+    {
+      ImageF channel(table.width, table.height, 1);
+      for (std::size_t i = 0; i < channel.data.size(); ++i)
+      {
+        channel.data[i] = table.data[i * 2 + c];
+      }
+      result.lightSpace.push_back({ names[c], std::move(channel), "", docs[c] });
+    }
   }
   if (frame.momentMap)
   {

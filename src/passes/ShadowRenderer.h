@@ -63,6 +63,8 @@ struct FrameResult
   std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
   std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
   ImageU8 image;                      // shaded, RGB, row 0 at the bottom
+  // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
+  std::optional<Image<std::uint32_t>> integerSummedAreaTable;
   std::vector<StageTiming> stages;
   double frameWallMs = 0.0;
   std::string glRenderer;

@@ -9,6 +9,7 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLFocusPass.cxx
   src/passes/vtkSLLightDepthPass.cxx
   src/passes/vtkSLMomentMapPass.cxx
+  src/passes/vtkSLSatPass.cxx
   src/passes/vtkSLTechniquePass.cxx
   src/passes/vtkSLShadingPass.cxx
   src/passes/ShadowRenderer.cpp)

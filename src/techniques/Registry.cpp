@@ -6,6 +6,7 @@
 #include "techniques/esm/EsmTechnique.h"
 #include "techniques/pcss/PcssTechnique.h"
 #include "techniques/referencesm/ReferenceSmTechnique.h"
+#include "techniques/savsm/SavsmTechnique.h"
 #include "techniques/vsm/VsmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
 
@@ -20,6 +21,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     pcssTechnique(),
     vsmTechnique(),
     esmTechnique(),
+    savsmTechnique(),
     vtkTechnique(),
     referenceSmTechnique(),
   };

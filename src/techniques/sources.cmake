@@ -4,6 +4,7 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp
   src/techniques/SamplingPatterns.cpp
+  src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp
   src/techniques/MomentTechniquePass.cxx
   src/techniques/hard/HardTechnique.cpp
@@ -14,6 +15,9 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/pcss/vtkSLPcssPass.cxx
   src/techniques/vsm/VsmTechnique.cpp
   src/techniques/esm/EsmTechnique.cpp
+  src/techniques/savsm/SummedAreaTable.cpp
+  src/techniques/savsm/SavsmTechnique.cpp
+  src/techniques/savsm/vtkSLSavsmPass.cxx
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp

@@ -2,6 +2,7 @@
 
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
+#include "techniques/SoftShadowSupport.h"
 #include "techniques/pcss/vtkSLPcssPass.h"
 
 #include <algorithm>
@@ -17,13 +18,10 @@ TechniqueDescriptor pcssTechnique()
   descriptor.title = "Percentage-closer soft shadows";
   descriptor.paper = "Fernando 2005; as in VSSM (Yang et al. 2010) §1 and Alg. 1 L7/L16";
   descriptor.parameters = shadowMapParameters();
-  descriptor.parameters.insert(descriptor.parameters.end(), {
-    { "blocker_search", 0, 0, 1, "", "grid: every texel of the search kernel w_i (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true },
-    { "filter", 0, 0, 1, "", "grid: every texel of the penumbra kernel w_p (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true },
-    { "max_grid_taps", 32, 1, 256, "taps per axis", "grid kernels wider than this are sampled on a regular sub-grid of this size (the paper's 30x30 banding limit)", {}, true },
-    { "poisson_samples", 32, 1, maxPoissonSamples, "taps", "taps per step for the poisson variants", {}, true },
-    { "receiver_plane_bias", 1, 0, 1, "", "on: each tap compares against the receiver's tangent plane (Isidoro 2006), so sloped receivers do not shadow themselves across wide kernels; off: Fernando's single depth", { "off", "on" }, true },
-  });
+  const std::vector<ParameterSpec> soft = softShadowParameters();
+  descriptor.parameters.insert(descriptor.parameters.end(), soft.begin(), soft.end());
+  descriptor.parameters.push_back(
+    { "filter", 0, 0, 1, "", "grid: every texel of the penumbra kernel w_p (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true });
   descriptor.lightStructures = { LightStructure::ShadowMap };
   descriptor.buffers = {
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
@@ -204,17 +202,20 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
       visitBlocker(uv + searchHalf * rotated(k));
     }
   }
+  result.uvTexels = uv;
   if (blockers == 0)
   {
     result.sample.visibility = 1.0;
     return result;
   }
+  result.foundBlockers = true;
 
   // 2. Penumbra estimate.
   result.averageBlockerDepth = blockerSum / blockers;
   result.penumbraWidth = lightSize * (d - result.averageBlockerDepth) / result.averageBlockerDepth;
   const glm::dvec2 filterHalf = kernelHalfTexels(d, result.averageBlockerDepth);
   result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
+  result.filterHalfTexels = filterHalf;
 
   // 3. PCF.
   double litSum = 0.0;
@@ -227,7 +228,8 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
     litSum += compared <= z ? 1.0 : 0.0;
     ++taps;
   };
-  if (values.choice("filter") == "grid")
+  const bool gridFilter = !values.descriptor().findParameter("filter") || values.choice("filter") == "grid";
+  if (gridFilter)
   {
     const Kernel kernel = kernelGrid(uv, filterHalf, maxTaps, result.kernelEdgeMargin);
     for (int j = 0; j < kernel.count.y; ++j)

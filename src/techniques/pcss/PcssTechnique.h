@@ -26,12 +26,16 @@ struct PcssSample
   double averageBlockerDepth = 0.0;
   double penumbraWidth = 0.0;
   double penumbraKernelTexels = 0.0;
+  glm::dvec2 filterHalfTexels{ 0.0 }; // half extents of w_p in texels (x, y)
+  glm::dvec2 uvTexels{ 0.0 };         // the receiver's shadow-map position
+  bool foundBlockers = false;
   // Smallest distance (texels) of a grid kernel's edge to the texel-centre lattice: below ~1e-4 float
   // rounding on the GPU may include or exclude a row of texels.
   double kernelEdgeMargin = 1e300;
 };
 
-// CPU reference (double precision) of PcssVisibility.glsl at pixel (x, y).
+// CPU reference (double precision) of PcssVisibility.glsl at pixel (x, y). Techniques built on PCSS's first
+// two steps (savsm) call it too; without a `filter` parameter the PCF step uses the grid.
 PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
 
 } // namespace sl

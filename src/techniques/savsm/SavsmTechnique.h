@@ -1,0 +1,33 @@
+// Technique `savsm`: SAT-based variance soft shadow mapping (Lauritzen 2007, GPU Gems 3 ch. 8), the
+// baseline of the VSSM paper: PCSS's blocker search and penumbra kernel, then the kernel's moments from a
+// summed-area table and the Chebyshev bound. Math: shaders/savsm/SavsmVisibility.glsl.
+// Parameters: the shadow-map ones (the bias applies to the blocker search; Chebyshev compares the receiver's
+// own depth), the PCSS-family ones (SoftShadowSupport.h),
+// sat_precision (float_centred | int32, survey §6.4), light_bleeding_reduction, min_variance.
+// Buffers: p_max, light_leak (p_max - true PCF over w_p), blocker_kernel_texels, blocker_samples,
+// avg_blocker_depth, penumbra_kernel_texels, depth_bias.
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor savsmTechnique();
+
+struct SavsmSample
+{
+  ReferenceSample sample;
+  double pMax = 0.0;
+  double variance = 0.0;
+  double kernelEdgeMargin = 1e300; // as PcssSample
+  glm::ivec2 lo{ 0 };              // the penumbra rectangle, inclusive texels
+  glm::ivec2 hi{ 0 };
+  bool foundBlockers = false;
+};
+
+// CPU reference (double precision, exact box moments of the encoded depths) of SavsmVisibility.glsl.
+SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+
+} // namespace sl
