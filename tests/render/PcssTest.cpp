@@ -117,30 +117,13 @@ TEST(Pcss, ExactForParallelPlanarOccludersUpToDiscretisation)
   {
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult frame = test::renderDataset(scene, "pcss", 128, 128);
-    const ImageF& position = frame.find("position")->image;
-    const ImageF& coverage = frame.find("coverage")->image;
-    const ImageF& visibility = frame.find("visibility")->image;
-    double squared = 0.0;
-    int ground = 0;
-    int penumbra = 0;
-    for (int y = 0; y < position.height; ++y)
-    {
-      for (int x = 0; x < position.width; ++x)
-      {
-        if (coverage.at(x, y) < 0.5f || std::abs(position.at(x, y, 1)) > 1e-4)
-        {
-          continue;
-        }
-        const double exact = test::parallelSquaresVisibility(
-          1.0, 3.0, c.occluderSize, c.occluderHeight, position.at(x, y, 0), position.at(x, y, 2));
-        squared += (visibility.at(x, y) - exact) * (visibility.at(x, y) - exact);
-        ++ground;
-        penumbra += (exact > 0.0 && exact < 1.0) ? 1 : 0;
-      }
-    }
-    const double rmse = std::sqrt(squared / ground);
-    std::cout << "[ measured ] pcss on " << c.dataset << " against the closed form: RMSE " << rmse << " over " << ground
-              << " ground pixels (" << penumbra << " in penumbra)\n";
+    const test::GroundError error = test::groundErrorAgainst(frame, [&](double x, double z) {
+      return test::parallelSquaresVisibility(1.0, 3.0, c.occluderSize, c.occluderHeight, x, z);
+    });
+    const double rmse = error.rmse;
+    const int penumbra = error.penumbra;
+    std::cout << "[ measured ] pcss on " << c.dataset << " against the closed form: RMSE " << rmse << " over "
+              << error.ground << " ground pixels (" << penumbra << " in penumbra)\n";
     EXPECT_GT(penumbra, 1000) << c.dataset;
     EXPECT_LT(rmse, c.maxRmse) << c.dataset;
   }

@@ -23,62 +23,20 @@ double planarOccluderVisibility(double x, double z)
   return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z);
 }
 
-struct Errors
-{
-  double rmse = 0.0;
-  double rmsePenumbra = 0.0;
-  double maxError = 0.0;
-  int ground = 0;
-  int penumbra = 0;
-};
-
-Errors groundErrors(const FrameResult& frame)
-{
-  const ImageF& position = frame.find("position")->image;
-  const ImageF& coverage = frame.find("coverage")->image;
-  const ImageF& visibility = frame.find("visibility")->image;
-  double sum = 0.0;
-  double sumPenumbra = 0.0;
-  Errors errors;
-  for (int y = 0; y < position.height; ++y)
-  {
-    for (int x = 0; x < position.width; ++x)
-    {
-      if (coverage.at(x, y) < 0.5f || std::abs(position.at(x, y, 1)) > 1e-4)
-      {
-        continue;
-      }
-      const double exact = planarOccluderVisibility(position.at(x, y, 0), position.at(x, y, 2));
-      const double error = visibility.at(x, y) - exact;
-      sum += error * error;
-      errors.maxError = std::max(errors.maxError, std::abs(error));
-      ++errors.ground;
-      if (exact > 0.0 && exact < 1.0)
-      {
-        sumPenumbra += error * error;
-        ++errors.penumbra;
-      }
-    }
-  }
-  errors.rmse = std::sqrt(sum / std::max(1, errors.ground));
-  errors.rmsePenumbra = std::sqrt(sumPenumbra / std::max(1, errors.penumbra));
-  return errors;
-}
-
 TEST(ReferenceSm, ConvergesToTheClosedFormOverlapOnThePlanarOccluder)
 {
   const Scene scene = test::loadDataset("planar-occluder");
-  Errors previous;
-  previous.rmsePenumbra = 1e300;
+  test::GroundError previous;
+  previous.penumbraRmse = 1e300;
   for (const int samples : { 16, 64, 256 })
   {
     const FrameResult frame = test::renderDataset(
       scene, "reference-sm", 128, 128, { "samples=" + std::to_string(samples), "shadow_map_size=1024" });
-    const Errors errors = groundErrors(frame);
+    const test::GroundError errors = test::groundErrorAgainst(frame, planarOccluderVisibility);
     std::cout << "[ measured ] reference-sm K=" << samples << ": RMSE " << errors.rmse << " (penumbra "
-              << errors.rmsePenumbra << " over " << errors.penumbra << " px), max " << errors.maxError << "\n";
+              << errors.penumbraRmse << " over " << errors.penumbra << " px), max " << errors.maxError << "\n";
     EXPECT_GT(errors.penumbra, 1000) << "the view must show a wide penumbra";
-    EXPECT_LT(errors.rmsePenumbra, previous.rmsePenumbra) << "error must drop as K grows (K=" << samples << ")";
+    EXPECT_LT(errors.penumbraRmse, previous.penumbraRmse) << "error must drop as K grows (K=" << samples << ")";
     previous = errors;
   }
   // At K = 256 the Hammersley estimate of a smooth overlap is within a few thousandths, plus the shadow

@@ -133,25 +133,9 @@ TEST(Savsm, ExactForAParallelPlanarOccluder)
   for (const std::string precision : { "int32", "float_centred" })
   {
     const FrameResult frame = test::renderDataset(scene, "savsm", 128, 128, { "sat_precision=" + precision });
-    const ImageF& position = frame.find("position")->image;
-    const ImageF& coverage = frame.find("coverage")->image;
-    const ImageF& visibility = frame.find("visibility")->image;
-    double squared = 0.0;
-    int ground = 0;
-    for (int y = 0; y < position.height; ++y)
-    {
-      for (int x = 0; x < position.width; ++x)
-      {
-        if (coverage.at(x, y) < 0.5f || std::abs(position.at(x, y, 1)) > 1e-4)
-        {
-          continue;
-        }
-        const double exact = test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, position.at(x, y, 0), position.at(x, y, 2));
-        squared += (visibility.at(x, y) - exact) * (visibility.at(x, y) - exact);
-        ++ground;
-      }
-    }
-    const double rmse = std::sqrt(squared / ground);
+    const double rmse = test::groundErrorAgainst(frame, [](double x, double z) {
+      return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z);
+    }).rmse;
     std::cout << "[ measured ] savsm (" << precision << ") on planar-occluder against the closed form: RMSE " << rmse << "\n";
     EXPECT_LT(rmse, 0.02) << precision;
   }

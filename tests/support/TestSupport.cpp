@@ -3,6 +3,7 @@
 #include "core/Error.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sl::test
 {
@@ -71,6 +72,39 @@ double parallelSquaresVisibility(
   const double covered = overlap(centerX - half, centerX + half, -lightHalf, lightHalf) *
     overlap(centerZ - half, centerZ + half, -lightHalf, lightHalf);
   return 1.0 - covered / (lightSize * lightSize);
+}
+
+GroundError groundErrorAgainst(const FrameResult& frame, const std::function<double(double x, double z)>& exact)
+{
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& visibility = frame.find("visibility")->image;
+  GroundError error;
+  double squared = 0.0;
+  double squaredPenumbra = 0.0;
+  for (int y = 0; y < position.height; ++y)
+  {
+    for (int x = 0; x < position.width; ++x)
+    {
+      if (coverage.at(x, y) < 0.5f || std::abs(position.at(x, y, 1)) > 1e-4)
+      {
+        continue;
+      }
+      const double expected = exact(position.at(x, y, 0), position.at(x, y, 2));
+      const double difference = visibility.at(x, y) - expected;
+      squared += difference * difference;
+      error.maxError = std::max(error.maxError, std::abs(difference));
+      ++error.ground;
+      if (expected > 0.0 && expected < 1.0)
+      {
+        squaredPenumbra += difference * difference;
+        ++error.penumbra;
+      }
+    }
+  }
+  error.rmse = std::sqrt(squared / std::max(1, error.ground));
+  error.penumbraRmse = std::sqrt(squaredPenumbra / std::max(1, error.penumbra));
+  return error;
 }
 
 ShadowRenderer& sharedRenderer()

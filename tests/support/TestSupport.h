@@ -7,6 +7,7 @@
 #include "techniques/ShadowMapReference.h"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,18 @@ Scene stackedOccludersUnder(const std::string& lightJson);
 // the occluder scaled by lightHeight / occluderHeight about the point.
 double parallelSquaresVisibility(
   double lightSize, double lightHeight, double occluderSize, double occluderHeight, double x, double z);
+
+// RMSE of a frame's visibility against a closed form over the ground pixels (covered, y = 0), with the
+// number of ground pixels and of those strictly inside the exact penumbra (0 < exact < 1).
+struct GroundError
+{
+  double rmse = 0.0;
+  double penumbraRmse = 0.0;
+  double maxError = 0.0;
+  int ground = 0;
+  int penumbra = 0;
+};
+GroundError groundErrorAgainst(const FrameResult& frame, const std::function<double(double x, double z)>& exact);
 
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer();
