@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -211,10 +212,50 @@ int runBench(const BenchOptions& options, std::ostream& log)
     throw InputError("--samples " + std::to_string(options.referenceSamples) + ": must be >= 1");
   }
   parseResolution(options.resolution);
-  std::vector<Scene> scenes;
+  // Scene variants: every file under every combination of the scene sweeps (plus the fixed overrides).
+  struct SceneVariant
+  {
+    std::string file;
+    std::vector<std::string> overrides;
+    std::vector<std::string> swept; // the sweep's part, for names
+    Scene scene;
+    std::string name;
+  };
+  std::vector<std::vector<std::string>> sceneCombinations{ {} };
+  for (const std::string& sweep : options.sceneSweeps)
+  {
+    const std::size_t equals = sweep.find('=');
+    if (sweep.empty() || sweep[0] != '/' || equals == std::string::npos || equals + 1 == sweep.size())
+    {
+      throw InputError("--scene-sweep '" + sweep + "': expected /json/pointer=v1,v2,...");
+    }
+    std::vector<std::vector<std::string>> extended;
+    for (const auto& combination : sceneCombinations)
+    {
+      for (const std::string& value : splitList(sweep.substr(equals + 1), ','))
+      {
+        auto next = combination;
+        next.push_back(sweep.substr(0, equals) + "=" + value);
+        extended.push_back(next);
+      }
+    }
+    sceneCombinations = extended;
+  }
+  std::vector<SceneVariant> variants;
   for (const std::string& file : options.sceneFiles)
   {
-    scenes.push_back(loadScene(file));
+    for (const auto& combination : sceneCombinations)
+    {
+      SceneVariant variant;
+      variant.file = file;
+      variant.overrides = options.sceneOverrides;
+      variant.overrides.insert(variant.overrides.end(), combination.begin(), combination.end());
+      variant.swept = combination;
+      variant.scene = loadScene(file, variant.overrides);
+      const std::string stem = std::filesystem::path(file).parent_path().filename().string();
+      variant.name = (stem.empty() ? file : stem) + (combination.empty() ? "" : " " + joined(combination, " "));
+      variants.push_back(std::move(variant));
+    }
   }
   const std::vector<std::string> techniqueNames = splitList(options.techniques, ',');
   if (techniqueNames.empty())
@@ -238,7 +279,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   }
 
   std::vector<Configuration> configurations;
-  for (std::size_t sceneIndex = 0; sceneIndex < scenes.size(); ++sceneIndex)
+  for (std::size_t sceneIndex = 0; sceneIndex < variants.size(); ++sceneIndex)
   {
     for (const std::string& name : techniqueNames)
     {
@@ -291,25 +332,28 @@ int runBench(const BenchOptions& options, std::ostream& log)
     std::filesystem::create_directories(options.cacheDir);
 
     // References first, once per scene.
-    std::vector<std::string> referenceFiles(scenes.size());
-    for (std::size_t s = 0; s < scenes.size(); ++s)
+    std::vector<std::string> referenceFiles(variants.size());
+    for (std::size_t s = 0; s < variants.size(); ++s)
     {
       const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
-        referenceKey(scenes[s], options.resolution, options.referenceSamples);
+        referenceKey(variants[s].scene, options.resolution, options.referenceSamples);
       if (!std::filesystem::is_regular_file(cached / "buffers.vti"))
       {
         if (!options.quiet)
         {
-          log << "bench: ray-traced reference of " << options.sceneFiles[s] << " (" << options.referenceSamples
+          log << "bench: ray-traced reference of " << variants[s].name << " (" << options.referenceSamples
               << " samples) -> " << cached.string() << "\n";
         }
-        const ChildResult child = runChild({ "reference", options.sceneFiles[s], "--samples",
-                                             std::to_string(options.referenceSamples), "--resolution", options.resolution,
-                                             "--out", cached.string(), "--quiet" },
-          dir / "logs" / format("reference-", s, ".txt"));
+        std::vector<std::string> arguments{ "reference", variants[s].file, "--samples",
+          std::to_string(options.referenceSamples), "--resolution", options.resolution, "--out", cached.string(), "--quiet" };
+        for (const std::string& override : variants[s].overrides)
+        {
+          arguments.insert(arguments.end(), { "--scene-set", override });
+        }
+        const ChildResult child = runChild(arguments, dir / "logs" / format("reference-", s, ".txt"));
         if (child.exitCode != 0)
         {
-          log << "bench: warning: no reference for " << options.sceneFiles[s] << ": " << child.lastLine << "\n";
+          log << "bench: warning: no reference for " << variants[s].name << ": " << child.lastLine << "\n";
           continue;
         }
       }
@@ -321,7 +365,8 @@ int runBench(const BenchOptions& options, std::ostream& log)
     {
       const Configuration& configuration = configurations[c];
       const std::filesystem::path resultFile = dir / "runs" / format(c, ".json");
-      std::vector<std::string> arguments{ "bench-run", options.sceneFiles[configuration.sceneIndex], "--technique",
+      const SceneVariant& variant = variants[configuration.sceneIndex];
+      std::vector<std::string> arguments{ "bench-run", variant.file, "--technique",
         configuration.technique, "--resolution", options.resolution, "--repeat", std::to_string(options.repeat),
         "--result", resultFile.string() };
       if (!referenceFiles[configuration.sceneIndex].empty())
@@ -332,8 +377,13 @@ int runBench(const BenchOptions& options, std::ostream& log)
       {
         arguments.insert(arguments.end(), { "--set", setting });
       }
+      for (const std::string& override : variant.overrides)
+      {
+        arguments.insert(arguments.end(), { "--scene-set", override });
+      }
       const ChildResult child = runChild(arguments, dir / "logs" / format("run-", c, ".txt"));
-      nlohmann::json row = { { "scene", options.sceneFiles[configuration.sceneIndex] },
+      nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
+        { "scene_name", variant.name },
         { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
       if (child.exitCode == 0 && std::filesystem::is_regular_file(resultFile))
       {
@@ -350,7 +400,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
       if (!options.quiet)
       {
         log << "bench: [" << (c + 1) << "/" << configurations.size() << "] " << configuration.technique << " "
-            << joined(configuration.settings, " ") << " on " << options.sceneFiles[configuration.sceneIndex] << ": "
+            << joined(configuration.settings, " ") << " on " << variant.name << ": "
             << (row["status"] == "ok" ? "ok" : "FAILED: " + row["error"].get<std::string>()) << "\n";
       }
       rows.push_back(row);
@@ -362,7 +412,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
       dir / "bench.json");
     const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "technique", "shading" };
     std::ofstream csv(dir / "bench.csv");
-    csv << "scene,technique,settings,status,frame_gpu_ms,frame_wall_ms";
+    csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
     for (const std::string& stage : stages)
     {
       csv << "," << stage << "_gpu_ms";
@@ -375,7 +425,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
     for (std::size_t c = 0; c < rows.size(); ++c)
     {
       const nlohmann::json& row = rows[c];
-      csv << csvField(row["scene"]) << "," << row["technique"].get<std::string>() << "," << csvField(row["settings"])
+      csv << csvField(row["scene"]) << "," << csvField(row["scene_overrides"]) << "," << row["technique"].get<std::string>() << "," << csvField(row["settings"])
           << "," << row["status"].get<std::string>();
       const auto number = [](const nlohmann::json& value) {
         std::ostringstream text;
@@ -406,7 +456,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
         {
           csv << ",,,,,,,no reference\n";
         }
-        markdown << std::fixed << std::setprecision(2) << "| " << row["scene"].get<std::string>() << " | "
+        markdown << std::fixed << std::setprecision(2) << "| " << row["scene_name"].get<std::string>() << " | "
                  << row["technique"].get<std::string>() << " | " << row["settings"].get<std::string>() << " | "
                  << result["frame_gpu_ms"].get<double>() << " | " << result["frame_wall_ms"].get<double>() << " | "
                  << std::setprecision(4)
@@ -417,7 +467,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
       else
       {
         csv << ",,,,,,,,,,,," << csvField(row["error"]) << "\n";
-        markdown << "| " << row["scene"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
+        markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
                  << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
                  << " | | | | |\n";
       }
@@ -428,9 +478,20 @@ int runBench(const BenchOptions& options, std::ostream& log)
     }
     for (const auto& [sceneIndex, points] : chartPoints)
     {
-      const std::string stem = std::filesystem::path(options.sceneFiles[sceneIndex]).parent_path().filename().string();
-      writeSpeedErrorChart(points, "speed vs error: " + stem + " (" + options.resolution + ")",
-        dir / ("speed_vs_error_" + (stem.empty() ? std::to_string(sceneIndex) : stem) + ".png"));
+      const SceneVariant& variant = variants[sceneIndex];
+      std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
+      stem = stem.empty() ? std::to_string(sceneIndex) : stem;
+      for (const std::string& swept : variant.swept)
+      {
+        std::string part = swept;
+        for (char& c : part)
+        {
+          c = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+        }
+        stem += "_" + part;
+      }
+      writeSpeedErrorChart(points, "speed vs error: " + variant.name + " (" + options.resolution + ")",
+        dir / ("speed_vs_error_" + stem + ".png"));
     }
   });
   if (!options.quiet)

@@ -40,7 +40,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
   {
     throw InputError("--repeat " + std::to_string(options.repeat) + ": must be >= 1");
   }
-  const Scene scene = loadScene(options.sceneFile);
+  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   RenderRequest request;
   request.technique = options.technique;
   request.settings = options.settings;
@@ -80,6 +80,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
   }
   nlohmann::json result = {
     { "scene", options.sceneFile },
+    { "scene_overrides", options.sceneOverrides },
     { "technique", options.technique },
     { "settings", options.settings },
     { "parameters", parameters },

@@ -72,7 +72,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   {
     check.set(assignment);
   }
-  const Scene scene = loadScene(options.sceneFile);
+  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   std::size_t dropped = 0;
   for (const SceneObject& object : scene.objects)
   {

@@ -16,6 +16,7 @@ namespace sl
 struct RenderOptions
 {
   std::string sceneFile;
+  std::vector<std::string> sceneOverrides; // "/json/pointer=value" (--scene-set)
   std::string technique = "pcf";
   std::vector<std::string> settings;
   std::string resolution; // "WxH" or empty
@@ -30,6 +31,7 @@ int runList(bool asJson, std::ostream& out);
 struct ReferenceOptions
 {
   std::string sceneFile;
+  std::vector<std::string> sceneOverrides;
   int samples = 1024;
   std::string sampling = "stratified";
   std::uint64_t seed = 1;
@@ -57,6 +59,8 @@ struct BenchOptions
   std::string techniques = "hard,pcf";         // comma-separated
   std::vector<std::string> sweeps;             // "key=v1,v2,..." (several: all combinations)
   std::vector<std::string> settings;           // "key=value" for every configuration that has the key
+  std::vector<std::string> sceneOverrides;     // "/json/pointer=value" applied to every scene
+  std::vector<std::string> sceneSweeps;        // "/json/pointer=v1,v2,..." (several: all combinations)
   int repeat = 5;                              // timed frames after one warm-up frame
   std::string resolution = "256x256";
   int referenceSamples = 1024;
@@ -71,6 +75,7 @@ int runBench(const BenchOptions& options, std::ostream& log);
 struct BenchRunOptions
 {
   std::string sceneFile;
+  std::vector<std::string> sceneOverrides;
   std::string technique;
   std::vector<std::string> settings;
   std::string resolution;

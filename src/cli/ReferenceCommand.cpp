@@ -35,7 +35,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   {
     request.resolution = parseResolution(options.resolution);
   }
-  const Scene scene = loadScene(options.sceneFile);
+  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   if (options.lightIndex < 0 || options.lightIndex >= static_cast<int>(scene.lights.size()))
   {
     throw InputError(format("--light ", options.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
@@ -86,6 +86,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   nlohmann::json stats = {
     { "command", "reference" },
     { "scene", options.sceneFile },
+    { "scene_overrides", options.sceneOverrides },
     { "light_index", options.lightIndex },
     { "resolution", { gbuffer.resolution.x, gbuffer.resolution.y } },
     { "samples", options.samples },

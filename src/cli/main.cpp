@@ -19,6 +19,7 @@ int main(int argc, char** argv)
   renderCommand->add_option("--technique,-t", render.technique, "Technique name (see `shadowlab list`)")
     ->capture_default_str();
   renderCommand->add_option("--set,-s", render.settings, "Technique parameter, key=value (repeatable)");
+  renderCommand->add_option("--scene-set", render.sceneOverrides, "Scene value, /json/pointer=value, e.g. /lights/0/size=2 (repeatable)");
   renderCommand->add_option("--resolution,-r", render.resolution, "Image size WxH (default: the scene camera's)");
   renderCommand->add_option("--out,-o", render.outDir, "Output directory (replaced atomically)")->capture_default_str();
   renderCommand->add_option("--light", render.lightIndex, "Index of the scene light that casts shadows")
@@ -30,6 +31,7 @@ int main(int argc, char** argv)
     "Ray-traced ground truth (Embree): the visible fraction of the light for every pixel the pipeline shades");
   referenceCommand->add_option("scene", reference.sceneFile, "Scene file (JSON)")->required();
   referenceCommand->add_option("--samples,-n", reference.samples, "Light samples per pixel")->capture_default_str();
+  referenceCommand->add_option("--scene-set", reference.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
   referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
   referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")->capture_default_str();
   referenceCommand->add_option("--resolution,-r", reference.resolution, "Image size WxH (default: the scene camera's)");
@@ -54,6 +56,9 @@ int main(int argc, char** argv)
   benchCommand->add_option("--techniques,-t", bench.techniques, "Comma-separated technique names")->capture_default_str();
   benchCommand->add_option("--sweep", bench.sweeps, "key=v1,v2,... (repeatable: all combinations)");
   benchCommand->add_option("--set,-s", bench.settings, "key=value for every technique that has the key");
+  benchCommand->add_option("--scene-set", bench.sceneOverrides, "Scene value for every scene, /json/pointer=value");
+  benchCommand->add_option("--scene-sweep", bench.sceneSweeps,
+    "Scene values to sweep, /json/pointer=v1,v2,... e.g. /lights/0/size=0.25,0.5,1,2,4 (repeatable: all combinations)");
   benchCommand->add_option("--repeat", bench.repeat, "Timed frames after one warm-up frame (medians reported)")
     ->capture_default_str();
   benchCommand->add_option("--resolution,-r", bench.resolution, "Image size WxH")->capture_default_str();
@@ -69,6 +74,7 @@ int main(int argc, char** argv)
   benchRunCommand->add_option("scene", benchRun.sceneFile)->required();
   benchRunCommand->add_option("--technique", benchRun.technique)->required();
   benchRunCommand->add_option("--set", benchRun.settings);
+  benchRunCommand->add_option("--scene-set", benchRun.sceneOverrides);
   benchRunCommand->add_option("--resolution", benchRun.resolution)->required();
   benchRunCommand->add_option("--repeat", benchRun.repeat);
   benchRunCommand->add_option("--reference", benchRun.referenceFile);

@@ -127,6 +127,10 @@ struct Scene
 
 // Parses and validates a scene file. Throws InputError naming the file and the JSON path on any problem.
 Scene loadScene(const std::filesystem::path& file);
+// The same after replacing values: each override is "/json/pointer=value" (value as JSON, or a bare word as
+// a string), e.g. "/lights/0/size=2". The result is validated like a file; a pointer whose parent does not
+// exist is an InputError naming it. Used by --scene-set and bench's --scene-sweep.
+Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 // Same, from JSON text; `label` names the source in messages, `baseDir` resolves relative mesh paths.
 Scene parseScene(const std::string& jsonText, const std::string& label, const std::filesystem::path& baseDir);
 

@@ -689,6 +689,11 @@ Scene parseScene(const std::string& jsonText, const std::string& label, const st
 
 Scene loadScene(const std::filesystem::path& file)
 {
+  return loadScene(file, {});
+}
+
+Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides)
+{
   const std::string label = file.string();
   std::error_code error;
   if (!std::filesystem::exists(file, error))
@@ -696,8 +701,55 @@ Scene loadScene(const std::filesystem::path& file)
   std::ifstream stream(file, std::ios::binary);
   if (!stream || std::filesystem::is_directory(file, error))
     throw InputError(format(label, ": cannot read scene file"));
-  const std::string text{ std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
+  std::string text{ std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
 
+  if (!overrides.empty())
+  {
+    // Overrides replace values of the document before validation, so every check and message applies to
+    // the result as if the file had said it.
+    nlohmann::json document;
+    try
+    {
+      document = nlohmann::json::parse(text);
+    }
+    catch (const nlohmann::json::exception&)
+    {
+      return parseScene(text, label, file.parent_path()); // reports the syntax error with its position
+    }
+    for (const std::string& override : overrides)
+    {
+      const std::size_t equals = override.find('=');
+      if (equals == std::string::npos || override.empty() || override[0] != '/')
+      {
+        throw InputError(format("--scene-set '", override, "': expected /json/pointer=value, e.g. /lights/0/size=2"));
+      }
+      const std::string pointer = override.substr(0, equals);
+      const std::string valueText = override.substr(equals + 1);
+      nlohmann::json value;
+      try
+      {
+        value = nlohmann::json::parse(valueText);
+      }
+      catch (const nlohmann::json::exception&)
+      {
+        value = valueText; // a bare word is a string: /lights/0/shape=disk
+      }
+      try
+      {
+        const nlohmann::json::json_pointer location(pointer);
+        if (!document.contains(location.parent_pointer()))
+        {
+          throw InputError(format("--scene-set ", override, ": ", label, " has nothing at ", location.parent_pointer().to_string()));
+        }
+        document[location] = value;
+      }
+      catch (const nlohmann::json::exception& failure)
+      {
+        throw InputError(format("--scene-set ", override, ": ", failure.what()));
+      }
+    }
+    text = document.dump();
+  }
   Scene scene = parseScene(text, label, file.parent_path());
   scene.file = file;
   return scene;

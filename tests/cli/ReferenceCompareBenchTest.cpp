@@ -207,6 +207,45 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   EXPECT_EQ(again.standardError.find("ray-traced reference of"), std::string::npos) << again.standardError;
 }
 
+TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
+{
+  // A light-size sweep (the papers' benchmarks): each size is its own scene variant with its own cached
+  // reference; hard shadows sample the light's centre, so their error must grow with the light.
+  const std::filesystem::path out = freshDir("bench-sweep-out");
+  const std::filesystem::path cache = freshDir("bench-sweep-cache");
+  const ProcessRun run = shadowlab("bench " + test::datasetPath("planar-occluder").string() +
+    " -t hard --scene-sweep /lights/0/size=0.25,1,2 --repeat 1 -r 48x48 --samples 64 --quiet --cache " +
+    cache.string() + " --out " + out.string());
+  ASSERT_EQ(run.exitCode, 0) << run.standardError;
+  const nlohmann::json bench = readJson(out / "bench.json");
+  std::vector<double> rmse;
+  for (const nlohmann::json& row : bench.at("configurations"))
+  {
+    ASSERT_EQ(row.at("status"), "ok") << row.dump();
+    EXPECT_NE(row.at("scene_overrides").get<std::string>().find("/lights/0/size="), std::string::npos);
+    rmse.push_back(row.at("result").at("error").at("covered").at("rmse").get<double>());
+  }
+  ASSERT_EQ(rmse.size(), 3u);
+  EXPECT_LT(rmse[0], rmse[1]);
+  EXPECT_LT(rmse[1], rmse[2]);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(cache), std::filesystem::directory_iterator()), 3)
+    << "one cached reference per light size";
+}
+
+TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
+{
+  const std::filesystem::path out = freshDir("scene-set-bad");
+  for (const std::string& override : { std::string("/lights/9/size=2"), std::string("/lights/0/size=0"),
+         std::string("lights/0/size=2") })
+  {
+    const ProcessRun run = shadowlab("render " + test::datasetPath("planar-occluder").string() + " --scene-set " +
+      override + " -r 32x32 --out " + out.string());
+    EXPECT_EQ(run.exitCode, 1) << override;
+    EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
+    EXPECT_FALSE(std::filesystem::exists(out)) << override;
+  }
+}
+
 TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
 {
   const std::filesystem::path out = freshDir("bench-bad");
