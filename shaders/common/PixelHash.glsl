@@ -16,3 +16,11 @@ float pixelHashAngle(uvec2 pixel)
 {
   return float(pixelHash(pixel)) * (6.283185307179586 / 4294967296.0);
 }
+
+// The rotation by pixelHashAngle that decorrelates a pixel's Poisson taps from its neighbours'
+// (rotation * p turns p counter-clockwise).
+mat2 pixelRotation(uvec2 pixel)
+{
+  float angle = pixelHashAngle(pixel);
+  return mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+}

@@ -9,12 +9,15 @@ uniform float satDepthNear;
 uniform float satDepthFar;
 uniform float satFixedPointScale; // int32: 2^b - 1 (passes/vtkSLSatPass)
 
-// x = E[z], y = Var[z] over the texels [lo, hi] (inclusive; clamped to the map by the caller).
-vec2 satBoxMoments(ivec2 lo, ivec2 hi)
-{
-  float count = float((hi.x - lo.x + 1) * (hi.y - lo.y + 1));
+// Sum of the table's (z, z^2) entries over the texels [lo, hi] (inclusive), from four corners.
 #if SAT_PRECISION == SAT_PRECISION_INT32
-  uvec2 sum = texelFetch(satTable, hi, 0).xy;
+#define SatSum uvec2
+#else
+#define SatSum vec2
+#endif
+SatSum satBoxSum(ivec2 lo, ivec2 hi)
+{
+  SatSum sum = texelFetch(satTable, hi, 0).xy;
   if (lo.x > 0)
   {
     sum -= texelFetch(satTable, ivec2(lo.x - 1, hi.y), 0).xy;
@@ -27,6 +30,15 @@ vec2 satBoxMoments(ivec2 lo, ivec2 hi)
   {
     sum += texelFetch(satTable, lo - 1, 0).xy;
   }
+  return sum;
+}
+
+// x = E[z], y = Var[z] over the texels [lo, hi] (inclusive; clamped to the map by the caller).
+vec2 satBoxMoments(ivec2 lo, ivec2 hi)
+{
+  float count = float((hi.x - lo.x + 1) * (hi.y - lo.y + 1));
+  SatSum sum = satBoxSum(lo, hi);
+#if SAT_PRECISION == SAT_PRECISION_INT32
   // Unsigned arithmetic wraps, so the box sums are exact even where the table's values overflowed.
   float meanNormalized = float(sum.x) / (satFixedPointScale * count);
   float secondNormalized = float(sum.y) / (satFixedPointScale * count);
@@ -34,19 +46,6 @@ vec2 satBoxMoments(ivec2 lo, ivec2 hi)
   return vec2(satDepthNear + meanNormalized * range,
     max(secondNormalized - meanNormalized * meanNormalized, 0.0) * range * range);
 #else
-  vec2 sum = texelFetch(satTable, hi, 0).xy;
-  if (lo.x > 0)
-  {
-    sum -= texelFetch(satTable, ivec2(lo.x - 1, hi.y), 0).xy;
-  }
-  if (lo.y > 0)
-  {
-    sum -= texelFetch(satTable, ivec2(hi.x, lo.y - 1), 0).xy;
-  }
-  if (lo.x > 0 && lo.y > 0)
-  {
-    sum += texelFetch(satTable, lo - 1, 0).xy;
-  }
   float meanCentred = sum.x / count;
   return vec2(meanCentred + 0.5 * (satDepthNear + satDepthFar), max(sum.y / count - meanCentred * meanCentred, 0.0));
 #endif

@@ -66,8 +66,7 @@ void main()
   }
 #else
   int tapCount = int(param_poisson_samples);
-  float angle = pixelHashAngle(uvec2(pixel));
-  mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+  mat2 rotation = pixelRotation(uvec2(pixel));
   float radiusTexels = 0.5 * float(kernelTexels);
   for (int k = 0; k < tapCount; ++k)
   {

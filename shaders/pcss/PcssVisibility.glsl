@@ -52,8 +52,7 @@ void main()
   float comparison = receiver.comparisonDepth;
   float bias = receiver.bias;
   setReceiverPlane(receiver.pWs, receiver.nWs);
-  float angle = pixelHashAngle(uvec2(pixel));
-  mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+  mat2 rotation = pixelRotation(uvec2(pixel));
 
   // 1. Blocker search over w_i (Alg. 1 L7).
   vec2 searchHalf = kernelHalfTexels(d, lightNearDepth);

@@ -19,55 +19,58 @@ uniform float fixedPointScale;
 
 #if SAT_PRECISION == SAT_PRECISION_INT32
 layout(rg32ui, binding = 0) uniform uimage2D satImage;
+#define SatSum uvec2
 #else
 layout(rg32f, binding = 0) uniform image2D satImage;
+#define SatSum vec2
 #endif
+
+// A shadow-map texel's (z, z^2) in the table's representation.
+SatSum satEntry(float z)
+{
+  z = clamp(z, depthNear, depthFar);
+#if SAT_PRECISION == SAT_PRECISION_INT32
+  float zNormalized = (z - depthNear) / (depthFar - depthNear);
+  return uvec2(uint(round(zNormalized * fixedPointScale)), uint(round(zNormalized * zNormalized * fixedPointScale)));
+#else
+  float centred = z - 0.5 * (depthNear + depthFar);
+  return vec2(centred, centred * centred);
+#endif
+}
+
+void storeSat(ivec2 texel, SatSum value)
+{
+#if SAT_PRECISION == SAT_PRECISION_INT32
+  imageStore(satImage, texel, uvec4(value, 0u, 0u));
+#else
+  imageStore(satImage, texel, vec4(value, 0.0, 0.0));
+#endif
+}
 
 void main()
 {
   int line = int(gl_GlobalInvocationID.x);
   ivec2 size = imageSize(satImage);
+  SatSum running = SatSum(0);
 #if SAT_PASS == 0
   if (line >= size.y)
   {
     return;
   }
-#if SAT_PRECISION == SAT_PRECISION_INT32
-  uvec2 running = uvec2(0u);
-#else
-  vec2 running = vec2(0.0);
-#endif
   for (int x = 0; x < size.x; ++x)
   {
-    float z = clamp(texelFetch(shadowMapLinear, ivec2(x, line), 0).r, depthNear, depthFar);
-#if SAT_PRECISION == SAT_PRECISION_INT32
-    float zNormalized = (z - depthNear) / (depthFar - depthNear);
-    running += uvec2(uint(round(zNormalized * fixedPointScale)), uint(round(zNormalized * zNormalized * fixedPointScale)));
-    imageStore(satImage, ivec2(x, line), uvec4(running, 0u, 0u));
-#else
-    float centred = z - 0.5 * (depthNear + depthFar);
-    running += vec2(centred, centred * centred);
-    imageStore(satImage, ivec2(x, line), vec4(running, 0.0, 0.0));
-#endif
+    running += satEntry(texelFetch(shadowMapLinear, ivec2(x, line), 0).r);
+    storeSat(ivec2(x, line), running);
   }
 #else
   if (line >= size.x)
   {
     return;
   }
-#if SAT_PRECISION == SAT_PRECISION_INT32
-  uvec2 running = uvec2(0u);
-#else
-  vec2 running = vec2(0.0);
-#endif
   for (int y = 0; y < size.y; ++y)
   {
     running += imageLoad(satImage, ivec2(line, y)).xy;
-#if SAT_PRECISION == SAT_PRECISION_INT32
-    imageStore(satImage, ivec2(line, y), uvec4(running, 0u, 0u));
-#else
-    imageStore(satImage, ivec2(line, y), vec4(running, 0.0, 0.0));
-#endif
+    storeSat(ivec2(line, y), running);
   }
 #endif
 }

@@ -59,8 +59,7 @@ void main()
   // own depth, where it is exact for two depths (see vsm).
   float t = d;
   setReceiverPlane(receiver.pWs, receiver.nWs);
-  float angle = pixelHashAngle(uvec2(pixel));
-  mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+  mat2 rotation = pixelRotation(uvec2(pixel));
 
   // Blocker search (PCSS step 1, Alg. 1 L7's kernel).
   vec2 searchHalf = kernelHalfTexels(d, lightNearDepth);

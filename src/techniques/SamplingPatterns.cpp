@@ -74,4 +74,10 @@ double pixelHashAngle(std::uint32_t x, std::uint32_t y)
   return static_cast<double>(pixelHash(x, y)) * (6.283185307179586 / 4294967296.0);
 }
 
+glm::dmat2 pixelRotation(int x, int y)
+{
+  const double angle = pixelHashAngle(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
+  return glm::dmat2(std::cos(angle), std::sin(angle), -std::sin(angle), std::cos(angle));
+}
+
 } // namespace sl

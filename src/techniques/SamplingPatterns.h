@@ -20,5 +20,7 @@ const std::vector<float>& poissonDiskFloats();
 // The per-pixel hash of shaders/common/PixelHash.glsl, bit for bit.
 std::uint32_t pixelHash(std::uint32_t x, std::uint32_t y);
 double pixelHashAngle(std::uint32_t x, std::uint32_t y);
+// pixelRotation(uvec2) of the same file: rotation * p turns p by pixelHashAngle(x, y) counter-clockwise.
+glm::dmat2 pixelRotation(int x, int y);
 
 } // namespace sl

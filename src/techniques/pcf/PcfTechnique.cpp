@@ -105,14 +105,11 @@ ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValue
   else
   {
     tapCount = values.getInt("poisson_samples");
-    const double angle = pixelHashAngle(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
+    const glm::dmat2 rotation = pixelRotation(x, y);
     const double radiusTexels = 0.5 * kernelTexels;
     for (int k = 0; k < tapCount; ++k)
     {
-      const glm::dvec2& point = poissonDisk()[static_cast<std::size_t>(k)];
-      const glm::dvec2 rotated(std::cos(angle) * point.x - std::sin(angle) * point.y,
-        std::sin(angle) * point.x + std::cos(angle) * point.y);
-      litSum += tap(radiusTexels * rotated);
+      litSum += tap(radiusTexels * (rotation * poissonDisk()[static_cast<std::size_t>(k)]));
     }
   }
   sample.visibility = litSum / tapCount;

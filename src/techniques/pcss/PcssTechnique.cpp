@@ -131,11 +131,8 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const int maxTaps = values.getInt("max_grid_taps");
   const int poissonSamples = values.getInt("poisson_samples");
-  const double angle = pixelHashAngle(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
-  const auto rotated = [&](int k) {
-    const glm::dvec2& p = poissonDisk()[static_cast<std::size_t>(k)];
-    return glm::dvec2(std::cos(angle) * p.x - std::sin(angle) * p.y, std::sin(angle) * p.x + std::cos(angle) * p.y);
-  };
+  const glm::dmat2 rotation = pixelRotation(x, y);
+  const auto rotated = [&](int k) { return rotation * poissonDisk()[static_cast<std::size_t>(k)]; };
   const auto note = [&](double comparedDepth, double z) {
     result.sample.depthMargin = std::min(result.sample.depthMargin, std::abs(comparedDepth - z) / std::max(1e-30, std::abs(z)));
   };
