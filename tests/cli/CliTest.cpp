@@ -5,6 +5,7 @@
 // on llvmpipe.
 #include "io/ImageIO.h"
 #include "passes/ShadowRenderer.h"
+#include "support/TempDir.h"
 #include "support/TestSupport.h"
 #include "techniques/Technique.h"
 
@@ -35,31 +36,7 @@ using Json = nlohmann::json;
 
 // ---- helpers --------------------------------------------------------------------------------------------
 
-class TempDir
-{
-public:
-  TempDir()
-  {
-    static std::atomic<int> counter{ 0 };
-    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
-    path_ = fs::temp_directory_path() /
-      ("shadowlab-cli-test-" + std::to_string(std::random_device{}()) + "-" + std::to_string(now) + "-" +
-        std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir()
-  {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-
-private:
-  fs::path path_;
-};
+using test::TempDir;
 
 std::string readFile(const fs::path& path)
 {

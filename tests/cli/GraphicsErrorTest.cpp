@@ -5,38 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <sys/wait.h>
 
 namespace sl
 {
 namespace
 {
 
-struct ProcessRun
-{
-  int exitCode = -1;
-  std::string standardError;
-};
-
-ProcessRun runShadowlab(const std::string& environment, const std::string& arguments)
-{
-  // One file per test: ctest runs tests in parallel processes.
-  const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::filesystem::path errorFile = test::testOutputDir() / ("stderr-" + testName + ".txt");
-  const std::string command =
-    environment + " " + std::string(SL_SHADOWLAB_EXE) + " " + arguments + " 2> " + errorFile.string() + " > /dev/null";
-  const int status = std::system(command.c_str());
-  ProcessRun run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream file(errorFile);
-  std::stringstream text;
-  text << file.rdbuf();
-  run.standardError = text.str();
-  return run;
-}
+using test::ProcessRun;
+using test::runShadowlab;
 
 bool hasHardwareEglDevice()
 {
@@ -49,8 +27,8 @@ TEST(GraphicsErrors, NoUsableEglDisplayIsOneLineNamingWhatWasTried)
   ASSERT_FALSE(hasHardwareEglDevice()) << "run this test where only Mesa's software EGL exists (CI)";
   const std::filesystem::path out = test::testOutputDir() / "graphics-error-out";
   std::filesystem::remove_all(out);
-  const ProcessRun run = runShadowlab("SHADOWLAB_EGL=device", "render " + test::datasetPath("planar-occluder").string() +
-      " --technique hard --resolution 32x32 --out " + out.string());
+  const ProcessRun run = runShadowlab("render " + test::datasetPath("planar-occluder").string() +
+      " --technique hard --resolution 32x32 --out " + out.string(), "SHADOWLAB_EGL=device");
   EXPECT_NE(run.exitCode, 0);
   EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
   EXPECT_NE(run.standardError.find("EGL"), std::string::npos) << run.standardError;
@@ -60,8 +38,9 @@ TEST(GraphicsErrors, NoUsableEglDisplayIsOneLineNamingWhatWasTried)
 
 TEST(GraphicsErrors, UnknownEglPlatformNameIsRejected)
 {
-  const ProcessRun run = runShadowlab("SHADOWLAB_EGL=wayland", "render " + test::datasetPath("planar-occluder").string() +
-      " --technique hard --resolution 32x32 --out " + (test::testOutputDir() / "graphics-error-out2").string());
+  const ProcessRun run = runShadowlab("render " + test::datasetPath("planar-occluder").string() +
+      " --technique hard --resolution 32x32 --out " + (test::testOutputDir() / "graphics-error-out2").string(),
+    "SHADOWLAB_EGL=wayland");
   EXPECT_NE(run.exitCode, 0);
   EXPECT_NE(run.standardError.find("SHADOWLAB_EGL='wayland'"), std::string::npos) << run.standardError;
 }
@@ -69,8 +48,8 @@ TEST(GraphicsErrors, UnknownEglPlatformNameIsRejected)
 TEST(GraphicsErrors, SurfacelessMesaWorksAndPrintsNoFalseGlewError)
 {
   const std::filesystem::path out = test::testOutputDir() / "graphics-surfaceless-out";
-  const ProcessRun run = runShadowlab("SHADOWLAB_EGL=surfaceless", "render " + test::datasetPath("planar-occluder").string() +
-      " --technique hard --resolution 32x32 --out " + out.string());
+  const ProcessRun run = runShadowlab("render " + test::datasetPath("planar-occluder").string() +
+      " --technique hard --resolution 32x32 --out " + out.string(), "SHADOWLAB_EGL=surfaceless");
   EXPECT_EQ(run.exitCode, 0) << run.standardError;
   EXPECT_EQ(run.standardError.find("GLEW"), std::string::npos) << run.standardError;
   EXPECT_TRUE(std::filesystem::exists(out / "stats.json"));

@@ -9,33 +9,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace sl
 {
 namespace
 {
 
-struct ProcessRun
-{
-  int exitCode = -1;
-  std::string standardError;
-};
-
-ProcessRun shadowlab(const std::string& arguments)
-{
-  const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::filesystem::path errorFile = test::testOutputDir() / ("stderr-" + testName + ".txt");
-  const std::string command = std::string(SL_SHADOWLAB_EXE) + " " + arguments + " 2> " + errorFile.string() + " > /dev/null";
-  const int status = std::system(command.c_str());
-  ProcessRun run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream file(errorFile);
-  std::stringstream text;
-  text << file.rdbuf();
-  run.standardError = text.str();
-  return run;
-}
+using test::ProcessRun;
+using test::runShadowlab;
 
 std::filesystem::path freshDir(const std::string& name)
 {
@@ -65,7 +46,7 @@ nlohmann::json readJson(const std::filesystem::path& path)
 TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 {
   const std::filesystem::path out = freshDir("reference-out");
-  const ProcessRun run = shadowlab("reference " + test::datasetPath("stacked-occluders").string() +
+  const ProcessRun run = runShadowlab("reference " + test::datasetPath("stacked-occluders").string() +
     " --samples 64 --resolution 64x48 --out " + out.string() + " --quiet");
   ASSERT_EQ(run.exitCode, 0) << run.standardError;
   EXPECT_TRUE(run.standardError.empty()) << run.standardError;
@@ -102,7 +83,7 @@ TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
   const std::filesystem::path out = freshDir("reference-bad");
   for (const std::string& arguments : { std::string("--samples 0"), std::string("--sampling sobol") })
   {
-    const ProcessRun run = shadowlab("reference " + test::datasetPath("planar-occluder").string() + " " + arguments +
+    const ProcessRun run = runShadowlab("reference " + test::datasetPath("planar-occluder").string() + " " + arguments +
       " --resolution 32x32 --out " + out.string());
     EXPECT_NE(run.exitCode, 0) << arguments;
     EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
@@ -117,9 +98,9 @@ TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
   const std::filesystem::path reference = freshDir("compare-reference");
   const std::filesystem::path out = freshDir("compare-out");
   const std::string scene = test::datasetPath("planar-occluder").string();
-  ASSERT_EQ(shadowlab("render " + scene + " -t hard -r 64x64 -q --out " + hard.string()).exitCode, 0);
-  ASSERT_EQ(shadowlab("reference " + scene + " --samples 64 -r 64x64 -q --out " + reference.string()).exitCode, 0);
-  const ProcessRun run = shadowlab(
+  ASSERT_EQ(runShadowlab("render " + scene + " -t hard -r 64x64 -q --out " + hard.string()).exitCode, 0);
+  ASSERT_EQ(runShadowlab("reference " + scene + " --samples 64 -r 64x64 -q --out " + reference.string()).exitCode, 0);
+  const ProcessRun run = runShadowlab(
     "compare " + (hard / "buffers.vti").string() + " " + (reference / "buffers.vti").string() + " -q --out " + out.string());
   ASSERT_EQ(run.exitCode, 0) << run.standardError;
   const nlohmann::json metrics = readJson(out / "metrics.json");
@@ -136,14 +117,14 @@ TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
 
   // Mismatched sizes, a missing array: one line naming the file, no output.
   const std::filesystem::path small = freshDir("compare-small");
-  ASSERT_EQ(shadowlab("render " + scene + " -t hard -r 32x32 -q --out " + small.string()).exitCode, 0);
+  ASSERT_EQ(runShadowlab("render " + scene + " -t hard -r 32x32 -q --out " + small.string()).exitCode, 0);
   const std::filesystem::path badOut = freshDir("compare-bad-out");
-  const ProcessRun mismatched = shadowlab("compare " + (small / "buffers.vti").string() + " " +
+  const ProcessRun mismatched = runShadowlab("compare " + (small / "buffers.vti").string() + " " +
     (reference / "buffers.vti").string() + " --out " + badOut.string());
   EXPECT_NE(mismatched.exitCode, 0);
   EXPECT_EQ(std::count(mismatched.standardError.begin(), mismatched.standardError.end(), '\n'), 1) << mismatched.standardError;
   EXPECT_NE(mismatched.standardError.find("32x32"), std::string::npos) << mismatched.standardError;
-  const ProcessRun missing = shadowlab("compare " + (hard / "buffers.vti").string() + " " +
+  const ProcessRun missing = runShadowlab("compare " + (hard / "buffers.vti").string() + " " +
     (reference / "buffers.vti").string() + " --array kernel_size --out " + badOut.string());
   EXPECT_NE(missing.exitCode, 0);
   EXPECT_NE(missing.standardError.find("kernel_size"), std::string::npos) << missing.standardError;
@@ -167,7 +148,7 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   const std::string arguments = "bench " + test::datasetPath("planar-occluder").string() + " " +
     (sceneDir / "surrounded.json").string() + " -t hard,pcf --sweep kernel_texels=1,5 --repeat 2 -r 48x48 --samples 16 --cache " +
     cache.string() + " --out " + out.string();
-  const ProcessRun run = shadowlab(arguments);
+  const ProcessRun run = runShadowlab(arguments);
   EXPECT_EQ(run.exitCode, 4) << run.standardError; // some configurations failed
   const nlohmann::json bench = readJson(out / "bench.json");
   int ok = 0;
@@ -202,7 +183,7 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   EXPECT_GT(chart.width, 200);
 
   // The references are cached: a second run computes none.
-  const ProcessRun again = shadowlab(arguments + " --quiet");
+  const ProcessRun again = runShadowlab(arguments + " --quiet");
   EXPECT_EQ(again.exitCode, 4);
   EXPECT_EQ(again.standardError.find("ray-traced reference of"), std::string::npos) << again.standardError;
 }
@@ -213,7 +194,7 @@ TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
   // reference; hard shadows sample the light's centre, so their error must grow with the light.
   const std::filesystem::path out = freshDir("bench-sweep-out");
   const std::filesystem::path cache = freshDir("bench-sweep-cache");
-  const ProcessRun run = shadowlab("bench " + test::datasetPath("planar-occluder").string() +
+  const ProcessRun run = runShadowlab("bench " + test::datasetPath("planar-occluder").string() +
     " -t hard --scene-sweep /lights/0/size=0.25,1,2 --repeat 1 -r 48x48 --samples 64 --quiet --cache " +
     cache.string() + " --out " + out.string());
   ASSERT_EQ(run.exitCode, 0) << run.standardError;
@@ -238,7 +219,7 @@ TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
   for (const std::string& override : { std::string("/lights/9/size=2"), std::string("/lights/0/size=0"),
          std::string("lights/0/size=2") })
   {
-    const ProcessRun run = shadowlab("render " + test::datasetPath("planar-occluder").string() + " --scene-set " +
+    const ProcessRun run = runShadowlab("render " + test::datasetPath("planar-occluder").string() + " --scene-set " +
       override + " -r 32x32 --out " + out.string());
     EXPECT_EQ(run.exitCode, 1) << override;
     EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
@@ -253,7 +234,7 @@ TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
     { std::string("-t hard,nope"), std::string("--sweep kernel_texels"), std::string("--sweep kernel_texels=0,3"),
       std::string("--repeat 0") })
   {
-    const ProcessRun run = shadowlab("bench " + test::datasetPath("planar-occluder").string() + " " + arguments +
+    const ProcessRun run = runShadowlab("bench " + test::datasetPath("planar-occluder").string() + " " + arguments +
       " -r 32x32 --out " + out.string());
     EXPECT_EQ(run.exitCode, 1) << arguments << ": " << run.standardError;
     EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;

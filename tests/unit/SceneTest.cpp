@@ -6,6 +6,7 @@
 #include "scene/MeshIO.h"
 #include "scene/Primitives.h"
 #include "scene/Scene.h"
+#include "support/TempDir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -40,37 +41,11 @@ const fs::path kDatasets = kRepoRoot / "datasets";
 
 // ---- helpers --------------------------------------------------------------------------------------------
 
-// A fresh directory under the system temp dir, removed with everything in it when the test ends.
-class TempDir
+// A temporary directory that also writes binary files and scene JSON.
+class SceneDir : public test::TempDir
 {
 public:
-  TempDir()
-  {
-    static std::atomic<int> counter{ 0 };
-    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
-    const std::string name = "shadowlab-scene-test-" + std::to_string(std::random_device{}()) + "-" +
-      std::to_string(now) + "-" + std::to_string(counter++);
-    path_ = fs::temp_directory_path() / name;
-    fs::create_directories(path_);
-  }
-  ~TempDir()
-  {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-
-  fs::path write(const std::string& name, const std::string& content) const
-  {
-    const fs::path file = path_ / name;
-    std::ofstream stream(file, std::ios::binary);
-    stream.write(content.data(), static_cast<std::streamsize>(content.size()));
-    EXPECT_TRUE(stream.good()) << "could not write " << file;
-    return file;
-  }
+  using TempDir::write;
   fs::path write(const std::string& name, const std::vector<unsigned char>& bytes) const
   {
     return write(name, std::string(bytes.begin(), bytes.end()));
@@ -79,9 +54,6 @@ public:
   {
     return write(name, scene.dump(2));
   }
-
-private:
-  fs::path path_;
 };
 
 // One point light and one default quad: the smallest valid scene; tests mutate it.
@@ -121,13 +93,13 @@ void expectLoadError(const fs::path& file, const std::vector<std::string>& parts
 
 void expectSceneError(const Json& scene, const std::vector<std::string>& parts)
 {
-  const TempDir dir;
+  const SceneDir dir;
   expectLoadError(dir.writeScene(scene), parts);
 }
 
 void expectSceneTextError(const std::string& text, const std::vector<std::string>& parts)
 {
-  const TempDir dir;
+  const SceneDir dir;
   expectLoadError(dir.write("scene.json", text), parts);
 }
 
@@ -413,7 +385,7 @@ TEST(SceneDatasets, FenceUsesProceduralAlpha)
 
 TEST(SceneDefaults, MinimalSceneGetsDocumentedDefaults)
 {
-  const TempDir dir;
+  const SceneDir dir;
   const Scene scene = loadScene(dir.writeScene(minimalScene()));
   const Camera& camera = scene.camera;
   EXPECT_EQ(camera.projection, Projection::Perspective);
@@ -453,7 +425,7 @@ TEST(SceneDefaults, AreaLightUpRule)
     { "type": "area", "center": [3, 3, 0], "normal": [-1, -1, 0], "size": 1 },
     { "type": "area", "center": [0, 3, 0], "normal": [0, -1, 0], "up": [0, 1, 1], "size": 2, "shape": "disk" }
   ])");
-  const TempDir dir;
+  const SceneDir dir;
   const Scene scene = loadScene(dir.writeScene(json));
   ASSERT_EQ(scene.lights.size(), 3u);
 
@@ -480,7 +452,7 @@ TEST(SceneDefaults, OtherLightTypesAndOrthographicCamera)
     { "type": "directional", "direction": [0, -3, 0], "intensity": 2 },
     { "type": "spot", "center": [1, 2, 3], "normal": [0, 0, -5], "cone_angle_deg": 20 }
   ])");
-  const TempDir dir;
+  const SceneDir dir;
   const Scene scene = loadScene(dir.writeScene(json));
   EXPECT_EQ(scene.camera.projection, Projection::Orthographic);
   EXPECT_EQ(scene.camera.parallelScale, 2.5);
@@ -500,7 +472,7 @@ TEST(SceneDefaults, BoundsAndCasterBounds)
     { "primitive": "box", "center": [0, 0, 0], "size": [2, 2, 2] },
     { "primitive": "sphere", "center": [10, 0, 0], "size": 1, "cast_shadows": false, "receive_shadows": false }
   ])");
-  const TempDir dir;
+  const SceneDir dir;
   const Scene scene = loadScene(dir.writeScene(json));
   EXPECT_FALSE(scene.objects[1].castShadows);
   EXPECT_FALSE(scene.objects[1].receiveShadows);
@@ -637,7 +609,7 @@ TEST(Transforms, RotateXThenYThenZ)
   Json json = minimalScene();
   json["objects"][0] = Json::parse(R"({ "primitive": "quad", "size": [2, 2], "normal": [0, 0, 1], "up": [0, 1, 0],
     "transform": { "translate": [1, 2, 3], "rotate_deg": [90, 90, 0], "scale": 2 } })");
-  const TempDir dir;
+  const SceneDir dir;
   const Scene scene = loadScene(dir.writeScene(json));
   const TriangleMesh& mesh = scene.objects[0].mesh;
   // R = Ry(90) * Rx(90): Rx(90) takes (x, y, z) to (x, -z, y), then Ry(90) takes that to (y, -z, -x).
@@ -654,7 +626,7 @@ TEST(Transforms, PrimitiveIsPlacedAtItsCenterBeforeTheTransform)
   Json json = minimalScene();
   json["objects"][0] = Json::parse(R"({ "primitive": "quad", "center": [1, 0, 0], "size": [1, 1],
     "transform": { "scale": [2, 3, 1], "rotate_deg": [0, 0, 90] } })");
-  const TempDir dir;
+  const SceneDir dir;
   const Scene scene = loadScene(dir.writeScene(json));
   // Scale about the world origin: center (1,0,0) -> (2,0,0); Rz(90): (x, y) -> (-y, x).
   const auto expected = [](const glm::dvec3& p) {
@@ -696,7 +668,7 @@ TEST(MeshFiles, DegenerateTrianglesDroppedAndCounted)
   std::vector<glm::vec3> vertices = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } };
   std::vector<std::array<int, 3>> triangles = { { 0, 1, 2 }, { 1, 3, 2 } };
   addDegenerateTriangles(vertices, triangles);
-  const TempDir dir;
+  const SceneDir dir;
   dir.write("mixed.ply", binaryPly(vertices, triangles));
   Json json = minimalScene();
   json["objects"][0] = Json::parse(R"({ "mesh": "mixed.ply" })");
@@ -716,7 +688,7 @@ TEST(MeshFiles, DegenerateTrianglesDroppedAndCounted)
 
 TEST(MeshFiles, ObjPolygonIsFanTriangulatedAndKeepsUvs)
 {
-  const TempDir dir;
+  const SceneDir dir;
   dir.write("square.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\n"
                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 1\n"
                           "f 1/1 2/2 3/3 5/5 4/4\n");
@@ -745,7 +717,7 @@ TEST(MeshFiles, ObjPolygonIsFanTriangulatedAndKeepsUvs)
 
 TEST(MeshFiles, FileNormalsAreUsedAndTransformed)
 {
-  const TempDir dir;
+  const SceneDir dir;
   // Deliberately "wrong" but valid normals (+x) so we can tell they came from the file, not the geometry.
   dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 2 0 0\nf 1//1 2//1 3//1\n");
   Json json = minimalScene();
@@ -800,7 +772,7 @@ TEST(AlphaTextures, LeavesPatternIsDeterministicAndHalfCovered)
 
 TEST(AlphaTextures, PngAlphaChannelAndRowOrder)
 {
-  const TempDir dir;
+  const SceneDir dir;
   // 2 x 2 RGBA; top row alpha 255, 0; bottom row alpha 51, 102. Colors are noise that must be ignored.
   const fs::path rgba = dir.write("rgba.png",
     encodePng(2, 2, 6, { { 10, 20, 30, 255, 40, 50, 60, 0 }, { 70, 80, 90, 51, 100, 110, 120, 102 } }));
@@ -817,7 +789,7 @@ TEST(AlphaTextures, PngAlphaChannelAndRowOrder)
 
 TEST(AlphaTextures, PngWithoutAlphaUsesLuminance)
 {
-  const TempDir dir;
+  const SceneDir dir;
   const ImageF gray = readAlphaPng(dir.write("gray.png", encodePng(1, 2, 0, { { 255 }, { 51 } })));
   EXPECT_NEAR(gray.at(0, 0), 0.2f, 1e-6);
   EXPECT_NEAR(gray.at(0, 1), 1.0f, 1e-6);
@@ -831,7 +803,7 @@ TEST(AlphaTextures, PngWithoutAlphaUsesLuminance)
 
 TEST(AlphaTextures, PngThroughSceneRelativeToSceneFile)
 {
-  const TempDir dir;
+  const SceneDir dir;
   fs::create_directories(dir.path() / "textures");
   dir.write("textures/mask.png", encodePng(1, 1, 0, { { 255 } }));
   Json json = minimalScene();
@@ -844,7 +816,7 @@ TEST(AlphaTextures, PngThroughSceneRelativeToSceneFile)
 
 TEST(AlphaTextures, CorruptPngIsAnInputErrorNotACrash)
 {
-  const TempDir dir;
+  const SceneDir dir;
   std::vector<unsigned char> png = encodePng(2, 1, 0, { { 1, 2 } });
   std::vector<unsigned char> badCrc = png;
   badCrc[40] ^= 0xFF; // inside the IDAT data
@@ -869,7 +841,7 @@ TEST(AlphaTextures, CorruptPngIsAnInputErrorNotACrash)
 
 TEST(SceneErrors, MissingSceneFile)
 {
-  const TempDir dir;
+  const SceneDir dir;
   const fs::path file = dir.path() / "nope.json";
   expectLoadError(file, { "nope.json", "no such file" });
 }
@@ -932,7 +904,7 @@ TEST(SceneErrors, MissingMeshFile)
 
 TEST(SceneErrors, CorruptMeshFile)
 {
-  const TempDir dir;
+  const SceneDir dir;
   std::string garbage;
   std::mt19937 random(12345);
   for (int i = 0; i < 4096; ++i)
@@ -945,7 +917,7 @@ TEST(SceneErrors, CorruptMeshFile)
 
 TEST(SceneErrors, EmptyMesh)
 {
-  const TempDir dir;
+  const SceneDir dir;
   dir.write("empty.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                          "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
                          "0 0 0\n1 0 0\n0 1 0\n");
@@ -959,7 +931,7 @@ TEST(SceneErrors, MeshWithOnlyDegenerateTriangles)
   std::vector<glm::vec3> vertices;
   std::vector<std::array<int, 3>> triangles;
   addDegenerateTriangles(vertices, triangles);
-  const TempDir dir;
+  const SceneDir dir;
   dir.write("flat.ply", binaryPly(vertices, triangles));
   Json json = minimalScene();
   json["objects"][0] = Json::parse(R"({ "mesh": "flat.ply" })");
@@ -1052,7 +1024,7 @@ TEST(SceneErrors, MeshAndPrimitive)
 
 TEST(SceneErrors, AlphaTextureProblems)
 {
-  const TempDir dir;
+  const SceneDir dir;
   dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   Json noUvs = minimalScene();
   noUvs["objects"][0] = Json::parse(R"({ "mesh": "tri.obj", "alpha_texture": "fence" })");
@@ -1118,7 +1090,7 @@ TEST(SceneErrors, NoLightsOrObjects)
 
 TEST(SceneErrors, ParseSceneUsesLabelAndBaseDir)
 {
-  const TempDir dir;
+  const SceneDir dir;
   dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const std::string text =
     R"({ "lights": [ { "type": "point" } ], "objects": [ { "mesh": "tri.obj" } ] })";
