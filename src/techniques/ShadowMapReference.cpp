@@ -40,31 +40,33 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
   return lookup;
 }
 
+TexelWithEdges texelWithEdges(const glm::dvec2& uvTexels)
+{
+  TexelWithEdges cell;
+  cell.texel = glm::ivec2(static_cast<int>(std::floor(uvTexels.x)), static_cast<int>(std::floor(uvTexels.y)));
+  const glm::dvec2 fraction = uvTexels - glm::dvec2(cell.texel);
+  cell.edges = { { { fraction.x, cell.texel + glm::ivec2(-1, 0) }, { 1.0 - fraction.x, cell.texel + glm::ivec2(1, 0) },
+    { fraction.y, cell.texel + glm::ivec2(0, -1) }, { 1.0 - fraction.y, cell.texel + glm::ivec2(0, 1) } } };
+  return cell;
+}
+
 double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth,
   ReferenceSample& sample)
 {
   const int size = inputs.shadowMapLinear.width;
-  const auto testTexel = [&](int i, int j) {
-    const double stored = inputs.shadowMapLinear.at(std::clamp(i, 0, size - 1), std::clamp(j, 0, size - 1));
+  const auto testTexel = [&](const glm::ivec2& texel) {
+    const double stored =
+      inputs.shadowMapLinear.at(std::clamp(texel.x, 0, size - 1), std::clamp(texel.y, 0, size - 1));
     return std::make_pair(comparisonDepth <= stored ? 1.0 : 0.0, stored);
   };
-  const int i = static_cast<int>(std::floor(uvTexels.x));
-  const int j = static_cast<int>(std::floor(uvTexels.y));
-  const auto [result, stored] = testTexel(i, j);
-  sample.depthMargin = std::min(sample.depthMargin, std::abs(comparisonDepth - stored) / std::max(1e-30, std::abs(stored)));
+  const TexelWithEdges cell = texelWithEdges(uvTexels);
+  const auto [result, stored] = testTexel(cell.texel);
+  sample.noteDepthComparison(comparisonDepth, stored);
   // A tap this close to a texel edge could land in the neighbour on the GPU (float coordinates); that
   // only matters when the neighbour's test gives the other answer.
-  const double fractionX = uvTexels.x - i;
-  const double fractionY = uvTexels.y - j;
-  const struct
+  for (const TexelEdge& edge : cell.edges)
   {
-    double distance;
-    int di;
-    int dj;
-  } edges[] = { { fractionX, -1, 0 }, { 1.0 - fractionX, 1, 0 }, { fractionY, 0, -1 }, { 1.0 - fractionY, 0, 1 } };
-  for (const auto& edge : edges)
-  {
-    if (edge.distance < 1e-3 && testTexel(i + edge.di, j + edge.dj).first != result)
+    if (edge.distance < 1e-3 && testTexel(edge.neighbour).first != result)
     {
       sample.texelEdgeMargin = std::min(sample.texelEdgeMargin, edge.distance);
     }

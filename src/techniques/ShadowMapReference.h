@@ -9,6 +9,9 @@
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <optional>
 
 namespace sl
@@ -40,6 +43,12 @@ struct ReferenceSample
   double bias = 0.0;
   double texelRatio = 0.0;
   bool evaluated = false; // false when the pixel never reaches a shadow test (uncovered, facing away, ...)
+
+  // Records a depth comparison of `compared` against the stored depth `stored`.
+  void noteDepthComparison(double compared, double stored)
+  {
+    depthMargin = std::min(depthMargin, std::abs(compared - stored) / std::max(1e-30, std::abs(stored)));
+  }
 };
 
 // Shared per-pixel preamble of hard and pcf: returns nullopt-equivalent `evaluated = false` with the
@@ -52,6 +61,20 @@ struct ShadowLookup
   double comparisonDepth = 0.0;
 };
 ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y);
+
+// The texel that holds a shadow-map position (in texels) and its four edges: the distance to each, in
+// texels, and the neighbour across it. A GPU tap within float rounding of an edge may read that neighbour.
+struct TexelEdge
+{
+  double distance = 0.0;
+  glm::ivec2 neighbour{ 0 };
+};
+struct TexelWithEdges
+{
+  glm::ivec2 texel{ 0 };
+  std::array<TexelEdge, 4> edges;
+};
+TexelWithEdges texelWithEdges(const glm::dvec2& uvTexels);
 
 // One nearest-texel comparison with margins (texel index clamped to the map like texelFetch).
 double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth,

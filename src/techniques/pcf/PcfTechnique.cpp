@@ -56,7 +56,7 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
       const int i = std::clamp(static_cast<int>(base.x) + di, 0, size - 1);
       const int j = std::clamp(static_cast<int>(base.y) + dj, 0, size - 1);
       const double stored = inputs.shadowMapWindow.at(i, j);
-      sample.depthMargin = std::min(sample.depthMargin, std::abs(referenceWindowDepth - stored) / std::max(1e-30, stored));
+      sample.noteDepthComparison(referenceWindowDepth, stored);
       const double texelWeight = (di ? weight.x : 1.0 - weight.x) * (dj ? weight.y : 1.0 - weight.y);
       result += texelWeight * (referenceWindowDepth <= stored ? 1.0 : 0.0);
     }

@@ -133,30 +133,18 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   const int poissonSamples = values.getInt("poisson_samples");
   const glm::dmat2 rotation = pixelRotation(x, y);
   const auto rotated = [&](int k) { return rotation * poissonDisk()[static_cast<std::size_t>(k)]; };
-  const auto note = [&](double comparedDepth, double z) {
-    result.sample.depthMargin = std::min(result.sample.depthMargin, std::abs(comparedDepth - z) / std::max(1e-30, std::abs(z)));
-  };
   // A tap within float rounding of a texel edge may read the neighbour on the GPU. That matters when the
   // neighbour decides differently, or (blocker search) holds a different depth for the average.
   const auto noteEdges = [&](const glm::dvec2& position, double comparedDepth, bool averagesDepth) {
-    const int i = static_cast<int>(std::floor(position.x));
-    const int j = static_cast<int>(std::floor(position.y));
-    const double z = texel(i, j);
-    const double fractionX = position.x - i;
-    const double fractionY = position.y - j;
-    const struct
-    {
-      double distance;
-      int di;
-      int dj;
-    } edges[] = { { fractionX, -1, 0 }, { 1.0 - fractionX, 1, 0 }, { fractionY, 0, -1 }, { 1.0 - fractionY, 0, 1 } };
-    for (const auto& edge : edges)
+    const TexelWithEdges cell = texelWithEdges(position);
+    const double z = texel(cell.texel.x, cell.texel.y);
+    for (const TexelEdge& edge : cell.edges)
     {
       if (edge.distance >= 1e-4)
       {
         continue;
       }
-      const double neighbour = texel(i + edge.di, j + edge.dj);
+      const double neighbour = texel(edge.neighbour.x, edge.neighbour.y);
       const bool differentDecision = (neighbour < comparedDepth) != (z < comparedDepth);
       const bool differentDepth = averagesDepth && z < comparedDepth && std::abs(neighbour - z) > 1e-6 * std::abs(z);
       if (differentDecision || differentDepth)
@@ -173,7 +161,7 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   const auto visitBlocker = [&](const glm::dvec2& position) {
     const double z = stored(position);
     const double compared = tapComparison(position);
-    note(compared, z);
+    result.sample.noteDepthComparison(compared, z);
     noteEdges(position, compared, true);
     if (z < compared)
     {
@@ -220,7 +208,7 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   const auto visitFilter = [&](const glm::dvec2& position) {
     const double z = stored(position);
     const double compared = tapComparison(position);
-    note(compared, z);
+    result.sample.noteDepthComparison(compared, z);
     noteEdges(position, compared, false);
     litSum += compared <= z ? 1.0 : 0.0;
     ++taps;
