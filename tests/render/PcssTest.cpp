@@ -140,13 +140,7 @@ TEST(Pcss, ReceiverPlaneBiasKeepsTheGrazingReceiverFromShadowingItself)
   for (int i = 0; i < 2; ++i)
   {
     const FrameResult frame = test::renderDataset(scene, "pcss", 128, 128, { settings[i] });
-    ReferenceInputs inputs;
-    inputs.scene = &scene;
-    inputs.light = &scene.lights[0];
-    inputs.position = frame.find("position")->image;
-    inputs.normal = frame.find("normal")->image;
-    inputs.coverage = frame.find("coverage")->image;
-    inputs.receives = frame.find("receives_shadows")->image;
+    const ReferenceInputs inputs = test::referenceInputs(frame, scene);
     ReferenceSettings referenceSettings;
     referenceSettings.samples = 256;
     const ReferenceResult rays = renderReference(inputs, referenceSettings);

@@ -82,13 +82,7 @@ TEST(ReferenceSm, AgreesWithTheRayTracedReferenceWithinItsDiscretisationError)
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult gpu =
       test::renderDataset(scene, "reference-sm", 128, 128, { "samples=256", "shadow_map_size=1024" });
-    ReferenceInputs inputs;
-    inputs.scene = &scene;
-    inputs.light = &scene.lights[0];
-    inputs.position = gpu.find("position")->image;
-    inputs.normal = gpu.find("normal")->image;
-    inputs.coverage = gpu.find("coverage")->image;
-    inputs.receives = gpu.find("receives_shadows")->image;
+    const ReferenceInputs inputs = test::referenceInputs(gpu, scene);
     ReferenceSettings settings;
     settings.samples = 1024;
     const ReferenceResult rays = renderReference(inputs, settings);

@@ -145,6 +145,18 @@ FrameResult renderDataset(const Scene& scene, const std::string& technique, int 
   return sharedRenderer().render(scene, request);
 }
 
+ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
+{
+  ReferenceInputs inputs;
+  inputs.scene = &scene;
+  inputs.light = &scene.lights.at(static_cast<std::size_t>(lightIndex));
+  inputs.position = frame.find("position")->image;
+  inputs.normal = frame.find("normal")->image;
+  inputs.coverage = frame.find("coverage")->image;
+  inputs.receives = frame.find("receives_shadows")->image;
+  return inputs;
+}
+
 ShadowMapInputs shadowMapInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
 {
   SL_CHECK(frame.lightView.has_value());

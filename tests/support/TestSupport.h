@@ -3,6 +3,7 @@
 #pragma once
 
 #include "passes/ShadowRenderer.h"
+#include "reference/ReferenceRenderer.h"
 #include "scene/Scene.h"
 #include "techniques/ShadowMapReference.h"
 
@@ -62,5 +63,8 @@ FrameResult renderDataset(const Scene& scene, const std::string& technique, int 
 
 // The read-back inputs a CPU reference of a shadow-map technique needs, from a rendered frame.
 ShadowMapInputs shadowMapInputs(const FrameResult& frame, const Scene& scene, int lightIndex = 0);
+
+// The same frame's receivers as inputs of the ray-traced reference (Embree) for the scene's light.
+ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, int lightIndex = 0);
 
 } // namespace sl::test
