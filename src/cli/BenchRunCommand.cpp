@@ -4,6 +4,7 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "io/OutputWriter.h"
+#include "metrics/Comparison.h"
 #include "metrics/ErrorMetrics.h"
 #include "passes/ShadowRenderer.h"
 #include "scene/Scene.h"
@@ -24,12 +25,6 @@ double median(std::vector<double> values)
   std::sort(values.begin(), values.end());
   const std::size_t middle = values.size() / 2;
   return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
-}
-
-nlohmann::json statisticsJson(const ErrorStatistics& statistics)
-{
-  return { { "pixels", statistics.pixels }, { "rmse", statistics.rmse }, { "mae", statistics.mae },
-    { "max_abs_error", statistics.maxAbsError }, { "fraction_above_0.05", statistics.fractionAbove005 } };
 }
 
 } // namespace
@@ -94,19 +89,10 @@ int runBenchConfiguration(const BenchRunOptions& options)
   if (!options.referenceFile.empty())
   {
     const std::vector<NamedImage> reference = readVti(options.referenceFile);
-    const auto array = [&](const std::vector<NamedImage>& images, const std::string& name) -> const ImageF& {
-      for (const NamedImage& named : images)
-      {
-        if (named.name == name)
-        {
-          return named.image;
-        }
-      }
-      throw InputError(options.referenceFile + ": no array '" + name + "'");
-    };
-    const ErrorMetrics metrics = computeErrorMetrics(last.find("visibility")->image, array(reference, "visibility"),
-      last.find("coverage")->image, array(reference, "coverage"));
-    result["error"] = { { "covered", statisticsJson(metrics.covered) }, { "penumbra", statisticsJson(metrics.penumbra) } };
+    const ErrorMetrics metrics = computeErrorMetrics(last.find("visibility")->image,
+      requireArray(reference, "visibility", options.referenceFile), last.find("coverage")->image,
+      requireArray(reference, "coverage", options.referenceFile));
+    result["error"] = metricsJson(metrics);
   }
   writeJson(result, options.resultFile);
   return 0;

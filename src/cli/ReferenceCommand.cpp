@@ -93,26 +93,13 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     { "sampling", options.sampling },
     { "seed", options.seed },
     { "threads", options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency()) },
-    { "ray_offset", settings.rayOffset >= 0.0 ? settings.rayOffset : 1e-4 * scene.bounds().radius() },
+    { "ray_offset", referenceRayOffset(scene, settings) },
     { "rays_traced", result.raysTraced },
     { "seconds", result.seconds },
     { "rays_per_second", result.raysPerSecond },
     { "gl_renderer", gbuffer.glRenderer },
   };
-  const NamedImage* coverage = nullptr;
-  for (const NamedImage& named : buffers)
-  {
-    if (named.name == "coverage")
-    {
-      coverage = &named;
-    }
-  }
-  nlohmann::json summaries = nlohmann::json::object();
-  for (const NamedImage& named : buffers)
-  {
-    summaries[named.name] = bufferSummary(named, coverage && named.name != "coverage" ? &coverage->image : nullptr);
-  }
-  stats["buffers"] = summaries;
+  stats["buffers"] = bufferSummaries(buffers);
   writeDirectoryAtomically(options.outDir, [&](const std::filesystem::path& dir) {
     writeBufferFiles(buffers, {}, nullptr, dir);
     writeJson(stats, dir / "stats.json");

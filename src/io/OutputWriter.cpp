@@ -165,15 +165,7 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       { "receiver_samples", view.receiverSampleCount },
     };
   }
-  const NamedImage* coverage = frame.find("coverage");
-  nlohmann::json buffers = nlohmann::json::object();
-  for (const NamedImage& named : frame.buffers)
-  {
-    // Summaries cover the pixels a surface covers, except coverage itself (over the whole image).
-    const bool overCovered = coverage && named.name != "coverage";
-    buffers[named.name] = bufferSummary(named, overCovered ? &coverage->image : nullptr);
-  }
-  stats["buffers"] = buffers;
+  stats["buffers"] = bufferSummaries(frame.buffers);
   nlohmann::json lightSpace = nlohmann::json::object();
   for (const NamedImage& named : frame.lightSpace)
   {
@@ -181,6 +173,18 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
   }
   stats["light_space"] = lightSpace;
   return stats;
+}
+
+nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers)
+{
+  const NamedImage* coverage = findNamed(buffers, "coverage");
+  nlohmann::json summaries = nlohmann::json::object();
+  for (const NamedImage& named : buffers)
+  {
+    const bool overCovered = coverage && named.name != "coverage";
+    summaries[named.name] = bufferSummary(named, overCovered ? &coverage->image : nullptr);
+  }
+  return summaries;
 }
 
 void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,
@@ -195,21 +199,11 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
   {
     writePng(dir / "image.png", *image);
   }
-  const auto find = [&](const std::string& name) -> const NamedImage* {
-    for (const NamedImage& named : buffers)
-    {
-      if (named.name == name)
-      {
-        return &named;
-      }
-    }
-    return nullptr;
-  };
-  if (const NamedImage* visibility = find("visibility"))
+  if (const NamedImage* visibility = findNamed(buffers, "visibility"))
   {
     writeExr(dir / "visibility.exr", visibility->image);
   }
-  const NamedImage* coverage = find("coverage");
+  const NamedImage* coverage = findNamed(buffers, "coverage");
   SL_CHECK(coverage);
   ImageU8 mask(coverage->image.width, coverage->image.height, 1);
   for (std::size_t i = 0; i < mask.data.size(); ++i)

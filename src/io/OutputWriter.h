@@ -24,6 +24,9 @@ struct OutputContext
 nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context);
 // min/max/mean/non-finite count of a buffer over the covered pixels (all pixels when coverage is null).
 nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage);
+// bufferSummary of each buffer, keyed by name: over the covered pixels (the "coverage" buffer), except
+// coverage itself (over the whole image).
+nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers);
 // buffers.vti (+ light_space.vti when not empty), image.png (when given and not empty), visibility.exr
 // (when a visibility buffer exists) and a heat map per scalar buffer, into an existing directory.
 void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,

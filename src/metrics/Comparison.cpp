@@ -7,31 +7,16 @@
 #include "vis/HeatMap.h"
 
 #include <cmath>
-#include <fstream>
 #include <utility>
 #include <vector>
 
 namespace sl
 {
-namespace
-{
-
-const NamedImage* findArray(const std::vector<NamedImage>& arrays, const std::string& name)
-{
-  for (const NamedImage& named : arrays)
-  {
-    if (named.name == name)
-    {
-      return &named;
-    }
-  }
-  return nullptr;
-}
 
 const ImageF& requireArray(const std::vector<NamedImage>& arrays, const std::string& name,
   const std::filesystem::path& file)
 {
-  if (const NamedImage* named = findArray(arrays, name))
+  if (const NamedImage* named = findNamed(arrays, name))
   {
     return named->image;
   }
@@ -44,8 +29,6 @@ const ImageF& requireArray(const std::vector<NamedImage>& arrays, const std::str
     ")"));
 }
 
-} // namespace
-
 Comparison compareVtiFiles(const std::filesystem::path& testFile, const std::filesystem::path& referenceFile,
   const std::string& array)
 {
@@ -55,8 +38,8 @@ Comparison compareVtiFiles(const std::filesystem::path& testFile, const std::fil
   const ImageF& reference = requireArray(referenceArrays, array, referenceFile);
   // A missing coverage array is passed as an empty image: compareImages then uses the other file's.
   const ImageF noCoverage;
-  const NamedImage* testCoverage = findArray(testArrays, "coverage");
-  const NamedImage* referenceCoverage = findArray(referenceArrays, "coverage");
+  const NamedImage* testCoverage = findNamed(testArrays, "coverage");
+  const NamedImage* referenceCoverage = findNamed(referenceArrays, "coverage");
   return compareImages(test, reference, testCoverage ? testCoverage->image : noCoverage,
     referenceCoverage ? referenceCoverage->image : noCoverage,
     ComparisonInputNames{ testFile.string(), referenceFile.string(), array });
@@ -105,13 +88,7 @@ void writeComparison(const Comparison& comparison, const std::filesystem::path& 
   writeDirectoryAtomically(outDir, [&](const std::filesystem::path& dir) {
     writeVti(dir / "error.vti", images);
     writeHeatMapPng(error, &validMask, heatMap, dir / "error.png");
-    std::ofstream metricsFile(dir / "metrics.json");
-    metricsFile << document.dump(2) << "\n";
-    metricsFile.close();
-    if (!metricsFile)
-    {
-      throw InputError((dir / "metrics.json").string() + ": cannot write");
-    }
+    writeJson(document, dir / "metrics.json");
   });
 }
 

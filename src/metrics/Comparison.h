@@ -6,9 +6,17 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace sl
 {
+
+struct NamedImage;
+
+// The image `name` among the arrays read from `file`; throws InputError naming the file, the array and the
+// arrays there.
+const ImageF& requireArray(const std::vector<NamedImage>& arrays, const std::string& name,
+  const std::filesystem::path& file);
 
 // Reads both files (readVti), takes `array` and "coverage" from each (coverage missing in one file: the other's
 // is used; missing in both: every pixel is compared) and compares them (compareImages). Throws InputError

@@ -23,16 +23,16 @@
 namespace sl
 {
 
+const NamedImage* findNamed(const std::vector<NamedImage>& images, const std::string& name)
+{
+  const auto found =
+    std::find_if(images.begin(), images.end(), [&](const NamedImage& named) { return named.name == name; });
+  return found == images.end() ? nullptr : &*found;
+}
+
 const NamedImage* FrameResult::find(const std::string& name) const
 {
-  for (const NamedImage& buffer : buffers)
-  {
-    if (buffer.name == name)
-    {
-      return &buffer;
-    }
-  }
-  return nullptr;
+  return findNamed(buffers, name);
 }
 
 const std::vector<BufferSpec>& commonBufferSpecs()

@@ -53,6 +53,9 @@ struct NamedImage
   std::vector<std::string> categoryLabels;
 };
 
+// The image called `name` in `images`, or nullptr.
+const NamedImage* findNamed(const std::vector<NamedImage>& images, const std::string& name);
+
 struct FrameResult
 {
   std::string technique;

@@ -27,14 +27,12 @@ std::filesystem::path freshDir(const std::string& name)
 
 const NamedImage& arrayNamed(const std::vector<NamedImage>& images, const std::string& name)
 {
-  for (const NamedImage& named : images)
+  const NamedImage* named = findNamed(images, name);
+  if (!named)
   {
-    if (named.name == name)
-    {
-      return named;
-    }
+    throw std::runtime_error("no array " + name);
   }
-  throw std::runtime_error("no array " + name);
+  return *named;
 }
 
 nlohmann::json readJson(const std::filesystem::path& path)
