@@ -9,7 +9,6 @@ namespace sl
 {
 
 ComputeProgram::ComputeProgram(const std::string& source, const std::string& label)
-  : label_(label)
 {
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   const char* text = source.c_str();

@@ -29,7 +29,6 @@ public:
 
 private:
   unsigned int program_ = 0;
-  std::string label_;
 };
 
 // A small std430 buffer of 32-bit words bound at a storage binding point.

@@ -114,17 +114,6 @@ Image<std::uint32_t> readUnsignedTextureExact(vtkTextureObject* texture, int com
   return image;
 }
 
-ImageF readUnsignedTexture(vtkTextureObject* texture, int components)
-{
-  const Image<std::uint32_t> exact = readUnsignedTextureExact(texture, components);
-  ImageF image(exact.width, exact.height, components);
-  for (std::size_t i = 0; i < exact.data.size(); ++i)
-  {
-    image.data[i] = static_cast<float>(exact.data[i]);
-  }
-  return image;
-}
-
 ImageU8 readColorTexture(vtkTextureObject* texture)
 {
   ImageU8 rgba(static_cast<int>(texture->GetWidth()), static_cast<int>(texture->GetHeight()), 4);

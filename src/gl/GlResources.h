@@ -33,9 +33,7 @@ vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window,
 // Reads a whole texture back (glGetTextureImage). Row 0 is the bottom row.
 ImageF readFloatTexture(vtkTextureObject* texture, int components);
 ImageF readDepthTexture(vtkTextureObject* texture);
-// An unsigned-integer texture (R32UI / RG32UI ...) read back and converted to float.
-ImageF readUnsignedTexture(vtkTextureObject* texture, int components);
-// The same without conversion (tests compare integer tables exactly).
+// An unsigned-integer texture (R32UI / RG32UI ...), exactly (tests compare integer tables bit for bit).
 Image<std::uint32_t> readUnsignedTextureExact(vtkTextureObject* texture, int components);
 ImageU8 readColorTexture(vtkTextureObject* texture); // RGB
 

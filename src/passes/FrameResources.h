@@ -39,8 +39,6 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> gbufferNormal;
   vtkSmartPointer<vtkTextureObject> gbufferAlbedoDepth;
   vtkSmartPointer<vtkTextureObject> gbufferDepth;
-  ImageF positionReadback; // read back by the light-space stage for focusing
-  ImageF normalReadback;
 
   // Light-space stage (only when the technique needs the shadow map).
   bool hasLightView = false;

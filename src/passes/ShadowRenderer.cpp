@@ -180,8 +180,8 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   result.eglPlatform = window_->GetEglContext()->platformName();
 
   // Read everything back.
-  const ImageF position = frame.positionReadback.empty() ? readFloatTexture(frame.gbufferPosition, 4) : frame.positionReadback;
-  const ImageF normal = frame.normalReadback.empty() ? readFloatTexture(frame.gbufferNormal, 4) : frame.normalReadback;
+  const ImageF position = readFloatTexture(frame.gbufferPosition, 4);
+  const ImageF normal = readFloatTexture(frame.gbufferNormal, 4);
   const ImageF albedoDepth = readFloatTexture(frame.gbufferAlbedoDepth, 4);
   const auto channels = [](const ImageF& source, int first, int count) {
     ImageF out(source.width, source.height, count);
@@ -225,23 +225,23 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   {
     // Exported as floats: for the int32 table these are the wrapped unsigned sums (only box differences of
     // them are meaningful), for the float table the centred sums.
-    const ImageF table = frame.summedAreaTableIsInteger ? readUnsignedTexture(frame.summedAreaTable, 2)
-                                                        : readFloatTexture(frame.summedAreaTable, 2);
+    ImageF table;
     if (frame.summedAreaTableIsInteger)
     {
       result.integerSummedAreaTable = readUnsignedTextureExact(frame.summedAreaTable, 2);
+      table = ImageF(result.integerSummedAreaTable->width, result.integerSummedAreaTable->height, 2);
+      std::copy(result.integerSummedAreaTable->data.begin(), result.integerSummedAreaTable->data.end(), table.data.begin());
+    }
+    else
+    {
+      table = readFloatTexture(frame.summedAreaTable, 2);
     }
     const char* names[2] = { "sat_z", "sat_z2" };
     const char* docs[2] = { "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)",
       "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
     for (int c = 0; c < 2; ++c)
     {
-      ImageF channel(table.width, table.height, 1);
-      for (std::size_t i = 0; i < channel.data.size(); ++i)
-      {
-        channel.data[i] = table.data[i * 2 + c];
-      }
-      result.lightSpace.push_back({ names[c], std::move(channel), "", docs[c] });
+      result.lightSpace.push_back({ names[c], channels(table, c, 1), "", docs[c] });
     }
   }
   if (frame.momentMap)
@@ -251,12 +251,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     const char* docs[3] = { "prefiltered E[z] (linear depth)", "prefiltered E[z^2]", "prefiltered E[exp(c z_n)] (esm)" };
     for (int c = 0; c < 3; ++c)
     {
-      ImageF channel(moments.width, moments.height, 1);
-      for (std::size_t i = 0; i < channel.data.size(); ++i)
-      {
-        channel.data[i] = moments.data[i * 4 + c];
-      }
-      result.lightSpace.push_back({ names[c], std::move(channel), "", docs[c] });
+      result.lightSpace.push_back({ names[c], channels(moments, c, 1), "", docs[c] });
     }
   }
   if (frame.shadedImage)

@@ -5,6 +5,7 @@
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "techniques/savsm/SummedAreaTable.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -29,8 +30,7 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
   const bool integer = frame.parameters.choice("sat_precision") == "int32";
   const int size = frame.lightView.resolution;
   // int32: b bits of fixed point so that a box of the whole map sums below 2^32 (SatBuild.glsl).
-  const int bits = std::min(16, 32 - static_cast<int>(std::ceil(std::log2(static_cast<double>(size) * size))));
-  const double fixedPointScale = std::ldexp(1.0, bits) - 1.0;
+  const double fixedPointScale = sl::satFixedPointScale(size);
 
   auto table = vtkSmartPointer<vtkTextureObject>::New();
   table->SetContext(window);

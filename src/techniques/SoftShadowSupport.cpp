@@ -29,6 +29,16 @@ void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& fram
   program->SetUniform2f("shadowTexelTangent", texelTangent);
   const float windowMin[2] = { static_cast<float>(view.window.x), static_cast<float>(view.window.z) };
   program->SetUniform2f("shadowWindowMin", windowMin);
+  setPoissonDiskUniform(program);
+}
+
+ShaderDefines poissonDiskDefines()
+{
+  return { { "MAX_POISSON_SAMPLES", std::to_string(maxPoissonSamples) } };
+}
+
+void setPoissonDiskUniform(vtkShaderProgram* program)
+{
   if (program->IsUniformUsed("poissonDisk"))
   {
     program->SetUniform2fv("poissonDisk", maxPoissonSamples, poissonDiskFloats().data());

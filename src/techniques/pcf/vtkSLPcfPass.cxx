@@ -2,6 +2,7 @@
 
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "techniques/SoftShadowSupport.h"
 #include "techniques/pcf/PcfTechnique.h"
 
 #include <vtkObjectFactory.h>
@@ -15,17 +16,14 @@ vtkSLPcfPass::~vtkSLPcfPass() = default;
 
 sl::ShaderDefines vtkSLPcfPass::GetExtraDefines() const
 {
-  return { { "MAX_POISSON_SAMPLES", std::to_string(sl::maxPoissonSamples) } };
+  return sl::poissonDiskDefines();
 }
 
 std::vector<vtkTextureObject*> vtkSLPcfPass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   sl::FrameResources& frame = *this->Frame;
   std::vector<vtkTextureObject*> bound;
-  if (program->IsUniformUsed("poissonDisk"))
-  {
-    program->SetUniform2fv("poissonDisk", sl::maxPoissonSamples, sl::poissonDiskFloats().data());
-  }
+  sl::setPoissonDiskUniform(program);
   if (program->IsUniformUsed("shadowMapCompare"))
   {
     if (this->CompareSampler == 0)

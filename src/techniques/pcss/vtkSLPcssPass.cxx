@@ -1,7 +1,6 @@
 #include "techniques/pcss/vtkSLPcssPass.h"
 
 #include "passes/FrameResources.h"
-#include "techniques/SamplingPatterns.h"
 #include "techniques/SoftShadowSupport.h"
 
 #include <vtkObjectFactory.h>
@@ -11,7 +10,7 @@ vtkStandardNewMacro(vtkSLPcssPass);
 
 sl::ShaderDefines vtkSLPcssPass::GetExtraDefines() const
 {
-  return { { "MAX_POISSON_SAMPLES", std::to_string(sl::maxPoissonSamples) } };
+  return sl::poissonDiskDefines();
 }
 
 std::vector<vtkTextureObject*> vtkSLPcssPass::SetTechniqueUniforms(vtkShaderProgram* program)

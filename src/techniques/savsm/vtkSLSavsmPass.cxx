@@ -2,7 +2,6 @@
 
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
-#include "techniques/SamplingPatterns.h"
 #include "techniques/SoftShadowSupport.h"
 
 #include <vtkObjectFactory.h>
@@ -13,7 +12,7 @@ vtkStandardNewMacro(vtkSLSavsmPass);
 
 sl::ShaderDefines vtkSLSavsmPass::GetExtraDefines() const
 {
-  return { { "MAX_POISSON_SAMPLES", std::to_string(sl::maxPoissonSamples) } };
+  return sl::poissonDiskDefines();
 }
 
 std::vector<vtkTextureObject*> vtkSLSavsmPass::SetTechniqueUniforms(vtkShaderProgram* program)
