@@ -4,10 +4,11 @@ set(SL_SHADER_FILES
   common/FullScreenVertex.glsl
   common/GBufferInputs.glsl
   common/LightModel.glsl
-  common/PixelHash.glsl
+  common/SamplingPatterns.glsl
   common/ShadowMapCommon.glsl
   common/ShadowReceiver.glsl
   common/TexelRatio.glsl
+  common/Chebyshev.glsl
   common/MomentLookup.glsl
   common/SoftShadowKernels.glsl
   common/SatLookup.glsl

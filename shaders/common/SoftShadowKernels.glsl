@@ -1,12 +1,11 @@
 // Kernels of the PCSS family (PCSS, SAVSM; VSSM Alg. 1 L7/L16) and the receiver-plane depth bias
-// (Isidoro 2006) they share. Needs common/ShadowMapCommon.glsl and, for Poisson taps, common/PixelHash.glsl.
+// (Isidoro 2006) they share. Needs common/ShadowMapCommon.glsl and, for Poisson taps, common/SamplingPatterns.glsl.
 // RECEIVER_PLANE_BIAS_* come from the technique's `receiver_plane_bias` parameter; param_max_grid_taps from
 // its `max_grid_taps`.
 uniform float lightSizeWorld;    // area light side or diameter; 0 for point and spot lights
 uniform float lightNearDepth;    // the map's near plane: the blocker-search plane of Alg. 1 L7
 uniform vec2 shadowTexelTangent; // size of a texel in tangent units (x / depth, y / depth)
 uniform vec2 shadowWindowMin;    // tangent of texel coordinate (0, 0)
-uniform vec2 poissonDisk[MAX_POISSON_SAMPLES];
 
 // Half extent, in texels, of the map region through which occluders on the plane at `planeDepth` can hide
 // part of the light from a receiver at `receiverDepth` (similar triangles through the light's edges).

@@ -13,18 +13,14 @@ float texelRatio(vec2 pixel, vec3 pWs, vec3 nWs)
 {
   vec3 nearPoint = cameraNearOrigin + pixel.x * cameraNearStepX + pixel.y * cameraNearStepY;
   vec3 ray = cameraRayOrigin + pixel.x * cameraRayStepX + pixel.y * cameraRayStepY;
-  vec3 nearStepX = cameraNearStepX;
-  vec3 nearStepY = cameraNearStepY;
-  vec3 rayStepX = cameraRayStepX;
-  vec3 rayStepY = cameraRayStepY;
   float normalDotRay = dot(nWs, ray);
   if (abs(normalDotRay) < 1e-12 * length(ray))
   {
     return 0.0;
   }
   float s = dot(pWs - nearPoint, ray) / dot(ray, ray);
-  vec3 stepX = nearStepX + s * rayStepX;
-  vec3 stepY = nearStepY + s * rayStepY;
+  vec3 stepX = cameraNearStepX + s * cameraRayStepX;
+  vec3 stepY = cameraNearStepY + s * cameraRayStepY;
   vec3 dpdx = stepX - ray * (dot(nWs, stepX) / normalDotRay);
   vec3 dpdy = stepY - ray * (dot(nWs, stepY) / normalDotRay);
 

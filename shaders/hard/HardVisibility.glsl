@@ -24,9 +24,10 @@ void main()
   {
     return;
   }
-  outVisibility = shadowTest(receiver.uvTexels, receiver.comparisonDepth);
+  float stored = storedDepth(receiver.uvTexels);
+  outVisibility = receiver.comparisonDepth <= stored ? 1.0 : 0.0; // shadowTest, with the depth kept for the margin
   outKernelTexels = 1.0;
   outTexelRatio = texelRatio(gl_FragCoord.xy, receiver.pWs, receiver.nWs);
   outDepthBias = receiver.bias;
-  outDepthMargin = receiver.comparisonDepth - storedDepth(receiver.uvTexels);
+  outDepthMargin = receiver.comparisonDepth - stored;
 }

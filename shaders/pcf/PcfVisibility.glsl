@@ -9,9 +9,8 @@
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
 #include "common/TexelRatio.glsl"
-#include "common/PixelHash.glsl"
+#include "common/SamplingPatterns.glsl"
 
-uniform vec2 poissonDisk[MAX_POISSON_SAMPLES]; // unit disk
 uniform sampler2DShadow shadowMapCompare;      // hardware depth, GL_LINEAR + GL_COMPARE_REF_TO_TEXTURE (LEQUAL)
 uniform vec4 lightDepthToClip;                 // clip.z = -x d + y, clip.w = -z d + w for linear depth d
 

@@ -20,7 +20,7 @@
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
-#include "common/PixelHash.glsl"
+#include "common/SamplingPatterns.glsl"
 #include "common/SoftShadowKernels.glsl"
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
@@ -49,7 +49,6 @@ void main()
     return;
   }
   float d = receiver.depthLin;
-  float comparison = receiver.comparisonDepth;
   float bias = receiver.bias;
   setReceiverPlane(receiver.pWs, receiver.nWs);
   mat2 rotation = pixelRotation(uvec2(pixel));

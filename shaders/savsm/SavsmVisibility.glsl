@@ -7,9 +7,10 @@
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
-#include "common/PixelHash.glsl"
+#include "common/SamplingPatterns.glsl"
 #include "common/SoftShadowKernels.glsl"
 #include "common/SatLookup.glsl"
+#include "common/Chebyshev.glsl"
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_P_MAX) out float outPMax;
@@ -83,9 +84,8 @@ void main()
   vec2 moments = satBoxMoments(lo, hi);
   float mean = moments.x;
   float variance = max(moments.y, param_min_variance * d * d);
-  float pMax = t <= mean ? 1.0 : variance / (variance + (t - mean) * (t - mean));
-  float amount = param_light_bleeding_reduction;
-  outVisibility = clamp((pMax - amount) / (1.0 - amount), 0.0, 1.0);
+  float pMax = chebyshevUpperBound(mean, variance, t);
+  outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
   outPMax = pMax;
 
   // Light leak: p_max against the true PCF over the same rectangle (every texel up to MAX_GRID_TAPS per

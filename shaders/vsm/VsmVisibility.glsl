@@ -10,6 +10,7 @@
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
 #include "common/MomentLookup.glsl"
+#include "common/Chebyshev.glsl"
 
 uniform int kernelWidth; // prefilter_texels
 
@@ -36,9 +37,8 @@ void main()
   float d = receiver.depthLin;
   float variance = max(moments.y - mean * mean, param_min_variance * d * d);
   float t = receiver.comparisonDepth;
-  float pMax = t <= mean ? 1.0 : variance / (variance + (t - mean) * (t - mean));
-  float amount = param_light_bleeding_reduction;
-  outVisibility = clamp((pMax - amount) / (1.0 - amount), 0.0, 1.0);
+  float pMax = chebyshevUpperBound(mean, variance, t);
+  outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
   outPMax = pMax;
   outLightLeak = pMax - boxPcf(receiver.uvTexels, t, kernelWidth);
   outKernelTexels = float(kernelWidth);

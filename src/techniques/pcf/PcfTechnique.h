@@ -3,7 +3,7 @@
 // Parameters: the shadow-map ones (ShadowMapParameters.h) and
 //   kernel_texels    [texels]  grid: kernel_texels x kernel_texels taps one texel apart, centred on the
 //                              receiver's exact shadow-map position; poisson: disk diameter
-//   pattern          grid | poisson (rotated per pixel by PixelHash.glsl)
+//   pattern          grid | poisson (rotated per pixel by common/SamplingPatterns.glsl)
 //   poisson_samples  taps of the Poisson disk (poisson only)
 //   filter           nearest: each tap is one texel comparison; hardware_bilinear: each tap is the
 //                    hardware's bilinearly weighted 2x2 comparison (sampler2DShadow, GL_LINEAR)

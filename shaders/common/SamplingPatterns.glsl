@@ -1,3 +1,8 @@
+// Sampling patterns of the filtering techniques (pcf, pcss, savsm), twins of src/techniques/SamplingPatterns:
+// the fixed Poisson disk (MAX_POISSON_SAMPLES points in the unit disk, set by sl::setPoissonDiskUniform) and
+// its per-pixel rotation.
+uniform vec2 poissonDisk[MAX_POISSON_SAMPLES];
+
 // Per-pixel pseudo-random rotation for sampling patterns (a 32-bit integer hash, "lowbias32" by Chris
 // Wellons), exact in integer arithmetic so the CPU mirror (sl::pixelHash) reproduces it bit for bit.
 uint pixelHash(uvec2 pixel)
