@@ -12,6 +12,8 @@ set(SL_SHADER_FILES
   common/MomentLookup.glsl
   common/SoftShadowKernels.glsl
   common/SatLookup.glsl
+  common/HsmLayout.glsl
+  common/HsmLookup.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
   lightspace/LightDepthVertex.glsl
@@ -25,7 +27,9 @@ set(SL_SHADER_FILES
   vsm/VsmVisibility.glsl
   esm/EsmVisibility.glsl
   sat/SatBuild.glsl
+  hsm/HsmBuild.glsl
   savsm/SavsmVisibility.glsl
+  vssm/VssmVisibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

@@ -1,4 +1,4 @@
-// Kernels of the PCSS family (PCSS, SAVSM; VSSM Alg. 1 L7/L16) and the receiver-plane depth bias
+// Kernels of the PCSS family (PCSS, SAVSM, VSSM; VSSM Alg. 1 L7/L16) and the receiver-plane depth bias
 // (Isidoro 2006) they share. Needs common/ShadowMapCommon.glsl and, for Poisson taps, common/SamplingPatterns.glsl.
 // RECEIVER_PLANE_BIAS_* come from the technique's `receiver_plane_bias` parameter; param_max_grid_taps from
 // its `max_grid_taps`.
@@ -15,6 +15,27 @@ vec2 kernelHalfTexels(float receiverDepth, float planeDepth)
   return vec2(max(halfTangent, 0.0)) / shadowTexelTangent;
 }
 
+// The texel rectangle of a kernel: texels whose centres lie in [uv - h, uv + h] (at least the texel
+// containing uv), clamped to the map.
+void kernelRectangle(vec2 uvTexels, vec2 halfTexels, out ivec2 lo, out ivec2 hi)
+{
+  vec2 first = ceil(uvTexels - halfTexels - 0.5);
+  vec2 last = floor(uvTexels + halfTexels - 0.5);
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    if (last[axis] < first[axis])
+    {
+      first[axis] = floor(uvTexels[axis]);
+      last[axis] = first[axis];
+    }
+  }
+  // Clamped as floats: a kernel far wider than the map must not overflow the int conversion.
+  lo = ivec2(clamp(first, vec2(0.0), vec2(shadowMapSize - 1)));
+  hi = ivec2(clamp(last, vec2(0.0), vec2(shadowMapSize - 1)));
+}
+
+// Grid kernels and the blocker search: techniques with PCSS's blocker_search and max_grid_taps parameters.
+#ifdef BLOCKER_SEARCH
 // Grid sampling of a kernel, per axis: the texels whose centres lie in [uv - h, uv + h] (at least the
 // texel containing uv), or MAX_GRID_TAPS evenly spaced taps when that is more.
 struct KernelGrid
@@ -53,6 +74,8 @@ KernelGrid kernelGrid(vec2 uv, vec2 halfTexels)
   return grid;
 }
 
+#endif
+
 // The comparison depth of a tap at `tapTexels`: the receiver's depth, or (receiver_plane_bias) the depth
 // of its tangent plane along the tap's light ray; minus the bias either way.
 vec3 receiverPlane; // light view space normal, scaled so that dot(receiverPlane, X) = 1 on the plane
@@ -74,6 +97,7 @@ float tapComparisonDepth(vec2 tapTexels, float d, float bias)
   return d - bias;
 }
 
+#ifdef BLOCKER_SEARCH
 // Blocker search over the kernel of half extent `searchHalf` (texels) around uvTexels: the sum and count of
 // the depths nearer than each tap's comparison depth, and the taps read. Grid (every texel, capped at
 // MAX_GRID_TAPS per axis) or rotated Poisson per BLOCKER_SEARCH.
@@ -120,6 +144,7 @@ BlockerSearch searchBlockers(vec2 uvTexels, vec2 searchHalf, float d, float bias
 #endif
   return result;
 }
+#endif
 
 // Sets up receiverPlane for tapComparisonDepth from the receiver's world position and normal.
 void setReceiverPlane(vec3 pWs, vec3 nWs)

@@ -21,24 +21,6 @@ layout(location = OUT_AVG_BLOCKER_DEPTH) out float outAvgBlockerDepth;
 layout(location = OUT_PENUMBRA_KERNEL_TEXELS) out float outPenumbraKernelTexels;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
 
-// The texel rectangle of a kernel: texels whose centres lie in [uv - h, uv + h] (at least the texel
-// containing uv), clamped to the map.
-void kernelRectangle(vec2 uvTexels, vec2 halfTexels, out ivec2 lo, out ivec2 hi)
-{
-  vec2 first = ceil(uvTexels - halfTexels - 0.5);
-  vec2 last = floor(uvTexels + halfTexels - 0.5);
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    if (last[axis] < first[axis])
-    {
-      first[axis] = floor(uvTexels[axis]);
-      last[axis] = first[axis];
-    }
-  }
-  lo = clamp(ivec2(first), ivec2(0), ivec2(shadowMapSize - 1));
-  hi = clamp(ivec2(last), ivec2(0), ivec2(shadowMapSize - 1));
-}
-
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);

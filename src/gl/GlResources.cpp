@@ -2,6 +2,8 @@
 
 #include "core/Error.h"
 
+#include <algorithm>
+
 #include <vtkOpenGLBufferObject.h>
 #include <vtkOpenGLRenderTimer.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -93,6 +95,28 @@ ImageF readFloatTexture(vtkTextureObject* texture, int components)
     static_cast<GLsizei>(image.data.size() * sizeof(float)), image.data.data());
   checkGlErrors("texture read-back");
   return image;
+}
+
+std::vector<ImageF> readFloatTextureLayers(vtkTextureObject* texture, int components)
+{
+  static const GLenum formats[] = { 0, GL_RED, GL_RG, GL_RGB, GL_RGBA };
+  const int width = static_cast<int>(texture->GetWidth());
+  const int height = static_cast<int>(texture->GetHeight());
+  const int layers = std::max(1, static_cast<int>(texture->GetDepth()));
+  std::vector<float> data(static_cast<std::size_t>(width) * height * layers * components);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureImage(texture->GetHandle(), 0, formats[components], GL_FLOAT,
+    static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
+  checkGlErrors("texture read-back");
+  std::vector<ImageF> images;
+  const std::size_t layerValues = static_cast<std::size_t>(width) * height * components;
+  for (int layer = 0; layer < layers; ++layer)
+  {
+    ImageF image(width, height, components);
+    std::copy(data.begin() + layer * layerValues, data.begin() + (layer + 1) * layerValues, image.data.begin());
+    images.push_back(std::move(image));
+  }
+  return images;
 }
 
 ImageF readDepthTexture(vtkTextureObject* texture)

@@ -34,6 +34,8 @@ vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window,
 ImageF readFloatTexture(vtkTextureObject* texture, int components);
 ImageF readDepthTexture(vtkTextureObject* texture);
 // An unsigned-integer texture (R32UI / RG32UI ...), exactly (tests compare integer tables bit for bit).
+// Every layer of a 3D texture (one image for a 2D one).
+std::vector<ImageF> readFloatTextureLayers(vtkTextureObject* texture, int components);
 Image<std::uint32_t> readUnsignedTextureExact(vtkTextureObject* texture, int components);
 ImageU8 readColorTexture(vtkTextureObject* texture); // RGB
 

@@ -52,6 +52,10 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> summedAreaTable;
   bool summedAreaTableIsInteger = false;
   double summedAreaTableFixedPointScale = 0.0; // int32: 2^b - 1 (vtkSLSatPass picks b)
+  // Hierarchical-shadow-map stage: RG32F (min, max) of levels 1..L, a mip-map atlas (N x N) or N-buffers
+  // (N x N x L, layer k - 1 = level k); see src/lightspace/HierarchicalShadowMap.h.
+  vtkSmartPointer<vtkTextureObject> hierarchicalShadowMap;
+  bool hierarchicalShadowMapIsNBuffers = false;
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F.
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> techniqueTargets;

@@ -7,6 +7,7 @@
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLLightDepthPass.h"
 #include "passes/vtkSLMomentMapPass.h"
+#include "passes/vtkSLHsmPass.h"
 #include "passes/vtkSLSatPass.h"
 #include "passes/vtkSLShadingPass.h"
 #include "passes/vtkSLTechniquePass.h"
@@ -99,6 +100,10 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
     if (technique.needs(LightStructure::SummedAreaTable))
     {
       stages.push_back(vtkSmartPointer<vtkSLSatPass>::New());
+    }
+    if (technique.needs(LightStructure::HierarchicalShadowMap))
+    {
+      stages.push_back(vtkSmartPointer<vtkSLHsmPass>::New());
     }
     stages.push_back(technique.createPass());
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
@@ -242,6 +247,20 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     for (int c = 0; c < 2; ++c)
     {
       result.lightSpace.push_back({ names[c], channels(table, c, 1), "", docs[c] });
+    }
+  }
+  if (frame.hierarchicalShadowMap)
+  {
+    // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level.
+    const std::vector<ImageF> layers = readFloatTextureLayers(frame.hierarchicalShadowMap, 2);
+    for (std::size_t layer = 0; layer < layers.size(); ++layer)
+    {
+      const std::string suffix = frame.hierarchicalShadowMapIsNBuffers ? "_" + std::to_string(layer + 1) : "";
+      const std::string what = frame.hierarchicalShadowMapIsNBuffers
+        ? "over the 2^" + std::to_string(layer + 1) + " square at each texel (N-buffers level " + std::to_string(layer + 1) + ")"
+        : "of each node, mip-map levels 1..L packed in an atlas (level 1 at the origin, the others stacked to its right)";
+      result.lightSpace.push_back({ "hsm_min" + suffix, channels(layers[layer], 0, 1), "world units", "minimum depth " + what });
+      result.lightSpace.push_back({ "hsm_max" + suffix, channels(layers[layer], 1, 1), "world units", "maximum depth " + what });
     }
   }
   if (frame.momentMap)

@@ -10,6 +10,7 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLLightDepthPass.cxx
   src/passes/vtkSLMomentMapPass.cxx
   src/passes/vtkSLSatPass.cxx
+  src/passes/vtkSLHsmPass.cxx
   src/passes/vtkSLTechniquePass.cxx
   src/passes/vtkSLShadingPass.cxx
   src/passes/ShadowRenderer.cpp)

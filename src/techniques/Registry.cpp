@@ -8,6 +8,7 @@
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 #include "techniques/savsm/SavsmTechnique.h"
 #include "techniques/vsm/VsmTechnique.h"
+#include "techniques/vssm/VssmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
 
 namespace sl
@@ -22,6 +23,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     vsmTechnique(),
     esmTechnique(),
     savsmTechnique(),
+    vssmTechnique(),
     vtkTechnique(),
     referenceSmTechnique(),
   };

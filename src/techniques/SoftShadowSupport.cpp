@@ -1,9 +1,13 @@
 #include "techniques/SoftShadowSupport.h"
 
 #include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
 #include "techniques/SamplingPatterns.h"
 
 #include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+#include <algorithm>
 
 namespace sl
 {
@@ -14,8 +18,82 @@ std::vector<ParameterSpec> softShadowParameters()
     { "blocker_search", 0, 0, 1, "", "grid: every texel of the search kernel w_i (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true },
     { "max_grid_taps", 32, 1, 256, "taps per axis", "grid kernels wider than this are sampled on a regular sub-grid of this size (the paper's 30x30 banding limit)", {}, true },
     { "poisson_samples", 32, 1, maxPoissonSamples, "taps", "taps per step for the poisson variants", {}, true },
-    { "receiver_plane_bias", 1, 0, 1, "", "on: each tap compares against the receiver's tangent plane (Isidoro 2006), so sloped receivers do not shadow themselves across wide kernels; off: one depth per pixel", { "off", "on" }, true },
+    receiverPlaneBiasParameter(),
   };
+}
+
+ParameterSpec receiverPlaneBiasParameter()
+{
+  return { "receiver_plane_bias", 1, 0, 1, "", "on: each tap compares against the receiver's tangent plane (Isidoro 2006), so sloped receivers do not shadow themselves across wide kernels; off: one depth per pixel", { "off", "on" }, true };
+}
+
+glm::dvec2 SoftShadowGeometry::kernelHalfTexels(double planeDepthValue) const
+{
+  const double halfTangent = 0.5 * lightSize * (d - planeDepthValue) / (planeDepthValue * d);
+  return glm::dvec2(std::max(halfTangent, 0.0)) / texelTangent;
+}
+
+std::optional<double> SoftShadowGeometry::planeDepth(const glm::dvec2& tapTexels) const
+{
+  if (!usePlane)
+  {
+    return std::nullopt;
+  }
+  const glm::dvec3 ray(windowMin + tapTexels * texelTangent, -1.0);
+  const double depth = 1.0 / glm::dot(plane, ray);
+  return depth > 0.0 ? std::optional<double>(depth) : std::nullopt;
+}
+
+double SoftShadowGeometry::tapComparisonDepth(const glm::dvec2& tapTexels, double bias) const
+{
+  const std::optional<double> depth = planeDepth(tapTexels);
+  return depth ? std::clamp(*depth, 0.5 * d, 2.0 * d) - bias : d - bias;
+}
+
+SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const ShadowLookup& lookup,
+  bool receiverPlaneBias, int x, int y)
+{
+  const LightView& view = inputs.lightView;
+  SoftShadowGeometry geometry;
+  geometry.lightSize = inputs.light->type == LightType::Area ? inputs.light->size : 0.0;
+  geometry.nearDepth = view.nearDepth;
+  geometry.texelTangent = glm::dvec2((view.window.y - view.window.x) / view.resolution, (view.window.w - view.window.z) / view.resolution);
+  geometry.windowMin = glm::dvec2(view.window.x, view.window.z);
+  geometry.mapSize = inputs.shadowMapLinear.width;
+  geometry.d = lookup.sm.depthLin;
+  // setReceiverPlane(): the tangent plane in light view space, scaled so dot(plane, X) = 1 on it.
+  const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+  const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
+  const glm::dvec3 nLs = glm::dmat3(view.viewFromWorld) * nWs;
+  const glm::dvec3 pLs = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
+  const double planeOffset = glm::dot(nLs, pLs);
+  geometry.usePlane = receiverPlaneBias && std::abs(planeOffset) > 1e-12;
+  geometry.plane = geometry.usePlane ? nLs / planeOffset : glm::dvec3(0.0);
+  return geometry;
+}
+
+TexelRectangle kernelRectangle(const glm::dvec2& uvTexels, const glm::dvec2& halfTexels, int mapSize, double* edgeMargin)
+{
+  TexelRectangle rectangle;
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    const double low = uvTexels[axis] - halfTexels[axis] - 0.5;
+    const double high = uvTexels[axis] + halfTexels[axis] - 0.5;
+    if (edgeMargin)
+    {
+      *edgeMargin = std::min({ *edgeMargin, std::abs(low - std::round(low)), std::abs(high - std::round(high)) });
+    }
+    double first = std::ceil(low);
+    double last = std::floor(high);
+    if (last < first)
+    {
+      first = std::floor(uvTexels[axis]);
+      last = first;
+    }
+    rectangle.lo[axis] = static_cast<int>(std::clamp(first, 0.0, mapSize - 1.0));
+    rectangle.hi[axis] = static_cast<int>(std::clamp(last, 0.0, mapSize - 1.0));
+  }
+  return rectangle;
 }
 
 void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& frame)
@@ -30,6 +108,14 @@ void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& fram
   const float windowMin[2] = { static_cast<float>(view.window.x), static_cast<float>(view.window.z) };
   program->SetUniform2f("shadowWindowMin", windowMin);
   setPoissonDiskUniform(program);
+}
+
+vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameResources& frame)
+{
+  program->SetUniformf("satDepthNear", static_cast<float>(frame.lightView.nearDepth));
+  program->SetUniformf("satDepthFar", static_cast<float>(frame.lightView.farDepth));
+  setFloatIfUsed(program, "satFixedPointScale", frame.summedAreaTableFixedPointScale);
+  return bindTexture(program, "satTable", frame.summedAreaTable);
 }
 
 ShaderDefines poissonDiskDefines()

@@ -3,9 +3,13 @@
 #pragma once
 
 #include "gl/ShaderLibrary.h"
+#include "techniques/ShadowMapReference.h"
 #include "techniques/Technique.h"
 
+#include <optional>
+
 class vtkShaderProgram;
+class vtkTextureObject;
 
 namespace sl
 {
@@ -19,7 +23,44 @@ void setPoissonDiskUniform(vtkShaderProgram* program);
 
 // blocker_search, max_grid_taps, poisson_samples, receiver_plane_bias.
 std::vector<ParameterSpec> softShadowParameters();
+ParameterSpec receiverPlaneBiasParameter();
 // lightSizeWorld, lightNearDepth, shadowTexelTangent, shadowWindowMin, poissonDisk.
 void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& frame);
+// The summed-area table and the uniforms of shaders/common/SatLookup.glsl (savsm, vssm); returns the bound
+// texture, to deactivate after drawing.
+vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameResources& frame);
+
+// CPU mirror (double precision) of shaders/common/SoftShadowKernels.glsl at one receiver.
+struct SoftShadowGeometry
+{
+  double lightSize = 0.0; // area light side or diameter; 0 for point and spot lights
+  double nearDepth = 0.0;
+  glm::dvec2 texelTangent{ 0.0 };
+  glm::dvec2 windowMin{ 0.0 };
+  int mapSize = 0;
+  double d = 0.0; // the receiver's depth
+  bool usePlane = false;
+  glm::dvec3 plane{ 0.0 }; // receiver_plane_bias: dot(plane, X) = 1 on the receiver's tangent plane
+
+  // kernelHalfTexels(d, planeDepth).
+  glm::dvec2 kernelHalfTexels(double planeDepth) const;
+  // The receiver plane's depth along a tap's ray (nullopt without a plane, or where it faces away).
+  std::optional<double> planeDepth(const glm::dvec2& tapTexels) const;
+  // tapComparisonDepth(tap, d, bias).
+  double tapComparisonDepth(const glm::dvec2& tapTexels, double bias) const;
+};
+SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const ShadowLookup& lookup,
+  bool receiverPlaneBias, int x, int y);
+
+// kernelRectangle(): the inclusive texels whose centres lie in [uv - h, uv + h] (at least the one holding
+// uv), clamped to the map. `edgeMargin` (optional) is lowered to the kernel edges' distance to texel centres.
+struct TexelRectangle
+{
+  glm::ivec2 lo{ 0 };
+  glm::ivec2 hi{ 0 };
+  double area() const { return static_cast<double>(hi.x - lo.x + 1) * (hi.y - lo.y + 1); }
+};
+TexelRectangle kernelRectangle(const glm::dvec2& uvTexels, const glm::dvec2& halfTexels, int mapSize,
+  double* edgeMargin = nullptr);
 
 } // namespace sl

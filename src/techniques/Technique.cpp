@@ -16,6 +16,7 @@ std::string lightStructureName(LightStructure structure)
     case LightStructure::ShadowMap: return "shadow_map";
     case LightStructure::MomentMap: return "moment_map";
     case LightStructure::SummedAreaTable: return "summed_area_table";
+    case LightStructure::HierarchicalShadowMap: return "hierarchical_shadow_map";
   }
   return "unknown";
 }

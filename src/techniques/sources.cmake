@@ -18,6 +18,8 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/savsm/SummedAreaTable.cpp
   src/techniques/savsm/SavsmTechnique.cpp
   src/techniques/savsm/vtkSLSavsmPass.cxx
+  src/techniques/vssm/VssmTechnique.cpp
+  src/techniques/vssm/vtkSLVssmPass.cxx
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp

@@ -92,42 +92,16 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   {
     return result;
   }
-  const LightView& view = inputs.lightView;
-  const double lightSize = inputs.light->type == LightType::Area ? inputs.light->size : 0.0;
-  const glm::dvec2 texelTangent((view.window.y - view.window.x) / view.resolution, (view.window.w - view.window.z) / view.resolution);
-  const auto kernelHalfTexels = [&](double receiverDepth, double planeDepth) {
-    const double halfTangent = 0.5 * lightSize * (receiverDepth - planeDepth) / (planeDepth * receiverDepth);
-    return glm::dvec2(std::max(halfTangent, 0.0)) / texelTangent;
-  };
+  const SoftShadowGeometry geometry =
+    softShadowGeometry(inputs, lookup, values.choice("receiver_plane_bias") == "on", x, y);
   const int size = inputs.shadowMapLinear.width;
   const auto texel = [&](int i, int j) {
     return static_cast<double>(inputs.shadowMapLinear.at(std::clamp(i, 0, size - 1), std::clamp(j, 0, size - 1)));
   };
   const auto stored = [&](const glm::dvec2& uv) { return texel(static_cast<int>(std::floor(uv.x)), static_cast<int>(std::floor(uv.y))); };
   const double d = lookup.sm.depthLin;
-  const double comparison = lookup.comparisonDepth;
   const double bias = lookup.sample.bias;
-  // Receiver-plane depth bias: the tangent plane in light view space, scaled so dot(plane, X) = 1 on it.
-  const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
-  const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
-  const glm::dvec3 nLs = glm::dmat3(view.viewFromWorld) * nWs;
-  const glm::dvec3 pLs = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
-  const double planeOffset = glm::dot(nLs, pLs);
-  const bool usePlane = values.choice("receiver_plane_bias") == "on" && std::abs(planeOffset) > 1e-12;
-  const glm::dvec3 plane = usePlane ? nLs / planeOffset : glm::dvec3(0.0);
-  const glm::dvec2 windowMin(view.window.x, view.window.z);
-  const auto tapComparison = [&](const glm::dvec2& tap) {
-    if (usePlane)
-    {
-      const glm::dvec3 ray(windowMin + tap * texelTangent, -1.0);
-      const double planeDepth = 1.0 / glm::dot(plane, ray);
-      if (planeDepth > 0.0)
-      {
-        return std::clamp(planeDepth, 0.5 * d, 2.0 * d) - bias;
-      }
-    }
-    return comparison;
-  };
+  const auto tapComparison = [&](const glm::dvec2& tap) { return geometry.tapComparisonDepth(tap, bias); };
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const int maxTaps = values.getInt("max_grid_taps");
   const int poissonSamples = values.getInt("poisson_samples");
@@ -154,7 +128,7 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
     }
   };
   // 1. Blocker search.
-  const glm::dvec2 searchHalf = kernelHalfTexels(d, view.nearDepth);
+  const glm::dvec2 searchHalf = geometry.kernelHalfTexels(geometry.nearDepth);
   result.blockerKernelTexels = 2.0 * std::max(searchHalf.x, searchHalf.y);
   double blockerSum = 0.0;
   int blockers = 0;
@@ -197,8 +171,8 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
 
   // 2. Penumbra estimate.
   result.averageBlockerDepth = blockerSum / blockers;
-  result.penumbraWidth = lightSize * (d - result.averageBlockerDepth) / result.averageBlockerDepth;
-  const glm::dvec2 filterHalf = kernelHalfTexels(d, result.averageBlockerDepth);
+  result.penumbraWidth = geometry.lightSize * (d - result.averageBlockerDepth) / result.averageBlockerDepth;
+  const glm::dvec2 filterHalf = geometry.kernelHalfTexels(result.averageBlockerDepth);
   result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
   result.filterHalfTexels = filterHalf;
 

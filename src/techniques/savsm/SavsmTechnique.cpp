@@ -55,19 +55,9 @@ SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues&
   {
     return result;
   }
-  const int size = inputs.shadowMapLinear.width;
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    double first = std::ceil(pcss.uvTexels[axis] - pcss.filterHalfTexels[axis] - 0.5);
-    double last = std::floor(pcss.uvTexels[axis] + pcss.filterHalfTexels[axis] - 0.5);
-    if (last < first)
-    {
-      first = std::floor(pcss.uvTexels[axis]);
-      last = first;
-    }
-    result.lo[axis] = std::clamp(static_cast<int>(first), 0, size - 1);
-    result.hi[axis] = std::clamp(static_cast<int>(last), 0, size - 1);
-  }
+  const TexelRectangle rectangle = kernelRectangle(pcss.uvTexels, pcss.filterHalfTexels, inputs.shadowMapLinear.width);
+  result.lo = rectangle.lo;
+  result.hi = rectangle.hi;
   const LightView& view = inputs.lightView;
   const bool integer = values.choice("sat_precision") == "int32";
   const BoxMoments moments =

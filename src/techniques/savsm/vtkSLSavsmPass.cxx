@@ -19,10 +19,7 @@ std::vector<vtkTextureObject*> vtkSLSavsmPass::SetTechniqueUniforms(vtkShaderPro
 {
   const sl::FrameResources& frame = *this->Frame;
   sl::setSoftShadowUniforms(program, frame);
-  program->SetUniformf("satDepthNear", static_cast<float>(frame.lightView.nearDepth));
-  program->SetUniformf("satDepthFar", static_cast<float>(frame.lightView.farDepth));
-  sl::setFloatIfUsed(program, "satFixedPointScale", frame.summedAreaTableFixedPointScale);
-  return { sl::bindTexture(program, "satTable", frame.summedAreaTable) };
+  return { sl::bindSummedAreaTable(program, frame) };
 }
 
 void vtkSLSavsmPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -1,0 +1,29 @@
+// Layout of the min-max hierarchical shadow map (VSSM Alg. 1 L4, §6.1), shared by its build
+// (hsm/HsmBuild.glsl) and its lookup (common/HsmLookup.glsl). HSM_LAYOUT_* come from the `hsm` parameter.
+// CPU mirror: src/lightspace/HierarchicalShadowMap.cpp (hsmLevelSize, hsmAtlasOffset).
+uniform int hsmMapSize; // N, the shadow map's side
+
+// Texels per side of level k (k >= 1).
+int hsmLevelSize(int level)
+{
+#if HSM_LAYOUT == HSM_LAYOUT_MIPMAP
+  return (hsmMapSize + (1 << level) - 1) >> level;
+#else
+  return hsmMapSize;
+#endif
+}
+
+// Mip-map atlas: level 1 at the origin, levels 2.. stacked in a column to its right.
+ivec2 hsmAtlasOffset(int level)
+{
+  ivec2 offset = ivec2(0);
+  if (level >= 2)
+  {
+    offset.x = hsmLevelSize(1);
+    for (int finer = 2; finer < level; ++finer)
+    {
+      offset.y += hsmLevelSize(finer);
+    }
+  }
+  return offset;
+}

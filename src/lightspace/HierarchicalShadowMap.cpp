@@ -1,0 +1,175 @@
+#include "lightspace/HierarchicalShadowMap.h"
+
+#include "core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sl
+{
+
+int hsmLevelCount(int mapSize)
+{
+  int levels = 0;
+  while ((1 << levels) < mapSize)
+  {
+    ++levels;
+  }
+  return levels;
+}
+
+int hsmLevelSize(HsmLayout layout, int mapSize, int level)
+{
+  return layout == HsmLayout::NBuffers ? mapSize : (mapSize + (1 << level) - 1) >> level;
+}
+
+glm::ivec2 hsmAtlasOffset(int mapSize, int level)
+{
+  glm::ivec2 offset(0, 0);
+  if (level >= 2)
+  {
+    offset.x = hsmLevelSize(HsmLayout::MipMap, mapSize, 1);
+    for (int finer = 2; finer < level; ++finer)
+    {
+      offset.y += hsmLevelSize(HsmLayout::MipMap, mapSize, finer);
+    }
+  }
+  return offset;
+}
+
+ImageF HierarchicalShadowMap::atlas() const
+{
+  SL_CHECK(layout == HsmLayout::MipMap);
+  ImageF result(mapSize, mapSize, 2);
+  for (std::size_t level = 1; level < levels.size(); ++level)
+  {
+    const ImageF& image = levels[level];
+    const glm::ivec2 offset = hsmAtlasOffset(mapSize, static_cast<int>(level));
+    for (int y = 0; y < image.height; ++y)
+    {
+      for (int x = 0; x < image.width; ++x)
+      {
+        for (int c = 0; c < 2; ++c)
+        {
+          result.at(offset.x + x, offset.y + y, c) = image.at(x, y, c);
+        }
+      }
+    }
+  }
+  return result;
+}
+
+HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear, HsmLayout layout)
+{
+  SL_CHECK_MSG(shadowMapLinear.width == shadowMapLinear.height, "the HSM needs a square shadow map");
+  HierarchicalShadowMap hsm;
+  hsm.layout = layout;
+  hsm.mapSize = shadowMapLinear.width;
+  const int levelCount = hsmLevelCount(hsm.mapSize);
+  ImageF base(hsm.mapSize, hsm.mapSize, 2);
+  for (int y = 0; y < hsm.mapSize; ++y)
+  {
+    for (int x = 0; x < hsm.mapSize; ++x)
+    {
+      base.at(x, y, 0) = shadowMapLinear.at(x, y);
+      base.at(x, y, 1) = shadowMapLinear.at(x, y);
+    }
+  }
+  hsm.levels.push_back(std::move(base));
+  for (int level = 1; level <= levelCount; ++level)
+  {
+    const ImageF& finer = hsm.levels.back();
+    const int size = hsmLevelSize(layout, hsm.mapSize, level);
+    ImageF coarser(size, size, 2);
+    // Mip-map: the four children 2x + {0, 1}; N-buffers: the four squares of half the side at offsets
+    // {0, 2^(k-1)}. Either way clamped to the finer level, which keeps the range inside the map.
+    const int stride = layout == HsmLayout::NBuffers ? 1 << (level - 1) : 1;
+    for (int y = 0; y < size; ++y)
+    {
+      for (int x = 0; x < size; ++x)
+      {
+        const glm::ivec2 first = layout == HsmLayout::NBuffers ? glm::ivec2(x, y) : glm::ivec2(2 * x, 2 * y);
+        float low = finer.at(std::min(first.x, finer.width - 1), std::min(first.y, finer.height - 1), 0);
+        float high = finer.at(std::min(first.x, finer.width - 1), std::min(first.y, finer.height - 1), 1);
+        for (int child = 1; child < 4; ++child)
+        {
+          const int cx = std::min(first.x + (child & 1) * stride, finer.width - 1);
+          const int cy = std::min(first.y + (child >> 1) * stride, finer.height - 1);
+          low = std::min(low, finer.at(cx, cy, 0));
+          high = std::max(high, finer.at(cx, cy, 1));
+        }
+        coarser.at(x, y, 0) = low;
+        coarser.at(x, y, 1) = high;
+      }
+    }
+    hsm.levels.push_back(std::move(coarser));
+  }
+  return hsm;
+}
+
+glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetches) const
+{
+  glm::dvec2 result(1e300, -1e300);
+  int reads = 0;
+  const auto visit = [&](int level, int x, int y) {
+    const ImageF& image = levels[static_cast<std::size_t>(level)];
+    result.x = std::min(result.x, static_cast<double>(image.at(x, y, 0)));
+    result.y = std::max(result.y, static_cast<double>(image.at(x, y, 1)));
+    ++reads;
+  };
+  const glm::ivec2 extent = hi - lo + 1;
+  if (layout == HsmLayout::MipMap)
+  {
+    // The first level whose nodes are at least as wide as the rectangle: it spans at most 2 nodes per axis.
+    int level = 0;
+    while ((1 << level) < std::max(extent.x, extent.y))
+    {
+      ++level;
+    }
+    level = std::min(level, static_cast<int>(levels.size()) - 1);
+    const glm::ivec2 first = lo >> level;
+    const glm::ivec2 last = hi >> level;
+    for (int y = first.y; y <= last.y; ++y)
+    {
+      for (int x = first.x; x <= last.x; ++x)
+      {
+        visit(level, x, y);
+      }
+    }
+  }
+  else
+  {
+    // The largest square not wider than the rectangle's shorter side; squares start every `side` texels and
+    // the last one of each axis ends exactly at hi (overlaps are harmless for min and max).
+    int level = 0;
+    while ((2 << level) <= std::min(extent.x, extent.y))
+    {
+      ++level;
+    }
+    const int side = 1 << level;
+    for (int y = lo.y;; y += side)
+    {
+      const int sy = std::min(y, hi.y - side + 1);
+      for (int x = lo.x;; x += side)
+      {
+        const int sx = std::min(x, hi.x - side + 1);
+        visit(level, sx, sy);
+        if (sx + side > hi.x)
+        {
+          break;
+        }
+      }
+      if (sy + side > hi.y)
+      {
+        break;
+      }
+    }
+  }
+  if (fetches)
+  {
+    *fetches = reads;
+  }
+  return result;
+}
+
+} // namespace sl

@@ -1,0 +1,89 @@
+// Technique `vssm`: variance soft shadow mapping (Yang et al. 2010): Alg. 1 with the HSM early-out, the
+// average blocker depth of Eq. 4 (z_unocc = t), kernel subdivision (§5: uniform m x m, adaptive Alg. 2 by
+// stackless linear quad-tree traversal, or none = VSM's lit assumption, Fig. 3a), the §6.4 contact-shadow
+// fallback and the §6.5 lit threshold. Math: shaders/vssm/VssmVisibility.glsl.
+// Parameters: the shadow-map ones, receiver_plane_bias, sat_precision, hsm (mipmap | nbuffers, §6.1),
+// hsm_early_out, blocker_subdivision + blocker_uniform_m + blocker_tree_height, shadow_subdivision +
+// shadow_uniform_n + shadow_tree_height (default: the paper's mixed scheme m = 5, H = 3, §6.3),
+// nonplanar_pcf_taps (2: 2 x 2), lit_variance_threshold (x r), contact_threshold (x r), min_variance.
+// Buffers: blocker_kernel_texels, penumbra_kernel_texels, avg_blocker_depth, classification
+// (not tested / lit / umbra / penumbra / contact), nonplanar_subkernels, quadtree_nodes_visited,
+// pcf_samples (eight outputs in all, GL's guaranteed draw-buffer count).
+#pragma once
+
+#include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+#include "techniques/savsm/SummedAreaTable.h"
+
+#include <cstdint>
+#include <optional>
+
+namespace sl
+{
+
+TechniqueDescriptor vssmTechnique();
+
+enum class VssmClass
+{
+  NotTested = 0,
+  Lit = 1,
+  Umbra = 2,
+  Penumbra = 3,
+  Contact = 4
+};
+
+// The linear quad-tree of Alg. 2 (Bunnell 2005): nodes (x, y, level) of a full quad-tree of height H in
+// depth-first order, each with the index of its first child (Child; -1 for leaves) and of the node that
+// follows its subtree (Next; -1 = Null). The GLSL computes both from (x, y, level); this table is what
+// they must equal.
+struct QuadTreeNode
+{
+  glm::ivec3 cell{ 0 }; // x, y, level
+  int child = -1;
+  int next = -1;
+};
+std::vector<QuadTreeNode> linearQuadTree(int height);
+// The arithmetic pointers of VssmVisibility.glsl (nullopt = Null).
+glm::ivec3 quadTreeChild(glm::ivec3 node);
+std::optional<glm::ivec3> quadTreeNext(glm::ivec3 node);
+
+// What the CPU reference reads: the G-buffer and shadow map, the HSM (rebuilt from the shadow map) and the
+// summed-area table the GPU built (read back: its precision is an input, like the shadow map).
+struct VssmReferenceInputs
+{
+  const ShadowMapInputs* shadowMap = nullptr;
+  HierarchicalShadowMap hsm;
+  std::optional<Image<std::uint32_t>> integerTable; // sat_precision = int32
+  ImageF floatTable;                                // float_centred: 2 components
+  double sceneRadius = 0.0;
+  double satHalfStep = 0.0;
+
+  BoxMoments boxMoments(glm::ivec2 lo, glm::ivec2 hi) const;
+};
+VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const ParameterValues& values,
+  const std::optional<Image<std::uint32_t>>& integerTable, const ImageF& floatTable, double sceneRadius);
+// The int32 SAT's half fixed-point step of the depth range (0 for float), as the pass sets it.
+double vssmSatHalfStep(bool integer, int mapSize, double nearDepth, double farDepth);
+
+struct VssmSample
+{
+  ReferenceSample sample;
+  VssmClass classification = VssmClass::NotTested;
+  double blockerKernelTexels = 0.0;
+  double penumbraKernelTexels = 0.0;
+  double averageBlockerDepth = 0.0;
+  int nonplanarSubkernels = 0;
+  int quadtreeNodesVisited = 0;
+  int pcfSamples = 0;
+  int hsmFetches = 0;
+  double kernelEdgeMargin = 1e300;
+  // Smallest relative distance of a continuous decision (E(x) >= t, the variance threshold, the blocked-
+  // area threshold, the contact test, the HSM tests) to its boundary; float may decide otherwise below ~1e-4.
+  double decisionMargin = 1e300;
+};
+
+// CPU reference (double precision) of VssmVisibility.glsl at pixel (x, y).
+VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y);
+
+} // namespace sl
