@@ -1,31 +1,20 @@
 #include "vis/SpeedErrorChart.h"
 
-#include "core/Error.h"
-#include "gl/vtkSLEglRenderWindow.h"
+#include "vis/ChartSupport.h"
 #include "vis/ColorMap.h"
 
 #include <vtkAxis.h>
-#include <vtkChartLegend.h>
 #include <vtkChartXY.h>
-#include <vtkContextScene.h>
-#include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
-#include <vtkRenderer.h>
-#include <vtkStringArray.h>
 #include <vtkTable.h>
-#include <vtkTextProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <map>
-#include <numeric>
 
 namespace sl
 {
@@ -74,19 +63,8 @@ std::vector<std::size_t> paretoFront(const std::vector<ChartPoint>& points)
 
 void writeSpeedErrorChart(const std::vector<ChartPoint>& points, const std::string& title, const std::filesystem::path& pngPath)
 {
-  vtkNew<vtkSLEglRenderWindow> window;
-  window->InitializeOffscreen(960, 640);
-  vtkNew<vtkContextView> view;
-  view->SetRenderWindow(window);
-  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
-  chart->SetTitle(title);
-  chart->GetTitleProperties()->SetFontSize(16);
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-
+  const OffscreenChart offscreen = makeOffscreenChart(title);
+  vtkChartXY* chart = offscreen.chart;
   std::map<std::string, std::vector<std::size_t>> bySeries;
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -129,59 +107,12 @@ void writeSpeedErrorChart(const std::vector<ChartPoint>& points, const std::stri
     logMin = 0.0;
     logMax = 1.0;
   }
-  logMin -= 0.1;
-  logMax += 0.1;
-  vtkNew<vtkDoubleArray> tickPositions;
-  vtkNew<vtkStringArray> tickLabels;
-  // Ticks at 1, 2, 5 x 10^k; over a narrow range (fewer than three of those) at every integer mantissa.
-  for (const std::vector<double>& mantissas :
-    { std::vector<double>{ 1.0, 2.0, 5.0 }, std::vector<double>{ 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0 } })
-  {
-    tickPositions->Reset();
-    tickLabels->Reset();
-    for (int decade = static_cast<int>(std::floor(logMin)); decade <= static_cast<int>(std::ceil(logMax)); ++decade)
-    {
-      for (const double mantissa : mantissas)
-      {
-        const double position = decade + std::log10(mantissa);
-        if (position >= logMin && position <= logMax)
-        {
-          std::ostringstream label;
-          label << mantissa * std::pow(10.0, decade);
-          tickPositions->InsertNextValue(position);
-          tickLabels->InsertNextValue(label.str());
-        }
-      }
-    }
-    if (tickPositions->GetNumberOfTuples() >= 3)
-    {
-      break;
-    }
-  }
-  vtkAxis* timeAxis = chart->GetAxis(vtkAxis::BOTTOM);
-  timeAxis->SetTitle("frame GPU time (ms, log scale)");
-  timeAxis->SetBehavior(vtkAxis::FIXED);
-  timeAxis->SetRange(logMin, logMax);
-  timeAxis->SetCustomTickPositions(tickPositions, tickLabels);
+  setLogAxis(chart->GetAxis(vtkAxis::BOTTOM), logMin - 0.1, logMax + 0.1, "frame GPU time (ms, log scale)");
   vtkAxis* errorAxis = chart->GetAxis(vtkAxis::LEFT);
   errorAxis->SetTitle("RMSE of visibility vs ray-traced reference");
   errorAxis->SetBehavior(vtkAxis::FIXED);
   errorAxis->SetRange(0.0, rmseMax > 0.0 ? 1.08 * rmseMax : 1.0);
-
-  view->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(pngPath.string().c_str());
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->Write();
-  if (writer->GetErrorCode() != 0 || !std::filesystem::is_regular_file(pngPath))
-  {
-    throw InputError(pngPath.string() + ": cannot write the chart");
-  }
+  writeChartPng(offscreen, pngPath);
 }
 
 } // namespace sl

@@ -1,7 +1,9 @@
-# Heat maps and their colour keys (see vis/HeatMap.h), the bench chart (vis/SpeedErrorChart.h). Needs VTK RenderingFreeType (text) and IOImage (PNG).
+# Heat maps and their colour keys (see vis/HeatMap.h), the bench charts (vis/SpeedErrorChart.h, vis/SweepChart.h). Needs VTK RenderingFreeType (text) and IOImage (PNG).
 set(SL_VIS_SOURCES
   vis/Canvas.cxx
   vis/ColorKey.cxx
   vis/ColorMap.cxx
   vis/HeatMap.cxx
-  vis/SpeedErrorChart.cxx)
+  vis/ChartSupport.cxx
+  vis/SpeedErrorChart.cxx
+  vis/SweepChart.cxx)

@@ -22,10 +22,10 @@ vec2 hsmTexel(int level, ivec2 texel)
 #endif
 }
 
-// (min, max) depth over the inclusive rectangle [lo, hi] inside the map; `fetches` counts texels read.
+// (min, max) depth over the inclusive rectangle [lo, hi] inside the map.
 // Mip-map: the <= 2 x 2 nodes of the first level as wide as the rectangle (a conservative superset);
 // N-buffers: the rectangle tiled by the largest squares that fit, the last of each axis ending at hi (exact).
-vec2 hsmRange(ivec2 lo, ivec2 hi, inout int fetches)
+vec2 hsmRange(ivec2 lo, ivec2 hi)
 {
   ivec2 extent = hi - lo + 1;
   vec2 range = vec2(1e30, -1e30);
@@ -43,7 +43,6 @@ vec2 hsmRange(ivec2 lo, ivec2 hi, inout int fetches)
     {
       vec2 node = hsmTexel(level, ivec2(x, y));
       range = vec2(min(range.x, node.x), max(range.y, node.y));
-      ++fetches;
     }
   }
 #else
@@ -61,7 +60,6 @@ vec2 hsmRange(ivec2 lo, ivec2 hi, inout int fetches)
       int sx = min(x, hi.x - side + 1);
       vec2 node = hsmTexel(level, ivec2(sx, sy));
       range = vec2(min(range.x, node.x), max(range.y, node.y));
-      ++fetches;
       if (sx + side > hi.x)
       {
         break;

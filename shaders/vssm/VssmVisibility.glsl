@@ -282,8 +282,7 @@ void main()
 
   // L8-10: lit when no texel of w_i can be nearer than its comparison depth, umbra when all are.
 #if HSM_EARLY_OUT == HSM_EARLY_OUT_ON
-  int hsmFetches = 0;
-  vec2 depthRange = hsmRange(lo, hi, hsmFetches);
+  vec2 depthRange = hsmRange(lo, hi);
   vec2 comparisonRange = comparisonDepthRange(lo, hi, d, bias);
   if (depthRange.x >= comparisonRange.y)
   {

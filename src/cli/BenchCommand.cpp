@@ -14,14 +14,19 @@
 #include "scene/Scene.h"
 #include "techniques/Technique.h"
 #include "vis/SpeedErrorChart.h"
+#include "vis/SweepChart.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <fcntl.h>
 #include <spawn.h>
@@ -182,6 +187,14 @@ std::string csvField(const std::string& text)
     quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   }
   return quoted + "\"";
+}
+
+// A whole string as a finite number, or nullopt.
+std::optional<double> parseNumber(const std::string& text)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value) ? std::optional<double>(value) : std::nullopt;
 }
 
 std::string joined(const std::vector<std::string>& items, const std::string& separator)
@@ -410,7 +423,8 @@ int runBench(const BenchOptions& options, std::ostream& log)
     writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
                 { "reference_samples", options.referenceSamples }, { "configurations", rows } },
       dir / "bench.json");
-    const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "technique", "shading" };
+    const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "moment_map", "summed_area_table",
+      "hierarchical_shadow_map", "technique", "shading" };
     std::ofstream csv(dir / "bench.csv");
     csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
     for (const std::string& stage : stages)
@@ -419,9 +433,12 @@ int runBench(const BenchOptions& options, std::ostream& log)
     }
     csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
     std::ofstream markdown(dir / "summary.md");
-    markdown << "| scene | technique | settings | GPU ms | wall ms | RMSE | penumbra RMSE | max error |\n"
-             << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
+    markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error |\n"
+             << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
+    // One numeric scene sweep (e.g. light sizes): time and RMSE against the swept value, per scene file.
+    std::map<std::string, std::vector<SweepPoint>> sweepTimes;
+    std::map<std::string, std::vector<SweepPoint>> sweepErrors;
     for (std::size_t c = 0; c < rows.size(); ++c)
     {
       const nlohmann::json& row = rows[c];
@@ -451,6 +468,19 @@ int runBench(const BenchOptions& options, std::ostream& log)
           // One series per technique: a sweep's configurations are points of the same series.
           chartPoints[configurations[c].sceneIndex].push_back(
             { row["technique"].get<std::string>(), result["frame_gpu_ms"].get<double>(), covered["rmse"].get<double>() });
+          const SceneVariant& variant = variants[configurations[c].sceneIndex];
+          if (options.sceneSweeps.size() == 1 && variant.swept.size() == 1)
+          {
+            const std::string& swept = variant.swept.front();
+            const std::optional<double> parameter = parseNumber(swept.substr(swept.find('=') + 1));
+            const std::string series = row["technique"].get<std::string>() +
+              (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>());
+            if (parameter)
+            {
+              sweepTimes[variant.file].push_back({ series, *parameter, result["frame_gpu_ms"].get<double>() });
+              sweepErrors[variant.file].push_back({ series, *parameter, covered["rmse"].get<double>() });
+            }
+          }
         }
         else
         {
@@ -458,7 +488,9 @@ int runBench(const BenchOptions& options, std::ostream& log)
         }
         markdown << std::fixed << std::setprecision(2) << "| " << row["scene_name"].get<std::string>() << " | "
                  << row["technique"].get<std::string>() << " | " << row["settings"].get<std::string>() << " | "
-                 << result["frame_gpu_ms"].get<double>() << " | " << result["frame_wall_ms"].get<double>() << " | "
+                 << result["frame_gpu_ms"].get<double>() << " | "
+                 << (result["stages"].contains("technique") ? result["stages"]["technique"]["gpu_ms"].get<double>() : 0.0)
+                 << " | " << result["frame_wall_ms"].get<double>() << " | "
                  << std::setprecision(4)
                  << (hasError ? number(result["error"]["covered"]["rmse"]) : std::string("-")) << " | "
                  << (hasError ? number(result["error"]["penumbra"]["rmse"]) : std::string("-")) << " | "
@@ -469,7 +501,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
         csv << ",,,,,,,,,,,," << csvField(row["error"]) << "\n";
         markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
                  << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
-                 << " | | | | |\n";
+                 << " | | | | | |\n";
       }
     }
     if (!csv || !markdown)
@@ -492,6 +524,16 @@ int runBench(const BenchOptions& options, std::ostream& log)
       }
       writeSpeedErrorChart(points, "speed vs error: " + variant.name + " (" + options.resolution + ")",
         dir / ("speed_vs_error_" + stem + ".png"));
+    }
+    for (const auto& [file, points] : sweepTimes)
+    {
+      const std::string stem = std::filesystem::path(file).parent_path().filename().string();
+      const std::string pointer = options.sceneSweeps.front().substr(0, options.sceneSweeps.front().find('='));
+      const bool positive = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.parameter > 0.0; });
+      writeSweepChart(points, "frame GPU time against " + pointer + ": " + stem + " (" + options.resolution + ")",
+        { pointer, "frame GPU time (ms)", positive, true }, dir / ("sweep_time_" + stem + ".png"));
+      writeSweepChart(sweepErrors.at(file), "RMSE against " + pointer + ": " + stem + " (" + options.resolution + ")",
+        { pointer, "RMSE of visibility vs ray-traced reference", positive, false }, dir / ("sweep_rmse_" + stem + ".png"));
     }
   });
   if (!options.quiet)

@@ -384,7 +384,7 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
   // L8-10.
   if (values.choice("hsm_early_out") == "on")
   {
-    const glm::dvec2 depthRange = inputs.hsm.range(search.lo, search.hi, &result.hsmFetches);
+    const glm::dvec2 depthRange = inputs.hsm.range(search.lo, search.hi);
     const glm::dvec2 comparisonRange = evaluation.comparisonDepthRange(search.lo, search.hi);
     evaluation.noteDecision(depthRange.x, comparisonRange.y, d);
     evaluation.noteDecision(depthRange.y, comparisonRange.x, d);

@@ -76,7 +76,6 @@ struct VssmSample
   int nonplanarSubkernels = 0;
   int quadtreeNodesVisited = 0;
   int pcfSamples = 0;
-  int hsmFetches = 0;
   double kernelEdgeMargin = 1e300;
   // Smallest relative distance of a continuous decision (E(x) >= t, the variance threshold, the blocked-
   // area threshold, the contact test, the HSM tests) to its boundary; float may decide otherwise below ~1e-4.
