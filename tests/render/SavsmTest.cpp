@@ -17,18 +17,6 @@ namespace sl
 namespace
 {
 
-const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name)
-{
-  for (const NamedImage& named : frame.lightSpace)
-  {
-    if (named.name == name)
-    {
-      return named.image;
-    }
-  }
-  throw std::runtime_error("no light-space array " + name);
-}
-
 TEST(SummedAreaTable, BoxMomentsOfBothPrecisionsAgainstExactSums)
 {
   const Scene scene = test::loadDataset("stacked-occluders");
@@ -37,17 +25,10 @@ TEST(SummedAreaTable, BoxMomentsOfBothPrecisionsAgainstExactSums)
   const FrameResult floating =
     test::renderDataset(scene, "savsm", 64, 64, { "shadow_map_size=512", "sat_precision=float_centred" });
   ASSERT_TRUE(integer.integerSummedAreaTable.has_value());
-  const ImageF& shadowMap = lightSpaceArray(integer, "shadow_map_depth");
+  const ImageF& shadowMap = test::lightSpaceArray(integer, "shadow_map_depth");
   const double nearDepth = integer.lightView->nearDepth;
   const double farDepth = integer.lightView->farDepth;
-  ImageF floatTable(512, 512, 2);
-  const ImageF& sumZ = lightSpaceArray(floating, "sat_z");
-  const ImageF& sumZ2 = lightSpaceArray(floating, "sat_z2");
-  for (std::size_t i = 0; i < sumZ.data.size(); ++i)
-  {
-    floatTable.data[i * 2] = sumZ.data[i];
-    floatTable.data[i * 2 + 1] = sumZ2.data[i];
-  }
+  const ImageF floatTable = test::floatSummedAreaTable(floating);
   std::mt19937 generator(7u);
   std::uniform_int_distribution<int> coordinate(0, 511);
   double integerMeanError = 0.0;

@@ -2,9 +2,7 @@
 // implementation, and the paper's claims (planar exactness, Fig. 3, Fig. 9, §6.4) against closed forms and
 // the ray-traced reference.
 #include "lightspace/HierarchicalShadowMap.h"
-#include "metrics/ErrorMetrics.h"
 #include "support/TestSupport.h"
-#include "techniques/ShadowMapParameters.h"
 #include "techniques/vssm/VssmTechnique.h"
 
 #include <gtest/gtest.h>
@@ -20,18 +18,6 @@ namespace sl
 namespace
 {
 
-const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name)
-{
-  for (const NamedImage& named : frame.lightSpace)
-  {
-    if (named.name == name)
-    {
-      return named.image;
-    }
-  }
-  throw std::runtime_error("no light-space array " + name);
-}
-
 ImageF referenceVisibility(const FrameResult& frame, const Scene& scene, int samples)
 {
   ReferenceSettings settings;
@@ -42,18 +28,7 @@ ImageF referenceVisibility(const FrameResult& frame, const Scene& scene, int sam
 // The table the GPU built, as the CPU reference reads it.
 VssmReferenceInputs referenceInputsOf(const FrameResult& frame, const Scene& scene, const ShadowMapInputs& shadowMap)
 {
-  ImageF floatTable;
-  if (!frame.integerSummedAreaTable)
-  {
-    const ImageF& sumZ = lightSpaceArray(frame, "sat_z");
-    const ImageF& sumZ2 = lightSpaceArray(frame, "sat_z2");
-    floatTable = ImageF(sumZ.width, sumZ.height, 2);
-    for (std::size_t i = 0; i < sumZ.data.size(); ++i)
-    {
-      floatTable.data[i * 2] = sumZ.data[i];
-      floatTable.data[i * 2 + 1] = sumZ2.data[i];
-    }
-  }
+  const ImageF floatTable = frame.integerSummedAreaTable ? ImageF() : test::floatSummedAreaTable(frame);
   return vssmReferenceInputs(shadowMap, frame.parameters, frame.integerSummedAreaTable, floatTable, scene.bounds().radius());
 }
 
@@ -68,7 +43,7 @@ TEST(HierarchicalShadowMap, GpuLevelsEqualTheCpuBuildExactly)
     {
       const FrameResult frame = test::renderDataset(scene, "vssm", 64, 64,
         { "shadow_map_size=" + std::to_string(size), "hsm=" + layout });
-      const ImageF& shadowMap = lightSpaceArray(frame, "shadow_map_depth");
+      const ImageF& shadowMap = test::lightSpaceArray(frame, "shadow_map_depth");
       const HierarchicalShadowMap cpu =
         HierarchicalShadowMap::build(shadowMap, layout == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
       std::vector<std::pair<ImageF, std::string>> expected;
@@ -85,8 +60,8 @@ TEST(HierarchicalShadowMap, GpuLevelsEqualTheCpuBuildExactly)
       }
       for (const auto& [image, suffix] : expected)
       {
-        const ImageF& gpuMin = lightSpaceArray(frame, "hsm_min" + suffix);
-        const ImageF& gpuMax = lightSpaceArray(frame, "hsm_max" + suffix);
+        const ImageF& gpuMin = test::lightSpaceArray(frame, "hsm_min" + suffix);
+        const ImageF& gpuMax = test::lightSpaceArray(frame, "hsm_max" + suffix);
         int differing = 0;
         for (int y = 0; y < size; ++y)
         {

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <sys/wait.h>
 
 namespace sl::test
@@ -155,6 +156,29 @@ ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, in
   inputs.coverage = frame.find("coverage")->image;
   inputs.receives = frame.find("receives_shadows")->image;
   return inputs;
+}
+
+const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name)
+{
+  const NamedImage* named = findNamed(frame.lightSpace, name);
+  if (!named)
+  {
+    throw std::runtime_error("no light-space array " + name);
+  }
+  return named->image;
+}
+
+ImageF floatSummedAreaTable(const FrameResult& frame)
+{
+  const ImageF& sumZ = lightSpaceArray(frame, "sat_z");
+  const ImageF& sumZ2 = lightSpaceArray(frame, "sat_z2");
+  ImageF table(sumZ.width, sumZ.height, 2);
+  for (std::size_t i = 0; i < sumZ.data.size(); ++i)
+  {
+    table.data[i * 2] = sumZ.data[i];
+    table.data[i * 2 + 1] = sumZ2.data[i];
+  }
+  return table;
 }
 
 ShadowMapInputs shadowMapInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
