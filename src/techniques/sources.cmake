@@ -20,6 +20,7 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/savsm/vtkSLSavsmPass.cxx
   src/techniques/vssm/VssmTechnique.cpp
   src/techniques/vssm/vtkSLVssmPass.cxx
+  src/techniques/backprojection/ContourBackprojection.cpp
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp
