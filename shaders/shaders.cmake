@@ -30,6 +30,8 @@ set(SL_SHADER_FILES
   hsm/HsmBuild.glsl
   savsm/SavsmVisibility.glsl
   vssm/VssmVisibility.glsl
+  common/ContourBackprojection.glsl
+  gbp07/Gbp07Visibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

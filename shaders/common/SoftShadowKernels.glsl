@@ -146,6 +146,32 @@ BlockerSearch searchBlockers(vec2 uvTexels, vec2 searchHalf, float d, float bias
 }
 #endif
 
+// Lowest and highest comparison depth of the taps in the texels [lo, hi]: tapComparisonDepth is
+// 1 / (linear in the tap) per receiver plane, so its extremes over a rectangle are at the corners, unless
+// the plane turns away inside it (then the clamp range).
+vec2 comparisonDepthRange(ivec2 lo, ivec2 hi, float d, float bias)
+{
+  vec2 range = vec2(d - bias);
+#if RECEIVER_PLANE_BIAS == RECEIVER_PLANE_BIAS_ON
+  if (hasReceiverPlane)
+  {
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      vec2 position = vec2((corner & 1) == 0 ? lo.x : hi.x + 1, (corner >> 1) == 0 ? lo.y : hi.y + 1);
+      vec3 ray = vec3(shadowWindowMin + position * shadowTexelTangent, -1.0);
+      float planeDepth = 1.0 / dot(receiverPlane, ray);
+      if (!(planeDepth > 0.0))
+      {
+        return vec2(0.5 * d, 2.0 * d) - bias;
+      }
+      float depth = clamp(planeDepth, 0.5 * d, 2.0 * d) - bias;
+      range = vec2(min(range.x, depth), max(range.y, depth));
+    }
+  }
+#endif
+  return range;
+}
+
 // Sets up receiverPlane for tapComparisonDepth from the receiver's world position and normal.
 void setReceiverPlane(vec3 pWs, vec3 nWs)
 {

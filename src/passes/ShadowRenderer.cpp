@@ -119,11 +119,11 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     throw InputError(format("--light ", request.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
   }
   const Light& light = scene.lights[static_cast<std::size_t>(request.lightIndex)];
-  if (std::find(technique.supportedLights.begin(), technique.supportedLights.end(), light.type) ==
-    technique.supportedLights.end())
+  if (!technique.supports(light))
   {
     throw InputError(format("technique '", technique.name, "' does not support the scene's light ",
-      request.lightIndex, " (", scene.file.string(), ")"));
+      request.lightIndex, light.type == LightType::Area ? (light.shape == LightShape::Disk ? " (a disk)" : " (a square)") : "",
+      " (", scene.file.string(), ")"));
   }
   FrameResources frame;
   frame.scene = &scene;

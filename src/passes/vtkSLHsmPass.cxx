@@ -26,6 +26,16 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   const int size = frame.lightView.resolution;
   const int levels = sl::hsmLevelCount(size);
 
+  if (nBuffers)
+  {
+    GLint max3dSize = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3dSize);
+    if (size > max3dSize)
+    {
+      throw sl::InputError(sl::format("hsm=nbuffers: a ", size, "^2 shadow map needs a ", size, "x", size, "x", levels,
+        " 3D texture and this GL allows ", max3dSize, " per side; use hsm=mipmap or shadow_map_size <= ", max3dSize));
+    }
+  }
   // Mip-map: levels 1..L in one N x N atlas; N-buffers: level k in layer k - 1 of an N x N x L texture.
   auto hsm = vtkSmartPointer<vtkTextureObject>::New();
   hsm->SetContext(window);

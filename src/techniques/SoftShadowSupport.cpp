@@ -50,6 +50,28 @@ double SoftShadowGeometry::tapComparisonDepth(const glm::dvec2& tapTexels, doubl
   return depth ? std::clamp(*depth, 0.5 * d, 2.0 * d) - bias : d - bias;
 }
 
+glm::dvec2 SoftShadowGeometry::comparisonDepthRange(glm::ivec2 lo, glm::ivec2 hi, double bias) const
+{
+  // 1 / (linear in the tap) per receiver plane: extremes at the rectangle's corners, unless the plane turns
+  // away inside it (then the clamp range).
+  glm::dvec2 range(d - bias);
+  if (usePlane)
+  {
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      const glm::dvec2 position((corner & 1) == 0 ? lo.x : hi.x + 1, (corner >> 1) == 0 ? lo.y : hi.y + 1);
+      const std::optional<double> depth = planeDepth(position);
+      if (!depth)
+      {
+        return glm::dvec2(0.5 * d, 2.0 * d) - bias;
+      }
+      const double comparison = std::clamp(*depth, 0.5 * d, 2.0 * d) - bias;
+      range = glm::dvec2(std::min(range.x, comparison), std::max(range.y, comparison));
+    }
+  }
+  return range;
+}
+
 SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const ShadowLookup& lookup,
   bool receiverPlaneBias, int x, int y)
 {
@@ -116,6 +138,19 @@ vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameReso
   program->SetUniformf("satDepthFar", static_cast<float>(frame.lightView.farDepth));
   setFloatIfUsed(program, "satFixedPointScale", frame.summedAreaTableFixedPointScale);
   return bindTexture(program, "satTable", frame.summedAreaTable);
+}
+
+ShaderDefines hsmLayoutDefines(const FrameResources& frame)
+{
+  // common/HsmLayout.glsl is shared with the HSM build, which names its layout HSM_LAYOUT.
+  const bool nBuffers = frame.parameters.choice("hsm") == "nbuffers";
+  return { { "HSM_LAYOUT_MIPMAP", "0" }, { "HSM_LAYOUT_NBUFFERS", "1" }, { "HSM_LAYOUT", nBuffers ? "1" : "0" } };
+}
+
+vtkTextureObject* bindHierarchicalShadowMap(vtkShaderProgram* program, const FrameResources& frame)
+{
+  setIntIfUsed(program, "hsmMapSize", frame.lightView.resolution);
+  return bindTexture(program, "hsmTexture", frame.hierarchicalShadowMap);
 }
 
 ShaderDefines poissonDiskDefines()

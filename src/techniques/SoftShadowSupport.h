@@ -29,6 +29,10 @@ void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& fram
 // The summed-area table and the uniforms of shaders/common/SatLookup.glsl (savsm, vssm); returns the bound
 // texture, to deactivate after drawing.
 vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameResources& frame);
+// The min-max structure of shaders/common/HsmLookup.glsl (vssm, gbp07): its layout defines (from the `hsm`
+// parameter) and its texture and uniforms; returns the bound texture.
+ShaderDefines hsmLayoutDefines(const FrameResources& frame);
+vtkTextureObject* bindHierarchicalShadowMap(vtkShaderProgram* program, const FrameResources& frame);
 
 // CPU mirror (double precision) of shaders/common/SoftShadowKernels.glsl at one receiver.
 struct SoftShadowGeometry
@@ -48,6 +52,8 @@ struct SoftShadowGeometry
   std::optional<double> planeDepth(const glm::dvec2& tapTexels) const;
   // tapComparisonDepth(tap, d, bias).
   double tapComparisonDepth(const glm::dvec2& tapTexels, double bias) const;
+  // comparisonDepthRange(lo, hi, d, bias): lowest and highest comparison depth of the texels [lo, hi].
+  glm::dvec2 comparisonDepthRange(glm::ivec2 lo, glm::ivec2 hi, double bias) const;
 };
 SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const ShadowLookup& lookup,
   bool receiverPlaneBias, int x, int y);

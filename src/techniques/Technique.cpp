@@ -28,6 +28,14 @@ const ParameterSpec* TechniqueDescriptor::findParameter(const std::string& param
   return found == parameters.end() ? nullptr : &*found;
 }
 
+bool TechniqueDescriptor::supports(const Light& light) const
+{
+  const bool type = std::find(supportedLights.begin(), supportedLights.end(), light.type) != supportedLights.end();
+  const bool shape = light.type != LightType::Area ||
+    std::find(supportedAreaShapes.begin(), supportedAreaShapes.end(), light.shape) != supportedAreaShapes.end();
+  return type && shape;
+}
+
 bool TechniqueDescriptor::needs(LightStructure structure) const
 {
   return std::find(lightStructures.begin(), lightStructures.end(), structure) != lightStructures.end();

@@ -68,13 +68,19 @@ struct TechniqueDescriptor
   std::vector<LightStructure> lightStructures;
   std::vector<BufferSpec> buffers; // published in addition to the common ones (visibility, position, ...)
   std::vector<LightType> supportedLights;
+  std::vector<LightShape> supportedAreaShapes = { LightShape::Square, LightShape::Disk }; // for area lights
   // The shadow map must hold every caster that hides any part of an area light, not only its centre
   // (soft-shadow techniques): the focus stage widens the light frustum by the light's footprint.
   bool coversLightArea = false;
+  // Settings the registry-wide test sweeps (regression baselines, the NaN/inf sweep) add, to keep a brute-force
+  // technique's cost on llvmpipe bounded (e.g. a smaller shadow map). Empty for most techniques.
+  std::vector<std::string> sweepTestSettings;
   std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;
   bool needs(LightStructure structure) const;
+  // The light's type is supported, and for an area light its shape.
+  bool supports(const Light& light) const;
 };
 
 // Parameter values resolved against a descriptor: every parameter has a value, all within range.

@@ -1,5 +1,5 @@
-// Offscreen regression: every dataset x every registered technique that supports the dataset's light (today:
-// hard, pcf), rendered at 128x128 with default parameters and compared with the committed baselines in
+// Offscreen regression: every dataset x every registered technique that supports the dataset's light,
+// rendered at 128x128 with default parameters (plus the technique's sweepTestSettings) and compared with the committed baselines in
 //   tests/baselines/<dataset>/<technique>/image.png        shaded RGB, 8 bit
 //   tests/baselines/<dataset>/<technique>/visibility.exr   visibility, 32-bit float
 // Tolerances are data, next to the baselines: tests/baselines/tolerance.json ("default" plus optional
@@ -350,13 +350,13 @@ std::vector<RegressionCase> regressionCases()
   std::vector<RegressionCase> cases;
   for (const std::string& dataset : test::datasetNames())
   {
-    std::optional<LightType> lightType;
+    std::optional<Light> light;
     try
     {
       const Scene scene = test::loadDataset(dataset);
       if (!scene.lights.empty())
       {
-        lightType = scene.lights.front().type;
+        light = scene.lights.front();
       }
     }
     catch (const std::exception&)
@@ -364,8 +364,7 @@ std::vector<RegressionCase> regressionCases()
     }
     for (const TechniqueDescriptor& technique : techniqueRegistry())
     {
-      const auto& lights = technique.supportedLights;
-      if (!lightType || std::find(lights.begin(), lights.end(), *lightType) != lights.end())
+      if (!light || technique.supports(*light))
       {
         cases.push_back({ dataset, technique.name });
       }
@@ -389,7 +388,8 @@ TEST_P(RegressionTest, Matches)
 {
   const RegressionCase& param = GetParam();
   const Scene scene = test::loadDataset(param.dataset);
-  const FrameResult frame = test::renderDataset(scene, param.technique, kWidth, kHeight);
+  const FrameResult frame =
+    test::renderDataset(scene, param.technique, kWidth, kHeight, findTechnique(param.technique).sweepTestSettings);
   const NamedImage* visibility = frame.find("visibility");
   ASSERT_NE(visibility, nullptr) << param.dataset << "/" << param.technique << ": no visibility buffer";
   ASSERT_EQ(frame.image.width, kWidth);

@@ -283,27 +283,6 @@ public:
     return acc;
   }
 
-  glm::dvec2 comparisonDepthRange(glm::ivec2 lo, glm::ivec2 hi) const
-  {
-    const double d = geometry_.d;
-    glm::dvec2 range(d - bias_);
-    if (geometry_.usePlane)
-    {
-      for (int corner = 0; corner < 4; ++corner)
-      {
-        const glm::dvec2 position((corner & 1) == 0 ? lo.x : hi.x + 1, (corner >> 1) == 0 ? lo.y : hi.y + 1);
-        const std::optional<double> planeDepth = geometry_.planeDepth(position);
-        if (!planeDepth)
-        {
-          return glm::dvec2(0.5 * d, 2.0 * d) - bias_;
-        }
-        const double depth = std::clamp(*planeDepth, 0.5 * d, 2.0 * d) - bias_;
-        range = glm::dvec2(std::min(range.x, depth), std::max(range.y, depth));
-      }
-    }
-    return range;
-  }
-
   double bilinearShadowTest(const glm::dvec2& tap)
   {
     const glm::dvec2 position = tap - 0.5;
@@ -385,7 +364,7 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
   if (values.choice("hsm_early_out") == "on")
   {
     const glm::dvec2 depthRange = inputs.hsm.range(search.lo, search.hi);
-    const glm::dvec2 comparisonRange = evaluation.comparisonDepthRange(search.lo, search.hi);
+    const glm::dvec2 comparisonRange = geometry.comparisonDepthRange(search.lo, search.hi, bias);
     evaluation.noteDecision(depthRange.x, comparisonRange.y, d);
     evaluation.noteDecision(depthRange.y, comparisonRange.x, d);
     if (depthRange.x >= comparisonRange.y)

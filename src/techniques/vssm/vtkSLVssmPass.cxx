@@ -14,11 +14,8 @@ vtkStandardNewMacro(vtkSLVssmPass);
 sl::ShaderDefines vtkSLVssmPass::GetExtraDefines() const
 {
   sl::ShaderDefines defines = sl::poissonDiskDefines();
-  // common/HsmLayout.glsl is shared with the HSM build, which names its layout HSM_LAYOUT.
-  const bool nBuffers = this->Frame->parameters.choice("hsm") == "nbuffers";
-  defines.push_back({ "HSM_LAYOUT_MIPMAP", "0" });
-  defines.push_back({ "HSM_LAYOUT_NBUFFERS", "1" });
-  defines.push_back({ "HSM_LAYOUT", nBuffers ? "1" : "0" });
+  const sl::ShaderDefines hsm = sl::hsmLayoutDefines(*this->Frame);
+  defines.insert(defines.end(), hsm.begin(), hsm.end());
   return defines;
 }
 
@@ -30,8 +27,7 @@ std::vector<vtkTextureObject*> vtkSLVssmPass::SetTechniqueUniforms(vtkShaderProg
   const sl::LightView& view = frame.lightView;
   program->SetUniformf("satHalfStep",
     static_cast<float>(sl::vssmSatHalfStep(frame.summedAreaTableIsInteger, view.resolution, view.nearDepth, view.farDepth)));
-  sl::setIntIfUsed(program, "hsmMapSize", view.resolution);
-  return { sl::bindSummedAreaTable(program, frame), sl::bindTexture(program, "hsmTexture", frame.hierarchicalShadowMap) };
+  return { sl::bindSummedAreaTable(program, frame), sl::bindHierarchicalShadowMap(program, frame) };
 }
 
 void vtkSLVssmPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -1,0 +1,48 @@
+// Technique `gbp07`: contour-based soft shadow mapping (Guennebaud, Barthe and Paulin 2007), the baseline of
+// the packet paper (Yang et al. 2009, §6: adaptive-precision strategies off, MSSM kernels on). Per pixel:
+// the kernel of Eq. 1 (Yang 2009) tightened by the minimum occluder depth from the min-max structure
+// (Schwarz and Stamminger 2007), lit / umbra from the same structure, then every dual cell of the kernel:
+// marching squares, back-projection and radial integration (techniques/backprojection). Square area lights.
+// Math: shaders/gbp07/Gbp07Visibility.glsl; CPU mirror below.
+// Parameters: the shadow-map ones, receiver_plane_bias, hsm (nbuffers = the MSSM's exact ranges, default;
+// mipmap = a conservative HSM), kernel_refinements.
+// Buffers: kernel_texels, contour_edges, visited_cells, classification (not tested / lit / umbra / penumbra /
+// penumbra over the loop budget).
+#pragma once
+
+#include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor gbp07Technique();
+
+enum class BackprojectionClass
+{
+  NotTested = 0,
+  Lit = 1,
+  Umbra = 2,
+  Penumbra = 3,
+  OverLoopBudget = 4 // penumbra with a kernel of more than gbp07LoopBudgetCells cells (see the shader)
+};
+constexpr int gbp07LoopBudgetCells = 60000;
+
+struct Gbp07Sample
+{
+  ReferenceSample sample;
+  BackprojectionClass classification = BackprojectionClass::NotTested;
+  double kernelTexels = 0.0;
+  int contourEdges = 0;
+  int visitedCells = 0;
+  double kernelEdgeMargin = 1e300;
+  double decisionMargin = 1e300; // the lit / umbra tests against the structure's range, relative to d
+};
+
+// CPU reference (double precision) of Gbp07Visibility.glsl at pixel (x, y); `hsm` is the min-max structure
+// the technique's `hsm` parameter names, built from inputs.shadowMapLinear.
+Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
+  const ParameterValues& values, int x, int y);
+
+} // namespace sl

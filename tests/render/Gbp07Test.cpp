@@ -1,0 +1,107 @@
+// gbp07 (contour back-projection with radial integration): the GLSL against its double-precision twin on
+// read-back buffers, and against the closed-form overlap of a parallel square occluder, converging as the
+// shadow map's resolution doubles.
+#include "support/TestSupport.h"
+#include "techniques/gbp07/Gbp07Technique.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace sl
+{
+namespace
+{
+
+TEST(Gbp07, ConvergesToTheClosedFormAsTheMapResolutionDoubles)
+{
+  // One square occluder parallel to the light over the ground: the contour is the occluder's outline, so the
+  // error is the outline's discretisation (half a texel, back-projected), which halves with the texel.
+  const Scene scene = test::loadDataset("planar-occluder");
+  const auto exact = [](double x, double z) { return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z); };
+  double previous = 1e300;
+  for (const int size : { 128, 256, 512, 1024 })
+  {
+    const FrameResult frame = test::renderDataset(scene, "gbp07", 128, 128, { "shadow_map_size=" + std::to_string(size) });
+    const test::GroundError error = test::groundErrorAgainst(frame, exact);
+    std::cout << "[ measured ] gbp07 on planar-occluder, " << size << "^2 map: RMSE " << error.rmse << ", penumbra RMSE "
+              << error.penumbraRmse << ", max " << error.maxError << "\n";
+    EXPECT_GT(error.penumbra, 1000);
+    EXPECT_LT(error.rmse, previous) << size;
+    previous = error.rmse;
+  }
+}
+
+TEST(Gbp07, MatchesTheCpuImplementation)
+{
+  // Tolerance 1e-3 on visibility: the statuses and edges are identical (pixels with a sample within float
+  // rounding of its comparison, a kernel edge at a texel centre or a lit/umbra test at its boundary are
+  // counted, not compared); what remains is float back-projection and polygon clipping, ~1e-6 of the light's
+  // area per edge, over up to a few hundred edges.
+  struct Case
+  {
+    std::string dataset;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Case> cases = {
+    { "planar-occluder", { "shadow_map_size=1024" } },
+    { "stacked-occluders", { "shadow_map_size=512" } },
+    { "contact", { "shadow_map_size=512", "hsm=mipmap" } },
+    { "bunny", { "shadow_map_size=512", "receiver_plane_bias=off", "kernel_refinements=0" } },
+  };
+  for (const Case& c : cases)
+  {
+    const Scene scene = test::loadDataset(c.dataset);
+    const FrameResult frame = test::renderDataset(scene, "gbp07", 96, 80, c.settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear,
+      frame.parameters.choice("hsm") == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
+    std::string label = c.dataset;
+    for (const std::string& setting : c.settings)
+    {
+      label += " " + setting;
+    }
+    int compared = 0;
+    int skipped = 0;
+    int classes[5] = { 0, 0, 0, 0, 0 };
+    double maxDifference = 0.0;
+    for (int y = 0; y < 80; ++y)
+    {
+      for (int x = 0; x < 96; ++x)
+      {
+        const Gbp07Sample cpu = gbp07Reference(inputs, hsm, frame.parameters, x, y);
+        if (!cpu.sample.evaluated)
+        {
+          continue;
+        }
+        if (cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 || cpu.sample.reachMargin < 1e-5 ||
+          cpu.decisionMargin < 1e-5)
+        {
+          ++skipped;
+          continue;
+        }
+        ASSERT_NE(cpu.classification, BackprojectionClass::OverLoopBudget) << label << ": the test must stay inside llvmpipe's loop budget";
+        ++compared;
+        ++classes[static_cast<int>(cpu.classification)];
+        const double gpu = frame.find("visibility")->image.at(x, y);
+        maxDifference = std::max(maxDifference, std::abs(gpu - cpu.sample.visibility));
+        EXPECT_NEAR(gpu, cpu.sample.visibility, 1e-3) << label << " pixel " << x << "," << y;
+        EXPECT_EQ(frame.find("classification")->image.at(x, y), static_cast<float>(cpu.classification)) << label << " pixel " << x << "," << y;
+        EXPECT_EQ(frame.find("contour_edges")->image.at(x, y), cpu.contourEdges) << label << " pixel " << x << "," << y;
+        EXPECT_EQ(frame.find("visited_cells")->image.at(x, y), cpu.visitedCells) << label << " pixel " << x << "," << y;
+        EXPECT_NEAR(frame.find("kernel_texels")->image.at(x, y), cpu.kernelTexels, 1e-4 * (1.0 + cpu.kernelTexels)) << label;
+      }
+    }
+    std::cout << "[ measured ] gbp07 " << label << ": compared " << compared << " (lit " << classes[1] << ", umbra "
+              << classes[2] << ", penumbra " << classes[3] << "), skipped " << skipped << ", max |gpu - cpu| "
+              << maxDifference << "\n";
+    EXPECT_GT(compared, 2000) << label;
+    EXPECT_LT(skipped, compared / 50) << label;
+    EXPECT_GT(classes[3], 300) << label;
+  }
+}
+
+} // namespace
+} // namespace sl
