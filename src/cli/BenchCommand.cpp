@@ -10,6 +10,7 @@
 #include "cli/Commands.h"
 
 #include "core/Error.h"
+#include "core/Parse.h"
 #include "io/OutputWriter.h"
 #include "scene/Scene.h"
 #include "techniques/Technique.h"
@@ -187,14 +188,6 @@ std::string csvField(const std::string& text)
     quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   }
   return quoted + "\"";
-}
-
-// A whole string as a finite number, or nullopt.
-std::optional<double> parseNumber(const std::string& text)
-{
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value) ? std::optional<double>(value) : std::nullopt;
 }
 
 std::string joined(const std::vector<std::string>& items, const std::string& separator)

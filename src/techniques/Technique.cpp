@@ -1,5 +1,7 @@
 #include "techniques/Technique.h"
 
+#include "core/Parse.h"
+
 #include "core/Error.h"
 
 #include <algorithm>
@@ -124,13 +126,12 @@ void ParameterValues::set(const std::string& assignment)
     values_[key] = text == "true" ? 1.0 : 0.0;
     return;
   }
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size())
+  const std::optional<double> value = parseNumber(text);
+  if (!value)
   {
     throw InputError(format("--set ", assignment, ": '", text, "' is not a number"));
   }
-  set(key, value);
+  set(key, *value);
 }
 
 const TechniqueDescriptor& findTechnique(const std::string& name)

@@ -58,11 +58,7 @@ TEST(Gbp07, MatchesTheCpuImplementation)
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear,
       frame.parameters.choice("hsm") == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
-    std::string label = c.dataset;
-    for (const std::string& setting : c.settings)
-    {
-      label += " " + setting;
-    }
+    const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
     int classes[5] = { 0, 0, 0, 0, 0 };

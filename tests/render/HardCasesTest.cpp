@@ -280,11 +280,7 @@ TEST(HardCases, NoNanOrInfInAnyBufferOfAnyDatasetOrTechnique)
         continue; // rejected with a message (CliTest checks those)
       }
       const FrameResult frame = test::renderDataset(scene, technique, 96, 80, settings);
-      std::string label = dataset + " " + technique;
-      for (const std::string& setting : settings)
-      {
-        label += " " + setting;
-      }
+      const std::string label = test::caseLabel(dataset + " " + technique, settings);
       for (const auto* list : { &frame.buffers, &frame.lightSpace })
       {
         for (const NamedImage& named : *list)

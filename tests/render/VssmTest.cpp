@@ -146,11 +146,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
     const FrameResult frame = test::renderDataset(scene, "vssm", 96, 80, settings);
     const ShadowMapInputs shadowMap = test::shadowMapInputs(frame, scene);
     const VssmReferenceInputs inputs = referenceInputsOf(frame, scene, shadowMap);
-    std::string label = c.dataset;
-    for (const std::string& setting : c.settings)
-    {
-      label += " " + setting;
-    }
+    const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
     int classes[5] = { 0, 0, 0, 0, 0 };

@@ -158,6 +158,16 @@ ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, in
   return inputs;
 }
 
+std::string caseLabel(const std::string& dataset, const std::vector<std::string>& settings)
+{
+  std::string label = dataset;
+  for (const std::string& setting : settings)
+  {
+    label += " " + setting;
+  }
+  return label;
+}
+
 const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name)
 {
   const NamedImage* named = findNamed(frame.lightSpace, name);

@@ -61,6 +61,9 @@ ShadowRenderer& sharedRenderer();
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
   const std::vector<std::string>& settings = {});
 
+// "dataset setting setting ..." for failure messages and [ measured ] lines.
+std::string caseLabel(const std::string& dataset, const std::vector<std::string>& settings);
+
 // A light-space array of a frame by name (throws when the frame has none of that name).
 const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name);
 // The float summed-area table as stored (2 components, centred z and z^2), from sat_z and sat_z2.

@@ -171,18 +171,7 @@ public:
   // otherwise).
   bool blocks(const glm::dvec2& tap, double comparison)
   {
-    const double z = storedDepth(tap);
-    result_.sample.noteDepthComparison(comparison, z);
-    const TexelWithEdges cell = texelWithEdges(tap);
-    for (const TexelEdge& edge : cell.edges)
-    {
-      const double neighbour = storedDepth(glm::dvec2(edge.neighbour) + 0.5);
-      if (edge.distance < 1e-4 && (neighbour < comparison) != (z < comparison))
-      {
-        result_.sample.texelEdgeMargin = std::min(result_.sample.texelEdgeMargin, edge.distance);
-      }
-    }
-    return z < comparison;
+    return nearestTexelTest(*inputs_.shadowMap, tap, comparison, result_.sample) == 0.0;
   }
 
   void pcfLeaf(glm::ivec2 lo, glm::ivec2 hi, double area, Accumulation& acc)
