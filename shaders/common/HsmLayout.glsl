@@ -8,6 +8,8 @@ int hsmLevelSize(int level)
 {
 #if HSM_LAYOUT == HSM_LAYOUT_MIPMAP
   return (hsmMapSize + (1 << level) - 1) >> level;
+#elif HSM_LAYOUT == HSM_LAYOUT_DUAL
+  return hsmMapSize + 1; // texel t holds dual cell t - 1
 #else
   return hsmMapSize;
 #endif

@@ -40,6 +40,24 @@ struct Image
   }
   T& at(int x, int y, int c = 0) { return data[index(x, y, c)]; }
   const T& at(int x, int y, int c = 0) const { return data[index(x, y, c)]; }
+
+  // The w x h pixels starting at (x0, y0), which must lie inside.
+  Image crop(int x0, int y0, int w, int h) const
+  {
+    SL_CHECK(x0 >= 0 && y0 >= 0 && x0 + w <= width && y0 + h <= height);
+    Image result(w, h, components);
+    for (int y = 0; y < h; ++y)
+    {
+      for (int x = 0; x < w; ++x)
+      {
+        for (int c = 0; c < components; ++c)
+        {
+          result.at(x, y, c) = at(x0 + x, y0 + y, c);
+        }
+      }
+    }
+    return result;
+  }
 };
 
 using ImageF = Image<float>;

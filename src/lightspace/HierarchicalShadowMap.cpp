@@ -18,9 +18,20 @@ int hsmLevelCount(int mapSize)
   return levels;
 }
 
+int dualMssmLevelCount(int mapSize)
+{
+  return hsmLevelCount(mapSize + 1);
+}
+
 int hsmLevelSize(HsmLayout layout, int mapSize, int level)
 {
-  return layout == HsmLayout::NBuffers ? mapSize : (mapSize + (1 << level) - 1) >> level;
+  switch (layout)
+  {
+    case HsmLayout::NBuffers: return mapSize;
+    case HsmLayout::DualMssm: return mapSize + 1;
+    case HsmLayout::MipMap: break;
+  }
+  return (mapSize + (1 << level) - 1) >> level;
 }
 
 glm::ivec2 hsmAtlasOffset(int mapSize, int level)
@@ -107,8 +118,109 @@ HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear
   return hsm;
 }
 
+HierarchicalShadowMap HierarchicalShadowMap::buildDual(const ImageF& shadowMapLinear, float outsideDepth)
+{
+  SL_CHECK_MSG(shadowMapLinear.width == shadowMapLinear.height, "the MSSM needs a square shadow map");
+  HierarchicalShadowMap mssm;
+  mssm.layout = HsmLayout::DualMssm;
+  mssm.mapSize = shadowMapLinear.width;
+  const int size = mssm.mapSize + 1;
+  const auto sample = [&](int i, int j) {
+    const bool inside = i >= 0 && j >= 0 && i < mssm.mapSize && j < mssm.mapSize;
+    return inside ? shadowMapLinear.at(i, j) : outsideDepth;
+  };
+  // Level 0: texel t holds cell t - 1, i.e. the samples t - 1 and t per axis (Yang et al. 2009 §4.2).
+  ImageF cells(size, size, 2);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const float corners[4] = { sample(x - 1, y - 1), sample(x, y - 1), sample(x - 1, y), sample(x, y) };
+      cells.at(x, y, 0) = std::min({ corners[0], corners[1], corners[2], corners[3] });
+      cells.at(x, y, 1) = std::max({ corners[0], corners[1], corners[2], corners[3] });
+    }
+  }
+  mssm.levels.push_back(std::move(cells));
+  // Level k: the four level k - 1 squares at offsets {0, 2^(k-1)}, clamped to the last cell.
+  for (int level = 1; level <= dualMssmLevelCount(mssm.mapSize); ++level)
+  {
+    const ImageF& finer = mssm.levels.back();
+    const int stride = 1 << (level - 1);
+    ImageF coarser(size, size, 2);
+    for (int y = 0; y < size; ++y)
+    {
+      for (int x = 0; x < size; ++x)
+      {
+        float low = finer.at(x, y, 0);
+        float high = finer.at(x, y, 1);
+        for (int child = 1; child < 4; ++child)
+        {
+          const int cx = std::min(x + (child & 1) * stride, size - 1);
+          const int cy = std::min(y + (child >> 1) * stride, size - 1);
+          low = std::min(low, finer.at(cx, cy, 0));
+          high = std::max(high, finer.at(cx, cy, 1));
+        }
+        coarser.at(x, y, 0) = low;
+        coarser.at(x, y, 1) = high;
+      }
+    }
+    mssm.levels.push_back(std::move(coarser));
+  }
+  return mssm;
+}
+
+glm::dvec2 HierarchicalShadowMap::dualNode(int level, glm::ivec2 cell) const
+{
+  const ImageF& image = levels[static_cast<std::size_t>(level)];
+  return { image.at(cell.x + 1, cell.y + 1, 0), image.at(cell.x + 1, cell.y + 1, 1) };
+}
+
+glm::dvec2 HierarchicalShadowMap::dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi, int* fetches) const
+{
+  SL_CHECK(layout == HsmLayout::DualMssm);
+  glm::dvec2 result(1e300, -1e300);
+  const glm::ivec2 extent = cellHi - cellLo + 1;
+  int level = 0;
+  while ((2 << level) <= std::min(extent.x, extent.y))
+  {
+    ++level;
+  }
+  const int side = 1 << level;
+  int reads = 0;
+  for (int y = cellLo.y;; y += side)
+  {
+    const int sy = std::min(y, cellHi.y - side + 1);
+    for (int x = cellLo.x;; x += side)
+    {
+      const int sx = std::min(x, cellHi.x - side + 1);
+      const glm::dvec2 node = dualNode(level, { sx, sy });
+      result = { std::min(result.x, node.x), std::max(result.y, node.y) };
+      ++reads;
+      if (sx + side > cellHi.x)
+      {
+        break;
+      }
+    }
+    if (sy + side > cellHi.y)
+    {
+      break;
+    }
+  }
+  if (fetches)
+  {
+    *fetches = reads;
+  }
+  return result;
+}
+
 glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetches) const
 {
+  if (layout == HsmLayout::DualMssm)
+  {
+    // Samples [lo, hi] are exactly the cells [lo, hi - 1]: rectangles at least 2 samples wide.
+    SL_CHECK_MSG(hi.x > lo.x && hi.y > lo.y, "a dual-grid MSSM range needs at least 2 x 2 samples");
+    return dualRange(lo, hi - 1, fetches);
+  }
   glm::dvec2 result(1e300, -1e300);
   int reads = 0;
   const auto visit = [&](int level, int x, int y) {

@@ -9,6 +9,7 @@
 
 #include "gl/GlResources.h"
 #include "lightspace/CameraView.h"
+#include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/LightView.h"
 #include "scene/Scene.h"
 #include "techniques/Technique.h"
@@ -53,9 +54,10 @@ struct FrameResources
   bool summedAreaTableIsInteger = false;
   double summedAreaTableFixedPointScale = 0.0; // int32: 2^b - 1 (vtkSLSatPass picks b)
   // Hierarchical-shadow-map stage: RG32F (min, max) of levels 1..L, a mip-map atlas (N x N) or N-buffers
-  // (N x N x L, layer k - 1 = level k); see src/lightspace/HierarchicalShadowMap.h.
+  // (N x N x L, layer k - 1 = level k), or the dual-grid MSSM ((N + 1)^2 x (L + 1), layer k = level k); see
+  // src/lightspace/HierarchicalShadowMap.h.
   vtkSmartPointer<vtkTextureObject> hierarchicalShadowMap;
-  bool hierarchicalShadowMapIsNBuffers = false;
+  HsmLayout hierarchicalShadowMapLayout = HsmLayout::MipMap;
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F.
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> techniqueTargets;

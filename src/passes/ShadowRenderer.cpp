@@ -101,7 +101,7 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
     {
       stages.push_back(vtkSmartPointer<vtkSLSatPass>::New());
     }
-    if (technique.needs(LightStructure::HierarchicalShadowMap))
+    if (technique.needs(LightStructure::HierarchicalShadowMap) || technique.needs(LightStructure::DualMultiScaleShadowMap))
     {
       stages.push_back(vtkSmartPointer<vtkSLHsmPass>::New());
     }
@@ -251,16 +251,41 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   }
   if (frame.hierarchicalShadowMap)
   {
-    // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level.
+    // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level;
+    // dual-grid MSSM: one pair per level, point (i, j) holding cell (i, j) (texel (i + 1, j + 1)).
     const std::vector<ImageF> layers = readFloatTextureLayers(frame.hierarchicalShadowMap, 2);
+    const int size = frame.lightView.resolution;
     for (std::size_t layer = 0; layer < layers.size(); ++layer)
     {
-      const std::string suffix = frame.hierarchicalShadowMapIsNBuffers ? "_" + std::to_string(layer + 1) : "";
-      const std::string what = frame.hierarchicalShadowMapIsNBuffers
-        ? "over the 2^" + std::to_string(layer + 1) + " square at each texel (N-buffers level " + std::to_string(layer + 1) + ")"
-        : "of each node, mip-map levels 1..L packed in an atlas (level 1 at the origin, the others stacked to its right)";
-      result.lightSpace.push_back({ "hsm_min" + suffix, channels(layers[layer], 0, 1), "world units", "minimum depth " + what });
-      result.lightSpace.push_back({ "hsm_max" + suffix, channels(layers[layer], 1, 1), "world units", "maximum depth " + what });
+      const std::string level = std::to_string(layer + 1);
+      switch (frame.hierarchicalShadowMapLayout)
+      {
+        case HsmLayout::MipMap:
+        {
+          const std::string what = "of each node, mip-map levels 1..L packed in an atlas (level 1 at the origin, the others stacked to its right)";
+          result.lightSpace.push_back({ "hsm_min", channels(layers[layer], 0, 1), "world units", "minimum depth " + what });
+          result.lightSpace.push_back({ "hsm_max", channels(layers[layer], 1, 1), "world units", "maximum depth " + what });
+          break;
+        }
+        case HsmLayout::NBuffers:
+        {
+          const std::string what = "over the 2^" + level + " square at each texel (N-buffers level " + level + ")";
+          result.lightSpace.push_back({ "hsm_min_" + level, channels(layers[layer], 0, 1), "world units", "minimum depth " + what });
+          result.lightSpace.push_back({ "hsm_max_" + level, channels(layers[layer], 1, 1), "world units", "maximum depth " + what });
+          break;
+        }
+        case HsmLayout::DualMssm:
+        {
+          const std::string dualLevel = std::to_string(layer);
+          const std::string what = "of the 2^" + dualLevel + " x 2^" + dualLevel +
+            " dual cells (2 x 2 sample blocks) starting at the cell whose first sample is this texel (dual-grid MSSM level " +
+            dualLevel + ", Yang et al. 2009 §4.2; samples outside the map count as 2 x far)";
+          const ImageF cells = layers[layer].crop(1, 1, size, size);
+          result.lightSpace.push_back({ "mssm_dual_min_" + dualLevel, channels(cells, 0, 1), "world units", "minimum depth " + what });
+          result.lightSpace.push_back({ "mssm_dual_max_" + dualLevel, channels(cells, 1, 1), "world units", "maximum depth " + what });
+          break;
+        }
+      }
     }
   }
   if (frame.momentMap)

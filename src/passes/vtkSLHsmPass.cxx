@@ -22,21 +22,27 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
   SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its HSM");
-  const bool nBuffers = frame.parameters.choice("hsm") == "nbuffers";
+  const sl::HsmLayout layout = LayoutFor(frame);
+  const bool nBuffers = layout == sl::HsmLayout::NBuffers;
+  const bool dual = layout == sl::HsmLayout::DualMssm;
   const int size = frame.lightView.resolution;
-  const int levels = sl::hsmLevelCount(size);
+  const int levels = dual ? sl::dualMssmLevelCount(size) : sl::hsmLevelCount(size);
+  const int textureSize = sl::hsmLevelSize(layout, size, 1);
+  const int layers = dual ? levels + 1 : std::max(levels, 1);
 
-  if (nBuffers)
+  if (nBuffers || dual)
   {
     GLint max3dSize = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3dSize);
-    if (size > max3dSize)
+    if (textureSize > max3dSize || layers > max3dSize)
     {
-      throw sl::InputError(sl::format("hsm=nbuffers: a ", size, "^2 shadow map needs a ", size, "x", size, "x", levels,
-        " 3D texture and this GL allows ", max3dSize, " per side; use hsm=mipmap or shadow_map_size <= ", max3dSize));
+      throw sl::InputError(sl::format(dual ? "the dual-grid MSSM" : "hsm=nbuffers", ": a ", size, "^2 shadow map needs a ",
+        textureSize, "x", textureSize, "x", layers, " 3D texture and this GL allows ", max3dSize,
+        " per side; use shadow_map_size <= ", dual ? max3dSize - 1 : max3dSize, nBuffers ? " or hsm=mipmap" : ""));
     }
   }
-  // Mip-map: levels 1..L in one N x N atlas; N-buffers: level k in layer k - 1 of an N x N x L texture.
+  // Mip-map: levels 1..L in one N x N atlas; N-buffers: level k in layer k - 1 of an N x N x L texture;
+  // dual-grid MSSM: level k in layer k of an (N + 1)^2 x (L + 1) texture.
   auto hsm = vtkSmartPointer<vtkTextureObject>::New();
   hsm->SetContext(window);
   hsm->SetInternalFormat(GL_RG32F);
@@ -47,35 +53,36 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   hsm->SetWrapS(vtkTextureObject::ClampToEdge);
   hsm->SetWrapT(vtkTextureObject::ClampToEdge);
   hsm->SetWrapR(vtkTextureObject::ClampToEdge);
-  const bool allocated = nBuffers ? hsm->Allocate3D(size, size, std::max(levels, 1), 2, VTK_FLOAT)
-                                  : hsm->Allocate2D(size, size, 2, VTK_FLOAT);
+  const bool allocated = nBuffers || dual ? hsm->Allocate3D(textureSize, textureSize, layers, 2, VTK_FLOAT)
+                                          : hsm->Allocate2D(size, size, 2, VTK_FLOAT);
   if (!allocated)
   {
     throw sl::GraphicsError(sl::format("cannot allocate the hierarchical shadow map (", size, "^2, ",
-      nBuffers ? "N-buffers" : "mip-map", ")"));
+      dual ? "dual-grid MSSM" : nBuffers ? "N-buffers" : "mip-map", ")"));
   }
-  if (!nBuffers)
+  if (layout == sl::HsmLayout::MipMap)
   {
     // The atlas's unused texels are exported: make them 0, not undefined.
     const float zero[2] = { 0.0f, 0.0f };
     glClearTexImage(hsm->GetHandle(), 0, GL_RG, GL_FLOAT, zero);
   }
-  auto& program = this->Programs[nBuffers];
+  auto& program = this->Programs[layout];
   if (!program)
   {
-    const sl::ShaderDefines defines = { { "HSM_LAYOUT_MIPMAP", "0" }, { "HSM_LAYOUT_NBUFFERS", "1" },
-      { "HSM_LAYOUT", nBuffers ? "1" : "0" } };
-    program = std::make_unique<sl::ComputeProgram>(sl::assembleShader("hsm/HsmBuild.glsl", defines), "hierarchical shadow map");
+    program = std::make_unique<sl::ComputeProgram>(
+      sl::assembleShader("hsm/HsmBuild.glsl", LayoutDefines(layout)), "hierarchical shadow map");
   }
-  glBindImageTexture(0, hsm->GetHandle(), 0, nBuffers ? GL_TRUE : GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
+  glBindImageTexture(0, hsm->GetHandle(), 0, nBuffers || dual ? GL_TRUE : GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
   frame.shadowMapLinear->Activate();
   program->use();
   program->setInt("shadowMapLinear", frame.shadowMapLinear->GetTextureUnit());
   program->setInt("hsmMapSize", size);
-  for (int level = 1; level <= levels; ++level)
+  // Samples outside the map never occlude, like the map's empty texels (ShadowMapRendering.h).
+  program->setFloat("outsideDepth", 2.0 * frame.lightView.farDepth);
+  for (int level = dual ? 0 : 1; level <= levels; ++level)
   {
     program->setInt("level", level);
-    const int levelSize = sl::hsmLevelSize(nBuffers ? sl::HsmLayout::NBuffers : sl::HsmLayout::MipMap, size, level);
+    const int levelSize = sl::hsmLevelSize(layout, size, level);
     program->dispatch({ (levelSize + 7) / 8, (levelSize + 7) / 8 });
     // Level k + 1 reads level k's image writes.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -83,7 +90,22 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   frame.shadowMapLinear->Deactivate();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
   frame.hierarchicalShadowMap = hsm;
-  frame.hierarchicalShadowMapIsNBuffers = nBuffers;
+  frame.hierarchicalShadowMapLayout = layout;
+}
+
+sl::HsmLayout vtkSLHsmPass::LayoutFor(const sl::FrameResources& frame)
+{
+  if (frame.technique->needs(sl::LightStructure::DualMultiScaleShadowMap))
+  {
+    return sl::HsmLayout::DualMssm;
+  }
+  return frame.parameters.choice("hsm") == "nbuffers" ? sl::HsmLayout::NBuffers : sl::HsmLayout::MipMap;
+}
+
+sl::ShaderDefines vtkSLHsmPass::LayoutDefines(sl::HsmLayout layout)
+{
+  const char* value = layout == sl::HsmLayout::NBuffers ? "1" : layout == sl::HsmLayout::DualMssm ? "2" : "0";
+  return { { "HSM_LAYOUT_MIPMAP", "0" }, { "HSM_LAYOUT_NBUFFERS", "1" }, { "HSM_LAYOUT_DUAL", "2" }, { "HSM_LAYOUT", value } };
 }
 
 void vtkSLHsmPass::ReleaseGraphicsResources(vtkWindow*)

@@ -2,6 +2,7 @@
 
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "passes/vtkSLHsmPass.h"
 #include "techniques/SamplingPatterns.h"
 
 #include <vtkShaderProgram.h>
@@ -142,9 +143,7 @@ vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameReso
 
 ShaderDefines hsmLayoutDefines(const FrameResources& frame)
 {
-  // common/HsmLayout.glsl is shared with the HSM build, which names its layout HSM_LAYOUT.
-  const bool nBuffers = frame.parameters.choice("hsm") == "nbuffers";
-  return { { "HSM_LAYOUT_MIPMAP", "0" }, { "HSM_LAYOUT_NBUFFERS", "1" }, { "HSM_LAYOUT", nBuffers ? "1" : "0" } };
+  return vtkSLHsmPass::LayoutDefines(frame.hierarchicalShadowMapLayout);
 }
 
 vtkTextureObject* bindHierarchicalShadowMap(vtkShaderProgram* program, const FrameResources& frame)

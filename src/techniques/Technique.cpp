@@ -19,6 +19,7 @@ std::string lightStructureName(LightStructure structure)
     case LightStructure::MomentMap: return "moment_map";
     case LightStructure::SummedAreaTable: return "summed_area_table";
     case LightStructure::HierarchicalShadowMap: return "hierarchical_shadow_map";
+    case LightStructure::DualMultiScaleShadowMap: return "dual_mssm";
   }
   return "unknown";
 }

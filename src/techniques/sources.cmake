@@ -21,6 +21,7 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/vssm/VssmTechnique.cpp
   src/techniques/vssm/vtkSLVssmPass.cxx
   src/techniques/backprojection/ContourBackprojection.cpp
+  src/techniques/backprojection/ContourReceiver.cpp
   src/techniques/gbp07/Gbp07Technique.cpp
   src/techniques/gbp07/vtkSLGbp07Pass.cxx
   src/techniques/vtk/VtkTechnique.cpp

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/backprojection/ContourReceiver.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/Technique.h"
 
@@ -19,14 +20,6 @@ namespace sl
 
 TechniqueDescriptor gbp07Technique();
 
-enum class BackprojectionClass
-{
-  NotTested = 0,
-  Lit = 1,
-  Umbra = 2,
-  Penumbra = 3,
-  OverLoopBudget = 4 // penumbra with a kernel of more than gbp07LoopBudgetCells cells (see the shader)
-};
 constexpr int gbp07LoopBudgetCells = 60000;
 
 struct Gbp07Sample

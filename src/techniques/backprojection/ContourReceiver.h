@@ -1,0 +1,60 @@
+// The per-pixel preamble of the contour methods (gbp07, yfgl09), in double precision: the CPU mirror of the
+// kernel and classification steps of shaders/gbp07/Gbp07Visibility.glsl and shaders/yfgl09/Yfgl09Packet.glsl.
+// Kernel of Eq. 1 (Yang et al. 2009) with the near plane, shrunk `kernel_refinements` times to the minimum
+// depth inside it (MSSM kernels, Schwarz and Stamminger 2007); lit / umbra from the same range (Alg. 1 step 5).
+#pragma once
+
+#include "techniques/ShadowMapReference.h"
+#include "techniques/SoftShadowSupport.h"
+#include "techniques/Technique.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <functional>
+
+namespace sl
+{
+
+enum class BackprojectionClass
+{
+  NotTested = 0,
+  Lit = 1,
+  Umbra = 2,
+  Penumbra = 3,
+  OverLoopBudget = 4 // gbp07: penumbra with a kernel of more than gbp07LoopBudgetCells cells
+};
+
+// (min, max) depth over an inclusive sample rectangle inside the map, at least 2 x 2 samples.
+using DepthRangeQuery = std::function<glm::dvec2(glm::ivec2 lo, glm::ivec2 hi)>;
+
+struct ContourReceiver
+{
+  ShadowLookup lookup;
+  SoftShadowGeometry geometry;
+  double bias = 0.0;
+  TexelRectangle kernel;  // the texels of Eq. 1's kernel
+  TexelRectangle samples; // plus one ring, clamped to the map: the corners of the kernel's dual cells
+  double kernelTexels = 0.0; // 2 max(half extent)
+  BackprojectionClass classification = BackprojectionClass::NotTested;
+  double kernelEdgeMargin = 1e300;
+  double decisionMargin = 1e300; // the lit / umbra tests, relative to d
+  glm::dvec2 receiverXy{ 0.0 }; // light view x, y of the receiver
+  double lightHalfSize = 0.0;
+
+  // Dual cells examined: [kernel.lo - 1, kernel.hi] per axis.
+  glm::ivec2 firstCell() const { return kernel.lo - 1; }
+  glm::ivec2 lastCell() const { return kernel.hi; }
+  // Whether the sample (i, j) (possibly outside the map, which never occludes) hides the light centre from
+  // this receiver, and its depth (0 outside). Records the comparison's margin in lookup.sample.
+  bool occludes(const ShadowMapInputs& inputs, glm::ivec2 sample, double& depth);
+  // Light-centre status f(O): the receiver's own map position inside the reconstructed occluder.
+  bool centreOccluded(const ShadowMapInputs& inputs);
+  // Signed occluded light area of one contour edge (back-projection + radial integration).
+  double edgeArea(const glm::dvec2& a, double depthA, const glm::dvec2& b, double depthB) const;
+};
+
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
+  const DepthRangeQuery& range, int x, int y);
+
+} // namespace sl
