@@ -31,6 +31,7 @@ set(SL_SHADER_FILES
   savsm/SavsmVisibility.glsl
   vssm/VssmVisibility.glsl
   common/ContourBackprojection.glsl
+  gbp06/Gbp06Visibility.glsl
   gbp07/Gbp07Visibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl

@@ -4,6 +4,7 @@
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
 #include "techniques/esm/EsmTechnique.h"
+#include "techniques/gbp06/Gbp06Technique.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 #include "techniques/pcss/PcssTechnique.h"
 #include "techniques/referencesm/ReferenceSmTechnique.h"
@@ -25,6 +26,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     esmTechnique(),
     savsmTechnique(),
     vssmTechnique(),
+    gbp06Technique(),
     gbp07Technique(),
     vtkTechnique(),
     referenceSmTechnique(),

@@ -22,6 +22,8 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/vssm/vtkSLVssmPass.cxx
   src/techniques/backprojection/ContourBackprojection.cpp
   src/techniques/backprojection/ContourReceiver.cpp
+  src/techniques/gbp06/Gbp06Technique.cpp
+  src/techniques/gbp06/vtkSLGbp06Pass.cxx
   src/techniques/gbp07/Gbp07Technique.cpp
   src/techniques/gbp07/vtkSLGbp07Pass.cxx
   src/techniques/vtk/VtkTechnique.cpp

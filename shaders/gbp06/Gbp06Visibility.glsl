@@ -1,0 +1,269 @@
+// GBP06 soft shadow mapping by back-projection of micropatches (Guennebaud et al. 2006), per pixel: the kernel
+// of Eq. 1 (Yang et al. 2009) tightened by the minimum depth inside it and lit / umbra from the min-max
+// structure (the preamble of gbp07/Gbp07Visibility.glsl), then every occluding texel of the kernel and its ring
+// as a micropatch, back-projected onto the light and clipped to it, gap-filled toward its right and top
+// neighbours (GAP_FILLING), found by a loop over the texels or by the DU07 walk of the min-max quadtree
+// (TRAVERSAL). Conventions, the gap rule and the traversal: src/techniques/gbp06/Gbp06Technique.h.
+// CPU mirror: src/techniques/gbp06/Gbp06Technique.cpp.
+#include "common/GBufferInputs.glsl"
+#include "common/LightModel.glsl"
+#include "common/ShadowMapCommon.glsl"
+#include "common/ShadowReceiver.glsl"
+#include "common/SoftShadowKernels.glsl"
+#include "common/HsmLookup.glsl"
+#include "common/ContourBackprojection.glsl"
+
+layout(location = OUT_VISIBILITY) out float outVisibility;
+layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
+layout(location = OUT_OCCLUDING_TEXELS) out float outOccludingTexels;
+layout(location = OUT_VISITED_NODES) out float outVisitedNodes;
+layout(location = OUT_CLASSIFICATION) out float outClassification;
+
+const float CLASS_NOT_TESTED = 0.0;
+const float CLASS_LIT = 1.0;
+const float CLASS_UMBRA = 2.0;
+const float CLASS_PENUMBRA = 3.0;
+const float CLASS_OVER_LOOP_BUDGET = 4.0;
+// Pixels of more loop iterations than this (texels examined, or iterations of the walk) may be cut short where
+// the GL caps loop iterations per invocation (llvmpipe: 65535, all loops together). They are still evaluated in
+// full and flagged. The per-texel and per-node helpers below use no loops, for the same reason.
+const int LOOP_BUDGET = 60000;
+
+// The receiver being shaded and what its micropatches add up to.
+float receiverDepth;
+float receiverBias;
+vec2 receiverXy; // light view x, y
+float halfSize;  // of the square light
+ivec2 regionLo;  // the texels searched: the kernel plus one ring, clamped to the map
+ivec2 regionHi;
+float occludedArea;
+int occludingTexels;
+int visitedNodes;
+int loopIterations;
+
+// The kernel's samples plus one ring, clamped to the map.
+void ringed(ivec2 lo, ivec2 hi, out ivec2 ringLo, out ivec2 ringHi)
+{
+  ringLo = max(lo - 1, ivec2(0));
+  ringHi = min(hi + 1, ivec2(shadowMapSize - 1));
+}
+
+// Whether texel (i, j) is an occluding micropatch for the receiver, and its depth; outside the map, never.
+bool occludesAt(ivec2 texel, out float depth)
+{
+  depth = 0.0;
+  if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadowMapSize))))
+  {
+    return false;
+  }
+  depth = texelFetch(shadowMapLinear, texel, 0).r;
+  return depth < tapComparisonDepth(vec2(texel) + 0.5, receiverDepth, receiverBias);
+}
+
+// Texel (i, j) spans [i, i + 1) x [j, j + 1); its square at its depth back-projects to the rectangle between the
+// back-projections of its corners (i, j) and (i + 1, j + 1) (backProject increases with the tangent).
+void examineTexel(ivec2 texel)
+{
+  float depth;
+  if (!occludesAt(texel, depth))
+  {
+    return;
+  }
+  vec2 tangentLo = shadowWindowMin + vec2(texel) * shadowTexelTangent;
+  vec2 tangentHi = shadowWindowMin + vec2(texel + 1) * shadowTexelTangent;
+  vec2 lo = backProject(tangentLo, depth, receiverXy, receiverDepth);
+  vec2 hi = backProject(tangentHi, depth, receiverXy, receiverDepth);
+#if GAP_FILLING == GAP_FILLING_ON
+  // Out to the right neighbour's left edge and the top neighbour's bottom edge, each at its own depth, when
+  // those neighbours occlude and their edges lie further out (never shrunk).
+  float neighbourDepth;
+  if (occludesAt(texel + ivec2(1, 0), neighbourDepth))
+  {
+    hi.x = max(hi.x, backProject(vec2(tangentHi.x, tangentLo.y), neighbourDepth, receiverXy, receiverDepth).x);
+  }
+  if (occludesAt(texel + ivec2(0, 1), neighbourDepth))
+  {
+    hi.y = max(hi.y, backProject(vec2(tangentLo.x, tangentHi.y), neighbourDepth, receiverXy, receiverDepth).y);
+  }
+#endif
+  vec2 extent = max(min(hi, vec2(halfSize)) - max(lo, vec2(-halfSize)), vec2(0.0));
+  occludedArea += extent.x * extent.y;
+  ++occludingTexels;
+}
+
+#if TRAVERSAL == TRAVERSAL_HSM
+// The comparison depth at a texel-grid corner, for the receiver plane (tapComparisonDepth's formula).
+float cornerComparison(vec2 position, inout bool unbounded)
+{
+  vec3 ray = vec3(shadowWindowMin + position * shadowTexelTangent, -1.0);
+  float planeDepth = 1.0 / dot(receiverPlane, ray);
+  unbounded = unbounded || !(planeDepth > 0.0);
+  return clamp(planeDepth, 0.5 * receiverDepth, 2.0 * receiverDepth) - receiverBias;
+}
+
+// comparisonDepthRange(first, last, d, bias).y with its corner loop unrolled (llvmpipe's loop budget).
+float maxComparisonDepth(ivec2 first, ivec2 last)
+{
+  float result = receiverDepth - receiverBias;
+#if RECEIVER_PLANE_BIAS == RECEIVER_PLANE_BIAS_ON
+  if (hasReceiverPlane)
+  {
+    bool unbounded = false;
+    result = max(result, cornerComparison(vec2(first), unbounded));
+    result = max(result, cornerComparison(vec2(last.x + 1, first.y), unbounded));
+    result = max(result, cornerComparison(vec2(first.x, last.y + 1), unbounded));
+    result = max(result, cornerComparison(vec2(last + 1), unbounded));
+    if (unbounded)
+    {
+      result = 2.0 * receiverDepth - receiverBias;
+    }
+  }
+#endif
+  return result;
+}
+
+// Whether quadtree node (level, index), texels [index 2^level, (index + 1) 2^level), may hold an occluding texel
+// of the region (DU07's pruning test): its minimum depth is in front of the largest comparison depth over its
+// texels in the region. N-buffers hold the same range at texel index 2^level.
+bool mayOcclude(int level, ivec2 index)
+{
+  ++visitedNodes;
+  ivec2 first = max(index << level, regionLo);
+  ivec2 last = min(((index + 1) << level) - 1, regionHi);
+#if HSM_LAYOUT == HSM_LAYOUT_NBUFFERS
+  vec2 node = hsmTexel(level, index << level);
+#else
+  vec2 node = hsmTexel(level, index);
+#endif
+  return node.x < maxComparisonDepth(first, last);
+}
+#endif
+
+// Every occluding micropatch of the region, once.
+void accumulateMicropatches()
+{
+  occludedArea = 0.0;
+  occludingTexels = 0;
+  visitedNodes = 0;
+  loopIterations = 0;
+#if TRAVERSAL == TRAVERSAL_KERNEL
+  for (int j = regionLo.y; j <= regionHi.y; ++j)
+  {
+    for (int i = regionLo.x; i <= regionHi.x; ++i)
+    {
+      ++visitedNodes;
+      examineTexel(ivec2(i, j));
+    }
+  }
+  loopIterations = visitedNodes;
+#else
+  // DU07, depth first from the lowest node covering the region, entered as the one child of its parent that
+  // meets the region. Stackless: a node's index is its path (bit k of x and y: the child taken below level
+  // k + 1), so going up is a shift.
+  int rootLevel = 0;
+  while (any(notEqual(regionLo >> rootLevel, regionHi >> rootLevel)))
+  {
+    ++rootLevel;
+  }
+  int topLevel = rootLevel + 1;
+  int level = topLevel; // the level of `node`, whose children are examined
+  ivec2 node = regionLo >> topLevel;
+  int child = 0;
+  while (true)
+  {
+    ++loopIterations;
+    if (child == 4)
+    {
+      if (level == topLevel)
+      {
+        break;
+      }
+      child = (node.x & 1) + 2 * (node.y & 1) + 1;
+      node >>= 1;
+      ++level;
+      continue;
+    }
+    ivec2 index = 2 * node + ivec2(child & 1, child >> 1);
+    ivec2 first = index << (level - 1);
+    ivec2 last = ((index + 1) << (level - 1)) - 1;
+    if (any(greaterThan(first, regionHi)) || any(lessThan(last, regionLo)) || !mayOcclude(level - 1, index))
+    {
+      ++child;
+    }
+    else if (level == 1)
+    {
+      examineTexel(index);
+      ++child;
+    }
+    else
+    {
+      node = index;
+      --level;
+      child = 0;
+    }
+  }
+#endif
+}
+
+void main()
+{
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ShadowReceiver receiver = prepareShadowReceiver(pixel);
+  outVisibility = receiver.visibility;
+  outKernelTexels = 0.0;
+  outOccludingTexels = 0.0;
+  outVisitedNodes = 0.0;
+  outClassification = CLASS_NOT_TESTED;
+  if (!receiver.needsShadowTest)
+  {
+    return;
+  }
+  float d = receiver.depthLin;
+  float bias = receiver.bias;
+  vec2 uv = receiver.uvTexels;
+  setReceiverPlane(receiver.pWs, receiver.nWs);
+
+  // Eq. 1 with the near plane, then with the minimum depth inside the kernel (as gbp07).
+  vec2 halfTexels = kernelHalfTexels(d, lightNearDepth);
+  ivec2 lo;
+  ivec2 hi;
+  kernelRectangle(uv, halfTexels, lo, hi);
+  ivec2 ringLo;
+  ivec2 ringHi;
+  ringed(lo, hi, ringLo, ringHi);
+  vec2 depthRange = hsmRange(ringLo, ringHi);
+  for (int refinement = 0; refinement < int(param_kernel_refinements); ++refinement)
+  {
+    halfTexels = kernelHalfTexels(d, clamp(depthRange.x, lightNearDepth, d));
+    kernelRectangle(uv, halfTexels, lo, hi);
+    ringed(lo, hi, ringLo, ringHi);
+    depthRange = hsmRange(ringLo, ringHi);
+  }
+  outKernelTexels = 2.0 * max(halfTexels.x, halfTexels.y);
+  vec2 comparison = comparisonDepthRange(ringLo, ringHi, d, bias);
+  if (depthRange.x >= comparison.y)
+  {
+    outVisibility = 1.0;
+    outClassification = CLASS_LIT;
+    return;
+  }
+  bool ringInsideMap = ringLo == lo - 1 && ringHi == hi + 1;
+  if (ringInsideMap && depthRange.y < comparison.x)
+  {
+    outVisibility = 0.0;
+    outClassification = CLASS_UMBRA;
+    return;
+  }
+
+  receiverDepth = d;
+  receiverBias = bias;
+  receiverXy = (shadowWindowMin + uv * shadowTexelTangent) * d;
+  halfSize = 0.5 * lightSizeWorld;
+  regionLo = ringLo;
+  regionHi = ringHi;
+  accumulateMicropatches();
+  outOccludingTexels = float(occludingTexels);
+  outVisitedNodes = float(visitedNodes);
+  outVisibility = clamp(1.0 - occludedArea / (4.0 * halfSize * halfSize), 0.0, 1.0);
+  outClassification = loopIterations > LOOP_BUDGET ? CLASS_OVER_LOOP_BUDGET : CLASS_PENUMBRA;
+}

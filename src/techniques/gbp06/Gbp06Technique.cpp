@@ -1,0 +1,213 @@
+#include "techniques/gbp06/Gbp06Technique.h"
+
+#include "techniques/ShadowMapParameters.h"
+#include "techniques/SoftShadowSupport.h"
+#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/gbp06/vtkSLGbp06Pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sl
+{
+
+TechniqueDescriptor gbp06Technique()
+{
+  TechniqueDescriptor descriptor;
+  descriptor.name = "gbp06";
+  descriptor.title = "Soft shadow mapping by back-projection of micropatches, with gap filling and a DU07 traversal";
+  descriptor.paper = "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1";
+  descriptor.parameters = shadowMapParameters();
+  for (ParameterSpec& spec : descriptor.parameters)
+  {
+    if (spec.name == "shadow_map_size")
+    {
+      spec.defaultValue = 1024; // as gbp07: brute-force kernels grow with the resolution
+    }
+  }
+  descriptor.parameters.push_back(receiverPlaneBiasParameter());
+  descriptor.parameters.insert(descriptor.parameters.end(), {
+    { "hsm", 1, 0, 1, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007) or mipmap (the HSM of Guennebaud et al. 2006)", { "mipmap", "nbuffers" }, true },
+    { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
+    { "gap_filling", 1, 0, 1, "", "extend each occluding micropatch's back-projection to those of its occluding right and top neighbours (Guennebaud et al. 2006, gaps)", { "off", "on" }, true },
+    { "traversal", 0, 0, 1, "", "micropatches from every texel of the kernel, or from a depth-first walk of the min-max quadtree pruning nodes that cannot occlude (Dmitriev & Uralsky 2007); same visibility", { "kernel", "hsm" }, true },
+  });
+  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::HierarchicalShadowMap };
+  descriptor.buffers = {
+    { "kernel_texels", "texels", "width of the kernel searched for occluding micropatches (Eq. 1, Yang 2009 Fig. 5 left)" },
+    { "occluding_texels", "texels", "occluding micropatches back-projected and accumulated" },
+    { "visited_nodes", "nodes", "texels examined (traversal=kernel) or min-max quadtree nodes examined, leaves included (traversal=hsm)" },
+    { "classification", "", "how the pixel was decided; 4 = a penumbra pixel of more than 60000 loop iterations, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short", BufferKind::Categorical, { "not tested", "lit", "umbra", "penumbra", "penumbra over the loop budget" } },
+  };
+  descriptor.supportedLights = { LightType::Area };
+  descriptor.supportedAreaShapes = { LightShape::Square };
+  descriptor.coversLightArea = true;
+  // As gbp07: the registry-wide sweeps use 128^2 maps to bound the brute-force kernels on llvmpipe.
+  descriptor.sweepTestSettings = { "shadow_map_size=128" };
+  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLGbp06Pass>::New()); };
+  return descriptor;
+}
+
+namespace
+{
+
+// The mip-map quadtree's node (level, index): texels [index 2^level, (index + 1) 2^level), clipped to the map.
+// Mip-map layout: texel `index` of the level; N-buffers: the square starting at index 2^level (the same range).
+glm::dvec2 quadtreeNode(const HierarchicalShadowMap& hsm, int level, glm::ivec2 index)
+{
+  const glm::ivec2 texel = hsm.layout == HsmLayout::NBuffers ? index << level : index;
+  const ImageF& image = hsm.levels[static_cast<std::size_t>(level)];
+  return { image.at(texel.x, texel.y, 0), image.at(texel.x, texel.y, 1) };
+}
+
+struct MicropatchAccumulator
+{
+  const ShadowMapInputs& inputs;
+  ContourReceiver& receiver;
+  bool gapFilling = true;
+  double occludedArea = 0.0;
+  int occludingTexels = 0;
+
+  // The back-projection of the occluding micropatch `texel` at `depth` (GLSL: micropatchArea), gap-filled,
+  // clipped to the light; its area is accumulated.
+  void add(glm::ivec2 texel, double depth)
+  {
+    const SoftShadowGeometry& geometry = receiver.geometry;
+    const double d = geometry.d;
+    const glm::dvec2 tangentLo = geometry.windowMin + glm::dvec2(texel) * geometry.texelTangent;
+    const glm::dvec2 tangentHi = geometry.windowMin + glm::dvec2(texel + 1) * geometry.texelTangent;
+    // backProject is increasing in the tangent for a fixed depth in front of the receiver: corners map to corners.
+    const glm::dvec2 lo = backProject(tangentLo, depth, receiver.receiverXy, d);
+    glm::dvec2 hi = backProject(tangentHi, depth, receiver.receiverXy, d);
+    if (gapFilling)
+    {
+      // Right neighbour: its left edge at its own depth; top neighbour: its bottom edge.
+      double neighbourDepth = 0.0;
+      if (receiver.occludes(inputs, texel + glm::ivec2(1, 0), neighbourDepth))
+      {
+        hi.x = std::max(hi.x, backProject(glm::dvec2(tangentHi.x, tangentLo.y), neighbourDepth, receiver.receiverXy, d).x);
+      }
+      if (receiver.occludes(inputs, texel + glm::ivec2(0, 1), neighbourDepth))
+      {
+        hi.y = std::max(hi.y, backProject(glm::dvec2(tangentLo.x, tangentHi.y), neighbourDepth, receiver.receiverXy, d).y);
+      }
+    }
+    const double h = receiver.lightHalfSize;
+    const glm::dvec2 extent = glm::max(glm::min(hi, glm::dvec2(h)) - glm::max(lo, glm::dvec2(-h)), glm::dvec2(0.0));
+    occludedArea += extent.x * extent.y;
+    ++occludingTexels;
+  }
+
+  void examine(glm::ivec2 texel)
+  {
+    double depth = 0.0;
+    if (receiver.occludes(inputs, texel, depth))
+    {
+      add(texel, depth);
+    }
+  }
+};
+
+} // namespace
+
+Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
+  const ParameterValues& values, int x, int y)
+{
+  ContourReceiver receiver = prepareContourReceiver(inputs, values,
+    [&](glm::ivec2 lo, glm::ivec2 hi) { return hsm.range(lo, hi); }, x, y);
+  Gbp06Sample result;
+  const auto finish = [&](BackprojectionClass classification) {
+    result.sample = receiver.lookup.sample;
+    result.classification = classification;
+    result.kernelTexels = receiver.kernelTexels;
+    result.kernelEdgeMargin = receiver.kernelEdgeMargin;
+    result.decisionMargin = receiver.decisionMargin;
+    return result;
+  };
+  if (receiver.classification != BackprojectionClass::Penumbra)
+  {
+    return finish(receiver.classification);
+  }
+  MicropatchAccumulator accumulator{ inputs, receiver, values.choice("gap_filling") == "on" };
+  // The kernel's texels plus one ring, clamped to the map (see the header).
+  const glm::ivec2 lo = receiver.samples.lo;
+  const glm::ivec2 hi = receiver.samples.hi;
+  const double d = receiver.geometry.d;
+  if (values.choice("traversal") == "kernel")
+  {
+    for (int j = lo.y; j <= hi.y; ++j)
+    {
+      for (int i = lo.x; i <= hi.x; ++i)
+      {
+        ++result.visitedNodes;
+        accumulator.examine({ i, j });
+      }
+    }
+    result.loopIterations = result.visitedNodes;
+  }
+  else
+  {
+    // Whether node (level, index) may hold an occluding texel of [lo, hi]: its minimum depth is in front of the
+    // largest comparison depth over its texels inside the rectangle.
+    const auto mayOcclude = [&](int level, glm::ivec2 index) {
+      ++result.visitedNodes;
+      const glm::ivec2 first = glm::max(index << level, lo);
+      const glm::ivec2 last = glm::min(((index + 1) << level) - 1, hi);
+      const glm::dvec2 comparison = receiver.geometry.comparisonDepthRange(first, last, receiver.bias);
+      const double nodeMin = quadtreeNode(hsm, level, index).x;
+      result.pruningMargin = std::min(result.pruningMargin, std::abs(nodeMin - comparison.y) / d);
+      return nodeMin < comparison.y;
+    };
+    // DU07, depth first from the lowest node covering the rectangle, entered as the one child of its parent
+    // that meets it; a node's index is its path (bit k of x and y: the child taken below level k + 1).
+    int rootLevel = 0;
+    while ((lo.x >> rootLevel) != (hi.x >> rootLevel) || (lo.y >> rootLevel) != (hi.y >> rootLevel))
+    {
+      ++rootLevel;
+    }
+    const int topLevel = rootLevel + 1;
+    int level = topLevel; // the level of `node`, whose children are examined
+    glm::ivec2 node = lo >> topLevel;
+    int child = 0;
+    while (true)
+    {
+      ++result.loopIterations;
+      if (child == 4)
+      {
+        if (level == topLevel)
+        {
+          break;
+        }
+        child = (node.x & 1) + 2 * (node.y & 1) + 1;
+        node >>= 1;
+        ++level;
+        continue;
+      }
+      const glm::ivec2 index = 2 * node + glm::ivec2(child & 1, child >> 1);
+      const glm::ivec2 first = index << (level - 1);
+      const glm::ivec2 last = ((index + 1) << (level - 1)) - 1;
+      if (first.x > hi.x || first.y > hi.y || last.x < lo.x || last.y < lo.y || !mayOcclude(level - 1, index))
+      {
+        ++child;
+      }
+      else if (level == 1)
+      {
+        accumulator.examine(index);
+        ++child;
+      }
+      else
+      {
+        node = index;
+        --level;
+        child = 0;
+      }
+    }
+  }
+  result.occludingTexels = accumulator.occludingTexels;
+  const double lightArea = 4.0 * receiver.lightHalfSize * receiver.lightHalfSize;
+  receiver.lookup.sample.visibility = std::clamp(1.0 - accumulator.occludedArea / lightArea, 0.0, 1.0);
+  return finish(result.loopIterations > gbp06LoopBudget ? BackprojectionClass::OverLoopBudget : BackprojectionClass::Penumbra);
+}
+
+} // namespace sl

@@ -1,0 +1,66 @@
+// Technique `gbp06`: soft shadow mapping by back-projection of micropatches (Guennebaud, Barthe and Paulin 2006,
+// "GBP06"; Yang et al. 2009 §2.3), with an optional DU07 traversal (Dmitriev and Uralsky 2007, a depth-first
+// walk of the min-max quadtree that prunes branches which cannot occlude). Square area lights.
+// Per pixel:
+//  1. the kernel of Eq. 1 (Yang 2009) tightened `kernel_refinements` times by the minimum depth inside it, and
+//     lit / umbra from the min-max structure's range over it: the preamble of gbp07
+//     (techniques/backprojection/ContourReceiver), shared unchanged;
+//  2. every texel of the kernel plus one ring (Eq. 1 keeps the texels whose *centres* back-project into the
+//     light; a texel's square reaches half a texel further, so the ring is where the last partial micropatches
+//     lie) whose depth is in front of its comparison depth (tapComparisonDepth) is a micropatch: the texel's
+//     square at its depth, parallel to the light. Back-projected from the receiver onto the light plane it is an
+//     axis-aligned rectangle in light view x, y (backProject of its two opposite corners), clipped to [-h, h]^2;
+//     occluded area = the sum of the clipped areas, visibility = clamp(1 - occluded / (2h)^2, 0, 1). Overlaps
+//     of the back-projections are counted twice, as in GBP06 (the clamp bounds the result).
+//  3. gap_filling (GBP06's remedy for the gaps between adjacent micropatches at different depths): the exact
+//     rule of the paper's gap section could not be retrieved here (the stored copies of GBP06 stop after the
+//     introduction), so this implements the rule given with the task: when the right (resp. top) neighbour
+//     texel is an occluding micropatch too, the rectangle's right (top) edge is moved out to the left (bottom)
+//     edge of that neighbour's back-projection if the latter lies further out; the rectangle is never shrunk
+//     (overlaps stay overlaps). Extending both edges also covers the corner between the three patches.
+//  traversal: `kernel` examines every texel of step 2; `hsm` (DU07) walks the mip-map quadtree of the min-max
+//     structure from the lowest node covering those texels, depth first and stackless (a node's index holds
+//     the path to it: bit k of x and y is the child index taken below level k + 1), pruning a node whose
+//     minimum depth is >= the largest comparison depth over its texels (none of them can occlude). Leaves are
+//     texels; both traversals accumulate the same micropatches. With hsm=nbuffers the quadtree's node
+//     (level k, index n) is the N-buffer texel n 2^k of level k (the same range).
+// Math: shaders/gbp06/Gbp06Visibility.glsl; CPU mirror below (double precision).
+// Parameters: the shadow-map ones, receiver_plane_bias, hsm, kernel_refinements (as gbp07), gap_filling
+// (off / on), traversal (kernel / hsm).
+// Buffers: kernel_texels, occluding_texels, visited_nodes, classification (not tested / lit / umbra / penumbra /
+// penumbra over the loop budget).
+#pragma once
+
+#include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+namespace sl
+{
+
+TechniqueDescriptor gbp06Technique();
+
+// Loop iterations of one invocation past which the result is flagged (llvmpipe caps them at 65535, all loops
+// together): kernel traversal, texels examined; hsm traversal, iterations of the walk.
+constexpr int gbp06LoopBudget = 60000;
+
+struct Gbp06Sample
+{
+  ReferenceSample sample;
+  BackprojectionClass classification = BackprojectionClass::NotTested;
+  double kernelTexels = 0.0;
+  int occludingTexels = 0;  // micropatches accumulated
+  int visitedNodes = 0;     // kernel: texels examined; hsm: quadtree nodes examined, leaves included
+  int loopIterations = 0;   // of the texel loop or of the walk (the loop-budget test)
+  double kernelEdgeMargin = 1e300;
+  double decisionMargin = 1e300;  // the lit / umbra tests against the structure's range, relative to d
+  double pruningMargin = 1e300;   // hsm: the node pruning tests, relative to d (decides visited_nodes only)
+};
+
+// CPU reference (double precision) of Gbp06Visibility.glsl at pixel (x, y); `hsm` is the min-max structure the
+// technique's `hsm` parameter names (mip-map or N-buffers), built from inputs.shadowMapLinear.
+Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
+  const ParameterValues& values, int x, int y);
+
+} // namespace sl
