@@ -28,11 +28,13 @@ set(SL_SHADER_FILES
   esm/EsmVisibility.glsl
   sat/SatBuild.glsl
   hsm/HsmBuild.glsl
+  multiview/SubLightAccumulate.glsl
   savsm/SavsmVisibility.glsl
   vssm/VssmVisibility.glsl
   common/ContourBackprojection.glsl
   gbp06/Gbp06Visibility.glsl
   gbp07/Gbp07Visibility.glsl
+  yfgl09/Yfgl09Visibility.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

@@ -6,11 +6,15 @@
 #if HSM_LAYOUT == HSM_LAYOUT_MIPMAP
 uniform sampler2D hsmTexture;
 #else
-uniform sampler3D hsmTexture; // layer k - 1 holds level k
+uniform sampler3D hsmTexture; // N-buffers: layer k - 1 holds level k; dual-grid MSSM: layer k holds level k
 #endif
 
+// Node `texel` of `level`; for the dual-grid MSSM `texel` is a cell (-1 .. N - 1), stored at texel + 1.
 vec2 hsmTexel(int level, ivec2 texel)
 {
+#if HSM_LAYOUT == HSM_LAYOUT_DUAL
+  return texelFetch(hsmTexture, ivec3(texel + 1, level), 0).xy;
+#else
   if (level == 0)
   {
     return vec2(texelFetch(shadowMapLinear, texel, 0).r);
@@ -20,11 +24,13 @@ vec2 hsmTexel(int level, ivec2 texel)
 #else
   return texelFetch(hsmTexture, ivec3(texel, level - 1), 0).xy;
 #endif
+#endif
 }
 
-// (min, max) depth over the inclusive rectangle [lo, hi] inside the map.
+// (min, max) depth over the inclusive rectangle [lo, hi] inside the map (dual-grid MSSM: of cells).
 // Mip-map: the <= 2 x 2 nodes of the first level as wide as the rectangle (a conservative superset);
-// N-buffers: the rectangle tiled by the largest squares that fit, the last of each axis ending at hi (exact).
+// N-buffers and dual-grid MSSM: the rectangle tiled by the largest squares that fit, the last of each axis
+// ending at hi (exact).
 vec2 hsmRange(ivec2 lo, ivec2 hi)
 {
   ivec2 extent = hi - lo + 1;
@@ -73,3 +79,11 @@ vec2 hsmRange(ivec2 lo, ivec2 hi)
 #endif
   return range;
 }
+
+#if HSM_LAYOUT == HSM_LAYOUT_DUAL
+// (min, max) depth over the samples [lo, hi] (at least 2 x 2), which are exactly the cells [lo, hi - 1].
+vec2 mssmSampleRange(ivec2 lo, ivec2 hi)
+{
+  return hsmRange(lo, hi - 1);
+}
+#endif

@@ -28,6 +28,7 @@
 #include <iomanip>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <fcntl.h>
 #include <spawn.h>
@@ -417,17 +418,33 @@ int runBench(const BenchOptions& options, std::ostream& log)
                 { "reference_samples", options.referenceSamples }, { "configurations", rows } },
       dir / "bench.json");
     const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "moment_map", "summed_area_table",
-      "hierarchical_shadow_map", "technique", "shading" };
+      "hierarchical_shadow_map", "technique", "sublight_accumulate", "shading" };
+    // Whole-frame statistics some techniques report (vtkSLTechniquePass::CollectStatistics), one column each.
+    std::set<std::string> statisticNames;
+    for (const nlohmann::json& row : rows)
+    {
+      if (row["status"] == "ok" && row["result"].contains("technique_statistics"))
+      {
+        for (const auto& [name, value] : row["result"]["technique_statistics"].items())
+        {
+          statisticNames.insert(name);
+        }
+      }
+    }
     std::ofstream csv(dir / "bench.csv");
     csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
     for (const std::string& stage : stages)
     {
       csv << "," << stage << "_gpu_ms";
     }
+    for (const std::string& name : statisticNames)
+    {
+      csv << "," << name;
+    }
     csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
     std::ofstream markdown(dir / "summary.md");
-    markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error |\n"
-             << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error | statistics |\n"
+             << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
     std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
     // One numeric scene sweep (e.g. light sizes): time and RMSE against the swept value, per scene file.
     std::map<std::string, std::vector<SweepPoint>> sweepTimes;
@@ -449,6 +466,13 @@ int runBench(const BenchOptions& options, std::ostream& log)
         for (const std::string& stage : stages)
         {
           csv << "," << (result["stages"].contains(stage) ? number(result["stages"][stage]["gpu_ms"]) : "");
+        }
+        std::string statistics;
+        for (const std::string& name : statisticNames)
+        {
+          const bool has = result.contains("technique_statistics") && result["technique_statistics"].contains(name);
+          csv << "," << (has ? number(result["technique_statistics"][name]) : "");
+          statistics += has ? (statistics.empty() ? "" : ", ") + name + " " + number(result["technique_statistics"][name]) : "";
         }
         const bool hasError = result.contains("error");
         if (hasError)
@@ -487,14 +511,16 @@ int runBench(const BenchOptions& options, std::ostream& log)
                  << std::setprecision(4)
                  << (hasError ? number(result["error"]["covered"]["rmse"]) : std::string("-")) << " | "
                  << (hasError ? number(result["error"]["penumbra"]["rmse"]) : std::string("-")) << " | "
-                 << (hasError ? number(result["error"]["covered"]["max_abs_error"]) : std::string("-")) << " |\n";
+                 << (hasError ? number(result["error"]["covered"]["max_abs_error"]) : std::string("-")) << " | "
+                 << statistics << " |\n";
       }
       else
       {
-        csv << ",,,,,,,,,,,," << csvField(row["error"]) << "\n";
+        // Empty frame times, stages, statistics and the six error columns, then the error.
+        csv << std::string(2 + stages.size() + statisticNames.size() + 6, ',') << "," << csvField(row["error"]) << "\n";
         markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
                  << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
-                 << " | | | | | |\n";
+                 << " | | | | | | |\n";
       }
     }
     if (!csv || !markdown)

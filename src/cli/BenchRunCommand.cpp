@@ -85,6 +85,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
     { "stages", stages },
     { "frame_gpu_ms", median(frameGpu) },
     { "frame_wall_ms", median(frameWall) },
+    { "technique_statistics", last.techniqueStatistics },
   };
   if (!options.referenceFile.empty())
   {

@@ -188,6 +188,12 @@ StageTimer::StageTimer()
 
 StageTimer::~StageTimer() = default;
 
+void StageTimer::reset()
+{
+  gpuMs_ = 0.0;
+  wallMs_ = 0.0;
+}
+
 void StageTimer::start()
 {
   timer_->Reset();
@@ -198,21 +204,13 @@ void StageTimer::start()
 void StageTimer::stop()
 {
   timer_->Stop();
-  // Wall time of a stage includes finishing its GPU work, so the two are comparable.
+  // Wall time of a stage includes finishing its GPU work, so the two are comparable; the query is then ready.
   glFinish();
-  wallMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart_).count();
-}
-
-double StageTimer::gpuMilliseconds()
-{
-  if (!timer_->Stopped())
-  {
-    return 0.0;
-  }
+  wallMs_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart_).count();
   while (!timer_->Ready())
   {
   }
-  return static_cast<double>(timer_->GetElapsedNanoseconds()) * 1e-6;
+  gpuMs_ += static_cast<double>(timer_->GetElapsedNanoseconds()) * 1e-6;
 }
 
 GpuScene::GpuScene(vtkOpenGLRenderWindow* window, const Scene& scene)

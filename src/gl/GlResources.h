@@ -48,19 +48,23 @@ vtkShaderProgram* readyProgram(vtkOpenGLRenderWindow* window, const std::string&
   const std::string& fragmentSource, const std::string& label);
 
 // GPU time (GL_TIME_ELAPSED via vtkOpenGLRenderTimer) and wall time of one stage of a frame.
+// GPU (timer query) and wall time of a stage, summed over its runs since reset(): a stage runs once per
+// frame, or once per sub-light when a technique splits the light (Yang et al. 2009 §5).
 class StageTimer
 {
 public:
   StageTimer();
   ~StageTimer();
+  void reset();
   void start();
-  void stop();
-  double gpuMilliseconds(); // waits for the query result
+  void stop(); // finishes the stage's GPU work and adds its times
+  double gpuMilliseconds() const { return gpuMs_; }
   double wallMilliseconds() const { return wallMs_; }
 
 private:
   std::unique_ptr<vtkOpenGLRenderTimer> timer_; // not a vtkObject
   std::chrono::steady_clock::time_point wallStart_;
+  double gpuMs_ = 0.0;
   double wallMs_ = 0.0;
 };
 

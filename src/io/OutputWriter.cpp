@@ -146,6 +146,7 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     { "total_gpu_ms", totalGpuMs },
     { "frame_wall_ms", frame.frameWallMs },
     { "dropped_degenerate_triangles", context.droppedDegenerateTriangles },
+    { "technique_statistics", frame.techniqueStatistics },
   };
   nlohmann::json structures = nlohmann::json::array();
   for (LightStructure structure : technique.lightStructures)

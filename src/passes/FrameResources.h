@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 class vtkTextureObject;
 
@@ -59,8 +60,11 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> hierarchicalShadowMap;
   HsmLayout hierarchicalShadowMapLayout = HsmLayout::MipMap;
 
-  // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F.
+  // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F. With sub-lights, the
+  // combined targets once vtkSLMultiViewPass has run.
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> techniqueTargets;
+  // Multi-view (techniques with `sublights`): each sub-light's visibility, row by row over the S x S grid.
+  std::vector<vtkSmartPointer<vtkTextureObject>> subLightVisibility;
 
   // Shading stage.
   vtkSmartPointer<vtkTextureObject> shadedImage; // RGBA8

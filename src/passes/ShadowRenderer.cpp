@@ -6,6 +6,8 @@
 #include "passes/vtkSLFocusPass.h"
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLLightDepthPass.h"
+#include "passes/vtkSLMultiViewPass.h"
+#include "passes/vtkSLSubLightAccumulatePass.h"
 #include "passes/vtkSLMomentMapPass.h"
 #include "passes/vtkSLHsmPass.h"
 #include "passes/vtkSLSatPass.h"
@@ -106,9 +108,28 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
       stages.push_back(vtkSmartPointer<vtkSLHsmPass>::New());
     }
     stages.push_back(technique.createPass());
+    if (technique.hasSubLights())
+    {
+      // Multi-view (Yang et al. 2009 §5): everything between the G-buffer and the shading runs per sub-light.
+      auto accumulate = vtkSmartPointer<vtkSLSubLightAccumulatePass>::New();
+      auto multiView = vtkSmartPointer<vtkSLMultiViewPass>::New();
+      multiView->SetStages(std::vector<vtkSLStagePass*>(stages.begin() + 1, stages.end()), accumulate);
+      multiViewByTechnique_[technique.name] = multiView;
+      stages.push_back(accumulate);
+    }
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
   }
   return stages;
+}
+
+const std::vector<BufferSpec>& subLightBufferSpecs()
+{
+  static const std::vector<BufferSpec> specs = {
+    { "sublight_visibility", "", "techniques with `sublights` = S (multi-view shadow maps, Yang et al. 2009 §5): the "
+                                 "visibility of each of the S x S sub-lights, one component each, row by row from the "
+                                 "light's (-right, -up) corner; `visibility` is their mean" },
+  };
+  return specs;
 }
 
 FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& request)
@@ -154,10 +175,25 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
 
   const auto& stages = stagesFor(technique, request.gbufferOnly);
   vtkNew<vtkRenderPassCollection> collection;
+  const auto multiView = request.gbufferOnly ? multiViewByTechnique_.end() : multiViewByTechnique_.find(technique.name);
   for (const auto& stage : stages)
   {
     stage->SetFrame(&frame);
-    collection->AddItem(stage);
+    stage->ResetTimer();
+  }
+  if (multiView != multiViewByTechnique_.end())
+  {
+    multiView->second->SetFrame(&frame);
+    collection->AddItem(stages.front());  // gbuffer
+    collection->AddItem(multiView->second); // per sub-light: focus .. technique, accumulation
+    collection->AddItem(stages.back());   // shading
+  }
+  else
+  {
+    for (const auto& stage : stages)
+    {
+      collection->AddItem(stage);
+    }
   }
   vtkNew<vtkSequencePass> sequence;
   sequence->SetPasses(collection);
@@ -171,6 +207,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   for (const auto& stage : stages)
   {
     result.stages.push_back({ stage->GetStageName(), stage->GetGpuMilliseconds(), stage->GetWallMilliseconds() });
+    if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
+    {
+      result.techniqueStatistics = techniquePass->CollectStatistics();
+    }
   }
   result.technique = technique.name;
   result.parameters = frame.parameters;
@@ -218,6 +258,21 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   {
     result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
       spec.doc, spec.kind, spec.categoryLabels });
+  }
+  if (!frame.subLightVisibility.empty())
+  {
+    const int count = static_cast<int>(frame.subLightVisibility.size());
+    ImageF subLights(resolution.x, resolution.y, count);
+    for (int k = 0; k < count; ++k)
+    {
+      const ImageF one = readFloatTexture(frame.subLightVisibility[static_cast<std::size_t>(k)], 1);
+      for (std::size_t i = 0; i < one.pixelCount(); ++i)
+      {
+        subLights.data[i * count + k] = one.data[i];
+      }
+    }
+    const BufferSpec& spec = subLightBufferSpecs().front();
+    result.buffers.push_back({ spec.name, std::move(subLights), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
   }
   if (frame.hasLightView)
   {
@@ -307,6 +362,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   for (const auto& stage : stages)
   {
     stage->SetFrame(nullptr); // the frame's resources end here
+  }
+  if (multiView != multiViewByTechnique_.end())
+  {
+    multiView->second->SetFrame(nullptr);
   }
   frame.gpuScene->releaseGraphicsResources(window_);
   return result;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "gl/vtkSLEglRenderWindow.h"
+#include "passes/vtkSLMultiViewPass.h"
 #include "passes/vtkSLStagePass.h"
 #include <vtkRenderer.h>
 
@@ -69,6 +70,7 @@ struct FrameResult
   // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
   std::optional<Image<std::uint32_t>> integerSummedAreaTable;
   std::vector<StageTiming> stages;
+  std::map<std::string, double> techniqueStatistics; // vtkSLTechniquePass::CollectStatistics
   double frameWallMs = 0.0;
   std::string glRenderer;
   std::string glVersion;
@@ -79,6 +81,8 @@ struct FrameResult
 
 // The buffers every technique's buffers.vti has, with their documentation (README lists them).
 const std::vector<BufferSpec>& commonBufferSpecs();
+// The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
+const std::vector<BufferSpec>& subLightBufferSpecs();
 
 class ShadowRenderer
 {
@@ -101,6 +105,8 @@ private:
   vtkSmartPointer<vtkSLEglRenderWindow> window_;
   vtkSmartPointer<vtkRenderer> renderer_;
   std::map<std::string, std::vector<vtkSmartPointer<vtkSLStagePass>>> stagesByTechnique_;
+  // Techniques with sub-lights: the pass that runs their light-space and technique stages per sub-light.
+  std::map<std::string, vtkSmartPointer<vtkSLMultiViewPass>> multiViewByTechnique_;
 };
 
 } // namespace sl

@@ -13,4 +13,6 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLHsmPass.cxx
   src/passes/vtkSLTechniquePass.cxx
   src/passes/vtkSLShadingPass.cxx
+  src/passes/vtkSLSubLightAccumulatePass.cxx
+  src/passes/vtkSLMultiViewPass.cxx
   src/passes/ShadowRenderer.cpp)

@@ -25,8 +25,10 @@ public:
   void SetFrame(sl::FrameResources* frame) { this->Frame = frame; }
   // Stage name used in stats.json ("gbuffer", "shadow_map", "technique", "shading").
   virtual const char* GetStageName() const = 0;
-  double GetGpuMilliseconds() { return this->Timer.gpuMilliseconds(); }
+  // Summed over the stage's runs since ResetTimer() (once per frame; once per sub-light for multi-view).
+  double GetGpuMilliseconds() const { return this->Timer.gpuMilliseconds(); }
   double GetWallMilliseconds() const { return this->Timer.wallMilliseconds(); }
+  void ResetTimer() { this->Timer.reset(); }
 
 protected:
   vtkSLStagePass();

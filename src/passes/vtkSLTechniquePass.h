@@ -18,6 +18,7 @@
 
 #include <vtkNew.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ public:
 
   // Names of the targets in output-location order: "visibility", then the descriptor's buffers.
   static std::vector<std::string> OutputNames(const sl::TechniqueDescriptor& descriptor);
+  // Whole-frame counts a technique reports besides its buffers (stats.json "technique_statistics", bench
+  // columns), read after the frame's timings with the frame's resources still bound; none by default.
+  virtual std::map<std::string, double> CollectStatistics() { return {}; }
 
 protected:
   vtkSLTechniquePass();

@@ -6,6 +6,7 @@
 #include "techniques/esm/EsmTechnique.h"
 #include "techniques/gbp06/Gbp06Technique.h"
 #include "techniques/gbp07/Gbp07Technique.h"
+#include "techniques/yfgl09/Yfgl09Technique.h"
 #include "techniques/pcss/PcssTechnique.h"
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 #include "techniques/savsm/SavsmTechnique.h"
@@ -28,6 +29,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     vssmTechnique(),
     gbp06Technique(),
     gbp07Technique(),
+    yfgl09Technique(),
     vtkTechnique(),
     referenceSmTechnique(),
   };

@@ -24,6 +24,11 @@ void setPoissonDiskUniform(vtkShaderProgram* program);
 // blocker_search, max_grid_taps, poisson_samples, receiver_plane_bias.
 std::vector<ParameterSpec> softShadowParameters();
 ParameterSpec receiverPlaneBiasParameter();
+// `sublights` (TechniqueDescriptor::hasSubLights): multi-view shadow maps, Yang et al. 2009 §5.
+ParameterSpec subLightsParameter();
+// The S x S sub-lights of a square area light (§5): centres on the light's (right, up) grid, size / S each,
+// row by row from the (-right, -up) corner.
+std::vector<Light> splitIntoSubLights(const Light& light, int perSide);
 // lightSizeWorld, lightNearDepth, shadowTexelTangent, shadowWindowMin, poissonDisk.
 void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& frame);
 // The summed-area table and the uniforms of shaders/common/SatLookup.glsl (savsm, vssm); returns the bound

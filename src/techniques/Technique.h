@@ -51,6 +51,16 @@ enum class BufferKind
   Categorical // integer classes with labels
 };
 
+// How a buffer of a technique with sub-lights (parameter `sublights`, Yang et al. 2009 §5) combines the
+// S x S sub-light frames: visibility and continuous values are averaged, work counters summed, categorical
+// buffers kept from the first sub-light (they cannot be averaged).
+enum class SubLightCombine
+{
+  Mean,
+  Sum,
+  First
+};
+
 struct BufferSpec
 {
   std::string name; // array name in buffers.vti, e.g. "kernel_texels"
@@ -58,6 +68,7 @@ struct BufferSpec
   std::string doc;
   BufferKind kind = BufferKind::Continuous;
   std::vector<std::string> categoryLabels;
+  SubLightCombine subLightCombine = SubLightCombine::Mean;
 };
 
 struct TechniqueDescriptor
@@ -77,6 +88,11 @@ struct TechniqueDescriptor
   // technique's cost on llvmpipe bounded (e.g. a smaller shadow map). Empty for most techniques.
   std::vector<std::string> sweepTestSettings;
   std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
+  // Multi-view shadow maps (Yang et al. 2009 §5): a technique with an integer parameter "sublights" = S is run
+  // once per sub-light of the square area light split S x S (its own focus, shadow map and light-space
+  // structures each); buffers combine per BufferSpec::subLightCombine and `sublight_visibility` holds the S^2
+  // sub-light visibilities. See subLightsParameter() (techniques/SoftShadowSupport.h).
+  bool hasSubLights() const { return findParameter("sublights") != nullptr; }
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;
   bool needs(LightStructure structure) const;

@@ -26,6 +26,8 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/gbp06/vtkSLGbp06Pass.cxx
   src/techniques/gbp07/Gbp07Technique.cpp
   src/techniques/gbp07/vtkSLGbp07Pass.cxx
+  src/techniques/yfgl09/Yfgl09Technique.cpp
+  src/techniques/yfgl09/vtkSLYfgl09Pass.cxx
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp

@@ -30,13 +30,14 @@ TechniqueDescriptor gbp07Technique()
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "hsm", 1, 0, 1, "", "min-max structure for kernels and lit/umbra: nbuffers (the MSSM's exact ranges, Schwarz & Stamminger 2007) or mipmap (a conservative HSM, Guennebaud et al. 2006)", { "mipmap", "nbuffers" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
+    subLightsParameter(),
   });
   descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::HierarchicalShadowMap };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the kernel searched for contour edges (Eq. 1, Yang 2009 Fig. 5 left)" },
-    { "contour_edges", "edges", "contour edges extracted and back-projected" },
-    { "visited_cells", "cells", "dual cells (2 x 2 sample blocks) examined" },
-    { "classification", "", "how the pixel was decided; 4 = a penumbra kernel of more than 60000 cells, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short", BufferKind::Categorical, { "not tested", "lit", "umbra", "penumbra", "penumbra over the loop budget" } },
+    { "contour_edges", "edges", "contour edges extracted and back-projected (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    { "visited_cells", "cells", "dual cells (2 x 2 sample blocks) examined (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    { "classification", "", "how the pixel was decided (first sub-light); 4 = a penumbra kernel of more than 60000 cells, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short", BufferKind::Categorical, { "not tested", "lit", "umbra", "penumbra", "penumbra over the loop budget" }, SubLightCombine::First },
   };
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };

@@ -1,0 +1,97 @@
+#include "passes/vtkSLMultiViewPass.h"
+
+#include "core/Error.h"
+#include "gl/GlResources.h"
+#include "passes/FrameResources.h"
+#include "passes/vtkSLTechniquePass.h"
+#include "techniques/SoftShadowSupport.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkTextureObject.h>
+
+#include <map>
+#include <string>
+
+vtkStandardNewMacro(vtkSLMultiViewPass);
+
+vtkSLMultiViewPass::vtkSLMultiViewPass() = default;
+vtkSLMultiViewPass::~vtkSLMultiViewPass() = default;
+
+void vtkSLMultiViewPass::SetStages(std::vector<vtkSLStagePass*> inner, vtkSLSubLightAccumulatePass* accumulate)
+{
+  this->Inner.assign(inner.begin(), inner.end());
+  this->Accumulate = accumulate;
+}
+
+namespace
+{
+
+// Puts the frame's light back however the sub-light loop ends.
+struct RestoreLight
+{
+  sl::FrameResources& frame;
+  const sl::Light* light;
+  ~RestoreLight() { frame.light = light; }
+};
+
+} // namespace
+
+void vtkSLMultiViewPass::Render(const vtkRenderState* state)
+{
+  SL_CHECK_MSG(this->Frame, "the multi-view pass has no frame resources");
+  sl::FrameResources& frame = *this->Frame;
+  this->NumberOfRenderedProps = 0;
+  const int perSide = frame.parameters.getInt("sublights");
+  frame.subLightVisibility.clear();
+  if (perSide == 1)
+  {
+    for (vtkSLStagePass* stage : this->Inner)
+    {
+      stage->Render(state);
+    }
+    frame.subLightVisibility.push_back(frame.techniqueTargets.at("visibility"));
+    return;
+  }
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  const std::vector<sl::Light> subLights = sl::splitIntoSubLights(*frame.light, perSide);
+  std::map<std::string, vtkSmartPointer<vtkTextureObject>> combined;
+  for (const std::string& output : vtkSLTechniquePass::OutputNames(*frame.technique))
+  {
+    combined[output] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  }
+  {
+    const RestoreLight restore{ frame, frame.light };
+    for (std::size_t k = 0; k < subLights.size(); ++k)
+    {
+      frame.light = &subLights[k];
+      if (k > 0)
+      {
+        // A fresh visibility target, so that each sub-light's is kept for sublight_visibility.
+        frame.techniqueTargets["visibility"] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+      }
+      for (vtkSLStagePass* stage : this->Inner)
+      {
+        stage->Render(state);
+      }
+      frame.subLightVisibility.push_back(frame.techniqueTargets.at("visibility"));
+      this->Accumulate->SetSubLight(static_cast<int>(k), static_cast<int>(subLights.size()), &combined);
+      this->Accumulate->Render(state);
+    }
+  }
+  frame.techniqueTargets = combined;
+}
+
+void vtkSLMultiViewPass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  // The stages are owned and released by the pipeline (ShadowRenderer); nothing of its own.
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkSLMultiViewPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "InnerStages: " << this->Inner.size() << "\n";
+}

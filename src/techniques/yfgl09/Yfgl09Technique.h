@@ -1,0 +1,60 @@
+// Technique `yfgl09`: packet-based hierarchical soft shadow mapping (Yang, Feng, Guennebaud and Liu 2009).
+// The same visibility as gbp07 (contour extraction on the dual grid, back-projection, radial integration),
+// computed with fewer shadow-map reads:
+//  - packets of w x h pixels (§4.1, Alg. 2): the kernels' bounding box is traversed once, each sample's status
+//    taken over the whole packet (Eq. 3: 1 / null / 0); edges are extracted once and integrated per pixel;
+//  - coherence (§4.3): a packet goes pixel-wise when its divergence probability P_d (Eq. 4-5) exceeds T_d or
+//    the cost model (Eq. 6, Q_n = 1) prefers pixels; a null status met during traversal also sends it there;
+//  - hierarchical contour extraction (§4.2, Alg. 3) through the dual-grid MSSM, starting at the lowest node
+//    that covers the kernel with matching top-left corner; nodes whose range cannot produce an edge for any
+//    pixel of the packet (Fig. 6 cases 4, 5) are pruned.
+// Each is switchable (packet_width = packet_height = 1, hierarchy = off, coherence_test = off).
+// Math: shaders/yfgl09/Yfgl09Visibility.glsl (two passes, see its header); CPU mirror below.
+#pragma once
+
+#include "core/Image.h"
+#include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/ShadowMapReference.h"
+#include "techniques/Technique.h"
+
+#include <vector>
+
+namespace sl
+{
+
+TechniqueDescriptor yfgl09Technique();
+
+enum class PacketClass
+{
+  NotTested = 0,
+  Trivial = 1,     // the pixel is lit or umbra (Alg. 1 step 5)
+  Coherent = 2,    // computed packet-wise
+  NonCoherent = 3, // predicted non-coherent (P_d > T_d or Eq. 6 > 1), computed pixel-wise
+  CaughtNull = 4,  // a null status (Eq. 3) met during the packet traversal, computed pixel-wise
+  OverBudget = 5   // the packet traversal outgrew yfgl09PacketBudget, computed pixel-wise
+};
+// Packet work (visited nodes and extracted edges, times the packet's pixels) beyond which a packet is
+// finished pixel-wise: the GLSL loops over the packet's pixels inside the traversal and GLs that cap loop
+// iterations per invocation (llvmpipe: 65535) would cut it short.
+constexpr int yfgl09PacketBudget = 40000;
+
+struct Yfgl09Frame
+{
+  ImageF visibility;
+  ImageF kernelTexels;
+  ImageF coherence;
+  ImageF packetClass;
+  ImageF divergenceProbability;
+  ImageF visitedNodes;
+  ImageF contourEdges;
+  // Per pixel, for comparisons with the GPU: where float rounding may flip a decision.
+  std::vector<ReferenceSample> samples;
+  std::vector<double> kernelEdgeMargin;
+  std::vector<double> decisionMargin;
+};
+
+// CPU reference (double precision) of both passes over the whole image; `mssm` is the dual-grid MSSM of
+// inputs.shadowMapLinear (HierarchicalShadowMap::buildDual with 2 x far outside).
+Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const ParameterValues& values);
+
+} // namespace sl

@@ -1,0 +1,148 @@
+#include "techniques/yfgl09/vtkSLYfgl09Pass.h"
+
+#include "gl/GlResources.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
+#include "techniques/SoftShadowSupport.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkSLYfgl09Pass);
+
+vtkSLYfgl09Pass::vtkSLYfgl09Pass() = default;
+vtkSLYfgl09Pass::~vtkSLYfgl09Pass() = default;
+
+sl::ShaderDefines vtkSLYfgl09Pass::GetExtraDefines() const
+{
+  // The packet size is a uniform, not a define: one program per pass serves every size.
+  return sl::hsmLayoutDefines(*this->Frame);
+}
+
+std::vector<vtkTextureObject*> vtkSLYfgl09Pass::SetTechniqueUniforms(vtkShaderProgram* program)
+{
+  const sl::FrameResources& frame = *this->Frame;
+  sl::setSoftShadowUniforms(program, frame);
+  vtkTextureObject* visibility = frame.techniqueTargets.at("visibility");
+  const int size[2] = { static_cast<int>(visibility->GetWidth()), static_cast<int>(visibility->GetHeight()) };
+  program->SetUniform2i("imageSize", size);
+  const int packetSize[2] = { frame.parameters.getInt("packet_width"), frame.parameters.getInt("packet_height") };
+  program->SetUniform2i("packetSize", packetSize);
+  return { sl::bindHierarchicalShadowMap(program, frame) };
+}
+
+void vtkSLYfgl09Pass::DrawPass(vtkOpenGLRenderWindow* window, sl::FullScreenQuad& quad, bool packetPass)
+{
+  sl::ShaderDefines defines = this->TechniqueDefines();
+  if (packetPass)
+  {
+    defines.push_back({ "YFGL09_PACKET_PASS", "" });
+  }
+  const std::string source =
+    sl::assembleShader(this->GetFragmentShaderPath(), defines, this->ParameterDeclarations());
+  vtkShaderProgram* program = quad.ready(window, source, this->Frame->technique->name + (packetPass ? " (packets)" : " (pixels)"));
+  std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+  const std::vector<vtkTextureObject*> extra = this->SetTechniqueUniforms(program);
+  bound.insert(bound.end(), extra.begin(), extra.end());
+  if (!packetPass)
+  {
+    bound.push_back(sl::bindTexture(program, "packetTexture", this->PacketTarget));
+  }
+  quad.render();
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+}
+
+void vtkSLYfgl09Pass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  const std::vector<std::string> outputs = OutputNames(*frame.technique);
+  std::vector<vtkTextureObject*> targets;
+  for (const std::string& output : outputs)
+  {
+    targets.push_back(frame.techniqueTargets.at(output));
+  }
+  const int packetWidth = frame.parameters.getInt("packet_width");
+  const int packetHeight = frame.parameters.getInt("packet_height");
+  const int packetColumns = (static_cast<int>(targets[0]->GetWidth()) + packetWidth - 1) / packetWidth;
+  const int packetRows = (static_cast<int>(targets[0]->GetHeight()) + packetHeight - 1) / packetHeight;
+  if (!this->PacketTarget || static_cast<int>(this->PacketTarget->GetWidth()) != packetColumns ||
+    static_cast<int>(this->PacketTarget->GetHeight()) != packetRows)
+  {
+    this->PacketTarget = sl::makeFloatTarget(window, packetColumns, packetRows, 4);
+  }
+
+  // Pass 1 (Alg. 1 steps 5-7): one fragment per packet; its pixels go to the targets through image stores.
+  {
+    const sl::ScopedRenderTarget target(window, this->PacketFramebuffer, { this->PacketTarget });
+    for (std::size_t binding = 0; binding < targets.size(); ++binding)
+    {
+      glBindImageTexture(static_cast<GLuint>(binding), targets[binding]->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    }
+    this->DrawPass(window, this->PacketQuad, true);
+    for (std::size_t binding = 0; binding < targets.size(); ++binding)
+    {
+      glBindImageTexture(static_cast<GLuint>(binding), 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    }
+  }
+  // The pixel pass reads the packet target and draws over the image-stored targets.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  // Pass 2 (step 8): one fragment per pixel of the packets left to pixels; the others are discarded.
+  {
+    const sl::ScopedRenderTarget target(window, this->PixelFramebuffer, targets);
+    this->DrawPass(window, this->PixelQuad, false);
+  }
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+std::map<std::string, double> vtkSLYfgl09Pass::CollectStatistics()
+{
+  if (!this->PacketTarget)
+  {
+    return {};
+  }
+  const sl::ImageF packets = sl::readFloatTexture(this->PacketTarget, 4);
+  // Packet classes (sl::PacketClass): 1 trivial, 2 coherent, 3 predicted non-coherent, 4 caught null, 5 over budget.
+  double counts[6] = { 0, 0, 0, 0, 0, 0 };
+  for (std::size_t i = 0; i < packets.pixelCount(); ++i)
+  {
+    ++counts[std::clamp(static_cast<int>(packets.data[i * 4]), 0, 5)];
+  }
+  const double nonTrivial = counts[2] + counts[3] + counts[4] + counts[5];
+  return {
+    { "packets_non_trivial", nonTrivial },
+    { "packets_coherent", counts[2] },
+    { "packets_predicted_non_coherent", counts[3] },
+    { "packets_caught_null", counts[4] },
+    { "packets_over_budget", counts[5] },
+    { "coherent_packet_percent", nonTrivial > 0 ? 100.0 * counts[2] / nonTrivial : 0.0 },
+  };
+}
+
+void vtkSLYfgl09Pass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Superclass::ReleaseGraphicsResources(window);
+  this->PacketQuad.releaseGraphicsResources(window);
+  this->PixelQuad.releaseGraphicsResources(window);
+  this->PacketFramebuffer->ReleaseGraphicsResources(window);
+  this->PixelFramebuffer->ReleaseGraphicsResources(window);
+  this->PacketTarget = nullptr;
+}
+
+void vtkSLYfgl09Pass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PacketTarget: " << (this->PacketTarget ? "allocated" : "(none)") << "\n";
+}

@@ -1,0 +1,334 @@
+// yfgl09 (packet-based hierarchical soft shadow mapping): the GLSL against its double-precision twin on
+// read-back buffers; the paper's central claim (the same visibility as gbp07, whatever the packets and the
+// hierarchy); the hierarchy visiting fewer nodes than the MSSM-only brute force; the hard cases.
+#include "support/TestSupport.h"
+#include "techniques/gbp07/Gbp07Technique.h"
+#include "techniques/yfgl09/Yfgl09Technique.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <map>
+
+namespace sl
+{
+namespace
+{
+
+HierarchicalShadowMap dualMssm(const ShadowMapInputs& inputs)
+{
+  return HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth));
+}
+
+const char* const classNames[6] = { "not tested", "trivial", "coherent", "non-coherent", "caught null", "over budget" };
+
+std::string histogram(const std::array<int, 6>& counts)
+{
+  std::string text;
+  for (int c = 0; c < 6; ++c)
+  {
+    text += std::string(c ? ", " : "") + classNames[c] + " " + std::to_string(counts[static_cast<std::size_t>(c)]);
+  }
+  return text;
+}
+
+std::array<int, 6> classHistogram(const FrameResult& frame)
+{
+  std::array<int, 6> counts{};
+  for (const float value : frame.find("packet_class")->image.data)
+  {
+    ++counts[static_cast<std::size_t>(std::clamp(static_cast<int>(value), 0, 5))];
+  }
+  return counts;
+}
+
+// The pixels whose float decisions (a sample against a comparison depth, a kernel edge at a texel centre, a
+// lit / umbra test at its boundary) lie within rounding of the boundary: counted, not compared.
+bool ambiguous(const Yfgl09Frame& cpu, int x, int y)
+{
+  const std::size_t index = static_cast<std::size_t>(y) * cpu.visibility.width + x;
+  const ReferenceSample& sample = cpu.samples[index];
+  return cpu.kernelEdgeMargin[index] < 1e-4 || sample.depthMargin < 2e-6 || sample.reachMargin < 1e-5 ||
+    cpu.decisionMargin[index] < 1e-5;
+}
+
+TEST(Yfgl09, MatchesTheCpuImplementation)
+{
+  // Visibility within 1e-3 (float back-projection and clipping, as gbp07's test) on every unambiguous pixel;
+  // the per-packet decisions (class, visited nodes, edges) may flip with one ambiguous pixel of the packet, so
+  // they are compared on all pixels and at most 2% may differ.
+  struct Case
+  {
+    std::string dataset;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Case> cases = {
+    { "bunny", { "shadow_map_size=256" } },
+    { "stacked-occluders", { "shadow_map_size=256", "coherence_test=off", "packet_width=4", "packet_height=4" } },
+    { "near-light", { "shadow_map_size=128", "coherence_test=off", "packet_width=2", "packet_height=3" } },
+    { "contact", { "shadow_map_size=256", "hierarchy=off", "coherence_test=off" } },
+    { "planar-occluder", { "shadow_map_size=256", "receiver_plane_bias=off", "packet_width=1", "packet_height=1" } },
+  };
+  const int width = 64;
+  const int height = 48;
+  std::array<int, 6> allClasses{};
+  for (const Case& c : cases)
+  {
+    const Scene scene = test::loadDataset(c.dataset);
+    const FrameResult frame = test::renderDataset(scene, "yfgl09", width, height, c.settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), frame.parameters);
+    const std::string label = test::caseLabel(c.dataset, c.settings);
+    double maxDifference = 0.0;
+    int compared = 0;
+    int skipped = 0;
+    int decisionMismatches = 0;
+    std::array<int, 6> classes{};
+    for (int y = 0; y < height; ++y)
+    {
+      for (int x = 0; x < width; ++x)
+      {
+        const int cpuClass = static_cast<int>(cpu.packetClass.at(x, y));
+        ++classes[static_cast<std::size_t>(cpuClass)];
+        ++allClasses[static_cast<std::size_t>(cpuClass)];
+        const bool sameDecisions = frame.find("packet_class")->image.at(x, y) == cpu.packetClass.at(x, y) &&
+          std::abs(frame.find("visited_nodes")->image.at(x, y) - cpu.visitedNodes.at(x, y)) < 1e-3 &&
+          frame.find("contour_edges")->image.at(x, y) == cpu.contourEdges.at(x, y);
+        decisionMismatches += sameDecisions ? 0 : 1;
+        if (ambiguous(cpu, x, y))
+        {
+          ++skipped;
+          continue;
+        }
+        ++compared;
+        const double gpu = frame.find("visibility")->image.at(x, y);
+        maxDifference = std::max(maxDifference, std::abs(gpu - cpu.visibility.at(x, y)));
+        EXPECT_NEAR(gpu, cpu.visibility.at(x, y), 1e-3) << label << " pixel " << x << "," << y << " class " << cpuClass;
+        EXPECT_NEAR(frame.find("kernel_texels")->image.at(x, y), cpu.kernelTexels.at(x, y), 1e-4 * (1.0 + cpu.kernelTexels.at(x, y)))
+          << label << " pixel " << x << "," << y;
+        if (sameDecisions)
+        {
+          EXPECT_NEAR(frame.find("coherence")->image.at(x, y), cpu.coherence.at(x, y), 1e-5) << label << " pixel " << x << "," << y;
+          // Eq. 5 raises (1 - P_null) to the kernel's texel count (~10^4): float rounding of P_null grows by as much.
+          EXPECT_NEAR(frame.find("divergence_probability")->image.at(x, y), cpu.divergenceProbability.at(x, y), 2e-3)
+            << label << " pixel " << x << "," << y;
+        }
+      }
+    }
+    std::cout << "[ measured ] yfgl09 " << label << ": " << histogram(classes) << "; compared " << compared << ", skipped "
+              << skipped << ", decisions differing " << decisionMismatches << ", max |gpu - cpu| " << maxDifference << "\n";
+    EXPECT_GT(compared, width * height / 2) << label;
+    EXPECT_LT(skipped, width * height / 20) << label;
+    EXPECT_LE(decisionMismatches, width * height / 50) << label;
+    EXPECT_EQ(classes[5], 0) << label << ": the test cases must stay inside the packet budget";
+  }
+  // Every path of the algorithm was exercised somewhere.
+  EXPECT_GT(allClasses[2], 100) << "coherent packets";
+  EXPECT_GT(allClasses[3], 100) << "predicted non-coherent packets";
+  EXPECT_GT(allClasses[4], 20) << "packets caught by a null status";
+}
+
+// The scenes whose light gbp07 and yfgl09 support (square area lights).
+std::vector<std::string> squareLightDatasets()
+{
+  std::vector<std::string> names;
+  for (const std::string& name : test::datasetNames())
+  {
+    const Scene scene = test::loadDataset(name);
+    if (findTechnique("gbp07").supports(scene.lights.front()))
+    {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
+{
+  // The paper's claim (§4: "exactly the same contours as the original method"): packets and hierarchy change
+  // the cost, not the result. Every packet size 1 x 1 .. 4 x 4 with every packet that can be coherent taken
+  // packet-wise (coherence_test off), and the default 3 x 3 with the §4.3 predictions, against gbp07 with the
+  // same (exact) MSSM kernels. Only the order of float sums differs.
+  const std::vector<std::string> datasets = squareLightDatasets();
+  ASSERT_GE(datasets.size(), 6u);
+  const int width = 64;
+  const int height = 48;
+  std::array<int, 6> allClasses{};
+  for (const std::string& dataset : datasets)
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult baseline = test::renderDataset(scene, "gbp07", width, height, { "shadow_map_size=128" });
+    std::vector<std::vector<std::string>> variants;
+    for (int w = 1; w <= 4; ++w)
+    {
+      for (int h = 1; h <= 4; ++h)
+      {
+        variants.push_back({ "shadow_map_size=128", "coherence_test=off", "packet_width=" + std::to_string(w),
+          "packet_height=" + std::to_string(h) });
+      }
+    }
+    variants.push_back({ "shadow_map_size=128" });
+    double worst = 0.0;
+    for (const std::vector<std::string>& settings : variants)
+    {
+      const FrameResult frame = test::renderDataset(scene, "yfgl09", width, height, settings);
+      const std::string label = test::caseLabel(dataset, settings);
+      const ImageF& expected = baseline.find("visibility")->image;
+      const ImageF& actual = frame.find("visibility")->image;
+      double maxDifference = 0.0;
+      int worstPixel = 0;
+      for (std::size_t i = 0; i < actual.data.size(); ++i)
+      {
+        ASSERT_TRUE(std::isfinite(actual.data[i])) << label << " pixel " << i;
+        const double difference = std::abs(actual.data[i] - expected.data[i]);
+        if (difference > maxDifference)
+        {
+          maxDifference = difference;
+          worstPixel = static_cast<int>(i);
+        }
+      }
+      const std::array<int, 6> classes = classHistogram(frame);
+      for (int c = 0; c < 6; ++c)
+      {
+        allClasses[static_cast<std::size_t>(c)] += classes[static_cast<std::size_t>(c)];
+      }
+      EXPECT_LE(maxDifference, 1e-4) << label << ": pixel " << worstPixel % width << "," << worstPixel / width << " yfgl09 "
+                                     << actual.data[static_cast<std::size_t>(worstPixel)] << " gbp07 "
+                                     << expected.data[static_cast<std::size_t>(worstPixel)] << " class "
+                                     << frame.find("packet_class")->image.data[static_cast<std::size_t>(worstPixel)];
+      worst = std::max(worst, maxDifference);
+    }
+    std::cout << "[ measured ] yfgl09 vs gbp07 on " << dataset << ", " << variants.size() << " packet settings: max |difference| "
+              << worst << "\n";
+  }
+  std::cout << "[ measured ] yfgl09 pixel classes over all runs: " << histogram(allClasses) << "\n";
+  EXPECT_GT(allClasses[2], 1000) << "coherent packets must have been exercised";
+  EXPECT_GT(allClasses[4], 100) << "caught-null packets must have been exercised";
+}
+
+TEST(Yfgl09, HierarchyVisitsFewerNodesThanTheBruteForceOnEveryPixelClass)
+{
+  // Fig. 8: summed over the pixels of each class, the MSSM traversal (Alg. 3) examines fewer nodes than
+  // visiting every dual cell of the kernel (hierarchy off), with the same visibility.
+  struct Case
+  {
+    std::string dataset;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Case> cases = {
+    { "bunny", { "shadow_map_size=256" } },
+    { "stacked-occluders", { "shadow_map_size=256", "coherence_test=off" } },
+    // 128^2: at 256^2 the brute force's kernels pass 65535 cells, which llvmpipe's loop cap cuts short.
+    { "near-light", { "shadow_map_size=128" } },
+  };
+  for (const Case& c : cases)
+  {
+    const Scene scene = test::loadDataset(c.dataset);
+    std::vector<std::string> off = c.settings;
+    off.push_back("hierarchy=off");
+    const FrameResult hierarchy = test::renderDataset(scene, "yfgl09", 96, 72, c.settings);
+    const FrameResult bruteForce = test::renderDataset(scene, "yfgl09", 96, 72, off);
+    const ImageF& classes = hierarchy.find("packet_class")->image;
+    std::map<int, std::pair<double, double>> visited; // class -> (hierarchy, brute force)
+    double maxDifference = 0.0;
+    for (std::size_t i = 0; i < classes.data.size(); ++i)
+    {
+      const int pixelClass = static_cast<int>(classes.data[i]);
+      if (pixelClass < 2)
+      {
+        continue; // not tested, trivial: no traversal
+      }
+      visited[pixelClass].first += hierarchy.find("visited_nodes")->image.data[i];
+      visited[pixelClass].second += bruteForce.find("visited_nodes")->image.data[i];
+      maxDifference = std::max(maxDifference,
+        static_cast<double>(std::abs(hierarchy.find("visibility")->image.data[i] - bruteForce.find("visibility")->image.data[i])));
+    }
+    const std::string label = test::caseLabel(c.dataset, c.settings);
+    EXPECT_LE(maxDifference, 1e-4) << label;
+    ASSERT_GE(visited.size(), 2u) << label << ": at least two traversing classes";
+    for (const auto& [pixelClass, sums] : visited)
+    {
+      std::cout << "[ measured ] yfgl09 " << label << ", " << classNames[pixelClass] << ": visited nodes " << sums.first
+                << " (hierarchy) vs " << sums.second << " (every cell), ratio " << sums.second / std::max(1.0, sums.first) << "\n";
+      EXPECT_LT(sums.first, sums.second) << label << " class " << classNames[pixelClass];
+    }
+  }
+}
+
+TEST(Yfgl09, HardCasesFinishAndStayExact)
+{
+  // Exact = gbp07's double-precision twin (every dual cell of the kernel, no packets, no hierarchy).
+  struct Case
+  {
+    std::string what;
+    std::string dataset;
+    std::vector<std::string> sceneOverrides;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Case> cases = {
+    // 0.05 below a light 1 wide: kernels span most of the map (Eq. 1 with z_occ close to the light).
+    { "occluder near the light", "near-light", { "/objects/1/center/1=2.95" }, { "shadow_map_size=256" } },
+    { "occluder touching the receiver", "contact", {}, { "shadow_map_size=256", "coherence_test=off" } },
+    // The focus stage widens the map by the light's footprint at the near plane of the receivers' casters
+    // (LightView.cpp); a small caster 0.15 below the light, outside that first window but inside the widened
+    // one, moves the near plane to 0.15, and the kernels that hold it are clamped by the map's border.
+    { "kernels leaving the map", "near-light",
+      { R"(/objects/2={"primitive": "quad", "center": [0.3, 2.85, 0], "size": [0.05, 0.05], "normal": [0, 1, 0], "up": [0, 0, -1]})" },
+      { "shadow_map_size=128" } },
+  };
+  for (const Case& c : cases)
+  {
+    const Scene scene = loadScene(test::datasetPath(c.dataset), c.sceneOverrides);
+    const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, c.settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const ParameterValues gbp07Values = [&] {
+      ParameterValues values(findTechnique("gbp07"));
+      values.set(c.settings.front());
+      return values;
+    }();
+    const HierarchicalShadowMap nbuffers = HierarchicalShadowMap::build(inputs.shadowMapLinear, HsmLayout::NBuffers);
+    double maxDifference = 0.0;
+    double maxKernel = 0.0;
+    int compared = 0;
+    int edgePixels = 0;
+    for (int y = 0; y < 48; ++y)
+    {
+      for (int x = 0; x < 64; ++x)
+      {
+        const double gpu = frame.find("visibility")->image.at(x, y);
+        ASSERT_TRUE(std::isfinite(gpu)) << c.what;
+        const Gbp07Sample exact = gbp07Reference(inputs, nbuffers, gbp07Values, x, y);
+        if (!exact.sample.evaluated || exact.kernelEdgeMargin < 1e-4 || exact.sample.depthMargin < 2e-6 ||
+          exact.sample.reachMargin < 1e-5 || exact.decisionMargin < 1e-5)
+        {
+          continue;
+        }
+        ++compared;
+        maxKernel = std::max(maxKernel, exact.kernelTexels);
+        const ContourReceiver receiver = prepareContourReceiver(inputs, gbp07Values,
+          [&](glm::ivec2 lo, glm::ivec2 hi) { return nbuffers.range(lo, hi); }, x, y);
+        const int last = inputs.lightView.resolution - 1;
+        const bool leavesMap = receiver.kernel.lo.x <= 0 || receiver.kernel.lo.y <= 0 || receiver.kernel.hi.x >= last ||
+          receiver.kernel.hi.y >= last;
+        edgePixels += receiver.classification == BackprojectionClass::Penumbra && leavesMap ? 1 : 0;
+        maxDifference = std::max(maxDifference, std::abs(gpu - exact.sample.visibility));
+        EXPECT_NEAR(gpu, exact.sample.visibility, 1e-3) << c.what << " pixel " << x << "," << y;
+      }
+    }
+    const std::array<int, 6> classes = classHistogram(frame);
+    std::cout << "[ measured ] yfgl09, " << c.what << ": widest kernel " << maxKernel << " texels, " << edgePixels
+              << " penumbra pixels whose kernel reaches the map's border, " << histogram(classes) << ", max |gpu - exact| " << maxDifference
+              << " over " << compared << " pixels\n";
+    EXPECT_GT(compared, 1000) << c.what;
+    if (c.what == "kernels leaving the map")
+    {
+      EXPECT_GT(edgePixels, 100) << c.what << ": the case must produce kernels clamped by the map's border";
+    }
+  }
+}
+
+} // namespace
+} // namespace sl
