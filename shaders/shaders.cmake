@@ -35,6 +35,7 @@ set(SL_SHADER_FILES
   gbp06/Gbp06Visibility.glsl
   gbp07/Gbp07Visibility.glsl
   yfgl09/Yfgl09Visibility.glsl
+  common/ContourKernel.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl

@@ -12,6 +12,7 @@
 #include "common/SoftShadowKernels.glsl"
 #include "common/HsmLookup.glsl"
 #include "common/ContourBackprojection.glsl"
+#include "common/ContourKernel.glsl"
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
@@ -40,13 +41,6 @@ float occludedArea;
 int occludingTexels;
 int visitedNodes;
 int loopIterations;
-
-// The kernel's samples plus one ring, clamped to the map.
-void ringed(ivec2 lo, ivec2 hi, out ivec2 ringLo, out ivec2 ringHi)
-{
-  ringLo = max(lo - 1, ivec2(0));
-  ringHi = min(hi + 1, ivec2(shadowMapSize - 1));
-}
 
 // Whether texel (i, j) is an occluding micropatch for the receiver, and its depth; outside the map, never.
 bool occludesAt(ivec2 texel, out float depth)
@@ -221,37 +215,14 @@ void main()
   float d = receiver.depthLin;
   float bias = receiver.bias;
   vec2 uv = receiver.uvTexels;
-  setReceiverPlane(receiver.pWs, receiver.nWs);
-
-  // Eq. 1 with the near plane, then with the minimum depth inside the kernel (as gbp07).
-  vec2 halfTexels = kernelHalfTexels(d, lightNearDepth);
-  ivec2 lo;
-  ivec2 hi;
-  kernelRectangle(uv, halfTexels, lo, hi);
-  ivec2 ringLo;
-  ivec2 ringHi;
-  ringed(lo, hi, ringLo, ringHi);
-  vec2 depthRange = hsmRange(ringLo, ringHi);
-  for (int refinement = 0; refinement < int(param_kernel_refinements); ++refinement)
+  ContourKernel kernel = prepareContourKernel(receiver); // as gbp07
+  ivec2 ringLo = kernel.ringLo;
+  ivec2 ringHi = kernel.ringHi;
+  outKernelTexels = kernel.kernelTexels;
+  if (kernel.decision != KERNEL_PENUMBRA)
   {
-    halfTexels = kernelHalfTexels(d, clamp(depthRange.x, lightNearDepth, d));
-    kernelRectangle(uv, halfTexels, lo, hi);
-    ringed(lo, hi, ringLo, ringHi);
-    depthRange = hsmRange(ringLo, ringHi);
-  }
-  outKernelTexels = 2.0 * max(halfTexels.x, halfTexels.y);
-  vec2 comparison = comparisonDepthRange(ringLo, ringHi, d, bias);
-  if (depthRange.x >= comparison.y)
-  {
-    outVisibility = 1.0;
-    outClassification = CLASS_LIT;
-    return;
-  }
-  bool ringInsideMap = ringLo == lo - 1 && ringHi == hi + 1;
-  if (ringInsideMap && depthRange.y < comparison.x)
-  {
-    outVisibility = 0.0;
-    outClassification = CLASS_UMBRA;
+    outVisibility = kernel.decision == KERNEL_LIT ? 1.0 : 0.0;
+    outClassification = kernel.decision == KERNEL_LIT ? CLASS_LIT : CLASS_UMBRA;
     return;
   }
 

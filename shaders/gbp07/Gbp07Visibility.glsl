@@ -9,6 +9,7 @@
 #include "common/SoftShadowKernels.glsl"
 #include "common/HsmLookup.glsl"
 #include "common/ContourBackprojection.glsl"
+#include "common/ContourKernel.glsl"
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
@@ -25,13 +26,6 @@ const float CLASS_OVER_LOOP_BUDGET = 4.0;
 // (llvmpipe: 65535, all loops together; common/ContourBackprojection.glsl). They are still evaluated in full
 // and flagged, so results on such GLs can be told apart.
 const int LOOP_BUDGET_CELLS = 60000;
-
-// The kernel's samples plus one ring, clamped to the map.
-void ringed(ivec2 lo, ivec2 hi, out ivec2 ringLo, out ivec2 ringHi)
-{
-  ringLo = max(lo - 1, ivec2(0));
-  ringHi = min(hi + 1, ivec2(shadowMapSize - 1));
-}
 
 // Status and depth of sample (i, j); outside the map samples never occlude (contours close there).
 float sampleAt(ivec2 texel, float d, float bias, out bool occluding)
@@ -76,37 +70,14 @@ void main()
   float d = receiver.depthLin;
   float bias = receiver.bias;
   vec2 uv = receiver.uvTexels;
-  setReceiverPlane(receiver.pWs, receiver.nWs);
-
-  // Eq. 1 with the near plane, then with the minimum depth inside the kernel.
-  vec2 halfTexels = kernelHalfTexels(d, lightNearDepth);
-  ivec2 lo;
-  ivec2 hi;
-  kernelRectangle(uv, halfTexels, lo, hi);
-  ivec2 ringLo;
-  ivec2 ringHi;
-  ringed(lo, hi, ringLo, ringHi);
-  vec2 depthRange = hsmRange(ringLo, ringHi);
-  for (int refinement = 0; refinement < int(param_kernel_refinements); ++refinement)
+  ContourKernel kernel = prepareContourKernel(receiver);
+  ivec2 lo = kernel.lo;
+  ivec2 hi = kernel.hi;
+  outKernelTexels = kernel.kernelTexels;
+  if (kernel.decision != KERNEL_PENUMBRA)
   {
-    halfTexels = kernelHalfTexels(d, clamp(depthRange.x, lightNearDepth, d));
-    kernelRectangle(uv, halfTexels, lo, hi);
-    ringed(lo, hi, ringLo, ringHi);
-    depthRange = hsmRange(ringLo, ringHi);
-  }
-  outKernelTexels = 2.0 * max(halfTexels.x, halfTexels.y);
-  vec2 comparison = comparisonDepthRange(ringLo, ringHi, d, bias);
-  if (depthRange.x >= comparison.y)
-  {
-    outVisibility = 1.0;
-    outClassification = CLASS_LIT;
-    return;
-  }
-  bool ringInsideMap = ringLo == lo - 1 && ringHi == hi + 1;
-  if (ringInsideMap && depthRange.y < comparison.x)
-  {
-    outVisibility = 0.0;
-    outClassification = CLASS_UMBRA;
+    outVisibility = kernel.decision == KERNEL_LIT ? 1.0 : 0.0;
+    outClassification = kernel.decision == KERNEL_LIT ? CLASS_LIT : CLASS_UMBRA;
     return;
   }
 

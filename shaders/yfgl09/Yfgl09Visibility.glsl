@@ -28,6 +28,7 @@
 #include "common/SoftShadowKernels.glsl"
 #include "common/HsmLookup.glsl"
 #include "common/ContourBackprojection.glsl"
+#include "common/ContourKernel.glsl"
 
 const float CLASS_NOT_TESTED = 0.0;
 const float CLASS_TRIVIAL = 1.0;
@@ -35,7 +36,7 @@ const float CLASS_COHERENT = 2.0;
 const float CLASS_NON_COHERENT = 3.0;
 const float CLASS_CAUGHT_NULL = 4.0;
 const float CLASS_OVER_BUDGET = 5.0;
-const int PACKET_BUDGET = 40000; // yfgl09PacketBudget
+const int PACKET_BUDGET = 20000; // yfgl09PacketBudget
 
 uniform ivec2 imageSize;
 uniform ivec2 packetSize; // w x h (§4.1)
@@ -55,11 +56,9 @@ layout(r32f, binding = OUT_CONTOUR_EDGES) uniform writeonly image2D contourEdges
 // iteration per node, as in gbp07 (even loops of one constant iteration count there: measured, a brute-force
 // kernel stopped at 3300 cells with them and ran its 5544 without).
 #define FOR_EACH_RECEIVER(p) for (int p = 0; p < pixelCount; ++p)
-#define FOR_EACH_EDGE_AND_RECEIVER(k, count) for (int k = 0; k < (count) * pixelCount; ++k)
 #else
 const int MAX_PIXELS = 1;
 #define FOR_EACH_RECEIVER(p) const int p = 0;
-#define FOR_EACH_EDGE_AND_RECEIVER(k, count) for (int k = 0; k < (count); ++k)
 uniform sampler2D packetTexture; // the packet pass's outPacket
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
@@ -94,7 +93,7 @@ void selectReceiver(int p)
   hasReceiverPlane = pixelHasPlane[p];
 }
 
-// One pixel's kernel and class (mirror of sl::prepareContourReceiver).
+// One pixel's kernel and class (common/ContourKernel.glsl, the mirror of sl::prepareContourReceiver).
 struct Contour
 {
   ShadowReceiver receiver;
@@ -102,16 +101,9 @@ struct Contour
   ivec2 hi;
   ivec2 ringLo; // plus one ring, clamped
   ivec2 ringHi;
-  vec2 comparison; // comparison depths over the ring
   float kernelTexels;
   float classification; // CLASS_NOT_TESTED, CLASS_TRIVIAL (visibility final) or CLASS_COHERENT (penumbra)
 };
-
-void ringed(ivec2 lo, ivec2 hi, out ivec2 ringLo, out ivec2 ringHi)
-{
-  ringLo = max(lo - 1, ivec2(0));
-  ringHi = min(hi + 1, ivec2(shadowMapSize - 1));
-}
 
 Contour prepareContour(ivec2 pixel)
 {
@@ -121,44 +113,22 @@ Contour prepareContour(ivec2 pixel)
   contour.hi = ivec2(0);
   contour.ringLo = ivec2(0);
   contour.ringHi = ivec2(0);
-  contour.comparison = vec2(0.0);
   contour.kernelTexels = 0.0;
   contour.classification = CLASS_NOT_TESTED;
   if (!contour.receiver.needsShadowTest)
   {
     return contour;
   }
-  float d = contour.receiver.depthLin;
-  float bias = contour.receiver.bias;
-  vec2 uv = contour.receiver.uvTexels;
-  setReceiverPlane(contour.receiver.pWs, contour.receiver.nWs);
-  // Eq. 1 with the near plane, then with the minimum depth inside the kernel (from the dual-grid MSSM).
-  vec2 halfTexels = kernelHalfTexels(d, lightNearDepth);
-  kernelRectangle(uv, halfTexels, contour.lo, contour.hi);
-  ringed(contour.lo, contour.hi, contour.ringLo, contour.ringHi);
-  vec2 depthRange = mssmSampleRange(contour.ringLo, contour.ringHi);
-  for (int refinement = 0; refinement < int(param_kernel_refinements); ++refinement)
+  ContourKernel kernel = prepareContourKernel(contour.receiver);
+  contour.lo = kernel.lo;
+  contour.hi = kernel.hi;
+  contour.ringLo = kernel.ringLo;
+  contour.ringHi = kernel.ringHi;
+  contour.kernelTexels = kernel.kernelTexels;
+  contour.classification = kernel.decision == KERNEL_PENUMBRA ? CLASS_COHERENT : CLASS_TRIVIAL;
+  if (kernel.decision != KERNEL_PENUMBRA)
   {
-    halfTexels = kernelHalfTexels(d, clamp(depthRange.x, lightNearDepth, d));
-    kernelRectangle(uv, halfTexels, contour.lo, contour.hi);
-    ringed(contour.lo, contour.hi, contour.ringLo, contour.ringHi);
-    depthRange = mssmSampleRange(contour.ringLo, contour.ringHi);
-  }
-  contour.kernelTexels = 2.0 * max(halfTexels.x, halfTexels.y);
-  contour.comparison = comparisonDepthRange(contour.ringLo, contour.ringHi, d, bias);
-  bool ringInsideMap = contour.ringLo == contour.lo - 1 && contour.ringHi == contour.hi + 1;
-  contour.classification = CLASS_TRIVIAL;
-  if (depthRange.x >= contour.comparison.y)
-  {
-    contour.receiver.visibility = 1.0;
-  }
-  else if (ringInsideMap && depthRange.y < contour.comparison.x)
-  {
-    contour.receiver.visibility = 0.0;
-  }
-  else
-  {
-    contour.classification = CLASS_COHERENT;
+    contour.receiver.visibility = kernel.decision == KERNEL_LIT ? 1.0 : 0.0;
   }
   return contour;
 }
@@ -229,6 +199,12 @@ int sampleStatus(ivec2 cell, ivec2 samplePosition, out float depth)
   return occluded == 0 ? 0 : occluded == sharing ? 1 : -1;
 }
 
+void integrateEdge(ContourEdge edge, int p)
+{
+  pixelArea[p] += radialEdgeArea(backProject(shadowWindowMin + edge.a * shadowTexelTangent, edge.depthA, pixelXy[p], pixelDepth[p]),
+    backProject(shadowWindowMin + edge.b * shadowTexelTangent, edge.depthB, pixelXy[p], pixelDepth[p]), 0.5 * lightSizeWorld);
+}
+
 // Marching squares on one dual cell with the receivers' common statuses, each edge back-projected and radially
 // integrated for every receiver whose kernel holds the cell (Alg. 2); false on a null status.
 bool leafCell(ivec2 cell)
@@ -249,19 +225,28 @@ bool leafCell(ivec2 cell)
   occluding[3] = status3 == 1;
   ContourEdge edges[2];
   int count = marchingSquaresEdges(occluding, depths, vec2(cell) + 0.5, edges);
-  float halfSize = 0.5 * lightSizeWorld;
+#ifdef YFGL09_PACKET_PASS
   // One call site of the back-projection for every edge and receiver: a loop the compiler cannot unroll.
-  FOR_EACH_EDGE_AND_RECEIVER(k, count)
+  for (int k = 0; k < count * pixelCount; ++k)
   {
     int e = k / pixelCount;
     int p = k - e * pixelCount;
     if (cellOfPixel(p, cell))
     {
-      ContourEdge edge = edges[e];
-      pixelArea[p] += radialEdgeArea(backProject(shadowWindowMin + edge.a * shadowTexelTangent, edge.depthA, pixelXy[p], pixelDepth[p]),
-        backProject(shadowWindowMin + edge.b * shadowTexelTangent, edge.depthB, pixelXy[p], pixelDepth[p]), halfSize);
+      integrateEdge(edges[e], p);
     }
   }
+#else
+  // No loop in the pixel pass (as gbp07): llvmpipe's limiter would count it, one kernel cell at a time.
+  if (count > 0)
+  {
+    integrateEdge(edges[0], 0);
+  }
+  if (count > 1)
+  {
+    integrateEdge(edges[1], 0);
+  }
+#endif
   packetWork += count * pixelCount;
   contourEdges += count;
   return true;
