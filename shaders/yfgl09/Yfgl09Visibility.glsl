@@ -18,8 +18,9 @@
 // whose work outgrows PACKET_BUDGET is finished pixel-wise.
 //
 // Exactness (the paper's claim: the same contours as GBP07): a pixel integrates only the edges of the dual
-// cells of its own kernel, statuses outside the packet's depth range [z_pmin, z_pmax] (Eq. 3) hold for every
-// pixel, and samples inside it are resolved per pixel: null only where the pixels sharing the cell disagree.
+// cells of its own kernel; a sample's status holds for every pixel when it lies outside the node's
+// [z_pmin, z_pmax] (Eq. 3: the comparison depths, with receiver-plane bias, of the pixels sharing the node),
+// and inside it is resolved per pixel: null only where the pixels sharing the cell disagree.
 // CPU mirror: src/techniques/yfgl09/Yfgl09Technique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"

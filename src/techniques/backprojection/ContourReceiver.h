@@ -1,5 +1,5 @@
-// The per-pixel preamble of the contour methods (gbp07, yfgl09), in double precision: the CPU mirror of the
-// kernel and classification steps of shaders/gbp07/Gbp07Visibility.glsl and shaders/yfgl09/Yfgl09Packet.glsl.
+// The per-pixel preamble of the back-projection methods (gbp06, gbp07, yfgl09), in double precision: the CPU
+// mirror of shaders/common/ContourKernel.glsl.
 // Kernel of Eq. 1 (Yang et al. 2009) with the near plane, shrunk `kernel_refinements` times to the minimum
 // depth inside it (MSSM kernels, Schwarz and Stamminger 2007); lit / umbra from the same range (Alg. 1 step 5).
 #pragma once
