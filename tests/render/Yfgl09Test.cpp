@@ -308,8 +308,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
         }
         ++compared;
         maxKernel = std::max(maxKernel, exact.kernelTexels);
-        const ContourReceiver receiver = prepareContourReceiver(inputs, gbp07Values,
-          [&](glm::ivec2 lo, glm::ivec2 hi) { return nbuffers.range(lo, hi); }, x, y);
+        const ContourReceiver receiver = prepareContourReceiver(inputs, gbp07Values, nbuffers, x, y);
         const int last = inputs.lightView.resolution - 1;
         const bool leavesMap = receiver.kernel.lo.x <= 0 || receiver.kernel.lo.y <= 0 || receiver.kernel.hi.x >= last ||
           receiver.kernel.hi.y >= last;

@@ -68,6 +68,21 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Para
   return receiver;
 }
 
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
+  const HierarchicalShadowMap& structure, int x, int y)
+{
+  return prepareContourReceiver(inputs, values, [&](glm::ivec2 lo, glm::ivec2 hi) { return structure.range(lo, hi); }, x, y);
+}
+
+void recordReceiver(const ContourReceiver& receiver, BackprojectionClass classification, BackprojectionPixel& pixel)
+{
+  pixel.sample = receiver.lookup.sample;
+  pixel.classification = classification;
+  pixel.kernelTexels = receiver.kernelTexels;
+  pixel.kernelEdgeMargin = receiver.kernelEdgeMargin;
+  pixel.decisionMargin = receiver.decisionMargin;
+}
+
 bool ContourReceiver::occludes(const ShadowMapInputs& inputs, glm::ivec2 sample, double& depth)
 {
   const int size = geometry.mapSize;

@@ -4,6 +4,7 @@
 // depth inside it (MSSM kernels, Schwarz and Stamminger 2007); lit / umbra from the same range (Alg. 1 step 5).
 #pragma once
 
+#include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/Technique.h"
@@ -56,5 +57,20 @@ struct ContourReceiver
 
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
   const DepthRangeQuery& range, int x, int y);
+// The same with the ranges of a min-max structure built from inputs.shadowMapLinear.
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
+  const HierarchicalShadowMap& structure, int x, int y);
+
+// What the CPU twins of gbp06 and gbp07 report for every pixel: the preamble's outcome and margins.
+struct BackprojectionPixel
+{
+  ReferenceSample sample;
+  BackprojectionClass classification = BackprojectionClass::NotTested;
+  double kernelTexels = 0.0;
+  double kernelEdgeMargin = 1e300;
+  double decisionMargin = 1e300; // the lit / umbra tests against the structure's range, relative to d
+};
+// Copies the receiver's sample, kernel width and margins into `pixel`, with its final class.
+void recordReceiver(const ContourReceiver& receiver, BackprojectionClass classification, BackprojectionPixel& pixel);
 
 } // namespace sl

@@ -45,16 +45,11 @@ TechniqueDescriptor gbp06Technique();
 // together): kernel traversal, texels examined; hsm traversal, iterations of the walk.
 constexpr int gbp06LoopBudget = 60000;
 
-struct Gbp06Sample
+struct Gbp06Sample : BackprojectionPixel
 {
-  ReferenceSample sample;
-  BackprojectionClass classification = BackprojectionClass::NotTested;
-  double kernelTexels = 0.0;
   int occludingTexels = 0;  // micropatches accumulated
   int visitedNodes = 0;     // kernel: texels examined; hsm: quadtree nodes examined, leaves included
   int loopIterations = 0;   // of the texel loop or of the walk (the loop-budget test)
-  double kernelEdgeMargin = 1e300;
-  double decisionMargin = 1e300;  // the lit / umbra tests against the structure's range, relative to d
   double pruningMargin = 1e300;   // hsm: the node pruning tests, relative to d (decides visited_nodes only)
 };
 

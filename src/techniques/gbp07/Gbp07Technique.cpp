@@ -52,15 +52,10 @@ TechniqueDescriptor gbp07Technique()
 Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
   const ParameterValues& values, int x, int y)
 {
-  ContourReceiver receiver = prepareContourReceiver(inputs, values,
-    [&](glm::ivec2 lo, glm::ivec2 hi) { return hsm.range(lo, hi); }, x, y);
+  ContourReceiver receiver = prepareContourReceiver(inputs, values, hsm, x, y);
   Gbp07Sample result;
   const auto finish = [&](BackprojectionClass classification) {
-    result.sample = receiver.lookup.sample;
-    result.classification = classification;
-    result.kernelTexels = receiver.kernelTexels;
-    result.kernelEdgeMargin = receiver.kernelEdgeMargin;
-    result.decisionMargin = receiver.decisionMargin;
+    recordReceiver(receiver, classification, result);
     return result;
   };
   if (receiver.classification != BackprojectionClass::Penumbra)

@@ -22,15 +22,10 @@ TechniqueDescriptor gbp07Technique();
 
 constexpr int gbp07LoopBudgetCells = 60000;
 
-struct Gbp07Sample
+struct Gbp07Sample : BackprojectionPixel
 {
-  ReferenceSample sample;
-  BackprojectionClass classification = BackprojectionClass::NotTested;
-  double kernelTexels = 0.0;
   int contourEdges = 0;
   int visitedCells = 0;
-  double kernelEdgeMargin = 1e300;
-  double decisionMargin = 1e300; // the lit / umbra tests against the structure's range, relative to d
 };
 
 // CPU reference (double precision) of Gbp07Visibility.glsl at pixel (x, y); `hsm` is the min-max structure

@@ -362,7 +362,6 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
   const double divergenceThreshold = values.get("divergence_threshold");
   const double edgeCost = values.get("edge_cost");
   const double visibilityCost = values.get("visibility_cost");
-  const DepthRangeQuery range = [&](glm::ivec2 lo, glm::ivec2 hi) { return mssm.range(lo, hi); };
 
   for (int py = 0; py < height; py += packetHeight)
   {
@@ -379,7 +378,7 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
       {
         for (int x = px; x < std::min(px + packetWidth, width); ++x)
         {
-          receivers.push_back(prepareContourReceiver(inputs, values, range, x, y));
+          receivers.push_back(prepareContourReceiver(inputs, values, mssm, x, y));
           pixels.emplace_back(x, y);
           ContourReceiver& receiver = receivers.back();
           frame.kernelTexels.at(x, y) = static_cast<float>(receiver.kernelTexels);
