@@ -8,7 +8,10 @@
 //    on a box or sphere.
 //  - `alpha_texture` "fence" and "leaves" name the procedural patterns; any other string is a PNG path
 //    relative to the scene file. Mesh paths are relative to the scene file too (absolute paths work).
-//  - Integers (`resolution`) may be written as 512 or 512.0, not 512.5. View vectors are normalised.
+//  - Integers (`resolution`) may be written as 512 or 512.0, not 512.5. View vectors are normalised; a direction
+//    is any non-zero vector, however large or small its components ([1e308, -1e308, 0] is a valid normal).
+//  - The limits of Scene.h (file size, nesting depth, magnitudes, light and camera distance) are checked here,
+//    each failure naming the JSON path, so no scene reaches the renderers with a value float32 cannot carry.
 //
 // Structure: a small helper layer (Range, JsonNode, ObjectFields) does the type, finiteness and range checks
 // and builds the one-line messages "<file>: <json path>: <problem>"; the readers below it (readCamera,
@@ -21,11 +24,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
-#include <iterator>
 #include <optional>
 #include <string_view>
 #include <system_error>
@@ -44,6 +50,23 @@ constexpr int kMaxResolution = 16384;
 
 // ---- helper layer ---------------------------------------------------------------------------------------
 
+// A limit as people write it: 1e6 rather than the stream's 1e+06.
+std::string shortNumber(double value)
+{
+  std::string text = format(value);
+  for (const std::string_view longForm : { "e+0", "e+" })
+  {
+    const std::size_t at = text.find(longForm);
+    if (at != std::string::npos)
+      text.replace(at, longForm.size(), "e");
+  }
+  return text;
+}
+
+// Why the magnitude bounds exist, appended to their messages so the user learns it is a limit, not a typo check.
+const std::string kMagnitudeReason = "scene units, the limit float32 positions in the renderers can carry; see README "
+                                     "'Scene format'";
+
 // An allowed interval for a number, with its description for messages ("must be > 0, got -1").
 struct Range
 {
@@ -51,12 +74,18 @@ struct Range
   double max = HUGE_VAL;
   bool minOpen = false;
   bool maxOpen = false;
+  std::string reason; // appended to describe() in parentheses when not empty
 
   static Range any() { return {}; }
-  static Range greaterThan(double bound) { return { bound, HUGE_VAL, true, false }; }
-  static Range atLeast(double bound) { return { bound, HUGE_VAL, false, false }; }
-  static Range open(double low, double high) { return { low, high, true, true }; }
-  static Range closed(double low, double high) { return { low, high, false, false }; }
+  static Range greaterThan(double bound) { return { bound, HUGE_VAL, true, false, {} }; }
+  static Range atLeast(double bound) { return { bound, HUGE_VAL, false, false, {} }; }
+  static Range open(double low, double high) { return { low, high, true, true, {} }; }
+  static Range closed(double low, double high) { return { low, high, false, false, {} }; }
+  // A position or offset: |value| <= kMaxSceneMagnitude.
+  static Range coordinate() { return { -kMaxSceneMagnitude, kMaxSceneMagnitude, false, false, kMagnitudeReason }; }
+  // A length, scale or intensity: > 0 (or >= 0) and <= kMaxSceneMagnitude.
+  static Range positiveMagnitude() { return { 0.0, kMaxSceneMagnitude, true, false, kMagnitudeReason }; }
+  static Range nonNegativeMagnitude() { return { 0.0, kMaxSceneMagnitude, false, false, kMagnitudeReason }; }
 
   bool contains(double value) const
   {
@@ -64,11 +93,21 @@ struct Range
     const bool belowMax = maxOpen ? value < max : value <= max;
     return aboveMin && belowMax;
   }
-  std::string describe() const
+  // What `value` (outside the range) should have been. A magnitude range starting at 0 names only the side
+  // that failed: a negative size is a sign problem ("must be > 0"), a huge one a limit ("must be <= 1e6 (...)").
+  std::string describe(double value) const
   {
-    if (max == HUGE_VAL)
-      return format(minOpen ? "> " : ">= ", min);
-    return format("in ", minOpen ? "(" : "[", min, ", ", max, maxOpen ? ")" : "]");
+    if (min == 0.0 && max != HUGE_VAL && !reason.empty())
+    {
+      const bool belowMin = minOpen ? !(value > min) : !(value >= min);
+      if (belowMin)
+        return format(minOpen ? "> " : ">= ", min);
+      return format(maxOpen ? "< " : "<= ", shortNumber(max), " (", reason, ")");
+    }
+    const std::string interval = max == HUGE_VAL
+      ? format(minOpen ? "> " : ">= ", min)
+      : format("in ", minOpen ? "(" : "[", shortNumber(min), ", ", shortNumber(max), maxOpen ? ")" : "]");
+    return reason.empty() ? interval : format(interval, " (", reason, ")");
   }
 };
 
@@ -146,7 +185,7 @@ public:
     if (!std::isfinite(number))
       fail(format("must be a finite number, got ", describeValue(value_)));
     if (!range.contains(number))
-      fail(format("must be ", range.describe(), ", got ", describeValue(value_)));
+      fail(format("must be ", range.describe(number), ", got ", describeValue(value_)));
     return number;
   }
 
@@ -156,7 +195,7 @@ public:
     if (std::floor(value) != value)
       fail(format("expected an integer, got ", describeValue(value_)));
     if (!range.contains(value))
-      fail(format("must be ", range.describe(), ", got ", describeValue(value_)));
+      fail(format("must be ", range.describe(value), ", got ", describeValue(value_)));
     return static_cast<int>(value);
   }
 
@@ -187,14 +226,16 @@ public:
   }
   glm::dvec3 vec3(const Range& range = Range::any()) const { return vector<3>(range); }
 
-  // A non-zero 3-vector, returned normalised.
+  // A non-zero 3-vector, returned normalised. Only its direction matters, so any finite components are fine:
+  // dividing by the largest first keeps |v|^2 from overflowing ([1e308, -1e308, 0]) or underflowing (1e-320).
   glm::dvec3 direction() const
   {
     const glm::dvec3 vector = vec3();
-    const double length = glm::length(vector);
-    if (!(length > 0.0) || !std::isfinite(length))
+    const double largest = std::max({ std::abs(vector.x), std::abs(vector.y), std::abs(vector.z) });
+    if (!(largest > 0.0))
       fail(format("must be a non-zero vector, got ", value_.dump()));
-    return vector / length;
+    const glm::dvec3 scaled = vector / largest;
+    return scaled / glm::length(scaled);
   }
 
   // One of `names` (mapped to a value); `noun` names the kind in the message ("unknown light type 'laser'").
@@ -325,11 +366,11 @@ Camera readCamera(const ObjectFields& fields)
     fields.allowOnly({ "projection", "position", "focal_point", "view_up", "resolution", "parallel_scale" },
       { "view_angle" }, "an orthographic camera");
 
-  camera.position = fields.vec3("position", camera.position);
-  camera.focalPoint = fields.vec3("focal_point", camera.focalPoint);
+  camera.position = fields.vec3("position", camera.position, Range::coordinate());
+  camera.focalPoint = fields.vec3("focal_point", camera.focalPoint, Range::coordinate());
   camera.viewUp = fields.direction("view_up", camera.viewUp);
   camera.viewAngleDeg = fields.number("view_angle", camera.viewAngleDeg, Range::open(0.0, 180.0));
-  camera.parallelScale = fields.number("parallel_scale", camera.parallelScale, Range::greaterThan(0.0));
+  camera.parallelScale = fields.number("parallel_scale", camera.parallelScale, Range::positiveMagnitude());
   if (const auto resolution = fields.optional("resolution"))
   {
     if (!resolution->json().is_array() || resolution->json().size() != 2)
@@ -363,18 +404,18 @@ Light readLight(const ObjectFields& fields)
     fields.allowOnly({ "type", "intensity", "shape", "center", "normal", "size", "up" }, allLightKeys, "an area light");
     light.shape = fields.choice("shape", LightShape::Square,
       { { "square", LightShape::Square }, { "disk", LightShape::Disk } }, "area light shape");
-    light.center = fields.vec3("center", light.center);
+    light.center = fields.vec3("center", light.center, Range::coordinate());
     light.normal = fields.direction("normal", light.normal);
-    light.size = fields.number("size", light.size, Range::greaterThan(0.0));
+    light.size = fields.number("size", light.size, Range::positiveMagnitude());
     light.up = fields.planeUp("up", light.normal);
     break;
   case LightType::Point:
     fields.allowOnly({ "type", "intensity", "center" }, allLightKeys, "a point light");
-    light.center = fields.vec3("center", light.center);
+    light.center = fields.vec3("center", light.center, Range::coordinate());
     break;
   case LightType::Spot:
     fields.allowOnly({ "type", "intensity", "center", "normal", "cone_angle_deg" }, allLightKeys, "a spot light");
-    light.center = fields.vec3("center", light.center);
+    light.center = fields.vec3("center", light.center, Range::coordinate());
     light.normal = fields.direction("normal", light.normal);
     light.coneAngleDeg = fields.number("cone_angle_deg", light.coneAngleDeg, Range::open(0.0, 90.0));
     break;
@@ -383,7 +424,7 @@ Light readLight(const ObjectFields& fields)
     light.direction = fields.direction("direction", light.direction);
     break;
   }
-  light.intensity = fields.number("intensity", light.intensity, Range::atLeast(0.0));
+  light.intensity = fields.number("intensity", light.intensity, Range::nonNegativeMagnitude());
   return light;
 }
 
@@ -391,12 +432,13 @@ Transform readTransform(const ObjectFields& fields)
 {
   fields.allowOnly({ "translate", "rotate_deg", "scale" });
   Transform transform;
-  transform.translate = fields.vec3("translate", transform.translate);
+  transform.translate = fields.vec3("translate", transform.translate, Range::coordinate());
   transform.rotateDeg = fields.vec3("rotate_deg", transform.rotateDeg);
   if (const auto scale = fields.optional("scale"))
   {
-    // A single number scales uniformly.
-    const Range positive = Range::greaterThan(0.0);
+    // A single number scales uniformly. Products of scale and mesh coordinates are bounded by the vertex check
+    // after the transform (checkVertices).
+    const Range positive = Range::positiveMagnitude();
     if (scale->json().is_number())
       transform.scale = glm::dvec3(scale->number(positive));
     else if (scale->json().is_array())
@@ -434,7 +476,7 @@ TriangleMesh readPrimitive(const ObjectFields& fields, std::string& kindName)
     "primitive");
   const std::initializer_list<std::string_view> allObjectKeys = { "mesh", "primitive", "center", "size", "normal",
     "up", "transform", "material", "alpha_texture", "cast_shadows", "receive_shadows" };
-  const Range positive = Range::greaterThan(0.0);
+  const Range positive = Range::positiveMagnitude();
   const glm::dvec3 defaultNormal{ 0.0, 0.0, 1.0 };
 
   switch (kind)
@@ -445,7 +487,7 @@ TriangleMesh readPrimitive(const ObjectFields& fields, std::string& kindName)
     fields.allowOnly({ "primitive", "center", "size", "normal", "up", "transform", "material", "alpha_texture",
                        "cast_shadows", "receive_shadows" },
       allObjectKeys, kind == PrimitiveKind::Quad ? "a quad" : "a disk");
-    const glm::dvec3 center = fields.vec3("center", glm::dvec3(0.0));
+    const glm::dvec3 center = fields.vec3("center", glm::dvec3(0.0), Range::coordinate());
     const glm::dvec3 normal = fields.direction("normal", defaultNormal);
     const glm::dvec3 up = fields.planeUp("up", normal);
     if (kind == PrimitiveKind::Quad)
@@ -458,7 +500,7 @@ TriangleMesh readPrimitive(const ObjectFields& fields, std::string& kindName)
     fields.allowOnly({ "primitive", "center", "size", "transform", "material", "alpha_texture", "cast_shadows",
                        "receive_shadows" },
       allObjectKeys, kind == PrimitiveKind::Box ? "a box" : "a sphere");
-    const glm::dvec3 center = fields.vec3("center", glm::dvec3(0.0));
+    const glm::dvec3 center = fields.vec3("center", glm::dvec3(0.0), Range::coordinate());
     if (kind == PrimitiveKind::Box)
       return makeBox(center, fields.vec3("size", glm::dvec3(1.0), positive));
     return makeSphere(center, fields.number("size", 1.0, positive));
@@ -468,7 +510,34 @@ TriangleMesh readPrimitive(const ObjectFields& fields, std::string& kindName)
   return {};
 }
 
-SceneObject readObject(const ObjectFields& fields, std::size_t index, const std::filesystem::path& baseDir)
+// `path` made absolute and lexically normal, for Scene::inputFiles (the path itself when the working directory
+// cannot be read).
+std::filesystem::path absoluteInputPath(const std::filesystem::path& path)
+{
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  return (error ? path : absolute).lexically_normal();
+}
+
+// Every vertex finite and within kMaxSceneMagnitude after the object's transform: a mesh file or a scale can
+// put vertices anywhere, and Embree asserts on ~1e30 coordinates (probe F15).
+void checkVertices(const ObjectFields& fields, const SceneObject& object)
+{
+  for (std::size_t v = 0; v < object.mesh.positions.size(); ++v)
+  {
+    const glm::vec3& p = object.mesh.positions[v];
+    const float largest = std::max({ std::abs(p.x), std::abs(p.y), std::abs(p.z) });
+    if (!(largest <= kMaxSceneMagnitude)) // also catches NaN and inf
+    {
+      fields.node().fail(format("vertex ", v, " lies at (", p.x, ", ", p.y, ", ", p.z, ")",
+        fields.has("transform") ? " after the transform" : "", "; coordinates must be in [", shortNumber(-kMaxSceneMagnitude),
+        ", ", shortNumber(kMaxSceneMagnitude), "] (", kMagnitudeReason, ")"));
+    }
+  }
+}
+
+SceneObject readObject(const ObjectFields& fields, std::size_t index, const std::filesystem::path& baseDir,
+  std::vector<std::filesystem::path>& inputFiles)
 {
   const bool hasMesh = fields.has("mesh");
   const bool hasPrimitive = fields.has("primitive");
@@ -489,6 +558,7 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
       LoadedMesh loaded = loadMesh(baseDir / meshFile);
       object.mesh = std::move(loaded.mesh);
       object.droppedDegenerateTriangles = loaded.droppedDegenerateTriangles;
+      inputFiles.push_back(absoluteInputPath(baseDir / meshFile));
     }
     catch (const InputError& error)
     {
@@ -505,6 +575,7 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
 
   if (const auto transform = fields.optional("transform"))
     transformMesh(object.mesh, readTransform(ObjectFields(*transform)).worldFromLocal());
+  checkVertices(fields, object);
   if (const auto material = fields.optional("material"))
     object.material = readMaterial(ObjectFields(*material));
   if (const auto alpha = fields.optional("alpha_texture"))
@@ -516,6 +587,8 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
     try
     {
       object.alphaTexture = makeAlphaTexture(source, baseDir);
+      if (!isProceduralAlphaName(source))
+        inputFiles.push_back(absoluteInputPath(baseDir / source));
     }
     catch (const InputError& error)
     {
@@ -528,23 +601,30 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
   return object;
 }
 
+constexpr int kNlohmannNumberOverflow = 406;
+constexpr int kNestingTooDeep = -1; // our own Failure id: a container opened beyond the depth limit
+
 // Builds the document like Json::parse, but knows the JSON path of the value being parsed when parsing
 // fails. nlohmann 3.11 rejects a number too large for a double (1e999) while parsing ("number overflow",
 // out_of_range.406) instead of producing inf; with the path we report it like any other non-finite number:
 // "objects[0].center[1]: must be a finite number, got 1e999".
+// It also enforces the nesting limit: nlohmann's SAX parser is iterative, and refusing the container that
+// would exceed `maxDepth` means no document this returns is deeper, so the recursive parts of nlohmann
+// (dump, copy, comparison) are never reached with an unbounded depth (probe S12b: a stack overflow at 100 000).
 class PathTrackingDomBuilder
 {
 public:
   struct Failure
   {
-    int id = 0;             // nlohmann's exception id: 101.. syntax, 406 number overflow
+    int id = 0;             // nlohmann's exception id: 101.. syntax, 406 number overflow; or kNestingTooDeep
     std::string what;       // nlohmann's message
     std::string path;       // where the failing value would have gone
     std::string lastToken;  // the text nlohmann read last (the overflowing number for 406)
   };
 
-  explicit PathTrackingDomBuilder(Json& root)
+  PathTrackingDomBuilder(Json& root, int maxDepth)
     : root_(root)
+    , maxDepth_(maxDepth)
   {
   }
 
@@ -600,6 +680,11 @@ private:
   }
   bool open(Json container)
   {
+    if (static_cast<int>(open_.size()) >= maxDepth_)
+    {
+      failure_ = Failure{ kNestingTooDeep, {}, pathOfNextValue(), {} };
+      return false; // stops sax_parse
+    }
     open_.push_back(place(std::move(container)));
     keys_.emplace_back();
     return true;
@@ -625,12 +710,11 @@ private:
   }
 
   Json& root_;
+  int maxDepth_;
   std::vector<Json*> open_;       // open containers, outermost first
   std::vector<std::string> keys_; // per open container: the key of its value being parsed (objects)
   std::optional<Failure> failure_;
 };
-
-constexpr int kNlohmannNumberOverflow = 406;
 
 // "malformed JSON at line 3, column 5: <nlohmann's reason>", from nlohmann's
 // "[json.exception.parse_error.101] parse error at line 3, column 5: <reason>".
@@ -646,24 +730,211 @@ std::string describeParseError(const std::string& what)
   return description;
 }
 
-Json parseJson(const std::string& jsonText, const std::string& label)
+// A JSON path or override as shown in a message: control characters escaped (one line, no terminal escapes)
+// and cut to a readable length (a 100 000-level path or value would make a megabyte-long line).
+std::string shownText(std::string_view text)
+{
+  constexpr std::size_t kMaxShown = 80;
+  std::string shown;
+  for (std::size_t i = 0; i < text.size() && i < kMaxShown; ++i)
+  {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f)
+    {
+      constexpr char kHex[] = "0123456789abcdef";
+      shown += "\\x";
+      shown += kHex[c >> 4];
+      shown += kHex[c & 0xf];
+    }
+    else
+      shown += static_cast<char>(c);
+  }
+  if (text.size() > kMaxShown)
+    shown += "...";
+  return shown;
+}
+
+// Parses `jsonText` with at most `maxDepth` nested containers; the document, or how it failed.
+struct ParsedJson
 {
   Json document;
-  PathTrackingDomBuilder builder(document);
-  if (Json::sax_parse(jsonText, &builder))
-    return document;
-  SL_CHECK(builder.failure().has_value());
-  const PathTrackingDomBuilder::Failure& failure = *builder.failure();
+  std::optional<PathTrackingDomBuilder::Failure> failure;
+};
+ParsedJson parseJsonLimited(const std::string& jsonText, int maxDepth)
+{
+  ParsedJson result;
+  PathTrackingDomBuilder builder(result.document, maxDepth);
+  if (!Json::sax_parse(jsonText, &builder))
+  {
+    SL_CHECK(builder.failure().has_value());
+    result.failure = builder.failure();
+    result.document = Json(); // a partial document may hold anything; nobody reads it
+  }
+  return result;
+}
+
+Json parseJson(const std::string& jsonText, const std::string& label)
+{
+  ParsedJson parsed = parseJsonLimited(jsonText, kMaxJsonDepth);
+  if (!parsed.failure)
+    return std::move(parsed.document);
+  const PathTrackingDomBuilder::Failure& failure = *parsed.failure;
   if (failure.id == kNlohmannNumberOverflow)
     JsonNode::failAt(label, failure.path, format("must be a finite number, got ", failure.lastToken));
+  if (failure.id == kNestingTooDeep)
+    JsonNode::failAt(label, shownText(failure.path),
+      format("objects and arrays nest deeper than ", kMaxJsonDepth, " levels (the scene format's limit)"));
   throw InputError(format(label, ": ", describeParseError(failure.what)));
 }
 
-} // namespace
+// ---- --scene-set overrides --------------------------------------------------------------------------------
 
-Scene parseScene(const std::string& jsonText, const std::string& label, const std::filesystem::path& baseDir)
+// An array index token of a JSON pointer (RFC 6901: digits, no leading zero); nullopt when it is not one.
+// Values too large for size_t are clamped: they are past the end of any array anyway.
+std::optional<std::size_t> arrayIndex(const std::string& token)
 {
-  const Json document = parseJson(jsonText, label);
+  if (token.empty() || (token.size() > 1 && token[0] == '0'))
+    return std::nullopt;
+  std::size_t index = 0;
+  for (const char c : token)
+  {
+    if (c < '0' || c > '9')
+      return std::nullopt;
+    const std::size_t digit = static_cast<std::size_t>(c - '0');
+    index = index > (SIZE_MAX - digit) / 10 ? SIZE_MAX : index * 10 + digit;
+  }
+  return index;
+}
+
+// One "/json/pointer=value" applied to `document` in place. Written out rather than through nlohmann's
+// json_pointer, whose operator[] resizes an array to any index (/objects/2000000000000 -> std::bad_alloc,
+// probe P30) and creates missing parents.
+void applyOverride(Json& document, const std::string& override, const std::string& label)
+{
+  const std::string shown = shownText(override);
+  const std::size_t equals = override.find('=');
+  if (equals == std::string::npos || override.empty() || override[0] != '/')
+    throw InputError(format("--scene-set ", shown, ": expected /json/pointer=value, e.g. /lights/0/size=2"));
+  const std::string pointer = override.substr(0, equals);
+  const std::string valueText = override.substr(equals + 1);
+
+  // Tokens of the pointer (after each '/'), unescaped (~1 is '/', ~0 is '~'), with the raw prefix up to each.
+  std::vector<std::string> tokens;
+  std::vector<std::size_t> tokenEnds; // pointer.substr(0, tokenEnds[i]) is the pointer to tokens[i]
+  for (std::size_t start = 1; start <= pointer.size();)
+  {
+    const std::size_t slash = std::min(pointer.find('/', start), pointer.size());
+    std::string token;
+    for (std::size_t i = start; i < slash; ++i)
+    {
+      if (pointer[i] != '~')
+      {
+        token += pointer[i];
+        continue;
+      }
+      if (i + 1 >= slash || (pointer[i + 1] != '0' && pointer[i + 1] != '1'))
+        throw InputError(format("--scene-set ", shown, ": '~' in a JSON pointer must be followed by 0 or 1"));
+      token += pointer[++i] == '0' ? '~' : '/';
+    }
+    tokens.push_back(std::move(token));
+    tokenEnds.push_back(slash);
+    start = slash + 1;
+  }
+  const auto prefix = [&](std::size_t tokenCount) {
+    return tokenCount == 0 ? std::string("/") : shownText(pointer.substr(0, tokenEnds[tokenCount - 1]));
+  };
+
+  // Walk to the parent, which must exist. The document is at most kMaxJsonDepth deep, so this stops early.
+  Json* parent = &document;
+  for (std::size_t i = 0; i + 1 < tokens.size(); ++i)
+  {
+    Json* next = nullptr;
+    if (parent->is_object())
+    {
+      const auto found = parent->find(tokens[i]);
+      next = found != parent->end() ? &*found : nullptr;
+    }
+    else if (parent->is_array())
+    {
+      const std::optional<std::size_t> index = arrayIndex(tokens[i]);
+      next = index && *index < parent->size() ? &(*parent)[*index] : nullptr;
+    }
+    if (!next)
+      throw InputError(format("--scene-set ", shown, ": ", label, " has nothing at ", prefix(i + 1)));
+    parent = next;
+  }
+
+  // The value: JSON, or a bare word as a string (/lights/0/shape=disk). It goes tokens.size() levels deep, so
+  // its own nesting may use what is left of the limit; the document stays within kMaxJsonDepth.
+  const int depthLeft = std::max(0, kMaxJsonDepth - static_cast<int>(tokens.size()));
+  ParsedJson parsed = parseJsonLimited(valueText, depthLeft);
+  Json value;
+  if (!parsed.failure)
+    value = std::move(parsed.document);
+  else if (parsed.failure->id == kNlohmannNumberOverflow)
+  {
+    const std::string where = parsed.failure->path.empty() ? "" : format(" (at ", shownText(parsed.failure->path), ")");
+    throw InputError(format("--scene-set ", shown, ": the value ", shownText(parsed.failure->lastToken),
+      where, " is not a finite number"));
+  }
+  else if (parsed.failure->id == kNestingTooDeep)
+    throw InputError(format("--scene-set ", shown, ": the value nests deeper than the scene format's limit of ",
+      kMaxJsonDepth, " levels (counted from the document's top)"));
+  else
+    value = valueText;
+
+  const std::string& last = tokens.back();
+  if (parent->is_object())
+    (*parent)[last] = std::move(value);
+  else if (parent->is_array())
+  {
+    const std::optional<std::size_t> index = last == "-" ? std::optional<std::size_t>(parent->size()) : arrayIndex(last);
+    if (!index)
+      throw InputError(format("--scene-set ", shown, ": '", shownText(last), "' is not an index of the array at ",
+        prefix(tokens.size() - 1)));
+    if (*index > parent->size())
+      throw InputError(format("--scene-set ", shown, ": index ", shownText(last), " is past the end of ",
+        prefix(tokens.size() - 1), ", which has ", parent->size(), " element(s); an override replaces an element or "
+        "appends one (index ", parent->size(), ")"));
+    if (*index == parent->size())
+      parent->push_back(std::move(value));
+    else
+      (*parent)[*index] = std::move(value);
+  }
+  else
+    throw InputError(format("--scene-set ", shown, ": ", label, " has ", parent->type_name(), " at ",
+      prefix(tokens.size() - 1), ", which has no members"));
+}
+
+// ---- scale sanity -----------------------------------------------------------------------------------------
+
+// Lights within kMaxLightDistanceInSceneRadii and the camera within kMaxCameraDistanceInSceneRadii bounding
+// radii of the objects' centre (Scene.h says why and how they were measured). Run after every object is read;
+// the directional light has no position.
+void checkDistances(const Scene& scene, const std::string& label)
+{
+  const Bounds bounds = scene.bounds();
+  const double radius = bounds.radius();
+  if (!(radius > 0.0))
+    JsonNode::failAt(label, "objects", "all objects together collapse to a single point in float32 (sizes or scales "
+      "too small to represent)");
+  const glm::dvec3 centre = bounds.center();
+  const auto check = [&](const glm::dvec3& position, double radii, const std::string& path) {
+    const double distance = glm::length(position - centre);
+    if (distance > radii * radius)
+      JsonNode::failAt(label, path, format("lies ", distance, " from the centre of the objects' bounding box, more than ",
+        shortNumber(radii), " times their bounding radius ", radius, " (", radii * radius,
+        "); float32 depths cannot resolve the scene from that far (see README 'Scene format')"));
+  };
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type != LightType::Directional)
+      check(scene.lights[i].center, kMaxLightDistanceInSceneRadii, format("lights[", i, "].center"));
+  check(scene.camera.position, kMaxCameraDistanceInSceneRadii, "camera.position");
+}
+
+// The validated scene from a parsed (and overridden) document.
+Scene readScene(const Json& document, const std::string& label, const std::filesystem::path& baseDir)
+{
   const ObjectFields top(JsonNode(document, "", label));
   top.allowOnly({ "camera", "lights", "objects" });
 
@@ -683,8 +954,105 @@ Scene parseScene(const std::string& jsonText, const std::string& label, const st
   const JsonNode objects = top.required("objects");
   const std::size_t objectCount = objects.nonEmptyArray("an array of objects");
   for (std::size_t i = 0; i < objectCount; ++i)
-    scene.objects.push_back(readObject(ObjectFields(objects.element(i)), i, baseDir));
+    scene.objects.push_back(readObject(ObjectFields(objects.element(i)), i, baseDir, scene.inputFiles));
+
+  checkDistances(scene, label);
   return scene;
+}
+
+// What a non-regular file is, for "is a FIFO, not a regular file".
+std::string describeFileType(mode_t mode)
+{
+  if (S_ISDIR(mode))
+    return "a directory";
+  if (S_ISFIFO(mode))
+    return "a FIFO";
+  if (S_ISCHR(mode))
+    return "a character device";
+  if (S_ISBLK(mode))
+    return "a block device";
+  if (S_ISSOCK(mode))
+    return "a socket";
+  return "not a regular file";
+}
+
+// The scene file's text: a regular file (after following symlinks) of at most kMaxSceneFileBytes. POSIX
+// rather than std::ifstream because the type must be checked on the opened descriptor without blocking:
+// opening a FIFO for reading blocks until a writer appears (probe S14), and a check by path before the open
+// races with a file swapped in between. O_NONBLOCK makes the open return at once; fstat then decides.
+std::string readSceneText(const std::filesystem::path& file, const std::string& label)
+{
+  const int descriptor = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (descriptor < 0)
+  {
+    const int cause = errno;
+    throw InputError(format(label, ": cannot read scene file (",
+      cause == ENOENT ? std::string("no such file") : std::generic_category().message(cause), ")"));
+  }
+  struct Closer
+  {
+    int descriptor;
+    ~Closer() { ::close(descriptor); }
+  } closer{ descriptor };
+
+  struct stat status
+  {
+  };
+  if (::fstat(descriptor, &status) != 0)
+    throw InputError(format(label, ": cannot read scene file (", std::generic_category().message(errno), ")"));
+  if (!S_ISREG(status.st_mode))
+    throw InputError(format(label, ": cannot read scene file (it is ", describeFileType(status.st_mode),
+      ", not a regular file)"));
+  const auto tooLarge = [&]() {
+    return InputError(format(label, ": scene file is larger than ", kMaxSceneFileBytes / (1024 * 1024),
+      " MiB (the scene format's limit; meshes belong in their own files)"));
+  };
+  if (static_cast<std::uintmax_t>(status.st_size) > kMaxSceneFileBytes)
+    throw tooLarge();
+
+  // Read at most one byte more than the limit, whatever the size said: the file may grow meanwhile.
+  std::string text;
+  text.resize(static_cast<std::size_t>(status.st_size));
+  std::size_t filled = 0;
+  for (;;)
+  {
+    if (filled == text.size())
+    {
+      if (text.size() > kMaxSceneFileBytes)
+        throw tooLarge();
+      text.resize(std::min<std::size_t>(std::max<std::size_t>(2 * text.size(), 4096), kMaxSceneFileBytes + 1));
+    }
+    const ssize_t got = ::read(descriptor, text.data() + filled, text.size() - filled);
+    if (got < 0)
+    {
+      if (errno == EINTR)
+        continue;
+      throw InputError(format(label, ": cannot read scene file (", std::generic_category().message(errno), ")"));
+    }
+    if (got == 0)
+      break;
+    filled += static_cast<std::size_t>(got);
+  }
+  text.resize(filled);
+  return text;
+}
+
+} // namespace
+
+Scene parseScene(const std::string& jsonText, const std::vector<std::string>& overrides, const std::string& label,
+  const std::filesystem::path& baseDir)
+{
+  Json document = parseJson(jsonText, label);
+  // Overrides replace values of the document before validation, so every check and message applies to the
+  // result as if the file had said it.
+  for (const std::string& override : overrides)
+    applyOverride(document, override, label);
+  return readScene(document, label, baseDir);
+}
+
+Scene parseScene(const std::string& jsonText, const std::string& label, const std::filesystem::path& baseDir)
+{
+  return parseScene(jsonText, {}, label, baseDir);
 }
 
 Scene loadScene(const std::filesystem::path& file)
@@ -695,63 +1063,10 @@ Scene loadScene(const std::filesystem::path& file)
 Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides)
 {
   const std::string label = file.string();
-  std::error_code error;
-  if (!std::filesystem::exists(file, error))
-    throw InputError(format(label, ": cannot read scene file (no such file)"));
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream || std::filesystem::is_directory(file, error))
-    throw InputError(format(label, ": cannot read scene file"));
-  std::string text{ std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
-
-  if (!overrides.empty())
-  {
-    // Overrides replace values of the document before validation, so every check and message applies to
-    // the result as if the file had said it.
-    nlohmann::json document;
-    try
-    {
-      document = nlohmann::json::parse(text);
-    }
-    catch (const nlohmann::json::exception&)
-    {
-      return parseScene(text, label, file.parent_path()); // reports the syntax error with its position
-    }
-    for (const std::string& override : overrides)
-    {
-      const std::size_t equals = override.find('=');
-      if (equals == std::string::npos || override.empty() || override[0] != '/')
-      {
-        throw InputError(format("--scene-set '", override, "': expected /json/pointer=value, e.g. /lights/0/size=2"));
-      }
-      const std::string pointer = override.substr(0, equals);
-      const std::string valueText = override.substr(equals + 1);
-      nlohmann::json value;
-      try
-      {
-        value = nlohmann::json::parse(valueText);
-      }
-      catch (const nlohmann::json::exception&)
-      {
-        value = valueText; // a bare word is a string: /lights/0/shape=disk
-      }
-      try
-      {
-        const nlohmann::json::json_pointer location(pointer);
-        if (!document.contains(location.parent_pointer()))
-        {
-          throw InputError(format("--scene-set ", override, ": ", label, " has nothing at ", location.parent_pointer().to_string()));
-        }
-        document[location] = value;
-      }
-      catch (const nlohmann::json::exception& failure)
-      {
-        throw InputError(format("--scene-set ", override, ": ", failure.what()));
-      }
-    }
-    text = document.dump();
-  }
-  Scene scene = parseScene(text, label, file.parent_path());
+  const std::string text = readSceneText(file, label);
+  Scene scene = parseScene(text, overrides, label, file.parent_path());
   scene.file = file;
+  scene.inputFiles.insert(scene.inputFiles.begin(), absoluteInputPath(file));
   return scene;
 }
 

@@ -5,6 +5,7 @@
 #include "scene/AlphaTexture.h"
 #include "scene/MeshIO.h"
 #include "scene/Primitives.h"
+#include "lightspace/LightView.h"
 #include "scene/Scene.h"
 #include "support/TempDir.h"
 
@@ -22,11 +23,16 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <random>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace sl
 {
@@ -243,16 +249,15 @@ std::string binaryPly(const std::vector<glm::vec3>& vertices, const std::vector<
   return ply;
 }
 
-const float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 // Three triangles that are each degenerate in a different way: collinear corners, coincident corners, and a
-// NaN corner. They use their own vertices, so dropping them leaves those vertices unused.
+// needle (area below MeshIO's 1e-10 of the longest edge squared). They use their own vertices, so dropping them
+// leaves those vertices unused. (A NaN corner is not dropped but refused by the mesh reader.)
 void addDegenerateTriangles(std::vector<glm::vec3>& vertices, std::vector<std::array<int, 3>>& triangles)
 {
   const int first = static_cast<int>(vertices.size());
   vertices.insert(vertices.end(), { { 2, 0, 0 }, { 3, 0, 0 }, { 4, 0, 0 } });       // collinear
   vertices.insert(vertices.end(), { { 5, 5, 5 }, { 5, 5, 5 }, { 5, 5, 5 } });       // one point
-  vertices.insert(vertices.end(), { { kNaN, 0, 0 }, { 6, 0, 0 }, { 6, 1, 0 } });   // NaN corner
+  vertices.insert(vertices.end(), { { 6, 0, 0 }, { 8, 0, 0 }, { 7, 1e-11f, 0 } });  // needle
   triangles.push_back({ first, first + 1, first + 2 });
   triangles.push_back({ first + 3, first + 4, first + 5 });
   triangles.push_back({ first + 6, first + 7, first + 8 });
@@ -1105,6 +1110,396 @@ TEST(SceneErrors, ParseSceneUsesLabelAndBaseDir)
   catch (const InputError& error)
   {
     EXPECT_EQ(std::string(error.what()).rfind("inline: lights: ", 0), 0u) << error.what();
+  }
+}
+
+// ---- issue 11: files that are not scene files, nesting, overrides, scale -------------------------------
+
+// The message of the InputError that loading `file` with `overrides` throws; a test failure when it throws
+// none, or a message that is not one line.
+std::string overrideError(const fs::path& file, const std::vector<std::string>& overrides)
+{
+  try
+  {
+    loadScene(file, overrides);
+  }
+  catch (const InputError& error)
+  {
+    const std::string message = error.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "message is not one line: " << message;
+    return message;
+  }
+  ADD_FAILURE() << "loading " << file << " with the overrides did not throw InputError";
+  return {};
+}
+
+void expectContains(const std::string& message, const std::vector<std::string>& parts)
+{
+  for (const std::string& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << "expected '" << part << "' in: " << message;
+}
+
+std::string nestedArrays(std::size_t depth)
+{
+  return std::string(depth, '[') + std::string(depth, ']');
+}
+
+TEST(SceneFiles, FifoIsRefusedPromptly)
+{
+  const SceneDir dir;
+  const fs::path fifo = dir.path() / "scene.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  // Before the fix this blocked forever in open(); run it aside so a regression fails instead of hanging.
+  auto loading = std::async(std::launch::async, [&fifo]() { return loadError(fifo); });
+  if (loading.wait_for(std::chrono::seconds(10)) != std::future_status::ready)
+  {
+    // Unblock the reader (a writer appearing and leaving gives it end of file), then report the hang.
+    const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+    if (writer >= 0)
+      ::close(writer);
+    loading.wait();
+    FAIL() << "loadScene on a FIFO did not return within 10 s";
+  }
+  const std::string message = loading.get();
+  EXPECT_EQ(message.rfind(fifo.string() + ": ", 0), 0u) << message;
+  expectContains(message, { "a FIFO, not a regular file" });
+}
+
+TEST(SceneFiles, DevicesDirectoriesAndSymlinksToThemAreRefused)
+{
+  // /dev/zero would be read until memory runs out (probe S15).
+  expectLoadError("/dev/zero", { "cannot read scene file (it is a character device, not a regular file)" });
+  const SceneDir dir;
+  expectLoadError(dir.path(), { "cannot read scene file (it is a directory, not a regular file)" });
+  // The type is that of the file a symlink resolves to: a link to a scene loads, a link to /dev/zero does not.
+  const fs::path real = dir.writeScene(minimalScene(), "real.json");
+  const fs::path goodLink = dir.path() / "good.json";
+  const fs::path zeroLink = dir.path() / "zero.json";
+  fs::create_symlink(real, goodLink);
+  fs::create_symlink("/dev/zero", zeroLink);
+  EXPECT_NO_THROW(loadScene(goodLink));
+  expectLoadError(zeroLink, { "character device" });
+}
+
+TEST(SceneFiles, OversizedFileIsRefusedBeforeParsing)
+{
+  const SceneDir dir;
+  // A valid scene followed by whitespace up to one byte over the limit: only the size can make it fail.
+  const fs::path file = dir.writeScene(minimalScene());
+  std::error_code error;
+  fs::resize_file(file, kMaxSceneFileBytes + 1, error);
+  ASSERT_FALSE(error) << error.message();
+  expectLoadError(file, { "scene file is larger than 64 MiB" });
+}
+
+TEST(SceneNesting, DeepDocumentsAreRefusedWhileParsing)
+{
+  // The top-level object is level 1, so an unknown key holding 255 nested arrays is exactly at the limit: it
+  // parses, and the error is the unknown key. One more level is the nesting error, with where it happened.
+  static_assert(kMaxJsonDepth == 256, "the README documents 256 levels");
+  const std::string prefix = R"({ "lights": [ { "type": "point", "center": [0, 3, 0] } ], "objects": [ { "primitive": "quad" } ], "deep": )";
+  expectSceneTextError(prefix + nestedArrays(255) + "}", { "(top level): unknown key 'deep'" });
+  expectSceneTextError(prefix + nestedArrays(256) + "}", { "deep[0][0][0]", "nest deeper than 256 levels" });
+  // Probe S11/S12b: 100 000 levels, in a file and through --scene-set (which used to re-serialise the
+  // document recursively and overflow the stack).
+  const SceneDir dir;
+  const fs::path deep = dir.write("deep.json", nestedArrays(100000));
+  expectLoadError(deep, { ": [0][0][0]", "...: objects and arrays nest deeper than 256 levels" });
+  const std::string withOverride = overrideError(deep, { "/lights/0/size=2" });
+  EXPECT_EQ(withOverride.rfind(deep.string() + ": ", 0), 0u) << withOverride;
+  expectContains(withOverride, { "nest deeper than 256 levels" });
+  EXPECT_LT(withOverride.size(), 400u) << "the message must not echo the whole path";
+}
+
+TEST(SceneNesting, DeepOverrideValuesAreRefused)
+{
+  const SceneDir dir;
+  const fs::path file = dir.writeScene(minimalScene());
+  const std::string message = overrideError(file, { "/objects/0/material=" + nestedArrays(100000) });
+  expectContains(message, { "--scene-set /objects/0/material=[[[", "the value nests deeper than", "256 levels" });
+  EXPECT_LT(message.size(), 400u) << "the message must not echo the whole value";
+  // The value's limit counts from the document's top: at /objects/0/material (3 levels down) 253 nested arrays
+  // fit, which the scene then rejects for its type, and 254 do not.
+  expectContains(overrideError(file, { "/objects/0/material=" + nestedArrays(253) }),
+    { "objects[0].material: expected an object" });
+  expectContains(overrideError(file, { "/objects/0/material=" + nestedArrays(254) }), { "nests deeper" });
+}
+
+TEST(SceneOverrides, ReplaceAppendAndRefusePastTheEnd)
+{
+  const SceneDir dir;
+  const fs::path file = dir.writeScene(minimalScene());
+  const Scene replaced = loadScene(file, { "/lights/0/center/1=4", "/camera={\"view_angle\": 40}" });
+  EXPECT_EQ(replaced.lights[0].center, glm::dvec3(0, 4, 0));
+  EXPECT_EQ(replaced.camera.viewAngleDeg, 40.0);
+
+  // index == size appends one element (as "-" does); nothing larger.
+  const Scene appended = loadScene(file, { "/objects/1={\"primitive\": \"box\", \"center\": [0, 0, 1]}",
+                                           "/objects/-={\"primitive\": \"sphere\", \"size\": 0.1}" });
+  ASSERT_EQ(appended.objects.size(), 3u);
+  EXPECT_EQ(appended.objects[1].name, "objects[1] (box)");
+  EXPECT_EQ(appended.objects[2].name, "objects[2] (sphere)");
+
+  // Probe P30: used to resize the array to 2e12 elements and die of std::bad_alloc.
+  expectContains(overrideError(file, { "/objects/2000000000000=1" }),
+    { "--scene-set /objects/2000000000000=1: index 2000000000000 is past the end of /objects, which has 1 "
+      "element(s)" });
+  expectContains(overrideError(file, { "/objects/99999999999999999999999=1" }), { "is past the end of /objects" });
+  expectContains(overrideError(file, { "/objects/01=1" }), { "'01' is not an index of the array at /objects" });
+  // Parents must exist, whatever their type.
+  expectContains(overrideError(file, { "/lights/9/size=2" }), { "has nothing at /lights/9" });
+  expectContains(overrideError(file, { "/objects/0/primitive/x=2" }),
+    { "has string at /objects/0/primitive, which has no members" });
+  expectContains(overrideError(file, { "/nothing/here/x=2" }), { "has nothing at /nothing" });
+  // RFC 6901 escapes: ~1 is '/', so this sets the key "a/b", which the scene then refuses by name.
+  expectContains(overrideError(file, { "/objects/0/a~1b=1" }), { "objects[0]: unknown key 'a/b'" });
+  expectContains(overrideError(file, { "/objects/0/a~2b=1" }), { "'~' in a JSON pointer must be followed by 0 or 1" });
+  // Control characters in the echo are escaped, so the message stays one line.
+  expectContains(overrideError(file, { "/lights/9\n/size=2" }), { "/lights/9\\x0a" });
+}
+
+TEST(SceneOverrides, NonFiniteValuesAreNamedAsSuch)
+{
+  const SceneDir dir;
+  Json scene = minimalScene();
+  scene["lights"][0] = Json::parse(R"({ "type": "area", "center": [0, 3, 0], "normal": [0, -1, 0] })");
+  const fs::path file = dir.writeScene(scene);
+  // Probe P33: used to say "expected a number, got string".
+  expectContains(overrideError(file, { "/lights/0/size=1e999" }),
+    { "--scene-set /lights/0/size=1e999: the value 1e999 is not a finite number" });
+  expectContains(overrideError(file, { "/lights/0/center=[0,-1e999,0]" }),
+    { "the value -1e999 (at [1]) is not a finite number" });
+  // A bare word is still a string, and gets the scene's own message.
+  expectContains(overrideError(file, { "/lights/0/size=big" }), { "lights[0].size: expected a number, got string" });
+}
+
+// The scale rule (README "Scene format"): magnitudes <= kMaxSceneMagnitude, lights and camera within
+// kMaxLightDistanceInSceneRadii / kMaxCameraDistanceInSceneRadii bounding radii. Each probe case gets a one-line error naming its JSON path.
+TEST(SceneScale, AbsoluteMagnitudesAreBounded)
+{
+  static_assert(kMaxSceneMagnitude == 1e6, "the README documents 1e6");
+  const auto withLight = [](const std::string& light) {
+    Json scene = minimalScene();
+    scene["lights"][0] = Json::parse(light);
+    return scene;
+  };
+  // F18, L40: point light at y = 1e20; L25: point light at 1e300, area light at 1e308.
+  expectSceneError(withLight(R"({ "type": "point", "center": [0, 1e20, 0] })"),
+    { "lights[0].center[1]: must be in [-1e6, 1e6] (scene units", "got 1e+20" });
+  expectSceneError(withLight(R"({ "type": "point", "center": [0, 1e300, 0] })"), { "lights[0].center[1]: must be in" });
+  expectSceneError(withLight(R"({ "type": "area", "center": [0, 1e308, 0], "normal": [0, -1, 0] })"),
+    { "lights[0].center[1]: must be in [-1e6, 1e6]" });
+  expectSceneError(withLight(R"({ "type": "spot", "center": [-1e7, 3, 0], "normal": [0, -1, 0] })"),
+    { "lights[0].center[0]: must be in [-1e6, 1e6]" });
+  expectSceneError(withLight(R"({ "type": "area", "center": [0, 3, 0], "normal": [0, -1, 0], "size": 1e7 })"),
+    { "lights[0].size: must be <= 1e6 (scene units" });
+  expectSceneError(withLight(R"({ "type": "point", "center": [0, 3, 0], "intensity": 1e300 })"),
+    { "lights[0].intensity: must be <= 1e6" });
+
+  // F15, O09: a 1e30 sphere (Embree asserted; the camera's depth range collapsed).
+  Json sphere = minimalScene();
+  sphere["objects"].push_back(Json::parse(R"({ "primitive": "sphere", "center": [0, 0, -10], "size": 1e30 })"));
+  expectSceneError(sphere, { "objects[1].size: must be <= 1e6" });
+  Json farQuad = minimalScene();
+  farQuad["objects"][0]["center"] = { 0, 0, -2e6 };
+  expectSceneError(farQuad, { "objects[0].center[2]: must be in [-1e6, 1e6]" });
+  Json translate = minimalScene();
+  translate["objects"][0]["transform"] = Json::parse(R"({ "translate": [1e9, 0, 0] })");
+  expectSceneError(translate, { "objects[0].transform.translate[0]: must be in [-1e6, 1e6]" });
+  // Products are checked on the final vertices: each value is in range, the scaled quad is not.
+  Json scaled = minimalScene();
+  scaled["objects"][0]["size"] = { 1e6, 1e6 };
+  scaled["objects"][0]["transform"] = Json::parse(R"({ "scale": 10 })");
+  expectSceneError(scaled, { "objects[0]: vertex 0 lies at (-5e+06, -5e+06, 0) after the transform" });
+
+  // A mesh file with a huge coordinate (finite, so the mesh reader keeps it).
+  const SceneDir dir;
+  dir.write("huge.obj", "v 0 0 0\nv 2e6 0 0\nv 0 2e6 0\nf 1 2 3\n");
+  Json mesh = minimalScene();
+  mesh["objects"][0] = Json::parse(R"({ "mesh": "huge.obj" })");
+  expectLoadError(dir.writeScene(mesh), { "objects[0]: vertex 1 lies at (2e+06, 0, 0); coordinates must be in [-1e6, 1e6]" });
+
+  // C04: the camera at 1e308 is a magnitude problem, not "view_up is parallel".
+  Json camera = minimalScene();
+  camera["camera"] = Json::parse(R"({ "position": [1e308, 1e308, 1e308] })");
+  const std::string message = loadError(SceneDir().writeScene(camera));
+  EXPECT_NE(message.find("camera.position[0]: must be in [-1e6, 1e6]"), std::string::npos) << message;
+  EXPECT_EQ(message.find("parallel"), std::string::npos) << message;
+  Json focal = minimalScene();
+  focal["camera"] = Json::parse(R"({ "focal_point": [0, 0, -1e300] })");
+  expectSceneError(focal, { "camera.focal_point[2]: must be in [-1e6, 1e6]" });
+}
+
+TEST(SceneScale, LightsAndCameraWithinTheRelativeDistance)
+{
+  // minimalScene's only object is the unit quad at the origin: bounding radius sqrt(2)/2.
+  const double radius = std::sqrt(2.0) / 2.0;
+  const double limit = kMaxLightDistanceInSceneRadii * radius;
+  Json scene = minimalScene();
+  scene["lights"][0]["center"] = { 0, 0, 0.99 * limit };
+  EXPECT_NO_THROW(loadScene(SceneDir().writeScene(scene))) << "just inside the limit";
+  scene["lights"][0]["center"] = { 0, 0, 1.01 * limit };
+  expectSceneError(scene, { "lights[0].center: lies ", "from the centre of the objects' bounding box, more than 3000 ",
+                            "times their bounding radius 0.707" });
+
+  // L39: a point light at y = 1e5 over a dataset (radius 4.3) loses the shadow; the probe's y = 1e4 rendered
+  // within the ray tracer's error and must still load.
+  const fs::path dataset = kDatasets / "sphere-point" / "scene.json";
+  EXPECT_NO_THROW(loadScene(dataset, { "/lights/0/center=[0.5, 1e4, 0.3]" }));
+  expectContains(overrideError(dataset, { "/lights/0/center=[0.5, 1e5, 0.3]" }), { "lights[0].center: lies " });
+
+  Json spot = minimalScene();
+  spot["lights"].push_back(Json::parse(R"({ "type": "spot", "center": [0, 0, 0], "normal": [0, -1, 0] })"));
+  spot["lights"][1]["center"] = { 2.0 * limit, 0, 0 };
+  expectSceneError(spot, { "lights[1].center: lies " });
+  // The directional light has no position: nothing to check.
+  Json directional = minimalScene();
+  directional["lights"][0] = Json::parse(R"({ "type": "directional", "direction": [0, -1, 0] })");
+  EXPECT_NO_THROW(loadScene(SceneDir().writeScene(directional)));
+
+  // The camera's limit is looser. A 1e-3 quad keeps 2x the limit inside the absolute bound.
+  Json camera = minimalScene();
+  camera["objects"][0]["size"] = { 1e-3, 1e-3 };
+  camera["lights"][0]["center"] = { 0, 1e-3, 0 };
+  const double cameraLimit = kMaxCameraDistanceInSceneRadii * 1e-3 * radius;
+  camera["camera"] = Json::parse(R"({ "focal_point": [0, 0, 0] })");
+  camera["camera"]["position"] = { 0, 0, 0.99 * cameraLimit };
+  EXPECT_NO_THROW(loadScene(SceneDir().writeScene(camera))) << "just inside the camera's limit";
+  camera["camera"]["position"] = { 0, 0, 1.01 * cameraLimit };
+  expectSceneError(camera, { "camera.position: lies ", "more than 1e6 times their bounding radius" });
+
+  // Objects too small for float32 to tell their vertices apart leave nothing to measure distances against.
+  Json tiny = minimalScene();
+  tiny["objects"][0]["size"] = { 1e-300, 1e-300 };
+  expectSceneError(tiny, { "objects: all objects together collapse to a single point in float32" });
+}
+
+TEST(SceneScale, DirectionsOfAnyFiniteMagnitudeAreDirections)
+{
+  // L38: [1e308, -1e308, 0] used to overflow |v| and be called "a non-zero vector" problem.
+  Json scene = minimalScene();
+  scene["lights"][0] = Json::parse(R"({ "type": "area", "center": [0, 3, 0], "normal": [1e308, -1e308, 0] })");
+  scene["objects"][0]["normal"] = { 0, 1e-320, 0 };
+  const Scene loaded = loadScene(SceneDir().writeScene(scene));
+  expectNear(loaded.lights[0].normal, glm::normalize(glm::dvec3(1, -1, 0)), 1e-15, "light normal");
+  expectNear(glm::dvec3(loaded.objects[0].mesh.normals[0]), { 0, 1, 0 }, 1e-7, "quad normal");
+  Json zero = minimalScene();
+  zero["objects"][0]["normal"] = { 0, 0, 0 };
+  expectSceneError(zero, { "objects[0].normal: must be a non-zero vector" });
+}
+
+// The probe's "What held up": hard but legal scenes that rendered correctly and must still load.
+TEST(SceneScale, AcceptedHardCasesStillLoad)
+{
+  const fs::path dataset = kDatasets / "contact" / "scene.json"; // ground 6 x 6, box [0.5, 1, 0.5] at y 0.5
+  const std::vector<std::vector<std::string>> cases = {
+    { "/camera/position=[0, 0.5, 0]", "/camera/focal_point=[1, 0.5, 0]" },      // camera inside the box
+    { "/camera/position=[0, -2, 0]", "/camera/focal_point=[0, 0, 0]", "/camera/view_up=[0, 0, 1]" }, // below the ground
+    { "/camera/focal_point=[10, 2.2, 30]" },                                       // looking at nothing
+    { "/lights/0/normal=[0, 1, 0]" },                                              // area light facing away
+    { "/lights/0/center=[1, 0, 1]", "/lights/0/normal=[0, -1, 0]" },               // on the receiver plane
+    { "/lights/0/center=[0, 0.5, 0]" },                                            // inside the occluder
+    { "/lights/0/center=[0, -1, 0]", "/lights/0/normal=[0, -1, 0]" },             // objects behind the light
+    { "/camera/view_angle=179.9" },                                                // extreme view angles
+    { "/camera/view_angle=0.001" },
+    { "/lights/0={\"type\": \"spot\", \"center\": [0, 3, 0], \"normal\": [0, -1, 0], \"cone_angle_deg\": 89.99}" },
+    { "/lights/0={\"type\": \"spot\", \"center\": [0, 3, 0], \"normal\": [0, -1, 0], \"cone_angle_deg\": 0.001}" },
+    { "/lights/0/size=1e-12" },                                                    // a 1e-12 light
+    { "/objects/0/cast_shadows=false", "/objects/1/cast_shadows=false" },         // nothing casts
+  };
+  for (const std::vector<std::string>& overrides : cases)
+  {
+    std::string label;
+    for (const std::string& override : overrides)
+      label += override + " ";
+    EXPECT_NO_THROW(loadScene(dataset, overrides)) << label;
+  }
+}
+
+TEST(SceneInputFiles, SceneMeshAndAlphaFilesAreListed)
+{
+  // bunny: the scene and its PLY; fence's alpha texture is the procedural "fence", which is no file.
+  const Scene bunny = loadScene(kDatasets / "bunny" / "scene.json");
+  const std::vector<fs::path> bunnyFiles = { fs::absolute(kDatasets / "bunny" / "scene.json").lexically_normal(),
+    fs::absolute(kDatasets / "bunny" / "bunny.ply").lexically_normal() };
+  EXPECT_EQ(bunny.inputFiles, bunnyFiles);
+  const Scene fence = loadScene(kDatasets / "fence" / "scene.json");
+  EXPECT_EQ(fence.inputFiles,
+    std::vector<fs::path>{ fs::absolute(kDatasets / "fence" / "scene.json").lexically_normal() });
+
+  // A PNG alpha texture and a mesh in a subdirectory, named through "..": listed absolute and normal.
+  const SceneDir dir;
+  fs::create_directories(dir.path() / "meshes");
+  dir.write("meshes/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+  dir.write("holes.png", encodePng(1, 1, 0, { { 255 } }));
+  Json json = minimalScene();
+  json["objects"][0]["alpha_texture"] = "meshes/../holes.png";
+  json["objects"].push_back(Json::parse(R"({ "mesh": "meshes/../meshes/tri.obj" })"));
+  const Scene scene = loadScene(dir.writeScene(json));
+  const fs::path root = fs::absolute(dir.path()).lexically_normal();
+  const std::vector<fs::path> expected = { root / "scene.json", root / "holes.png", root / "meshes" / "tri.obj" };
+  EXPECT_EQ(scene.inputFiles, expected);
+  for (const fs::path& file : scene.inputFiles)
+    EXPECT_TRUE(file.is_absolute()) << file;
+
+  // parseScene has no scene file: only what it read.
+  const Scene parsed = parseScene(json.dump(), {}, "inline", dir.path());
+  EXPECT_EQ(parsed.inputFiles, std::vector<fs::path>(expected.begin() + 1, expected.end()));
+}
+
+TEST(SceneMessages, PointLightRefusalNamesTheLight)
+{
+  // L09/L12: the 80-degree refusal names the file and lights[i]. Receivers on the six sides of a cube
+  // around the second light, facing it.
+  Scene scene;
+  scene.file = "scenes/room.json";
+  Light first;
+  first.type = LightType::Point;
+  first.center = { 0.0, 10.0, 0.0 };
+  Light second = first;
+  second.center = { 0.0, 0.0, 0.0 };
+  scene.lights = { first, second };
+  ImageF position(6, 1, 4, 0.0f);
+  ImageF normal(6, 1, 4, 0.0f);
+  const glm::dvec3 directions[6] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
+  for (int i = 0; i < 6; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      position.at(i, 0, c) = static_cast<float>(2.0 * directions[i][c]);
+      normal.at(i, 0, c) = static_cast<float>(-directions[i][c]);
+    }
+    position.at(i, 0, 3) = 1.0f;
+    normal.at(i, 0, 3) = 1.0f;
+  }
+  try
+  {
+    fitLightView(scene.lights[1], scene, position, normal, FocusSettings());
+    ADD_FAILURE() << "expected an InputError";
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_EQ(std::string(error.what()).rfind("scenes/room.json: lights[1]: point light at (0, 0, 0) sees", 0), 0u)
+      << error.what();
+  }
+}
+
+TEST(SceneDatasets, EveryDatasetLoadsUnderTheLimits)
+{
+  // Every scene.json under datasets/, including any added later, within the scale rule with room to spare.
+  for (const fs::directory_entry& entry : fs::directory_iterator(kDatasets))
+  {
+    const fs::path file = entry.path() / "scene.json";
+    if (!fs::exists(file))
+      continue;
+    SCOPED_TRACE(file.string());
+    Scene scene;
+    ASSERT_NO_THROW(scene = loadScene(file));
+    const Bounds bounds = scene.bounds();
+    for (const Light& light : scene.lights)
+      if (light.type != LightType::Directional)
+        EXPECT_LT(glm::length(light.center - bounds.center()), 0.01 * kMaxLightDistanceInSceneRadii * bounds.radius());
+    EXPECT_EQ(scene.inputFiles.front(), fs::absolute(file).lexically_normal());
   }
 }
 
