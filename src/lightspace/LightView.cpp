@@ -220,7 +220,17 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
   // wider (some even behind it) would need a cube map.
   if (light.type == LightType::Point && extent.reachable > 0 && extent.minCosToAxis < std::cos(glm::radians(80.0)))
   {
-    throw InputError(format("point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
+    // Name the light as the scene file does ("<file>: lights[i]: ..."); a light that is not one of the scene's
+    // (a copy made by a pass) is named by its position alone.
+    std::string where;
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    {
+      if (&scene.lights[i] == &light)
+      {
+        where = format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", i, "]: ");
+      }
+    }
+    throw InputError(format(where, "point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
       ") sees visible receivers more than 80 degrees off its axis; one shadow map cannot cover them "
       "(cube shadow maps are not supported): use a spot or area light"));
   }

@@ -142,9 +142,33 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   const Light& light = scene.lights[static_cast<std::size_t>(request.lightIndex)];
   if (!technique.supports(light))
   {
-    throw InputError(format("technique '", technique.name, "' does not support the scene's light ",
-      request.lightIndex, light.type == LightType::Area ? (light.shape == LightShape::Disk ? " (a disk)" : " (a square)") : "",
-      " (", scene.file.string(), ")"));
+    // Name the light's kind and what the technique takes instead, from the descriptor, so the message stays
+    // right when a technique's support changes.
+    const auto typeName = [](LightType type) {
+      switch (type)
+      {
+        case LightType::Area: return "area";
+        case LightType::Point: return "point";
+        case LightType::Directional: return "directional";
+        case LightType::Spot: return "spot";
+      }
+      return "unknown";
+    };
+    const auto shapeName = [](LightShape shape) { return shape == LightShape::Disk ? "disk" : "square"; };
+    std::string supported;
+    for (const LightType type : technique.supportedLights)
+    {
+      supported += supported.empty() ? "" : ", ";
+      if (type == LightType::Area && technique.supportedAreaShapes.size() == 1)
+      {
+        supported += format(shapeName(technique.supportedAreaShapes.front()), " ");
+      }
+      supported += format(typeName(type), " lights");
+    }
+    const std::string kind = light.type == LightType::Area ? format(shapeName(light.shape), " area") : typeName(light.type);
+    throw InputError(format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", request.lightIndex,
+      "]: technique '", technique.name, "' does not support this ", kind, " light; it supports ",
+      supported.empty() ? "no light" : supported));
   }
   FrameResources frame;
   frame.scene = &scene;

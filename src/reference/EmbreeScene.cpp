@@ -2,6 +2,7 @@
 
 #include "core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -130,6 +131,15 @@ EmbreeScene::EmbreeScene(const Scene& scene)
       }
       for (std::size_t i = 0; i < mesh.positions.size(); ++i)
       {
+        // Embree asserts (SIGABRT) on rays near ~1e30-sized geometry; loadScene bounds every coordinate by
+        // kMaxSceneMagnitude, so this only catches a Scene built in code that skipped the loader.
+        const glm::vec3& p = mesh.positions[i];
+        if (!(std::max({ std::abs(p.x), std::abs(p.y), std::abs(p.z) }) <= kMaxSceneMagnitude))
+        {
+          rtcReleaseGeometry(geometry);
+          throw InputError(format(object.name, ": vertex ", i, " at (", p.x, ", ", p.y, ", ", p.z,
+            ") is outside the scene's magnitude limit of ", kMaxSceneMagnitude, " units"));
+        }
         vertices[3 * i + 0] = mesh.positions[i].x;
         vertices[3 * i + 1] = mesh.positions[i].y;
         vertices[3 * i + 2] = mesh.positions[i].z;
