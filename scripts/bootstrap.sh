@@ -23,7 +23,7 @@ packages=(
   cmake g++ make pkg-config
   libvtk9-dev libglm-dev libopenmesh-dev libopenexr-dev python3-imath libgtest-dev
   libegl-dev libgl-dev libglew-dev libegl-mesa0 libgl1-mesa-dri
-  nlohmann-json3-dev libcli11-dev libembree-dev
+  nlohmann-json3-dev libcli11-dev libembree-dev libpng-dev
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -11,7 +11,9 @@
 
 #include "core/Error.h"
 #include "core/Parse.h"
+#include "io/ImageIO.h"
 #include "io/OutputWriter.h"
+#include "metrics/Comparison.h"
 #include "scene/Scene.h"
 #include "techniques/Technique.h"
 #include "vis/SpeedErrorChart.h"
@@ -160,7 +162,9 @@ ChildResult runChild(const std::vector<std::string>& arguments, const std::files
     return result;
   }
   int status = 0;
+  setForegroundChild(pid); // SIGINT/SIGTERM to bench end the child too (OutputDirectory.h)
   waitpid(pid, &status, 0);
+  setForegroundChild(0);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   std::ifstream log(logFile);
   for (std::string line; std::getline(log, line);)
@@ -201,6 +205,42 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
   return text;
 }
 
+// Why the cached reference in `dir` cannot be used (unreadable, another size, values out of range: a cache
+// entry cut short or altered since it was written), or empty when it can.
+std::string cachedReferenceProblem(const std::filesystem::path& dir, const glm::ivec2& resolution)
+{
+  const std::filesystem::path file = dir / "buffers.vti";
+  if (!std::filesystem::is_regular_file(file))
+  {
+    return "missing";
+  }
+  try
+  {
+    const std::vector<NamedImage> buffers = readVti(file);
+    for (const char* name : { "visibility", "coverage" })
+    {
+      const ImageF& image = requireArray(buffers, name, file.string());
+      if (image.width != resolution.x || image.height != resolution.y || image.components != 1)
+      {
+        return format(name, " is ", image.width, "x", image.height, "x", image.components, ", not ", resolution.x,
+          "x", resolution.y, "x1");
+      }
+      for (const float value : image.data)
+      {
+        if (!(value >= 0.0f && value <= 1.0f))
+        {
+          return format(name, " holds ", value, ", outside [0, 1]");
+        }
+      }
+    }
+  }
+  catch (const InputError& error)
+  {
+    return error.what();
+  }
+  return {};
+}
+
 } // namespace
 
 int runBench(const BenchOptions& options, std::ostream& log)
@@ -218,7 +258,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   {
     throw InputError("--samples " + std::to_string(options.referenceSamples) + ": must be >= 1");
   }
-  parseResolution(options.resolution);
+  const glm::ivec2 resolution = parseResolution(options.resolution);
   // Scene variants: every file under every combination of the scene sweeps (plus the fixed overrides).
   struct SceneVariant
   {
@@ -284,6 +324,34 @@ int runBench(const BenchOptions& options, std::ostream& log)
     }
     sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), ',') });
   }
+  // Each key must belong to at least one selected technique and be given once: a misspelt key would
+  // otherwise be dropped silently and the bench would run the defaults.
+  std::set<std::string> givenKeys;
+  const auto checkKey = [&](const std::string& option, const std::string& text, const std::string& key) {
+    const bool known = std::any_of(techniqueNames.begin(), techniqueNames.end(),
+      [&](const std::string& name) { return findTechnique(name).findParameter(key) != nullptr; });
+    if (!known)
+    {
+      throw InputError(format(option, " ", text, ": none of the techniques ", joined(techniqueNames, ", "),
+        " has a parameter '", key, "' (see shadowlab list)"));
+    }
+    if (!givenKeys.insert(key).second)
+    {
+      throw InputError(format(option, " ", text, ": ", key, " is given more than once (--set and --sweep)"));
+    }
+  };
+  for (const std::string& setting : options.settings)
+  {
+    checkKey("--set", setting, setting.substr(0, setting.find('=')));
+  }
+  for (const Sweep& sweep : sweeps)
+  {
+    if (sweep.values.empty())
+    {
+      throw InputError("--sweep " + sweep.key + ": no values");
+    }
+    checkKey("--sweep", sweep.key, sweep.key);
+  }
 
   std::vector<Configuration> configurations;
   for (std::size_t sceneIndex = 0; sceneIndex < variants.size(); ++sceneIndex)
@@ -332,11 +400,27 @@ int runBench(const BenchOptions& options, std::ostream& log)
     }
   }
 
+  // The scenes' files and the reference cache are inputs: --out may neither hold nor replace them.
+  std::vector<std::filesystem::path> inputs{ options.cacheDir };
+  for (const SceneVariant& variant : variants)
+  {
+    const std::vector<std::filesystem::path> sceneFiles = sceneInputs(variant.scene, variant.file);
+    inputs.insert(inputs.end(), sceneFiles.begin(), sceneFiles.end());
+  }
+  const OutputTarget output{ options.outDir, "bench", options.force, inputs };
+  checkOutputTarget(output);
+  std::error_code cacheError;
+  std::filesystem::create_directories(options.cacheDir, cacheError);
+  if (cacheError || !std::filesystem::is_directory(options.cacheDir))
+  {
+    throw InputError(format("--cache ", options.cacheDir, ": cannot create the directory (",
+      cacheError ? cacheError.message() : "not a directory", ")"));
+  }
+
   int failures = 0;
-  writeDirectoryAtomically(options.outDir, [&](const std::filesystem::path& dir) {
+  writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::create_directories(dir / "logs");
-    std::filesystem::create_directories(options.cacheDir);
 
     // References first, once per scene.
     std::vector<std::string> referenceFiles(variants.size());
@@ -344,23 +428,29 @@ int runBench(const BenchOptions& options, std::ostream& log)
     {
       const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
         referenceKey(variants[s].scene, options.resolution, options.referenceSamples);
-      if (!std::filesystem::is_regular_file(cached / "buffers.vti"))
+      // A cache entry is re-validated on every use; a bad one (cut short, altered) is computed again.
+      if (const std::string problem = cachedReferenceProblem(cached, resolution); !problem.empty())
       {
         if (!options.quiet)
         {
           log << "bench: ray-traced reference of " << variants[s].name << " (" << options.referenceSamples
-              << " samples) -> " << cached.string() << "\n";
+              << " samples) -> " << cached.string()
+              << (problem == "missing" ? std::string() : " (the cached one is unusable: " + problem + ")") << "\n";
         }
+        // --force: the entry (named by its hash) belongs to the cache; a bad one is replaced, marker or not.
         std::vector<std::string> arguments{ "reference", variants[s].file, "--samples",
-          std::to_string(options.referenceSamples), "--resolution", options.resolution, "--out", cached.string(), "--quiet" };
+          std::to_string(options.referenceSamples), "--resolution", options.resolution, "--out", cached.string(),
+          "--quiet", "--force" };
         for (const std::string& override : variants[s].overrides)
         {
           arguments.insert(arguments.end(), { "--scene-set", override });
         }
         const ChildResult child = runChild(arguments, dir / "logs" / format("reference-", s, ".txt"));
-        if (child.exitCode != 0)
+        const std::string stillWrong = child.exitCode == 0 ? cachedReferenceProblem(cached, resolution) : "";
+        if (child.exitCode != 0 || !stillWrong.empty())
         {
-          log << "bench: warning: no reference for " << variants[s].name << ": " << child.lastLine << "\n";
+          log << "bench: warning: no reference for " << variants[s].name << ": "
+              << (child.exitCode != 0 ? child.lastLine : stillWrong) << "\n";
           continue;
         }
       }
@@ -431,7 +521,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
         }
       }
     }
-    std::ofstream csv(dir / "bench.csv");
+    std::ostringstream csv;
     csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
     for (const std::string& stage : stages)
     {
@@ -442,7 +532,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
       csv << "," << name;
     }
     csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
-    std::ofstream markdown(dir / "summary.md");
+    std::ostringstream markdown;
     markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error | statistics |\n"
              << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
     std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
@@ -523,10 +613,8 @@ int runBench(const BenchOptions& options, std::ostream& log)
                  << " | | | | | | |\n";
       }
     }
-    if (!csv || !markdown)
-    {
-      throw InputError(options.outDir + ": cannot write bench.csv / summary.md");
-    }
+    writeTextFile(dir / "bench.csv", csv.str());
+    writeTextFile(dir / "summary.md", markdown.str());
     for (const auto& [sceneIndex, points] : chartPoints)
     {
       const SceneVariant& variant = variants[sceneIndex];
@@ -558,7 +646,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   if (!options.quiet)
   {
     log << "shadowlab: bench of " << configurations.size() << " configuration(s), " << failures << " failed -> "
-        << options.outDir << "\n";
+        << printable(options.outDir) << "\n";
   }
   return failures == 0 ? 0 : 4;
 }

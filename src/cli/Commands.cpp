@@ -10,6 +10,7 @@
 
 #include <iomanip>
 #include <regex>
+#include <set>
 
 namespace sl
 {
@@ -21,7 +22,34 @@ glm::ivec2 parseResolution(const std::string& text)
   {
     throw InputError("--resolution " + text + ": expected WxH, e.g. 512x512");
   }
-  return { std::stoi(match[1]), std::stoi(match[2]) };
+  const glm::ivec2 size{ std::stoi(match[1]), std::stoi(match[2]) };
+  if (size.x < 1 || size.y < 1 || size.x > kMaxImageSide || size.y > kMaxImageSide)
+  {
+    throw InputError(format("--resolution ", text, ": each side must be in 1 .. ", kMaxImageSide));
+  }
+  return size;
+}
+
+void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::string>& settings)
+{
+  ParameterValues check(technique);
+  std::set<std::string> keys;
+  for (const std::string& assignment : settings)
+  {
+    check.set(assignment);
+    const std::string key = assignment.substr(0, assignment.find('='));
+    if (!keys.insert(key).second)
+    {
+      throw InputError("--set " + assignment + ": " + key + " is given more than once");
+    }
+  }
+}
+
+std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile)
+{
+  std::vector<std::filesystem::path> inputs = scene.inputFiles;
+  inputs.emplace_back(sceneFile);
+  return inputs;
 }
 
 namespace
@@ -67,18 +95,16 @@ int runRender(const RenderOptions& options, std::ostream& log)
   {
     request.resolution = parseResolution(options.resolution);
   }
-  ParameterValues check(findTechnique(request.technique));
-  for (const std::string& assignment : request.settings)
-  {
-    check.set(assignment);
-  }
+  checkSettings(findTechnique(request.technique), request.settings);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
+  const OutputTarget output{ options.outDir, "render", options.force, sceneInputs(scene, options.sceneFile) };
+  checkOutputTarget(output);
   std::size_t dropped = 0;
   for (const SceneObject& object : scene.objects)
   {
     if (object.droppedDegenerateTriangles > 0)
     {
-      log << "shadowlab: warning: " << options.sceneFile << ": " << object.name << ": dropped "
+      log << "shadowlab: warning: " << printable(options.sceneFile) << ": " << printable(object.name) << ": dropped "
           << object.droppedDegenerateTriangles << " degenerate triangle(s)\n";
       dropped += object.droppedDegenerateTriangles;
     }
@@ -89,7 +115,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   context.sceneFile = options.sceneFile;
   context.lightIndex = options.lightIndex;
   context.droppedDegenerateTriangles = dropped;
-  writeFrameOutputs(frame, context, options.outDir);
+  writeFrameOutputs(frame, context, output);
   if (!options.quiet)
   {
     double gpuMs = 0.0;
@@ -97,9 +123,9 @@ int runRender(const RenderOptions& options, std::ostream& log)
     {
       gpuMs += stage.gpuMs;
     }
-    log << "shadowlab: rendered " << options.sceneFile << " with " << frame.technique << " at " << frame.resolution.x
+    log << "shadowlab: rendered " << printable(options.sceneFile) << " with " << frame.technique << " at " << frame.resolution.x
         << "x" << frame.resolution.y << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)
-        << gpuMs << " ms, frame " << frame.frameWallMs << " ms -> " << options.outDir << "\n";
+        << gpuMs << " ms, frame " << frame.frameWallMs << " ms -> " << printable(options.outDir) << "\n";
   }
   return 0;
 }

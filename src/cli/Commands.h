@@ -5,13 +5,16 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <ostream>
-#include <vector>
 #include <string>
 #include <vector>
 
 namespace sl
 {
+
+struct Scene;
+struct TechniqueDescriptor;
 
 struct RenderOptions
 {
@@ -22,6 +25,7 @@ struct RenderOptions
   std::string resolution; // "WxH" or empty
   std::string outDir = "out";
   int lightIndex = 0;
+  bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
 };
 
@@ -39,6 +43,7 @@ struct ReferenceOptions
   std::string outDir = "out-reference";
   int lightIndex = 0;
   int threads = 0; // 0: all cores
+  bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
 };
 int runReference(const ReferenceOptions& options, std::ostream& log);
@@ -49,6 +54,7 @@ struct CompareOptions
   std::string referenceFile;
   std::string array = "visibility";
   std::string outDir = "out-compare";
+  bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
 };
 int runCompare(const CompareOptions& options, std::ostream& log);
@@ -66,6 +72,7 @@ struct BenchOptions
   int referenceSamples = 1024;
   std::string cacheDir = ".shadowlab-cache";   // ray-traced references, keyed by scene + resolution + samples
   std::string outDir = "out-bench";
+  bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
 };
 int runBench(const BenchOptions& options, std::ostream& log);
@@ -85,7 +92,17 @@ struct BenchRunOptions
 };
 int runBenchConfiguration(const BenchRunOptions& options);
 
-// "WxH" -> size; throws InputError naming --resolution.
+// The largest image side any command renders (the scene format's camera resolution has the same limit).
+constexpr int kMaxImageSide = 16384;
+
+// "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);
+
+// Every --set assignment valid for `technique` (known key, value in range) and no key given twice; throws
+// InputError naming the assignment.
+void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::string>& settings);
+
+// The files a command reads for a scene (the scene file, its meshes and alpha textures): --out must not hold them.
+std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile);
 
 } // namespace sl

@@ -36,6 +36,8 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     request.resolution = parseResolution(options.resolution);
   }
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
+  const OutputTarget output{ options.outDir, "reference", options.force, sceneInputs(scene, options.sceneFile) };
+  checkOutputTarget(output);
   if (options.lightIndex < 0 || options.lightIndex >= static_cast<int>(scene.lights.size()))
   {
     throw InputError(format("--light ", options.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
@@ -100,16 +102,16 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     { "gl_renderer", gbuffer.glRenderer },
   };
   stats["buffers"] = bufferSummaries(buffers);
-  writeDirectoryAtomically(options.outDir, [&](const std::filesystem::path& dir) {
+  writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     writeBufferFiles(buffers, {}, nullptr, dir);
     writeJson(stats, dir / "stats.json");
   });
   if (!options.quiet)
   {
-    log << "shadowlab: reference of " << options.sceneFile << " at " << gbuffer.resolution.x << "x"
+    log << "shadowlab: reference of " << printable(options.sceneFile) << " at " << gbuffer.resolution.x << "x"
         << gbuffer.resolution.y << ", " << options.samples << " " << options.sampling << " samples: " << std::fixed
         << std::setprecision(2) << result.seconds << " s, " << result.raysPerSecond * 1e-6 << " Mrays/s -> "
-        << options.outDir << "\n";
+        << printable(options.outDir) << "\n";
   }
   return 0;
 }

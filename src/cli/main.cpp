@@ -2,16 +2,35 @@
 // Run `shadowlab --help` or `shadowlab <command> --help`.
 #include "cli/Commands.h"
 #include "core/Error.h"
+#include "io/OutputDirectory.h"
+#include "io/vtkSLOutputWindow.h"
 
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+
+namespace
+{
+
+// Adds the --force flag every command that writes an output directory has (see OutputDirectory.h).
+void addForceFlag(CLI::App* command, bool& force)
+{
+  command->add_flag("--force", force,
+    "Replace --out even when it is a non-empty directory that shadowlab did not write (never the current "
+    "directory, an ancestor of it, the home directory, or a directory holding an input)");
+}
+
+} // namespace
 
 int main(int argc, char** argv)
 {
   CLI::App app{ "ShadowLab: real-time shadow algorithms, rendered and opened up.\n"
                 "Every technique writes its image, visibility and internal buffers (VTK image data for ParaView)." };
   app.require_subcommand(1);
+
+  // Every error is one line on stderr with a nonzero exit (README "Outputs and exit codes").
+  sl::installOutputSignalHandlers();
+  sl::installVtkOutputWindow(); // VTK's own messages reach the user only through the error path
 
   sl::RenderOptions render;
   CLI::App* renderCommand = app.add_subcommand("render", "Render a scene with one technique into an output directory");
@@ -21,7 +40,8 @@ int main(int argc, char** argv)
   renderCommand->add_option("--set,-s", render.settings, "Technique parameter, key=value (repeatable)");
   renderCommand->add_option("--scene-set", render.sceneOverrides, "Scene value, /json/pointer=value, e.g. /lights/0/size=2 (repeatable)");
   renderCommand->add_option("--resolution,-r", render.resolution, "Image size WxH (default: the scene camera's)");
-  renderCommand->add_option("--out,-o", render.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  renderCommand->add_option("--out,-o", render.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
+  addForceFlag(renderCommand, render.force);
   renderCommand->add_option("--light", render.lightIndex, "Index of the scene light that casts shadows")
     ->capture_default_str();
   renderCommand->add_flag("--quiet,-q", render.quiet, "Print nothing on success");
@@ -33,9 +53,12 @@ int main(int argc, char** argv)
   referenceCommand->add_option("--samples,-n", reference.samples, "Light samples per pixel")->capture_default_str();
   referenceCommand->add_option("--scene-set", reference.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
   referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
-  referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")->capture_default_str();
+  referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")
+    ->check(CLI::NonNegativeNumber)
+    ->capture_default_str();
   referenceCommand->add_option("--resolution,-r", reference.resolution, "Image size WxH (default: the scene camera's)");
-  referenceCommand->add_option("--out,-o", reference.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  referenceCommand->add_option("--out,-o", reference.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
+  addForceFlag(referenceCommand, reference.force);
   referenceCommand->add_option("--light", reference.lightIndex, "Index of the scene light")->capture_default_str();
   referenceCommand->add_option("--threads", reference.threads, "Worker threads (0: all cores)")->capture_default_str();
   referenceCommand->add_flag("--quiet,-q", reference.quiet, "Print nothing on success");
@@ -46,7 +69,8 @@ int main(int argc, char** argv)
   compareCommand->add_option("test", compare.testFile, "buffers.vti of the technique")->required();
   compareCommand->add_option("reference", compare.referenceFile, "buffers.vti of the reference")->required();
   compareCommand->add_option("--array", compare.array, "Array to compare")->capture_default_str();
-  compareCommand->add_option("--out,-o", compare.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  compareCommand->add_option("--out,-o", compare.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
+  addForceFlag(compareCommand, compare.force);
   compareCommand->add_flag("--quiet,-q", compare.quiet, "Print nothing on success");
 
   sl::BenchOptions bench;
@@ -65,7 +89,8 @@ int main(int argc, char** argv)
   benchCommand->add_option("--samples", bench.referenceSamples, "Light samples of the ray-traced reference")
     ->capture_default_str();
   benchCommand->add_option("--cache", bench.cacheDir, "Cache of ray-traced references")->capture_default_str();
-  benchCommand->add_option("--out,-o", bench.outDir, "Output directory (replaced atomically)")->capture_default_str();
+  benchCommand->add_option("--out,-o", bench.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
+  addForceFlag(benchCommand, bench.force);
   benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
 
   sl::BenchRunOptions benchRun;
@@ -88,9 +113,19 @@ int main(int argc, char** argv)
   {
     app.parse(argc, argv);
   }
+  catch (const CLI::CallForHelp& help)
+  {
+    return app.exit(help);
+  }
+  catch (const CLI::CallForAllHelp& help)
+  {
+    return app.exit(help);
+  }
   catch (const CLI::ParseError& error)
   {
-    return app.exit(error);
+    // CLI11 would exit with its own codes (100+) and two lines; the contract is one line and exit 1.
+    std::cerr << "shadowlab: error: " << sl::printable(error.what()) << " (see shadowlab --help)\n";
+    return 1;
   }
 
   try
@@ -122,17 +157,17 @@ int main(int argc, char** argv)
   }
   catch (const sl::InputError& error)
   {
-    std::cerr << "shadowlab: error: " << error.what() << "\n";
+    std::cerr << "shadowlab: error: " << sl::printable(error.what()) << "\n";
     return 1;
   }
   catch (const sl::GraphicsError& error)
   {
-    std::cerr << "shadowlab: graphics error: " << error.what() << "\n";
+    std::cerr << "shadowlab: graphics error: " << sl::printable(error.what()) << "\n";
     return 2;
   }
   catch (const std::exception& error)
   {
-    std::cerr << "shadowlab: internal error: " << error.what() << "\n";
+    std::cerr << "shadowlab: internal error: " << sl::printable(error.what()) << "\n";
     return 3;
   }
   return 0;

@@ -31,6 +31,10 @@ public:
   }
 };
 
+// `text` safe to print as one line: control characters (newlines, ANSI escapes, ...) and DEL written as \n, \t,
+// \r or \xNN, so a file name or key echoed in a message can neither split it nor drive the terminal.
+std::string printable(const std::string& text);
+
 [[noreturn]] void checkFailed(const char* expression, const char* file, int line, const std::string& message);
 
 // Builds a message from stream-style arguments: format("value ", x, " out of range").

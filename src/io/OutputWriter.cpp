@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <unistd.h>
 
 namespace sl
 {
@@ -217,88 +215,15 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
 
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path)
 {
-  std::ofstream file(path);
-  file << json.dump(2) << "\n";
-  if (!file)
-  {
-    throw InputError(path.string() + ": cannot write");
-  }
+  writeTextFile(path, json.dump(2) + "\n");
 }
 
-void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const std::filesystem::path& outDir)
+void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const OutputTarget& target)
 {
-  writeDirectoryAtomically(outDir, [&](const std::filesystem::path& dir) {
+  writeDirectoryAtomically(target, [&](const std::filesystem::path& dir) {
     writeBufferFiles(frame.buffers, frame.lightSpace, &frame.image, dir);
     writeJson(frameStats(frame, context), dir / "stats.json");
   });
-}
-
-std::filesystem::path makeTemporarySibling(const std::filesystem::path& outDir)
-{
-  std::filesystem::path absolute = std::filesystem::absolute(outDir).lexically_normal();
-  if (absolute.filename().empty())
-  {
-    absolute = absolute.parent_path();
-  }
-  if (std::filesystem::exists(absolute) && !std::filesystem::is_directory(absolute))
-  {
-    throw InputError("--out " + outDir.string() + ": exists and is not a directory");
-  }
-  std::error_code error;
-  std::filesystem::create_directories(absolute.parent_path(), error);
-  if (error)
-  {
-    throw InputError("--out " + outDir.string() + ": cannot create " + absolute.parent_path().string() + " (" +
-      error.message() + ")");
-  }
-  const std::filesystem::path temporary =
-    absolute.parent_path() / ("." + absolute.filename().string() + ".partial-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(temporary, error);
-  if (!std::filesystem::create_directory(temporary, error) || error)
-  {
-    throw InputError("--out " + outDir.string() + ": cannot create a directory next to it (" + error.message() + ")");
-  }
-  return temporary;
-}
-
-void replaceDirectory(const std::filesystem::path& temporary, const std::filesystem::path& outDir)
-{
-  std::filesystem::path absolute = std::filesystem::absolute(outDir).lexically_normal();
-  if (absolute.filename().empty())
-  {
-    absolute = absolute.parent_path();
-  }
-  std::error_code error;
-  std::filesystem::path previous;
-  if (std::filesystem::exists(absolute))
-  {
-    previous = absolute.parent_path() / ("." + absolute.filename().string() + ".previous-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(previous, error);
-    std::filesystem::rename(absolute, previous, error);
-    if (error)
-    {
-      throw InputError("--out " + outDir.string() + ": cannot replace the existing directory (" + error.message() + ")");
-    }
-  }
-  std::filesystem::rename(temporary, absolute, error);
-  if (error)
-  {
-    if (!previous.empty())
-    {
-      std::filesystem::rename(previous, absolute);
-    }
-    throw InputError("--out " + outDir.string() + ": cannot move the results into place (" + error.message() + ")");
-  }
-  if (!previous.empty())
-  {
-    removeQuietly(previous);
-  }
-}
-
-void removeQuietly(const std::filesystem::path& path)
-{
-  std::error_code ignored;
-  std::filesystem::remove_all(path, ignored);
 }
 
 } // namespace sl

@@ -1,11 +1,12 @@
-// Writes a rendered frame into an output directory, atomically: everything goes to a temporary sibling
-// directory first, which replaces `outDir` only when every file was written. A failure leaves no partial
-// output (an existing `outDir` is kept as it was).
+// Writes a rendered frame into an output directory, atomically and under the output contract of
+// OutputDirectory.h: everything goes to a temporary sibling directory first, which takes the place of --out
+// only when every file was written. A failure leaves no partial output (an existing --out is kept as it was).
 //
 // Files: buffers.vti, light_space.vti (when a light-space structure was built), image.png,
 // visibility.exr, heatmap_<buffer>.png per scalar buffer, stats.json. README.md documents each.
 #pragma once
 
+#include "io/OutputDirectory.h"
 #include "passes/ShadowRenderer.h"
 
 #include <filesystem>
@@ -32,32 +33,7 @@ nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers);
 void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,
   const ImageU8* image, const std::filesystem::path& dir);
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path);
-void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const std::filesystem::path& outDir);
-
-// Runs `writeFiles(tempDir)` and then moves tempDir to outDir (replacing it). Used by every command that
-// writes a directory of results.
-template <typename WriteFiles>
-void writeDirectoryAtomically(const std::filesystem::path& outDir, WriteFiles writeFiles);
-
-// Implementation detail of writeDirectoryAtomically.
-std::filesystem::path makeTemporarySibling(const std::filesystem::path& outDir);
-void replaceDirectory(const std::filesystem::path& temporary, const std::filesystem::path& outDir);
-void removeQuietly(const std::filesystem::path& path);
-
-template <typename WriteFiles>
-void writeDirectoryAtomically(const std::filesystem::path& outDir, WriteFiles writeFiles)
-{
-  const std::filesystem::path temporary = makeTemporarySibling(outDir);
-  try
-  {
-    writeFiles(temporary);
-    replaceDirectory(temporary, outDir);
-  }
-  catch (...)
-  {
-    removeQuietly(temporary);
-    throw;
-  }
-}
+// Every write checked (writeTextFile): InputError naming the file when it cannot be written completely.
+void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const OutputTarget& target);
 
 } // namespace sl

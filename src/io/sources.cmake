@@ -1,3 +1,5 @@
 set(SL_IO_SOURCES
   src/io/ImageIO.cpp
-  src/io/OutputWriter.cpp)
+  src/io/OutputDirectory.cpp
+  src/io/OutputWriter.cpp
+  src/io/vtkSLOutputWindow.cxx)

@@ -56,7 +56,7 @@ nlohmann::json comparisonJson(const Comparison& comparison, const std::filesyste
 }
 
 void writeComparison(const Comparison& comparison, const std::filesystem::path& testFile,
-  const std::filesystem::path& referenceFile, const std::filesystem::path& outDir)
+  const std::filesystem::path& referenceFile, const OutputTarget& output)
 {
   const ImageF& error = comparison.error;
   const ImageF& mask = comparison.mask;
@@ -85,7 +85,7 @@ void writeComparison(const Comparison& comparison, const std::filesystem::path& 
   heatMap.colorMap = ColorMapKind::Diverging; // range symmetric about 0 (no explicit bounds)
   const nlohmann::json document = comparisonJson(comparison, testFile, referenceFile);
 
-  writeDirectoryAtomically(outDir, [&](const std::filesystem::path& dir) {
+  writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     writeVti(dir / "error.vti", images);
     writeHeatMapPng(error, &validMask, heatMap, dir / "error.png");
     writeJson(document, dir / "metrics.json");

@@ -2,6 +2,7 @@
 // .vti files written by `shadowlab render` / the reference, and the files that show where the error is.
 #pragma once
 
+#include "io/OutputDirectory.h"
 #include "metrics/ErrorMetrics.h"
 
 #include <filesystem>
@@ -25,14 +26,14 @@ const ImageF& requireArray(const std::vector<NamedImage>& arrays, const std::str
 Comparison compareVtiFiles(const std::filesystem::path& testFile, const std::filesystem::path& referenceFile,
   const std::string& array = "visibility");
 
-// Writes into outDir atomically (writeDirectoryAtomically: a failure leaves no partial output):
+// Writes into output.dir atomically (writeDirectoryAtomically: a failure leaves no partial output):
 //  - error.vti: arrays error (test - reference, 0 where not compared), abs_error, reference, test, compared (0/1);
 //  - error.png: diverging heat map of the signed error over the compared pixels, range symmetric about 0,
 //    with colour key and the title "error (test - reference)";
 //  - metrics.json: metricsJson plus "test", "reference" (the paths as given) and "resolution" [width, height].
-// Throws InputError when outDir cannot be written.
+// Throws InputError when output.dir is refused or cannot be written.
 void writeComparison(const Comparison& comparison, const std::filesystem::path& testFile,
-  const std::filesystem::path& referenceFile, const std::filesystem::path& outDir);
+  const std::filesystem::path& referenceFile, const OutputTarget& output);
 
 // The metrics.json document of writeComparison.
 nlohmann::json comparisonJson(const Comparison& comparison, const std::filesystem::path& testFile,

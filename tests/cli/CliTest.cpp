@@ -5,6 +5,7 @@
 // on llvmpipe.
 #include "io/ImageIO.h"
 #include "passes/ShadowRenderer.h"
+#include "support/CliRun.h"
 #include "support/TempDir.h"
 #include "support/TestSupport.h"
 #include "techniques/Technique.h"
@@ -38,95 +39,20 @@ using Json = nlohmann::json;
 
 using test::TempDir;
 
-std::string readFile(const fs::path& path)
-{
-  std::ifstream stream(path, std::ios::binary);
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
+using test::entriesOf;
+using test::joined;
+using test::readFile;
+using test::RunResult;
+using test::writeFile;
 
-void writeFile(const fs::path& path, const std::string& content)
-{
-  std::ofstream stream(path, std::ios::binary);
-  stream << content;
-  ASSERT_TRUE(stream.good()) << "could not write " << path;
-}
-
-// Single-quoted for /bin/sh.
-std::string shellQuote(const std::string& argument)
-{
-  std::string quoted = "'";
-  for (char c : argument)
-  {
-    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return quoted + "'";
-}
-
-struct RunResult
-{
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-  std::string commandLine;
-
-  std::size_t errLines() const { return static_cast<std::size_t>(std::count(err.begin(), err.end(), '\n')); }
-  // For failure messages.
-  std::string describe() const
-  {
-    return "command: " + commandLine + "\nexit: " + std::to_string(exitCode) + "\nstderr:\n" + err +
-      "\nstdout (first 2000 chars):\n" + out.substr(0, 2000);
-  }
-};
-
-// Runs shadowlab with `arguments` in `workDir`, stdout and stderr captured to files there.
 RunResult runShadowlab(const std::vector<std::string>& arguments, const fs::path& workDir)
 {
-  RunResult result;
-  const fs::path outFile = workDir / ".stdout.txt";
-  const fs::path errFile = workDir / ".stderr.txt";
-  std::string command = "cd " + shellQuote(workDir.string()) + " && " + shellQuote(SL_SHADOWLAB_EXE);
-  for (const std::string& argument : arguments)
-  {
-    command += " " + shellQuote(argument);
-  }
-  result.commandLine = command;
-  command += " >" + shellQuote(outFile.string()) + " 2>" + shellQuote(errFile.string()) + " </dev/null";
-  const int status = std::system(command.c_str());
-  result.exitCode = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  result.out = readFile(outFile);
-  result.err = readFile(errFile);
-  std::error_code ignored;
-  fs::remove(outFile, ignored);
-  fs::remove(errFile, ignored);
-  return result;
+  return test::runShadowlabIn(arguments, workDir);
 }
 
 fs::path datasetScene(const std::string& name)
 {
   return test::datasetPath(name);
-}
-
-std::vector<std::string> entriesOf(const fs::path& dir)
-{
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir))
-  {
-    names.push_back(entry.path().filename().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string joined(const std::vector<std::string>& names)
-{
-  std::string text;
-  for (const std::string& name : names)
-  {
-    text += (text.empty() ? "" : ", ") + name;
-  }
-  return text;
 }
 
 const NamedImage* findArray(const std::vector<NamedImage>& arrays, const std::string& name)
@@ -406,6 +332,8 @@ TEST(CliRenderOutput, SuccessReplacesTheWholeDirectoryFailureLeavesItUntouched)
   TempDir temp;
   const fs::path outDir = temp.path() / "results";
   fs::create_directories(outDir / "sub");
+  // An earlier output of shadowlab (it carries the marker), to which files were added since.
+  writeFile(outDir / ".shadowlab-output", R"({"tool": "shadowlab", "command": "render"})");
   writeFile(outDir / "old.txt", "from an earlier run");
   writeFile(outDir / "sub" / "nested.txt", "nested");
 
@@ -420,7 +348,8 @@ TEST(CliRenderOutput, SuccessReplacesTheWholeDirectoryFailureLeavesItUntouched)
     const RunResult failed = runShadowlab(arguments, temp.path());
     EXPECT_NE(failed.exitCode, 0) << failed.describe();
     EXPECT_EQ(failed.errLines(), 1u) << failed.describe();
-    EXPECT_EQ(entriesOf(outDir), (std::vector<std::string>{ "old.txt", "sub" })) << failed.describe();
+    EXPECT_EQ(entriesOf(outDir), (std::vector<std::string>{ ".shadowlab-output", "old.txt", "sub" }))
+      << failed.describe();
     EXPECT_EQ(readFile(outDir / "old.txt"), "from an earlier run");
     EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "results" })
       << "leftover next to --out: " << joined(entriesOf(temp.path()));

@@ -415,7 +415,7 @@ TEST_F(CompareFiles, WriteComparisonWritesVtiPngAndJson)
   writeHandBuiltPair();
   const Comparison comparison = compareVtiFiles(testFile_, referenceFile_);
   const fs::path outDir = directory_ / "out";
-  writeComparison(comparison, testFile_, referenceFile_, outDir);
+  writeComparison(comparison, testFile_, referenceFile_, { outDir, "compare", false, { testFile_, referenceFile_ } });
 
   const std::vector<NamedImage> arrays = readVti(outDir / "error.vti");
   std::vector<std::string> names;
@@ -468,7 +468,8 @@ TEST_F(CompareFiles, UnwritableOutputThrowsAndLeavesNothing)
   const fs::path blocker = directory_ / "blocker";
   std::ofstream(blocker) << "not a directory\n";
   const fs::path outDir = blocker / "out";
-  const std::string message = inputErrorMessage([&] { writeComparison(comparison, testFile_, referenceFile_, outDir); });
+  const std::string message = inputErrorMessage(
+    [&] { writeComparison(comparison, testFile_, referenceFile_, { outDir, "compare", false, {} }); });
   EXPECT_TRUE(contains(message, outDir.string())) << message;
   std::vector<std::string> left;
   for (const fs::directory_entry& entry : fs::directory_iterator(directory_))

@@ -1,0 +1,491 @@
+// The output contract (see OutputDirectory.h and README.md "Outputs and exit codes").
+#include "io/OutputDirectory.h"
+
+#include "core/Error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <dirent.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace sl
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+constexpr const char* kPartialPrefix = ".shadowlab-partial-";
+
+// ---- what a signal handler needs: plain data, written with signals blocked ---------------------------------
+
+char g_temporaryPath[PATH_MAX];             // the temporary directory being written, "" when none
+char g_doomedPath[PATH_MAX];                // where the handler moves it before removing it
+volatile std::sig_atomic_t g_childPid = 0;  // the child a signal is forwarded to (bench), 0 when none
+constexpr int kHandledSignals[] = { SIGINT, SIGTERM, SIGHUP };
+
+// Removes the directory tree `name` under `parentFd` with async-signal-safe calls only (openat, getdents64,
+// unlinkat, close): a signal handler may not call std::filesystem (it allocates). Symbolic links are removed,
+// never followed. Output trees are two levels deep; the depth bound only stops a pathological tree.
+void removeTreeSignalSafe(int parentFd, const char* name, int depth)
+{
+  const int fd = ::openat(parentFd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd >= 0)
+  {
+    alignas(8) char buffer[4096];
+    // Removing entries while reading a directory may skip some: read it again until a pass removes nothing.
+    for (int pass = 0; pass < 64; ++pass)
+    {
+      bool removedAny = false;
+      ::lseek(fd, 0, SEEK_SET);
+      for (;;)
+      {
+        const ssize_t bytes = ::getdents64(fd, buffer, sizeof(buffer));
+        if (bytes <= 0)
+        {
+          break;
+        }
+        for (ssize_t offset = 0; offset < bytes;)
+        {
+          const auto* entry = reinterpret_cast<const struct dirent64*>(buffer + offset);
+          offset += entry->d_reclen;
+          const char* child = entry->d_name;
+          if ((child[0] == '.' && child[1] == '\0') || (child[0] == '.' && child[1] == '.' && child[2] == '\0'))
+          {
+            continue;
+          }
+          if (::unlinkat(fd, child, 0) == 0)
+          {
+            removedAny = true;
+          }
+          else if ((errno == EISDIR || errno == EPERM) && depth < 16)
+          {
+            removeTreeSignalSafe(fd, child, depth + 1);
+            removedAny = true;
+          }
+        }
+      }
+      if (!removedAny)
+      {
+        break;
+      }
+    }
+    ::close(fd);
+  }
+  ::unlinkat(parentFd, name, AT_REMOVEDIR);
+}
+
+extern "C" void handleTerminatingSignal(int signalNumber)
+{
+  const int savedErrno = errno;
+  const pid_t child = static_cast<pid_t>(g_childPid);
+  if (child > 0)
+  {
+    ::kill(child, signalNumber);
+  }
+  if (g_temporaryPath[0] != '\0')
+  {
+    // The handler may run on any thread while the main thread goes on writing into the directory by path.
+    // Moved away first, the directory can only lose entries: new files by the old path fail to be created.
+    // (The moved name still matches the stale-sibling pattern, should the process die before it is gone.)
+    const bool moved = ::rename(g_temporaryPath, g_doomedPath) == 0;
+    removeTreeSignalSafe(AT_FDCWD, moved ? g_doomedPath : g_temporaryPath, 0);
+  }
+  // End the process with the signal, as if it had not been caught (the shell reports 128 + signal).
+  std::signal(signalNumber, SIG_DFL);
+  errno = savedErrno;
+  ::raise(signalNumber);
+}
+
+// Blocks the handled signals for its lifetime: what happens inside (creating the temporary directory and
+// registering it) is then atomic for the handler, which never sees a directory it does not know of, nor half a path.
+class HandledSignalsBlocked
+{
+public:
+  HandledSignalsBlocked()
+  {
+    sigset_t blocked;
+    sigemptyset(&blocked);
+    for (const int signalNumber : kHandledSignals)
+    {
+      sigaddset(&blocked, signalNumber);
+    }
+    ::sigprocmask(SIG_BLOCK, &blocked, &previous_);
+  }
+  ~HandledSignalsBlocked() { ::sigprocmask(SIG_SETMASK, &previous_, nullptr); }
+  HandledSignalsBlocked(const HandledSignalsBlocked&) = delete;
+  HandledSignalsBlocked& operator=(const HandledSignalsBlocked&) = delete;
+
+private:
+  sigset_t previous_;
+};
+
+// Sets the path the handler removes; call with the handled signals blocked.
+void setSignalCleanupPath(const std::string& path)
+{
+  const std::string doomed = path.empty() ? path : path + "-interrupted";
+  if (doomed.size() >= sizeof(g_doomedPath))
+  {
+    g_temporaryPath[0] = '\0'; // longer than any path the system accepts: nothing to clean
+    return;
+  }
+  std::memcpy(g_doomedPath, doomed.c_str(), doomed.size() + 1);
+  std::memcpy(g_temporaryPath, path.c_str(), path.size() + 1);
+}
+
+// ---- paths ----------------------------------------------------------------------------------------------
+
+// --out as an absolute, normal path with symbolic links resolved in the part that exists (so "-o .", "-o x/..",
+// a trailing slash and a link to a directory all name the directory they mean).
+fs::path resolveOutputPath(const fs::path& dir)
+{
+  if (dir.empty())
+  {
+    throw InputError("--out: empty path; name a directory for the results");
+  }
+  std::error_code error;
+  fs::path resolved = fs::weakly_canonical(fs::absolute(dir, error), error);
+  if (error)
+  {
+    throw InputError(format("--out ", dir.string(), ": cannot resolve the path (", error.message(), ")"));
+  }
+  resolved = resolved.lexically_normal();
+  if (resolved.filename().empty() && resolved.has_parent_path() && resolved != resolved.root_path())
+  {
+    resolved = resolved.parent_path();
+  }
+  return resolved;
+}
+
+fs::path resolveInputPath(const fs::path& input)
+{
+  std::error_code error;
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(input, error), error);
+  return error ? fs::absolute(input).lexically_normal() : resolved.lexically_normal();
+}
+
+// True when `ancestor` is `path` or one of its ancestors (both absolute and normal).
+bool isAncestorOrSelf(const fs::path& ancestor, const fs::path& path)
+{
+  auto a = ancestor.begin();
+  auto p = path.begin();
+  for (; a != ancestor.end(); ++a, ++p)
+  {
+    if (a->empty() && std::next(a) == ancestor.end())
+    {
+      break; // a trailing separator
+    }
+    if (p == path.end() || *a != *p)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool hasMarker(const fs::path& dir)
+{
+  std::error_code error;
+  const fs::path marker = dir / kOutputMarkerName;
+  if (!fs::is_regular_file(fs::symlink_status(marker, error)))
+  {
+    return false;
+  }
+  std::FILE* file = std::fopen(marker.c_str(), "rb");
+  if (!file)
+  {
+    return false;
+  }
+  char text[4096];
+  const std::size_t bytes = std::fread(text, 1, sizeof(text), file);
+  std::fclose(file);
+  const nlohmann::json document = nlohmann::json::parse(text, text + bytes, nullptr, false);
+  return document.is_object() && document.value("tool", std::string()) == "shadowlab";
+}
+
+bool isEmptyDirectory(const fs::path& dir)
+{
+  std::error_code error;
+  const fs::directory_iterator first(dir, error);
+  if (error)
+  {
+    throw InputError(format("--out ", dir.string(), ": cannot list the existing directory (", error.message(), ")"));
+  }
+  return first == fs::directory_iterator();
+}
+
+// Why `resolved` may never be replaced, even with --force; empty when it may.
+std::string protectedReason(const fs::path& resolved, const OutputTarget& target)
+{
+  if (resolved == resolved.root_path())
+  {
+    return "is the filesystem root";
+  }
+  std::error_code error;
+  const fs::path cwd = fs::current_path(error);
+  if (!error && isAncestorOrSelf(resolved, resolveInputPath(cwd)))
+  {
+    return resolved == resolveInputPath(cwd) ? "is the current directory" : "holds the current directory";
+  }
+  if (const char* home = std::getenv("HOME"); home && *home && isAncestorOrSelf(resolved, resolveInputPath(home)))
+  {
+    return "is or holds the home directory";
+  }
+  for (const fs::path& input : target.inputs)
+  {
+    const fs::path resolvedInput = resolveInputPath(input);
+    if (isAncestorOrSelf(resolved, resolvedInput))
+    {
+      return "holds " + input.string() + ", an input of this command";
+    }
+    if (fs::is_directory(resolvedInput, error) && isAncestorOrSelf(resolvedInput, resolved))
+    {
+      return "lies inside " + input.string() + ", an input directory of this command";
+    }
+  }
+  return {};
+}
+
+std::string timestamp()
+{
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  ::gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+// Temporary siblings left by a process that no longer runs (SIGKILL, a crash, power loss) and that carry the
+// marker (so they are ShadowLab's): removed. A live process's sibling (another run writing the same --out) is
+// left alone.
+void removeStaleSiblings(const fs::path& parent)
+{
+  std::error_code error;
+  for (fs::directory_iterator it(parent, error), end; !error && it != end; it.increment(error))
+  {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kPartialPrefix, 0) != 0 || !fs::is_directory(it->symlink_status(error)))
+    {
+      continue;
+    }
+    char* endOfPid = nullptr;
+    const long pid = std::strtol(name.c_str() + std::strlen(kPartialPrefix), &endOfPid, 10);
+    if (pid <= 0 || *endOfPid != '-' || pid == ::getpid())
+    {
+      continue;
+    }
+    const bool processGone = ::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH;
+    if (processGone && hasMarker(it->path()))
+    {
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
+  }
+}
+
+void removeQuietly(const fs::path& path)
+{
+  std::error_code ignored;
+  fs::remove_all(path, ignored);
+}
+
+std::string systemReason(int errorNumber)
+{
+  return std::strerror(errorNumber);
+}
+
+} // namespace
+
+void checkOutputTarget(const OutputTarget& target)
+{
+  const fs::path resolved = resolveOutputPath(target.dir);
+  const std::string named = "--out " + target.dir.string();
+  if (const std::string reason = protectedReason(resolved, target); !reason.empty())
+  {
+    throw InputError(format(named, ": refused, it ", reason, " (nothing was written)"));
+  }
+  std::error_code error;
+  const fs::file_status status = fs::status(resolved, error);
+  if (!fs::exists(status))
+  {
+    return;
+  }
+  if (!fs::is_directory(status))
+  {
+    throw InputError(named + ": exists and is not a directory");
+  }
+  if (!target.force && !hasMarker(resolved) && !isEmptyDirectory(resolved))
+  {
+    throw InputError(format(named, ": refused, the directory exists and was not written by shadowlab (no ",
+      kOutputMarkerName, " in it); choose another --out, or add --force to replace it"));
+  }
+}
+
+void writeTextFile(const fs::path& path, const std::string& text)
+{
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0)
+  {
+    throw InputError(format(path.string(), ": cannot write (", systemReason(errno), ")"));
+  }
+  std::size_t written = 0;
+  while (written < text.size())
+  {
+    const ssize_t bytes = ::write(fd, text.data() + written, text.size() - written);
+    if (bytes < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (bytes <= 0)
+    {
+      const int reason = bytes < 0 ? errno : EIO;
+      ::close(fd);
+      throw InputError(format(path.string(), ": cannot write (", systemReason(reason), ")"));
+    }
+    written += static_cast<std::size_t>(bytes);
+  }
+  if (::close(fd) != 0)
+  {
+    throw InputError(format(path.string(), ": cannot write (", systemReason(errno), ")"));
+  }
+}
+
+void installOutputSignalHandlers()
+{
+  struct sigaction action
+  {
+  };
+  action.sa_handler = handleTerminatingSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  for (const int signalNumber : kHandledSignals)
+  {
+    struct sigaction previous
+    {
+    };
+    // A signal the caller ignores (nohup, a background job's SIGINT) stays ignored.
+    if (::sigaction(signalNumber, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN)
+    {
+      continue;
+    }
+    ::sigaction(signalNumber, &action, nullptr);
+  }
+}
+
+void setForegroundChild(int pid)
+{
+  g_childPid = pid;
+}
+
+TemporaryOutput::TemporaryOutput(const OutputTarget& target)
+  : target_(target)
+  , resolved_(resolveOutputPath(target.dir))
+{
+  checkOutputTarget(target_);
+  SL_CHECK_MSG(g_temporaryPath[0] == '\0', "one output directory at a time per process");
+  const fs::path parent = resolved_.parent_path();
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (error)
+  {
+    throw InputError(format("--out ", target_.dir.string(), ": cannot create ", parent.string(), " (",
+      error.message(), ")"));
+  }
+  removeStaleSiblings(parent);
+  static std::atomic<int> counter{ 0 };
+  for (int attempt = 0; temporary_.empty(); ++attempt)
+  {
+    const fs::path candidate = parent / format(kPartialPrefix, ::getpid(), "-", counter++);
+    const HandledSignalsBlocked blocked;
+    if (::mkdir(candidate.c_str(), 0755) == 0)
+    {
+      temporary_ = candidate;
+      setSignalCleanupPath(temporary_.string());
+    }
+    else if (errno != EEXIST || attempt > 1000)
+    {
+      throw InputError(format("--out ", target_.dir.string(), ": cannot create a directory next to it (",
+        systemReason(errno), ")"));
+    }
+  }
+  // The marker goes in first, so even a sibling left by a killed run is recognisably ShadowLab's.
+  const nlohmann::json marker = { { "tool", "shadowlab" }, { "command", target_.command },
+    { "version", SL_VERSION }, { "created", timestamp() }, { "pid", ::getpid() } };
+  try
+  {
+    writeTextFile(temporary_ / kOutputMarkerName, marker.dump(2) + "\n");
+  }
+  catch (...)
+  {
+    removeQuietly(temporary_);
+    const HandledSignalsBlocked blocked;
+    setSignalCleanupPath("");
+    throw;
+  }
+}
+
+TemporaryOutput::~TemporaryOutput()
+{
+  if (!committed_)
+  {
+    removeQuietly(temporary_);
+  }
+  const HandledSignalsBlocked blocked;
+  setSignalCleanupPath("");
+}
+
+void TemporaryOutput::commit()
+{
+  // The target may have changed while the results were computed (another run, the user): decide again.
+  checkOutputTarget(target_);
+  const std::string named = "--out " + target_.dir.string();
+  if (::rename(temporary_.c_str(), resolved_.c_str()) == 0)
+  {
+    committed_ = true; // there was nothing (or an empty directory) in the way
+    return;
+  }
+  if (errno != EEXIST && errno != ENOTEMPTY)
+  {
+    throw InputError(format(named, ": cannot move the results into place (", systemReason(errno), ")"));
+  }
+  // Swap the finished results and the previous output in one step, so --out is never missing or half
+  // written; the previous output (now at the temporary path) is then removed.
+  if (::renameat2(AT_FDCWD, temporary_.c_str(), AT_FDCWD, resolved_.c_str(), RENAME_EXCHANGE) != 0)
+  {
+    if (errno != EINVAL && errno != ENOSYS)
+    {
+      throw InputError(format(named, ": cannot replace the previous results (", systemReason(errno), ")"));
+    }
+    // A filesystem without atomic exchange: move the previous output aside, then the results in.
+    const fs::path aside = fs::path(temporary_.string() + "-previous");
+    if (::rename(resolved_.c_str(), aside.c_str()) != 0)
+    {
+      throw InputError(format(named, ": cannot replace the previous results (", systemReason(errno), ")"));
+    }
+    if (::rename(temporary_.c_str(), resolved_.c_str()) != 0)
+    {
+      const int reason = errno;
+      ::rename(aside.c_str(), resolved_.c_str());
+      throw InputError(format(named, ": cannot move the results into place (", systemReason(reason), ")"));
+    }
+    committed_ = true;
+    removeQuietly(aside);
+    return;
+  }
+  committed_ = true;
+  removeQuietly(temporary_);
+}
+
+} // namespace sl

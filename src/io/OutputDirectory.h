@@ -1,0 +1,85 @@
+// The output contract: every directory of results ShadowLab writes (render, reference, compare, bench, and
+// every command added later) goes through writeDirectoryAtomically, which never destroys what ShadowLab did
+// not create. README.md ("Outputs and exit codes") states the same rules for users:
+//
+//  - Each output directory carries a marker file, `.shadowlab-output` (JSON: tool, command, version, time).
+//  - --out may replace an existing directory only when it is empty or carries that marker. A non-empty
+//    directory without it is refused with one line, unless the command was given --force.
+//  - Even with --force, these are always refused: the filesystem root, the current directory and each of its
+//    ancestors, the home directory and its ancestors, and any directory holding an input of the command (scene,
+//    mesh, alpha texture, compared file, bench cache). Paths are compared after resolving symbolic links.
+//  - Results go into a temporary sibling `.shadowlab-partial-<pid>-<n>` (with the marker) that takes the place
+//    of --out in one atomic exchange (renameat2 RENAME_EXCHANGE) only when every file was written; a failure at
+//    any point leaves the previous --out as it was. SIGINT, SIGTERM and SIGHUP remove the run's temporary
+//    directory before the process ends with the signal; a temporary sibling whose process is gone (SIGKILL,
+//    power loss) is removed by the next run that writes next to it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+
+// Where a command writes, and what it must not destroy.
+struct OutputTarget
+{
+  std::filesystem::path dir;                 // --out as the user gave it
+  std::string command;                       // "render", "reference", "compare", "bench", ...
+  bool force = false;                        // --force: replace a non-empty directory without the marker
+  std::vector<std::filesystem::path> inputs; // files and directories the command reads (never deleted)
+};
+
+// The marker file's name inside every output directory.
+inline constexpr const char* kOutputMarkerName = ".shadowlab-output";
+
+// Throws InputError (one line naming --out and the reason) when `target` may not be written. Commands call it
+// before any expensive work, so a refusal comes at once; writeDirectoryAtomically checks again before replacing.
+void checkOutputTarget(const OutputTarget& target);
+
+// Runs `writeFiles(temporaryDir)`, then puts temporaryDir in the place of target.dir atomically. Throws what
+// writeFiles throws, or InputError when the target is refused or the results cannot be moved into place; the
+// temporary directory is removed then and target.dir is left as it was.
+template <typename WriteFiles>
+void writeDirectoryAtomically(const OutputTarget& target, WriteFiles writeFiles);
+
+// Writes `text` to `path`, checking every step (open, write, flush, close): InputError naming the file and the
+// system's reason (e.g. "File too large", "No space left on device") on failure.
+void writeTextFile(const std::filesystem::path& path, const std::string& text);
+
+// Installs the SIGINT/SIGTERM/SIGHUP handlers that remove the temporary directory being written (if any) and
+// forward the signal to a running child process (bench); then the process ends with the signal. main() calls
+// this once.
+void installOutputSignalHandlers();
+// The child process a signal is forwarded to (0: none). Set by bench around each child it waits for.
+void setForegroundChild(int pid);
+
+// Implementation of writeDirectoryAtomically; not for direct use.
+class TemporaryOutput
+{
+public:
+  explicit TemporaryOutput(const OutputTarget& target); // checks the target, cleans stale siblings, creates
+  ~TemporaryOutput();                                   // removes the temporary directory unless committed
+  TemporaryOutput(const TemporaryOutput&) = delete;
+  TemporaryOutput& operator=(const TemporaryOutput&) = delete;
+
+  const std::filesystem::path& path() const { return temporary_; }
+  void commit(); // the temporary directory takes the place of the target
+
+private:
+  OutputTarget target_;
+  std::filesystem::path resolved_;  // target.dir, absolute, symbolic links resolved
+  std::filesystem::path temporary_; // the sibling being written
+  bool committed_ = false;
+};
+
+template <typename WriteFiles>
+void writeDirectoryAtomically(const OutputTarget& target, WriteFiles writeFiles)
+{
+  TemporaryOutput output(target);
+  writeFiles(output.path());
+  output.commit();
+}
+
+} // namespace sl
