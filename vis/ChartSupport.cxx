@@ -2,19 +2,21 @@
 
 #include "core/Error.h"
 #include "gl/vtkSLEglRenderWindow.h"
+#include "io/ImageIO.h"
 
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
 #include <vtkContextScene.h>
 #include <vtkDoubleArray.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkRenderer.h>
 #include <vtkStringArray.h>
 #include <vtkTextProperty.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <vector>
 
@@ -81,14 +83,16 @@ void writeChartPng(const OffscreenChart& chart, const std::filesystem::path& png
   grab->ReadFrontBufferOff();
   grab->ShouldRerenderOff();
   grab->Update();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(pngPath.string().c_str());
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->Write();
-  if (writer->GetErrorCode() != 0 || !std::filesystem::is_regular_file(pngPath))
-  {
-    throw InputError(pngPath.string() + ": cannot write the chart");
-  }
+  // The same checked write as every other PNG (writePng): a failed write is an InputError naming the file.
+  vtkImageData* pixels = grab->GetOutput();
+  int dimensions[3] = { 0, 0, 0 };
+  pixels->GetDimensions(dimensions);
+  SL_CHECK_MSG(pixels->GetScalarType() == VTK_UNSIGNED_CHAR && pixels->GetNumberOfScalarComponents() == 3,
+    "chart read-back is not 8-bit RGB");
+  // vtkImageData and Image share the bottom-up row order.
+  ImageU8 image(dimensions[0], dimensions[1], 3);
+  std::memcpy(image.data.data(), pixels->GetScalarPointer(), image.data.size());
+  writePng(pngPath, image);
 }
 
 } // namespace sl

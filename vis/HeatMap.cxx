@@ -1,19 +1,12 @@
 #include "vis/HeatMap.h"
 
 #include "core/Error.h"
+#include "io/ImageIO.h"
 #include "vis/Canvas.h"
 #include "vis/ColorKey.h"
 
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGWriter.h>
-#include <vtkUnsignedCharArray.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 
 namespace sl
 {
@@ -179,28 +172,9 @@ void writeHeatMapPng(const ImageF& values, const ImageU8* validMask, const HeatM
 {
   const ImageU8 canvas = renderHeatMap(values, validMask, options);
 
-  // vtkImageData has the same bottom-up row order as Image; vtkPNGWriter writes its top row (highest y)
-  // first, which is the flip a PNG (top row first) needs.
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(canvas.width, canvas.height, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  std::copy(canvas.data.begin(), canvas.data.end(), static_cast<std::uint8_t*>(image->GetScalarPointer()));
-
-  // Encode in memory and write the file ourselves, so that a bad path becomes an InputError naming it.
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputData(image);
-  writer->WriteToMemoryOn();
-  writer->Write();
-  vtkUnsignedCharArray* png = writer->GetResult();
-  SL_CHECK_MSG(png != nullptr && png->GetNumberOfValues() > 0, "PNG encoding of ", pngPath.string(), " failed");
-
-  std::ofstream file(pngPath, std::ios::binary | std::ios::trunc);
-  if (file)
-    file.write(reinterpret_cast<const char*>(png->GetPointer(0)), png->GetNumberOfValues());
-  if (file)
-    file.close();
-  if (!file)
-    throw InputError(format("cannot write heat map PNG '", pngPath.string(), "': ", std::strerror(errno)));
+  // writePng checks every step of the write (a full disk or a file-size limit is an InputError naming
+  // the file, never a truncated PNG that passes as written).
+  writePng(pngPath, canvas);
 }
 
 } // namespace sl

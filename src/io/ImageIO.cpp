@@ -1,6 +1,8 @@
 #include "io/ImageIO.h"
 
 #include "core/Error.h"
+#include "io/OutputDirectory.h"
+#include "io/vtkSLOutputWindow.h"
 #include "passes/ShadowRenderer.h"
 
 #include <ImfChannelList.h>
@@ -9,21 +11,144 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 
+#include <png.h>
+
+#include <vtkAbstractArray.h>
+#include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkNew.h>
-#include <vtkPNGReader.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
 #include <cstring>
 #include <exception>
+#include <memory>
+#include <new>
+#include <system_error>
 
 namespace sl
 {
+
+namespace
+{
+
+// ---- checked writes -------------------------------------------------------------------------------------
+
+// Writes an encoded file with writeTextFile's checks (open, every write, close: the system's reason on
+// failure), then compares the size on disk with what was encoded: a write that the kernel accepted but the
+// filesystem did not keep must not pass as a complete file either.
+void writeEncodedFile(const std::filesystem::path& path, const std::string& bytes)
+{
+  writeTextFile(path, bytes);
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    return; // a device such as /dev/null has no size to compare
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error || size != bytes.size())
+    throw InputError(format(path.string(), ": cannot write (the file on disk has ",
+      error ? std::string("an unknown size") : std::to_string(size), " of ", bytes.size(), " bytes)"));
+}
+
+// ---- PNG decoding (libpng) --------------------------------------------------------------------------------
+// libpng reports a corrupt file by calling the error function, which must not return: ours records libpng's
+// message and longjmps back to the setjmp in decodeWithLibpng, the function that calls png_read_*. (VTK 9.1's
+// vtkPNGReader arms setjmp in a helper that has already returned, so a corrupt file crashed the process.)
+// Everything decodeWithLibpng allocates lives in PngDecodeState, owned by its caller, so the longjmp skips no
+// destructor.
+
+struct PngDecodeState
+{
+  std::string error; // libpng's message, or ours, when decoding gave up
+  png_uint_32 width = 0;
+  png_uint_32 height = 0;
+  int channels = 0;
+  int bitDepth = 0;
+  std::size_t rowBytes = 0;
+  std::vector<unsigned char> rows; // decoded rows, top row first
+  std::vector<png_bytep> rowPointers;
+};
+
+[[noreturn]] void onPngError(png_structp png, png_const_charp message)
+{
+  auto* state = static_cast<PngDecodeState*>(png_get_error_ptr(png));
+  state->error = message != nullptr && *message != '\0' ? message : "libpng gave no reason";
+  png_longjmp(png, 1);
+}
+
+// libpng warns about things it recovers from (a bad sRGB profile, an unknown critical-looking chunk); the
+// image is still right, and a warning on stderr would break the one-line contract.
+void onPngWarning(png_structp, png_const_charp) {}
+
+constexpr std::size_t kPngSignatureBytes = 8;
+
+// False with state.error set when libpng (or the size limit) refused the file.
+bool decodeWithLibpng(png_structp png, png_infop info, std::FILE* file, PngDecodeState& state)
+{
+  if (setjmp(png_jmpbuf(png)))
+    return false;
+  png_init_io(png, file);
+  png_set_sig_bytes(png, static_cast<int>(kPngSignatureBytes)); // the caller checked the signature
+  png_read_info(png, info);
+  state.width = png_get_image_width(png, info);
+  state.height = png_get_image_height(png, info);
+  if (state.width > static_cast<png_uint_32>(kMaxImageFileSide) ||
+    state.height > static_cast<png_uint_32>(kMaxImageFileSide))
+  {
+    state.error = format("PNG of ", state.width, "x", state.height, " is too large (max ", kMaxImageFileSide,
+      " per side)");
+    return false;
+  }
+  // Palette -> RGB, tRNS -> alpha channel, 1/2/4-bit gray -> 8 bits. 16-bit samples are kept.
+  png_set_expand(png);
+  const int passes = png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  state.channels = png_get_channels(png, info);
+  state.bitDepth = png_get_bit_depth(png, info);
+  state.rowBytes = png_get_rowbytes(png, info);
+  if (passes == 1)
+  {
+    // Row by row, growing the buffer as rows arrive: a header that claims 16384 x 16384 over one row of data
+    // costs one row of memory before libpng reports the missing data.
+    for (png_uint_32 y = 0; y < state.height; ++y)
+    {
+      state.rows.resize(state.rowBytes * (std::size_t{ y } + 1));
+      png_read_row(png, state.rows.data() + state.rowBytes * y, nullptr);
+    }
+  }
+  else
+  {
+    // Interlaced (Adam7): every pass revisits every row, so the whole image is needed at once.
+    state.rows.resize(state.rowBytes * state.height);
+    state.rowPointers.resize(state.height);
+    for (png_uint_32 y = 0; y < state.height; ++y)
+      state.rowPointers[y] = state.rows.data() + state.rowBytes * y;
+    png_read_image(png, state.rowPointers.data());
+  }
+  png_read_end(png, nullptr);
+  return true;
+}
+
+// ---- .vti reading -----------------------------------------------------------------------------------------
+
+void throwIfVtkFailed(const std::filesystem::path& path, const VtkErrorCapture& capture, vtkAlgorithm& reader)
+{
+  if (capture.hasError() || reader.GetErrorCode() != 0)
+    throw InputError(format(path.string(), ": not a readable VTK image file (",
+      capture.hasError() ? capture.firstError() : std::string("the VTK reader failed"), ")"));
+}
+
+} // namespace
 
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images)
 {
@@ -43,52 +168,108 @@ void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& 
     data->GetPointData()->AddArray(array);
   }
   data->GetPointData()->SetActiveScalars(images.front().name.c_str());
+  // Encoded in memory and written by writeEncodedFile: vtkXMLWriter::Write() returns 1 even when the disk
+  // fills up halfway (bad-input probe D17), and its own file output gives no reason.
+  const VtkErrorCapture capture;
   vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(path.string().c_str());
   writer->SetInputData(data);
   writer->SetCompressorTypeToZLib();
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
-  if (writer->Write() != 1)
-  {
-    throw InputError(path.string() + ": cannot write the VTK image file");
-  }
+  writer->WriteToOutputStringOn();
+  const int written = writer->Write();
+  SL_CHECK_MSG(written == 1 && writer->GetErrorCode() == 0 && !capture.hasError(), "encoding ", path.string(),
+    " in memory failed: ", capture.firstError());
+  writeEncodedFile(path, writer->GetOutputString());
 }
 
 std::vector<NamedImage> readVti(const std::filesystem::path& path)
 {
-  if (!std::filesystem::is_regular_file(path))
+  const std::string file = path.string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
   {
-    throw InputError(path.string() + ": no such file");
+    throw InputError(file + (std::filesystem::exists(path, error) ? ": not a regular file" : ": no such file"));
   }
+  // VTK reports a truncated or corrupt file as error text; the capture turns it into our one line.
+  const VtkErrorCapture capture;
   vtkNew<vtkXMLImageDataReader> reader;
-  if (!reader->CanReadFile(path.string().c_str()))
+  if (!reader->CanReadFile(file.c_str()))
   {
-    throw InputError(path.string() + ": not a VTK XML image file (.vti)");
+    throw InputError(file + ": not a VTK XML image file (.vti)");
   }
-  reader->SetFileName(path.string().c_str());
+  reader->SetFileName(file.c_str());
+
+  // The extent comes from the XML header; check it before VTK allocates arrays for it (K13: 100000^2) and
+  // before we copy into an image of that size (K15: a 96x96x3 file overflowed a 96x96 image).
+  reader->UpdateInformation();
+  throwIfVtkFailed(path, capture, *reader);
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  const long long width = static_cast<long long>(extent[1]) - extent[0] + 1;
+  const long long height = static_cast<long long>(extent[3]) - extent[2] + 1;
+  const long long depth = static_cast<long long>(extent[5]) - extent[4] + 1;
+  if (width < 1 || height < 1 || depth < 1)
+  {
+    throw InputError(format(file, ": empty image (", std::max(width, 0LL), "x", std::max(height, 0LL), "x",
+      std::max(depth, 0LL), ")"));
+  }
+  if (depth != 1)
+  {
+    throw InputError(
+      format(file, ": a 3-D image (", width, "x", height, "x", depth, "); only 2-D images (depth 1) are supported"));
+  }
+  if (width > kMaxImageFileSide || height > kMaxImageFileSide)
+  {
+    throw InputError(
+      format(file, ": image of ", width, "x", height, " is too large (max ", kMaxImageFileSide, " per side)"));
+  }
+
   reader->Update();
+  throwIfVtkFailed(path, capture, *reader);
   vtkImageData* data = reader->GetOutput();
-  int dimensions[3];
+  int dimensions[3] = { 0, 0, 0 };
   data->GetDimensions(dimensions);
+  if (dimensions[0] != width || dimensions[1] != height || dimensions[2] != 1)
+  {
+    throw InputError(format(file, ": not a readable VTK image file (read ", dimensions[0], "x", dimensions[1], "x",
+      dimensions[2], " of the ", width, "x", height, "x1 its header declares)"));
+  }
+  const auto pixelCount = static_cast<vtkIdType>(width * height);
+
   std::vector<NamedImage> images;
   vtkPointData* pointData = data->GetPointData();
   for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
   {
-    vtkDataArray* array = pointData->GetArray(a);
-    if (!array || !array->GetName())
+    vtkAbstractArray* abstractArray = pointData->GetAbstractArray(a);
+    if (abstractArray == nullptr || abstractArray->GetName() == nullptr)
     {
-      continue;
+      continue; // an unnamed array cannot be asked for
+    }
+    const std::string arrayName = abstractArray->GetName();
+    vtkDataArray* array = vtkDataArray::SafeDownCast(abstractArray);
+    if (array == nullptr)
+    {
+      throw InputError(format(file, ": array '", arrayName, "' is not numeric (", abstractArray->GetClassName(), ")"));
+    }
+    const int components = array->GetNumberOfComponents();
+    if (components < 1 || components > 4)
+    {
+      throw InputError(format(file, ": array '", arrayName, "' has ", components, " components (1 to 4 supported)"));
+    }
+    if (array->GetNumberOfTuples() != pixelCount)
+    {
+      throw InputError(format(file, ": array '", arrayName, "' has ", array->GetNumberOfTuples(),
+        " tuples, the image has ", width, "x", height, " = ", pixelCount, " pixels"));
     }
     NamedImage named;
-    named.name = array->GetName();
-    named.image = ImageF(dimensions[0], dimensions[1], array->GetNumberOfComponents());
-    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+    named.name = arrayName;
+    named.image = ImageF(static_cast<int>(width), static_cast<int>(height), components);
+    for (vtkIdType t = 0; t < pixelCount; ++t)
     {
-      for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+      for (int c = 0; c < components; ++c)
       {
-        named.image.data[static_cast<std::size_t>(t) * named.image.components + c] =
-          static_cast<float>(array->GetComponent(t, c));
+        named.image.data[static_cast<std::size_t>(t) * components + c] = static_cast<float>(array->GetComponent(t, c));
       }
     }
     images.push_back(std::move(named));
@@ -98,41 +279,90 @@ std::vector<NamedImage> readVti(const std::filesystem::path& path)
 
 void writePng(const std::filesystem::path& path, const ImageU8& rgb)
 {
-  SL_CHECK(rgb.components == 3);
+  SL_CHECK(rgb.components == 3 && rgb.width > 0 && rgb.height > 0);
+  // vtkImageData has the same bottom-up row order as Image; vtkPNGWriter writes its top row (highest y)
+  // first, which is the flip a PNG (top row first) needs.
   vtkNew<vtkImageData> data;
   data->SetDimensions(rgb.width, rgb.height, 1);
   data->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
   std::memcpy(data->GetScalarPointer(), rgb.data.data(), rgb.data.size());
+  // Encoded in memory, written by writeEncodedFile (see writeVti).
+  const VtkErrorCapture capture;
   vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.string().c_str());
   writer->SetInputData(data);
+  writer->WriteToMemoryOn();
   writer->Write();
-  if (writer->GetErrorCode() != 0 || !std::filesystem::is_regular_file(path))
+  vtkUnsignedCharArray* png = writer->GetResult();
+  SL_CHECK_MSG(writer->GetErrorCode() == 0 && !capture.hasError() && png != nullptr && png->GetNumberOfValues() > 0,
+    "encoding ", path.string(), " in memory failed: ", capture.firstError());
+  writeEncodedFile(path,
+    std::string(reinterpret_cast<const char*>(png->GetPointer(0)), static_cast<std::size_t>(png->GetNumberOfValues())));
+}
+
+PngImage readPngImage(const std::filesystem::path& path)
+{
+  const std::string file = path.string();
+  const auto fail = [&file](const std::string& why) { return InputError(format("cannot read '", file, "' (", why, ")")); };
+  std::error_code error;
+  if (!std::filesystem::exists(path, error))
+    throw fail("no such file");
+  if (!std::filesystem::is_regular_file(path, error))
+    throw fail("not a regular file");
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(std::fopen(file.c_str(), "rb"), &std::fclose);
+  if (!stream)
+    throw fail(std::strerror(errno));
+  std::array<png_byte, kPngSignatureBytes> signature{};
+  if (std::fread(signature.data(), 1, signature.size(), stream.get()) != signature.size() ||
+    png_sig_cmp(signature.data(), 0, signature.size()) != 0)
+    throw fail("not a PNG file");
+
+  PngDecodeState state;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, &onPngError, &onPngWarning);
+  png_infop info = png != nullptr ? png_create_info_struct(png) : nullptr;
+  struct ReadStructGuard // frees libpng's structures on every way out
   {
-    throw InputError(path.string() + ": cannot write the PNG file");
+    png_structp& png;
+    png_infop& info;
+    ~ReadStructGuard() { png_destroy_read_struct(&png, &info, nullptr); }
+  } readStructGuard{ png, info };
+  if (png == nullptr || info == nullptr)
+    throw std::bad_alloc();
+  if (!decodeWithLibpng(png, info, stream.get(), state))
+    throw fail(state.error);
+
+  PngImage image;
+  image.bitDepth = state.bitDepth;
+  image.samples = Image<std::uint16_t>(static_cast<int>(state.width), static_cast<int>(state.height), state.channels);
+  const std::size_t samplesPerRow = std::size_t{ state.width } * static_cast<std::size_t>(state.channels);
+  for (png_uint_32 row = 0; row < state.height; ++row)
+  {
+    // PNG rows run top to bottom; ours bottom to top.
+    const unsigned char* source = state.rows.data() + state.rowBytes * row;
+    std::uint16_t* target = image.samples.data.data() + samplesPerRow * (state.height - 1 - row);
+    for (std::size_t i = 0; i < samplesPerRow; ++i)
+    {
+      // 16-bit PNG samples are big-endian.
+      target[i] = state.bitDepth == 16 ? static_cast<std::uint16_t>((source[2 * i] << 8) | source[2 * i + 1])
+                                       : source[i];
+    }
   }
+  return image;
 }
 
 ImageU8 readPng(const std::filesystem::path& path)
 {
-  vtkNew<vtkPNGReader> reader;
-  if (!std::filesystem::is_regular_file(path) || !reader->CanReadFile(path.string().c_str()))
-  {
-    throw InputError(path.string() + ": not a readable PNG file");
-  }
-  reader->SetFileName(path.string().c_str());
-  reader->Update();
-  vtkImageData* data = reader->GetOutput();
-  int dimensions[3];
-  data->GetDimensions(dimensions);
-  const int components = data->GetNumberOfScalarComponents();
-  ImageU8 rgb(dimensions[0], dimensions[1], 3);
-  const auto* pixels = static_cast<const unsigned char*>(data->GetScalarPointer());
-  for (std::size_t i = 0; i < rgb.pixelCount(); ++i)
+  const PngImage png = readPngImage(path);
+  const Image<std::uint16_t>& samples = png.samples;
+  ImageU8 rgb(samples.width, samples.height, 3);
+  const int colorChannels = samples.components >= 3 ? 3 : 1; // RGB(A) or gray(+alpha)
+  for (std::size_t pixel = 0; pixel < rgb.pixelCount(); ++pixel)
   {
     for (int c = 0; c < 3; ++c)
     {
-      rgb.data[i * 3 + c] = pixels[i * components + std::min(c, components - 1)];
+      const std::uint16_t value = samples.data[pixel * samples.components + std::min(c, colorChannels - 1)];
+      // 16 -> 8 bits rounded to nearest: v * 255 / 65535.
+      rgb.data[pixel * 3 + c] =
+        png.bitDepth == 16 ? static_cast<std::uint8_t>((value * 255u + 32767u) / 65535u) : static_cast<std::uint8_t>(value);
     }
   }
   return rgb;

@@ -1,26 +1,13 @@
 #include "scene/AlphaTexture.h"
 
 #include "core/Error.h"
-
-#include <vtkCallbackCommand.h>
-#include <vtkCommand.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
-#include <vtkType.h>
+#include "io/ImageIO.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/glm.hpp>
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
-#include <limits>
-#include <system_error>
 #include <vector>
 
 namespace sl
@@ -29,143 +16,17 @@ namespace sl
 namespace
 {
 
-// ---- PNG structure check --------------------------------------------------------------------------------
-// vtkPNGReader (VTK 9.1) arms libpng's setjmp inside a helper that has already returned when libpng reports a
-// broken file, so a truncated or corrupt PNG crashes the process instead of failing the read. We therefore
-// walk the PNG's chunk structure ourselves first (signature, chunk lengths, CRCs, IHDR sanity, IDAT present,
-// IEND last) and hand VTK only files that pass. This catches truncation and random corruption; it does not
-// decompress the image data.
-
-constexpr std::array<unsigned char, 8> kPngSignature = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
-constexpr std::uint32_t kMaxPngSide = 16384; // larger alpha masks are almost certainly a mistake
-
-std::uint32_t crc32(const unsigned char* bytes, std::size_t count)
+// Alpha of each pixel (AlphaTexture.h): the alpha channel when there is one, else the luminance.
+ImageF alphaFromPng(const PngImage& png)
 {
-  // Bitwise CRC-32 (ISO-HDLC, the polynomial PNG uses); fast enough for the few files a scene names.
-  std::uint32_t crc = 0xFFFFFFFFu;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    crc ^= bytes[i];
-    for (int bit = 0; bit < 8; ++bit)
-      crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-  }
-  return crc ^ 0xFFFFFFFFu;
-}
-
-std::uint32_t readBigEndian32(const unsigned char* bytes)
-{
-  return (std::uint32_t{ bytes[0] } << 24) | (std::uint32_t{ bytes[1] } << 16) | (std::uint32_t{ bytes[2] } << 8) |
-    std::uint32_t{ bytes[3] };
-}
-
-bool isValidColorTypeAndDepth(unsigned colorType, unsigned bitDepth)
-{
-  switch (colorType)
-  {
-  case 0: // gray
-    return bitDepth == 1 || bitDepth == 2 || bitDepth == 4 || bitDepth == 8 || bitDepth == 16;
-  case 3: // palette
-    return bitDepth == 1 || bitDepth == 2 || bitDepth == 4 || bitDepth == 8;
-  case 2: // RGB
-  case 4: // gray + alpha
-  case 6: // RGBA
-    return bitDepth == 8 || bitDepth == 16;
-  default:
-    return false;
-  }
-}
-
-// Empty when `bytes` is a structurally sound PNG, else what is wrong with it.
-std::string pngStructureProblem(const std::vector<unsigned char>& bytes)
-{
-  if (bytes.size() < kPngSignature.size() || !std::equal(kPngSignature.begin(), kPngSignature.end(), bytes.begin()))
-    return "not a PNG file";
-  std::size_t offset = kPngSignature.size();
-  bool sawHeader = false;
-  bool sawImageData = false;
-  while (true)
-  {
-    // A chunk is: 4-byte length, 4-byte type, `length` bytes of data, 4-byte CRC of type + data.
-    if (bytes.size() - offset < 12)
-      return "corrupt PNG: truncated before the IEND chunk";
-    const std::uint32_t length = readBigEndian32(&bytes[offset]);
-    if (length > bytes.size() - offset - 12)
-      return "corrupt PNG: truncated chunk";
-    const unsigned char* typeAndData = &bytes[offset + 4];
-    const std::string type(reinterpret_cast<const char*>(typeAndData), 4);
-    if (crc32(typeAndData, 4 + std::size_t{ length }) != readBigEndian32(typeAndData + 4 + length))
-      return format("corrupt PNG: bad CRC in chunk '", type, "'");
-    const unsigned char* data = typeAndData + 4;
-
-    if (!sawHeader)
-    {
-      if (type != "IHDR" || length != 13)
-        return "corrupt PNG: first chunk is not a valid IHDR";
-      const std::uint32_t width = readBigEndian32(data);
-      const std::uint32_t height = readBigEndian32(data + 4);
-      if (width == 0 || height == 0)
-        return "corrupt PNG: zero image size";
-      if (width > kMaxPngSide || height > kMaxPngSide)
-        return format("PNG of ", width, "x", height, " is too large (max ", kMaxPngSide, " per side)");
-      if (!isValidColorTypeAndDepth(data[9], data[8]))
-        return "corrupt PNG: invalid color type / bit depth";
-      sawHeader = true;
-    }
-    else if (type == "IDAT")
-    {
-      sawImageData = true;
-    }
-    else if (type == "IEND")
-    {
-      return sawImageData ? std::string() : "corrupt PNG: no image data (IDAT)";
-    }
-    offset += 12 + std::size_t{ length };
-  }
-}
-
-std::vector<unsigned char> readFileBytes(const std::filesystem::path& file)
-{
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream)
-    throw InputError(format("cannot read '", file.string(), "' (cannot open file)"));
-  return { std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
-}
-
-// ---- VTK read -------------------------------------------------------------------------------------------
-
-// Collects VTK error/warning events of one reader, so they become our InputError instead of console text.
-struct VtkMessageCollector
-{
-  std::string firstMessage;
-
-  static void onEvent(vtkObject*, unsigned long, void* clientData, void* callData)
-  {
-    auto* self = static_cast<VtkMessageCollector*>(clientData);
-    if (self->firstMessage.empty() && callData != nullptr)
-      self->firstMessage = static_cast<const char*>(callData);
-  }
-};
-
-std::string oneLine(std::string text)
-{
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
-    text.pop_back();
-  for (char& c : text)
-    if (c == '\n' || c == '\r')
-      c = ' ';
-  return text;
-}
-
-template <typename Channel>
-ImageF alphaFromPixels(const Channel* pixels, int width, int height, int components)
-{
-  const double channelMax = static_cast<double>(std::numeric_limits<Channel>::max());
-  ImageF alpha(width, height, 1);
+  const Image<std::uint16_t>& samples = png.samples;
+  const double sampleMax = png.maxSample();
+  ImageF alpha(samples.width, samples.height, 1);
   for (std::size_t pixel = 0; pixel < alpha.pixelCount(); ++pixel)
   {
-    const Channel* texel = pixels + pixel * static_cast<std::size_t>(components);
+    const std::uint16_t* texel = samples.data.data() + pixel * static_cast<std::size_t>(samples.components);
     double value = 0.0;
-    switch (components)
+    switch (samples.components)
     {
     case 1: // gray: luminance is the value itself
       value = texel[0];
@@ -180,7 +41,7 @@ ImageF alphaFromPixels(const Channel* pixels, int width, int height, int compone
       value = texel[3];
       break;
     }
-    alpha.data[pixel] = static_cast<float>(value / channelMax);
+    alpha.data[pixel] = static_cast<float>(value / sampleMax);
   }
   return alpha;
 }
@@ -220,49 +81,8 @@ constexpr std::uint64_t kLeavesSeed = 0x1EAF5EEDull;
 
 ImageF readAlphaPng(const std::filesystem::path& file)
 {
-  std::error_code error;
-  if (!std::filesystem::exists(file, error))
-    throw InputError(format("cannot read '", file.string(), "' (no such file)"));
-  if (!std::filesystem::is_regular_file(file, error))
-    throw InputError(format("cannot read '", file.string(), "' (not a regular file)"));
-  const std::string problem = pngStructureProblem(readFileBytes(file));
-  if (!problem.empty())
-    throw InputError(format("cannot read '", file.string(), "' (", problem, ")"));
-
-  VtkMessageCollector messages;
-  vtkNew<vtkCallbackCommand> onMessage;
-  onMessage->SetCallback(&VtkMessageCollector::onEvent);
-  onMessage->SetClientData(&messages);
-  vtkNew<vtkPNGReader> reader;
-  // Observing the events keeps VTK from printing them (vtkErrorMacro prints only when nobody listens).
-  reader->AddObserver(vtkCommand::ErrorEvent, onMessage);
-  reader->AddObserver(vtkCommand::WarningEvent, onMessage);
-  reader->SetFileName(file.string().c_str());
-  reader->Update();
-
-  vtkImageData* const image = reader->GetOutput();
-  int dimensions[3] = { 0, 0, 0 };
-  image->GetDimensions(dimensions);
-  const int components = image->GetNumberOfScalarComponents();
-  if (!messages.firstMessage.empty() || reader->GetErrorCode() != 0 || dimensions[0] <= 0 || dimensions[1] <= 0 ||
-    image->GetPointData() == nullptr || image->GetScalarPointer() == nullptr)
-    throw InputError(format("cannot read '", file.string(), "' (",
-      messages.firstMessage.empty() ? "vtkPNGReader failed" : oneLine(messages.firstMessage), ")"));
-  SL_CHECK_MSG(components >= 1 && components <= 4, "PNG with ", components, " components");
-
-  // vtkPNGReader already flips rows so that row 0 is the bottom of the picture, our v = 0.
-  switch (image->GetScalarType())
-  {
-  case VTK_UNSIGNED_CHAR:
-    return alphaFromPixels(static_cast<const std::uint8_t*>(image->GetScalarPointer()), dimensions[0], dimensions[1],
-      components);
-  case VTK_UNSIGNED_SHORT:
-    return alphaFromPixels(static_cast<const std::uint16_t*>(image->GetScalarPointer()), dimensions[0],
-      dimensions[1], components);
-  default:
-    throw InputError(format("cannot read '", file.string(), "' (unexpected PNG sample type ",
-      image->GetScalarTypeAsString(), ")"));
-  }
+  // readPngImage throws "cannot read '<file>' (<why>)" and already puts row 0 at the bottom, our v = 0.
+  return alphaFromPng(readPngImage(file));
 }
 
 ImageF makeFenceAlpha(int size)
