@@ -1,5 +1,7 @@
 #include "lightspace/CameraView.h"
 
+#include "core/Error.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -8,7 +10,27 @@
 namespace sl
 {
 
-CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::ivec2 resolution)
+namespace
+{
+
+// The smallest and largest depth along `forward` of a box's corners, seen from `eye`.
+glm::dvec2 depthRange(const Bounds& bounds, const glm::dvec3& eye, const glm::dvec3& forward)
+{
+  glm::dvec2 range(1e300, -1e300);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 p((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
+      (corner & 4) ? bounds.max.z : bounds.min.z);
+    const double depth = glm::dot(p - eye, forward);
+    range = { std::min(range.x, depth), std::max(range.y, depth) };
+  }
+  return range;
+}
+
+} // namespace
+
+CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::ivec2 resolution,
+  const std::vector<Bounds>& objectBounds)
 {
   CameraView view;
   view.resolution = resolution;
@@ -16,21 +38,32 @@ CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::
   const glm::dvec3 forward = glm::normalize(camera.focalPoint - camera.position);
 
   // Depth range: the scene's bounding box corners along the view axis.
-  double nearest = 1e300;
-  double farthest = -1e300;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const glm::dvec3 p((corner & 1) ? sceneBounds.max.x : sceneBounds.min.x,
-      (corner & 2) ? sceneBounds.max.y : sceneBounds.min.y, (corner & 4) ? sceneBounds.max.z : sceneBounds.min.z);
-    const double depth = glm::dot(p - camera.position, forward);
-    nearest = std::min(nearest, depth);
-    farthest = std::max(farthest, depth);
-  }
+  const glm::dvec2 sceneDepths = depthRange(sceneBounds, camera.position, forward);
+  const double nearest = sceneDepths.x;
+  const double farthest = sceneDepths.y;
   const double aspect = static_cast<double>(resolution.x) / static_cast<double>(resolution.y);
   if (camera.projection == Projection::Perspective)
   {
     view.farDepth = std::max(farthest * 1.01, 1e-3);
-    view.nearDepth = std::max(nearest * 0.99, view.farDepth * 1e-4);
+    view.nearDepth = std::max(nearest * 0.99, view.farDepth * kMinNearOverFar);
+    for (std::size_t i = 0; i < objectBounds.size(); ++i)
+    {
+      const glm::dvec2 objectDepths = depthRange(objectBounds[i], camera.position, forward);
+      if (objectDepths.y > 0.0 && objectDepths.y < view.nearDepth)
+      {
+        view.nearDepth = std::max(objectDepths.x * 0.99, view.farDepth * kMinNearOverFarForObjects);
+      }
+    }
+    for (std::size_t i = 0; i < objectBounds.size(); ++i)
+    {
+      const glm::dvec2 objectDepths = depthRange(objectBounds[i], camera.position, forward);
+      if (objectDepths.y > 0.0 && objectDepths.y < view.nearDepth)
+      {
+        throw InputError(format("objects[", i, "]: lies within ", objectDepths.y, " of the camera while the scene reaches ",
+          farthest, " away; one depth buffer resolves at most a ratio of ", 1.0 / kMinNearOverFarForObjects,
+          " between them (move the camera or shrink the scene)"));
+      }
+    }
     view.clipFromView = glm::perspective(glm::radians(camera.viewAngleDeg), aspect, view.nearDepth, view.farDepth);
   }
   else

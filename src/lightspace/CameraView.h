@@ -5,6 +5,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace sl
 {
 
@@ -29,7 +31,15 @@ struct CameraView
 
 // `resolution` overrides the scene camera's (the CLI's --resolution); the aspect ratio follows it and
 // view_angle stays the vertical field of view, so non-square images are never stretched.
-CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::ivec2 resolution);
+// A perspective camera's near plane is the scene box's nearest depth, at least kMinNearOverFar of the far
+// depth (the float depth buffer's working range). When that would cut away an object wholly in front of the
+// camera (one vast, distant object stretches the scene box: probe case O09), the near plane moves in to that
+// object, down to kMinNearOverFarForObjects; an object nearer still is an InputError naming objects[i], never
+// a silently empty image. `objectBounds` holds each object's bounds, in the scene's order.
+constexpr double kMinNearOverFar = 1e-4;
+constexpr double kMinNearOverFarForObjects = 1e-7;
+CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::ivec2 resolution,
+  const std::vector<Bounds>& objectBounds = {});
 
 // World-space point on the near (ndcZ = -1) or far (ndcZ = 1) plane under pixel position (x, y) in
 // pixels (pixel centres at +0.5).

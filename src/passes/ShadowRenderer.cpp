@@ -184,7 +184,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   {
     throw InputError(format("--resolution ", resolution.x, "x", resolution.y, ": each side must be in 1..16384"));
   }
-  frame.camera = makeCameraView(scene.camera, scene.bounds(), resolution);
+  frame.camera = makeCameraView(scene.camera, scene.bounds(), resolution, scene.objectBounds());
 
   window_->MakeCurrent();
   window_->SetSize(resolution.x, resolution.y);

@@ -8,15 +8,19 @@ namespace sl
 namespace
 {
 
+void extendByObject(Bounds& bounds, const SceneObject& object)
+{
+  for (const glm::vec3& position : object.mesh.positions)
+    bounds.extend(glm::dvec3(position));
+}
+
 Bounds boundsOf(const std::vector<SceneObject>& objects, bool castersOnly)
 {
   Bounds bounds;
   for (const SceneObject& object : objects)
   {
-    if (castersOnly && !object.castShadows)
-      continue;
-    for (const glm::vec3& position : object.mesh.positions)
-      bounds.extend(glm::dvec3(position));
+    if (!castersOnly || object.castShadows)
+      extendByObject(bounds, object);
   }
   return bounds;
 }
@@ -36,6 +40,14 @@ double Light::area() const
 Bounds Scene::bounds() const
 {
   return boundsOf(objects, false);
+}
+
+std::vector<Bounds> Scene::objectBounds() const
+{
+  std::vector<Bounds> bounds(objects.size());
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    extendByObject(bounds[i], objects[i]);
+  return bounds;
 }
 
 Bounds Scene::casterBounds() const

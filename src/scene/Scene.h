@@ -127,6 +127,7 @@ struct Scene
 
   Bounds bounds() const;        // all objects
   Bounds casterBounds() const;  // objects with castShadows
+  std::vector<Bounds> objectBounds() const; // each object's, in order
 };
 
 // Limits of the scene format (README.md, "Scene format", "Limits"), each with the reason it exists.

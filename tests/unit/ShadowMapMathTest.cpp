@@ -249,3 +249,59 @@ TEST(FitLightView, PointLightSurroundedByReceiversIsAnInputError)
 
 } // namespace
 } // namespace sl
+
+namespace sl
+{
+namespace
+{
+
+Bounds boxAround(const glm::dvec3& centre, double halfSide)
+{
+  Bounds bounds;
+  bounds.extend(centre - glm::dvec3(halfSide));
+  bounds.extend(centre + glm::dvec3(halfSide));
+  return bounds;
+}
+
+// Probe case O09: one vast, distant object stretches the scene box so far that the near plane at
+// kMinNearOverFar of it used to cut away the whole near scene (coverage 0, exit 0). The near plane now moves in
+// to every object wholly in front of the camera, and an object beyond the depth buffer's reach is an InputError.
+TEST(CameraDepthRange, NearPlaneKeepsSmallObjectsInFrontOfAVastDistantOne)
+{
+  Camera camera; // at (0, 0, 5) looking down -z
+  const Bounds nearObject = boxAround({ 0.0, 0.0, 0.0 }, 0.5);     // depths 4.5 .. 5.5
+  const Bounds farObject = boxAround({ 0.0, 0.0, -4e5 }, 1e5);    // depths 3e5 .. 5e5
+  Bounds scene = nearObject;
+  scene.extend(farObject.min);
+  scene.extend(farObject.max);
+
+  const CameraView before = makeCameraView(camera, scene, { 64, 64 });
+  EXPECT_GT(before.nearDepth, 5.5) << "the case no longer reproduces: the scene box alone keeps the near object";
+  const CameraView view = makeCameraView(camera, scene, { 64, 64 }, { nearObject, farObject });
+  EXPECT_LT(view.nearDepth, 4.5) << "the near object is still clipped";
+  EXPECT_GE(view.nearDepth, view.farDepth * kMinNearOverFarForObjects);
+  EXPECT_GE(view.farDepth, 5e5);
+
+  // Without a vast object nothing changes: the near plane is the scene's nearest depth.
+  const CameraView alone = makeCameraView(camera, nearObject, { 64, 64 }, { nearObject });
+  EXPECT_NEAR(alone.nearDepth, 4.5 * 0.99, 1e-9);
+
+  // A tiny object 1e-3 in front of the camera against a scene 1e6 deep: beyond any float depth range.
+  const Bounds tiny = boxAround({ 0.0, 0.0, 5.0 - 1e-3 }, 1e-5);
+  const Bounds deep = boxAround({ 0.0, 0.0, -9e5 }, 1e5);
+  Bounds both = tiny;
+  both.extend(deep.min);
+  both.extend(deep.max);
+  try
+  {
+    makeCameraView(camera, both, { 64, 64 }, { deep, tiny });
+    ADD_FAILURE() << "expected an InputError";
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("objects[1]"), std::string::npos) << error.what();
+  }
+}
+
+} // namespace
+} // namespace sl
