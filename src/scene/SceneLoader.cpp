@@ -603,6 +603,7 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
 
 constexpr int kNlohmannNumberOverflow = 406;
 constexpr int kNestingTooDeep = -1; // our own Failure id: a container opened beyond the depth limit
+constexpr int kDuplicateKey = -2;   // our own Failure id: a key given twice in one object (probe S13)
 
 // Builds the document like Json::parse, but knows the JSON path of the value being parsed when parsing
 // fails. nlohmann 3.11 rejects a number too large for a double (1e999) while parsing ("number overflow",
@@ -640,6 +641,12 @@ public:
   bool key(Json::string_t& key)
   {
     keys_.back() = key;
+    // A repeated key would silently overwrite the first (Json::parse keeps the last): refused instead.
+    if (open_.back()->contains(key))
+    {
+      failure_ = Failure{ kDuplicateKey, {}, pathOfNextValue(), key };
+      return false;
+    }
     return true;
   }
   bool end_object() { return close(); }
@@ -669,7 +676,7 @@ private:
       parent.push_back(std::move(value));
       return &parent.back();
     }
-    Json& slot = parent[keys_.back()]; // a repeated key overwrites, as Json::parse does
+    Json& slot = parent[keys_.back()]; // a new key: key() refuses repeated ones
     slot = std::move(value);
     return &slot;
   }
@@ -784,6 +791,8 @@ Json parseJson(const std::string& jsonText, const std::string& label)
   if (failure.id == kNestingTooDeep)
     JsonNode::failAt(label, shownText(failure.path),
       format("objects and arrays nest deeper than ", kMaxJsonDepth, " levels (the scene format's limit)"));
+  if (failure.id == kDuplicateKey)
+    JsonNode::failAt(label, shownText(failure.path), "is given twice in the same object");
   throw InputError(format(label, ": ", describeParseError(failure.what)));
 }
 
@@ -880,6 +889,9 @@ void applyOverride(Json& document, const std::string& override, const std::strin
   else if (parsed.failure->id == kNestingTooDeep)
     throw InputError(format("--scene-set ", shown, ": the value nests deeper than the scene format's limit of ",
       kMaxJsonDepth, " levels (counted from the document's top)"));
+  else if (parsed.failure->id == kDuplicateKey)
+    throw InputError(format("--scene-set ", shown, ": the value gives the key ", shownText(parsed.failure->lastToken),
+      " twice"));
   else
     value = valueText;
 

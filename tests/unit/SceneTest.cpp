@@ -858,6 +858,15 @@ TEST(SceneErrors, MalformedJson)
   expectSceneTextError("[1, 2]", { "(top level): expected an object" });
 }
 
+TEST(SceneErrors, DuplicateKeysAreRefusedNotOverwritten) // probe S13
+{
+  expectSceneTextError(R"({"lights": [{"type": "point", "center": [0, 3, 0], "center": [0, 9, 0]}],
+    "objects": [{"primitive": "quad"}]})",
+    { "lights[0].center: is given twice" });
+  expectSceneTextError(R"({"objects": [{"primitive": "quad"}], "lights": [{"type": "point"}], "objects": []})",
+    { "objects: is given twice" });
+}
+
 TEST(SceneErrors, UnknownKeys)
 {
   Json topLevel = minimalScene();
