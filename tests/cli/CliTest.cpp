@@ -285,6 +285,12 @@ TEST(CliRenderErrors, BadEnumerationChoice)
     { "pattern", "spiral", "grid", "poisson" });
 }
 
+TEST(CliRenderErrors, UnsupportedLightNamesItsTypeAndTheSupportedOnes) // probe T15, T38
+{
+  expectCleanFailure({ "render", datasetScene("sphere-point").string(), "--technique", "gbp06", "-r", "32x32" },
+    { "sphere-point", "lights[0]", "gbp06", "point light", "square area" });
+}
+
 TEST(CliRenderErrors, MalformedResolution)
 {
   expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--resolution", "12by5" },
