@@ -45,6 +45,21 @@ void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::
   }
 }
 
+std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneFile, std::ostream& log)
+{
+  std::size_t dropped = 0;
+  for (const SceneObject& object : scene.objects)
+  {
+    if (object.droppedDegenerateTriangles > 0)
+    {
+      log << "shadowlab: warning: " << printable(sceneFile) << ": " << printable(object.name) << ": dropped "
+          << object.droppedDegenerateTriangles << " degenerate triangle(s)\n";
+      dropped += object.droppedDegenerateTriangles;
+    }
+  }
+  return dropped;
+}
+
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile)
 {
   std::vector<std::filesystem::path> inputs = scene.inputFiles;
@@ -99,16 +114,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   const OutputTarget output{ options.outDir, "render", options.force, sceneInputs(scene, options.sceneFile) };
   checkOutputTarget(output);
-  std::size_t dropped = 0;
-  for (const SceneObject& object : scene.objects)
-  {
-    if (object.droppedDegenerateTriangles > 0)
-    {
-      log << "shadowlab: warning: " << printable(options.sceneFile) << ": " << printable(object.name) << ": dropped "
-          << object.droppedDegenerateTriangles << " degenerate triangle(s)\n";
-      dropped += object.droppedDegenerateTriangles;
-    }
-  }
+  const std::size_t dropped = reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;
   const FrameResult frame = renderer.render(scene, request);
   OutputContext context;

@@ -102,6 +102,9 @@ glm::ivec2 parseResolution(const std::string& text);
 // InputError naming the assignment.
 void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::string>& settings);
 
+// One warning line per object whose mesh had degenerate triangles (dropped by the loader); returns their sum.
+std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneFile, std::ostream& log);
+
 // The files a command reads for a scene (the scene file, its meshes and alpha textures): --out must not hold them.
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile);
 

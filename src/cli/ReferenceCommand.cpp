@@ -38,6 +38,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   const OutputTarget output{ options.outDir, "reference", options.force, sceneInputs(scene, options.sceneFile) };
   checkOutputTarget(output);
+  reportDroppedTriangles(scene, options.sceneFile, log);
   if (options.lightIndex < 0 || options.lightIndex >= static_cast<int>(scene.lights.size()))
   {
     throw InputError(format("--light ", options.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
