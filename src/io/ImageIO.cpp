@@ -29,12 +29,17 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <memory>
 #include <new>
+#include <regex>
 #include <system_error>
 
 namespace sl
@@ -148,6 +153,129 @@ void throwIfVtkFailed(const std::filesystem::path& path, const VtkErrorCapture& 
       capture.hasError() ? capture.firstError() : std::string("the VTK reader failed"), ")"));
 }
 
+
+// VTK 9.1's XML reader trusts the block headers of raw appended data: an array offset one byte off made it
+// crash, and a block count of 3.6e9 made it allocate and loop for hours (both found by fuzzing). So the
+// headers are checked against the file, and each point-data array's size against the image, before VTK reads
+// any data. Layout (vtkXMLWriter): per array at `offset` after the '_' marker, uncompressed: one header
+// integer with the byte count, then the bytes; compressed: [block count, block size, last block size,
+// compressed size of each block], then the blocks. Header integers are header_type (UInt32 or UInt64) in
+// byte_order. Base64 appended data and inline arrays are left to VTK.
+void checkAppendedData(const std::filesystem::path& path, long long pixelCount)
+{
+  std::ifstream stream(path, std::ios::binary);
+  const std::string bytes{ std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
+  const std::size_t appendedTag = bytes.find("<AppendedData");
+  if (appendedTag == std::string::npos)
+    return;
+  const auto fail = [&path](const std::string& why) {
+    return InputError(format(path.string(), ": not a readable VTK image file (", why, ")"));
+  };
+  const std::size_t tagEnd = bytes.find('>', appendedTag);
+  if (tagEnd == std::string::npos)
+    throw fail("unterminated AppendedData element");
+  if (bytes.compare(appendedTag, tagEnd - appendedTag, "<AppendedData encoding=\"raw\"") != 0)
+    return;
+  const std::size_t marker = bytes.find('_', tagEnd);
+  if (marker == std::string::npos)
+    throw fail("no appended data after the AppendedData element");
+  const std::size_t dataBegin = marker + 1;
+  const long double dataLength = static_cast<long double>(bytes.size() - dataBegin);
+
+  static const std::regex attribute(R"re((\w+)\s*=\s*"([^"]*)")re");
+  const auto attributesOf = [](const std::string& tag) {
+    std::map<std::string, std::string> values;
+    for (auto match = std::sregex_iterator(tag.begin(), tag.end(), attribute); match != std::sregex_iterator(); ++match)
+      values[(*match)[1].str()] = (*match)[2].str();
+    return values;
+  };
+  const std::string xml = bytes.substr(0, appendedTag);
+  const std::size_t fileTag = xml.find("<VTKFile");
+  if (fileTag == std::string::npos)
+    return; // VTK has already refused such a file
+  std::map<std::string, std::string> fileAttributes = attributesOf(xml.substr(fileTag, xml.find('>', fileTag) - fileTag));
+  const std::size_t headerBytes = fileAttributes["header_type"] == "UInt64" ? 8 : 4;
+  const bool compressed = !fileAttributes["compressor"].empty();
+  const bool bigEndian = fileAttributes["byte_order"] == "BigEndian";
+  // Header integer at `at` bytes after the marker; the caller keeps `at + headerBytes` within the data.
+  const auto headerInteger = [&](long double at) {
+    std::uint64_t value = 0;
+    const std::size_t start = dataBegin + static_cast<std::size_t>(at);
+    for (std::size_t i = 0; i < headerBytes; ++i)
+    {
+      const auto byte = static_cast<unsigned char>(bytes[start + (bigEndian ? i : headerBytes - 1 - i)]);
+      value = (value << 8) | byte;
+    }
+    return static_cast<long double>(value);
+  };
+
+  static const std::map<std::string, int> kTypeBytes = { { "Int8", 1 }, { "UInt8", 1 }, { "Int16", 2 },
+    { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 }, { "UInt64", 8 }, { "Float32", 4 },
+    { "Float64", 8 } };
+  const std::size_t pointDataBegin = xml.find("<PointData");
+  const std::size_t pointDataEnd = xml.find("</PointData>");
+  static const std::regex dataArrayTag(R"(<DataArray\b[^>]*>)");
+  for (auto match = std::sregex_iterator(xml.begin(), xml.end(), dataArrayTag); match != std::sregex_iterator(); ++match)
+  {
+    std::map<std::string, std::string> array = attributesOf(match->str());
+    if (array["format"] != "appended")
+      continue;
+    const std::string name = array["Name"].empty() ? std::string("(unnamed)") : array["Name"];
+    const std::string arrayName = "array '" + name + "'";
+    long long offsetValue = -1;
+    const std::string& offsetText = array["offset"];
+    if (std::from_chars(offsetText.data(), offsetText.data() + offsetText.size(), offsetValue).ec != std::errc() ||
+      offsetValue < 0)
+      throw fail(arrayName + ": no valid offset");
+    const auto offset = static_cast<long double>(offsetValue);
+    if (offset + headerBytes > dataLength)
+      throw fail(arrayName + ": its offset lies beyond the appended data");
+
+    long double decodedBytes = 0.0L;
+    if (!compressed)
+    {
+      decodedBytes = headerInteger(offset);
+      if (offset + headerBytes + decodedBytes > dataLength)
+        throw fail(arrayName + ": its data runs past the end of the file");
+    }
+    else
+    {
+      if (offset + 3 * headerBytes > dataLength)
+        throw fail(arrayName + ": its block header runs past the end of the file");
+      const long double blocks = headerInteger(offset);
+      const long double blockSize = headerInteger(offset + headerBytes);
+      const long double lastBlockSize = headerInteger(offset + 2 * headerBytes);
+      const long double headerEnd = offset + (3 + blocks) * headerBytes;
+      if (headerEnd > dataLength)
+        throw fail(format(arrayName, ": its header claims ", static_cast<unsigned long long>(blocks),
+          " compressed blocks, more than the file holds"));
+      long double compressedBytes = 0.0L;
+      for (long double block = 0; block < blocks; ++block)
+        compressedBytes += headerInteger(offset + (3 + block) * headerBytes);
+      if (headerEnd + compressedBytes > dataLength)
+        throw fail(arrayName + ": its compressed blocks run past the end of the file");
+      if (blocks > 0 && (blockSize == 0 || lastBlockSize > blockSize))
+        throw fail(arrayName + ": inconsistent compressed block sizes");
+      decodedBytes = blocks == 0 ? 0.0L : (blocks - 1) * blockSize + (lastBlockSize == 0 ? blockSize : lastBlockSize);
+    }
+
+    const auto typeBytes = kTypeBytes.find(array["type"]);
+    long long components = 1;
+    if (!array["NumberOfComponents"].empty())
+      std::from_chars(array["NumberOfComponents"].data(),
+        array["NumberOfComponents"].data() + array["NumberOfComponents"].size(), components);
+    if (typeBytes == kTypeBytes.end() || components < 1)
+      continue; // VTK refuses or handles these itself
+    const long double imageBytes = static_cast<long double>(pixelCount) * components * typeBytes->second;
+    const bool pointData = pointDataBegin != std::string::npos && pointDataEnd != std::string::npos &&
+      static_cast<std::size_t>(match->position()) > pointDataBegin &&
+      static_cast<std::size_t>(match->position()) < pointDataEnd;
+    // A point-data array holds exactly one tuple per pixel; any other (cell or field data) no more.
+    if (pointData ? decodedBytes != imageBytes : decodedBytes > imageBytes)
+      throw fail(format(arrayName, ": its data holds ", static_cast<unsigned long long>(decodedBytes),
+        " bytes, the ", pixelCount, "-pixel image needs ", static_cast<unsigned long long>(imageBytes)));
+  }
+}
 } // namespace
 
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images)
@@ -225,6 +353,7 @@ std::vector<NamedImage> readVti(const std::filesystem::path& path)
       format(file, ": image of ", width, "x", height, " is too large (max ", kMaxImageFileSide, " per side)"));
   }
 
+  checkAppendedData(path, width * height);
   reader->Update();
   throwIfVtkFailed(path, capture, *reader);
   vtkImageData* data = reader->GetOutput();

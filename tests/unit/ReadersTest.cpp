@@ -511,6 +511,16 @@ TEST(ReadersVti, CorruptFilesGiveOneLineAndNothingFromVtk)
     flippedData[i] ^= 0x20;
   std::string flippedHeader = bytes;
   flippedHeader[bytes.find("WholeExtent") + 3] ^= 0x01; // an attribute name VTK requires
+  // Block headers VTK trusts (found by fuzzing): the first array's offset one byte off (a crash) and a block
+  // count of 3.6e9 (hours of allocation).
+  const std::size_t firstOffset = bytes.find("offset=\"0\"");
+  ASSERT_NE(firstOffset, std::string::npos);
+  std::string offByOne = bytes;
+  offByOne[firstOffset + 8] = '1';
+  std::string hugeBlockCount = bytes;
+  const std::size_t data = bytes.find('_', appended) + 1;
+  for (std::size_t i = 0; i < 4; ++i)
+    hugeBlockCount[data + i] = '\xd6';
   struct Case
   {
     const char* id;
@@ -518,6 +528,8 @@ TEST(ReadersVti, CorruptFilesGiveOneLineAndNothingFromVtk)
     std::string content;
   };
   const std::vector<Case> cases = {
+    { "fuzz", "offset-off-by-one.vti", offByOne },
+    { "fuzz", "huge-block-count.vti", hugeBlockCount },
     { "K09", "truncated.vti", bytes.substr(0, bytes.size() / 2) },
     { "K10", "header-only.vti", bytes.substr(0, appended) },
     { "K14", "bit-flipped-data.vti", flippedData },
