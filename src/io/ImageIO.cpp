@@ -193,7 +193,8 @@ void checkAppendedData(const std::filesystem::path& path, long long pixelCount)
   const std::size_t fileTag = xml.find("<VTKFile");
   if (fileTag == std::string::npos)
     return; // VTK has already refused such a file
-  std::map<std::string, std::string> fileAttributes = attributesOf(xml.substr(fileTag, xml.find('>', fileTag) - fileTag));
+  std::map<std::string, std::string> fileAttributes =
+    attributesOf(xml.substr(fileTag, xml.find('>', fileTag) - fileTag));
   const std::size_t headerBytes = fileAttributes["header_type"] == "UInt64" ? 8 : 4;
   const bool compressed = !fileAttributes["compressor"].empty();
   const bool bigEndian = fileAttributes["byte_order"] == "BigEndian";
@@ -215,7 +216,8 @@ void checkAppendedData(const std::filesystem::path& path, long long pixelCount)
   const std::size_t pointDataBegin = xml.find("<PointData");
   const std::size_t pointDataEnd = xml.find("</PointData>");
   static const std::regex dataArrayTag(R"(<DataArray\b[^>]*>)");
-  for (auto match = std::sregex_iterator(xml.begin(), xml.end(), dataArrayTag); match != std::sregex_iterator(); ++match)
+  for (auto match = std::sregex_iterator(xml.begin(), xml.end(), dataArrayTag); match != std::sregex_iterator();
+       ++match)
   {
     std::map<std::string, std::string> array = attributesOf(match->str());
     if (array["format"] != "appended")
@@ -431,7 +433,9 @@ void writePng(const std::filesystem::path& path, const ImageU8& rgb)
 PngImage readPngImage(const std::filesystem::path& path)
 {
   const std::string file = path.string();
-  const auto fail = [&file](const std::string& why) { return InputError(format("cannot read '", file, "' (", why, ")")); };
+  const auto fail = [&file](const std::string& why) {
+    return InputError(format("cannot read '", file, "' (", why, ")"));
+  };
   std::error_code error;
   if (!std::filesystem::exists(path, error))
     throw fail("no such file");
@@ -490,8 +494,8 @@ ImageU8 readPng(const std::filesystem::path& path)
     {
       const std::uint16_t value = samples.data[pixel * samples.components + std::min(c, colorChannels - 1)];
       // 16 -> 8 bits rounded to nearest: v * 255 / 65535.
-      rgb.data[pixel * 3 + c] =
-        png.bitDepth == 16 ? static_cast<std::uint8_t>((value * 255u + 32767u) / 65535u) : static_cast<std::uint8_t>(value);
+      rgb.data[pixel * 3 + c] = png.bitDepth == 16 ? static_cast<std::uint8_t>((value * 255u + 32767u) / 65535u)
+                                                   : static_cast<std::uint8_t>(value);
     }
   }
   return rgb;

@@ -252,7 +252,8 @@ FileScan scanPly(const std::filesystem::path& file)
     return lineError(file, lines.number(), "PLY header: " + problem);
   };
   if (!lines.next(tokens) || tokens.size() != 1 || tokens[0] != "ply")
-    throw InputError(format("cannot read '", file.string(), "' (not a PLY file: the first line is not 'ply')"));
+    throw InputError(
+      format("cannot read '", file.string(), "' (corrupt or not a PLY file: the first line is not 'ply')"));
   struct Element
   {
     std::string name;
@@ -359,7 +360,7 @@ FileScan scanOff(const std::filesystem::path& file)
   // follows, reserving memory for them (a garbage header asked for 13 GB); so the keyword must be exact.
   static const std::regex keyword(R"(^(ST)?C?N?4?n?OFF$)");
   if (header.empty() || !std::regex_match(header[0], keyword))
-    throw InputError(format("cannot read '", file.string(), "' (not an OFF file: the first word is '",
+    throw InputError(format("cannot read '", file.string(), "' (corrupt or not an OFF file: the first word is '",
       header.empty() ? std::string() : header[0].substr(0, 40), "')"));
   FileScan scan;
   if (header[0].find_first_of("4n") != std::string::npos || (header.size() > 1 && header[1] == "BINARY"))
@@ -406,7 +407,8 @@ FileScan scanStl(const std::filesystem::path& file)
         // OpenMesh merges equal corners through a std::map, where a NaN compares equivalent to some other
         // point: the corner would silently become another vertex. So the corners are checked here.
         std::array<unsigned char, 50> record{};
-        for (std::uint32_t facet = 0; facet < facets && stream.read(reinterpret_cast<char*>(record.data()), 50); ++facet)
+        for (std::uint32_t facet = 0; facet < facets && stream.read(reinterpret_cast<char*>(record.data()), 50);
+             ++facet)
         {
           std::array<float, 9> corners{}; // after the 12-byte facet normal; STL is little-endian, as our hosts
           std::memcpy(corners.data(), record.data() + 12, sizeof(corners));
