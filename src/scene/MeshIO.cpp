@@ -588,6 +588,7 @@ public:
     return Base::add_vertex();
   }
 
+  using Base::add_face;
   FaceHandle add_face(const VHandles& corners) override
   {
     const long long face = facesRead_++;
@@ -620,23 +621,60 @@ public:
     const FaceHandle added = Base::add_face(corners);
     // A face that would make the mesh non-manifold is added on fresh copies of its corners
     // (ImporterT::add_face), which get the point only; the file's normal and texture coordinate of each
-    // corner are copied over once the reader has set them (copyAttributesToCopies).
+    // corner are copied over once the reader has set them (finishVertexAttributes).
     if (mesh_.n_vertices() == verticesBefore + corners.size())
       for (std::size_t j = 0; j < corners.size(); ++j)
         copies_.emplace_back(VertexHandle(static_cast<int>(verticesBefore + j)), corners[j]);
     return added;
   }
 
-  void copyAttributesToCopies()
+  using Base::set_normal;
+  void set_normal(VertexHandle vertex, const OpenMesh::Vec3f& normal) override
+  {
+    mark(normalSet_, vertex);
+    Base::set_normal(vertex, normal);
+  }
+  void set_normal(VertexHandle vertex, const OpenMesh::Vec3d& normal) override
+  {
+    mark(normalSet_, vertex);
+    Base::set_normal(vertex, normal);
+  }
+  using Base::set_texcoord;
+  void set_texcoord(VertexHandle vertex, const OpenMesh::Vec2f& uv) override
+  {
+    mark(uvSet_, vertex);
+    Base::set_texcoord(vertex, uv);
+  }
+
+  // After the read. OpenMesh's property arrays hold uninitialised values where the reader set nothing (STL
+  // vertices have no normals, an OBJ vertex no face gave a `vt`, copies of non-manifold corners): copies
+  // take their original's normal and texture coordinate, and whatever is still unset becomes zero (a zero
+  // normal falls back to the computed one, MeshIO.h; a missing texture coordinate reads (0, 0)).
+  void finishVertexAttributes()
   {
     for (const auto& [copy, original] : copies_)
     {
-      if (mesh_.has_vertex_normals())
+      if (isMarked(normalSet_, original))
+      {
         mesh_.set_normal(copy, mesh_.normal(original));
-      if (mesh_.has_vertex_texcoords2D())
+        mark(normalSet_, copy);
+      }
+      if (isMarked(uvSet_, original))
+      {
         mesh_.set_texcoord2D(copy, mesh_.texcoord2D(original));
+        mark(uvSet_, copy);
+      }
+    }
+    for (const VertexHandle vertex : mesh_.vertices())
+    {
+      if (!isMarked(normalSet_, vertex))
+        mesh_.set_normal(vertex, OpenMeshTriMesh::Normal(0.0f, 0.0f, 0.0f));
+      if (!isMarked(uvSet_, vertex))
+        mesh_.set_texcoord2D(vertex, OpenMeshTriMesh::TexCoord2D(0.0f, 0.0f));
     }
   }
+  bool anyNormalSet() const { return std::find(normalSet_.begin(), normalSet_.end(), true) != normalSet_.end(); }
+  bool anyUvSet() const { return std::find(uvSet_.begin(), uvSet_.end(), true) != uvSet_.end(); }
 
   long long verticesRead() const { return verticesRead_; }
   long long facesRead() const { return facesRead_; }
@@ -650,6 +688,21 @@ private:
   std::size_t degenerateTriangles_ = 0;
   std::string problem_;
   std::vector<std::pair<VertexHandle, VertexHandle>> copies_; // (copy, original) of non-manifold corners
+  std::vector<bool> normalSet_; // per vertex: the reader gave it a normal
+  std::vector<bool> uvSet_;     // per vertex: the reader gave it a texture coordinate
+
+  static void mark(std::vector<bool>& flags, VertexHandle vertex)
+  {
+    const auto index = static_cast<std::size_t>(vertex.idx());
+    if (index >= flags.size())
+      flags.resize(index + 1, false);
+    flags[index] = true;
+  }
+  static bool isMarked(const std::vector<bool>& flags, VertexHandle vertex)
+  {
+    const auto index = static_cast<std::size_t>(vertex.idx());
+    return index < flags.size() && flags[index];
+  }
 };
 
 std::string describe(const OpenMeshTriMesh::Point& p)
@@ -657,8 +710,15 @@ std::string describe(const OpenMeshTriMesh::Point& p)
   return format("(", p[0], ", ", p[1], ", ", p[2], ")");
 }
 
-// Reads `file` into `mesh`; returns the triangles dropped because a face repeated a vertex.
-std::size_t readWithOpenMesh(const std::filesystem::path& file, OpenMeshTriMesh& mesh, OpenMesh::IO::Options& options)
+struct OpenMeshRead
+{
+  std::size_t repeatedCornerTriangles = 0; // dropped because a face repeated a vertex
+  bool fileHasNormals = false;             // the reader set vertex normals (unset ones are zero)
+  bool fileHasUvs = false;                 // the reader set texture coordinates (unset ones are (0, 0))
+};
+
+// Reads `file` into `mesh`, refusing what MeshIO.h lists.
+OpenMeshRead readWithOpenMesh(const std::filesystem::path& file, OpenMeshTriMesh& mesh)
 {
   std::error_code error;
   if (!std::filesystem::exists(file, error))
@@ -688,7 +748,7 @@ std::size_t readWithOpenMesh(const std::filesystem::path& file, OpenMeshTriMesh&
 
   mesh.request_vertex_normals();
   mesh.request_vertex_texcoords2D();
-  options = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord;
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord;
   CheckingImporter importer(mesh);
   bool readOk = false;
   try
@@ -711,29 +771,31 @@ std::size_t readWithOpenMesh(const std::filesystem::path& file, OpenMeshTriMesh&
     throw InputError(format(quoted(file), ": OpenMesh read ", importer.facesRead(), " of the ", scan.faces,
       " faces the file declares (corrupt or unsupported face data)"));
 
-  importer.copyAttributesToCopies();
+  importer.finishVertexAttributes();
 
-  // Every reader, whatever its format: a coordinate or file normal that is not finite is an error naming
-  // the vertex (its index in file order; STL numbers its distinct corners in order of appearance).
+  // Every reader, whatever its format: a coordinate, file normal or texture coordinate that is not finite
+  // is an error naming the vertex (its index in file order; STL numbers its distinct corners in order of
+  // appearance). Unset normals and texture coordinates are zero by now.
   for (const OpenMeshTriMesh::VertexHandle vertex : mesh.vertices())
   {
     const OpenMeshTriMesh::Point& point = mesh.point(vertex);
     if (!std::isfinite(point[0]) || !std::isfinite(point[1]) || !std::isfinite(point[2]))
       throw InputError(
         format(quoted(file), ": vertex ", vertex.idx(), " has a non-finite coordinate ", describe(point)));
-    if (options.vertex_has_normal())
-    {
-      const OpenMeshTriMesh::Normal& normal = mesh.normal(vertex);
-      if (!std::isfinite(normal[0]) || !std::isfinite(normal[1]) || !std::isfinite(normal[2]))
-        throw InputError(
-          format(quoted(file), ": vertex ", vertex.idx(), " has a non-finite normal ", describe(normal)));
-    }
+    const OpenMeshTriMesh::Normal& normal = mesh.normal(vertex);
+    if (!std::isfinite(normal[0]) || !std::isfinite(normal[1]) || !std::isfinite(normal[2]))
+      throw InputError(format(quoted(file), ": vertex ", vertex.idx(), " has a non-finite normal ", describe(normal)));
+    const OpenMeshTriMesh::TexCoord2D& uv = mesh.texcoord2D(vertex);
+    if (!std::isfinite(uv[0]) || !std::isfinite(uv[1]))
+      throw InputError(format(quoted(file), ": vertex ", vertex.idx(), " has a non-finite texture coordinate (",
+        uv[0], ", ", uv[1], ")"));
   }
+
 
   const std::size_t repeatedCornerTriangles = scan.repeatedCornerTriangles + importer.degenerateTriangles();
   if (importer.facesRead() == 0 && repeatedCornerTriangles == 0)
     throw InputError(format(quoted(file), ": empty mesh (no faces)"));
-  return repeatedCornerTriangles;
+  return { repeatedCornerTriangles, importer.anyNormalSet(), importer.anyUvSet() };
 }
 
 } // namespace
@@ -741,11 +803,11 @@ std::size_t readWithOpenMesh(const std::filesystem::path& file, OpenMeshTriMesh&
 LoadedMesh loadMesh(const std::filesystem::path& file)
 {
   OpenMeshTriMesh source;
-  OpenMesh::IO::Options readOptions;
+  const OpenMeshRead read = readWithOpenMesh(file, source);
   LoadedMesh result;
-  result.droppedDegenerateTriangles = readWithOpenMesh(file, source, readOptions);
-  const bool fileHasNormals = readOptions.vertex_has_normal();
-  const bool fileHasUvs = readOptions.vertex_has_texcoord();
+  result.droppedDegenerateTriangles = read.repeatedCornerTriangles;
+  const bool fileHasNormals = read.fileHasNormals;
+  const bool fileHasUvs = read.fileHasUvs;
 
   constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> compactIndexOf(source.n_vertices(), kUnused);

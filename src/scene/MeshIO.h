@@ -6,7 +6,8 @@
 //    or relative (negative) reaching before the first element: "<file>:<line>: <problem>". OpenMesh would
 //    skip such a line and silently shift every later index. ASCII PLY, OFF and STL vertex records likewise
 //    ("<file>:<line>: vertex <i>: ...").
-//  - Every format: a vertex whose coordinates or file normal are not finite ("vertex <i>", in file order),
+//  - Every format: a vertex whose coordinates, file normal or texture coordinate are not finite ("vertex <i>",
+//    in file order),
 //    a face naming a vertex that does not exist ("face <i>"), and fewer vertices or faces than the file
 //    declares (PLY/OFF header, binary STL facet count, OBJ lines): nothing OpenMesh skips goes unnoticed.
 //  - A file with no faces, or with only degenerate triangles.
@@ -20,8 +21,10 @@
 //    vertices used by no kept triangle are removed.
 //  - Polygons are fan-triangulated (OpenMesh's TriMesh does this on insertion); the file's winding is kept.
 //  - Normals: the file's vertex normals when it has them (renormalised); otherwise, and for any vertex
-//    whose file normal is zero, area-weighted smooth normals of the kept triangles.
-//  - Texture coordinates: per vertex (OBJ `vt`, PLY u/v) when the file has them, else `uvs` is empty.
+//    whose file normal is zero or missing (STL has only facet normals), area-weighted smooth normals of the
+//    kept triangles.
+//  - Texture coordinates: per vertex (OBJ `vt`, PLY u/v) when the file has them, else `uvs` is empty; a
+//    vertex the file gives none (an OBJ vertex only used by faces without `vt`) gets (0, 0).
 //    OpenMesh stores one texture coordinate per vertex, so an OBJ that gives a vertex different `vt` on
 //    different faces (a UV seam) keeps the last one it read.
 // OpenMesh's console output is silenced while reading; problems come back as InputError instead.
