@@ -613,8 +613,8 @@ int runBench(const BenchOptions& options, std::ostream& log)
                  << " | | | | | | |\n";
       }
     }
-    writeTextFile(dir / "bench.csv", csv.str());
-    writeTextFile(dir / "summary.md", markdown.str());
+    writeFileChecked(dir / "bench.csv", csv.str());
+    writeFileChecked(dir / "summary.md", markdown.str());
     for (const auto& [sceneIndex, points] : chartPoints)
     {
       const SceneVariant& variant = variants[sceneIndex];

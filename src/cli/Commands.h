@@ -92,9 +92,6 @@ struct BenchRunOptions
 };
 int runBenchConfiguration(const BenchRunOptions& options);
 
-// The largest image side any command renders (the scene format's camera resolution has the same limit).
-constexpr int kMaxImageSide = 16384;
-
 // "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);
 

@@ -11,6 +11,10 @@
 namespace sl
 {
 
+// The largest image side anything in ShadowLab renders, reads or writes (camera resolution, --resolution, PNG
+// and .vti files): 16384, the GL_MAX_TEXTURE_SIZE of the renderers it runs on.
+constexpr int kMaxImageSide = 16384;
+
 template <typename T>
 struct Image
 {

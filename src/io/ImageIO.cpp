@@ -50,12 +50,12 @@ namespace
 
 // ---- checked writes -------------------------------------------------------------------------------------
 
-// Writes an encoded file with writeTextFile's checks (open, every write, close: the system's reason on
+// Writes an encoded file with writeFileChecked's checks (open, every write, close: the system's reason on
 // failure), then compares the size on disk with what was encoded: a write that the kernel accepted but the
 // filesystem did not keep must not pass as a complete file either.
 void writeEncodedFile(const std::filesystem::path& path, const std::string& bytes)
 {
-  writeTextFile(path, bytes);
+  writeFileChecked(path, bytes);
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))
     return; // a device such as /dev/null has no size to compare
@@ -107,10 +107,10 @@ bool decodeWithLibpng(png_structp png, png_infop info, std::FILE* file, PngDecod
   png_read_info(png, info);
   state.width = png_get_image_width(png, info);
   state.height = png_get_image_height(png, info);
-  if (state.width > static_cast<png_uint_32>(kMaxImageFileSide) ||
-    state.height > static_cast<png_uint_32>(kMaxImageFileSide))
+  if (state.width > static_cast<png_uint_32>(kMaxImageSide) ||
+    state.height > static_cast<png_uint_32>(kMaxImageSide))
   {
-    state.error = format("PNG of ", state.width, "x", state.height, " is too large (max ", kMaxImageFileSide,
+    state.error = format("PNG of ", state.width, "x", state.height, " is too large (max ", kMaxImageSide,
       " per side)");
     return false;
   }
@@ -349,10 +349,10 @@ std::vector<NamedImage> readVti(const std::filesystem::path& path)
     throw InputError(
       format(file, ": a 3-D image (", width, "x", height, "x", depth, "); only 2-D images (depth 1) are supported"));
   }
-  if (width > kMaxImageFileSide || height > kMaxImageFileSide)
+  if (width > kMaxImageSide || height > kMaxImageSide)
   {
     throw InputError(
-      format(file, ": image of ", width, "x", height, " is too large (max ", kMaxImageFileSide, " per side)"));
+      format(file, ": image of ", width, "x", height, " is too large (max ", kMaxImageSide, " per side)"));
   }
 
   checkAppendedData(path, width * height);

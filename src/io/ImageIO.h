@@ -2,7 +2,7 @@
 // write them the right way up.
 //
 // Writes are checked end to end: files are encoded in memory, written with every system call checked
-// (writeTextFile), and the size on disk is compared with what was encoded, so a full disk or a file-size
+// (writeFileChecked), and the size on disk is compared with what was encoded, so a full disk or a file-size
 // limit is an InputError "<file>: cannot write (<system's reason>)" and never a truncated file reported as
 // success. Readers refuse what they cannot represent with an InputError naming the file (and the array),
 // never a crash: PNGs are decoded by libpng with its setjmp error path, .vti files are checked before any
@@ -21,14 +21,12 @@ namespace sl
 
 struct NamedImage;
 
-// Largest width or height of an image file we read (PNG, .vti): the largest resolution the tools render.
-constexpr int kMaxImageFileSide = 16384;
 
 // One vtkImageData (XML, zlib-compressed, appended raw binary): dimensions width x height x 1, spacing 1,
 // origin 0, one point-data array per image (float, 1 or 3 components). Opens in ParaView.
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images);
 // Reads back the arrays of a 2-D .vti (tests, compare tools): dimensions width x height x 1 with
-// 1 <= width, height <= kMaxImageFileSide; every named point-data array numeric, 1..4 components, one tuple
+// 1 <= width, height <= kMaxImageSide; every named point-data array numeric, 1..4 components, one tuple
 // per pixel (converted to float). Throws InputError naming the file (and the array) otherwise.
 std::vector<NamedImage> readVti(const std::filesystem::path& path);
 
@@ -46,7 +44,7 @@ struct PngImage
   double maxSample() const { return bitDepth == 16 ? 65535.0 : 255.0; }
 };
 // The one PNG decoder (alpha textures, readPng). Throws InputError "cannot read '<file>' (<why>)" for a
-// missing or non-regular file, a non-PNG, a PNG larger than kMaxImageFileSide per side, or any corruption
+// missing or non-regular file, a non-PNG, a PNG larger than kMaxImageSide per side, or any corruption
 // libpng reports (its own words, e.g. "IDAT: invalid block type", "Not enough image data").
 PngImage readPngImage(const std::filesystem::path& path);
 

@@ -333,7 +333,7 @@ void checkOutputTarget(const OutputTarget& target)
   }
 }
 
-void writeTextFile(const fs::path& path, const std::string& text)
+void writeFileChecked(const fs::path& path, const std::string& bytes)
 {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0)
@@ -341,20 +341,20 @@ void writeTextFile(const fs::path& path, const std::string& text)
     throw InputError(format(path.string(), ": cannot write (", systemReason(errno), ")"));
   }
   std::size_t written = 0;
-  while (written < text.size())
+  while (written < bytes.size())
   {
-    const ssize_t bytes = ::write(fd, text.data() + written, text.size() - written);
-    if (bytes < 0 && errno == EINTR)
+    const ssize_t count = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (count < 0 && errno == EINTR)
     {
       continue;
     }
-    if (bytes <= 0)
+    if (count <= 0)
     {
-      const int reason = bytes < 0 ? errno : EIO;
+      const int reason = count < 0 ? errno : EIO;
       ::close(fd);
       throw InputError(format(path.string(), ": cannot write (", systemReason(reason), ")"));
     }
-    written += static_cast<std::size_t>(bytes);
+    written += static_cast<std::size_t>(count);
   }
   if (::close(fd) != 0)
   {
@@ -425,7 +425,7 @@ TemporaryOutput::TemporaryOutput(const OutputTarget& target)
     { "version", SL_VERSION }, { "created", timestamp() }, { "pid", ::getpid() } };
   try
   {
-    writeTextFile(temporary_ / kOutputMarkerName, marker.dump(2) + "\n");
+    writeFileChecked(temporary_ / kOutputMarkerName, marker.dump(2) + "\n");
   }
   catch (...)
   {
@@ -444,6 +444,18 @@ TemporaryOutput::~TemporaryOutput()
   }
   const HandledSignalsBlocked blocked;
   setSignalCleanupPath("");
+}
+
+InputError TemporaryOutput::namedForUser(const InputError& error) const
+{
+  std::string message = error.what();
+  const std::string temporary = temporary_.string();
+  const std::string shown = target_.dir.string();
+  for (std::size_t at = message.find(temporary); at != std::string::npos; at = message.find(temporary, at + shown.size()))
+  {
+    message.replace(at, temporary.size(), shown);
+  }
+  return InputError(message);
 }
 
 void TemporaryOutput::commit()

@@ -15,6 +15,8 @@
 //    power loss) is removed by the next run that writes next to it.
 #pragma once
 
+#include "core/Error.h"
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -44,9 +46,9 @@ void checkOutputTarget(const OutputTarget& target);
 template <typename WriteFiles>
 void writeDirectoryAtomically(const OutputTarget& target, WriteFiles writeFiles);
 
-// Writes `text` to `path`, checking every step (open, write, flush, close): InputError naming the file and the
-// system's reason (e.g. "File too large", "No space left on device") on failure.
-void writeTextFile(const std::filesystem::path& path, const std::string& text);
+// Writes `bytes` (text or binary) to `path`, checking every step (open, each write, close): InputError naming
+// the file and the system's reason (e.g. "File too large", "No space left on device") on failure.
+void writeFileChecked(const std::filesystem::path& path, const std::string& bytes);
 
 // Installs the SIGINT/SIGTERM/SIGHUP handlers that remove the temporary directory being written (if any) and
 // forward the signal to a running child process (bench); then the process ends with the signal. main() calls
@@ -66,6 +68,8 @@ public:
 
   const std::filesystem::path& path() const { return temporary_; }
   void commit(); // the temporary directory takes the place of the target
+  // `error` with the temporary directory's path replaced by --out's, as the user knows it.
+  InputError namedForUser(const InputError& error) const;
 
 private:
   OutputTarget target_;
@@ -78,7 +82,14 @@ template <typename WriteFiles>
 void writeDirectoryAtomically(const OutputTarget& target, WriteFiles writeFiles)
 {
   TemporaryOutput output(target);
-  writeFiles(output.path());
+  try
+  {
+    writeFiles(output.path());
+  }
+  catch (const InputError& error)
+  {
+    throw output.namedForUser(error);
+  }
   output.commit();
 }
 

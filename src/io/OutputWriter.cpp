@@ -215,7 +215,7 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
 
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path)
 {
-  writeTextFile(path, json.dump(2) + "\n");
+  writeFileChecked(path, json.dump(2) + "\n");
 }
 
 void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const OutputTarget& target)

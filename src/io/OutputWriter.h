@@ -33,7 +33,7 @@ nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers);
 void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,
   const ImageU8* image, const std::filesystem::path& dir);
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path);
-// Every write checked (writeTextFile): InputError naming the file when it cannot be written completely.
+// Every write checked (writeFileChecked): InputError naming the file when it cannot be written completely.
 void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const OutputTarget& target);
 
 } // namespace sl

@@ -180,9 +180,9 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     frame.parameters.set(assignment);
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
-  if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > 16384 || resolution.y > 16384)
+  if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)
   {
-    throw InputError(format("--resolution ", resolution.x, "x", resolution.y, ": each side must be in 1..16384"));
+    throw InputError(format("--resolution ", resolution.x, "x", resolution.y, ": each side must be in 1..", kMaxImageSide));
   }
   frame.camera = makeCameraView(scene.camera, scene.bounds(), resolution, scene.objectBounds());
 

@@ -30,7 +30,7 @@ constexpr int kLeavesEllipseCount = 60;
 // Alpha of a PNG (decoded by libpng, readPngImage in io/ImageIO.h): the alpha channel when the PNG has one
 // (gray+alpha, RGBA, or a tRNS chunk, as palette images often have), otherwise its luminance (Rec. 709
 // weights for RGB and palette colours). Every colour type and bit depth is accepted; samples are normalised
-// to [0,1]. At most kMaxImageFileSide (16384) texels per side. Throws InputError "cannot read '<file>' (<why>)"
+// to [0,1]. At most kMaxImageSide (16384) texels per side. Throws InputError "cannot read '<file>' (<why>)"
 // for a missing, non-PNG, too large or corrupt file (libpng's reason, e.g. "IDAT: invalid block type").
 ImageF readAlphaPng(const std::filesystem::path& file);
 

@@ -46,7 +46,6 @@ namespace
 
 using Json = nlohmann::json;
 
-constexpr int kMaxResolution = 16384;
 
 // ---- helper layer ---------------------------------------------------------------------------------------
 
@@ -376,7 +375,7 @@ Camera readCamera(const ObjectFields& fields)
     if (!resolution->json().is_array() || resolution->json().size() != 2)
       resolution->fail(
         format("expected an array of 2 integers [width, height], got ", describeValue(resolution->json())));
-    const Range pixels = Range::closed(1, kMaxResolution);
+    const Range pixels = Range::closed(1, kMaxImageSide);
     camera.resolution = { resolution->element(0).integer(pixels), resolution->element(1).integer(pixels) };
   }
 

@@ -400,6 +400,8 @@ TEST(OutputSafety, AFailedWriteIsAnErrorAndKeepsThePreviousOutput) // D17
   EXPECT_EQ(run.exitCode, 1) << run.describe();
   EXPECT_EQ(run.errLines(), 1u) << run.describe();
   EXPECT_NE(run.err.find("cannot write"), std::string::npos) << run.describe();
+  EXPECT_NE(run.err.find("out/"), std::string::npos) << "the file is named under --out: " << run.describe();
+  EXPECT_EQ(run.err.find(".shadowlab-partial"), std::string::npos) << "the temporary path leaked: " << run.describe();
   EXPECT_EQ(run.err.find("shadowlab: rendered"), std::string::npos) << "a success line after a failed write";
   EXPECT_EQ(snapshot(temp.path() / "out"), before) << "the previous output changed";
   EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "out" }) << joined(entriesOf(temp.path()));
