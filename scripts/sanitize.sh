@@ -12,9 +12,12 @@ cd "$(dirname "$0")/.."
 build_dir="${BUILD_DIR:-build-asan}"
 jobs="${JOBS:-$(nproc)}"
 
-# GPU tests that exercise the whole render path (EGL context, G-buffer, focus reduction, shadow maps,
-# structure passes, read-back, .vti output) on small scenes, about a minute together on llvmpipe under ASan.
+# GPU tests that exercise the render path (EGL context, G-buffer, focus reduction, shadow maps, moment maps,
+# SAT and HSM structure passes, soft-shadow techniques, read-back) on small scenes: about 20 s together on
+# llvmpipe under ASan.
 gpu_subset='GpuCpuFocus.*:GpuCpuBias.*:SummedAreaTable.*:HierarchicalShadowMap.GpuLevelsEqualTheCpuBuildExactly'
+gpu_subset+=':HardCases.ContactShadowExistsWhereTheBoxTouchesTheGround:Pcss.PointLightGivesTheHardShadow'
+gpu_subset+=':MomentTechniques.MatchTheCpuImplementations:Savsm.ExactForAParallelPlanarOccluder'
 
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSL_SANITIZE=ON >/dev/null
 cmake --build "$build_dir" -j "$jobs" --target shadowlab unit_tests cli_tests gpu_tests \
