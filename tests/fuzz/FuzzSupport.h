@@ -58,6 +58,9 @@ public:
   // Writes `size` bytes to `name` inside the directory, replacing the previous input, and returns its path.
   std::filesystem::path write(const std::string& name, const std::uint8_t* data, std::size_t size) const
   {
+    // Created again if something (a /tmp cleaner) removed it meanwhile: a missing directory is not a finding.
+    std::error_code ignored;
+    std::filesystem::create_directories(path_, ignored);
     const std::filesystem::path file = path_ / name;
     std::ofstream stream(file, std::ios::binary | std::ios::trunc);
     stream.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
