@@ -215,7 +215,9 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
 
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path)
 {
-  writeFileChecked(path, json.dump(2) + "\n");
+  // Strings that are not UTF-8 (file names are any bytes on Linux) are written with U+FFFD, never refused
+  // after the frame was rendered.
+  writeFileChecked(path, json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, const OutputTarget& target)

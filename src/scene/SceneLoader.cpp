@@ -125,7 +125,8 @@ std::string describeValue(const Json& value)
   if (value.is_object())
     return "an object";
   constexpr std::size_t kMaxShown = 40;
-  std::string shown = value.dump();
+  // Replace, not throw, on invalid UTF-8 (a --scene-set value is any bytes the shell passed).
+  std::string shown = value.dump(-1, ' ', false, Json::error_handler_t::replace);
   if (shown.size() > kMaxShown)
     shown = shown.substr(0, kMaxShown) + "...";
   return format(value.type_name(), " ", shown);

@@ -313,6 +313,10 @@ int interruptDuringWrite(const std::vector<std::string>& arguments, const fs::pa
       argv.push_back(argument.data());
     }
     argv.push_back(nullptr);
+    // As a process started from a terminal: a shell's background job (a CI script's `&`) inherits SIGINT ignored,
+    // and shadowlab rightly keeps an ignored signal ignored.
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     ::freopen("/dev/null", "w", stderr);
     ::freopen("/dev/null", "w", stdout);
     ::execv(SL_SHADOWLAB_EXE, argv.data());
@@ -447,6 +451,18 @@ TEST(OutputSafety, ControlCharactersInEchoedNamesAreEscaped) // S28-S30
   EXPECT_EQ(run.errLines(), 1u) << run.describe();
   EXPECT_EQ(run.err.find('\x1b'), std::string::npos) << "an escape sequence reached the terminal";
   EXPECT_NE(run.err.find("\\x1b[31mred"), std::string::npos) << run.describe();
+}
+
+TEST(OutputSafety, AFileNameThatIsNotUtf8StillGivesValidJson)
+{
+  TempDir temp;
+  // Linux file names are any bytes; stats.json names the scene file.
+  const fs::path scene = temp.path() / "scene-\xff\xfe.json";
+  fs::copy_file(test::datasetPath("planar-occluder"), scene);
+  const RunResult run = test::runShadowlabIn(renderArguments(scene, "out"), temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const nlohmann::json stats = nlohmann::json::parse(readFile(temp.path() / "out" / "stats.json"));
+  EXPECT_NE(stats["scene"].get<std::string>().find("scene-"), std::string::npos);
 }
 
 TEST(OutputSafety, BenchRecomputesAPoisonedCacheEntry) // H14
