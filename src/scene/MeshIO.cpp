@@ -241,11 +241,150 @@ bool isPlyIntegerType(std::string_view type)
   return plyTypeSize(type) != 0 && type.substr(0, 5) != "float" && type != "double";
 }
 
+// One property of a PLY element: a scalar, or a list (a count, then that many values).
+struct PlyProperty
+{
+  bool list = false;
+  std::string countType; // lists only
+  std::string valueType;
+};
+
+struct PlyElement
+{
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+  long long binaryBytes = 0; // fixed-size properties and list counts: the least one element takes
+};
+
+// Why an ASCII PLY value of `type` is wrong, or empty. OpenMesh reads the values as a token stream with
+// `operator>>`: a float where an integer belongs ("7.5") stops at the '.' and misaligns every value after it.
+std::string plyValueProblem(std::string_view token, std::string_view type)
+{
+  if (!isPlyIntegerType(type))
+    return numberProblem(token);
+  long long value = 0;
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (token.empty() || error != std::errc() || end != token.data() + token.size())
+    return format("'", token, "' is not an integer (", type, ")");
+  return {};
+}
+
+// Checks an ASCII PLY body element by element, one element a line (as every exporter writes it): each line
+// must hold exactly the values its properties call for, list lengths included. OpenMesh's reader takes the
+// body as one token stream, so a line with more or fewer values shifts everything after it, and a negative
+// list length becomes ~4e9 in its unsigned variable: it then reads (and stores) indices until memory runs
+// out (a mutated bunny piece in tests/fuzz/regressions/mesh took 4 GB).
+void scanPlyAsciiBody(const std::filesystem::path& file, TextLines& lines, const std::vector<PlyElement>& elements)
+{
+  std::vector<std::string_view> tokens;
+  for (const PlyElement& element : elements)
+  {
+    for (long long index = 0; index < element.count; ++index)
+    {
+      do
+      {
+        if (!lines.next(tokens))
+          throw InputError(format("'", file.string(), "': the PLY data ends after ", index, " of the ",
+            element.count, " '", element.name, "' elements the header declares"));
+      } while (tokens.empty());
+      const auto problem = [&](const std::string& what) {
+        return lineError(file, lines.number(), format(element.name, " ", index, ": ", what));
+      };
+      std::size_t next = 0; // the token the next value comes from
+      bool complete = true; // every property found its values on this line
+      for (const PlyProperty& property : element.properties)
+      {
+        long long values = 1;
+        if (property.list)
+        {
+          if (next >= tokens.size())
+          {
+            complete = false;
+            break;
+          }
+          if (!parseCount(tokens[next], values))
+            throw problem(format("list length '", tokens[next], "' is not a non-negative integer"));
+          ++next;
+        }
+        if (values > static_cast<long long>(tokens.size() - next))
+        {
+          complete = false;
+          break;
+        }
+        for (long long i = 0; i < values; ++i, ++next)
+          if (const std::string why = plyValueProblem(tokens[next], property.valueType); !why.empty())
+            throw problem(why);
+      }
+      if (!complete || next != tokens.size())
+        throw problem(format("the line holds ", tokens.size(), " values, ", complete ? "more" : "fewer",
+          " than the header's properties call for (one element a line)"));
+    }
+  }
+}
+
+// Walks a binary PLY body: fixed-size properties are skipped, list lengths read (in the file's byte order),
+// so a list longer than the rest of the file, or a negative length (which OpenMesh's unsigned variable takes
+// as ~4e9 indices to read from a stream at its end), is refused before OpenMesh reads.
+void scanPlyBinaryBody(const std::filesystem::path& file, std::uintmax_t bodyStart, std::uintmax_t fileSize,
+  const std::vector<PlyElement>& elements, bool bigEndian)
+{
+  std::ifstream stream(file, std::ios::binary);
+  stream.seekg(static_cast<std::streamoff>(bodyStart));
+  std::uintmax_t remaining = fileSize - bodyStart;
+  const auto truncated = [&](const PlyElement& element, long long index) {
+    return InputError(format("'", file.string(), "': the PLY data ends inside ", element.name, " ", index,
+      " (the header declares ", element.count, ")"));
+  };
+  const auto skip = [&](std::uintmax_t bytes, const PlyElement& element, long long index) {
+    if (bytes > remaining)
+      throw truncated(element, index);
+    stream.ignore(static_cast<std::streamsize>(bytes));
+    remaining -= bytes;
+  };
+  for (const PlyElement& element : elements)
+  {
+    const bool hasList = std::any_of(element.properties.begin(), element.properties.end(),
+      [](const PlyProperty& property) { return property.list; });
+    if (!hasList)
+    {
+      // Checked by the caller against the file size; skipped whole.
+      skip(static_cast<std::uintmax_t>(element.count) * static_cast<std::uintmax_t>(element.binaryBytes), element, 0);
+      continue;
+    }
+    for (long long index = 0; index < element.count; ++index)
+    {
+      for (const PlyProperty& property : element.properties)
+      {
+        if (!property.list)
+        {
+          skip(static_cast<std::uintmax_t>(plyTypeSize(property.valueType)), element, index);
+          continue;
+        }
+        const int countSize = plyTypeSize(property.countType);
+        std::array<unsigned char, 8> bytes{};
+        if (static_cast<std::uintmax_t>(countSize) > remaining ||
+          !stream.read(reinterpret_cast<char*>(bytes.data()), countSize))
+          throw truncated(element, index);
+        remaining -= static_cast<std::uintmax_t>(countSize);
+        std::uint64_t length = 0;
+        for (int i = 0; i < countSize; ++i)
+          length |= std::uint64_t{ bytes[static_cast<std::size_t>(bigEndian ? countSize - 1 - i : i)] } << (8 * i);
+        const bool isSigned = property.countType[0] != 'u';
+        if (isSigned && (length >> (8 * countSize - 1)) != 0)
+          throw InputError(format("'", file.string(), "': ", element.name, " ", index, " has a negative list length"));
+        skip(length * static_cast<std::uintmax_t>(plyTypeSize(property.valueType)), element, index);
+      }
+    }
+  }
+}
+
 FileScan scanPly(const std::filesystem::path& file)
 {
-  // The header is checked in full first: OpenMesh's PLY reader crashes on a property line before any element
-  // and loops forever on an unknown list type (both found by fuzzing), and it reserves memory for the
-  // declared counts (a 4e9-vertex header in a 229-byte file).
+  // The header is checked in full first, strictly line by line: OpenMesh's PLY reader crashes on a property
+  // line before any element, loops forever on an unknown list type, a format line with other than version
+  // 1.0 (or NUL bytes before it) and a header without elements (all found by fuzzing), and it reserves
+  // memory for the declared counts (a 4e9-vertex header in a 229-byte file).
   TextLines lines(file, false);
   std::vector<std::string_view> tokens;
   const auto headerError = [&](const std::string& problem) {
@@ -254,32 +393,35 @@ FileScan scanPly(const std::filesystem::path& file)
   if (!lines.next(tokens) || tokens.size() != 1 || tokens[0] != "ply")
     throw InputError(
       format("cannot read '", file.string(), "' (corrupt or not a PLY file: the first line is not 'ply')"));
-  struct Element
-  {
-    std::string name;
-    long long count = 0;
-    long long properties = 0;
-    long long binaryBytes = 0; // fixed-size properties and list counts: the least one element takes
-  };
-  std::vector<Element> elements;
+  std::vector<PlyElement> elements;
   std::string formatName;
   bool headerEnded = false;
   while (!headerEnded && lines.next(tokens))
   {
     if (lines.number() > 10000)
       throw headerError("no end_header in the first 10000 lines");
+    // A control character (a NUL byte, say) belongs in no header line, not even a comment: it is binary data
+    // where the text header should be.
+    for (const std::string_view token : tokens)
+      if (std::any_of(token.begin(), token.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+        throw headerError("control character in the header");
     if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info")
       continue;
     const std::string_view keyword = tokens[0];
     if (keyword == "end_header")
     {
+      if (tokens.size() != 1)
+        throw headerError("text after end_header");
       headerEnded = true;
     }
     else if (keyword == "format")
     {
       if (tokens.size() != 3 ||
-        (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian"))
-        throw headerError("unknown format line");
+        (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian") ||
+        tokens[2] != "1.0")
+        throw headerError("unknown format line (expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0')");
+      if (!formatName.empty())
+        throw headerError("second format line");
       formatName = std::string(tokens[1]);
     }
     else if (keyword == "element")
@@ -287,21 +429,26 @@ FileScan scanPly(const std::filesystem::path& file)
       long long count = 0;
       if (tokens.size() != 3 || !parseCount(tokens[2], count))
         throw headerError("malformed element line (expected 'element <name> <count>')");
-      elements.push_back({ std::string(tokens[1]), count });
+      elements.push_back({ std::string(tokens[1]), count, {}, 0 });
     }
     else if (keyword == "property")
     {
       if (elements.empty())
         throw headerError("property before any element");
-      Element& element = elements.back();
+      PlyElement& element = elements.back();
       if (tokens.size() == 3 && plyTypeSize(tokens[1]) != 0)
+      {
         element.binaryBytes += plyTypeSize(tokens[1]);
+        element.properties.push_back({ false, {}, std::string(tokens[1]) });
+      }
       else if (tokens.size() == 5 && tokens[1] == "list" && isPlyIntegerType(tokens[2]) && plyTypeSize(tokens[3]) != 0)
+      {
         element.binaryBytes += plyTypeSize(tokens[2]);
+        element.properties.push_back({ true, std::string(tokens[2]), std::string(tokens[3]) });
+      }
       else
         throw headerError("malformed property line or unknown type (expected 'property <type> <name>' or "
                           "'property list <integer type> <type> <name>')");
-      ++element.properties;
     }
     else
     {
@@ -312,60 +459,84 @@ FileScan scanPly(const std::filesystem::path& file)
     throw headerError("no end_header");
   if (formatName.empty())
     throw headerError("no format line");
+  const auto vertexElement =
+    std::find_if(elements.begin(), elements.end(), [](const PlyElement& element) { return element.name == "vertex"; });
+  if (vertexElement == elements.end())
+    throw headerError("no 'element vertex' line");
+  if (std::any_of(elements.begin(), elements.end(), [](const PlyElement& element) {
+        return element.count > 0 && element.properties.empty();
+      }))
+    throw headerError("an element with a count but no properties");
   const bool ascii = formatName == "ascii";
 
   // Every element takes at least one byte per property in ASCII (a digit; separators come on top) and its
-  // fixed-size part in binary, so counts the rest of the file cannot hold are refused before OpenMesh
-  // reserves memory for them.
+  // fixed-size part in binary, so counts the rest of the file cannot hold are refused before anything else.
   std::error_code error;
   const std::uintmax_t fileSize = std::filesystem::file_size(file, error);
-  const long double dataBytes = error ? 0.0L : static_cast<long double>(fileSize) - lines.position();
+  if (error)
+    throw InputError(format("cannot read '", file.string(), "' (", error.message(), ")"));
+  // tellg() is -1 once the header's last line hit the end of the file: then no bytes follow it.
+  const long double headerEnd = lines.position();
+  const long double bodyStart = headerEnd < 0.0L ? static_cast<long double>(fileSize) : headerEnd;
+  const long double dataBytes = static_cast<long double>(fileSize) - bodyStart;
   long double leastBytes = 0.0L;
-  for (const Element& element : elements)
+  for (const PlyElement& element : elements)
     leastBytes += static_cast<long double>(element.count) *
-      static_cast<long double>(std::max<long long>(1, ascii ? element.properties : element.binaryBytes));
-  if (!error && leastBytes > dataBytes)
+      static_cast<long double>(std::max<long long>(1,
+        ascii ? static_cast<long long>(element.properties.size()) : element.binaryBytes));
+  if (leastBytes > dataBytes)
     throw InputError(format("'", file.string(), "': the PLY header declares more elements than the ",
       static_cast<long long>(dataBytes), " bytes after it can hold (", elements.front().count, " ",
       elements.front().name, elements.size() > 1 ? ", ..." : "", ")"));
 
   FileScan scan;
-  for (const Element& element : elements)
+  for (const PlyElement& element : elements)
   {
     if (element.name == "vertex")
       scan.vertices = element.count;
     if (element.name == "face")
       scan.faces = element.count;
   }
-  // ASCII bodies are one element per line in practice; the vertices come first in every exporter we know.
-  if (ascii && !elements.empty() && elements[0].name == "vertex")
-  {
-    for (long long vertex = 0; vertex < elements[0].count && lines.next(tokens); ++vertex)
-      checkVertexNumbers(file, lines, vertex, tokens, tokens.size());
-  }
+  if (ascii)
+    scanPlyAsciiBody(file, lines, elements);
+  else
+    scanPlyBinaryBody(file, static_cast<std::uintmax_t>(bodyStart), fileSize, elements,
+      formatName == "binary_big_endian");
   return scan;
 }
 
 FileScan scanOff(const std::filesystem::path& file)
 {
-  // "[ST][C][N][4][n]OFF" then "vertices faces edges", then one vertex per line (x y z, maybe a colour),
-  // '#' comments allowed.
+  // "[ST][C][N][4][n]OFF" alone on the first line, then "vertices faces edges", then one vertex per line
+  // (x y z, normal with N, maybe a colour with C, texture coordinates with ST), then one face per line
+  // ("n i1 .. in", maybe a colour with C); '#' comments allowed.
   TextLines lines(file, true);
   std::vector<std::string_view> tokens;
-  std::vector<std::string> header;
-  while (header.size() < 4 && lines.number() < 1000 && lines.next(tokens))
-    for (const std::string_view token : tokens)
-      header.emplace_back(token);
+  lines.next(tokens);
   // OpenMesh takes any first word starting with an OFF keyword and then reads counts out of whatever
   // follows, reserving memory for them (a garbage header asked for 13 GB); so the keyword must be exact.
   static const std::regex keyword(R"(^(ST)?C?N?4?n?OFF$)");
-  if (header.empty() || !std::regex_match(header[0], keyword))
+  if (tokens.empty() || !std::regex_match(std::string(tokens[0]), keyword))
     throw InputError(format("cannot read '", file.string(), "' (corrupt or not an OFF file: the first word is '",
-      header.empty() ? std::string() : header[0].substr(0, 40), "')"));
+      tokens.empty() ? std::string_view() : tokens[0].substr(0, 40), "')"));
+  const std::string offKeyword(tokens[0]);
   FileScan scan;
-  if (header[0].find_first_of("4n") != std::string::npos || (header.size() > 1 && header[1] == "BINARY"))
-    return scan; // dimension variants and binary OFF: left to OpenMesh
-  if (header.size() < 3 || !parseCount(header[1], scan.vertices) || !parseCount(header[2], scan.faces))
+  if (offKeyword.find_first_of("4n") != std::string::npos || (tokens.size() == 2 && tokens[1] == "BINARY"))
+    return scan; // dimension variants (OpenMesh refuses them) and binary OFF: left to OpenMesh
+  // OpenMesh skips the rest of the keyword's line and reads the counts after it: counts on that line
+  // ("OFF 1" in a fuzzed file) mean it takes the next numbers as counts, and then face lengths out of
+  // vertex data, one of them -1, i.e. 4e9 indices to read.
+  if (tokens.size() != 1)
+    throw lineError(file, lines.number(), "OFF header: the keyword must be alone on the first line (the vertex, "
+                                          "face and edge counts go on the next one)");
+  do
+  {
+    if (!lines.next(tokens) || lines.number() > 1000)
+      throw lineError(file, lines.number(), "OFF header: expected the vertex, face and edge counts");
+  } while (tokens.empty());
+  long long edges = 0;
+  if (tokens.size() != 3 || !parseCount(tokens[0], scan.vertices) || !parseCount(tokens[1], scan.faces) ||
+    !parseCount(tokens[2], edges))
     throw lineError(file, lines.number(), "OFF header: expected the vertex, face and edge counts");
   // An ASCII vertex takes at least 6 bytes ("0 0 0\n"), a face at least 2: refuse counts the file cannot
   // hold before OpenMesh reserves memory for them.
@@ -374,15 +545,48 @@ FileScan scanOff(const std::filesystem::path& file)
   if (!error && 6.0L * scan.vertices + 2.0L * scan.faces > static_cast<long double>(fileSize))
     throw InputError(format("'", file.string(), "': the OFF header declares ", scan.vertices, " vertices and ",
       scan.faces, " faces, more than its ", fileSize, " bytes can hold"));
-  long long vertex = 0;
-  while (vertex < scan.vertices && lines.next(tokens))
+
+  // OpenMesh reads the numbers it needs with operator>>, whatever line they are on, and only then the rest
+  // of the line: a line with too few numbers shifts everything after it (a face length read from the wrong
+  // place, or negative and so ~4e9 in its unsigned variable, makes it read indices until memory runs out).
+  const bool hasNormal = offKeyword.find('N') != std::string::npos;
+  const bool hasColour = offKeyword.find('C') != std::string::npos;
+  const std::size_t vertexNumbers = 3 + (hasNormal ? 3 : 0);
+  const auto nextLine = [&](const char* what, long long index, long long count) {
+    do
+    {
+      if (!lines.next(tokens))
+        throw InputError(format("'", file.string(), "': the OFF data ends after ", index, " of the ", count, " ", what,
+          " the header declares"));
+    } while (tokens.empty());
+  };
+  for (long long vertex = 0; vertex < scan.vertices; ++vertex)
   {
-    if (tokens.empty())
-      continue;
-    if (tokens.size() < 3)
-      throw lineError(file, lines.number(), format("vertex ", vertex, ": needs 3 coordinates, got ", tokens.size()));
-    checkVertexNumbers(file, lines, vertex, tokens, 3);
-    ++vertex;
+    nextLine("vertices", vertex, scan.vertices);
+    if (tokens.size() < vertexNumbers)
+      throw lineError(file, lines.number(),
+        format("vertex ", vertex, ": needs ", vertexNumbers, " numbers, got ", tokens.size()));
+    checkVertexNumbers(file, lines, vertex, tokens, vertexNumbers);
+  }
+  for (long long face = 0; face < scan.faces; ++face)
+  {
+    nextLine("faces", face, scan.faces);
+    long long corners = 0;
+    if (!parseCount(tokens[0], corners))
+      throw lineError(file, lines.number(), format("face ", face, ": corner count '", tokens[0],
+        "' is not a non-negative integer"));
+    // Only a colour (C files) may follow the indices: OpenMesh reads anything else as the next face.
+    const std::size_t values = tokens.size() - 1;
+    if (values < static_cast<std::size_t>(corners) || (!hasColour && values != static_cast<std::size_t>(corners)))
+      throw lineError(file, lines.number(),
+        format("face ", face, ": ", corners, " corners, but ", values, " numbers follow"));
+    for (std::size_t i = 1; i <= static_cast<std::size_t>(corners); ++i)
+    {
+      long long index = 0;
+      if (!parseCount(tokens[i], index))
+        throw lineError(file, lines.number(), format("face ", face, ": vertex index '", tokens[i],
+          "' is not a non-negative integer"));
+    }
   }
   return scan;
 }

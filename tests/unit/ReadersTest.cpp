@@ -961,5 +961,74 @@ TEST(ReadersObj, NonManifoldCopiesKeepTheirTextureCoordinatesAndNormals)
   }
 }
 
+TEST(ReadersText, BodiesThatShiftOpenMeshsTokenStreamAreRefused)
+{
+  // Found by fuzzing (tests/fuzz/regressions/mesh/*-hang*): OpenMesh reads PLY/OFF bodies as one token stream,
+  // so a value too many or too few, a format line OpenMesh does not know or counts on the OFF keyword's line
+  // made it read a negative list length as ~4e9 indices (minutes, gigabytes). The header is checked
+  // strictly and every body line must hold exactly what the header says.
+  const test::TempDir dir;
+  const std::string properties = "property float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n" + properties + faces;
+  struct Case
+  {
+    const char* name;
+    std::string content;
+    const char* expected;
+  };
+  const std::vector<Case> cases = {
+    { "nul.ply", "ply\nformat ascii " + std::string(4, '\0') + "1.0\nelement vertex 3\n" + properties + faces +
+        vertices + "3 0 1 2\n",
+      ":2: PLY header: control character in the header" },
+    { "version.ply", "ply\nformat ascii 1.0ertex\nelement vertex 3\n" + properties + faces + vertices + "3 0 1 2\n",
+      ":2: PLY header: unknown format line" },
+    { "no-vertex.ply", "ply\nformat ascii 1.0\nend_header\n0 0 0\n", "PLY header: no 'element vertex' line" },
+    { "negative-length.ply", header + vertices + "-26 0 1 2\n", ":13: face 0: list length '-26' is not a non-negative" },
+    { "split-vertex.ply", header + "0 0\n0 1 0 0\n0 1 0\n3 0 1 2\n", ":10: vertex 0: the line holds 2 values, fewer" },
+    { "long-face.ply", header + vertices + "3 0 1 2 7.5\n", ":13: face 0: the line holds 5 values, more" },
+    { "float-index.ply", header + vertices + "3 0 1.5 2\n", "face 0: '1.5' is not an integer (int)" },
+    { "short.ply", header + "0 0 0\n1 0 0\n", "the PLY data ends after 2 of the 3 'vertex' elements" },
+    { "counts-on-keyword-line.off", "OFF 1\n2 10\n0 0 5\n3 0 5\n", ":1: OFF header: the keyword must be alone" },
+    { "negative-corners.off", "OFF\n3 1 0\n" + vertices + "-1 0 1 2\n", ":6: face 0: corner count '-1'" },
+    { "face-too-long.off", "OFF\n3 1 0\n" + vertices + "3 0 1 2 5\n", ":6: face 0: 3 corners, but 4 numbers follow" },
+    { "face-too-short.off", "OFF\n3 1 0\n" + vertices + "4 0 1 2\n", ":6: face 0: 4 corners, but 3 numbers follow" },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    const fs::path file = dir.write(c.name, c.content);
+    const std::string message = inputErrorOf([&] { loadMesh(file); }, file);
+    EXPECT_CONTAINS(message, file.string());
+    EXPECT_CONTAINS(message, c.expected);
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+
+  // Binary PLY: list lengths are read from the body; one longer than the rest of the file, or negative, is
+  // refused before OpenMesh reads.
+  const auto binaryFace = [&](const std::string& lengthType, std::int8_t length) {
+    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + properties +
+      "element face 1\nproperty list " + lengthType + " int vertex_indices\nend_header\n";
+    const std::array<float, 9> corners = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    ply.append(reinterpret_cast<const char*>(corners.data()), sizeof(corners));
+    ply.push_back(static_cast<char>(length));
+    const std::array<std::int32_t, 3> indices = { 0, 1, 2 };
+    ply.append(reinterpret_cast<const char*>(indices.data()), sizeof(indices));
+    return ply;
+  };
+  const fs::path longList = dir.write("long-list.ply", binaryFace("uchar", 4));
+  EXPECT_CONTAINS(inputErrorOf([&] { loadMesh(longList); }, longList), "the PLY data ends inside face 0");
+  const fs::path negativeList = dir.write("negative-list.ply", binaryFace("char", -1));
+  EXPECT_CONTAINS(inputErrorOf([&] { loadMesh(negativeList); }, negativeList), "face 0 has a negative list length");
+
+  // What the rules are derived from still reads: exact lines, a C colour after an OFF face, binary lists.
+  EXPECT_EQ(loadMesh(dir.write("good.ply", header + vertices + "3 0 1 2\n")).mesh.triangleCount(), 1u);
+  EXPECT_EQ(loadMesh(dir.write("good.off", "OFF\n3 1 0\n\n" + vertices + "3 0 1 2\n")).mesh.triangleCount(), 1u);
+  EXPECT_EQ(loadMesh(dir.write("colour.off", "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 255 0 0\n0 1 0 255 0 0\n"
+                                             "3 0 1 2 255 0 0\n")).mesh.triangleCount(), 1u);
+  EXPECT_EQ(loadMesh(dir.write("good-binary.ply", binaryFace("uchar", 3))).mesh.triangleCount(), 1u);
+}
+
 } // namespace
 } // namespace sl
