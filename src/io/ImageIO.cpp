@@ -28,8 +28,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
@@ -40,6 +42,7 @@
 #include <memory>
 #include <new>
 #include <regex>
+#include <sstream>
 #include <system_error>
 
 namespace sl
@@ -154,33 +157,46 @@ void throwIfVtkFailed(const std::filesystem::path& path, const VtkErrorCapture& 
 }
 
 
-// VTK 9.1's XML reader trusts the block headers of raw appended data: an array offset one byte off made it
-// crash, and a block count of 3.6e9 made it allocate and loop for hours (both found by fuzzing). So the
-// headers are checked against the file, and each point-data array's size against the image, before VTK reads
-// any data. Layout (vtkXMLWriter): per array at `offset` after the '_' marker, uncompressed: one header
-// integer with the byte count, then the bytes; compressed: [block count, block size, last block size,
-// compressed size of each block], then the blocks. Header integers are header_type (UInt32 or UInt64) in
-// byte_order. Base64 appended data and inline arrays are left to VTK.
-void checkAppendedData(const std::filesystem::path& path, long long pixelCount)
+// VTK 9.1's XML reader trusts what a file declares: an array offset one byte off made it crash, a block count
+// of 3.6e9 made it allocate and loop for hours, and a NumberOfComponents of "3.16" or a DataArray without a
+// format made it spend tens of seconds and gigabytes (all found by fuzzing). So every DataArray is checked
+// against the format and the file before VTK reads any data:
+//  - type one of the numeric VTK XML types, NumberOfComponents (default 1) an integer 1..4, NumberOfTuples
+//    (field data) an integer no larger than the pixel count;
+//  - format "appended" with an integer offset inside the appended data, or "binary"/"ascii" inline data;
+//  - the data it declares fits in the file, and its decoded size is exactly one tuple per pixel for point
+//    data (no more than that for cell and field data), so what VTK allocates is bounded by the image.
+// Binary layout (vtkXMLWriter), at the array's offset after the '_' marker (appended) or in the element's
+// text (inline binary), raw or base64 as the file says: uncompressed, one header integer with the byte count,
+// then the bytes; compressed, [block count, block size, last block size, compressed size of each block],
+// then the blocks. Header integers are header_type (UInt32 or UInt64) in byte_order.
+void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
 {
   std::ifstream stream(path, std::ios::binary);
   const std::string bytes{ std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
-  const std::size_t appendedTag = bytes.find("<AppendedData");
-  if (appendedTag == std::string::npos)
-    return;
   const auto fail = [&path](const std::string& why) {
     return InputError(format(path.string(), ": not a readable VTK image file (", why, ")"));
   };
-  const std::size_t tagEnd = bytes.find('>', appendedTag);
-  if (tagEnd == std::string::npos)
-    throw fail("unterminated AppendedData element");
-  if (bytes.compare(appendedTag, tagEnd - appendedTag, "<AppendedData encoding=\"raw\"") != 0)
-    return;
-  const std::size_t marker = bytes.find('_', tagEnd);
-  if (marker == std::string::npos)
-    throw fail("no appended data after the AppendedData element");
-  const std::size_t dataBegin = marker + 1;
-  const long double dataLength = static_cast<long double>(bytes.size() - dataBegin);
+
+  // The appended data, if any: raw bytes or base64 text from just after the '_' marker to the end of the file.
+  const std::size_t appendedTag = bytes.find("<AppendedData");
+  bool appendedBase64 = false;
+  std::size_t dataBegin = bytes.size();
+  if (appendedTag != std::string::npos)
+  {
+    const std::size_t tagEnd = bytes.find('>', appendedTag);
+    if (tagEnd == std::string::npos)
+      throw fail("unterminated AppendedData element");
+    const std::string tag = bytes.substr(appendedTag, tagEnd - appendedTag);
+    if (tag.find("encoding=\"base64\"") != std::string::npos)
+      appendedBase64 = true;
+    else if (tag.find("encoding=\"raw\"") == std::string::npos)
+      throw fail("AppendedData encoding is neither raw nor base64");
+    const std::size_t marker = bytes.find('_', tagEnd);
+    if (marker == std::string::npos)
+      throw fail("no appended data after the AppendedData element");
+    dataBegin = marker + 1;
+  }
 
   static const std::regex attribute(R"re((\w+)\s*=\s*"([^"]*)")re");
   const auto attributesOf = [](const std::string& tag) {
@@ -189,7 +205,13 @@ void checkAppendedData(const std::filesystem::path& path, long long pixelCount)
       values[(*match)[1].str()] = (*match)[2].str();
     return values;
   };
-  const std::string xml = bytes.substr(0, appendedTag);
+  // An attribute that must be a whole integer: "3.16" or "3x" is not 3.
+  const auto integerOf = [](const std::string& text, long long& value) {
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    return !text.empty() && error == std::errc() && last == end;
+  };
+  const std::string xml = bytes.substr(0, appendedTag == std::string::npos ? bytes.size() : appendedTag);
   const std::size_t fileTag = xml.find("<VTKFile");
   if (fileTag == std::string::npos)
     return; // VTK has already refused such a file
@@ -198,84 +220,174 @@ void checkAppendedData(const std::filesystem::path& path, long long pixelCount)
   const std::size_t headerBytes = fileAttributes["header_type"] == "UInt64" ? 8 : 4;
   const bool compressed = !fileAttributes["compressor"].empty();
   const bool bigEndian = fileAttributes["byte_order"] == "BigEndian";
-  // Header integer at `at` bytes after the marker; the caller keeps `at + headerBytes` within the data.
-  const auto headerInteger = [&](long double at) {
-    std::uint64_t value = 0;
-    const std::size_t start = dataBegin + static_cast<std::size_t>(at);
-    for (std::size_t i = 0; i < headerBytes; ++i)
-    {
-      const auto byte = static_cast<unsigned char>(bytes[start + (bigEndian ? i : headerBytes - 1 - i)]);
-      value = (value << 8) | byte;
-    }
-    return static_cast<long double>(value);
-  };
 
   static const std::map<std::string, int> kTypeBytes = { { "Int8", 1 }, { "UInt8", 1 }, { "Int16", 2 },
     { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 }, { "UInt64", 8 }, { "Float32", 4 },
     { "Float64", 8 } };
   const std::size_t pointDataBegin = xml.find("<PointData");
   const std::size_t pointDataEnd = xml.find("</PointData>");
-  static const std::regex dataArrayTag(R"(<DataArray\b[^>]*>)");
-  for (auto match = std::sregex_iterator(xml.begin(), xml.end(), dataArrayTag); match != std::sregex_iterator();
-       ++match)
+  for (std::size_t tagBegin = xml.find("<DataArray"); tagBegin != std::string::npos;
+       tagBegin = xml.find("<DataArray", tagBegin + 1))
   {
-    std::map<std::string, std::string> array = attributesOf(match->str());
-    if (array["format"] != "appended")
-      continue;
+    const std::size_t nameEnd = tagBegin + std::strlen("<DataArray");
+    if (nameEnd < xml.size() && !std::isspace(static_cast<unsigned char>(xml[nameEnd])) && xml[nameEnd] != '/' &&
+      xml[nameEnd] != '>')
+      continue; // another element (<DataArrayX>), which VTK does not read as an array
+    const std::size_t tagEnd = xml.find('>', tagBegin);
+    if (tagEnd == std::string::npos)
+      throw fail("unterminated DataArray element");
+    std::map<std::string, std::string> array = attributesOf(xml.substr(tagBegin, tagEnd - tagBegin));
     const std::string name = array["Name"].empty() ? std::string("(unnamed)") : array["Name"];
     const std::string arrayName = "array '" + name + "'";
-    long long offsetValue = -1;
-    const std::string& offsetText = array["offset"];
-    if (std::from_chars(offsetText.data(), offsetText.data() + offsetText.size(), offsetValue).ec != std::errc() ||
-      offsetValue < 0)
-      throw fail(arrayName + ": no valid offset");
-    const auto offset = static_cast<long double>(offsetValue);
-    if (offset + headerBytes > dataLength)
-      throw fail(arrayName + ": its offset lies beyond the appended data");
+    const auto arrayError = [&](const std::string& why) {
+      return InputError(format(path.string(), ": ", arrayName, " ", why));
+    };
+
+    const auto typeBytes = kTypeBytes.find(array["type"]);
+    if (typeBytes == kTypeBytes.end())
+      throw arrayError(format("is not numeric (type \"", array["type"], "\")"));
+    long long components = 1;
+    if (array.count("NumberOfComponents") != 0 && !integerOf(array["NumberOfComponents"], components))
+      throw arrayError(format("has NumberOfComponents=\"", array["NumberOfComponents"], "\" (an integer 1 to 4 expected)"));
+    if (components < 1 || components > 4)
+      throw arrayError(format("has ", components, " components (1 to 4 supported)"));
+    const bool pointData = pointDataBegin != std::string::npos && pointDataEnd != std::string::npos &&
+      tagBegin > pointDataBegin && tagBegin < pointDataEnd;
+    long long tuples = pixelCount;
+    if (array.count("NumberOfTuples") != 0 && (!integerOf(array["NumberOfTuples"], tuples) || tuples < 0 ||
+                                                 tuples > pixelCount || (pointData && tuples != pixelCount)))
+      throw arrayError(format("has NumberOfTuples=\"", array["NumberOfTuples"], "\" (the image has ", pixelCount,
+        " pixels)"));
+    const long double imageBytes = static_cast<long double>(pixelCount) * components * typeBytes->second;
+    // A point-data array holds exactly one tuple per pixel; any other (cell or field data) no more.
+    const auto checkSize = [&](long double decodedBytes, const char* unit, long double perValue) {
+      if (pointData ? decodedBytes != imageBytes : decodedBytes > imageBytes)
+        throw fail(format(arrayName, ": its data holds ", static_cast<unsigned long long>(decodedBytes / perValue),
+          " ", unit, ", the ", pixelCount, "-pixel image needs ", static_cast<unsigned long long>(imageBytes / perValue)));
+    };
+
+    const std::string& dataFormat = array["format"];
+    if (dataFormat == "ascii")
+    {
+      // VTK allocates one tuple per pixel before it parses the text: the values must be there.
+      const std::size_t contentEnd = xml.find("</DataArray>", tagEnd);
+      if (xml[tagEnd - 1] == '/' || contentEnd == std::string::npos)
+        throw fail(arrayName + ": ascii data without a closing </DataArray>");
+      std::istringstream values(xml.substr(tagEnd + 1, contentEnd - tagEnd - 1));
+      const auto count = std::distance(std::istream_iterator<std::string>(values), std::istream_iterator<std::string>());
+      checkSize(static_cast<long double>(count) * typeBytes->second, "values", typeBytes->second);
+      continue;
+    }
+
+    // Binary data: where it starts, how much of the file it may use, and whether it is base64 text.
+    std::string inlineText;
+    const char* binary = nullptr;
+    std::size_t available = 0;
+    bool base64 = false;
+    if (dataFormat == "appended")
+    {
+      long long offset = -1;
+      if (!integerOf(array["offset"], offset) || offset < 0)
+        throw fail(arrayName + ": no valid offset");
+      if (appendedTag == std::string::npos)
+        throw fail(arrayName + ": appended, but the file has no AppendedData");
+      if (static_cast<unsigned long long>(offset) >= bytes.size() - dataBegin)
+        throw fail(arrayName + ": its offset lies beyond the appended data");
+      binary = bytes.data() + dataBegin + offset;
+      available = bytes.size() - dataBegin - static_cast<std::size_t>(offset);
+      base64 = appendedBase64;
+    }
+    else if (dataFormat == "binary")
+    {
+      const std::size_t contentEnd = xml.find("</DataArray>", tagEnd);
+      if (xml[tagEnd - 1] == '/' || contentEnd == std::string::npos)
+        throw fail(arrayName + ": binary data without a closing </DataArray>");
+      for (std::size_t i = tagEnd + 1; i < contentEnd; ++i)
+        if (!std::isspace(static_cast<unsigned char>(xml[i])))
+          inlineText.push_back(xml[i]);
+      binary = inlineText.data();
+      available = inlineText.size();
+      base64 = true;
+    }
+    else
+      throw fail(format(arrayName, ": format \"", dataFormat, "\" (appended, binary or ascii expected)"));
+
+    // The first `count` bytes of the data, decoded; false if the file holds fewer.
+    std::vector<unsigned char> header;
+    const auto readHeader = [&](std::size_t count) {
+      header.assign(count, 0);
+      if (!base64)
+      {
+        if (count > available)
+          return false;
+        std::memcpy(header.data(), binary, count);
+        return true;
+      }
+      // Only a few header bytes are decoded, by hand: vtkBase64Utilities is in VTK::IOCore, which the
+      // project does not link directly.
+      const std::size_t characters = (count + 2) / 3 * 4;
+      if (characters > available)
+        return false;
+      static const std::string kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+      std::vector<unsigned char> decoded;
+      std::uint32_t bits = 0;
+      int bitCount = 0;
+      for (std::size_t i = 0; i < characters && binary[i] != '='; ++i)
+      {
+        const std::size_t sextet = kAlphabet.find(binary[i]);
+        if (sextet == std::string::npos)
+          return false;
+        bits = (bits << 6) | static_cast<std::uint32_t>(sextet);
+        bitCount += 6;
+        if (bitCount >= 8)
+        {
+          bitCount -= 8;
+          decoded.push_back(static_cast<unsigned char>(bits >> bitCount));
+        }
+      }
+      if (decoded.size() < count)
+        return false;
+      std::memcpy(header.data(), decoded.data(), count);
+      return true;
+    };
+    const auto headerInteger = [&](std::size_t index) {
+      std::uint64_t value = 0;
+      for (std::size_t i = 0; i < headerBytes; ++i)
+        value = (value << 8) | header[index * headerBytes + (bigEndian ? i : headerBytes - 1 - i)];
+      return static_cast<long double>(value);
+    };
+    // Bytes of the file that `decoded` bytes of data occupy (base64 needs 4 characters per 3 bytes).
+    const auto fileBytes = [&](long double decoded) { return base64 ? std::ceil(decoded / 3) * 4 : decoded; };
 
     long double decodedBytes = 0.0L;
     if (!compressed)
     {
-      decodedBytes = headerInteger(offset);
-      if (offset + headerBytes + decodedBytes > dataLength)
+      if (!readHeader(headerBytes))
+        throw fail(arrayName + ": its header runs past the end of the file");
+      decodedBytes = headerInteger(0);
+      if (fileBytes(headerBytes + decodedBytes) > available)
         throw fail(arrayName + ": its data runs past the end of the file");
     }
     else
     {
-      if (offset + 3 * headerBytes > dataLength)
+      if (!readHeader(3 * headerBytes))
         throw fail(arrayName + ": its block header runs past the end of the file");
-      const long double blocks = headerInteger(offset);
-      const long double blockSize = headerInteger(offset + headerBytes);
-      const long double lastBlockSize = headerInteger(offset + 2 * headerBytes);
-      const long double headerEnd = offset + (3 + blocks) * headerBytes;
-      if (headerEnd > dataLength)
+      const long double blocks = headerInteger(0);
+      const long double blockSize = headerInteger(1);
+      const long double lastBlockSize = headerInteger(2);
+      if (fileBytes((3 + blocks) * headerBytes) > available || !readHeader((3 + static_cast<std::size_t>(blocks)) * headerBytes))
         throw fail(format(arrayName, ": its header claims ", static_cast<unsigned long long>(blocks),
           " compressed blocks, more than the file holds"));
       long double compressedBytes = 0.0L;
-      for (long double block = 0; block < blocks; ++block)
-        compressedBytes += headerInteger(offset + (3 + block) * headerBytes);
-      if (headerEnd + compressedBytes > dataLength)
+      for (std::size_t block = 0; block < static_cast<std::size_t>(blocks); ++block)
+        compressedBytes += headerInteger(3 + block);
+      if (fileBytes((3 + blocks) * headerBytes + compressedBytes) > available)
         throw fail(arrayName + ": its compressed blocks run past the end of the file");
       if (blocks > 0 && (blockSize == 0 || lastBlockSize > blockSize))
         throw fail(arrayName + ": inconsistent compressed block sizes");
       decodedBytes = blocks == 0 ? 0.0L : (blocks - 1) * blockSize + (lastBlockSize == 0 ? blockSize : lastBlockSize);
     }
-
-    const auto typeBytes = kTypeBytes.find(array["type"]);
-    long long components = 1;
-    if (!array["NumberOfComponents"].empty())
-      std::from_chars(array["NumberOfComponents"].data(),
-        array["NumberOfComponents"].data() + array["NumberOfComponents"].size(), components);
-    if (typeBytes == kTypeBytes.end() || components < 1)
-      continue; // VTK refuses or handles these itself
-    const long double imageBytes = static_cast<long double>(pixelCount) * components * typeBytes->second;
-    const bool pointData = pointDataBegin != std::string::npos && pointDataEnd != std::string::npos &&
-      static_cast<std::size_t>(match->position()) > pointDataBegin &&
-      static_cast<std::size_t>(match->position()) < pointDataEnd;
-    // A point-data array holds exactly one tuple per pixel; any other (cell or field data) no more.
-    if (pointData ? decodedBytes != imageBytes : decodedBytes > imageBytes)
-      throw fail(format(arrayName, ": its data holds ", static_cast<unsigned long long>(decodedBytes),
-        " bytes, the ", pixelCount, "-pixel image needs ", static_cast<unsigned long long>(imageBytes)));
+    checkSize(decodedBytes, "bytes", 1.0L);
   }
 }
 } // namespace
@@ -355,7 +467,7 @@ std::vector<NamedImage> readVti(const std::filesystem::path& path)
       format(file, ": image of ", width, "x", height, " is too large (max ", kMaxImageSide, " per side)"));
   }
 
-  checkAppendedData(path, width * height);
+  checkDataArrays(path, width * height);
   reader->Update();
   throwIfVtkFailed(path, capture, *reader);
   vtkImageData* data = reader->GetOutput();

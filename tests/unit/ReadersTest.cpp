@@ -961,6 +961,56 @@ TEST(ReadersObj, NonManifoldCopiesKeepTheirTextureCoordinatesAndNormals)
   }
 }
 
+TEST(ReadersVti, DataArrayAttributesAreCheckedBeforeVtkReads)
+{
+  // Fuzzing: a NumberOfComponents of "3.16..." and an array without a format cost VTK 9.1 tens of seconds and
+  // gigabytes. Every DataArray must carry what the format allows, and declare one tuple per pixel.
+  const test::TempDir dir;
+  const fs::path valid = dir.path() / "valid.vti";
+  writeVti(valid, noiseImages(8, 8, 3));
+  const std::string bytes = readBytes(valid);
+  const auto edited = [&bytes](const std::string& from, const std::string& to) {
+    std::string copy = bytes;
+    const std::size_t at = copy.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? copy : copy.replace(at, from.size(), to);
+  };
+  // An image of 8 x 7 pixels: the arrays written for 8 x 8 declare a block size that no longer matches.
+  std::string smallerExtent = bytes;
+  for (std::size_t at = 0; (at = smallerExtent.find("0 7 0 7 0 0", at)) != std::string::npos;)
+    smallerExtent.replace(at, 11, "0 7 0 6 0 0");
+  struct Case
+  {
+    const char* name;
+    std::string content;
+    const char* expected;
+  };
+  const std::vector<Case> cases = {
+    { "fractional-components.vti", edited("NumberOfComponents=\"3\"", "NumberOfComponents=\"3.16\""),
+      "array 'noise' has NumberOfComponents=\"3.16\" (an integer 1 to 4 expected)" },
+    { "no-format.vti", edited("format=\"appended\"", ""), "array 'noise': format \"\" (appended, binary or ascii" },
+    { "bit-type.vti", edited("type=\"Float32\"", "type=\"Bit\""), "array 'noise' is not numeric (type \"Bit\")" },
+    { "fractional-offset.vti", edited("offset=\"0\"", "offset=\"0.5\""), "array 'noise': no valid offset" },
+    { "wrong-size.vti", smallerExtent, "array 'noise': its data holds 768 bytes, the 56-pixel image needs 672" },
+    { "inline-short.vti", asciiVti("0 2 0 0 0 0", "1 2"), "array 'v': its data holds 2 values, the 3-pixel image needs 3" },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    const fs::path file = dir.write(c.name, c.content);
+    testing::internal::CaptureStderr();
+    const std::string message = inputErrorOf([&] { readVti(file); }, file);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    EXPECT_CONTAINS(message, file.string() + ": ");
+    EXPECT_CONTAINS(message, c.expected);
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  // The checks refuse only what is wrong: the file they were derived from, and inline ASCII data, still read.
+  EXPECT_EQ(readVti(valid).front().image.components, 3);
+  const fs::path ascii = dir.write("ascii.vti", asciiVti("0 2 0 0 0 0", "1 2 3"));
+  EXPECT_EQ(readVti(ascii).front().image.data, std::vector<float>({ 1.0f, 2.0f, 3.0f }));
+}
+
 TEST(ReadersText, BodiesThatShiftOpenMeshsTokenStreamAreRefused)
 {
   // Found by fuzzing (tests/fuzz/regressions/mesh/*-hang*): OpenMesh reads PLY/OFF bodies as one token stream,
