@@ -15,6 +15,7 @@
 
 #include <vtkAbstractArray.h>
 #include <vtkDataArray.h>
+#include <vtkBase64Utilities.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -323,28 +324,13 @@ void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
         std::memcpy(header.data(), binary, count);
         return true;
       }
-      // Only a few header bytes are decoded, by hand: vtkBase64Utilities is in VTK::IOCore, which the
-      // project does not link directly.
+      // Only the few header bytes are decoded here; VTK decodes the data itself once the checks pass.
       const std::size_t characters = (count + 2) / 3 * 4;
       if (characters > available)
         return false;
-      static const std::string kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-      std::vector<unsigned char> decoded;
-      std::uint32_t bits = 0;
-      int bitCount = 0;
-      for (std::size_t i = 0; i < characters && binary[i] != '='; ++i)
-      {
-        const std::size_t sextet = kAlphabet.find(binary[i]);
-        if (sextet == std::string::npos)
-          return false;
-        bits = (bits << 6) | static_cast<std::uint32_t>(sextet);
-        bitCount += 6;
-        if (bitCount >= 8)
-        {
-          bitCount -= 8;
-          decoded.push_back(static_cast<unsigned char>(bits >> bitCount));
-        }
-      }
+      std::vector<unsigned char> decoded(characters);
+      decoded.resize(vtkBase64Utilities::DecodeSafely(
+        reinterpret_cast<const unsigned char*>(binary), characters, decoded.data(), decoded.size()));
       if (decoded.size() < count)
         return false;
       std::memcpy(header.data(), decoded.data(), count);
