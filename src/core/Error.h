@@ -31,8 +31,9 @@ public:
   }
 };
 
-// `text` safe to print as one line: control characters (newlines, ANSI escapes, ...) and DEL written as \n, \t,
-// \r or \xNN, so a file name or key echoed in a message can neither split it nor drive the terminal.
+// `text` safe to print as one line: control characters (newlines, ANSI escapes, ...), DEL, C1 controls and bytes
+// that are not UTF-8 written as \n, \t, \r or \xNN, so a file name or key echoed in a message can neither split
+// it nor drive the terminal; well-formed UTF-8 (non-ASCII names) is kept.
 std::string printable(const std::string& text);
 
 [[noreturn]] void checkFailed(const char* expression, const char* file, int line, const std::string& message);
