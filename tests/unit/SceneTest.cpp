@@ -5,7 +5,6 @@
 #include "scene/AlphaTexture.h"
 #include "scene/MeshIO.h"
 #include "scene/Primitives.h"
-#include "lightspace/LightView.h"
 #include "scene/Scene.h"
 #include "support/TempDir.h"
 
@@ -1454,43 +1453,6 @@ TEST(SceneInputFiles, SceneMeshAndAlphaFilesAreListed)
   // parseScene has no scene file: only what it read.
   const Scene parsed = parseScene(json.dump(), {}, "inline", dir.path());
   EXPECT_EQ(parsed.inputFiles, std::vector<fs::path>(expected.begin() + 1, expected.end()));
-}
-
-TEST(SceneMessages, PointLightRefusalNamesTheLight)
-{
-  // L09/L12: the 80-degree refusal names the file and lights[i]. Receivers on the six sides of a cube
-  // around the second light, facing it.
-  Scene scene;
-  scene.file = "scenes/room.json";
-  Light first;
-  first.type = LightType::Point;
-  first.center = { 0.0, 10.0, 0.0 };
-  Light second = first;
-  second.center = { 0.0, 0.0, 0.0 };
-  scene.lights = { first, second };
-  ImageF position(6, 1, 4, 0.0f);
-  ImageF normal(6, 1, 4, 0.0f);
-  const glm::dvec3 directions[6] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
-  for (int i = 0; i < 6; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      position.at(i, 0, c) = static_cast<float>(2.0 * directions[i][c]);
-      normal.at(i, 0, c) = static_cast<float>(-directions[i][c]);
-    }
-    position.at(i, 0, 3) = 1.0f;
-    normal.at(i, 0, 3) = 1.0f;
-  }
-  try
-  {
-    fitLightView(scene.lights[1], scene, position, normal, FocusSettings());
-    ADD_FAILURE() << "expected an InputError";
-  }
-  catch (const InputError& error)
-  {
-    EXPECT_EQ(std::string(error.what()).rfind("scenes/room.json: lights[1]: point light at (0, 0, 0) sees", 0), 0u)
-      << error.what();
-  }
 }
 
 TEST(SceneDatasets, EveryDatasetLoadsUnderTheLimits)

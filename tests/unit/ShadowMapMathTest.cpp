@@ -217,12 +217,16 @@ TEST(FitLightView, CoversEveryReceiverWithTheMarginAndTightDepth)
 
 TEST(FitLightView, PointLightSurroundedByReceiversIsAnInputError)
 {
+  // L09/L12: the 80-degree refusal names the scene file and lights[i] (here the second light).
   Scene scene;
-  Light light;
-  light.type = LightType::Point;
-  light.center = { 0.0, 0.0, 0.0 };
-  scene.lights.push_back(light);
-  // Receivers on the six sides of a cube around the light, facing it.
+  scene.file = "scenes/room.json";
+  Light first;
+  first.type = LightType::Point;
+  first.center = { 0.0, 10.0, 0.0 };
+  Light second = first;
+  second.center = { 0.0, 0.0, 0.0 };
+  scene.lights = { first, second };
+  // Receivers on the six sides of a cube around the second light, facing it.
   ImageF position(6, 1, 4, 0.0f);
   ImageF normal(6, 1, 4, 0.0f);
   const glm::dvec3 directions[6] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
@@ -238,12 +242,13 @@ TEST(FitLightView, PointLightSurroundedByReceiversIsAnInputError)
   }
   try
   {
-    fitLightView(light, scene, position, normal, FocusSettings());
+    fitLightView(scene.lights[1], scene, position, normal, FocusSettings());
     FAIL() << "expected an InputError";
   }
   catch (const InputError& error)
   {
-    EXPECT_NE(std::string(error.what()).find("point light"), std::string::npos) << error.what();
+    EXPECT_EQ(std::string(error.what()).rfind("scenes/room.json: lights[1]: point light at (0, 0, 0) sees", 0), 0u)
+      << error.what();
   }
 }
 
