@@ -193,9 +193,12 @@ void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
       appendedBase64 = true;
     else if (tag.find("encoding=\"raw\"") == std::string::npos)
       throw fail("AppendedData encoding is neither raw nor base64");
-    const std::size_t marker = bytes.find('_', tagEnd);
-    if (marker == std::string::npos)
-      throw fail("no appended data after the AppendedData element");
+    // VTK's reader (vtkXMLDataParser::FindAppendedDataPosition) skips white space after the tag and then takes
+    // the next byte as the '_' marker, whatever it is: require that byte to be '_', so the data VTK will read
+    // is the data checked here.
+    const std::size_t marker = bytes.find_first_not_of(" \t\n\r", tagEnd + 1);
+    if (marker == std::string::npos || bytes[marker] != '_')
+      throw fail("the appended data does not start with '_' after the AppendedData element");
     dataBegin = marker + 1;
   }
 
