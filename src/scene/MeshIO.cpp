@@ -835,17 +835,23 @@ public:
   using Base::set_normal;
   void set_normal(VertexHandle vertex, const OpenMesh::Vec3f& normal) override
   {
+    if (!existing(vertex, "a normal"))
+      return;
     mark(normalSet_, vertex);
     Base::set_normal(vertex, normal);
   }
   void set_normal(VertexHandle vertex, const OpenMesh::Vec3d& normal) override
   {
+    if (!existing(vertex, "a normal"))
+      return;
     mark(normalSet_, vertex);
     Base::set_normal(vertex, normal);
   }
   using Base::set_texcoord;
   void set_texcoord(VertexHandle vertex, const OpenMesh::Vec2f& uv) override
   {
+    if (!existing(vertex, "a texture coordinate"))
+      return;
     mark(uvSet_, vertex);
     Base::set_texcoord(vertex, uv);
   }
@@ -895,6 +901,16 @@ private:
   std::vector<bool> normalSet_; // per vertex: the reader gave it a normal
   std::vector<bool> uvSet_;     // per vertex: the reader gave it a texture coordinate
 
+  // OpenMesh's OBJ reader can hand an attribute to an invalid vertex handle (fuzzed: a face after an `l`
+  // line); writing it would index the property arrays with -1. Such a file is refused instead.
+  bool existing(VertexHandle vertex, const char* attribute)
+  {
+    if (vertex.is_valid() && static_cast<std::size_t>(vertex.idx()) < mesh_.n_vertices())
+      return true;
+    if (problem_.empty())
+      problem_ = format("the reader gave ", attribute, " to vertex ", vertex.idx(), ", which does not exist");
+    return false;
+  }
   static void mark(std::vector<bool>& flags, VertexHandle vertex)
   {
     const auto index = static_cast<std::size_t>(vertex.idx());
