@@ -16,6 +16,7 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -32,6 +33,8 @@ constexpr const char* kPartialPrefix = ".shadowlab-partial-";
 
 char g_temporaryPath[PATH_MAX];             // the temporary directory being written, "" when none
 char g_doomedPath[PATH_MAX];                // where the handler moves it before removing it
+std::atomic<int> g_pathChanging{ 0 };       // 1 inside a CleanupPathSection
+static_assert(std::atomic<int>::is_always_lock_free, "read in a signal handler");
 volatile std::sig_atomic_t g_childPid = 0;  // the child a signal is forwarded to (bench), 0 when none
 constexpr int kHandledSignals[] = { SIGINT, SIGTERM, SIGHUP };
 
@@ -94,6 +97,12 @@ extern "C" void handleTerminatingSignal(int signalNumber)
   {
     ::kill(child, signalNumber);
   }
+  // Wait (at most a second) for a section on another thread that is creating or unregistering the directory.
+  for (int waited = 0; g_pathChanging.load() != 0 && waited < 1000; ++waited)
+  {
+    const struct timespec millisecond = { 0, 1000000 };
+    ::nanosleep(&millisecond, nullptr);
+  }
   if (g_temporaryPath[0] != '\0')
   {
     // The handler may run on any thread while the main thread goes on writing into the directory by path.
@@ -108,12 +117,14 @@ extern "C" void handleTerminatingSignal(int signalNumber)
   ::raise(signalNumber);
 }
 
-// Blocks the handled signals for its lifetime: what happens inside (creating the temporary directory and
-// registering it) is then atomic for the handler, which never sees a directory it does not know of, nor half a path.
-class HandledSignalsBlocked
+// A section in which the temporary directory and its registration for the handler change together (created and
+// registered, or unregistered). The handled signals are blocked on this thread; a signal delivered meanwhile to
+// another thread (llvmpipe's, Embree's) waits in the handler until the section ends, so the handler never misses
+// a directory that exists, nor reads half a path.
+class CleanupPathSection
 {
 public:
-  HandledSignalsBlocked()
+  CleanupPathSection()
   {
     sigset_t blocked;
     sigemptyset(&blocked);
@@ -121,17 +132,22 @@ public:
     {
       sigaddset(&blocked, signalNumber);
     }
-    ::sigprocmask(SIG_BLOCK, &blocked, &previous_);
+    ::pthread_sigmask(SIG_BLOCK, &blocked, &previous_);
+    g_pathChanging.store(1);
   }
-  ~HandledSignalsBlocked() { ::sigprocmask(SIG_SETMASK, &previous_, nullptr); }
-  HandledSignalsBlocked(const HandledSignalsBlocked&) = delete;
-  HandledSignalsBlocked& operator=(const HandledSignalsBlocked&) = delete;
+  ~CleanupPathSection()
+  {
+    g_pathChanging.store(0);
+    ::pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+  }
+  CleanupPathSection(const CleanupPathSection&) = delete;
+  CleanupPathSection& operator=(const CleanupPathSection&) = delete;
 
 private:
   sigset_t previous_;
 };
 
-// Sets the path the handler removes; call with the handled signals blocked.
+// Sets the path the handler removes; call inside a CleanupPathSection.
 void setSignalCleanupPath(const std::string& path)
 {
   const std::string doomed = path.empty() ? path : path + "-interrupted";
@@ -408,7 +424,7 @@ TemporaryOutput::TemporaryOutput(const OutputTarget& target)
   for (int attempt = 0; temporary_.empty(); ++attempt)
   {
     const fs::path candidate = parent / format(kPartialPrefix, ::getpid(), "-", counter++);
-    const HandledSignalsBlocked blocked;
+    const CleanupPathSection section;
     if (::mkdir(candidate.c_str(), 0755) == 0)
     {
       temporary_ = candidate;
@@ -430,7 +446,7 @@ TemporaryOutput::TemporaryOutput(const OutputTarget& target)
   catch (...)
   {
     removeQuietly(temporary_);
-    const HandledSignalsBlocked blocked;
+    const CleanupPathSection section;
     setSignalCleanupPath("");
     throw;
   }
@@ -442,7 +458,7 @@ TemporaryOutput::~TemporaryOutput()
   {
     removeQuietly(temporary_);
   }
-  const HandledSignalsBlocked blocked;
+  const CleanupPathSection section;
   setSignalCleanupPath("");
 }
 
