@@ -65,7 +65,7 @@ void fillWithUserFiles(const fs::path& dir)
 {
   fs::create_directories(dir / "notes");
   writeFile(dir / "thesis.tex", "\\documentclass{article} my only copy");
-  writeFile(dir / "notes" / "todo.txt", "buy milk");
+  writeFile(dir / "notes" / "shopping.txt", "buy milk");
 }
 
 // A copy of a dataset directory (scene.json, meshes) at `where`.
