@@ -1,7 +1,9 @@
-// Errors in ShadowLab come in two kinds (see STYLE.md, "Errors"):
+// Errors in ShadowLab come in three kinds (see STYLE.md, "Errors"):
 //  - InputError: something the user gave us (scene file, mesh, CLI, parameter) is wrong. It carries a
 //    one-line message naming the file / JSON path / key / value; the CLI catches it once, prints it and
-//    exits nonzero.
+//    exits 1.
+//  - GraphicsError: the graphics stack cannot do what we need (no EGL display, GL too old, a shader that
+//    does not compile); the CLI prints it as one line and exits 2.
 //  - Invariant violations (SL_CHECK): a bug in ShadowLab itself. They abort with expression and location.
 #pragma once
 
