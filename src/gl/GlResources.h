@@ -33,9 +33,9 @@ vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window,
 // Reads a whole texture back (glGetTextureImage). Row 0 is the bottom row.
 ImageF readFloatTexture(vtkTextureObject* texture, int components);
 ImageF readDepthTexture(vtkTextureObject* texture);
-// An unsigned-integer texture (R32UI / RG32UI ...), exactly (tests compare integer tables bit for bit).
 // Every layer of a 3D texture (one image for a 2D one).
 std::vector<ImageF> readFloatTextureLayers(vtkTextureObject* texture, int components);
+// An unsigned-integer texture (R32UI / RG32UI ...), exactly (tests compare integer tables bit for bit).
 Image<std::uint32_t> readUnsignedTextureExact(vtkTextureObject* texture, int components);
 ImageU8 readColorTexture(vtkTextureObject* texture); // RGB
 
@@ -47,9 +47,9 @@ void checkGlErrors(const std::string& stage);
 vtkShaderProgram* readyProgram(vtkOpenGLRenderWindow* window, const std::string& vertexSource,
   const std::string& fragmentSource, const std::string& label);
 
-// GPU time (GL_TIME_ELAPSED via vtkOpenGLRenderTimer) and wall time of one stage of a frame.
-// GPU (timer query) and wall time of a stage, summed over its runs since reset(): a stage runs once per
-// frame, or once per sub-light when a technique splits the light (Yang et al. 2009 §5).
+// GPU time (GL_TIME_ELAPSED via vtkOpenGLRenderTimer) and wall time of a stage, summed over its runs since
+// reset(): a stage runs once per frame, or once per sub-light when a technique splits the light (Yang et al.
+// 2009 §5).
 class StageTimer
 {
 public:
@@ -96,7 +96,7 @@ private:
 
 // Draws every mesh selected by `include` with `program`, binding attributes pWsIn/nWsIn/uvIn and the
 // per-object uniforms the geometry shaders share (objectAlbedo, objectReceivesShadows, hasAlphaTexture,
-// alphaTexture). `vaos` caches one VAO per mesh for this program.
+// alphaTexture). The drawer caches one VAO per mesh, rebuilt when the program or the scene changes.
 class MeshDrawer
 {
 public:
