@@ -1,5 +1,5 @@
 // Hard shadow mapping (Williams 1978) with the survey's depth biasing (§5): one depth comparison against
-// the texel containing the receiver. CPU mirror: src/techniques/hard/HardReference.cpp.
+// the texel containing the receiver. CPU mirror: hardReference in src/techniques/hard/HardTechnique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"

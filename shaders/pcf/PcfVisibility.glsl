@@ -3,7 +3,7 @@
 // one texel apart, or poisson_samples taps of a fixed Poisson disk of diameter kernel_texels, rotated per
 // pixel by a hash of the pixel position. Each tap is one texel comparison (filter = nearest) or the
 // hardware's bilinearly weighted 2x2 comparison (filter = hardware_bilinear, survey Fig. 23).
-// CPU mirror: src/techniques/pcf/PcfReference.cpp.
+// CPU mirror: pcfReference in src/techniques/pcf/PcfTechnique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"

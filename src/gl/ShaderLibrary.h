@@ -1,6 +1,6 @@
 // Assembles GLSL programs from the embedded shader files.
 //
-// A stage file may contain `#include "common/Foo.glsl"` lines; they are replaced by that file's text
+// A stage file may contain `#include "common/LightModel.glsl"` lines; they are replaced by that file's text
 // (recursively, each file at most once per stage, like #pragma once). The `#version` line and a block of
 // `#define`s generated from C++ (technique variants, output locations) are prepended, so constants are
 // never kept in sync by hand between C++ and GLSL (STYLE.md, "Shaders").

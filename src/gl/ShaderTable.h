@@ -9,7 +9,7 @@ namespace sl
 
 struct EmbeddedShader
 {
-  std::string path;   // relative to shaders/, e.g. "common/ShadowMapLookup.glsl"
+  std::string path;   // relative to shaders/, e.g. "common/ShadowMapCommon.glsl"
   const char* source; // the file's text
 };
 
