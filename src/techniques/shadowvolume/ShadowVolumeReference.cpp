@@ -1,0 +1,78 @@
+#include "techniques/shadowvolume/ShadowVolumeReference.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <cmath>
+
+namespace sl
+{
+
+double volumeWindingNumber(const std::vector<glm::vec4>& vertices, const glm::dvec3& point)
+{
+  // Direction from `point` to a homogeneous vertex (x, w), w >= 0: x - w point (x itself at infinity).
+  const auto seen = [&point](const glm::vec4& vertex) {
+    return glm::dvec3(vertex.x, vertex.y, vertex.z) - static_cast<double>(vertex.w) * point;
+  };
+  double solidAngle = 0.0;
+  for (std::size_t first = 0; first + 2 < vertices.size(); first += 3)
+  {
+    const glm::dvec3 a = seen(vertices[first]);
+    const glm::dvec3 b = seen(vertices[first + 1]);
+    const glm::dvec3 c = seen(vertices[first + 2]);
+    const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+    // tan(Omega / 2) = a . (b x c) / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|)
+    const double numerator = glm::dot(a, glm::cross(b, c));
+    const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+    solidAngle += 2.0 * std::atan2(numerator, denominator);
+  }
+  return solidAngle / (4.0 * glm::pi<double>());
+}
+
+int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point)
+{
+  // Segment point + t direction, t in (0, tMax).
+  const glm::dvec3 direction = light.directional ? -light.direction : light.position - point;
+  const double tMax = light.directional ? HUGE_VAL : 1.0;
+  int crossings = 0;
+  for (const SceneObject& object : scene.objects)
+  {
+    if (!object.castShadows)
+    {
+      continue;
+    }
+    const TriangleMesh& mesh = object.mesh;
+    for (std::size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle)
+    {
+      const glm::dvec3 a(mesh.positions[mesh.indices[3 * triangle]]);
+      const glm::dvec3 edge1 = glm::dvec3(mesh.positions[mesh.indices[3 * triangle + 1]]) - a;
+      const glm::dvec3 edge2 = glm::dvec3(mesh.positions[mesh.indices[3 * triangle + 2]]) - a;
+      const glm::dvec3 p = glm::cross(direction, edge2);
+      const double determinant = glm::dot(edge1, p);
+      if (determinant == 0.0)
+      {
+        continue; // the segment runs parallel to the triangle's plane
+      }
+      const double inverse = 1.0 / determinant;
+      const glm::dvec3 s = point - a;
+      const double u = glm::dot(s, p) * inverse;
+      if (u < 0.0 || u > 1.0)
+      {
+        continue;
+      }
+      const glm::dvec3 q = glm::cross(s, edge1);
+      const double v = glm::dot(direction, q) * inverse;
+      if (v < 0.0 || u + v > 1.0)
+      {
+        continue;
+      }
+      const double t = glm::dot(edge2, q) * inverse;
+      if (t > 0.0 && t < tMax)
+      {
+        ++crossings;
+      }
+    }
+  }
+  return crossings;
+}
+
+} // namespace sl
