@@ -12,10 +12,10 @@
 #include "core/Error.h"
 #include "core/Parse.h"
 #include "io/ImageIO.h"
-#include "io/OutputWriter.h"
+#include "output/OutputWriter.h"
 #include "metrics/Comparison.h"
 #include "scene/Scene.h"
-#include "techniques/Technique.h"
+#include "techniques/Registry.h"
 #include "vis/SpeedErrorChart.h"
 #include "vis/SweepChart.h"
 

@@ -3,10 +3,10 @@
 
 #include "core/Error.h"
 #include "io/ImageIO.h"
-#include "io/OutputWriter.h"
+#include "output/OutputWriter.h"
 #include "metrics/Comparison.h"
 #include "metrics/ErrorMetrics.h"
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
 #include "scene/Scene.h"
 
 #include <nlohmann/json.hpp>
@@ -63,7 +63,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
   }
 
   nlohmann::json parameters = nlohmann::json::object();
-  for (const ParameterSpec& spec : last.parameters.descriptor().parameters)
+  for (const ParameterSpec& spec : last.parameters.specs())
   {
     parameters[spec.name] = spec.choices.empty() ? nlohmann::json(last.parameters.get(spec.name))
                                                  : nlohmann::json(last.parameters.choice(spec.name));

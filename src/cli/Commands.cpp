@@ -1,10 +1,10 @@
 #include "cli/Commands.h"
 
 #include "core/Error.h"
-#include "io/OutputWriter.h"
-#include "passes/ShadowRenderer.h"
+#include "output/OutputWriter.h"
+#include "pipeline/ShadowRenderer.h"
 #include "scene/Scene.h"
-#include "techniques/Technique.h"
+#include "techniques/Registry.h"
 
 #include <nlohmann/json.hpp>
 

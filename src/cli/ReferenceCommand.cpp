@@ -4,8 +4,8 @@
 #include "cli/Commands.h"
 
 #include "core/Error.h"
-#include "io/OutputWriter.h"
-#include "passes/ShadowRenderer.h"
+#include "output/OutputWriter.h"
+#include "pipeline/ShadowRenderer.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/Scene.h"
 

@@ -3,7 +3,7 @@
 #include "core/Error.h"
 #include "io/OutputDirectory.h"
 #include "io/vtkSLOutputWindow.h"
-#include "passes/ShadowRenderer.h"
+#include "core/NamedImage.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

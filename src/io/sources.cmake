@@ -1,5 +1,4 @@
 set(SL_IO_SOURCES
   src/io/ImageIO.cpp
   src/io/OutputDirectory.cpp
-  src/io/OutputWriter.cpp
   src/io/vtkSLOutputWindow.cxx)

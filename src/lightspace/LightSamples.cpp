@@ -86,4 +86,24 @@ std::vector<glm::dvec3> lightSamplePoints(const Light& light, int count, std::ui
   return points;
 }
 
+std::vector<Light> splitIntoSubLights(const Light& light, int perSide)
+{
+  SL_CHECK(light.type == LightType::Area && light.shape == LightShape::Square && perSide >= 1);
+  std::vector<Light> subLights;
+  const double step = light.size / perSide;
+  for (int j = 0; j < perSide; ++j)
+  {
+    for (int i = 0; i < perSide; ++i)
+    {
+      Light subLight = light;
+      subLight.center = light.center + light.right() * ((i + 0.5) * step - 0.5 * light.size) +
+        light.up * ((j + 0.5) * step - 0.5 * light.size);
+      subLight.size = step;
+      subLight.intensity = light.intensity / (perSide * perSide);
+      subLights.push_back(subLight);
+    }
+  }
+  return subLights;
+}
+
 } // namespace sl

@@ -1,4 +1,5 @@
-// Points on a light's surface, for techniques that sample the light (reference-sm).
+// Points on a light's surface, for techniques that sample the light (reference-sm), and the sub-lights of
+// multi-view shadow maps.
 #pragma once
 
 #include "scene/Scene.h"
@@ -29,5 +30,9 @@ glm::dvec3 pointOnAreaLight(const Light& light, const glm::dvec2& unitSquare);
 // rotated toroidally by an offset drawn from `seed` (Cranley-Patterson), so any count is stratified and
 // unbiased. Other light types have one point, their centre (a directional light has none: empty).
 std::vector<glm::dvec3> lightSamplePoints(const Light& light, int count, std::uint64_t seed);
+
+// The S x S sub-lights of a square area light (Yang et al. 2009 §5, multi-view shadow maps): centres on the light's (right, up) grid, size / S each,
+// row by row from the (-right, -up) corner.
+std::vector<Light> splitIntoSubLights(const Light& light, int perSide);
 
 } // namespace sl

@@ -3,4 +3,6 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/LightView.cpp
   src/lightspace/LightSamples.cpp
   src/lightspace/ShadowMapMath.cpp
-  src/lightspace/HierarchicalShadowMap.cpp)
+  src/lightspace/HierarchicalShadowMap.cpp
+  src/lightspace/LightStructure.cpp
+  src/lightspace/sat/SummedAreaTable.cpp)

@@ -2,8 +2,8 @@
 
 #include "core/Error.h"
 #include "io/ImageIO.h"
-#include "io/OutputWriter.h"
-#include "passes/ShadowRenderer.h"
+#include "output/OutputWriter.h"
+#include "frame/FrameResult.h"
 #include "vis/HeatMap.h"
 
 #include <cmath>

@@ -12,7 +12,7 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/LightView.h"
 #include "scene/Scene.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <vtkSmartPointer.h>
 

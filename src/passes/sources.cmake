@@ -14,5 +14,4 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLTechniquePass.cxx
   src/passes/vtkSLShadingPass.cxx
   src/passes/vtkSLSubLightAccumulatePass.cxx
-  src/passes/vtkSLMultiViewPass.cxx
-  src/passes/ShadowRenderer.cpp)
+  src/passes/vtkSLMultiViewPass.cxx)

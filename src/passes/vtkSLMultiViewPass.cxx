@@ -4,7 +4,7 @@
 #include "gl/GlResources.h"
 #include "passes/FrameResources.h"
 #include "passes/vtkSLTechniquePass.h"
-#include "techniques/SoftShadowSupport.h"
+#include "lightspace/LightSamples.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>

@@ -5,7 +5,7 @@
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
-#include "techniques/savsm/SummedAreaTable.h"
+#include "lightspace/sat/SummedAreaTable.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>

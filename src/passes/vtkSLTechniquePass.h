@@ -14,7 +14,7 @@
 #include "gl/ShaderLibrary.h"
 #include "passes/FullScreenQuad.h"
 #include "passes/vtkSLStagePass.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <vtkNew.h>
 

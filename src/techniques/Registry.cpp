@@ -1,6 +1,8 @@
 // The technique registry: one entry per technique. Adding a technique means adding its folder under
 // src/techniques/, its shaders, one line here, and its tests.
-#include "techniques/Technique.h"
+#include "techniques/Registry.h"
+
+#include "core/Error.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
 #include "techniques/esm/EsmTechnique.h"
@@ -34,6 +36,23 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     referenceSmTechnique(),
   };
   return registry;
+}
+
+const TechniqueDescriptor& findTechnique(const std::string& name)
+{
+  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
+  {
+    if (descriptor.name == name)
+    {
+      return descriptor;
+    }
+  }
+  std::string available;
+  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
+  {
+    available += (available.empty() ? "" : ", ") + descriptor.name;
+  }
+  throw InputError("--technique " + name + ": unknown technique (available: " + available + ")");
 }
 
 } // namespace sl

@@ -8,7 +8,7 @@
 // any scene scale and map resolution; see lightspace/ShadowMapMath.h.
 #pragma once
 
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <vector>
 

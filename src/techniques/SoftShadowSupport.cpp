@@ -34,26 +34,6 @@ ParameterSpec subLightsParameter()
   return { "sublights", 1, 1, 4, "per side", "multi-view shadow maps (Yang et al. 2009 §5): the light split into S x S sub-lights, each with its own focused shadow map and MSSM, visibilities averaged", {}, true };
 }
 
-std::vector<Light> splitIntoSubLights(const Light& light, int perSide)
-{
-  SL_CHECK(light.type == LightType::Area && light.shape == LightShape::Square && perSide >= 1);
-  std::vector<Light> subLights;
-  const double step = light.size / perSide;
-  for (int j = 0; j < perSide; ++j)
-  {
-    for (int i = 0; i < perSide; ++i)
-    {
-      Light subLight = light;
-      subLight.center = light.center + light.right() * ((i + 0.5) * step - 0.5 * light.size) +
-        light.up * ((j + 0.5) * step - 0.5 * light.size);
-      subLight.size = step;
-      subLight.intensity = light.intensity / (perSide * perSide);
-      subLights.push_back(subLight);
-    }
-  }
-  return subLights;
-}
-
 glm::dvec2 SoftShadowGeometry::kernelHalfTexels(double planeDepthValue) const
 {
   const double halfTangent = 0.5 * lightSize * (d - planeDepthValue) / (planeDepthValue * d);

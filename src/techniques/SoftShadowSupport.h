@@ -3,8 +3,9 @@
 #pragma once
 
 #include "gl/ShaderLibrary.h"
+#include "lightspace/LightSamples.h" // splitIntoSubLights, for the techniques with `sublights`
 #include "techniques/ShadowMapReference.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <optional>
 
@@ -26,9 +27,6 @@ std::vector<ParameterSpec> softShadowParameters();
 ParameterSpec receiverPlaneBiasParameter();
 // `sublights` (TechniqueDescriptor::hasSubLights): multi-view shadow maps, Yang et al. 2009 §5.
 ParameterSpec subLightsParameter();
-// The S x S sub-lights of a square area light (§5): centres on the light's (right, up) grid, size / S each,
-// row by row from the (-right, -up) corner.
-std::vector<Light> splitIntoSubLights(const Light& light, int perSide);
 // lightSizeWorld, lightNearDepth, shadowTexelTangent, shadowWindowMin, poissonDisk.
 void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& frame);
 // The summed-area table and the uniforms of shaders/common/SatLookup.glsl (savsm, vssm); returns the bound

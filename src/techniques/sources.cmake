@@ -1,5 +1,4 @@
 set(SL_TECHNIQUES_SOURCES
-  src/techniques/Technique.cpp
   src/techniques/Registry.cpp
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp
@@ -15,7 +14,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/pcss/vtkSLPcssPass.cxx
   src/techniques/vsm/VsmTechnique.cpp
   src/techniques/esm/EsmTechnique.cpp
-  src/techniques/savsm/SummedAreaTable.cpp
   src/techniques/savsm/SavsmTechnique.cpp
   src/techniques/savsm/vtkSLSavsmPass.cxx
   src/techniques/vssm/VssmTechnique.cpp

@@ -4,11 +4,11 @@
 // Every test works in a fresh temporary directory; resolutions and shadow maps are small to keep the suite fast
 // on llvmpipe.
 #include "io/ImageIO.h"
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
 #include "support/CliRun.h"
 #include "support/TempDir.h"
 #include "support/TestSupport.h"
-#include "techniques/Technique.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

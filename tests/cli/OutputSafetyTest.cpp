@@ -3,7 +3,7 @@
 // runs leave no temporary directory behind, and every usage error is one line with exit 1. Case ids (D07, K22,
 // ...) are those of the bad-input probe (shared/notes/bad-input-probe-c5e0160.md).
 #include "io/ImageIO.h"
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
 #include "support/CliRun.h"
 #include "support/TempDir.h"
 #include "support/TestSupport.h"

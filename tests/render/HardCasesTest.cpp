@@ -3,6 +3,7 @@
 #include "support/RayCaster.h"
 #include "support/TestSupport.h"
 #include "lightspace/LightView.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 

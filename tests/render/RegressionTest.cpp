@@ -25,7 +25,7 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "support/TestSupport.h"
-#include "techniques/Technique.h"
+#include "techniques/Registry.h"
 #include "vis/HeatMap.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 #include "support/TestSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/savsm/SavsmTechnique.h"
-#include "techniques/savsm/SummedAreaTable.h"
+#include "lightspace/sat/SummedAreaTable.h"
 
 #include <gtest/gtest.h>
 

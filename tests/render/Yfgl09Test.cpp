@@ -1,6 +1,7 @@
 // yfgl09 (packet-based hierarchical soft shadow mapping): the GLSL against its double-precision twin on
 // read-back buffers; the paper's central claim (the same visibility as gbp07, whatever the packets and the
 // hierarchy); the hierarchy visiting fewer nodes than the MSSM-only brute force; the hard cases.
+#include "techniques/Registry.h"
 #include "support/TestSupport.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 #include "techniques/yfgl09/Yfgl09Technique.h"
@@ -285,7 +286,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
     const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const ParameterValues gbp07Values = [&] {
-      ParameterValues values(findTechnique("gbp07"));
+      ParameterValues values = findTechnique("gbp07").defaultParameters();
       values.set(c.settings.front());
       return values;
     }();

@@ -2,7 +2,7 @@
 // read-back buffers of a frame as CPU-reference inputs.
 #pragma once
 
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/Scene.h"
 #include "techniques/ShadowMapReference.h"

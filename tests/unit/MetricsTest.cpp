@@ -7,7 +7,7 @@
 
 #include "core/Error.h"
 #include "io/ImageIO.h"
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "io/vtkSLOutputWindow.h"
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
 #include "scene/AlphaTexture.h"
 #include "scene/MeshIO.h"
 #include "support/TempDir.h"

@@ -1,8 +1,8 @@
 // The technique registry and parameter handling: declared tables are consistent, and every bad
 // parameter the user can type is rejected with a message naming it.
 #include "core/Error.h"
-#include "passes/ShadowRenderer.h"
-#include "techniques/Technique.h"
+#include "pipeline/ShadowRenderer.h"
+#include "techniques/Registry.h"
 #include "techniques/pcf/PcfTechnique.h"
 
 #include <gtest/gtest.h>
@@ -72,7 +72,7 @@ TEST(TechniqueRegistry, UnknownTechniqueListsTheAvailableOnes)
 
 TEST(ParameterValues, DefaultsAndAssignments)
 {
-  ParameterValues values(findTechnique("pcf"));
+  ParameterValues values = findTechnique("pcf").defaultParameters();
   EXPECT_EQ(values.getInt("kernel_texels"), 3);
   EXPECT_EQ(values.choice("pattern"), "grid");
   values.set("kernel_texels=9");
@@ -87,7 +87,7 @@ TEST(ParameterValues, DefaultsAndAssignments)
 
 TEST(ParameterValues, BadAssignmentsNameTheKeyAndValue)
 {
-  ParameterValues values(findTechnique("pcf"));
+  ParameterValues values = findTechnique("pcf").defaultParameters();
   struct Case
   {
     std::string assignment;

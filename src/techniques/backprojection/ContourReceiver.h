@@ -7,7 +7,7 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <glm/glm.hpp>
 

@@ -13,7 +13,7 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/backprojection/ContourReceiver.h"
 #include "techniques/ShadowMapReference.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 namespace sl
 {

@@ -13,7 +13,7 @@
 
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapReference.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <glm/glm.hpp>
 

@@ -187,7 +187,7 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
     litSum += compared <= z ? 1.0 : 0.0;
     ++taps;
   };
-  const bool gridFilter = !values.descriptor().findParameter("filter") || values.choice("filter") == "grid";
+  const bool gridFilter = !values.has("filter") || values.choice("filter") == "grid";
   if (gridFilter)
   {
     const Kernel kernel = kernelGrid(uv, filterHalf, maxTaps, result.kernelEdgeMargin);

@@ -10,7 +10,7 @@
 // Point and spot lights have one sample (their centre): the result is `hard`. Directional lights: one map.
 #pragma once
 
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 namespace sl
 {

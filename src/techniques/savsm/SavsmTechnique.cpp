@@ -3,7 +3,7 @@
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/pcss/PcssTechnique.h"
-#include "techniques/savsm/SummedAreaTable.h"
+#include "lightspace/sat/SummedAreaTable.h"
 #include "techniques/savsm/vtkSLSavsmPass.h"
 
 #include <algorithm>

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "techniques/ShadowMapReference.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 namespace sl
 {

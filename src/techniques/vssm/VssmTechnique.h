@@ -13,8 +13,8 @@
 
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
-#include "techniques/Technique.h"
-#include "techniques/savsm/SummedAreaTable.h"
+#include "frame/TechniqueDescriptor.h"
+#include "lightspace/sat/SummedAreaTable.h"
 
 #include <cstdint>
 #include <optional>

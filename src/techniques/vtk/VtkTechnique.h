@@ -11,7 +11,7 @@
 // Parameters: shadow_map_size (VTK's baker resolution). Buffers: vtk_shadowed, vtk_unshadowed.
 #pragma once
 
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 namespace sl
 {

@@ -15,7 +15,7 @@
 #include "core/Image.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
-#include "techniques/Technique.h"
+#include "frame/TechniqueDescriptor.h"
 
 #include <vector>
 

@@ -1,53 +1,34 @@
-#include "techniques/Technique.h"
-
-#include "core/Parse.h"
+#include "core/Parameters.h"
 
 #include "core/Error.h"
+#include "core/Parse.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 namespace sl
 {
 
-std::string lightStructureName(LightStructure structure)
+const ParameterSpec* findParameterSpec(const std::vector<ParameterSpec>& specs, const std::string& name)
 {
-  switch (structure)
-  {
-    case LightStructure::ShadowMap: return "shadow_map";
-    case LightStructure::MomentMap: return "moment_map";
-    case LightStructure::SummedAreaTable: return "summed_area_table";
-    case LightStructure::HierarchicalShadowMap: return "hierarchical_shadow_map";
-    case LightStructure::DualMultiScaleShadowMap: return "dual_mssm";
-  }
-  return "unknown";
+  const auto found =
+    std::find_if(specs.begin(), specs.end(), [&](const ParameterSpec& spec) { return spec.name == name; });
+  return found == specs.end() ? nullptr : &*found;
 }
 
-const ParameterSpec* TechniqueDescriptor::findParameter(const std::string& parameterName) const
+const std::vector<ParameterSpec>& ParameterValues::specs() const
 {
-  const auto found = std::find_if(parameters.begin(), parameters.end(),
-    [&](const ParameterSpec& spec) { return spec.name == parameterName; });
-  return found == parameters.end() ? nullptr : &*found;
+  static const std::vector<ParameterSpec> none;
+  return specs_ ? *specs_ : none;
 }
 
-bool TechniqueDescriptor::supports(const Light& light) const
+ParameterValues::ParameterValues(std::string owner, const std::vector<ParameterSpec>& specs)
+  : owner_(std::move(owner))
+  , specs_(&specs)
 {
-  const bool type = std::find(supportedLights.begin(), supportedLights.end(), light.type) != supportedLights.end();
-  const bool shape = light.type != LightType::Area ||
-    std::find(supportedAreaShapes.begin(), supportedAreaShapes.end(), light.shape) != supportedAreaShapes.end();
-  return type && shape;
-}
-
-bool TechniqueDescriptor::needs(LightStructure structure) const
-{
-  return std::find(lightStructures.begin(), lightStructures.end(), structure) != lightStructures.end();
-}
-
-ParameterValues::ParameterValues(const TechniqueDescriptor& descriptor)
-  : descriptor_(&descriptor)
-{
-  for (const ParameterSpec& spec : descriptor.parameters)
+  for (const ParameterSpec& spec : specs)
   {
     values_[spec.name] = spec.defaultValue;
   }
@@ -67,27 +48,27 @@ int ParameterValues::getInt(const std::string& name) const
 
 const std::string& ParameterValues::choice(const std::string& name) const
 {
-  const ParameterSpec* spec = descriptor_->findParameter(name);
+  const ParameterSpec* spec = findParameterSpec(specs(), name);
   SL_CHECK_MSG(spec && !spec->choices.empty(), "'", name, "' is not an enumeration");
   return spec->choices.at(static_cast<std::size_t>(getInt(name)));
 }
 
 void ParameterValues::set(const std::string& key, double value)
 {
-  const ParameterSpec* spec = descriptor_->findParameter(key);
+  const ParameterSpec* spec = findParameterSpec(specs(), key);
   if (!spec)
   {
     std::string known;
-    for (const ParameterSpec& candidate : descriptor_->parameters)
+    for (const ParameterSpec& candidate : specs())
     {
       known += (known.empty() ? "" : ", ") + candidate.name;
     }
-    throw InputError(format("--set ", key, ": technique '", descriptor_->name, "' has no parameter '", key,
+    throw InputError(format("--set ", key, ": technique '", owner_, "' has no parameter '", key,
       "' (its parameters: ", known.empty() ? "none" : known, ")"));
   }
   if (!std::isfinite(value) || value < spec->minValue || value > spec->maxValue)
   {
-    throw InputError(format("--set ", key, "=", value, ": out of range for technique '", descriptor_->name,
+    throw InputError(format("--set ", key, "=", value, ": out of range for technique '", owner_,
       "' (allowed ", spec->minValue, " to ", spec->maxValue, spec->unit.empty() ? "" : " ", spec->unit, ")"));
   }
   if (spec->integer && std::abs(value - std::round(value)) > 1e-9)
@@ -106,7 +87,7 @@ void ParameterValues::set(const std::string& assignment)
   }
   const std::string key = assignment.substr(0, equals);
   const std::string text = assignment.substr(equals + 1);
-  const ParameterSpec* spec = descriptor_->findParameter(key);
+  const ParameterSpec* spec = findParameterSpec(specs(), key);
   if (spec && !spec->choices.empty())
   {
     const auto found = std::find(spec->choices.begin(), spec->choices.end(), text);
@@ -133,23 +114,6 @@ void ParameterValues::set(const std::string& assignment)
     throw InputError(format("--set ", assignment, ": '", text, "' is not a number"));
   }
   set(key, *value);
-}
-
-const TechniqueDescriptor& findTechnique(const std::string& name)
-{
-  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
-  {
-    if (descriptor.name == name)
-    {
-      return descriptor;
-    }
-  }
-  std::string available;
-  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
-  {
-    available += (available.empty() ? "" : ", ") + descriptor.name;
-  }
-  throw InputError("--technique " + name + ": unknown technique (available: " + available + ")");
 }
 
 } // namespace sl

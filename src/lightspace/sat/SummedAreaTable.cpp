@@ -1,4 +1,4 @@
-#include "techniques/savsm/SummedAreaTable.h"
+#include "lightspace/sat/SummedAreaTable.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/OutputWriter.h"
+#include "output/OutputWriter.h"
 
 #include "core/Error.h"
 #include "io/ImageIO.h"
@@ -109,7 +109,8 @@ nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
 
 nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context)
 {
-  const TechniqueDescriptor& technique = frame.parameters.descriptor();
+  SL_CHECK_MSG(frame.descriptor, "frame of technique ", frame.technique, " has no descriptor");
+  const TechniqueDescriptor& technique = *frame.descriptor;
   nlohmann::json parameters = nlohmann::json::object();
   for (const ParameterSpec& spec : technique.parameters)
   {

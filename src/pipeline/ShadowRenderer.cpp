@@ -1,4 +1,6 @@
-#include "passes/ShadowRenderer.h"
+#include "pipeline/ShadowRenderer.h"
+
+#include "techniques/Registry.h"
 
 #include "core/Error.h"
 #include "gl/vtkSLEglRenderWindow.h"
@@ -25,33 +27,6 @@
 
 namespace sl
 {
-
-const NamedImage* findNamed(const std::vector<NamedImage>& images, const std::string& name)
-{
-  const auto found =
-    std::find_if(images.begin(), images.end(), [&](const NamedImage& named) { return named.name == name; });
-  return found == images.end() ? nullptr : &*found;
-}
-
-const NamedImage* FrameResult::find(const std::string& name) const
-{
-  return findNamed(buffers, name);
-}
-
-const std::vector<BufferSpec>& commonBufferSpecs()
-{
-  static const std::vector<BufferSpec> specs = {
-    { "visibility", "", "fraction of the light visible from the surface point, in [0, 1] (1 = fully lit); hard/pcf "
-                        "sample area lights from their centre. 0 where coverage = 0" },
-    { "position", "world units", "world-space position of the surface seen in the pixel (3 components)" },
-    { "normal", "", "unit world-space normal, facing the camera (3 components)" },
-    { "depth", "world units", "linear view depth along the camera axis" },
-    { "coverage", "", "1 where a surface covers the pixel centre, 0 for background" },
-    { "albedo", "", "surface albedo (3 components)" },
-    { "receives_shadows", "", "1 where the surface receives shadows (the object's receive_shadows), else 0" },
-  };
-  return specs;
-}
 
 ShadowRenderer::ShadowRenderer()
   : window_(vtkSmartPointer<vtkSLEglRenderWindow>::New())
@@ -122,16 +97,6 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
   return stages;
 }
 
-const std::vector<BufferSpec>& subLightBufferSpecs()
-{
-  static const std::vector<BufferSpec> specs = {
-    { "sublight_visibility", "", "techniques with `sublights` = S (multi-view shadow maps, Yang et al. 2009 §5): the "
-                                 "visibility of each of the S x S sub-lights, one component each, row by row from the "
-                                 "light's (-right, -up) corner; `visibility` is their mean" },
-  };
-  return specs;
-}
-
 FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& request)
 {
   const TechniqueDescriptor& technique = findTechnique(request.technique);
@@ -174,7 +139,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   frame.scene = &scene;
   frame.light = &light;
   frame.technique = &technique;
-  frame.parameters = ParameterValues(technique);
+  frame.parameters = technique.defaultParameters();
   for (const std::string& assignment : request.settings)
   {
     frame.parameters.set(assignment);
@@ -237,6 +202,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     }
   }
   result.technique = technique.name;
+  result.descriptor = &technique;
   result.parameters = frame.parameters;
   result.resolution = resolution;
   result.camera = frame.camera;

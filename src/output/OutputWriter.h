@@ -7,7 +7,7 @@
 #pragma once
 
 #include "io/OutputDirectory.h"
-#include "passes/ShadowRenderer.h"
+#include "frame/FrameResult.h"
 
 #include <filesystem>
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// The technique registry's vocabulary (STYLE.md, "Adding a technique touches one place").
+// The vocabulary of the technique registry (techniques/Registry.h; STYLE.md, "Adding a technique touches one place").
 //
 // A technique is described by data: its parameters (bgfx-style table: default, range, unit, doc), the
 // light-space structures it needs (the pipeline builds only those), the instrumentation buffers it
@@ -6,6 +6,9 @@
 // and the regression suite iterate the registry; nothing else switches on technique names.
 #pragma once
 
+#include "core/NamedImage.h"
+#include "core/Parameters.h"
+#include "lightspace/LightStructure.h"
 #include "scene/Scene.h"
 
 #include <vtkSmartPointer.h>
@@ -19,37 +22,6 @@ class vtkSLTechniquePass;
 
 namespace sl
 {
-
-struct ParameterSpec
-{
-  std::string name;
-  double defaultValue = 0.0;
-  double minValue = 0.0;
-  double maxValue = 0.0;
-  std::string unit;                 // "texels", "", ...
-  std::string doc;                  // one line, cites the paper where it comes from
-  std::vector<std::string> choices; // non-empty: an enumeration, the value is the index of the choice
-  bool integer = false;             // integer-valued numeric parameter
-};
-
-// Light-space structures a technique can ask for. Each is built by its own pass, only when needed, and
-// exported in light_space.vti.
-enum class LightStructure
-{
-  ShadowMap, // linear depth (R32F) + hardware depth (D32F) from the light's centre, focused (survey §4.1)
-  MomentMap, // (z, z^2, exp(c z_n)) of the shadow map, prefiltered by a box blur or mip-mapped (survey §6)
-  SummedAreaTable, // of the shadow map's (z, z^2): float (centred) or 32-bit integer (survey §6.4)
-  HierarchicalShadowMap, // min-max depth pyramid, mip-map or N-buffers (VSSM §6.1)
-  DualMultiScaleShadowMap, // the MSSM on the dual grid of 2 x 2 sample blocks (Yang et al. 2009 §4.2)
-};
-std::string lightStructureName(LightStructure structure);
-
-enum class BufferKind
-{
-  Continuous, // heat map with a sequential colour map
-  Signed,     // diverging colour map about 0
-  Categorical // integer classes with labels
-};
 
 // How a buffer of a technique with sub-lights (parameter `sublights`, Yang et al. 2009 §5) combines the
 // S x S sub-light frames: visibility and continuous values are averaged, work counters summed, categorical
@@ -95,35 +67,12 @@ struct TechniqueDescriptor
   bool hasSubLights() const { return findParameter("sublights") != nullptr; }
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;
+  // Every parameter at its default.
+  ParameterValues defaultParameters() const { return ParameterValues(name, parameters); }
   bool needs(LightStructure structure) const;
   // The light's type is supported, and for an area light its shape.
   bool supports(const Light& light) const;
 };
 
-// Parameter values resolved against a descriptor: every parameter has a value, all within range.
-class ParameterValues
-{
-public:
-  ParameterValues() = default;
-  explicit ParameterValues(const TechniqueDescriptor& descriptor);
-
-  double get(const std::string& name) const;        // SL_CHECKs the name exists
-  int getInt(const std::string& name) const;
-  const std::string& choice(const std::string& name) const; // enumeration's chosen name
-  // Parses "key=value" (a number, or a choice name for enumerations, or true/false for 0..1 integers).
-  // Throws InputError naming the technique, key and value when unknown or out of range.
-  void set(const std::string& assignment);
-  void set(const std::string& key, double value);
-  const std::map<std::string, double>& values() const { return values_; }
-  const TechniqueDescriptor& descriptor() const { return *descriptor_; }
-
-private:
-  const TechniqueDescriptor* descriptor_ = nullptr;
-  std::map<std::string, double> values_;
-};
-
-const std::vector<TechniqueDescriptor>& techniqueRegistry();
-// Throws InputError listing the available techniques when `name` is unknown.
-const TechniqueDescriptor& findTechnique(const std::string& name);
 
 } // namespace sl

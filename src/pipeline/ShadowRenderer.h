@@ -5,11 +5,8 @@
 // Only the light-space structures the technique's descriptor lists are built.
 #pragma once
 
-#include "core/Image.h"
-#include "lightspace/CameraView.h"
-#include "lightspace/LightView.h"
+#include "frame/FrameResult.h"
 #include "scene/Scene.h"
-#include "techniques/Technique.h"
 
 #include <vtkSmartPointer.h>
 
@@ -36,53 +33,6 @@ struct RenderRequest
   // visibility, no image). The ray-traced reference shades exactly these surface points.
   bool gbufferOnly = false;
 };
-
-struct StageTiming
-{
-  std::string stage;
-  double gpuMs = 0.0;
-  double wallMs = 0.0;
-};
-
-struct NamedImage
-{
-  std::string name;
-  ImageF image;
-  std::string unit;
-  std::string doc;
-  BufferKind kind = BufferKind::Continuous;
-  std::vector<std::string> categoryLabels;
-};
-
-// The image called `name` in `images`, or nullptr.
-const NamedImage* findNamed(const std::vector<NamedImage>& images, const std::string& name);
-
-struct FrameResult
-{
-  std::string technique;
-  ParameterValues parameters;
-  glm::ivec2 resolution{ 0 };
-  CameraView camera;
-  std::optional<LightView> lightView;
-  std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
-  std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
-  ImageU8 image;                      // shaded, RGB, row 0 at the bottom
-  // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
-  std::optional<Image<std::uint32_t>> integerSummedAreaTable;
-  std::vector<StageTiming> stages;
-  std::map<std::string, double> techniqueStatistics; // vtkSLTechniquePass::CollectStatistics
-  double frameWallMs = 0.0;
-  std::string glRenderer;
-  std::string glVersion;
-  std::string eglPlatform;
-
-  const NamedImage* find(const std::string& name) const;
-};
-
-// The buffers every technique's buffers.vti has, with their documentation (README lists them).
-const std::vector<BufferSpec>& commonBufferSpecs();
-// The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
-const std::vector<BufferSpec>& subLightBufferSpecs();
 
 class ShadowRenderer
 {

@@ -1,0 +1,54 @@
+// Named, typed parameters with defaults and ranges (bgfx-style table: default, range, unit, doc), and their values.
+// A technique declares its parameters (frame/TechniqueDescriptor.h), and so does each light-space structure
+// (lightspace/LightSpaceStructure.h); ParameterValues resolves `--set key=value` against such a table.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+
+struct ParameterSpec
+{
+  std::string name;
+  double defaultValue = 0.0;
+  double minValue = 0.0;
+  double maxValue = 0.0;
+  std::string unit;                 // "texels", "", ...
+  std::string doc;                  // one line, cites the paper where it comes from
+  std::vector<std::string> choices; // non-empty: an enumeration, the value is the index of the choice
+  bool integer = false;             // integer-valued numeric parameter
+};
+
+// The spec called `name` in `specs`, or nullptr.
+const ParameterSpec* findParameterSpec(const std::vector<ParameterSpec>& specs, const std::string& name);
+
+// Parameter values resolved against a table of specs: every parameter has a value, all within range.
+// `owner` names the table's owner (a technique) in messages; the specs must outlive the values (the registry's).
+class ParameterValues
+{
+public:
+  ParameterValues() = default;
+  ParameterValues(std::string owner, const std::vector<ParameterSpec>& specs);
+
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  double get(const std::string& name) const;        // SL_CHECKs the name exists
+  int getInt(const std::string& name) const;
+  const std::string& choice(const std::string& name) const; // enumeration's chosen name
+  // Parses "key=value" (a number, or a choice name for enumerations, or true/false for 0..1 integers).
+  // Throws InputError naming the technique, key and value when unknown or out of range.
+  void set(const std::string& assignment);
+  void set(const std::string& key, double value);
+  const std::map<std::string, double>& values() const { return values_; }
+  const std::vector<ParameterSpec>& specs() const;
+  const std::string& owner() const { return owner_; }
+
+private:
+  std::string owner_;
+  const std::vector<ParameterSpec>* specs_ = nullptr;
+  std::map<std::string, double> values_;
+};
+
+} // namespace sl

@@ -1,0 +1,61 @@
+// What one frame produced, read back to the CPU: every buffer, the light-space exports, the shaded image, the
+// timings and the technique's statistics. The pipeline (pipeline/ShadowRenderer.h) makes it; outputs
+// (output/OutputWriter.h), metrics and the bench consume it without knowing the passes.
+#pragma once
+
+#include "core/Image.h"
+#include "core/NamedImage.h"
+#include "frame/TechniqueDescriptor.h"
+#include "lightspace/CameraView.h"
+#include "lightspace/LightView.h"
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+
+struct StageTiming
+{
+  std::string stage;
+  double gpuMs = 0.0;
+  double wallMs = 0.0;
+};
+
+struct FrameResult
+{
+  std::string technique;
+  const TechniqueDescriptor* descriptor = nullptr; // the registry's entry for `technique`
+  ParameterValues parameters;
+  glm::ivec2 resolution{ 0 };
+  CameraView camera;
+  std::optional<LightView> lightView;
+  std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
+  std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
+  ImageU8 image;                      // shaded, RGB, row 0 at the bottom
+  // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
+  std::optional<Image<std::uint32_t>> integerSummedAreaTable;
+  std::vector<StageTiming> stages;
+  std::map<std::string, double> techniqueStatistics; // vtkSLTechniquePass::CollectStatistics
+  double frameWallMs = 0.0;
+  std::string glRenderer;
+  std::string glVersion;
+  std::string eglPlatform;
+
+  const NamedImage* find(const std::string& name) const;
+};
+
+// The buffers every technique's buffers.vti has, with their documentation (README lists them).
+const std::vector<BufferSpec>& commonBufferSpecs();
+// The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
+const std::vector<BufferSpec>& subLightBufferSpecs();
+
+// The buffers every technique's buffers.vti has, with their documentation (README lists them).
+const std::vector<BufferSpec>& commonBufferSpecs();
+// The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
+const std::vector<BufferSpec>& subLightBufferSpecs();
+
+} // namespace sl

@@ -1,0 +1,26 @@
+#include "frame/TechniqueDescriptor.h"
+
+#include <algorithm>
+
+namespace sl
+{
+
+const ParameterSpec* TechniqueDescriptor::findParameter(const std::string& parameterName) const
+{
+  return findParameterSpec(parameters, parameterName);
+}
+
+bool TechniqueDescriptor::supports(const Light& light) const
+{
+  const bool type = std::find(supportedLights.begin(), supportedLights.end(), light.type) != supportedLights.end();
+  const bool shape = light.type != LightType::Area ||
+    std::find(supportedAreaShapes.begin(), supportedAreaShapes.end(), light.shape) != supportedAreaShapes.end();
+  return type && shape;
+}
+
+bool TechniqueDescriptor::needs(LightStructure structure) const
+{
+  return std::find(lightStructures.begin(), lightStructures.end(), structure) != lightStructures.end();
+}
+
+} // namespace sl
