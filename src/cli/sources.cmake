@@ -2,6 +2,8 @@
 set(SL_CLI_SOURCES
   src/cli/main.cpp
   src/cli/Commands.cpp
+  src/cli/RenderCommand.cpp
+  src/cli/ListCommand.cpp
   src/cli/ReferenceCommand.cpp
   src/cli/CompareCommand.cpp
   src/cli/BenchCommand.cpp

@@ -1,0 +1,53 @@
+// shadowlab render: one scene, one technique, one frame; the image, the visibility and the technique's
+// internal buffers are written to --out (src/io/OutputWriter.h).
+#include "cli/Commands.h"
+
+#include "core/Error.h"
+#include "output/OutputWriter.h"
+#include "pipeline/ShadowRenderer.h"
+#include "scene/Scene.h"
+#include "techniques/Registry.h"
+
+#include <iomanip>
+
+namespace sl
+{
+
+int runRender(const RenderOptions& options, std::ostream& log)
+{
+  // Validate everything the user typed before touching the GPU or the disk.
+  RenderRequest request;
+  request.technique = options.technique;
+  request.settings = options.settings;
+  request.lightIndex = options.lightIndex;
+  if (!options.resolution.empty())
+  {
+    request.resolution = parseResolution(options.resolution);
+  }
+  checkSettings(findTechnique(request.technique), request.settings);
+  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
+  const OutputTarget output{ options.outDir, "render", options.force, sceneInputs(scene, options.sceneFile) };
+  checkOutputTarget(output);
+  const std::size_t dropped = reportDroppedTriangles(scene, options.sceneFile, log);
+  ShadowRenderer renderer;
+  const FrameResult frame = renderer.render(scene, request);
+  OutputContext context;
+  context.sceneFile = options.sceneFile;
+  context.lightIndex = options.lightIndex;
+  context.droppedDegenerateTriangles = dropped;
+  writeFrameOutputs(frame, context, output);
+  if (!options.quiet)
+  {
+    double gpuMs = 0.0;
+    for (const StageTiming& stage : frame.stages)
+    {
+      gpuMs += stage.gpuMs;
+    }
+    log << "shadowlab: rendered " << printable(options.sceneFile) << " with " << frame.technique << " at " << frame.resolution.x
+        << "x" << frame.resolution.y << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)
+        << gpuMs << " ms, frame " << frame.frameWallMs << " ms -> " << printable(options.outDir) << "\n";
+  }
+  return 0;
+}
+
+} // namespace sl
