@@ -5,7 +5,8 @@
 // ray-traced reference of each scene is computed once (`shadowlab reference`, also a child process) and
 // cached under --cache, keyed by a hash of the loaded scene (geometry, lights, camera), the resolution and
 // the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md, one
-// speed_vs_error_<scene>.png per scene, runs/<n>.json (each child's result), logs/ (each child's stderr).
+// speed_vs_error_<scene>.png per scene, runs/<n>.json (each child's result), logs/ (a child's stdout and
+// stderr, kept only when it printed something).
 // Exit status: 0 when every configuration ran, 4 when some failed (their rows say why).
 #include "cli/Commands.h"
 
@@ -136,7 +137,27 @@ struct ChildResult
   std::string lastLine; // of its stderr
 };
 
-// Runs this executable with `arguments`, stdout and stderr into `logFile`.
+// Most children print nothing: their logs are kept only when they say something, and logs/ only when it
+// holds a log. Best effort: an empty file or directory left behind is harmless.
+void removeIfEmptyFile(const std::filesystem::path& file)
+{
+  std::error_code error;
+  if (std::filesystem::file_size(file, error) == 0 && !error)
+  {
+    std::filesystem::remove(file, error);
+  }
+}
+
+void removeIfEmptyDirectory(const std::filesystem::path& dir)
+{
+  std::error_code error;
+  if (std::filesystem::is_empty(dir, error) && !error)
+  {
+    std::filesystem::remove(dir, error);
+  }
+}
+
+// Runs this executable with `arguments`, stdout and stderr into `logFile` (removed again when empty).
 ChildResult runChild(const std::vector<std::string>& arguments, const std::filesystem::path& logFile)
 {
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
@@ -158,6 +179,7 @@ ChildResult runChild(const std::vector<std::string>& arguments, const std::files
   ChildResult result;
   if (spawned != 0)
   {
+    removeIfEmptyFile(logFile);
     result.lastLine = "cannot start a child process";
     return result;
   }
@@ -166,14 +188,17 @@ ChildResult runChild(const std::vector<std::string>& arguments, const std::files
   waitpid(pid, &status, 0);
   setForegroundChild(0);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  std::ifstream log(logFile);
-  for (std::string line; std::getline(log, line);)
   {
-    if (!line.empty())
+    std::ifstream log(logFile);
+    for (std::string line; std::getline(log, line);)
     {
-      result.lastLine = line;
+      if (!line.empty())
+      {
+        result.lastLine = line;
+      }
     }
   }
+  removeIfEmptyFile(logFile);
   if (WIFSIGNALED(status))
   {
     result.lastLine = format("crashed with signal ", WTERMSIG(status), result.lastLine.empty() ? "" : ": ", result.lastLine);
@@ -241,11 +266,33 @@ std::string cachedReferenceProblem(const std::filesystem::path& dir, const glm::
   return {};
 }
 
-} // namespace
-
-int runBench(const BenchOptions& options, std::ostream& log)
+// Every scene file under every combination of the --scene-sweep values, with the fixed --scene-set values.
+struct SceneVariant
 {
-  // Everything the user typed is checked before any child runs.
+  std::string file;
+  std::vector<std::string> overrides;
+  std::vector<std::string> swept; // the sweep's part, for names
+  Scene scene;
+  std::string name;
+};
+
+// A technique parameter swept over values (--sweep key=v1,v2,...).
+struct SettingSweep
+{
+  std::string key;
+  std::vector<std::string> values;
+};
+
+// Per-stage GPU times in bench.csv, in pipeline order; a technique without the stage leaves its cell empty.
+const std::vector<std::string>& stageColumns()
+{
+  static const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "moment_map", "summed_area_table",
+    "hierarchical_shadow_map", "technique", "sublight_accumulate", "shading" };
+  return stages;
+}
+
+void checkScenesRepeatAndSamples(const BenchOptions& options)
+{
   if (options.sceneFiles.empty())
   {
     throw InputError("bench: no scene given");
@@ -258,18 +305,14 @@ int runBench(const BenchOptions& options, std::ostream& log)
   {
     throw InputError("--samples " + std::to_string(options.referenceSamples) + ": must be >= 1");
   }
-  const glm::ivec2 resolution = parseResolution(options.resolution);
-  // Scene variants: every file under every combination of the scene sweeps (plus the fixed overrides).
-  struct SceneVariant
-  {
-    std::string file;
-    std::vector<std::string> overrides;
-    std::vector<std::string> swept; // the sweep's part, for names
-    Scene scene;
-    std::string name;
-  };
-  std::vector<std::vector<std::string>> sceneCombinations{ {} };
-  for (const std::string& sweep : options.sceneSweeps)
+}
+
+// Every combination of the --scene-sweep values, each a list of "/json/pointer=value" overrides; one empty
+// combination when nothing is swept.
+std::vector<std::vector<std::string>> sceneSweepCombinations(const std::vector<std::string>& sceneSweeps)
+{
+  std::vector<std::vector<std::string>> combinations{ {} };
+  for (const std::string& sweep : sceneSweeps)
   {
     const std::size_t equals = sweep.find('=');
     if (sweep.empty() || sweep[0] != '/' || equals == std::string::npos || equals + 1 == sweep.size())
@@ -277,7 +320,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
       throw InputError("--scene-sweep '" + sweep + "': expected /json/pointer=v1,v2,...");
     }
     std::vector<std::vector<std::string>> extended;
-    for (const auto& combination : sceneCombinations)
+    for (const auto& combination : combinations)
     {
       for (const std::string& value : splitList(sweep.substr(equals + 1), ','))
       {
@@ -286,12 +329,19 @@ int runBench(const BenchOptions& options, std::ostream& log)
         extended.push_back(next);
       }
     }
-    sceneCombinations = extended;
+    combinations = extended;
   }
+  return combinations;
+}
+
+// Loads every scene variant, so a bad scene or override is refused before any child runs.
+std::vector<SceneVariant> loadSceneVariants(const BenchOptions& options)
+{
+  const std::vector<std::vector<std::string>> combinations = sceneSweepCombinations(options.sceneSweeps);
   std::vector<SceneVariant> variants;
   for (const std::string& file : options.sceneFiles)
   {
-    for (const auto& combination : sceneCombinations)
+    for (const auto& combination : combinations)
     {
       SceneVariant variant;
       variant.file = file;
@@ -304,18 +354,23 @@ int runBench(const BenchOptions& options, std::ostream& log)
       variants.push_back(std::move(variant));
     }
   }
-  const std::vector<std::string> techniqueNames = splitList(options.techniques, ',');
-  if (techniqueNames.empty())
+  return variants;
+}
+
+std::vector<std::string> selectedTechniqueNames(const std::string& techniques)
+{
+  const std::vector<std::string> names = splitList(techniques, ',');
+  if (names.empty())
   {
-    throw InputError("--techniques '" + options.techniques + "': no technique named");
+    throw InputError("--techniques '" + techniques + "': no technique named");
   }
-  struct Sweep
-  {
-    std::string key;
-    std::vector<std::string> values;
-  };
-  std::vector<Sweep> sweeps;
-  for (const std::string& sweep : options.sweeps)
+  return names;
+}
+
+std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& sweepTexts)
+{
+  std::vector<SettingSweep> sweeps;
+  for (const std::string& sweep : sweepTexts)
   {
     const std::size_t equals = sweep.find('=');
     if (equals == std::string::npos || equals == 0 || equals + 1 == sweep.size())
@@ -324,8 +379,14 @@ int runBench(const BenchOptions& options, std::ostream& log)
     }
     sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), ',') });
   }
-  // Each key must belong to at least one selected technique and be given once: a misspelt key would
-  // otherwise be dropped silently and the bench would run the defaults.
+  return sweeps;
+}
+
+// Each key must belong to at least one selected technique and be given once: a misspelt key would
+// otherwise be dropped silently and the bench would run the defaults.
+void checkSettingKeys(const std::vector<std::string>& settings, const std::vector<SettingSweep>& sweeps,
+  const std::vector<std::string>& techniqueNames)
+{
   std::set<std::string> givenKeys;
   const auto checkKey = [&](const std::string& option, const std::string& text, const std::string& key) {
     const bool known = std::any_of(techniqueNames.begin(), techniqueNames.end(),
@@ -340,11 +401,11 @@ int runBench(const BenchOptions& options, std::ostream& log)
       throw InputError(format(option, " ", text, ": ", key, " is given more than once (--set and --sweep)"));
     }
   };
-  for (const std::string& setting : options.settings)
+  for (const std::string& setting : settings)
   {
     checkKey("--set", setting, setting.substr(0, setting.find('=')));
   }
-  for (const Sweep& sweep : sweeps)
+  for (const SettingSweep& sweep : sweeps)
   {
     if (sweep.values.empty())
     {
@@ -352,296 +413,442 @@ int runBench(const BenchOptions& options, std::ostream& log)
     }
     checkKey("--sweep", sweep.key, sweep.key);
   }
+}
 
+// The settings `technique` runs with: the --set values it declares, under every combination of the --sweep
+// values it declares; each combination checked against the technique's ranges.
+std::vector<std::vector<std::string>> settingCombinations(const TechniqueDescriptor& technique,
+  const std::vector<std::string>& settings, const std::vector<SettingSweep>& sweeps)
+{
+  std::vector<std::string> base;
+  for (const std::string& setting : settings)
+  {
+    const std::string key = setting.substr(0, setting.find('='));
+    if (technique.findParameter(key))
+    {
+      base.push_back(setting);
+    }
+  }
+  std::vector<std::vector<std::string>> combinations{ base };
+  for (const SettingSweep& sweep : sweeps)
+  {
+    if (!technique.findParameter(sweep.key))
+    {
+      continue;
+    }
+    std::vector<std::vector<std::string>> extended;
+    for (const auto& combination : combinations)
+    {
+      for (const std::string& value : sweep.values)
+      {
+        auto next = combination;
+        next.push_back(sweep.key + "=" + value);
+        extended.push_back(next);
+      }
+    }
+    combinations = extended;
+  }
+  for (const auto& combination : combinations)
+  {
+    ParameterValues check = technique.defaultParameters();
+    for (const std::string& setting : combination)
+    {
+      check.set(setting);
+    }
+  }
+  return combinations;
+}
+
+// Scene variants x techniques x setting combinations, in the order the rows are written.
+std::vector<Configuration> expandConfigurations(std::size_t variantCount, const std::vector<std::string>& techniqueNames,
+  const std::vector<std::string>& settings, const std::vector<SettingSweep>& sweeps)
+{
   std::vector<Configuration> configurations;
-  for (std::size_t sceneIndex = 0; sceneIndex < variants.size(); ++sceneIndex)
+  for (std::size_t sceneIndex = 0; sceneIndex < variantCount; ++sceneIndex)
   {
     for (const std::string& name : techniqueNames)
     {
-      const TechniqueDescriptor& technique = findTechnique(name);
-      // Fixed settings and sweeps apply to the techniques that declare the key.
-      std::vector<std::string> base;
-      for (const std::string& setting : options.settings)
+      for (const auto& combination : settingCombinations(findTechnique(name), settings, sweeps))
       {
-        const std::string key = setting.substr(0, setting.find('='));
-        if (technique.findParameter(key))
-        {
-          base.push_back(setting);
-        }
-      }
-      std::vector<std::vector<std::string>> combinations{ base };
-      for (const Sweep& sweep : sweeps)
-      {
-        if (!technique.findParameter(sweep.key))
-        {
-          continue;
-        }
-        std::vector<std::vector<std::string>> extended;
-        for (const auto& combination : combinations)
-        {
-          for (const std::string& value : sweep.values)
-          {
-            auto next = combination;
-            next.push_back(sweep.key + "=" + value);
-            extended.push_back(next);
-          }
-        }
-        combinations = extended;
-      }
-      for (const auto& settings : combinations)
-      {
-        ParameterValues check(technique);
-        for (const std::string& setting : settings)
-        {
-          check.set(setting);
-        }
-        configurations.push_back({ sceneIndex, name, settings });
+        configurations.push_back({ sceneIndex, name, combination });
       }
     }
   }
+  return configurations;
+}
 
-  // The scenes' files and the reference cache are inputs: --out may neither hold nor replace them.
+// The scenes' files and the reference cache are inputs: --out may neither hold nor replace them.
+std::vector<std::filesystem::path> benchInputs(const BenchOptions& options, const std::vector<SceneVariant>& variants)
+{
   std::vector<std::filesystem::path> inputs{ options.cacheDir };
   for (const SceneVariant& variant : variants)
   {
     const std::vector<std::filesystem::path> sceneFiles = sceneInputs(variant.scene, variant.file);
     inputs.insert(inputs.end(), sceneFiles.begin(), sceneFiles.end());
   }
-  const OutputTarget output{ options.outDir, "bench", options.force, inputs };
-  checkOutputTarget(output);
+  return inputs;
+}
+
+void createCacheDirectory(const std::string& cacheDir)
+{
   std::error_code cacheError;
-  std::filesystem::create_directories(options.cacheDir, cacheError);
-  if (cacheError || !std::filesystem::is_directory(options.cacheDir))
+  std::filesystem::create_directories(cacheDir, cacheError);
+  if (cacheError || !std::filesystem::is_directory(cacheDir))
   {
-    throw InputError(format("--cache ", options.cacheDir, ": cannot create the directory (",
+    throw InputError(format("--cache ", cacheDir, ": cannot create the directory (",
       cacheError ? cacheError.message() : "not a directory", ")"));
   }
+}
+
+// buffers.vti of `variant`'s ray-traced reference: the cached one when it is usable, else computed into the
+// cache by a `shadowlab reference` child. Empty (with a warning) when none could be made; the variant's
+// configurations then run without error metrics.
+std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& resolution, const SceneVariant& variant,
+  const std::filesystem::path& logFile, std::ostream& log)
+{
+  const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
+    referenceKey(variant.scene, options.resolution, options.referenceSamples);
+  // A cache entry is re-validated on every use; a bad one (cut short, altered) is computed again.
+  if (const std::string problem = cachedReferenceProblem(cached, resolution); !problem.empty())
+  {
+    if (!options.quiet)
+    {
+      log << "bench: ray-traced reference of " << variant.name << " (" << options.referenceSamples
+          << " samples) -> " << cached.string()
+          << (problem == "missing" ? std::string() : " (the cached one is unusable: " + problem + ")") << "\n";
+    }
+    // --force: the entry (named by its hash) belongs to the cache; a bad one is replaced, marker or not.
+    std::vector<std::string> arguments{ "reference", variant.file, "--samples",
+      std::to_string(options.referenceSamples), "--resolution", options.resolution, "--out", cached.string(),
+      "--quiet", "--force" };
+    for (const std::string& override : variant.overrides)
+    {
+      arguments.insert(arguments.end(), { "--scene-set", override });
+    }
+    const ChildResult child = runChild(arguments, logFile);
+    const std::string stillWrong = child.exitCode == 0 ? cachedReferenceProblem(cached, resolution) : "";
+    if (child.exitCode != 0 || !stillWrong.empty())
+    {
+      log << "bench: warning: no reference for " << variant.name << ": "
+          << (child.exitCode != 0 ? child.lastLine : stillWrong) << "\n";
+      return {};
+    }
+  }
+  return (cached / "buffers.vti").string();
+}
+
+// One reference per scene variant, before any configuration runs.
+std::vector<std::string> prepareReferences(const BenchOptions& options, const glm::ivec2& resolution,
+  const std::vector<SceneVariant>& variants, const std::filesystem::path& logsDir, std::ostream& log)
+{
+  std::vector<std::string> referenceFiles(variants.size());
+  for (std::size_t s = 0; s < variants.size(); ++s)
+  {
+    referenceFiles[s] = referenceFileFor(options, resolution, variants[s], logsDir / format("reference-", s, ".txt"), log);
+  }
+  return referenceFiles;
+}
+
+std::vector<std::string> benchRunArguments(const BenchOptions& options, const SceneVariant& variant,
+  const Configuration& configuration, const std::string& referenceFile, const std::filesystem::path& resultFile)
+{
+  std::vector<std::string> arguments{ "bench-run", variant.file, "--technique", configuration.technique,
+    "--resolution", options.resolution, "--repeat", std::to_string(options.repeat), "--result", resultFile.string() };
+  if (!referenceFile.empty())
+  {
+    arguments.insert(arguments.end(), { "--reference", referenceFile });
+  }
+  for (const std::string& setting : configuration.settings)
+  {
+    arguments.insert(arguments.end(), { "--set", setting });
+  }
+  for (const std::string& override : variant.overrides)
+  {
+    arguments.insert(arguments.end(), { "--scene-set", override });
+  }
+  return arguments;
+}
+
+// Runs every configuration in its own `shadowlab bench-run` child; one row of bench.json each, "ok" with the
+// child's result or "failed" with its last line.
+nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<SceneVariant>& variants,
+  const std::vector<Configuration>& configurations, const std::vector<std::string>& referenceFiles,
+  const std::filesystem::path& dir, std::ostream& log)
+{
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t c = 0; c < configurations.size(); ++c)
+  {
+    const Configuration& configuration = configurations[c];
+    const std::filesystem::path resultFile = dir / "runs" / format(c, ".json");
+    const SceneVariant& variant = variants[configuration.sceneIndex];
+    const ChildResult child =
+      runChild(benchRunArguments(options, variant, configuration, referenceFiles[configuration.sceneIndex], resultFile),
+        dir / "logs" / format("run-", c, ".txt"));
+    nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
+      { "scene_name", variant.name },
+      { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
+    if (child.exitCode == 0 && std::filesystem::is_regular_file(resultFile))
+    {
+      std::ifstream file(resultFile);
+      row["status"] = "ok";
+      row["result"] = nlohmann::json::parse(file);
+    }
+    else
+    {
+      row["status"] = "failed";
+      row["error"] = child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine;
+    }
+    if (!options.quiet)
+    {
+      log << "bench: [" << (c + 1) << "/" << configurations.size() << "] " << configuration.technique << " "
+          << joined(configuration.settings, " ") << " on " << variant.name << ": "
+          << (row["status"] == "ok" ? "ok" : "FAILED: " + row["error"].get<std::string>()) << "\n";
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+int countFailed(const nlohmann::json& rows)
+{
+  return static_cast<int>(
+    std::count_if(rows.begin(), rows.end(), [](const nlohmann::json& row) { return row["status"] != "ok"; }));
+}
+
+// Whole-frame statistics some techniques report (vtkSLTechniquePass::CollectStatistics), one column each.
+std::set<std::string> statisticNamesOf(const nlohmann::json& rows)
+{
+  std::set<std::string> statisticNames;
+  for (const nlohmann::json& row : rows)
+  {
+    if (row["status"] == "ok" && row["result"].contains("technique_statistics"))
+    {
+      for (const auto& [name, value] : row["result"]["technique_statistics"].items())
+      {
+        statisticNames.insert(name);
+      }
+    }
+  }
+  return statisticNames;
+}
+
+std::string numberText(const nlohmann::json& value)
+{
+  std::ostringstream text;
+  text << std::setprecision(6) << value.get<double>();
+  return text.str();
+}
+
+// "name value, ..." of the statistics a result reports, for summary.md.
+std::string statisticsText(const nlohmann::json& result, const std::set<std::string>& statisticNames)
+{
+  std::string statistics;
+  for (const std::string& name : statisticNames)
+  {
+    const bool has = result.contains("technique_statistics") && result["technique_statistics"].contains(name);
+    statistics += has ? (statistics.empty() ? "" : ", ") + name + " " + numberText(result["technique_statistics"][name]) : "";
+  }
+  return statistics;
+}
+
+std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& statisticNames)
+{
+  const std::vector<std::string>& stages = stageColumns();
+  std::ostringstream csv;
+  csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
+  for (const std::string& stage : stages)
+  {
+    csv << "," << stage << "_gpu_ms";
+  }
+  for (const std::string& name : statisticNames)
+  {
+    csv << "," << name;
+  }
+  csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
+  for (const nlohmann::json& row : rows)
+  {
+    csv << csvField(row["scene"]) << "," << csvField(row["scene_overrides"]) << "," << row["technique"].get<std::string>() << "," << csvField(row["settings"])
+        << "," << row["status"].get<std::string>();
+    if (row["status"] != "ok")
+    {
+      // Empty frame times, stages, statistics and the six error columns, then the error.
+      csv << std::string(2 + stages.size() + statisticNames.size() + 6, ',') << "," << csvField(row["error"]) << "\n";
+      continue;
+    }
+    const nlohmann::json& result = row["result"];
+    csv << "," << numberText(result["frame_gpu_ms"]) << "," << numberText(result["frame_wall_ms"]);
+    for (const std::string& stage : stages)
+    {
+      csv << "," << (result["stages"].contains(stage) ? numberText(result["stages"][stage]["gpu_ms"]) : "");
+    }
+    for (const std::string& name : statisticNames)
+    {
+      const bool has = result.contains("technique_statistics") && result["technique_statistics"].contains(name);
+      csv << "," << (has ? numberText(result["technique_statistics"][name]) : "");
+    }
+    if (result.contains("error"))
+    {
+      const nlohmann::json& covered = result["error"]["covered"];
+      const nlohmann::json& penumbra = result["error"]["penumbra"];
+      csv << "," << numberText(covered["rmse"]) << "," << numberText(covered["mae"]) << ","
+          << numberText(covered["max_abs_error"]) << "," << numberText(covered["fraction_above_0.05"]) << ","
+          << numberText(penumbra["rmse"]) << "," << penumbra["pixels"].get<std::size_t>() << ",\n";
+    }
+    else
+    {
+      csv << ",,,,,,,no reference\n";
+    }
+  }
+  return csv.str();
+}
+
+std::string summaryMarkdown(const nlohmann::json& rows, const std::set<std::string>& statisticNames)
+{
+  std::ostringstream markdown;
+  markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error | statistics |\n"
+           << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+  for (const nlohmann::json& row : rows)
+  {
+    if (row["status"] != "ok")
+    {
+      markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
+               << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
+               << " | | | | | | |\n";
+      continue;
+    }
+    const nlohmann::json& result = row["result"];
+    const bool hasError = result.contains("error");
+    markdown << std::fixed << std::setprecision(2) << "| " << row["scene_name"].get<std::string>() << " | "
+             << row["technique"].get<std::string>() << " | " << row["settings"].get<std::string>() << " | "
+             << result["frame_gpu_ms"].get<double>() << " | "
+             << (result["stages"].contains("technique") ? result["stages"]["technique"]["gpu_ms"].get<double>() : 0.0)
+             << " | " << result["frame_wall_ms"].get<double>() << " | "
+             << std::setprecision(4)
+             << (hasError ? numberText(result["error"]["covered"]["rmse"]) : std::string("-")) << " | "
+             << (hasError ? numberText(result["error"]["penumbra"]["rmse"]) : std::string("-")) << " | "
+             << (hasError ? numberText(result["error"]["covered"]["max_abs_error"]) : std::string("-")) << " | "
+             << statisticsText(result, statisticNames) << " |\n";
+  }
+  return markdown.str();
+}
+
+// speed_vs_error_<scene>.png: one per scene variant with error metrics; one series per technique, a sweep's
+// configurations being points of the same series.
+void writeSpeedErrorCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const std::string& resolution, const std::filesystem::path& dir)
+{
+  std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const nlohmann::json& row = rows[c];
+    if (row["status"] == "ok" && row["result"].contains("error"))
+    {
+      const nlohmann::json& result = row["result"];
+      chartPoints[configurations[c].sceneIndex].push_back({ row["technique"].get<std::string>(),
+        result["frame_gpu_ms"].get<double>(), result["error"]["covered"]["rmse"].get<double>() });
+    }
+  }
+  for (const auto& [sceneIndex, points] : chartPoints)
+  {
+    const SceneVariant& variant = variants[sceneIndex];
+    std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
+    stem = stem.empty() ? std::to_string(sceneIndex) : stem;
+    for (const std::string& swept : variant.swept)
+    {
+      std::string part = swept;
+      for (char& c : part)
+      {
+        c = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+      }
+      stem += "_" + part;
+    }
+    writeSpeedErrorChart(points, "speed vs error: " + variant.name + " (" + resolution + ")",
+      dir / ("speed_vs_error_" + stem + ".png"));
+  }
+}
+
+// With exactly one numeric --scene-sweep (e.g. light sizes): sweep_time_<scene>.png and sweep_rmse_<scene>.png,
+// frame GPU time and RMSE against the swept value, per scene file; one series per technique and settings.
+void writeSceneSweepCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
+{
+  if (options.sceneSweeps.size() != 1)
+  {
+    return;
+  }
+  std::map<std::string, std::vector<SweepPoint>> sweepTimes;
+  std::map<std::string, std::vector<SweepPoint>> sweepErrors;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const nlohmann::json& row = rows[c];
+    const SceneVariant& variant = variants[configurations[c].sceneIndex];
+    if (row["status"] != "ok" || !row["result"].contains("error") || variant.swept.size() != 1)
+    {
+      continue;
+    }
+    const nlohmann::json& result = row["result"];
+    const std::string& swept = variant.swept.front();
+    const std::optional<double> parameter = parseNumber(swept.substr(swept.find('=') + 1));
+    const std::string series = row["technique"].get<std::string>() +
+      (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>());
+    if (parameter)
+    {
+      sweepTimes[variant.file].push_back({ series, *parameter, result["frame_gpu_ms"].get<double>() });
+      sweepErrors[variant.file].push_back({ series, *parameter, result["error"]["covered"]["rmse"].get<double>() });
+    }
+  }
+  const std::string pointer = options.sceneSweeps.front().substr(0, options.sceneSweeps.front().find('='));
+  for (const auto& [file, points] : sweepTimes)
+  {
+    const std::string stem = std::filesystem::path(file).parent_path().filename().string();
+    const bool positive = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.parameter > 0.0; });
+    writeSweepChart(points, "frame GPU time against " + pointer + ": " + stem + " (" + options.resolution + ")",
+      { pointer, "frame GPU time (ms)", positive, true }, dir / ("sweep_time_" + stem + ".png"));
+    writeSweepChart(sweepErrors.at(file), "RMSE against " + pointer + ": " + stem + " (" + options.resolution + ")",
+      { pointer, "RMSE of visibility vs ray-traced reference", positive, false }, dir / ("sweep_rmse_" + stem + ".png"));
+  }
+}
+
+// bench.json, bench.csv, summary.md and the charts.
+void writeBenchResults(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
+{
+  writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
+              { "reference_samples", options.referenceSamples }, { "configurations", rows } },
+    dir / "bench.json");
+  const std::set<std::string> statisticNames = statisticNamesOf(rows);
+  writeFileChecked(dir / "bench.csv", benchCsv(rows, statisticNames));
+  writeFileChecked(dir / "summary.md", summaryMarkdown(rows, statisticNames));
+  writeSpeedErrorCharts(rows, configurations, variants, options.resolution, dir);
+  writeSceneSweepCharts(rows, configurations, variants, options, dir);
+}
+
+} // namespace
+
+int runBench(const BenchOptions& options, std::ostream& log)
+{
+  // Everything the user typed is checked before any child runs.
+  checkScenesRepeatAndSamples(options);
+  const glm::ivec2 resolution = parseResolution(options.resolution);
+  const std::vector<SceneVariant> variants = loadSceneVariants(options);
+  const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);
+  const std::vector<SettingSweep> sweeps = parseSettingSweeps(options.sweeps);
+  checkSettingKeys(options.settings, sweeps, techniqueNames);
+  const std::vector<Configuration> configurations =
+    expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
+  const OutputTarget output{ options.outDir, "bench", options.force, benchInputs(options, variants) };
+  checkOutputTarget(output);
+  createCacheDirectory(options.cacheDir);
 
   int failures = 0;
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::create_directories(dir / "logs");
-
-    // References first, once per scene.
-    std::vector<std::string> referenceFiles(variants.size());
-    for (std::size_t s = 0; s < variants.size(); ++s)
-    {
-      const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
-        referenceKey(variants[s].scene, options.resolution, options.referenceSamples);
-      // A cache entry is re-validated on every use; a bad one (cut short, altered) is computed again.
-      if (const std::string problem = cachedReferenceProblem(cached, resolution); !problem.empty())
-      {
-        if (!options.quiet)
-        {
-          log << "bench: ray-traced reference of " << variants[s].name << " (" << options.referenceSamples
-              << " samples) -> " << cached.string()
-              << (problem == "missing" ? std::string() : " (the cached one is unusable: " + problem + ")") << "\n";
-        }
-        // --force: the entry (named by its hash) belongs to the cache; a bad one is replaced, marker or not.
-        std::vector<std::string> arguments{ "reference", variants[s].file, "--samples",
-          std::to_string(options.referenceSamples), "--resolution", options.resolution, "--out", cached.string(),
-          "--quiet", "--force" };
-        for (const std::string& override : variants[s].overrides)
-        {
-          arguments.insert(arguments.end(), { "--scene-set", override });
-        }
-        const ChildResult child = runChild(arguments, dir / "logs" / format("reference-", s, ".txt"));
-        const std::string stillWrong = child.exitCode == 0 ? cachedReferenceProblem(cached, resolution) : "";
-        if (child.exitCode != 0 || !stillWrong.empty())
-        {
-          log << "bench: warning: no reference for " << variants[s].name << ": "
-              << (child.exitCode != 0 ? child.lastLine : stillWrong) << "\n";
-          continue;
-        }
-      }
-      referenceFiles[s] = (cached / "buffers.vti").string();
-    }
-
-    nlohmann::json rows = nlohmann::json::array();
-    for (std::size_t c = 0; c < configurations.size(); ++c)
-    {
-      const Configuration& configuration = configurations[c];
-      const std::filesystem::path resultFile = dir / "runs" / format(c, ".json");
-      const SceneVariant& variant = variants[configuration.sceneIndex];
-      std::vector<std::string> arguments{ "bench-run", variant.file, "--technique",
-        configuration.technique, "--resolution", options.resolution, "--repeat", std::to_string(options.repeat),
-        "--result", resultFile.string() };
-      if (!referenceFiles[configuration.sceneIndex].empty())
-      {
-        arguments.insert(arguments.end(), { "--reference", referenceFiles[configuration.sceneIndex] });
-      }
-      for (const std::string& setting : configuration.settings)
-      {
-        arguments.insert(arguments.end(), { "--set", setting });
-      }
-      for (const std::string& override : variant.overrides)
-      {
-        arguments.insert(arguments.end(), { "--scene-set", override });
-      }
-      const ChildResult child = runChild(arguments, dir / "logs" / format("run-", c, ".txt"));
-      nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
-        { "scene_name", variant.name },
-        { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
-      if (child.exitCode == 0 && std::filesystem::is_regular_file(resultFile))
-      {
-        std::ifstream file(resultFile);
-        row["status"] = "ok";
-        row["result"] = nlohmann::json::parse(file);
-      }
-      else
-      {
-        ++failures;
-        row["status"] = "failed";
-        row["error"] = child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine;
-      }
-      if (!options.quiet)
-      {
-        log << "bench: [" << (c + 1) << "/" << configurations.size() << "] " << configuration.technique << " "
-            << joined(configuration.settings, " ") << " on " << variant.name << ": "
-            << (row["status"] == "ok" ? "ok" : "FAILED: " + row["error"].get<std::string>()) << "\n";
-      }
-      rows.push_back(row);
-    }
-
-    // bench.json, bench.csv, summary.md, one chart per scene.
-    writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
-                { "reference_samples", options.referenceSamples }, { "configurations", rows } },
-      dir / "bench.json");
-    const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "moment_map", "summed_area_table",
-      "hierarchical_shadow_map", "technique", "sublight_accumulate", "shading" };
-    // Whole-frame statistics some techniques report (vtkSLTechniquePass::CollectStatistics), one column each.
-    std::set<std::string> statisticNames;
-    for (const nlohmann::json& row : rows)
-    {
-      if (row["status"] == "ok" && row["result"].contains("technique_statistics"))
-      {
-        for (const auto& [name, value] : row["result"]["technique_statistics"].items())
-        {
-          statisticNames.insert(name);
-        }
-      }
-    }
-    std::ostringstream csv;
-    csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
-    for (const std::string& stage : stages)
-    {
-      csv << "," << stage << "_gpu_ms";
-    }
-    for (const std::string& name : statisticNames)
-    {
-      csv << "," << name;
-    }
-    csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
-    std::ostringstream markdown;
-    markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error | statistics |\n"
-             << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
-    std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
-    // One numeric scene sweep (e.g. light sizes): time and RMSE against the swept value, per scene file.
-    std::map<std::string, std::vector<SweepPoint>> sweepTimes;
-    std::map<std::string, std::vector<SweepPoint>> sweepErrors;
-    for (std::size_t c = 0; c < rows.size(); ++c)
-    {
-      const nlohmann::json& row = rows[c];
-      csv << csvField(row["scene"]) << "," << csvField(row["scene_overrides"]) << "," << row["technique"].get<std::string>() << "," << csvField(row["settings"])
-          << "," << row["status"].get<std::string>();
-      const auto number = [](const nlohmann::json& value) {
-        std::ostringstream text;
-        text << std::setprecision(6) << value.get<double>();
-        return text.str();
-      };
-      if (row["status"] == "ok")
-      {
-        const nlohmann::json& result = row["result"];
-        csv << "," << number(result["frame_gpu_ms"]) << "," << number(result["frame_wall_ms"]);
-        for (const std::string& stage : stages)
-        {
-          csv << "," << (result["stages"].contains(stage) ? number(result["stages"][stage]["gpu_ms"]) : "");
-        }
-        std::string statistics;
-        for (const std::string& name : statisticNames)
-        {
-          const bool has = result.contains("technique_statistics") && result["technique_statistics"].contains(name);
-          csv << "," << (has ? number(result["technique_statistics"][name]) : "");
-          statistics += has ? (statistics.empty() ? "" : ", ") + name + " " + number(result["technique_statistics"][name]) : "";
-        }
-        const bool hasError = result.contains("error");
-        if (hasError)
-        {
-          const nlohmann::json& covered = result["error"]["covered"];
-          const nlohmann::json& penumbra = result["error"]["penumbra"];
-          csv << "," << number(covered["rmse"]) << "," << number(covered["mae"]) << "," << number(covered["max_abs_error"])
-              << "," << number(covered["fraction_above_0.05"]) << "," << number(penumbra["rmse"]) << ","
-              << penumbra["pixels"].get<std::size_t>() << ",\n";
-          // One series per technique: a sweep's configurations are points of the same series.
-          chartPoints[configurations[c].sceneIndex].push_back(
-            { row["technique"].get<std::string>(), result["frame_gpu_ms"].get<double>(), covered["rmse"].get<double>() });
-          const SceneVariant& variant = variants[configurations[c].sceneIndex];
-          if (options.sceneSweeps.size() == 1 && variant.swept.size() == 1)
-          {
-            const std::string& swept = variant.swept.front();
-            const std::optional<double> parameter = parseNumber(swept.substr(swept.find('=') + 1));
-            const std::string series = row["technique"].get<std::string>() +
-              (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>());
-            if (parameter)
-            {
-              sweepTimes[variant.file].push_back({ series, *parameter, result["frame_gpu_ms"].get<double>() });
-              sweepErrors[variant.file].push_back({ series, *parameter, covered["rmse"].get<double>() });
-            }
-          }
-        }
-        else
-        {
-          csv << ",,,,,,,no reference\n";
-        }
-        markdown << std::fixed << std::setprecision(2) << "| " << row["scene_name"].get<std::string>() << " | "
-                 << row["technique"].get<std::string>() << " | " << row["settings"].get<std::string>() << " | "
-                 << result["frame_gpu_ms"].get<double>() << " | "
-                 << (result["stages"].contains("technique") ? result["stages"]["technique"]["gpu_ms"].get<double>() : 0.0)
-                 << " | " << result["frame_wall_ms"].get<double>() << " | "
-                 << std::setprecision(4)
-                 << (hasError ? number(result["error"]["covered"]["rmse"]) : std::string("-")) << " | "
-                 << (hasError ? number(result["error"]["penumbra"]["rmse"]) : std::string("-")) << " | "
-                 << (hasError ? number(result["error"]["covered"]["max_abs_error"]) : std::string("-")) << " | "
-                 << statistics << " |\n";
-      }
-      else
-      {
-        // Empty frame times, stages, statistics and the six error columns, then the error.
-        csv << std::string(2 + stages.size() + statisticNames.size() + 6, ',') << "," << csvField(row["error"]) << "\n";
-        markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
-                 << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
-                 << " | | | | | | |\n";
-      }
-    }
-    writeFileChecked(dir / "bench.csv", csv.str());
-    writeFileChecked(dir / "summary.md", markdown.str());
-    for (const auto& [sceneIndex, points] : chartPoints)
-    {
-      const SceneVariant& variant = variants[sceneIndex];
-      std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
-      stem = stem.empty() ? std::to_string(sceneIndex) : stem;
-      for (const std::string& swept : variant.swept)
-      {
-        std::string part = swept;
-        for (char& c : part)
-        {
-          c = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
-        }
-        stem += "_" + part;
-      }
-      writeSpeedErrorChart(points, "speed vs error: " + variant.name + " (" + options.resolution + ")",
-        dir / ("speed_vs_error_" + stem + ".png"));
-    }
-    for (const auto& [file, points] : sweepTimes)
-    {
-      const std::string stem = std::filesystem::path(file).parent_path().filename().string();
-      const std::string pointer = options.sceneSweeps.front().substr(0, options.sceneSweeps.front().find('='));
-      const bool positive = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.parameter > 0.0; });
-      writeSweepChart(points, "frame GPU time against " + pointer + ": " + stem + " (" + options.resolution + ")",
-        { pointer, "frame GPU time (ms)", positive, true }, dir / ("sweep_time_" + stem + ".png"));
-      writeSweepChart(sweepErrors.at(file), "RMSE against " + pointer + ": " + stem + " (" + options.resolution + ")",
-        { pointer, "RMSE of visibility vs ray-traced reference", positive, false }, dir / ("sweep_rmse_" + stem + ".png"));
-    }
+    const std::vector<std::string> referenceFiles = prepareReferences(options, resolution, variants, dir / "logs", log);
+    const nlohmann::json rows = runConfigurations(options, variants, configurations, referenceFiles, dir, log);
+    failures = countFailed(rows);
+    removeIfEmptyDirectory(dir / "logs");
+    writeBenchResults(rows, configurations, variants, options, dir);
   });
   if (!options.quiet)
   {
