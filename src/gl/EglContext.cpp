@@ -161,12 +161,11 @@ EglContext::EglContext()
     eglFunction<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
   std::vector<std::string> failures;
 
-  const auto attempt = [&](const std::string& name, EGLDisplay display, const std::string& description) {
+  const auto attempt = [&](const std::string& name, EGLDisplay display) {
     const std::string why = createContext(display, *handles_);
     if (why.empty())
     {
       platformName_ = name;
-      deviceDescription_ = description;
       return true;
     }
     handles_->release();
@@ -197,7 +196,7 @@ EglContext::EglContext()
           continue;
         }
         triedOne = true;
-        attempt("device", getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), format("EGL device ", i));
+        attempt("device", getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
       }
       if (!triedOne)
       {
@@ -214,14 +213,13 @@ EglContext::EglContext()
     }
     else
     {
-      attempt("surfaceless",
-        getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr), "Mesa surfaceless");
+      attempt("surfaceless", getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
     }
   }
   // 3. Default display.
   if (platformName_.empty() && (only.empty() || only == "default"))
   {
-    attempt("default", eglGetDisplay(EGL_DEFAULT_DISPLAY), "EGL default display");
+    attempt("default", eglGetDisplay(EGL_DEFAULT_DISPLAY));
   }
   if (platformName_.empty())
   {

@@ -25,14 +25,12 @@ public:
   void makeCurrent() const;
   bool isCurrent() const;
   const std::string& platformName() const { return platformName_; } // "device", "surfaceless", "default"
-  const std::string& deviceDescription() const { return deviceDescription_; }
 
   struct Handles; // EGL display/surface/context; defined in the .cpp so EGL headers stay out of ours
 
 private:
   std::unique_ptr<Handles> handles_;
   std::string platformName_;
-  std::string deviceDescription_;
 };
 
 } // namespace sl

@@ -43,7 +43,6 @@ public:
 
   std::size_t geometryCount() const { return geometryCount_; }
   std::size_t triangleCount() const { return triangleCount_; }
-  RTCScene handle() const { return scene_; }
 
   // What the occlusion filter of a perforated geometry reads (public for the filter callback only).
   struct Perforation
