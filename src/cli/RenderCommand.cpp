@@ -1,5 +1,5 @@
 // shadowlab render: one scene, one technique, one frame; the image, the visibility and the technique's
-// internal buffers are written to --out (src/io/OutputWriter.h).
+// internal buffers are written to --out (src/output/OutputWriter.h).
 #include "cli/Commands.h"
 
 #include "core/Error.h"
