@@ -9,6 +9,9 @@
 #include "lightspace/CameraView.h"
 #include "lightspace/LightView.h"
 
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -25,6 +28,15 @@ struct StageTiming
   double wallMs = 0.0;
 };
 
+// An object-space export of a technique that draws scene geometry (silhouette edges, shadow volumes, wedges),
+// written as <name>.vtp beside light_space.vti, openable in ParaView.
+struct NamedPolyData
+{
+  std::string name; // file stem: "silhouettes" -> silhouettes.vtp
+  std::string doc;  // what the cells and their arrays are (stats.json "object_space")
+  vtkSmartPointer<vtkPolyData> data;
+};
+
 struct FrameResult
 {
   std::string technique;
@@ -35,6 +47,7 @@ struct FrameResult
   std::optional<LightView> lightView;
   std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
   std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
+  std::vector<NamedPolyData> objectSpace; // geometry an object-space technique exports (vtkSLTechniquePass)
   ImageU8 image;                      // shaded, RGB, row 0 at the bottom
   // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
   std::optional<Image<std::uint32_t>> integerSummedAreaTable;

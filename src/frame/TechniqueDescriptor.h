@@ -41,6 +41,20 @@ struct BufferSpec
   BufferKind kind = BufferKind::Continuous;
   std::vector<std::string> categoryLabels;
   SubLightCombine subLightCombine = SubLightCombine::Mean;
+  // Categorical buffers: the shaders' name of each category, upper case, one per label (code = index). The
+  // shader preamble defines `<NAME>_<IDENTIFIER> <code>` (e.g. CLASSIFICATION_PENUMBRA_OVER_BUDGET 4), which
+  // the shader writes; the CPU mirror's enum is the one declaration both are made from.
+  std::vector<std::string> categoryIdentifiers;
+};
+
+// An integer the technique's shaders and its C++ share (a loop budget, the bound of an array, the codes of a
+// decision the CPU mirror makes too): generated into the shader preamble as `#define <name> <value>`, from the
+// constexpr the C++ side uses, so no shader keeps a copy.
+struct ShaderConstant
+{
+  std::string name; // upper case, e.g. "LOOP_BUDGET"
+  int value = 0;
+  std::string doc;
 };
 
 struct TechniqueDescriptor
@@ -56,9 +70,20 @@ struct TechniqueDescriptor
   // The shadow map must hold every caster that hides any part of an area light, not only its centre
   // (soft-shadow techniques): the focus stage widens the light frustum by the light's footprint.
   bool coversLightArea = false;
+  // An object-space technique (shadow volumes, penumbra wedges) draws the scene's geometry itself: the pipeline
+  // gives its pass the casters with welded connectivity (FrameResources::weldedCasters) and the G-buffer's
+  // depth-stencil texture to test against and write stencil into; it may export vtkPolyData
+  // (vtkSLTechniquePass::CollectObjectSpaceExports, written as <name>.vtp).
+  bool drawsSceneGeometry = false;
   // Settings the registry-wide test sweeps (regression baselines, the NaN/inf sweep) add, to keep a brute-force
   // technique's cost on llvmpipe bounded (e.g. a smaller shadow map). Empty for most techniques.
   std::vector<std::string> sweepTestSettings;
+  // Defined in the shader preamble besides the outputs (OUT_<BUFFER>), the categories and the enumeration
+  // parameters; tests/unit/ShaderContractTest.cpp checks that the shaders keep no copy of them.
+  std::vector<ShaderConstant> shaderConstants;
+  // The flag sets (`#define FLAG`) the technique's pass compiles its fragment shader with, one program each
+  // ({} = the generated preamble alone); the shader-contract test assembles every one.
+  std::vector<std::vector<std::string>> shaderFlagSets = { {} };
   std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
   // Multi-view shadow maps (Yang et al. 2009 §5): a technique with an integer parameter "sublights" = S is run
   // once per sub-light of the square area light split S x S (its own focus, shadow map and light-space

@@ -71,6 +71,18 @@ vtkSmartPointer<vtkTextureObject> makeDepthTarget(vtkOpenGLRenderWindow* window,
   return texture;
 }
 
+vtkSmartPointer<vtkTextureObject> makeDepthStencilTarget(vtkOpenGLRenderWindow* window, int width, int height)
+{
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  setNearestClamp(texture);
+  if (!texture->AllocateDepthStencil(width, height))
+  {
+    throw GraphicsError(format("cannot allocate a ", width, "x", height, " depth-stencil target"));
+  }
+  return texture;
+}
+
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height)
 {
   auto texture = vtkSmartPointer<vtkTextureObject>::New();

@@ -27,6 +27,9 @@ namespace sl
 vtkSmartPointer<vtkTextureObject> makeFloatTarget(vtkOpenGLRenderWindow* window, int width, int height, int components);
 // A 32-bit float depth target, nearest filtering, clamp to edge, no compare mode.
 vtkSmartPointer<vtkTextureObject> makeDepthTarget(vtkOpenGLRenderWindow* window, int width, int height);
+// GL_DEPTH32F_STENCIL8: the G-buffer's depth, which object-space techniques (shadow volumes) test against and
+// write stencil into. Its depth is the same 32-bit float as makeDepthTarget's.
+vtkSmartPointer<vtkTextureObject> makeDepthStencilTarget(vtkOpenGLRenderWindow* window, int width, int height);
 // An RGBA8 target for the shaded image.
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height);
 

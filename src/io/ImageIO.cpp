@@ -26,6 +26,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
 #include <array>
@@ -404,6 +406,22 @@ void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& 
   const VtkErrorCapture capture;
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(data);
+  writer->SetCompressorTypeToZLib();
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->WriteToOutputStringOn();
+  const int written = writer->Write();
+  SL_CHECK_MSG(written == 1 && writer->GetErrorCode() == 0 && !capture.hasError(), "encoding ", path.string(),
+    " in memory failed: ", capture.firstError());
+  writeEncodedFile(path, writer->GetOutputString());
+}
+
+void writeVtp(const std::filesystem::path& path, vtkPolyData* polyData)
+{
+  SL_CHECK(polyData);
+  const VtkErrorCapture capture;
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(polyData);
   writer->SetCompressorTypeToZLib();
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();

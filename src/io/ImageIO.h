@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+class vtkPolyData;
+
 namespace sl
 {
 
@@ -25,6 +27,8 @@ struct NamedImage;
 // One vtkImageData (XML, zlib-compressed, appended raw binary): dimensions width x height x 1, spacing 1,
 // origin 0, one point-data array per image (float, 1 or 3 components). Opens in ParaView.
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images);
+// vtkPolyData as a .vtp (XML, appended zlib), written like writeVti.
+void writeVtp(const std::filesystem::path& path, vtkPolyData* polyData);
 // Reads back the arrays of a 2-D .vti (tests, compare tools): dimensions width x height x 1 with
 // 1 <= width, height <= kMaxImageSide; every named point-data array numeric, 1..4 components, one tuple
 // per pixel (converted to float). Throws InputError naming the file (and the array) otherwise.

@@ -172,6 +172,16 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     lightSpace[named.name] = bufferSummary(named, nullptr);
   }
   stats["light_space"] = lightSpace;
+  nlohmann::json objectSpace = nlohmann::json::object();
+  for (const NamedPolyData& exported : frame.objectSpace)
+  {
+    objectSpace[exported.name] = { { "file", exported.name + ".vtp" }, { "points", exported.data->GetNumberOfPoints() },
+      { "cells", exported.data->GetNumberOfCells() }, { "doc", exported.doc } };
+  }
+  if (!objectSpace.empty())
+  {
+    stats["object_space"] = objectSpace;
+  }
   return stats;
 }
 
@@ -225,6 +235,10 @@ void writeFrameOutputs(const FrameResult& frame, const OutputContext& context, c
 {
   writeDirectoryAtomically(target, [&](const std::filesystem::path& dir) {
     writeBufferFiles(frame.buffers, frame.lightSpace, &frame.image, dir);
+    for (const NamedPolyData& exported : frame.objectSpace)
+    {
+      writeVtp(dir / (exported.name + ".vtp"), exported.data);
+    }
     writeJson(frameStats(frame, context), dir / "stats.json");
   });
 }

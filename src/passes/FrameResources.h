@@ -11,6 +11,7 @@
 #include "lightspace/CameraView.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/LightView.h"
+#include "scene/WeldedMesh.h"
 #include "scene/Scene.h"
 #include "frame/TechniqueDescriptor.h"
 
@@ -35,12 +36,15 @@ struct FrameResources
   ParameterValues parameters;
   CameraView camera;
   std::unique_ptr<GpuScene> gpuScene;
+  // The casters with welded connectivity, in scene order; only for techniques that draw scene geometry
+  // (TechniqueDescriptor::drawsSceneGeometry), welded once per frame before the timed stages.
+  std::shared_ptr<const std::vector<WeldedMesh>> weldedCasters;
 
   // G-buffer stage.
   vtkSmartPointer<vtkTextureObject> gbufferPosition;
   vtkSmartPointer<vtkTextureObject> gbufferNormal;
   vtkSmartPointer<vtkTextureObject> gbufferAlbedoDepth;
-  vtkSmartPointer<vtkTextureObject> gbufferDepth;
+  vtkSmartPointer<vtkTextureObject> gbufferDepth; // GL_DEPTH32F_STENCIL8, stencil cleared to 0
 
   // Light-space stage (only when the technique needs the shadow map).
   bool hasLightView = false;

@@ -16,6 +16,7 @@ ScopedRenderTarget::ScopedRenderTarget(vtkOpenGLRenderWindow* window, vtkOpenGLF
   , framebuffer_(framebuffer)
   , colorCount_(static_cast<unsigned>(colorTargets.size()))
   , hasDepth_(depthTarget != nullptr)
+  , hasStencil_(depthTarget && depthTarget->GetInternalFormat(VTK_FLOAT, 1, false) == GL_DEPTH32F_STENCIL8)
   , viewport_(state_)
   , depthTest_(state_, GL_DEPTH_TEST)
   , cullFace_(state_, GL_CULL_FACE)
@@ -35,6 +36,12 @@ ScopedRenderTarget::ScopedRenderTarget(vtkOpenGLRenderWindow* window, vtkOpenGLF
   if (depthTarget)
   {
     framebuffer_->AddDepthAttachment(depthTarget);
+    if (hasStencil_)
+    {
+      // VTK 9.1 attaches a depth texture to GL_DEPTH_ATTACHMENT only; a depth-stencil texture's stencil must be
+      // attached too, or stencil tests see no stencil buffer.
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depthTarget->GetHandle(), 0);
+    }
   }
   framebuffer_->ActivateDrawBuffers(colorCount_);
   if (!framebuffer_->CheckFrameBufferStatus(GL_FRAMEBUFFER))
@@ -62,6 +69,10 @@ ScopedRenderTarget::ScopedRenderTarget(vtkOpenGLRenderWindow* window, vtkOpenGLF
 ScopedRenderTarget::~ScopedRenderTarget()
 {
   framebuffer_->RemoveColorAttachments(colorCount_);
+  if (hasStencil_)
+  {
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  }
   if (hasDepth_)
   {
     framebuffer_->RemoveDepthAttachment();
@@ -79,6 +90,13 @@ void ScopedRenderTarget::clearDepth() const
 {
   const float farthest = 1.0f;
   glClearBufferfv(GL_DEPTH, 0, &farthest);
+}
+
+void ScopedRenderTarget::clearStencil() const
+{
+  SL_CHECK_MSG(hasStencil_, "clearStencil on a target without stencil");
+  const GLint zero = 0;
+  glClearBufferiv(GL_STENCIL, 0, &zero);
 }
 
 } // namespace sl

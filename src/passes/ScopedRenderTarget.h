@@ -1,4 +1,4 @@
-// Binds a framebuffer with the given colour (and optional depth) targets for one pass, sets the viewport
+// Binds a framebuffer with the given colour (and optional depth or depth-stencil) targets for one pass, sets the viewport
 // to their size and the raster state every ShadowLab pass starts from (no blending, no scissor, no face
 // culling; depth test only when a depth target is given), and restores all of it on destruction, so a
 // pass never leaves VTK's OpenGL state half-configured (STYLE.md, "Errors").
@@ -24,15 +24,17 @@ public:
   ScopedRenderTarget(const ScopedRenderTarget&) = delete;
   ScopedRenderTarget& operator=(const ScopedRenderTarget&) = delete;
 
-  // Clears colour attachment `index` to `value` (all components), or the depth attachment to 1.
+  // Clears colour attachment `index` to `value` (all components), the depth attachment to 1, or the stencil to 0.
   void clearColor(int index, float value) const;
   void clearDepth() const;
+  void clearStencil() const;
 
 private:
   vtkOpenGLState* state_;
   vtkOpenGLFramebufferObject* framebuffer_;
   unsigned colorCount_;
   bool hasDepth_;
+  bool hasStencil_;
   vtkOpenGLState::ScopedglViewport viewport_;
   vtkOpenGLState::ScopedglEnableDisable depthTest_;
   vtkOpenGLState::ScopedglEnableDisable cullFace_;

@@ -31,7 +31,9 @@ void vtkSLGBufferPass::Execute(const vtkRenderState* state)
   frame.gbufferPosition = sl::makeFloatTarget(window, width, height, 4);
   frame.gbufferNormal = sl::makeFloatTarget(window, width, height, 4);
   frame.gbufferAlbedoDepth = sl::makeFloatTarget(window, width, height, 4);
-  frame.gbufferDepth = sl::makeDepthTarget(window, width, height);
+  // Depth-stencil: object-space techniques (TechniqueDescriptor::drawsSceneGeometry) test against this depth and
+  // write stencil into it.
+  frame.gbufferDepth = sl::makeDepthStencilTarget(window, width, height);
 
   const sl::ScopedRenderTarget target(window, this->Framebuffer,
     { frame.gbufferPosition, frame.gbufferNormal, frame.gbufferAlbedoDepth }, frame.gbufferDepth);
@@ -40,6 +42,7 @@ void vtkSLGBufferPass::Execute(const vtkRenderState* state)
     target.clearColor(attachment, 0.0f); // w = 0 marks uncovered pixels
   }
   target.clearDepth();
+  target.clearStencil();
 
   const std::string vertexSource = sl::assembleShader("gbuffer/GBufferVertex.glsl", sl::commonDefines());
   const std::string fragmentSource = sl::assembleShader("gbuffer/GBufferFragment.glsl", sl::commonDefines());

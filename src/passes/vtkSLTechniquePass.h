@@ -12,6 +12,7 @@
 #pragma once
 
 #include "gl/ShaderLibrary.h"
+#include "frame/FrameResult.h"
 #include "passes/FullScreenQuad.h"
 #include "passes/vtkSLStagePass.h"
 #include "frame/TechniqueDescriptor.h"
@@ -40,6 +41,9 @@ public:
   // Whole-frame counts a technique reports besides its buffers (stats.json "technique_statistics", bench
   // columns), read after the frame's timings with the frame's resources still bound; none by default.
   virtual std::map<std::string, double> CollectStatistics() { return {}; }
+  // Geometry an object-space technique exports (written as <name>.vtp), read like CollectStatistics; none by
+  // default.
+  virtual std::vector<sl::NamedPolyData> CollectObjectSpaceExports() { return {}; }
 
 protected:
   vtkSLTechniquePass();

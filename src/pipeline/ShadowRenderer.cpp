@@ -154,6 +154,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   window_->MakeCurrent();
   window_->SetSize(resolution.x, resolution.y);
   frame.gpuScene = std::make_unique<GpuScene>(window_, scene);
+  if (technique.drawsSceneGeometry && !request.gbufferOnly)
+  {
+    frame.weldedCasters = std::make_shared<const std::vector<WeldedMesh>>(weldCasters(scene));
+  }
   if (!request.gbufferOnly)
   {
     for (const std::string& output : vtkSLTechniquePass::OutputNames(technique))
@@ -199,6 +203,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
     {
       result.techniqueStatistics = techniquePass->CollectStatistics();
+      result.objectSpace = techniquePass->CollectObjectSpaceExports();
     }
   }
   result.technique = technique.name;
