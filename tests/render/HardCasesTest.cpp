@@ -245,64 +245,65 @@ TEST(HardCases, DirectionalAndSpotLightsShadowWhereTheRayCasterDoes)
   }
 }
 
-TEST(HardCases, NoNanOrInfInAnyBufferOfAnyDatasetOrTechnique)
+// No NaN/inf in any buffer and visibility in [0, 1]: every dataset x every registered technique that supports
+// the dataset's light, one case per pair (test::datasetTechniquePairs), so ctest runs the sweep in parallel
+// and a new technique gets its cases from the registry. Each case renders the technique with its defaults,
+// and with each non-default choice of each enumeration parameter (variants compile to different shader code;
+// they use a 512^2 shadow map, which keeps the N-buffers and SAT variants fast without changing which code
+// runs). ctest names: NoNanOrInf/HardCasesSweep.InAnyBufferOfAnyVariant/<dataset>_<technique>.
+class HardCasesSweep : public testing::TestWithParam<test::DatasetTechnique>
 {
-  // Every registered technique with its defaults, and with each non-default choice of each enumeration
-  // parameter (variants compile to different shader code; they use a 512^2 shadow map, which keeps the
-  // N-buffers and SAT variants fast without changing which code runs).
-  std::vector<std::pair<std::string, std::vector<std::string>>> configurations;
-  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
+};
+
+TEST_P(HardCasesSweep, InAnyBufferOfAnyVariant)
+{
+  const std::string& dataset = GetParam().dataset;
+  const TechniqueDescriptor& descriptor = findTechnique(GetParam().technique);
+  std::vector<std::vector<std::string>> configurations = { descriptor.sweepTestSettings };
+  for (const ParameterSpec& spec : descriptor.parameters)
   {
-    configurations.push_back({ descriptor.name, descriptor.sweepTestSettings });
-    for (const ParameterSpec& spec : descriptor.parameters)
+    for (std::size_t choice = 0; choice < spec.choices.size(); ++choice)
     {
-      for (std::size_t choice = 0; choice < spec.choices.size(); ++choice)
+      if (static_cast<double>(choice) != spec.defaultValue)
       {
-        if (static_cast<double>(choice) != spec.defaultValue)
+        std::vector<std::string> settings = { spec.name + "=" + spec.choices[choice] };
+        if (descriptor.findParameter("shadow_map_size"))
         {
-          std::vector<std::string> settings = { spec.name + "=" + spec.choices[choice] };
-          if (descriptor.findParameter("shadow_map_size"))
-          {
-            settings.push_back("shadow_map_size=512");
-          }
-          settings.insert(settings.end(), descriptor.sweepTestSettings.begin(), descriptor.sweepTestSettings.end());
-          configurations.push_back({ descriptor.name, settings });
+          settings.push_back("shadow_map_size=512");
         }
+        settings.insert(settings.end(), descriptor.sweepTestSettings.begin(), descriptor.sweepTestSettings.end());
+        configurations.push_back(settings);
       }
     }
   }
-  for (const std::string& dataset : test::datasetNames())
+  const Scene scene = test::loadDataset(dataset);
+  for (const std::vector<std::string>& settings : configurations)
   {
-    const Scene scene = test::loadDataset(dataset);
-    for (const auto& [technique, settings] : configurations)
+    const FrameResult frame = test::renderDataset(scene, descriptor.name, 96, 80, settings);
+    const std::string label = test::caseLabel(dataset + " " + descriptor.name, settings);
+    for (const auto* list : { &frame.buffers, &frame.lightSpace })
     {
-      if (!findTechnique(technique).supports(scene.lights.front()))
+      for (const NamedImage& named : *list)
       {
-        continue; // rejected with a message (CliTest checks those)
-      }
-      const FrameResult frame = test::renderDataset(scene, technique, 96, 80, settings);
-      const std::string label = test::caseLabel(dataset + " " + technique, settings);
-      for (const auto* list : { &frame.buffers, &frame.lightSpace })
-      {
-        for (const NamedImage& named : *list)
+        std::size_t bad = 0;
+        for (const float value : named.image.data)
         {
-          std::size_t bad = 0;
-          for (const float value : named.image.data)
-          {
-            bad += std::isfinite(value) ? 0 : 1;
-          }
-          EXPECT_EQ(bad, 0u) << label << ": " << named.name;
+          bad += std::isfinite(value) ? 0 : 1;
         }
+        EXPECT_EQ(bad, 0u) << label << ": " << named.name;
       }
-      const ImageF& visibility = frame.find("visibility")->image;
-      for (const float value : visibility.data)
-      {
-        ASSERT_GE(value, 0.0f) << label;
-        ASSERT_LE(value, 1.0f) << label;
-      }
+    }
+    const ImageF& visibility = frame.find("visibility")->image;
+    for (const float value : visibility.data)
+    {
+      ASSERT_GE(value, 0.0f) << label;
+      ASSERT_LE(value, 1.0f) << label;
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(NoNanOrInf, HardCasesSweep, testing::ValuesIn(test::datasetTechniquePairs()),
+  test::datasetTechniqueName);
 
 TEST(HardCases, VtkPeerShadowsWhereTheRayCasterDoesAwayFromEdges)
 {

@@ -19,9 +19,9 @@
 //   SHADOWLAB_BLESS=1 ./build/tests/gpu_tests --gtest_filter='*Regression*'
 // writes the current outputs as the new baselines (creating the directories) and passes. The gtest names are
 // "Baselines/RegressionTest.Matches/<dataset>_<technique>" with '-' in dataset names turned into '_', e.g.
-// Baselines/RegressionTest.Matches/planar_occluder_pcf (CMake 3.25's gtest_discover_tests appends
-// "  # GetParam() = planar-occluder/pcf" to the ctest name), so -R Regression selects them all; to re-bless
-// one case: SHADOWLAB_BLESS=1 ctest --test-dir build -R 'Regression.*planar_occluder_pcf'.
+// Baselines/RegressionTest.Matches/planar_occluder_pcf, and the ctest names are the same,
+// so -R Regression selects them all; to re-bless one case:
+//   SHADOWLAB_BLESS=1 ctest --test-dir build -R 'Regression.*planar_occluder_pcf'.
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "support/TestSupport.h"
@@ -32,14 +32,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -331,54 +329,9 @@ CaseOutcome checkAgainstBaseline(const ImageU8& image, const ImageF& visibility,
 
 // ---- the parameterised suite -------------------------------------------------------------------------------
 
-struct RegressionCase
-{
-  std::string dataset;
-  std::string technique;
-};
-
-// gtest prints the parameter of a failing case with this instead of a byte dump.
-void PrintTo(const RegressionCase& c, std::ostream* os)
-{
-  *os << c.dataset << "/" << c.technique;
-}
-
-// Every dataset x every registered technique that supports the dataset's shadow-casting light (light 0). A
-// dataset that does not load is kept for every technique, so its test fails with the loader's message.
-std::vector<RegressionCase> regressionCases()
-{
-  std::vector<RegressionCase> cases;
-  for (const std::string& dataset : test::datasetNames())
-  {
-    std::optional<Light> light;
-    try
-    {
-      const Scene scene = test::loadDataset(dataset);
-      if (!scene.lights.empty())
-      {
-        light = scene.lights.front();
-      }
-    }
-    catch (const std::exception&)
-    {
-    }
-    for (const TechniqueDescriptor& technique : techniqueRegistry())
-    {
-      if (!light || technique.supports(*light))
-      {
-        cases.push_back({ dataset, technique.name });
-      }
-    }
-  }
-  return cases;
-}
-
-std::string caseName(const testing::TestParamInfo<RegressionCase>& info)
-{
-  std::string name = info.param.dataset + "_" + info.param.technique;
-  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-  return name;
-}
+// The cases: every dataset x every registered technique that supports the dataset's shadow-casting light
+// (test::datasetTechniquePairs, shared with the NaN/inf sweep).
+using RegressionCase = test::DatasetTechnique;
 
 class RegressionTest : public testing::TestWithParam<RegressionCase>
 {
@@ -409,7 +362,8 @@ TEST_P(RegressionTest, Matches)
                               << outcome.message;
 }
 
-INSTANTIATE_TEST_SUITE_P(Baselines, RegressionTest, testing::ValuesIn(regressionCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(
+  Baselines, RegressionTest, testing::ValuesIn(test::datasetTechniquePairs()), test::datasetTechniqueName);
 
 // ---- the comparator and the tolerance data themselves --------------------------------------------------------
 
@@ -616,7 +570,7 @@ TEST(RegressionComparator, ToleranceFileIsConsistent)
   EXPECT_LE(defaults.image.maxAbsDiff, 8.0);
   EXPECT_LE(defaults.image.maxFailingFraction, 0.001);
   std::vector<std::string> known;
-  for (const RegressionCase& c : regressionCases())
+  for (const RegressionCase& c : test::datasetTechniquePairs())
   {
     known.push_back(c.dataset + "/" + c.technique);
   }

@@ -1,13 +1,16 @@
 #include "support/TestSupport.h"
 
 #include "core/Error.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <sys/wait.h>
@@ -49,6 +52,46 @@ std::vector<std::string> datasetNames()
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+void PrintTo(const DatasetTechnique& pair, std::ostream* os)
+{
+  *os << pair.dataset << "/" << pair.technique;
+}
+
+std::vector<DatasetTechnique> datasetTechniquePairs()
+{
+  std::vector<DatasetTechnique> pairs;
+  for (const std::string& dataset : datasetNames())
+  {
+    std::optional<Light> light;
+    try
+    {
+      const Scene scene = loadDataset(dataset);
+      if (!scene.lights.empty())
+      {
+        light = scene.lights.front();
+      }
+    }
+    catch (const std::exception&)
+    {
+    }
+    for (const TechniqueDescriptor& technique : techniqueRegistry())
+    {
+      if (!light || technique.supports(*light))
+      {
+        pairs.push_back({ dataset, technique.name });
+      }
+    }
+  }
+  return pairs;
+}
+
+std::string datasetTechniqueName(const testing::TestParamInfo<DatasetTechnique>& info)
+{
+  std::string name = info.param.dataset + "_" + info.param.technique;
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
 }
 
 Scene stackedOccludersUnder(const std::string& lightJson)

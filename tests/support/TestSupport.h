@@ -7,8 +7,11 @@
 #include "scene/Scene.h"
 #include "techniques/ShadowMapReference.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -20,6 +23,23 @@ std::filesystem::path testOutputDir();        // <build>/test-output, created on
 std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/scene.json
 Scene loadDataset(const std::string& name);
 std::vector<std::string> datasetNames();      // every datasets/*/scene.json
+
+// One case of the suites that run every registered technique on every dataset (the regression baselines, the
+// NaN/inf sweep): one gtest, hence one ctest case, per pair, so `ctest -j` spreads them.
+struct DatasetTechnique
+{
+  std::string dataset;
+  std::string technique;
+};
+// gtest prints a failing case's parameter with this instead of a byte dump.
+void PrintTo(const DatasetTechnique& pair, std::ostream* os);
+// Every dataset x every registered technique that supports the dataset's shadow-casting light (light 0), so a
+// newly registered technique or dataset gets its cases without a change here. A dataset that does not load is
+// kept for every technique, so its cases fail with the loader's message.
+std::vector<DatasetTechnique> datasetTechniquePairs();
+// The gtest name of a case: "<dataset>_<technique>" with every character that is not a letter or digit turned
+// into '_' (planar-occluder/pcf -> planar_occluder_pcf).
+std::string datasetTechniqueName(const testing::TestParamInfo<DatasetTechnique>& info);
 
 // The stacked-occluders geometry under a light given as JSON (e.g. a directional or spot light), for the
 // light types no dataset uses.
