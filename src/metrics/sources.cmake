@@ -2,4 +2,5 @@
 # file-level comparison behind `shadowlab compare` (src/metrics/Comparison.h).
 set(SL_METRICS_SOURCES
   src/metrics/ErrorMetrics.cpp
+  src/metrics/RegressionComparison.cpp
   src/metrics/Comparison.cpp)

@@ -5,7 +5,7 @@
 // Tolerances are data, next to the baselines: tests/baselines/tolerance.json ("default" plus optional
 // per-case entries "<dataset>/<technique>"; each gives, for "image" and "visibility", max_abs_diff and
 // max_failing_fraction = fraction of pixels allowed to differ by more than max_abs_diff). Its _comment says
-// why the numbers are what they are.
+// why the numbers are what they are. The comparison itself is src/metrics/RegressionComparison.h.
 //
 // On a failure the actual outputs and the differences are written to
 //   <build>/test-output/regression/<dataset>/<technique>/{actual.png, actual_visibility.exr, diff.png,
@@ -24,6 +24,7 @@
 //   SHADOWLAB_BLESS=1 ctest --test-dir build -R 'Regression.*planar_occluder_pcf'.
 #include "core/Error.h"
 #include "io/ImageIO.h"
+#include "metrics/RegressionComparison.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
 #include "vis/HeatMap.h"
@@ -36,7 +37,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -67,19 +67,13 @@ bool blessRequested()
 
 // ---- tolerance (data: tests/baselines/tolerance.json) ----------------------------------------------------
 
-struct Tolerance
-{
-  double maxAbsDiff = 0.0;
-  double maxFailingFraction = 0.0;
-};
-
 struct CaseTolerance
 {
-  Tolerance image;      // max_abs_diff in 0..255 units, per channel
-  Tolerance visibility; // max_abs_diff in visibility units (0..1)
+  RegressionTolerance image;      // max_abs_diff in 0..255 units, per channel
+  RegressionTolerance visibility; // max_abs_diff in visibility units (0..1)
 };
 
-Tolerance parseTolerance(const Json& entry, const std::string& where, Tolerance base)
+RegressionTolerance parseTolerance(const Json& entry, const std::string& where, RegressionTolerance base)
 {
   for (const auto& [key, value] : entry.items())
   {
@@ -151,89 +145,6 @@ CaseTolerance toleranceFor(const std::string& dataset, const std::string& techni
   return tolerance;
 }
 
-// ---- the comparator ----------------------------------------------------------------------------------------
-
-struct Comparison
-{
-  bool sameSize = true;
-  double maxAbsDiff = 0.0;
-  std::size_t failingPixels = 0;
-  std::size_t pixels = 0;
-  double failingFraction() const { return pixels ? static_cast<double>(failingPixels) / static_cast<double>(pixels) : 0.0; }
-  bool passes(const Tolerance& tolerance) const
-  {
-    return sameSize && failingFraction() <= tolerance.maxFailingFraction;
-  }
-};
-
-// Per pixel: the largest absolute difference over the components. A pixel fails when that exceeds
-// tolerance.maxAbsDiff; a non-finite value on either side always fails (and counts as an infinite difference).
-template <typename T>
-Comparison compareImages(const Image<T>& actual, const Image<T>& expected, const Tolerance& tolerance,
-  ImageF* perPixelDiff = nullptr)
-{
-  Comparison result;
-  if (actual.width != expected.width || actual.height != expected.height || actual.components != expected.components)
-  {
-    result.sameSize = false;
-    return result;
-  }
-  result.pixels = actual.pixelCount();
-  if (perPixelDiff)
-  {
-    *perPixelDiff = ImageF(actual.width, actual.height, 1);
-  }
-  for (std::size_t i = 0; i < result.pixels; ++i)
-  {
-    double pixelDiff = 0.0;
-    for (int c = 0; c < actual.components; ++c)
-    {
-      const std::size_t k = i * static_cast<std::size_t>(actual.components) + static_cast<std::size_t>(c);
-      const double a = static_cast<double>(actual.data[k]);
-      const double e = static_cast<double>(expected.data[k]);
-      const double diff = (std::isfinite(a) && std::isfinite(e)) ? std::abs(a - e) : HUGE_VAL;
-      pixelDiff = std::max(pixelDiff, diff);
-    }
-    result.maxAbsDiff = std::max(result.maxAbsDiff, pixelDiff);
-    if (pixelDiff > tolerance.maxAbsDiff)
-    {
-      ++result.failingPixels;
-    }
-    if (perPixelDiff)
-    {
-      perPixelDiff->data[i] = static_cast<float>(std::min(pixelDiff, 1e30));
-    }
-  }
-  return result;
-}
-
-std::string describe(const char* what, const Comparison& comparison, const Tolerance& tolerance)
-{
-  std::ostringstream text;
-  text << what << ": ";
-  if (!comparison.sameSize)
-  {
-    text << "size differs from the baseline";
-    return text.str();
-  }
-  text << "max abs diff " << comparison.maxAbsDiff << " (tolerance " << tolerance.maxAbsDiff << "), "
-       << comparison.failingPixels << "/" << comparison.pixels << " pixels over it = fraction "
-       << comparison.failingFraction() << " (allowed " << tolerance.maxFailingFraction << ")";
-  return text.str();
-}
-
-// |actual - expected| per channel, times 8, as RGB (a difference of 32/255 or more is white).
-ImageU8 amplifiedDiff(const ImageU8& actual, const ImageU8& expected)
-{
-  ImageU8 diff(actual.width, actual.height, actual.components);
-  for (std::size_t k = 0; k < diff.data.size(); ++k)
-  {
-    const int d = std::abs(static_cast<int>(actual.data[k]) - static_cast<int>(expected.data[k]));
-    diff.data[k] = static_cast<std::uint8_t>(std::min(255, 8 * d));
-  }
-  return diff;
-}
-
 // ---- one regression case -----------------------------------------------------------------------------------
 
 struct CaseOutcome
@@ -286,13 +197,13 @@ CaseOutcome checkAgainstBaseline(const ImageU8& image, const ImageF& visibility,
   const ImageU8 expectedImage = readPng(imagePath);
   const ImageF expectedVisibility = readExr(visibilityPath);
   ImageF visibilityDiff;
-  const Comparison imageResult = compareImages(image, expectedImage, tolerance.image);
-  const Comparison visibilityResult =
-    compareImages(visibility, expectedVisibility, tolerance.visibility, &visibilityDiff);
+  const RegressionComparison imageResult = compareWithTolerance(image, expectedImage, tolerance.image);
+  const RegressionComparison visibilityResult =
+    compareWithTolerance(visibility, expectedVisibility, tolerance.visibility, &visibilityDiff);
   outcome.passed = imageResult.passes(tolerance.image) && visibilityResult.passes(tolerance.visibility);
 
-  message << describe("image", imageResult, tolerance.image) << "\n"
-          << describe("visibility", visibilityResult, tolerance.visibility);
+  message << describeComparison("image", imageResult, tolerance.image) << "\n"
+          << describeComparison("visibility", visibilityResult, tolerance.visibility);
   if (!imageResult.sameSize)
   {
     message << "\n  image size " << image.width << "x" << image.height << "x" << image.components << ", baseline "
@@ -309,7 +220,7 @@ CaseOutcome checkAgainstBaseline(const ImageU8& image, const ImageF& visibility,
     writeActual(message);
     if (imageResult.sameSize)
     {
-      writePng(outputDir / "diff.png", amplifiedDiff(image, expectedImage));
+      writePng(outputDir / "diff.png", amplifiedDifference(image, expectedImage));
       message << "\n  |image diff| x8:   " << (outputDir / "diff.png").string();
     }
     if (visibilityResult.sameSize)
@@ -385,15 +296,15 @@ TEST(RegressionComparator, FlagsAnInvertedBlockAndAcceptsChangesWithinTolerance)
   const ImageF baseline = referenceVisibility("planar-occluder", "pcf");
   ASSERT_EQ(baseline.width, kWidth);
   ASSERT_EQ(baseline.height, kHeight);
-  const Tolerance tolerance = toleranceFor("planar-occluder", "pcf").visibility;
+  const RegressionTolerance tolerance = toleranceFor("planar-occluder", "pcf").visibility;
   ASSERT_GT(tolerance.maxAbsDiff, 0.0);
   const std::size_t allowedPixels =
     static_cast<std::size_t>(std::floor(tolerance.maxFailingFraction * static_cast<double>(baseline.pixelCount())));
   ASSERT_LT(allowedPixels, 100u) << "tolerance.json allows " << allowedPixels
                                  << " failing pixels: a 10x10 block could hide in it";
 
-  const Comparison identical = compareImages(baseline, baseline, tolerance);
-  EXPECT_TRUE(identical.passes(tolerance)) << describe("identical", identical, tolerance);
+  const RegressionComparison identical = compareWithTolerance(baseline, baseline, tolerance);
+  EXPECT_TRUE(identical.passes(tolerance)) << describeComparison("identical", identical, tolerance);
   EXPECT_EQ(identical.maxAbsDiff, 0.0);
 
   // A 10x10 block set to 1 - v. Pick a block whose visibility is far from 0.5 so that every pixel changes by
@@ -428,9 +339,9 @@ TEST(RegressionComparator, FlagsAnInvertedBlockAndAcceptsChangesWithinTolerance)
       inverted.at(blockX + i, blockY + j) = 1.0f - inverted.at(blockX + i, blockY + j);
     }
   }
-  const Comparison invertedResult = compareImages(inverted, baseline, tolerance);
+  const RegressionComparison invertedResult = compareWithTolerance(inverted, baseline, tolerance);
   EXPECT_FALSE(invertedResult.passes(tolerance))
-    << "block at " << blockX << "," << blockY << ": " << describe("inverted", invertedResult, tolerance);
+    << "block at " << blockX << "," << blockY << ": " << describeComparison("inverted", invertedResult, tolerance);
   EXPECT_EQ(invertedResult.failingPixels, 100u);
   EXPECT_GT(invertedResult.maxAbsDiff, 4.0 * tolerance.maxAbsDiff);
 
@@ -444,27 +355,27 @@ TEST(RegressionComparator, FlagsAnInvertedBlockAndAcceptsChangesWithinTolerance)
   {
     nudged.data[k * 97 % nudged.data.size()] += 0.5f;
   }
-  const Comparison nudgedResult = compareImages(nudged, baseline, tolerance);
-  EXPECT_TRUE(nudgedResult.passes(tolerance)) << describe("nudged", nudgedResult, tolerance);
+  const RegressionComparison nudgedResult = compareWithTolerance(nudged, baseline, tolerance);
+  EXPECT_TRUE(nudgedResult.passes(tolerance)) << describeComparison("nudged", nudgedResult, tolerance);
   EXPECT_EQ(nudgedResult.failingPixels, allowedPixels);
 
   // One failing pixel more than allowed fails; a NaN counts as failing; a size change fails.
   nudged.data[nudged.data.size() - 1] += 0.5f;
-  const Comparison overResult = compareImages(nudged, baseline, tolerance);
-  EXPECT_FALSE(overResult.passes(tolerance)) << describe("one over", overResult, tolerance);
+  const RegressionComparison overResult = compareWithTolerance(nudged, baseline, tolerance);
+  EXPECT_FALSE(overResult.passes(tolerance)) << describeComparison("one over", overResult, tolerance);
   ImageF withNan = baseline;
   withNan.data[0] = std::nanf("");
-  EXPECT_EQ(compareImages(withNan, baseline, tolerance).failingPixels, 1u);
+  EXPECT_EQ(compareWithTolerance(withNan, baseline, tolerance).failingPixels, 1u);
   const ImageF smaller(kWidth - 1, kHeight, 1, 1.0f);
-  EXPECT_FALSE(compareImages(smaller, baseline, tolerance).passes(tolerance));
+  EXPECT_FALSE(compareWithTolerance(smaller, baseline, tolerance).passes(tolerance));
 
   // The RGB comparator counts a pixel once, by its worst channel.
   ImageU8 rgb(4, 4, 3, 100);
   ImageU8 rgbChanged = rgb;
   rgbChanged.at(1, 2, 2) = 100 + 5;
   rgbChanged.at(3, 3, 0) = 100 - 3;
-  const Tolerance rgbTolerance{ 4.0, 0.0 };
-  const Comparison rgbResult = compareImages(rgbChanged, rgb, rgbTolerance);
+  const RegressionTolerance rgbTolerance{ 4.0, 0.0 };
+  const RegressionComparison rgbResult = compareWithTolerance(rgbChanged, rgb, rgbTolerance);
   EXPECT_EQ(rgbResult.failingPixels, 1u);
   EXPECT_EQ(rgbResult.maxAbsDiff, 5.0);
   EXPECT_FALSE(rgbResult.passes(rgbTolerance));
@@ -546,13 +457,13 @@ TEST(RegressionComparator, TellsHardFromPcfOnEveryDataset)
     const FrameResult hard = test::renderDataset(scene, "hard", kWidth, kHeight);
     const FrameResult pcf = test::renderDataset(scene, "pcf", kWidth, kHeight);
     const CaseTolerance tolerance = toleranceFor(dataset, "pcf");
-    const Comparison image = compareImages(hard.image, pcf.image, tolerance.image);
-    const Comparison visibility =
-      compareImages(hard.find("visibility")->image, pcf.find("visibility")->image, tolerance.visibility);
+    const RegressionComparison image = compareWithTolerance(hard.image, pcf.image, tolerance.image);
+    const RegressionComparison visibility =
+      compareWithTolerance(hard.find("visibility")->image, pcf.find("visibility")->image, tolerance.visibility);
     EXPECT_FALSE(image.passes(tolerance.image) && visibility.passes(tolerance.visibility))
       << dataset << ": the hard render passes as the pcf baseline\n"
-      << describe("image", image, tolerance.image) << "\n"
-      << describe("visibility", visibility, tolerance.visibility);
+      << describeComparison("image", image, tolerance.image) << "\n"
+      << describeComparison("visibility", visibility, tolerance.visibility);
   }
 }
 
