@@ -1,6 +1,8 @@
 // shadowlab reference / compare / bench, end to end through the executable.
 #include "io/ImageIO.h"
 #include "metrics/ErrorMetrics.h"
+#include "support/CliRun.h"
+#include "support/TempDir.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -9,14 +11,23 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace sl
 {
 namespace
 {
 
-using test::ProcessRun;
-using test::runShadowlab;
+using test::RunResult;
+
+// shadowlab with `arguments` in a fresh working directory (every output path here is absolute, in test-output).
+RunResult runShadowlab(const std::vector<std::string>& arguments)
+{
+  const test::TempDir workDir;
+  return test::runShadowlabIn(arguments, workDir.path());
+}
 
 std::filesystem::path freshDir(const std::string& name)
 {
@@ -44,10 +55,10 @@ nlohmann::json readJson(const std::filesystem::path& path)
 TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 {
   const std::filesystem::path out = freshDir("reference-out");
-  const ProcessRun run = runShadowlab("reference " + test::datasetPath("stacked-occluders").string() +
-    " --samples 64 --resolution 64x48 --out " + out.string() + " --quiet");
-  ASSERT_EQ(run.exitCode, 0) << run.standardError;
-  EXPECT_TRUE(run.standardError.empty()) << run.standardError;
+  const RunResult run = runShadowlab({ "reference", test::datasetPath("stacked-occluders").string(), "--samples", "64",
+    "--resolution", "64x48", "--out", out.string(), "--quiet" });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_TRUE(run.err.empty()) << run.err;
   const std::vector<NamedImage> buffers = readVti(out / "buffers.vti");
   for (const char* name : { "visibility", "visibility_stderr", "position", "normal", "depth", "coverage" })
   {
@@ -79,13 +90,13 @@ TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
 {
   const std::filesystem::path out = freshDir("reference-bad");
-  for (const std::string& arguments : { std::string("--samples 0"), std::string("--sampling sobol") })
+  for (const auto& [option, value] : { std::pair<std::string, std::string>("--samples", "0"), { "--sampling", "sobol" } })
   {
-    const ProcessRun run = runShadowlab("reference " + test::datasetPath("planar-occluder").string() + " " + arguments +
-      " --resolution 32x32 --out " + out.string());
-    EXPECT_NE(run.exitCode, 0) << arguments;
-    EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
-    EXPECT_NE(run.standardError.find(arguments.substr(0, arguments.find(' '))), std::string::npos) << run.standardError;
+    const RunResult run = runShadowlab({ "reference", test::datasetPath("planar-occluder").string(), option, value,
+      "--resolution", "32x32", "--out", out.string() });
+    EXPECT_NE(run.exitCode, 0) << option << " " << value;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_NE(run.err.find(option), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
   }
 }
@@ -96,11 +107,12 @@ TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
   const std::filesystem::path reference = freshDir("compare-reference");
   const std::filesystem::path out = freshDir("compare-out");
   const std::string scene = test::datasetPath("planar-occluder").string();
-  ASSERT_EQ(runShadowlab("render " + scene + " -t hard -r 64x64 -q --out " + hard.string()).exitCode, 0);
-  ASSERT_EQ(runShadowlab("reference " + scene + " --samples 64 -r 64x64 -q --out " + reference.string()).exitCode, 0);
-  const ProcessRun run = runShadowlab(
-    "compare " + (hard / "buffers.vti").string() + " " + (reference / "buffers.vti").string() + " -q --out " + out.string());
-  ASSERT_EQ(run.exitCode, 0) << run.standardError;
+  ASSERT_EQ(runShadowlab({ "render", scene, "-t", "hard", "-r", "64x64", "-q", "--out", hard.string() }).exitCode, 0);
+  ASSERT_EQ(
+    runShadowlab({ "reference", scene, "--samples", "64", "-r", "64x64", "-q", "--out", reference.string() }).exitCode, 0);
+  const RunResult run = runShadowlab({ "compare", (hard / "buffers.vti").string(), (reference / "buffers.vti").string(),
+    "-q", "--out", out.string() });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json metrics = readJson(out / "metrics.json");
   const std::vector<NamedImage> a = readVti(hard / "buffers.vti");
   const std::vector<NamedImage> b = readVti(reference / "buffers.vti");
@@ -115,17 +127,17 @@ TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
 
   // Mismatched sizes, a missing array: one line naming the file, no output.
   const std::filesystem::path small = freshDir("compare-small");
-  ASSERT_EQ(runShadowlab("render " + scene + " -t hard -r 32x32 -q --out " + small.string()).exitCode, 0);
+  ASSERT_EQ(runShadowlab({ "render", scene, "-t", "hard", "-r", "32x32", "-q", "--out", small.string() }).exitCode, 0);
   const std::filesystem::path badOut = freshDir("compare-bad-out");
-  const ProcessRun mismatched = runShadowlab("compare " + (small / "buffers.vti").string() + " " +
-    (reference / "buffers.vti").string() + " --out " + badOut.string());
+  const RunResult mismatched = runShadowlab({ "compare", (small / "buffers.vti").string(),
+    (reference / "buffers.vti").string(), "--out", badOut.string() });
   EXPECT_NE(mismatched.exitCode, 0);
-  EXPECT_EQ(std::count(mismatched.standardError.begin(), mismatched.standardError.end(), '\n'), 1) << mismatched.standardError;
-  EXPECT_NE(mismatched.standardError.find("32x32"), std::string::npos) << mismatched.standardError;
-  const ProcessRun missing = runShadowlab("compare " + (hard / "buffers.vti").string() + " " +
-    (reference / "buffers.vti").string() + " --array kernel_size --out " + badOut.string());
+  EXPECT_EQ(std::count(mismatched.err.begin(), mismatched.err.end(), '\n'), 1) << mismatched.err;
+  EXPECT_NE(mismatched.err.find("32x32"), std::string::npos) << mismatched.err;
+  const RunResult missing = runShadowlab({ "compare", (hard / "buffers.vti").string(),
+    (reference / "buffers.vti").string(), "--array", "kernel_size", "--out", badOut.string() });
   EXPECT_NE(missing.exitCode, 0);
-  EXPECT_NE(missing.standardError.find("kernel_size"), std::string::npos) << missing.standardError;
+  EXPECT_NE(missing.err.find("kernel_size"), std::string::npos) << missing.err;
   EXPECT_FALSE(std::filesystem::exists(badOut));
 }
 
@@ -143,11 +155,11 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   }
   const std::filesystem::path out = freshDir("bench-out");
   const std::filesystem::path cache = freshDir("bench-cache");
-  const std::string arguments = "bench " + test::datasetPath("planar-occluder").string() + " " +
-    (sceneDir / "surrounded.json").string() + " -t hard,pcf --sweep kernel_texels=1,5 --repeat 2 -r 48x48 --samples 16 --cache " +
-    cache.string() + " --out " + out.string();
-  const ProcessRun run = runShadowlab(arguments);
-  EXPECT_EQ(run.exitCode, 4) << run.standardError; // some configurations failed
+  const std::vector<std::string> arguments = { "bench", test::datasetPath("planar-occluder").string(),
+    (sceneDir / "surrounded.json").string(), "-t", "hard,pcf", "--sweep", "kernel_texels=1,5", "--repeat", "2", "-r",
+    "48x48", "--samples", "16", "--cache", cache.string(), "--out", out.string() };
+  const RunResult run = runShadowlab(arguments);
+  EXPECT_EQ(run.exitCode, 4) << run.err; // some configurations failed
   const nlohmann::json bench = readJson(out / "bench.json");
   int ok = 0;
   int failed = 0;
@@ -181,9 +193,11 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   EXPECT_GT(chart.width, 200);
 
   // The references are cached: a second run computes none.
-  const ProcessRun again = runShadowlab(arguments + " --quiet");
+  std::vector<std::string> quietArguments = arguments;
+  quietArguments.push_back("--quiet");
+  const RunResult again = runShadowlab(quietArguments);
   EXPECT_EQ(again.exitCode, 4);
-  EXPECT_EQ(again.standardError.find("ray-traced reference of"), std::string::npos) << again.standardError;
+  EXPECT_EQ(again.err.find("ray-traced reference of"), std::string::npos) << again.err;
 }
 
 TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
@@ -192,10 +206,10 @@ TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
   // reference; hard shadows sample the light's centre, so their error must grow with the light.
   const std::filesystem::path out = freshDir("bench-sweep-out");
   const std::filesystem::path cache = freshDir("bench-sweep-cache");
-  const ProcessRun run = runShadowlab("bench " + test::datasetPath("planar-occluder").string() +
-    " -t hard --scene-sweep /lights/0/size=0.25,1,2 --repeat 1 -r 48x48 --samples 64 --quiet --cache " +
-    cache.string() + " --out " + out.string());
-  ASSERT_EQ(run.exitCode, 0) << run.standardError;
+  const RunResult run = runShadowlab({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard",
+    "--scene-sweep", "/lights/0/size=0.25,1,2", "--repeat", "1", "-r", "48x48", "--samples", "64", "--quiet", "--cache",
+    cache.string(), "--out", out.string() });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json bench = readJson(out / "bench.json");
   std::vector<double> rmse;
   for (const nlohmann::json& row : bench.at("configurations"))
@@ -217,10 +231,10 @@ TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
   for (const std::string& override : { std::string("/lights/9/size=2"), std::string("/lights/0/size=0"),
          std::string("lights/0/size=2") })
   {
-    const ProcessRun run = runShadowlab("render " + test::datasetPath("planar-occluder").string() + " --scene-set " +
-      override + " -r 32x32 --out " + out.string());
+    const RunResult run = runShadowlab({ "render", test::datasetPath("planar-occluder").string(), "--scene-set", override,
+      "-r", "32x32", "--out", out.string() });
     EXPECT_EQ(run.exitCode, 1) << override;
-    EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << override;
   }
 }
@@ -228,15 +242,14 @@ TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
 TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
 {
   const std::filesystem::path out = freshDir("bench-bad");
-  for (const std::string& arguments :
-    { std::string("-t hard,nope"), std::string("--sweep kernel_texels"), std::string("--sweep kernel_texels=0,3"),
-      std::string("--repeat 0") })
+  for (const auto& [option, value] : { std::pair<std::string, std::string>("-t", "hard,nope"),
+         { "--sweep", "kernel_texels" }, { "--sweep", "kernel_texels=0,3" }, { "--repeat", "0" } })
   {
-    const ProcessRun run = runShadowlab("bench " + test::datasetPath("planar-occluder").string() + " " + arguments +
-      " -r 32x32 --out " + out.string());
-    EXPECT_EQ(run.exitCode, 1) << arguments << ": " << run.standardError;
-    EXPECT_EQ(std::count(run.standardError.begin(), run.standardError.end(), '\n'), 1) << run.standardError;
-    EXPECT_FALSE(std::filesystem::exists(out)) << arguments;
+    const RunResult run = runShadowlab({ "bench", test::datasetPath("planar-occluder").string(), option, value, "-r",
+      "32x32", "--out", out.string() });
+    EXPECT_EQ(run.exitCode, 1) << option << " " << value << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << option << " " << value;
   }
 }
 

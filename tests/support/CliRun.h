@@ -1,5 +1,6 @@
 // The shadowlab executable (SL_SHADOWLAB_EXE) run as a subprocess in a working directory, with its exit code,
-// stdout and stderr: what the CLI suites assert on. Header-only; shared by tests/cli/*.
+// stdout and stderr: what the CLI suites assert on. The tests' one way to run shadowlab to completion (the
+// signal tests in OutputSafetyTest.cpp fork and exec it themselves, to signal it mid-run). Header-only.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -8,12 +8,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
 
 namespace sl::test
 {
@@ -161,22 +157,6 @@ ShadowRenderer& sharedRenderer()
 {
   static ShadowRenderer renderer;
   return renderer;
-}
-
-ProcessRun runShadowlab(const std::string& arguments, const std::string& environment)
-{
-  const std::string testName = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::filesystem::path errorFile = testOutputDir() / ("stderr-" + testName + ".txt");
-  const std::string command =
-    environment + " " + std::string(SL_SHADOWLAB_EXE) + " " + arguments + " 2> " + errorFile.string() + " > /dev/null";
-  const int status = std::system(command.c_str());
-  ProcessRun run;
-  run.exitCode = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  std::ifstream file(errorFile);
-  std::stringstream text;
-  text << file.rdbuf();
-  run.standardError = text.str();
-  return run;
 }
 
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,

@@ -65,16 +65,6 @@ struct GroundError
 };
 GroundError groundErrorAgainst(const FrameResult& frame, const std::function<double(double x, double z)>& exact);
 
-// The shadowlab executable run through /bin/sh with `arguments` (shell words, not quoted here), after the
-// variable assignments in `environment`: its exit code and stderr (kept in test-output, one file per test
-// since ctest runs tests in parallel processes); stdout is discarded.
-struct ProcessRun
-{
-  int exitCode = -1;
-  std::string standardError;
-};
-ProcessRun runShadowlab(const std::string& arguments, const std::string& environment = "");
-
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer();
 
