@@ -13,6 +13,17 @@
 
 namespace sl::test
 {
+namespace
+{
+
+// One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
+ShadowRenderer& sharedRenderer()
+{
+  static ShadowRenderer renderer;
+  return renderer;
+}
+
+} // namespace
 
 std::filesystem::path sourceDir()
 {
@@ -151,12 +162,6 @@ GroundError groundErrorAgainst(const FrameResult& frame, const std::function<dou
   error.rmse = std::sqrt(squared / std::max(1, error.ground));
   error.penumbraRmse = std::sqrt(squaredPenumbra / std::max(1, error.penumbra));
   return error;
-}
-
-ShadowRenderer& sharedRenderer()
-{
-  static ShadowRenderer renderer;
-  return renderer;
 }
 
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,

@@ -65,9 +65,7 @@ struct GroundError
 };
 GroundError groundErrorAgainst(const FrameResult& frame, const std::function<double(double x, double z)>& exact);
 
-// One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
-ShadowRenderer& sharedRenderer();
-
+// Renders with one renderer per test process (its EGL context and VTK window are the slow part on llvmpipe).
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
   const std::vector<std::string>& settings = {});
 
