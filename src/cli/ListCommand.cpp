@@ -2,6 +2,7 @@
 // light-space structures and the buffers it publishes; --json for tools.
 #include "cli/Commands.h"
 
+#include "lightspace/LightSpaceStructure.h"
 #include "techniques/Registry.h"
 
 #include <nlohmann/json.hpp>
@@ -61,9 +62,9 @@ void listAsJson(std::ostream& out)
       buffers.push_back({ { "name", buffer.name }, { "unit", buffer.unit }, { "doc", buffer.doc } });
     }
     nlohmann::json structures = nlohmann::json::array();
-    for (LightStructure structure : technique.lightStructures)
+    for (const LightSpaceStructure* structure : technique.lightStructures)
     {
-      structures.push_back(lightStructureName(structure));
+      structures.push_back(structure->name);
     }
     techniques.push_back({ { "name", technique.name }, { "title", technique.title }, { "paper", technique.paper },
       { "parameters", parameters }, { "buffers", buffers }, { "light_structures", structures } });
@@ -77,9 +78,9 @@ void listAsText(std::ostream& out)
   {
     out << technique.name << " - " << technique.title << " (" << technique.paper << ")\n";
     std::string structures;
-    for (LightStructure structure : technique.lightStructures)
+    for (const LightSpaceStructure* structure : technique.lightStructures)
     {
-      structures += (structures.empty() ? "" : ", ") + lightStructureName(structure);
+      structures += (structures.empty() ? "" : ", ") + structure->name;
     }
     out << "  light-space structures: " << (structures.empty() ? "none" : structures) << "\n";
     out << "  parameters:\n";

@@ -62,6 +62,22 @@ struct Image
     }
     return result;
   }
+
+  // Components [first, first + count) of every pixel.
+  Image channels(int first, int count) const
+  {
+    SL_CHECK(first >= 0 && count > 0 && first + count <= components);
+    Image result(width, height, count);
+    for (std::size_t i = 0; i < pixelCount(); ++i)
+    {
+      for (int c = 0; c < count; ++c)
+      {
+        result.data[i * static_cast<std::size_t>(count) + static_cast<std::size_t>(c)] =
+          data[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(first + c)];
+      }
+    }
+    return result;
+  }
 };
 
 using ImageF = Image<float>;

@@ -47,7 +47,9 @@ struct FrameResult
   std::optional<LightView> lightView;
   std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
   std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
-  std::vector<NamedPolyData> objectSpace; // geometry an object-space technique exports (vtkSLTechniquePass)
+  std::vector<NamedPolyData> objectSpace;
+  std::vector<std::string> lightStructureNames; // the structures the technique reads (descriptor order)
+  std::map<std::string, std::size_t> lightStructureGpuBytes; // by structure name, every structure that was built // geometry an object-space technique exports (vtkSLTechniquePass)
   ImageU8 image;                      // shaded, RGB, row 0 at the bottom
   // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
   std::optional<Image<std::uint32_t>> integerSummedAreaTable;

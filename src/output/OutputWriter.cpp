@@ -148,11 +148,17 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     { "technique_statistics", frame.techniqueStatistics },
   };
   nlohmann::json structures = nlohmann::json::array();
-  for (LightStructure structure : technique.lightStructures)
+  for (const std::string& name : frame.lightStructureNames)
   {
-    structures.push_back(lightStructureName(structure));
+    structures.push_back(name);
   }
   stats["light_structures"] = structures;
+  nlohmann::json structureBytes = nlohmann::json::object();
+  for (const auto& [name, bytes] : frame.lightStructureGpuBytes)
+  {
+    structureBytes[name] = bytes;
+  }
+  stats["light_structure_gpu_bytes"] = structureBytes;
   if (frame.lightView)
   {
     const LightView& view = *frame.lightView;

@@ -7,9 +7,9 @@
 //   gbufferAlbedoDepth xyz = albedo,                          w = view depth (linear, along the camera axis)
 #pragma once
 
+#include "core/Error.h"
 #include "gl/GlResources.h"
 #include "lightspace/CameraView.h"
-#include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/LightView.h"
 #include "scene/WeldedMesh.h"
 #include "scene/Scene.h"
@@ -26,6 +26,12 @@ class vtkTextureObject;
 
 namespace sl
 {
+
+// What a light-space structure's build leaves in the frame; each structure derives its own.
+struct LightSpaceData
+{
+  virtual ~LightSpaceData() = default;
+};
 
 struct FrameResources
 {
@@ -46,23 +52,15 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> gbufferAlbedoDepth;
   vtkSmartPointer<vtkTextureObject> gbufferDepth; // GL_DEPTH32F_STENCIL8, stencil cleared to 0
 
-  // Light-space stage (only when the technique needs the shadow map).
+  // The shadow map (lightspace/shadowmap), the structure every other one is built from (only when the technique
+  // needs it).
   bool hasLightView = false;
   LightView lightView;
   vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
-  // Moment-map stage: RGBA32F (z, z^2, exp(c z_n), 1), box-blurred (mip-mapped when prefilter = mipmap).
-  vtkSmartPointer<vtkTextureObject> momentMap;
-  // Summed-area-table stage: RG32F (centred z, z^2) or RG32UI (16-bit fixed-point z_n, z_n^2), see
-  // shaders/sat/SatBuild.glsl.
-  vtkSmartPointer<vtkTextureObject> summedAreaTable;
-  bool summedAreaTableIsInteger = false;
-  double summedAreaTableFixedPointScale = 0.0; // int32: 2^b - 1 (vtkSLSatPass picks b)
-  // Hierarchical-shadow-map stage: RG32F (min, max) of levels 1..L, a mip-map atlas (N x N) or N-buffers
-  // (N x N x L, layer k - 1 = level k), or the dual-grid MSSM ((N + 1)^2 x (L + 1), layer k = level k); see
-  // src/lightspace/HierarchicalShadowMap.h.
-  vtkSmartPointer<vtkTextureObject> hierarchicalShadowMap;
-  HsmLayout hierarchicalShadowMapLayout = HsmLayout::MipMap;
+  // The other light-space structures (lightspace/LightSpaceStructure.h), by structure name: what each one's
+  // build left for its binding and export (e.g. lightspace/sat/SatStructure.h's SummedAreaTableData).
+  std::map<std::string, std::shared_ptr<LightSpaceData>> lightSpaceData;
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F. With sub-lights, the
   // combined targets once vtkSLMultiViewPass has run.
@@ -74,6 +72,16 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> shadedImage; // RGBA8
 
   int width() const { return camera.resolution.x; }
+  // The data the structure `name` left in this frame (SL_CHECKs it was built, with that type).
+  template <class Data>
+  const Data& structureData(const std::string& name) const
+  {
+    const auto found = lightSpaceData.find(name);
+    SL_CHECK_MSG(found != lightSpaceData.end(), "light-space structure ", name, " was not built");
+    const auto* data = dynamic_cast<const Data*>(found->second.get());
+    SL_CHECK_MSG(data, "light-space structure ", name, " holds another type of data");
+    return *data;
+  }
   int height() const { return camera.resolution.y; }
 };
 

@@ -10,13 +10,25 @@
 namespace sl
 {
 
+namespace
+{
+
+bool hasStencilBits(vtkTextureObject* texture)
+{
+  GLint stencilBits = 0;
+  glGetTextureLevelParameteriv(texture->GetHandle(), 0, GL_TEXTURE_STENCIL_SIZE, &stencilBits);
+  return stencilBits > 0;
+}
+
+} // namespace
+
 ScopedRenderTarget::ScopedRenderTarget(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
   const std::vector<vtkTextureObject*>& colorTargets, vtkTextureObject* depthTarget)
   : state_(window->GetState())
   , framebuffer_(framebuffer)
   , colorCount_(static_cast<unsigned>(colorTargets.size()))
   , hasDepth_(depthTarget != nullptr)
-  , hasStencil_(depthTarget && depthTarget->GetInternalFormat(VTK_FLOAT, 1, false) == GL_DEPTH32F_STENCIL8)
+  , hasStencil_(depthTarget && hasStencilBits(depthTarget))
   , viewport_(state_)
   , depthTest_(state_, GL_DEPTH_TEST)
   , cullFace_(state_, GL_CULL_FACE)

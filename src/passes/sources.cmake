@@ -1,3 +1,5 @@
+# Stage passes and the GL helpers they share: G-buffer, shading, multi-view (sub-lights). The light-space
+# structures' build passes live with their structures (src/lightspace/*/), technique passes in src/techniques.
 set(SL_PASSES_SOURCES
   src/passes/PassUtilities.cpp
   src/passes/ScopedRenderTarget.cpp
@@ -6,12 +8,6 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLStagePass.cxx
   src/passes/vtkSLGBufferPass.cxx
   src/passes/GpuReceivers.cpp
-  src/passes/vtkSLFocusPass.cxx
-  src/passes/vtkSLLightDepthPass.cxx
-  src/passes/vtkSLMomentMapPass.cxx
-  src/passes/vtkSLSatPass.cxx
-  src/passes/vtkSLHsmPass.cxx
-  src/passes/vtkSLTechniquePass.cxx
   src/passes/vtkSLShadingPass.cxx
   src/passes/vtkSLSubLightAccumulatePass.cxx
   src/passes/vtkSLMultiViewPass.cxx)

@@ -3,7 +3,6 @@
 #include "core/Error.h"
 #include "gl/GlResources.h"
 #include "passes/FrameResources.h"
-#include "passes/vtkSLTechniquePass.h"
 #include "lightspace/LightSamples.h"
 
 #include <vtkObjectFactory.h>
@@ -58,7 +57,7 @@ void vtkSLMultiViewPass::Render(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   const std::vector<sl::Light> subLights = sl::splitIntoSubLights(*frame.light, perSide);
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> combined;
-  for (const std::string& output : vtkSLTechniquePass::OutputNames(*frame.technique))
+  for (const std::string& output : frame.technique->outputNames())
   {
     combined[output] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   }

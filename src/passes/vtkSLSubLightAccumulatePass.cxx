@@ -3,7 +3,6 @@
 #include "core/Error.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameResources.h"
-#include "passes/vtkSLTechniquePass.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkTextureObject.h>
@@ -39,7 +38,7 @@ void vtkSLSubLightAccumulatePass::Execute(const vtkRenderState*)
   {
     combineRules[buffer.name] = buffer.subLightCombine;
   }
-  for (const std::string& output : vtkSLTechniquePass::OutputNames(*frame.technique))
+  for (const std::string& output : frame.technique->outputNames())
   {
     const sl::SubLightCombine rule = combineRules.at(output);
     const double weight = rule == sl::SubLightCombine::Mean ? 1.0 / this->SubLightCount : rule == sl::SubLightCombine::Sum ? 1.0 : 0.0;

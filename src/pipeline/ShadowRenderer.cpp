@@ -4,17 +4,13 @@
 
 #include "core/Error.h"
 #include "gl/vtkSLEglRenderWindow.h"
+#include "lightspace/LightSpaceStructure.h"
 #include "passes/FrameResources.h"
-#include "passes/vtkSLFocusPass.h"
 #include "passes/vtkSLGBufferPass.h"
-#include "passes/vtkSLLightDepthPass.h"
 #include "passes/vtkSLMultiViewPass.h"
 #include "passes/vtkSLSubLightAccumulatePass.h"
-#include "passes/vtkSLMomentMapPass.h"
-#include "passes/vtkSLHsmPass.h"
-#include "passes/vtkSLSatPass.h"
 #include "passes/vtkSLShadingPass.h"
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 #include <vtkNew.h>
 #include <vtkRenderPassCollection.h>
@@ -63,24 +59,14 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
   auto& stages = stagesByTechnique_[technique.name];
   if (stages.empty())
   {
-    // Only the structures this technique needs.
+    // Only the light-space structures this technique needs, and what they are built from, each once.
     stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
-    if (technique.needs(LightStructure::ShadowMap))
+    for (const LightSpaceStructure* structure : withBuildDependencies(technique.lightStructures))
     {
-      stages.push_back(vtkSmartPointer<vtkSLFocusPass>::New());
-      stages.push_back(vtkSmartPointer<vtkSLLightDepthPass>::New());
-    }
-    if (technique.needs(LightStructure::MomentMap))
-    {
-      stages.push_back(vtkSmartPointer<vtkSLMomentMapPass>::New());
-    }
-    if (technique.needs(LightStructure::SummedAreaTable))
-    {
-      stages.push_back(vtkSmartPointer<vtkSLSatPass>::New());
-    }
-    if (technique.needs(LightStructure::HierarchicalShadowMap) || technique.needs(LightStructure::DualMultiScaleShadowMap))
-    {
-      stages.push_back(vtkSmartPointer<vtkSLHsmPass>::New());
+      for (const auto& pass : structure->createBuildPasses())
+      {
+        stages.push_back(pass);
+      }
     }
     stages.push_back(technique.createPass());
     if (technique.hasSubLights())
@@ -223,17 +209,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   const ImageF position = readFloatTexture(frame.gbufferPosition, 4);
   const ImageF normal = readFloatTexture(frame.gbufferNormal, 4);
   const ImageF albedoDepth = readFloatTexture(frame.gbufferAlbedoDepth, 4);
-  const auto channels = [](const ImageF& source, int first, int count) {
-    ImageF out(source.width, source.height, count);
-    for (std::size_t i = 0; i < source.pixelCount(); ++i)
-    {
-      for (int c = 0; c < count; ++c)
-      {
-        out.data[i * count + c] = source.data[i * source.components + first + c];
-      }
-    }
-    return out;
-  };
+  const auto channels = [](const ImageF& source, int first, int count) { return source.channels(first, count); };
   const auto& common = commonBufferSpecs();
   const auto commonBuffer = [&](const std::string& name, ImageF image) {
     const auto spec = std::find_if(common.begin(), common.end(), [&](const BufferSpec& s) { return s.name == name; });
@@ -269,83 +245,18 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     const BufferSpec& spec = subLightBufferSpecs().front();
     result.buffers.push_back({ spec.name, std::move(subLights), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
   }
-  if (frame.hasLightView)
+  if (!request.gbufferOnly)
   {
-    result.lightSpace.push_back({ "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
-      "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" });
-    result.lightSpace.push_back({ "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
-      "hardware depth buffer of the shadow map, window coordinates in [0, 1]" });
-  }
-  if (frame.summedAreaTable)
-  {
-    // Exported as floats: for the int32 table these are the wrapped unsigned sums (only box differences of
-    // them are meaningful), for the float table the centred sums.
-    ImageF table;
-    if (frame.summedAreaTableIsInteger)
+    for (const LightSpaceStructure* structure : technique.lightStructures)
     {
-      result.integerSummedAreaTable = readUnsignedTextureExact(frame.summedAreaTable, 2);
-      table = ImageF(result.integerSummedAreaTable->width, result.integerSummedAreaTable->height, 2);
-      std::copy(result.integerSummedAreaTable->data.begin(), result.integerSummedAreaTable->data.end(), table.data.begin());
+      result.lightStructureNames.push_back(structure->name);
     }
-    else
+    // Each structure the frame built, in build order: its light_space.vti arrays and its GPU memory.
+    for (const LightSpaceStructure* structure : withBuildDependencies(technique.lightStructures))
     {
-      table = readFloatTexture(frame.summedAreaTable, 2);
-    }
-    const char* names[2] = { "sat_z", "sat_z2" };
-    const char* docs[2] = { "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)",
-      "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
-    for (int c = 0; c < 2; ++c)
-    {
-      result.lightSpace.push_back({ names[c], channels(table, c, 1), "", docs[c] });
-    }
-  }
-  if (frame.hierarchicalShadowMap)
-  {
-    // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level;
-    // dual-grid MSSM: one pair per level, point (i, j) holding cell (i, j) (texel (i + 1, j + 1)).
-    const std::vector<ImageF> layers = readFloatTextureLayers(frame.hierarchicalShadowMap, 2);
-    const int size = frame.lightView.resolution;
-    for (std::size_t layer = 0; layer < layers.size(); ++layer)
-    {
-      const std::string level = std::to_string(layer + 1);
-      switch (frame.hierarchicalShadowMapLayout)
-      {
-        case HsmLayout::MipMap:
-        {
-          const std::string what = "of each node, mip-map levels 1..L packed in an atlas (level 1 at the origin, the others stacked to its right)";
-          result.lightSpace.push_back({ "hsm_min", channels(layers[layer], 0, 1), "world units", "minimum depth " + what });
-          result.lightSpace.push_back({ "hsm_max", channels(layers[layer], 1, 1), "world units", "maximum depth " + what });
-          break;
-        }
-        case HsmLayout::NBuffers:
-        {
-          const std::string what = "over the 2^" + level + " square at each texel (N-buffers level " + level + ")";
-          result.lightSpace.push_back({ "hsm_min_" + level, channels(layers[layer], 0, 1), "world units", "minimum depth " + what });
-          result.lightSpace.push_back({ "hsm_max_" + level, channels(layers[layer], 1, 1), "world units", "maximum depth " + what });
-          break;
-        }
-        case HsmLayout::DualMssm:
-        {
-          const std::string dualLevel = std::to_string(layer);
-          const std::string what = "of the 2^" + dualLevel + " x 2^" + dualLevel +
-            " dual cells (2 x 2 sample blocks) starting at the cell whose first sample is this texel (dual-grid MSSM level " +
-            dualLevel + ", Yang et al. 2009 §4.2; samples outside the map count as 2 x far)";
-          const ImageF cells = layers[layer].crop(1, 1, size, size);
-          result.lightSpace.push_back({ "mssm_dual_min_" + dualLevel, channels(cells, 0, 1), "world units", "minimum depth " + what });
-          result.lightSpace.push_back({ "mssm_dual_max_" + dualLevel, channels(cells, 1, 1), "world units", "maximum depth " + what });
-          break;
-        }
-      }
-    }
-  }
-  if (frame.momentMap)
-  {
-    const ImageF moments = readFloatTexture(frame.momentMap, 4);
-    const char* names[3] = { "moment_mean", "moment_second", "moment_exponential" };
-    const char* docs[3] = { "prefiltered E[z] (linear depth)", "prefiltered E[z^2]", "prefiltered E[exp(c z_n)] (esm)" };
-    for (int c = 0; c < 3; ++c)
-    {
-      result.lightSpace.push_back({ names[c], channels(moments, c, 1), "", docs[c] });
+      const std::vector<NamedImage> images = structure->exportImages(frame, result);
+      result.lightSpace.insert(result.lightSpace.end(), images.begin(), images.end());
+      result.lightStructureGpuBytes[structure->name] = structure->gpuBytes(frame);
     }
   }
   if (frame.shadedImage)

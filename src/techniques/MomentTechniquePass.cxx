@@ -19,7 +19,7 @@ std::vector<vtkTextureObject*> vtkSLMomentTechniquePass::SetTechniqueUniforms(vt
   sl::setFloatIfUsed(program, "momentLod", std::log2(static_cast<double>(width)));
   sl::setFloatIfUsed(program, "depthNear", frame.lightView.nearDepth);
   sl::setFloatIfUsed(program, "depthFar", frame.lightView.farDepth);
-  return { sl::bindTexture(program, "momentMap", frame.momentMap) };
+  return {}; // the moment map itself is bound by its structure (lightspace/moments)
 }
 
 void vtkSLMomentTechniquePass::PrintSelf(ostream& os, vtkIndent indent)

@@ -2,7 +2,7 @@
 // prefiltered moment map (passes/vtkSLMomentMapPass), its mip level, the box width and the depth range.
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLMomentTechniquePass : public vtkSLTechniquePass
 {

@@ -3,7 +3,6 @@
 #include "core/Error.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
-#include "passes/vtkSLHsmPass.h"
 #include "techniques/SamplingPatterns.h"
 
 #include <vtkShaderProgram.h>
@@ -137,25 +136,6 @@ void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& fram
   const float windowMin[2] = { static_cast<float>(view.window.x), static_cast<float>(view.window.z) };
   program->SetUniform2f("shadowWindowMin", windowMin);
   setPoissonDiskUniform(program);
-}
-
-vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameResources& frame)
-{
-  program->SetUniformf("satDepthNear", static_cast<float>(frame.lightView.nearDepth));
-  program->SetUniformf("satDepthFar", static_cast<float>(frame.lightView.farDepth));
-  setFloatIfUsed(program, "satFixedPointScale", frame.summedAreaTableFixedPointScale);
-  return bindTexture(program, "satTable", frame.summedAreaTable);
-}
-
-ShaderDefines hsmLayoutDefines(const FrameResources& frame)
-{
-  return vtkSLHsmPass::LayoutDefines(frame.hierarchicalShadowMapLayout);
-}
-
-vtkTextureObject* bindHierarchicalShadowMap(vtkShaderProgram* program, const FrameResources& frame)
-{
-  setIntIfUsed(program, "hsmMapSize", frame.lightView.resolution);
-  return bindTexture(program, "hsmTexture", frame.hierarchicalShadowMap);
 }
 
 ShaderDefines poissonDiskDefines()

@@ -29,13 +29,6 @@ ParameterSpec receiverPlaneBiasParameter();
 ParameterSpec subLightsParameter();
 // lightSizeWorld, lightNearDepth, shadowTexelTangent, shadowWindowMin, poissonDisk.
 void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& frame);
-// The summed-area table and the uniforms of shaders/common/SatLookup.glsl (savsm, vssm); returns the bound
-// texture, to deactivate after drawing.
-vtkTextureObject* bindSummedAreaTable(vtkShaderProgram* program, const FrameResources& frame);
-// The min-max structure of shaders/common/HsmLookup.glsl (vssm, gbp07): its layout defines (from the `hsm`
-// parameter) and its texture and uniforms; returns the bound texture.
-ShaderDefines hsmLayoutDefines(const FrameResources& frame);
-vtkTextureObject* bindHierarchicalShadowMap(vtkShaderProgram* program, const FrameResources& frame);
 
 // CPU mirror (double precision) of shaders/common/SoftShadowKernels.glsl at one receiver.
 struct SoftShadowGeometry

@@ -1,4 +1,5 @@
 set(SL_TECHNIQUES_SOURCES
+  src/techniques/vtkSLTechniquePass.cxx
   src/techniques/Registry.cpp
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp

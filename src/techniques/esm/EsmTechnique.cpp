@@ -1,5 +1,8 @@
 #include "techniques/esm/EsmTechnique.h"
 
+#include "lightspace/moments/MomentMapStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/MomentReference.h"
 #include "techniques/MomentTechniquePass.h"
 #include "techniques/ShadowMapParameters.h"
@@ -17,12 +20,12 @@ TechniqueDescriptor esmTechnique()
   descriptor.title = "Exponential shadow maps";
   descriptor.paper = "Annen, Mertens, Seidel, Flerackers & Kautz 2008; survey §6";
   descriptor.parameters = shadowMapParameters();
-  const std::vector<ParameterSpec> prefilter = momentPrefilterParameters();
+  const std::vector<ParameterSpec>& prefilter = momentMapStructure().parameters;
   descriptor.parameters.insert(descriptor.parameters.end(), prefilter.begin(), prefilter.end());
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "esm_exponent", 40, 1, 80, "", "c in exp(c (z_n - t_n)), depths normalised to the light's range: sharper with larger c", {}, false },
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::MomentMap };
+  descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
     { "light_leak", "", "visibility minus the true PCF over the same box of texels", BufferKind::Signed },
     { "kernel_texels", "texels", "width of the prefilter box" },

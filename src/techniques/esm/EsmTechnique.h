@@ -10,7 +10,6 @@ namespace sl
 {
 
 TechniqueDescriptor esmTechnique();
-std::vector<ParameterSpec> momentPrefilterParameters(); // shared with vsm (VsmTechnique.cpp)
 
 // CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur.
 ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);

@@ -9,16 +9,11 @@
 
 vtkStandardNewMacro(vtkSLGbp06Pass);
 
-sl::ShaderDefines vtkSLGbp06Pass::GetExtraDefines() const
-{
-  return sl::hsmLayoutDefines(*this->Frame);
-}
-
 std::vector<vtkTextureObject*> vtkSLGbp06Pass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   const sl::FrameResources& frame = *this->Frame;
   sl::setSoftShadowUniforms(program, frame);
-  return { sl::bindHierarchicalShadowMap(program, frame) };
+  return {}; // the min-max structure is bound by its structure (lightspace/hsm)
 }
 
 void vtkSLGbp06Pass::PrintSelf(ostream& os, vtkIndent indent)

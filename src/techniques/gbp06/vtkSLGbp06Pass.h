@@ -2,7 +2,7 @@
 // the min-max structure (passes/vtkSLHsmPass, N-buffers by default), which the hsm traversal walks as a quadtree.
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLGbp06Pass : public vtkSLTechniquePass
 {
@@ -15,7 +15,6 @@ protected:
   vtkSLGbp06Pass() = default;
   ~vtkSLGbp06Pass() override = default;
   std::string GetFragmentShaderPath() const override { return "gbp06/Gbp06Visibility.glsl"; }
-  sl::ShaderDefines GetExtraDefines() const override;
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
 
 private:

@@ -9,16 +9,11 @@
 
 vtkStandardNewMacro(vtkSLGbp07Pass);
 
-sl::ShaderDefines vtkSLGbp07Pass::GetExtraDefines() const
-{
-  return sl::hsmLayoutDefines(*this->Frame);
-}
-
 std::vector<vtkTextureObject*> vtkSLGbp07Pass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   const sl::FrameResources& frame = *this->Frame;
   sl::setSoftShadowUniforms(program, frame);
-  return { sl::bindHierarchicalShadowMap(program, frame) };
+  return {}; // the min-max structure is bound by its structure (lightspace/hsm)
 }
 
 void vtkSLGbp07Pass::PrintSelf(ostream& os, vtkIndent indent)

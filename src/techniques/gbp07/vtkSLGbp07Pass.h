@@ -2,7 +2,7 @@
 // the min-max structure (passes/vtkSLHsmPass, N-buffers = the MSSM by default).
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLGbp07Pass : public vtkSLTechniquePass
 {
@@ -15,7 +15,6 @@ protected:
   vtkSLGbp07Pass() = default;
   ~vtkSLGbp07Pass() override = default;
   std::string GetFragmentShaderPath() const override { return "gbp07/Gbp07Visibility.glsl"; }
-  sl::ShaderDefines GetExtraDefines() const override;
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
 
 private:

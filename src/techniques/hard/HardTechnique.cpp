@@ -1,5 +1,7 @@
 #include "techniques/hard/HardTechnique.h"
 
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/hard/vtkSLHardShadowPass.h"
 
@@ -13,7 +15,7 @@ TechniqueDescriptor hardTechnique()
   descriptor.title = "Hard shadow mapping with depth biasing";
   descriptor.paper = "Williams 1978; survey (Scherzer et al. 2011) §5";
   descriptor.parameters = shadowMapParameters();
-  descriptor.lightStructures = { LightStructure::ShadowMap };
+  descriptor.lightStructures = { &shadowMapStructure() };
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     { "texel_ratio", "pixels/texel", "aliasing error m (survey Eq. 2): screen pixels spanned by one shadow-map texel along its most stretched direction; > 1 means undersampling" },

@@ -1,7 +1,7 @@
 // The `hard` technique's visibility pass: the full-screen shader shaders/hard/HardVisibility.glsl.
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLHardShadowPass : public vtkSLTechniquePass
 {

@@ -3,7 +3,7 @@
 // over the shadow map's hardware depth.
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLPcfPass : public vtkSLTechniquePass
 {

@@ -1,5 +1,7 @@
 #include "techniques/pcss/PcssTechnique.h"
 
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
@@ -22,7 +24,7 @@ TechniqueDescriptor pcssTechnique()
   descriptor.parameters.insert(descriptor.parameters.end(), soft.begin(), soft.end());
   descriptor.parameters.push_back(
     { "filter", 0, 0, 1, "", "grid: every texel of the penumbra kernel w_p (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true });
-  descriptor.lightStructures = { LightStructure::ShadowMap };
+  descriptor.lightStructures = { &shadowMapStructure() };
   descriptor.buffers = {
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
     { "blocker_samples", "taps", "depth samples read in the blocker search" },

@@ -2,7 +2,7 @@
 // plane (the fitted near depth), the texel size in tangent units and the Poisson disk.
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLPcssPass : public vtkSLTechniquePass
 {

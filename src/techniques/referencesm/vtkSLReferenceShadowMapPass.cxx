@@ -4,6 +4,7 @@
 #include "lightspace/LightSamples.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
 #include "passes/ScopedRenderTarget.h"
 #include "passes/ShadowMapRendering.h"
 
@@ -77,7 +78,11 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
     glState->vtkglEnable(GL_BLEND);
     glState->vtkglBlendFunc(GL_ONE, GL_ONE);
     vtkShaderProgram* program = this->AccumulateQuad.ready(window, accumulateSource, "reference-sm accumulate");
-    const std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+    std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+    // This sample's map, bound as the shadow-map structure binds the pipeline's (the technique lists none: its K
+    // maps are internal).
+    const std::vector<vtkTextureObject*> shadowMap = sl::shadowMapStructure().bind(program, frame);
+    bound.insert(bound.end(), shadowMap.begin(), shadowMap.end());
     program->SetUniformf("sampleWeight", static_cast<float>(1.0 / sampleCount));
     this->AccumulateQuad.render();
     for (vtkTextureObject* texture : bound)

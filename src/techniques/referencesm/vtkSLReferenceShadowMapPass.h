@@ -6,7 +6,7 @@
 #include "gl/GlResources.h"
 #include "passes/FullScreenQuad.h"
 #include "passes/GpuReceivers.h"
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

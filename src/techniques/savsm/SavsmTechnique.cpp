@@ -1,5 +1,8 @@
 #include "techniques/savsm/SavsmTechnique.h"
 
+#include "lightspace/sat/SatStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/pcss/PcssTechnique.h"
@@ -28,7 +31,7 @@ TechniqueDescriptor savsmTechnique()
     { "light_bleeding_reduction", 0.0, 0, 0.99, "", "p_max below this amount becomes 0 and [amount, 1] maps to [0, 1] (Lauritzen 2007)", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the variance, relative to the squared receiver depth", {}, false },
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::SummedAreaTable };
+  descriptor.lightStructures = { &shadowMapStructure(), &summedAreaTableStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the lit fraction over w_p, before light-bleeding reduction" },
     { "light_leak", "", "p_max minus the true PCF over the same rectangle of texels", BufferKind::Signed },

@@ -2,7 +2,7 @@
 // summed-area table (passes/vtkSLSatPass).
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLSavsmPass : public vtkSLTechniquePass
 {

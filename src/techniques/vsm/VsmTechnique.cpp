@@ -1,5 +1,8 @@
 #include "techniques/vsm/VsmTechnique.h"
 
+#include "lightspace/moments/MomentMapStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/esm/EsmTechnique.h"
 
 #include "techniques/MomentReference.h"
@@ -10,14 +13,6 @@
 
 namespace sl
 {
-
-std::vector<ParameterSpec> momentPrefilterParameters()
-{
-  return {
-    { "prefilter", 0, 0, 1, "", "blur: separable box blur of the moments; mipmap: trilinear mip-map lookup at log2(width)", { "blur", "mipmap" }, true },
-    { "prefilter_texels", 5, 1, 63, "texels", "width of the box the moments are averaged over (odd widths are centred)", {}, true },
-  };
-}
 
 TechniqueDescriptor vsmTechnique()
 {
@@ -35,13 +30,13 @@ TechniqueDescriptor vsmTechnique()
       spec.defaultValue = 0.0;
     }
   }
-  const std::vector<ParameterSpec> prefilter = momentPrefilterParameters();
+  const std::vector<ParameterSpec>& prefilter = momentMapStructure().parameters;
   descriptor.parameters.insert(descriptor.parameters.end(), prefilter.begin(), prefilter.end());
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "light_bleeding_reduction", 0.2, 0, 0.99, "", "p_max below this amount becomes 0 and [amount, 1] maps to [0, 1] (Lauritzen 2007)", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the variance, relative to the squared receiver depth (float cancellation in E[z^2] - E[z]^2)", {}, false },
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::MomentMap };
+  descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the lit fraction, before light-bleeding reduction" },
     { "light_leak", "", "p_max minus the true PCF over the same box of texels: > 0 where VSM bleeds light", BufferKind::Signed },

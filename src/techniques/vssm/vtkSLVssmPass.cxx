@@ -1,5 +1,6 @@
 #include "techniques/vssm/vtkSLVssmPass.h"
 
+#include "lightspace/sat/SatStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "techniques/SoftShadowSupport.h"
@@ -13,10 +14,7 @@ vtkStandardNewMacro(vtkSLVssmPass);
 
 sl::ShaderDefines vtkSLVssmPass::GetExtraDefines() const
 {
-  sl::ShaderDefines defines = sl::poissonDiskDefines();
-  const sl::ShaderDefines hsm = sl::hsmLayoutDefines(*this->Frame);
-  defines.insert(defines.end(), hsm.begin(), hsm.end());
-  return defines;
+  return sl::poissonDiskDefines();
 }
 
 std::vector<vtkTextureObject*> vtkSLVssmPass::SetTechniqueUniforms(vtkShaderProgram* program)
@@ -26,8 +24,8 @@ std::vector<vtkTextureObject*> vtkSLVssmPass::SetTechniqueUniforms(vtkShaderProg
   program->SetUniformf("sceneRadius", static_cast<float>(frame.scene->bounds().radius()));
   const sl::LightView& view = frame.lightView;
   program->SetUniformf("satHalfStep",
-    static_cast<float>(sl::vssmSatHalfStep(frame.summedAreaTableIsInteger, view.resolution, view.nearDepth, view.farDepth)));
-  return { sl::bindSummedAreaTable(program, frame), sl::bindHierarchicalShadowMap(program, frame) };
+    static_cast<float>(sl::vssmSatHalfStep(sl::summedAreaTableData(frame).integer, view.resolution, view.nearDepth, view.farDepth)));
+  return {}; // the summed-area table and the HSM are bound by their structures (lightspace/sat, lightspace/hsm)
 }
 
 void vtkSLVssmPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -2,7 +2,7 @@
 // summed-area table (passes/vtkSLSatPass) and the min-max HSM (passes/vtkSLHsmPass).
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 class vtkSLVssmPass : public vtkSLTechniquePass
 {

@@ -3,7 +3,7 @@
 // full-screen ratio shader of the base class. See VtkTechnique.h.
 #pragma once
 
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 #include <vtkSmartPointer.h>
 

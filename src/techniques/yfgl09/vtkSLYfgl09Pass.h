@@ -5,7 +5,7 @@
 #pragma once
 
 #include "passes/FullScreenQuad.h"
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
@@ -28,7 +28,6 @@ protected:
   vtkSLYfgl09Pass();
   ~vtkSLYfgl09Pass() override;
   std::string GetFragmentShaderPath() const override { return "yfgl09/Yfgl09Visibility.glsl"; }
-  sl::ShaderDefines GetExtraDefines() const override;
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
   void Execute(const vtkRenderState* state) override;
 

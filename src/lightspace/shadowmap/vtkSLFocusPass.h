@@ -1,8 +1,7 @@
-// Stage 2a (when the technique needs a shadow map): fits the light frustum to the visible receivers and
+// The shadow map's first stage (lightspace/shadowmap/ShadowMapStructure.h): fits the light frustum to the visible receivers and
 // the casters clipped to it (survey §4.1, see lightspace/LightView.h). The receivers are reduced on the
 // GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
-// own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: shadow_map_size, and the
-// technique's kernel_texels when declared (margin = ceil(kernel / 2) + 1 texels).
+// own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: ShadowMapSettings.
 #pragma once
 
 #include "passes/GpuReceivers.h"

@@ -1,6 +1,7 @@
-#include "passes/vtkSLLightDepthPass.h"
+#include "lightspace/shadowmap/vtkSLLightDepthPass.h"
 
 #include "core/Error.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/ShadowMapRendering.h"
 
@@ -24,15 +25,13 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
-  const sl::ParameterValues& parameters = frame.parameters;
 
   SL_CHECK_MSG(frame.hasLightView, "the focus stage must run before the shadow map");
   const sl::LightView& view = frame.lightView;
 
   frame.shadowMapLinear = sl::makeFloatTarget(window, view.resolution, view.resolution, 1);
   frame.shadowMapDepth = sl::makeDepthTarget(window, view.resolution, view.resolution);
-  const bool secondDepth =
-    frame.technique->findParameter("caster_faces") && parameters.choice("caster_faces") == "back";
+  const bool secondDepth = sl::shadowMapSettings(frame.parameters).secondDepth;
   sl::renderShadowMap(window, this->Framebuffer, this->Drawer, *frame.gpuScene, view, secondDepth,
     frame.shadowMapLinear, frame.shadowMapDepth);
 }

@@ -1,8 +1,9 @@
-#include "passes/vtkSLSatPass.h"
+#include "lightspace/sat/vtkSLSatPass.h"
 
 #include "core/Error.h"
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
+#include "lightspace/sat/SatStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "lightspace/sat/SummedAreaTable.h"
@@ -27,7 +28,7 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
   SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its SAT");
-  const bool integer = frame.parameters.choice("sat_precision") == "int32";
+  const bool integer = sl::summedAreaTableSettings(frame.parameters).integer;
   const int size = frame.lightView.resolution;
   // int32: b bits of fixed point so that a box of the whole map sums below 2^32 (SatBuild.glsl).
   const double fixedPointScale = sl::satFixedPointScale(size);
@@ -67,9 +68,11 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
   }
   frame.shadowMapLinear->Deactivate();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
-  frame.summedAreaTable = table;
-  frame.summedAreaTableIsInteger = integer;
-  frame.summedAreaTableFixedPointScale = fixedPointScale;
+  auto data = std::make_shared<sl::SummedAreaTableData>();
+  data->table = table;
+  data->integer = integer;
+  data->fixedPointScale = fixedPointScale;
+  frame.lightSpaceData[sl::summedAreaTableStructure().name] = data;
 }
 
 void vtkSLSatPass::ReleaseGraphicsResources(vtkWindow*)

@@ -1,7 +1,8 @@
-#include "passes/vtkSLMomentMapPass.h"
+#include "lightspace/moments/vtkSLMomentMapPass.h"
 
 #include "core/Error.h"
 #include "gl/ShaderLibrary.h"
+#include "lightspace/moments/MomentMapStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
@@ -25,12 +26,11 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
   SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its moments");
-  const sl::ParameterValues& parameters = frame.parameters;
-  const sl::TechniqueDescriptor& technique = *frame.technique;
+  const sl::MomentMapSettings settings = sl::momentMapSettings(frame.parameters);
   const int size = frame.lightView.resolution;
-  const double exponent = technique.findParameter("esm_exponent") ? parameters.get("esm_exponent") : 0.0;
-  const bool mipmap = technique.findParameter("prefilter") && parameters.choice("prefilter") == "mipmap";
-  const int blurWidth = technique.findParameter("prefilter_texels") && !mipmap ? parameters.getInt("prefilter_texels") : 1;
+  const double exponent = settings.esmExponent;
+  const bool mipmap = settings.mipmap;
+  const int blurWidth = settings.blurTexels;
 
   auto moments = sl::makeFloatTarget(window, size, size, 4);
   {
@@ -71,7 +71,10 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     moments->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
     moments->SetMagnificationFilter(vtkTextureObject::Linear);
   }
-  frame.momentMap = moments;
+  auto data = std::make_shared<sl::MomentMapData>();
+  data->moments = moments;
+  data->mipmapped = mipmap;
+  frame.lightSpaceData[sl::momentMapStructure().name] = data;
 }
 
 void vtkSLMomentMapPass::ReleaseGraphicsResources(vtkWindow* window)

@@ -1,4 +1,4 @@
-// Stage 2d (techniques that need LightStructure::SummedAreaTable: savsm): the summed-area table of the
+// The summed-area table's build (lightspace/sat/SatStructure.h; savsm, vssm): the summed-area table of the
 // shadow map's (z, z^2), two compute passes (shaders/sat/SatBuild.glsl). Parameter read: sat_precision
 // (float_centred | int32).
 #pragma once

@@ -1,7 +1,6 @@
-// Stage 2c (techniques that need LightStructure::MomentMap: vsm, esm): the shadow map's moments
+// The moment map's build (lightspace/moments/MomentMapStructure.h; vsm, esm): the shadow map's moments
 // (shaders/moments/MomentsFromDepth.glsl), prefiltered by a separable box blur of prefilter_texels
-// (prefilter = blur) or mip-mapped (prefilter = mipmap). Parameters read when the technique declares them:
-// esm_exponent, prefilter, prefilter_texels.
+// (prefilter = blur) or mip-mapped (prefilter = mipmap). Parameters read: MomentMapSettings.
 #pragma once
 
 #include "passes/FullScreenQuad.h"

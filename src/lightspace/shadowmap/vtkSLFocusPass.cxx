@@ -1,5 +1,6 @@
-#include "passes/vtkSLFocusPass.h"
+#include "lightspace/shadowmap/vtkSLFocusPass.h"
 
+#include "lightspace/shadowmap/ShadowMapStructure.h"
 #include "passes/FrameResources.h"
 
 #include <vtkObjectFactory.h>
@@ -12,17 +13,15 @@ vtkStandardNewMacro(vtkSLFocusPass);
 void vtkSLFocusPass::Execute(const vtkRenderState*)
 {
   sl::FrameResources& frame = *this->Frame;
-  const sl::ParameterValues& parameters = frame.parameters;
   if (!this->Receivers)
   {
     this->Receivers = std::make_unique<sl::GpuReceivers>();
   }
   this->Receivers->setGBuffer(frame.gbufferPosition, frame.gbufferNormal);
+  const sl::ShadowMapSettings settings = sl::shadowMapSettings(frame.parameters);
   sl::FocusSettings focus;
-  focus.resolution = parameters.getInt("shadow_map_size");
-  // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
-  focus.marginTexels =
-    frame.technique->findParameter("kernel_texels") ? std::ceil(0.5 * parameters.get("kernel_texels")) + 1.0 : 1.0;
+  focus.resolution = settings.resolution;
+  focus.marginTexels = settings.marginTexels;
   if (frame.technique->coversLightArea && frame.light->type == sl::LightType::Area)
   {
     focus.lightFootprintWidth = frame.light->size;

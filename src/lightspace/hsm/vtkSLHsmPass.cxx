@@ -1,8 +1,10 @@
-#include "passes/vtkSLHsmPass.h"
+#include "lightspace/hsm/vtkSLHsmPass.h"
 
 #include "core/Error.h"
 #include "gl/ShaderLibrary.h"
 #include "lightspace/HierarchicalShadowMap.h"
+#include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/mssm/DualMssmStructure.h"
 #include "passes/FrameResources.h"
 
 #include <vtkObjectFactory.h>
@@ -22,7 +24,8 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
   SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its HSM");
-  const sl::HsmLayout layout = LayoutFor(frame);
+  const sl::HsmLayout layout =
+    this->DualGrid ? sl::HsmLayout::DualMssm : sl::hierarchicalShadowMapSettings(frame.parameters).layout;
   const bool nBuffers = layout == sl::HsmLayout::NBuffers;
   const bool dual = layout == sl::HsmLayout::DualMssm;
   const int size = frame.lightView.resolution;
@@ -89,17 +92,10 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   }
   frame.shadowMapLinear->Deactivate();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
-  frame.hierarchicalShadowMap = hsm;
-  frame.hierarchicalShadowMapLayout = layout;
-}
-
-sl::HsmLayout vtkSLHsmPass::LayoutFor(const sl::FrameResources& frame)
-{
-  if (frame.technique->needs(sl::LightStructure::DualMultiScaleShadowMap))
-  {
-    return sl::HsmLayout::DualMssm;
-  }
-  return frame.parameters.choice("hsm") == "nbuffers" ? sl::HsmLayout::NBuffers : sl::HsmLayout::MipMap;
+  auto data = std::make_shared<sl::MinMaxDepthData>();
+  data->texture = hsm;
+  data->layout = layout;
+  frame.lightSpaceData[this->DualGrid ? sl::dualMssmStructure().name : sl::hierarchicalShadowMapStructure().name] = data;
 }
 
 sl::ShaderDefines vtkSLHsmPass::LayoutDefines(sl::HsmLayout layout)
@@ -116,4 +112,5 @@ void vtkSLHsmPass::ReleaseGraphicsResources(vtkWindow*)
 void vtkSLHsmPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "DualGrid: " << this->DualGrid << "\n";
 }

@@ -1,8 +1,7 @@
-// Stage 2e (techniques that need LightStructure::HierarchicalShadowMap, vssm and gbp07, or
-// LightStructure::DualMultiScaleShadowMap, yfgl09): the min-max hierarchical shadow map of VSSM (Alg. 1 L4,
-// §6.1) or the dual-grid MSSM of Yang et al. 2009 (§4.2), one compute dispatch per level
-// (shaders/hsm/HsmBuild.glsl). Parameter read: hsm (mipmap | nbuffers). Layouts:
-// src/lightspace/HierarchicalShadowMap.h.
+// The min-max hierarchical shadow map's build (lightspace/hsm/HsmStructure.h; vssm, gbp06, gbp07) or, with
+// SetDualGrid(true), the dual-grid MSSM's (lightspace/mssm/DualMssmStructure.h; yfgl09): one compute dispatch per
+// level (shaders/hsm/HsmBuild.glsl; VSSM Alg. 1 L4, §6.1; Yang et al. 2009 §4.2). Parameters read:
+// HierarchicalShadowMapSettings (not for the dual grid). Layouts: src/lightspace/HierarchicalShadowMap.h.
 #pragma once
 
 #include "gl/ComputeProgram.h"
@@ -21,8 +20,8 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
   const char* GetStageName() const override { return "hierarchical_shadow_map"; }
 
-  // The layout this frame builds: the dual-grid MSSM for techniques that need it, else the `hsm` parameter.
-  static sl::HsmLayout LayoutFor(const sl::FrameResources& frame);
+  // Builds the dual-grid MSSM instead of the hierarchical shadow map of the `hsm` parameter.
+  void SetDualGrid(bool dualGrid) { this->DualGrid = dualGrid; }
   // HSM_LAYOUT and HSM_LAYOUT_* for common/HsmLayout.glsl (the build and the lookups).
   static sl::ShaderDefines LayoutDefines(sl::HsmLayout layout);
   void ReleaseGraphicsResources(vtkWindow* window) override;
@@ -37,4 +36,5 @@ private:
   void operator=(const vtkSLHsmPass&) = delete;
 
   std::map<sl::HsmLayout, std::unique_ptr<sl::ComputeProgram>> Programs;
+  bool DualGrid = false;
 };

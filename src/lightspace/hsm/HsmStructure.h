@@ -1,0 +1,34 @@
+// The min-max hierarchical shadow map (VSSM §6.1, Alg. 1 L4; Guennebaud et al. 2006): RG32F (min, max) depth of
+// levels 1..L, as a mip-map atlas (conservative ranges) or as N-buffers (exact ranges over the 2^k square at every
+// texel, Schwarz & Stamminger 2007; L times the memory). Layouts: lightspace/HierarchicalShadowMap.h. Built by
+// vtkSLHsmPass (stage hierarchical_shadow_map), which also builds the dual-grid MSSM (lightspace/mssm).
+#pragma once
+
+#include "lightspace/HierarchicalShadowMap.h"
+#include "lightspace/LightSpaceStructure.h"
+
+namespace sl
+{
+
+const LightSpaceStructure& hierarchicalShadowMapStructure();
+
+// The parameters its build reads, typed.
+struct HierarchicalShadowMapSettings
+{
+  HsmLayout layout = HsmLayout::MipMap; // hsm = mipmap | nbuffers
+};
+HierarchicalShadowMapSettings hierarchicalShadowMapSettings(const ParameterValues& values);
+
+// What the build leaves in the frame (this structure's and the dual-grid MSSM's).
+struct MinMaxDepthData : LightSpaceData
+{
+  vtkSmartPointer<vtkTextureObject> texture; // RG32F: 2-D atlas (mip-map) or 3-D (N-buffers, dual grid)
+  HsmLayout layout = HsmLayout::MipMap;
+};
+
+// Shared with the dual-grid MSSM: the structure's export, memory and binding for a built MinMaxDepthData.
+std::vector<NamedImage> exportMinMaxDepth(const MinMaxDepthData& data, int mapSize);
+std::size_t minMaxDepthBytes(const MinMaxDepthData& data);
+std::vector<vtkTextureObject*> bindMinMaxDepth(vtkShaderProgram* program, const MinMaxDepthData& data, int mapSize);
+
+} // namespace sl

@@ -1,0 +1,85 @@
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
+#include "frame/FrameResult.h"
+#include "gl/GlResources.h"
+#include "lightspace/shadowmap/vtkSLFocusPass.h"
+#include "lightspace/shadowmap/vtkSLLightDepthPass.h"
+#include "passes/PassUtilities.h"
+
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+#include <cmath>
+
+namespace sl
+{
+
+ShadowMapSettings shadowMapSettings(const ParameterValues& values)
+{
+  ShadowMapSettings settings;
+  settings.resolution = values.getInt("shadow_map_size");
+  // A filter kernel reaches kernel/2 texels past a receiver; one more for the bilinear footprint.
+  settings.marginTexels = values.has("kernel_texels") ? std::ceil(0.5 * values.get("kernel_texels")) + 1.0 : 1.0;
+  settings.secondDepth = values.has("caster_faces") && values.choice("caster_faces") == "back";
+  return settings;
+}
+
+namespace
+{
+
+std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult&)
+{
+  return {
+    { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
+      "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" },
+    { "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
+      "hardware depth buffer of the shadow map, window coordinates in [0, 1]" },
+  };
+}
+
+std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const FrameResources& frame)
+{
+  std::vector<vtkTextureObject*> bound;
+  const LightView& view = frame.lightView;
+  if (program->IsUniformUsed("shadowMapLinear"))
+  {
+    bound.push_back(bindTexture(program, "shadowMapLinear", frame.shadowMapLinear));
+  }
+  setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
+  setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
+  setIntIfUsed(program, "shadowMapSize", view.resolution);
+  setIntIfUsed(program, "lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
+  // texelWorldSize(depthLin) = shadowTexelExtent * depthLin (perspective) or shadowTexelExtent.
+  setFloatIfUsed(program, "shadowTexelExtent",
+    view.projection == LightProjection::Perspective ? view.texelWorldSize(1.0) : view.texelWorldSize(0.0));
+  return bound;
+}
+
+} // namespace
+
+const LightSpaceStructure& shadowMapStructure()
+{
+  static const LightSpaceStructure structure = [] {
+    LightSpaceStructure s;
+    s.name = "shadow_map";
+    s.doc = "linear (R32F) and window (D32F) depth from the light's centre, focused on the visible receivers (survey §4.1)";
+    s.parameters = {
+      { "shadow_map_size", 2048, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1)", {}, true },
+      { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },
+    };
+    s.createBuildPasses = [] {
+      return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFocusPass>::New(),
+        vtkSmartPointer<vtkSLLightDepthPass>::New() };
+    };
+    s.exportImages = exportShadowMap;
+    s.gpuBytes = [](const FrameResources& frame) {
+      return textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
+    };
+    s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
+    s.bind = bindShadowMap;
+    return s;
+  }();
+  return structure;
+}
+
+} // namespace sl
