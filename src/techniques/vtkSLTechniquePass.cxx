@@ -49,6 +49,19 @@ sl::ShaderDefines vtkSLTechniquePass::TechniqueDefines() const
   {
     defines.push_back({ "OUT_" + upperCase(outputs[location]), std::to_string(location) });
   }
+  // Category codes of categorical buffers, `<BUFFER>_<IDENTIFIER> code`, and the technique's shared constants:
+  // written once in C++ (the CPU mirror's enum or constexpr), never copied into a shader.
+  for (const sl::BufferSpec& buffer : frame.technique->buffers)
+  {
+    for (std::size_t code = 0; code < buffer.categoryIdentifiers.size(); ++code)
+    {
+      defines.push_back({ upperCase(buffer.name + "_" + buffer.categoryIdentifiers[code]), std::to_string(code) });
+    }
+  }
+  for (const sl::ShaderConstant& constant : frame.technique->shaderConstants)
+  {
+    defines.push_back({ constant.name, std::to_string(constant.value) });
+  }
   for (const sl::ParameterSpec& spec : frame.technique->parameters)
   {
     if (spec.choices.empty())
