@@ -3,11 +3,9 @@
 // al. 2009) with the map's near plane, shrunk param_kernel_refinements times to the minimum depth inside it
 // (MSSM kernels, Schwarz and Stamminger 2007), and lit / umbra from the min-max structure's range over the
 // kernel's samples plus one ring (Alg. 1 step 5). Sets the receiver plane (setReceiverPlane) as a side effect.
-// Needs common/SoftShadowKernels.glsl, common/HsmLookup.glsl and the parameter kernel_refinements.
-
-const int KERNEL_PENUMBRA = 0;
-const int KERNEL_LIT = 1;
-const int KERNEL_UMBRA = 2;
+// Needs common/SoftShadowKernels.glsl, common/HsmLookup.glsl, the parameter kernel_refinements and the decision
+// codes KERNEL_LIT, KERNEL_UMBRA, KERNEL_PENUMBRA (generated: sl::contourKernelShaderConstants, the
+// BackprojectionClass codes of the CPU mirror's ContourReceiver::classification).
 
 struct ContourKernel
 {

@@ -20,15 +20,11 @@ layout(location = OUT_OCCLUDING_TEXELS) out float outOccludingTexels;
 layout(location = OUT_VISITED_NODES) out float outVisitedNodes;
 layout(location = OUT_CLASSIFICATION) out float outClassification;
 
-const float CLASS_NOT_TESTED = 0.0;
-const float CLASS_LIT = 1.0;
-const float CLASS_UMBRA = 2.0;
-const float CLASS_PENUMBRA = 3.0;
-const float CLASS_OVER_LOOP_BUDGET = 4.0;
-// Pixels of more loop iterations than this (texels examined, or iterations of the walk) may be cut short where
-// the GL caps loop iterations per invocation (llvmpipe: 65535, all loops together). They are still evaluated in
-// full and flagged. The per-texel and per-node helpers below use no loops, for the same reason.
-const int LOOP_BUDGET = 60000;
+// `classification` codes CLASSIFICATION_* and LOOP_BUDGET come from the preamble (Gbp06Technique.cpp, from
+// BackprojectionClass and gbp06LoopBudget). Pixels of more loop iterations than LOOP_BUDGET (texels examined, or
+// iterations of the walk) may be cut short where the GL caps loop iterations per invocation (llvmpipe: 65535,
+// all loops together). They are still evaluated in full and flagged. The per-texel and per-node helpers below
+// use no loops, for the same reason.
 
 // The receiver being shaded and what its micropatches add up to.
 float receiverDepth;
@@ -207,7 +203,7 @@ void main()
   outKernelTexels = 0.0;
   outOccludingTexels = 0.0;
   outVisitedNodes = 0.0;
-  outClassification = CLASS_NOT_TESTED;
+  outClassification = CLASSIFICATION_NOT_TESTED;
   if (!receiver.needsShadowTest)
   {
     return;
@@ -222,7 +218,7 @@ void main()
   if (kernel.decision != KERNEL_PENUMBRA)
   {
     outVisibility = kernel.decision == KERNEL_LIT ? 1.0 : 0.0;
-    outClassification = kernel.decision == KERNEL_LIT ? CLASS_LIT : CLASS_UMBRA;
+    outClassification = kernel.decision == KERNEL_LIT ? CLASSIFICATION_LIT : CLASSIFICATION_UMBRA;
     return;
   }
 
@@ -236,5 +232,5 @@ void main()
   outOccludingTexels = float(occludingTexels);
   outVisitedNodes = float(visitedNodes);
   outVisibility = clamp(1.0 - occludedArea / (4.0 * halfSize * halfSize), 0.0, 1.0);
-  outClassification = loopIterations > LOOP_BUDGET ? CLASS_OVER_LOOP_BUDGET : CLASS_PENUMBRA;
+  outClassification = loopIterations > LOOP_BUDGET ? CLASSIFICATION_OVER_LOOP_BUDGET : CLASSIFICATION_PENUMBRA;
 }

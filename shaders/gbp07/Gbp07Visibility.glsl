@@ -17,15 +17,11 @@ layout(location = OUT_CONTOUR_EDGES) out float outContourEdges;
 layout(location = OUT_VISITED_CELLS) out float outVisitedCells;
 layout(location = OUT_CLASSIFICATION) out float outClassification;
 
-const float CLASS_NOT_TESTED = 0.0;
-const float CLASS_LIT = 1.0;
-const float CLASS_UMBRA = 2.0;
-const float CLASS_PENUMBRA = 3.0;
-const float CLASS_OVER_LOOP_BUDGET = 4.0;
-// Kernels of more cells than this may be cut short where the GL caps loop iterations per invocation
-// (llvmpipe: 65535, all loops together; common/ContourBackprojection.glsl). They are still evaluated in full
-// and flagged, so results on such GLs can be told apart.
-const int LOOP_BUDGET_CELLS = 60000;
+// `classification` codes CLASSIFICATION_* and LOOP_BUDGET_CELLS come from the preamble (Gbp07Technique.cpp,
+// from BackprojectionClass and gbp07LoopBudgetCells). Kernels of more cells than LOOP_BUDGET_CELLS may be cut
+// short where the GL caps loop iterations per invocation (llvmpipe: 65535, all loops together;
+// common/ContourBackprojection.glsl). They are still evaluated in full and flagged, so results on such GLs can
+// be told apart.
 
 // Status and depth of sample (i, j); outside the map samples never occlude (contours close there).
 float sampleAt(ivec2 texel, float d, float bias, out bool occluding)
@@ -62,7 +58,7 @@ void main()
   outKernelTexels = 0.0;
   outContourEdges = 0.0;
   outVisitedCells = 0.0;
-  outClassification = CLASS_NOT_TESTED;
+  outClassification = CLASSIFICATION_NOT_TESTED;
   if (!receiver.needsShadowTest)
   {
     return;
@@ -77,7 +73,7 @@ void main()
   if (kernel.decision != KERNEL_PENUMBRA)
   {
     outVisibility = kernel.decision == KERNEL_LIT ? 1.0 : 0.0;
-    outClassification = kernel.decision == KERNEL_LIT ? CLASS_LIT : CLASS_UMBRA;
+    outClassification = kernel.decision == KERNEL_LIT ? CLASSIFICATION_LIT : CLASSIFICATION_UMBRA;
     return;
   }
 
@@ -116,5 +112,5 @@ void main()
   outContourEdges = float(edgeCount);
   outVisitedCells = float(cellCount);
   outVisibility = clamp(1.0 - occludedArea / (4.0 * halfSize * halfSize), 0.0, 1.0);
-  outClassification = (hi.x - lo.x + 2) * (hi.y - lo.y + 2) > LOOP_BUDGET_CELLS ? CLASS_OVER_LOOP_BUDGET : CLASS_PENUMBRA;
+  outClassification = (hi.x - lo.x + 2) * (hi.y - lo.y + 2) > LOOP_BUDGET_CELLS ? CLASSIFICATION_OVER_LOOP_BUDGET : CLASSIFICATION_PENUMBRA;
 }

@@ -31,19 +31,14 @@
 #include "common/ContourBackprojection.glsl"
 #include "common/ContourKernel.glsl"
 
-const float CLASS_NOT_TESTED = 0.0;
-const float CLASS_TRIVIAL = 1.0;
-const float CLASS_COHERENT = 2.0;
-const float CLASS_NON_COHERENT = 3.0;
-const float CLASS_CAUGHT_NULL = 4.0;
-const float CLASS_OVER_BUDGET = 5.0;
-const int PACKET_BUDGET = 20000; // yfgl09PacketBudget
+// From the preamble (Yfgl09Technique.cpp): the `packet_class` codes PACKET_CLASS_* (sl::PacketClass),
+// PACKET_BUDGET (yfgl09PacketBudget) and MAX_PACKET_PIXELS (the largest packet the parameters allow).
 
 uniform ivec2 imageSize;
 uniform ivec2 packetSize; // w x h (§4.1)
 
 #ifdef YFGL09_PACKET_PASS
-const int MAX_PIXELS = 16; // the largest packet, 4 x 4
+const int MAX_PIXELS = MAX_PACKET_PIXELS;
 layout(location = 0) out vec4 outPacket; // class, Eq. 2, P_d, visited nodes per pixel
 layout(r32f, binding = OUT_VISIBILITY) uniform writeonly image2D visibilityImage;
 layout(r32f, binding = OUT_KERNEL_TEXELS) uniform writeonly image2D kernelTexelsImage;
@@ -103,7 +98,7 @@ struct Contour
   ivec2 ringLo; // plus one ring, clamped
   ivec2 ringHi;
   float kernelTexels;
-  float classification; // CLASS_NOT_TESTED, CLASS_TRIVIAL (visibility final) or CLASS_COHERENT (penumbra)
+  float classification; // PACKET_CLASS_NOT_TESTED, _TRIVIAL (visibility final) or _COHERENT (penumbra)
 };
 
 Contour prepareContour(ivec2 pixel)
@@ -115,7 +110,7 @@ Contour prepareContour(ivec2 pixel)
   contour.ringLo = ivec2(0);
   contour.ringHi = ivec2(0);
   contour.kernelTexels = 0.0;
-  contour.classification = CLASS_NOT_TESTED;
+  contour.classification = PACKET_CLASS_NOT_TESTED;
   if (!contour.receiver.needsShadowTest)
   {
     return contour;
@@ -126,7 +121,7 @@ Contour prepareContour(ivec2 pixel)
   contour.ringLo = kernel.ringLo;
   contour.ringHi = kernel.ringHi;
   contour.kernelTexels = kernel.kernelTexels;
-  contour.classification = kernel.decision == KERNEL_PENUMBRA ? CLASS_COHERENT : CLASS_TRIVIAL;
+  contour.classification = kernel.decision == KERNEL_PENUMBRA ? PACKET_CLASS_COHERENT : PACKET_CLASS_TRIVIAL;
   if (kernel.decision != KERNEL_PENUMBRA)
   {
     contour.receiver.visibility = kernel.decision == KERNEL_LIT ? 1.0 : 0.0;
@@ -465,7 +460,7 @@ void main()
     Contour contour = prepareContour(pixel);
     imageStore(kernelTexelsImage, pixel, vec4(contour.kernelTexels));
     storePacketResult(pixel, contour.receiver.visibility, 0.0, contour.classification, 0.0, 0.0, 0.0);
-    if (contour.classification == CLASS_COHERENT)
+    if (contour.classification == PACKET_CLASS_COHERENT)
     {
       int p = pixelCount;
       penumbraPixel[p] = pixel;
@@ -480,7 +475,7 @@ void main()
       addReceiver(contour);
     }
   }
-  outPacket = vec4(CLASS_TRIVIAL, 0.0, 0.0, 0.0);
+  outPacket = vec4(PACKET_CLASS_TRIVIAL, 0.0, 0.0, 0.0);
   if (pixelCount == 0)
   {
     return;
@@ -504,7 +499,7 @@ void main()
   // §4.3: Eq. 2 (reported), Eq. 4-5 and Eq. 6 (deciding), for packets of more than one pixel.
   float coherence = 0.0;
   float divergence = 0.0;
-  float packetClass = CLASS_COHERENT;
+  float packetClass = PACKET_CLASS_COHERENT;
   if (pixelCount > 1)
   {
     ivec2 referenceLo = kernelLo[reference];
@@ -524,14 +519,14 @@ void main()
     divergence = 1.0 - pow(1.0 - nullProbability, float(packetWidth) * float(packetWidth)); // Eq. 5
     float packetCost = nodeCost(packetWidth) + (param_edge_cost + param_visibility_cost * float(pixelCount)) * float(packetWidth); // Eq. 6
 #if COHERENCE_TEST == COHERENCE_TEST_BOTH || COHERENCE_TEST == COHERENCE_TEST_DIVERGENCE
-    packetClass = divergence > param_divergence_threshold ? CLASS_NON_COHERENT : packetClass;
+    packetClass = divergence > param_divergence_threshold ? PACKET_CLASS_NON_COHERENT : packetClass;
 #endif
 #if COHERENCE_TEST == COHERENCE_TEST_BOTH || COHERENCE_TEST == COHERENCE_TEST_COST
-    packetClass = packetCost > pixelCost ? CLASS_NON_COHERENT : packetClass;
+    packetClass = packetCost > pixelCost ? PACKET_CLASS_NON_COHERENT : packetClass;
 #endif
   }
   float visitedShare = 0.0;
-  if (packetClass == CLASS_COHERENT)
+  if (packetClass == PACKET_CLASS_COHERENT)
   {
     int outcome = traverse(lo - 1, hi);
     visitedShare = float(visitedNodes) / float(pixelCount);
@@ -539,12 +534,12 @@ void main()
     {
       for (int p = 0; p < pixelCount; ++p)
       {
-        storePacketResult(penumbraPixel[p], finalVisibility(p), coherence, CLASS_COHERENT, divergence, visitedShare, float(contourEdges));
+        storePacketResult(penumbraPixel[p], finalVisibility(p), coherence, PACKET_CLASS_COHERENT, divergence, visitedShare, float(contourEdges));
       }
     }
     else
     {
-      packetClass = outcome == TRAVERSAL_NULL ? CLASS_CAUGHT_NULL : CLASS_OVER_BUDGET;
+      packetClass = outcome == TRAVERSAL_NULL ? PACKET_CLASS_CAUGHT_NULL : PACKET_CLASS_OVER_BUDGET;
     }
   }
   outPacket = vec4(packetClass, coherence, divergence, visitedShare);
@@ -554,12 +549,12 @@ void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 packet = texelFetch(packetTexture, pixel / packetSize, 0);
-  if (packet.x < CLASS_NON_COHERENT)
+  if (packet.x < PACKET_CLASS_NON_COHERENT)
   {
     discard; // computed by the packet pass
   }
   Contour contour = prepareContour(pixel);
-  if (contour.classification != CLASS_COHERENT)
+  if (contour.classification != PACKET_CLASS_COHERENT)
   {
     discard; // lit, umbra or not tested: stored by the packet pass
   }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 
 namespace sl
 {
@@ -60,7 +61,7 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
-    int classes[5] = { 0, 0, 0, 0, 0 };
+    std::map<BackprojectionClass, int> classes; // pixels compared, by the CPU twin's class
     double maxDifference = 0.0;
     long occluding = 0;
     for (int y = 0; y < kHeight; ++y)
@@ -79,7 +80,7 @@ TEST(Gbp06, MatchesTheCpuImplementation)
         }
         ASSERT_NE(cpu.classification, BackprojectionClass::OverLoopBudget) << label << ": the test must stay inside llvmpipe's loop budget";
         ++compared;
-        ++classes[static_cast<int>(cpu.classification)];
+        ++classes[cpu.classification];
         occluding += cpu.occludingTexels;
         const double gpu = frame.find("visibility")->image.at(x, y);
         maxDifference = std::max(maxDifference, std::abs(gpu - cpu.sample.visibility));
@@ -93,12 +94,12 @@ TEST(Gbp06, MatchesTheCpuImplementation)
         EXPECT_NEAR(frame.find("kernel_texels")->image.at(x, y), cpu.kernelTexels, 1e-4 * (1.0 + cpu.kernelTexels)) << label;
       }
     }
-    std::cout << "[ measured ] gbp06 " << label << ": compared " << compared << " (lit " << classes[1] << ", umbra "
-              << classes[2] << ", penumbra " << classes[3] << ", micropatches " << occluding << "), skipped " << skipped
+    std::cout << "[ measured ] gbp06 " << label << ": compared " << compared << " (lit " << classes[BackprojectionClass::Lit] << ", umbra "
+              << classes[BackprojectionClass::Umbra] << ", penumbra " << classes[BackprojectionClass::Penumbra] << ", micropatches " << occluding << "), skipped " << skipped
               << ", max |gpu - cpu| " << maxDifference << "\n";
     EXPECT_GT(compared, 800) << label;
     EXPECT_LT(skipped, compared / 50) << label;
-    EXPECT_GT(classes[3], 100) << label;
+    EXPECT_GT(classes[BackprojectionClass::Penumbra], 100) << label;
   }
 }
 

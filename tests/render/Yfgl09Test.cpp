@@ -24,24 +24,33 @@ HierarchicalShadowMap dualMssm(const ShadowMapInputs& inputs)
   return HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth));
 }
 
-const char* const classNames[6] = { "not tested", "trivial", "coherent", "non-coherent", "caught null", "over budget" };
+// Pixels per packet class, indexed by the PacketClass code (the one declaration the shader's codes come from).
+constexpr std::size_t classCount = static_cast<std::size_t>(PacketClass::OverBudget) + 1;
+using ClassCounts = std::array<int, classCount>;
 
-std::string histogram(const std::array<int, 6>& counts)
+std::size_t code(PacketClass packetClass)
+{
+  return static_cast<std::size_t>(packetClass);
+}
+
+const char* const classNames[classCount] = { "not tested", "trivial", "coherent", "non-coherent", "caught null", "over budget" };
+
+std::string histogram(const ClassCounts& counts)
 {
   std::string text;
-  for (int c = 0; c < 6; ++c)
+  for (std::size_t c = 0; c < classCount; ++c)
   {
     text += std::string(c ? ", " : "") + classNames[c] + " " + std::to_string(counts[static_cast<std::size_t>(c)]);
   }
   return text;
 }
 
-std::array<int, 6> classHistogram(const FrameResult& frame)
+ClassCounts classHistogram(const FrameResult& frame)
 {
-  std::array<int, 6> counts{};
+  ClassCounts counts{};
   for (const float value : frame.find("packet_class")->image.data)
   {
-    ++counts[static_cast<std::size_t>(std::clamp(static_cast<int>(value), 0, 5))];
+    ++counts[static_cast<std::size_t>(std::clamp(static_cast<int>(value), 0, static_cast<int>(classCount) - 1))];
   }
   return counts;
 }
@@ -75,7 +84,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
   };
   const int width = 64;
   const int height = 48;
-  std::array<int, 6> allClasses{};
+  ClassCounts allClasses{};
   for (const Case& c : cases)
   {
     const Scene scene = test::loadDataset(c.dataset);
@@ -87,7 +96,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
     int compared = 0;
     int skipped = 0;
     int decisionMismatches = 0;
-    std::array<int, 6> classes{};
+    ClassCounts classes{};
     for (int y = 0; y < height; ++y)
     {
       for (int x = 0; x < width; ++x)
@@ -124,12 +133,12 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
     EXPECT_GT(compared, width * height / 2) << label;
     EXPECT_LT(skipped, width * height / 20) << label;
     EXPECT_LE(decisionMismatches, width * height / 50) << label;
-    EXPECT_EQ(classes[5], 0) << label << ": the test cases must stay inside the packet budget";
+    EXPECT_EQ(classes[code(PacketClass::OverBudget)], 0) << label << ": the test cases must stay inside the packet budget";
   }
   // Every path of the algorithm was exercised somewhere.
-  EXPECT_GT(allClasses[2], 100) << "coherent packets";
-  EXPECT_GT(allClasses[3], 100) << "predicted non-coherent packets";
-  EXPECT_GT(allClasses[4], 20) << "packets caught by a null status";
+  EXPECT_GT(allClasses[code(PacketClass::Coherent)], 100) << "coherent packets";
+  EXPECT_GT(allClasses[code(PacketClass::NonCoherent)], 100) << "predicted non-coherent packets";
+  EXPECT_GT(allClasses[code(PacketClass::CaughtNull)], 20) << "packets caught by a null status";
 }
 
 // The scenes whose light gbp07 and yfgl09 support (square area lights).
@@ -157,7 +166,7 @@ TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
   ASSERT_GE(datasets.size(), 6u);
   const int width = 64;
   const int height = 48;
-  std::array<int, 6> allClasses{};
+  ClassCounts allClasses{};
   for (const std::string& dataset : datasets)
   {
     const Scene scene = test::loadDataset(dataset);
@@ -191,10 +200,10 @@ TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
           worstPixel = static_cast<int>(i);
         }
       }
-      const std::array<int, 6> classes = classHistogram(frame);
-      for (int c = 0; c < 6; ++c)
+      const ClassCounts classes = classHistogram(frame);
+      for (std::size_t c = 0; c < classCount; ++c)
       {
-        allClasses[static_cast<std::size_t>(c)] += classes[static_cast<std::size_t>(c)];
+        allClasses[c] += classes[c];
       }
       EXPECT_LE(maxDifference, 1e-4) << label << ": pixel " << worstPixel % width << "," << worstPixel / width << " yfgl09 "
                                      << actual.data[static_cast<std::size_t>(worstPixel)] << " gbp07 "
@@ -206,8 +215,8 @@ TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
               << worst << "\n";
   }
   std::cout << "[ measured ] yfgl09 pixel classes over all runs: " << histogram(allClasses) << "\n";
-  EXPECT_GT(allClasses[2], 1000) << "coherent packets must have been exercised";
-  EXPECT_GT(allClasses[4], 100) << "caught-null packets must have been exercised";
+  EXPECT_GT(allClasses[code(PacketClass::Coherent)], 1000) << "coherent packets must have been exercised";
+  EXPECT_GT(allClasses[code(PacketClass::CaughtNull)], 100) << "caught-null packets must have been exercised";
 }
 
 TEST(Yfgl09, HierarchyVisitsFewerNodesThanTheBruteForceOnEveryPixelClass)
@@ -238,7 +247,7 @@ TEST(Yfgl09, HierarchyVisitsFewerNodesThanTheBruteForceOnEveryPixelClass)
     for (std::size_t i = 0; i < classes.data.size(); ++i)
     {
       const int pixelClass = static_cast<int>(classes.data[i]);
-      if (pixelClass < 2)
+      if (pixelClass <= static_cast<int>(PacketClass::Trivial))
       {
         continue; // not tested, trivial: no traversal
       }
@@ -318,7 +327,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
         EXPECT_NEAR(gpu, exact.sample.visibility, 1e-3) << c.what << " pixel " << x << "," << y;
       }
     }
-    const std::array<int, 6> classes = classHistogram(frame);
+    const ClassCounts classes = classHistogram(frame);
     std::cout << "[ measured ] yfgl09, " << c.what << ": widest kernel " << maxKernel << " texels, " << edgePixels
               << " penumbra pixels whose kernel reaches the map's border, " << histogram(classes) << ", max |gpu - exact| " << maxDifference
               << " over " << compared << " pixels\n";

@@ -1,13 +1,59 @@
 #include "techniques/backprojection/ContourReceiver.h"
 
+#include "core/Error.h"
 #include "techniques/backprojection/ContourBackprojection.h"
 #include "techniques/ShadowMapParameters.h"
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace sl
 {
+
+namespace
+{
+
+struct BackprojectionCategory
+{
+  BackprojectionClass value;
+  const char* identifier; // the enumerator, upper case
+  const char* label;      // heat-map keys and stats
+};
+
+// In code order (checked where it is read).
+const BackprojectionCategory backprojectionCategories[] = {
+  { BackprojectionClass::NotTested, "NOT_TESTED", "not tested" },
+  { BackprojectionClass::Lit, "LIT", "lit" },
+  { BackprojectionClass::Umbra, "UMBRA", "umbra" },
+  { BackprojectionClass::Penumbra, "PENUMBRA", "penumbra" },
+  { BackprojectionClass::OverLoopBudget, "OVER_LOOP_BUDGET", "penumbra over the loop budget" },
+};
+
+} // namespace
+
+BufferSpec backprojectionClassificationBuffer(const std::string& doc, SubLightCombine combine)
+{
+  BufferSpec spec{ "classification", "", doc, BufferKind::Categorical, {}, combine };
+  for (std::size_t code = 0; code < std::size(backprojectionCategories); ++code)
+  {
+    const BackprojectionCategory& category = backprojectionCategories[code];
+    SL_CHECK(static_cast<std::size_t>(category.value) == code);
+    spec.categoryIdentifiers.push_back(category.identifier);
+    spec.categoryLabels.push_back(category.label);
+  }
+  return spec;
+}
+
+std::vector<ShaderConstant> contourKernelShaderConstants()
+{
+  const auto code = [](BackprojectionClass value) { return static_cast<int>(value); };
+  return {
+    { "KERNEL_LIT", code(BackprojectionClass::Lit), "ContourKernel.decision: no sample of the ring can occlude" },
+    { "KERNEL_UMBRA", code(BackprojectionClass::Umbra), "ContourKernel.decision: every sample of the ring occludes" },
+    { "KERNEL_PENUMBRA", code(BackprojectionClass::Penumbra), "ContourKernel.decision: neither; the technique integrates" },
+  };
+}
 
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
   const DepthRangeQuery& range, int x, int y)

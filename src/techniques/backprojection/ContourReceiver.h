@@ -13,18 +13,31 @@
 
 #include <array>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace sl
 {
 
+// How a pixel was decided: the CPU twins' classification and, as categories, gbp06's and gbp07's
+// `classification` buffer (backprojectionClassificationBuffer); the codes of the kernel's decision too
+// (contourKernelShaderConstants). The one declaration of these codes: the shaders' are generated from it.
 enum class BackprojectionClass
 {
   NotTested = 0,
   Lit = 1,
   Umbra = 2,
   Penumbra = 3,
-  OverLoopBudget = 4 // gbp07: penumbra with a kernel of more than gbp07LoopBudgetCells cells
+  OverLoopBudget = 4 // penumbra past the technique's loop budget (gbp06LoopBudget, gbp07LoopBudgetCells)
 };
+
+// The `classification` buffer of gbp06 and gbp07: BackprojectionClass as categories, code = the enumerator's
+// value, identifier = its name in upper case (the shaders write CLASSIFICATION_OVER_LOOP_BUDGET, ...).
+BufferSpec backprojectionClassificationBuffer(const std::string& doc, SubLightCombine combine);
+// The kernel decisions of shaders/common/ContourKernel.glsl, KERNEL_LIT, KERNEL_UMBRA and KERNEL_PENUMBRA: the
+// BackprojectionClass codes ContourReceiver::classification takes. Shader constants of every technique whose
+// shader includes the snippet.
+std::vector<ShaderConstant> contourKernelShaderConstants();
 
 // (min, max) depth over an inclusive sample rectangle inside the map, at least 2 x 2 samples.
 using DepthRangeQuery = std::function<glm::dvec2(glm::ivec2 lo, glm::ivec2 hi)>;

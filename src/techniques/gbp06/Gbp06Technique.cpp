@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace sl
 {
@@ -38,8 +39,15 @@ TechniqueDescriptor gbp06Technique()
     { "kernel_texels", "texels", "width of the kernel searched for occluding micropatches (Eq. 1, Yang 2009 Fig. 5 left)" },
     { "occluding_texels", "texels", "occluding micropatches back-projected and accumulated" },
     { "visited_nodes", "nodes", "texels examined (traversal=kernel) or min-max quadtree nodes examined, leaves included (traversal=hsm)" },
-    { "classification", "", "how the pixel was decided; 4 = a penumbra pixel of more than 60000 loop iterations, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short", BufferKind::Categorical, { "not tested", "lit", "umbra", "penumbra", "penumbra over the loop budget" } },
+    backprojectionClassificationBuffer("how the pixel was decided; " +
+        std::to_string(static_cast<int>(BackprojectionClass::OverLoopBudget)) + " = a penumbra pixel of more than " +
+        std::to_string(gbp06LoopBudget) +
+        " loop iterations, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short",
+      SubLightCombine::Mean),
   };
+  descriptor.shaderConstants = contourKernelShaderConstants();
+  descriptor.shaderConstants.push_back({ "LOOP_BUDGET", gbp06LoopBudget,
+    "loop iterations (texels examined, or iterations of the walk) past which a penumbra pixel is flagged" });
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.coversLightArea = true;

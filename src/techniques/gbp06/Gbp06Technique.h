@@ -42,7 +42,7 @@ namespace sl
 TechniqueDescriptor gbp06Technique();
 
 // Loop iterations of one invocation past which the result is flagged (llvmpipe caps them at 65535, all loops
-// together): kernel traversal, texels examined; hsm traversal, iterations of the walk.
+// together): kernel traversal, texels examined; hsm traversal, iterations of the walk. The shader's LOOP_BUDGET.
 constexpr int gbp06LoopBudget = 60000;
 
 struct Gbp06Sample : BackprojectionPixel

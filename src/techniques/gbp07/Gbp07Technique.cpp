@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace sl
 {
@@ -37,8 +38,15 @@ TechniqueDescriptor gbp07Technique()
     { "kernel_texels", "texels", "width of the kernel searched for contour edges (Eq. 1, Yang 2009 Fig. 5 left)" },
     { "contour_edges", "edges", "contour edges extracted and back-projected (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     { "visited_cells", "cells", "dual cells (2 x 2 sample blocks) examined (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
-    { "classification", "", "how the pixel was decided (first sub-light); 4 = a penumbra kernel of more than 60000 cells, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short", BufferKind::Categorical, { "not tested", "lit", "umbra", "penumbra", "penumbra over the loop budget" }, SubLightCombine::First },
+    backprojectionClassificationBuffer("how the pixel was decided (first sub-light); " +
+        std::to_string(static_cast<int>(BackprojectionClass::OverLoopBudget)) + " = a penumbra kernel of more than " +
+        std::to_string(gbp07LoopBudgetCells) +
+        " cells, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short",
+      SubLightCombine::First),
   };
+  descriptor.shaderConstants = contourKernelShaderConstants();
+  descriptor.shaderConstants.push_back(
+    { "LOOP_BUDGET_CELLS", gbp07LoopBudgetCells, "dual cells of a penumbra kernel past which the pixel is flagged" });
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.coversLightArea = true;

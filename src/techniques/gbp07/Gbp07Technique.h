@@ -20,6 +20,8 @@ namespace sl
 
 TechniqueDescriptor gbp07Technique();
 
+// Dual cells of a penumbra kernel past which the pixel is flagged (llvmpipe caps loop iterations per invocation
+// at 65535, all loops together). The shader's LOOP_BUDGET_CELLS.
 constexpr int gbp07LoopBudgetCells = 60000;
 
 struct Gbp07Sample : BackprojectionPixel

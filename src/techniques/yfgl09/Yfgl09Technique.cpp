@@ -10,9 +10,45 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 namespace sl
 {
+
+namespace
+{
+
+struct PacketCategory
+{
+  PacketClass value;
+  const char* identifier; // the enumerator, upper case
+  const char* label;      // heat-map keys and stats
+};
+
+// In code order (checked below).
+const PacketCategory packetCategories[] = {
+  { PacketClass::NotTested, "NOT_TESTED", "not tested" },
+  { PacketClass::Trivial, "TRIVIAL", "trivial (lit or umbra)" },
+  { PacketClass::Coherent, "COHERENT", "coherent packet" },
+  { PacketClass::NonCoherent, "NON_COHERENT", "non-coherent (predicted)" },
+  { PacketClass::CaughtNull, "CAUGHT_NULL", "caught null (Eq. 3)" },
+  { PacketClass::OverBudget, "OVER_BUDGET", "packet over the loop budget" },
+};
+
+BufferSpec packetClassBuffer()
+{
+  BufferSpec spec{ "packet_class", "", "how the pixel was computed (first sub-light)", BufferKind::Categorical, {},
+    SubLightCombine::First };
+  for (std::size_t code = 0; code < std::size(packetCategories); ++code)
+  {
+    SL_CHECK(static_cast<std::size_t>(packetCategories[code].value) == code);
+    spec.categoryIdentifiers.push_back(packetCategories[code].identifier);
+    spec.categoryLabels.push_back(packetCategories[code].label);
+  }
+  return spec;
+}
+
+} // namespace
 
 TechniqueDescriptor yfgl09Technique()
 {
@@ -44,7 +80,7 @@ TechniqueDescriptor yfgl09Technique()
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the pixel's kernel (Eq. 1, Fig. 5 left)" },
     { "coherence", "", "Eq. 2 over the pixel's packet: max_i |k_i \\ k_0| / |k_i| (Fig. 5 right)" },
-    { "packet_class", "", "how the pixel was computed (first sub-light)", BufferKind::Categorical, { "not tested", "trivial (lit or umbra)", "coherent packet", "non-coherent (predicted)", "caught null (Eq. 3)", "packet over the loop budget" }, SubLightCombine::First },
+    packetClassBuffer(),
     { "divergence_probability", "", "P_d of the pixel's packet (Eq. 5)" },
     { "visited_nodes", "nodes", "MSSM nodes (or dual cells, hierarchy off) examined for the pixel: its share of its packet's traversal plus its own (Fig. 8; summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     { "contour_edges", "edges", "contour edges extracted by the traversal that computed the pixel (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
@@ -52,6 +88,14 @@ TechniqueDescriptor yfgl09Technique()
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.coversLightArea = true;
+  const int maxPacketPixels = static_cast<int>(descriptor.findParameter("packet_width")->maxValue) *
+    static_cast<int>(descriptor.findParameter("packet_height")->maxValue);
+  descriptor.shaderConstants = contourKernelShaderConstants();
+  descriptor.shaderConstants.insert(descriptor.shaderConstants.end(), {
+    { "PACKET_BUDGET", yfgl09PacketBudget, "packet work past which a packet is finished pixel-wise" },
+    { "MAX_PACKET_PIXELS", maxPacketPixels, "pixels of the largest packet the packet_width and packet_height ranges allow" },
+  });
+  descriptor.shaderFlagSets = { {}, { yfgl09PacketPassFlag } };
   // Like gbp07: the registry-wide sweeps use small maps (brute-force kernels grow with the resolution squared).
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLYfgl09Pass>::New()); };

@@ -24,6 +24,8 @@ namespace sl
 
 TechniqueDescriptor yfgl09Technique();
 
+// How a pixel was computed: the `packet_class` buffer's categories (code = the enumerator's value, shader
+// identifier = its name in upper case: PACKET_CLASS_COHERENT, ...), generated into the shader from here.
 enum class PacketClass
 {
   NotTested = 0,
@@ -36,8 +38,10 @@ enum class PacketClass
 // Packet work (visited nodes plus the loop iterations over the packet's pixels: node ranges, resolved statuses,
 // integrated edges) beyond which a packet is finished pixel-wise: GLs that cap loop iterations per invocation
 // (llvmpipe: 65535) would cut the traversal short. llvmpipe counts about 1.6 times what this counts (measured:
-// a brute-force packet was cut at 3811 cells, ~11 counted per cell), hence 20000.
+// a brute-force packet was cut at 3811 cells, ~11 counted per cell), hence 20000. The shader's PACKET_BUDGET.
 constexpr int yfgl09PacketBudget = 20000;
+// The flag vtkSLYfgl09Pass compiles the packet pass with (the pixel pass: without).
+inline constexpr char yfgl09PacketPassFlag[] = "YFGL09_PACKET_PASS";
 
 struct Yfgl09Frame
 {

@@ -5,6 +5,7 @@
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
 #include "techniques/SoftShadowSupport.h"
+#include "techniques/yfgl09/Yfgl09Technique.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>
@@ -16,6 +17,7 @@
 #include <vtk_glew.h>
 
 #include <algorithm>
+#include <map>
 
 vtkStandardNewMacro(vtkSLYfgl09Pass);
 
@@ -45,7 +47,7 @@ void vtkSLYfgl09Pass::DrawPass(vtkOpenGLRenderWindow* window, sl::FullScreenQuad
   sl::ShaderDefines defines = this->TechniqueDefines();
   if (packetPass)
   {
-    defines.push_back({ "YFGL09_PACKET_PASS", "" });
+    defines.push_back({ sl::yfgl09PacketPassFlag, "" });
   }
   const std::string source =
     sl::assembleShader(this->GetFragmentShaderPath(), defines, this->ParameterDeclarations());
@@ -114,20 +116,24 @@ std::map<std::string, double> vtkSLYfgl09Pass::CollectStatistics()
     return {};
   }
   const sl::ImageF packets = sl::readFloatTexture(this->PacketTarget, 4);
-  // Packet classes (sl::PacketClass): 1 trivial, 2 coherent, 3 predicted non-coherent, 4 caught null, 5 over budget.
-  double counts[6] = { 0, 0, 0, 0, 0, 0 };
+  // Packets by class (the packet target's x holds sl::PacketClass codes).
+  using sl::PacketClass;
+  std::map<PacketClass, double> counts;
   for (std::size_t i = 0; i < packets.pixelCount(); ++i)
   {
-    ++counts[std::clamp(static_cast<int>(packets.data[i * 4]), 0, 5)];
+    const int code = std::clamp(static_cast<int>(packets.data[i * 4]), static_cast<int>(PacketClass::NotTested),
+      static_cast<int>(PacketClass::OverBudget));
+    ++counts[static_cast<PacketClass>(code)];
   }
-  const double nonTrivial = counts[2] + counts[3] + counts[4] + counts[5];
+  const double nonTrivial = counts[PacketClass::Coherent] + counts[PacketClass::NonCoherent] +
+    counts[PacketClass::CaughtNull] + counts[PacketClass::OverBudget];
   return {
     { "packets_non_trivial", nonTrivial },
-    { "packets_coherent", counts[2] },
-    { "packets_predicted_non_coherent", counts[3] },
-    { "packets_caught_null", counts[4] },
-    { "packets_over_budget", counts[5] },
-    { "coherent_packet_percent", nonTrivial > 0 ? 100.0 * counts[2] / nonTrivial : 0.0 },
+    { "packets_coherent", counts[PacketClass::Coherent] },
+    { "packets_predicted_non_coherent", counts[PacketClass::NonCoherent] },
+    { "packets_caught_null", counts[PacketClass::CaughtNull] },
+    { "packets_over_budget", counts[PacketClass::OverBudget] },
+    { "coherent_packet_percent", nonTrivial > 0 ? 100.0 * counts[PacketClass::Coherent] / nonTrivial : 0.0 },
   };
 }
 
