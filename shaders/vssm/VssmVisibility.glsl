@@ -39,17 +39,9 @@ layout(location = OUT_PCF_SAMPLES) out float outPcfSamples;
 uniform float sceneRadius;   // r, the scene's bounding-sphere radius (§6.4, §6.5)
 uniform float satHalfStep;   // int32 SAT: half a fixed-point step of the depth range; float: 0
 
-// `classification` values (VssmTechnique.cpp lists the same labels).
-const float CLASS_NOT_TESTED = 0.0;
-const float CLASS_LIT = 1.0;
-const float CLASS_UMBRA = 2.0;
-const float CLASS_PENUMBRA = 3.0;
-const float CLASS_CONTACT = 4.0;
-
-// Subdivision schemes (the values of the blocker_subdivision / shadow_subdivision choices).
-const int SCHEME_NONE = 0;
-const int SCHEME_UNIFORM = 1;
-const int SCHEME_ADAPTIVE = 2;
+// From the preamble (VssmTechnique.cpp): the `classification` codes CLASSIFICATION_* (sl::VssmClass) and the
+// subdivision schemes SCHEME_NONE, SCHEME_UNIFORM, SCHEME_ADAPTIVE (the values of the blocker_subdivision and
+// shadow_subdivision choices).
 
 int nonplanarSubkernels = 0;
 int quadtreeNodesVisited = 0;
@@ -237,7 +229,7 @@ void main()
   outBlockerKernelTexels = 0.0;
   outPenumbraKernelTexels = 0.0;
   outAvgBlockerDepth = 0.0;
-  outClassification = CLASS_NOT_TESTED;
+  outClassification = CLASSIFICATION_NOT_TESTED;
   writeCounters();
   if (!receiver.needsShadowTest)
   {
@@ -261,13 +253,13 @@ void main()
   if (depthRange.x >= comparisonRange.y)
   {
     outVisibility = 1.0;
-    outClassification = CLASS_LIT;
+    outClassification = CLASSIFICATION_LIT;
     return;
   }
   if (depthRange.y < comparisonRange.x)
   {
     outVisibility = 0.0;
-    outClassification = CLASS_UMBRA;
+    outClassification = CLASSIFICATION_UMBRA;
     return;
   }
 #endif
@@ -293,7 +285,7 @@ void main()
   if (!(blockedArea > 1e-5 * kernelArea))
   {
     outVisibility = 1.0;
-    outClassification = CLASS_LIT;
+    outClassification = CLASSIFICATION_LIT;
     writeCounters();
     return;
   }
@@ -308,7 +300,7 @@ void main()
   if (d - averageBlockerDepth < param_contact_threshold * sceneRadius)
   {
     outVisibility = contactShadow(receiver.uvTexels, filterHalf, d, bias, pixelRotation(uvec2(pixel)));
-    outClassification = CLASS_CONTACT;
+    outClassification = CLASSIFICATION_CONTACT;
     writeCounters();
     return;
   }
@@ -326,6 +318,6 @@ void main()
   }
   float totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
   outVisibility = clamp((chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea, 0.0, 1.0);
-  outClassification = CLASS_PENUMBRA;
+  outClassification = CLASSIFICATION_PENUMBRA;
   writeCounters();
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <random>
 
 namespace sl
@@ -149,7 +150,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
     const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
-    int classes[5] = { 0, 0, 0, 0, 0 };
+    std::map<VssmClass, int> classes; // pixels compared, by the CPU twin's class
     double maxDifference = 0.0;
     for (int y = 0; y < 80; ++y)
     {
@@ -166,7 +167,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
           continue;
         }
         ++compared;
-        ++classes[static_cast<int>(cpu.classification)];
+        ++classes[cpu.classification];
         const double gpu = frame.find("visibility")->image.at(x, y);
         maxDifference = std::max(maxDifference, std::abs(gpu - cpu.sample.visibility));
         EXPECT_NEAR(gpu, cpu.sample.visibility, 2e-3) << label << " pixel " << x << "," << y;
@@ -179,12 +180,13 @@ TEST(Vssm, MatchesTheCpuImplementation)
         EXPECT_NEAR(frame.find("penumbra_kernel_texels")->image.at(x, y), cpu.penumbraKernelTexels, 1e-2 * (1.0 + cpu.penumbraKernelTexels)) << label;
       }
     }
-    std::cout << "[ measured ] vssm " << label << ": compared " << compared << " (lit " << classes[1] << ", umbra "
-              << classes[2] << ", penumbra " << classes[3] << ", contact " << classes[4] << "), skipped " << skipped
+    std::cout << "[ measured ] vssm " << label << ": compared " << compared << " (lit " << classes[VssmClass::Lit] << ", umbra "
+              << classes[VssmClass::Umbra] << ", penumbra " << classes[VssmClass::Penumbra] << ", contact "
+              << classes[VssmClass::Contact] << "), skipped " << skipped
               << ", max |gpu - cpu| " << maxDifference << "\n";
     EXPECT_GT(compared, 2000) << label;
     EXPECT_LT(skipped, compared / 10) << label;
-    EXPECT_GT(classes[3] + classes[4], 200) << label;
+    EXPECT_GT(classes[VssmClass::Penumbra] + classes[VssmClass::Contact], 200) << label;
   }
 }
 

@@ -1,15 +1,51 @@
 #include "techniques/vssm/VssmTechnique.h"
 
+#include "core/Error.h"
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/vssm/vtkSLVssmPass.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <iterator>
 
 namespace sl
 {
+
+namespace
+{
+
+struct VssmCategory
+{
+  VssmClass value;
+  const char* identifier; // the enumerator, upper case
+  const char* label;      // heat-map keys and stats
+};
+
+// In code order (checked below).
+const VssmCategory vssmCategories[] = {
+  { VssmClass::NotTested, "NOT_TESTED", "not tested" },
+  { VssmClass::Lit, "LIT", "lit" },
+  { VssmClass::Umbra, "UMBRA", "umbra" },
+  { VssmClass::Penumbra, "PENUMBRA", "penumbra" },
+  { VssmClass::Contact, "CONTACT", "contact" },
+};
+
+BufferSpec classificationBuffer()
+{
+  BufferSpec spec{ "classification", "", "how the pixel was decided", BufferKind::Categorical };
+  for (std::size_t code = 0; code < std::size(vssmCategories); ++code)
+  {
+    SL_CHECK(static_cast<std::size_t>(vssmCategories[code].value) == code);
+    spec.categoryIdentifiers.push_back(vssmCategories[code].identifier);
+    spec.categoryLabels.push_back(vssmCategories[code].label);
+  }
+  return spec;
+}
+
+} // namespace
 
 TechniqueDescriptor vssmTechnique()
 {
@@ -41,12 +77,19 @@ TechniqueDescriptor vssmTechnique()
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
     { "penumbra_kernel_texels", "texels", "width of the penumbra kernel w_p (Alg. 1 L16)" },
     { "avg_blocker_depth", "world units", "average blocker depth z_avg, Eq. 4 combined with the PCF sub-kernels (0: none)" },
-    { "classification", "", "how the pixel was decided", BufferKind::Categorical,
-      { "not tested", "lit", "umbra", "penumbra", "contact" } },
+    classificationBuffer(),
     { "nonplanar_subkernels", "sub-kernels", "sub-kernels with E(x) >= t, both steps (§5.1)" },
     { "quadtree_nodes_visited", "nodes", "nodes of the adaptive quad-trees traversed, both steps (Alg. 2)" },
     { "pcf_samples", "taps", "point-sampled depth comparisons: non-planar leaves and contact PCF" },
   };
+  // The shader's subdivide() takes either parameter's value: SCHEME_NONE, SCHEME_UNIFORM, SCHEME_ADAPTIVE.
+  for (std::size_t code = 0; code < schemes.size(); ++code)
+  {
+    std::string name = "SCHEME_" + schemes[code];
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+    descriptor.shaderConstants.push_back({ name, static_cast<int>(code),
+      "value of blocker_subdivision and shadow_subdivision: " + schemes[code] });
+  }
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLVssmPass>::New()); };

@@ -24,6 +24,8 @@ namespace sl
 
 TechniqueDescriptor vssmTechnique();
 
+// How a pixel was decided: the `classification` buffer's categories (code = the enumerator's value, shader
+// identifier = its name in upper case: CLASSIFICATION_CONTACT, ...), generated into the shader from here.
 enum class VssmClass
 {
   NotTested = 0,
