@@ -18,9 +18,19 @@ bool TechniqueDescriptor::supports(const Light& light) const
   return type && shape;
 }
 
-bool TechniqueDescriptor::needs(LightStructure structure) const
+std::vector<std::string> TechniqueDescriptor::outputNames() const
 {
-  return std::find(lightStructures.begin(), lightStructures.end(), structure) != lightStructures.end();
+  std::vector<std::string> names{ "visibility" };
+  for (const BufferSpec& buffer : buffers)
+  {
+    names.push_back(buffer.name);
+  }
+  return names;
+}
+
+bool TechniqueDescriptor::needs(const LightSpaceStructure& structure) const
+{
+  return std::find(lightStructures.begin(), lightStructures.end(), &structure) != lightStructures.end();
 }
 
 } // namespace sl

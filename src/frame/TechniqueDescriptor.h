@@ -8,7 +8,6 @@
 
 #include "core/NamedImage.h"
 #include "core/Parameters.h"
-#include "lightspace/LightStructure.h"
 #include "scene/Scene.h"
 
 #include <vtkSmartPointer.h>
@@ -22,6 +21,8 @@ class vtkSLTechniquePass;
 
 namespace sl
 {
+
+struct LightSpaceStructure; // lightspace/LightSpaceStructure.h
 
 // How a buffer of a technique with sub-lights (parameter `sublights`, Yang et al. 2009 §5) combines the
 // S x S sub-light frames: visibility and continuous values are averaged, work counters summed, categorical
@@ -63,7 +64,9 @@ struct TechniqueDescriptor
   std::string title;   // "Percentage-closer filtering"
   std::string paper;   // "Reeves et al. 1987; survey (Scherzer et al. 2011) §6"
   std::vector<ParameterSpec> parameters;
-  std::vector<LightStructure> lightStructures;
+  // The light-space structures its shader reads (each structure's header, e.g. lightspace/sat/SatStructure.h):
+  // the pipeline builds them (and what they are built from) and binds them to the technique's shader.
+  std::vector<const LightSpaceStructure*> lightStructures;
   std::vector<BufferSpec> buffers; // published in addition to the common ones (visibility, position, ...)
   std::vector<LightType> supportedLights;
   std::vector<LightShape> supportedAreaShapes = { LightShape::Square, LightShape::Disk }; // for area lights
@@ -94,7 +97,9 @@ struct TechniqueDescriptor
   const ParameterSpec* findParameter(const std::string& parameterName) const;
   // Every parameter at its default.
   ParameterValues defaultParameters() const { return ParameterValues(name, parameters); }
-  bool needs(LightStructure structure) const;
+  bool needs(const LightSpaceStructure& structure) const;
+  // Names of the technique pass's targets in output-location order: "visibility", then the buffers.
+  std::vector<std::string> outputNames() const;
   // The light's type is supported, and for an area light its shape.
   bool supports(const Light& light) const;
 };

@@ -1,6 +1,7 @@
-#include "passes/vtkSLTechniquePass.h"
+#include "techniques/vtkSLTechniquePass.h"
 
 #include "core/Error.h"
+#include "lightspace/LightSpaceStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
@@ -32,12 +33,7 @@ vtkSLTechniquePass::~vtkSLTechniquePass() = default;
 
 std::vector<std::string> vtkSLTechniquePass::OutputNames(const sl::TechniqueDescriptor& descriptor)
 {
-  std::vector<std::string> names{ "visibility" };
-  for (const sl::BufferSpec& buffer : descriptor.buffers)
-  {
-    names.push_back(buffer.name);
-  }
-  return names;
+  return descriptor.outputNames();
 }
 
 sl::ShaderDefines vtkSLTechniquePass::TechniqueDefines() const
@@ -74,6 +70,12 @@ sl::ShaderDefines vtkSLTechniquePass::TechniqueDefines() const
     }
     defines.push_back({ upperCase(spec.name), std::to_string(frame.parameters.getInt(spec.name)) });
   }
+  // The defines each light-space structure's GLSL lookup needs (e.g. the min-max layout of common/HsmLayout.glsl).
+  for (const sl::LightSpaceStructure* structure : frame.technique->lightStructures)
+  {
+    const sl::ShaderDefines structureDefines = structure->shaderDefines(frame);
+    defines.insert(defines.end(), structureDefines.begin(), structureDefines.end());
+  }
   const sl::ShaderDefines extra = this->GetExtraDefines();
   defines.insert(defines.end(), extra.begin(), extra.end());
   return defines;
@@ -109,20 +111,11 @@ std::vector<vtkTextureObject*> vtkSLTechniquePass::SetCommonUniforms(vtkShaderPr
     sl::setVector(program, "cameraRayStepX", camera.rayStepX);
     sl::setVector(program, "cameraRayStepY", camera.rayStepY);
   }
-  if (frame.hasLightView)
+  // Every light-space structure the technique reads, bound the way its folder says (lightspace/*/).
+  for (const sl::LightSpaceStructure* structure : frame.technique->lightStructures)
   {
-    const sl::LightView& view = frame.lightView;
-    if (program->IsUniformUsed("shadowMapLinear"))
-    {
-      bound.push_back(sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear));
-    }
-    sl::setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
-    sl::setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
-    sl::setIntIfUsed(program, "shadowMapSize", view.resolution);
-    sl::setIntIfUsed(program, "lightIsPerspective", view.projection == sl::LightProjection::Perspective ? 1 : 0);
-    // texelWorldSize(depthLin) = shadowTexelExtent * depthLin (perspective) or shadowTexelExtent.
-    sl::setFloatIfUsed(program, "shadowTexelExtent",
-      view.projection == sl::LightProjection::Perspective ? view.texelWorldSize(1.0) : view.texelWorldSize(0.0));
+    const std::vector<vtkTextureObject*> textures = structure->bind(program, frame);
+    bound.insert(bound.end(), textures.begin(), textures.end());
   }
   for (const sl::ParameterSpec& spec : frame.technique->parameters)
   {

@@ -1,5 +1,8 @@
 #include "techniques/gbp06/Gbp06Technique.h"
 
+#include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/backprojection/ContourBackprojection.h"
@@ -34,7 +37,7 @@ TechniqueDescriptor gbp06Technique()
     { "gap_filling", 1, 0, 1, "", "extend each occluding micropatch's back-projection to those of its occluding right and top neighbours (Guennebaud et al. 2006, gaps)", { "off", "on" }, true },
     { "traversal", 0, 0, 1, "", "micropatches from every texel of the kernel, or from a depth-first walk of the min-max quadtree pruning nodes that cannot occlude (Dmitriev & Uralsky 2007); same visibility", { "kernel", "hsm" }, true },
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::HierarchicalShadowMap };
+  descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure() };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the kernel searched for occluding micropatches (Eq. 1, Yang 2009 Fig. 5 left)" },
     { "occluding_texels", "texels", "occluding micropatches back-projected and accumulated" },

@@ -1,5 +1,8 @@
 #include "techniques/gbp07/Gbp07Technique.h"
 
+#include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/backprojection/ContourBackprojection.h"
@@ -33,7 +36,7 @@ TechniqueDescriptor gbp07Technique()
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     subLightsParameter(),
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::HierarchicalShadowMap };
+  descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure() };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the kernel searched for contour edges (Eq. 1, Yang 2009 Fig. 5 left)" },
     { "contour_edges", "edges", "contour edges extracted and back-projected (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },

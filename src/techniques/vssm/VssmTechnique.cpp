@@ -1,5 +1,9 @@
 #include "techniques/vssm/VssmTechnique.h"
 
+#include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/sat/SatStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "core/Error.h"
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
@@ -71,8 +75,8 @@ TechniqueDescriptor vssmTechnique()
     { "contact_threshold", 0.01, 0, 1, "r", "d - z_avg below this times r: 3 x 3 jittered bilinear PCF instead of the SAT (§6.4: 0.01 r; 0 = off)", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the pooled variance, relative to the squared receiver depth", {}, false },
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::SummedAreaTable,
-    LightStructure::HierarchicalShadowMap };
+  descriptor.lightStructures = { &shadowMapStructure(), &summedAreaTableStructure(),
+    &hierarchicalShadowMapStructure() };
   descriptor.buffers = {
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
     { "penumbra_kernel_texels", "texels", "width of the penumbra kernel w_p (Alg. 1 L16)" },

@@ -1,5 +1,8 @@
 #include "techniques/yfgl09/Yfgl09Technique.h"
 
+#include "lightspace/mssm/DualMssmStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+
 #include "core/Error.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
@@ -76,7 +79,7 @@ TechniqueDescriptor yfgl09Technique()
     { "visibility_cost", 8.0, 0.0, 100.0, "", "Q_v of Eq. 6, cost of back-projecting and integrating an edge for one pixel (Q_n = 1)", {}, false },
     subLightsParameter(),
   });
-  descriptor.lightStructures = { LightStructure::ShadowMap, LightStructure::DualMultiScaleShadowMap };
+  descriptor.lightStructures = { &shadowMapStructure(), &dualMssmStructure() };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the pixel's kernel (Eq. 1, Fig. 5 left)" },
     { "coherence", "", "Eq. 2 over the pixel's packet: max_i |k_i \\ k_0| / |k_i| (Fig. 5 right)" },

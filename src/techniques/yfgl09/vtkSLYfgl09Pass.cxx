@@ -24,12 +24,6 @@ vtkStandardNewMacro(vtkSLYfgl09Pass);
 vtkSLYfgl09Pass::vtkSLYfgl09Pass() = default;
 vtkSLYfgl09Pass::~vtkSLYfgl09Pass() = default;
 
-sl::ShaderDefines vtkSLYfgl09Pass::GetExtraDefines() const
-{
-  // The packet size is a uniform, not a define: one program per pass serves every size.
-  return sl::hsmLayoutDefines(*this->Frame);
-}
-
 std::vector<vtkTextureObject*> vtkSLYfgl09Pass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   const sl::FrameResources& frame = *this->Frame;
@@ -39,7 +33,9 @@ std::vector<vtkTextureObject*> vtkSLYfgl09Pass::SetTechniqueUniforms(vtkShaderPr
   program->SetUniform2i("imageSize", size);
   const int packetSize[2] = { frame.parameters.getInt("packet_width"), frame.parameters.getInt("packet_height") };
   program->SetUniform2i("packetSize", packetSize);
-  return { sl::bindHierarchicalShadowMap(program, frame) };
+  // The packet size is a uniform, not a define: one program per pass serves every size. The dual-grid MSSM is
+  // bound by its structure (lightspace/mssm).
+  return {};
 }
 
 void vtkSLYfgl09Pass::DrawPass(vtkOpenGLRenderWindow* window, sl::FullScreenQuad& quad, bool packetPass)
