@@ -83,47 +83,62 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
   return stages;
 }
 
-FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& request)
+namespace
 {
-  const TechniqueDescriptor& technique = findTechnique(request.technique);
+
+const char* lightTypeName(LightType type)
+{
+  switch (type)
+  {
+    case LightType::Area: return "area";
+    case LightType::Point: return "point";
+    case LightType::Directional: return "directional";
+    case LightType::Spot: return "spot";
+  }
+  return "unknown";
+}
+
+const char* lightShapeName(LightShape shape)
+{
+  return shape == LightShape::Disk ? "disk" : "square";
+}
+
+// The request's light, or an InputError naming it and, for a light the technique does not support, what the
+// technique takes instead (from the descriptor, so the message stays right when a technique's support changes).
+const Light& requestedLight(const Scene& scene, const RenderRequest& request, const TechniqueDescriptor& technique)
+{
   if (request.lightIndex < 0 || request.lightIndex >= static_cast<int>(scene.lights.size()))
   {
     throw InputError(format("--light ", request.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
   }
   const Light& light = scene.lights[static_cast<std::size_t>(request.lightIndex)];
-  if (!technique.supports(light))
+  if (technique.supports(light))
   {
-    // Name the light's kind and what the technique takes instead, from the descriptor, so the message stays
-    // right when a technique's support changes.
-    const auto typeName = [](LightType type) {
-      switch (type)
-      {
-        case LightType::Area: return "area";
-        case LightType::Point: return "point";
-        case LightType::Directional: return "directional";
-        case LightType::Spot: return "spot";
-      }
-      return "unknown";
-    };
-    const auto shapeName = [](LightShape shape) { return shape == LightShape::Disk ? "disk" : "square"; };
-    std::string supported;
-    for (const LightType type : technique.supportedLights)
-    {
-      supported += supported.empty() ? "" : ", ";
-      if (type == LightType::Area && technique.supportedAreaShapes.size() == 1)
-      {
-        supported += format(shapeName(technique.supportedAreaShapes.front()), " ");
-      }
-      supported += format(typeName(type), " lights");
-    }
-    const std::string kind = light.type == LightType::Area ? format(shapeName(light.shape), " area") : typeName(light.type);
-    throw InputError(format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", request.lightIndex,
-      "]: technique '", technique.name, "' does not support this ", kind, " light; it supports ",
-      supported.empty() ? "no light" : supported));
+    return light;
   }
-  FrameResources frame;
+  std::string supported;
+  for (const LightType type : technique.supportedLights)
+  {
+    supported += supported.empty() ? "" : ", ";
+    if (type == LightType::Area && technique.supportedAreaShapes.size() == 1)
+    {
+      supported += format(lightShapeName(technique.supportedAreaShapes.front()), " ");
+    }
+    supported += format(lightTypeName(type), " lights");
+  }
+  const std::string kind =
+    light.type == LightType::Area ? format(lightShapeName(light.shape), " area") : lightTypeName(light.type);
+  throw InputError(format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", request.lightIndex,
+    "]: technique '", technique.name, "' does not support this ", kind, " light; it supports ",
+    supported.empty() ? "no light" : supported));
+}
+
+// The frame's inputs: scene, light, technique, parameters (defaults, then --set) and the camera. No GL.
+void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderRequest& request,
+  const TechniqueDescriptor& technique)
+{
   frame.scene = &scene;
-  frame.light = &light;
+  frame.light = &requestedLight(scene, request, technique);
   frame.technique = &technique;
   frame.parameters = technique.defaultParameters();
   for (const std::string& assignment : request.settings)
@@ -136,36 +151,114 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     throw InputError(format("--resolution ", resolution.x, "x", resolution.y, ": each side must be in 1..", kMaxImageSide));
   }
   frame.camera = makeCameraView(scene.camera, scene.bounds(), resolution, scene.objectBounds());
+}
 
+// The per-pixel buffers: the common ones (G-buffer, visibility), the technique's, and the sub-lights'.
+void readBackBuffers(const FrameResources& frame, const RenderRequest& request, FrameResult& result)
+{
+  const ImageF position = readFloatTexture(frame.gbufferPosition, 4);
+  const ImageF normal = readFloatTexture(frame.gbufferNormal, 4);
+  const ImageF albedoDepth = readFloatTexture(frame.gbufferAlbedoDepth, 4);
+  const auto& common = commonBufferSpecs();
+  const auto commonBuffer = [&](const std::string& name, ImageF image) {
+    const auto spec = std::find_if(common.begin(), common.end(), [&](const BufferSpec& s) { return s.name == name; });
+    result.buffers.push_back({ name, std::move(image), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
+  };
+  if (!request.gbufferOnly)
+  {
+    commonBuffer("visibility", readFloatTexture(frame.techniqueTargets.at("visibility"), 1));
+  }
+  commonBuffer("position", position.channels(0, 3));
+  commonBuffer("normal", normal.channels(0, 3));
+  commonBuffer("depth", albedoDepth.channels(3, 1));
+  commonBuffer("coverage", position.channels(3, 1));
+  commonBuffer("albedo", albedoDepth.channels(0, 3));
+  commonBuffer("receives_shadows", normal.channels(3, 1));
+  if (request.gbufferOnly)
+  {
+    return;
+  }
+  for (const BufferSpec& spec : frame.technique->buffers)
+  {
+    result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
+      spec.doc, spec.kind, spec.categoryLabels });
+  }
+  if (!frame.subLightVisibility.empty())
+  {
+    const int count = static_cast<int>(frame.subLightVisibility.size());
+    ImageF subLights(frame.width(), frame.height(), count);
+    for (int k = 0; k < count; ++k)
+    {
+      const ImageF one = readFloatTexture(frame.subLightVisibility[static_cast<std::size_t>(k)], 1);
+      for (std::size_t i = 0; i < one.pixelCount(); ++i)
+      {
+        subLights.data[i * count + k] = one.data[i];
+      }
+    }
+    const BufferSpec& spec = subLightBufferSpecs().front();
+    result.buffers.push_back({ spec.name, std::move(subLights), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
+  }
+}
+
+// Each light-space structure the frame built, in build order: its light_space.vti arrays and its GPU memory.
+void readBackLightSpace(const FrameResources& frame, FrameResult& result)
+{
+  const TechniqueDescriptor& technique = *frame.technique;
+  for (const LightSpaceStructure* structure : technique.lightStructures)
+  {
+    result.lightStructureNames.push_back(structure->name);
+  }
+  for (const LightSpaceStructure* structure : withBuildDependencies(technique.lightStructures))
+  {
+    const std::vector<NamedImage> images = structure->exportImages(frame, result);
+    result.lightSpace.insert(result.lightSpace.end(), images.begin(), images.end());
+    result.lightStructureGpuBytes[structure->name] = structure->gpuBytes(frame);
+  }
+}
+
+} // namespace
+
+vtkSLMultiViewPass* ShadowRenderer::multiViewFor(const TechniqueDescriptor& technique, bool gbufferOnly)
+{
+  const auto found = gbufferOnly ? multiViewByTechnique_.end() : multiViewByTechnique_.find(technique.name);
+  return found == multiViewByTechnique_.end() ? nullptr : found->second.Get();
+}
+
+void ShadowRenderer::allocateFrameTargets(FrameResources& frame, const Scene& scene, bool gbufferOnly)
+{
   window_->MakeCurrent();
-  window_->SetSize(resolution.x, resolution.y);
+  window_->SetSize(frame.width(), frame.height());
   frame.gpuScene = std::make_unique<GpuScene>(window_, scene);
-  if (technique.drawsSceneGeometry && !request.gbufferOnly)
+  if (gbufferOnly)
+  {
+    return;
+  }
+  if (frame.technique->drawsSceneGeometry)
   {
     frame.weldedCasters = std::make_shared<const std::vector<WeldedMesh>>(weldCasters(scene));
   }
-  if (!request.gbufferOnly)
+  for (const std::string& output : frame.technique->outputNames())
   {
-    for (const std::string& output : vtkSLTechniquePass::OutputNames(technique))
-    {
-      frame.techniqueTargets[output] = makeFloatTarget(window_, resolution.x, resolution.y, 1);
-    }
+    frame.techniqueTargets[output] = makeFloatTarget(window_, frame.width(), frame.height(), 1);
   }
+}
 
-  const auto& stages = stagesFor(technique, request.gbufferOnly);
+double ShadowRenderer::renderStages(FrameResources& frame, bool gbufferOnly)
+{
+  const auto& stages = stagesFor(*frame.technique, gbufferOnly);
+  vtkSLMultiViewPass* multiView = multiViewFor(*frame.technique, gbufferOnly);
   vtkNew<vtkRenderPassCollection> collection;
-  const auto multiView = request.gbufferOnly ? multiViewByTechnique_.end() : multiViewByTechnique_.find(technique.name);
   for (const auto& stage : stages)
   {
     stage->SetFrame(&frame);
     stage->ResetTimer();
   }
-  if (multiView != multiViewByTechnique_.end())
+  if (multiView)
   {
-    multiView->second->SetFrame(&frame);
-    collection->AddItem(stages.front());  // gbuffer
-    collection->AddItem(multiView->second); // per sub-light: focus .. technique, accumulation
-    collection->AddItem(stages.back());   // shading
+    multiView->SetFrame(&frame);
+    collection->AddItem(stages.front()); // gbuffer
+    collection->AddItem(multiView);      // per sub-light: focus .. technique, accumulation
+    collection->AddItem(stages.back());  // shading
   }
   else
   {
@@ -180,10 +273,12 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
 
   const auto frameStart = std::chrono::steady_clock::now();
   window_->Render();
-  FrameResult result;
-  result.frameWallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+}
 
-  for (const auto& stage : stages)
+void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbufferOnly, FrameResult& result)
+{
+  for (const auto& stage : stagesFor(*frame.technique, gbufferOnly))
   {
     result.stages.push_back({ stage->GetStageName(), stage->GetGpuMilliseconds(), stage->GetWallMilliseconds() });
     if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
@@ -192,10 +287,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
       result.objectSpace = techniquePass->CollectObjectSpaceExports();
     }
   }
-  result.technique = technique.name;
-  result.descriptor = &technique;
+  result.technique = frame.technique->name;
+  result.descriptor = frame.technique;
   result.parameters = frame.parameters;
-  result.resolution = resolution;
+  result.resolution = frame.camera.resolution;
   result.camera = frame.camera;
   if (frame.hasLightView)
   {
@@ -204,76 +299,41 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   result.glRenderer = window_->GetRendererString();
   result.glVersion = window_->GetVersionString();
   result.eglPlatform = window_->GetEglContext()->platformName();
+}
 
-  // Read everything back.
-  const ImageF position = readFloatTexture(frame.gbufferPosition, 4);
-  const ImageF normal = readFloatTexture(frame.gbufferNormal, 4);
-  const ImageF albedoDepth = readFloatTexture(frame.gbufferAlbedoDepth, 4);
-  const auto channels = [](const ImageF& source, int first, int count) { return source.channels(first, count); };
-  const auto& common = commonBufferSpecs();
-  const auto commonBuffer = [&](const std::string& name, ImageF image) {
-    const auto spec = std::find_if(common.begin(), common.end(), [&](const BufferSpec& s) { return s.name == name; });
-    result.buffers.push_back({ name, std::move(image), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
-  };
+void ShadowRenderer::releaseFrame(FrameResources& frame, bool gbufferOnly)
+{
+  renderer_->SetPass(nullptr);
+  for (const auto& stage : stagesFor(*frame.technique, gbufferOnly))
+  {
+    stage->SetFrame(nullptr); // the frame's resources end here
+  }
+  if (vtkSLMultiViewPass* multiView = multiViewFor(*frame.technique, gbufferOnly))
+  {
+    multiView->SetFrame(nullptr);
+  }
+  frame.gpuScene->releaseGraphicsResources(window_);
+}
+
+FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& request)
+{
+  FrameResources frame;
+  setFrameInputs(frame, scene, request, findTechnique(request.technique));
+  allocateFrameTargets(frame, scene, request.gbufferOnly);
+
+  FrameResult result;
+  result.frameWallMs = renderStages(frame, request.gbufferOnly);
+  collectStageResults(frame, request.gbufferOnly, result);
+  readBackBuffers(frame, request, result);
   if (!request.gbufferOnly)
   {
-    commonBuffer("visibility", readFloatTexture(frame.techniqueTargets.at("visibility"), 1));
-  }
-  commonBuffer("position", channels(position, 0, 3));
-  commonBuffer("normal", channels(normal, 0, 3));
-  commonBuffer("depth", channels(albedoDepth, 3, 1));
-  commonBuffer("coverage", channels(position, 3, 1));
-  commonBuffer("albedo", channels(albedoDepth, 0, 3));
-  commonBuffer("receives_shadows", channels(normal, 3, 1));
-  for (const BufferSpec& spec : request.gbufferOnly ? std::vector<BufferSpec>() : technique.buffers)
-  {
-    result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
-      spec.doc, spec.kind, spec.categoryLabels });
-  }
-  if (!frame.subLightVisibility.empty())
-  {
-    const int count = static_cast<int>(frame.subLightVisibility.size());
-    ImageF subLights(resolution.x, resolution.y, count);
-    for (int k = 0; k < count; ++k)
-    {
-      const ImageF one = readFloatTexture(frame.subLightVisibility[static_cast<std::size_t>(k)], 1);
-      for (std::size_t i = 0; i < one.pixelCount(); ++i)
-      {
-        subLights.data[i * count + k] = one.data[i];
-      }
-    }
-    const BufferSpec& spec = subLightBufferSpecs().front();
-    result.buffers.push_back({ spec.name, std::move(subLights), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
-  }
-  if (!request.gbufferOnly)
-  {
-    for (const LightSpaceStructure* structure : technique.lightStructures)
-    {
-      result.lightStructureNames.push_back(structure->name);
-    }
-    // Each structure the frame built, in build order: its light_space.vti arrays and its GPU memory.
-    for (const LightSpaceStructure* structure : withBuildDependencies(technique.lightStructures))
-    {
-      const std::vector<NamedImage> images = structure->exportImages(frame, result);
-      result.lightSpace.insert(result.lightSpace.end(), images.begin(), images.end());
-      result.lightStructureGpuBytes[structure->name] = structure->gpuBytes(frame);
-    }
+    readBackLightSpace(frame, result);
   }
   if (frame.shadedImage)
   {
     result.image = readColorTexture(frame.shadedImage);
   }
-
-  renderer_->SetPass(nullptr);
-  for (const auto& stage : stages)
-  {
-    stage->SetFrame(nullptr); // the frame's resources end here
-  }
-  if (multiView != multiViewByTechnique_.end())
-  {
-    multiView->second->SetFrame(nullptr);
-  }
-  frame.gpuScene->releaseGraphicsResources(window_);
+  releaseFrame(frame, request.gbufferOnly);
   return result;
 }
 

@@ -23,6 +23,8 @@
 namespace sl
 {
 
+struct FrameResources;
+
 struct RenderRequest
 {
   std::string technique = "hard";
@@ -51,6 +53,13 @@ private:
   // The stage passes of each technique, built on first use and kept: their programs, framebuffers and
   // VAOs are reused frame after frame (warm frames are what benchmarks time).
   std::vector<vtkSmartPointer<vtkSLStagePass>>& stagesFor(const TechniqueDescriptor& technique, bool gbufferOnly);
+  // The multi-view pass of a technique with sub-lights (nullptr otherwise, and for G-buffer-only frames).
+  vtkSLMultiViewPass* multiViewFor(const TechniqueDescriptor& technique, bool gbufferOnly);
+  // The steps of render(), in order.
+  void allocateFrameTargets(FrameResources& frame, const Scene& scene, bool gbufferOnly); // GPU scene, targets
+  double renderStages(FrameResources& frame, bool gbufferOnly); // returns the frame's wall time (ms)
+  void collectStageResults(const FrameResources& frame, bool gbufferOnly, FrameResult& result); // timings, stats
+  void releaseFrame(FrameResources& frame, bool gbufferOnly);
 
   vtkSmartPointer<vtkSLEglRenderWindow> window_;
   vtkSmartPointer<vtkRenderer> renderer_;
