@@ -47,9 +47,9 @@ struct FrameResult
   std::optional<LightView> lightView;
   std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
   std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
-  std::vector<NamedPolyData> objectSpace;
+  std::vector<NamedPolyData> objectSpace; // geometry an object-space technique exports (vtkSLTechniquePass)
   std::vector<std::string> lightStructureNames; // the structures the technique reads (descriptor order)
-  std::map<std::string, std::size_t> lightStructureGpuBytes; // by structure name, every structure that was built // geometry an object-space technique exports (vtkSLTechniquePass)
+  std::map<std::string, std::size_t> lightStructureGpuBytes; // by structure name, every structure that was built
   ImageU8 image;                      // shaded, RGB, row 0 at the bottom
   // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
   std::optional<Image<std::uint32_t>> integerSummedAreaTable;
@@ -62,11 +62,6 @@ struct FrameResult
 
   const NamedImage* find(const std::string& name) const;
 };
-
-// The buffers every technique's buffers.vti has, with their documentation (README lists them).
-const std::vector<BufferSpec>& commonBufferSpecs();
-// The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
-const std::vector<BufferSpec>& subLightBufferSpecs();
 
 // The buffers every technique's buffers.vti has, with their documentation (README lists them).
 const std::vector<BufferSpec>& commonBufferSpecs();

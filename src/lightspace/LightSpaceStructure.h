@@ -41,7 +41,7 @@ struct LightSpaceStructure
   std::vector<const LightSpaceStructure*> builtFrom;
   // The parameters its build reads (through its typed settings, never by name in a shared pass). A technique
   // that needs the structure declares each of them, with the same choices and a range inside this one
-  // (TechniqueTest checks).
+  // (LightSpaceStructureTest checks).
   std::vector<ParameterSpec> parameters;
   // Its build, one timed stage per pass (the pass's GetStageName() names the stage in stats.json).
   std::function<std::vector<vtkSmartPointer<vtkSLStagePass>>()> createBuildPasses;

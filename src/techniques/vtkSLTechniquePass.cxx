@@ -71,7 +71,7 @@ sl::ShaderDefines vtkSLTechniquePass::TechniqueDefines() const
     defines.push_back({ upperCase(spec.name), std::to_string(frame.parameters.getInt(spec.name)) });
   }
   // The defines each light-space structure's GLSL lookup needs (e.g. the min-max layout of common/HsmLayout.glsl).
-  for (const sl::LightSpaceStructure* structure : frame.technique->lightStructures)
+  for (const sl::LightSpaceStructure* structure : sl::withBuildDependencies(frame.technique->lightStructures))
   {
     const sl::ShaderDefines structureDefines = structure->shaderDefines(frame);
     defines.insert(defines.end(), structureDefines.begin(), structureDefines.end());
@@ -111,8 +111,9 @@ std::vector<vtkTextureObject*> vtkSLTechniquePass::SetCommonUniforms(vtkShaderPr
     sl::setVector(program, "cameraRayStepX", camera.rayStepX);
     sl::setVector(program, "cameraRayStepY", camera.rayStepY);
   }
-  // Every light-space structure the technique reads, bound the way its folder says (lightspace/*/).
-  for (const sl::LightSpaceStructure* structure : frame.technique->lightStructures)
+  // Every light-space structure the frame built for the technique (those it lists and what they are built from),
+  // bound the way its folder says (lightspace/*/).
+  for (const sl::LightSpaceStructure* structure : sl::withBuildDependencies(frame.technique->lightStructures))
   {
     const std::vector<vtkTextureObject*> textures = structure->bind(program, frame);
     bound.insert(bound.end(), textures.begin(), textures.end());
