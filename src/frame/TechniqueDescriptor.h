@@ -6,12 +6,14 @@
 // and the regression suite iterate the registry; nothing else switches on technique names.
 #pragma once
 
+#include "core/Error.h"
 #include "core/NamedImage.h"
 #include "core/Parameters.h"
 #include "scene/Scene.h"
 
 #include <vtkSmartPointer.h>
 
+#include <cstddef>
 #include <functional>
 #include <map>
 #include <string>
@@ -57,6 +59,33 @@ struct ShaderConstant
   int value = 0;
   std::string doc;
 };
+
+// One code of a categorical buffer, declared once beside the C++ enum that the CPU twin uses: `value` is the
+// code, `identifier` the enumerator's name in upper case (the shader's <BUFFER>_<IDENTIFIER> define), `label`
+// what heat-map keys and stats show.
+template <class Enum>
+struct Category
+{
+  Enum value;
+  const char* identifier;
+  const char* label;
+};
+
+// A categorical buffer whose codes are `categories`, listed in code order (SL_CHECKed: code i is entry i).
+template <class Enum, std::size_t Count>
+BufferSpec categoricalBuffer(std::string name, std::string doc, const Category<Enum> (&categories)[Count],
+  SubLightCombine combine = SubLightCombine::Mean)
+{
+  BufferSpec spec{ std::move(name), "", std::move(doc), BufferKind::Categorical, {}, combine };
+  for (std::size_t code = 0; code < Count; ++code)
+  {
+    SL_CHECK_MSG(static_cast<std::size_t>(categories[code].value) == code, "buffer ", spec.name, ": category ",
+      categories[code].identifier, " is listed out of code order");
+    spec.categoryIdentifiers.push_back(categories[code].identifier);
+    spec.categoryLabels.push_back(categories[code].label);
+  }
+  return spec;
+}
 
 struct TechniqueDescriptor
 {

@@ -28,6 +28,7 @@
 #include <vtkXMLImageDataWriter.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLWriter.h>
 
 #include <algorithm>
 #include <array>
@@ -383,6 +384,27 @@ void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
 }
 } // namespace
 
+namespace
+{
+
+// A VTK XML file (zlib, appended raw binary), encoded in memory and written by writeEncodedFile:
+// vtkXMLWriter::Write() returns 1 even when the disk fills up halfway (bad-input probe D17), and its own file
+// output gives no reason.
+void writeXmlDataFile(const std::filesystem::path& path, vtkXMLWriter* writer)
+{
+  const VtkErrorCapture capture;
+  writer->SetCompressorTypeToZLib();
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->WriteToOutputStringOn();
+  const int written = writer->Write();
+  SL_CHECK_MSG(written == 1 && writer->GetErrorCode() == 0 && !capture.hasError(), "encoding ", path.string(),
+    " in memory failed: ", capture.firstError());
+  writeEncodedFile(path, writer->GetOutputString());
+}
+
+} // namespace
+
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images)
 {
   SL_CHECK(!images.empty());
@@ -401,35 +423,17 @@ void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& 
     data->GetPointData()->AddArray(array);
   }
   data->GetPointData()->SetActiveScalars(images.front().name.c_str());
-  // Encoded in memory and written by writeEncodedFile: vtkXMLWriter::Write() returns 1 even when the disk
-  // fills up halfway (bad-input probe D17), and its own file output gives no reason.
-  const VtkErrorCapture capture;
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(data);
-  writer->SetCompressorTypeToZLib();
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  writer->WriteToOutputStringOn();
-  const int written = writer->Write();
-  SL_CHECK_MSG(written == 1 && writer->GetErrorCode() == 0 && !capture.hasError(), "encoding ", path.string(),
-    " in memory failed: ", capture.firstError());
-  writeEncodedFile(path, writer->GetOutputString());
+  writeXmlDataFile(path, writer);
 }
 
 void writeVtp(const std::filesystem::path& path, vtkPolyData* polyData)
 {
   SL_CHECK(polyData);
-  const VtkErrorCapture capture;
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(polyData);
-  writer->SetCompressorTypeToZLib();
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  writer->WriteToOutputStringOn();
-  const int written = writer->Write();
-  SL_CHECK_MSG(written == 1 && writer->GetErrorCode() == 0 && !capture.hasError(), "encoding ", path.string(),
-    " in memory failed: ", capture.firstError());
-  writeEncodedFile(path, writer->GetOutputString());
+  writeXmlDataFile(path, writer);
 }
 
 std::vector<NamedImage> readVti(const std::filesystem::path& path)

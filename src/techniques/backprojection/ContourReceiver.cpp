@@ -14,15 +14,8 @@ namespace sl
 namespace
 {
 
-struct BackprojectionCategory
-{
-  BackprojectionClass value;
-  const char* identifier; // the enumerator, upper case
-  const char* label;      // heat-map keys and stats
-};
-
 // In code order (checked where it is read).
-const BackprojectionCategory backprojectionCategories[] = {
+const Category<BackprojectionClass> backprojectionCategories[] = {
   { BackprojectionClass::NotTested, "NOT_TESTED", "not tested" },
   { BackprojectionClass::Lit, "LIT", "lit" },
   { BackprojectionClass::Umbra, "UMBRA", "umbra" },
@@ -34,15 +27,7 @@ const BackprojectionCategory backprojectionCategories[] = {
 
 BufferSpec backprojectionClassificationBuffer(const std::string& doc, SubLightCombine combine)
 {
-  BufferSpec spec{ "classification", "", doc, BufferKind::Categorical, {}, combine };
-  for (std::size_t code = 0; code < std::size(backprojectionCategories); ++code)
-  {
-    const BackprojectionCategory& category = backprojectionCategories[code];
-    SL_CHECK(static_cast<std::size_t>(category.value) == code);
-    spec.categoryIdentifiers.push_back(category.identifier);
-    spec.categoryLabels.push_back(category.label);
-  }
-  return spec;
+  return categoricalBuffer("classification", doc, backprojectionCategories, combine);
 }
 
 std::vector<ShaderConstant> contourKernelShaderConstants()

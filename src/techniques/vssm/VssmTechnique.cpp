@@ -21,15 +21,8 @@ namespace sl
 namespace
 {
 
-struct VssmCategory
-{
-  VssmClass value;
-  const char* identifier; // the enumerator, upper case
-  const char* label;      // heat-map keys and stats
-};
-
 // In code order (checked below).
-const VssmCategory vssmCategories[] = {
+const Category<VssmClass> vssmCategories[] = {
   { VssmClass::NotTested, "NOT_TESTED", "not tested" },
   { VssmClass::Lit, "LIT", "lit" },
   { VssmClass::Umbra, "UMBRA", "umbra" },
@@ -39,14 +32,7 @@ const VssmCategory vssmCategories[] = {
 
 BufferSpec classificationBuffer()
 {
-  BufferSpec spec{ "classification", "", "how the pixel was decided", BufferKind::Categorical };
-  for (std::size_t code = 0; code < std::size(vssmCategories); ++code)
-  {
-    SL_CHECK(static_cast<std::size_t>(vssmCategories[code].value) == code);
-    spec.categoryIdentifiers.push_back(vssmCategories[code].identifier);
-    spec.categoryLabels.push_back(vssmCategories[code].label);
-  }
-  return spec;
+  return categoricalBuffer("classification", "how the pixel was decided", vssmCategories);
 }
 
 } // namespace

@@ -21,15 +21,8 @@ namespace sl
 namespace
 {
 
-struct PacketCategory
-{
-  PacketClass value;
-  const char* identifier; // the enumerator, upper case
-  const char* label;      // heat-map keys and stats
-};
-
 // In code order (checked below).
-const PacketCategory packetCategories[] = {
+const Category<PacketClass> packetCategories[] = {
   { PacketClass::NotTested, "NOT_TESTED", "not tested" },
   { PacketClass::Trivial, "TRIVIAL", "trivial (lit or umbra)" },
   { PacketClass::Coherent, "COHERENT", "coherent packet" },
@@ -40,15 +33,8 @@ const PacketCategory packetCategories[] = {
 
 BufferSpec packetClassBuffer()
 {
-  BufferSpec spec{ "packet_class", "", "how the pixel was computed (first sub-light)", BufferKind::Categorical, {},
-    SubLightCombine::First };
-  for (std::size_t code = 0; code < std::size(packetCategories); ++code)
-  {
-    SL_CHECK(static_cast<std::size_t>(packetCategories[code].value) == code);
-    spec.categoryIdentifiers.push_back(packetCategories[code].identifier);
-    spec.categoryLabels.push_back(packetCategories[code].label);
-  }
-  return spec;
+  return categoricalBuffer("packet_class", "how the pixel was computed (first sub-light)", packetCategories,
+    SubLightCombine::First);
 }
 
 } // namespace
