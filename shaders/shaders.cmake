@@ -39,4 +39,5 @@ set(SL_SHADER_FILES
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl
-  referencesm/ReferenceSmResolve.glsl)
+  referencesm/ReferenceSmResolve.glsl
+  shadowvolume/ShadowVolumeVertex.glsl shadowvolume/ShadowVolumeCount.glsl shadowvolume/ShadowVolumeResolve.glsl)

@@ -15,6 +15,7 @@
 #include "techniques/vsm/VsmTechnique.h"
 #include "techniques/vssm/VssmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
+#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 
 namespace sl
 {
@@ -34,6 +35,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     yfgl09Technique(),
     vtkTechnique(),
     referenceSmTechnique(),
+    shadowVolumeTechnique(),
   };
   return registry;
 }

@@ -397,9 +397,9 @@ TEST(ShadowVolumeGeometry, CountsOfABoxUnderAVerticalDirectionalLight)
   // Under the box the segment to the light crosses bottom and top: 2; beside it nothing.
   const Scene scene = sceneOf({ makeBox(glm::dvec3(0.0), glm::dvec3(1.0)) });
   EXPECT_EQ(casterCrossings(scene, directionalLight({ 0, -1, 0 }), { 0.1, -3.0, 0.2 }), 2);
-  EXPECT_NEAR(volumeWindingNumber(geometry.vertices, { 0.1, -3.0, 0.2 }), 2.0, 1e-9);
-  EXPECT_NEAR(volumeWindingNumber(geometry.vertices, { 0.7, -3.0, 0.2 }), 0.0, 1e-9);
-  EXPECT_NEAR(volumeWindingNumber(geometry.vertices, { 0.1, 0.2, 0.2 }), 1.0, 1e-9); // inside: below the top only
+  EXPECT_NEAR(volumeWindingNumber(geometry, { 0.1, -3.0, 0.2 }), 2.0, 1e-9);
+  EXPECT_NEAR(volumeWindingNumber(geometry, { 0.7, -3.0, 0.2 }), 0.0, 1e-9);
+  EXPECT_NEAR(volumeWindingNumber(geometry, { 0.1, 0.2, 0.2 }), 1.0, 1e-9); // inside: below the top only
 }
 
 // ---- volumes against the direct crossing count -----------------------------------------------------------
@@ -425,11 +425,28 @@ TEST(ShadowVolumeGeometry, VolumeCountAtAPointEqualsTheCrossingsOfItsSegmentToTh
       for (const VolumeExtrusion extrusion : { VolumeExtrusion::ToInfinity, VolumeExtrusion::Finite })
       {
         const ShadowVolumeGeometry geometry = buildShadowVolumes(casters, light, extrusion, receivers);
+        // Every triangle lies in its plane (a vertex at infinity: its direction runs in the plane); far caps at
+        // infinity have none.
+        ASSERT_EQ(geometry.planes.size() * 3, geometry.vertices.size());
+        for (std::size_t triangle = 0; triangle < geometry.planes.size(); ++triangle)
+        {
+          const glm::dvec4 plane(geometry.planes[triangle]);
+          const bool atInfinity = geometry.vertices[3 * triangle].w == 0.0f && geometry.vertices[3 * triangle + 1].w == 0.0f &&
+            geometry.vertices[3 * triangle + 2].w == 0.0f;
+          ASSERT_EQ(glm::dvec3(plane) == glm::dvec3(0.0), atInfinity) << named.name << " triangle " << triangle;
+          for (int corner = 0; corner < 3 && !atInfinity; ++corner)
+          {
+            const glm::dvec4 vertex(geometry.vertices[3 * triangle + static_cast<std::size_t>(corner)]);
+            const double scale = vertex.w == 0.0 ? glm::length(glm::dvec3(vertex)) : std::max(1.0, glm::length(glm::dvec3(vertex)));
+            ASSERT_NEAR(glm::dot(glm::dvec3(plane), glm::dvec3(vertex)) - plane.w * vertex.w, 0.0, 1e-5 * scale)
+              << named.name << " triangle " << triangle << " corner " << corner;
+          }
+        }
         for (int sample = 0; sample < 150; ++sample)
         {
           const glm::dvec3 point = receivers.min + (receivers.max - receivers.min) *
             glm::dvec3(unit(generator), unit(generator), unit(generator));
-          const double winding = volumeWindingNumber(geometry.vertices, point);
+          const double winding = volumeWindingNumber(geometry, point);
           const int crossings = casterCrossings(scene, light, point);
           ASSERT_NEAR(winding, crossings, 1e-6)
             << named.name << ", light " << lightIndex << (extrusion == VolumeExtrusion::Finite ? " finite" : " infinite")
@@ -470,7 +487,7 @@ TEST(ShadowVolumeGeometry, SeveralCastersSumTheirCounts)
       // Points on and just above the ground, where the stack's shadows overlap.
       const glm::dvec3 point(0.8 * coordinate(generator), -0.5 + 0.01 * (coordinate(generator) + 1.0), 0.8 * coordinate(generator));
       const int crossings = casterCrossings(scene, light, point);
-      ASSERT_NEAR(volumeWindingNumber(geometry.vertices, point), crossings, 1e-6) << "trial " << trial;
+      ASSERT_NEAR(volumeWindingNumber(geometry, point), crossings, 1e-6) << "trial " << trial;
       deepest = std::max(deepest, crossings);
     }
     EXPECT_GE(deepest, 4) << "trial " << trial << ": the stack should overlap somewhere";

@@ -40,6 +40,18 @@ int lightOrientation(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3&
   return facing > 0.0 ? 1 : -1;
 }
 
+// The plane n . x = d of the triangle (a, b, c), n unit; (0, 0, 0, 0) when it has no area.
+glm::vec4 planeThrough(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+{
+  const glm::dvec3 normal = glm::cross(b - a, c - a);
+  const double length = glm::length(normal);
+  if (!(length > 0.0))
+  {
+    return glm::vec4(0.0f);
+  }
+  return glm::vec4(glm::vec3(normal / length), static_cast<float>(glm::dot(normal / length, a)));
+}
+
 // Where a caster vertex goes when extruded away from the light.
 class Extruder
 {
@@ -51,6 +63,23 @@ public:
   {
   }
 
+  // The plane of the far cap of the light-oriented triangle (a, b, c): none (zeros) at infinity.
+  glm::vec4 farCapPlane(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const
+  {
+    if (extrusion_ == VolumeExtrusion::ToInfinity)
+    {
+      return glm::vec4(0.0f);
+    }
+    return planeThrough(farPoint(a), farPoint(b), farPoint(c));
+  }
+
+  // The plane of the side quad along the edge (from, to): it contains the light (or its direction).
+  glm::vec4 sidePlane(const glm::vec3& from, const glm::vec3& to) const
+  {
+    const glm::dvec3 p(from), q(to);
+    return light_.directional ? planeThrough(p, q, q + light_.direction) : planeThrough(light_.position, p, q);
+  }
+
   glm::vec4 far(const glm::vec3& vertex) const
   {
     const glm::dvec3 p(vertex);
@@ -58,12 +87,16 @@ public:
     {
       return light_.directional ? glm::vec4(glm::vec3(light_.direction), 0.0f) : glm::vec4(glm::vec3(p - light_.position), 0.0f);
     }
-    const glm::dvec3 cut = light_.directional ? p + finiteScale_ * light_.direction
-                                              : light_.position + finiteScale_ * (p - light_.position);
-    return glm::vec4(glm::vec3(cut), 1.0f);
+    return glm::vec4(glm::vec3(farPoint(vertex)), 1.0f);
   }
 
 private:
+  glm::dvec3 farPoint(const glm::vec3& vertex) const
+  {
+    const glm::dvec3 p(vertex);
+    return light_.directional ? p + finiteScale_ * light_.direction : light_.position + finiteScale_ * (p - light_.position);
+  }
+
   VolumeLight light_;
   VolumeExtrusion extrusion_;
   double finiteScale_;
@@ -112,11 +145,11 @@ double finiteExtrusionScale(const std::vector<WeldedMesh>& casters, const Volume
   return std::max(2.0 * farthest / nearestPlane, 2.0);
 }
 
-void appendTriangle(std::vector<glm::vec4>& vertices, const glm::vec4& a, const glm::vec4& b, const glm::vec4& c)
+void appendTriangle(
+  ShadowVolumeGeometry& geometry, const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, const glm::vec4& plane)
 {
-  vertices.push_back(a);
-  vertices.push_back(b);
-  vertices.push_back(c);
+  geometry.vertices.insert(geometry.vertices.end(), { a, b, c });
+  geometry.planes.push_back(plane);
 }
 
 } // namespace
@@ -161,12 +194,13 @@ ShadowVolumeGeometry buildShadowVolumes(const std::vector<WeldedMesh>& casters, 
         std::swap(b, c);
       }
       // Near cap: the light-oriented triangle, whose outward side (the volume's) faces the light.
-      appendTriangle(geometry.vertices, glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(c, 1.0f));
+      appendTriangle(geometry, glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(c, 1.0f),
+        planeThrough(glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)));
       ++statistics.nearCaps;
       if (drawFarCaps)
       {
         // Far cap: the same triangle away from the light, wound the other way (outward = away).
-        appendTriangle(geometry.vertices, extruder.far(a), extruder.far(c), extruder.far(b));
+        appendTriangle(geometry, extruder.far(a), extruder.far(c), extruder.far(b), extruder.farCapPlane(a, c, b));
         ++statistics.farCaps;
       }
     }
@@ -189,10 +223,11 @@ ShadowVolumeGeometry buildShadowVolumes(const std::vector<WeldedMesh>& casters, 
       const glm::vec3& from = caster.positions[multiplicity > 0 ? edge.v0 : edge.v1];
       const glm::vec3& to = caster.positions[multiplicity > 0 ? edge.v1 : edge.v0];
       const int copies = std::abs(multiplicity);
+      const glm::vec4 plane = extruder.sidePlane(from, to);
       for (int copy = 0; copy < copies; ++copy)
       {
-        appendTriangle(geometry.vertices, glm::vec4(to, 1.0f), glm::vec4(from, 1.0f), extruder.far(from));
-        appendTriangle(geometry.vertices, glm::vec4(to, 1.0f), extruder.far(from), extruder.far(to));
+        appendTriangle(geometry, glm::vec4(to, 1.0f), glm::vec4(from, 1.0f), extruder.far(from), plane);
+        appendTriangle(geometry, glm::vec4(to, 1.0f), extruder.far(from), extruder.far(to), plane);
       }
       SilhouetteEdge silhouette;
       silhouette.objectIndex = caster.objectIndex;
@@ -206,6 +241,7 @@ ShadowVolumeGeometry buildShadowVolumes(const std::vector<WeldedMesh>& casters, 
     }
   }
   SL_CHECK(geometry.vertices.size() == 3 * statistics.volumeTriangles());
+  SL_CHECK(geometry.planes.size() == statistics.volumeTriangles());
   return geometry;
 }
 

@@ -96,6 +96,10 @@ struct ShadowVolumeGeometry
   // Triangle list (3 vertices per triangle), world space, homogeneous: w = 1 on the casters, w = 0 at
   // infinity (VolumeExtrusion::ToInfinity).
   std::vector<glm::vec4> vertices;
+  // One per triangle: its plane n . x = d as (n, d), n unit, computed in double from the caster's corners
+  // and the light; (0, 0, 0, 0) for a far cap at infinity. The pass finds where the camera ray meets a
+  // volume triangle from its plane rather than from rasterised depth (vtkSLShadowVolumePass.h says why).
+  std::vector<glm::vec4> planes;
   std::vector<SilhouetteEdge> silhouettes;
   ShadowVolumeStatistics statistics;
 };

@@ -7,8 +7,9 @@
 namespace sl
 {
 
-double volumeWindingNumber(const std::vector<glm::vec4>& vertices, const glm::dvec3& point)
+double volumeWindingNumber(const ShadowVolumeGeometry& geometry, const glm::dvec3& point)
 {
+  const std::vector<glm::vec4>& vertices = geometry.vertices;
   // Direction from `point` to a homogeneous vertex (x, w), w >= 0: x - w point (x itself at infinity).
   const auto seen = [&point](const glm::vec4& vertex) {
     return glm::dvec3(vertex.x, vertex.y, vertex.z) - static_cast<double>(vertex.w) * point;

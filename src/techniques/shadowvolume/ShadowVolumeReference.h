@@ -15,11 +15,11 @@
 namespace sl
 {
 
-// The generalised winding number (Jacobson et al. 2013) of the closed homogeneous triangle list `vertices`
-// at `point`: (1 / 4 pi) times the sum of the triangles' signed solid angles (Van Oosterom & Strackee 1983).
-// A vertex at infinity (w = 0) is seen from every point in its direction xyz, so infinite volumes need no
-// cut. An integer up to rounding when `point` is not on a volume surface; callers round it.
-double volumeWindingNumber(const std::vector<glm::vec4>& vertices, const glm::dvec3& point);
+// The generalised winding number (Jacobson et al. 2013) of the volumes' closed homogeneous triangle list at
+// `point`: (1 / 4 pi) times the sum of the triangles' signed solid angles (Van Oosterom & Strackee 1983). A
+// vertex at infinity (w = 0) is seen from every point in its direction xyz, so infinite volumes need no cut.
+// An integer up to rounding when `point` is not on a volume surface; callers round it.
+double volumeWindingNumber(const ShadowVolumeGeometry& geometry, const glm::dvec3& point);
 
 // Caster triangles (objects with castShadows, every triangle, alpha textures ignored as the volumes do)
 // crossed by the open segment from `point` to the light (to infinity against a directional light's

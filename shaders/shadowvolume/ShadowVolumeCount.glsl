@@ -1,0 +1,51 @@
+// Technique shadow-volume: z-fail counting (Everitt & Kilgard 2002) of the volume triangles that lie at or
+// behind the visible point, along the pixel's camera ray. Where the ray meets a triangle is computed from the
+// triangle's plane (exact to float rounding) rather than taken from rasterised depth, and the point is the
+// G-buffer's own position (vtkSLShadowVolumePass.h says why). A fragment in front of the point is discarded;
+// the others update the two-sided stencil (back faces +1, front faces -1, wrapping) and add the same +1/-1
+// exactly into an R32F target (additive blending), since the stencil has 8 bits.
+// Volume triangles are wound counter-clockwise around their outward normal: a back face seen by the camera is
+// where the ray, beyond the point, leaves a volume.
+#include "common/GBufferInputs.glsl"
+
+// The camera ray through pixel position (x, y) is N + s R (sl::CameraView), s = 0 on the near plane.
+uniform vec3 cameraNearOrigin;
+uniform vec3 cameraNearStepX;
+uniform vec3 cameraNearStepY;
+uniform vec3 cameraRayOrigin;
+uniform vec3 cameraRayStepX;
+uniform vec3 cameraRayStepY;
+// The receiver is taken `receiverOffsetS` (in s) toward the camera, plus receiverOffsetPerS * s for a
+// perspective camera: a fraction of the distance to the eye (the parameter receiver_offset).
+uniform float receiverOffsetS;
+uniform float receiverOffsetPerS;
+
+flat in vec4 volumePlane;
+
+layout(location = 0) out float outVolumeCount;
+
+void main()
+{
+  Surface surface = readSurface(ivec2(gl_FragCoord.xy));
+  if (!surface.covered)
+  {
+    discard; // no receiver: the resolve writes 0 there
+  }
+  vec3 nearPoint = cameraNearOrigin + gl_FragCoord.x * cameraNearStepX + gl_FragCoord.y * cameraNearStepY;
+  vec3 ray = cameraRayOrigin + gl_FragCoord.x * cameraRayStepX + gl_FragCoord.y * cameraRayStepY;
+  float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
+  if (volumePlane.xyz != vec3(0.0)) // a far cap at infinity lies behind every receiver
+  {
+    float along = dot(volumePlane.xyz, ray);
+    if (along == 0.0)
+    {
+      discard; // the ray runs in the triangle's plane
+    }
+    float sVolume = (volumePlane.w - dot(volumePlane.xyz, nearPoint)) / along;
+    if (sVolume < sReceiver - (receiverOffsetS + receiverOffsetPerS * sReceiver))
+    {
+      discard; // in front of the receiver: z-fail does not count it
+    }
+  }
+  outVolumeCount = gl_FrontFacing ? -1.0 : 1.0;
+}

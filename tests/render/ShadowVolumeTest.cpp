@@ -1,0 +1,466 @@
+// Technique `shadow-volume` on the GPU (llvmpipe in CI) against independent CPU answers:
+//  - visibility against the ray-traced reference (Embree) for the light's centre, on >= 99.9 % of the covered
+//    pixels outside a 1-pixel band around shadow and silhouette edges;
+//  - depth_complexity_center against a direct double-precision count of the caster triangles crossed by the
+//    segment from the pixel's point to the light's centre (ShadowVolumeReference.h), on >= 99.9 % of the
+//    covered pixels, and stencil_count equal to it modulo 256 on every covered pixel;
+// on the datasets, with the camera inside a shadow volume, on an open quad and a non-manifold mesh, on a scene
+// without any closed mesh, under an orthographic camera, and on generated random configurations.
+#include "support/TestSupport.h"
+
+#include "lightspace/LightView.h"
+#include "reference/ReferenceRenderer.h"
+#include "scene/Primitives.h"
+#include "scene/WeldedMesh.h"
+#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "techniques/shadowvolume/ShadowVolumeReference.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+constexpr int kSize = 160;
+
+// ---- scenes ---------------------------------------------------------------------------------------------
+
+// An object from a triangle list with split vertices and flat normals (the G-buffer needs normals).
+SceneObject flatObject(const std::string& name, const std::vector<glm::dvec3>& corners)
+{
+  SceneObject object;
+  object.name = name;
+  for (std::size_t first = 0; first + 2 < corners.size(); first += 3)
+  {
+    const glm::dvec3 normal =
+      glm::normalize(glm::cross(corners[first + 1] - corners[first], corners[first + 2] - corners[first]));
+    for (std::size_t corner = first; corner < first + 3; ++corner)
+    {
+      object.mesh.indices.push_back(static_cast<std::uint32_t>(object.mesh.positions.size()));
+      object.mesh.positions.emplace_back(corners[corner]);
+      object.mesh.normals.emplace_back(normal);
+    }
+  }
+  return object;
+}
+
+// Two tetrahedra sharing the edge from `base` to `base` + (0, 0.4, 0): that edge has four triangles.
+SceneObject twoTetrahedra(const glm::dvec3& base)
+{
+  const glm::dvec3 bottom = base, top = base + glm::dvec3(0.0, 0.4, 0.0);
+  const glm::dvec3 wings[2][2] = { { base + glm::dvec3(0.4, 0.2, 0.1), base + glm::dvec3(0.2, 0.2, 0.4) },
+    { base + glm::dvec3(-0.4, 0.2, -0.1), base + glm::dvec3(-0.1, 0.2, -0.4) } };
+  std::vector<glm::dvec3> corners;
+  for (const auto& wing : wings)
+  {
+    const glm::dvec3 vertices[4] = { bottom, top, wing[0], wing[1] };
+    const glm::dvec3 centre = 0.25 * (vertices[0] + vertices[1] + vertices[2] + vertices[3]);
+    const int faces[4][3] = { { 0, 1, 2 }, { 0, 3, 1 }, { 0, 2, 3 }, { 1, 3, 2 } };
+    for (const auto& face : faces)
+    {
+      glm::dvec3 a = vertices[face[0]], b = vertices[face[1]], c = vertices[face[2]];
+      if (glm::dot(glm::cross(b - a, c - a), a - centre) < 0.0)
+      {
+        std::swap(b, c);
+      }
+      corners.insert(corners.end(), { a, b, c });
+    }
+  }
+  return flatObject("two tetrahedra", corners);
+}
+
+Scene sceneFromJson(const std::string& camera, const std::string& light, const std::string& objects)
+{
+  const std::string text = R"({ "camera": )" + camera + R"(, "lights": [ )" + light + R"( ], "objects": [ )" + objects + " ] }";
+  return parseScene(text, "shadow-volume test scene", test::sourceDir());
+}
+
+const char* kGround = R"({ "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] })";
+
+// ---- checks ---------------------------------------------------------------------------------------------
+
+struct Agreement
+{
+  int covered = 0;
+  int compared = 0;      // visibility: outside the edge band
+  int visibilityAgree = 0;
+  int shadowed = 0;      // reference, among compared
+  int countAgree = 0;    // over all covered pixels
+  int countNonZero = 0;
+  int stencilAgree = 0;
+  int negativeCounts = 0;
+  int maxCount = 0;
+  std::string firstMismatch;
+
+  double visibilityShare() const { return compared ? static_cast<double>(visibilityAgree) / compared : 0.0; }
+  double countShare() const { return covered ? static_cast<double>(countAgree) / covered : 0.0; }
+};
+
+// The point the z-fail count describes: a hair in front of the visible surface (a surface at the pixel's own
+// depth counts as behind it), i.e. moved toward the camera.
+// The parameter receiver_offset: a fraction of the distance to the eye, or of the scene's radius for an
+// orthographic camera.
+glm::dvec3 inFrontOfSurface(const Scene& scene, const FrameResult& frame, const glm::dvec3& pWs)
+{
+  const Camera& camera = scene.camera;
+  const glm::dvec3 towardCamera = camera.projection == Projection::Perspective
+    ? camera.position - pWs
+    : glm::normalize(camera.position - camera.focalPoint) * scene.bounds().radius();
+  return pWs + frame.parameters.get("receiver_offset") * towardCamera;
+}
+
+FrameResult renderShadowVolume(const Scene& scene, int width, int height, const std::vector<std::string>& settings = {})
+{
+  return test::renderDataset(scene, "shadow-volume", width, height, settings);
+}
+
+// Reference visibility of the light's centre (Embree, one ray per pixel; an area light becomes a point light
+// at its centre, its one-sided reach kept), -1 where uncovered.
+ImageF centreReference(const Scene& scene, const FrameResult& frame)
+{
+  Light centre = scene.lights[0];
+  if (centre.type == LightType::Area)
+  {
+    centre.type = LightType::Point;
+  }
+  ReferenceInputs inputs = test::referenceInputs(frame, scene);
+  inputs.light = &centre;
+  ReferenceSettings settings;
+  settings.samples = 1;
+  ImageF reference = renderReference(inputs, settings).visibility;
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& normal = frame.find("normal")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& receives = frame.find("receives_shadows")->image;
+  for (int y = 0; y < reference.height; ++y)
+  {
+    for (int x = 0; x < reference.width; ++x)
+    {
+      if (coverage.at(x, y) <= 0.5f)
+      {
+        reference.at(x, y) = -1.0f;
+        continue;
+      }
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+      if (receives.at(x, y) > 0.5f && !lightCanReach(scene.lights[0], pWs, nWs))
+      {
+        reference.at(x, y) = 0.0f; // behind the area light's plane
+      }
+    }
+  }
+  return reference;
+}
+
+// Outside the 1-pixel band: every 8-neighbour has the same reference value (same coverage, same lit state).
+bool outsideEdgeBand(const ImageF& reference, int x, int y)
+{
+  for (int dy = -1; dy <= 1; ++dy)
+  {
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      const int nx = x + dx, ny = y + dy;
+      if (nx >= 0 && ny >= 0 && nx < reference.width && ny < reference.height && reference.at(nx, ny) != reference.at(x, y))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+Agreement compare(const Scene& scene, const FrameResult& frame, bool withReference = true)
+{
+  Agreement result;
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& count = frame.find("depth_complexity_center")->image;
+  const ImageF& stencil = frame.find("stencil_count")->image;
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF reference = withReference ? centreReference(scene, frame) : ImageF();
+  const VolumeLight light = VolumeLight::from(scene.lights[0]);
+  for (int y = 0; y < count.height; ++y)
+  {
+    for (int x = 0; x < count.width; ++x)
+    {
+      if (coverage.at(x, y) <= 0.5f)
+      {
+        EXPECT_EQ(visibility.at(x, y), 0.0f) << "uncovered pixel " << x << "," << y;
+        continue;
+      }
+      ++result.covered;
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const int expected = casterCrossings(scene, light, inFrontOfSurface(scene, frame, pWs));
+      const float gpu = count.at(x, y);
+      result.countAgree += std::abs(gpu - static_cast<float>(expected)) < 0.5f ? 1 : 0;
+      if (std::abs(gpu - static_cast<float>(expected)) >= 0.5f && result.firstMismatch.empty())
+      {
+        std::ostringstream message;
+        message << "pixel " << x << "," << y << " at " << pWs.x << " " << pWs.y << " " << pWs.z << ": gpu count "
+                << gpu << ", cpu " << expected;
+        result.firstMismatch = message.str();
+      }
+      result.countNonZero += expected > 0 ? 1 : 0;
+      result.negativeCounts += gpu < -0.5f ? 1 : 0;
+      result.maxCount = std::max(result.maxCount, static_cast<int>(std::lround(gpu)));
+      const long wrapped = ((std::lround(gpu) % 256) + 256) % 256;
+      result.stencilAgree += std::lround(stencil.at(x, y)) == wrapped ? 1 : 0;
+      if (withReference && outsideEdgeBand(reference, x, y))
+      {
+        ++result.compared;
+        result.shadowed += reference.at(x, y) < 0.5f ? 1 : 0;
+        result.visibilityAgree += (visibility.at(x, y) > 0.5f) == (reference.at(x, y) > 0.5f) ? 1 : 0;
+      }
+    }
+  }
+  return result;
+}
+
+std::string describe(const Agreement& a)
+{
+  std::ostringstream text;
+  text << "covered " << a.covered << ", visibility agrees on " << a.visibilityAgree << "/" << a.compared
+       << " (reference shadowed " << a.shadowed << "), count agrees on " << a.countAgree << "/" << a.covered
+       << " (non-zero " << a.countNonZero << ", max " << a.maxCount << "), stencil agrees on " << a.stencilAgree
+       << "; " << a.firstMismatch;
+  return text.str();
+}
+
+void expectExact(const std::string& label, const Agreement& a, bool withReference = true)
+{
+  std::cout << "[ measured ] " << label << ": " << describe(a) << "\n";
+  EXPECT_GT(a.covered, kSize * kSize / 10) << label;
+  EXPECT_GE(a.countShare(), 0.999) << label << ": " << describe(a);
+  EXPECT_EQ(a.stencilAgree, a.covered) << label << ": the stencil and the exact count disagree modulo 256";
+  EXPECT_EQ(a.negativeCounts, 0) << label;
+  if (withReference)
+  {
+    EXPECT_GE(a.visibilityShare(), 0.999) << label << ": " << describe(a);
+    EXPECT_GT(a.compared, a.covered / 2) << label;
+  }
+}
+
+// ---- tests ----------------------------------------------------------------------------------------------
+
+TEST(ShadowVolume, DatasetsAgreeWithTheRayTracedCentreAndTheCrossingCount)
+{
+  for (const std::string dataset : { "bunny", "stacked-occluders", "contact", "sphere-point" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult frame = renderShadowVolume(scene, kSize, kSize);
+    const Agreement agreement = compare(scene, frame);
+    expectExact(dataset, agreement);
+    EXPECT_GT(agreement.shadowed, agreement.compared / 50) << dataset << ": the view must show shadows";
+    EXPECT_GT(agreement.countNonZero, agreement.covered / 50) << dataset;
+  }
+}
+
+TEST(ShadowVolume, StatisticsAndSilhouettesMatchTheCpuGeometry)
+{
+  const Scene scene = test::loadDataset("bunny");
+  const FrameResult frame = renderShadowVolume(scene, 96, 96);
+  const ShadowVolumeGeometry geometry = buildShadowVolumes(
+    weldCasters(scene), VolumeLight::from(scene.lights[0]), VolumeExtrusion::ToInfinity, scene.bounds());
+  const auto statistic = [&frame](const std::string& name) {
+    const auto found = frame.techniqueStatistics.find(name);
+    EXPECT_NE(found, frame.techniqueStatistics.end()) << name;
+    return found == frame.techniqueStatistics.end() ? -1.0 : found->second;
+  };
+  EXPECT_EQ(statistic("silhouette_edges"), static_cast<double>(geometry.statistics.silhouetteEdges));
+  EXPECT_EQ(statistic("boundary_edges"), static_cast<double>(geometry.statistics.boundaryEdges));
+  EXPECT_EQ(statistic("non_manifold_edges"), static_cast<double>(geometry.statistics.nonManifoldEdges));
+  EXPECT_EQ(statistic("side_quads"), static_cast<double>(geometry.statistics.sideQuads));
+  EXPECT_EQ(statistic("volume_triangles"), static_cast<double>(geometry.statistics.volumeTriangles()));
+  EXPECT_GT(geometry.statistics.silhouetteEdges, 100u);
+  EXPECT_GE(geometry.statistics.boundaryEdges, 4u) << "at least the ground quad's rim";
+  std::cout << "[ measured ] bunny: " << geometry.statistics.silhouetteEdges << " silhouette edges, "
+            << geometry.statistics.boundaryEdges << " boundary edges, " << geometry.statistics.volumeTriangles()
+            << " volume triangles, CPU build " << statistic("volume_build_ms") << " ms\n";
+}
+
+TEST(ShadowVolume, CameraInsideAShadowVolume)
+{
+  // The camera sits under the upper occluder, inside its shadow volume (and the lower one's), looking
+  // across the ground: z-pass would be off by the volumes around the eye; z-fail is not.
+  const Scene scene = sceneFromJson(R"({ "position": [0.3, 0.35, 0.05], "focal_point": [2.0, 0.0, 1.5], "view_angle": 60 })",
+    R"({ "type": "point", "center": [0.35, 3.0, 0.1] })",
+    std::string(kGround) + R"(,
+      { "primitive": "quad", "center": [0.35, 1.5, 0.1], "size": [1.6, 1.6], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "box", "center": [0.3, 0.8, 0.05], "size": [0.5, 0.1, 0.5] },
+      { "primitive": "sphere", "center": [1.4, 0.3, 1.0], "size": 0.3 })");
+  const VolumeLight light = VolumeLight::from(scene.lights[0]);
+  ASSERT_EQ(casterCrossings(scene, light, scene.camera.position), 3) << "the eye must be inside three volumes";
+  const FrameResult frame = renderShadowVolume(scene, kSize, kSize);
+  expectExact("camera in a volume", compare(scene, frame));
+}
+
+TEST(ShadowVolume, OpenQuadAndNonManifoldMeshCountWhatTheySpan)
+{
+  // A light level with the tetrahedra shines through both, past their shared edge, onto a wall facing it:
+  // behind them the segment to the light crosses four faces, two of each.
+  Scene scene = sceneFromJson(R"({ "position": [2.2, 2.4, -2.4], "focal_point": [-0.3, 0.8, -0.8], "view_angle": 50 })",
+    R"({ "type": "point", "center": [2.92, 0.8, 2.4] })",
+    std::string(kGround) + R"(,
+      { "primitive": "quad", "center": [-0.56, 1.1, -1.06], "size": [3, 2.2], "normal": [1, 0, 1], "up": [0, 1, 0] },
+      { "primitive": "quad", "center": [1.95, 1.08, 0.94], "size": [0.4, 0.3], "normal": [2.78, -0.8, 4.16], "up": [0, 1, 0] })");
+  scene.objects.push_back(twoTetrahedra(glm::dvec3(0.7, 0.6, 0.2)));
+  const std::vector<WeldedMesh> casters = weldCasters(scene);
+  ASSERT_EQ(casters.size(), 4u);
+  EXPECT_EQ(casters[2].boundaryEdgeCount(), 4u);
+  EXPECT_EQ(casters[3].nonManifoldEdgeCount(), 1u);
+  const VolumeLight light = VolumeLight::from(scene.lights[0]);
+  ASSERT_EQ(casterCrossings(scene, light, { -0.55, 0.8, -1.05 }), 4); // in front of the wall
+  ASSERT_EQ(casterCrossings(scene, light, { 0.15, 1.6, -1.75 }), 1);  // the open quad's shadow
+  const FrameResult frame = renderShadowVolume(scene, kSize, kSize);
+  const Agreement agreement = compare(scene, frame);
+  expectExact("open quad + non-manifold", agreement);
+  EXPECT_GE(agreement.maxCount, 4) << "behind both tetrahedra the segment crosses four faces";
+  EXPECT_EQ(frame.techniqueStatistics.at("non_manifold_edges"), 1.0);
+  EXPECT_EQ(frame.techniqueStatistics.at("boundary_edges"), 3 * 4.0); // the three quads' rims
+}
+
+TEST(ShadowVolume, SceneWithoutAnyClosedMeshRenders)
+{
+  // Only open surfaces (quads and a disk) under a directional and a spot light.
+  for (const std::string light : { R"({ "type": "directional", "direction": [0.3, -1, 0.2] })",
+         R"({ "type": "spot", "center": [0.4, 3.2, 0.3], "normal": [-0.1, -1, -0.05], "cone_angle_deg": 40 })" })
+  {
+    const Scene scene = sceneFromJson(R"({ "position": [0, 4.5, 3.5], "focal_point": [0, 0, 0], "view_angle": 35 })", light,
+      std::string(kGround) + R"(,
+        { "primitive": "quad", "center": [-0.35, 0.6, 0], "size": [0.8, 0.8], "normal": [0, 1, 0], "up": [0, 0, -1] },
+        { "primitive": "disk", "center": [0.35, 1.5, 0.1], "size": 0.5, "normal": [0.2, -1, 0] })");
+    for (const WeldedMesh& caster : weldCasters(scene))
+    {
+      EXPECT_GT(caster.boundaryEdgeCount(), 0u);
+    }
+    const FrameResult frame = renderShadowVolume(scene, kSize, kSize);
+    const Agreement agreement = compare(scene, frame);
+    expectExact(light, agreement);
+    EXPECT_GT(agreement.shadowed, agreement.compared / 50) << light;
+  }
+}
+
+TEST(ShadowVolume, OrthographicCameraCutsTheVolumesBeyondTheScene)
+{
+  // Orthographic views send every point at infinity to w = 0; the volumes are cut at a finite distance.
+  // Looking straight down, the rays below a shadowed ground point stay inside the point light's volumes: only
+  // the (cut) far caps close them.
+  for (const std::string light : { R"({ "type": "directional", "direction": [0.31, -1, 0.17] })",
+         R"({ "type": "point", "center": [0.1, 3.5, 0.2] })" })
+  {
+    const Scene scene = sceneFromJson(
+      R"({ "projection": "orthographic", "position": [0.013, 5, 0.007], "focal_point": [0.013, 0, 0.007], "view_up": [0, 0, -1], "parallel_scale": 1.6 })",
+      light, std::string(kGround) + R"(,
+        { "primitive": "box", "center": [-0.4, 0.5, 0.2], "size": [0.5, 0.4, 0.6], "transform": { "rotate_deg": [0, 23, 0] } },
+        { "primitive": "sphere", "center": [0.5, 0.8, -0.3], "size": 0.35 })");
+    const FrameResult frame = renderShadowVolume(scene, kSize, kSize);
+    expectExact(std::string("orthographic ") + light, compare(scene, frame));
+  }
+}
+
+TEST(ShadowVolume, RandomOccluderStacksAndLights)
+{
+  std::mt19937 generator(1977u);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int configuration = 0; configuration < 4; ++configuration)
+  {
+    std::ostringstream objects;
+    objects << kGround;
+    const int occluders = 3 + configuration % 3;
+    for (int occluder = 0; occluder < occluders; ++occluder)
+    {
+      const double x = 1.2 * (unit(generator) - 0.5), z = 1.2 * (unit(generator) - 0.5);
+      const double y = 0.3 + 0.5 * occluder + 0.2 * unit(generator);
+      switch ((occluder + configuration) % 3)
+      {
+      case 0:
+        objects << R"(, { "primitive": "box", "center": [)" << x << ", " << y << ", " << z << R"(], "size": [)"
+                << 0.3 + 0.4 * unit(generator) << ", " << 0.1 + 0.2 * unit(generator) << ", " << 0.3 + 0.4 * unit(generator)
+                << R"(], "transform": { "rotate_deg": [0, )" << 90.0 * unit(generator) << ", 0] } }";
+        break;
+      case 1:
+        objects << R"(, { "primitive": "sphere", "center": [)" << x << ", " << y << ", " << z << R"(], "size": )"
+                << 0.15 + 0.2 * unit(generator) << " }";
+        break;
+      default:
+        objects << R"(, { "primitive": "quad", "center": [)" << x << ", " << y << ", " << z << R"(], "size": [0.6, 0.5], "normal": [)"
+                << unit(generator) - 0.5 << ", 1, " << unit(generator) - 0.5 << "] }";
+      }
+    }
+    std::ostringstream light;
+    if (configuration % 2 == 0)
+    {
+      light << R"({ "type": "point", "center": [)" << 1.5 * (unit(generator) - 0.5) << ", " << 3.0 + unit(generator) << ", "
+            << 1.5 * (unit(generator) - 0.5) << "] }";
+    }
+    else
+    {
+      light << R"({ "type": "directional", "direction": [)" << unit(generator) - 0.5 << ", -1, " << unit(generator) - 0.5 << "] }";
+    }
+    const Scene scene = sceneFromJson(R"({ "position": [2.5, 4.0, 3.5], "focal_point": [0, 0.5, 0], "view_angle": 40 })",
+      light.str(), objects.str());
+    const FrameResult frame = renderShadowVolume(scene, 128, 128);
+    const Agreement agreement = compare(scene, frame);
+    expectExact("random configuration " + std::to_string(configuration) + " " + light.str(), agreement);
+  }
+}
+
+TEST(ShadowVolume, WithoutTheReceiverOffsetCastersShadowThemselves)
+{
+  // The test has teeth: with receiver_offset = 0 a lit caster's own near cap lies at the visible point's
+  // depth, and float rounding puts it in front on a large share of the pixels (acne).
+  const Scene scene = test::loadDataset("contact");
+  const Agreement agreement = compare(scene, renderShadowVolume(scene, kSize, kSize, { "receiver_offset=0" }));
+  std::cout << "[ measured ] contact, receiver_offset=0: " << describe(agreement) << "\n";
+  EXPECT_LT(agreement.visibilityShare(), 0.95);
+  EXPECT_LT(agreement.countShare(), 0.95);
+}
+
+TEST(ShadowVolume, ExactCountBeyondTheEightBitStencil)
+{
+  // 256 stacked quads: below them the stencil wraps back to 0, the exact count says 256, and the point is
+  // in shadow.
+  std::ostringstream objects;
+  objects << kGround;
+  for (int layer = 0; layer < 256; ++layer)
+  {
+    objects << R"(, { "primitive": "quad", "center": [0, )" << 0.5 + 0.004 * layer << R"(, 0], "size": [0.8, 0.8], "normal": [0, 1, 0] })";
+  }
+  const Scene scene = sceneFromJson(R"({ "position": [0, 5, 3], "focal_point": [0, 0, 0], "view_angle": 40 })",
+    R"({ "type": "point", "center": [0.05, 3.5, 0.03] })", objects.str());
+  const FrameResult frame = renderShadowVolume(scene, 96, 96);
+  const ImageF& count = frame.find("depth_complexity_center")->image;
+  const ImageF& stencil = frame.find("stencil_count")->image;
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& position = frame.find("position")->image;
+  int wrapped = 0;
+  for (int y = 0; y < count.height; ++y)
+  {
+    for (int x = 0; x < count.width; ++x)
+    {
+      if (std::abs(position.at(x, y, 1)) < 1e-4f && count.at(x, y) == 256.0f)
+      {
+        ++wrapped;
+        EXPECT_EQ(stencil.at(x, y), 0.0f) << x << "," << y;
+        EXPECT_EQ(visibility.at(x, y), 0.0f) << x << "," << y;
+      }
+    }
+  }
+  EXPECT_GT(wrapped, 20) << "ground pixels under all 256 layers";
+  expectExact("256 layers", compare(scene, frame, false), false);
+}
+
+} // namespace
+} // namespace sl
