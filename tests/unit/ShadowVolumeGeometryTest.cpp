@@ -170,6 +170,12 @@ TEST(WeldedMesh, PrimitivesWeldIntoClosedManifoldsAndQuadsStayOpen)
   EXPECT_EQ(tetrahedra.edges.size(), 11u);
   const WeldedMesh open = weldMesh(openBox(), 0);
   EXPECT_EQ(open.boundaryEdgeCount(), 4u);
+
+  // One face of a box wound the other way: its four rim edges are used twice in the same direction.
+  TriangleMesh flippedFace = makeBox(glm::dvec3(0.0), glm::dvec3(1.0));
+  std::swap(flippedFace.indices[1], flippedFace.indices[2]);
+  std::swap(flippedFace.indices[4], flippedFace.indices[5]);
+  EXPECT_EQ(weldMesh(flippedFace, 0).inconsistentEdgeCount(), 4u);
 }
 
 TEST(WeldedMesh, ToleranceIsRelativeToTheObjectAndCollapsedTrianglesAreCounted)

@@ -18,11 +18,6 @@ VolumeLight VolumeLight::from(const Light& light)
   return volumeLight;
 }
 
-glm::dvec3 VolumeLight::towardLight(const glm::dvec3& point) const
-{
-  return directional ? -direction : glm::normalize(position - point);
-}
-
 namespace
 {
 
@@ -173,6 +168,7 @@ ShadowVolumeGeometry buildShadowVolumes(const std::vector<WeldedMesh>& casters, 
     statistics.edges += caster.edges.size();
     statistics.boundaryEdges += caster.boundaryEdgeCount();
     statistics.nonManifoldEdges += caster.nonManifoldEdgeCount();
+    statistics.inconsistentEdges += caster.inconsistentEdgeCount();
 
     // Rule 1 and 3: orientation toward the light; caps of every light-oriented triangle.
     orientation.assign(caster.triangles.size(), 0);

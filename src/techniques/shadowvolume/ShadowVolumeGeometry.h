@@ -54,8 +54,6 @@ struct VolumeLight
   glm::dvec3 direction{ 0.0, -1.0, 0.0 }; // directional: unit, the direction the light travels
 
   static VolumeLight from(const Light& light);
-  // Unit direction from `point` toward the light.
-  glm::dvec3 towardLight(const glm::dvec3& point) const;
 };
 
 enum class VolumeExtrusion
@@ -84,6 +82,7 @@ struct ShadowVolumeStatistics
   std::size_t edges = 0;                // undirected welded edges
   std::size_t boundaryEdges = 0;        // used by one triangle
   std::size_t nonManifoldEdges = 0;     // used by three or more
+  std::size_t inconsistentEdges = 0;    // used by two triangles running the same way (winding flips there)
   std::size_t silhouetteEdges = 0;      // m != 0
   std::size_t sideQuads = 0;            // sum of |m|
   std::size_t nearCaps = 0;             // light-oriented triangles

@@ -22,8 +22,8 @@
 // the light's centre, the point moved by receiver_offset), stencil_count (the same modulo 256, as the stencil
 // holds it).
 // Statistics (stats.json technique_statistics): silhouette_edges, boundary_edges, non_manifold_edges,
-// edge_on_triangles, flipped_triangles, side_quads, near_caps, far_caps, volume_triangles, caster_triangles,
-// collapsed_triangles, volume_build_ms (CPU).
+// inconsistent_edges, edges, edge_on_triangles, flipped_triangles, side_quads, near_caps, far_caps,
+// volume_triangles, caster_triangles, collapsed_triangles, volume_build_ms (CPU).
 // Object-space export: silhouettes (silhouettes.vtp, SilhouetteExport.h).
 // Limits: alpha textures are not honoured (a perforated caster shadows as a solid; textured shadow volumes,
 // Hasselgren & Akenine-Moeller 2007, are a later technique); the volume count is exact up to 2^24.

@@ -198,6 +198,7 @@ std::map<std::string, double> vtkSLShadowVolumePass::CollectStatistics()
     { "edges", static_cast<double>(s.edges) },
     { "boundary_edges", static_cast<double>(s.boundaryEdges) },
     { "non_manifold_edges", static_cast<double>(s.nonManifoldEdges) },
+    { "inconsistent_edges", static_cast<double>(s.inconsistentEdges) },
     { "silhouette_edges", static_cast<double>(s.silhouetteEdges) },
     { "side_quads", static_cast<double>(s.sideQuads) },
     { "near_caps", static_cast<double>(s.nearCaps) },
