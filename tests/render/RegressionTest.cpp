@@ -19,7 +19,7 @@
 //   SHADOWLAB_BLESS=1 ./build/tests/gpu_tests --gtest_filter='*Regression*'
 // writes the current outputs as the new baselines (creating the directories) and passes. The gtest names are
 // "Baselines/RegressionTest.Matches/<dataset>_<technique>" with '-' in dataset names turned into '_', e.g.
-// Baselines/RegressionTest.Matches/planar_occluder_pcf, and the ctest names are the same,
+// Baselines/RegressionTest.Matches/planar_occluder_pcf, and the ctest names are the same (label `regression`),
 // so -R Regression selects them all; to re-bless one case:
 //   SHADOWLAB_BLESS=1 ctest --test-dir build -R 'Regression.*planar_occluder_pcf'.
 #include "core/Error.h"
