@@ -7,6 +7,7 @@ set(SL_SHADER_FILES
   common/SamplingPatterns.glsl
   common/ShadowMapCommon.glsl
   common/ShadowReceiver.glsl
+  common/CameraRay.glsl
   common/TexelRatio.glsl
   common/Chebyshev.glsl
   common/MomentLookup.glsl

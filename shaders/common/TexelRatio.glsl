@@ -1,18 +1,12 @@
 // The survey's aliasing error m (Eq. 2), exact per pixel: screen pixels spanned by one shadow-map texel
 // along its most stretched direction, 1 / sigma_min of d(texel)/d(pixel) on the surface's tangent plane.
 // Mirrors sl::texelRatio (src/lightspace/ShadowMapMath.cpp), which documents the derivation.
-// The camera ray through a pixel is N + s R, both affine in the pixel position (see sl::CameraView).
-uniform vec3 cameraNearOrigin;
-uniform vec3 cameraNearStepX;
-uniform vec3 cameraNearStepY;
-uniform vec3 cameraRayOrigin;
-uniform vec3 cameraRayStepX;
-uniform vec3 cameraRayStepY;
+#include "common/CameraRay.glsl"
 
 float texelRatio(vec2 pixel, vec3 pWs, vec3 nWs)
 {
-  vec3 nearPoint = cameraNearOrigin + pixel.x * cameraNearStepX + pixel.y * cameraNearStepY;
-  vec3 ray = cameraRayOrigin + pixel.x * cameraRayStepX + pixel.y * cameraRayStepY;
+  vec3 nearPoint = cameraNearPoint(pixel);
+  vec3 ray = cameraRayDirection(pixel);
   float normalDotRay = dot(nWs, ray);
   if (abs(normalDotRay) < 1e-12 * length(ray))
   {

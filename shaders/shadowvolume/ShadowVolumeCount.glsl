@@ -6,15 +6,9 @@
 // exactly into an R32F target (additive blending), since the stencil has 8 bits.
 // Volume triangles are wound counter-clockwise around their outward normal: a back face seen by the camera is
 // where the ray, beyond the point, leaves a volume.
+#include "common/CameraRay.glsl"
 #include "common/GBufferInputs.glsl"
 
-// The camera ray through pixel position (x, y) is N + s R (sl::CameraView), s = 0 on the near plane.
-uniform vec3 cameraNearOrigin;
-uniform vec3 cameraNearStepX;
-uniform vec3 cameraNearStepY;
-uniform vec3 cameraRayOrigin;
-uniform vec3 cameraRayStepX;
-uniform vec3 cameraRayStepY;
 // The receiver is taken `receiverOffsetS` (in s) toward the camera, plus receiverOffsetPerS * s for a
 // perspective camera: a fraction of the distance to the eye (the parameter receiver_offset).
 uniform float receiverOffsetS;
@@ -31,8 +25,8 @@ void main()
   {
     discard; // no receiver: the resolve writes 0 there
   }
-  vec3 nearPoint = cameraNearOrigin + gl_FragCoord.x * cameraNearStepX + gl_FragCoord.y * cameraNearStepY;
-  vec3 ray = cameraRayOrigin + gl_FragCoord.x * cameraRayStepX + gl_FragCoord.y * cameraRayStepY;
+  vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
+  vec3 ray = cameraRayDirection(gl_FragCoord.xy);
   float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
   if (volumePlane.xyz != vec3(0.0)) // a far cap at infinity lies behind every receiver
   {

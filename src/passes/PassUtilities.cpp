@@ -58,6 +58,16 @@ ShaderDefines commonDefines()
     { "SL_LIGHT_SPOT", std::to_string(lightTypeCode(LightType::Spot)) } };
 }
 
+void setCameraRayUniforms(vtkShaderProgram* program, const CameraView& camera)
+{
+  setVector(program, "cameraNearOrigin", camera.nearOrigin);
+  setVector(program, "cameraNearStepX", camera.nearStepX);
+  setVector(program, "cameraNearStepY", camera.nearStepY);
+  setVector(program, "cameraRayOrigin", camera.rayOrigin);
+  setVector(program, "cameraRayStepX", camera.rayStepX);
+  setVector(program, "cameraRayStepY", camera.rayStepY);
+}
+
 void setLightUniforms(vtkShaderProgram* program, const Light& light)
 {
   setIntIfUsed(program, "lightType", lightTypeCode(light.type));

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gl/ShaderLibrary.h"
+#include "lightspace/CameraView.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -26,6 +27,8 @@ int lightTypeCode(LightType type);
 
 // Light uniforms of common/LightModel.glsl.
 void setLightUniforms(vtkShaderProgram* program, const Light& light);
+// The camera ray uniforms of shaders/common/CameraRay.glsl.
+void setCameraRayUniforms(vtkShaderProgram* program, const CameraView& camera);
 
 // Activates `texture` on a free unit and points the sampler uniform at it. Returns the texture so the
 // caller can Deactivate() it after drawing.

@@ -101,15 +101,9 @@ std::vector<vtkTextureObject*> vtkSLTechniquePass::SetCommonUniforms(vtkShaderPr
   bound.push_back(sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition));
   bound.push_back(sl::bindTexture(program, "gbufferNormal", frame.gbufferNormal));
   sl::setLightUniforms(program, *frame.light);
-  const sl::CameraView& camera = frame.camera;
   if (program->IsUniformUsed("cameraNearOrigin"))
   {
-    sl::setVector(program, "cameraNearOrigin", camera.nearOrigin);
-    sl::setVector(program, "cameraNearStepX", camera.nearStepX);
-    sl::setVector(program, "cameraNearStepY", camera.nearStepY);
-    sl::setVector(program, "cameraRayOrigin", camera.rayOrigin);
-    sl::setVector(program, "cameraRayStepX", camera.rayStepX);
-    sl::setVector(program, "cameraRayStepY", camera.rayStepY);
+    sl::setCameraRayUniforms(program, frame.camera);
   }
   // Every light-space structure the frame built for the technique (those it lists and what they are built from),
   // bound the way its folder says (lightspace/*/).
@@ -128,18 +122,21 @@ std::vector<vtkTextureObject*> vtkSLTechniquePass::SetCommonUniforms(vtkShaderPr
   return bound;
 }
 
+std::vector<vtkTextureObject*> vtkSLTechniquePass::TechniqueTargets() const
+{
+  std::vector<vtkTextureObject*> targets;
+  for (const std::string& output : this->Frame->technique->outputNames())
+  {
+    targets.push_back(this->Frame->techniqueTargets.at(output));
+  }
+  return targets;
+}
+
 void vtkSLTechniquePass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
-  const std::vector<std::string> outputs = OutputNames(*frame.technique);
-
-  std::vector<vtkTextureObject*> targets;
-  for (const std::string& output : outputs)
-  {
-    targets.push_back(frame.techniqueTargets.at(output));
-  }
-  const sl::ScopedRenderTarget target(window, this->Framebuffer, targets);
+  const sl::ScopedRenderTarget target(window, this->Framebuffer, this->TechniqueTargets());
   const std::string fragmentSource =
     sl::assembleShader(this->GetFragmentShaderPath(), this->TechniqueDefines(), this->ParameterDeclarations());
   vtkShaderProgram* program = this->Quad.ready(window, fragmentSource, frame.technique->name);

@@ -62,6 +62,8 @@ protected:
   // Binds the G-buffer and (when fitted) the frame's shadow map, and sets the light, camera, shadow-map and
   // parameter uniforms of shaders/common for `program`; returns the textures to deactivate after drawing.
   std::vector<vtkTextureObject*> SetCommonUniforms(vtkShaderProgram* program);
+  // The frame's targets for "visibility" and the descriptor's buffers, in output-location order.
+  std::vector<vtkTextureObject*> TechniqueTargets() const;
 
 private:
   vtkSLTechniquePass(const vtkSLTechniquePass&) = delete;

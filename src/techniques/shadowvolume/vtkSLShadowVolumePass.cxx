@@ -118,12 +118,7 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
     sl::assembleShader("shadowvolume/ShadowVolumeCount.glsl", defines), "shadow-volume count");
   sl::setMatrix(program, "clipFromWorld", frame.camera.clipFromWorld);
   const sl::CameraView& camera = frame.camera;
-  sl::setVector(program, "cameraNearOrigin", camera.nearOrigin);
-  sl::setVector(program, "cameraNearStepX", camera.nearStepX);
-  sl::setVector(program, "cameraNearStepY", camera.nearStepY);
-  sl::setVector(program, "cameraRayOrigin", camera.rayOrigin);
-  sl::setVector(program, "cameraRayStepX", camera.rayStepX);
-  sl::setVector(program, "cameraRayStepY", camera.rayStepY);
+  sl::setCameraRayUniforms(program, camera);
   // receiver_offset as a fraction of the distance to the eye: the eye lies at s = -near / (far - near) on
   // every perspective ray N + s R, so the distance is (near / (far - near) + s) |R|. Orthographic: of the
   // scene's bounding radius, |R| = far - near.

@@ -66,12 +66,7 @@ void vtkSLYfgl09Pass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
-  const std::vector<std::string> outputs = OutputNames(*frame.technique);
-  std::vector<vtkTextureObject*> targets;
-  for (const std::string& output : outputs)
-  {
-    targets.push_back(frame.techniqueTargets.at(output));
-  }
+  const std::vector<vtkTextureObject*> targets = this->TechniqueTargets();
   const int packetWidth = frame.parameters.getInt("packet_width");
   const int packetHeight = frame.parameters.getInt("packet_height");
   const int packetColumns = (static_cast<int>(targets[0]->GetWidth()) + packetWidth - 1) / packetWidth;
