@@ -5,7 +5,11 @@
 //           default (§6.3): sub-kernels with E(x) < t pool their moments (Eq. 5), the "non-planar" ones
 //           (E(x) >= t) are lit when their variance is under the threshold (§5.2, §6.5) or sampled by
 //           k x k PCF;
-//   §6.4    contact shadows (d - z_avg < eps r): 3 x 3 jittered bilinear PCF over w_p instead of the SAT;
+//   §6.4    contact shadows, two readings (contact_test): blocker_average tests d - z_occ < eps r once per pixel
+//           with Eq. 4's average blocker depth and then filters all of w_p by 3 x 3 jittered bilinear PCF;
+//           subkernel_mean tests each normal sub-kernel of w_p, t_c - E(x)_ci < eps r with the sub-kernel's own
+//           SAT mean, and filters that sub-kernel alone by 3 x 3 jittered bilinear PCF (its area joins
+//           Alg. 2's PCFArea);
 //   L16     penumbra kernel w_p from z_avg (similar triangles);
 //   L17-20  visibility over w_p by Alg. 2 (adaptive, height H, the default) or uniform n x n subdivision:
 //           L = Chebyshev over the pooled normal sub-kernels, lit area, and k x k PCF in non-planar leaves,
@@ -46,6 +50,8 @@ uniform float satHalfStep;   // int32 SAT: half a fixed-point step of the depth 
 int nonplanarSubkernels = 0;
 int quadtreeNodesVisited = 0;
 int pcfSamples = 0;
+int contactSubkernels = 0; // contact_test = subkernel_mean: sub-kernels filtered by §6.4's PCF
+mat2 contactJitter = mat2(1.0); // §6.4's per-pixel rotation of the 3 x 3 grid, set in main()
 
 // Area-weighted sums of one step (Alg. 2 L1-2): normal sub-kernels' moments of z - t_c (Eq. 5), lit area,
 // PCF area with its blocked part and the blocked taps' depth sum (area-weighted, for Eq. 4's combination).
@@ -63,6 +69,40 @@ struct Accumulation
 Accumulation emptyAccumulation()
 {
   return Accumulation(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+}
+
+// 1 = lit, bilinearly weighted over the 2 x 2 texels around a tap (Bavoil 2008's bilinear PCF).
+float bilinearShadowTest(vec2 tap, float d, float bias)
+{
+  vec2 position = tap - 0.5;
+  vec2 base = floor(position);
+  vec2 weight = position - base;
+  float comparison = tapComparisonDepth(tap, d, bias);
+  float lit = 0.0;
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    ivec2 offset = ivec2(corner & 1, corner >> 1);
+    float test = shadowTest(base + vec2(offset) + 0.5, comparison);
+    lit += test * (offset.x == 1 ? weight.x : 1.0 - weight.x) * (offset.y == 1 ? weight.y : 1.0 - weight.y);
+  }
+  return lit;
+}
+
+// §6.4: 3 x 3 bilinear PCF over a kernel of half extent filterHalf around uvTexels (w_p, or one sub-kernel),
+// the grid rotated per pixel (jitter); the rotated grid's taps stay within 0.943 filterHalf of the centre.
+float contactShadow(vec2 uvTexels, vec2 filterHalf, float d, float bias, mat2 rotation)
+{
+  float lit = 0.0;
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      vec2 offset = (vec2(i, j) - 1.0) * (2.0 / 3.0) * filterHalf;
+      lit += bilinearShadowTest(uvTexels + rotation * offset, d, bias);
+    }
+  }
+  pcfSamples += 36;
+  return lit / 9.0;
 }
 
 // k x k nearest-texel PCF inside a non-planar leaf [lo, hi] (§5.1 option 2, Alg. 2 L23-26).
@@ -94,7 +134,9 @@ void pcfLeaf(ivec2 lo, ivec2 hi, float area, float d, float bias, inout Accumula
 
 // One sub-kernel [lo, hi] (Alg. 2 L6-27). Returns true when it must be refined (non-planar, above the
 // variance threshold, not a leaf). `nonPlanarIsLit`: the VSM assumption, for subdivision = none (Fig. 3a).
-bool visitSubKernel(ivec2 lo, ivec2 hi, bool isLeaf, bool nonPlanarIsLit, float d, float bias, inout Accumulation acc)
+// `detectContact`: §6.4 per sub-kernel (contact_test = subkernel_mean, visibility step only).
+bool visitSubKernel(ivec2 lo, ivec2 hi, bool isLeaf, bool nonPlanarIsLit, bool detectContact, float d, float bias,
+  inout Accumulation acc)
 {
   vec2 moments = satBoxMoments(lo, hi);
   float area = float((hi.x - lo.x + 1) * (hi.y - lo.y + 1));
@@ -102,6 +144,17 @@ bool visitSubKernel(ivec2 lo, ivec2 hi, bool isLeaf, bool nonPlanarIsLit, float 
   float meanOffset = moments.x - t;
   if (meanOffset < 0.0)
   {
+    if (detectContact && -meanOffset < param_contact_threshold * sceneRadius)
+    {
+      // §6.4: "the contact shadow sub-kernels are detected by checking the difference between zAvg and d",
+      // zAvg = this sub-kernel's mean E(x)_ci (as in §5.1); 3 x 3 jittered bilinear PCF over the sub-kernel
+      // replaces its SAT moments, and it counts as PCF area in Alg. 2 L29-32.
+      ++contactSubkernels;
+      float lit = contactShadow(0.5 * vec2(lo + hi + 1), 0.5 * vec2(hi - lo + 1), d, bias, contactJitter);
+      acc.pcfArea += area;
+      acc.pcfBlockedArea += area * (1.0 - lit);
+      return false;
+    }
     // Normal sub-kernel: pool E(z - t) and E((z - t)^2) (Eq. 5; Alg. 2 L14-17).
     acc.vsmArea += area;
     acc.vsmSum += area * meanOffset;
@@ -124,13 +177,13 @@ bool visitSubKernel(ivec2 lo, ivec2 hi, bool isLeaf, bool nonPlanarIsLit, float 
 
 // The sub-kernels of [lo, hi] by `scheme`: none (the kernel itself, non-planar = lit), uniform
 // (cells x cells equal parts, empty ones skipped) or adaptive (Alg. 2, quad-tree of height `height`).
-Accumulation subdivide(ivec2 lo, ivec2 hi, int scheme, int cells, int height, float d, float bias)
+Accumulation subdivide(ivec2 lo, ivec2 hi, int scheme, int cells, int height, bool detectContact, float d, float bias)
 {
   Accumulation acc = emptyAccumulation();
   ivec2 extent = hi - lo + 1;
   if (scheme == SCHEME_NONE)
   {
-    visitSubKernel(lo, hi, true, true, d, bias, acc);
+    visitSubKernel(lo, hi, true, true, detectContact, d, bias, acc);
   }
   else if (scheme == SCHEME_UNIFORM)
   {
@@ -142,7 +195,7 @@ Accumulation subdivide(ivec2 lo, ivec2 hi, int scheme, int cells, int height, fl
         ivec2 subHi = lo + (extent * ivec2(i + 1, j + 1)) / cells - 1;
         if (all(greaterThanEqual(subHi, subLo)))
         {
-          visitSubKernel(subLo, subHi, true, false, d, bias, acc);
+          visitSubKernel(subLo, subHi, true, false, detectContact, d, bias, acc);
         }
       }
     }
@@ -159,7 +212,7 @@ Accumulation subdivide(ivec2 lo, ivec2 hi, int scheme, int cells, int height, fl
       ivec2 subLo = lo + (extent * node.xy) / parts;
       ivec2 subHi = lo + (extent * (node.xy + 1)) / parts - 1;
       bool refine = all(greaterThanEqual(subHi, subLo)) &&
-        visitSubKernel(subLo, subHi, node.z == height, false, d, bias, acc);
+        visitSubKernel(subLo, subHi, node.z == height, false, detectContact, d, bias, acc);
       if (refine)
       {
         node = ivec3(2 * node.xy, node.z + 1); // Child: the first of the four children
@@ -179,39 +232,6 @@ Accumulation subdivide(ivec2 lo, ivec2 hi, int scheme, int cells, int height, fl
     }
   }
   return acc;
-}
-
-// 1 = lit, bilinearly weighted over the 2 x 2 texels around a tap (Bavoil 2008's bilinear PCF).
-float bilinearShadowTest(vec2 tap, float d, float bias)
-{
-  vec2 position = tap - 0.5;
-  vec2 base = floor(position);
-  vec2 weight = position - base;
-  float comparison = tapComparisonDepth(tap, d, bias);
-  float lit = 0.0;
-  for (int corner = 0; corner < 4; ++corner)
-  {
-    ivec2 offset = ivec2(corner & 1, corner >> 1);
-    float test = shadowTest(base + vec2(offset) + 0.5, comparison);
-    lit += test * (offset.x == 1 ? weight.x : 1.0 - weight.x) * (offset.y == 1 ? weight.y : 1.0 - weight.y);
-  }
-  return lit;
-}
-
-// §6.4: 3 x 3 bilinear PCF over the penumbra kernel, the grid rotated per pixel (jitter).
-float contactShadow(vec2 uvTexels, vec2 filterHalf, float d, float bias, mat2 rotation)
-{
-  float lit = 0.0;
-  for (int j = 0; j < 3; ++j)
-  {
-    for (int i = 0; i < 3; ++i)
-    {
-      vec2 offset = (vec2(i, j) - 1.0) * (2.0 / 3.0) * filterHalf;
-      lit += bilinearShadowTest(uvTexels + rotation * offset, d, bias);
-    }
-  }
-  pcfSamples += 36;
-  return lit / 9.0;
 }
 
 void writeCounters()
@@ -237,6 +257,7 @@ void main()
   }
   float d = receiver.depthLin;
   float bias = receiver.bias;
+  contactJitter = pixelRotation(uvec2(pixel));
   setReceiverPlane(receiver.pWs, receiver.nWs);
 
   // L7: the blocker search kernel w_i.
@@ -266,8 +287,10 @@ void main()
 
   // L11-15: average blocker depth, Eq. 4 with z_unocc = t over the normal sub-kernels, combined with the
   // PCF-sampled blockers of the non-planar ones, weighted by their blocked areas (§5.2).
+  // §6.4's test is not applied here: it is "applied for evaluating soft shadow", and the blocker depth "is
+  // less sensitive to precision" (§6.2).
   Accumulation blockers = subdivide(lo, hi, BLOCKER_SUBDIVISION, int(param_blocker_uniform_m),
-    int(param_blocker_tree_height), d, bias);
+    int(param_blocker_tree_height), false, d, bias);
   float blockedArea = blockers.pcfBlockedArea;
   float blockerDepthSum = blockers.pcfBlockerDepthSum;
   if (blockers.vsmArea > 0.0)
@@ -296,19 +319,21 @@ void main()
   vec2 filterHalf = kernelHalfTexels(d, averageBlockerDepth);
   outPenumbraKernelTexels = 2.0 * max(filterHalf.x, filterHalf.y);
 
-  // §6.4: contact shadows are small; PCF avoids the SAT's precision there.
+  // §6.4 (contact_test = blocker_average): contact shadows are small; PCF avoids the SAT's precision there.
+#if CONTACT_TEST == CONTACT_TEST_BLOCKER_AVERAGE
   if (d - averageBlockerDepth < param_contact_threshold * sceneRadius)
   {
-    outVisibility = contactShadow(receiver.uvTexels, filterHalf, d, bias, pixelRotation(uvec2(pixel)));
+    outVisibility = contactShadow(receiver.uvTexels, filterHalf, d, bias, contactJitter);
     outClassification = CLASSIFICATION_CONTACT;
     writeCounters();
     return;
   }
+#endif
 
   // L17-20: visibility over w_p (Alg. 2 L29-32).
   kernelRectangle(receiver.uvTexels, filterHalf, lo, hi);
   Accumulation shadow = subdivide(lo, hi, SHADOW_SUBDIVISION, int(param_shadow_uniform_n),
-    int(param_shadow_tree_height), d, bias);
+    int(param_shadow_tree_height), CONTACT_TEST == CONTACT_TEST_SUBKERNEL_MEAN, d, bias);
   float chebyshevLit = 0.0;
   if (shadow.vsmArea > 0.0)
   {
@@ -318,6 +343,7 @@ void main()
   }
   float totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
   outVisibility = clamp((chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea, 0.0, 1.0);
-  outClassification = CLASSIFICATION_PENUMBRA;
+  // A pixel with at least one §6.4 contact sub-kernel is classified contact.
+  outClassification = contactSubkernels > 0 ? CLASSIFICATION_CONTACT : CLASSIFICATION_PENUMBRA;
   writeCounters();
 }

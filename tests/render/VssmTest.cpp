@@ -138,6 +138,9 @@ TEST(Vssm, MatchesTheCpuImplementation)
     { "contact", {} },
     { "bunny", { "receiver_plane_bias=off" } },
     { "near-light", { "sat_precision=float_centred", "nonplanar_pcf_taps=3" } },
+    // §6.4 per sub-kernel: contact sub-kernels in the adaptive tree and in the uniform grid.
+    { "contact", { "contact_test=subkernel_mean" } },
+    { "stacked-occluders", { "contact_test=subkernel_mean", "shadow_subdivision=uniform", "contact_threshold=0.05" } },
   };
   for (const Case& c : cases)
   {
@@ -187,6 +190,10 @@ TEST(Vssm, MatchesTheCpuImplementation)
     EXPECT_GT(compared, 2000) << label;
     EXPECT_LT(skipped, compared / 10) << label;
     EXPECT_GT(classes[VssmClass::Penumbra] + classes[VssmClass::Contact], 200) << label;
+    if (frame.parameters.choice("contact_test") == "subkernel_mean")
+    {
+      EXPECT_GT(classes[VssmClass::Contact], 50) << label << ": the per-sub-kernel contact path must be exercised";
+    }
   }
 }
 

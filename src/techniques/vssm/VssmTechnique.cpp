@@ -58,7 +58,8 @@ TechniqueDescriptor vssmTechnique()
     { "shadow_tree_height", 3, 0, 5, "levels", "H of the adaptive shadow subdivision (§6.2: H = 3)", {}, true },
     { "nonplanar_pcf_taps", 2, 1, 8, "taps per axis", "k x k PCF in a non-planar leaf (§5.1 option 2: 2 x 2)", {}, true },
     { "lit_variance_threshold", 1e-4, 0, 1, "r", "a non-planar sub-kernel with variance below this times r is lit (§6.5: 0.0001 r; r = scene bounding-sphere radius)", {}, false },
-    { "contact_threshold", 0.01, 0, 1, "r", "d - z_avg below this times r: 3 x 3 jittered bilinear PCF instead of the SAT (§6.4: 0.01 r; 0 = off)", {}, false },
+    { "contact_threshold", 0.01, 0, 1, "r", "eps of the contact test, times r: below it, 3 x 3 jittered bilinear PCF instead of the SAT (§6.4: 0.01 r; 0 = off)", {}, false },
+    { "contact_test", 0, 0, 1, "", "§6.4's contact test: blocker_average (d - z_occ of Eq. 4 < eps, once per pixel; PCF over all of w_p) or subkernel_mean (t_c - E(x) < eps for each normal sub-kernel of w_p, with its own SAT mean; PCF over that sub-kernel)", { "blocker_average", "subkernel_mean" }, true },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the pooled variance, relative to the squared receiver depth", {}, false },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &summedAreaTableStructure(),
@@ -182,10 +183,12 @@ class VssmEvaluation
 {
 public:
   VssmEvaluation(const VssmReferenceInputs& inputs, const ParameterValues& values, const SoftShadowGeometry& geometry,
-    double bias, VssmSample& result)
-    : inputs_(inputs), values_(values), geometry_(geometry), bias_(bias), result_(result)
+    double bias, const glm::dmat2& contactJitter, VssmSample& result)
+    : inputs_(inputs), values_(values), geometry_(geometry), bias_(bias), contactJitter_(contactJitter), result_(result)
   {
   }
+
+  int contactSubkernels() const { return contactSubkernels_; }
 
   void noteDecision(double value, double boundary, double scale)
   {
@@ -232,7 +235,7 @@ public:
     acc.pcfBlockerDepthSum += area * blockerDepthSum / tapCount;
   }
 
-  bool visitSubKernel(glm::ivec2 lo, glm::ivec2 hi, bool isLeaf, bool nonPlanarIsLit, Accumulation& acc)
+  bool visitSubKernel(glm::ivec2 lo, glm::ivec2 hi, bool isLeaf, bool nonPlanarIsLit, bool detectContact, Accumulation& acc)
   {
     const BoxMoments moments = inputs_.boxMoments(lo, hi);
     const double area = static_cast<double>(hi.x - lo.x + 1) * (hi.y - lo.y + 1);
@@ -241,6 +244,19 @@ public:
     noteDecision(meanOffset, 0.0, geometry_.d);
     if (meanOffset < 0.0)
     {
+      if (detectContact)
+      {
+        const double contactDistance = values_.get("contact_threshold") * inputs_.sceneRadius;
+        noteDecision(-meanOffset, contactDistance, geometry_.d);
+        if (-meanOffset < contactDistance)
+        {
+          ++contactSubkernels_;
+          const double lit = contactShadow(0.5 * glm::dvec2(lo + hi + 1), 0.5 * glm::dvec2(hi - lo + 1), contactJitter_);
+          acc.pcfArea += area;
+          acc.pcfBlockedArea += area * (1.0 - lit);
+          return false;
+        }
+      }
       acc.vsmArea += area;
       acc.vsmSum += area * meanOffset;
       acc.vsmSumSquares += area * (moments.variance + meanOffset * meanOffset);
@@ -265,13 +281,13 @@ public:
     return false;
   }
 
-  Accumulation subdivide(glm::ivec2 lo, glm::ivec2 hi, const std::string& scheme, int cells, int height)
+  Accumulation subdivide(glm::ivec2 lo, glm::ivec2 hi, const std::string& scheme, int cells, int height, bool detectContact)
   {
     Accumulation acc;
     const glm::ivec2 extent = hi - lo + 1;
     if (scheme == "none")
     {
-      visitSubKernel(lo, hi, true, true, acc);
+      visitSubKernel(lo, hi, true, true, detectContact, acc);
     }
     else if (scheme == "uniform")
     {
@@ -283,7 +299,7 @@ public:
           const glm::ivec2 subHi = lo + (extent * glm::ivec2(i + 1, j + 1)) / cells - 1;
           if (subHi.x >= subLo.x && subHi.y >= subLo.y)
           {
-            visitSubKernel(subLo, subHi, true, false, acc);
+            visitSubKernel(subLo, subHi, true, false, detectContact, acc);
           }
         }
       }
@@ -298,7 +314,7 @@ public:
         const glm::ivec2 cell(node->x, node->y);
         const glm::ivec2 subLo = lo + (extent * cell) / parts;
         const glm::ivec2 subHi = lo + (extent * (cell + 1)) / parts - 1;
-        const bool refine = subHi.x >= subLo.x && subHi.y >= subLo.y && visitSubKernel(subLo, subHi, node->z == height, false, acc);
+        const bool refine = subHi.x >= subLo.x && subHi.y >= subLo.y && visitSubKernel(subLo, subHi, node->z == height, false, detectContact, acc);
         node = refine ? quadTreeChild(*node) : quadTreeNext(*node);
       }
     }
@@ -350,7 +366,9 @@ private:
   const ParameterValues& values_;
   const SoftShadowGeometry& geometry_;
   double bias_;
+  glm::dmat2 contactJitter_;
   VssmSample& result_;
+  int contactSubkernels_ = 0;
 };
 
 } // namespace
@@ -369,7 +387,8 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
     softShadowGeometry(shadowMap, lookup, values.choice("receiver_plane_bias") == "on", x, y);
   const double d = geometry.d;
   const double bias = lookup.sample.bias;
-  VssmEvaluation evaluation(inputs, values, geometry, bias, result);
+  VssmEvaluation evaluation(inputs, values, geometry, bias, pixelRotation(x, y), result);
+  const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const auto finish = [&](double visibility, VssmClass classification) {
     result.sample.visibility = visibility;
@@ -401,7 +420,7 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
 
   // L11-15.
   const Accumulation blockers = evaluation.subdivide(search.lo, search.hi, values.choice("blocker_subdivision"),
-    values.getInt("blocker_uniform_m"), values.getInt("blocker_tree_height"));
+    values.getInt("blocker_uniform_m"), values.getInt("blocker_tree_height"), false);
   double blockedArea = blockers.pcfBlockedArea;
   double blockerDepthSum = blockers.pcfBlockerDepthSum;
   if (blockers.vsmArea > 0.0)
@@ -424,18 +443,21 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
   const glm::dvec2 filterHalf = geometry.kernelHalfTexels(result.averageBlockerDepth);
   result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
 
-  // §6.4.
-  const double contactDistance = values.get("contact_threshold") * inputs.sceneRadius;
-  evaluation.noteDecision(d - result.averageBlockerDepth, contactDistance, d);
-  if (d - result.averageBlockerDepth < contactDistance)
+  // §6.4, contact_test = blocker_average.
+  if (!contactPerSubkernel)
   {
-    return finish(evaluation.contactShadow(uv, filterHalf, pixelRotation(x, y)), VssmClass::Contact);
+    const double contactDistance = values.get("contact_threshold") * inputs.sceneRadius;
+    evaluation.noteDecision(d - result.averageBlockerDepth, contactDistance, d);
+    if (d - result.averageBlockerDepth < contactDistance)
+    {
+      return finish(evaluation.contactShadow(uv, filterHalf, pixelRotation(x, y)), VssmClass::Contact);
+    }
   }
 
   // L17-20.
   const TexelRectangle filter = kernelRectangle(uv, filterHalf, geometry.mapSize, &result.kernelEdgeMargin);
   const Accumulation shadow = evaluation.subdivide(filter.lo, filter.hi, values.choice("shadow_subdivision"),
-    values.getInt("shadow_uniform_n"), values.getInt("shadow_tree_height"));
+    values.getInt("shadow_uniform_n"), values.getInt("shadow_tree_height"), contactPerSubkernel);
   double chebyshevLit = 0.0;
   if (shadow.vsmArea > 0.0)
   {
@@ -445,7 +467,8 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
   const double totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
   const double visibility =
     (chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea;
-  return finish(std::clamp(visibility, 0.0, 1.0), VssmClass::Penumbra);
+  return finish(std::clamp(visibility, 0.0, 1.0),
+    evaluation.contactSubkernels() > 0 ? VssmClass::Contact : VssmClass::Penumbra);
 }
 
 } // namespace sl

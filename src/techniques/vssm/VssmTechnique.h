@@ -1,13 +1,16 @@
 // Technique `vssm`: variance soft shadow mapping (Yang et al. 2010): Alg. 1 with the HSM early-out, the
 // average blocker depth of Eq. 4 (z_unocc = t), kernel subdivision (§5: uniform m x m, adaptive Alg. 2 by
 // stackless linear quad-tree traversal, or none = VSM's lit assumption, Fig. 3a), the §6.4 contact-shadow
-// fallback and the §6.5 lit threshold. Math: shaders/vssm/VssmVisibility.glsl.
+// fallback (per pixel on Eq. 4's blocker depth, or per sub-kernel of w_p on its own mean: contact_test) and the
+// §6.5 lit threshold. Math: shaders/vssm/VssmVisibility.glsl.
 // Parameters: the shadow-map ones, receiver_plane_bias, sat_precision, hsm (mipmap | nbuffers, §6.1),
 // hsm_early_out, blocker_subdivision + blocker_uniform_m + blocker_tree_height, shadow_subdivision +
 // shadow_uniform_n + shadow_tree_height (default: the paper's mixed scheme m = 5, H = 3, §6.3),
-// nonplanar_pcf_taps (2: 2 x 2), lit_variance_threshold (x r), contact_threshold (x r), min_variance.
+// nonplanar_pcf_taps (2: 2 x 2), lit_variance_threshold (x r), contact_threshold (x r), contact_test
+// (blocker_average | subkernel_mean), min_variance.
 // Buffers: blocker_kernel_texels, penumbra_kernel_texels, avg_blocker_depth, classification
-// (not tested / lit / umbra / penumbra / contact), nonplanar_subkernels, quadtree_nodes_visited,
+// (not tested / lit / umbra / penumbra / contact: the §6.4 PCF decided the pixel, or with subkernel_mean at
+// least one of its sub-kernels), nonplanar_subkernels, quadtree_nodes_visited,
 // pcf_samples (eight outputs in all, GL's guaranteed draw-buffer count).
 #pragma once
 
