@@ -1,9 +1,11 @@
 // GBP06 soft shadow mapping by back-projection of micropatches (Guennebaud et al. 2006), per pixel: the kernel
 // of Eq. 1 (Yang et al. 2009) tightened by the minimum depth inside it and lit / umbra from the min-max
 // structure (the preamble of gbp07/Gbp07Visibility.glsl), then every occluding texel of the kernel and its ring
-// as a micropatch, back-projected onto the light and clipped to it, gap-filled toward its right and top
-// neighbours (GAP_FILLING), found by a loop over the texels or by the DU07 walk of the min-max quadtree
-// (TRAVERSAL). Conventions, the gap rule and the traversal: src/techniques/gbp06/Gbp06Technique.h.
+// as a micropatch, back-projected onto the light and clipped to it, gap-filled toward its left and bottom
+// neighbours in texture space as Schwarz & Stamminger 2008 (paper 001, L132-134) describe GBP06's rule, or
+// toward the right and top ones, the mirror convention (GAP_FILLING), found by a loop over the texels or by
+// the DU07 walk of the min-max quadtree (TRAVERSAL). Conventions, the gap rule and the traversal:
+// src/techniques/gbp06/Gbp06Technique.h.
 // CPU mirror: src/techniques/gbp06/Gbp06Technique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
@@ -63,17 +65,32 @@ void examineTexel(ivec2 texel)
   vec2 tangentHi = shadowWindowMin + vec2(texel + 1) * shadowTexelTangent;
   vec2 lo = backProject(tangentLo, depth, receiverXy, receiverDepth);
   vec2 hi = backProject(tangentHi, depth, receiverXy, receiverDepth);
-#if GAP_FILLING == GAP_FILLING_ON
-  // Out to the right neighbour's left edge and the top neighbour's bottom edge, each at its own depth, when
-  // those neighbours occlude and their edges lie further out (never shrunk).
+  // Gap filling: out to an occluding neighbour's shared edge, back-projected at the neighbour's depth, when that
+  // lies further out (never shrunk). The neighbours are read directly, also outside the searched region: a texel
+  // beyond the ring shares with its ring neighbour an edge outside the kernel, which back-projects outside the
+  // light at every depth the kernel allows, so no region bound depends on the direction.
+#if GAP_FILLING == GAP_FILLING_LEFT_BOTTOM
+  // 001 L132-134: "extending a micropatch to its left and bottom neighbors in texture space" (GBP06). The left
+  // neighbour's right edge and the bottom neighbour's top edge both pass through this texel's corner tangentLo.
+  float neighbourDepth;
+  if (occludesAt(texel - ivec2(1, 0), neighbourDepth))
+  {
+    lo.x = min(lo.x, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).x);
+  }
+  if (occludesAt(texel - ivec2(0, 1), neighbourDepth))
+  {
+    lo.y = min(lo.y, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).y);
+  }
+#elif GAP_FILLING == GAP_FILLING_RIGHT_TOP
+  // The mirror convention: the right neighbour's left edge and the top neighbour's bottom edge (through tangentHi).
   float neighbourDepth;
   if (occludesAt(texel + ivec2(1, 0), neighbourDepth))
   {
-    hi.x = max(hi.x, backProject(vec2(tangentHi.x, tangentLo.y), neighbourDepth, receiverXy, receiverDepth).x);
+    hi.x = max(hi.x, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).x);
   }
   if (occludesAt(texel + ivec2(0, 1), neighbourDepth))
   {
-    hi.y = max(hi.y, backProject(vec2(tangentLo.x, tangentHi.y), neighbourDepth, receiverXy, receiverDepth).y);
+    hi.y = max(hi.y, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).y);
   }
 #endif
   vec2 extent = max(min(hi, vec2(halfSize)) - max(lo, vec2(-halfSize)), vec2(0.0));

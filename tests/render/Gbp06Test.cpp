@@ -1,6 +1,8 @@
 // gbp06 (micropatch back-projection with gap filling, kernel or DU07 traversal): the GLSL against its
 // double-precision twin on read-back buffers; the hsm traversal against the kernel one (same visibility, fewer
-// nodes); against the closed-form overlap of a parallel square occluder, converging as the map's resolution doubles.
+// nodes); against the closed-form overlap of a parallel square occluder, converging as the map's resolution doubles;
+// the gap-filling conventions (left/bottom, 001 L132-134, and right/top) swapped by mirroring the scene in light
+// x and y, and the searched texels enough for both.
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
@@ -46,11 +48,11 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     std::vector<std::string> settings;
   };
   const std::vector<Case> cases = {
-    { "planar-occluder", { "shadow_map_size=256", "traversal=kernel", "gap_filling=on" } },
+    { "planar-occluder", { "shadow_map_size=256", "traversal=kernel", "gap_filling=left_bottom" } },
     { "planar-occluder", { "shadow_map_size=256", "traversal=hsm", "gap_filling=off" } },
-    { "stacked-occluders", { "shadow_map_size=256", "traversal=hsm", "gap_filling=on" } },
-    { "stacked-occluders", { "shadow_map_size=256", "traversal=kernel", "gap_filling=off" } },
-    { "bunny", { "shadow_map_size=256", "traversal=hsm", "gap_filling=on", "hsm=mipmap" } },
+    { "stacked-occluders", { "shadow_map_size=256", "traversal=hsm", "gap_filling=left_bottom" } },
+    { "stacked-occluders", { "shadow_map_size=256", "traversal=kernel", "gap_filling=right_top" } },
+    { "bunny", { "shadow_map_size=256", "traversal=hsm", "gap_filling=left_bottom", "hsm=mipmap" } },
   };
   for (const Case& c : cases)
   {
@@ -193,7 +195,7 @@ TEST(Gbp06, GapFillingOnlyAddsOcclusionAndClosesGaps)
     for (int on = 0; on < 2; ++on)
     {
       const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight,
-        { "shadow_map_size=256", on ? "gap_filling=on" : "gap_filling=off" });
+        { "shadow_map_size=256", on ? "gap_filling=left_bottom" : "gap_filling=off" });
       const ReferenceInputs inputs = test::referenceInputs(frame, scene);
       if (on == 0)
       {
@@ -244,6 +246,221 @@ TEST(Gbp06, ConvergesToTheClosedFormAsTheMapResolutionDoubles)
     EXPECT_LT(error.rmse, 0.03) << size;
     EXPECT_LT(error.rmse, previous) << size;
     previous = error.rmse;
+  }
+}
+
+// The mirror tests' scene: a square light pointing straight down the world y axis (its centre at x = z = 0) over
+// a ground quad, with occluders that no half turn about that axis maps onto themselves: a sphere (neighbouring
+// texels at different depths all over it), a quad tilted in x and z, and two stacked quads. The light's up is
+// world z, so light view x and y are world -x and z: each light-view coordinate is one world coordinate, signed.
+Scene asymmetricOccluders()
+{
+  const std::string text = R"({
+    "camera": { "position": [0.5, 4.4, 3.3], "focal_point": [0.05, 0.2, -0.05], "view_angle": 40 },
+    "lights": [ { "type": "area", "shape": "square", "center": [0, 3.2, 0], "normal": [0, -1, 0], "up": [0, 0, 1],
+                  "size": 1.2 } ],
+    "objects": [
+      { "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "sphere", "center": [-0.45, 0.75, 0.3], "size": 0.3 },
+      { "primitive": "quad", "center": [0.4, 1.25, -0.3], "size": [0.6, 0.45], "normal": [0.4, 1, 0.25], "up": [0, 0, -1] },
+      { "primitive": "quad", "center": [0.15, 0.5, 0.55], "size": [0.5, 0.5], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "quad", "center": [0.3, 0.95, 0.75], "size": [0.4, 0.4], "normal": [0, 1, 0], "up": [0, 0, -1] }
+    ] })";
+  return parseScene(text, "gbp06 mirror scene", test::sourceDir());
+}
+
+// The scene turned half a turn about the light's axis, which mirrors light view x and y: x -> -x, z -> -z for
+// every vertex and normal and for the camera's position, focal point and view-up; the light is kept (its square
+// maps onto itself). Negation is exact in floating point, so the camera's view transform turns with the scene
+// and pixel (x, y) shows the turned point of the original's pixel (x, y), and the shadow map's window, fitted to
+// the receivers, is the original's negated: texel (i, j) holds what texel (N-1-i, N-1-j) held, up to the
+// rasterizer's rounding. Left and bottom neighbours in texture space become right and top ones.
+Scene turnedAboutTheLightAxis(Scene scene)
+{
+  const auto turned = [](auto v) { return decltype(v)(-v.x, v.y, -v.z); };
+  for (SceneObject& object : scene.objects)
+  {
+    for (glm::vec3& position : object.mesh.positions)
+    {
+      position = turned(position);
+    }
+    for (glm::vec3& normal : object.mesh.normals)
+    {
+      normal = turned(normal);
+    }
+  }
+  scene.camera.position = turned(scene.camera.position);
+  scene.camera.focalPoint = turned(scene.camera.focalPoint);
+  scene.camera.viewUp = turned(scene.camera.viewUp);
+  return scene;
+}
+
+TEST(Gbp06, MirroringTheSceneInLightXAndYSwapsTheGapFillingConventions)
+{
+  // 001 L132-134 extend a micropatch toward its left and bottom neighbours in texture space; mirrored in light x
+  // and y those are the right and top ones. So left_bottom on the scene S and right_top on its mirror image M
+  // must agree pixel for pixel (the same pixels, see turnedAboutTheLightAxis) to float rounding, and so must
+  // right_top on S and left_bottom on M, and off on both; while one convention on S and on M differ, because the
+  // gaps are filled from the other side. Both traversals; the CPU twin on the same read-back buffers too.
+  const Scene scene = asymmetricOccluders();
+  const Scene mirrored = turnedAboutTheLightAxis(scene);
+  const int size = 256;
+  struct Pair
+  {
+    std::string traversal;
+    std::string onScene;    // gap_filling on S
+    std::string onMirrored; // gap_filling on M
+    bool mirrorPair;        // the conventions swap: S and M must agree
+  };
+  const std::vector<Pair> pairs = {
+    { "kernel", "left_bottom", "right_top", true },
+    { "kernel", "right_top", "left_bottom", true },
+    { "kernel", "off", "off", true },
+    { "kernel", "left_bottom", "left_bottom", false },
+    { "hsm", "left_bottom", "right_top", true },
+  };
+  std::map<std::string, FrameResult> frames; // by "<S|M> <traversal> <gap_filling>"
+  const auto frameOf = [&](bool onMirrored, const std::string& traversal, const std::string& gapFilling) -> const FrameResult& {
+    const std::string key = std::string(onMirrored ? "M " : "S ") + traversal + " " + gapFilling;
+    if (frames.count(key) == 0)
+    {
+      frames.emplace(key, test::renderDataset(onMirrored ? mirrored : scene, "gbp06", kWidth, kHeight,
+        { "shadow_map_size=" + std::to_string(size), "traversal=" + traversal, "gap_filling=" + gapFilling }));
+    }
+    return frames.at(key);
+  };
+
+  // The precondition: M's texel grid is S's mirrored. The window exactly, the depths to the rasterizer's rounding.
+  const FrameResult& reference = frameOf(false, "kernel", "left_bottom");
+  const FrameResult& reference2 = frameOf(true, "kernel", "right_top");
+  ASSERT_TRUE(reference.lightView && reference2.lightView);
+  const glm::dvec4 window = reference.lightView->window;
+  const glm::dvec4 mirroredWindow = reference2.lightView->window;
+  EXPECT_EQ(mirroredWindow, glm::dvec4(-window.y, -window.x, -window.w, -window.z));
+  EXPECT_EQ(reference2.lightView->nearDepth, reference.lightView->nearDepth);
+  const ShadowMapInputs sceneInputs = test::shadowMapInputs(reference, scene);
+  const ShadowMapInputs mirroredInputs = test::shadowMapInputs(reference2, mirrored);
+  double maxDepthDifference = 0.0;
+  for (int j = 0; j < size; ++j)
+  {
+    for (int i = 0; i < size; ++i)
+    {
+      const double a = sceneInputs.shadowMapLinear.at(i, j);
+      const double b = mirroredInputs.shadowMapLinear.at(size - 1 - i, size - 1 - j);
+      maxDepthDifference = std::max(maxDepthDifference, std::abs(a - b) / a);
+    }
+  }
+  std::cout << "[ measured ] gbp06 mirror scene: light window (" << window.x << ", " << window.y << ") x (" << window.z
+            << ", " << window.w << "), near " << reference.lightView->nearDepth << "; max relative |depth(i, j) - mirrored depth(N-1-i, N-1-j)| "
+            << maxDepthDifference << "\n";
+  EXPECT_LT(maxDepthDifference, 1e-5); // measured 1.3e-6: float interpolation, not a texel off
+
+  const HierarchicalShadowMap sceneHsm = structureOf(reference, sceneInputs);
+  const HierarchicalShadowMap mirroredHsm = structureOf(reference2, mirroredInputs);
+  for (const Pair& pair : pairs)
+  {
+    const FrameResult& a = frameOf(false, pair.traversal, pair.onScene);
+    const FrameResult& b = frameOf(true, pair.traversal, pair.onMirrored);
+    const std::string label = "traversal=" + pair.traversal + ", S gap_filling=" + pair.onScene + " / M gap_filling=" + pair.onMirrored;
+    const ImageF& visibilityA = a.find("visibility")->image;
+    const ImageF& visibilityB = b.find("visibility")->image;
+    double maxGpu = 0.0;
+    double maxCpu = 0.0;
+    int penumbra = 0;
+    int differing = 0; // penumbra pixels more than 1e-4 apart
+    int classMismatches = 0;
+    int countMismatches = 0;
+    for (int y = 0; y < kHeight; ++y)
+    {
+      for (int x = 0; x < kWidth; ++x)
+      {
+        const double difference = std::abs(visibilityA.at(x, y) - visibilityB.at(x, y));
+        maxGpu = std::max(maxGpu, difference);
+        differing += difference > 1e-4 ? 1 : 0;
+        const float classA = a.find("classification")->image.at(x, y);
+        penumbra += classA == static_cast<float>(BackprojectionClass::Penumbra) ? 1 : 0;
+        classMismatches += classA != b.find("classification")->image.at(x, y) ? 1 : 0;
+        countMismatches += a.find("occluding_texels")->image.at(x, y) != b.find("occluding_texels")->image.at(x, y) ? 1 : 0;
+        const Gbp06Sample cpuA = gbp06Reference(sceneInputs, sceneHsm, a.parameters, x, y);
+        const Gbp06Sample cpuB = gbp06Reference(mirroredInputs, mirroredHsm, b.parameters, x, y);
+        maxCpu = std::max(maxCpu, std::abs(cpuA.sample.visibility - cpuB.sample.visibility));
+        if (pair.mirrorPair)
+        {
+          EXPECT_NEAR(visibilityA.at(x, y), visibilityB.at(x, y), 1e-5) << label << " pixel " << x << "," << y;
+          EXPECT_NEAR(cpuA.sample.visibility, cpuB.sample.visibility, 1e-5) << label << " pixel " << x << "," << y;
+        }
+      }
+    }
+    std::cout << "[ measured ] gbp06 mirror, " << label << ": max |S - M| visibility GPU " << maxGpu << ", CPU twin "
+              << maxCpu << "; " << differing << " of " << penumbra << " penumbra pixels more than 1e-4 apart; "
+              << classMismatches << " class and " << countMismatches << " micropatch-count mismatches\n";
+    EXPECT_GT(penumbra, 300) << label;
+    if (pair.mirrorPair)
+    {
+      EXPECT_EQ(classMismatches, 0) << label;
+      EXPECT_EQ(countMismatches, 0) << label;
+    }
+    else
+    {
+      // The same convention on S and M: the gaps are filled from the other side, visibly.
+      EXPECT_GT(maxGpu, 1e-2) << label;
+      EXPECT_GT(maxCpu, 1e-2) << label;
+      EXPECT_GT(differing, penumbra / 10) << label;
+    }
+  }
+}
+
+TEST(Gbp06, RefinedKernelsMissNoGapFilledMicropatch)
+{
+  // Gap filling reads neighbours on one side, also beyond the texels searched (the refined kernel plus one
+  // ring). Such a texel's extension reaches only to the ring texel's outer edge, whose back-projection lies
+  // outside the light, so it adds nothing: the CPU twin with the unrefined kernel (kernel_refinements=0, the
+  // near-plane kernel, many more texels) must give the same visibility, in double precision, for both
+  // conventions. Lit and umbra are decisions over the searched texels, so a pixel decided umbra is skipped and
+  // one decided lit must have visibility 1.
+  const Scene scene = asymmetricOccluders();
+  const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight, { "shadow_map_size=256" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const HierarchicalShadowMap hsm = structureOf(frame, inputs);
+  for (const std::string gapFilling : { "left_bottom", "right_top" })
+  {
+    ParameterValues refined = frame.parameters;
+    refined.set("gap_filling=" + gapFilling);
+    ParameterValues unrefined = refined;
+    unrefined.set("kernel_refinements=0");
+    ASSERT_GT(refined.getInt("kernel_refinements"), 0);
+    int compared = 0;
+    long refinedTexels = 0;
+    long unrefinedTexels = 0;
+    long occludersOutside = 0; // occluding texels only the unrefined kernels examine
+    double maxDifference = 0.0;
+    for (int y = 0; y < kHeight; ++y)
+    {
+      for (int x = 0; x < kWidth; ++x)
+      {
+        const Gbp06Sample narrow = gbp06Reference(inputs, hsm, refined, x, y);
+        if (!narrow.sample.evaluated || narrow.classification == BackprojectionClass::Umbra)
+        {
+          continue;
+        }
+        const Gbp06Sample wide = gbp06Reference(inputs, hsm, unrefined, x, y);
+        const double difference = std::abs(narrow.sample.visibility - wide.sample.visibility);
+        maxDifference = std::max(maxDifference, difference);
+        EXPECT_LT(difference, 1e-12) << gapFilling << " pixel " << x << "," << y;
+        if (narrow.classification == BackprojectionClass::Penumbra)
+        {
+          ++compared;
+          refinedTexels += narrow.visitedNodes;
+          unrefinedTexels += wide.visitedNodes;
+          occludersOutside += wide.occludingTexels - narrow.occludingTexels;
+        }
+      }
+    }
+    std::cout << "[ measured ] gbp06 gap_filling=" << gapFilling << ": refined against unrefined kernels over " << compared
+              << " penumbra pixels (" << refinedTexels << " / " << unrefinedTexels << " texels examined, "
+              << occludersOutside << " occluding texels outside the refined ones): max |difference| " << maxDifference << "\n";
+    EXPECT_GT(compared, 300) << gapFilling;
+    EXPECT_GT(occludersOutside, compared) << gapFilling; // the neighbours the test is about exist
   }
 }
 

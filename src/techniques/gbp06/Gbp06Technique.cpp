@@ -34,7 +34,7 @@ TechniqueDescriptor gbp06Technique()
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "hsm", 1, 0, 1, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007) or mipmap (the HSM of Guennebaud et al. 2006)", { "mipmap", "nbuffers" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
-    { "gap_filling", 1, 0, 1, "", "extend each occluding micropatch's back-projection to those of its occluding right and top neighbours (Guennebaud et al. 2006, gaps)", { "off", "on" }, true },
+    { "gap_filling", 1, 0, 2, "", "extend each occluding micropatch's back-projection to the shared edges of its occluding neighbours, closing the gaps between micropatches of different depths: left_bottom, to its left and bottom neighbours in texture space, GBP06's rule as Schwarz & Stamminger 2008 describe it (paper 001, L132-134); right_top, to its right and top ones (the mirror convention); off", { "off", "left_bottom", "right_top" }, true },
     { "traversal", 0, 0, 1, "", "micropatches from every texel of the kernel, or from a depth-first walk of the min-max quadtree pruning nodes that cannot occlude (Dmitriev & Uralsky 2007); same visibility", { "kernel", "hsm" }, true },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure() };
@@ -72,11 +72,25 @@ glm::dvec2 quadtreeNode(const HierarchicalShadowMap& hsm, int level, glm::ivec2 
   return { image.at(texel.x, texel.y, 0), image.at(texel.x, texel.y, 1) };
 }
 
+// The `gap_filling` choices.
+enum class GapFilling
+{
+  Off,
+  LeftBottom, // GBP06's rule as paper 001 L132-134 gives it
+  RightTop    // the mirror convention
+};
+
+GapFilling gapFillingOf(const ParameterValues& values)
+{
+  const std::string choice = values.choice("gap_filling");
+  return choice == "left_bottom" ? GapFilling::LeftBottom : choice == "right_top" ? GapFilling::RightTop : GapFilling::Off;
+}
+
 struct MicropatchAccumulator
 {
   const ShadowMapInputs& inputs;
   ContourReceiver& receiver;
-  bool gapFilling = true;
+  GapFilling gapFilling = GapFilling::LeftBottom;
   double occludedArea = 0.0;
   int occludingTexels = 0;
 
@@ -89,19 +103,33 @@ struct MicropatchAccumulator
     const glm::dvec2 tangentLo = geometry.windowMin + glm::dvec2(texel) * geometry.texelTangent;
     const glm::dvec2 tangentHi = geometry.windowMin + glm::dvec2(texel + 1) * geometry.texelTangent;
     // backProject is increasing in the tangent for a fixed depth in front of the receiver: corners map to corners.
-    const glm::dvec2 lo = backProject(tangentLo, depth, receiver.receiverXy, d);
+    glm::dvec2 lo = backProject(tangentLo, depth, receiver.receiverXy, d);
     glm::dvec2 hi = backProject(tangentHi, depth, receiver.receiverXy, d);
-    if (gapFilling)
+    // Gap filling: out to an occluding neighbour's shared edge at the neighbour's depth, when further out.
+    double neighbourDepth = 0.0;
+    if (gapFilling == GapFilling::LeftBottom)
     {
-      // Right neighbour: its left edge at its own depth; top neighbour: its bottom edge.
-      double neighbourDepth = 0.0;
+      // 001 L132-134 (GBP06): "extending a micropatch to its left and bottom neighbors in texture space". The
+      // left neighbour's right edge and the bottom neighbour's top edge pass through the corner tangentLo.
+      if (receiver.occludes(inputs, texel - glm::ivec2(1, 0), neighbourDepth))
+      {
+        lo.x = std::min(lo.x, backProject(tangentLo, neighbourDepth, receiver.receiverXy, d).x);
+      }
+      if (receiver.occludes(inputs, texel - glm::ivec2(0, 1), neighbourDepth))
+      {
+        lo.y = std::min(lo.y, backProject(tangentLo, neighbourDepth, receiver.receiverXy, d).y);
+      }
+    }
+    else if (gapFilling == GapFilling::RightTop)
+    {
+      // The mirror convention: the right neighbour's left edge and the top neighbour's bottom edge (tangentHi).
       if (receiver.occludes(inputs, texel + glm::ivec2(1, 0), neighbourDepth))
       {
-        hi.x = std::max(hi.x, backProject(glm::dvec2(tangentHi.x, tangentLo.y), neighbourDepth, receiver.receiverXy, d).x);
+        hi.x = std::max(hi.x, backProject(tangentHi, neighbourDepth, receiver.receiverXy, d).x);
       }
       if (receiver.occludes(inputs, texel + glm::ivec2(0, 1), neighbourDepth))
       {
-        hi.y = std::max(hi.y, backProject(glm::dvec2(tangentLo.x, tangentHi.y), neighbourDepth, receiver.receiverXy, d).y);
+        hi.y = std::max(hi.y, backProject(tangentHi, neighbourDepth, receiver.receiverXy, d).y);
       }
     }
     const double h = receiver.lightHalfSize;
@@ -135,7 +163,7 @@ Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShad
   {
     return finish(receiver.classification);
   }
-  MicropatchAccumulator accumulator{ inputs, receiver, values.choice("gap_filling") == "on" };
+  MicropatchAccumulator accumulator{ inputs, receiver, gapFillingOf(values) };
   // The kernel's texels plus one ring, clamped to the map (see the header).
   const glm::ivec2 lo = receiver.samples.lo;
   const glm::ivec2 hi = receiver.samples.hi;

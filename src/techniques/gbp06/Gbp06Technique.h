@@ -12,12 +12,18 @@
 //     axis-aligned rectangle in light view x, y (backProject of its two opposite corners), clipped to [-h, h]^2;
 //     occluded area = the sum of the clipped areas, visibility = clamp(1 - occluded / (2h)^2, 0, 1). Overlaps
 //     of the back-projections are counted twice, as in GBP06 (the clamp bounds the result).
-//  3. gap_filling (GBP06's remedy for the gaps between adjacent micropatches at different depths): the exact
-//     rule of the paper's gap section could not be retrieved here (the stored copies of GBP06 stop after the
-//     introduction), so this implements the rule given with the task: when the right (resp. top) neighbour
-//     texel is an occluding micropatch too, the rectangle's right (top) edge is moved out to the left (bottom)
-//     edge of that neighbour's back-projection if the latter lies further out; the rectangle is never shrunk
-//     (overlaps stay overlaps). Extending both edges also covers the corner between the three patches.
+//  3. gap_filling (GBP06's remedy for the gaps between adjacent micropatches at different depths). The stored
+//     copies of GBP06 stop after its introduction; Schwarz & Stamminger 2008 (paper 001, L132-134) state the
+//     rule: "extending a micropatch to its left and bottom neighbors in texture space". `left_bottom` (the
+//     default): when the left (resp. bottom) neighbour texel is an occluding micropatch too, the rectangle's
+//     left (bottom) edge is moved out to the right (top) edge of that neighbour's back-projection, i.e. the
+//     shared texel edge back-projected at the neighbour's depth, if that lies further out; the rectangle is
+//     never shrunk (overlaps stay overlaps). Extending both edges also covers the corner between the three
+//     patches. `right_top` is the mirror convention (right and top neighbours): mirroring the scene in light
+//     x and y swaps the two, which tests/render/Gbp06Test.cpp checks. Neighbours are read directly, also
+//     outside the searched texels: a texel beyond the ring shares with its ring neighbour an edge beyond the
+//     kernel, whose back-projection at any depth the kernel allows lies outside the light, so the search
+//     region is the same for both conventions.
 //  traversal: `kernel` examines every texel of step 2; `hsm` (DU07) walks the mip-map quadtree of the min-max
 //     structure from the lowest node covering those texels, depth first and stackless (a node's index holds
 //     the path to it: bit k of x and y is the child index taken below level k + 1), pruning a node whose
@@ -26,7 +32,7 @@
 //     (level k, index n) is the N-buffer texel n 2^k of level k (the same range).
 // Math: shaders/gbp06/Gbp06Visibility.glsl; CPU mirror below (double precision).
 // Parameters: the shadow-map ones, receiver_plane_bias, hsm, kernel_refinements (as gbp07), gap_filling
-// (off / on), traversal (kernel / hsm).
+// (off / left_bottom / right_top), traversal (kernel / hsm).
 // Buffers: kernel_texels, occluding_texels, visited_nodes, classification (not tested / lit / umbra / penumbra /
 // penumbra over the loop budget).
 #pragma once
