@@ -21,7 +21,8 @@ TechniqueDescriptor gbp06Technique()
   TechniqueDescriptor descriptor;
   descriptor.name = "gbp06";
   descriptor.title = "Soft shadow mapping by back-projection of micropatches, with gap filling and a DU07 traversal";
-  descriptor.paper = "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1";
+  descriptor.paper = "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1; "
+                     "Schwarz & Stamminger 2008 (gap-filling rule)";
   descriptor.parameters = shadowMapParameters();
   for (ParameterSpec& spec : descriptor.parameters)
   {
