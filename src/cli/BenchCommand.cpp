@@ -615,15 +615,29 @@ int countFailed(const nlohmann::json& rows)
     std::count_if(rows.begin(), rows.end(), [](const nlohmann::json& row) { return row["status"] != "ok"; }));
 }
 
-// Whole-frame statistics some techniques report (vtkSLTechniquePass::CollectStatistics), one column each.
+// Whole-frame statistics of a result, one column each: those some techniques report
+// (vtkSLTechniquePass::CollectStatistics) and, as <buffer>_sum, the image totals of their work counters
+// (bench-run's work_counter_sums).
+nlohmann::json statisticsOf(const nlohmann::json& result)
+{
+  nlohmann::json statistics = result.value("technique_statistics", nlohmann::json::object());
+  const nlohmann::json sums = result.value("work_counter_sums", nlohmann::json::object());
+  for (const auto& [name, sum] : sums.items())
+  {
+    statistics[name + "_sum"] = sum;
+  }
+  return statistics;
+}
+
 std::set<std::string> statisticNamesOf(const nlohmann::json& rows)
 {
   std::set<std::string> statisticNames;
   for (const nlohmann::json& row : rows)
   {
-    if (row["status"] == "ok" && row["result"].contains("technique_statistics"))
+    if (row["status"] == "ok")
     {
-      for (const auto& [name, value] : row["result"]["technique_statistics"].items())
+      const nlohmann::json statistics = statisticsOf(row["result"]); // items() does not keep a temporary alive
+      for (const auto& [name, value] : statistics.items())
       {
         statisticNames.insert(name);
       }
@@ -642,11 +656,11 @@ std::string numberText(const nlohmann::json& value)
 // "name value, ..." of the statistics a result reports, for summary.md.
 std::string statisticsText(const nlohmann::json& result, const std::set<std::string>& statisticNames)
 {
+  const nlohmann::json values = statisticsOf(result);
   std::string statistics;
   for (const std::string& name : statisticNames)
   {
-    const bool has = result.contains("technique_statistics") && result["technique_statistics"].contains(name);
-    statistics += has ? (statistics.empty() ? "" : ", ") + name + " " + numberText(result["technique_statistics"][name]) : "";
+    statistics += values.contains(name) ? (statistics.empty() ? "" : ", ") + name + " " + numberText(values[name]) : "";
   }
   return statistics;
 }
@@ -681,10 +695,10 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
     {
       csv << "," << (result["stages"].contains(stage) ? numberText(result["stages"][stage]["gpu_ms"]) : "");
     }
+    const nlohmann::json statistics = statisticsOf(result);
     for (const std::string& name : statisticNames)
     {
-      const bool has = result.contains("technique_statistics") && result["technique_statistics"].contains(name);
-      csv << "," << (has ? numberText(result["technique_statistics"][name]) : "");
+      csv << "," << (statistics.contains(name) ? numberText(statistics[name]) : "");
     }
     if (result.contains("error"))
     {

@@ -27,6 +27,38 @@ double median(std::vector<double> values)
   return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
 }
 
+// The image-wide total of each work counter the technique publishes (buffers its descriptor sums over
+// sub-lights, e.g. yfgl09's visited_nodes), over covered pixels like stats.json's means: Yang et al. 2009's
+// Eq. 9 is a statement about this total, which a mean over pixels hides.
+nlohmann::json workCounterSums(const FrameResult& frame)
+{
+  nlohmann::json sums = nlohmann::json::object();
+  const NamedImage* coverage = frame.find("coverage");
+  for (const BufferSpec& spec : frame.descriptor->buffers)
+  {
+    const NamedImage* counter = frame.find(spec.name);
+    if (spec.subLightCombine != SubLightCombine::Sum || !counter)
+    {
+      continue;
+    }
+    const ImageF& image = counter->image;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < image.pixelCount(); ++i)
+    {
+      if (coverage && coverage->image.data[i] <= 0.5f)
+      {
+        continue;
+      }
+      for (int c = 0; c < image.components; ++c)
+      {
+        sum += image.data[i * image.components + c];
+      }
+    }
+    sums[spec.name] = sum;
+  }
+  return sums;
+}
+
 } // namespace
 
 int runBenchConfiguration(const BenchRunOptions& options)
@@ -86,6 +118,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
     { "frame_gpu_ms", median(frameGpu) },
     { "frame_wall_ms", median(frameWall) },
     { "technique_statistics", last.techniqueStatistics },
+    { "work_counter_sums", workCounterSums(last) },
   };
   if (!options.referenceFile.empty())
   {

@@ -225,6 +225,56 @@ TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
     << "one cached reference per light size";
 }
 
+TEST(BenchCommand, WorkCounterColumnsAreTheImageTotalsOfTheCounterBuffers)
+{
+  // gbp07's visited_cells and contour_edges are work counters (summed over sub-lights): the bench reports
+  // each one's total over the covered pixels as <buffer>_sum, the number Yang et al. 2009's Eq. 9 is about.
+  // The totals must be those of the buffers `shadowlab render` writes for the same configuration.
+  const std::filesystem::path out = freshDir("bench-counters-out");
+  const std::filesystem::path cache = freshDir("bench-counters-cache");
+  const std::vector<std::string> common = { "-s", "shadow_map_size=128", "-r", "32x32" };
+  std::vector<std::string> bench = { "bench", test::datasetPath("planar-occluder").string(), "-t", "gbp07", "--sweep",
+    "sublights=1,2", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out", out.string() };
+  bench.insert(bench.end(), common.begin(), common.end());
+  const RunResult run = runShadowlab(bench);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const nlohmann::json& row : rows)
+  {
+    ASSERT_EQ(row.at("status"), "ok") << row.dump();
+    const nlohmann::json& sums = row.at("result").at("work_counter_sums");
+    EXPECT_EQ(sums.size(), 2u) << sums.dump() << ": only the counters, not averaged buffers such as kernel_texels";
+    EXPECT_GT(sums.at("visited_cells").get<double>(), 0.0);
+  }
+
+  const std::filesystem::path rendered = freshDir("bench-counters-render");
+  std::vector<std::string> render = { "render", test::datasetPath("planar-occluder").string(), "--technique", "gbp07",
+    "-s", "sublights=2", "--out", rendered.string() };
+  render.insert(render.end(), common.begin(), common.end());
+  const RunResult renderRun = runShadowlab(render);
+  ASSERT_EQ(renderRun.exitCode, 0) << renderRun.err;
+  const std::vector<NamedImage> buffers = readVti(rendered / "buffers.vti");
+  const ImageF& coverage = arrayNamed(buffers, "coverage").image;
+  for (const std::string& counter : { std::string("visited_cells"), std::string("contour_edges") })
+  {
+    const ImageF& image = arrayNamed(buffers, counter).image;
+    double total = 0.0;
+    for (std::size_t i = 0; i < image.pixelCount(); ++i)
+    {
+      total += coverage.data[i] > 0.5f ? image.data[i] : 0.0;
+    }
+    ASSERT_NE(rows[1].at("settings").get<std::string>().find("sublights=2"), std::string::npos) << rows[1].dump();
+    EXPECT_NEAR(rows[1].at("result").at("work_counter_sums").at(counter).get<double>(), total, 1e-6 * total) << counter;
+  }
+
+  std::ifstream csv(out / "bench.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",visited_cells_sum,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",contour_edges_sum,"), std::string::npos) << header;
+}
+
 TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
 {
   const std::filesystem::path out = freshDir("scene-set-bad");
