@@ -46,29 +46,41 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   }
   // Mip-map: levels 1..L in one N x N atlas; N-buffers: level k in layer k - 1 of an N x N x L texture;
   // dual-grid MSSM: level k in layer k of an (N + 1)^2 x (L + 1) texture.
-  auto hsm = vtkSmartPointer<vtkTextureObject>::New();
-  hsm->SetContext(window);
-  hsm->SetInternalFormat(GL_RG32F);
-  hsm->SetFormat(GL_RG);
-  hsm->SetDataType(GL_FLOAT);
-  hsm->SetMinificationFilter(vtkTextureObject::Nearest);
-  hsm->SetMagnificationFilter(vtkTextureObject::Nearest);
-  hsm->SetWrapS(vtkTextureObject::ClampToEdge);
-  hsm->SetWrapT(vtkTextureObject::ClampToEdge);
-  hsm->SetWrapR(vtkTextureObject::ClampToEdge);
-  const bool allocated = nBuffers || dual ? hsm->Allocate3D(textureSize, textureSize, layers, 2, VTK_FLOAT)
-                                          : hsm->Allocate2D(size, size, 2, VTK_FLOAT);
-  if (!allocated)
+  // The texture of the previous frame (or sub-light) is reused when it has the same layout and size: every
+  // level's dispatch rewrites the same texels each time, and a fresh 2048^2 atlas (32 MB, cleared) costs
+  // llvmpipe more wall time than the build itself.
+  const bool fits = this->Texture && this->Texture->GetContext() == window && this->TextureLayout == layout &&
+    this->TextureMapSize == size;
+  if (!fits)
   {
-    throw sl::GraphicsError(sl::format("cannot allocate the hierarchical shadow map (", size, "^2, ",
-      dual ? "dual-grid MSSM" : nBuffers ? "N-buffers" : "mip-map", ")"));
+    auto hsm = vtkSmartPointer<vtkTextureObject>::New();
+    hsm->SetContext(window);
+    hsm->SetInternalFormat(GL_RG32F);
+    hsm->SetFormat(GL_RG);
+    hsm->SetDataType(GL_FLOAT);
+    hsm->SetMinificationFilter(vtkTextureObject::Nearest);
+    hsm->SetMagnificationFilter(vtkTextureObject::Nearest);
+    hsm->SetWrapS(vtkTextureObject::ClampToEdge);
+    hsm->SetWrapT(vtkTextureObject::ClampToEdge);
+    hsm->SetWrapR(vtkTextureObject::ClampToEdge);
+    const bool allocated = nBuffers || dual ? hsm->Allocate3D(textureSize, textureSize, layers, 2, VTK_FLOAT)
+                                            : hsm->Allocate2D(size, size, 2, VTK_FLOAT);
+    if (!allocated)
+    {
+      throw sl::GraphicsError(sl::format("cannot allocate the hierarchical shadow map (", size, "^2, ",
+        dual ? "dual-grid MSSM" : nBuffers ? "N-buffers" : "mip-map", ")"));
+    }
+    if (layout == sl::HsmLayout::MipMap)
+    {
+      // The atlas's unused texels are exported: make them 0, not undefined (no level ever writes them).
+      const float zero[2] = { 0.0f, 0.0f };
+      glClearTexImage(hsm->GetHandle(), 0, GL_RG, GL_FLOAT, zero);
+    }
+    this->Texture = hsm;
+    this->TextureLayout = layout;
+    this->TextureMapSize = size;
   }
-  if (layout == sl::HsmLayout::MipMap)
-  {
-    // The atlas's unused texels are exported: make them 0, not undefined.
-    const float zero[2] = { 0.0f, 0.0f };
-    glClearTexImage(hsm->GetHandle(), 0, GL_RG, GL_FLOAT, zero);
-  }
+  vtkTextureObject* hsm = this->Texture;
   auto& program = this->Programs[layout];
   if (!program)
   {
@@ -107,6 +119,7 @@ sl::ShaderDefines vtkSLHsmPass::LayoutDefines(sl::HsmLayout layout)
 void vtkSLHsmPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->Programs.clear();
+  this->Texture = nullptr;
 }
 
 void vtkSLHsmPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -9,6 +9,9 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "passes/vtkSLStagePass.h"
 
+#include <vtkSmartPointer.h>
+#include <vtkTextureObject.h>
+
 #include <map>
 #include <memory>
 
@@ -37,4 +40,8 @@ private:
 
   std::map<sl::HsmLayout, std::unique_ptr<sl::ComputeProgram>> Programs;
   bool DualGrid = false;
+  // The last texture built, reused by the next frame when its layout and map size fit.
+  vtkSmartPointer<vtkTextureObject> Texture;
+  sl::HsmLayout TextureLayout = sl::HsmLayout::MipMap;
+  int TextureMapSize = 0;
 };

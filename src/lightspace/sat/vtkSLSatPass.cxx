@@ -33,19 +33,29 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
   // int32: b bits of fixed point so that a box of the whole map sums below 2^32 (SatBuild.glsl).
   const double fixedPointScale = sl::satFixedPointScale(size);
 
-  auto table = vtkSmartPointer<vtkTextureObject>::New();
-  table->SetContext(window);
-  table->SetInternalFormat(integer ? GL_RG32UI : GL_RG32F);
-  table->SetFormat(integer ? GL_RG_INTEGER : GL_RG);
-  table->SetDataType(integer ? GL_UNSIGNED_INT : GL_FLOAT);
-  table->SetMinificationFilter(vtkTextureObject::Nearest);
-  table->SetMagnificationFilter(vtkTextureObject::Nearest);
-  table->SetWrapS(vtkTextureObject::ClampToEdge);
-  table->SetWrapT(vtkTextureObject::ClampToEdge);
-  if (!table->Allocate2D(size, size, 2, integer ? VTK_UNSIGNED_INT : VTK_FLOAT))
+  // The table of the previous frame (or sub-light) is reused when it fits: both passes overwrite every
+  // texel, and a fresh 2048^2 table (32 MB) costs llvmpipe more wall time than building it.
+  const unsigned internalFormat = integer ? GL_RG32UI : GL_RG32F;
+  if (!this->Table || this->Table->GetContext() != window || this->Table->GetWidth() != static_cast<unsigned>(size) ||
+    this->Table->GetHeight() != static_cast<unsigned>(size) || this->TableInternalFormat != internalFormat)
   {
-    throw sl::GraphicsError("cannot allocate the summed-area table");
+    auto table = vtkSmartPointer<vtkTextureObject>::New();
+    table->SetContext(window);
+    table->SetInternalFormat(internalFormat);
+    table->SetFormat(integer ? GL_RG_INTEGER : GL_RG);
+    table->SetDataType(integer ? GL_UNSIGNED_INT : GL_FLOAT);
+    table->SetMinificationFilter(vtkTextureObject::Nearest);
+    table->SetMagnificationFilter(vtkTextureObject::Nearest);
+    table->SetWrapS(vtkTextureObject::ClampToEdge);
+    table->SetWrapT(vtkTextureObject::ClampToEdge);
+    if (!table->Allocate2D(size, size, 2, integer ? VTK_UNSIGNED_INT : VTK_FLOAT))
+    {
+      throw sl::GraphicsError("cannot allocate the summed-area table");
+    }
+    this->Table = table;
+    this->TableInternalFormat = internalFormat;
   }
+  vtkTextureObject* table = this->Table;
   glBindImageTexture(0, table->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, integer ? GL_RG32UI : GL_RG32F);
   frame.shadowMapLinear->Activate();
   for (int pass = 0; pass < 2; ++pass)
@@ -78,6 +88,7 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
 void vtkSLSatPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->Programs.clear();
+  this->Table = nullptr;
 }
 
 void vtkSLSatPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -6,6 +6,9 @@
 #include "gl/ComputeProgram.h"
 #include "passes/vtkSLStagePass.h"
 
+#include <vtkSmartPointer.h>
+#include <vtkTextureObject.h>
+
 #include <map>
 #include <memory>
 
@@ -29,4 +32,7 @@ private:
 
   // Compiled programs by (integer?, pass).
   std::map<std::pair<bool, int>, std::unique_ptr<sl::ComputeProgram>> Programs;
+  // The last table built, reused by the next frame when its size and format fit.
+  vtkSmartPointer<vtkTextureObject> Table;
+  unsigned TableInternalFormat = 0;
 };

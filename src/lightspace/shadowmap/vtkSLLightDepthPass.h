@@ -5,6 +5,8 @@
 #include "passes/vtkSLStagePass.h"
 
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkTextureObject.h>
 
 class vtkOpenGLFramebufferObject;
 
@@ -28,4 +30,7 @@ private:
 
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   sl::MeshDrawer Drawer;
+  // The last targets rendered, reused by the next frame (or sub-light) when the map size fits.
+  vtkSmartPointer<vtkTextureObject> LinearTarget;
+  vtkSmartPointer<vtkTextureObject> DepthTarget;
 };
