@@ -21,8 +21,11 @@ float cross2(vec2 u, vec2 v)
 }
 
 // llvmpipe caps the loop iterations of one shader invocation at 65535 (gallivm's loop limiter, all loops
-// together; measured: a flattened or nested cell loop stops at ~65k cells). The per-cell helpers below
-// therefore use no loops, so a kernel costs about one iteration per dual cell. (Processing 4 x 4 cells per
+// together, and counted once for the SIMD lanes running together: a loop runs until its last active lane is
+// done; measured: a flattened or nested cell loop stops at ~65k cells). The per-cell helpers below therefore
+// use no loops, so a kernel costs about one iteration per dual cell. Issue 13: the back-projection's clipping
+// had loops of constant bound (3 planes x up to 7 vertices), which cost ~25 counted iterations for every leaf
+// cell where any lane integrated an edge, and cut yfgl09's traversal of 256-texel kernels short. (Processing 4 x 4 cells per
 // iteration through macros lifted the cap but made the shader ~30x slower on llvmpipe.)
 
 // The edge that leaves the occluding run at side `leave` (corner leave occluding, leave + 1 free), if any:
@@ -106,50 +109,76 @@ vec2 backProject(vec2 tangent, float depth, vec2 receiverXy, float receiverDepth
   return receiverXy + (tangent * depth - receiverXy) * (receiverDepth / (receiverDepth - depth));
 }
 
-// Area of [-h, h]^2 clipped by the half-planes dot(planes[k].xy, x) <= planes[k].z (Sutherland-Hodgman).
-float clippedSquareArea(float halfSize, vec3 planes[3])
+// Where the ray from O through d (d != 0) leaves the square [-h, h]^2.
+vec2 squareBoundaryHit(vec2 d, float halfSize)
 {
-  vec2 polygon[8];
-  polygon[0] = vec2(-halfSize, -halfSize);
-  polygon[1] = vec2(halfSize, -halfSize);
-  polygon[2] = vec2(halfSize, halfSize);
-  polygon[3] = vec2(-halfSize, halfSize);
-  int count = 4;
-  for (int k = 0; k < 3; ++k)
+  return d * (halfSize / max(abs(d.x), abs(d.y)));
+}
+
+// The square's corner reached first walking counter-clockwise along its boundary from the side that the ray
+// through d meets (sides 0..3 = right, top, left, bottom), then `step` corners on.
+vec2 nextSquareCorner(vec2 d, int step, float halfSize)
+{
+  int side = abs(d.x) >= abs(d.y) ? (d.x > 0.0 ? 0 : 2) : (d.y > 0.0 ? 1 : 3);
+  int corner = (side + step) % 4;
+  return halfSize * vec2(corner == 0 || corner == 3 ? 1.0 : -1.0, corner <= 1 ? 1.0 : -1.0);
+}
+
+// One edge u -> v of a convex polygon clipped to {x: dot(away, x) >= offset}: its shoelace term, and where the
+// boundary leaves and re-enters the half-plane.
+void clipEdgeBeyondLine(vec2 u, vec2 v, vec2 away, float offset, inout float twiceArea, inout vec2 exitPoint,
+  inout vec2 entryPoint)
+{
+  float su = dot(away, u) - offset;
+  float sv = dot(away, v) - offset;
+  if (su >= 0.0 && sv >= 0.0)
   {
-    vec2 clipped[8];
-    int clippedCount = 0;
-    for (int i = 0; i < 7; ++i)
-    {
-      if (i >= count)
-      {
-        break;
-      }
-      vec2 current = polygon[i];
-      vec2 following = polygon[(i + 1) % count];
-      float currentSide = dot(planes[k].xy, current) - planes[k].z;
-      float followingSide = dot(planes[k].xy, following) - planes[k].z;
-      if (currentSide <= 0.0)
-      {
-        clipped[clippedCount++] = current;
-      }
-      if ((currentSide <= 0.0) != (followingSide <= 0.0))
-      {
-        clipped[clippedCount++] = current + (following - current) * (currentSide / (currentSide - followingSide));
-      }
-    }
-    polygon = clipped;
-    count = clippedCount;
+    twiceArea += cross2(u, v);
   }
+  else if (su >= 0.0)
+  {
+    exitPoint = u + (v - u) * (su / (su - sv));
+    twiceArea += cross2(u, exitPoint);
+  }
+  else if (sv >= 0.0)
+  {
+    entryPoint = u + (v - u) * (su / (su - sv));
+    twiceArea += cross2(entryPoint, v);
+  }
+}
+
+// |L ∩ {the sector from `first` counter-clockwise to `second`, beyond the line first-second}|, cross(first,
+// second) > 0: the square ∩ sector polygon (O, the two ray hits, the corners between them) clipped by the one
+// line. A fixed vertex list with no loops and no indexed arrays: llvmpipe counts every loop iteration of an
+// invocation against its cap, for every SIMD lane together, and a Sutherland-Hodgman clip here cost ~25 of them
+// per edge (it cut yfgl09's traversal of 256-texel kernels short, issue 13). Mirror: sl::sectorBeyondEdgeArea.
+float sectorBeyondEdgeArea(vec2 first, vec2 second, float halfSize)
+{
+  vec2 hitFirst = squareBoundaryHit(first, halfSize);
+  vec2 hitSecond = squareBoundaryHit(second, halfSize);
+  vec2 corner1 = nextSquareCorner(first, 0, halfSize);
+  vec2 corner2 = nextSquareCorner(first, 1, halfSize);
+  if (!(cross2(first, corner1) >= 0.0 && cross2(corner1, second) >= 0.0))
+  {
+    corner1 = hitSecond; // absent corners become zero-length edges
+    corner2 = hitSecond;
+  }
+  else if (!(cross2(first, corner2) >= 0.0 && cross2(corner2, second) >= 0.0))
+  {
+    corner2 = hitSecond;
+  }
+  vec2 direction = second - first;
+  vec2 away = vec2(direction.y, -direction.x); // right of first -> second, where O is not
+  float offset = dot(away, first);
   float twiceArea = 0.0;
-  for (int i = 0; i < 7; ++i)
-  {
-    if (i >= count)
-    {
-      break;
-    }
-    twiceArea += cross2(polygon[i], polygon[(i + 1) % count]);
-  }
+  vec2 exitPoint = vec2(0.0);
+  vec2 entryPoint = vec2(0.0);
+  clipEdgeBeyondLine(vec2(0.0), hitFirst, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(hitFirst, corner1, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(corner1, corner2, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(corner2, hitSecond, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(hitSecond, vec2(0.0), away, offset, twiceArea, exitPoint, entryPoint);
+  twiceArea += cross2(exitPoint, entryPoint); // O lies outside: the boundary crosses the line twice or never
   return 0.5 * abs(twiceArea);
 }
 
@@ -161,12 +190,6 @@ float radialEdgeArea(vec2 a, vec2 b, float halfSize)
   {
     return 0.0;
   }
-  vec2 first = sweep > 0.0 ? a : b;
-  vec2 second = sweep > 0.0 ? b : a;
-  vec2 direction = second - first;
-  vec2 awayFromO = vec2(direction.y, -direction.x);
-  vec3 planes[3] = vec3[3](vec3(first.y, -first.x, 0.0), vec3(-second.y, second.x, 0.0),
-    vec3(-awayFromO, -dot(awayFromO, first)));
-  float area = clippedSquareArea(halfSize, planes);
+  float area = sectorBeyondEdgeArea(sweep > 0.0 ? a : b, sweep > 0.0 ? b : a, halfSize); // one inlined copy
   return cross2(b - a, -a) < 0.0 ? area : -area;
 }

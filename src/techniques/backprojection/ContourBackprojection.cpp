@@ -1,5 +1,6 @@
 #include "techniques/backprojection/ContourBackprojection.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -114,6 +115,85 @@ double clippedSquareArea(double halfSize, const std::array<glm::dvec3, 3>& plane
   return 0.5 * std::abs(twiceArea);
 }
 
+namespace
+{
+
+// Where the ray from O through d (d != 0) leaves the square [-h, h]^2.
+glm::dvec2 squareBoundaryHit(const glm::dvec2& d, double halfSize)
+{
+  return d * (halfSize / std::max(std::abs(d.x), std::abs(d.y)));
+}
+
+// The square's corner reached first walking counter-clockwise along its boundary from the side that the ray
+// through d meets: sides 0..3 = right, top, left, bottom; their counter-clockwise ends (h, h), (-h, h),
+// (-h, -h), (h, -h).
+glm::dvec2 nextSquareCorner(const glm::dvec2& d, int step, double halfSize)
+{
+  const int side = std::abs(d.x) >= std::abs(d.y) ? (d.x > 0.0 ? 0 : 2) : (d.y > 0.0 ? 1 : 3);
+  const int corner = (side + step) % 4;
+  return halfSize * glm::dvec2(corner == 0 || corner == 3 ? 1.0 : -1.0, corner <= 1 ? 1.0 : -1.0);
+}
+
+// One edge u -> v of a convex polygon clipped to {x: beyond(x) >= 0}: its shoelace term, and where the
+// boundary leaves and re-enters the half-plane (the chord between them closes the clipped polygon).
+void clipEdgeBeyondLine(const glm::dvec2& u, const glm::dvec2& v, const glm::dvec2& away, double offset, double& twiceArea,
+  glm::dvec2& exitPoint, glm::dvec2& entryPoint)
+{
+  const double su = glm::dot(away, u) - offset;
+  const double sv = glm::dot(away, v) - offset;
+  if (su >= 0.0 && sv >= 0.0)
+  {
+    twiceArea += cross(u, v);
+  }
+  else if (su >= 0.0)
+  {
+    exitPoint = u + (v - u) * (su / (su - sv));
+    twiceArea += cross(u, exitPoint);
+  }
+  else if (sv >= 0.0)
+  {
+    entryPoint = u + (v - u) * (su / (su - sv));
+    twiceArea += cross(entryPoint, v);
+  }
+}
+
+} // namespace
+
+double sectorBeyondEdgeArea(const glm::dvec2& first, const glm::dvec2& second, double halfSize)
+{
+  // P = square ∩ sector: O, the ray hits F and G, and the corners met between them (at most two: the sector
+  // is narrower than pi). An absent corner is replaced by G, a zero-length edge.
+  const glm::dvec2 hitFirst = squareBoundaryHit(first, halfSize);
+  const glm::dvec2 hitSecond = squareBoundaryHit(second, halfSize);
+  const auto inSector = [&](const glm::dvec2& c) { return cross(first, c) >= 0.0 && cross(c, second) >= 0.0; };
+  glm::dvec2 corner1 = nextSquareCorner(first, 0, halfSize);
+  glm::dvec2 corner2 = nextSquareCorner(first, 1, halfSize);
+  if (!inSector(corner1))
+  {
+    corner1 = hitSecond;
+    corner2 = hitSecond;
+  }
+  else if (!inSector(corner2))
+  {
+    corner2 = hitSecond;
+  }
+  // P ∩ {dot(away, x - first) >= 0}, away = right of first -> second, the side O is not on.
+  const glm::dvec2 direction = second - first;
+  const glm::dvec2 away(direction.y, -direction.x);
+  const double offset = glm::dot(away, first);
+  const glm::dvec2 origin(0.0);
+  double twiceArea = 0.0;
+  glm::dvec2 exitPoint(0.0);
+  glm::dvec2 entryPoint(0.0);
+  clipEdgeBeyondLine(origin, hitFirst, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(hitFirst, corner1, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(corner1, corner2, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(corner2, hitSecond, away, offset, twiceArea, exitPoint, entryPoint);
+  clipEdgeBeyondLine(hitSecond, origin, away, offset, twiceArea, exitPoint, entryPoint);
+  twiceArea += cross(exitPoint, entryPoint); // O lies outside: the boundary crosses the line twice or never
+  return 0.5 * std::abs(twiceArea);
+}
+
 double radialEdgeArea(const glm::dvec2& a, const glm::dvec2& b, double halfSize)
 {
   // The sector of rays from O through the edge, oriented counter-clockwise from `first` to `second`.
@@ -124,15 +204,7 @@ double radialEdgeArea(const glm::dvec2& a, const glm::dvec2& b, double halfSize)
   }
   const glm::dvec2 first = sweep > 0.0 ? a : b;
   const glm::dvec2 second = sweep > 0.0 ? b : a;
-  // cross(first, x) >= 0, cross(x, second) >= 0, and x beyond the edge's line (the side away from O).
-  const glm::dvec2 direction = second - first;
-  const glm::dvec2 awayFromO(direction.y, -direction.x); // right of first -> second, where O is not
-  std::array<glm::dvec3, 3> planes = {
-    glm::dvec3(first.y, -first.x, 0.0),   // -cross(first, x) <= 0
-    glm::dvec3(-second.y, second.x, 0.0), // -cross(x, second) <= 0
-    glm::dvec3(-awayFromO, -glm::dot(awayFromO, first)), // dot(awayFromO, x - first) >= 0
-  };
-  const double area = clippedSquareArea(halfSize, planes, 3);
+  const double area = sectorBeyondEdgeArea(first, second, halfSize);
   // Crossing outwards enters the occluder when O is on the edge's right (the occluder on its left).
   return cross(b - a, -a) < 0.0 ? area : -area;
 }

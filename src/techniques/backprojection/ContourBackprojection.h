@@ -54,7 +54,14 @@ glm::dvec2 backProject(const glm::dvec2& tangent, double depth, const glm::dvec2
 // light [-h, h]^2 around O = (0, 0).
 double radialEdgeArea(const glm::dvec2& a, const glm::dvec2& b, double halfSize);
 
-// Area of the convex polygon [-h, h]^2 ∩ {x: dot(n_k, x) <= c_k for k < planes}.
+// |L ∩ {x in the sector from `first` counter-clockwise to `second`, beyond the line first-second}| for the
+// square light L = [-h, h]^2 around O, cross(first, second) > 0: the square ∩ sector polygon (at most five
+// vertices, a fixed list) clipped by the one line, with no loops and no indexed arrays, so that the GLSL twin
+// costs no loop iterations (llvmpipe caps them per invocation) and no per-lane scatters.
+double sectorBeyondEdgeArea(const glm::dvec2& first, const glm::dvec2& second, double halfSize);
+
+// Area of the convex polygon [-h, h]^2 ∩ {x: dot(n_k, x) <= c_k for k < planes} (Sutherland-Hodgman; the
+// tests' closed form for sectorBeyondEdgeArea and radialEdgeArea).
 double clippedSquareArea(double halfSize, const std::array<glm::dvec3, 3>& planes, int planeCount);
 
 } // namespace sl
