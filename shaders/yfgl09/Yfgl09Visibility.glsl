@@ -11,8 +11,7 @@
 // light, shadow map, parameters), and image stores give a fragment the w x h outputs of a packet.
 //
 // Written for the shader compiler as much as for the GPU: every GLSL function is inlined, so the back-projection
-// (radialEdgeArea, large once its clipping loops are unrolled) has exactly one call site, the traversal one
-// leaf site, and the loops over a packet's pixels have a uniform bound (packetSize) the compiler cannot unroll.
+// (radialEdgeArea) has exactly one call site in the packet pass, the traversal one leaf site, and the loops over a packet's pixels have a uniform bound (packetSize) the compiler cannot unroll.
 // One program per pass then serves every packet size (llvmpipe compiled the unrolled 3 x 3 variant for over
 // ten minutes). Loops over pixels count against llvmpipe's 65535 loop iterations per invocation: a packet
 // whose work outgrows PACKET_BUDGET is finished pixel-wise.
@@ -318,6 +317,10 @@ bool overBudget()
 const int TRAVERSAL_DONE = 0;
 const int TRAVERSAL_NULL = 1;
 const int TRAVERSAL_OVER_BUDGET = 2;
+// The GL's loop cap stopped the traversal (llvmpipe: 65535 loop iterations per invocation, counted for the SIMD
+// lanes together). The cap ends a loop without any of its exits being taken: the hierarchical loop below has
+// none but its returns, and the brute force notes its last cell, so falling out of either is detected exactly.
+const int TRAVERSAL_CUT_SHORT = 3;
 
 // Alg. 2 over the cells [regionLo, regionHi] (at least 2 x 2: a kernel has a texel): every cell (hierarchy
 // off, the MSSM-only brute force) or Alg. 3 through the dual-grid MSSM from the lowest node covering the region
@@ -329,8 +332,10 @@ int traverse(ivec2 regionLo, ivec2 regionHi)
   packetWork = 0;
 #if HIERARCHY == HIERARCHY_OFF
   ivec2 extent = regionHi - regionLo + 1;
+  bool reachedLastCell = false;
   for (int k = 0; k < extent.x * extent.y; ++k)
   {
+    reachedLastCell = k == extent.x * extent.y - 1;
     ++visitedNodes;
     ivec2 cell = regionLo + ivec2(k % extent.x, k / extent.x);
     if (nodeComparisonRange(0, cell) && !leafCell(cell))
@@ -342,7 +347,7 @@ int traverse(ivec2 regionLo, ivec2 regionHi)
       return TRAVERSAL_OVER_BUDGET;
     }
   }
-  return TRAVERSAL_DONE;
+  return reachedLastCell ? TRAVERSAL_DONE : TRAVERSAL_CUT_SHORT;
 #else
   ivec2 extent = regionHi - regionLo + 1;
   int rootLevel = 1;
@@ -405,7 +410,7 @@ int traverse(ivec2 regionLo, ivec2 regionHi)
       return TRAVERSAL_OVER_BUDGET;
     }
   }
-  return TRAVERSAL_DONE;
+  return TRAVERSAL_CUT_SHORT; // only the loop cap leaves the loop without returning
 #endif
 }
 
@@ -539,6 +544,7 @@ void main()
     }
     else
     {
+      // Over the budget or cut short by the loop cap: the pixel pass computes the packet's pixels.
       packetClass = outcome == TRAVERSAL_NULL ? PACKET_CLASS_CAUGHT_NULL : PACKET_CLASS_OVER_BUDGET;
     }
   }
@@ -560,11 +566,11 @@ void main()
   }
   pixelCount = 0;
   addReceiver(contour);
-  traverse(contour.lo - 1, contour.hi);
+  int outcome = traverse(contour.lo - 1, contour.hi);
   outVisibility = finalVisibility(0);
   outKernelTexels = contour.kernelTexels;
   outCoherence = packet.y;
-  outPacketClass = packet.x;
+  outPacketClass = outcome == TRAVERSAL_CUT_SHORT ? PACKET_CLASS_CUT_SHORT : packet.x;
   outDivergence = packet.z;
   outVisitedNodes = packet.w + float(visitedNodes);
   outContourEdges = float(contourEdges);

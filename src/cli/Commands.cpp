@@ -4,9 +4,12 @@
 
 #include "core/Error.h"
 #include "core/Image.h"
+#include "frame/FrameResult.h"
 #include "scene/Scene.h"
 #include "techniques/Registry.h"
 
+#include <algorithm>
+#include <iomanip>
 #include <regex>
 #include <set>
 
@@ -56,6 +59,21 @@ std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneF
     }
   }
   return dropped;
+}
+
+std::size_t reportCutShortPixels(const FrameResult& frame, std::ostream& log)
+{
+  const std::optional<CutShortPixels> cutShort = cutShortPixels(frame);
+  if (!cutShort || cutShort->count == 0)
+  {
+    return 0;
+  }
+  const double percent = 100.0 * static_cast<double>(cutShort->count) /
+    static_cast<double>(std::max(1, frame.resolution.x * frame.resolution.y));
+  log << "shadowlab: warning: " << frame.technique << ": " << cutShort->count << " pixel(s) (" << std::fixed
+      << std::setprecision(2) << percent << std::defaultfloat << " % of the image) were cut short and are not exact ("
+      << cutShort->buffer << " = " << cutShort->label << "; counted as cut_short_pixels in stats.json)\n";
+  return cutShort->count;
 }
 
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile)

@@ -13,6 +13,7 @@
 namespace sl
 {
 
+struct FrameResult;
 struct Scene;
 struct TechniqueDescriptor;
 
@@ -101,6 +102,9 @@ void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::
 
 // One warning line per object whose mesh had degenerate triangles (dropped by the loader); returns their sum.
 std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneFile, std::ostream& log);
+// One warning line when some pixels of `frame` were cut short (a GL's loop cap, a budget): their values are
+// not exact. Returns how many.
+std::size_t reportCutShortPixels(const FrameResult& frame, std::ostream& log);
 
 // The files a command reads for a scene (the scene file, its meshes and alpha textures): --out must not hold them.
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile);

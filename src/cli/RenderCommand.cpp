@@ -36,6 +36,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   context.lightIndex = options.lightIndex;
   context.droppedDegenerateTriangles = dropped;
   writeFrameOutputs(frame, context, output);
+  reportCutShortPixels(frame, log);
   if (!options.quiet)
   {
     double gpuMs = 0.0;

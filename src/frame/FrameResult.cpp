@@ -1,11 +1,34 @@
 #include "frame/FrameResult.h"
 
+#include <algorithm>
+
 namespace sl
 {
 
 const NamedImage* FrameResult::find(const std::string& name) const
 {
   return findNamed(buffers, name);
+}
+
+std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame)
+{
+  if (!frame.descriptor)
+  {
+    return std::nullopt;
+  }
+  for (const BufferSpec& spec : frame.descriptor->buffers)
+  {
+    const NamedImage* buffer = spec.cutShortCode >= 0 ? frame.find(spec.name) : nullptr;
+    if (!buffer)
+    {
+      continue;
+    }
+    CutShortPixels marked{ spec.name, spec.categoryLabels.at(static_cast<std::size_t>(spec.cutShortCode)), 0 };
+    const float code = static_cast<float>(spec.cutShortCode);
+    marked.count = static_cast<std::size_t>(std::count(buffer->image.data.begin(), buffer->image.data.end(), code));
+    return marked;
+  }
+  return std::nullopt;
 }
 
 const std::vector<BufferSpec>& commonBufferSpecs()

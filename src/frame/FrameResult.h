@@ -63,6 +63,16 @@ struct FrameResult
   const NamedImage* find(const std::string& name) const;
 };
 
+// Pixels whose value was cut short (BufferSpec::cutShortCode of the technique's categorical buffers): not exact.
+struct CutShortPixels
+{
+  std::string buffer; // the categorical buffer that marks them, e.g. "packet_class"
+  std::string label;  // the marking category's label
+  std::size_t count = 0;
+};
+// The technique's cut-short marks in `frame`'s buffers; nullopt for a technique that declares none.
+std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame);
+
 // The buffers every technique's buffers.vti has, with their documentation (README lists them).
 const std::vector<BufferSpec>& commonBufferSpecs();
 // The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.

@@ -48,6 +48,10 @@ struct BufferSpec
   // shader preamble defines `<NAME>_<IDENTIFIER> <code>` (e.g. CLASSIFICATION_PENUMBRA_OVER_BUDGET 4), which
   // the shader writes; the CPU mirror's enum is the one declaration both are made from.
   std::vector<std::string> categoryIdentifiers;
+  // The category that marks a pixel whose value was cut short (a GL's cap on loop iterations, a budget) and
+  // is therefore not exact, or -1. The pipeline counts such pixels (`cut_short_pixels` in stats.json), render
+  // and bench warn about them, and sub-light combination keeps the mark from any sub-light.
+  int cutShortCode = -1;
 };
 
 // An integer the technique's shaders and its C++ share (a loop budget, the bound of an array, the codes of a
@@ -69,6 +73,7 @@ struct Category
   Enum value;
   const char* identifier;
   const char* label;
+  bool cutShort = false; // BufferSpec::cutShortCode
 };
 
 // A categorical buffer whose codes are `categories`, listed in code order (SL_CHECKed: code i is entry i).
@@ -83,6 +88,11 @@ BufferSpec categoricalBuffer(std::string name, std::string doc, const Category<E
       categories[code].identifier, " is listed out of code order");
     spec.categoryIdentifiers.push_back(categories[code].identifier);
     spec.categoryLabels.push_back(categories[code].label);
+    if (categories[code].cutShort)
+    {
+      SL_CHECK_MSG(spec.cutShortCode < 0, "buffer ", spec.name, ": more than one cut-short category");
+      spec.cutShortCode = static_cast<int>(code);
+    }
   }
   return spec;
 }

@@ -34,15 +34,18 @@ void vtkSLSubLightAccumulatePass::Execute(const vtkRenderState*)
   this->Program->setInt("imageHeight", frame.height());
   this->Program->setInt("firstSubLight", this->SubLightIndex == 0 ? 1 : 0);
   std::map<std::string, sl::SubLightCombine> combineRules = { { "visibility", sl::SubLightCombine::Mean } };
+  std::map<std::string, int> cutShortCodes;
   for (const sl::BufferSpec& buffer : frame.technique->buffers)
   {
     combineRules[buffer.name] = buffer.subLightCombine;
+    cutShortCodes[buffer.name] = buffer.cutShortCode;
   }
   for (const std::string& output : frame.technique->outputNames())
   {
     const sl::SubLightCombine rule = combineRules.at(output);
     const double weight = rule == sl::SubLightCombine::Mean ? 1.0 / this->SubLightCount : rule == sl::SubLightCombine::Sum ? 1.0 : 0.0;
     this->Program->setFloat("weight", weight);
+    this->Program->setFloat("cutShortCode", static_cast<float>(cutShortCodes.count(output) ? cutShortCodes.at(output) : -1));
     glBindImageTexture(0, frame.techniqueTargets.at(output)->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     glBindImageTexture(1, this->Combined->at(output)->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     this->Program->dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });

@@ -328,6 +328,11 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   if (!request.gbufferOnly)
   {
     readBackLightSpace(frame, result);
+    // Counted beside the technique's own statistics so that stats.json and bench's columns carry it.
+    if (const std::optional<CutShortPixels> cutShort = cutShortPixels(result))
+    {
+      result.techniqueStatistics["cut_short_pixels"] = static_cast<double>(cutShort->count);
+    }
   }
   if (frame.shadedImage)
   {

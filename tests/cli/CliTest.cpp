@@ -10,6 +10,8 @@
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
 
+#include "techniques/yfgl09/Yfgl09Technique.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -248,6 +250,49 @@ TEST(CliRender, SuccessfulRunHasCleanStderr)
       temp.path());
   EXPECT_EQ(quiet.exitCode, 0) << quiet.describe();
   EXPECT_EQ(quiet.err, "") << quiet.describe();
+}
+
+TEST(CliRender, PixelsCutShortAreWarnedAboutAndCounted)
+{
+  // yfgl09's brute force (hierarchy off) over ~400-texel kernels at the default 1024^2 map outruns llvmpipe's
+  // loop cap (issue 13): one warning line naming the count and the flag, the count in stats.json; also with
+  // --quiet, since the image is not what the user asked for.
+  TempDir temp;
+  const auto render = [&](const std::string& outName, const std::vector<std::string>& settings) {
+    std::vector<std::string> arguments = { "render", datasetScene("stacked-occluders").string(), "--technique", "yfgl09",
+      "--resolution", "16x12", "--quiet", "--out", (temp.path() / outName).string(), "--scene-set", "/lights/0/center/1=4",
+      "--scene-set", "/lights/0/size=2", "--scene-set", "/objects/2/center=[0.2, 3.0, -0.4]", "--scene-set",
+      "/objects/2/size=[0.8, 0.6]" };
+    for (const std::string& setting : settings)
+    {
+      arguments.insert(arguments.end(), { "--set", setting });
+    }
+    return runShadowlab(arguments, temp.path());
+  };
+  const RunResult run = render("cut", { "hierarchy=off" });
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const Json stats = Json::parse(readFile(temp.path() / "cut" / "stats.json"));
+  const double cutShort = stats.at("technique_statistics").at("cut_short_pixels").get<double>();
+  const std::vector<NamedImage> arrays = readVti(temp.path() / "cut" / "buffers.vti");
+  const NamedImage* classes = findArray(arrays, "packet_class");
+  ASSERT_NE(classes, nullptr);
+  EXPECT_EQ(cutShort, static_cast<double>(std::count(classes->image.data.begin(), classes->image.data.end(),
+                        static_cast<float>(PacketClass::CutShort))));
+  if (stats.value("gl_renderer", "").find("llvmpipe") == std::string::npos)
+  {
+    GTEST_SKIP() << "no loop cap on " << stats.value("gl_renderer", "");
+  }
+  EXPECT_GT(cutShort, 0.0);
+  EXPECT_EQ(run.errLines(), 1u) << run.describe();
+  EXPECT_NE(run.err.find("warning: yfgl09: " + std::to_string(static_cast<int>(cutShort)) + " pixel(s)"), std::string::npos) << run.describe();
+  EXPECT_NE(run.err.find("cut short"), std::string::npos) << run.describe();
+
+  // The same scene with the hierarchy (the default): nothing cut short, a clean stderr.
+  const RunResult exact = render("exact", {});
+  ASSERT_EQ(exact.exitCode, 0) << exact.describe();
+  EXPECT_EQ(exact.err, "") << exact.describe();
+  const Json exactStats = Json::parse(readFile(temp.path() / "exact" / "stats.json"));
+  EXPECT_EQ(exactStats.at("technique_statistics").at("cut_short_pixels").get<double>(), 0.0);
 }
 
 // ---- render: errors ---------------------------------------------------------------------------------------

@@ -20,7 +20,9 @@ const Category<BackprojectionClass> backprojectionCategories[] = {
   { BackprojectionClass::Lit, "LIT", "lit" },
   { BackprojectionClass::Umbra, "UMBRA", "umbra" },
   { BackprojectionClass::Penumbra, "PENUMBRA", "penumbra" },
-  { BackprojectionClass::OverLoopBudget, "OVER_LOOP_BUDGET", "penumbra over the loop budget" },
+  // Over the budget, a GL that caps loop iterations (llvmpipe) cuts the pixel short: counted as cut short
+  // (conservatively: on GLs without such a cap these pixels are exact).
+  { BackprojectionClass::OverLoopBudget, "OVER_LOOP_BUDGET", "penumbra over the loop budget", true },
 };
 
 } // namespace

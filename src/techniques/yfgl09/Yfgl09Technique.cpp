@@ -29,6 +29,7 @@ const Category<PacketClass> packetCategories[] = {
   { PacketClass::NonCoherent, "NON_COHERENT", "non-coherent (predicted)" },
   { PacketClass::CaughtNull, "CAUGHT_NULL", "caught null (Eq. 3)" },
   { PacketClass::OverBudget, "OVER_BUDGET", "packet over the loop budget" },
+  { PacketClass::CutShort, "CUT_SHORT", "cut short by the loop cap", true },
 };
 
 BufferSpec packetClassBuffer()

@@ -33,7 +33,8 @@ enum class PacketClass
   Coherent = 2,    // computed packet-wise
   NonCoherent = 3, // predicted non-coherent (P_d > T_d or Eq. 6 > 1), computed pixel-wise
   CaughtNull = 4,  // a null status (Eq. 3) met during the packet traversal, computed pixel-wise
-  OverBudget = 5   // the packet traversal outgrew yfgl09PacketBudget, computed pixel-wise
+  OverBudget = 5,  // the packet traversal outgrew yfgl09PacketBudget (or was cut short), computed pixel-wise
+  CutShort = 6     // the pixel's own traversal was stopped by the GL's loop cap: its value is not exact (GPU only)
 };
 // Packet work (visited nodes plus the loop iterations over the packet's pixels: node ranges, resolved statuses,
 // integrated edges) beyond which a packet is finished pixel-wise: GLs that cap loop iterations per invocation
