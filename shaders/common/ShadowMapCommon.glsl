@@ -9,6 +9,7 @@ uniform mat4 lightViewFromWorld;
 uniform mat4 lightClipFromWorld;
 uniform int shadowMapSize;
 uniform int lightIsPerspective;
+uniform vec4 lightDepthToClip;  // clip.z = -x d + y, clip.w = -z d + w for linear depth d
 uniform float shadowTexelExtent; // texel size in window units (tangent for perspective, world for ortho)
 
 // xy = uvTexels, z = depthLin
@@ -52,4 +53,13 @@ float storedDepth(vec2 uvTexels)
 float shadowTest(vec2 uvTexels, float comparisonDepthLin)
 {
   return comparisonDepthLin <= storedDepth(uvTexels) ? 1.0 : 0.0;
+}
+
+// The depth the map's depth buffer stores for linear depth `depthLin`: window z in [0, 1] (hyperbolic for a
+// perspective light). CPU twin: LightView::windowDepth.
+float windowDepth(float depthLin)
+{
+  float clipZ = -lightDepthToClip.x * depthLin + lightDepthToClip.y;
+  float clipW = -lightDepthToClip.z * depthLin + lightDepthToClip.w;
+  return 0.5 * clipZ / clipW + 0.5;
 }

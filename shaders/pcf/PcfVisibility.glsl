@@ -12,20 +12,12 @@
 #include "common/SamplingPatterns.glsl"
 
 uniform sampler2DShadow shadowMapCompare;      // hardware depth, GL_LINEAR + GL_COMPARE_REF_TO_TEXTURE (LEQUAL)
-uniform vec4 lightDepthToClip;                 // clip.z = -x d + y, clip.w = -z d + w for linear depth d
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
 layout(location = OUT_TAPS) out float outTaps;
 layout(location = OUT_TEXEL_RATIO) out float outTexelRatio;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
-
-float windowDepth(float depthLin)
-{
-  float clipZ = -lightDepthToClip.x * depthLin + lightDepthToClip.y;
-  float clipW = -lightDepthToClip.z * depthLin + lightDepthToClip.w;
-  return 0.5 * clipZ / clipW + 0.5;
-}
 
 float tap(vec2 uvTexels, float comparisonDepthLin)
 {

@@ -257,12 +257,11 @@ void cornerComparison(vec2 position, float d, float bias, inout vec2 range, inou
   range = vec2(min(range.x, depth), max(range.y, depth));
 }
 
-// [z_pmin, z_pmax] over the samples of the 2^level x 2^level cells from firstCell: the comparison depths
-// (comparisonDepthRange, without its loop) of the receivers whose kernels share a cell with the node; false when
+// [z_pmin, z_pmax] over the samples of the cells [firstCell, lastCell]: the comparison depths
+// (comparisonDepthRange, without its loop) of the receivers whose kernels share a cell with them; false when
 // none does (no receiver integrates an edge there).
-bool nodeComparisonRange(int level, ivec2 firstCell)
+bool comparisonRangeOverCells(ivec2 firstCell, ivec2 lastCell)
 {
-  ivec2 lastCell = firstCell + (1 << level) - 1;
   ivec2 lo = clamp(firstCell, ivec2(0), ivec2(shadowMapSize - 1));
   ivec2 hi = clamp(lastCell + 1, ivec2(0), ivec2(shadowMapSize - 1));
   nodeComparison = vec2(1e30, -1e30);
@@ -295,6 +294,12 @@ bool nodeComparisonRange(int level, ivec2 firstCell)
   }
   packetWork += pixelCount;
   return anyShares;
+}
+
+// The same over a node: the 2^level x 2^level cells from firstCell.
+bool nodeComparisonRange(int level, ivec2 firstCell)
+{
+  return comparisonRangeOverCells(firstCell, firstCell + (1 << level) - 1);
 }
 
 // Fig. 6: false when the node's samples are all behind the comparison depths (case 4) or all in front of them
@@ -518,11 +523,23 @@ void main()
       coherence = max(coherence, 1.0 - sharedArea / float(extent.x * extent.y)); // Eq. 2
     }
     vec2 kernelRange = mssmSampleRange(samplesLo, samplesHi);
+#if COHERENCE_DEPTH == COHERENCE_DEPTH_COMPARISON
+    comparisonRangeOverCells(lo - 1, hi); // the statuses' range (Eq. 3) over the packet kernel
+    packetDepth = nodeComparison;
+#elif COHERENCE_DEPTH == COHERENCE_DEPTH_WINDOW
+    packetDepth = vec2(windowDepth(packetDepth.x), windowDepth(packetDepth.y));
+    kernelRange = vec2(windowDepth(kernelRange.x), windowDepth(kernelRange.y));
+#endif
     float overlap = max(min(packetDepth.y, kernelRange.y) - max(packetDepth.x, kernelRange.x), 0.0);
     float nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
     int packetWidth = widthTexels(lo, hi);
     divergence = 1.0 - pow(1.0 - nullProbability, float(packetWidth) * float(packetWidth)); // Eq. 5
-    float packetCost = nodeCost(packetWidth) + (param_edge_cost + param_visibility_cost * float(pixelCount)) * float(packetWidth); // Eq. 6
+#if PACKET_COST == PACKET_COST_PAPER
+    float packetPixels = float(packetSize.x * packetSize.y); // Q_v w h
+#else
+    float packetPixels = float(pixelCount);
+#endif
+    float packetCost = nodeCost(packetWidth) + (param_edge_cost + param_visibility_cost * packetPixels) * float(packetWidth); // Eq. 6
 #if COHERENCE_TEST == COHERENCE_TEST_BOTH || COHERENCE_TEST == COHERENCE_TEST_DIVERGENCE
     packetClass = divergence > param_divergence_threshold ? PACKET_CLASS_NON_COHERENT : packetClass;
 #endif

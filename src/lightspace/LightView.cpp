@@ -64,6 +64,12 @@ std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& polygon, cons
 
 } // namespace
 
+double LightView::windowDepth(double depthLin) const
+{
+  const glm::dvec4 clip = clipFromView * glm::dvec4(0.0, 0.0, -depthLin, 1.0);
+  return 0.5 * clip.z / clip.w + 0.5;
+}
+
 double LightView::texelWorldSize(double depthLin) const
 {
   const double extent = std::max(window.y - window.x, window.w - window.z) / resolution;

@@ -83,6 +83,9 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
     { "near-light", { "shadow_map_size=128", "coherence_test=off", "packet_width=2", "packet_height=3" } },
     { "contact", { "shadow_map_size=256", "hierarchy=off", "coherence_test=off" } },
     { "planar-occluder", { "shadow_map_size=256", "receiver_plane_bias=off", "packet_width=1", "packet_height=1" } },
+    // Eq. 4 on the statuses' comparison depths / in window depth, Eq. 6 over the penumbra pixels (issue 13).
+    { "bunny", { "shadow_map_size=256", "coherence_depth=window", "packet_cost=penumbra_pixels" } },
+    { "stacked-occluders", { "shadow_map_size=256", "coherence_depth=comparison", "coherence_test=divergence" } },
   };
   const int width = 64;
   const int height = 48;
@@ -183,6 +186,9 @@ TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
       }
     }
     variants.push_back({ "shadow_map_size=128" });
+    // Whatever the predictor (issue 13): the depths of Eq. 4 and the packet term of Eq. 6.
+    variants.push_back({ "shadow_map_size=128", "coherence_depth=comparison" });
+    variants.push_back({ "shadow_map_size=128", "coherence_depth=window", "packet_cost=penumbra_pixels" });
     double worst = 0.0;
     for (const std::vector<std::string>& settings : variants)
     {

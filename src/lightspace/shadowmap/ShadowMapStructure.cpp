@@ -49,6 +49,14 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
   setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
   setIntIfUsed(program, "shadowMapSize", view.resolution);
   setIntIfUsed(program, "lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
+  if (program->IsUniformUsed("lightDepthToClip"))
+  {
+    // windowDepth: clip.z = -P22 d + P32, clip.w = -P23 d + P33 for linear depth d (z_view = -d).
+    const glm::dmat4& projection = view.clipFromView;
+    const float depthToClip[4] = { static_cast<float>(projection[2][2]), static_cast<float>(projection[3][2]),
+      static_cast<float>(projection[2][3]), static_cast<float>(projection[3][3]) };
+    program->SetUniform4f("lightDepthToClip", depthToClip);
+  }
   // texelWorldSize(depthLin) = shadowTexelExtent * depthLin (perspective) or shadowTexelExtent.
   setFloatIfUsed(program, "shadowTexelExtent",
     view.projection == LightProjection::Perspective ? view.texelWorldSize(1.0) : view.texelWorldSize(0.0));

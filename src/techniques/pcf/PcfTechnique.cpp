@@ -66,12 +66,6 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
   return result;
 }
 
-double windowDepth(const LightView& view, double depthLin)
-{
-  const glm::dvec4 clip = view.clipFromView * glm::dvec4(0.0, 0.0, -depthLin, 1.0);
-  return 0.5 * clip.z / clip.w + 0.5;
-}
-
 } // namespace
 
 ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y)
@@ -83,7 +77,7 @@ ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValue
     return sample;
   }
   const bool hardware = values.choice("filter") == "hardware_bilinear";
-  const double referenceWindowDepth = windowDepth(inputs.lightView, lookup.comparisonDepth);
+  const double referenceWindowDepth = inputs.lightView.windowDepth(lookup.comparisonDepth);
   const auto tap = [&](const glm::dvec2& offset) {
     const glm::dvec2 uv = lookup.sm.uvTexels + offset;
     return hardware ? bilinearCompare(inputs, uv, referenceWindowDepth, sample)

@@ -39,11 +39,6 @@ std::vector<vtkTextureObject*> vtkSLPcfPass::SetTechniqueUniforms(vtkShaderProgr
     bound.push_back(sl::bindTexture(program, "shadowMapCompare", frame.shadowMapDepth));
     this->CompareUnit = frame.shadowMapDepth->GetTextureUnit();
     glBindSampler(static_cast<GLuint>(this->CompareUnit), this->CompareSampler);
-    // clip.z = -P22 d + P32, clip.w = -P23 d + P33 for linear depth d (z_view = -d).
-    const glm::dmat4& projection = frame.lightView.clipFromView;
-    const float depthToClip[4] = { static_cast<float>(projection[2][2]), static_cast<float>(projection[3][2]),
-      static_cast<float>(projection[2][3]), static_cast<float>(projection[3][3]) };
-    program->SetUniform4f("lightDepthToClip", depthToClip);
   }
   return bound;
 }

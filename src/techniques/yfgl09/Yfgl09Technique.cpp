@@ -64,6 +64,8 @@ TechniqueDescriptor yfgl09Technique()
     { "divergence_threshold", 0.8, 0.0, 1.0, "", "T_d of §4.3 (the paper: 0.8)", {}, false },
     { "edge_cost", 4.0, 0.0, 100.0, "", "Q_e of Eq. 6, cost of extracting an edge relative to visiting a node (Q_n = 1)", {}, false },
     { "visibility_cost", 8.0, 0.0, 100.0, "", "Q_v of Eq. 6, cost of back-projecting and integrating an edge for one pixel (Q_n = 1)", {}, false },
+    { "packet_cost", 0, 0, 1, "", "Eq. 6's visibility term for the packet: paper = Q_v w h, every pixel of the packet (000 L560-563); penumbra_pixels = Q_v times the packet's penumbra pixels only (trivial pixels integrate nothing)", { "paper", "penumbra_pixels" }, true },
+    { "coherence_depth", 0, 0, 2, "", "the depths Eq. 4's P_null compares (§4.3): linear = the packet's pixel depths minus bias against the kernel samples' linear light depths (the text's reading); comparison = the receiver-plane comparison depths over the packet kernel, the range Eq. 3's statuses use; window = the linear reading in the map's window (post-projective, hyperbolic) depth, as a depth buffer stores it", { "linear", "comparison", "window" }, true },
     subLightsParameter(),
   });
   descriptor.lightStructures = { &shadowMapStructure(), &dualMssmStructure() };
@@ -102,6 +104,30 @@ struct Cells
   glm::ivec2 lo{ 0 };
   glm::ivec2 hi{ 0 };
 };
+
+// Eq. 3's [z_pmin, z_pmax] over the samples of the cells [firstCell, lastCell]: the comparison depths (with
+// receiver-plane bias) of the receivers whose kernels share a cell with them; false when none does.
+bool comparisonRangeOverCells(const std::vector<ContourReceiver*>& receivers, int mapSize, glm::ivec2 firstCell,
+  glm::ivec2 lastCell, glm::dvec2& comparison)
+{
+  const int last = mapSize - 1;
+  const glm::ivec2 lo = glm::clamp(firstCell, glm::ivec2(0), glm::ivec2(last));
+  const glm::ivec2 hi = glm::clamp(lastCell + 1, glm::ivec2(0), glm::ivec2(last));
+  comparison = { 1e300, -1e300 };
+  bool shared = false;
+  for (const ContourReceiver* receiver : receivers)
+  {
+    const glm::ivec2 sharedLo = glm::max(firstCell, receiver->firstCell());
+    const glm::ivec2 sharedHi = glm::min(lastCell, receiver->lastCell());
+    if (sharedLo.x <= sharedHi.x && sharedLo.y <= sharedHi.y)
+    {
+      shared = true;
+      const glm::dvec2 range = receiver->geometry.comparisonDepthRange(lo, hi, receiver->bias);
+      comparison = { std::min(comparison.x, range.x), std::max(comparison.y, range.y) };
+    }
+  }
+  return shared;
+}
 
 // One traversal (Alg. 2 + Alg. 3) for a set of receivers: a packet (pass 1), or a single pixel (pass 2).
 class PacketTraversal
@@ -231,23 +257,7 @@ private:
   // kernels share a cell with the node; false when none does.
   bool nodeComparisonRange(int level, glm::ivec2 firstCell)
   {
-    const glm::ivec2 lastCell = firstCell + (1 << level) - 1;
-    const int last = mssm_.mapSize - 1;
-    const glm::ivec2 lo = glm::clamp(firstCell, glm::ivec2(0), glm::ivec2(last));
-    const glm::ivec2 hi = glm::clamp(lastCell + 1, glm::ivec2(0), glm::ivec2(last));
-    nodeComparison_ = { 1e300, -1e300 };
-    bool shared = false;
-    for (const ContourReceiver* receiver : receivers_)
-    {
-      const glm::ivec2 sharedLo = glm::max(firstCell, receiver->firstCell());
-      const glm::ivec2 sharedHi = glm::min(lastCell, receiver->lastCell());
-      if (sharedLo.x <= sharedHi.x && sharedLo.y <= sharedHi.y)
-      {
-        shared = true;
-        const glm::dvec2 range = receiver->geometry.comparisonDepthRange(lo, hi, receiver->bias);
-        nodeComparison_ = { std::min(nodeComparison_.x, range.x), std::max(nodeComparison_.y, range.y) };
-      }
-    }
+    const bool shared = comparisonRangeOverCells(receivers_, mssm_.mapSize, firstCell, firstCell + (1 << level) - 1, nodeComparison_);
     packetWork += static_cast<long>(receivers_.size());
     return shared;
   }
@@ -396,6 +406,8 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
   const double divergenceThreshold = values.get("divergence_threshold");
   const double edgeCost = values.get("edge_cost");
   const double visibilityCost = values.get("visibility_cost");
+  const bool paperPacketCost = values.choice("packet_cost") == "paper";
+  const std::string& coherenceDepth = values.choice("coherence_depth");
 
   for (int py = 0; py < height; py += packetHeight)
   {
@@ -476,12 +488,23 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
         {
           coherence = std::max(coherence, outsideFraction(receiver->kernel, reference->kernel));
         }
-        const glm::dvec2 kernelRange = mssm.range(samples.lo, samples.hi);
+        glm::dvec2 kernelRange = mssm.range(samples.lo, samples.hi);
+        if (coherenceDepth == "comparison")
+        {
+          comparisonRangeOverCells(penumbra, mssm.mapSize, region.lo, region.hi, comparison);
+        }
+        else if (coherenceDepth == "window")
+        {
+          const LightView& view = inputs.lightView;
+          comparison = { view.windowDepth(comparison.x), view.windowDepth(comparison.y) };
+          kernelRange = { view.windowDepth(kernelRange.x), view.windowDepth(kernelRange.y) };
+        }
         const double overlap = std::max(std::min(comparison.y, kernelRange.y) - std::max(comparison.x, kernelRange.x), 0.0);
         const double nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
         const int packetKernelWidth = widthTexels(kernel);
         divergence = 1.0 - std::pow(1.0 - nullProbability, static_cast<double>(packetKernelWidth) * packetKernelWidth); // Eq. 5
-        const double packetCost = nodeCost(packetKernelWidth) + (edgeCost + visibilityCost * count) * packetKernelWidth; // Eq. 6
+        const double packetPixels = paperPacketCost ? packetWidth * packetHeight : static_cast<double>(count);
+        const double packetCost = nodeCost(packetKernelWidth) + (edgeCost + visibilityCost * packetPixels) * packetKernelWidth; // Eq. 6
         if ((divergenceTest && divergence > divergenceThreshold) || (costTest && packetCost > pixelCost))
         {
           packetClass = PacketClass::NonCoherent;

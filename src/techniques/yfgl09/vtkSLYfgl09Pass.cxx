@@ -118,6 +118,26 @@ std::map<std::string, double> vtkSLYfgl09Pass::CollectStatistics()
   }
   const double nonTrivial = counts[PacketClass::Coherent] + counts[PacketClass::NonCoherent] +
     counts[PacketClass::CaughtNull] + counts[PacketClass::OverBudget];
+  // The median kernel width over the penumbra pixels, to compare coherence at matched kernel widths (the
+  // paper's light sizes are in its own scene's units).
+  const sl::FrameResources& frame = *this->Frame;
+  const sl::ImageF kernels = sl::readFloatTexture(frame.techniqueTargets.at("kernel_texels"), 1);
+  const sl::ImageF classes = sl::readFloatTexture(frame.techniqueTargets.at("packet_class"), 1);
+  std::vector<float> penumbraKernels;
+  for (std::size_t i = 0; i < kernels.pixelCount(); ++i)
+  {
+    if (classes.data[i] > static_cast<float>(PacketClass::Trivial))
+    {
+      penumbraKernels.push_back(kernels.data[i]);
+    }
+  }
+  double medianKernel = 0.0;
+  if (!penumbraKernels.empty())
+  {
+    auto middle = penumbraKernels.begin() + static_cast<std::ptrdiff_t>(penumbraKernels.size() / 2);
+    std::nth_element(penumbraKernels.begin(), middle, penumbraKernels.end());
+    medianKernel = *middle;
+  }
   return {
     { "packets_non_trivial", nonTrivial },
     { "packets_coherent", counts[PacketClass::Coherent] },
@@ -125,6 +145,7 @@ std::map<std::string, double> vtkSLYfgl09Pass::CollectStatistics()
     { "packets_caught_null", counts[PacketClass::CaughtNull] },
     { "packets_over_budget", counts[PacketClass::OverBudget] },
     { "coherent_packet_percent", nonTrivial > 0 ? 100.0 * counts[PacketClass::Coherent] / nonTrivial : 0.0 },
+    { "median_penumbra_kernel_texels", medianKernel },
   };
 }
 
