@@ -275,6 +275,35 @@ TEST(BenchCommand, WorkCounterColumnsAreTheImageTotalsOfTheCounterBuffers)
   EXPECT_NE(header.find(",contour_edges_sum,"), std::string::npos) << header;
 }
 
+TEST(BenchCommand, CutShortPixelsAreAColumnAndAWarningEvenWhenQuiet)
+{
+  // yfgl09's brute force over ~400-texel kernels at the default map outruns llvmpipe's loop cap (issue 13):
+  // the row's cut_short_pixels column holds the count and bench says so, with --quiet too.
+  const std::filesystem::path out = freshDir("bench-cut-out");
+  const std::filesystem::path cache = freshDir("bench-cut-cache");
+  const RunResult run = runShadowlab({ "bench", test::datasetPath("stacked-occluders").string(), "-t", "yfgl09", "--sweep",
+    "hierarchy=off,on", "-r", "16x12", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out",
+    out.string(), "--scene-set", "/lights/0/center/1=4", "--scene-set", "/lights/0/size=2", "--scene-set",
+    "/objects/2/center=[0.2, 3.0, -0.4]", "--scene-set", "/objects/2/size=[0.8, 0.6]" });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
+  ASSERT_EQ(rows.size(), 2u);
+  const double cut = rows[0].at("result").at("technique_statistics").at("cut_short_pixels").get<double>();
+  EXPECT_EQ(rows[1].at("result").at("technique_statistics").at("cut_short_pixels").get<double>(), 0.0) << "hierarchy on";
+  if (rows[0].at("result").value("gl_renderer", "").find("llvmpipe") == std::string::npos)
+  {
+    GTEST_SKIP() << "no loop cap on this GL";
+  }
+  EXPECT_GT(cut, 0.0);
+  EXPECT_NE(run.err.find("hierarchy=off on stacked-occluders"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("pixel(s) cut short"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("hierarchy=on on"), std::string::npos) << run.err << ": only the row with cut pixels is named";
+  std::ifstream csv(out / "bench.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",cut_short_pixels"), std::string::npos) << header;
+}
+
 TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
 {
   const std::filesystem::path out = freshDir("scene-set-bad");
