@@ -102,9 +102,25 @@ nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
       ++count;
     }
   }
-  return { { "components", image.components }, { "min", minimum }, { "max", maximum },
+  nlohmann::json statistics = { { "components", image.components }, { "min", minimum }, { "max", maximum },
     { "mean", count ? sum / static_cast<double>(count) : 0.0 }, { "non_finite", nonFinite }, { "unit", named.unit },
     { "doc", named.doc } };
+  if (named.kind == BufferKind::Categorical && image.components == 1)
+  {
+    // Pixels per category (covered pixels), by label: how many were lit, penumbra, cut short, ...
+    nlohmann::json counts = nlohmann::json::object();
+    for (std::size_t code = 0; code < named.categoryLabels.size(); ++code)
+    {
+      std::size_t pixels = 0;
+      for (std::size_t i = 0; i < image.pixelCount(); ++i)
+      {
+        pixels += (!coverage || coverage->data[i] > 0.5f) && image.data[i] == static_cast<float>(code) ? 1 : 0;
+      }
+      counts[named.categoryLabels[code]] = pixels;
+    }
+    statistics["category_pixels"] = counts;
+  }
+  return statistics;
 }
 
 nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context)

@@ -278,6 +278,15 @@ TEST(CliRender, PixelsCutShortAreWarnedAboutAndCounted)
   ASSERT_NE(classes, nullptr);
   EXPECT_EQ(cutShort, static_cast<double>(std::count(classes->image.data.begin(), classes->image.data.end(),
                         static_cast<float>(PacketClass::CutShort))));
+  // Categorical buffers carry their pixels per category (covered pixels; every pixel of this view is covered).
+  const Json& categories = stats.at("buffers").at("packet_class").at("category_pixels");
+  EXPECT_EQ(categories.at("cut short by the loop cap").get<double>(), cutShort) << categories.dump();
+  double categorised = 0.0;
+  for (const auto& [label, pixels] : categories.items())
+  {
+    categorised += pixels.get<double>();
+  }
+  EXPECT_EQ(categorised, 16.0 * 12.0) << categories.dump();
   if (stats.value("gl_renderer", "").find("llvmpipe") == std::string::npos)
   {
     GTEST_SKIP() << "no loop cap on " << stats.value("gl_renderer", "");
