@@ -38,9 +38,12 @@ enum class PacketClass
 };
 // Packet work (visited nodes plus the loop iterations over the packet's pixels: node ranges, resolved statuses,
 // integrated edges) beyond which a packet is finished pixel-wise: GLs that cap loop iterations per invocation
-// (llvmpipe: 65535) would cut the traversal short. llvmpipe counts about 1.6 times what this counts (measured:
-// a brute-force packet was cut at 3811 cells, ~11 counted per cell), hence 20000. The shader's PACKET_BUDGET.
-constexpr int yfgl09PacketBudget = 20000;
+// (llvmpipe: 65535) would cut the traversal short. It was 20000 while the back-projection's clipping loops made
+// llvmpipe count ~1.6 times this; since issue 13 a cell costs about one counted iteration and a packet the cap
+// stops anyway is detected and finished pixel-wise, so the budget only bounds wasted work: at 20000, 97-100 %
+// of near-light's packets of 470-740-texel kernels (light 0.5-2, 1024^2 map) went pixel-wise for it alone
+// (docs/bench/yfgl09-coherence-cost). The shader's PACKET_BUDGET.
+constexpr int yfgl09PacketBudget = 60000;
 // The flag vtkSLYfgl09Pass compiles the packet pass with (the pixel pass: without).
 inline constexpr char yfgl09PacketPassFlag[] = "YFGL09_PACKET_PASS";
 
