@@ -17,7 +17,11 @@ std::vector<ParameterSpec> softShadowParameters()
 {
   return {
     { "blocker_search", 0, 0, 1, "", "grid: every texel of the search kernel w_i (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true },
-    { "max_grid_taps", 32, 1, 256, "taps per axis", "grid kernels wider than this are sampled on a regular sub-grid of this size (the paper's 30x30 banding limit)", {}, true },
+    // At most 160: the blocker search and the filter, two grids of max_grid_taps^2 taps plus a row iteration
+    // each, stay at 2 (160^2 + 160) = 51520 loop iterations, under the 65535 that llvmpipe allows one invocation
+    // (it cut 256 x 256 grids short at 2048^2 maps without a trace, issue 13); 160 still covers every texel of
+    // the widest kernels the 512^2 benches reach (147 texels).
+    { "max_grid_taps", 32, 1, softShadowMaxGridTaps, "taps per axis", "grid kernels wider than this are sampled on a regular sub-grid of this size (the paper's 30x30 banding limit); at most 160, so that both grids stay under GLs' caps on loop iterations (llvmpipe: 65535)", {}, true },
     { "poisson_samples", 32, 1, maxPoissonSamples, "taps", "taps per step for the poisson variants", {}, true },
     receiverPlaneBiasParameter(),
   };

@@ -22,6 +22,14 @@ struct FrameResources;
 ShaderDefines poissonDiskDefines();
 void setPoissonDiskUniform(vtkShaderProgram* program);
 
+// The loop iterations a GL may allow one shader invocation (llvmpipe's gallivm loop limiter counts every loop
+// iteration of an invocation against 65535); the techniques' parameter ranges keep their loops under it.
+inline constexpr int glLoopIterationCap = 65535;
+// The largest max_grid_taps: the blocker search and the filter grids, (taps^2 + taps) loop iterations each,
+// must fit under glLoopIterationCap together (2 (160^2 + 160) = 51520).
+inline constexpr int softShadowMaxGridTaps = 160;
+static_assert(2 * (softShadowMaxGridTaps * softShadowMaxGridTaps + softShadowMaxGridTaps) < glLoopIterationCap);
+
 // blocker_search, max_grid_taps, poisson_samples, receiver_plane_bias.
 std::vector<ParameterSpec> softShadowParameters();
 ParameterSpec receiverPlaneBiasParameter();

@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "pipeline/ShadowRenderer.h"
 #include "techniques/Registry.h"
+#include "techniques/SoftShadowSupport.h"
 #include "techniques/pcf/PcfTechnique.h"
 
 #include <gtest/gtest.h>
@@ -60,6 +61,21 @@ TEST(TechniqueRegistry, DescriptorsAreConsistent)
     }
   }
   EXPECT_TRUE(names.count("hard") && names.count("pcf"));
+}
+
+TEST(TechniqueRegistry, GridTechniquesStayUnderTheLoopCapAtTheirLargestSettings)
+{
+  // pcss and savsm loop over max_grid_taps^2 taps in each of their two grids (blocker search, filter) plus one
+  // row iteration per grid row: at the range's top that must stay under the loop iterations llvmpipe allows one
+  // invocation, or pixels are cut short without a trace (issue 13 measured 256 x 256 grids cut at 2048^2).
+  for (const char* name : { "pcss", "savsm" })
+  {
+    const ParameterSpec* taps = findTechnique(name).findParameter("max_grid_taps");
+    ASSERT_NE(taps, nullptr) << name;
+    const long widest = static_cast<long>(taps->maxValue);
+    EXPECT_LT(2 * (widest * widest + widest), glLoopIterationCap) << name << ": max_grid_taps up to " << widest;
+    EXPECT_GE(widest, 148) << name << ": every texel of the 147-texel kernels of the 512^2 benches";
+  }
 }
 
 TEST(TechniqueRegistry, UnknownTechniqueListsTheAvailableOnes)
