@@ -17,11 +17,11 @@ layout(location = OUT_CONTOUR_EDGES) out float outContourEdges;
 layout(location = OUT_VISITED_CELLS) out float outVisitedCells;
 layout(location = OUT_CLASSIFICATION) out float outClassification;
 
-// `classification` codes CLASSIFICATION_* and LOOP_BUDGET_CELLS come from the preamble (Gbp07Technique.cpp,
-// from BackprojectionClass and gbp07LoopBudgetCells). Kernels of more cells than LOOP_BUDGET_CELLS may be cut
-// short where the GL caps loop iterations per invocation (llvmpipe: 65535, all loops together;
-// common/ContourBackprojection.glsl). They are still evaluated in full and flagged, so results on such GLs can
-// be told apart.
+// `classification` codes CLASSIFICATION_* come from the preamble (Gbp07Technique.cpp, from
+// BackprojectionClass). Where the GL caps loop iterations per invocation (llvmpipe: 65535, all loops together;
+// common/ContourBackprojection.glsl), a kernel of more dual cells than that is cut short: the pixel is then
+// flagged CLASSIFICATION_OVER_LOOP_BUDGET, detected (its last cell not reached), so results on such GLs can be
+// told apart and GLs without a cap flag nothing.
 
 // Status and depth of sample (i, j); outside the map samples never occlude (contours close there).
 float sampleAt(ivec2 texel, float d, float bias, out bool occluding)
@@ -87,11 +87,14 @@ void main()
   float occludedArea = insideReconstructedOccluder(occluding, vec2(centreCell) + 0.5, uv) ? 4.0 * halfSize * halfSize : 0.0;
   int edgeCount = 0;
   int cellCount = 0;
-  // Row by row; the at most two edges of a cell are handled without a loop.
+  // Row by row; the at most two edges of a cell are handled without a loop. A GL's cap on loop iterations
+  // ends the loops without their exits being taken, so a kernel whose last cell was never reached was cut short.
+  bool reachedLastCell = false;
   for (int j = lo.y - 1; j <= hi.y; ++j)
   {
     for (int i = lo.x - 1; i <= hi.x; ++i)
     {
+      reachedLastCell = i == hi.x && j == hi.y;
       ++cellCount;
       cellCorners(ivec2(i, j), d, bias, occluding, depths);
       ContourEdge edges[2];
@@ -112,5 +115,5 @@ void main()
   outContourEdges = float(edgeCount);
   outVisitedCells = float(cellCount);
   outVisibility = clamp(1.0 - occludedArea / (4.0 * halfSize * halfSize), 0.0, 1.0);
-  outClassification = (hi.x - lo.x + 2) * (hi.y - lo.y + 2) > LOOP_BUDGET_CELLS ? CLASSIFICATION_OVER_LOOP_BUDGET : CLASSIFICATION_PENUMBRA;
+  outClassification = reachedLastCell ? CLASSIFICATION_PENUMBRA : CLASSIFICATION_OVER_LOOP_BUDGET;
 }

@@ -100,5 +100,54 @@ TEST(Gbp07, MatchesTheCpuImplementation)
   }
 }
 
+TEST(Gbp07, KernelsTheLoopCapCutsShortAreFlaggedExactly)
+{
+  // Issue 13: the three stacked rectangles of the yfgl09 tests at the default 1024^2 map give kernels of ~400
+  // texels, ~160000 dual cells: llvmpipe's cap of 65535 loop iterations cuts the cell loop. The shader flags a
+  // pixel whose last cell it never reached; every pixel that differs from the twin must be flagged, and an
+  // unflagged pixel must be exact. Another GL may cut nothing, and then nothing may be flagged or differ.
+  const Scene scene = loadScene(test::datasetPath("stacked-occluders"),
+    { "/lights/0/center/1=4", "/lights/0/size=2", R"(/objects/2/center=[0.2, 3.0, -0.4])", R"(/objects/2/size=[0.8, 0.6])" });
+  const FrameResult frame = test::renderDataset(scene, "gbp07", 16, 12, {});
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear, HsmLayout::NBuffers);
+  int flagged = 0;
+  int differing = 0;
+  int differingFlagged = 0;
+  double maxUnflagged = 0.0;
+  double widest = 0.0;
+  for (int y = 0; y < 12; ++y)
+  {
+    for (int x = 0; x < 16; ++x)
+    {
+      const Gbp07Sample cpu = gbp07Reference(inputs, hsm, frame.parameters, x, y);
+      const bool cut = frame.find("classification")->image.at(x, y) == static_cast<float>(BackprojectionClass::OverLoopBudget);
+      flagged += cut ? 1 : 0;
+      widest = std::max(widest, cpu.kernelTexels);
+      const double difference = std::abs(frame.find("visibility")->image.at(x, y) - cpu.sample.visibility);
+      if (difference > 1e-3)
+      {
+        ++differing;
+        differingFlagged += cut ? 1 : 0;
+      }
+      if (!cut)
+      {
+        maxUnflagged = std::max(maxUnflagged, difference);
+      }
+    }
+  }
+  std::cout << "[ measured ] gbp07 at 1024^2 on " << frame.glRenderer << ": widest kernel " << widest << " texels, " << flagged
+            << " of 192 pixels flagged cut short, " << differing << " differ from the twin by > 1e-3 (" << differingFlagged
+            << " of them flagged), max |gpu - twin| " << maxUnflagged << " on the others\n";
+  EXPECT_GT(widest, 256.0);
+  EXPECT_EQ(differingFlagged, differing) << "a pixel differs from the twin without being flagged";
+  EXPECT_LE(maxUnflagged, 1e-3);
+  EXPECT_EQ(frame.techniqueStatistics.at("cut_short_pixels"), static_cast<double>(flagged));
+  if (frame.glRenderer.find("llvmpipe") != std::string::npos)
+  {
+    EXPECT_GT(differing, 50) << "the case must outrun llvmpipe's loop cap";
+  }
+}
+
 } // namespace
 } // namespace sl

@@ -20,8 +20,8 @@ const Category<BackprojectionClass> backprojectionCategories[] = {
   { BackprojectionClass::Lit, "LIT", "lit" },
   { BackprojectionClass::Umbra, "UMBRA", "umbra" },
   { BackprojectionClass::Penumbra, "PENUMBRA", "penumbra" },
-  // Over the budget, a GL that caps loop iterations (llvmpipe) cuts the pixel short: counted as cut short
-  // (conservatively: on GLs without such a cap these pixels are exact).
+  // A pixel a GL's loop cap cut short (gbp07's shader detects it; gbp06 flags its budget, conservatively: on
+  // GLs without a cap those pixels are exact): counted as cut short. The twins classify by the budget.
   { BackprojectionClass::OverLoopBudget, "OVER_LOOP_BUDGET", "penumbra over the loop budget", true },
 };
 

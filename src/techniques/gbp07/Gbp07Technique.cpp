@@ -42,14 +42,11 @@ TechniqueDescriptor gbp07Technique()
     { "contour_edges", "edges", "contour edges extracted and back-projected (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     { "visited_cells", "cells", "dual cells (2 x 2 sample blocks) examined (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     backprojectionClassificationBuffer("how the pixel was decided (first sub-light); " +
-        std::to_string(static_cast<int>(BackprojectionClass::OverLoopBudget)) + " = a penumbra kernel of more than " +
-        std::to_string(gbp07LoopBudgetCells) +
-        " cells, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short",
+        std::to_string(static_cast<int>(BackprojectionClass::OverLoopBudget)) + " = a penumbra kernel whose cell loop "
+        "the GL's cap on loop iterations per invocation (llvmpipe: 65535) cut short, detected: its last cell was never reached",
       SubLightCombine::First),
   };
   descriptor.shaderConstants = contourKernelShaderConstants();
-  descriptor.shaderConstants.push_back(
-    { "LOOP_BUDGET_CELLS", gbp07LoopBudgetCells, "dual cells of a penumbra kernel past which the pixel is flagged" });
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.coversLightArea = true;

@@ -20,8 +20,9 @@ namespace sl
 
 TechniqueDescriptor gbp07Technique();
 
-// Dual cells of a penumbra kernel past which the pixel is flagged (llvmpipe caps loop iterations per invocation
-// at 65535, all loops together). The shader's LOOP_BUDGET_CELLS.
+// Dual cells of a penumbra kernel past which the twin classifies the pixel OverLoopBudget: what llvmpipe, which
+// caps loop iterations per invocation at 65535 (all loops together), would cut short. The shader detects the
+// cut itself (its last cell not reached), so a GL without a cap flags nothing.
 constexpr int gbp07LoopBudgetCells = 60000;
 
 struct Gbp07Sample : BackprojectionPixel
