@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace sl
 {
@@ -108,15 +109,20 @@ nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
   if (named.kind == BufferKind::Categorical && image.components == 1)
   {
     // Pixels per category (covered pixels), by label: how many were lit, penumbra, cut short, ...
-    nlohmann::json counts = nlohmann::json::object();
-    for (std::size_t code = 0; code < named.categoryLabels.size(); ++code)
+    std::vector<std::size_t> pixels(named.categoryLabels.size(), 0);
+    for (std::size_t i = 0; i < image.pixelCount(); ++i)
     {
-      std::size_t pixels = 0;
-      for (std::size_t i = 0; i < image.pixelCount(); ++i)
+      const float value = image.data[i];
+      if ((!coverage || coverage->data[i] > 0.5f) && value >= 0.0f && value < static_cast<float>(pixels.size()) &&
+        value == std::floor(value))
       {
-        pixels += (!coverage || coverage->data[i] > 0.5f) && image.data[i] == static_cast<float>(code) ? 1 : 0;
+        ++pixels[static_cast<std::size_t>(value)];
       }
-      counts[named.categoryLabels[code]] = pixels;
+    }
+    nlohmann::json counts = nlohmann::json::object();
+    for (std::size_t code = 0; code < pixels.size(); ++code)
+    {
+      counts[named.categoryLabels[code]] = pixels[code];
     }
     statistics["category_pixels"] = counts;
   }

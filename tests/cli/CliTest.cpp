@@ -260,9 +260,9 @@ TEST(CliRender, PixelsCutShortAreWarnedAboutAndCounted)
   TempDir temp;
   const auto render = [&](const std::string& outName, const std::vector<std::string>& settings) {
     std::vector<std::string> arguments = { "render", datasetScene("stacked-occluders").string(), "--technique", "yfgl09",
-      "--resolution", "16x12", "--quiet", "--out", (temp.path() / outName).string(), "--scene-set", "/lights/0/center/1=4",
-      "--scene-set", "/lights/0/size=2", "--scene-set", "/objects/2/center=[0.2, 3.0, -0.4]", "--scene-set",
-      "/objects/2/size=[0.8, 0.6]" };
+      "--resolution", "16x12", "--quiet", "--out", (temp.path() / outName).string() };
+    const std::vector<std::string> scene = test::sceneSetArguments(test::wideKernelOverrides());
+    arguments.insert(arguments.end(), scene.begin(), scene.end());
     for (const std::string& setting : settings)
     {
       arguments.insert(arguments.end(), { "--set", setting });

@@ -281,10 +281,12 @@ TEST(BenchCommand, CutShortPixelsAreAColumnAndAWarningEvenWhenQuiet)
   // the row's cut_short_pixels column holds the count and bench says so, with --quiet too.
   const std::filesystem::path out = freshDir("bench-cut-out");
   const std::filesystem::path cache = freshDir("bench-cut-cache");
-  const RunResult run = runShadowlab({ "bench", test::datasetPath("stacked-occluders").string(), "-t", "yfgl09", "--sweep",
+  std::vector<std::string> bench = { "bench", test::datasetPath("stacked-occluders").string(), "-t", "yfgl09", "--sweep",
     "hierarchy=off,on", "-r", "16x12", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out",
-    out.string(), "--scene-set", "/lights/0/center/1=4", "--scene-set", "/lights/0/size=2", "--scene-set",
-    "/objects/2/center=[0.2, 3.0, -0.4]", "--scene-set", "/objects/2/size=[0.8, 0.6]" });
+    out.string() };
+  const std::vector<std::string> scene = test::sceneSetArguments(test::wideKernelOverrides());
+  bench.insert(bench.end(), scene.begin(), scene.end());
+  const RunResult run = runShadowlab(bench);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
   ASSERT_EQ(rows.size(), 2u);

@@ -106,8 +106,7 @@ TEST(Gbp07, KernelsTheLoopCapCutsShortAreFlaggedExactly)
   // texels, ~160000 dual cells: llvmpipe's cap of 65535 loop iterations cuts the cell loop. The shader flags a
   // pixel whose last cell it never reached; every pixel that differs from the twin must be flagged, and an
   // unflagged pixel must be exact. Another GL may cut nothing, and then nothing may be flagged or differ.
-  const Scene scene = loadScene(test::datasetPath("stacked-occluders"),
-    { "/lights/0/center/1=4", "/lights/0/size=2", R"(/objects/2/center=[0.2, 3.0, -0.4])", R"(/objects/2/size=[0.8, 0.6])" });
+  const Scene scene = loadScene(test::datasetPath("stacked-occluders"), test::wideKernelOverrides());
   const FrameResult frame = test::renderDataset(scene, "gbp07", 16, 12, {});
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear, HsmLayout::NBuffers);

@@ -37,6 +37,21 @@ std::filesystem::path testOutputDir()
   return dir;
 }
 
+std::vector<std::string> wideKernelOverrides()
+{
+  return { "/lights/0/center/1=4", "/lights/0/size=2", "/objects/2/center=[0.2, 3.0, -0.4]", "/objects/2/size=[0.8, 0.6]" };
+}
+
+std::vector<std::string> sceneSetArguments(const std::vector<std::string>& overrides)
+{
+  std::vector<std::string> arguments;
+  for (const std::string& assignment : overrides)
+  {
+    arguments.insert(arguments.end(), { "--scene-set", assignment });
+  }
+  return arguments;
+}
+
 std::filesystem::path datasetPath(const std::string& name)
 {
   return sourceDir() / "datasets" / name / "scene.json";

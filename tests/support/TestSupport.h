@@ -21,6 +21,11 @@ namespace sl::test
 std::filesystem::path sourceDir();           // the repository root
 std::filesystem::path testOutputDir();        // <build>/test-output, created on demand
 std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/scene.json
+// Overrides of stacked-occluders that put its upper occluder 1 below a light of size 2 (issue 13): at the default
+// 1024^2 map the contour kernels reach ~500 texels, past what a brute force finishes under llvmpipe's loop cap.
+std::vector<std::string> wideKernelOverrides();
+// `overrides` as shadowlab arguments: --scene-set pointer=value for each.
+std::vector<std::string> sceneSetArguments(const std::vector<std::string>& overrides);
 Scene loadDataset(const std::string& name);
 std::vector<std::string> datasetNames();      // every datasets/*/scene.json
 
