@@ -33,4 +33,17 @@ bool TechniqueDescriptor::needs(const LightSpaceStructure& structure) const
   return std::find(lightStructures.begin(), lightStructures.end(), &structure) != lightStructures.end();
 }
 
+std::vector<const LightSpaceStructure*> TechniqueDescriptor::structuresFor(const ParameterValues& values) const
+{
+  std::vector<const LightSpaceStructure*> needed;
+  for (const LightSpaceStructure* structure : lightStructures)
+  {
+    if (!structureNeeded || structureNeeded(*structure, values))
+    {
+      needed.push_back(structure);
+    }
+  }
+  return needed;
+}
+
 } // namespace sl

@@ -106,6 +106,10 @@ struct TechniqueDescriptor
   // The light-space structures its shader reads (each structure's header, e.g. lightspace/sat/SatStructure.h):
   // the pipeline builds them (and what they are built from) and binds them to the technique's shader.
   std::vector<const LightSpaceStructure*> lightStructures;
+  // Whether a frame rendered with `values` needs `structure`, one of lightStructures (e.g. ss08 reads its
+  // microrects only with micro_occluder=microrect); unset: every one. The pipeline builds, binds and exports
+  // only the needed ones (structuresFor); `list` shows all of lightStructures.
+  std::function<bool(const LightSpaceStructure& structure, const ParameterValues& values)> structureNeeded;
   std::vector<BufferSpec> buffers; // published in addition to the common ones (visibility, position, ...)
   std::vector<LightType> supportedLights;
   std::vector<LightShape> supportedAreaShapes = { LightShape::Square, LightShape::Disk }; // for area lights
@@ -137,6 +141,8 @@ struct TechniqueDescriptor
   // Every parameter at its default.
   ParameterValues defaultParameters() const { return ParameterValues(name, parameters); }
   bool needs(const LightSpaceStructure& structure) const;
+  // The light-space structures a frame with `values` builds: lightStructures filtered by structureNeeded.
+  std::vector<const LightSpaceStructure*> structuresFor(const ParameterValues& values) const;
   // Names of the technique pass's targets in output-location order: "visibility", then the buffers.
   std::vector<std::string> outputNames() const;
   // The light's type is supported, and for an area light its shape.

@@ -45,8 +45,21 @@ ShadowRenderer::~ShadowRenderer()
   }
 }
 
-std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const TechniqueDescriptor& technique, bool gbufferOnly)
+// The stages of a technique depend on its settings where it needs a structure only for some
+// (TechniqueDescriptor::structureNeeded): one stage list per technique and set of structures.
+std::string ShadowRenderer::stageKey(const FrameResources& frame)
 {
+  std::string key = frame.technique->name;
+  for (const LightSpaceStructure* structure : frame.technique->structuresFor(frame.parameters))
+  {
+    key += "|" + structure->name;
+  }
+  return key;
+}
+
+std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const FrameResources& frame, bool gbufferOnly)
+{
+  const TechniqueDescriptor& technique = *frame.technique;
   if (gbufferOnly)
   {
     auto& stages = stagesByTechnique_[""]; // no technique name is empty
@@ -56,12 +69,13 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
     }
     return stages;
   }
-  auto& stages = stagesByTechnique_[technique.name];
+  const std::string key = stageKey(frame);
+  auto& stages = stagesByTechnique_[key];
   if (stages.empty())
   {
     // Only the light-space structures this technique needs, and what they are built from, each once.
     stages.push_back(vtkSmartPointer<vtkSLGBufferPass>::New());
-    for (const LightSpaceStructure* structure : withBuildDependencies(technique.lightStructures))
+    for (const LightSpaceStructure* structure : withBuildDependencies(technique.structuresFor(frame.parameters)))
     {
       for (const auto& pass : structure->createBuildPasses())
       {
@@ -75,7 +89,7 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Te
       auto accumulate = vtkSmartPointer<vtkSLSubLightAccumulatePass>::New();
       auto multiView = vtkSmartPointer<vtkSLMultiViewPass>::New();
       multiView->SetStages(std::vector<vtkSLStagePass*>(stages.begin() + 1, stages.end()), accumulate);
-      multiViewByTechnique_[technique.name] = multiView;
+      multiViewByTechnique_[key] = multiView;
       stages.push_back(accumulate);
     }
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
@@ -204,11 +218,12 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
 void readBackLightSpace(const FrameResources& frame, FrameResult& result)
 {
   const TechniqueDescriptor& technique = *frame.technique;
-  for (const LightSpaceStructure* structure : technique.lightStructures)
+  const std::vector<const LightSpaceStructure*> needed = technique.structuresFor(frame.parameters);
+  for (const LightSpaceStructure* structure : needed)
   {
     result.lightStructureNames.push_back(structure->name);
   }
-  for (const LightSpaceStructure* structure : withBuildDependencies(technique.lightStructures))
+  for (const LightSpaceStructure* structure : withBuildDependencies(needed))
   {
     const std::vector<NamedImage> images = structure->exportImages(frame, result);
     result.lightSpace.insert(result.lightSpace.end(), images.begin(), images.end());
@@ -218,9 +233,9 @@ void readBackLightSpace(const FrameResources& frame, FrameResult& result)
 
 } // namespace
 
-vtkSLMultiViewPass* ShadowRenderer::multiViewFor(const TechniqueDescriptor& technique, bool gbufferOnly)
+vtkSLMultiViewPass* ShadowRenderer::multiViewFor(const FrameResources& frame, bool gbufferOnly)
 {
-  const auto found = gbufferOnly ? multiViewByTechnique_.end() : multiViewByTechnique_.find(technique.name);
+  const auto found = gbufferOnly ? multiViewByTechnique_.end() : multiViewByTechnique_.find(stageKey(frame));
   return found == multiViewByTechnique_.end() ? nullptr : found->second.Get();
 }
 
@@ -245,8 +260,8 @@ void ShadowRenderer::allocateFrameTargets(FrameResources& frame, const Scene& sc
 
 double ShadowRenderer::renderStages(FrameResources& frame, bool gbufferOnly)
 {
-  const auto& stages = stagesFor(*frame.technique, gbufferOnly);
-  vtkSLMultiViewPass* multiView = multiViewFor(*frame.technique, gbufferOnly);
+  const auto& stages = stagesFor(frame, gbufferOnly);
+  vtkSLMultiViewPass* multiView = multiViewFor(frame, gbufferOnly);
   vtkNew<vtkRenderPassCollection> collection;
   for (const auto& stage : stages)
   {
@@ -278,7 +293,7 @@ double ShadowRenderer::renderStages(FrameResources& frame, bool gbufferOnly)
 
 void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbufferOnly, FrameResult& result)
 {
-  for (const auto& stage : stagesFor(*frame.technique, gbufferOnly))
+  for (const auto& stage : stagesFor(frame, gbufferOnly))
   {
     result.stages.push_back({ stage->GetStageName(), stage->GetGpuMilliseconds(), stage->GetWallMilliseconds() });
     if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
@@ -304,11 +319,11 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
 void ShadowRenderer::releaseFrame(FrameResources& frame, bool gbufferOnly)
 {
   renderer_->SetPass(nullptr);
-  for (const auto& stage : stagesFor(*frame.technique, gbufferOnly))
+  for (const auto& stage : stagesFor(frame, gbufferOnly))
   {
     stage->SetFrame(nullptr); // the frame's resources end here
   }
-  if (vtkSLMultiViewPass* multiView = multiViewFor(*frame.technique, gbufferOnly))
+  if (vtkSLMultiViewPass* multiView = multiViewFor(frame, gbufferOnly))
   {
     multiView->SetFrame(nullptr);
   }

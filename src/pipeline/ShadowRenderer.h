@@ -52,9 +52,10 @@ public:
 private:
   // The stage passes of each technique, built on first use and kept: their programs, framebuffers and
   // VAOs are reused frame after frame (warm frames are what benchmarks time).
-  std::vector<vtkSmartPointer<vtkSLStagePass>>& stagesFor(const TechniqueDescriptor& technique, bool gbufferOnly);
+  std::vector<vtkSmartPointer<vtkSLStagePass>>& stagesFor(const FrameResources& frame, bool gbufferOnly);
+  static std::string stageKey(const FrameResources& frame);
   // The multi-view pass of a technique with sub-lights (nullptr otherwise, and for G-buffer-only frames).
-  vtkSLMultiViewPass* multiViewFor(const TechniqueDescriptor& technique, bool gbufferOnly);
+  vtkSLMultiViewPass* multiViewFor(const FrameResources& frame, bool gbufferOnly);
   // The steps of render(), in order.
   void allocateFrameTargets(FrameResources& frame, const Scene& scene, bool gbufferOnly); // GPU scene, targets
   double renderStages(FrameResources& frame, bool gbufferOnly); // returns the frame's wall time (ms)

@@ -71,7 +71,7 @@ sl::ShaderDefines vtkSLTechniquePass::TechniqueDefines() const
     defines.push_back({ upperCase(spec.name), std::to_string(frame.parameters.getInt(spec.name)) });
   }
   // The defines each light-space structure's GLSL lookup needs (e.g. the min-max layout of common/HsmLayout.glsl).
-  for (const sl::LightSpaceStructure* structure : sl::withBuildDependencies(frame.technique->lightStructures))
+  for (const sl::LightSpaceStructure* structure : sl::withBuildDependencies(frame.technique->structuresFor(frame.parameters)))
   {
     const sl::ShaderDefines structureDefines = structure->shaderDefines(frame);
     defines.insert(defines.end(), structureDefines.begin(), structureDefines.end());
@@ -86,7 +86,7 @@ std::string vtkSLTechniquePass::ParameterDeclarations() const
   std::string declarations;
   for (const sl::ParameterSpec& spec : this->Frame->technique->parameters)
   {
-    if (spec.choices.empty())
+    if (spec.choices.empty() && !spec.file)
     {
       declarations += "uniform float param_" + spec.name + ";\n";
     }
@@ -107,14 +107,14 @@ std::vector<vtkTextureObject*> vtkSLTechniquePass::SetCommonUniforms(vtkShaderPr
   }
   // Every light-space structure the frame built for the technique (those it lists and what they are built from),
   // bound the way its folder says (lightspace/*/).
-  for (const sl::LightSpaceStructure* structure : sl::withBuildDependencies(frame.technique->lightStructures))
+  for (const sl::LightSpaceStructure* structure : sl::withBuildDependencies(frame.technique->structuresFor(frame.parameters)))
   {
     const std::vector<vtkTextureObject*> textures = structure->bind(program, frame);
     bound.insert(bound.end(), textures.begin(), textures.end());
   }
   for (const sl::ParameterSpec& spec : frame.technique->parameters)
   {
-    if (spec.choices.empty())
+    if (spec.choices.empty() && !spec.file)
     {
       sl::setFloatIfUsed(program, ("param_" + spec.name).c_str(), frame.parameters.get(spec.name));
     }
