@@ -97,8 +97,9 @@ int runBenchConfiguration(const BenchRunOptions& options)
   nlohmann::json parameters = nlohmann::json::object();
   for (const ParameterSpec& spec : last.parameters.specs())
   {
-    parameters[spec.name] = spec.choices.empty() ? nlohmann::json(last.parameters.get(spec.name))
-                                                 : nlohmann::json(last.parameters.choice(spec.name));
+    parameters[spec.name] = spec.file ? nlohmann::json(last.parameters.file(spec.name))
+      : spec.choices.empty()          ? nlohmann::json(last.parameters.get(spec.name))
+                                      : nlohmann::json(last.parameters.choice(spec.name));
   }
   nlohmann::json stages = nlohmann::json::object();
   for (const StageTiming& stage : last.stages)

@@ -17,6 +17,10 @@ namespace
 
 std::string describeRange(const ParameterSpec& spec)
 {
+  if (spec.file)
+  {
+    return "file path";
+  }
   if (!spec.choices.empty())
   {
     std::string choices;
@@ -33,6 +37,10 @@ std::string describeRange(const ParameterSpec& spec)
 
 std::string describeDefault(const ParameterSpec& spec)
 {
+  if (spec.file)
+  {
+    return "(none)";
+  }
   if (!spec.choices.empty())
   {
     return spec.choices.at(static_cast<std::size_t>(spec.defaultValue));
@@ -54,7 +62,7 @@ void listAsJson(std::ostream& out)
         spec.choices.empty() ? nlohmann::json(spec.defaultValue) : nlohmann::json(describeDefault(spec));
       parameters.push_back({ { "name", spec.name }, { "default", defaultValue },
         { "min", spec.minValue }, { "max", spec.maxValue }, { "unit", spec.unit }, { "choices", spec.choices },
-        { "integer", spec.integer }, { "doc", spec.doc } });
+        { "integer", spec.integer }, { "file", spec.file }, { "doc", spec.doc } });
     }
     nlohmann::json buffers = nlohmann::json::array();
     for (const BufferSpec& buffer : technique.buffers)

@@ -53,9 +53,22 @@ const std::string& ParameterValues::choice(const std::string& name) const
   return spec->choices.at(static_cast<std::size_t>(getInt(name)));
 }
 
+const std::string& ParameterValues::file(const std::string& name) const
+{
+  static const std::string unset;
+  const ParameterSpec* spec = findParameterSpec(specs(), name);
+  SL_CHECK_MSG(spec && spec->file, "'", name, "' is not a file parameter");
+  const auto found = files_.find(name);
+  return found == files_.end() ? unset : found->second;
+}
+
 void ParameterValues::set(const std::string& key, double value)
 {
   const ParameterSpec* spec = findParameterSpec(specs(), key);
+  if (spec && spec->file)
+  {
+    throw InputError(format("--set ", key, "=", value, ": technique '", owner_, "' expects a file path for ", key));
+  }
   if (!spec)
   {
     std::string known;
@@ -88,6 +101,16 @@ void ParameterValues::set(const std::string& assignment)
   const std::string key = assignment.substr(0, equals);
   const std::string text = assignment.substr(equals + 1);
   const ParameterSpec* spec = findParameterSpec(specs(), key);
+  if (spec && spec->file)
+  {
+    if (text.empty())
+    {
+      throw InputError(format("--set ", assignment, ": expected a file path after '='"));
+    }
+    files_[key] = text;
+    values_[key] = 1.0;
+    return;
+  }
   if (spec && !spec->choices.empty())
   {
     const auto found = std::find(spec->choices.begin(), spec->choices.end(), text);

@@ -20,6 +20,9 @@ struct ParameterSpec
   std::string doc;                  // one line, cites the paper where it comes from
   std::vector<std::string> choices; // non-empty: an enumeration, the value is the index of the choice
   bool integer = false;             // integer-valued numeric parameter
+  // A file path (`--set key=PATH`, e.g. ss08's budget image): its number is 1 once a path is set, 0 before (the
+  // range 0..1); ParameterValues::file gives the path. Checked by whoever reads the file, which names it.
+  bool file = false;
 };
 
 // The spec called `name` in `specs`, or nullptr.
@@ -37,6 +40,7 @@ public:
   double get(const std::string& name) const;        // SL_CHECKs the name exists
   int getInt(const std::string& name) const;
   const std::string& choice(const std::string& name) const; // enumeration's chosen name
+  const std::string& file(const std::string& name) const;   // a file parameter's path ("" when unset)
   // Parses "key=value" (a number, or a choice name for enumerations, or true/false for 0..1 integers).
   // Throws InputError naming the technique, key and value when unknown or out of range.
   void set(const std::string& assignment);
@@ -49,6 +53,7 @@ private:
   std::string owner_;
   const std::vector<ParameterSpec>* specs_ = nullptr;
   std::map<std::string, double> values_;
+  std::map<std::string, std::string> files_;
 };
 
 } // namespace sl

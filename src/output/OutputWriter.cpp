@@ -136,7 +136,11 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
   nlohmann::json parameters = nlohmann::json::object();
   for (const ParameterSpec& spec : technique.parameters)
   {
-    if (spec.choices.empty())
+    if (spec.file)
+    {
+      parameters[spec.name] = frame.parameters.file(spec.name);
+    }
+    else if (spec.choices.empty())
     {
       parameters[spec.name] = frame.parameters.get(spec.name);
     }

@@ -477,7 +477,12 @@ TEST(CliList, TextListsEveryParameterWithDefaultAndRange)
     {
       std::string expectedDefault;
       std::string expectedRange;
-      if (spec.choices.empty())
+      if (spec.file)
+      {
+        expectedDefault = "(none)";
+        expectedRange = "file path";
+      }
+      else if (spec.choices.empty())
       {
         expectedDefault = formatNumber(spec.defaultValue);
         expectedRange = formatNumber(spec.minValue) + " .. " + formatNumber(spec.maxValue);
