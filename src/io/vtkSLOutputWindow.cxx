@@ -23,6 +23,7 @@ thread_local std::vector<sl::VtkErrorCapture*> capturesOfThisThread;
 
 std::mutex installMutex;
 std::mutex printMutex;
+bool fullMessages = false; // SHADOWLAB_VTK_LOG=full
 
 const char* kindName(sl::VtkErrorCapture::Kind kind)
 {
@@ -110,7 +111,7 @@ void vtkSLOutputWindow::DisplayText(const char* text)
     ++this->UncapturedMessageCount;
     const std::string line = sl::vtkMessageLine(message);
     if (this->PrintUncaptured && !line.empty())
-      std::cerr << "shadowlab: " << kindName(kind) << ": " << line << std::endl;
+      std::cerr << "shadowlab: " << kindName(kind) << ": " << (fullMessages ? message : line) << std::endl;
   }
   // Observers of the window (none in ShadowLab) still see every message, as with vtkOutputWindow.
   this->InvokeEvent(vtkCommand::MessageEvent, const_cast<char*>(message.c_str()));
@@ -129,7 +130,9 @@ void installVtkOutputWindow()
     return;
   vtkNew<vtkSLOutputWindow> window;
   const char* logFlag = std::getenv("SHADOWLAB_VTK_LOG");
-  window->SetPrintUncaptured(logFlag != nullptr && std::strcmp(logFlag, "1") == 0);
+  // SHADOWLAB_VTK_LOG=1 prints each uncaptured message's first line; =full prints it whole (a GLSL compiler log).
+  fullMessages = logFlag != nullptr && std::strcmp(logFlag, "full") == 0;
+  window->SetPrintUncaptured(logFlag != nullptr && (std::strcmp(logFlag, "1") == 0 || fullMessages));
   vtkOutputWindow::SetInstance(window);
 }
 

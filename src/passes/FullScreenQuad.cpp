@@ -6,6 +6,7 @@
 #include <vtkOpenGLQuadHelper.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
+#include <vtkShader.h>
 #include <vtkShaderProgram.h>
 
 namespace sl
@@ -26,7 +27,13 @@ vtkShaderProgram* FullScreenQuad::ready(
   vtkShaderProgram* program = quad_->Program;
   if (!program || !program->GetCompiled())
   {
-    throw GraphicsError("cannot build the shader program '" + label + "' (the GLSL compiler log is above)");
+    // The compiler's or linker's own words, when VTK kept them (its log goes to the captured output window).
+    std::string log = program ? program->GetError() : std::string();
+    if (log.empty() && program && program->GetFragmentShader())
+    {
+      log = program->GetFragmentShader()->GetError();
+    }
+    throw GraphicsError("cannot build the shader program '" + label + "'" + (log.empty() ? std::string(" (no compiler log)") : ": " + log));
   }
   window->GetShaderCache()->ReadyShaderProgram(program);
   return program;
