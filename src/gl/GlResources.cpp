@@ -188,7 +188,7 @@ vtkShaderProgram* readyProgram(vtkOpenGLRenderWindow* window, const std::string&
     window->GetShaderCache()->ReadyShaderProgram(vertexSource.c_str(), fragmentSource.c_str(), "");
   if (!program || !program->GetCompiled())
   {
-    throw GraphicsError("cannot build shader program '" + label + "' (the GLSL compiler log is above)");
+    throw GraphicsError("cannot build shader program '" + label + "' (run with SHADOWLAB_VTK_LOG=full to see the GLSL compiler log)");
   }
   return program;
 }

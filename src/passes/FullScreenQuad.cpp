@@ -33,7 +33,7 @@ vtkShaderProgram* FullScreenQuad::ready(
     {
       log = program->GetFragmentShader()->GetError();
     }
-    throw GraphicsError("cannot build the shader program '" + label + "'" + (log.empty() ? std::string(" (no compiler log)") : ": " + log));
+    throw GraphicsError("cannot build the shader program '" + label + "'" + (log.empty() ? std::string(" (run with SHADOWLAB_VTK_LOG=full to see the GLSL compiler log)") : ": " + log));
   }
   window->GetShaderCache()->ReadyShaderProgram(program);
   return program;
