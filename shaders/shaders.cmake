@@ -15,6 +15,9 @@ set(SL_SHADER_FILES
   common/SatLookup.glsl
   common/HsmLayout.glsl
   common/HsmLookup.glsl
+  common/MipAtlasLayout.glsl
+  common/MicrorectLookup.glsl
+  microrect/MicrorectBuild.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
   lightspace/LightDepthVertex.glsl

@@ -4,6 +4,7 @@
 
 #include "core/Error.h"
 #include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/microrect/MicrorectStructure.h"
 #include "lightspace/moments/MomentMapStructure.h"
 #include "lightspace/mssm/DualMssmStructure.h"
 #include "lightspace/sat/SatStructure.h"
@@ -24,6 +25,7 @@ const std::vector<const LightSpaceStructure*>& lightSpaceStructureRegistry()
     &summedAreaTableStructure(),
     &hierarchicalShadowMapStructure(),
     &dualMssmStructure(),
+    &microrectStructure(),
   };
   return registry;
 }

@@ -8,6 +8,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/LightSamples.cpp
   src/lightspace/ShadowMapMath.cpp
   src/lightspace/HierarchicalShadowMap.cpp
+  src/lightspace/Microrects.cpp
   src/lightspace/sat/SummedAreaTable.cpp)
 set(SL_STRUCTURES_SOURCES
   src/lightspace/LightSpaceStructureRegistry.cpp
@@ -20,4 +21,6 @@ set(SL_STRUCTURES_SOURCES
   src/lightspace/sat/vtkSLSatPass.cxx
   src/lightspace/hsm/HsmStructure.cpp
   src/lightspace/hsm/vtkSLHsmPass.cxx
-  src/lightspace/mssm/DualMssmStructure.cpp)
+  src/lightspace/mssm/DualMssmStructure.cpp
+  src/lightspace/microrect/MicrorectStructure.cpp
+  src/lightspace/microrect/vtkSLMicrorectPass.cxx)

@@ -25,6 +25,11 @@ ShadowRenderer& sharedRenderer()
 
 } // namespace
 
+vtkSLEglRenderWindow* sharedRenderWindow()
+{
+  return sharedRenderer().window();
+}
+
 std::filesystem::path sourceDir()
 {
   return SL_SOURCE_DIR;

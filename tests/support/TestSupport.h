@@ -74,6 +74,11 @@ GroundError groundErrorAgainst(const FrameResult& frame, const std::function<dou
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
   const std::vector<std::string>& settings = {});
 
+// The shared renderer's window, for tests that run a pass outside a frame (tests/render/MicrorectGpuTest.cpp).
+// Use it rather than a second EGL context: each context terminates the process's EGL display when it goes, which
+// breaks the other one's teardown.
+vtkSLEglRenderWindow* sharedRenderWindow();
+
 // "dataset setting setting ..." for failure messages and [ measured ] lines.
 std::string caseLabel(const std::string& dataset, const std::vector<std::string>& settings);
 
