@@ -32,6 +32,7 @@ set(SL_SHADER_FILES
   esm/EsmVisibility.glsl
   sat/SatBuild.glsl
   hsm/HsmBuild.glsl
+  hsm/YsmMssmBuild.glsl
   multiview/SubLightAccumulate.glsl
   savsm/SavsmVisibility.glsl
   vssm/VssmVisibility.glsl

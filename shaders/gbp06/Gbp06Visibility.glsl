@@ -131,17 +131,13 @@ float maxComparisonDepth(ivec2 first, ivec2 last)
 
 // Whether quadtree node (level, index), texels [index 2^level, (index + 1) 2^level), may hold an occluding texel
 // of the region (DU07's pruning test): its minimum depth is in front of the largest comparison depth over its
-// texels in the region. N-buffers hold the same range at texel index 2^level.
+// texels in the region (hsmNode: the same range in every layout of the structure).
 bool mayOcclude(int level, ivec2 index)
 {
   ++visitedNodes;
   ivec2 first = max(index << level, regionLo);
   ivec2 last = min(((index + 1) << level) - 1, regionHi);
-#if HSM_LAYOUT == HSM_LAYOUT_NBUFFERS
-  vec2 node = hsmTexel(level, index << level);
-#else
-  vec2 node = hsmTexel(level, index);
-#endif
+  vec2 node = hsmNode(level, index);
   return node.x < maxComparisonDepth(first, last);
 }
 #endif

@@ -29,9 +29,31 @@ int hsmLevelSize(HsmLayout layout, int mapSize, int level)
   {
     case HsmLayout::NBuffers: return mapSize;
     case HsmLayout::DualMssm: return mapSize + 1;
-    case HsmLayout::MipMap: break;
+    case HsmLayout::MipMap:
+    case HsmLayout::Ysm: break;
   }
   return (mapSize + (1 << level) - 1) >> level;
+}
+
+int ysmBaseLevel(int mapSize)
+{
+  // b = floor(log2 (N / 256)), at least 0 (paper 001: n - 1 = log2 (N / 256), L629-641).
+  int level = 0;
+  while ((ysmMssmPartTargetSize << (level + 1)) <= mapSize)
+  {
+    ++level;
+  }
+  return level;
+}
+
+int ysmMssmPartSize(int mapSize)
+{
+  return hsmLevelSize(HsmLayout::MipMap, mapSize, ysmBaseLevel(mapSize));
+}
+
+int ysmMssmPartLevelCount(int mapSize)
+{
+  return hsmLevelCount(ysmMssmPartSize(mapSize));
 }
 
 glm::ivec2 hsmAtlasOffset(int mapSize, int level)
@@ -50,7 +72,7 @@ glm::ivec2 hsmAtlasOffset(int mapSize, int level)
 
 ImageF HierarchicalShadowMap::atlas() const
 {
-  SL_CHECK(layout == HsmLayout::MipMap);
+  SL_CHECK(layout == HsmLayout::MipMap || layout == HsmLayout::Ysm);
   ImageF result(mapSize, mapSize, 2);
   for (std::size_t level = 1; level < levels.size(); ++level)
   {
@@ -70,8 +92,41 @@ ImageF HierarchicalShadowMap::atlas() const
   return result;
 }
 
+namespace
+{
+
+// N-buffer level `level` (>= 1) of a square grid from its level - 1 (`finer`): texel (x, y) holds the range of
+// the four level - 1 squares at (x, y) + 2^(level-1) {0, 1}^2, clamped to the grid (Décoret 2005).
+ImageF nBufferLevel(const ImageF& finer, int level)
+{
+  const int size = finer.width;
+  const int stride = 1 << (level - 1);
+  ImageF coarser(size, size, 2);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      float low = finer.at(x, y, 0);
+      float high = finer.at(x, y, 1);
+      for (int child = 1; child < 4; ++child)
+      {
+        const int cx = std::min(x + (child & 1) * stride, size - 1);
+        const int cy = std::min(y + (child >> 1) * stride, size - 1);
+        low = std::min(low, finer.at(cx, cy, 0));
+        high = std::max(high, finer.at(cx, cy, 1));
+      }
+      coarser.at(x, y, 0) = low;
+      coarser.at(x, y, 1) = high;
+    }
+  }
+  return coarser;
+}
+
+} // namespace
+
 HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear, HsmLayout layout)
 {
+  SL_CHECK(layout != HsmLayout::DualMssm); // buildDual
   SL_CHECK_MSG(shadowMapLinear.width == shadowMapLinear.height, "the HSM needs a square shadow map");
   HierarchicalShadowMap hsm;
   hsm.layout = layout;
@@ -114,6 +169,17 @@ HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear
       }
     }
     hsm.levels.push_back(std::move(coarser));
+  }
+  if (layout == HsmLayout::Ysm)
+  {
+    // The MSSM part: N-buffers over the nodes of HSM level b, whose level 0 is that level (not stored).
+    hsm.ysmBaseLevel = sl::ysmBaseLevel(hsm.mapSize);
+    const int partLevels = ysmMssmPartLevelCount(hsm.mapSize);
+    for (int level = 1; level <= partLevels; ++level)
+    {
+      const ImageF& finer = level == 1 ? hsm.levels[static_cast<std::size_t>(hsm.ysmBaseLevel)] : hsm.mssmPart.back();
+      hsm.mssmPart.push_back(nBufferLevel(finer, level));
+    }
   }
   return hsm;
 }
@@ -213,6 +279,14 @@ glm::dvec2 HierarchicalShadowMap::dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi
   return result;
 }
 
+glm::dvec2 HierarchicalShadowMap::node(int level, glm::ivec2 index) const
+{
+  SL_CHECK(layout != HsmLayout::DualMssm); // dualNode
+  const glm::ivec2 texel = layout == HsmLayout::NBuffers ? index << level : index;
+  const ImageF& image = levels[static_cast<std::size_t>(level)];
+  return { image.at(texel.x, texel.y, 0), image.at(texel.x, texel.y, 1) };
+}
+
 glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetches) const
 {
   if (layout == HsmLayout::DualMssm)
@@ -223,14 +297,43 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
   }
   glm::dvec2 result(1e300, -1e300);
   int reads = 0;
-  const auto visit = [&](int level, int x, int y) {
-    const ImageF& image = levels[static_cast<std::size_t>(level)];
+  const auto visitImage = [&](const ImageF& image, int x, int y) {
     result.x = std::min(result.x, static_cast<double>(image.at(x, y, 0)));
     result.y = std::max(result.y, static_cast<double>(image.at(x, y, 1)));
     ++reads;
   };
+  const auto visit = [&](int level, int x, int y) { visitImage(levels[static_cast<std::size_t>(level)], x, y); };
+  // The largest square not wider than the shorter side of the rectangle [first, last] of a grid; squares start
+  // every `side` texels and the last one of each axis ends exactly at `last` (overlaps are harmless for min and
+  // max). Reads at most 2 squares along the shorter side.
+  const auto tile = [](glm::ivec2 first, glm::ivec2 last, auto&& visitSquare) {
+    const glm::ivec2 extent = last - first + 1;
+    int level = 0;
+    while ((2 << level) <= std::min(extent.x, extent.y))
+    {
+      ++level;
+    }
+    const int side = 1 << level;
+    for (int y = first.y;; y += side)
+    {
+      const int sy = std::min(y, last.y - side + 1);
+      for (int x = first.x;; x += side)
+      {
+        const int sx = std::min(x, last.x - side + 1);
+        visitSquare(level, sx, sy);
+        if (sx + side > last.x)
+        {
+          break;
+        }
+      }
+      if (sy + side > last.y)
+      {
+        break;
+      }
+    }
+  };
   const glm::ivec2 extent = hi - lo + 1;
-  if (layout == HsmLayout::MipMap)
+  if (layout == HsmLayout::MipMap || layout == HsmLayout::Ysm)
   {
     // The first level whose nodes are at least as wide as the rectangle: it spans at most 2 nodes per axis.
     int level = 0;
@@ -239,43 +342,31 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
       ++level;
     }
     level = std::min(level, static_cast<int>(levels.size()) - 1);
-    const glm::ivec2 first = lo >> level;
-    const glm::ivec2 last = hi >> level;
-    for (int y = first.y; y <= last.y; ++y)
+    if (layout == HsmLayout::Ysm && level > ysmBaseLevel)
     {
-      for (int x = first.x; x <= last.x; ++x)
+      // YSM (001 §6): the level-b nodes the rectangle touches, tiled exactly by the MSSM part (its level 0 is
+      // HSM level b). They lie inside the level-k nodes the mip-map query reads, so the range is never looser.
+      tile(lo >> ysmBaseLevel, hi >> ysmBaseLevel, [&](int partLevel, int x, int y) {
+        visitImage(partLevel == 0 ? levels[static_cast<std::size_t>(ysmBaseLevel)]
+                                  : mssmPart[static_cast<std::size_t>(partLevel - 1)], x, y);
+      });
+    }
+    else
+    {
+      const glm::ivec2 first = lo >> level;
+      const glm::ivec2 last = hi >> level;
+      for (int y = first.y; y <= last.y; ++y)
       {
-        visit(level, x, y);
+        for (int x = first.x; x <= last.x; ++x)
+        {
+          visit(level, x, y);
+        }
       }
     }
   }
   else
   {
-    // The largest square not wider than the rectangle's shorter side; squares start every `side` texels and
-    // the last one of each axis ends exactly at hi (overlaps are harmless for min and max).
-    int level = 0;
-    while ((2 << level) <= std::min(extent.x, extent.y))
-    {
-      ++level;
-    }
-    const int side = 1 << level;
-    for (int y = lo.y;; y += side)
-    {
-      const int sy = std::min(y, hi.y - side + 1);
-      for (int x = lo.x;; x += side)
-      {
-        const int sx = std::min(x, hi.x - side + 1);
-        visit(level, sx, sy);
-        if (sx + side > hi.x)
-        {
-          break;
-        }
-      }
-      if (sy + side > hi.y)
-      {
-        break;
-      }
-    }
+    tile(lo, hi, visit); // N-buffers: exact
   }
   if (fetches)
   {

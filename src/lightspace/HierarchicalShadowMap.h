@@ -17,6 +17,17 @@
 //    2^k + 1 samples per side and a quadtree over cells needs no neighbour reads. Cells -1 .. N - 1 exist (the
 //    border ones half outside the map, whose outside samples hold `outsideDepth`, 2 x far: they never occlude),
 //    so each level has (N + 1)^2 texels, texel t holding cell t - 1.
+//  - Y shadow map (YSM; Schwarz & Stamminger 2008, paper 001 §6, L629-656, Table 1): a hybrid of the two. The
+//    full mip-map HSM above (`levels`, the same atlas; the paper's implementation keeps the HSM untruncated for
+//    micro-occluder construction, L646-651) plus an "MSSM part": the N-buffers of HSM level b (the paper's
+//    n - 1), b = max(0, floor(log2 (N / 256))) so that the part is about 256^2 (L637-641: 256^2 at N = 1024
+//    and 2048; b = 0, the part as large as the map, for N <= 511). The part's level 0 is HSM level b and is not
+//    stored (L631-633); `mssmPart[j - 1]` holds its level j = 1..ceil(log2 M), M = ceil(N / 2^b), as M x M.
+//    A query first takes the mip-map level k the mip-map query would use; for k <= b it is that query, else
+//    the rectangle's level-b nodes [lo >> b, hi >> b] are tiled like the N-buffers by the part's squares:
+//    conservative, exact on rectangles aligned to level-b blocks, never looser than the mip-map query (the mip
+//    nodes of level k > b cover every level-b node the tiling reads). Memory (RG32F): the N x N atlas plus
+//    8 M^2 ceil(log2 M) bytes, i.e. + 4 MiB at 1024^2 and 2048^2, Table 1's YSM - HSM.
 #pragma once
 
 #include "core/Image.h"
@@ -32,7 +43,8 @@ enum class HsmLayout
 {
   MipMap,
   NBuffers,
-  DualMssm
+  DualMssm,
+  Ysm // the mip-map levels plus an N-buffers part from level ysmBaseLevel (paper 001 §6)
 };
 
 // Levels above 0 of an N x N map: ceil(log2 N) (the last mip level is 1 x 1).
@@ -41,28 +53,46 @@ int hsmLevelCount(int mapSize);
 int dualMssmLevelCount(int mapSize);
 // Texels per side of level k.
 int hsmLevelSize(HsmLayout layout, int mapSize, int level);
-// Mip-map layout: where level k >= 1 starts in the N x N atlas.
+// Mip-map layout (and the YSM's): where level k >= 1 starts in the N x N atlas.
 glm::ivec2 hsmAtlasOffset(int mapSize, int level);
+// YSM: the MSSM part's resolution the paper recommends (001 L637-641).
+constexpr int ysmMssmPartTargetSize = 256;
+// YSM: the HSM level b the MSSM part is built from: the largest b with 256 * 2^b <= N, 0 for N < 512.
+int ysmBaseLevel(int mapSize);
+// YSM: texels per side of the MSSM part, M = ceil(N / 2^b) (= N for b = 0).
+int ysmMssmPartSize(int mapSize);
+// YSM: levels of the MSSM part stored (1..ceil(log2 M); level 0 is HSM level b).
+int ysmMssmPartLevelCount(int mapSize);
 
 struct HierarchicalShadowMap
 {
   HsmLayout layout = HsmLayout::MipMap;
   int mapSize = 0;
   std::vector<ImageF> levels; // levels[k]: 2 components (min, max); levels[0] from the shadow map
+  // YSM only: the MSSM part, mssmPart[j - 1] = its N-buffer level j (M x M) over the nodes of HSM level
+  // ysmBaseLevel (its level 0).
+  int ysmBaseLevel = 0;
+  std::vector<ImageF> mssmPart;
 
   static HierarchicalShadowMap build(const ImageF& shadowMapLinear, HsmLayout layout);
   static HierarchicalShadowMap buildDual(const ImageF& shadowMapLinear, float outsideDepth);
 
   // (min, max) depth over the inclusive texel rectangle [lo, hi] (inside the map): exact for N-buffers and the
   // dual-grid MSSM (there [lo, hi] must be at least 2 x 2), the range of the covering nodes for the mip-map. `fetches` (optional) counts the texels read.
+  // YSM: conservative, exact on rectangles aligned to level-ysmBaseLevel blocks, never looser than the mip-map.
   glm::dvec2 range(glm::ivec2 lo, glm::ivec2 hi, int* fetches = nullptr) const;
+
+  // Every layout but the dual grid: (min, max) over the aligned block [index 2^level, (index + 1) 2^level)
+  // (clipped to the map) of the mip-map quadtree; level 0 is the shadow map. Mip-map and YSM: texel `index` of
+  // the level; N-buffers: the square at texel index 2^level (the same range). GLSL: hsmNode.
+  glm::dvec2 node(int level, glm::ivec2 index) const;
 
   // Dual-grid MSSM: the node of `level` whose first cell is `cell` (-1 .. N - 1 per axis).
   glm::dvec2 dualNode(int level, glm::ivec2 cell) const;
   // Dual-grid MSSM: (min, max) over the inclusive cell rectangle [cellLo, cellHi], tiled like the N-buffers.
   glm::dvec2 dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi, int* fetches = nullptr) const;
 
-  // Mip-map layout: levels 1..L in the N x N atlas (2 components, 0 outside the levels).
+  // Mip-map layout and YSM: levels 1..L in the N x N atlas (2 components, 0 outside the levels).
   ImageF atlas() const;
 };
 

@@ -3,6 +3,7 @@
 // nodes); against the closed-form overlap of a parallel square occluder, converging as the map's resolution doubles;
 // the gap-filling conventions (left/bottom, 001 L132-134, and right/top) swapped by mirroring the scene in light
 // x and y, and the searched texels enough for both.
+#include "lightspace/hsm/HsmStructure.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
@@ -25,8 +26,7 @@ constexpr int kHeight = 48;
 
 HierarchicalShadowMap structureOf(const FrameResult& frame, const ShadowMapInputs& inputs)
 {
-  return HierarchicalShadowMap::build(inputs.shadowMapLinear,
-    frame.parameters.choice("hsm") == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
+  return HierarchicalShadowMap::build(inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
 }
 
 // Pixels whose decisions lie within float rounding of a boundary: a texel within rounding of its comparison
@@ -53,6 +53,9 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     { "stacked-occluders", { "shadow_map_size=256", "traversal=hsm", "gap_filling=left_bottom" } },
     { "stacked-occluders", { "shadow_map_size=256", "traversal=kernel", "gap_filling=right_top" } },
     { "bunny", { "shadow_map_size=256", "traversal=hsm", "gap_filling=left_bottom", "hsm=mipmap" } },
+    // The Y shadow map (paper 001 §6): at 512^2, b = 1: the walk reads its mip-map nodes (hsmNode), kernels wider
+    // than 2 texels their ranges from the 256^2 MSSM part.
+    { "stacked-occluders", { "shadow_map_size=512", "traversal=hsm", "gap_filling=left_bottom", "hsm=ysm" } },
   };
   for (const Case& c : cases)
   {

@@ -1,6 +1,7 @@
 // gbp07 (contour back-projection with radial integration): the GLSL against its double-precision twin on
 // read-back buffers, and against the closed-form overlap of a parallel square occluder, converging as the
 // shadow map's resolution doubles.
+#include "lightspace/hsm/HsmStructure.h"
 #include "support/TestSupport.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 
@@ -51,14 +52,21 @@ TEST(Gbp07, MatchesTheCpuImplementation)
     { "stacked-occluders", { "shadow_map_size=512" } },
     { "contact", { "shadow_map_size=512", "hsm=mipmap" } },
     { "bunny", { "shadow_map_size=512", "receiver_plane_bias=off", "kernel_refinements=0" } },
+    // The Y shadow map (paper 001 §6) at 1024^2: kernels wider than 2^b = 4 texels take their ranges from the
+    // 256^2 MSSM part (hsmRange's YSM branch), narrower ones from the mip-map levels.
+    { "planar-occluder", { "shadow_map_size=1024", "hsm=ysm" } },
   };
   for (const Case& c : cases)
   {
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult frame = test::renderDataset(scene, "gbp07", 96, 80, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear,
-      frame.parameters.choice("hsm") == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
+    const HsmLayout layout = hierarchicalShadowMapSettings(frame.parameters).layout;
+    const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear, layout);
+    // For the YSM: the twin with the mip-map HSM alone, to count the pixels whose decision the MSSM part changes.
+    const HierarchicalShadowMap mipOnly = layout == HsmLayout::Ysm
+      ? HierarchicalShadowMap::build(inputs.shadowMapLinear, HsmLayout::MipMap) : HierarchicalShadowMap();
+    int changedByYsm = 0;
     const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
@@ -89,7 +97,18 @@ TEST(Gbp07, MatchesTheCpuImplementation)
         EXPECT_EQ(frame.find("contour_edges")->image.at(x, y), cpu.contourEdges) << label << " pixel " << x << "," << y;
         EXPECT_EQ(frame.find("visited_cells")->image.at(x, y), cpu.visitedCells) << label << " pixel " << x << "," << y;
         EXPECT_NEAR(frame.find("kernel_texels")->image.at(x, y), cpu.kernelTexels, 1e-4 * (1.0 + cpu.kernelTexels)) << label;
+        if (layout == HsmLayout::Ysm)
+        {
+          const Gbp07Sample mip = gbp07Reference(inputs, mipOnly, frame.parameters, x, y);
+          changedByYsm += mip.kernelTexels != cpu.kernelTexels || mip.classification != cpu.classification ? 1 : 0;
+        }
       }
+    }
+    if (layout == HsmLayout::Ysm)
+    {
+      std::cout << "[ measured ] gbp07 " << label << ": " << changedByYsm << " compared pixels whose kernel or class the YSM's "
+                << "MSSM part changes from the mip-map HSM's\n";
+      EXPECT_GT(changedByYsm, 100) << label << ": the YSM's range queries must be exercised";
     }
     std::cout << "[ measured ] gbp07 " << label << ": compared " << compared << " (lit " << classes[BackprojectionClass::Lit] << ", umbra "
               << classes[BackprojectionClass::Umbra] << ", penumbra " << classes[BackprojectionClass::Penumbra] << "), skipped " << skipped << ", max |gpu - cpu| "

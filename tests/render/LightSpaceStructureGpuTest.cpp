@@ -14,6 +14,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstddef>
+#include <iostream>
 #include <map>
 #include <ostream>
 #include <set>
@@ -57,6 +58,12 @@ std::size_t mipMapHsmBytes(std::size_t n)
 std::size_t nBuffersHsmBytes(std::size_t n)
 {
   return 8 * n * n * static_cast<std::size_t>(hsmLevelCount(static_cast<int>(n))); // RG32F, N x N per level 1..L
+}
+std::size_t ysmBytes(std::size_t n)
+{
+  // The mip-map atlas plus the MSSM part, RG32F M x M x ceil(log2 M) (paper 001 §6; HierarchicalShadowMap.h).
+  const std::size_t m = static_cast<std::size_t>(ysmMssmPartSize(static_cast<int>(n)));
+  return mipMapHsmBytes(n) + 8 * m * m * static_cast<std::size_t>(ysmMssmPartLevelCount(static_cast<int>(n)));
 }
 std::size_t dualMssmBytes(std::size_t n)
 {
@@ -138,6 +145,13 @@ std::vector<StructureCase> structureCases()
         { "hierarchical_shadow_map", nBuffersHsmBytes(small) } },
       { "gbuffer", "focus", "shadow_map", "summed_area_table", "hierarchical_shadow_map", "technique", "shading" },
       concatenated({ shadowMapArrays, tableArrays, perLevel("hsm_", 1, smallLevels) }) },
+    // Y shadow map at 128^2: b = 0, so the MSSM part is the N-buffers of the whole map (7 levels).
+    { "vssm", { "shadow_map_size=128", "hsm=ysm" }, 128,
+      { "shadow_map", "summed_area_table", "hierarchical_shadow_map" },
+      { { "shadow_map", shadowMapBytes(large) }, { "summed_area_table", summedAreaTableBytes(large) },
+        { "hierarchical_shadow_map", ysmBytes(large) } },
+      { "gbuffer", "focus", "shadow_map", "summed_area_table", "hierarchical_shadow_map", "technique", "shading" },
+      concatenated({ shadowMapArrays, tableArrays, { "hsm_min", "hsm_max" }, perLevel("ysm_mssm_", 1, 7) }) },
     // Multi-view: everything between the G-buffer and the shading runs per sub-light (4 times here), but each
     // stage is reported once (its timer sums the runs, which this test does not observe) and the structures'
     // memory is that of one sub-light's.
@@ -229,6 +243,76 @@ TEST_P(LightSpaceStructureFrame, BuildsTimesExportsAndCountsExactlyItsStructures
 
 INSTANTIATE_TEST_SUITE_P(Cases, LightSpaceStructureFrame, testing::ValuesIn(structureCases()), caseName);
 
+// Paper 001 Table 1: the YSM costs the HSM plus 4 MiB at 1024^2 (a 256^2 MSSM part of 8 levels, RG32F). The
+// project's HSM is the N x N atlas (level 0 stays in the shadow map), so its bytes are 8 N^2 and the YSM's
+// 8 N^2 + 8 * 256^2 * 8; the difference is the paper's.
+TEST(LightSpaceStructureGpu, YShadowMapCostsTheHsmPlusFourMebibytesAt1024)
+{
+  const Scene scene = test::loadDataset(kDataset);
+  std::map<std::string, std::size_t> bytes;
+  for (const std::string layout : { "mipmap", "ysm" })
+  {
+    const FrameResult frame = test::renderDataset(scene, "gbp07", 16, 12, { "shadow_map_size=1024", "hsm=" + layout });
+    bytes[layout] = frame.lightStructureGpuBytes.at("hierarchical_shadow_map");
+  }
+  std::cout << "[ measured ] hierarchical_shadow_map GPU bytes at 1024^2: mipmap " << bytes["mipmap"] << ", ysm "
+            << bytes["ysm"] << ", difference " << (bytes["ysm"] - bytes["mipmap"]) / 1048576.0 << " MiB\n";
+  EXPECT_EQ(bytes["mipmap"], mipMapHsmBytes(1024));
+  EXPECT_EQ(bytes["ysm"], ysmBytes(1024));
+  EXPECT_EQ(bytes["ysm"], std::size_t(8) * 1024 * 1024 + std::size_t(8) * 256 * 256 * 8);
+  EXPECT_EQ(bytes["ysm"] - bytes["mipmap"], std::size_t(4) << 20);
+}
+
+// The Y shadow map the GPU built (atlas and MSSM part, read back through light_space.vti) equals the CPU build
+// from the same shadow map bit for bit (min and max are exact in float), at 1024^2 (b = 2, a 256^2 part) and at
+// 200^2 (b = 0, not a power of two: odd levels keep their last row and column).
+TEST(LightSpaceStructureGpu, YShadowMapEqualsTheCpuBuildBitForBit)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  for (const int size : { 1024, 200 })
+  {
+    const FrameResult frame = test::renderDataset(scene, "vssm", 32, 32, { "shadow_map_size=" + std::to_string(size), "hsm=ysm" });
+    const HierarchicalShadowMap cpu = HierarchicalShadowMap::build(test::lightSpaceArray(frame, "shadow_map_depth"), HsmLayout::Ysm);
+    const int b = cpu.ysmBaseLevel;
+    ASSERT_EQ(static_cast<int>(cpu.mssmPart.size()), ysmMssmPartLevelCount(size));
+    // The atlas as stored; the part's level k exported per shadow-map texel (x, y) as its texel (x >> b, y >> b).
+    const ImageF atlas = cpu.atlas();
+    const ImageF& atlasMin = test::lightSpaceArray(frame, "hsm_min");
+    const ImageF& atlasMax = test::lightSpaceArray(frame, "hsm_max");
+    int compared = 0;
+    int differing = 0;
+    for (int y = 0; y < size; ++y)
+    {
+      for (int x = 0; x < size; ++x)
+      {
+        differing += atlasMin.at(x, y) != atlas.at(x, y, 0) || atlasMax.at(x, y) != atlas.at(x, y, 1) ? 1 : 0;
+        ++compared;
+      }
+    }
+    int partDiffering = 0;
+    for (int level = 1; level <= static_cast<int>(cpu.mssmPart.size()); ++level)
+    {
+      const ImageF& part = cpu.mssmPart[static_cast<std::size_t>(level - 1)];
+      const ImageF& gpuMin = test::lightSpaceArray(frame, "ysm_mssm_min_" + std::to_string(level));
+      const ImageF& gpuMax = test::lightSpaceArray(frame, "ysm_mssm_max_" + std::to_string(level));
+      for (int y = 0; y < size; ++y)
+      {
+        for (int x = 0; x < size; ++x)
+        {
+          partDiffering += gpuMin.at(x, y) != part.at(x >> b, y >> b, 0) || gpuMax.at(x, y) != part.at(x >> b, y >> b, 1) ? 1 : 0;
+          ++compared;
+        }
+      }
+    }
+    std::cout << "[ measured ] YSM at " << size << "^2 (b = " << b << ", part " << ysmMssmPartSize(size) << "^2 x "
+              << cpu.mssmPart.size() << "): " << compared << " texel pairs compared, atlas differing " << differing
+              << ", MSSM part differing " << partDiffering << "\n";
+    EXPECT_EQ(b, size == 1024 ? 2 : 0);
+    EXPECT_EQ(differing, 0) << size;
+    EXPECT_EQ(partDiffering, 0) << size;
+  }
+}
+
 // The structure passes keep their textures from one frame to the next when the size and format fit (a fresh
 // 2048^2 SAT or HSM cost llvmpipe more wall time than building it). Nothing of the previous frame may leak:
 // a frame of one scene, then a frame of another scene into the same textures, then the first scene again must
@@ -238,7 +322,8 @@ TEST(LightSpaceStructureGpu, ReusedTexturesKeepNothingOfThePreviousFrame)
   const Scene planar = test::loadDataset(kDataset);
   const Scene stacked = test::loadDataset("stacked-occluders");
   for (const Names& settings : { Names{ "shadow_map_size=128", "hsm=mipmap" },
-         Names{ "shadow_map_size=64", "hsm=nbuffers", "sat_precision=float_centred" } })
+         Names{ "shadow_map_size=64", "hsm=nbuffers", "sat_precision=float_centred" },
+         Names{ "shadow_map_size=128", "hsm=ysm" } })
   {
     const std::string label = test::caseLabel(kDataset, settings);
     const FrameResult first = test::renderDataset(planar, "vssm", kWidth, kHeight, settings);

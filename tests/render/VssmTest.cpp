@@ -136,6 +136,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
   const std::vector<Case> cases = {
     { "stacked-occluders", {} },
     { "stacked-occluders", { "shadow_subdivision=uniform", "blocker_subdivision=adaptive", "hsm=nbuffers" } },
+    { "stacked-occluders", { "hsm=ysm" } }, // b = 1 at 512^2: wider early-out kernels read the MSSM part (paper 001 §6)
     { "contact", {} },
     { "bunny", { "receiver_plane_bias=off" } },
     { "near-light", { "sat_precision=float_centred", "nonplanar_pcf_taps=3" } },

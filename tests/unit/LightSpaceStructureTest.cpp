@@ -246,8 +246,8 @@ TEST(LightSpaceStructureSettings, ReadTheStructuresOwnParametersAtTheirDefaults)
   EXPECT_EQ(summedAreaTableSettings(table).integer, table.choice("sat_precision") == "int32");
 
   const ParameterValues hsm("hierarchical_shadow_map", hierarchicalShadowMapStructure().parameters);
-  EXPECT_EQ(hierarchicalShadowMapSettings(hsm).layout,
-    hsm.choice("hsm") == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
+  EXPECT_EQ(hsm.choice("hsm"), "mipmap");
+  EXPECT_EQ(hierarchicalShadowMapSettings(hsm).layout, HsmLayout::MipMap);
 }
 
 TEST(LightSpaceStructureSettings, ShadowMapSettingsFollowTheParameters)
@@ -316,6 +316,8 @@ TEST(LightSpaceStructureSettings, HierarchicalShadowMapLayoutFollowsTheParameter
     EXPECT_EQ(hierarchicalShadowMapSettings(values).layout, HsmLayout::NBuffers) << technique;
     values.set("hsm=mipmap");
     EXPECT_EQ(hierarchicalShadowMapSettings(values).layout, HsmLayout::MipMap) << technique;
+    values.set("hsm=ysm");
+    EXPECT_EQ(hierarchicalShadowMapSettings(values).layout, HsmLayout::Ysm) << technique;
   }
 }
 

@@ -1,6 +1,8 @@
 // The min-max hierarchical shadow map's build (lightspace/hsm/HsmStructure.h; vssm, gbp06, gbp07) or, with
 // SetDualGrid(true), the dual-grid MSSM's (lightspace/mssm/DualMssmStructure.h; yfgl09): one compute dispatch per
-// level (shaders/hsm/HsmBuild.glsl; VSSM Alg. 1 L4, §6.1; Yang et al. 2009 §4.2). Parameters read:
+// level (shaders/hsm/HsmBuild.glsl; VSSM Alg. 1 L4, §6.1; Yang et al. 2009 §4.2), and for hsm=ysm the Y shadow
+// map's MSSM part after the mip-map levels, one more dispatch per level (shaders/hsm/YsmMssmBuild.glsl; paper 001
+// §6), timed in the same stage. Parameters read:
 // HierarchicalShadowMapSettings (not for the dual grid). Layouts: src/lightspace/HierarchicalShadowMap.h.
 #pragma once
 
@@ -14,6 +16,8 @@
 
 #include <map>
 #include <memory>
+
+class vtkOpenGLRenderWindow;
 
 class vtkSLHsmPass : public vtkSLStagePass
 {
@@ -33,6 +37,8 @@ protected:
   vtkSLHsmPass();
   ~vtkSLHsmPass() override;
   void Execute(const vtkRenderState* state) override;
+  // The YSM's MSSM part from the mip-map `atlas` just built; returns its texture.
+  vtkTextureObject* BuildYsmMssmPart(vtkOpenGLRenderWindow* window, sl::FrameResources& frame, vtkTextureObject* atlas);
 
 private:
   vtkSLHsmPass(const vtkSLHsmPass&) = delete;
@@ -44,4 +50,8 @@ private:
   vtkSmartPointer<vtkTextureObject> Texture;
   sl::HsmLayout TextureLayout = sl::HsmLayout::MipMap;
   int TextureMapSize = 0;
+  // The YSM's MSSM part and its build, likewise reused.
+  std::unique_ptr<sl::ComputeProgram> MssmPartProgram;
+  vtkSmartPointer<vtkTextureObject> MssmPartTexture;
+  int MssmPartMapSize = 0;
 };

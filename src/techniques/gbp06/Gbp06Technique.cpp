@@ -33,7 +33,7 @@ TechniqueDescriptor gbp06Technique()
   }
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.parameters.insert(descriptor.parameters.end(), {
-    { "hsm", 1, 0, 1, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007) or mipmap (the HSM of Guennebaud et al. 2006)", { "mipmap", "nbuffers" }, true },
+    { "hsm", 1, 0, 2, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007), mipmap (the HSM of Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level for the ranges, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     { "gap_filling", 1, 0, 2, "", "extend each occluding micropatch's back-projection to the shared edges of its occluding neighbours, closing the gaps between micropatches of different depths: left_bottom, to its left and bottom neighbours in texture space, GBP06's rule as Schwarz & Stamminger 2008 describe it (paper 001, L132-134); right_top, to its right and top ones (the mirror convention); off", { "off", "left_bottom", "right_top" }, true },
     { "traversal", 0, 0, 1, "", "micropatches from every texel of the kernel, or from a depth-first walk of the min-max quadtree pruning nodes that cannot occlude (Dmitriev & Uralsky 2007); same visibility", { "kernel", "hsm" }, true },
@@ -64,13 +64,11 @@ TechniqueDescriptor gbp06Technique()
 namespace
 {
 
-// The mip-map quadtree's node (level, index): texels [index 2^level, (index + 1) 2^level), clipped to the map.
-// Mip-map layout: texel `index` of the level; N-buffers: the square starting at index 2^level (the same range).
+// The mip-map quadtree's node (level, index): texels [index 2^level, (index + 1) 2^level), clipped to the map
+// (HierarchicalShadowMap::node, any layout but the dual grid).
 glm::dvec2 quadtreeNode(const HierarchicalShadowMap& hsm, int level, glm::ivec2 index)
 {
-  const glm::ivec2 texel = hsm.layout == HsmLayout::NBuffers ? index << level : index;
-  const ImageF& image = hsm.levels[static_cast<std::size_t>(level)];
-  return { image.at(texel.x, texel.y, 0), image.at(texel.x, texel.y, 1) };
+  return hsm.node(level, index);
 }
 
 // The `gap_filling` choices.

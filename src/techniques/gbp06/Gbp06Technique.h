@@ -29,7 +29,8 @@
 //     the path to it: bit k of x and y is the child index taken below level k + 1), pruning a node whose
 //     minimum depth is >= the largest comparison depth over its texels (none of them can occlude). Leaves are
 //     texels; both traversals accumulate the same micropatches. With hsm=nbuffers the quadtree's node
-//     (level k, index n) is the N-buffer texel n 2^k of level k (the same range).
+//     (level k, index n) is the N-buffer texel n 2^k of level k (the same range); hsm=ysm walks its mip-map
+//     levels and takes the kernel's ranges from its MSSM part (HierarchicalShadowMap::node / range).
 // Math: shaders/gbp06/Gbp06Visibility.glsl; CPU mirror below (double precision).
 // Parameters: the shadow-map ones, receiver_plane_bias, hsm, kernel_refinements (as gbp07), gap_filling
 // (off / left_bottom / right_top), traversal (kernel / hsm).
@@ -60,7 +61,7 @@ struct Gbp06Sample : BackprojectionPixel
 };
 
 // CPU reference (double precision) of Gbp06Visibility.glsl at pixel (x, y); `hsm` is the min-max structure the
-// technique's `hsm` parameter names (mip-map or N-buffers), built from inputs.shadowMapLinear.
+// technique's `hsm` parameter names (mip-map, N-buffers or YSM), built from inputs.shadowMapLinear.
 Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
   const ParameterValues& values, int x, int y);
 

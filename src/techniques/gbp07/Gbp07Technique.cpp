@@ -32,7 +32,7 @@ TechniqueDescriptor gbp07Technique()
   }
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.parameters.insert(descriptor.parameters.end(), {
-    { "hsm", 1, 0, 1, "", "min-max structure for kernels and lit/umbra: nbuffers (the MSSM's exact ranges, Schwarz & Stamminger 2007) or mipmap (a conservative HSM, Guennebaud et al. 2006)", { "mipmap", "nbuffers" }, true },
+    { "hsm", 1, 0, 2, "", "min-max structure for kernels and lit/umbra: nbuffers (the MSSM's exact ranges, Schwarz & Stamminger 2007), mipmap (a conservative HSM, Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     subLightsParameter(),
   });

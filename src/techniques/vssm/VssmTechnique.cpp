@@ -48,7 +48,7 @@ TechniqueDescriptor vssmTechnique()
   const std::vector<std::string> schemes = { "none", "uniform", "adaptive" };
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "sat_precision", 1, 0, 1, "", "float_centred: float SAT of z - (near + far) / 2; int32: fixed point, exact box sums (§6.4)", { "float_centred", "int32" }, true },
-    { "hsm", 0, 0, 1, "", "min-max hierarchical shadow map: mipmap (conservative ranges, the paper's choice) or nbuffers (exact ranges, L times the memory) (§6.1)", { "mipmap", "nbuffers" }, true },
+    { "hsm", 0, 0, 2, "", "min-max hierarchical shadow map: mipmap (conservative ranges, the paper's choice), nbuffers (exact ranges, L times the memory) (§6.1) or ysm (the mip-map plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "hsm_early_out", 1, 0, 1, "", "on: lit / umbra pixels decided from the HSM over w_i (Alg. 1 L8-10)", { "off", "on" }, true },
     { "blocker_subdivision", 1, 0, 2, "", "sub-kernels of w_i for the average blocker depth (§5): none (VSM's lit assumption), uniform m x m, adaptive (Alg. 2)", schemes, true },
     { "blocker_uniform_m", 5, 1, 16, "sub-kernels per axis", "m of the uniform blocker subdivision (§6.2: m = 5)", {}, true },
@@ -150,8 +150,7 @@ VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const 
 {
   VssmReferenceInputs inputs;
   inputs.shadowMap = &shadowMap;
-  inputs.hsm = HierarchicalShadowMap::build(shadowMap.shadowMapLinear,
-    values.choice("hsm") == "nbuffers" ? HsmLayout::NBuffers : HsmLayout::MipMap);
+  inputs.hsm = HierarchicalShadowMap::build(shadowMap.shadowMapLinear, hierarchicalShadowMapSettings(values).layout);
   const bool integer = values.choice("sat_precision") == "int32";
   if (integer)
   {
