@@ -40,6 +40,10 @@ set(SL_SHADER_FILES
   gbp06/Gbp06Visibility.glsl
   gbp07/Gbp07Visibility.glsl
   yfgl09/Yfgl09Visibility.glsl
+  ss08/Ss08Search.glsl
+  ss08/Ss08Loq.glsl
+  ss08/Ss08LoqSmoothing.glsl
+  ss08/Ss08Visibility.glsl
   common/ContourKernel.glsl
   shading/ShadingFragment.glsl
   vtk/VtkVisibilityRatio.glsl

@@ -3,6 +3,8 @@
 // the `hsm` parameter. The Y shadow map (HSM_LAYOUT_YSM, paper 001 §6) holds the mip-map levels in the same
 // atlas, plus its MSSM part (HsmLookup.glsl).
 // CPU mirror: src/lightspace/HierarchicalShadowMap.cpp (hsmLevelSize, hsmAtlasOffset).
+#include "common/MipAtlasLayout.glsl"
+
 uniform int hsmMapSize; // N, the shadow map's side
 
 // Texels per side of level k (k >= 1).
@@ -17,17 +19,10 @@ int hsmLevelSize(int level)
 #endif
 }
 
-// Mip-map (and YSM) atlas: level 1 at the origin, levels 2.. stacked in a column to its right.
+// Mip-map (and YSM) atlas: level 1 at the origin, levels 2.. stacked in a column to its right. Closed form,
+// no loop (common/MipAtlasLayout.glsl): llvmpipe counts every loop iteration of an invocation, and ss08 reads a
+// node per micro-occluder.
 ivec2 hsmAtlasOffset(int level)
 {
-  ivec2 offset = ivec2(0);
-  if (level >= 2)
-  {
-    offset.x = hsmLevelSize(1);
-    for (int finer = 2; finer < level; ++finer)
-    {
-      offset.y += hsmLevelSize(finer);
-    }
-  }
-  return offset;
+  return mipAtlasOffset(hsmMapSize, level);
 }

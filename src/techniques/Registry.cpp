@@ -9,6 +9,7 @@
 #include "techniques/gbp06/Gbp06Technique.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 #include "techniques/yfgl09/Yfgl09Technique.h"
+#include "techniques/ss08/Ss08Technique.h"
 #include "techniques/pcss/PcssTechnique.h"
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 #include "techniques/savsm/SavsmTechnique.h"
@@ -33,6 +34,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     gbp06Technique(),
     gbp07Technique(),
     yfgl09Technique(),
+    ss08Technique(),
     vtkTechnique(),
     referenceSmTechnique(),
     shadowVolumeTechnique(),

@@ -27,6 +27,8 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/gbp07/vtkSLGbp07Pass.cxx
   src/techniques/yfgl09/Yfgl09Technique.cpp
   src/techniques/yfgl09/vtkSLYfgl09Pass.cxx
+  src/techniques/ss08/Ss08Technique.cpp
+  src/techniques/ss08/vtkSLSs08Pass.cxx
   src/techniques/vtk/VtkTechnique.cpp
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp

@@ -1,0 +1,253 @@
+// ss08, pass 4 of 4 (Schwarz & Stamminger 2008, Fig. 3 step 3): soft shadow mapping with a per-pixel level of
+// quality. The search of ss08/Ss08Search.glsl (recomputed), then the micro-occluders of levels floor(l) and
+// ceil(l) of the smoothed LOQ map, back-projected onto the square light, clipped to it and accumulated by area
+// (001 §3, L140-144), alpha-blended: V = (1 - a) V(floor l) + a V(ceil l) (L370-392; the band of BLEND_BAND
+// below). Micro-occluders (MICRO_OCCLUDER): micropatches, level-j texels of the min-max pyramid at their
+// minimum depth (001 L127-138, L436-437; gbp06's back-projection and gap filling), or microrects (001 §5.2, the
+// extents and depths of lightspace/microrect). A micro-occluder occludes when its depth is in front of the
+// receiver's comparison depth at its centre, with the depth bias scaled by 2^level (LEVEL_BIAS: min
+// aggregation puts coarse texels in front of tilted receivers, 001 L889-891).
+// Both levels go through one loop and one back-projection call site (llvmpipe compiles each call site and
+// caps loop iterations per invocation at 65535: the loop notes its last iteration, so a pixel the cap cut is
+// flagged CLASSIFICATION_CUT_SHORT, exactly).
+// Outputs: the first eight as fragment outputs, the rest (IMAGE_OUTPUT_FIRST and after) by image stores.
+// CPU mirror: src/techniques/ss08/Ss08Technique.cpp (ss08Reference).
+#include "common/GBufferInputs.glsl"
+#include "common/LightModel.glsl"
+#include "common/ShadowMapCommon.glsl"
+#include "common/ShadowReceiver.glsl"
+#include "common/SoftShadowKernels.glsl"
+#include "common/HsmLookup.glsl"
+#include "common/ContourBackprojection.glsl"
+#include "common/ContourKernel.glsl"
+// Before the conditional include below: includes are expanded once, whatever the #if around them.
+#include "common/MipAtlasLayout.glsl"
+#if MICRO_OCCLUDER == MICRO_OCCLUDER_MICRORECT
+#include "common/MicrorectLookup.glsl"
+#endif
+#include "ss08/Ss08Search.glsl"
+
+layout(location = OUT_VISIBILITY) out float outVisibility;
+layout(location = OUT_BUDGET) out float outBudget;
+layout(location = OUT_SEARCH_AREA_TEXELS) out float outSearchAreaTexels;
+layout(location = OUT_LOQ_RAW) out float outLoqRaw;
+layout(location = OUT_LOQ) out float outLoq;
+layout(location = OUT_LEVEL_FLOOR) out float outLevelFloor;
+layout(location = OUT_BLEND_ALPHA) out float outBlendAlpha;
+layout(location = OUT_MICRO_OCCLUDERS) out float outMicroOccluders;
+layout(r32f, binding = OUT_CLASSIFICATION - IMAGE_OUTPUT_FIRST) uniform writeonly image2D classificationImage;
+layout(r32f, binding = OUT_LOQ_BUDGET_VIOLATION - IMAGE_OUTPUT_FIRST) uniform writeonly image2D budgetViolationImage;
+layout(r32f, binding = OUT_QUERY_GROWTH_TEXELS - IMAGE_OUTPUT_FIRST) uniform writeonly image2D queryGrowthImage;
+layout(r32f, binding = OUT_MICRO_OCCLUDERS_FLOOR - IMAGE_OUTPUT_FIRST) uniform writeonly image2D floorSlotsImage;
+layout(r32f, binding = OUT_MICRO_OCCLUDERS_CEIL - IMAGE_OUTPUT_FIRST) uniform writeonly image2D ceilSlotsImage;
+
+uniform sampler2D loqSmoothed; // x: l after smoothing (ss08/Ss08LoqSmoothing.glsl)
+
+// The receiver being shaded.
+float receiverDepth;
+float receiverBias;
+vec2 receiverXy; // light view x, y
+float halfSize;  // of the square light
+
+float levelBias(int level)
+{
+#if LEVEL_BIAS == LEVEL_BIAS_ON
+  return receiverBias * float(1 << level);
+#else
+  return receiverBias;
+#endif
+}
+
+// The micro-occluder of `slot` at `level`: its level-0 texel rectangle [lo, hi] and its depth.
+void microOccluder(int level, ivec2 slot, out ivec2 lo, out ivec2 hi, out float depth)
+{
+#if MICRO_OCCLUDER == MICRO_OCCLUDER_MICRORECT
+  ivec4 extent;
+  microrectAt(level, slot, extent, depth);
+  lo = extent.xy;
+  hi = extent.zw;
+#else
+  int side = 1 << level;
+  lo = slot * side;
+  hi = min(lo + side - 1, ivec2(shadowMapSize - 1));
+  depth = hsmNode(level, slot).x;
+#endif
+}
+
+// Whether the micro-occluder [lo, hi] at `depth` is in front of the receiver (at its centre, level bias).
+bool microOccludes(int level, ivec2 lo, ivec2 hi, float depth)
+{
+  return depth < tapComparisonDepth(0.5 * vec2(lo + hi + 1), receiverDepth, levelBias(level));
+}
+
+#if MICRO_OCCLUDER == MICRO_OCCLUDER_MICROPATCH
+// A neighbouring slot of the same level that occludes too, and its depth (gap filling; outside the level: no).
+bool neighbourOccludes(int level, ivec2 slot, out float depth)
+{
+  depth = 0.0;
+  int levelSize = mipAtlasLevelSize(shadowMapSize, level);
+  if (any(lessThan(slot, ivec2(0))) || any(greaterThanEqual(slot, ivec2(levelSize))))
+  {
+    return false;
+  }
+  ivec2 lo;
+  ivec2 hi;
+  microOccluder(level, slot, lo, hi, depth);
+  return microOccludes(level, lo, hi, depth);
+}
+#endif
+
+// The light area the micro-occluder of `slot` at `level` hides: its rectangle at its depth back-projected
+// from the receiver onto the light (an axis-aligned rectangle, backProject of two opposite corners), gap-filled
+// as gbp06 (micropatches), clipped to the light. No loops (llvmpipe's cap counts every iteration).
+float microOccluderArea(int level, ivec2 slot)
+{
+  ivec2 texelLo;
+  ivec2 texelHi;
+  float depth;
+  microOccluder(level, slot, texelLo, texelHi, depth);
+  if (!microOccludes(level, texelLo, texelHi, depth))
+  {
+    return 0.0;
+  }
+  vec2 tangentLo = shadowWindowMin + vec2(texelLo) * shadowTexelTangent;
+  vec2 tangentHi = shadowWindowMin + vec2(texelHi + 1) * shadowTexelTangent;
+  vec2 lo = backProject(tangentLo, depth, receiverXy, receiverDepth);
+  vec2 hi = backProject(tangentHi, depth, receiverXy, receiverDepth);
+#if MICRO_OCCLUDER == MICRO_OCCLUDER_MICROPATCH
+  float neighbourDepth;
+#if GAP_FILLING == GAP_FILLING_LEFT_BOTTOM
+  if (neighbourOccludes(level, slot - ivec2(1, 0), neighbourDepth))
+  {
+    lo.x = min(lo.x, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).x);
+  }
+  if (neighbourOccludes(level, slot - ivec2(0, 1), neighbourDepth))
+  {
+    lo.y = min(lo.y, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).y);
+  }
+#elif GAP_FILLING == GAP_FILLING_RIGHT_TOP
+  if (neighbourOccludes(level, slot + ivec2(1, 0), neighbourDepth))
+  {
+    hi.x = max(hi.x, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).x);
+  }
+  if (neighbourOccludes(level, slot + ivec2(0, 1), neighbourDepth))
+  {
+    hi.y = max(hi.y, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).y);
+  }
+#endif
+#endif
+  vec2 extent = max(min(hi, vec2(halfSize)) - max(lo, vec2(-halfSize)), vec2(0.0));
+  return extent.x * extent.y;
+}
+
+// The blend weight of ceil(l) for the fractional part `fraction` (L370-392): with band 1 (the paper's
+// choice, "we always perform alpha-blending") the fraction itself; with band < 1 only its last `band` of each
+// level (GBP07's suggestion, 0.1); band 0: no blending, ceil(l) alone.
+float blendWeight(float fraction)
+{
+  if (param_blend_band <= 0.0)
+  {
+    return fraction > 0.0 ? 1.0 : 0.0;
+  }
+  return clamp((fraction - (1.0 - param_blend_band)) / param_blend_band, 0.0, 1.0);
+}
+
+int slotCount(ivec2 first, ivec2 last)
+{
+  ivec2 side = max(last - first + 1, ivec2(0));
+  return side.x * side.y;
+}
+
+void main()
+{
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ShadowReceiver receiver = prepareShadowReceiver(pixel);
+  outVisibility = receiver.visibility;
+  outBudget = 0.0;
+  outSearchAreaTexels = 0.0;
+  outLoqRaw = 0.0;
+  outLoq = 0.0;
+  outLevelFloor = 0.0;
+  outBlendAlpha = 0.0;
+  outMicroOccluders = 0.0;
+  int classification = CLASSIFICATION_NOT_TESTED;
+  int budgetViolation = 0;
+  int queryGrowth = 0;
+  int floorSlots = 0;
+  int ceilSlots = 0;
+  if (receiver.needsShadowTest)
+  {
+    Ss08Search search = ss08Search(receiver, pixel);
+    classification = search.decision;
+    outBudget = float(search.budget);
+    outSearchAreaTexels = float(search.span + 1);
+    outLoqRaw = search.levelRaw;
+    outLoq = search.levelRaw;
+    ivec2 growth = max(search.lo - search.queryLo, search.queryHi - search.hi);
+    queryGrowth = max(growth.x, growth.y);
+    bool backProjects = search.decision == CLASSIFICATION_PENUMBRA ||
+      (GROWTH == GROWTH_ON && search.decision == CLASSIFICATION_GROWTH_PENUMBRA);
+    if (!backProjects)
+    {
+      outVisibility = search.decision == CLASSIFICATION_UMBRA ? 0.0 : 1.0;
+    }
+    else
+    {
+      float level = texelFetch(loqSmoothed, pixel, 0).x;
+      int levelFloor = int(floor(level));
+      int levelCeil = int(ceil(level));
+      float alpha = blendWeight(level - float(levelFloor));
+      outLoq = level;
+      outLevelFloor = float(levelFloor);
+      outBlendAlpha = alpha;
+      budgetViolation = max(search.levelCeil - levelCeil, 0);
+      // The two levels: floor(l) weighted 1 - a, ceil(l) weighted a; a level of weight 0 is skipped.
+      int levels[2] = int[2](levelFloor, levelCeil);
+      float weights[2] = float[2](1.0 - alpha, alpha);
+      if (levelCeil == levelFloor)
+      {
+        weights = float[2](1.0, 0.0);
+      }
+      ivec2 first[2];
+      ivec2 last[2];
+      int counts[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        ss08SlotRange(levels[k], search.lo, search.hi, first[k], last[k]);
+        counts[k] = weights[k] > 0.0 ? slotCount(first[k], last[k]) : 0;
+      }
+      floorSlots = slotCount(first[0], last[0]);
+      ceilSlots = slotCount(first[1], last[1]);
+
+      receiverDepth = receiver.depthLin;
+      receiverBias = receiver.bias;
+      receiverXy = (shadowWindowMin + receiver.uvTexels * shadowTexelTangent) * receiverDepth;
+      halfSize = 0.5 * lightSizeWorld;
+      float areas[2] = float[2](0.0, 0.0);
+      int total = counts[0] + counts[1];
+      bool reachedLast = total == 0;
+      for (int k = 0; k < total; ++k)
+      {
+        int which = k < counts[0] ? 0 : 1;
+        int local = k - which * counts[0];
+        int width = last[which].x - first[which].x + 1;
+        ivec2 slot = first[which] + ivec2(local % width, local / width);
+        areas[which] += microOccluderArea(levels[which], slot);
+        reachedLast = k == total - 1;
+      }
+      float lightArea = 4.0 * halfSize * halfSize;
+      outVisibility = weights[0] * clamp(1.0 - areas[0] / lightArea, 0.0, 1.0) +
+        weights[1] * clamp(1.0 - areas[1] / lightArea, 0.0, 1.0);
+      outMicroOccluders = float(total);
+      if (!reachedLast)
+      {
+        classification = CLASSIFICATION_CUT_SHORT;
+      }
+    }
+  }
+  imageStore(classificationImage, pixel, vec4(float(classification)));
+  imageStore(budgetViolationImage, pixel, vec4(float(budgetViolation)));
+  imageStore(queryGrowthImage, pixel, vec4(float(queryGrowth)));
+  imageStore(floorSlotsImage, pixel, vec4(float(floorSlots)));
+  imageStore(ceilSlotsImage, pixel, vec4(float(ceilSlots)));
+}

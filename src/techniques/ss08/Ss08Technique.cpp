@@ -1,0 +1,588 @@
+#include "techniques/ss08/Ss08Technique.h"
+
+#include "core/Error.h"
+#include "io/ImageIO.h"
+#include "lightspace/Microrects.h"
+#include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/microrect/MicrorectStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "techniques/ShadowMapParameters.h"
+#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ss08/vtkSLSs08Pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace sl
+{
+
+namespace
+{
+
+// In code order (checked by categoricalBuffer).
+const Category<Ss08Class> ss08Categories[] = {
+  { Ss08Class::NotTested, "NOT_TESTED", "not tested" },
+  { Ss08Class::Lit, "LIT", "lit" },
+  { Ss08Class::Umbra, "UMBRA", "umbra" },
+  { Ss08Class::Penumbra, "PENUMBRA", "penumbra" },
+  { Ss08Class::GrowthPenumbra, "GROWTH_PENUMBRA", "penumbra by the grown query only" },
+  { Ss08Class::CutShort, "CUT_SHORT", "penumbra cut short by the loop cap", true },
+};
+
+bool microrectsOn(const ParameterValues& values)
+{
+  return values.choice("micro_occluder") == "microrect";
+}
+
+} // namespace
+
+TechniqueDescriptor ss08Technique()
+{
+  TechniqueDescriptor descriptor;
+  descriptor.name = "ss08";
+  descriptor.title = "Quality-scalable soft shadow mapping: budget map, smoothed LOQ map, blended levels, microrects";
+  descriptor.paper = "Schwarz & Stamminger 2008 (Fig. 3, §4.2, §5.2, §6); Guennebaud et al. 2006 (micropatches)";
+  descriptor.parameters = shadowMapParameters();
+  for (ParameterSpec& spec : descriptor.parameters)
+  {
+    if (spec.name == "shadow_map_size")
+    {
+      spec.defaultValue = 1024; // the paper's runs: YSM 1024^2 / 256^2 (L742-744)
+    }
+  }
+  descriptor.parameters.push_back(receiverPlaneBiasParameter());
+  descriptor.parameters.insert(descriptor.parameters.end(), {
+    { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (001 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },
+    { "kernel_refinements", 2, 0, 4, "iterations", "times the search area is shrunk to the minimum depth inside it (001 Fig. 2 b)", {}, true },
+    { "budget", 12, 0, 64, "micro-occluders per axis", "b_mo: micro-occluders per light axis at level ceil(l) (001 L352-356); 0 = unlimited (level 0, no smoothing or blending); with budget_map=ramp_x the value at the centre column", {}, true },
+    { "budget_map", 0, 0, 2, "", "the budget map b_mo(x, y): uniform `budget`; ramp_x, `budget` at the centre column falling linearly to `budget_border` at the left and right borders (001 Fig. 1 d: 12 to 5); image, the grey values of `budget_image` (0 = unlimited)", { "uniform", "ramp_x", "image" }, true },
+    { "budget_image", 0, 0, 1, "", "budget_map=image: a PNG whose grey values (first channel) are b_mo per pixel, 0 = unlimited, resampled to the frame by nearest neighbour (001 Fig. 11: a lower budget where texture masking hides the shadow)", {}, false, true },
+    { "budget_border", 5, 1, 64, "micro-occluders per axis", "budget_map=ramp_x: b_mo at the left and right borders (001 Fig. 1 d: 5)", {}, true },
+    { "loq_smoothing", 1, 0, 1, "", "smooth the LOQ map (001 L363-368): a separable 11 x 11 box whose runs stop at depth discontinuities and at pixels that do not back-project", { "off", "on" }, true },
+    { "smoothing_depth_threshold", 0.02, 0.0, 1.0, "relative depth", "the smoothing stops between neighbours whose camera depths differ by more than this times the smaller one (the paper's filter stops at depth discontinuities; its threshold is the project's)", {}, false },
+    { "loq_floor", 0, 0, 1, "", "whether smoothing may lower l below the budget's level l_raw: none (the paper's plain smoothing; loq_budget_violation counts the levels lost) or raw (l = max(smoothed, l_raw): the budget holds)", { "none", "raw" }, true },
+    { "blend_band", 1.0, 0.0, 1.0, "levels", "alpha blending between floor(l) and ceil(l) (001 L370-392): over the last blend_band of each level; 1 = always (the paper's choice), 0.1 = GBP07's band, 0 = off (ceil(l) alone)", {}, false },
+    { "growth", 1, 0, 1, "", "grow each depth-range query to the whole support of the level-j micro-occluders it partly covers (001 L583-611, Fig. 7: without it pixels next to the penumbra are classified lit)", { "off", "on" }, true },
+    { "micro_occluder", 0, 0, 1, "", "micropatches (min-aggregated level-j texels, 001 L127-138) or microrects (001 §5.2: rectangles of level-0 texels merged by depth, lightspace/microrect)", { "micropatch", "microrect" }, true },
+    { "gap_filling", 1, 0, 2, "", "micropatches: extend each back-projection to its occluding left and bottom neighbours (GBP06's rule, 001 L132-134), right and top, or off; as gbp06", { "off", "left_bottom", "right_top" }, true },
+    { "level_bias", 1, 0, 1, "", "scale the depth bias by 2^level at level j (min aggregation puts coarse texels in front of tilted receivers; 001's future work, L889-891)", { "off", "on" }, true },
+    { "force_level", -1, -1, 13, "level", "experiments: use this level everywhere (no budget, smoothing or blending); -1 = off", {}, true },
+  });
+  descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure(), &microrectStructure() };
+  descriptor.structureNeeded = [](const LightSpaceStructure& structure, const ParameterValues& values) {
+    return &structure != &microrectStructure() || microrectsOn(values);
+  };
+  descriptor.buffers = {
+    // Fragment outputs (at most eight).
+    { "budget", "micro-occluders per axis", "b_mo(x, y) as used (0 = unlimited; 001 L352-356)" },
+    { "search_area_texels", "texels", "larger side of the refined search area (kernel plus one ring, 001 Fig. 2 b)" },
+    { "loq_raw", "levels", "l from the search area and the budget, before smoothing" },
+    { "loq", "levels", "l after smoothing: the LOQ map (001 Fig. 3 step 2)" },
+    { "level_floor", "level", "floor(l) of back-projecting pixels (001 Fig. 8, Fig. 13 a)" },
+    { "blend_alpha", "", "weight of ceil(l) in the blend (001 L370-392; 0 where one level)" },
+    { "micro_occluders", "micro-occluders", "slots examined, both levels (Table 2's count)", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    // Image stores (IMAGE_OUTPUT_FIRST and after).
+    categoricalBuffer("classification", "how the pixel was decided; growth penumbra: lit by the search area's own range, penumbra by the grown one (001 Fig. 7)", ss08Categories),
+    { "loq_budget_violation", "levels", "ceil(l_raw) - ceil(l) where smoothing lowered the level below the budget's (loq_floor=none)" },
+    { "query_growth_texels", "texels", "how far the depth-range query was grown beyond the search area (001 L605-611)" },
+    { "micro_occluders_floor", "micro-occluders", "slots level floor(l) alone examines (the blend overhead's baseline, 001 L820-822)", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    { "micro_occluders_ceil", "micro-occluders", "slots level ceil(l) alone examines", BufferKind::Continuous, {}, SubLightCombine::Sum },
+  };
+  descriptor.shaderConstants = contourKernelShaderConstants();
+  descriptor.shaderConstants.insert(descriptor.shaderConstants.end(), {
+    { "IMAGE_OUTPUT_FIRST", 8, "the first output written by image stores (GL guarantees eight colour outputs)" },
+    { "LOQ_SMOOTHING_RADIUS", ss08SmoothingRadius, "neighbours each way of the LOQ smoothing (11 x 11, 001 L814-815)" },
+    { "LOQ_STATE_NONE", static_cast<int>(LoqState::None), "LOQ map: the pixel does not back-project" },
+    { "LOQ_STATE_SMOOTHED", static_cast<int>(LoqState::Smoothed), "LOQ map: smoothed" },
+    { "LOQ_STATE_FIXED", static_cast<int>(LoqState::Fixed), "LOQ map: back-projects at a level smoothing keeps" },
+  });
+  descriptor.supportedLights = { LightType::Area };
+  descriptor.supportedAreaShapes = { LightShape::Square };
+  descriptor.coversLightArea = true;
+  // As gbp06: the registry-wide sweeps use 128^2 maps to bound the unlimited-budget kernels on llvmpipe.
+  descriptor.sweepTestSettings = { "shadow_map_size=128" };
+  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLSs08Pass>::New()); };
+  return descriptor;
+}
+
+ImageF ss08BudgetImage(const ParameterValues& values, int width, int height)
+{
+  const std::string& path = values.file("budget_image");
+  if (path.empty())
+  {
+    throw InputError("--set budget_map=image: needs --set budget_image=FILE.png (grey value = budget, 0 = unlimited)");
+  }
+  const PngImage png = readPngImage(path);
+  const int maxBudget = static_cast<int>(findParameterSpec(values.specs(), "budget")->maxValue);
+  const double scale = png.bitDepth == 16 ? 255.0 / 65535.0 : 1.0; // 16-bit grey as 8-bit budgets
+  ImageF budgets(width, height, 1);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const int sourceX = std::min(static_cast<int>((x + 0.5) * png.samples.width / width), png.samples.width - 1);
+      const int sourceY = std::min(static_cast<int>((y + 0.5) * png.samples.height / height), png.samples.height - 1);
+      const int budget = static_cast<int>(std::lround(png.samples.at(sourceX, sourceY, 0) * scale));
+      if (budget > maxBudget)
+      {
+        throw InputError(format(path, ": budget_image: grey value ", budget, " at pixel (", sourceX, ", ", sourceY,
+          ") is above the budget range 0..", maxBudget));
+      }
+      budgets.at(x, y) = static_cast<float>(budget);
+    }
+  }
+  return budgets;
+}
+
+int ss08PixelBudget(const ParameterValues& values, int x, int y, int imageWidth, const ImageF* budgetImage)
+{
+  const std::string map = values.choice("budget_map");
+  if (map == "image")
+  {
+    SL_CHECK_MSG(budgetImage, "budget_map=image needs the budget image");
+    return static_cast<int>(std::floor(budgetImage->at(x, y) + 0.5f));
+  }
+  const int centre = values.getInt("budget");
+  if (map == "uniform" || centre == 0)
+  {
+    return centre;
+  }
+  // Fig. 1 d, in integers as Ss08Search.glsl's pixelBudget.
+  const int border = values.getInt("budget_border");
+  const int fromEdge = imageWidth - std::abs(2 * x + 1 - imageWidth);
+  const int numerator = (centre - border) * fromEdge;
+  const int step = numerator >= 0 ? (numerator + imageWidth / 2) / imageWidth : -((-numerator + imageWidth / 2) / imageWidth);
+  return std::max(border + step, 1);
+}
+
+namespace
+{
+
+int topLevel(int mapSize)
+{
+  return hsmLevelCount(mapSize);
+}
+
+int levelSize(int mapSize, int level)
+{
+  return level == 0 ? mapSize : hsmLevelSize(HsmLayout::MipMap, mapSize, level);
+}
+
+// ceilLevel / fractionalLevel of Ss08Search.glsl.
+int ceilLevel(int span, int budget, int top)
+{
+  if (budget == 0 || span == 0)
+  {
+    return 0;
+  }
+  if (budget == 1)
+  {
+    return top;
+  }
+  int level = 0;
+  while (level < top && span > (budget - 1) << level)
+  {
+    ++level;
+  }
+  return level;
+}
+
+double fractionalLevel(const ParameterValues& values, int span, int budget, int top, int& levelCeil)
+{
+  const int forced = values.getInt("force_level");
+  if (forced >= 0)
+  {
+    levelCeil = std::min(forced, top);
+    return levelCeil;
+  }
+  levelCeil = ceilLevel(span, budget, top);
+  if (levelCeil == 0 || budget == 1 || span == (budget - 1) << levelCeil)
+  {
+    return levelCeil;
+  }
+  return std::clamp(std::log2(static_cast<double>(span) / (budget - 1)), levelCeil - 1.0, static_cast<double>(levelCeil));
+}
+
+TexelRectangle grownArea(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area)
+{
+  const TexelRectangle slots = ss08SlotRange(values, mapSize, level, area);
+  const int side = 1 << level;
+  TexelRectangle grown;
+  if (microrectsOn(values))
+  {
+    grown.lo = slots.lo * side - (side - 1);
+    grown.hi = slots.hi * side + (side - 1);
+  }
+  else
+  {
+    grown.lo = slots.lo * side;
+    grown.hi = (slots.hi + 1) * side - 1;
+  }
+  grown.lo = glm::max(glm::min(grown.lo, area.lo), glm::ivec2(0));
+  grown.hi = glm::min(glm::max(grown.hi, area.hi), glm::ivec2(mapSize - 1));
+  return grown;
+}
+
+int areaSpan(const TexelRectangle& area)
+{
+  return std::max(area.hi.x - area.lo.x, area.hi.y - area.lo.y);
+}
+
+TexelRectangle ringed(const TexelRectangle& kernel, int mapSize)
+{
+  return { glm::max(kernel.lo - 1, glm::ivec2(0)), glm::min(kernel.hi + 1, glm::ivec2(mapSize - 1)) };
+}
+
+} // namespace
+
+TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area)
+{
+  TexelRectangle slots;
+  slots.lo = area.lo >> level;
+  if (microrectsOn(values))
+  {
+    slots.hi = glm::min((area.hi + (1 << level) - 1) >> level, glm::ivec2(levelSize(mapSize, level) - 1));
+  }
+  else
+  {
+    slots.hi = area.hi >> level;
+  }
+  return slots;
+}
+
+Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+  int x, int y, const ImageF* budgetImage)
+{
+  SL_CHECK(structures.hsm);
+  Ss08Search search;
+  search.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  if (!search.lookup.sample.evaluated)
+  {
+    return search;
+  }
+  search.geometry = softShadowGeometry(inputs, search.lookup, values.choice("receiver_plane_bias") == "on", x, y);
+  search.bias = search.lookup.sample.bias;
+  const SoftShadowGeometry& geometry = search.geometry;
+  const double d = geometry.d;
+  const int size = geometry.mapSize;
+  const int top = topLevel(size);
+  const bool growth = values.choice("growth") == "on";
+  const glm::dvec2 uv = search.lookup.sm.uvTexels;
+  search.budget = ss08PixelBudget(values, x, y, inputs.camera.resolution.x, budgetImage);
+  const HierarchicalShadowMap& hsm = *structures.hsm;
+  const auto range = [&](const TexelRectangle& area) { return hsm.range(area.lo, area.hi); };
+  // searchRange of the GLSL: the area grown for its level (growth=on) or the area itself.
+  const auto searchRange = [&](const TexelRectangle& area, TexelRectangle& query) {
+    query = area;
+    if (growth)
+    {
+      int levelCeil = 0;
+      fractionalLevel(values, areaSpan(area), search.budget, top, levelCeil);
+      query = grownArea(values, size, levelCeil, area);
+    }
+    return range(query);
+  };
+  TexelRectangle kernel = kernelRectangle(uv, geometry.kernelHalfTexels(geometry.nearDepth), size, &search.kernelEdgeMargin);
+  search.area = ringed(kernel, size);
+  glm::dvec2 depthRange = searchRange(search.area, search.query);
+  for (int refinement = 0; refinement < values.getInt("kernel_refinements"); ++refinement)
+  {
+    kernel = kernelRectangle(uv, geometry.kernelHalfTexels(std::clamp(depthRange.x, geometry.nearDepth, d)), size,
+      &search.kernelEdgeMargin);
+    search.area = ringed(kernel, size);
+    depthRange = searchRange(search.area, search.query);
+  }
+  search.span = areaSpan(search.area);
+  search.levelRaw = fractionalLevel(values, search.span, search.budget, top, search.levelCeil);
+  search.levelMargin = std::abs(search.levelRaw - std::round(search.levelRaw));
+  const glm::dvec2 comparison = geometry.comparisonDepthRange(search.query.lo, search.query.hi, search.bias);
+  search.decisionMargin = std::min(std::abs(depthRange.x - comparison.y), std::abs(depthRange.y - comparison.x)) / d;
+  const bool ringInsideMap = search.area.lo == kernel.lo - 1 && search.area.hi == kernel.hi + 1;
+  if (depthRange.x >= comparison.y)
+  {
+    search.classification = Ss08Class::Lit;
+  }
+  else if (ringInsideMap && depthRange.y < comparison.x)
+  {
+    search.classification = Ss08Class::Umbra;
+  }
+  else
+  {
+    search.classification = Ss08Class::Penumbra;
+  }
+  // The over-precision class (Fig. 7).
+  const auto litFor = [&](const TexelRectangle& area) {
+    const glm::dvec2 otherRange = range(area);
+    const double otherComparison = geometry.comparisonDepthRange(area.lo, area.hi, search.bias).y;
+    search.decisionMargin = std::min(search.decisionMargin, std::abs(otherRange.x - otherComparison) / d);
+    return otherRange.x >= otherComparison;
+  };
+  if (growth && search.classification == Ss08Class::Penumbra && litFor(search.area))
+  {
+    search.classification = Ss08Class::GrowthPenumbra;
+  }
+  else if (!growth && search.classification == Ss08Class::Lit &&
+    !litFor(grownArea(values, size, search.levelCeil, search.area)))
+  {
+    search.classification = Ss08Class::GrowthPenumbra;
+  }
+  search.backProjects = search.classification == Ss08Class::Penumbra ||
+    (growth && search.classification == Ss08Class::GrowthPenumbra);
+  search.state = !search.backProjects ? LoqState::None
+    : search.budget == 0 || values.getInt("force_level") >= 0 ? LoqState::Fixed : LoqState::Smoothed;
+  return search;
+}
+
+ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, const ParameterValues& values)
+{
+  const int width = loqRawAndState.width;
+  const int height = loqRawAndState.height;
+  ImageF current(width, height, 2);
+  for (std::size_t i = 0; i < current.data.size(); ++i)
+  {
+    current.data[i] = loqRawAndState.data[i];
+  }
+  if (values.choice("loq_smoothing") == "off")
+  {
+    return current;
+  }
+  const double threshold = values.get("smoothing_depth_threshold");
+  const auto smoothed = [](int state) { return state == static_cast<int>(LoqState::Smoothed); };
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    const glm::ivec2 step = pass == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
+    ImageF next = current;
+    for (int y = 0; y < height; ++y)
+    {
+      for (int x = 0; x < width; ++x)
+      {
+        if (!smoothed(static_cast<int>(current.at(x, y, 1))))
+        {
+          continue;
+        }
+        const double centreDepth = cameraDepth.at(x, y);
+        double sum = current.at(x, y, 0);
+        double count = 1.0;
+        for (int side = -1; side <= 1; side += 2)
+        {
+          double previousDepth = centreDepth;
+          for (int k = 1; k <= ss08SmoothingRadius; ++k)
+          {
+            const glm::ivec2 neighbour = glm::ivec2(x, y) + side * k * step;
+            if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= width || neighbour.y >= height)
+            {
+              break;
+            }
+            const double depth = cameraDepth.at(neighbour.x, neighbour.y);
+            if (!smoothed(static_cast<int>(current.at(neighbour.x, neighbour.y, 1))) ||
+              std::abs(depth - previousDepth) > threshold * std::min(depth, previousDepth))
+            {
+              break;
+            }
+            sum += current.at(neighbour.x, neighbour.y, 0);
+            count += 1.0;
+            previousDepth = depth;
+          }
+        }
+        double level = sum / count;
+        if (pass == 1 && values.choice("loq_floor") == "raw")
+        {
+          level = std::max(level, static_cast<double>(loqRawAndState.at(x, y, 0)));
+        }
+        next.at(x, y, 0) = static_cast<float>(level);
+      }
+    }
+    current = std::move(next);
+  }
+  return current;
+}
+
+namespace
+{
+
+struct MicroOccluder
+{
+  glm::ivec2 lo{ 0 };
+  glm::ivec2 hi{ 0 };
+  double depth = 0.0;
+};
+
+// microOccluder / microOccluderArea of Ss08Visibility.glsl.
+struct Ss08Accumulator
+{
+  const ParameterValues& values;
+  const Ss08Structures& structures;
+  Ss08Search& search;
+  Ss08Sample& result;
+  glm::dvec2 receiverXy{ 0.0 };
+  double halfSize = 0.0;
+  bool microrects = false;
+  bool levelBias = true;
+  std::string gapFilling;
+
+  MicroOccluder at(int level, glm::ivec2 slot) const
+  {
+    MicroOccluder occluder;
+    if (microrects)
+    {
+      const Microrect microrect = structures.microrects->at(level, slot);
+      occluder.lo = microrect.lo;
+      occluder.hi = microrect.hi;
+      occluder.depth = microrect.depth;
+      return occluder;
+    }
+    const int side = 1 << level;
+    occluder.lo = slot * side;
+    occluder.hi = glm::min(occluder.lo + side - 1, glm::ivec2(search.geometry.mapSize - 1));
+    occluder.depth = structures.hsm->node(level, slot).x;
+    return occluder;
+  }
+
+  bool occludes(int level, const MicroOccluder& occluder)
+  {
+    const double bias = levelBias ? search.bias * static_cast<double>(1 << level) : search.bias;
+    const double compared = search.geometry.tapComparisonDepth(0.5 * glm::dvec2(occluder.lo + occluder.hi + 1), bias);
+    result.occlusionMargin = std::min(result.occlusionMargin, std::abs(occluder.depth - compared) / search.geometry.d);
+    return occluder.depth < compared;
+  }
+
+  bool neighbourOccludes(int level, glm::ivec2 slot, double& depth)
+  {
+    depth = 0.0;
+    const int size = levelSize(search.geometry.mapSize, level);
+    if (slot.x < 0 || slot.y < 0 || slot.x >= size || slot.y >= size)
+    {
+      return false;
+    }
+    const MicroOccluder neighbour = at(level, slot);
+    depth = neighbour.depth;
+    return occludes(level, neighbour);
+  }
+
+  double area(int level, glm::ivec2 slot)
+  {
+    const MicroOccluder occluder = at(level, slot);
+    if (!occludes(level, occluder))
+    {
+      return 0.0;
+    }
+    const SoftShadowGeometry& geometry = search.geometry;
+    const double d = geometry.d;
+    const glm::dvec2 tangentLo = geometry.windowMin + glm::dvec2(occluder.lo) * geometry.texelTangent;
+    const glm::dvec2 tangentHi = geometry.windowMin + glm::dvec2(occluder.hi + 1) * geometry.texelTangent;
+    glm::dvec2 lo = backProject(tangentLo, occluder.depth, receiverXy, d);
+    glm::dvec2 hi = backProject(tangentHi, occluder.depth, receiverXy, d);
+    if (!microrects)
+    {
+      double neighbourDepth = 0.0;
+      if (gapFilling == "left_bottom")
+      {
+        if (neighbourOccludes(level, slot - glm::ivec2(1, 0), neighbourDepth))
+        {
+          lo.x = std::min(lo.x, backProject(tangentLo, neighbourDepth, receiverXy, d).x);
+        }
+        if (neighbourOccludes(level, slot - glm::ivec2(0, 1), neighbourDepth))
+        {
+          lo.y = std::min(lo.y, backProject(tangentLo, neighbourDepth, receiverXy, d).y);
+        }
+      }
+      else if (gapFilling == "right_top")
+      {
+        if (neighbourOccludes(level, slot + glm::ivec2(1, 0), neighbourDepth))
+        {
+          hi.x = std::max(hi.x, backProject(tangentHi, neighbourDepth, receiverXy, d).x);
+        }
+        if (neighbourOccludes(level, slot + glm::ivec2(0, 1), neighbourDepth))
+        {
+          hi.y = std::max(hi.y, backProject(tangentHi, neighbourDepth, receiverXy, d).y);
+        }
+      }
+    }
+    const glm::dvec2 extent =
+      glm::max(glm::min(hi, glm::dvec2(halfSize)) - glm::max(lo, glm::dvec2(-halfSize)), glm::dvec2(0.0));
+    return extent.x * extent.y;
+  }
+};
+
+double blendWeight(double fraction, double band)
+{
+  if (band <= 0.0)
+  {
+    return fraction > 0.0 ? 1.0 : 0.0;
+  }
+  return std::clamp((fraction - (1.0 - band)) / band, 0.0, 1.0);
+}
+
+} // namespace
+
+Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+  int x, int y, double level, const ImageF* budgetImage, bool evaluateLit)
+{
+  Ss08Sample result;
+  result.search = ss08Search(inputs, structures, values, x, y, budgetImage);
+  Ss08Search& search = result.search;
+  result.sample = search.lookup.sample;
+  if (!search.lookup.sample.evaluated)
+  {
+    return result;
+  }
+  const glm::ivec2 growth = glm::max(search.area.lo - search.query.lo, search.query.hi - search.area.hi);
+  result.queryGrowth = std::max(growth.x, growth.y);
+  result.level = search.levelRaw;
+  const bool lit = search.classification == Ss08Class::Lit || search.classification == Ss08Class::GrowthPenumbra;
+  if (!search.backProjects && !(evaluateLit && lit))
+  {
+    result.sample.visibility = search.classification == Ss08Class::Umbra ? 0.0 : 1.0;
+    return result;
+  }
+  SL_CHECK_MSG(!microrectsOn(values) || structures.microrects, "micro_occluder=microrect needs the microrects");
+  result.level = level;
+  result.levelFloor = static_cast<int>(std::floor(level));
+  const int levelCeil = static_cast<int>(std::ceil(level));
+  result.blendAlpha = blendWeight(level - result.levelFloor, values.get("blend_band"));
+  result.budgetViolation = std::max(search.levelCeil - levelCeil, 0);
+  const int levels[2] = { result.levelFloor, levelCeil };
+  double weights[2] = { 1.0 - result.blendAlpha, result.blendAlpha };
+  if (levelCeil == result.levelFloor)
+  {
+    weights[0] = 1.0;
+    weights[1] = 0.0;
+  }
+  Ss08Accumulator accumulator{ values, structures, search, result };
+  accumulator.receiverXy = (search.geometry.windowMin + search.lookup.sm.uvTexels * search.geometry.texelTangent) * search.geometry.d;
+  accumulator.halfSize = 0.5 * search.geometry.lightSize;
+  accumulator.microrects = microrectsOn(values);
+  accumulator.levelBias = values.choice("level_bias") == "on";
+  accumulator.gapFilling = values.choice("gap_filling");
+  const double lightArea = 4.0 * accumulator.halfSize * accumulator.halfSize;
+  double visibility = 0.0;
+  for (int k = 0; k < 2; ++k)
+  {
+    const TexelRectangle slots = ss08SlotRange(values, search.geometry.mapSize, levels[k], search.area);
+    result.slotsPerAxis[k] = glm::max(slots.hi - slots.lo + 1, glm::ivec2(0));
+    if (weights[k] <= 0.0)
+    {
+      continue;
+    }
+    double area = 0.0;
+    for (int j = slots.lo.y; j <= slots.hi.y; ++j)
+    {
+      for (int i = slots.lo.x; i <= slots.hi.x; ++i)
+      {
+        area += accumulator.area(levels[k], { i, j });
+        ++result.microOccluders;
+      }
+    }
+    visibility += weights[k] * std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+  }
+  result.sample.visibility = visibility;
+  if (result.microOccluders > ss08LoopCap)
+  {
+    search.classification = Ss08Class::CutShort;
+  }
+  return result;
+}
+
+} // namespace sl

@@ -1,0 +1,144 @@
+// Technique `ss08`: quality-scalable soft shadow mapping (Schwarz and Stamminger 2008, paper 001): soft shadow
+// mapping by back-projection of micro-occluders whose shadow-map level varies per pixel under a budget, with a
+// smoothed level-of-quality (LOQ) map and alpha blending between levels so that the quality changes without
+// seams. Square area lights. Paper: ../shared/papers/quality-scalability-ssm-schwarz2008.txt (cited as L...).
+//
+// Pipeline (Fig. 3), four full-screen passes (vtkSLSs08Pass):
+//  1. search (shaders/ss08/Ss08Search.glsl): per pixel the budget b_mo(x, y) (L352-356; `budget_map`), the
+//     search area of Fig. 2 b refined `kernel_refinements` times (L146-156) with each depth-range query grown to
+//     the whole support of the level-j micro-occluders it partly covers (L583-611, Fig. 7; `growth`), lit /
+//     umbra from that range (L154-156), and the fractional level l, written to the LOQ map. The rule for l is
+//     the project's (the paper gives none): with span = the search area's larger side minus one, in level-0
+//     texels, l = clamp(log2(span / (b - 1)), 0, L); the slots examined per axis at level j are at most
+//     ceil(span / 2^j) + 1, so level ceil(l) examines at most b per axis and floor(l) at most 2b - 1 (L818-820).
+//     b = 0 is unlimited: level 0, no smoothing, no blending (Table 2's caption). b = 1 is met by the top level L
+//     only (one texel for the map). `force_level` sets l for experiments.
+//  2-3. smoothing (Ss08LoqSmoothing.glsl): the LOQ map filtered by a separable 11 x 11 box whose runs stop at
+//     camera-depth discontinuities (`smoothing_depth_threshold`) and at pixels that do not back-project
+//     (L363-368, L813-817); `loq_floor` = raw keeps l >= l_raw (the budget); `none` lets smoothing lower it
+//     and `loq_budget_violation` counts the levels lost.
+//  4. visibility (Ss08Visibility.glsl): the micro-occluders of floor(l) and ceil(l) back-projected and
+//     accumulated by area, blended V = (1 - a) V(floor l) + a V(ceil l) with a = l - floor(l) (L370-392);
+//     `blend_band` < 1 blends only over the last band of each level (0.1 = GBP07's suggestion, L380-383), 0 does
+//     not blend (ceil(l) alone).
+// Micro-occluders (`micro_occluder`): micropatches, level-j texels of the min-max pyramid at their minimum depth
+// (L127-138, L436-437), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, lightspace/microrect), whose
+// extents may overlap (area accumulation then over-occludes; occlusion bitmasks come with part 2).
+// A micro-occluder occludes when its depth is in front of the receiver's comparison depth at its centre, the
+// depth bias scaled by 2^level (`level_bias`, on by default: min aggregation puts coarse texels in front of a
+// tilted receiver, the paper's future work L889-891).
+// Acceleration structure (`hsm`): mipmap = the HSM, nbuffers = the MSSM (SS07's multi-scale shadow map is
+// N-buffers), ysm = the Y shadow map (§6, the paper's choice). Micropatches read the min-max pyramid's nodes.
+// Buffers: budget, search_area_texels, loq_raw, loq, level_floor, blend_alpha, micro_occluders (slots
+// examined, both levels: Table 2's count), classification (Ss08Class), loq_budget_violation,
+// query_growth_texels, micro_occluders_floor / _ceil (the slots each level alone would examine: the blend
+// overhead's baselines, L818-826).
+#pragma once
+
+#include "core/Image.h"
+#include "frame/TechniqueDescriptor.h"
+#include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/ShadowMapReference.h"
+#include "techniques/SoftShadowSupport.h"
+
+#include <glm/glm.hpp>
+
+namespace sl
+{
+
+struct Microrects;
+
+TechniqueDescriptor ss08Technique();
+
+// The `classification` codes (shader CLASSIFICATION_*).
+enum class Ss08Class
+{
+  NotTested = 0,
+  Lit = 1,
+  Umbra = 2,
+  Penumbra = 3,
+  // Lit by the area's own depth range, penumbra by the range grown to the micro-occluders' supports (Fig. 7):
+  // back-projected with growth=on; with growth=off left lit (V = 1), which is the over-precision artifact.
+  GrowthPenumbra = 4,
+  CutShort = 5 // back-projection cut short by a GL's cap on loop iterations (llvmpipe: 65535), detected
+};
+
+// The LOQ map's smoothing state (shader LOQ_STATE_*).
+enum class LoqState
+{
+  None = 0,     // no back-projection: a stop for the smoothing
+  Smoothed = 1, // back-projects at a budget-derived level
+  Fixed = 2     // back-projects at a level smoothing keeps (unlimited budget, force_level): a stop
+};
+
+constexpr int ss08SmoothingRadius = 5; // 11 x 11 support (L814-815)
+
+// The micro-occluder sources of the twin: the min-max pyramid the `hsm` parameter names (micropatches and the
+// range queries) and, with micro_occluder=microrect, the microrects.
+struct Ss08Structures
+{
+  const HierarchicalShadowMap* hsm = nullptr;
+  const Microrects* microrects = nullptr;
+};
+
+// The search (pass 1) at one pixel, double precision: the mirror of ss08Search in Ss08Search.glsl.
+struct Ss08Search
+{
+  ShadowLookup lookup;
+  SoftShadowGeometry geometry;
+  double bias = 0.0;
+  TexelRectangle area;  // kernel + one ring, clamped
+  TexelRectangle query; // the area whose depth range decided (grown with growth=on)
+  int budget = 0;
+  int span = 0;
+  double levelRaw = 0.0;
+  int levelCeil = 0;
+  Ss08Class classification = Ss08Class::NotTested;
+  bool backProjects = false;
+  LoqState state = LoqState::None;
+  double kernelEdgeMargin = 1e300; // kernel edges' distance to texel centres, in texels (float may round across)
+  double decisionMargin = 1e300; // the lit / umbra tests and the growth class, relative to d
+  double levelMargin = 1e300;    // |l_raw - nearest integer| (float log2 may round across it)
+};
+
+// b_mo at pixel (x, y) of a width-W frame for budget_map = uniform / ramp_x (exact integers); image maps are
+// read by the caller.
+int ss08PixelBudget(const ParameterValues& values, int x, int y, int imageWidth, const ImageF* budgetImage);
+
+// budget_map=image: the grey values (channel 0) of the PNG `budget_image`, nearest-resampled to width x height
+// (0 = unlimited). Throws InputError naming the parameter or the file when it is missing, unreadable, or holds
+// a value above the `budget` range.
+ImageF ss08BudgetImage(const ParameterValues& values, int width, int height);
+
+Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+  int x, int y, const ImageF* budgetImage = nullptr);
+
+// The slots (level-j texels) examined at `level` for the search area [lo, hi], inclusive per axis.
+TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area);
+
+// Passes 2-3: the smoothed LOQ map from the LOQ pass's output (x = l_raw, y = LoqState) and the camera depth.
+ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, const ParameterValues& values);
+
+// Pass 4 at one pixel, given the search and the (smoothed) level `level` the GPU read.
+struct Ss08Sample
+{
+  ReferenceSample sample;
+  Ss08Search search;
+  double level = 0.0;      // l used
+  int levelFloor = 0;
+  double blendAlpha = 0.0;
+  int microOccluders = 0;  // slots examined, both levels
+  glm::ivec2 slotsPerAxis[2]{ glm::ivec2(0), glm::ivec2(0) }; // at floor(l) and ceil(l), examined or not
+  int budgetViolation = 0;
+  int queryGrowth = 0;
+  double occlusionMargin = 1e300; // the micro-occluders' depth tests, relative to d
+};
+// `evaluateLit`: back-project pixels the search classified lit as well, at level `level` (the over-precision
+// test: with growth a lit pixel's micro-occluders hide nothing; the GPU never evaluates them).
+Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+  int x, int y, double level, const ImageF* budgetImage = nullptr, bool evaluateLit = false);
+
+// Loop iterations of the visibility pass past which llvmpipe's cap cuts a pixel (the twin's CutShort rule).
+constexpr int ss08LoopCap = 65535;
+
+} // namespace sl
