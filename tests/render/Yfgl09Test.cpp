@@ -294,8 +294,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
     // (LightView.cpp); a small caster 0.15 below the light, outside that first window but inside the widened
     // one, moves the near plane to 0.15, and the kernels that hold it are clamped by the map's border.
     { "kernels leaving the map", "near-light",
-      { R"(/objects/2={"primitive": "quad", "center": [0.3, 2.85, 0], "size": [0.05, 0.05], "normal": [0, 1, 0], "up": [0, 0, -1]})" },
-      { "shadow_map_size=128" } },
+      test::borderClampedKernelOverrides(), { "shadow_map_size=128" } },
   };
   for (const Case& c : cases)
   {
@@ -349,18 +348,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
 
 // Parallel rectangles stacked under a square light 1 unit above the highest (issue 13): at the default 1024^2
 // map the kernels pass 256 texels. Built on stacked-occluders' ground and light by scene overrides.
-std::vector<std::string> stackedRectangles(const std::vector<std::array<double, 5>>& rectangles, double lightHeight, double lightSize)
-{
-  std::vector<std::string> overrides = { "/lights/0/center/1=" + std::to_string(lightHeight), "/lights/0/size=" + std::to_string(lightSize) };
-  for (std::size_t k = 0; k < rectangles.size(); ++k)
-  {
-    const auto& [x, y, z, width, depth] = rectangles[k];
-    overrides.push_back("/objects/" + std::to_string(k + 1) + "={\"primitive\": \"quad\", \"center\": [" + std::to_string(x) + ", " +
-      std::to_string(y) + ", " + std::to_string(z) + "], \"size\": [" + std::to_string(width) + ", " + std::to_string(depth) +
-      "], \"normal\": [0, 1, 0], \"up\": [0, 0, -1]}");
-  }
-  return overrides;
-}
+using test::stackedRectangles;
 
 struct TwinComparison
 {
@@ -421,18 +409,9 @@ TEST(Yfgl09, KernelsWiderThan256TexelsAtTheDefaultMapStayExact)
       stackedRectangles({ { -0.8, 1.0, 0.0, 1.2, 0.8 }, { 0.4, 2.0, 0.3, 1.0, 1.4 }, { 0.2, 3.0, -0.4, 0.8, 0.6 } }, 4.0, 2.0) },
   };
   std::mt19937 generator(1309);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 2; ++trial)
   {
-    const double lightHeight = 3.0 + 2.0 * unit(generator);
-    const int count = 2 + trial;
-    std::vector<std::array<double, 5>> rectangles;
-    for (int k = 0; k < count; ++k)
-    {
-      const double height = k + 1 == count ? lightHeight - 0.6 - 0.6 * unit(generator) : 0.3 + (lightHeight - 1.5) * unit(generator);
-      rectangles.push_back({ 1.6 * unit(generator) - 0.8, height, 1.6 * unit(generator) - 0.8, 0.3 + 1.2 * unit(generator), 0.3 + 1.2 * unit(generator) });
-    }
-    cases.push_back({ "random stack " + std::to_string(trial), stackedRectangles(rectangles, lightHeight, 1.0 + 2.0 * unit(generator)) });
+    cases.push_back({ "random stack " + std::to_string(trial), test::randomRectangleStack(generator, 2 + trial) });
   }
   for (const Case& c : cases)
   {

@@ -57,6 +57,40 @@ std::vector<std::string> sceneSetArguments(const std::vector<std::string>& overr
   return arguments;
 }
 
+std::vector<std::string> stackedRectangles(const std::vector<std::array<double, 5>>& rectangles, double lightHeight,
+  double lightSize)
+{
+  std::vector<std::string> overrides = { "/lights/0/center/1=" + std::to_string(lightHeight), "/lights/0/size=" + std::to_string(lightSize) };
+  for (std::size_t k = 0; k < rectangles.size(); ++k)
+  {
+    const auto& [x, y, z, width, depth] = rectangles[k];
+    overrides.push_back("/objects/" + std::to_string(k + 1) + "={\"primitive\": \"quad\", \"center\": [" + std::to_string(x) + ", " +
+      std::to_string(y) + ", " + std::to_string(z) + "], \"size\": [" + std::to_string(width) + ", " + std::to_string(depth) +
+      "], \"normal\": [0, 1, 0], \"up\": [0, 0, -1]}");
+  }
+  return overrides;
+}
+
+std::vector<std::string> randomRectangleStack(std::mt19937& generator, int count)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double lightHeight = 3.0 + 2.0 * unit(generator);
+  std::vector<std::array<double, 5>> rectangles;
+  for (int k = 0; k < count; ++k)
+  {
+    const double height = k + 1 == count ? lightHeight - 0.6 - 0.6 * unit(generator) : 0.3 + (lightHeight - 1.5) * unit(generator);
+    // Braced lists evaluate left to right: the draws keep their order.
+    rectangles.push_back({ 1.6 * unit(generator) - 0.8, height, 1.6 * unit(generator) - 0.8, 0.3 + 1.2 * unit(generator), 0.3 + 1.2 * unit(generator) });
+  }
+  const double lightSize = 1.0 + 2.0 * unit(generator);
+  return stackedRectangles(rectangles, lightHeight, lightSize);
+}
+
+std::vector<std::string> borderClampedKernelOverrides()
+{
+  return { R"(/objects/2={"primitive": "quad", "center": [0.3, 2.85, 0], "size": [0.05, 0.05], "normal": [0, 1, 0], "up": [0, 0, -1]})" };
+}
+
 std::filesystem::path datasetPath(const std::string& name)
 {
   return sourceDir() / "datasets" / name / "scene.json";

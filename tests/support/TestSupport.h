@@ -9,9 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,18 @@ std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/s
 std::vector<std::string> wideKernelOverrides();
 // `overrides` as shadowlab arguments: --scene-set pointer=value for each.
 std::vector<std::string> sceneSetArguments(const std::vector<std::string>& overrides);
+// Overrides of stacked-occluders (issue 13): its occluders replaced by parallel rectangles {x, y, z, width,
+// depth} (horizontal quads, objects 1..), under its square light moved to `lightHeight` with side `lightSize`.
+std::vector<std::string> stackedRectangles(const std::vector<std::array<double, 5>>& rectangles, double lightHeight,
+  double lightSize);
+// A seeded random stack of `count` such rectangles: light 3-5 high and 1-3 wide, the highest rectangle 0.6-1.2
+// below it, the others anywhere from 0.3 up to 1.2 below the light; sizes 0.3-1.5, centres within 0.8 of the
+// axis. Draws from `generator` in a fixed order, so a seed gives one scene.
+std::vector<std::string> randomRectangleStack(std::mt19937& generator, int count);
+// Overrides of near-light: a small caster 0.15 below the light, outside the focus stage's first window but
+// inside the widened one (LightView.cpp), moves the map's near plane to 0.15, so the kernels around it are
+// clamped by the map's border.
+std::vector<std::string> borderClampedKernelOverrides();
 Scene loadDataset(const std::string& name);
 std::vector<std::string> datasetNames();      // every datasets/*/scene.json
 
