@@ -2,7 +2,7 @@
 // written to the LOQ map the smoothing passes read: x = l_raw, y = the smoothing state (LOQ_STATE_*: the pixel
 // needs no back-projection, is smoothed, or back-projects at a level smoothing must keep: unlimited budget or
 // force_level).
-// CPU mirror: src/techniques/ss08/Ss08Technique.cpp (ss08Search, ss08LoqState).
+// CPU mirror: src/techniques/ss08/Ss08Technique.cpp (ss08Search: Ss08Search::state).
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"

@@ -6,11 +6,13 @@
 //    ring), with the depth-range query grown before each query to the whole support of every level-j
 //    micro-occluder the area partly covers (001 L605-611, "over-precision", Fig. 7; GROWTH);
 //  - the fractional level l from the search area and the budget (the project's rule, 001 gives none):
-//    span = the search area's larger side minus 1 (level-0 texels), l = clamp(log2(span / (b - 1)), 0, L).
-//    At level j the slots examined per axis are at most ceil(span / 2^j) + 1 (micropatches: the level-j texels
-//    over the area; microrects: one more at most on the high side, see ss08SlotRange), so ceil(l) holds at most
-//    b per axis and floor(l) at most 2b - 1 (001 L818-820: "(2 b_mo)^2" and "(b_mo)^2"). b = 1 is met only by
-//    the top level; b = 0 (unlimited) is level 0 (Table 2's caption: no smoothing, no blending);
+//    span = the search area's larger side minus 1 (level-0 texels), l = clamp(log2(span / (b - 1)), 0, L) for
+//    micropatches: at level j the slots examined per axis (the level-j texels over the area) are at most
+//    ceil(span / 2^j) + 1, so ceil(l) holds at most b per axis and floor(l) at most 2b - 1 (001 L818-820:
+//    "(2 b_mo)^2" and "(b_mo)^2"). Microrects may need one slot more on the high side (ss08SlotRange), at most
+//    ceil((span + 2^j - 1) / 2^j) + 1, so for them l = log2((span - 1) / (b - 2)): at most b at ceil(l) and
+//    2b - 2 at floor(l). b = 1 (b = 2 with microrects) is met only by the top level; b = 0 (unlimited) is
+//    level 0 (Table 2's caption: no smoothing, no blending);
 //  - lit / umbra from the (grown) area's depth range (001 L154-156), and the class of a pixel only the grown
 //    query makes penumbra.
 // CPU mirror: src/techniques/ss08/Ss08Technique.cpp (ss08Search). Needs common/GBufferInputs.glsl,
@@ -46,39 +48,59 @@ int pixelBudget(ivec2 pixel)
 #endif
 }
 
-// The smallest level j at which `span` fits the budget: span <= (b - 1) 2^j (the top level when b <= 1).
+// The slot a microrect's range may take beyond a micropatch's on the high side (ss08SlotRange): the level-j
+// slots over a span of s texels are at most ceil(s / 2^j) + 1 per axis for micropatches and
+// ceil((s + 2^j - 1) / 2^j) + 1 for microrects, so b of them hold s - EXTRA_SLOT <= (b - 1 - EXTRA_SLOT) 2^j.
+#if MICRO_OCCLUDER == MICRO_OCCLUDER_MICRORECT
+const int EXTRA_SLOT = 1;
+#else
+const int EXTRA_SLOT = 0;
+#endif
+
+// The smallest level j whose slots over `span` fit the budget: level 0 when span <= b - 1 (span + 1 slots),
+// else s - EXTRA_SLOT <= (b - 1 - EXTRA_SLOT) 2^j; the top level (one texel for the map) when no level fits by
+// that rule (b = 1; b = 2 with microrects). One return: llvmpipe counts a function's early return as a loop
+// iteration.
 int ceilLevel(int span, int budget)
 {
-  if (budget == 0 || span == 0)
-  {
-    return 0;
-  }
-  if (budget == 1)
-  {
-    return ss08TopLevel;
-  }
+  int reach = budget - 1 - EXTRA_SLOT;
   int level = 0;
-  while (level < ss08TopLevel && span > (budget - 1) << level)
+  if (budget != 0 && span > budget - 1)
   {
-    ++level;
+    level = ss08TopLevel;
+    if (reach > 0)
+    {
+      level = 0;
+      while (level < ss08TopLevel && span - EXTRA_SLOT > reach << level)
+      {
+        ++level;
+      }
+    }
   }
   return level;
 }
 
-// l for a search area of `span` and budget b, and its ceiling (exact, integer); force_level overrides both.
+// l for a search area of `span` and budget b, and its ceiling (exact, integer): l = log2((span - EXTRA_SLOT) /
+// (b - 1 - EXTRA_SLOT)) clamped to [ceil - 1, ceil], integer where the rule gives one; force_level overrides both.
 float fractionalLevel(int span, int budget, out int levelCeil)
 {
+  float level;
   if (param_force_level >= 0.0)
   {
     levelCeil = min(int(param_force_level), ss08TopLevel);
-    return float(levelCeil);
+    level = float(levelCeil);
   }
-  levelCeil = ceilLevel(span, budget);
-  if (levelCeil == 0 || budget == 1 || span == (budget - 1) << levelCeil)
+  else
   {
-    return float(levelCeil);
+    levelCeil = ceilLevel(span, budget);
+    int reach = budget - 1 - EXTRA_SLOT;
+    level = float(levelCeil);
+    if (levelCeil > 0 && reach > 0 && span - EXTRA_SLOT != reach << levelCeil)
+    {
+      level = clamp(log2(float(span - EXTRA_SLOT) / float(reach)), float(levelCeil - 1), float(levelCeil));
+    }
   }
-  return clamp(log2(float(span) / float(budget - 1)), float(levelCeil - 1), float(levelCeil));
+  return level;
 }
 
 // The slots (level-`level` texels) whose micro-occluders can cover the area [lo, hi]: micropatches, the

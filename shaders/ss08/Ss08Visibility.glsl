@@ -85,59 +85,63 @@ bool microOccludes(int level, ivec2 lo, ivec2 hi, float depth)
 bool neighbourOccludes(int level, ivec2 slot, out float depth)
 {
   depth = 0.0;
+  bool occludes = false;
   int levelSize = mipAtlasLevelSize(shadowMapSize, level);
-  if (any(lessThan(slot, ivec2(0))) || any(greaterThanEqual(slot, ivec2(levelSize))))
+  if (all(greaterThanEqual(slot, ivec2(0))) && all(lessThan(slot, ivec2(levelSize))))
   {
-    return false;
+    ivec2 lo;
+    ivec2 hi;
+    microOccluder(level, slot, lo, hi, depth);
+    occludes = microOccludes(level, lo, hi, depth);
   }
-  ivec2 lo;
-  ivec2 hi;
-  microOccluder(level, slot, lo, hi, depth);
-  return microOccludes(level, lo, hi, depth);
+  return occludes;
 }
 #endif
 
 // The light area the micro-occluder of `slot` at `level` hides: its rectangle at its depth back-projected
 // from the receiver onto the light (an axis-aligned rectangle, backProject of two opposite corners), gap-filled
-// as gbp06 (micropatches), clipped to the light. No loops (llvmpipe's cap counts every iteration).
+// as gbp06 (micropatches), clipped to the light. No loops and no early returns: llvmpipe's cap counts every
+// loop iteration, and an early return from a function called in a loop costs one (GLSL lowers it to a loop),
+// which cut the slot loop short at about a third of the cap.
 float microOccluderArea(int level, ivec2 slot)
 {
   ivec2 texelLo;
   ivec2 texelHi;
   float depth;
   microOccluder(level, slot, texelLo, texelHi, depth);
-  if (!microOccludes(level, texelLo, texelHi, depth))
+  float area = 0.0;
+  if (microOccludes(level, texelLo, texelHi, depth))
   {
-    return 0.0;
-  }
-  vec2 tangentLo = shadowWindowMin + vec2(texelLo) * shadowTexelTangent;
-  vec2 tangentHi = shadowWindowMin + vec2(texelHi + 1) * shadowTexelTangent;
-  vec2 lo = backProject(tangentLo, depth, receiverXy, receiverDepth);
-  vec2 hi = backProject(tangentHi, depth, receiverXy, receiverDepth);
+    vec2 tangentLo = shadowWindowMin + vec2(texelLo) * shadowTexelTangent;
+    vec2 tangentHi = shadowWindowMin + vec2(texelHi + 1) * shadowTexelTangent;
+    vec2 lo = backProject(tangentLo, depth, receiverXy, receiverDepth);
+    vec2 hi = backProject(tangentHi, depth, receiverXy, receiverDepth);
 #if MICRO_OCCLUDER == MICRO_OCCLUDER_MICROPATCH
-  float neighbourDepth;
+    float neighbourDepth;
 #if GAP_FILLING == GAP_FILLING_LEFT_BOTTOM
-  if (neighbourOccludes(level, slot - ivec2(1, 0), neighbourDepth))
-  {
-    lo.x = min(lo.x, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).x);
-  }
-  if (neighbourOccludes(level, slot - ivec2(0, 1), neighbourDepth))
-  {
-    lo.y = min(lo.y, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).y);
-  }
+    if (neighbourOccludes(level, slot - ivec2(1, 0), neighbourDepth))
+    {
+      lo.x = min(lo.x, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).x);
+    }
+    if (neighbourOccludes(level, slot - ivec2(0, 1), neighbourDepth))
+    {
+      lo.y = min(lo.y, backProject(tangentLo, neighbourDepth, receiverXy, receiverDepth).y);
+    }
 #elif GAP_FILLING == GAP_FILLING_RIGHT_TOP
-  if (neighbourOccludes(level, slot + ivec2(1, 0), neighbourDepth))
-  {
-    hi.x = max(hi.x, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).x);
-  }
-  if (neighbourOccludes(level, slot + ivec2(0, 1), neighbourDepth))
-  {
-    hi.y = max(hi.y, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).y);
-  }
+    if (neighbourOccludes(level, slot + ivec2(1, 0), neighbourDepth))
+    {
+      hi.x = max(hi.x, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).x);
+    }
+    if (neighbourOccludes(level, slot + ivec2(0, 1), neighbourDepth))
+    {
+      hi.y = max(hi.y, backProject(tangentHi, neighbourDepth, receiverXy, receiverDepth).y);
+    }
 #endif
 #endif
-  vec2 extent = max(min(hi, vec2(halfSize)) - max(lo, vec2(-halfSize)), vec2(0.0));
-  return extent.x * extent.y;
+    vec2 extent = max(min(hi, vec2(halfSize)) - max(lo, vec2(-halfSize)), vec2(0.0));
+    area = extent.x * extent.y;
+  }
+  return area;
 }
 
 // The blend weight of ceil(l) for the fractional part `fraction` (L370-392): with band 1 (the paper's

@@ -170,39 +170,57 @@ int levelSize(int mapSize, int level)
   return level == 0 ? mapSize : hsmLevelSize(HsmLayout::MipMap, mapSize, level);
 }
 
-// ceilLevel / fractionalLevel of Ss08Search.glsl.
-int ceilLevel(int span, int budget, int top)
+// EXTRA_SLOT / ceilLevel / fractionalLevel of Ss08Search.glsl: microrects may take one slot more per axis on
+// the high side (ss08SlotRange), so b of them hold span - 1 <= (b - 2) 2^j where micropatches hold span <= (b - 1) 2^j.
+int extraSlot(const ParameterValues& values)
 {
-  if (budget == 0 || span == 0)
+  return microrectsOn(values) ? 1 : 0;
+}
+
+int ceilLevel(int span, int budget, int extra, int top)
+{
+  if (budget == 0 || span <= budget - 1)
   {
-    return 0;
+    return 0; // span + 1 slots at level 0
   }
-  if (budget == 1)
+  const int reach = budget - 1 - extra;
+  if (reach <= 0)
   {
     return top;
   }
   int level = 0;
-  while (level < top && span > (budget - 1) << level)
+  while (level < top && span - extra > reach << level)
   {
     ++level;
   }
   return level;
 }
 
-double fractionalLevel(const ParameterValues& values, int span, int budget, int top, int& levelCeil)
+// `fromLog2`: whether l came from log2 (else it is an integer the float computation gives exactly).
+double fractionalLevel(const ParameterValues& values, int span, int budget, int top, int& levelCeil, bool* fromLog2 = nullptr)
 {
+  if (fromLog2)
+  {
+    *fromLog2 = false;
+  }
   const int forced = values.getInt("force_level");
   if (forced >= 0)
   {
     levelCeil = std::min(forced, top);
     return levelCeil;
   }
-  levelCeil = ceilLevel(span, budget, top);
-  if (levelCeil == 0 || budget == 1 || span == (budget - 1) << levelCeil)
+  const int extra = extraSlot(values);
+  const int reach = budget - 1 - extra;
+  levelCeil = ceilLevel(span, budget, extra, top);
+  if (levelCeil == 0 || reach <= 0 || span - extra == reach << levelCeil)
   {
     return levelCeil;
   }
-  return std::clamp(std::log2(static_cast<double>(span) / (budget - 1)), levelCeil - 1.0, static_cast<double>(levelCeil));
+  if (fromLog2)
+  {
+    *fromLog2 = true;
+  }
+  return std::clamp(std::log2(static_cast<double>(span - extra) / reach), levelCeil - 1.0, static_cast<double>(levelCeil));
 }
 
 TexelRectangle grownArea(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area)
@@ -295,8 +313,10 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     depthRange = searchRange(search.area, search.query);
   }
   search.span = areaSpan(search.area);
-  search.levelRaw = fractionalLevel(values, search.span, search.budget, top, search.levelCeil);
-  search.levelMargin = std::abs(search.levelRaw - std::round(search.levelRaw));
+  bool fromLog2 = false;
+  search.levelRaw = fractionalLevel(values, search.span, search.budget, top, search.levelCeil, &fromLog2);
+  // Only a level from log2 may round across an integer; the integer levels are exact in float too.
+  search.levelMargin = fromLog2 ? std::abs(search.levelRaw - std::round(search.levelRaw)) : 1e300;
   const glm::dvec2 comparison = geometry.comparisonDepthRange(search.query.lo, search.query.hi, search.bias);
   search.decisionMargin = std::min(std::abs(depthRange.x - comparison.y), std::abs(depthRange.y - comparison.x)) / d;
   const bool ringInsideMap = search.area.lo == kernel.lo - 1 && search.area.hi == kernel.hi + 1;

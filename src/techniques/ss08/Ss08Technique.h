@@ -9,10 +9,13 @@
 //     the whole support of the level-j micro-occluders it partly covers (L583-611, Fig. 7; `growth`), lit /
 //     umbra from that range (L154-156), and the fractional level l, written to the LOQ map. The rule for l is
 //     the project's (the paper gives none): with span = the search area's larger side minus one, in level-0
-//     texels, l = clamp(log2(span / (b - 1)), 0, L); the slots examined per axis at level j are at most
-//     ceil(span / 2^j) + 1, so level ceil(l) examines at most b per axis and floor(l) at most 2b - 1 (L818-820).
-//     b = 0 is unlimited: level 0, no smoothing, no blending (Table 2's caption). b = 1 is met by the top level L
-//     only (one texel for the map). `force_level` sets l for experiments.
+//     texels, l = clamp(log2(span / (b - 1)), 0, L) for micropatches, whose slots examined per axis at level j
+//     are at most ceil(span / 2^j) + 1, so level ceil(l) examines at most b per axis and floor(l) at most
+//     2b - 1 (L818-820). Microrects may take one slot more on the high side (ss08SlotRange), at most
+//     ceil((span + 2^j - 1) / 2^j) + 1, so for them l = log2((span - 1) / (b - 2)): at most b at ceil(l), 2b - 2
+//     at floor(l). Either way level 0 when span <= b - 1. b = 0 is unlimited: level 0, no smoothing, no blending
+//     (Table 2's caption). b = 1 (and b = 2 with microrects) is met by the top level L only (one texel for the
+//     map). `force_level` sets l for experiments.
 //  2-3. smoothing (Ss08LoqSmoothing.glsl): the LOQ map filtered by a separable 11 x 11 box whose runs stop at
 //     camera-depth discontinuities (`smoothing_depth_threshold`) and at pixels that do not back-project
 //     (L363-368, L813-817); `loq_floor` = raw keeps l >= l_raw (the budget); `none` lets smoothing lower it
@@ -98,7 +101,7 @@ struct Ss08Search
   LoqState state = LoqState::None;
   double kernelEdgeMargin = 1e300; // kernel edges' distance to texel centres, in texels (float may round across)
   double decisionMargin = 1e300; // the lit / umbra tests and the growth class, relative to d
-  double levelMargin = 1e300;    // |l_raw - nearest integer| (float log2 may round across it)
+  double levelMargin = 1e300;    // |l_raw - nearest integer| where l_raw comes from log2 (float may round across)
 };
 
 // b_mo at pixel (x, y) of a width-W frame for budget_map = uniform / ramp_x (exact integers); image maps are
@@ -138,7 +141,10 @@ struct Ss08Sample
 Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
   int x, int y, double level, const ImageF* budgetImage = nullptr, bool evaluateLit = false);
 
-// Loop iterations of the visibility pass past which llvmpipe's cap cuts a pixel (the twin's CutShort rule).
+// llvmpipe's cap on the loop iterations of one invocation (the twin's CutShort rule: more slots than this). The
+// slot loop costs one iteration a slot (its helpers have no loops and no early returns, which GLSL lowers to
+// loops); the search's few loop iterations come on top, so llvmpipe cuts from ~65200-65440 slots on (measured,
+// Ss08.PixelsOverTheLoopCapAreFlaggedAndTheOthersExact).
 constexpr int ss08LoopCap = 65535;
 
 } // namespace sl
