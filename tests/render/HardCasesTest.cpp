@@ -1,5 +1,6 @@
 // Numerically hard cases, checked against an independent brute-force CPU ray caster (RayCaster.h):
 // acne on a grazing receiver, the contact shadow, non-square images, and no NaN/inf anywhere.
+#include "io/ImageIO.h"
 #include "support/RayCaster.h"
 #include "support/TestSupport.h"
 #include "lightspace/LightView.h"
@@ -8,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <iostream>
 
 namespace sl
@@ -255,6 +258,29 @@ class HardCasesSweep : public testing::TestWithParam<test::DatasetTechnique>
 {
 };
 
+// The value every file parameter gets in the sweep (a choice may need it, e.g. ss08's budget_map=image): a 16 x 16
+// grey PNG whose values run 1..16 across x, so an image read as numbers (ss08: budgets) varies over the frame.
+std::string sweepFileParameterPath()
+{
+  static const std::string path = [] {
+    const std::filesystem::path file = test::testOutputDir() / "sweep-file-parameter.png";
+    ImageU8 grey(16, 16, 3);
+    for (int y = 0; y < 16; ++y)
+    {
+      for (int x = 0; x < 16; ++x)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          grey.at(x, y, c) = static_cast<std::uint8_t>(x + 1);
+        }
+      }
+    }
+    writePng(file, grey);
+    return file.string();
+  }();
+  return path;
+}
+
 TEST_P(HardCasesSweep, InAnyBufferOfAnyVariant)
 {
   const std::string& dataset = GetParam().dataset;
@@ -273,6 +299,16 @@ TEST_P(HardCasesSweep, InAnyBufferOfAnyVariant)
         }
         settings.insert(settings.end(), descriptor.sweepTestSettings.begin(), descriptor.sweepTestSettings.end());
         configurations.push_back(settings);
+      }
+    }
+  }
+  for (const ParameterSpec& spec : descriptor.parameters)
+  {
+    for (std::vector<std::string>& settings : configurations)
+    {
+      if (spec.file)
+      {
+        settings.push_back(spec.name + "=" + sweepFileParameterPath());
       }
     }
   }
