@@ -230,6 +230,7 @@ void main()
       float areas[2] = float[2](0.0, 0.0);
       int total = counts[0] + counts[1];
       bool reachedLast = total == 0;
+      int examined = 0; // total, unless the cap cut the loop
       for (int k = 0; k < total; ++k)
       {
         int which = k < counts[0] ? 0 : 1;
@@ -238,11 +239,12 @@ void main()
         ivec2 slot = first[which] + ivec2(local % width, local / width);
         areas[which] += microOccluderArea(levels[which], slot);
         reachedLast = k == total - 1;
+        examined = k + 1;
       }
       float lightArea = 4.0 * halfSize * halfSize;
       outVisibility = weights[0] * clamp(1.0 - areas[0] / lightArea, 0.0, 1.0) +
         weights[1] * clamp(1.0 - areas[1] / lightArea, 0.0, 1.0);
-      outMicroOccluders = float(total);
+      outMicroOccluders = float(examined);
       if (!reachedLast)
       {
         classification = CLASSIFICATION_CUT_SHORT;

@@ -82,7 +82,7 @@ TechniqueDescriptor ss08Technique()
     { "loq", "levels", "l after smoothing: the LOQ map (001 Fig. 3 step 2)" },
     { "level_floor", "level", "floor(l) of back-projecting pixels (001 Fig. 8, Fig. 13 a)" },
     { "blend_alpha", "", "weight of ceil(l) in the blend (001 L370-392; 0 where one level)" },
-    { "micro_occluders", "micro-occluders", "slots examined, both levels (Table 2's count)", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    { "micro_occluders", "micro-occluders", "slots examined, both levels (Table 2's count; where the loop cap cut the pixel, those it reached)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     // Image stores (IMAGE_OUTPUT_FIRST and after).
     categoricalBuffer("classification", "how the pixel was decided; growth penumbra: lit by the search area's own range, penumbra by the grown one (001 Fig. 7)", ss08Categories),
     { "loq_budget_violation", "levels", "ceil(l_raw) - ceil(l) where smoothing lowered the level below the budget's (loq_floor=none)" },
