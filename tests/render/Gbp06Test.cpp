@@ -2,7 +2,8 @@
 // double-precision twin on read-back buffers; the hsm traversal against the kernel one (same visibility, fewer
 // nodes); against the closed-form overlap of a parallel square occluder, converging as the map's resolution doubles;
 // the gap-filling conventions (left/bottom, 001 L132-134, and right/top) swapped by mirroring the scene in light
-// x and y, and the searched texels enough for both.
+// x and y, and the searched texels enough for both; at 1024^2 maps, kernels under llvmpipe's loop cap exact and
+// unflagged, and every pixel whose traversal the cap cuts short flagged (detected, not counted).
 #include "lightspace/hsm/HsmStructure.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <random>
 
 namespace sl
 {
@@ -464,6 +466,182 @@ TEST(Gbp06, RefinedKernelsMissNoGapFilledMicropatch)
               << occludersOutside << " occluding texels outside the refined ones): max |difference| " << maxDifference << "\n";
     EXPECT_GT(compared, 300) << gapFilling;
     EXPECT_GT(occludersOutside, compared) << gapFilling; // the neighbours the test is about exist
+  }
+}
+
+// What the cap did to one frame: the GPU against the twin on the same read-back buffers, pixel by pixel.
+struct CutShortReport
+{
+  int penumbra = 0;          // pixels the twin integrates (penumbra or over the budget)
+  int flagged = 0;           // pixels the shader flagged cut short
+  int differing = 0;         // pixels more than 1e-3 from the twin
+  int differingFlagged = 0;  // of those, flagged
+  double maxUnflagged = 0.0; // max |gpu - twin| over the pixels not flagged
+  double widest = 0.0;       // widest kernel (texels)
+  double narrowest = 1e300;  // narrowest penumbra kernel (texels)
+  int mostIterations = 0;    // the twin's loop iterations, most over the frame
+  int twinOverBudget = 0;    // pixels the twin classifies over gbp06LoopBudget
+  int fewestFlagged = 1 << 30; // the twin's loop iterations, fewest among the pixels flagged
+  int mostUnflagged = 0;       // and most among the integrated pixels not flagged
+  bool llvmpipe = false;       // rendered on llvmpipe, whose loop cap the cases are sized for
+};
+
+CutShortReport cutShortAgainstTheTwin(const Scene& scene, const std::vector<std::string>& settings, int width, int height,
+  const std::string& label)
+{
+  const FrameResult frame = test::renderDataset(scene, "gbp06", width, height, settings);
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const HierarchicalShadowMap hsm = structureOf(frame, inputs);
+  CutShortReport report;
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const Gbp06Sample cpu = gbp06Reference(inputs, hsm, frame.parameters, x, y);
+      const bool cut = frame.find("classification")->image.at(x, y) == static_cast<float>(BackprojectionClass::OverLoopBudget);
+      report.flagged += cut ? 1 : 0;
+      const bool integrated = cpu.classification == BackprojectionClass::Penumbra || cpu.classification == BackprojectionClass::OverLoopBudget;
+      if (integrated)
+      {
+        ++report.penumbra;
+        report.widest = std::max(report.widest, cpu.kernelTexels);
+        report.narrowest = std::min(report.narrowest, cpu.kernelTexels);
+        report.mostIterations = std::max(report.mostIterations, cpu.loopIterations);
+        report.twinOverBudget += cpu.classification == BackprojectionClass::OverLoopBudget ? 1 : 0;
+        if (cut)
+        {
+          report.fewestFlagged = std::min(report.fewestFlagged, cpu.loopIterations);
+        }
+        else
+        {
+          report.mostUnflagged = std::max(report.mostUnflagged, cpu.loopIterations);
+        }
+      }
+      const double difference = std::abs(frame.find("visibility")->image.at(x, y) - cpu.sample.visibility);
+      if (difference > 1e-3)
+      {
+        ++report.differing;
+        report.differingFlagged += cut ? 1 : 0;
+      }
+      if (!cut)
+      {
+        report.maxUnflagged = std::max(report.maxUnflagged, difference);
+      }
+    }
+  }
+  std::cout << "[ measured ] gbp06 " << label << " on " << frame.glRenderer << ": " << report.penumbra << " of " << width * height
+            << " pixels integrated, kernels " << report.narrowest << " - " << report.widest << " texels, twin's loop iterations up to "
+            << report.mostIterations << " (" << report.twinOverBudget << " over the budget " << gbp06LoopBudget << "); "
+            << report.flagged << " flagged cut short, " << report.differing << " differ from the twin by > 1e-3 ("
+            << report.differingFlagged << " of them flagged), max |gpu - twin| " << report.maxUnflagged << " on the others; "
+            << "twin's iterations: fewest flagged " << report.fewestFlagged << ", most unflagged " << report.mostUnflagged << "\n";
+  EXPECT_EQ(frame.techniqueStatistics.at("cut_short_pixels"), static_cast<double>(report.flagged)) << label;
+  report.llvmpipe = frame.glRenderer.find("llvmpipe") != std::string::npos;
+  return report;
+}
+
+// stacked-occluders with test::wideKernelOverrides' occluder 1 below the light, the light's side set to `lightSize`:
+// at the default 1024^2 map the penumbra kernels grow with it (0.3: ~155-165 texels, 0.5: ~225-240, 2: ~465-495).
+Scene wideKernelScene(const std::string& lightSize)
+{
+  std::vector<std::string> overrides = test::wideKernelOverrides();
+  for (std::string& assignment : overrides)
+  {
+    if (assignment.rfind("/lights/0/size=", 0) == 0)
+    {
+      assignment = "/lights/0/size=" + lightSize;
+    }
+  }
+  return loadScene(test::datasetPath("stacked-occluders"), overrides);
+}
+
+TEST(Gbp06, KernelsUnderTheLoopCapAreExactAndUnflagged)
+{
+  // Kernels of ~155-240 texels at 1024^2 (the texel loop examines 22000-48000 texels, ~1/3 to ~3/4 of
+  // llvmpipe's cap; the walk iterates up to ~57000 times at ~205 texels, over the budget at ~240): every pixel
+  // equals the twin and none is flagged. (Suspected while building ss08: early returns in the per-texel helpers
+  // costing a loop iteration each would have cut these at ~22000 texels. Measured: they were exact before too;
+  // the helpers now have no early returns all the same.)
+  int mostIterations = 0;
+  for (const std::string lightSize : { "0.3", "0.4", "0.5" })
+  {
+    const Scene scene = wideKernelScene(lightSize);
+    for (const std::string traversal : { "kernel", "hsm" })
+    {
+      if (traversal == "hsm" && lightSize == "0.5")
+      {
+        continue;
+      }
+      const std::string label = "light " + lightSize + ", traversal=" + traversal;
+      const CutShortReport report = cutShortAgainstTheTwin(scene, { "traversal=" + traversal }, 16, 12, label);
+      EXPECT_GT(report.penumbra, 40) << label;
+      EXPECT_EQ(report.twinOverBudget, 0) << label;
+      EXPECT_EQ(report.flagged, 0) << label;
+      EXPECT_EQ(report.differing, 0) << label;
+      EXPECT_LE(report.maxUnflagged, 1e-3) << label;
+      EXPECT_GT(report.narrowest, 150.0) << label;
+      mostIterations = std::max(mostIterations, report.mostIterations);
+    }
+  }
+  EXPECT_GT(mostIterations, 45000);
+}
+
+TEST(Gbp06, KernelsTheLoopCapCutsShortAreFlaggedExactly)
+{
+  // Where the cap stops a pixel's traversal the shader flags it, detected (the texel loop never reached its last
+  // texel, the hsm walk never took its exit): every pixel that differs from the twin must be flagged, an
+  // unflagged one must be exact, and a GL without a cap flags nothing (nor differs). Counting iterations against
+  // a budget (the flag before) missed pixels: llvmpipe counts once per SIMD vector of pixels, so a texel loop
+  // whose neighbours in the vector have wider rows is stopped with far fewer texels of its own. Measured on the
+  // random stack below at 32 x 24 pixels before the fix: 679 pixels differed from the twin, 14 of them unflagged
+  // (by up to 0.077); over 12 such stacks (seed 606) 187 unflagged pixels, by up to 0.91. The walk was flagged
+  // by its count too; it is one flat loop, whose vector runs as long as its longest pixel, so a pixel is stopped
+  // only past ~65000 iterations of its own and the count missed none, but flagged pixels the cap had not cut.
+  struct Case
+  {
+    std::string label;
+    Scene scene;
+    std::string traversal;
+    int width;
+    int height;
+    bool cutUnderTheBudget; // llvmpipe stops some pixel whose twin counts fewer than gbp06LoopBudget iterations
+  };
+  std::mt19937 generator(606);
+  for (int k = 0; k < 8; ++k)
+  {
+    test::randomRectangleStack(generator, 2 + k % 3); // the draws before the stack measured above
+  }
+  const Scene randomStack = loadScene(test::datasetPath("stacked-occluders"), test::randomRectangleStack(generator, 4));
+  const std::vector<Case> cases = {
+    { "wide kernels (~465-495 texels), traversal=kernel", wideKernelScene("2"), "kernel", 16, 12, false },
+    { "random stack (kernels ~117-375 texels), traversal=kernel", randomStack, "kernel", 32, 24, true },
+    { "kernels ~268-285 texels, traversal=hsm", wideKernelScene("0.65"), "hsm", 16, 12, false },
+    { "wide kernels (~465-495 texels), traversal=hsm", wideKernelScene("2"), "hsm", 16, 12, false },
+  };
+  for (const Case& c : cases)
+  {
+    const CutShortReport report = cutShortAgainstTheTwin(c.scene, { "traversal=" + c.traversal }, c.width, c.height, c.label);
+    EXPECT_GT(report.penumbra, c.width * c.height / 2) << c.label;
+    EXPECT_EQ(report.differingFlagged, report.differing) << c.label << ": a pixel differs from the twin without being flagged";
+    EXPECT_LE(report.maxUnflagged, 1e-3) << c.label;
+    if (report.llvmpipe)
+    {
+      EXPECT_GT(report.differing, 20) << c.label << ": the case must outrun llvmpipe's loop cap";
+      if (c.cutUnderTheBudget)
+      {
+        EXPECT_LT(report.fewestFlagged, gbp06LoopBudget) << c.label << ": the case must hold pixels a count would miss";
+      }
+      if (c.traversal == "hsm")
+      {
+        // The flat walk is stopped only past ~65500 iterations of its own (measured: flagged from 65510, finished
+        // up to 65455); a count against the 60000 budget flagged walks that had finished.
+        EXPECT_GT(report.fewestFlagged, 65000) << c.label;
+      }
+    }
+    else
+    {
+      EXPECT_EQ(report.flagged, 0) << c.label << ": a GL without a loop cap cuts nothing short";
+    }
   }
 }
 

@@ -20,8 +20,8 @@ const Category<BackprojectionClass> backprojectionCategories[] = {
   { BackprojectionClass::Lit, "LIT", "lit" },
   { BackprojectionClass::Umbra, "UMBRA", "umbra" },
   { BackprojectionClass::Penumbra, "PENUMBRA", "penumbra" },
-  // A pixel a GL's loop cap cut short (gbp07's shader detects it; gbp06 flags its budget, conservatively: on
-  // GLs without a cap those pixels are exact): counted as cut short. The twins classify by the budget.
+  // A pixel a GL's loop cap cut short (gbp06's and gbp07's shaders detect it, so GLs without a cap flag
+  // nothing): counted as cut short. The twins can only estimate it, by their loop budgets.
   { BackprojectionClass::OverLoopBudget, "OVER_LOOP_BUDGET", "penumbra over the loop budget", true },
 };
 

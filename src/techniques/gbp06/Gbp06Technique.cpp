@@ -44,14 +44,12 @@ TechniqueDescriptor gbp06Technique()
     { "occluding_texels", "texels", "occluding micropatches back-projected and accumulated" },
     { "visited_nodes", "nodes", "texels examined (traversal=kernel) or min-max quadtree nodes examined, leaves included (traversal=hsm)" },
     backprojectionClassificationBuffer("how the pixel was decided; " +
-        std::to_string(static_cast<int>(BackprojectionClass::OverLoopBudget)) + " = a penumbra pixel of more than " +
-        std::to_string(gbp06LoopBudget) +
-        " loop iterations, which GLs capping loop iterations per invocation (llvmpipe: 65535) cut short",
+        std::to_string(static_cast<int>(BackprojectionClass::OverLoopBudget)) + " = a penumbra pixel whose traversal "
+        "the GL's cap on loop iterations per invocation (llvmpipe: 65535) cut short, detected: its texel loop never "
+        "reached its last texel, or the hsm walk never took its exit",
       SubLightCombine::Mean),
   };
   descriptor.shaderConstants = contourKernelShaderConstants();
-  descriptor.shaderConstants.push_back({ "LOOP_BUDGET", gbp06LoopBudget,
-    "loop iterations (texels examined, or iterations of the walk) past which a penumbra pixel is flagged" });
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.coversLightArea = true;
@@ -240,6 +238,7 @@ Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShad
   result.occludingTexels = accumulator.occludingTexels;
   const double lightArea = 4.0 * receiver.lightHalfSize * receiver.lightHalfSize;
   receiver.lookup.sample.visibility = std::clamp(1.0 - accumulator.occludedArea / lightArea, 0.0, 1.0);
+  // The twin can only estimate the cut by the count (gbp06LoopBudget; the shader detects it).
   return finish(result.loopIterations > gbp06LoopBudget ? BackprojectionClass::OverLoopBudget : BackprojectionClass::Penumbra);
 }
 

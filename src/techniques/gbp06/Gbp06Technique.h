@@ -35,7 +35,9 @@
 // Parameters: the shadow-map ones, receiver_plane_bias, hsm, kernel_refinements (as gbp07), gap_filling
 // (off / left_bottom / right_top), traversal (kernel / hsm).
 // Buffers: kernel_texels, occluding_texels, visited_nodes, classification (not tested / lit / umbra / penumbra /
-// penumbra over the loop budget).
+// penumbra cut short). Cut short: where a GL caps loop iterations per invocation (llvmpipe: 65535, all loops
+// together, counted once per SIMD vector of pixels), the shader detects that its traversal never reached its end
+// (the texel loop its last texel, the walk its exit) and flags the pixel exactly; GLs without a cap flag nothing.
 #pragma once
 
 #include "lightspace/HierarchicalShadowMap.h"
@@ -48,15 +50,20 @@ namespace sl
 
 TechniqueDescriptor gbp06Technique();
 
-// Loop iterations of one invocation past which the result is flagged (llvmpipe caps them at 65535, all loops
-// together): kernel traversal, texels examined; hsm traversal, iterations of the walk. The shader's LOOP_BUDGET.
+// Loop iterations of one pixel past which the CPU twin classifies it OverLoopBudget (kernel traversal: texels
+// examined; hsm traversal: iterations of the walk), an estimate of what llvmpipe (65535 loop iterations per
+// invocation, all loops together) cuts short. Only an estimate: llvmpipe counts iterations once per SIMD vector of
+// pixels, so a texel loop sharing its vector with wider kernels runs its rows as long as theirs and is stopped with
+// far fewer texels of its own (measured: from 44308), and one a little over the budget may finish. The
+// shader does not count: it detects the cut (see Gbp06Visibility.glsl), so the GPU's flag is exact and can differ
+// from the twin's near the budget; tests compare the twin's class only where it is under the budget.
 constexpr int gbp06LoopBudget = 60000;
 
 struct Gbp06Sample : BackprojectionPixel
 {
   int occludingTexels = 0;  // micropatches accumulated
   int visitedNodes = 0;     // kernel: texels examined; hsm: quadtree nodes examined, leaves included
-  int loopIterations = 0;   // of the texel loop or of the walk (the loop-budget test)
+  int loopIterations = 0;   // of the texel loop or of the walk (the twin's loop-budget estimate)
   double pruningMargin = 1e300;   // hsm: the node pruning tests, relative to d (decides visited_nodes only)
 };
 
