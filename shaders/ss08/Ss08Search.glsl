@@ -59,8 +59,8 @@ const int EXTRA_SLOT = 0;
 
 // The smallest level j whose slots over `span` fit the budget: level 0 when span <= b - 1 (span + 1 slots),
 // else s - EXTRA_SLOT <= (b - 1 - EXTRA_SLOT) 2^j; the top level (one texel for the map) when no level fits by
-// that rule (b = 1; b = 2 with microrects). One return: llvmpipe counts a function's early return as a loop
-// iteration.
+// that rule (b = 1; b = 2 with microrects). One return: an early return can cost a counted loop
+// iteration on llvmpipe (see Ss08Visibility.glsl, microOccluderArea).
 int ceilLevel(int span, int budget)
 {
   int reach = budget - 1 - EXTRA_SLOT;

@@ -101,8 +101,9 @@ bool neighbourOccludes(int level, ivec2 slot, out float depth)
 // The light area the micro-occluder of `slot` at `level` hides: its rectangle at its depth back-projected
 // from the receiver onto the light (an axis-aligned rectangle, backProject of two opposite corners), gap-filled
 // as gbp06 (micropatches), clipped to the light. No loops and no early returns: llvmpipe's cap counts every
-// loop iteration, and an early return from a function called in a loop costs one (GLSL lowers it to a loop),
-// which cut the slot loop short at about a third of the cap.
+// loop iteration, and Mesa may lower an early return from a function called in a loop to a loop exit that
+// costs one (measured here: with early returns the slot loop was cut at about a third of the cap; gbp06's
+// per-texel returns cost nothing, so it depends on the code around them).
 float microOccluderArea(int level, ivec2 slot)
 {
   ivec2 texelLo;
