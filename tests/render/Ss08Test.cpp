@@ -1057,5 +1057,67 @@ TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
   EXPECT_GT(darkenedWithoutBias, 0) << "without the scaled bias the grazing ground must shadow itself at levels 2-3";
 }
 
+TEST(Ss08, ContactShadowLeaksAtCoarseLevelsAndMicrorectsLeakLess)
+{
+  // 001 L771-772: coarse levels are "objectionable where occluders and receivers touch". On `contact` (a box
+  // standing on the ground, footprint |x|, |z| <= 0.25) the search areas next to the box are not small (their
+  // nearest blocker is the box's top), so small budgets evaluate the ground there at levels 3-5. Min aggregation
+  // replaces the box's sides, at the receiver's own depth and back-projecting over the whole light, by the box
+  // top's depth, whose back-projection is smaller: the contact umbra lightens (and the lit ground beside the box
+  // darkens, the blocks being larger). Measured against level 0 (budget 0, which equals gbp06) on the ground
+  // pixels within 0.03 of the box: the leak shrinks as the budget grows, and microrects, whose extents follow
+  // the box (§5.2), leak less than micropatches.
+  const Scene scene = test::loadDataset("contact");
+  const FrameResult unlimited = test::renderDataset(scene, "ss08", 128, 128, { "shadow_map_size=512", "budget=0" });
+  const ImageF& position = unlimited.find("position")->image;
+  double leak[2][2] = { { 0.0, 0.0 }, { 0.0, 0.0 } }; // [budget 3, 5][micropatch, microrect]
+  const int budgets[2] = { 3, 5 };
+  for (int b = 0; b < 2; ++b)
+  {
+    for (const int kind : { 0, 1 })
+    {
+      const std::vector<std::string> settings = { "shadow_map_size=512", "budget=" + std::to_string(budgets[b]),
+        kind == 0 ? "micro_occluder=micropatch" : "micro_occluder=microrect" };
+      const std::string label = test::caseLabel("contact", settings);
+      const FrameResult frame = test::renderDataset(scene, "ss08", 128, 128, settings);
+      int contactPixels = 0;
+      double levelSum = 0.0;
+      double darkeningSum = 0.0;
+      double largestDarkening = 0.0;
+      double darkestExact = 1.0;
+      for (int y = 0; y < position.height; ++y)
+      {
+        for (int x = 0; x < position.width; ++x)
+        {
+          const double outside = std::max(std::abs(position.at(x, y, 0)), std::abs(position.at(x, y, 2))) - 0.25;
+          const float classValue = buffer(frame, "classification").at(x, y);
+          const bool backProjects = classValue == static_cast<float>(code(Ss08Class::Penumbra)) ||
+            classValue == static_cast<float>(code(Ss08Class::GrowthPenumbra));
+          if (std::abs(position.at(x, y, 1)) > 1e-4 || !(outside > 0.0 && outside < 0.03) || !backProjects)
+          {
+            continue;
+          }
+          ++contactPixels;
+          levelSum += buffer(frame, "loq").at(x, y);
+          const double exact = buffer(unlimited, "visibility").at(x, y);
+          const double change = buffer(frame, "visibility").at(x, y) - exact;
+          darkestExact = std::min(darkestExact, exact);
+          darkeningSum += std::max(-change, 0.0);
+          largestDarkening = std::max(largestDarkening, -change);
+          leak[b][kind] = std::max(leak[b][kind], change);
+        }
+      }
+      ASSERT_GE(contactPixels, 15) << label << ": the view must show the contact region";
+      std::cout << "[ measured ] ss08 " << label << ": " << contactPixels << " back-projecting ground pixels within 0.03 of the box, mean level "
+                << levelSum / contactPixels << "; against level 0 (lowest V there " << darkestExact << "): lighter by up to "
+                << leak[b][kind] << ", darker by up to " << largestDarkening << " (mean " << darkeningSum / contactPixels << ")\n";
+      EXPECT_LT(darkestExact, 0.2) << "the contact region must hold a dark shadow that could leak";
+    }
+    EXPECT_LT(leak[b][1], leak[b][0]) << "budget " << budgets[b] << ": microrects must leak less than micropatches";
+  }
+  EXPECT_LT(leak[1][0], leak[0][0]) << "micropatches: a larger budget (finer levels) must leak less";
+  EXPECT_GT(leak[0][0], 0.05) << "the case must show the coarse-level leak it measures";
+}
+
 } // namespace
 } // namespace sl
