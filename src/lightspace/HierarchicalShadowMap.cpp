@@ -210,27 +210,7 @@ HierarchicalShadowMap HierarchicalShadowMap::buildDual(const ImageF& shadowMapLi
   // Level k: the four level k - 1 squares at offsets {0, 2^(k-1)}, clamped to the last cell.
   for (int level = 1; level <= dualMssmLevelCount(mssm.mapSize); ++level)
   {
-    const ImageF& finer = mssm.levels.back();
-    const int stride = 1 << (level - 1);
-    ImageF coarser(size, size, 2);
-    for (int y = 0; y < size; ++y)
-    {
-      for (int x = 0; x < size; ++x)
-      {
-        float low = finer.at(x, y, 0);
-        float high = finer.at(x, y, 1);
-        for (int child = 1; child < 4; ++child)
-        {
-          const int cx = std::min(x + (child & 1) * stride, size - 1);
-          const int cy = std::min(y + (child >> 1) * stride, size - 1);
-          low = std::min(low, finer.at(cx, cy, 0));
-          high = std::max(high, finer.at(cx, cy, 1));
-        }
-        coarser.at(x, y, 0) = low;
-        coarser.at(x, y, 1) = high;
-      }
-    }
-    mssm.levels.push_back(std::move(coarser));
+    mssm.levels.push_back(nBufferLevel(mssm.levels.back(), level));
   }
   return mssm;
 }

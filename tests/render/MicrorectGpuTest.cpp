@@ -18,6 +18,8 @@
 #include "lightspace/microrect/vtkSLMicrorectPass.h"
 #include "passes/FrameResources.h"
 
+#include "support/RandomMaps.h"
+
 #include <gtest/gtest.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
@@ -111,41 +113,7 @@ MicrorectBuilder& builder()
   return instance;
 }
 
-// Depths from a few values (ties in every depth difference), empty texels (2 x far) among them; independent per
-// texel or as overlapping constant rectangles. As in tests/unit/MicrorectTest.cpp.
-ImageF randomMapWithTies(int size, unsigned seed, bool blocks)
-{
-  const std::vector<float> values = { 1.0f, 1.5f, 2.0f, 3.0f, 20.0f };
-  std::mt19937 generator(seed);
-  std::uniform_int_distribution<std::size_t> pick(0, values.size() - 1);
-  ImageF map(size, size, 1, 20.0f);
-  if (!blocks)
-  {
-    for (float& depth : map.data)
-    {
-      depth = values[pick(generator)];
-    }
-    return map;
-  }
-  std::uniform_int_distribution<int> corner(0, size - 1);
-  std::uniform_int_distribution<int> side(1, std::max(1, size / 6));
-  for (int block = 0; block < 4 * size; ++block)
-  {
-    const int x0 = corner(generator);
-    const int y0 = corner(generator);
-    const int w = side(generator);
-    const int h = side(generator);
-    const float depth = values[pick(generator)];
-    for (int y = y0; y < std::min(size, y0 + h); ++y)
-    {
-      for (int x = x0; x < std::min(size, x0 + w); ++x)
-      {
-        map.at(x, y) = depth;
-      }
-    }
-  }
-  return map;
-}
+using test::randomMapWithTies;
 
 // Atlas texels whose extent or depth bits differ between the GPU and the CPU twin (unused texels included: 0).
 int differingTexels(const GpuMicrorects& gpu, const Microrects& cpu)
