@@ -56,6 +56,24 @@ bool joinsA(float candidateDepth, float depthA, ivec2 otherPartner)
   return toA <= toOther;
 }
 
+// Pass 1 for B (step (1, 0)) or D (step (0, 1)) of retained A: absorbed when it exists and joins A rather than
+// its other partner A + 2 step (C or G).
+void absorbPartner(ivec2 a, ivec2 step, uint claim, float depthA, inout ivec4 extent, inout float depth, inout uint claims)
+{
+  ivec2 candidate = a + step;
+  if (finerExists(candidate))
+  {
+    ivec4 memberExtent;
+    float memberDepth;
+    microrectAt(level - 1, candidate, memberExtent, memberDepth);
+    if (joinsA(memberDepth, depthA, a + 2 * step))
+    {
+      absorb(extent, depth, memberExtent, memberDepth);
+      claims |= claim;
+    }
+  }
+}
+
 void main()
 {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
@@ -70,28 +88,10 @@ void main()
   float depthA = depth;
   uint claims = 0u;
 
+  absorbPartner(a, ivec2(1, 0), CLAIMED_B, depthA, extent, depth, claims); // B, against C
+  absorbPartner(a, ivec2(0, 1), CLAIMED_D, depthA, extent, depth, claims); // D, against G
   ivec4 memberExtent;
   float memberDepth;
-  ivec2 b = a + ivec2(1, 0);
-  if (finerExists(b))
-  {
-    microrectAt(level - 1, b, memberExtent, memberDepth);
-    if (joinsA(memberDepth, depthA, a + ivec2(2, 0)))
-    {
-      absorb(extent, depth, memberExtent, memberDepth);
-      claims |= CLAIMED_B;
-    }
-  }
-  ivec2 d = a + ivec2(0, 1);
-  if (finerExists(d))
-  {
-    microrectAt(level - 1, d, memberExtent, memberDepth);
-    if (joinsA(memberDepth, depthA, a + ivec2(0, 2)))
-    {
-      absorb(extent, depth, memberExtent, memberDepth);
-      claims |= CLAIMED_D;
-    }
-  }
   ivec2 e = a + ivec2(1, 1);
   if (finerExists(e))
   {

@@ -87,6 +87,18 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
     }
     std::vector<std::uint8_t> claims(built.size(), 0);
 
+    // Level-(i-1) microrect `index` joins `merged`, microrect `self` of level i: the bounding rectangle of the
+    // extents, the min of the depths (L500-501, L519-521); the member is recorded when members are tracked.
+    const auto absorbInto = [&](Microrect& merged, std::size_t self, glm::ivec2 index) {
+      const Microrect& member = finerAt(index);
+      merged.lo = glm::min(merged.lo, member.lo);
+      merged.hi = glm::max(merged.hi, member.hi);
+      merged.depth = std::min(merged.depth, member.depth);
+      if (members)
+      {
+        (*members)[self].push_back(index);
+      }
+    };
     // Pass 1 (L538-545): each retained A = (2x, 2y) absorbs B and D by the smaller depth difference, then E if
     // the rectangle so far contains it (or E has no other retained neighbour).
     for (int y = 0; y < size.y; ++y)
@@ -97,16 +109,7 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
         const glm::ivec2 a(2 * x, 2 * y);
         Microrect merged = finerAt(a);
         const float depthA = merged.depth;
-        const auto absorb = [&](glm::ivec2 index) {
-          const Microrect& member = finerAt(index);
-          merged.lo = glm::min(merged.lo, member.lo);
-          merged.hi = glm::max(merged.hi, member.hi);
-          merged.depth = std::min(merged.depth, member.depth);
-          if (members)
-          {
-            (*members)[self].push_back(index);
-          }
-        };
+        const auto absorb = [&](glm::ivec2 index) { absorbInto(merged, self, index); };
         // B joins A unless C exists and is strictly closer in depth (ties to A, the negative-side partner).
         // In float, as the GPU computes it.
         const auto joinsA = [&](glm::ivec2 candidate, glm::ivec2 otherPartner) {
@@ -160,14 +163,7 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
           {
             return;
           }
-          const Microrect& member = finerAt(index);
-          merged.lo = glm::min(merged.lo, member.lo);
-          merged.hi = glm::max(merged.hi, member.hi);
-          merged.depth = std::min(merged.depth, member.depth);
-          if (members)
-          {
-            (*members)[self].push_back(index);
-          }
+          absorbInto(merged, self, index);
         };
         if (x > 0)
         {
