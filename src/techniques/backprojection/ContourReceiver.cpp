@@ -42,6 +42,11 @@ std::vector<ShaderConstant> contourKernelShaderConstants()
   };
 }
 
+TexelRectangle ringed(const TexelRectangle& kernel, int mapSize)
+{
+  return { glm::max(kernel.lo - 1, glm::ivec2(0)), glm::min(kernel.hi + 1, glm::ivec2(mapSize - 1)) };
+}
+
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
   const DepthRangeQuery& range, int x, int y)
 {
@@ -57,23 +62,16 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Para
   const double d = geometry.d;
   const int size = geometry.mapSize;
   const glm::dvec2 uv = receiver.lookup.sm.uvTexels;
-  // The samples whose dual cells can hold edges: the kernel's texels plus one ring, inside the map.
-  const auto ringed = [&](const TexelRectangle& kernel) {
-    TexelRectangle rectangle;
-    rectangle.lo = glm::max(kernel.lo - 1, glm::ivec2(0));
-    rectangle.hi = glm::min(kernel.hi + 1, glm::ivec2(size - 1));
-    return rectangle;
-  };
   // Eq. 1 with the map's near plane, then with the minimum depth found inside the kernel.
   glm::dvec2 half = geometry.kernelHalfTexels(geometry.nearDepth);
   receiver.kernel = kernelRectangle(uv, half, size, &receiver.kernelEdgeMargin);
-  receiver.samples = ringed(receiver.kernel);
+  receiver.samples = ringed(receiver.kernel, size); // the samples whose dual cells can hold edges
   glm::dvec2 depthRange = range(receiver.samples.lo, receiver.samples.hi);
   for (int refinement = 0; refinement < values.getInt("kernel_refinements"); ++refinement)
   {
     half = geometry.kernelHalfTexels(std::clamp(depthRange.x, geometry.nearDepth, d));
     receiver.kernel = kernelRectangle(uv, half, size, &receiver.kernelEdgeMargin);
-    receiver.samples = ringed(receiver.kernel);
+    receiver.samples = ringed(receiver.kernel, size); // the samples whose dual cells can hold edges
     depthRange = range(receiver.samples.lo, receiver.samples.hi);
   }
   receiver.kernelTexels = 2.0 * std::max(half.x, half.y);

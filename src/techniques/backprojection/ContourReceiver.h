@@ -68,6 +68,9 @@ struct ContourReceiver
   double edgeArea(const glm::dvec2& a, double depthA, const glm::dvec2& b, double depthB) const;
 };
 
+// A kernel's texels plus one ring, clamped to the map (ContourKernel.glsl's ringed).
+TexelRectangle ringed(const TexelRectangle& kernel, int mapSize);
+
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
   const DepthRangeQuery& range, int x, int y);
 // The same with the ranges of a min-max structure built from inputs.shadowMapLinear.

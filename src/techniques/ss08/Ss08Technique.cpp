@@ -248,11 +248,6 @@ int areaSpan(const TexelRectangle& area)
   return std::max(area.hi.x - area.lo.x, area.hi.y - area.lo.y);
 }
 
-TexelRectangle ringed(const TexelRectangle& kernel, int mapSize)
-{
-  return { glm::max(kernel.lo - 1, glm::ivec2(0)), glm::min(kernel.hi + 1, glm::ivec2(mapSize - 1)) };
-}
-
 } // namespace
 
 TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area)
