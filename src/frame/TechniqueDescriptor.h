@@ -13,6 +13,8 @@
 
 #include <vtkSmartPointer.h>
 
+#include <glm/glm.hpp>
+
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -23,6 +25,30 @@ class vtkSLTechniquePass;
 
 namespace sl
 {
+
+struct FrameResult;   // frame/FrameResult.h
+class ProbeRecorder;  // frame/ProbeRecord.h
+
+// What a probe replays one pixel from: the rendered frame (its read-back buffers and light-space exports) and
+// the scene it was rendered from.
+struct ProbeContext
+{
+  const FrameResult* frame = nullptr;
+  const Scene* scene = nullptr;
+  int lightIndex = 0;
+};
+
+// The CPU twin's answer for the probed pixel, and how far the GPU's may legitimately differ from it.
+struct ProbeOutcome
+{
+  bool evaluated = false;   // the pixel reached a shadow test (false: decided without one, e.g. facing away)
+  double visibility = 0.0;  // the twin's
+  double tolerance = 0.0;   // the largest |GPU - twin| the technique's GPU-CPU tests accept on an unambiguous pixel
+  // Non-empty when a decision of this pixel lies within float rounding of its boundary (the tests' ambiguity
+  // thresholds): GPU and twin may then differ by more than `tolerance`, and the probe says why instead of failing.
+  std::string ambiguity;
+  std::string twin;         // what was replayed, e.g. "pcssReference (PcssTechnique.h), double precision"
+};
 
 struct LightSpaceStructure; // lightspace/LightSpaceStructure.h
 
@@ -131,6 +157,10 @@ struct TechniqueDescriptor
   // ({} = the generated preamble alone); the shader-contract test assembles every one.
   std::vector<std::vector<std::string>> shaderFlagSets = { {} };
   std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
+  // `shadowlab probe` (issue 15): replays the technique's CPU twin on one pixel of a rendered frame, recording
+  // every step into `recorder`. Every registered technique has one (tests/render/ProbeTest.cpp asserts it);
+  // it throws InputError for a setting it cannot replay.
+  std::function<ProbeOutcome(const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder)> probe;
   // Multi-view shadow maps (Yang et al. 2009 §5): a technique with an integer parameter "sublights" = S is run
   // once per sub-light of the square area light split S x S (its own focus, shadow map and light-space
   // structures each); buffers combine per BufferSpec::subLightCombine and `sublight_visibility` holds the S^2

@@ -28,6 +28,8 @@
 #include <vtkXMLImageDataWriter.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkXMLWriter.h>
 
 #include <algorithm>
@@ -434,6 +436,98 @@ void writeVtp(const std::filesystem::path& path, vtkPolyData* polyData)
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(polyData);
   writeXmlDataFile(path, writer);
+}
+
+namespace
+{
+
+// XML attribute text: the five characters XML reserves, escaped.
+std::string xmlAttribute(const std::string& text)
+{
+  std::string escaped;
+  for (const char c : text)
+  {
+    switch (c)
+    {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&apos;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::string blockName(vtkMultiBlockDataSet* blocks, unsigned int index)
+{
+  vtkInformation* metaData = blocks->HasMetaData(index) ? blocks->GetMetaData(index) : nullptr;
+  const char* name = metaData != nullptr ? metaData->Get(vtkCompositeDataSet::NAME()) : nullptr;
+  return name != nullptr ? name : "block" + std::to_string(index);
+}
+
+// Writes one leaf under `pieceDir` and returns its file name relative to the index's directory.
+std::string writeLeaf(vtkDataObject* leaf, const std::filesystem::path& pieceDir, const std::string& stem)
+{
+  if (auto* polyData = vtkPolyData::SafeDownCast(leaf))
+  {
+    writeVtp(pieceDir / (stem + ".vtp"), polyData);
+    return stem + ".vtp";
+  }
+  auto* image = vtkImageData::SafeDownCast(leaf);
+  SL_CHECK_MSG(image != nullptr, "writeVtm: a leaf of type ", leaf->GetClassName(), " (only vtkPolyData and vtkImageData)");
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(image);
+  writeXmlDataFile(pieceDir / (stem + ".vti"), writer);
+  return stem + ".vti";
+}
+
+} // namespace
+
+void writeVtm(const std::filesystem::path& path, vtkMultiBlockDataSet* blocks)
+{
+  SL_CHECK(blocks);
+  const std::string stem = path.stem().string();
+  const std::filesystem::path pieceDir = path.parent_path() / stem;
+  std::error_code error;
+  std::filesystem::create_directory(pieceDir, error);
+  if (error)
+  {
+    throw InputError(pieceDir.string() + ": cannot create directory (" + error.message() + ")");
+  }
+  std::string index = "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" "
+                      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <vtkMultiBlockDataSet>\n";
+  for (unsigned int b = 0; b < blocks->GetNumberOfBlocks(); ++b)
+  {
+    const std::string name = blockName(blocks, b);
+    vtkDataObject* block = blocks->GetBlock(b);
+    if (auto* children = vtkMultiBlockDataSet::SafeDownCast(block))
+    {
+      index += "    <Block index=\"" + std::to_string(b) + "\" name=\"" + xmlAttribute(name) + "\">\n";
+      for (unsigned int c = 0; c < children->GetNumberOfBlocks(); ++c)
+      {
+        vtkDataObject* leaf = children->GetBlock(c);
+        if (leaf == nullptr)
+        {
+          continue;
+        }
+        const std::string file =
+          writeLeaf(leaf, pieceDir, stem + "_" + std::to_string(b) + "_" + std::to_string(c));
+        index += "      <DataSet index=\"" + std::to_string(c) + "\" name=\"" + xmlAttribute(blockName(children, c)) +
+          "\" file=\"" + xmlAttribute(stem + "/" + file) + "\"/>\n";
+      }
+      index += "    </Block>\n";
+    }
+    else if (block != nullptr)
+    {
+      const std::string file = writeLeaf(block, pieceDir, stem + "_" + std::to_string(b));
+      index += "    <DataSet index=\"" + std::to_string(b) + "\" name=\"" + xmlAttribute(name) + "\" file=\"" +
+        xmlAttribute(stem + "/" + file) + "\"/>\n";
+    }
+  }
+  index += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
+  writeEncodedFile(path, index);
 }
 
 std::vector<NamedImage> readVti(const std::filesystem::path& path)

@@ -17,6 +17,7 @@
 #include <vector>
 
 class vtkPolyData;
+class vtkMultiBlockDataSet;
 
 namespace sl
 {
@@ -29,6 +30,10 @@ struct NamedImage;
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images);
 // vtkPolyData as a .vtp (XML, appended zlib), written like writeVti.
 void writeVtp(const std::filesystem::path& path, vtkPolyData* polyData);
+// A vtkMultiBlockDataSet as <stem>.vtm plus one file per leaf under <stem>/ (vtkPolyData .vtp, vtkImageData .vti),
+// blocks nested at most two deep (blocks of leaves), names from vtkCompositeDataSet::NAME(). Every file is
+// written and checked like writeVtp; the index is the XML vtkXMLMultiBlockDataReader (ParaView) reads.
+void writeVtm(const std::filesystem::path& path, vtkMultiBlockDataSet* blocks);
 // Reads back the arrays of a 2-D .vti (tests, compare tools): dimensions width x height x 1 with
 // 1 <= width, height <= kMaxImageSide; every named point-data array numeric, 1..4 components, one tuple
 // per pixel (converted to float). Throws InputError naming the file (and the array) otherwise.

@@ -6,7 +6,8 @@
 namespace sl
 {
 
-ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y)
+ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y,
+  ProbeRecorder* recorder)
 {
   ShadowLookup lookup;
   ReferenceSample& sample = lookup.sample;
@@ -22,6 +23,13 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
   const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
   const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
   const glm::dvec3 toLight = directionToLight(*inputs.light, pWs);
+  if (recorder)
+  {
+    recorder->beginGroup("receiver");
+    recorder->quantity("position", pWs, "world units", "G-buffer (pWs)");
+    recorder->quantity("normal", nWs, "", "G-buffer (nWs)");
+    recorder->quantity("direction_to_light", toLight, "", "ShadowLab: toward the light's centre");
+  }
   sample.reachMargin = std::abs(glm::dot(nWs, toLight));
   if (inputs.light->type == LightType::Area)
   {
@@ -29,6 +37,11 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
   }
   if (!lightCanReach(*inputs.light, pWs, nWs))
   {
+    if (recorder)
+    {
+      recorder->category("light_reach", "faces away / outside the light's reach: unlit, no shadow test",
+        "ShadowLab (lightCanReach, LightView.h)");
+    }
     return lookup;
   }
   lookup.sm = projectToShadowMap(inputs.lightView, pWs);
@@ -37,6 +50,17 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
   lookup.comparisonDepth = lookup.sm.depthLin - sample.bias;
   sample.texelRatio = texelRatio(inputs.camera, inputs.lightView, x + 0.5, y + 0.5, pWs, nWs);
   sample.evaluated = true;
+  if (recorder)
+  {
+    recorder->quantity("shadow_map_position", lookup.sm.uvTexels, "texels", "survey §2 (light-space projection)");
+    recorder->quantity("receiver_depth", lookup.sm.depthLin, "linear depth", "survey §2 (d, distance along the light axis)");
+    recorder->quantity("tan_angle_to_light", tanAngleToLight(nWs, toLight), "", "survey §5 (tan theta)");
+    recorder->quantity("texel_world_size", inputs.lightView.texelWorldSize(lookup.sm.depthLin), "world units",
+      "survey §2 (one texel at the receiver's depth)");
+    recorder->quantity("depth_bias", sample.bias, "linear depth", "survey §5 (constant + slope-scaled bias)");
+    recorder->quantity("comparison_depth", lookup.comparisonDepth, "linear depth", "survey §5 (d - bias)");
+    recorder->quantity("texel_ratio", sample.texelRatio, "texels per pixel", "survey Eq. 2 (aliasing error m)");
+  }
   return lookup;
 }
 
@@ -51,7 +75,7 @@ TexelWithEdges texelWithEdges(const glm::dvec2& uvTexels)
 }
 
 double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth,
-  ReferenceSample& sample)
+  ReferenceSample& sample, ProbeRecorder* recorder, const char* role, double weight)
 {
   const int size = inputs.shadowMapLinear.width;
   const auto testTexel = [&](const glm::ivec2& texel) {
@@ -62,6 +86,11 @@ double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexel
   const TexelWithEdges cell = texelWithEdges(uvTexels);
   const auto [result, stored] = testTexel(cell.texel);
   sample.noteDepthComparison(comparisonDepth, stored);
+  if (recorder)
+  {
+    recorder->texel({ glm::clamp(cell.texel, glm::ivec2(0), glm::ivec2(size - 1)), role, stored, comparisonDepth,
+      result == 0.0, weight });
+  }
   // A tap this close to a texel edge could land in the neighbour on the GPU (float coordinates); that
   // only matters when the neighbour's test gives the other answer.
   for (const TexelEdge& edge : cell.edges)

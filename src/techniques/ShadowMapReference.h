@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/Image.h"
+#include "frame/ProbeRecord.h"
 #include "lightspace/CameraView.h"
 #include "lightspace/LightView.h"
 #include "lightspace/ShadowMapMath.h"
@@ -60,7 +61,10 @@ struct ShadowLookup
   ShadowMapSample sm;
   double comparisonDepth = 0.0;
 };
-ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y);
+// `recorder` (optional, `shadowlab probe`): the receiver's point, normal, shadow-map position, depth, bias and
+// texel ratio, group "receiver".
+ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y,
+  ProbeRecorder* recorder = nullptr);
 
 // The texel that holds a shadow-map position (in texels) and its four edges: the distance to each, in
 // texels, and the neighbour across it. A GPU tap within float rounding of an edge may read that neighbour.
@@ -77,7 +81,8 @@ struct TexelWithEdges
 TexelWithEdges texelWithEdges(const glm::dvec2& uvTexels);
 
 // One nearest-texel comparison with margins (texel index clamped to the map like texelFetch).
+// `recorder` (optional): the texel as a ProbeTexel of role `role` with weight `weight`.
 double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth,
-  ReferenceSample& sample);
+  ReferenceSample& sample, ProbeRecorder* recorder = nullptr, const char* role = "tap", double weight = 1.0);
 
 } // namespace sl

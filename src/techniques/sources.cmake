@@ -3,6 +3,7 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/Registry.cpp
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp
+  src/techniques/ProbeSupport.cpp
   src/techniques/SamplingPatterns.cpp
   src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp

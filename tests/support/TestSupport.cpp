@@ -1,5 +1,7 @@
 #include "support/TestSupport.h"
 
+#include "techniques/ProbeSupport.h"
+
 #include "core/Error.h"
 #include "techniques/Registry.h"
 
@@ -275,27 +277,7 @@ ImageF floatSummedAreaTable(const FrameResult& frame)
 
 ShadowMapInputs shadowMapInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
 {
-  SL_CHECK(frame.lightView.has_value());
-  ShadowMapInputs inputs;
-  inputs.light = &scene.lights.at(static_cast<std::size_t>(lightIndex));
-  inputs.camera = frame.camera;
-  inputs.lightView = *frame.lightView;
-  inputs.position = frame.find("position")->image;
-  inputs.normal = frame.find("normal")->image;
-  inputs.coverage = frame.find("coverage")->image;
-  inputs.receives = frame.find("receives_shadows")->image;
-  for (const NamedImage& named : frame.lightSpace)
-  {
-    if (named.name == "shadow_map_depth")
-    {
-      inputs.shadowMapLinear = named.image;
-    }
-    else if (named.name == "shadow_map_window_depth")
-    {
-      inputs.shadowMapWindow = named.image;
-    }
-  }
-  return inputs;
+  return shadowMapInputsOf(frame, scene, lightIndex);
 }
 
 } // namespace sl::test

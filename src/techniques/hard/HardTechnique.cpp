@@ -2,6 +2,7 @@
 
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/hard/vtkSLHardShadowPass.h"
 
@@ -24,15 +25,34 @@ TechniqueDescriptor hardTechnique()
   };
   descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLHardShadowPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const ReferenceSample sample =
+      hardReference(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y, &recorder);
+    // GpuCpuTest: identical on unambiguous pixels (0 or 1).
+    return probeOutcome(sample, 0.0, "hardReference (hard/HardTechnique.h), double precision");
+  };
   return descriptor;
 }
 
-ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y)
+ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y,
+  ProbeRecorder* recorder)
 {
-  ShadowLookup lookup = prepareShadowLookup(inputs, bias, x, y);
+  ShadowLookup lookup = prepareShadowLookup(inputs, bias, x, y, recorder);
   if (lookup.sample.evaluated)
   {
-    lookup.sample.visibility = nearestTexelTest(inputs, lookup.sm.uvTexels, lookup.comparisonDepth, lookup.sample);
+    if (recorder)
+    {
+      recorder->beginGroup("shadow test");
+      recorder->kernel({ "nearest texel", glm::floor(lookup.sm.uvTexels), glm::floor(lookup.sm.uvTexels) + 1.0, "",
+        "Williams 1978: one depth comparison" });
+    }
+    lookup.sample.visibility = nearestTexelTest(
+      inputs, lookup.sm.uvTexels, lookup.comparisonDepth, lookup.sample, recorder, "nearest texel");
+    if (recorder)
+    {
+      recorder->quantity("visibility", lookup.sample.visibility, "", "Williams 1978: d - bias <= stored depth");
+    }
   }
   return lookup.sample;
 }

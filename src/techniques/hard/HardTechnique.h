@@ -16,6 +16,7 @@ namespace sl
 TechniqueDescriptor hardTechnique();
 
 // CPU reference (double precision) of HardVisibility.glsl at pixel (x, y).
-ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y);
+ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y,
+  ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -1,0 +1,225 @@
+#include "probe/Probe.h"
+
+#include "core/Error.h"
+#include "output/OutputWriter.h"
+
+#include <cmath>
+#include <limits>
+
+namespace sl
+{
+
+double ProbeResult::difference() const
+{
+  return std::abs(gpuVisibility - outcome.visibility);
+}
+
+bool ProbeResult::agrees() const
+{
+  return difference() <= outcome.tolerance + 1e-6 || !outcome.ambiguity.empty();
+}
+
+ProbeResult probePixel(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel)
+{
+  SL_CHECK_MSG(frame.descriptor != nullptr, "frame of ", frame.technique, " has no descriptor");
+  if (!frame.descriptor->probe)
+  {
+    throw InputError("--technique " + frame.technique + ": this technique has no probe recorder");
+  }
+  const std::string pixelText = std::to_string(pixel.x) + "," + std::to_string(pixel.y);
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= frame.resolution.x || pixel.y >= frame.resolution.y)
+  {
+    throw InputError("--pixel " + pixelText + ": outside the " + std::to_string(frame.resolution.x) + "x" +
+      std::to_string(frame.resolution.y) + " image (x in 0.." + std::to_string(frame.resolution.x - 1) + ", y in 0.." +
+      std::to_string(frame.resolution.y - 1) + ", row 0 at the bottom)");
+  }
+  const NamedImage* coverage = frame.find("coverage");
+  SL_CHECK(coverage != nullptr);
+  if (coverage->image.at(pixel.x, pixel.y) <= 0.5f)
+  {
+    throw InputError("--pixel " + pixelText + ": a background pixel (no surface there to probe)");
+  }
+  ProbeResult result;
+  result.technique = frame.technique;
+  result.pixel = pixel;
+  result.lightIndex = lightIndex;
+  const NamedImage* visibility = frame.find("visibility");
+  SL_CHECK(visibility != nullptr);
+  result.gpuVisibility = visibility->image.at(pixel.x, pixel.y);
+  ProbeRecorder recorder;
+  const ProbeContext context{ &frame, &scene, lightIndex };
+  result.outcome = frame.descriptor->probe(context, pixel, recorder);
+  result.record = std::move(recorder.record());
+  return result;
+}
+
+glm::ivec2 pickPixel(const FrameResult& frame, const glm::dvec3& world, double tolerance)
+{
+  const std::string pointText = format(world.x, ",", world.y, ",", world.z);
+  const glm::dvec4 clip = frame.camera.clipFromWorld * glm::dvec4(world, 1.0);
+  if (clip.w <= 0.0)
+  {
+    throw InputError("--pick world " + pointText + ": behind the camera");
+  }
+  const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+  const glm::ivec2 pixel(static_cast<int>(std::floor((ndc.x * 0.5 + 0.5) * frame.resolution.x)),
+    static_cast<int>(std::floor((ndc.y * 0.5 + 0.5) * frame.resolution.y)));
+  if (pixel.x < 0 || pixel.y < 0 || pixel.x >= frame.resolution.x || pixel.y >= frame.resolution.y)
+  {
+    throw InputError("--pick world " + pointText + ": outside the camera's view");
+  }
+  // The point projects into `pixel`; it is what the pixel shows when the G-buffer's surface point of that pixel
+  // (or of a neighbour, the point may sit on a pixel edge) lies on it.
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& position = frame.find("position")->image;
+  double nearest = std::numeric_limits<double>::infinity();
+  glm::ivec2 best = pixel;
+  for (int dy = -1; dy <= 1; ++dy)
+  {
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      const glm::ivec2 candidate = pixel + glm::ivec2(dx, dy);
+      if (candidate.x < 0 || candidate.y < 0 || candidate.x >= frame.resolution.x ||
+        candidate.y >= frame.resolution.y || coverage.at(candidate.x, candidate.y) <= 0.5f)
+      {
+        continue;
+      }
+      const glm::dvec3 surface(position.at(candidate.x, candidate.y, 0), position.at(candidate.x, candidate.y, 1),
+        position.at(candidate.x, candidate.y, 2));
+      const double distance = glm::length(surface - world);
+      if (distance < nearest)
+      {
+        nearest = distance;
+        best = candidate;
+      }
+    }
+  }
+  if (!(nearest <= tolerance))
+  {
+    throw InputError("--pick world " + pointText + ": not a visible surface point (the nearest surface shown around pixel " +
+      std::to_string(pixel.x) + "," + std::to_string(pixel.y) + " is " +
+      (std::isfinite(nearest) ? format(nearest, " away, more than ", tolerance) : std::string("none: background")) + ")");
+  }
+  return best;
+}
+
+namespace
+{
+
+nlohmann::json vec(const glm::dvec2& v)
+{
+  return { v.x, v.y };
+}
+
+nlohmann::json vec(const glm::ivec2& v)
+{
+  return { v.x, v.y };
+}
+
+// NaN is not JSON: a missing value is null.
+nlohmann::json number(double value)
+{
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
+
+} // namespace
+
+nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, const Scene& scene)
+{
+  const ProbeRecord& record = probe.record;
+  nlohmann::json quantities = nlohmann::json::array();
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    nlohmann::json item = { { "group", quantity.group }, { "name", quantity.name }, { "unit", quantity.unit },
+      { "source", quantity.source } };
+    if (!quantity.text.empty())
+    {
+      item["value"] = quantity.text;
+    }
+    else if (quantity.value.size() == 1)
+    {
+      item["value"] = number(quantity.value[0]);
+    }
+    else
+    {
+      nlohmann::json components = nlohmann::json::array();
+      for (const double component : quantity.value)
+      {
+        components.push_back(number(component));
+      }
+      item["value"] = components;
+    }
+    quantities.push_back(item);
+  }
+  nlohmann::json texels = nlohmann::json::array();
+  for (const ProbeTexel& texel : record.texels)
+  {
+    texels.push_back({ { "texel", vec(texel.texel) }, { "role", texel.role }, { "stored_depth", number(texel.storedDepth) },
+      { "compared_depth", number(texel.comparedDepth) }, { "occluding", texel.occluding }, { "weight", number(texel.weight) } });
+  }
+  nlohmann::json nodes = nlohmann::json::array();
+  for (const ProbeNode& node : record.nodes)
+  {
+    nodes.push_back({ { "structure", node.structure }, { "level", node.level }, { "lo", vec(node.lo) }, { "hi", vec(node.hi) },
+      { "min_depth", number(node.minDepth) }, { "max_depth", number(node.maxDepth) }, { "decision", node.decision } });
+  }
+  nlohmann::json kernels = nlohmann::json::array();
+  for (const ProbeKernel& kernel : record.kernels)
+  {
+    kernels.push_back({ { "role", kernel.role }, { "lo", vec(kernel.lo) }, { "hi", vec(kernel.hi) }, { "label", kernel.label },
+      { "source", kernel.source } });
+  }
+  nlohmann::json polygons = nlohmann::json::array();
+  for (const ProbeLightPolygon& polygon : record.lightPolygons)
+  {
+    nlohmann::json points = nlohmann::json::array();
+    for (const glm::dvec2& point : polygon.points)
+    {
+      points.push_back(vec(point));
+    }
+    polygons.push_back({ { "role", polygon.role }, { "points", points }, { "signed_area", number(polygon.signedArea) } });
+  }
+  nlohmann::json edges = nlohmann::json::array();
+  for (const ProbeContourEdge& edge : record.contourEdges)
+  {
+    edges.push_back({ { "a", vec(edge.a) }, { "b", vec(edge.b) }, { "light_a", vec(edge.lightA) },
+      { "light_b", vec(edge.lightB) }, { "signed_area", number(edge.signedArea) } });
+  }
+  nlohmann::json samples = nlohmann::json::array();
+  for (const ProbeLightSample& sample : record.lightSamples)
+  {
+    samples.push_back({ { "position", vec(sample.position) }, { "blocked", sample.blocked },
+      { "depth_complexity", sample.depthComplexity } });
+  }
+  const Light& light = scene.lights.at(static_cast<std::size_t>(probe.lightIndex));
+  OutputContext context;
+  context.lightIndex = probe.lightIndex;
+  return {
+    { "technique", probe.technique },
+    { "pixel", vec(probe.pixel) },
+    { "pixel_convention", "image coordinates, row 0 at the bottom (as buffers.vti)" },
+    { "gpu_visibility", probe.gpuVisibility },
+    { "twin_visibility", number(probe.outcome.visibility) },
+    { "twin_evaluated", probe.outcome.evaluated },
+    { "difference", number(probe.difference()) },
+    { "tolerance", probe.outcome.tolerance },
+    { "ambiguity", probe.outcome.ambiguity },
+    { "agrees", probe.agrees() },
+    { "twin", probe.outcome.twin },
+    { "light_coordinates", "the light view's x and y on the light plane, world units from the light's centre" },
+    { "light", { { "center", { light.center.x, light.center.y, light.center.z } }, { "size", light.size },
+                 { "normal", { light.normal.x, light.normal.y, light.normal.z } } } },
+    { "frame", frameStats(frame, context) },
+    { "quantities", quantities },
+    { "texels", texels },
+    { "nodes", nodes },
+    { "kernels", kernels },
+    { "light_polygons", polygons },
+    { "contour_edges", edges },
+    { "light_samples", samples },
+    { "dropped", { { "texels", record.droppedTexels }, { "nodes", record.droppedNodes },
+                   { "light_polygons", record.droppedPolygons }, { "contour_edges", record.droppedEdges } } },
+  };
+}
+
+} // namespace sl

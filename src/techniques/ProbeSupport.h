@@ -1,0 +1,41 @@
+// What the techniques' probe recorders (TechniqueDescriptor::probe, `shadowlab probe`) share: the twins' inputs
+// rebuilt from a rendered frame, and the tests' ambiguity rule (tests/render/GpuCpuTest.cpp) as a sentence.
+#pragma once
+
+#include "frame/FrameResult.h"
+#include "frame/ProbeRecord.h"
+#include "frame/TechniqueDescriptor.h"
+#include "techniques/ShadowMapReference.h"
+
+#include <string>
+
+namespace sl
+{
+
+// The read-back inputs a shadow-map twin needs (G-buffer, shadow map, light view) from a rendered frame; throws
+// when the frame has no shadow map.
+ShadowMapInputs shadowMapInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex = 0);
+
+// The tests' float-rounding thresholds (GpuCpuTest.cpp): a depth comparison within 2e-6 (relative), a tap within
+// 1e-4 texel of a texel edge, a light-reach cosine under 1e-5.
+inline constexpr double probeDepthAmbiguity = 2e-6;
+inline constexpr double probeTexelEdgeAmbiguity = 1e-4;
+inline constexpr double probeReachAmbiguity = 1e-5;
+// "" when no decision of `sample` is within those thresholds of its boundary, else which ones and how close.
+std::string ambiguityOf(const ReferenceSample& sample);
+// Appends "<what> <margin>" to `ambiguity` (comma-separated) when margin < threshold; for the techniques' own
+// margins (kernel edges, HSM decisions, ...).
+void noteAmbiguity(std::string& ambiguity, const char* what, double margin, double threshold);
+
+// The outcome of a twin that returns a ReferenceSample: evaluated, visibility, ambiguity; `tolerance` and `twin`
+// as given.
+ProbeOutcome probeOutcome(const ReferenceSample& sample, double tolerance, std::string twin);
+
+// The frame's value of a buffer at a pixel (component 0), throws when the frame has no buffer of that name.
+double bufferValue(const FrameResult& frame, const std::string& buffer, glm::ivec2 pixel);
+
+// Throws InputError for sublights = S > 1: a frame keeps one light-space export, so a replay of S x S sub-light
+// shadow maps has nothing to read.
+void requireSingleSubLight(const FrameResult& frame);
+
+} // namespace sl
