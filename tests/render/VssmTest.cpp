@@ -4,6 +4,7 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "metrics/ErrorMetrics.h"
 #include "support/TestSupport.h"
+#include "techniques/Registry.h"
 #include "techniques/vssm/VssmTechnique.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +14,9 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <random>
+#include <stdexcept>
 
 namespace sl
 {
@@ -27,11 +30,10 @@ ImageF referenceVisibility(const FrameResult& frame, const Scene& scene, int sam
   return renderReference(test::referenceInputs(frame, scene), settings).visibility;
 }
 
-// The table the GPU built, as the CPU reference reads it.
+// The table the GPU built, as the CPU reference reads it (the probe reads the frame the same way).
 VssmReferenceInputs referenceInputsOf(const FrameResult& frame, const Scene& scene, const ShadowMapInputs& shadowMap)
 {
-  const ImageF floatTable = frame.integerSummedAreaTable ? ImageF() : test::floatSummedAreaTable(frame);
-  return vssmReferenceInputs(shadowMap, frame.parameters, frame.integerSummedAreaTable, floatTable, scene.bounds().radius());
+  return vssmReferenceInputsOf(frame, scene, shadowMap);
 }
 
 TEST(HierarchicalShadowMap, GpuLevelsEqualTheCpuBuildExactly)
@@ -233,6 +235,190 @@ int incorrectlyLitPixels(const ImageF& visibility, const ImageF& reference, cons
     count += coverage.data[i] > 0.5f && visibility.data[i] >= 0.99f && reference.data[i] < 0.9f ? 1 : 0;
   }
   return count;
+}
+
+// The first quantity `name` of the groups whose name starts with `groupPrefix` ("" = any), or nullptr.
+const ProbeQuantity* findIn(const ProbeRecord& record, const std::string& groupPrefix, const std::string& name)
+{
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    if (quantity.name == name && quantity.group.rfind(groupPrefix, 0) == 0)
+    {
+      return &quantity;
+    }
+  }
+  return nullptr;
+}
+
+double valueOf(const ProbeRecord& record, const std::string& groupPrefix, const std::string& name)
+{
+  const ProbeQuantity* quantity = findIn(record, groupPrefix, name);
+  if (!quantity || quantity->value.empty())
+  {
+    throw std::runtime_error("the probe recorded no " + name + " in group " + groupPrefix);
+  }
+  return quantity->value[0];
+}
+
+TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
+{
+  // `shadowlab probe` (issue 15) through the registry's probe on an HSM-lit, an HSM-umbra and a penumbra pixel of
+  // stacked-occluders whose penumbra kernel the adaptive quad-tree refines (Alg. 2), plus one under uniform n x n
+  // sub-kernels. Each must agree with the GPU within the twin tolerance, record the buffers' values under their
+  // names equal to the GPU's at the pixel, and record steps consistent with them: as many quad-tree nodes as
+  // quadtree_nodes_visited, each refined node followed by its four children, as many sub-kernels classed
+  // non-planar (E(x) >= t: lit, refined or PCF) as nonplanar_subkernels, as many PCF taps as pcf_samples, terminal
+  // sub-kernels of w_p tiling w_p, their areas by class adding up to Alg. 2's VSMArea / LitArea / PCFArea, and
+  // those areas with Eq. 1's bound giving the visibility (Alg. 2 L29-32).
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const TechniqueDescriptor& descriptor = findTechnique("vssm");
+  ASSERT_TRUE(descriptor.probe);
+  struct Wanted
+  {
+    std::string label;
+    std::vector<std::string> settings;
+    VssmClass classification;
+    bool refined; // a penumbra pixel whose w_p has non-planar sub-kernels and PCF taps
+  };
+  const std::vector<Wanted> wanted = {
+    { "lit (HSM)", {}, VssmClass::Lit, false },
+    { "umbra (HSM)", { "hsm=nbuffers" }, VssmClass::Umbra, false }, // the mip-map's conservative ranges leave none here
+    { "penumbra, adaptive", {}, VssmClass::Penumbra, true },
+    { "penumbra, uniform 8 x 8", { "shadow_subdivision=uniform" }, VssmClass::Penumbra, true },
+  };
+  for (const Wanted& want : wanted)
+  {
+    std::vector<std::string> settings = { "shadow_map_size=512" };
+    settings.insert(settings.end(), want.settings.begin(), want.settings.end());
+    const FrameResult frame = test::renderDataset(scene, "vssm", 96, 80, settings);
+    const ShadowMapInputs shadowMap = test::shadowMapInputs(frame, scene);
+    const VssmReferenceInputs inputs = referenceInputsOf(frame, scene, shadowMap);
+    const ImageF& classes = frame.find("classification")->image;
+    // The first unambiguous pixel of the wanted class (row by row from the bottom).
+    std::optional<glm::ivec2> pixel;
+    for (int y = 0; y < 80 && !pixel; ++y)
+    {
+      for (int x = 0; x < 96 && !pixel; ++x)
+      {
+        if (classes.at(x, y) != static_cast<float>(want.classification))
+        {
+          continue;
+        }
+        ProbeRecorder steps;
+        const VssmSample cpu = vssmReference(inputs, frame.parameters, x, y, &steps);
+        const ProbeQuantity* hsmDecision = findIn(steps.record(), "hsm test", "hsm_decision");
+        const auto& kernels = steps.record().kernels;
+        const bool pcfInPenumbra = std::any_of(kernels.begin(), kernels.end(), [](const ProbeKernel& kernel) {
+          return kernel.role == "penumbra sub-kernel" && kernel.label == "non-planar";
+        });
+        const bool interesting = want.refined
+          ? pcfInPenumbra && cpu.sample.visibility > 0.1 && cpu.sample.visibility < 0.9 &&
+            (frame.parameters.choice("shadow_subdivision") != "adaptive" || cpu.quadtreeNodesVisited > 5)
+          : hsmDecision && hsmDecision->text != "undecided";
+        if (cpu.sample.evaluated && !ambiguous(cpu) && cpu.classification == want.classification && interesting)
+        {
+          pixel = glm::ivec2(x, y);
+        }
+      }
+    }
+    ASSERT_TRUE(pixel) << want.label << ": no such pixel in the frame";
+    ProbeRecorder recorder;
+    const ProbeOutcome outcome = descriptor.probe({ &frame, &scene, 0 }, *pixel, recorder);
+    const ProbeRecord& record = recorder.record();
+    const std::string where = want.label + " pixel " + std::to_string(pixel->x) + "," + std::to_string(pixel->y);
+    const auto gpu = [&](const std::string& name) { return static_cast<double>(frame.find(name)->image.at(pixel->x, pixel->y)); };
+    ASSERT_TRUE(outcome.evaluated) << where;
+    EXPECT_EQ(outcome.ambiguity, "") << where;
+    EXPECT_EQ(outcome.tolerance, 2e-3) << where;
+    EXPECT_NEAR(outcome.visibility, gpu("visibility"), outcome.tolerance) << where;
+    // The buffers under their names, with Vssm.MatchesTheCpuImplementation's tolerances.
+    EXPECT_NEAR(valueOf(record, "result", "visibility"), gpu("visibility"), outcome.tolerance) << where;
+    for (const std::string name : { "classification", "nonplanar_subkernels", "quadtree_nodes_visited", "pcf_samples" })
+    {
+      EXPECT_EQ(valueOf(record, "", name), gpu(name)) << where << ": " << name;
+    }
+    EXPECT_NEAR(valueOf(record, "", "blocker_kernel_texels"), gpu("blocker_kernel_texels"), 1e-4 * (1.0 + gpu("blocker_kernel_texels"))) << where;
+    EXPECT_NEAR(valueOf(record, "", "avg_blocker_depth"), gpu("avg_blocker_depth"), 1e-3 * (1.0 + gpu("avg_blocker_depth"))) << where;
+    EXPECT_NEAR(valueOf(record, "", "penumbra_kernel_texels"), gpu("penumbra_kernel_texels"), 1e-2 * (1.0 + gpu("penumbra_kernel_texels"))) << where;
+    // The steps.
+    ASSERT_EQ(record.droppedNodes + record.droppedTexels, 0u) << where;
+    std::map<int, int> nodesByLevel;
+    std::map<int, int> refinedByLevel;
+    int quadtreeNodes = 0;
+    for (const ProbeNode& node : record.nodes)
+    {
+      if (node.structure == "quadtree")
+      {
+        ++quadtreeNodes;
+        ++nodesByLevel[node.level];
+        refinedByLevel[node.level] += node.decision == "descend" ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(quadtreeNodes, gpu("quadtree_nodes_visited")) << where;
+    // One root per adaptive step taken (Alg. 2 L3), four children per refined node (L21: TreeNode.Child).
+    const int roots = want.refined ? (frame.parameters.choice("blocker_subdivision") == "adaptive" ? 1 : 0) +
+        (frame.parameters.choice("shadow_subdivision") == "adaptive" ? 1 : 0) : 0;
+    EXPECT_EQ(nodesByLevel[0], roots) << where;
+    for (const auto& [level, count] : nodesByLevel)
+    {
+      if (level > 0)
+      {
+        EXPECT_EQ(count, 4 * refinedByLevel[level - 1]) << where << ": level " << level;
+      }
+    }
+    EXPECT_EQ(refinedByLevel[frame.parameters.getInt("shadow_tree_height")], 0) << where << ": leaves are not refined";
+    int nonPlanar = 0;
+    for (const ProbeQuantity& quantity : record.quantities)
+    {
+      if (quantity.name == "class" && quantity.group.find("sub-kernel") != std::string::npos)
+      {
+        nonPlanar += quantity.text == "lit" || quantity.text == "descend" || quantity.text == "non-planar" ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(nonPlanar, gpu("nonplanar_subkernels")) << where;
+    int taps = 0;
+    for (const ProbeTexel& texel : record.texels)
+    {
+      taps += texel.role == "non-planar pcf tap" || texel.role == "contact pcf tap" ? 1 : 0;
+    }
+    EXPECT_EQ(taps, gpu("pcf_samples")) << where;
+    const std::string hsmDecision = findIn(record, "hsm test", "hsm_decision") ? findIn(record, "hsm test", "hsm_decision")->text : "";
+    if (!want.refined)
+    {
+      EXPECT_EQ(hsmDecision, want.classification == VssmClass::Lit ? "lit" : "umbra") << where;
+      EXPECT_EQ(findIn(record, "blocker sub-kernel", "class"), nullptr) << where << ": decided before any sub-kernel";
+      continue;
+    }
+    EXPECT_EQ(hsmDecision, "undecided") << where;
+    const ProbeKernel* penumbra = nullptr;
+    std::map<std::string, double> areaByClass;
+    for (const ProbeKernel& kernel : record.kernels)
+    {
+      if (kernel.role == "penumbra")
+      {
+        penumbra = &kernel;
+      }
+      if (kernel.role == "penumbra sub-kernel")
+      {
+        ASSERT_TRUE(penumbra) << where << ": sub-kernels of w_p before w_p";
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(kernel.lo, penumbra->lo)) && glm::all(glm::lessThanEqual(kernel.hi, penumbra->hi))) << where;
+        areaByClass[kernel.label] += (kernel.hi.x - kernel.lo.x) * (kernel.hi.y - kernel.lo.y);
+      }
+    }
+    ASSERT_TRUE(penumbra) << where;
+    const double kernelArea = (penumbra->hi.x - penumbra->lo.x) * (penumbra->hi.y - penumbra->lo.y);
+    EXPECT_EQ(areaByClass["planar"] + areaByClass["lit"] + areaByClass["non-planar"], kernelArea) << where << ": terminal sub-kernels tile w_p";
+    EXPECT_EQ(valueOf(record, "visibility", "vsm_area"), areaByClass["planar"]) << where;
+    EXPECT_EQ(valueOf(record, "visibility", "lit_area"), areaByClass["lit"]) << where;
+    EXPECT_EQ(valueOf(record, "visibility", "pcf_area"), areaByClass["non-planar"]) << where;
+    EXPECT_GT(areaByClass["non-planar"], 0.0) << where;
+    const double chebyshev = areaByClass["planar"] > 0.0 ? valueOf(record, "visibility", "chebyshev_unoccluded") : 0.0;
+    const double reconstructed = (chebyshev * areaByClass["planar"] + areaByClass["lit"] + areaByClass["non-planar"] -
+      valueOf(record, "visibility", "pcf_blocked_area")) / kernelArea;
+    EXPECT_NEAR(reconstructed, gpu("visibility"), outcome.tolerance) << where << ": Alg. 2 L29-32 from the recorded areas";
+    std::cout << "[ measured ] vssm probe " << where << ": " << record.quantities.size() << " quantities, " << quadtreeNodes
+              << " quad-tree nodes, " << taps << " PCF taps, twin " << outcome.visibility << ", gpu " << gpu("visibility") << "\n";
+  }
 }
 
 TEST(Vssm, MatchesPcssForAParallelPlanarOccluder)

@@ -5,15 +5,19 @@
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
 #include "core/Error.h"
+#include "frame/FrameResult.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
+#include "techniques/backprojection/ContourReceiver.h" // probeNodeOf: HSM query nodes as probe nodes
 #include "techniques/vssm/vtkSLVssmPass.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 namespace sl
 {
@@ -33,6 +37,21 @@ const Category<VssmClass> vssmCategories[] = {
 BufferSpec classificationBuffer()
 {
   return categoricalBuffer("classification", "how the pixel was decided", vssmCategories);
+}
+
+const char* const vssmPaper = "VSSM (Yang et al. 2010)";
+
+std::string cite(const std::string& where)
+{
+  return where + ", " + vssmPaper;
+}
+
+// A categorical quantity that a buffer publishes as a code: the code as its value, the label as its text.
+void recordCode(ProbeRecorder& recorder, const std::string& name, int code, const std::string& label,
+  const std::string& source)
+{
+  recorder.quantity(name, code, "code", source);
+  recorder.record().quantities.back().text = label;
 }
 
 } // namespace
@@ -84,6 +103,26 @@ TechniqueDescriptor vssmTechnique()
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLVssmPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const FrameResult& frame = *context.frame;
+    const ShadowMapInputs shadowMap = shadowMapInputsOf(frame, *context.scene, context.lightIndex);
+    const VssmReferenceInputs inputs = vssmReferenceInputsOf(frame, *context.scene, shadowMap);
+    const VssmSample sample = vssmReference(inputs, frame.parameters, pixel.x, pixel.y, &recorder);
+    // Vssm.MatchesTheCpuImplementation: |GPU - twin| <= 2e-3 on pixels none of whose decisions lies within float
+    // rounding of its boundary: the receiver's (ambiguityOf), a kernel edge within 1e-4 texel of a texel centre,
+    // a continuous decision (E(x) >= t, the variance and blocked-area thresholds, the contact test, the HSM
+    // tests) within 1e-4 of its boundary, relative to d.
+    ProbeOutcome outcome = probeOutcome(sample.sample, 2e-3,
+      "vssmReference (vssm/VssmTechnique.h), double precision, on the summed-area table the GPU built (read back) "
+      "and the HSM rebuilt from the shadow map");
+    if (sample.sample.evaluated)
+    {
+      noteAmbiguity(outcome.ambiguity, "kernel edge from a texel centre (texels)", sample.kernelEdgeMargin, 1e-4);
+      noteAmbiguity(outcome.ambiguity, "continuous decision from its boundary (relative to d)", sample.decisionMargin,
+        1e-4);
+    }
+    return outcome;
+  };
   return descriptor;
 }
 
@@ -145,6 +184,32 @@ BoxMoments VssmReferenceInputs::boxMoments(glm::ivec2 lo, glm::ivec2 hi) const
                       : boxMomentsFromFloatTable(floatTable, lo, hi, view.nearDepth, view.farDepth);
 }
 
+ImageF floatSummedAreaTableOf(const FrameResult& frame)
+{
+  const NamedImage* sumZ = nullptr;
+  const NamedImage* sumZ2 = nullptr;
+  for (const NamedImage& named : frame.lightSpace)
+  {
+    sumZ = named.name == "sat_z" ? &named : sumZ;
+    sumZ2 = named.name == "sat_z2" ? &named : sumZ2;
+  }
+  SL_CHECK_MSG(sumZ && sumZ2, "frame of ", frame.technique, " exports no float summed-area table (sat_z, sat_z2)");
+  ImageF table(sumZ->image.width, sumZ->image.height, 2);
+  for (std::size_t i = 0; i < sumZ->image.data.size(); ++i)
+  {
+    table.data[i * 2] = sumZ->image.data[i];
+    table.data[i * 2 + 1] = sumZ2->image.data[i];
+  }
+  return table;
+}
+
+VssmReferenceInputs vssmReferenceInputsOf(const FrameResult& frame, const Scene& scene, const ShadowMapInputs& shadowMap)
+{
+  const ImageF floatTable = frame.integerSummedAreaTable ? ImageF() : floatSummedAreaTableOf(frame);
+  return vssmReferenceInputs(
+    shadowMap, frame.parameters, frame.integerSummedAreaTable, floatTable, scene.bounds().radius());
+}
+
 VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const ParameterValues& values,
   const std::optional<Image<std::uint32_t>>& integerTable, const ImageF& floatTable, double sceneRadius)
 {
@@ -182,9 +247,18 @@ class VssmEvaluation
 {
 public:
   VssmEvaluation(const VssmReferenceInputs& inputs, const ParameterValues& values, const SoftShadowGeometry& geometry,
-    double bias, const glm::dmat2& contactJitter, VssmSample& result)
-    : inputs_(inputs), values_(values), geometry_(geometry), bias_(bias), contactJitter_(contactJitter), result_(result)
+    double bias, const glm::dmat2& contactJitter, VssmSample& result, ProbeRecorder* recorder)
+    : inputs_(inputs), values_(values), geometry_(geometry), bias_(bias), contactJitter_(contactJitter), result_(result),
+      recorder_(recorder)
   {
+  }
+
+  // The kernel whose sub-kernels are visited next (probe groups and kernel roles): "blocker" (w_i) or "penumbra"
+  // (w_p).
+  void beginStep(const std::string& step)
+  {
+    step_ = step;
+    subKernelCount_ = 0;
   }
 
   int contactSubkernels() const { return contactSubkernels_; }
@@ -203,10 +277,10 @@ public:
   }
 
   // A tap's nearest-texel comparison, with its margins (depth, and texel edges whose neighbour decides
-  // otherwise).
-  bool blocks(const glm::dvec2& tap, double comparison)
+  // otherwise). `role` and `weight`: the probe's record of the texel.
+  bool blocks(const glm::dvec2& tap, double comparison, const char* role, double weight)
   {
-    return nearestTexelTest(*inputs_.shadowMap, tap, comparison, result_.sample) == 0.0;
+    return nearestTexelTest(*inputs_.shadowMap, tap, comparison, result_.sample, recorder_, role, weight) == 0.0;
   }
 
   void pcfLeaf(glm::ivec2 lo, glm::ivec2 hi, double area, Accumulation& acc)
@@ -220,7 +294,7 @@ public:
       for (int i = 0; i < taps; ++i)
       {
         const glm::dvec2 tap = glm::dvec2(lo) + (glm::dvec2(i, j) + 0.5) * spacing;
-        if (blocks(tap, geometry_.tapComparisonDepth(tap, bias_)))
+        if (blocks(tap, geometry_.tapComparisonDepth(tap, bias_), "non-planar pcf tap", 1.0 / (taps * taps)))
         {
           ++blocked;
           blockerDepthSum += storedDepth(tap);
@@ -232,6 +306,42 @@ public:
     acc.pcfArea += area;
     acc.pcfBlockedArea += area * blocked / tapCount;
     acc.pcfBlockerDepthSum += area * blockerDepthSum / tapCount;
+    if (recorder_)
+    {
+      recorder_->quantity("pcf_blocked_fraction", blocked / tapCount, "",
+        cite("§5.1 option 2 (k x k PCF in a non-planar sub-kernel); Alg. 2 L23-26"));
+    }
+  }
+
+  // The probe's record of a sub-kernel [lo, hi] of the current step: its group, rectangle, SAT moments and the
+  // comparison depth t at its centre (Alg. 2 L6-8).
+  void recordSubKernel(glm::ivec2 lo, glm::ivec2 hi, const BoxMoments& moments, double t, double area)
+  {
+    recorder_->beginGroup(step_ + " sub-kernel " + std::to_string(subKernelCount_++));
+    recorder_->quantity("texel_lo", glm::dvec2(lo), "texels", cite("§5.2-5.3 (sub-kernel w_ci, first texel)"));
+    recorder_->quantity("texel_hi", glm::dvec2(hi), "texels", cite("§5.2-5.3 (sub-kernel w_ci, last texel)"));
+    recorder_->quantity("area", area, "texels", cite("Alg. 2 L6 (T_ci)"));
+    recorder_->quantity("mean_depth", moments.mean, "linear depth", cite("Alg. 2 L7 (E(x)_ci from the SAT)"));
+    recorder_->quantity("variance", moments.variance, "linear depth^2", cite("Alg. 2 L8 (sigma^2 = E(x^2) - E(x)^2)"));
+    recorder_->quantity("comparison_depth", t, "linear depth",
+      "ShadowLab: t at the sub-kernel's centre (receiver plane or d) minus the bias and half a SAT step");
+    recorder_->quantity("mean_offset", moments.mean - t, "linear depth", cite("§5.1 (E(x)_ci - t: >= 0 is non-planar)"));
+  }
+
+  // The class of the sub-kernel just visited: a probe kernel (unless it is refined: its children follow), the
+  // class as a quantity of its group, and the quad-tree node's decision.
+  void classifySubKernel(glm::ivec2 lo, glm::ivec2 hi, const std::string& label, const std::string& source)
+  {
+    lastDecision_ = label;
+    if (!recorder_)
+    {
+      return;
+    }
+    recorder_->category("class", label, source);
+    if (label != "descend")
+    {
+      recorder_->kernel({ step_ + " sub-kernel", glm::dvec2(lo), glm::dvec2(hi + 1), label, source });
+    }
   }
 
   bool visitSubKernel(glm::ivec2 lo, glm::ivec2 hi, bool isLeaf, bool nonPlanarIsLit, bool detectContact, Accumulation& acc)
@@ -240,6 +350,10 @@ public:
     const double area = static_cast<double>(hi.x - lo.x + 1) * (hi.y - lo.y + 1);
     const double t = geometry_.tapComparisonDepth(0.5 * glm::dvec2(lo + hi + 1), bias_ + inputs_.satHalfStep);
     const double meanOffset = moments.mean - t;
+    if (recorder_)
+    {
+      recordSubKernel(lo, hi, moments, t, area);
+    }
     noteDecision(meanOffset, 0.0, geometry_.d);
     if (meanOffset < 0.0)
     {
@@ -250,11 +364,21 @@ public:
         if (-meanOffset < contactDistance)
         {
           ++contactSubkernels_;
+          classifySubKernel(lo, hi, "contact", cite("§6.4 (t - E(x)_ci < eps: 3 x 3 jittered bilinear PCF)"));
           const double lit = contactShadow(0.5 * glm::dvec2(lo + hi + 1), 0.5 * glm::dvec2(hi - lo + 1), contactJitter_);
           acc.pcfArea += area;
           acc.pcfBlockedArea += area * (1.0 - lit);
           return false;
         }
+      }
+      classifySubKernel(lo, hi, "planar", cite("Alg. 2 L13-18 (E(x)_ci < t: pooled into Eq. 5)"));
+      if (recorder_)
+      {
+        // Eq. 1 on this sub-kernel's own moments, for reading: the visibility pools the planar sub-kernels'
+        // moments first (Eq. 5) and applies Eq. 1 once.
+        const double variance = std::max(moments.variance, values_.get("min_variance") * geometry_.d * geometry_.d);
+        recorder_->quantity("chebyshev_bound", variance / (variance + meanOffset * meanOffset), "",
+          cite("Eq. 1 on this sub-kernel alone (the visibility pools them first, Eq. 5)"));
       }
       acc.vsmArea += area;
       acc.vsmSum += area * meanOffset;
@@ -269,13 +393,18 @@ public:
     }
     if (nonPlanarIsLit || moments.variance < threshold)
     {
+      classifySubKernel(lo, hi, "lit",
+        nonPlanarIsLit ? cite("§5.1 option 1 / Fig. 3 a (no subdivision: VSM's lit assumption)")
+                       : cite("Alg. 2 L10-12 (E(x)_ci >= t and sigma^2 < Threshold: fully lit)"));
       acc.litArea += area;
       return false;
     }
     if (!isLeaf)
     {
+      classifySubKernel(lo, hi, "descend", cite("Alg. 2 L20-21 (non-planar, not a leaf: TreeNode.Child)"));
       return true;
     }
+    classifySubKernel(lo, hi, "non-planar", cite("Alg. 2 L22-26 (non-planar leaf: PCF, §5.1 option 2)"));
     pcfLeaf(lo, hi, area, acc);
     return false;
   }
@@ -313,7 +442,13 @@ public:
         const glm::ivec2 cell(node->x, node->y);
         const glm::ivec2 subLo = lo + (extent * cell) / parts;
         const glm::ivec2 subHi = lo + (extent * (cell + 1)) / parts - 1;
-        const bool refine = subHi.x >= subLo.x && subHi.y >= subLo.y && visitSubKernel(subLo, subHi, node->z == height, false, detectContact, acc);
+        const bool empty = !(subHi.x >= subLo.x && subHi.y >= subLo.y);
+        const bool refine = !empty && visitSubKernel(subLo, subHi, node->z == height, false, detectContact, acc);
+        if (recorder_)
+        {
+          recorder_->node({ "quadtree", node->z, subLo, subHi, std::numeric_limits<double>::quiet_NaN(),
+            std::numeric_limits<double>::quiet_NaN(), empty ? "empty (no texels)" : lastDecision_ });
+        }
         node = refine ? quadTreeChild(*node) : quadTreeNext(*node);
       }
     }
@@ -330,8 +465,9 @@ public:
     for (int corner = 0; corner < 4; ++corner)
     {
       const glm::ivec2 offset(corner & 1, corner >> 1);
-      const double test = blocks(base + glm::dvec2(offset) + 0.5, comparison) ? 0.0 : 1.0;
-      lit += test * (offset.x == 1 ? weight.x : 1.0 - weight.x) * (offset.y == 1 ? weight.y : 1.0 - weight.y);
+      const double tapWeight = (offset.x == 1 ? weight.x : 1.0 - weight.x) * (offset.y == 1 ? weight.y : 1.0 - weight.y);
+      const double test = blocks(base + glm::dvec2(offset) + 0.5, comparison, "contact pcf tap", tapWeight / 9.0) ? 0.0 : 1.0;
+      lit += test * tapWeight;
     }
     return lit;
   }
@@ -348,6 +484,12 @@ public:
       }
     }
     result_.pcfSamples += 36;
+    if (recorder_)
+    {
+      recorder_->kernel({ "contact pcf", uv - filterHalf, uv + filterHalf, "contact",
+        cite("§6.4 (3 x 3 jittered bilinear PCF over the kernel)") });
+      recorder_->quantity("contact_pcf_visibility", lit / 9.0, "", cite("§6.4 (3 x 3 bilinear PCF, 36 depth comparisons)"));
+    }
     return lit / 9.0;
   }
 
@@ -367,87 +509,206 @@ private:
   double bias_;
   glm::dmat2 contactJitter_;
   VssmSample& result_;
+  ProbeRecorder* recorder_ = nullptr;
+  std::string step_;
+  int subKernelCount_ = 0;
+  std::string lastDecision_; // the class of the sub-kernel visited last (the quad-tree node's decision)
   int contactSubkernels_ = 0;
 };
 
 } // namespace
 
-VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y)
+VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder)
 {
   VssmSample result;
   const ShadowMapInputs& shadowMap = *inputs.shadowMap;
-  const ShadowLookup lookup = prepareShadowLookup(shadowMap, biasSettings(values), x, y);
+  const ShadowLookup lookup = prepareShadowLookup(shadowMap, biasSettings(values), x, y, recorder);
   result.sample = lookup.sample;
+  // The buffers' values under their names (the probe sweep compares them with the GPU's at the pixel), those
+  // not recorded at their step yet.
+  const auto recordResult = [&] {
+    if (!recorder)
+    {
+      return;
+    }
+    recorder->beginGroup("result");
+    const auto once = [&](const std::string& name, double value, const std::string& unit, const std::string& source) {
+      if (!recorder->record().find(name))
+      {
+        recorder->quantity(name, value, unit, source);
+      }
+    };
+    once("blocker_kernel_texels", result.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
+    once("avg_blocker_depth", result.averageBlockerDepth, "linear depth", cite("Eq. 4 (0: not computed)"));
+    once("penumbra_kernel_texels", result.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p; 0: not computed)"));
+    recorder->quantity("nonplanar_subkernels", result.nonplanarSubkernels, "count",
+      cite("§5.1 (sub-kernels with E(x) >= t, both steps)"));
+    recorder->quantity("quadtree_nodes_visited", result.quadtreeNodesVisited, "count",
+      cite("Alg. 2 L4 (linear quad-tree nodes traversed, both steps)"));
+    recorder->quantity("pcf_samples", result.pcfSamples, "count",
+      cite("§5.1 option 2 and §6.4 (point-sampled depth comparisons)"));
+    const int code = static_cast<int>(result.classification);
+    recordCode(*recorder, "classification", code, vssmCategories[code].label, cite("Alg. 1 L9-20 (how the pixel was decided)"));
+    recorder->quantity("visibility", result.sample.visibility, "", cite("Alg. 1 L20-21 / Alg. 2 L29-32"));
+  };
   if (!lookup.sample.evaluated)
   {
+    recordResult();
     return result;
   }
   const SoftShadowGeometry geometry =
     softShadowGeometry(shadowMap, lookup, values.choice("receiver_plane_bias") == "on", x, y);
   const double d = geometry.d;
   const double bias = lookup.sample.bias;
-  VssmEvaluation evaluation(inputs, values, geometry, bias, pixelRotation(x, y), result);
+  VssmEvaluation evaluation(inputs, values, geometry, bias, pixelRotation(x, y), result, recorder);
   const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const auto finish = [&](double visibility, VssmClass classification) {
     result.sample.visibility = visibility;
     result.classification = classification;
+    recordResult();
     return result;
+  };
+  // Pooled moments and Chebyshev (Eq. 5, Eq. 1) of a step's planar sub-kernels, recorded.
+  const auto recordPooled = [&](const Accumulation& acc, double variance, double unoccluded) {
+    recorder->quantity("vsm_area", acc.vsmArea, "texels", cite("Alg. 2 L17 (VSMArea: planar sub-kernels)"));
+    recorder->quantity("lit_area", acc.litArea, "texels", cite("Alg. 2 L12 (LitArea)"));
+    recorder->quantity("pcf_area", acc.pcfArea, "texels", cite("Alg. 2 L24 (PCFArea: non-planar leaves, contact)"));
+    recorder->quantity("pcf_blocked_area", acc.pcfBlockedArea, "texels", cite("Alg. 2 L25 (PCFBArea)"));
+    if (acc.vsmArea > 0.0)
+    {
+      recorder->quantity("pooled_mean_offset", acc.vsmSum / acc.vsmArea, "linear depth", cite("Eq. 5 (mu - t)"));
+      recorder->quantity("pooled_variance", variance, "linear depth^2",
+        cite("Eq. 5 (sigma^2, floored at min_variance d^2)"));
+      recorder->quantity("chebyshev_unoccluded", unoccluded, "", cite("Eq. 1 (p_max(t) = P(x >= t) on Eq. 5's moments)"));
+    }
   };
 
   // L7.
   const glm::dvec2 searchHalf = geometry.kernelHalfTexels(geometry.nearDepth);
   result.blockerKernelTexels = 2.0 * std::max(searchHalf.x, searchHalf.y);
   const TexelRectangle search = kernelRectangle(uv, searchHalf, geometry.mapSize, &result.kernelEdgeMargin);
+  if (recorder)
+  {
+    recorder->beginGroup("blocker search");
+    recorder->quantity("light_size", geometry.lightSize, "world units", "scene (area light side)");
+    recorder->quantity("near_depth", geometry.nearDepth, "linear depth", "light view (near plane)");
+    recorder->quantity("search_half_texels", searchHalf, "texels",
+      cite("Alg. 1 L7 (w_i: the light's extent seen from the receiver, at the near plane; PCSS step 1)"));
+    recorder->quantity("blocker_kernel_texels", result.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
+    recorder->quantity("lit_variance_threshold", values.get("lit_variance_threshold") * inputs.sceneRadius,
+      "linear depth^2", cite("§6.5 (Threshold = 0.0001 r: a non-planar sub-kernel with less variance is lit)"));
+    recorder->kernel({ "blocker search", glm::dvec2(search.lo), glm::dvec2(search.hi + 1), "", cite("Alg. 1 L7 (w_i)") });
+  }
 
   // L8-10.
   if (values.choice("hsm_early_out") == "on")
   {
-    const glm::dvec2 depthRange = inputs.hsm.range(search.lo, search.hi);
+    std::vector<HsmQueryNode> queryNodes; // the nodes the query read, for the probe
+    const glm::dvec2 depthRange = inputs.hsm.range(search.lo, search.hi, nullptr, recorder ? &queryNodes : nullptr);
     const glm::dvec2 comparisonRange = geometry.comparisonDepthRange(search.lo, search.hi, bias);
     evaluation.noteDecision(depthRange.x, comparisonRange.y, d);
     evaluation.noteDecision(depthRange.y, comparisonRange.x, d);
-    if (depthRange.x >= comparisonRange.y)
+    const bool lit = depthRange.x >= comparisonRange.y;
+    const bool umbra = !lit && depthRange.y < comparisonRange.x;
+    if (recorder)
+    {
+      recorder->beginGroup("hsm test");
+      recorder->quantity("hsm_min_depth", depthRange.x, "linear depth", cite("Alg. 1 L8 (min over w_i from the HSM, §6.1)"));
+      recorder->quantity("hsm_max_depth", depthRange.y, "linear depth", cite("Alg. 1 L8 (max over w_i from the HSM, §6.1)"));
+      recorder->quantity("comparison_depth_min", comparisonRange.x, "linear depth",
+        "ShadowLab: the smallest comparison depth over w_i (receiver plane or d, minus the bias)");
+      recorder->quantity("comparison_depth_max", comparisonRange.y, "linear depth",
+        "ShadowLab: the largest comparison depth over w_i");
+      const std::string decision = lit ? "lit" : umbra ? "umbra" : "undecided";
+      recorder->quantity("hsm_nodes_read", static_cast<double>(queryNodes.size()), "count",
+        "ShadowLab: nodes the range query read (HierarchicalShadowMap::range; mip-map: at most 2 x 2)");
+      for (const HsmQueryNode& node : queryNodes)
+      {
+        recorder->node(probeNodeOf(node, decision));
+      }
+      recorder->category("hsm_decision", decision,
+        cite("Alg. 1 L8-10 (lit: min >= every comparison depth; umbra: max < every one)"));
+    }
+    if (lit)
     {
       return finish(1.0, VssmClass::Lit);
     }
-    if (depthRange.y < comparisonRange.x)
+    if (umbra)
     {
       return finish(0.0, VssmClass::Umbra);
     }
   }
 
   // L11-15.
+  evaluation.beginStep("blocker");
   const Accumulation blockers = evaluation.subdivide(search.lo, search.hi, values.choice("blocker_subdivision"),
     values.getInt("blocker_uniform_m"), values.getInt("blocker_tree_height"), false);
   double blockedArea = blockers.pcfBlockedArea;
   double blockerDepthSum = blockers.pcfBlockerDepthSum;
+  double blockerVariance = 0.0;
+  double blockerUnoccluded = 1.0;
   if (blockers.vsmArea > 0.0)
   {
-    double variance = 0.0;
-    const double unoccluded = evaluation.pooledChebyshev(blockers, variance);
-    const double occludedArea = blockers.vsmArea * (1.0 - unoccluded);
+    blockerUnoccluded = evaluation.pooledChebyshev(blockers, blockerVariance);
+    const double occludedArea = blockers.vsmArea * (1.0 - blockerUnoccluded);
     blockedArea += occludedArea;
     blockerDepthSum += occludedArea * (d - bias - inputs.satHalfStep) + blockers.vsmSum;
   }
   const double blockedThreshold = 1e-5 * search.area();
   evaluation.noteDecision(blockedArea, blockedThreshold, blockedThreshold);
+  if (recorder)
+  {
+    recorder->beginGroup("average blocker depth");
+    recordPooled(blockers, blockerVariance, blockerUnoccluded);
+    recorder->quantity("blocked_area", blockedArea, "texels",
+      cite("Eq. 3-4 ((1 - P(x >= t)) of the planar area, plus the PCF sub-kernels' blocked area, §5.2)"));
+    recorder->quantity("blocked_area_threshold", blockedThreshold, "texels",
+      "ShadowLab: 1e-5 of w_i (no blocker: lit)");
+  }
   if (!(blockedArea > blockedThreshold))
   {
+    if (recorder)
+    {
+      recorder->category("blocker_decision", "no blocker: lit", cite("Alg. 1 L9-10 (no blocker in w_i)"));
+    }
     return finish(1.0, VssmClass::Lit);
   }
   result.averageBlockerDepth = std::clamp(blockerDepthSum / blockedArea, geometry.nearDepth, d);
+  if (recorder)
+  {
+    recorder->quantity("avg_blocker_depth", result.averageBlockerDepth, "linear depth",
+      cite("Eq. 4 with z_unocc = t, combined with the PCF sub-kernels' blocker depths (§5.2), clamped to [near, d]"));
+  }
 
   // L16.
   const glm::dvec2 filterHalf = geometry.kernelHalfTexels(result.averageBlockerDepth);
   result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
+  if (recorder)
+  {
+    recorder->beginGroup("penumbra kernel");
+    recorder->quantity("penumbra_half_texels", filterHalf, "texels",
+      cite("Alg. 1 L16 (w_p: the light's extent seen from the receiver, at z_avg; PCSS step 2)"));
+    recorder->quantity("penumbra_kernel_texels", result.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p)"));
+  }
 
   // §6.4, contact_test = blocker_average.
   if (!contactPerSubkernel)
   {
     const double contactDistance = values.get("contact_threshold") * inputs.sceneRadius;
     evaluation.noteDecision(d - result.averageBlockerDepth, contactDistance, d);
-    if (d - result.averageBlockerDepth < contactDistance)
+    const bool contact = d - result.averageBlockerDepth < contactDistance;
+    if (recorder)
+    {
+      recorder->beginGroup("contact test");
+      recorder->quantity("receiver_minus_blocker_depth", d - result.averageBlockerDepth, "linear depth",
+        cite("§6.4 (d - z_occ)"));
+      recorder->quantity("contact_distance", contactDistance, "linear depth", cite("§6.4 (eps = 0.01 r)"));
+      recorder->category("contact_decision", contact ? "contact: PCF over w_p" : "no contact: the SAT",
+        cite("§6.4 (d - z_occ < eps: 3 x 3 jittered bilinear PCF instead of the SAT)"));
+    }
+    if (contact)
     {
       return finish(evaluation.contactShadow(uv, filterHalf, pixelRotation(x, y)), VssmClass::Contact);
     }
@@ -455,17 +716,30 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
 
   // L17-20.
   const TexelRectangle filter = kernelRectangle(uv, filterHalf, geometry.mapSize, &result.kernelEdgeMargin);
+  if (recorder)
+  {
+    recorder->beginGroup("penumbra kernel");
+    recorder->kernel({ "penumbra", glm::dvec2(filter.lo), glm::dvec2(filter.hi + 1), "", cite("Alg. 1 L16 (w_p)") });
+  }
+  evaluation.beginStep("penumbra");
   const Accumulation shadow = evaluation.subdivide(filter.lo, filter.hi, values.choice("shadow_subdivision"),
     values.getInt("shadow_uniform_n"), values.getInt("shadow_tree_height"), contactPerSubkernel);
   double chebyshevLit = 0.0;
+  double shadowVariance = 0.0;
   if (shadow.vsmArea > 0.0)
   {
-    double variance = 0.0;
-    chebyshevLit = evaluation.pooledChebyshev(shadow, variance);
+    chebyshevLit = evaluation.pooledChebyshev(shadow, shadowVariance);
   }
   const double totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
   const double visibility =
     (chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea;
+  if (recorder)
+  {
+    recorder->beginGroup("visibility");
+    recordPooled(shadow, shadowVariance, chebyshevLit);
+    recorder->quantity("unclamped_visibility", visibility, "",
+      cite("Alg. 2 L29-32 ((L VSMArea + LitArea + PCFArea - PCFBArea) / (VSMArea + LitArea + PCFArea))"));
+  }
   return finish(std::clamp(visibility, 0.0, 1.0),
     evaluation.contactSubkernels() > 0 ? VssmClass::Contact : VssmClass::Penumbra);
 }

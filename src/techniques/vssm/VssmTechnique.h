@@ -14,6 +14,7 @@
 // pcf_samples (eight outputs in all, GL's guaranteed draw-buffer count).
 #pragma once
 
+#include "frame/ProbeRecord.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
@@ -24,6 +25,8 @@
 
 namespace sl
 {
+
+struct FrameResult; // frame/FrameResult.h
 
 TechniqueDescriptor vssmTechnique();
 
@@ -68,6 +71,12 @@ struct VssmReferenceInputs
 };
 VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const ParameterValues& values,
   const std::optional<Image<std::uint32_t>>& integerTable, const ImageF& floatTable, double sceneRadius);
+// The float SAT the GPU built, read back from the frame's light-space arrays sat_z and sat_z2 (2 components).
+ImageF floatSummedAreaTableOf(const FrameResult& frame);
+// vssmReferenceInputs of a rendered frame: the SAT the GPU built as read back (the exact int32 table, else the
+// float arrays), the frame's parameters and the scene's bounding-sphere radius r. The tests and the probe read
+// the frame through this.
+VssmReferenceInputs vssmReferenceInputsOf(const FrameResult& frame, const Scene& scene, const ShadowMapInputs& shadowMap);
 // The int32 SAT's half fixed-point step of the depth range (0 for float), as the pass sets it.
 double vssmSatHalfStep(bool integer, int mapSize, double nearDepth, double farDepth);
 
@@ -87,7 +96,13 @@ struct VssmSample
   double decisionMargin = 1e300;
 };
 
-// CPU reference (double precision) of VssmVisibility.glsl at pixel (x, y).
-VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y);
+// CPU reference (double precision) of VssmVisibility.glsl at pixel (x, y). `recorder` (optional, `shadowlab
+// probe`): every step in the order Alg. 1 takes them: the receiver, the blocker search kernel w_i (L7), the HSM
+// test (L8-10), w_i's sub-kernels with their class and moments (L11-15, §5, Alg. 2; adaptive: the quad-tree
+// nodes visited), the average blocker depth (Eq. 4-5), the penumbra kernel w_p (L16), the §6.4 contact test,
+// w_p's sub-kernels (L17-20), the PCF taps, the visibility (Alg. 2 L29-32), and the buffers' values under their
+// names (group "result").
+VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder = nullptr);
 
 } // namespace sl
