@@ -92,40 +92,11 @@ std::vector<std::string> plus(std::vector<std::string> settings, const std::vect
   return settings;
 }
 
-// The twin's inputs for one frame: the read-back shadow map, the structure its `hsm` names (the GPU's equals it
-// bit for bit: LightSpaceStructureGpuTest, MicrorectGpuTest), the microrects when read, the budget image.
-// `scene` must outlive it (ShadowMapInputs points to its light).
-struct Ss08Twin
-{
-  ShadowMapInputs inputs;
-  HierarchicalShadowMap hsm;
-  std::optional<Microrects> microrects;
-  std::optional<ImageF> budgetImage;
-
-  Ss08Structures structures() const
-  {
-    Ss08Structures result;
-    result.hsm = &hsm;
-    result.microrects = microrects ? &*microrects : nullptr;
-    return result;
-  }
-  const ImageF* budgets() const { return budgetImage ? &*budgetImage : nullptr; }
-};
-
+// The twin's inputs for one frame (ss08TwinOf: the read-back shadow map, the structure its `hsm` names and the
+// microrects built on the CPU, the budget image), as the probe reads them too.
 Ss08Twin twinOf(const FrameResult& frame, const Scene& scene)
 {
-  Ss08Twin twin;
-  twin.inputs = test::shadowMapInputs(frame, scene);
-  twin.hsm = HierarchicalShadowMap::build(twin.inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
-  if (frame.parameters.choice("micro_occluder") == "microrect")
-  {
-    twin.microrects = Microrects::build(twin.inputs.shadowMapLinear);
-  }
-  if (frame.parameters.choice("budget_map") == "image")
-  {
-    twin.budgetImage = ss08BudgetImage(frame.parameters, frame.resolution.x, frame.resolution.y);
-  }
-  return twin;
+  return ss08TwinOf(frame, scene);
 }
 
 // A pixel whose float decisions may legitimately differ from the twin's: the receiver's own tests (depth,
@@ -1117,6 +1088,191 @@ TEST(Ss08, ContactShadowLeaksAtCoarseLevelsAndMicrorectsLeakLess)
   }
   EXPECT_LT(leak[1][0], leak[0][0]) << "micropatches: a larger budget (finer levels) must leak less";
   EXPECT_GT(leak[0][0], 0.05) << "the case must show the coarse-level leak it measures";
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The probe (`shadowlab probe`, issue 15): what it records for one pixel against the GPU's buffers.
+
+// The first quantity `name` of the groups whose name starts with `groupPrefix` ("" = any).
+double probeValue(const ProbeRecord& record, const std::string& groupPrefix, const std::string& name)
+{
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    if (quantity.name == name && quantity.group.rfind(groupPrefix, 0) == 0 && !quantity.value.empty())
+    {
+      return quantity.value[0];
+    }
+  }
+  throw std::runtime_error("the probe recorded no " + name + " in group " + groupPrefix);
+}
+
+TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
+{
+  // Through the registry's probe: a lit, an umbra and a blended penumbra pixel (0.05 < alpha < 0.95, floor(l) >= 1)
+  // with micropatches, and a blended penumbra pixel with microrects, of stacked-occluders at budget 5. Each must
+  // agree with the GPU within the twin tolerance, record the buffers' values under their names equal to the GPU's
+  // at the pixel (Ss08MatchesTheTwin's tolerances), record as many micro-occluders as micro_occluders, each level's
+  // slots_per_axis product of them at that level, one light polygon per occluding one, and the polygons' clipped
+  // areas per level must give the GPU's visibility: V = sum over the examined levels of weight x clamp(1 - area /
+  // light area) (L370-392). The twin's own 11 x 11 smoothing must give the GPU's smoothed level.
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const TechniqueDescriptor& descriptor = findTechnique("ss08");
+  ASSERT_TRUE(descriptor.probe);
+  struct Wanted
+  {
+    std::string label;
+    std::string microOccluder;
+    Ss08Class classification;
+  };
+  const std::vector<Wanted> wanted = {
+    { "lit", "micropatch", Ss08Class::Lit },
+    { "umbra", "micropatch", Ss08Class::Umbra },
+    { "penumbra", "micropatch", Ss08Class::Penumbra },
+    { "penumbra", "microrect", Ss08Class::Penumbra },
+  };
+  for (const Wanted& want : wanted)
+  {
+    const std::vector<std::string> settings = { "shadow_map_size=256", "hsm=nbuffers", "budget=5",
+      "micro_occluder=" + want.microOccluder };
+    const FrameResult frame = test::renderDataset(scene, "ss08", 64, 64, settings);
+    const Ss08Twin twin = twinOf(frame, scene);
+    const bool penumbra = want.classification == Ss08Class::Penumbra;
+    // The first unambiguous pixel of the wanted class; for a penumbra, the blended one whose visibility is nearest 0.5.
+    std::optional<glm::ivec2> pixel;
+    double bestDistance = 1.0;
+    for (int y = 0; y < 64 && !(pixel && !penumbra); ++y)
+    {
+      for (int x = 0; x < 64 && !(pixel && !penumbra); ++x)
+      {
+        if (buffer(frame, "classification").at(x, y) != static_cast<float>(code(want.classification)))
+        {
+          continue;
+        }
+        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y,
+          buffer(frame, "loq").at(x, y), twin.budgets());
+        const bool blended = cpu.blendAlpha > 0.05 && cpu.blendAlpha < 0.95 && cpu.levelFloor >= 1 &&
+          cpu.sample.visibility > 0.1 && cpu.sample.visibility < 0.9;
+        if (cpu.sample.evaluated && !ambiguous(cpu) && (!penumbra || blended) &&
+          std::abs(cpu.sample.visibility - 0.5) < bestDistance)
+        {
+          pixel = glm::ivec2(x, y);
+          bestDistance = penumbra ? std::abs(cpu.sample.visibility - 0.5) : 0.0;
+        }
+      }
+    }
+    const std::string label = test::caseLabel(want.label, settings);
+    ASSERT_TRUE(pixel) << label << ": no such pixel in the frame";
+    ProbeRecorder recorder;
+    const ProbeOutcome outcome = descriptor.probe({ &frame, &scene, 0 }, *pixel, recorder);
+    const ProbeRecord& record = recorder.record();
+    const std::string where = label + " pixel " + std::to_string(pixel->x) + "," + std::to_string(pixel->y);
+    const auto gpu = [&](const std::string& name) { return static_cast<double>(buffer(frame, name).at(pixel->x, pixel->y)); };
+    ASSERT_TRUE(outcome.evaluated) << where;
+    EXPECT_EQ(outcome.ambiguity, "") << where;
+    EXPECT_EQ(outcome.tolerance, 1e-4) << where;
+    EXPECT_NEAR(outcome.visibility, gpu("visibility"), outcome.tolerance) << where;
+    EXPECT_NEAR(probeValue(record, "result", "visibility"), gpu("visibility"), outcome.tolerance) << where;
+    for (const std::string name : { "budget", "search_area_texels", "level_floor", "micro_occluders", "classification",
+           "query_growth_texels", "micro_occluders_floor", "micro_occluders_ceil", "loq_budget_violation" })
+    {
+      EXPECT_EQ(probeValue(record, "", name), gpu(name)) << where << ": " << name;
+    }
+    EXPECT_NEAR(probeValue(record, "", "loq_raw"), gpu("loq_raw"), 1e-5) << where;
+    EXPECT_NEAR(probeValue(record, "", "loq"), gpu("loq"), 1e-5) << where; // l_raw where nothing back-projects
+    EXPECT_NEAR(probeValue(record, "", "blend_alpha"), gpu("blend_alpha"), 1e-5) << where;
+    EXPECT_NEAR(probeValue(record, "smoothing", "loq_twin_smoothed"), gpu("loq"), 1e-5) << where;
+    // The micro-occluders, level by level.
+    ASSERT_EQ(record.droppedNodes + record.droppedPolygons, 0u) << where;
+    std::map<int, int> examined;
+    std::map<int, int> occluding;
+    for (const ProbeNode& node : record.nodes)
+    {
+      if (node.structure == "micropatch" || node.structure == "microrect")
+      {
+        EXPECT_EQ(node.structure, want.microOccluder) << where;
+        ++examined[node.level];
+        occluding[node.level] += node.decision == "occludes" ? 1 : 0;
+      }
+    }
+    int total = 0;
+    for (const auto& [level, count] : examined)
+    {
+      total += count;
+    }
+    EXPECT_EQ(total, gpu("micro_occluders")) << where;
+    if (!penumbra)
+    {
+      EXPECT_TRUE(examined.empty() && record.lightPolygons.empty()) << where << ": decided by the depth range";
+      continue;
+    }
+    const double lightArea = scene.lights[0].size * scene.lights[0].size;
+    const int levels[2] = { static_cast<int>(gpu("level_floor")), static_cast<int>(std::ceil(gpu("loq"))) };
+    const double weights[2] = { 1.0 - gpu("blend_alpha"), gpu("blend_alpha") };
+    ASSERT_EQ(levels[1], levels[0] + 1) << where << ": a blended pixel examines two levels";
+    ASSERT_EQ(examined.size(), 2u) << where;
+    double visibility = 0.0;
+    for (int k = 0; k < 2; ++k)
+    {
+      const std::string group = "level " + std::to_string(levels[k]) + (k == 0 ? " (floor)" : " (ceil)");
+      const std::string role = "level " + std::to_string(levels[k]) + " micro-occluder";
+      const ProbeQuantity* slots = nullptr;
+      for (const ProbeQuantity& quantity : record.quantities)
+      {
+        slots = quantity.group == group && quantity.name == "slots_per_axis" ? &quantity : slots;
+      }
+      ASSERT_TRUE(slots && slots->value.size() == 2) << where;
+      EXPECT_EQ(examined[levels[k]], slots->value[0] * slots->value[1]) << where << ": " << group;
+      EXPECT_EQ(examined[levels[k]], gpu(k == 0 ? "micro_occluders_floor" : "micro_occluders_ceil")) << where << ": " << group;
+      double area = 0.0;
+      int polygons = 0;
+      for (const ProbeLightPolygon& polygon : record.lightPolygons)
+      {
+        if (polygon.role == role)
+        {
+          area += polygon.signedArea;
+          ++polygons;
+        }
+      }
+      EXPECT_EQ(polygons, occluding[levels[k]]) << where << ": " << group;
+      EXPECT_NEAR(area, probeValue(record, group, "occluded_area"), 1e-12) << where << ": " << group;
+      EXPECT_NEAR(probeValue(record, group, "light_area"), lightArea, 1e-9 * lightArea) << where;
+      visibility += weights[k] * std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+    }
+    EXPECT_NEAR(visibility, gpu("visibility"), outcome.tolerance) << where << ": L370-392 from the recorded polygons";
+    std::cout << "[ measured ] ss08 probe " << where << ": levels " << levels[0] << " / " << levels[1] << " (alpha "
+              << gpu("blend_alpha") << "), " << total << " micro-occluders, " << record.lightPolygons.size()
+              << " occluding; twin " << outcome.visibility << ", gpu " << gpu("visibility") << "\n";
+  }
+  // A pixel the loop cap cut short (PixelsOverTheLoopCapAreFlaggedAndTheOthersExact's case): the GPU's value is
+  // partial, so the probe must say so in `ambiguity` instead of failing, while recording every slot the twin
+  // examined (those over the recorder's cap counted as dropped). Only llvmpipe has the cap.
+  const Scene nearLight = test::loadDataset("near-light");
+  const FrameResult frame = test::renderDataset(nearLight, "ss08", 64, 48, { "shadow_map_size=436", "budget=0" });
+  if (frame.glRenderer.find("llvmpipe") == std::string::npos)
+  {
+    return;
+  }
+  const ImageF& classes = buffer(frame, "classification");
+  const auto cut = std::find(classes.data.begin(), classes.data.end(), static_cast<float>(code(Ss08Class::CutShort)));
+  ASSERT_NE(cut, classes.data.end()) << "the case must outrun llvmpipe's loop cap";
+  const int index = static_cast<int>(cut - classes.data.begin());
+  const glm::ivec2 pixel(index % 64, index / 64);
+  ProbeRecorder recorder;
+  const ProbeOutcome outcome = descriptor.probe({ &frame, &nearLight, 0 }, pixel, recorder);
+  const ProbeRecord& record = recorder.record();
+  EXPECT_NE(outcome.ambiguity.find("the GPU marked the pixel cut short"), std::string::npos) << outcome.ambiguity;
+  const double planned = probeValue(record, "result", "micro_occluders");
+  EXPECT_GT(planned, buffer(frame, "micro_occluders").at(pixel.x, pixel.y))
+    << "the twin examines every slot, the GPU those it reached";
+  int recorded = 0;
+  for (const ProbeNode& node : record.nodes)
+  {
+    recorded += node.structure == "micropatch" ? 1 : 0;
+  }
+  EXPECT_EQ(recorded + static_cast<double>(record.droppedNodes), planned);
+  std::cout << "[ measured ] ss08 probe of cut-short pixel " << pixel.x << "," << pixel.y << ": twin " << planned
+            << " slots (" << recorded << " recorded, " << record.droppedNodes << " dropped), GPU reached "
+            << buffer(frame, "micro_occluders").at(pixel.x, pixel.y) << "; ambiguity: " << outcome.ambiguity << "\n";
 }
 
 } // namespace

@@ -1,11 +1,13 @@
 #include "techniques/ss08/Ss08Technique.h"
 
 #include "core/Error.h"
+#include "frame/FrameResult.h"
 #include "io/ImageIO.h"
 #include "lightspace/Microrects.h"
 #include "lightspace/hsm/HsmStructure.h"
 #include "lightspace/microrect/MicrorectStructure.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/backprojection/ContourBackprojection.h"
 #include "techniques/backprojection/ContourReceiver.h"
@@ -35,6 +37,23 @@ bool microrectsOn(const ParameterValues& values)
 {
   return values.choice("micro_occluder") == "microrect";
 }
+
+// Paper 001's lines (../shared/papers/quality-scalability-ssm-schwarz2008.txt) as a probe quantity's source.
+std::string cite(const std::string& where)
+{
+  return where + ", SS08 (Schwarz & Stamminger 2008)";
+}
+
+// A categorical quantity that a buffer publishes as a code: the code as its value, the label as its text.
+void recordCode(ProbeRecorder& recorder, const std::string& name, int code, const std::string& label,
+  const std::string& source)
+{
+  recorder.quantity(name, code, "code", source);
+  recorder.record().quantities.back().text = label;
+}
+
+const char* const loqStateLabels[] = { "none (no back-projection: a stop for the smoothing)",
+  "smoothed (back-projects at a budget-derived level)", "fixed (back-projects at a level smoothing keeps)" };
 
 } // namespace
 
@@ -104,6 +123,46 @@ TechniqueDescriptor ss08Technique()
   // As gbp06: the registry-wide sweeps use 128^2 maps to bound the unlimited-budget kernels on llvmpipe.
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLSs08Pass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const FrameResult& frame = *context.frame;
+    const Ss08Twin twin = ss08TwinOf(frame, *context.scene, context.lightIndex);
+    // Passes 2-3 smooth the whole LOQ map: the replay reads the level from the GPU's smoothed LOQ at the pixel, as
+    // Ss08Test does; the twin's own smoothing of its raw levels over the 11 x 11 neighbourhood is recorded after.
+    const double level = bufferValue(frame, "loq", pixel);
+    const Ss08Sample sample = ss08Reference(
+      twin.inputs, twin.structures(), frame.parameters, pixel.x, pixel.y, level, twin.budgets(), false, &recorder);
+    // Ss08MatchesTheTwin: |GPU - twin| <= 1e-4 (area accumulated in float over up to ~1300 micro-occluders) on
+    // pixels none of whose decisions lies within float rounding of its boundary: the receiver's (ambiguityOf), a
+    // kernel edge within 1e-4 texel of a texel centre, a lit / umbra / growth test or a micro-occluder's depth
+    // test within 1e-5 of d, l_raw within 1e-5 of an integer.
+    ProbeOutcome outcome = probeOutcome(sample.sample, 1e-4,
+      "ss08Reference (ss08/Ss08Technique.h), double precision, at the GPU's smoothed level (buffer loq at the pixel: "
+      "passes 2-3 replayed from the frame, not recomputed; the twin's own 11 x 11 smoothing is recorded as "
+      "loq_twin_smoothed), on the HSM / microrects rebuilt from the shadow map");
+    if (sample.sample.evaluated)
+    {
+      const Ss08Search& search = sample.search;
+      noteAmbiguity(outcome.ambiguity, "kernel edge from a texel centre (texels)", search.kernelEdgeMargin, 1e-4);
+      noteAmbiguity(outcome.ambiguity, "lit / umbra / growth test from its boundary (relative to d)",
+        search.decisionMargin, 1e-5);
+      noteAmbiguity(outcome.ambiguity, "micro-occluder depth test from its boundary (relative to d)",
+        sample.occlusionMargin, 1e-5);
+      noteAmbiguity(outcome.ambiguity, "l_raw from an integer (levels)", search.levelMargin, 1e-5);
+      const bool gpuCutShort = bufferValue(frame, "classification", pixel) == static_cast<double>(Ss08Class::CutShort);
+      if (gpuCutShort || search.classification == Ss08Class::CutShort)
+      {
+        outcome.ambiguity += std::string(outcome.ambiguity.empty() ? "" : ", ") +
+          (gpuCutShort ? "the GPU marked the pixel cut short" : "the twin puts the pixel over the loop cap") +
+          format(" (", sample.microOccluders, " slots; llvmpipe stops the slot loop near ", ss08LoopCap,
+            "): the GPU's value is partial");
+      }
+      recorder.beginGroup("smoothing (twin)");
+      recorder.quantity("loq_twin_smoothed",
+        ss08SmoothedLevelAt(twin, frame.parameters, frame.find("depth")->image, pixel.x, pixel.y), "levels",
+        cite("L363-368, L813-817 (the twin's 11 x 11 depth-aware box over its own raw levels; beside loq, the GPU's)"));
+    }
+    return outcome;
+  };
   return descriptor;
 }
 
@@ -266,11 +325,11 @@ TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int lev
 }
 
 Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
-  int x, int y, const ImageF* budgetImage)
+  int x, int y, const ImageF* budgetImage, ProbeRecorder* recorder)
 {
   SL_CHECK(structures.hsm);
   Ss08Search search;
-  search.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  search.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
   if (!search.lookup.sample.evaluated)
   {
     return search;
@@ -284,8 +343,28 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
   const bool growth = values.choice("growth") == "on";
   const glm::dvec2 uv = search.lookup.sm.uvTexels;
   search.budget = ss08PixelBudget(values, x, y, inputs.camera.resolution.x, budgetImage);
+  if (recorder)
+  {
+    recorder->beginGroup("budget");
+    recorder->category("budget_map", values.choice("budget_map"), cite("L352-356 (the budget map b_mo(x, y))"));
+    recorder->quantity("budget", search.budget, "micro-occluders per axis",
+      cite("L352-356 (b_mo at the pixel; 0 = unlimited, Table 2)"));
+  }
   const HierarchicalShadowMap& hsm = *structures.hsm;
-  const auto range = [&](const TexelRectangle& area) { return hsm.range(area.lo, area.hi); };
+  // The probe's view of each range query: the nodes it read, recorded with the decision they led to.
+  std::vector<HsmQueryNode> queryNodes;
+  const auto range = [&](const TexelRectangle& area) {
+    return hsm.range(area.lo, area.hi, nullptr, recorder ? &queryNodes : nullptr);
+  };
+  const auto recordQueryNodes = [&](const std::string& decision) {
+    recorder->quantity("hsm_nodes_read", static_cast<double>(queryNodes.size()), "count",
+      "ShadowLab: nodes the range query read (HierarchicalShadowMap::range)");
+    for (const HsmQueryNode& node : queryNodes)
+    {
+      recorder->node(probeNodeOf(node, decision));
+    }
+    queryNodes.clear();
+  };
   // searchRange of the GLSL: the area grown for its level (growth=on) or the area itself.
   const auto searchRange = [&](const TexelRectangle& area, TexelRectangle& query) {
     query = area;
@@ -297,13 +376,37 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     }
     return range(query);
   };
-  TexelRectangle kernel = kernelRectangle(uv, geometry.kernelHalfTexels(geometry.nearDepth), size, &search.kernelEdgeMargin);
+  // One search area (kernel plus ring) and its depth-range query, recorded as a step of Fig. 2 b.
+  const auto recordArea = [&](int refinement, const glm::dvec2& half, const glm::dvec2& depthRange, const std::string& decision) {
+    if (!recorder)
+    {
+      return;
+    }
+    recorder->beginGroup("search area " + std::to_string(refinement));
+    recorder->quantity("kernel_half_texels", half, "texels",
+      refinement == 0 ? cite("Fig. 2 b (the light seen from the receiver, at the near plane)")
+                      : cite("Fig. 2 b, L146-156 (refined: at the minimum depth of the previous area)"));
+    recorder->kernel({ "search area", glm::dvec2(search.area.lo), glm::dvec2(search.area.hi + 1),
+      "refinement " + std::to_string(refinement), cite("Fig. 2 b (kernel plus one ring of texels)") });
+    if (search.query.lo != search.area.lo || search.query.hi != search.area.hi)
+    {
+      recorder->kernel({ "grown query", glm::dvec2(search.query.lo), glm::dvec2(search.query.hi + 1),
+        "refinement " + std::to_string(refinement), cite("L583-611, Fig. 7 (grown to the micro-occluders' support)") });
+    }
+    recorder->quantity("query_min_depth", depthRange.x, "linear depth", cite("L146-156 (min over the query, from the HSM)"));
+    recorder->quantity("query_max_depth", depthRange.y, "linear depth", cite("L146-156 (max over the query, from the HSM)"));
+    recordQueryNodes(decision);
+  };
+  glm::dvec2 half = geometry.kernelHalfTexels(geometry.nearDepth);
+  TexelRectangle kernel = kernelRectangle(uv, half, size, &search.kernelEdgeMargin);
   search.area = ringed(kernel, size);
   glm::dvec2 depthRange = searchRange(search.area, search.query);
-  for (int refinement = 0; refinement < values.getInt("kernel_refinements"); ++refinement)
+  const int refinements = values.getInt("kernel_refinements");
+  for (int refinement = 0; refinement < refinements; ++refinement)
   {
-    kernel = kernelRectangle(uv, geometry.kernelHalfTexels(std::clamp(depthRange.x, geometry.nearDepth, d)), size,
-      &search.kernelEdgeMargin);
+    recordArea(refinement, half, depthRange, "refine at its minimum depth");
+    half = geometry.kernelHalfTexels(std::clamp(depthRange.x, geometry.nearDepth, d));
+    kernel = kernelRectangle(uv, half, size, &search.kernelEdgeMargin);
     search.area = ringed(kernel, size);
     depthRange = searchRange(search.area, search.query);
   }
@@ -327,13 +430,40 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
   {
     search.classification = Ss08Class::Penumbra;
   }
+  const Ss08Class rangeClass = search.classification;
+  recordArea(refinements, half, depthRange,
+    rangeClass == Ss08Class::Lit ? "lit" : rangeClass == Ss08Class::Umbra ? "umbra" : "penumbra");
   // The over-precision class (Fig. 7).
+  bool otherAreaLit = false;
   const auto litFor = [&](const TexelRectangle& area) {
     const glm::dvec2 otherRange = range(area);
     const double otherComparison = geometry.comparisonDepthRange(area.lo, area.hi, search.bias).y;
     search.decisionMargin = std::min(search.decisionMargin, std::abs(otherRange.x - otherComparison) / d);
-    return otherRange.x >= otherComparison;
+    otherAreaLit = otherRange.x >= otherComparison;
+    if (recorder)
+    {
+      recorder->beginGroup("growth test");
+      recorder->kernel({ growth ? "area's own query" : "grown query", glm::dvec2(area.lo), glm::dvec2(area.hi + 1),
+        otherAreaLit ? "lit" : "not lit", cite("L583-611, Fig. 7 (the other query decides the growth class)") });
+      recorder->quantity("query_min_depth", otherRange.x, "linear depth", cite("L583-611, Fig. 7"));
+      recorder->quantity("comparison_depth_max", otherComparison, "linear depth", "ShadowLab: the largest comparison depth over it");
+      recordQueryNodes(otherAreaLit ? "lit" : "not lit");
+    }
+    return otherAreaLit;
   };
+  if (recorder)
+  {
+    recorder->beginGroup("depth range decision");
+    recorder->quantity("comparison_depth_min", comparison.x, "linear depth",
+      "ShadowLab: the smallest comparison depth over the query (receiver plane or d, minus the bias)");
+    recorder->quantity("comparison_depth_max", comparison.y, "linear depth", "ShadowLab: the largest one");
+    recorder->category("ring_inside_map", ringInsideMap ? "yes" : "no: no umbra decision (texels beyond the map unknown)",
+      "ShadowLab (an umbra needs the whole ring inside the map)");
+    recorder->category("range_decision",
+      rangeClass == Ss08Class::Lit ? "lit: min >= every comparison depth"
+        : rangeClass == Ss08Class::Umbra ? "umbra: max < every comparison depth" : "penumbra: back-project",
+      cite("L154-156 (lit / umbra from the search area's depth range)"));
+  }
   if (growth && search.classification == Ss08Class::Penumbra && litFor(search.area))
   {
     search.classification = Ss08Class::GrowthPenumbra;
@@ -347,6 +477,33 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     (growth && search.classification == Ss08Class::GrowthPenumbra);
   search.state = !search.backProjects ? LoqState::None
     : search.budget == 0 || values.getInt("force_level") >= 0 ? LoqState::Fixed : LoqState::Smoothed;
+  if (recorder)
+  {
+    recorder->beginGroup("class");
+    if (search.classification == Ss08Class::GrowthPenumbra)
+    {
+      recorder->category("growth_class", growth
+          ? "penumbra only by the grown query (the area's own range says lit): back-projected"
+          : "lit by the area's own range, penumbra by the grown one: left lit (the over-precision artifact)",
+        cite("L583-611, Fig. 7 (over-precision)"));
+    }
+    recorder->category("class", ss08Categories[static_cast<int>(search.classification)].label,
+      cite("L154-156, Fig. 7"));
+    recorder->beginGroup("level of quality");
+    recorder->quantity("span", search.span, "texels", "ShadowLab: the search area's larger side minus one, level-0 texels");
+    recorder->quantity("search_area_texels", search.span + 1, "texels", cite("Fig. 2 b (the search area's larger side)"));
+    const int extra = values.getInt("force_level") >= 0 ? 0 : extraSlot(values);
+    recorder->quantity("extra_slot", extra, "slots",
+      "ShadowLab: microrects may take one slot more on the high side (ss08SlotRange)");
+    recorder->quantity("level_ceil_raw", search.levelCeil, "level",
+      "ShadowLab: the least level j with span - extra <= (b - 1 - extra) 2^j (at most b slots per axis at ceil(l))");
+    recorder->quantity("loq_raw", search.levelRaw, "levels",
+      values.getInt("force_level") >= 0 ? std::string("ShadowLab: force_level")
+        : fromLog2 ? cite("L352-356, L818-820 (l = log2((span - extra) / (b - 1 - extra)), the project's rule)")
+                   : cite("L352-356, L818-820 (an integer level: level 0 when span <= b - 1, the top level when b - 1 - extra <= 0)"));
+    recorder->category("loq_state", loqStateLabels[static_cast<int>(search.state)],
+      cite("L363-368, L813-817 (who the smoothing averages and where it stops)"));
+  }
   return search;
 }
 
@@ -436,6 +593,7 @@ struct Ss08Accumulator
   bool microrects = false;
   bool levelBias = true;
   std::string gapFilling;
+  ProbeRecorder* recorder = nullptr;
 
   MicroOccluder at(int level, glm::ivec2 slot) const
   {
@@ -476,10 +634,24 @@ struct Ss08Accumulator
     return occludes(level, neighbour);
   }
 
+  // The probe's record of a micro-occluder examined at `level`: a node (extent in level-0 texels, depth; a
+  // micropatch's HSM node also holds its maximum) and whether it occludes.
+  void recordOccluder(int level, glm::ivec2 slot, const MicroOccluder& occluder, bool occluding) const
+  {
+    const double maxDepth = microrects ? occluder.depth : structures.hsm->node(level, slot).y;
+    recorder->node({ microrects ? "microrect" : "micropatch", level, occluder.lo, occluder.hi, occluder.depth, maxDepth,
+      occluding ? "occludes" : "behind the receiver" });
+  }
+
   double area(int level, glm::ivec2 slot)
   {
     const MicroOccluder occluder = at(level, slot);
-    if (!occludes(level, occluder))
+    const bool occluding = occludes(level, occluder);
+    if (recorder)
+    {
+      recordOccluder(level, slot, occluder, occluding);
+    }
+    if (!occluding)
     {
       return 0.0;
     }
@@ -517,6 +689,12 @@ struct Ss08Accumulator
     }
     const glm::dvec2 extent =
       glm::max(glm::min(hi, glm::dvec2(halfSize)) - glm::max(lo, glm::dvec2(-halfSize)), glm::dvec2(0.0));
+    if (recorder)
+    {
+      // The back-projected rectangle as it lands (not clipped); its area over the light [-h, h]^2 is what counts.
+      recorder->lightPolygon({ "level " + std::to_string(level) + " micro-occluder",
+        { lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y) }, extent.x * extent.y });
+    }
     return extent.x * extent.y;
   }
 };
@@ -533,14 +711,46 @@ double blendWeight(double fraction, double band)
 } // namespace
 
 Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
-  int x, int y, double level, const ImageF* budgetImage, bool evaluateLit)
+  int x, int y, double level, const ImageF* budgetImage, bool evaluateLit, ProbeRecorder* recorder)
 {
   Ss08Sample result;
-  result.search = ss08Search(inputs, structures, values, x, y, budgetImage);
+  result.search = ss08Search(inputs, structures, values, x, y, budgetImage, recorder);
   Ss08Search& search = result.search;
   result.sample = search.lookup.sample;
+  // The buffers' values under their names (the probe sweep compares them with the GPU's at the pixel).
+  const auto recordResult = [&] {
+    if (!recorder)
+    {
+      return;
+    }
+    recorder->beginGroup("result");
+    if (search.lookup.sample.evaluated)
+    {
+      recorder->quantity("level_floor", result.levelFloor, "level", cite("L370-392 (floor(l); 0 where no back-projection)"));
+      recorder->quantity("blend_alpha", result.blendAlpha, "", cite("L370-392 (weight of ceil(l); 0 where one level)"));
+      recorder->quantity("loq_budget_violation", result.budgetViolation, "levels",
+        cite("L363-368 (levels the smoothing lowered ceil(l) below the budget's)"));
+      recorder->quantity("query_growth_texels", result.queryGrowth, "texels", cite("L583-611, Fig. 7 (query grown by)"));
+      recorder->quantity("micro_occluders", result.microOccluders, "count", cite("Table 2 (slots examined, both levels)"));
+      recorder->quantity("micro_occluders_floor", result.slotsPerAxis[0].x * result.slotsPerAxis[0].y, "count",
+        cite("L818-826 (slots floor(l) alone examines)"));
+      recorder->quantity("micro_occluders_ceil", result.slotsPerAxis[1].x * result.slotsPerAxis[1].y, "count",
+        cite("L818-826 (slots ceil(l) alone examines)"));
+      if (search.classification == Ss08Class::CutShort)
+      {
+        recorder->category("cut_short", format("the GPU's slot loop stops near ", ss08LoopCap,
+          " slots (llvmpipe's cap on loop iterations): its value and micro_occluders are partial, the twin's complete"),
+          "ShadowLab (ss08LoopCap)");
+      }
+    }
+    const int code = static_cast<int>(search.classification);
+    recordCode(*recorder, "classification", code, ss08Categories[code].label, cite("L154-156, Fig. 7"));
+    recorder->quantity("visibility", result.sample.visibility, "",
+      cite("L370-392 (V = (1 - a) V(floor l) + a V(ceil l))"));
+  };
   if (!search.lookup.sample.evaluated)
   {
+    recordResult();
     return result;
   }
   const glm::ivec2 growth = glm::max(search.area.lo - search.query.lo, search.query.hi - search.area.hi);
@@ -550,6 +760,11 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
   if (!search.backProjects && !(evaluateLit && lit))
   {
     result.sample.visibility = search.classification == Ss08Class::Umbra ? 0.0 : 1.0;
+    if (recorder)
+    {
+      recorder->quantity("loq", result.level, "levels", cite("Fig. 3 step 2 (not smoothed: no back-projection)"));
+    }
+    recordResult();
     return result;
   }
   SL_CHECK_MSG(!microrectsOn(values) || structures.microrects, "micro_occluder=microrect needs the microrects");
@@ -565,12 +780,22 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     weights[0] = 1.0;
     weights[1] = 0.0;
   }
+  if (recorder)
+  {
+    recorder->beginGroup("blend");
+    recorder->quantity("loq", level, "levels", cite("Fig. 3 step 2, L363-368 (the smoothed LOQ map at the pixel)"));
+    recorder->quantity("level_ceil", levelCeil, "level", cite("L370-392 (ceil(l))"));
+    recorder->quantity("blend_band", values.get("blend_band"), "levels", cite("L380-383 (1: always; GBP07: 0.1)"));
+    recorder->quantity("weight_floor", weights[0], "", cite("L370-392 (1 - a)"));
+    recorder->quantity("weight_ceil", weights[1], "", cite("L370-392 (a)"));
+  }
   Ss08Accumulator accumulator{ values, structures, search, result };
   accumulator.receiverXy = (search.geometry.windowMin + search.lookup.sm.uvTexels * search.geometry.texelTangent) * search.geometry.d;
   accumulator.halfSize = 0.5 * search.geometry.lightSize;
   accumulator.microrects = microrectsOn(values);
   accumulator.levelBias = values.choice("level_bias") == "on";
   accumulator.gapFilling = values.choice("gap_filling");
+  accumulator.recorder = recorder;
   const double lightArea = 4.0 * accumulator.halfSize * accumulator.halfSize;
   double visibility = 0.0;
   for (int k = 0; k < 2; ++k)
@@ -581,6 +806,18 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     {
       continue;
     }
+    if (recorder)
+    {
+      recorder->beginGroup("level " + std::to_string(levels[k]) + (k == 0 ? " (floor)" : " (ceil)"));
+      recorder->quantity("slot_lo", glm::dvec2(slots.lo), "level-j texels", cite("L818-820 (first slot examined)"));
+      recorder->quantity("slot_hi", glm::dvec2(slots.hi), "level-j texels", cite("L818-820 (last slot examined)"));
+      recorder->quantity("slots_per_axis", glm::dvec2(result.slotsPerAxis[k]), "slots",
+        cite("L818-820 (at most b at ceil(l), 2b - 1 at floor(l))"));
+      recorder->quantity("receiver_light_xy", accumulator.receiverXy, "world units",
+        "ShadowLab: the receiver in light coordinates (light view x, y at its depth)");
+      recorder->quantity("micro_occluder_bias", accumulator.levelBias ? search.bias * static_cast<double>(1 << levels[k]) : search.bias,
+        "linear depth", "ShadowLab (level_bias: the depth bias times 2^j; 001's future work L889-891)");
+    }
     double area = 0.0;
     for (int j = slots.lo.y; j <= slots.hi.y; ++j)
     {
@@ -590,14 +827,67 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
         ++result.microOccluders;
       }
     }
-    visibility += weights[k] * std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+    const double levelVisibility = std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+    visibility += weights[k] * levelVisibility;
+    if (recorder)
+    {
+      recorder->quantity("occluded_area", area, "world units^2",
+        cite("L127-138 (back-projected micro-occluders' areas over the light, accumulated: overlaps count twice)"));
+      recorder->quantity("light_area", lightArea, "world units^2", "scene (square light)");
+      recorder->quantity("level_visibility", levelVisibility, "", cite("L127-138 (1 - occluded area / light area, clamped)"));
+    }
   }
   result.sample.visibility = visibility;
   if (result.microOccluders > ss08LoopCap)
   {
     search.classification = Ss08Class::CutShort;
   }
+  recordResult();
   return result;
+}
+
+Ss08Structures Ss08Twin::structures() const
+{
+  Ss08Structures result;
+  result.hsm = &hsm;
+  result.microrects = microrects ? &*microrects : nullptr;
+  return result;
+}
+
+Ss08Twin ss08TwinOf(const FrameResult& frame, const Scene& scene, int lightIndex)
+{
+  Ss08Twin twin;
+  twin.inputs = shadowMapInputsOf(frame, scene, lightIndex);
+  twin.hsm = HierarchicalShadowMap::build(twin.inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
+  if (microrectsOn(frame.parameters))
+  {
+    twin.microrects = Microrects::build(twin.inputs.shadowMapLinear);
+  }
+  if (frame.parameters.choice("budget_map") == "image")
+  {
+    twin.budgetImage = ss08BudgetImage(frame.parameters, frame.resolution.x, frame.resolution.y);
+  }
+  return twin;
+}
+
+double ss08SmoothedLevelAt(const Ss08Twin& twin, const ParameterValues& values, const ImageF& cameraDepth, int x, int y)
+{
+  const glm::ivec2 lo = glm::max(glm::ivec2(x, y) - ss08SmoothingRadius, glm::ivec2(0));
+  const glm::ivec2 hi = glm::min(glm::ivec2(x, y) + ss08SmoothingRadius, glm::ivec2(cameraDepth.width, cameraDepth.height) - 1);
+  const glm::ivec2 extent = hi - lo + 1;
+  ImageF rawAndState(extent.x, extent.y, 2);
+  ImageF depth(extent.x, extent.y, 1);
+  for (int j = 0; j < extent.y; ++j)
+  {
+    for (int i = 0; i < extent.x; ++i)
+    {
+      const Ss08Search search = ss08Search(twin.inputs, twin.structures(), values, lo.x + i, lo.y + j, twin.budgets());
+      rawAndState.at(i, j, 0) = static_cast<float>(search.levelRaw);
+      rawAndState.at(i, j, 1) = static_cast<float>(search.state);
+      depth.at(i, j) = cameraDepth.at(lo.x + i, lo.y + j);
+    }
+  }
+  return ss08SmoothLoq(rawAndState, depth, values).at(x - lo.x, y - lo.y, 0);
 }
 
 } // namespace sl

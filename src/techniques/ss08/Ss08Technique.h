@@ -39,17 +39,21 @@
 #pragma once
 
 #include "core/Image.h"
+#include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
 #include "lightspace/HierarchicalShadowMap.h"
+#include "lightspace/Microrects.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
 
 #include <glm/glm.hpp>
 
+#include <optional>
+
 namespace sl
 {
 
-struct Microrects;
+struct FrameResult; // frame/FrameResult.h
 
 TechniqueDescriptor ss08Technique();
 
@@ -113,8 +117,10 @@ int ss08PixelBudget(const ParameterValues& values, int x, int y, int imageWidth,
 // a value above the `budget` range.
 ImageF ss08BudgetImage(const ParameterValues& values, int width, int height);
 
+// `recorder` (optional, `shadowlab probe`): the budget, each refinement's search area and depth-range query
+// (Fig. 2 b, Fig. 7), the lit / umbra / penumbra decision and its class, the span and the level rule's l_raw.
 Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
-  int x, int y, const ImageF* budgetImage = nullptr);
+  int x, int y, const ImageF* budgetImage = nullptr, ProbeRecorder* recorder = nullptr);
 
 // The slots (level-j texels) examined at `level` for the search area [lo, hi], inclusive per axis.
 TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area);
@@ -138,8 +144,35 @@ struct Ss08Sample
 };
 // `evaluateLit`: back-project pixels the search classified lit as well, at level `level` (the over-precision
 // test: with growth a lit pixel's micro-occluders hide nothing; the GPU never evaluates them).
+// `recorder` (optional, `shadowlab probe`): the search (ss08Search), the level l used, floor / ceil and the blend
+// weight, then per examined level every micro-occluder (a ProbeNode of structure "micropatch" or "microrect": its
+// level, extent in level-0 texels, depth, whether it occludes) and each occluding one's back-projection onto the
+// light (a ProbeLightPolygon in light coordinates, role "level <j> micro-occluder", signedArea = its area clipped
+// to the light), the level's occluded area and visibility, and the buffers' values under their names.
 Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
-  int x, int y, double level, const ImageF* budgetImage = nullptr, bool evaluateLit = false);
+  int x, int y, double level, const ImageF* budgetImage = nullptr, bool evaluateLit = false,
+  ProbeRecorder* recorder = nullptr);
+
+// The twin's inputs for a rendered frame (the tests and the probe): the read-back shadow map, the min-max structure
+// `hsm` names and, with micro_occluder=microrect, the microrects, both built on the CPU from the shadow map (the
+// GPU's equal them bit for bit: LightSpaceStructureGpuTest, MicrorectGpuTest), and the budget image with
+// budget_map=image. `scene` must outlive it (ShadowMapInputs points to its light).
+struct Ss08Twin
+{
+  ShadowMapInputs inputs;
+  HierarchicalShadowMap hsm;
+  std::optional<Microrects> microrects;
+  std::optional<ImageF> budgetImage;
+
+  Ss08Structures structures() const;
+  const ImageF* budgets() const { return budgetImage ? &*budgetImage : nullptr; }
+};
+Ss08Twin ss08TwinOf(const FrameResult& frame, const Scene& scene, int lightIndex = 0);
+
+// The twin's own passes 2-3 at pixel (x, y): ss08SmoothLoq over the pixel's 11 x 11 neighbourhood of ss08Search's
+// raw levels and LOQ states, with the frame's camera depth `cameraDepth`. It equals the whole-image smoothing at
+// (x, y): each separable run reaches at most ss08SmoothingRadius pixels along its axis.
+double ss08SmoothedLevelAt(const Ss08Twin& twin, const ParameterValues& values, const ImageF& cameraDepth, int x, int y);
 
 // llvmpipe's cap on the loop iterations of one invocation (the twin's CutShort rule: more slots than this). The
 // slot loop costs one iteration a slot (its helpers have no loops and no early returns: with them llvmpipe cut
