@@ -45,6 +45,11 @@ void ProbeRecorder::category(const std::string& name, const std::string& label, 
   record_.quantities.push_back({ group_, name, {}, "", source, label });
 }
 
+void ProbeRecorder::category(const std::string& name, int code, const std::string& label, const std::string& source)
+{
+  record_.quantities.push_back({ group_, name, { static_cast<double>(code) }, "code", source, label });
+}
+
 void ProbeRecorder::texel(ProbeTexel texel)
 {
   if (record_.texels.size() >= kMaxTexels)

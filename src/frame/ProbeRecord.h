@@ -126,6 +126,9 @@ public:
   void quantity(const std::string& name, const glm::dvec2& value, const std::string& unit, const std::string& source);
   void quantity(const std::string& name, const glm::dvec3& value, const std::string& unit, const std::string& source);
   void category(const std::string& name, const std::string& label, const std::string& source);
+  // A categorical value a buffer publishes as a code (e.g. `classification`): the code as the value (compared with
+  // the buffer), the label as text.
+  void category(const std::string& name, int code, const std::string& label, const std::string& source);
 
   void texel(ProbeTexel texel);
   void node(ProbeNode node);
