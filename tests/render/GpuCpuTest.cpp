@@ -15,7 +15,9 @@
 //  - texel_ratio: 1e-3 relative (float evaluation of survey Eq. 2); depth_bias: 1e-3 relative (tan(theta)
 //    amplifies float error like eps / cos^2(theta) at grazing receivers).
 #include "support/TestSupport.h"
+#include "frame/ProbeRecord.h"
 #include "lightspace/LightView.h"
+#include "techniques/Registry.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/hard/HardTechnique.h"
 #include "techniques/pcf/PcfTechnique.h"
@@ -263,6 +265,103 @@ TEST(GpuCpuFocus, GpuReductionFitsTheSameLightViewAsTheCpu)
       {
         EXPECT_NEAR(gpu.viewFromWorld[column][row], cpu.viewFromWorld[column][row], 1e-6) << dataset;
       }
+    }
+  }
+}
+
+// One lit, one penumbra and one umbra pixel whose twin decisions are unambiguous, found by the twin.
+std::vector<glm::ivec2> litPenumbraUmbra(const FrameResult& frame, const Reference& reference, const ShadowMapInputs& inputs)
+{
+  std::vector<glm::ivec2> found(3, glm::ivec2(-1));
+  for (int y = 0; y < frame.resolution.y; ++y)
+  {
+    for (int x = 0; x < frame.resolution.x; ++x)
+    {
+      const ReferenceSample sample = reference(inputs, x, y);
+      if (!sample.evaluated || isAmbiguous(sample))
+      {
+        continue;
+      }
+      const int kind = sample.visibility == 1.0 ? 0 : sample.visibility == 0.0 ? 2 : 1;
+      // The middle of the scan for lit pixels (not a corner of the ground), the first of the others.
+      if (found[kind].x < 0 || (kind == 0 && y <= frame.resolution.y / 2))
+      {
+        found[kind] = { x, y };
+      }
+    }
+  }
+  return found;
+}
+
+// The probe of pcf (TechniqueDescriptor::probe) records every texel it compared with its share of the result:
+// the occluding texels' weights sum to 1 - visibility, there are as many comparisons as the GPU's `taps`, and the
+// recorded kernel and bias are the GPU's buffers.
+TEST(GpuCpuProbe, PcfRecordsEveryComparisonWithItsWeight)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  for (const std::vector<std::string>& settings :
+    { std::vector<std::string>{ "shadow_map_size=512", "kernel_texels=5" },
+      std::vector<std::string>{ "shadow_map_size=512", "kernel_texels=7", "pattern=poisson", "poisson_samples=12" },
+      std::vector<std::string>{ "shadow_map_size=512", "kernel_texels=3", "filter=hardware_bilinear" } })
+  {
+    const FrameResult frame = test::renderDataset(scene, "pcf", 96, 80, settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const std::vector<glm::ivec2> pixels = litPenumbraUmbra(
+      frame, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); }, inputs);
+    for (const glm::ivec2 pixel : pixels)
+    {
+      const std::string label = format(settings.back(), " pixel ", pixel.x, ",", pixel.y);
+      ASSERT_GE(pixel.x, 0) << settings.back() << ": no lit, penumbra or umbra pixel";
+      ProbeRecorder recorder;
+      const ProbeOutcome outcome = findTechnique("pcf").probe({ &frame, &scene, 0 }, pixel, recorder);
+      const ProbeRecord& record = recorder.record();
+      ASSERT_TRUE(outcome.evaluated) << label;
+      EXPECT_TRUE(outcome.ambiguity.empty()) << label << ": " << outcome.ambiguity;
+      EXPECT_EQ(outcome.visibility, pcfReference(inputs, frame.parameters, pixel.x, pixel.y).visibility)
+        << label << ": the recorder changed the twin's result";
+      const double gpu = frame.find("visibility")->image.at(pixel.x, pixel.y);
+      EXPECT_LE(std::abs(outcome.visibility - gpu), outcome.tolerance) << label << ": GPU " << gpu;
+      double occluding = 0.0;
+      double total = 0.0;
+      for (const ProbeTexel& texel : record.texels)
+      {
+        total += texel.weight;
+        occluding += texel.occluding ? texel.weight : 0.0;
+        EXPECT_EQ(texel.occluding, !(texel.comparedDepth <= texel.storedDepth)) << label;
+      }
+      EXPECT_NEAR(total, 1.0, 1e-12) << label;
+      EXPECT_NEAR(occluding, 1.0 - outcome.visibility, 1e-12) << label;
+      const auto quantity = [&](const char* name) {
+        const ProbeQuantity* found = record.find(name);
+        EXPECT_NE(found, nullptr) << label << ": " << name << " not recorded";
+        return found != nullptr ? found->value.at(0) : -1.0;
+      };
+      EXPECT_EQ(quantity("taps"), frame.find("taps")->image.at(pixel.x, pixel.y)) << label;
+      EXPECT_EQ(static_cast<double>(record.texels.size()), quantity("taps")) << label;
+      EXPECT_EQ(quantity("kernel_texels"), frame.find("kernel_texels")->image.at(pixel.x, pixel.y)) << label;
+      const double bias = frame.find("depth_bias")->image.at(pixel.x, pixel.y);
+      EXPECT_NEAR(quantity("depth_bias"), bias, 1e-3 * bias + 1e-9) << label;
+      // Every texel read lies in the recorded kernel (the bilinear footprint included).
+      ASSERT_EQ(record.kernels.size(), 1u) << label;
+      const ProbeKernel& kernel = record.kernels.front();
+      EXPECT_NEAR(kernel.hi.x - kernel.lo.x, quantity("kernel_texels"), 1e-12) << label;
+      for (const ProbeTexel& texel : record.texels)
+      {
+        EXPECT_GE(texel.texel.x, std::floor(kernel.lo.x)) << label;
+        EXPECT_LE(texel.texel.x, std::floor(kernel.hi.x)) << label;
+        EXPECT_GE(texel.texel.y, std::floor(kernel.lo.y)) << label;
+        EXPECT_LE(texel.texel.y, std::floor(kernel.hi.y)) << label;
+      }
+      // The steps in the order the twin takes them.
+      std::vector<std::string> groups;
+      for (const ProbeQuantity& q : record.quantities)
+      {
+        if (groups.empty() || groups.back() != q.group)
+        {
+          groups.push_back(q.group);
+        }
+      }
+      EXPECT_EQ(groups, (std::vector<std::string>{ "receiver", "kernel", "result" })) << label;
     }
   }
 }

@@ -2,6 +2,7 @@
 
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/pcf/vtkSLPcfPass.h"
 
@@ -34,6 +35,15 @@ TechniqueDescriptor pcfTechnique()
   };
   descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPcfPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const ParameterValues& values = context.frame->parameters;
+    const ReferenceSample sample = pcfReference(inputs, values, pixel.x, pixel.y, &recorder);
+    // GpuCpuTest's tolerances on unambiguous pixels: nearest taps are a sum of 0/1 divided by the count (1e-5);
+    // the hardware's bilinear weights have the texture unit's sub-texel precision (8 bits on llvmpipe: 2^-7).
+    const bool hardware = values.choice("filter") == "hardware_bilinear";
+    return probeOutcome(sample, hardware ? 1.0 / 128.0 : 1e-5, "pcfReference (pcf/PcfTechnique.h), double precision");
+  };
   return descriptor;
 }
 
@@ -41,9 +51,10 @@ namespace
 {
 
 // GL's linear filtering of comparisons (GL 4.5 §8.14.2, §8.23.1): sample at uv*size - 0.5, weights from
-// the fraction, each of the 2x2 texels (clamped to the edge) compared with ref <= D.
+// the fraction, each of the 2x2 texels (clamped to the edge) compared with ref <= D. `tapWeight` (1 / taps)
+// scales the texels' recorded weights to their share of the pixel's visibility.
 double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double referenceWindowDepth,
-  ReferenceSample& sample)
+  ReferenceSample& sample, ProbeRecorder* recorder, double tapWeight)
 {
   const int size = inputs.shadowMapWindow.width;
   const glm::dvec2 shifted = uvTexels - 0.5;
@@ -60,7 +71,13 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
       const double stored = inputs.shadowMapWindow.at(i, j);
       sample.noteDepthComparison(referenceWindowDepth, stored);
       const double texelWeight = (di ? weight.x : 1.0 - weight.x) * (dj ? weight.y : 1.0 - weight.y);
-      result += texelWeight * (referenceWindowDepth <= stored ? 1.0 : 0.0);
+      const bool lit = referenceWindowDepth <= stored;
+      result += texelWeight * (lit ? 1.0 : 0.0);
+      if (recorder)
+      {
+        // Window depths: the hardware compares in the depth buffer's units.
+        recorder->texel({ { i, j }, "bilinear tap (window depth)", stored, referenceWindowDepth, !lit, texelWeight * tapWeight });
+      }
     }
   }
   return result;
@@ -68,25 +85,45 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
 
 } // namespace
 
-ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y)
+ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder)
 {
-  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
   ReferenceSample& sample = lookup.sample;
   if (!sample.evaluated)
   {
     return sample;
   }
   const bool hardware = values.choice("filter") == "hardware_bilinear";
+  const bool grid = values.choice("pattern") == "grid";
+  const int kernelTexels = values.getInt("kernel_texels");
+  const int tapCount = grid ? kernelTexels * kernelTexels : values.getInt("poisson_samples");
   const double referenceWindowDepth = inputs.lightView.windowDepth(lookup.comparisonDepth);
+  if (recorder)
+  {
+    // The footprint: grid taps one texel apart centred on the receiver (or a disk of that diameter), each
+    // reading the texel that holds it (nearest) or the 2x2 texels around it (bilinear: one texel more).
+    const double footprint = kernelTexels + (hardware ? 1.0 : 0.0);
+    recorder->beginGroup("kernel");
+    recorder->quantity("kernel_texels", footprint, "texels", "Reeves et al. 1987 §3 (filter region); survey §6, Fig. 23");
+    recorder->quantity("kernel_world_size", footprint * inputs.lightView.texelWorldSize(lookup.sm.depthLin),
+      "world units", "ShadowLab: kernel_texels x one texel at the receiver's depth");
+    recorder->quantity("taps", static_cast<double>(hardware ? 4 * tapCount : tapCount), "count",
+      "Reeves et al. 1987 §3 (one depth comparison per sample; bilinear: 2x2 per tap)");
+    recorder->category("pattern", grid ? "grid" : "rotated poisson disk", "ShadowLab (pattern); survey §6");
+    recorder->category("filter", hardware ? "hardware_bilinear" : "nearest", "survey Fig. 23 (GL_LINEAR comparison)");
+    recorder->kernel({ grid ? "pcf grid" : "pcf poisson disk (bounding square)", lookup.sm.uvTexels - 0.5 * footprint,
+      lookup.sm.uvTexels + 0.5 * footprint, "", "Reeves et al. 1987 §3" });
+    recorder->beginGroup("filter taps");
+  }
+  const double tapWeight = 1.0 / tapCount;
   const auto tap = [&](const glm::dvec2& offset) {
     const glm::dvec2 uv = lookup.sm.uvTexels + offset;
-    return hardware ? bilinearCompare(inputs, uv, referenceWindowDepth, sample)
-                    : nearestTexelTest(inputs, uv, lookup.comparisonDepth, sample);
+    return hardware ? bilinearCompare(inputs, uv, referenceWindowDepth, sample, recorder, tapWeight)
+                    : nearestTexelTest(inputs, uv, lookup.comparisonDepth, sample, recorder, "filter tap", tapWeight);
   };
-  const int kernelTexels = values.getInt("kernel_texels");
   double litSum = 0.0;
-  int tapCount = 0;
-  if (values.choice("pattern") == "grid")
+  if (grid)
   {
     const double firstOffset = -0.5 * (kernelTexels - 1);
     for (int j = 0; j < kernelTexels; ++j)
@@ -96,11 +133,9 @@ ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValue
         litSum += tap({ firstOffset + i, firstOffset + j });
       }
     }
-    tapCount = kernelTexels * kernelTexels;
   }
   else
   {
-    tapCount = values.getInt("poisson_samples");
     const glm::dmat2 rotation = pixelRotation(x, y);
     const double radiusTexels = 0.5 * kernelTexels;
     for (int k = 0; k < tapCount; ++k)
@@ -109,6 +144,12 @@ ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValue
     }
   }
   sample.visibility = litSum / tapCount;
+  if (recorder)
+  {
+    recorder->beginGroup("result");
+    recorder->quantity("lit_taps", litSum, "count", "Reeves et al. 1987 §3 (comparisons passed; bilinear: weighted)");
+    recorder->quantity("visibility", sample.visibility, "", "Reeves et al. 1987 §3: lit taps / taps");
+  }
   return sample;
 }
 

@@ -25,7 +25,11 @@ namespace sl
 
 TechniqueDescriptor pcfTechnique();
 
-// CPU reference (double precision) of PcfVisibility.glsl at pixel (x, y).
-ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+// CPU reference (double precision) of PcfVisibility.glsl at pixel (x, y). `recorder` (optional, `shadowlab
+// probe`): the receiver, the kernel (texels and world units, as a ProbeKernel), every texel compared with its
+// weight in the result (nearest: 1 / taps per tap; hardware_bilinear: the 2x2 texels of each tap with their
+// bilinear weights / taps), so the occluding texels' weights sum to 1 - visibility.
+ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder = nullptr);
 
 } // namespace sl
