@@ -3,12 +3,16 @@
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
+#include "frame/ProbeRecord.h"
+#include "techniques/Registry.h"
 #include "techniques/pcss/PcssTechnique.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 namespace sl
 {
@@ -100,6 +104,109 @@ INSTANTIATE_TEST_SUITE_P(Datasets, PcssGpuCpu, ::testing::Values("bunny", "stack
     std::replace(name.begin(), name.end(), '-', '_');
     return name;
   });
+
+// The probe (TechniqueDescriptor::probe) records the kernels and averages the GPU computed at the pixel: the
+// blocker search's taps and the blockers' mean are avg_blocker_depth, the penumbra kernel w_p is the GPU's
+// penumbra_kernel_texels, the filter's occluding taps weigh 1 - visibility; on a lit (no blocker), a penumbra
+// and an umbra pixel.
+TEST(Pcss, ProbeRecordsTheKernelsAndTapsTheGpuUsed)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = test::renderDataset(scene, "pcss", 96, 80, { "shadow_map_size=512" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  std::vector<glm::ivec2> pixels(3, glm::ivec2(-1)); // lit without blockers, penumbra, umbra
+  for (int y = 0; y < 80; ++y)
+  {
+    for (int x = 0; x < 96; ++x)
+    {
+      const PcssSample cpu = pcssReference(inputs, frame.parameters, x, y);
+      if (!cpu.sample.evaluated || cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 ||
+        cpu.sample.reachMargin < 1e-5 || cpu.sample.texelEdgeMargin < 1e-4)
+      {
+        continue;
+      }
+      const int kind = !cpu.foundBlockers ? 0 : cpu.sample.visibility == 0.0 ? 2 : cpu.sample.visibility < 1.0 ? 1 : -1;
+      if (kind >= 0 && pixels[kind].x < 0)
+      {
+        pixels[kind] = { x, y };
+      }
+    }
+  }
+  const auto gpu = [&](const char* buffer, glm::ivec2 pixel) {
+    return static_cast<double>(frame.find(buffer)->image.at(pixel.x, pixel.y));
+  };
+  for (int kind = 0; kind < 3; ++kind)
+  {
+    const glm::ivec2 pixel = pixels[kind];
+    ASSERT_GE(pixel.x, 0) << "no pixel of kind " << kind;
+    const std::string label = format("pixel ", pixel.x, ",", pixel.y);
+    ProbeRecorder recorder;
+    const ProbeOutcome outcome = findTechnique("pcss").probe({ &frame, &scene, 0 }, pixel, recorder);
+    const ProbeRecord& record = recorder.record();
+    ASSERT_TRUE(outcome.evaluated) << label;
+    EXPECT_TRUE(outcome.ambiguity.empty()) << label << ": " << outcome.ambiguity;
+    EXPECT_EQ(outcome.visibility, pcssReference(inputs, frame.parameters, pixel.x, pixel.y).sample.visibility) << label;
+    EXPECT_LE(std::abs(outcome.visibility - gpu("visibility", pixel)), outcome.tolerance) << label;
+    const auto quantity = [&](const char* name) {
+      const ProbeQuantity* found = record.find(name);
+      EXPECT_NE(found, nullptr) << label << ": " << name << " not recorded";
+      return found != nullptr ? found->value.at(0) : -1.0;
+    };
+    const auto kernel = [&](const char* role) {
+      const auto found = std::find_if(record.kernels.begin(), record.kernels.end(), [&](const ProbeKernel& k) { return k.role == role; });
+      return found != record.kernels.end() ? std::optional<ProbeKernel>(*found) : std::nullopt;
+    };
+    // Blocker search: its kernel is the GPU's w_i, every tap recorded, the blockers' mean depth the GPU's.
+    EXPECT_NEAR(quantity("blocker_kernel_texels"), gpu("blocker_kernel_texels", pixel), 1e-4 * gpu("blocker_kernel_texels", pixel)) << label;
+    const std::optional<ProbeKernel> search = kernel("blocker search");
+    ASSERT_TRUE(search.has_value()) << label;
+    EXPECT_NEAR(std::max(search->hi.x - search->lo.x, search->hi.y - search->lo.y), quantity("blocker_kernel_texels"), 1e-9) << label;
+    int searchTaps = 0;
+    int blockers = 0;
+    double blockerSum = 0.0;
+    double occludingFilterWeight = 0.0;
+    int filterTaps = 0;
+    for (const ProbeTexel& texel : record.texels)
+    {
+      EXPECT_EQ(texel.occluding, texel.role == "blocker search" ? texel.storedDepth < texel.comparedDepth
+                                                                : !(texel.comparedDepth <= texel.storedDepth)) << label;
+      if (texel.role == "blocker search")
+      {
+        ++searchTaps;
+        blockers += texel.occluding ? 1 : 0;
+        blockerSum += texel.occluding ? texel.storedDepth : 0.0;
+        EXPECT_GE(texel.texel.x + 1.0, search->lo.x) << label;
+        EXPECT_LE(texel.texel.x, search->hi.x) << label;
+      }
+      else
+      {
+        ASSERT_EQ(texel.role, "filter tap") << label;
+        ++filterTaps;
+        occludingFilterWeight += texel.occluding ? texel.weight : 0.0;
+      }
+    }
+    EXPECT_EQ(searchTaps, gpu("blocker_samples", pixel)) << label;
+    EXPECT_EQ(searchTaps, quantity("blocker_samples")) << label;
+    EXPECT_EQ(blockers, quantity("blockers_found")) << label;
+    if (kind == 0)
+    {
+      EXPECT_EQ(blockers, 0) << label;
+      EXPECT_EQ(filterTaps, 0) << label << ": no blocker, no filter step";
+      EXPECT_EQ(outcome.visibility, 1.0) << label;
+      continue;
+    }
+    // Penumbra estimate and filter: w_p is the GPU's kernel, the filter's taps its pcf_samples.
+    EXPECT_NEAR(blockerSum / blockers, quantity("avg_blocker_depth"), 1e-12 * blockerSum) << label;
+    EXPECT_NEAR(quantity("avg_blocker_depth"), gpu("avg_blocker_depth", pixel), 1e-4 * gpu("avg_blocker_depth", pixel)) << label;
+    EXPECT_NEAR(quantity("penumbra_width"), gpu("penumbra_width", pixel), 2e-3 * gpu("penumbra_width", pixel) + 1e-6) << label;
+    const std::optional<ProbeKernel> penumbra = kernel("penumbra");
+    ASSERT_TRUE(penumbra.has_value()) << label;
+    const double penumbraTexels = std::max(penumbra->hi.x - penumbra->lo.x, penumbra->hi.y - penumbra->lo.y);
+    EXPECT_NEAR(penumbraTexels, gpu("penumbra_kernel_texels", pixel), 2e-3 * penumbraTexels + 1e-3) << label;
+    EXPECT_EQ(filterTaps, gpu("pcf_samples", pixel)) << label;
+    EXPECT_NEAR(occludingFilterWeight, 1.0 - outcome.visibility, 1e-12) << label;
+  }
+}
 
 TEST(Pcss, ExactForParallelPlanarOccludersUpToDiscretisation)
 {

@@ -2,6 +2,7 @@
 
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
+#include "techniques/ProbeSupport.h"
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
@@ -37,6 +38,20 @@ TechniqueDescriptor pcssTechnique()
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPcssPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const PcssSample sample = pcssReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    // PcssTest: <= 1e-5 on unambiguous pixels (a sum of 0/1 taps divided by the count); a grid kernel's edge
+    // within 1e-4 texel of a texel centre may gain or lose a row of taps in float.
+    ProbeOutcome outcome =
+      probeOutcome(sample.sample, 1e-5, "pcssReference (pcss/PcssTechnique.h), double precision");
+    if (sample.sample.evaluated)
+    {
+      noteAmbiguity(outcome.ambiguity, "grid kernel edge from a texel centre (texels)", sample.kernelEdgeMargin,
+        probeTexelEdgeAmbiguity);
+    }
+    return outcome;
+  };
   return descriptor;
 }
 
@@ -85,18 +100,22 @@ Kernel kernelGrid(const glm::dvec2& uv, const glm::dvec2& halfTexels, int maxTap
 
 } // namespace
 
-PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y)
+PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder, bool recordFilter)
 {
   PcssSample result;
-  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
   result.sample = lookup.sample;
   if (!lookup.sample.evaluated)
   {
     return result;
   }
-  const SoftShadowGeometry geometry =
-    softShadowGeometry(inputs, lookup, values.choice("receiver_plane_bias") == "on", x, y);
+  const bool receiverPlane = values.choice("receiver_plane_bias") == "on";
+  const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlane, x, y);
   const int size = inputs.shadowMapLinear.width;
+  const auto clampedTexel = [&](const glm::dvec2& uv) {
+    return glm::clamp(glm::ivec2(glm::floor(uv)), glm::ivec2(0), glm::ivec2(size - 1));
+  };
   const auto texel = [&](int i, int j) {
     return static_cast<double>(inputs.shadowMapLinear.at(std::clamp(i, 0, size - 1), std::clamp(j, 0, size - 1)));
   };
@@ -129,23 +148,45 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
       }
     }
   };
+  const bool gridSearch = values.choice("blocker_search") == "grid";
   // 1. Blocker search.
   const glm::dvec2 searchHalf = geometry.kernelHalfTexels(geometry.nearDepth);
   result.blockerKernelTexels = 2.0 * std::max(searchHalf.x, searchHalf.y);
+  if (recorder)
+  {
+    recorder->category("receiver_plane_bias", receiverPlane ? "on: each tap compares against the receiver's tangent plane" : "off: one comparison depth per pixel",
+      "Isidoro 2006 (receiver plane depth bias)");
+    recorder->beginGroup("blocker search");
+    recorder->quantity("light_size", geometry.lightSize, "world units", "Fernando 2005 (w_light; 0 for point and spot lights)");
+    recorder->quantity("search_plane_depth", geometry.nearDepth, "linear depth",
+      "Alg. 1 L7, VSSM (Yang et al. 2010): the map's near plane, at the nearest caster");
+    recorder->quantity("blocker_kernel_texels", result.blockerKernelTexels, "texels",
+      "Alg. 1 L7, VSSM (Yang et al. 2010): w_i = w_light (d - z_near) / z_near, in texels");
+    recorder->quantity("blocker_kernel_world_size", geometry.lightSize * (d - geometry.nearDepth) / d, "world units",
+      "Alg. 1 L7, VSSM (Yang et al. 2010): w_i on the search plane, w_light (d - z_near) / d");
+    recorder->kernel({ "blocker search", uv - searchHalf, uv + searchHalf, gridSearch ? "grid" : "poisson",
+      "Alg. 1 L7, VSSM (Yang et al. 2010); Fernando 2005 step 1" });
+  }
   double blockerSum = 0.0;
   int blockers = 0;
+  int searchTaps = 0;
   const auto visitBlocker = [&](const glm::dvec2& position) {
     const double z = stored(position);
     const double compared = tapComparison(position);
     result.sample.noteDepthComparison(compared, z);
     noteEdges(position, compared, true);
+    ++searchTaps;
     if (z < compared)
     {
       blockerSum += z;
       ++blockers;
     }
+    if (recorder)
+    {
+      recorder->texel({ clampedTexel(position), "blocker search", z, compared, z < compared, 1.0 });
+    }
   };
-  if (values.choice("blocker_search") == "grid")
+  if (gridSearch)
   {
     const Kernel search = kernelGrid(uv, searchHalf, maxTaps, result.kernelEdgeMargin);
     for (int j = 0; j < search.count.y; ++j)
@@ -164,9 +205,19 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
     }
   }
   result.uvTexels = uv;
+  if (recorder)
+  {
+    recorder->quantity("blocker_samples", searchTaps, "count", "Fernando 2005 step 1 (depth samples read in w_i)");
+    recorder->quantity("blockers_found", blockers, "count", "Fernando 2005 step 1 (samples with z < d - bias)");
+  }
   if (blockers == 0)
   {
     result.sample.visibility = 1.0;
+    if (recorder)
+    {
+      recorder->beginGroup("result");
+      recorder->quantity("visibility", 1.0, "", "Fernando 2005 step 1: no blocker in w_i, fully lit");
+    }
     return result;
   }
   result.foundBlockers = true;
@@ -177,8 +228,30 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   const glm::dvec2 filterHalf = geometry.kernelHalfTexels(result.averageBlockerDepth);
   result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
   result.filterHalfTexels = filterHalf;
+  if (recorder)
+  {
+    recorder->beginGroup("penumbra estimate");
+    recorder->quantity("avg_blocker_depth", result.averageBlockerDepth, "linear depth",
+      "Fernando 2005 step 1 (average of the blockers' depths, z_avg)");
+    recorder->quantity("penumbra_width", result.penumbraWidth, "world units",
+      "Fernando 2005 step 2 (penumbra estimate): w_penumbra = (d_receiver - d_blocker) w_light / d_blocker");
+    recorder->quantity("penumbra_kernel_texels", result.penumbraKernelTexels, "texels",
+      "Alg. 1 L16, VSSM (Yang et al. 2010): w_p = w_light (d - z_avg) / z_avg, in texels");
+    recorder->quantity("penumbra_kernel_world_size", geometry.lightSize * (d - result.averageBlockerDepth) / d,
+      "world units", "Alg. 1 L16, VSSM (Yang et al. 2010): w_p on the plane at z_avg, w_light (d - z_avg) / d");
+    recorder->kernel({ "penumbra", uv - filterHalf, uv + filterHalf, "w_p",
+      "Alg. 1 L16, VSSM (Yang et al. 2010); Fernando 2005 step 2" });
+  }
 
   // 3. PCF.
+  const bool gridFilter = !values.has("filter") || values.choice("filter") == "grid";
+  const Kernel kernel = gridFilter ? kernelGrid(uv, filterHalf, maxTaps, result.kernelEdgeMargin) : Kernel{};
+  const int filterTaps = gridFilter ? kernel.count.x * kernel.count.y : poissonSamples;
+  ProbeRecorder* filterRecorder = recordFilter ? recorder : nullptr;
+  if (filterRecorder)
+  {
+    filterRecorder->beginGroup("filter");
+  }
   double litSum = 0.0;
   int taps = 0;
   const auto visitFilter = [&](const glm::dvec2& position) {
@@ -188,11 +261,13 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
     noteEdges(position, compared, false);
     litSum += compared <= z ? 1.0 : 0.0;
     ++taps;
+    if (filterRecorder)
+    {
+      filterRecorder->texel({ clampedTexel(position), "filter tap", z, compared, !(compared <= z), 1.0 / filterTaps });
+    }
   };
-  const bool gridFilter = !values.has("filter") || values.choice("filter") == "grid";
   if (gridFilter)
   {
-    const Kernel kernel = kernelGrid(uv, filterHalf, maxTaps, result.kernelEdgeMargin);
     for (int j = 0; j < kernel.count.y; ++j)
     {
       for (int i = 0; i < kernel.count.x; ++i)
@@ -209,6 +284,12 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
     }
   }
   result.sample.visibility = litSum / taps;
+  if (filterRecorder)
+  {
+    filterRecorder->quantity("pcf_samples", taps, "count", "Fernando 2005 step 3 (PCF comparisons over w_p)");
+    filterRecorder->beginGroup("result");
+    filterRecorder->quantity("visibility", result.sample.visibility, "", "Fernando 2005 step 3: lit taps / taps");
+  }
   return result;
 }
 

@@ -36,6 +36,12 @@ struct PcssSample
 
 // CPU reference (double precision) of PcssVisibility.glsl at pixel (x, y). Techniques built on PCSS's first
 // two steps (savsm) call it too; without a `filter` parameter the PCF step uses the grid.
-PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+// `recorder` (optional, `shadowlab probe`): the receiver; the blocker search (its kernel w_i in texels and world
+// units, every tap with its comparison, blocker_samples, the blockers found); the penumbra estimate
+// (avg_blocker_depth, penumbra_width, penumbra_kernel_texels, the kernel w_p); and, when `recordFilter`, the PCF
+// step's taps (weight 1 / taps each) and visibility. savsm records the first two steps only (its filter is
+// Chebyshev's), while the PCF step still runs so the sample's margins stay those of the whole twin.
+PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder = nullptr, bool recordFilter = true);
 
 } // namespace sl
