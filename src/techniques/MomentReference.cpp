@@ -1,7 +1,11 @@
 #include "techniques/MomentReference.h"
 
+#include "core/Error.h"
+#include "techniques/ProbeSupport.h"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sl
 {
@@ -19,23 +23,29 @@ void visitBox(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int wid
   {
     for (int i = 0; i < width; ++i)
     {
-      visit(static_cast<double>(inputs.shadowMapLinear.at(
-        std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1))));
+      const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
+      visit(static_cast<double>(inputs.shadowMapLinear.at(texel.x, texel.y)), texel);
     }
   }
 }
 
 } // namespace
 
-FilteredMoments boxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double exponent)
+FilteredMoments boxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double exponent,
+  ProbeRecorder* recorder)
 {
   FilteredMoments moments;
   const double nearDepth = inputs.lightView.nearDepth;
   const double farDepth = inputs.lightView.farDepth;
-  visitBox(inputs, uvTexels, width, [&](double z) {
+  const double weight = 1.0 / (static_cast<double>(width) * width);
+  visitBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
     moments.mean += z;
     moments.second += z * z;
     moments.exponential += std::exp(exponent * std::clamp((z - nearDepth) / (farDepth - nearDepth), 0.0, 1.0));
+    if (recorder)
+    {
+      recorder->texel({ texel, "moment box", z, std::numeric_limits<double>::quiet_NaN(), false, weight });
+    }
   });
   const double count = static_cast<double>(width) * width;
   moments.mean /= count;
@@ -44,11 +54,88 @@ FilteredMoments boxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTe
   return moments;
 }
 
-double boxPcf(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth, int width)
+double boxPcf(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth, int width,
+  ProbeRecorder* recorder)
 {
   double lit = 0.0;
-  visitBox(inputs, uvTexels, width, [&](double z) { lit += comparisonDepth <= z ? 1.0 : 0.0; });
+  const double weight = 1.0 / (static_cast<double>(width) * width);
+  visitBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
+    lit += comparisonDepth <= z ? 1.0 : 0.0;
+    if (recorder)
+    {
+      recorder->texel({ texel, "light-leak pcf", z, comparisonDepth, !(comparisonDepth <= z), weight });
+    }
+  });
   return lit / (static_cast<double>(width) * width);
+}
+
+PcfRange boxPcfRange(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth, int width,
+  double relative)
+{
+  PcfRange range;
+  const double weight = 1.0 / (static_cast<double>(width) * width);
+  visitBox(inputs, uvTexels, width, [&](double z, const glm::ivec2&) {
+    if (std::abs(comparisonDepth - z) < relative * std::max(1e-30, std::abs(z)))
+    {
+      ++range.ties;
+      range.highest += weight;
+    }
+    else if (comparisonDepth <= z)
+    {
+      range.lowest += weight;
+      range.highest += weight;
+    }
+  });
+  return range;
+}
+
+void recordLightLeak(ProbeRecorder& recorder, double value, double pcf, const PcfRange& range, const std::string& source)
+{
+  recorder.quantity("box_pcf", pcf, "", "Reeves et al. 1987: the true PCF over the same texels");
+  recorder.quantity("light_leak_tied_comparisons", range.ties, "count",
+    "ShadowLab: comparisons within float rounding (2e-6) of the compared depth, which the GPU may decide either way");
+  if (range.ties == 0)
+  {
+    recorder.quantity("light_leak", value - pcf, "", source);
+  }
+  else
+  {
+    recorder.quantity("light_leak_range", glm::dvec2(value - range.highest, value - range.lowest), "",
+      source + "; the tied comparisons decided either way");
+  }
+}
+
+void requireBlurPrefilter(const ParameterValues& values)
+{
+  if (values.has("prefilter") && values.choice("prefilter") == "mipmap")
+  {
+    throw InputError("--set prefilter=mipmap: probe replays the box blur only (the trilinear mip-map lookup has no "
+                     "CPU twin); use prefilter=blur");
+  }
+}
+
+void recordMomentBox(ProbeRecorder& recorder, const ShadowMapInputs& inputs, const ShadowLookup& lookup, int width)
+{
+  const int size = inputs.shadowMapLinear.width;
+  const glm::dvec2 center = glm::clamp(glm::floor(lookup.sm.uvTexels), glm::dvec2(0.0), glm::dvec2(size - 1));
+  const glm::dvec2 lo = center + static_cast<double>(-(width - 1) / 2);
+  recorder.beginGroup("moments");
+  recorder.quantity("kernel_texels", width, "texels", "Donnelly & Lauritzen 2006 (filter region; prefilter_texels)");
+  recorder.quantity("kernel_world_size", width * inputs.lightView.texelWorldSize(lookup.sm.depthLin), "world units",
+    "ShadowLab: kernel_texels x one texel at the receiver's depth");
+  recorder.kernel({ "moment box", lo, lo + static_cast<double>(width), "blur",
+    "Donnelly & Lauritzen 2006 (prefiltered moments: box blur centred on the receiver's texel)" });
+}
+
+void noteMomentTexelEdge(std::string& ambiguity, const glm::dvec2& uvTexels)
+{
+  const TexelWithEdges cell = texelWithEdges(uvTexels);
+  double nearest = 1e300;
+  for (const TexelEdge& edge : cell.edges)
+  {
+    nearest = std::min(nearest, edge.distance);
+  }
+  noteAmbiguity(ambiguity, "receiver from a texel edge of the moment map (texels)", nearest, probeTexelEdgeAmbiguity);
 }
 
 } // namespace sl

@@ -1,7 +1,10 @@
 // CPU mirror of the moment map (prefilter = blur) and of common/MomentLookup.glsl, in double precision.
 #pragma once
 
+#include "core/Parameters.h"
 #include "techniques/ShadowMapReference.h"
+
+#include <string>
 
 namespace sl
 {
@@ -14,8 +17,37 @@ struct FilteredMoments
 };
 
 // The box of `width` texels around the texel containing uvTexels (clamp to edge), as the blur computes it.
-FilteredMoments boxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double exponent);
-// Fraction of that box's texels passing the depth test (the light-leak reference).
-double boxPcf(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth, int width);
+// `recorder` (optional, `shadowlab probe`): the box's texels (role "moment box", read only, weight 1 / width^2).
+FilteredMoments boxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double exponent,
+  ProbeRecorder* recorder = nullptr);
+// Fraction of that box's texels passing the depth test (the light-leak reference). `recorder` (optional): each
+// texel's comparison (role "light-leak pcf", weight 1 / width^2).
+double boxPcf(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth, int width,
+  ProbeRecorder* recorder = nullptr);
+// The PCF over a set of comparisons when those within float rounding of their boundary (depths within `relative`
+// of the compared depth) go either way on the GPU: vsm and savsm compare the receiver's own depth, so a receiver
+// facing the light ties with its own texels.
+struct PcfRange
+{
+  double lowest = 0.0;  // every tie unlit
+  double highest = 0.0; // every tie lit
+  int ties = 0;
+};
+PcfRange boxPcfRange(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth, int width,
+  double relative);
+// Group "light leak" of the probes: box_pcf, light_leak_tied_comparisons, and `value` - PCF as light_leak (the
+// buffer's name) when no comparison ties, else as light_leak_range (lowest, highest): the GPU's buffer lies there.
+void recordLightLeak(ProbeRecorder& recorder, double value, double pcf, const PcfRange& range, const std::string& source);
+
+// What the moment techniques' probes (vsm, esm) share.
+// Throws InputError for prefilter = mipmap: the twins mirror the box blur only (a trilinear lookup between mip
+// levels has no twin).
+void requireBlurPrefilter(const ParameterValues& values);
+// Group "moments": kernel_texels (the buffer's name: the box width), its world size at the receiver, and the box
+// as a ProbeKernel (the texels boxMoments averages, before clamping to the map's edge).
+void recordMomentBox(ProbeRecorder& recorder, const ShadowMapInputs& inputs, const ShadowLookup& lookup, int width);
+// Notes (ProbeSupport.h noteAmbiguity) a receiver within 1e-4 texel of a texel edge: the GPU may fetch the
+// neighbouring texel of the moment map, whose box average differs.
+void noteMomentTexelEdge(std::string& ambiguity, const glm::dvec2& uvTexels);
 
 } // namespace sl

@@ -5,6 +5,7 @@
 
 #include "techniques/MomentReference.h"
 #include "techniques/MomentTechniquePass.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 
 #include <algorithm>
@@ -37,21 +38,57 @@ TechniqueDescriptor esmTechnique()
     pass->SetFragmentShaderPath("esm/EsmVisibility.glsl");
     return vtkSmartPointer<vtkSLTechniquePass>(pass);
   };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    requireBlurPrefilter(context.frame->parameters);
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const ReferenceSample sample = esmReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    // MomentTest: <= 1e-4 (the sums of exp(c z_n) are well conditioned in float).
+    ProbeOutcome outcome = probeOutcome(sample, 1e-4, "esmReference (esm/EsmTechnique.h), double precision, prefilter = blur");
+    if (sample.evaluated)
+    {
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y);
+      noteMomentTexelEdge(outcome.ambiguity, lookup.sm.uvTexels);
+    }
+    return outcome;
+  };
   return descriptor;
 }
 
-ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y)
+ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder)
 {
-  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
   if (!lookup.sample.evaluated)
   {
     return lookup.sample;
   }
   const double exponent = values.get("esm_exponent");
-  const FilteredMoments moments = boxMoments(inputs, lookup.sm.uvTexels, values.getInt("prefilter_texels"), exponent);
+  const int width = values.getInt("prefilter_texels");
+  if (recorder)
+  {
+    recordMomentBox(*recorder, inputs, lookup, width);
+  }
+  const FilteredMoments moments = boxMoments(inputs, lookup.sm.uvTexels, width, exponent, recorder);
   const LightView& view = inputs.lightView;
   const double t = (lookup.comparisonDepth - view.nearDepth) / (view.farDepth - view.nearDepth);
-  lookup.sample.visibility = std::clamp(moments.exponential * std::exp(-exponent * t), 0.0, 1.0);
+  const double unclamped = moments.exponential * std::exp(-exponent * t);
+  lookup.sample.visibility = std::clamp(unclamped, 0.0, 1.0);
+  if (recorder)
+  {
+    recorder->quantity("esm_exponent", exponent, "", "Annen et al. 2008 (c, the exponential's sharpness)");
+    recorder->quantity("exponential_moment", moments.exponential, "",
+      "Annen et al. 2008: E[exp(c z_n)] over the box, z_n = (z - near) / (far - near)");
+    recorder->beginGroup("exponential test");
+    recorder->quantity("normalized_compared_depth", t, "", "Annen et al. 2008: t_n = (d - bias - near) / (far - near)");
+    recorder->quantity("exp_minus_c_t", std::exp(-exponent * t), "", "Annen et al. 2008: exp(-c t_n)");
+    recorder->quantity("visibility_unclamped", unclamped, "", "Annen et al. 2008: E[exp(c z_n)] exp(-c t_n) (the step d <= z as exp(c (z_n - t_n)))");
+    recorder->quantity("visibility", lookup.sample.visibility, "", "Annen et al. 2008: clamped to [0, 1]");
+    recorder->beginGroup("light leak");
+    const double pcf = boxPcf(inputs, lookup.sm.uvTexels, lookup.comparisonDepth, width, recorder);
+    recordLightLeak(*recorder, lookup.sample.visibility, pcf,
+      boxPcfRange(inputs, lookup.sm.uvTexels, lookup.comparisonDepth, width, probeDepthAmbiguity),
+      "ShadowLab: visibility - PCF over the same box");
+  }
   return lookup.sample;
 }
 

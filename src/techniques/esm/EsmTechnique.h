@@ -11,7 +11,10 @@ namespace sl
 
 TechniqueDescriptor esmTechnique();
 
-// CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur.
-ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+// CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur. `recorder` (optional, `shadowlab
+// probe`): the receiver, the moment box (kernel_texels, its texels), E[exp(c z_n)], the exponential test, and the
+// light leak against the true PCF over the same box (its comparisons).
+ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -7,6 +7,7 @@
 
 #include "techniques/MomentReference.h"
 #include "techniques/MomentTechniquePass.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 
 #include <algorithm>
@@ -49,27 +50,70 @@ TechniqueDescriptor vsmTechnique()
     pass->SetFragmentShaderPath("vsm/VsmVisibility.glsl");
     return vtkSmartPointer<vtkSLTechniquePass>(pass);
   };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    requireBlurPrefilter(context.frame->parameters);
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const VsmSample sample = vsmReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    // MomentTest: <= 2e-3 where the variance is at least 1e-3 d^2; below it E[z^2] - E[z]^2 cancels in float
+    // (~1e-5 d^2 after the blur) and the pixel is not compared.
+    ProbeOutcome outcome = probeOutcome(sample.sample, 2e-3, "vsmReference (vsm/VsmTechnique.h), double precision, prefilter = blur");
+    if (sample.sample.evaluated)
+    {
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y);
+      const double d = lookup.sm.depthLin;
+      noteAmbiguity(outcome.ambiguity, "variance / d^2 (float cancellation in E[z^2] - E[z]^2)", sample.variance / (d * d), 1e-3);
+      noteMomentTexelEdge(outcome.ambiguity, lookup.sm.uvTexels);
+    }
+    return outcome;
+  };
   return descriptor;
 }
 
-VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y)
+VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder)
 {
   VsmSample result;
-  const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
   result.sample = lookup.sample;
   if (!lookup.sample.evaluated)
   {
     return result;
   }
   const int width = values.getInt("prefilter_texels");
-  const FilteredMoments moments = boxMoments(inputs, lookup.sm.uvTexels, width, 0.0);
+  if (recorder)
+  {
+    recordMomentBox(*recorder, inputs, lookup, width);
+  }
+  const FilteredMoments moments = boxMoments(inputs, lookup.sm.uvTexels, width, 0.0, recorder);
   const double d = lookup.sm.depthLin;
   result.variance = std::max(moments.second - moments.mean * moments.mean, values.get("min_variance") * d * d);
   const double t = lookup.comparisonDepth;
   result.pMax = t <= moments.mean ? 1.0 : result.variance / (result.variance + (t - moments.mean) * (t - moments.mean));
   const double amount = values.get("light_bleeding_reduction");
   result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
-  result.lightLeak = result.pMax - boxPcf(inputs, lookup.sm.uvTexels, t, width);
+  if (recorder)
+  {
+    recorder->quantity("mean", moments.mean, "linear depth", "Donnelly & Lauritzen 2006 (M1 = E[z] over the filter region)");
+    recorder->quantity("second_moment", moments.second, "linear depth^2", "Donnelly & Lauritzen 2006 (M2 = E[z^2])");
+    recorder->quantity("variance_unfloored", moments.second - moments.mean * moments.mean, "linear depth^2",
+      "Eq. 1, VSSM (Yang et al. 2010): sigma^2 = E[z^2] - E[z]^2");
+    recorder->quantity("variance", result.variance, "linear depth^2",
+      "ShadowLab (min_variance): sigma^2 floored at min_variance d^2 against float cancellation");
+    recorder->beginGroup("chebyshev");
+    recorder->quantity("compared_depth", t, "linear depth", "Eq. 1, VSSM (Yang et al. 2010): t, the receiver's depth minus the bias");
+    recorder->quantity("p_max", result.pMax, "",
+      "Eq. 1, VSSM (Yang et al. 2010): p_max = sigma^2 / (sigma^2 + (t - mu)^2) for t > mu, else 1 (Donnelly & Lauritzen 2006)");
+    recorder->quantity("light_bleeding_reduction", amount, "", "Lauritzen 2007 (GPU Gems 3 ch. 8): [amount, 1] -> [0, 1]");
+    recorder->quantity("visibility", result.sample.visibility, "", "Lauritzen 2007: clamp((p_max - amount) / (1 - amount), 0, 1)");
+    recorder->beginGroup("light leak");
+  }
+  const double pcf = boxPcf(inputs, lookup.sm.uvTexels, t, width, recorder);
+  result.lightLeak = result.pMax - pcf;
+  if (recorder)
+  {
+    recordLightLeak(*recorder, result.pMax, pcf, boxPcfRange(inputs, lookup.sm.uvTexels, t, width, probeDepthAmbiguity),
+      "Lauritzen 2007 (light bleeding): p_max - PCF over the same box");
+  }
   return result;
 }
 
