@@ -2,6 +2,8 @@
 // (the survey's §6.4 question, measured and printed), the GLSL against the CPU implementation, and the
 // closed form where Chebyshev over two depths is exact (planar occluder).
 #include "support/TestSupport.h"
+#include "frame/ProbeRecord.h"
+#include "techniques/Registry.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/savsm/SavsmTechnique.h"
 #include "lightspace/sat/SummedAreaTable.h"
@@ -104,6 +106,115 @@ TEST(Savsm, MatchesTheCpuImplementation)
               << "), skipped " << skipped << ", max |gpu - cpu| " << maxDifference << "\n";
     EXPECT_GT(compared, 2000) << dataset;
     EXPECT_GT(partial, 200) << dataset;
+  }
+}
+
+// The probe (TechniqueDescriptor::probe) records PCSS's blocker search and penumbra kernel and the SAT box over
+// w_p: the box is w_p's texel rectangle, the kernels and p_max are the GPU's buffers at the pixel, the light-leak
+// PCF's occluding taps weigh 1 - box_pcf, and no PCF step of PCSS is recorded (savsm has none).
+TEST(Savsm, ProbeRecordsThePenumbraBoxAndTheGpuBuffers)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = test::renderDataset(scene, "savsm", 96, 80, { "shadow_map_size=512", "sat_precision=int32" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  std::vector<glm::ivec2> pixels(3, glm::ivec2(-1)); // lit without blockers, penumbra, umbra (the twin's, unambiguous)
+  for (int y = 0; y < 80; ++y)
+  {
+    for (int x = 0; x < 96; ++x)
+    {
+      const SavsmSample cpu = savsmReference(inputs, frame.parameters, x, y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(frame.parameters), x, y);
+      const double d = lookup.sm.depthLin;
+      if (!cpu.sample.evaluated || cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 ||
+        cpu.sample.texelEdgeMargin < 1e-4 || cpu.sample.reachMargin < 1e-5 || (cpu.foundBlockers && cpu.variance < 1e-3 * d * d))
+      {
+        continue;
+      }
+      const int kind = cpu.sample.visibility >= 1.0 ? 0 : cpu.sample.visibility < 0.02 ? 2 : 1;
+      if (pixels[kind].x < 0 && (kind != 0 || !cpu.foundBlockers))
+      {
+        pixels[kind] = { x, y };
+      }
+    }
+  }
+  for (int kind = 0; kind < 3; ++kind)
+  {
+    const glm::ivec2 pixel = pixels[kind];
+    ASSERT_GE(pixel.x, 0) << "no pixel of kind " << kind;
+    const std::string label = format("pixel ", pixel.x, ",", pixel.y);
+    ProbeRecorder recorder;
+    const ProbeOutcome outcome = findTechnique("savsm").probe({ &frame, &scene, 0 }, pixel, recorder);
+    const ProbeRecord& record = recorder.record();
+    const auto gpu = [&](const char* buffer) { return static_cast<double>(frame.find(buffer)->image.at(pixel.x, pixel.y)); };
+    const auto quantity = [&](const char* name) {
+      const ProbeQuantity* found = record.find(name);
+      EXPECT_NE(found, nullptr) << label << ": " << name << " not recorded";
+      return found != nullptr ? found->value.at(0) : -1.0;
+    };
+    ASSERT_TRUE(outcome.evaluated) << label;
+    EXPECT_EQ(outcome.visibility, savsmReference(inputs, frame.parameters, pixel.x, pixel.y).sample.visibility) << label;
+    std::cout << "[ measured ] savsm " << label << ": GPU " << gpu("visibility") << ", probe " << outcome.visibility
+              << (outcome.ambiguity.empty() ? "" : ", ambiguous: " + outcome.ambiguity) << "\n";
+    if (outcome.ambiguity.empty())
+    {
+      EXPECT_LE(std::abs(outcome.visibility - gpu("visibility")), outcome.tolerance) << label;
+    }
+    EXPECT_NEAR(quantity("blocker_kernel_texels"), gpu("blocker_kernel_texels"), 1e-4 * gpu("blocker_kernel_texels")) << label;
+    EXPECT_EQ(quantity("blocker_samples"), gpu("blocker_samples")) << label;
+    int filterTaps = 0;
+    for (const ProbeTexel& texel : record.texels)
+    {
+      filterTaps += texel.role == "filter tap" ? 1 : 0;
+    }
+    EXPECT_EQ(filterTaps, 0) << label << ": savsm has no PCF step";
+    if (kind == 0)
+    {
+      EXPECT_EQ(record.find("p_max"), nullptr) << label << ": no blocker, no Chebyshev step";
+      continue;
+    }
+    EXPECT_NEAR(quantity("avg_blocker_depth"), gpu("avg_blocker_depth"), 1e-4 * gpu("avg_blocker_depth")) << label;
+    EXPECT_NEAR(quantity("penumbra_kernel_texels"), gpu("penumbra_kernel_texels"), 2e-3 * gpu("penumbra_kernel_texels") + 1e-3) << label;
+    EXPECT_NEAR(quantity("p_max"), gpu("p_max"), 2e-3) << label;
+    // The SAT box: the texels whose centres lie in w_p.
+    const auto kernel = [&](const char* role) {
+      for (const ProbeKernel& k : record.kernels)
+      {
+        if (k.role == role)
+        {
+          return k;
+        }
+      }
+      ADD_FAILURE() << label << ": no " << role << " kernel";
+      return ProbeKernel{};
+    };
+    const ProbeKernel penumbra = kernel("penumbra");
+    const ProbeKernel box = kernel("SAT box");
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      EXPECT_EQ(box.lo[axis], std::max(0.0, std::ceil(penumbra.lo[axis] - 0.5))) << label;
+      EXPECT_EQ(box.hi[axis], std::min(511.0, std::floor(penumbra.hi[axis] - 0.5)) + 1.0) << label;
+    }
+    EXPECT_EQ(quantity("box_texels"), (box.hi.x - box.lo.x) * (box.hi.y - box.lo.y)) << label;
+    double occluding = 0.0;
+    double total = 0.0;
+    for (const ProbeTexel& texel : record.texels)
+    {
+      if (texel.role == "light-leak pcf")
+      {
+        total += texel.weight;
+        occluding += texel.occluding ? texel.weight : 0.0;
+      }
+    }
+    EXPECT_NEAR(total, 1.0, 1e-12) << label;
+    EXPECT_NEAR(occluding, 1.0 - quantity("box_pcf"), 1e-12) << label;
+    // light_leak, or the range its tied comparisons (t = d against the receiver's own texels) allow.
+    const ProbeQuantity* exact = record.find("light_leak");
+    const ProbeQuantity* range = record.find("light_leak_range");
+    ASSERT_TRUE((exact != nullptr) != (range != nullptr)) << label;
+    const glm::dvec2 leak = exact != nullptr ? glm::dvec2(exact->value.at(0)) : glm::dvec2(range->value.at(0), range->value.at(1));
+    EXPECT_EQ(exact != nullptr, quantity("light_leak_tied_comparisons") == 0.0) << label;
+    EXPECT_GE(gpu("light_leak"), leak.x - 2e-3) << label;
+    EXPECT_LE(gpu("light_leak"), leak.y + 2e-3) << label;
   }
 }
 

@@ -3,6 +3,8 @@
 #include "lightspace/sat/SatStructure.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
+#include "techniques/MomentReference.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/pcss/PcssTechnique.h"
@@ -44,12 +46,100 @@ TechniqueDescriptor savsmTechnique()
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLSavsmPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const ParameterValues& values = context.frame->parameters;
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const SavsmSample sample = savsmReference(inputs, values, pixel.x, pixel.y, &recorder);
+    // SavsmTest (sat_precision = int32): <= 2e-3 on pixels without a kernel edge within 1e-4 texel of a texel
+    // centre, a comparison within float rounding, or a variance under 1e-3 d^2 (float cancellation).
+    ProbeOutcome outcome =
+      probeOutcome(sample.sample, 2e-3, "savsmReference (savsm/SavsmTechnique.h), double precision, exact box moments");
+    if (sample.sample.evaluated)
+    {
+      noteAmbiguity(outcome.ambiguity, "grid kernel edge from a texel centre (texels)", sample.kernelEdgeMargin,
+        probeTexelEdgeAmbiguity);
+      if (sample.foundBlockers)
+      {
+        const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), pixel.x, pixel.y);
+        const double d = lookup.sm.depthLin;
+        noteAmbiguity(outcome.ambiguity, "variance / d^2 (float cancellation in E[z^2] - E[z]^2)",
+          sample.variance / (d * d), 1e-3);
+        if (values.choice("sat_precision") == "float_centred")
+        {
+          // The twin sums exactly; the GPU's float table rounds each corner sum (sums over up to N^2 texels, so
+          // the error grows with the map). SavsmTest compares visibility at int32 only; measured once at 512^2
+          // maps, 96 x 80 (stacked-occluders, contact, bunny, near-light): max |GPU - twin| 5e-4 - 2.2e-3, over
+          // the int32 tolerance on the bunny. No tolerance is claimed: the pixel is reported, not failed.
+          outcome.ambiguity += std::string(outcome.ambiguity.empty() ? "" : ", ") +
+            "sat_precision=float_centred (the GPU's float box sums are not replayed; compared at int32 only)";
+        }
+      }
+    }
+    return outcome;
+  };
   return descriptor;
 }
 
-SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y)
+namespace
 {
-  const PcssSample pcss = pcssReference(inputs, values, x, y); // blocker search and w_p are PCSS's
+
+// What SavsmVisibility.glsl's light_leak buffer compares p_max with: the PCF at t over the penumbra rectangle,
+// every texel up to max_grid_taps per axis, a regular sub-grid beyond; recorded with the light leak
+// (recordLightLeak). For the probe only: the twin's visibility does not depend on it.
+double recordLightLeakPcf(ProbeRecorder& recorder, const ShadowMapInputs& inputs, const ParameterValues& values,
+  glm::ivec2 lo, glm::ivec2 hi, double t, double pMax)
+{
+  const int size = inputs.shadowMapLinear.width;
+  const int maxTaps = values.getInt("max_grid_taps");
+  glm::dvec2 origin(0.0);
+  glm::dvec2 step(1.0);
+  glm::ivec2 count(0);
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    const int texels = hi[axis] - lo[axis] + 1;
+    if (texels <= maxTaps)
+    {
+      origin[axis] = lo[axis] + 0.5;
+      step[axis] = 1.0;
+      count[axis] = texels;
+    }
+    else
+    {
+      count[axis] = maxTaps;
+      step[axis] = static_cast<double>(texels) / maxTaps;
+      origin[axis] = lo[axis] + 0.5 * step[axis];
+    }
+  }
+  const double weight = 1.0 / (static_cast<double>(count.x) * count.y);
+  double lit = 0.0;
+  PcfRange range;
+  for (int j = 0; j < count.y; ++j)
+  {
+    for (int i = 0; i < count.x; ++i)
+    {
+      const glm::dvec2 tap = origin + glm::dvec2(i, j) * step;
+      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(size - 1));
+      const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
+      lit += t <= z ? 1.0 : 0.0;
+      const bool tie = std::abs(t - z) < probeDepthAmbiguity * std::max(1e-30, std::abs(z));
+      range.ties += tie ? 1 : 0;
+      range.lowest += !tie && t <= z ? weight : 0.0;
+      range.highest += tie || t <= z ? weight : 0.0;
+      recorder.texel({ texel, "light-leak pcf", z, t, !(t <= z), weight });
+    }
+  }
+  const double pcf = lit * weight;
+  recordLightLeak(recorder, pMax, pcf, range, "Lauritzen 2007 (light bleeding): p_max - PCF over w_p");
+  return pcf;
+}
+
+} // namespace
+
+SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder)
+{
+  // Blocker search and w_p are PCSS's; its PCF step runs (the margins are the whole twin's) but is not recorded.
+  const PcssSample pcss = pcssReference(inputs, values, x, y, recorder, false);
   SavsmSample result;
   result.sample = pcss.sample;
   result.kernelEdgeMargin = pcss.kernelEdgeMargin;
@@ -72,6 +162,27 @@ SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues&
   result.pMax = t <= moments.mean ? 1.0 : result.variance / (result.variance + (t - moments.mean) * (t - moments.mean));
   const double amount = values.get("light_bleeding_reduction");
   result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
+  if (recorder)
+  {
+    recorder->beginGroup("moments (summed-area table)");
+    recorder->category("sat_precision", integer ? "int32: 16-bit fixed point, exact box sums" : "float_centred: float sums of z - (near + far) / 2",
+      "survey §6.4 (SAT precision)");
+    recorder->kernel({ "SAT box", glm::dvec2(result.lo), glm::dvec2(result.hi) + 1.0, "w_p texels",
+      "Lauritzen 2007 (GPU Gems 3 ch. 8): the kernel's moments from four SAT fetches" });
+    recorder->quantity("box_texels", rectangle.area(), "count", "Lauritzen 2007: texels the box sums cover");
+    recorder->quantity("mean", moments.mean, "linear depth", "Lauritzen 2007: E[z] over w_p (depths clamped to [near, far] as encoded)");
+    recorder->quantity("variance_unfloored", moments.variance, "linear depth^2", "Eq. 1, VSSM (Yang et al. 2010): sigma^2 = E[z^2] - E[z]^2");
+    recorder->quantity("variance", result.variance, "linear depth^2",
+      "ShadowLab (min_variance): sigma^2 floored at min_variance d^2");
+    recorder->beginGroup("chebyshev");
+    recorder->quantity("compared_depth", t, "linear depth", "ShadowLab: t = d, the receiver's own depth (Chebyshev is exact there for two depths)");
+    recorder->quantity("p_max", result.pMax, "",
+      "Eq. 1, VSSM (Yang et al. 2010): p_max = sigma^2 / (sigma^2 + (t - mu)^2) for t > mu, else 1");
+    recorder->quantity("light_bleeding_reduction", amount, "", "Lauritzen 2007 (GPU Gems 3 ch. 8): [amount, 1] -> [0, 1]");
+    recorder->quantity("visibility", result.sample.visibility, "", "Lauritzen 2007: clamp((p_max - amount) / (1 - amount), 0, 1)");
+    recorder->beginGroup("light leak");
+    recordLightLeakPcf(*recorder, inputs, values, result.lo, result.hi, t, result.pMax);
+  }
   return result;
 }
 

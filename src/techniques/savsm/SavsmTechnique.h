@@ -28,6 +28,10 @@ struct SavsmSample
 };
 
 // CPU reference (double precision, exact box moments of the encoded depths) of SavsmVisibility.glsl.
-SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y);
+// `recorder` (optional, `shadowlab probe`): PCSS's blocker search and penumbra estimate (pcssReference), the SAT
+// box (w_p's texel rectangle) with its moments, p_max and the light-bleeding reduction, and the light leak against
+// the PCF at t over the same rectangle (as the shader's light_leak buffer computes it).
+SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+  ProbeRecorder* recorder = nullptr);
 
 } // namespace sl
