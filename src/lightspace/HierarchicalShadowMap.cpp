@@ -221,7 +221,8 @@ glm::dvec2 HierarchicalShadowMap::dualNode(int level, glm::ivec2 cell) const
   return { image.at(cell.x + 1, cell.y + 1, 0), image.at(cell.x + 1, cell.y + 1, 1) };
 }
 
-glm::dvec2 HierarchicalShadowMap::dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi, int* fetches) const
+glm::dvec2 HierarchicalShadowMap::dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi, int* fetches,
+  std::vector<HsmQueryNode>* nodes) const
 {
   SL_CHECK(layout == HsmLayout::DualMssm);
   glm::dvec2 result(1e300, -1e300);
@@ -242,6 +243,12 @@ glm::dvec2 HierarchicalShadowMap::dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi
       const glm::dvec2 node = dualNode(level, { sx, sy });
       result = { std::min(result.x, node.x), std::max(result.y, node.y) };
       ++reads;
+      if (nodes)
+      {
+        // Cells [s, s + side - 1] hold the samples [s, s + side].
+        nodes->push_back({ "dual-grid mssm", level, glm::max(glm::ivec2(sx, sy), glm::ivec2(0)),
+          glm::min(glm::ivec2(sx, sy) + side, glm::ivec2(mapSize - 1)), node });
+      }
       if (sx + side > cellHi.x)
       {
         break;
@@ -267,22 +274,33 @@ glm::dvec2 HierarchicalShadowMap::node(int level, glm::ivec2 index) const
   return { image.at(texel.x, texel.y, 0), image.at(texel.x, texel.y, 1) };
 }
 
-glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetches) const
+glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetches, std::vector<HsmQueryNode>* nodes) const
 {
   if (layout == HsmLayout::DualMssm)
   {
     // Samples [lo, hi] are exactly the cells [lo, hi - 1]: rectangles at least 2 samples wide.
     SL_CHECK_MSG(hi.x > lo.x && hi.y > lo.y, "a dual-grid MSSM range needs at least 2 x 2 samples");
-    return dualRange(lo, hi - 1, fetches);
+    return dualRange(lo, hi - 1, fetches, nodes);
   }
   glm::dvec2 result(1e300, -1e300);
   int reads = 0;
-  const auto visitImage = [&](const ImageF& image, int x, int y) {
-    result.x = std::min(result.x, static_cast<double>(image.at(x, y, 0)));
-    result.y = std::max(result.y, static_cast<double>(image.at(x, y, 1)));
+  // `first` and `side`: the texels the node covers (for `nodes` only).
+  const auto visitImage = [&](const ImageF& image, int x, int y, const char* part, int level, glm::ivec2 first, int side) {
+    const glm::dvec2 node(image.at(x, y, 0), image.at(x, y, 1));
+    result.x = std::min(result.x, node.x);
+    result.y = std::max(result.y, node.y);
     ++reads;
+    if (nodes)
+    {
+      nodes->push_back({ part, level, first, glm::min(first + side - 1, glm::ivec2(mapSize - 1)), node });
+    }
   };
-  const auto visit = [&](int level, int x, int y) { visitImage(levels[static_cast<std::size_t>(level)], x, y); };
+  // Mip-map: node (x, y) of `level` covers [(x, y) 2^level, (x, y + 1) 2^level); N-buffers: the square at (x, y).
+  const auto visit = [&](int level, int x, int y) {
+    const bool nBuffers = layout == HsmLayout::NBuffers;
+    visitImage(levels[static_cast<std::size_t>(level)], x, y, nBuffers ? "n-buffers" : "mip-map", level,
+      nBuffers ? glm::ivec2(x, y) : glm::ivec2(x, y) << level, 1 << level);
+  };
   // The largest square not wider than the shorter side of the rectangle [first, last] of a grid; squares start
   // every `side` texels and the last one of each axis ends exactly at `last` (overlaps are harmless for min and
   // max). Reads at most 2 squares along the shorter side.
@@ -328,7 +346,9 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
       // HSM level b). They lie inside the level-k nodes the mip-map query reads, so the range is never looser.
       tile(lo >> ysmBaseLevel, hi >> ysmBaseLevel, [&](int partLevel, int x, int y) {
         visitImage(partLevel == 0 ? levels[static_cast<std::size_t>(ysmBaseLevel)]
-                                  : mssmPart[static_cast<std::size_t>(partLevel - 1)], x, y);
+                                  : mssmPart[static_cast<std::size_t>(partLevel - 1)], x, y,
+          partLevel == 0 ? "mip-map" : "ysm mssm part", ysmBaseLevel + partLevel, glm::ivec2(x, y) << ysmBaseLevel,
+          1 << (ysmBaseLevel + partLevel));
       });
     }
     else

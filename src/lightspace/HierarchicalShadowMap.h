@@ -64,6 +64,18 @@ int ysmMssmPartSize(int mapSize);
 // YSM: levels of the MSSM part stored (1..ceil(log2 M); level 0 is HSM level b).
 int ysmMssmPartLevelCount(int mapSize);
 
+// A node a range query read (`shadowlab probe` records them): the shadow-map texels it covers (inclusive,
+// clipped to the map; for the dual-grid MSSM the samples of its cells), the range it holds, and its width as a
+// level: a node of `level` spans 2^level texels (cells) per side.
+struct HsmQueryNode
+{
+  const char* part = "";   // "mip-map", "n-buffers", "ysm mssm part", "dual-grid mssm"
+  int level = 0;
+  glm::ivec2 lo{ 0 };
+  glm::ivec2 hi{ 0 };
+  glm::dvec2 range{ 0.0 }; // (min, max) linear depth
+};
+
 struct HierarchicalShadowMap
 {
   HsmLayout layout = HsmLayout::MipMap;
@@ -80,7 +92,8 @@ struct HierarchicalShadowMap
   // (min, max) depth over the inclusive texel rectangle [lo, hi] (inside the map): exact for N-buffers and the
   // dual-grid MSSM (there [lo, hi] must be at least 2 x 2), the range of the covering nodes for the mip-map. `fetches` (optional) counts the texels read.
   // YSM: conservative, exact on rectangles aligned to level-ysmBaseLevel blocks, never looser than the mip-map.
-  glm::dvec2 range(glm::ivec2 lo, glm::ivec2 hi, int* fetches = nullptr) const;
+  // `nodes` (optional) receives the nodes read, in the order read; the result does not depend on it.
+  glm::dvec2 range(glm::ivec2 lo, glm::ivec2 hi, int* fetches = nullptr, std::vector<HsmQueryNode>* nodes = nullptr) const;
 
   // Every layout but the dual grid: (min, max) over the aligned block [index 2^level, (index + 1) 2^level)
   // (clipped to the map) of the mip-map quadtree; level 0 is the shadow map. Mip-map and YSM: texel `index` of
@@ -90,7 +103,8 @@ struct HierarchicalShadowMap
   // Dual-grid MSSM: the node of `level` whose first cell is `cell` (-1 .. N - 1 per axis).
   glm::dvec2 dualNode(int level, glm::ivec2 cell) const;
   // Dual-grid MSSM: (min, max) over the inclusive cell rectangle [cellLo, cellHi], tiled like the N-buffers.
-  glm::dvec2 dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi, int* fetches = nullptr) const;
+  glm::dvec2 dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi, int* fetches = nullptr,
+    std::vector<HsmQueryNode>* nodes = nullptr) const;
 
   // Mip-map layout and YSM: levels 1..L in the N x N atlas (2 components, 0 outside the levels).
   ImageF atlas() const;
