@@ -4,6 +4,7 @@
 // depth inside it (MSSM kernels, Schwarz and Stamminger 2007); lit / umbra from the same range (Alg. 1 step 5).
 #pragma once
 
+#include "frame/ProbeRecord.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
@@ -39,8 +40,9 @@ BufferSpec backprojectionClassificationBuffer(const std::string& doc, SubLightCo
 // shader includes the snippet.
 std::vector<ShaderConstant> contourKernelShaderConstants();
 
-// (min, max) depth over an inclusive sample rectangle inside the map, at least 2 x 2 samples.
-using DepthRangeQuery = std::function<glm::dvec2(glm::ivec2 lo, glm::ivec2 hi)>;
+// (min, max) depth over an inclusive sample rectangle inside the map, at least 2 x 2 samples; `nodes` (null
+// unless a probe records) receives the structure's nodes the query read.
+using DepthRangeQuery = std::function<glm::dvec2(glm::ivec2 lo, glm::ivec2 hi, std::vector<HsmQueryNode>* nodes)>;
 
 struct ContourReceiver
 {
@@ -62,20 +64,42 @@ struct ContourReceiver
   // Whether the sample (i, j) (possibly outside the map, which never occludes) hides the light centre from
   // this receiver, and its depth (0 outside). Records the comparison's margin in lookup.sample.
   bool occludes(const ShadowMapInputs& inputs, glm::ivec2 sample, double& depth);
-  // Light-centre status f(O): the receiver's own map position inside the reconstructed occluder.
-  bool centreOccluded(const ShadowMapInputs& inputs);
-  // Signed occluded light area of one contour edge (back-projection + radial integration).
-  double edgeArea(const glm::dvec2& a, double depthA, const glm::dvec2& b, double depthB) const;
+  // Light-centre status f(O): the receiver's own map position inside the reconstructed occluder. `recorder`
+  // (optional): the cell's four samples (role "light centre cell"), f(O) and, when set, the whole light as a
+  // ProbeLightPolygon (f(O) A of the radial integration).
+  bool centreOccluded(const ShadowMapInputs& inputs, ProbeRecorder* recorder = nullptr);
+  // Signed occluded light area of one contour edge (back-projection + radial integration). `recorder`
+  // (optional): the edge, its back-projection (light coordinates) and that area as a ProbeContourEdge.
+  double edgeArea(const glm::dvec2& a, double depthA, const glm::dvec2& b, double depthB,
+    ProbeRecorder* recorder = nullptr) const;
+  // The back-projection from this receiver onto the light plane (light coordinates) of a point at `depth` seen
+  // at shadow-map position `texels`.
+  glm::dvec2 backProjectToLight(const glm::dvec2& texels, double depth) const;
+  // For a probe: every sample of `samples` (inside the map) as a ProbeTexel of `role`, with its tap comparison
+  // depth and whether it occludes (the statuses marching squares reads). Changes nothing of the receiver.
+  void recordSamples(const ShadowMapInputs& inputs, const TexelRectangle& samples, ProbeRecorder& recorder,
+    const std::string& role) const;
 };
 
 // A kernel's texels plus one ring, clamped to the map (ContourKernel.glsl's ringed).
 TexelRectangle ringed(const TexelRectangle& kernel, int mapSize);
 
+// `recorder` (optional, `shadowlab probe`): the receiver (group "receiver"), each kernel of Eq. 1 with its
+// search depth (ProbeKernel "blocker search"), the range queries' nodes (ProbeNode, decision "query: ..."), the
+// final kernel and its ring, and the lit / umbra / penumbra decision with its depth ranges and margins.
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
-  const DepthRangeQuery& range, int x, int y);
+  const DepthRangeQuery& range, int x, int y, ProbeRecorder* recorder = nullptr);
 // The same with the ranges of a min-max structure built from inputs.shadowMapLinear.
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
-  const HierarchicalShadowMap& structure, int x, int y);
+  const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder = nullptr);
+
+// The `structure` a probe names an HSM / MSSM node with: "hsm" for the mip-map (and the YSM's mip-map levels),
+// "mssm" for N-buffers, the YSM's MSSM part and the dual-grid MSSM.
+std::string probeStructureName(const char* part);
+// A probe's ProbeNode for a node a range query read, with `decision`.
+ProbeNode probeNodeOf(const HsmQueryNode& node, std::string decision);
+// The label of a BackprojectionClass ("lit", "penumbra over the loop budget", ...), as the buffer's categories.
+std::string backprojectionClassLabel(BackprojectionClass classification);
 
 // What the CPU twins of gbp06 and gbp07 report for every pixel: the preamble's outcome and margins.
 struct BackprojectionPixel
@@ -88,5 +112,16 @@ struct BackprojectionPixel
 };
 // Copies the receiver's sample, kernel width and margins into `pixel`, with its final class.
 void recordReceiver(const ContourReceiver& receiver, BackprojectionClass classification, BackprojectionPixel& pixel);
+
+// For probes of gbp06 and gbp07: the `classification` buffer's code, with its label.
+void recordClassification(ProbeRecorder& recorder, BackprojectionClass classification);
+// The source line of a visibility decided without integration (lit: 1, umbra: 0), or of the integration.
+const char* decisionSourceOf(BackprojectionClass classification);
+// The tests' ambiguity rule for gbp06 and gbp07 beyond the sample's own margins (probeOutcome): a kernel edge
+// within 1e-4 texel of a texel centre, a lit / umbra test within 1e-5 (relative) of its boundary; and the loop
+// cap: a pixel the GPU flagged cut short (classification OverLoopBudget) is not exact, and where only the twin's
+// estimate (its loop budget) says over, the GPU's class differs from the twin's.
+void noteBackprojectionAmbiguity(std::string& ambiguity, const BackprojectionPixel& pixel, const FrameResult& frame,
+  glm::ivec2 at);
 
 } // namespace sl
