@@ -3,6 +3,8 @@
 // shadow map's resolution doubles.
 #include "lightspace/hsm/HsmStructure.h"
 #include "support/TestSupport.h"
+#include "techniques/Registry.h"
+#include "techniques/backprojection/ContourBackprojection.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 
 #include <gtest/gtest.h>
@@ -165,6 +167,122 @@ TEST(Gbp07, KernelsTheLoopCapCutsShortAreFlaggedExactly)
   {
     EXPECT_GT(differing, 50) << "the case must outrun llvmpipe's loop cap";
   }
+}
+
+TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
+{
+  // `shadowlab probe` (issue 15) on lit, umbra and penumbra pixels of a rendered frame: the replay equals the GPU
+  // (visibility within the twin tolerance, classification, kernel width, contour_edges, visited_cells) and the
+  // record adds up: one ProbeContourEdge per edge the GPU counted, each one's signed area the radial area of its
+  // back-projection, and f(O) A plus the edges' signed areas the occluded area, (1 - V) A for a partial pixel.
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = test::renderDataset(scene, "gbp07", 64, 48, { "shadow_map_size=256" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const HierarchicalShadowMap hsm =
+    HierarchicalShadowMap::build(inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
+  const TechniqueDescriptor& technique = findTechnique("gbp07");
+  ASSERT_TRUE(static_cast<bool>(technique.probe));
+  const ImageF& classes = frame.find("classification")->image;
+  std::map<BackprojectionClass, int> probed;
+  int partial = 0;
+  // The candidates of each class (penumbra: partial visibility), taken evenly spaced in scan order so that
+  // the pixels probed come from all over the frame.
+  std::map<BackprojectionClass, std::vector<glm::ivec2>> candidates;
+  for (int y = 0; y < 48; ++y)
+  {
+    for (int x = 0; x < 64; ++x)
+    {
+      const auto gpuClass = static_cast<BackprojectionClass>(std::lround(classes.at(x, y)));
+      if (gpuClass != BackprojectionClass::NotTested && gpuClass != BackprojectionClass::OverLoopBudget &&
+        (gpuClass != BackprojectionClass::Penumbra || std::abs(frame.find("visibility")->image.at(x, y) - 0.5f) < 0.48f))
+      {
+        candidates[gpuClass].emplace_back(x, y);
+      }
+    }
+  }
+  for (const auto& entry : candidates)
+  {
+    const BackprojectionClass gpuClass = entry.first;
+    const std::vector<glm::ivec2>& pixels = entry.second;
+    const std::size_t attempts = std::min<std::size_t>(pixels.size(), 24); // evenly spaced, ambiguous ones skipped
+    for (std::size_t k = 0; k < attempts && probed[gpuClass] < (gpuClass == BackprojectionClass::Penumbra ? 6 : 2); ++k)
+    {
+      const int x = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].x;
+      const int y = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].y;
+      ProbeRecorder recorder;
+      const ProbeOutcome outcome = technique.probe({ &frame, &scene, 0 }, { x, y }, recorder);
+      if (!outcome.ambiguity.empty())
+      {
+        continue;
+      }
+      ++probed[gpuClass];
+      const ProbeRecord& record = recorder.record();
+      const std::string label = "pixel " + std::to_string(x) + "," + std::to_string(y);
+      const auto value = [&](const std::string& name) {
+        const ProbeQuantity* quantity = record.find(name);
+        EXPECT_NE(quantity, nullptr) << label << ": no " << name;
+        return quantity && !quantity->value.empty() ? quantity->value[0] : std::nan("");
+      };
+      // The replay is the twin's default run, and the GPU's.
+      const Gbp07Sample twin = gbp07Reference(inputs, hsm, frame.parameters, x, y);
+      EXPECT_EQ(outcome.visibility, twin.sample.visibility) << label;
+      EXPECT_NEAR(outcome.visibility, frame.find("visibility")->image.at(x, y), outcome.tolerance) << label;
+      EXPECT_EQ(value("classification"), classes.at(x, y)) << label;
+      EXPECT_EQ(value("contour_edges"), frame.find("contour_edges")->image.at(x, y)) << label;
+      EXPECT_EQ(value("visited_cells"), frame.find("visited_cells")->image.at(x, y)) << label;
+      EXPECT_NEAR(value("kernel_texels"), frame.find("kernel_texels")->image.at(x, y), 1e-4 * (1.0 + twin.kernelTexels)) << label;
+      for (const ProbeQuantity& quantity : record.quantities)
+      {
+        EXPECT_FALSE(quantity.source.empty()) << label << ": " << quantity.name << " has no source";
+      }
+      // The range query's nodes decided the class the GPU took.
+      const std::string decides = "query: decides " + backprojectionClassLabel(gpuClass);
+      EXPECT_TRUE(std::any_of(record.nodes.begin(), record.nodes.end(), [&](const ProbeNode& node) { return node.decision == decides; }))
+        << label;
+      ASSERT_EQ(record.droppedEdges, 0u) << label;
+      EXPECT_EQ(static_cast<double>(record.contourEdges.size()), twin.contourEdges) << label;
+      if (gpuClass != BackprojectionClass::Penumbra)
+      {
+        EXPECT_TRUE(record.contourEdges.empty()) << label;
+        EXPECT_EQ(outcome.visibility, gpuClass == BackprojectionClass::Lit ? 1.0 : 0.0) << label;
+        continue;
+      }
+      const double h = value("light_half_size");
+      const double lightArea = 4.0 * h * h;
+      double covered = 0.0;
+      for (const ProbeLightPolygon& polygon : record.lightPolygons)
+      {
+        covered += polygon.signedArea; // f(O) A: the whole light
+      }
+      for (const ProbeContourEdge& edge : record.contourEdges)
+      {
+        EXPECT_NEAR(edge.signedArea, radialEdgeArea(edge.lightA, edge.lightB, h), 1e-15 * lightArea) << label;
+        covered += edge.signedArea;
+      }
+      EXPECT_NEAR(covered, value("occluded_area"), 1e-9 * lightArea) << label;
+      if (outcome.visibility > 0.0 && outcome.visibility < 1.0)
+      {
+        ++partial;
+        EXPECT_NEAR(covered, (1.0 - outcome.visibility) * lightArea, 1e-9 * lightArea) << label;
+      }
+      // The marching-squares input: every searched sample once (those over the recorder's cap counted; the light
+      // centre's four are recorded before them).
+      const auto samples = static_cast<std::size_t>(std::count_if(record.texels.begin(), record.texels.end(),
+        [](const ProbeTexel& texel) { return texel.role == "contour sample"; }));
+      const auto last = std::find_if(record.quantities.rbegin(), record.quantities.rend(),
+        [](const ProbeQuantity& quantity) { return quantity.name == "searched_samples"; }); // the last kernel's
+      ASSERT_NE(last, record.quantities.rend()) << label;
+      const std::vector<double>& searched = last->value;
+      EXPECT_EQ(static_cast<double>(samples + record.droppedTexels), searched[0] * searched[1]) << label;
+    }
+  }
+  std::cout << "[ measured ] gbp07 probe on stacked-occluders: " << probed[BackprojectionClass::Lit] << " lit, "
+            << probed[BackprojectionClass::Umbra] << " umbra, " << probed[BackprojectionClass::Penumbra] << " penumbra pixels ("
+            << partial << " partial) replayed unambiguous and consistent\n";
+  EXPECT_EQ(probed[BackprojectionClass::Lit], 2);
+  EXPECT_EQ(probed[BackprojectionClass::Umbra], 2);
+  EXPECT_EQ(probed[BackprojectionClass::Penumbra], 6);
+  EXPECT_EQ(partial, 6);
 }
 
 } // namespace

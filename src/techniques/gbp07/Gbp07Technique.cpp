@@ -3,6 +3,7 @@
 #include "lightspace/hsm/HsmStructure.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/backprojection/ContourBackprojection.h"
@@ -54,16 +55,39 @@ TechniqueDescriptor gbp07Technique()
   // case at 256^2 on llvmpipe).
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLGbp07Pass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    requireSingleSubLight(*context.frame);
+    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear,
+      hierarchicalShadowMapSettings(context.frame->parameters).layout);
+    const Gbp07Sample sample = gbp07Reference(inputs, hsm, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    // Gbp07Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping over up to a few hundred
+    // edges), on pixels without a decision near its boundary.
+    ProbeOutcome outcome = probeOutcome(sample.sample, 1e-3, "gbp07Reference (gbp07/Gbp07Technique.h), double precision");
+    noteBackprojectionAmbiguity(outcome.ambiguity, sample, *context.frame, pixel);
+    return outcome;
+  };
   return descriptor;
 }
 
 Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y)
+  const ParameterValues& values, int x, int y, ProbeRecorder* recorder)
 {
-  ContourReceiver receiver = prepareContourReceiver(inputs, values, hsm, x, y);
+  ContourReceiver receiver = prepareContourReceiver(inputs, values, hsm, x, y, recorder);
   Gbp07Sample result;
   const auto finish = [&](BackprojectionClass classification) {
     recordReceiver(receiver, classification, result);
+    if (recorder && receiver.lookup.sample.evaluated)
+    {
+      recorder->beginGroup("visibility");
+      recorder->quantity("contour_edges", result.contourEdges, "edges", "GBP07: marching squares on the dual grid");
+      recorder->quantity("visited_cells", result.visitedCells, "cells", "GBP07: every dual cell with a corner in the kernel");
+      recordClassification(*recorder, classification);
+      recorder->quantity("visibility", receiver.lookup.sample.visibility, "",
+        classification == BackprojectionClass::Lit || classification == BackprojectionClass::Umbra
+          ? decisionSourceOf(classification)
+          : "GBP07: V = clamp(1 - (f(O) A + sum of s_e |L beyond e|) / A, 0, 1)");
+    }
     return result;
   };
   if (receiver.classification != BackprojectionClass::Penumbra)
@@ -73,9 +97,20 @@ Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShad
   const std::array<glm::ivec2, 4> offsets = { glm::ivec2(0, 0), glm::ivec2(1, 0), glm::ivec2(1, 1), glm::ivec2(0, 1) };
   // Radial integration around the light centre: f(O), then every dual cell with a corner in the kernel.
   const double lightArea = 4.0 * receiver.lightHalfSize * receiver.lightHalfSize;
-  double occludedArea = receiver.centreOccluded(inputs) ? lightArea : 0.0;
+  if (recorder)
+  {
+    recorder->beginGroup("light centre (radial integration)");
+  }
+  double occludedArea = receiver.centreOccluded(inputs, recorder) ? lightArea : 0.0;
   const glm::ivec2 first = receiver.firstCell();
   const glm::ivec2 last = receiver.lastCell();
+  if (recorder)
+  {
+    recorder->beginGroup("contour extraction and back-projection");
+    recorder->quantity("first_cell", glm::dvec2(first), "cells", "GBP07: dual cell (i, j) joins samples (i, j) .. (i + 1, j + 1)");
+    recorder->quantity("last_cell", glm::dvec2(last), "cells", "GBP07: the kernel's dual cells");
+    receiver.recordSamples(inputs, receiver.samples, *recorder, "contour sample");
+  }
   for (int j = first.y; j <= last.y; ++j)
   {
     for (int i = first.x; i <= last.x; ++i)
@@ -92,7 +127,7 @@ Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShad
       for (int e = 0; e < count; ++e)
       {
         const ContourEdge& edge = edges[static_cast<std::size_t>(e)];
-        occludedArea += receiver.edgeArea(edge.a, edge.depthA, edge.b, edge.depthB);
+        occludedArea += receiver.edgeArea(edge.a, edge.depthA, edge.b, edge.depthB, recorder);
         ++result.contourEdges;
       }
     }
@@ -100,6 +135,15 @@ Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShad
   const glm::ivec2 cells = last - first + 1;
   const bool overBudget = cells.x * cells.y > gbp07LoopBudgetCells;
   receiver.lookup.sample.visibility = std::clamp(1.0 - occludedArea / lightArea, 0.0, 1.0);
+  if (recorder)
+  {
+    recorder->beginGroup("radial integration");
+    recorder->quantity("light_area", lightArea, "world units^2", "GBP07: A, the square light");
+    recorder->quantity("occluded_area", occludedArea, "world units^2",
+      "GBP07 radial integration: f(O) A + sum over edges of s_e |L beyond e| (the light polygon and edges' signed areas)");
+    recorder->quantity("loop_cells", static_cast<double>(cells.x) * cells.y, "cells",
+      "ShadowLab: the twin's estimate of the cut (gbp07LoopBudgetCells; the shader detects it)");
+  }
   return finish(overBudget ? BackprojectionClass::OverLoopBudget : BackprojectionClass::Penumbra);
 }
 

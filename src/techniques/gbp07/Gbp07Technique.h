@@ -32,8 +32,10 @@ struct Gbp07Sample : BackprojectionPixel
 };
 
 // CPU reference (double precision) of Gbp07Visibility.glsl at pixel (x, y); `hsm` is the min-max structure
-// the technique's `hsm` parameter names, built from inputs.shadowMapLinear.
+// the technique's `hsm` parameter names, built from inputs.shadowMapLinear. `recorder` (optional, `shadowlab
+// probe`): the contour receiver's steps, the light centre's status, the kernel's samples (role "contour
+// sample"), every contour edge with its back-projection and signed area, and the visibility.
 Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y);
+  const ParameterValues& values, int x, int y, ProbeRecorder* recorder = nullptr);
 
 } // namespace sl
