@@ -8,6 +8,7 @@
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
+#include "techniques/Registry.h"
 #include "techniques/gbp06/Gbp06Technique.h"
 
 #include <gtest/gtest.h>
@@ -643,6 +644,145 @@ TEST(Gbp06, KernelsTheLoopCapCutsShortAreFlaggedExactly)
       EXPECT_EQ(report.flagged, 0) << c.label << ": a GL without a loop cap cuts nothing short";
     }
   }
+}
+
+TEST(Gbp06, ProbeRecordsTheMicropatchesAndNodesTheGpuCountedAndTheAreaTheyCover)
+{
+  // `shadowlab probe` (issue 15) on lit, umbra and penumbra pixels, both traversals: the replay equals the GPU
+  // (visibility within the twin tolerance, classification, kernel width, occluding_texels, visited_nodes) and the
+  // record adds up: one "micropatch" texel per micropatch the GPU counted; the texels examined (kernel) or the
+  // walk's nodes (hsm, every decision but the range queries') as many as visited_nodes; each micropatch's clipped
+  // back-projection inside the light with its area as signed area, summing to the occluded area, (1 - V) A.
+  const Scene scene = asymmetricOccluders(); // a sphere and a tilted quad: neighbouring micropatches at other depths
+  const TechniqueDescriptor& technique = findTechnique("gbp06");
+  ASSERT_TRUE(static_cast<bool>(technique.probe));
+  int gapFilledPixels = 0;
+  for (const std::string traversal : { "hsm", "kernel" })
+  {
+    const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight,
+      { "shadow_map_size=256", "traversal=" + traversal, "gap_filling=left_bottom" });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const HierarchicalShadowMap hsm = structureOf(frame, inputs);
+    const ImageF& classes = frame.find("classification")->image;
+    std::map<BackprojectionClass, int> probed;
+    int partial = 0;
+    // The candidates of each class (penumbra: partial visibility), taken evenly spaced in scan order so that
+    // the pixels probed come from all over the frame.
+    std::map<BackprojectionClass, std::vector<glm::ivec2>> candidates;
+    for (int y = 0; y < kHeight; ++y)
+    {
+      for (int x = 0; x < kWidth; ++x)
+      {
+        const auto gpuClass = static_cast<BackprojectionClass>(std::lround(classes.at(x, y)));
+        if (gpuClass != BackprojectionClass::NotTested && gpuClass != BackprojectionClass::OverLoopBudget &&
+          (gpuClass != BackprojectionClass::Penumbra || std::abs(frame.find("visibility")->image.at(x, y) - 0.5f) < 0.48f))
+        {
+          candidates[gpuClass].emplace_back(x, y);
+        }
+      }
+    }
+    for (const auto& entry : candidates)
+    {
+      const BackprojectionClass gpuClass = entry.first;
+      const std::vector<glm::ivec2>& pixels = entry.second;
+      const std::size_t attempts = std::min<std::size_t>(pixels.size(), 24); // evenly spaced, ambiguous ones skipped
+      for (std::size_t k = 0; k < attempts && probed[gpuClass] < (gpuClass == BackprojectionClass::Penumbra ? 6 : 2); ++k)
+      {
+        const int x = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].x;
+        const int y = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].y;
+        ProbeRecorder recorder;
+        const ProbeOutcome outcome = technique.probe({ &frame, &scene, 0 }, { x, y }, recorder);
+if (!outcome.ambiguity.empty())
+        {
+          continue;
+        }
+        ++probed[gpuClass];
+        const ProbeRecord& record = recorder.record();
+        const std::string label = "traversal=" + traversal + " pixel " + std::to_string(x) + "," + std::to_string(y);
+        const auto value = [&](const std::string& name) {
+          const ProbeQuantity* quantity = record.find(name);
+          EXPECT_NE(quantity, nullptr) << label << ": no " << name;
+          return quantity && !quantity->value.empty() ? quantity->value[0] : std::nan("");
+        };
+        const auto count = [&](auto&& items, auto&& predicate) {
+          return static_cast<double>(std::count_if(items.begin(), items.end(), predicate));
+        };
+        const Gbp06Sample twin = gbp06Reference(inputs, hsm, frame.parameters, x, y);
+        EXPECT_EQ(outcome.visibility, twin.sample.visibility) << label;
+        EXPECT_NEAR(outcome.visibility, frame.find("visibility")->image.at(x, y), outcome.tolerance) << label;
+        EXPECT_EQ(value("classification"), classes.at(x, y)) << label;
+        EXPECT_EQ(value("occluding_texels"), frame.find("occluding_texels")->image.at(x, y)) << label;
+        EXPECT_EQ(value("visited_nodes"), frame.find("visited_nodes")->image.at(x, y)) << label;
+        EXPECT_NEAR(value("kernel_texels"), frame.find("kernel_texels")->image.at(x, y), 1e-4 * (1.0 + twin.kernelTexels)) << label;
+        ASSERT_EQ(record.droppedTexels + record.droppedNodes + record.droppedPolygons, 0u) << label;
+        const double micropatches = count(record.texels, [](const ProbeTexel& t) { return t.role == "micropatch"; });
+        EXPECT_EQ(micropatches, twin.occludingTexels) << label;
+        const double examined = count(record.texels, [](const ProbeTexel& t) { return t.role == "examined"; });
+        const double walked = count(record.nodes, [](const ProbeNode& n) { return n.decision.rfind("query:", 0) != 0; });
+        if (traversal == "kernel")
+        {
+          EXPECT_EQ(examined + micropatches, twin.visitedNodes) << label;
+          EXPECT_EQ(walked, 0.0) << label;
+        }
+        else
+        {
+          EXPECT_EQ(walked, twin.visitedNodes) << label;
+          // Leaves are the texels examined.
+          EXPECT_EQ(count(record.nodes, [](const ProbeNode& n) { return n.decision.rfind("leaf", 0) == 0; }), examined + micropatches)
+            << label;
+        }
+        if (gpuClass != BackprojectionClass::Penumbra)
+        {
+          EXPECT_TRUE(record.lightPolygons.empty()) << label;
+          EXPECT_EQ(micropatches, 0.0) << label;
+          continue;
+        }
+        const double h = value("light_half_size");
+        const double lightArea = 4.0 * h * h;
+        double covered = 0.0;
+        for (const ProbeLightPolygon& polygon : record.lightPolygons)
+        {
+          ASSERT_EQ(polygon.points.size(), 4u) << label;
+          double twiceArea = 0.0;
+          for (std::size_t i = 0; i < 4; ++i)
+          {
+            const glm::dvec2& a = polygon.points[i];
+            const glm::dvec2& b = polygon.points[(i + 1) % 4];
+            EXPECT_LE(std::max(std::abs(a.x), std::abs(a.y)), h * (1.0 + 1e-12)) << label << ": clipped to the light";
+            twiceArea += a.x * b.y - a.y * b.x;
+          }
+          EXPECT_NEAR(0.5 * twiceArea, polygon.signedArea, 1e-12 * lightArea) << label;
+          covered += polygon.signedArea;
+        }
+        EXPECT_LE(static_cast<double>(record.lightPolygons.size()), micropatches) << label;
+        EXPECT_NEAR(covered, value("occluded_area"), 1e-9 * lightArea) << label;
+        if (outcome.visibility > 0.0 && outcome.visibility < 1.0)
+        {
+          ++partial;
+          EXPECT_NEAR(covered, (1.0 - outcome.visibility) * lightArea, 1e-9 * lightArea) << label;
+        }
+        gapFilledPixels += value("gap_filled_micropatches") > 0.0 ? 1 : 0;
+
+        EXPECT_GE(value("gap_filling_area"), -1e-12 * lightArea) << label << ": gap filling only grows micropatches";
+        // What the extensions added is the difference to the same pixel replayed without gap filling.
+        ParameterValues withoutGapFilling = frame.parameters;
+        withoutGapFilling.set("gap_filling=off");
+        ProbeRecorder unfilled;
+        gbp06Reference(inputs, hsm, withoutGapFilling, x, y, &unfilled);
+        ASSERT_NE(unfilled.record().find("occluded_area"), nullptr) << label;
+        EXPECT_NEAR(value("occluded_area") - unfilled.record().find("occluded_area")->value[0], value("gap_filling_area"),
+          1e-12 * lightArea) << label;
+      }
+    }
+    std::cout << "[ measured ] gbp06 probe, traversal=" << traversal << " on the mirror tests' scene: " << probed[BackprojectionClass::Lit]
+              << " lit, " << probed[BackprojectionClass::Umbra] << " umbra, " << probed[BackprojectionClass::Penumbra]
+              << " penumbra pixels (" << partial << " partial) replayed unambiguous and consistent\n";
+    EXPECT_EQ(probed[BackprojectionClass::Lit], 2) << traversal;
+    EXPECT_GE(probed[BackprojectionClass::Umbra], 1) << traversal; // the scene's umbra is small at 64 x 48
+    EXPECT_EQ(probed[BackprojectionClass::Penumbra], 6) << traversal;
+    EXPECT_EQ(partial, 6) << traversal;
+  }
+  EXPECT_GT(gapFilledPixels, 0) << "gap filling must have been recorded at work";
 }
 
 } // namespace

@@ -69,7 +69,12 @@ struct Gbp06Sample : BackprojectionPixel
 
 // CPU reference (double precision) of Gbp06Visibility.glsl at pixel (x, y); `hsm` is the min-max structure the
 // technique's `hsm` parameter names (mip-map, N-buffers or YSM), built from inputs.shadowMapLinear.
+// `recorder` (optional, `shadowlab probe`): the contour receiver's steps; every texel examined (role "examined",
+// or "micropatch" when it occludes) and, for traversal=hsm, every quadtree node visited (ProbeNode "hsm" /
+// "mssm", decision "pruned", "descend" or "leaf"); each micropatch's back-projection, gap-filled and clipped to
+// the light, as a ProbeLightPolygon whose signed area is what it adds; the neighbours gap filling read; the
+// occluded area and the visibility.
 Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y);
+  const ParameterValues& values, int x, int y, ProbeRecorder* recorder = nullptr);
 
 } // namespace sl
