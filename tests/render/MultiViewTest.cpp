@@ -5,6 +5,7 @@
 
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
+#include "techniques/Registry.h"
 #include "techniques/SoftShadowSupport.h"
 
 #include <gtest/gtest.h>
@@ -64,6 +65,26 @@ TEST(MultiView, VisibilityIsTheMeanOfEachSubLightsOwnFrame)
     EXPECT_LE(maxSubLightDifference, 1e-6) << technique;
     EXPECT_LE(maxMeanDifference, 1e-6) << technique;
     EXPECT_GT(penumbra, 300) << technique;
+  }
+}
+
+TEST(MultiView, ProbeRefusesMoreThanOneSubLightAndReplaysOne)
+{
+  // A frame keeps one light-space export (the first sub-light's shadow map), so `shadowlab probe` cannot replay
+  // S x S sub-lights: it says so (InputError) instead of replaying the wrong map; with sublights=1 it replays.
+  const Scene scene = test::loadDataset("stacked-occluders");
+  for (const std::string technique : { "gbp07", "yfgl09" })
+  {
+    const FrameResult frame = test::renderDataset(scene, technique, 32, 24, { "shadow_map_size=128", "sublights=2" });
+    ProbeRecorder recorder;
+    EXPECT_THROW(findTechnique(technique).probe({ &frame, &scene, 0 }, { 16, 12 }, recorder), InputError) << technique;
+    const FrameResult single = test::renderDataset(scene, technique, 32, 24, { "shadow_map_size=128", "sublights=1" });
+    const ProbeOutcome outcome = findTechnique(technique).probe({ &single, &scene, 0 }, { 16, 12 }, recorder);
+    EXPECT_TRUE(outcome.evaluated) << technique;
+    if (outcome.ambiguity.empty())
+    {
+      EXPECT_NEAR(outcome.visibility, single.find("visibility")->image.at(16, 12), outcome.tolerance) << technique;
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 // hierarchy); the hierarchy visiting fewer nodes than the MSSM-only brute force; the hard cases.
 #include "techniques/Registry.h"
 #include "support/TestSupport.h"
+#include "techniques/backprojection/ContourBackprojection.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 #include "techniques/yfgl09/Yfgl09Technique.h"
 
@@ -144,6 +145,153 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
   EXPECT_GT(allClasses[code(PacketClass::Coherent)], 100) << "coherent packets";
   EXPECT_GT(allClasses[code(PacketClass::NonCoherent)], 100) << "predicted non-coherent packets";
   EXPECT_GT(allClasses[code(PacketClass::CaughtNull)], 20) << "packets caught by a null status";
+}
+
+TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
+{
+  // `shadowlab probe` (issue 15): one pixel replayed through its packet (yfgl09ReferencePixel, the frame twin's
+  // code) must give exactly the frame twin's values at it, and the GPU's within the twin tolerance (visibility,
+  // packet_class, visited_nodes, contour_edges, kernel_texels; P_d within 2e-3 as above). The record adds up:
+  // one ProbeContourEdge per edge of the traversal that computed the pixel, f(O) A plus their signed areas the
+  // occluded area, (1 - V) A for a partial pixel; its packet's share of the packet traversal's nodes plus its own
+  // traversal's nodes the pixel's visited_nodes; one "packet pixel kernel" per penumbra pixel of its packet.
+  // coherence_test=off: packets go pixel-wise only where traversal meets a null status (Eq. 3).
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const TechniqueDescriptor& technique = findTechnique("yfgl09");
+  ASSERT_TRUE(static_cast<bool>(technique.probe));
+  ClassCounts probed{};
+  int lit = 0;
+  int umbra = 0;
+  int partial = 0;
+  for (const std::vector<std::string> settings : { std::vector<std::string>{ "shadow_map_size=256" },
+         std::vector<std::string>{ "shadow_map_size=256", "coherence_test=off" } })
+  {
+    const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const HierarchicalShadowMap mssm = dualMssm(inputs);
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, mssm, frame.parameters);
+    const ImageF& classes = frame.find("packet_class")->image;
+    // The candidates of each kind (trivial lit, trivial umbra, each traversing class with partial visibility), taken
+    // evenly spaced in scan order so that the pixels probed come from all over the frame.
+    std::map<int, std::vector<glm::ivec2>> candidates; // by class code, trivial umbra as -1
+    for (int y = 0; y < 48; ++y)
+    {
+      for (int x = 0; x < 64; ++x)
+      {
+        const auto gpuClass = static_cast<PacketClass>(std::lround(classes.at(x, y)));
+        const double gpuVisibility = frame.find("visibility")->image.at(x, y);
+        if (gpuClass == PacketClass::Trivial)
+        {
+          candidates[gpuVisibility == 0.0 ? -1 : static_cast<int>(code(gpuClass))].emplace_back(x, y);
+        }
+        else if (gpuClass != PacketClass::NotTested && gpuClass != PacketClass::CutShort && std::abs(gpuVisibility - 0.5) < 0.48)
+        {
+          candidates[static_cast<int>(code(gpuClass))].emplace_back(x, y);
+        }
+      }
+    }
+    for (const auto& entry : candidates)
+    {
+      const std::vector<glm::ivec2>& pixels = entry.second;
+      const std::size_t attempts = std::min<std::size_t>(pixels.size(), 24); // ambiguous ones skipped
+      int kept = 0;
+      for (std::size_t k = 0; k < attempts && kept < (entry.first <= static_cast<int>(code(PacketClass::Trivial)) ? 2 : 4); ++k)
+      {
+        const int x = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].x;
+        const int y = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].y;
+        const auto gpuClass = static_cast<PacketClass>(std::lround(classes.at(x, y)));
+        const double gpuVisibility = frame.find("visibility")->image.at(x, y);
+        ProbeRecorder recorder;
+        const ProbeOutcome outcome = technique.probe({ &frame, &scene, 0 }, { x, y }, recorder);
+        const std::string label = "pixel " + std::to_string(x) + "," + std::to_string(y) + " class " + classNames[code(gpuClass)];
+        // Replayed exactly as in the frame, ambiguous or not.
+        const auto recorded = [&](const std::string& name) {
+          const ProbeQuantity* quantity = recorder.record().find(name);
+          return quantity && !quantity->value.empty() ? static_cast<float>(quantity->value[0]) : std::nanf("");
+        };
+        EXPECT_EQ(static_cast<float>(outcome.visibility), cpu.visibility.at(x, y)) << label;
+        EXPECT_EQ(recorded("packet_class"), cpu.packetClass.at(x, y)) << label;
+        EXPECT_EQ(recorded("visited_nodes"), cpu.visitedNodes.at(x, y)) << label;
+        EXPECT_EQ(recorded("contour_edges"), cpu.contourEdges.at(x, y)) << label;
+        EXPECT_EQ(recorded("divergence_probability"), cpu.divergenceProbability.at(x, y)) << label;
+        EXPECT_EQ(recorded("coherence"), cpu.coherence.at(x, y)) << label;
+        if (!outcome.ambiguity.empty())
+        {
+          continue;
+        }
+        ++kept;
+        ++probed[code(gpuClass)];
+        lit += gpuClass == PacketClass::Trivial && gpuVisibility == 1.0 ? 1 : 0;
+        umbra += gpuClass == PacketClass::Trivial && gpuVisibility == 0.0 ? 1 : 0;
+        const ProbeRecord& record = recorder.record();
+        const auto value = [&](const std::string& name) {
+          const ProbeQuantity* quantity = record.find(name);
+          EXPECT_NE(quantity, nullptr) << label << ": no " << name;
+          return quantity && !quantity->value.empty() ? quantity->value[0] : std::nan("");
+        };
+        EXPECT_NEAR(outcome.visibility, gpuVisibility, outcome.tolerance) << label;
+        EXPECT_EQ(value("packet_class"), classes.at(x, y)) << label;
+        EXPECT_NEAR(value("visited_nodes"), frame.find("visited_nodes")->image.at(x, y), 1e-3) << label;
+        EXPECT_EQ(value("contour_edges"), frame.find("contour_edges")->image.at(x, y)) << label;
+        EXPECT_NEAR(value("kernel_texels"), frame.find("kernel_texels")->image.at(x, y), 1e-4 * (1.0 + value("kernel_texels"))) << label;
+        EXPECT_NEAR(value("coherence"), frame.find("coherence")->image.at(x, y), 1e-5) << label;
+        EXPECT_NEAR(value("divergence_probability"), frame.find("divergence_probability")->image.at(x, y), 2e-3) << label;
+        for (const ProbeQuantity& quantity : record.quantities)
+        {
+          EXPECT_FALSE(quantity.source.empty()) << label << ": " << quantity.name << " has no source";
+        }
+        ASSERT_EQ(record.droppedEdges + record.droppedNodes, 0u) << label;
+        EXPECT_EQ(static_cast<double>(record.contourEdges.size()), value("contour_edges")) << label;
+        const auto nodesOf = [&](const std::string& traversal) {
+          return static_cast<double>(std::count_if(record.nodes.begin(), record.nodes.end(),
+            [&](const ProbeNode& node) { return node.decision.rfind(traversal + ": ", 0) == 0; }));
+        };
+        if (gpuClass == PacketClass::Trivial)
+        {
+          EXPECT_EQ(nodesOf("packet traversal") + nodesOf("pixel traversal"), 0.0) << label;
+          EXPECT_TRUE(record.contourEdges.empty()) << label;
+          continue;
+        }
+        const double penumbraPixels = value("packet_penumbra_pixels");
+        EXPECT_NEAR(nodesOf("packet traversal") / penumbraPixels + nodesOf("pixel traversal"), value("visited_nodes"), 1e-9) << label;
+        EXPECT_EQ(nodesOf("pixel traversal") > 0.0, gpuClass != PacketClass::Coherent) << label;
+        EXPECT_EQ(static_cast<double>(std::count_if(record.kernels.begin(), record.kernels.end(),
+                    [](const ProbeKernel& kernel) { return kernel.role == "packet pixel kernel"; })),
+          penumbraPixels) << label;
+        const double h = value("light_half_size");
+        const double lightArea = 4.0 * h * h;
+        double covered = 0.0;
+        for (const ProbeLightPolygon& polygon : record.lightPolygons)
+        {
+          covered += polygon.signedArea; // f(O) A
+        }
+        for (const ProbeContourEdge& edge : record.contourEdges)
+        {
+          // Edges outside the pixel's kernel integrate nothing: their back-projection misses the light.
+          if (edge.signedArea != 0.0)
+          {
+            EXPECT_NEAR(edge.signedArea, radialEdgeArea(edge.lightA, edge.lightB, h), 1e-15 * lightArea) << label;
+          }
+          covered += edge.signedArea;
+        }
+        EXPECT_NEAR(covered, value("occluded_area"), 1e-9 * lightArea) << label;
+        if (outcome.visibility > 0.0 && outcome.visibility < 1.0)
+        {
+          ++partial;
+          EXPECT_NEAR(covered, (1.0 - outcome.visibility) * lightArea, 1e-9 * lightArea) << label;
+        }
+      }
+    }
+  }
+  std::cout << "[ measured ] yfgl09 probe on stacked-occluders, default and coherence_test=off: " << histogram(probed) << " (" << lit << " lit, " << umbra << " umbra, "
+            << partial << " partial) replayed unambiguous and consistent\n";
+  EXPECT_EQ(lit, 4);
+  EXPECT_EQ(umbra, 4);
+  EXPECT_EQ(probed[code(PacketClass::Coherent)], 8);
+  EXPECT_EQ(probed[code(PacketClass::NonCoherent)], 4);
+  EXPECT_GE(probed[code(PacketClass::CaughtNull)], 2);
+  EXPECT_EQ(partial, probed[code(PacketClass::Coherent)] + probed[code(PacketClass::NonCoherent)] +
+    probed[code(PacketClass::CaughtNull)] + probed[code(PacketClass::OverBudget)]);
 }
 
 // The scenes whose light gbp07 and yfgl09 support (square area lights).

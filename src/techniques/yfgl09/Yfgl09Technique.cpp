@@ -4,6 +4,7 @@
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
 #include "core/Error.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
 #include "techniques/backprojection/ContourBackprojection.h"
@@ -14,6 +15,9 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <set>
+#include <string>
+#include <utility>
 
 namespace sl
 {
@@ -36,6 +40,54 @@ BufferSpec packetClassBuffer()
 {
   return categoricalBuffer("packet_class", "how the pixel was computed (first sub-light)", packetCategories,
     SubLightCombine::First);
+}
+
+} // namespace
+
+namespace
+{
+
+// The tests' ambiguity rule (Yfgl09Test.cpp): the pixel's own margins (sample, kernel edge, lit / umbra test); the
+// packet's other pixels' margins, which can flip the packet's decisions (its class, visited nodes and edges;
+// the test compares those allowing 2 % of pixels to differ); and the GPU's marks: a pixel cut short by the loop
+// cap is not exact, and a packet pass the cap cut is finished pixel-wise and marked over budget.
+std::string yfgl09Ambiguity(const Yfgl09Pixel& result, const std::vector<Yfgl09Pixel>& packet, const FrameResult& frame,
+  glm::ivec2 pixel)
+{
+  if (!result.sample.evaluated)
+  {
+    return {};
+  }
+  const auto own = [](const Yfgl09Pixel& r) {
+    std::string ambiguity = ambiguityOf(r.sample);
+    noteAmbiguity(ambiguity, "kernel edge from a texel centre (texels)", r.kernelEdgeMargin, 1e-4);
+    noteAmbiguity(ambiguity, "lit / umbra test from its boundary (relative)", r.decisionMargin, 1e-5);
+    return ambiguity;
+  };
+  std::string ambiguity = own(result);
+  for (const Yfgl09Pixel& other : packet)
+  {
+    const std::string theirs = other.pixel != pixel && other.sample.evaluated ? own(other) : std::string();
+    if (!theirs.empty())
+    {
+      ambiguity += std::string(ambiguity.empty() ? "" : ", ") + "packet pixel " + std::to_string(other.pixel.x) + "," +
+        std::to_string(other.pixel.y) + " (" + theirs + "; the packet's decisions may differ)";
+    }
+  }
+  const int gpuClass = static_cast<int>(std::lround(bufferValue(frame, "packet_class", pixel)));
+  if (gpuClass == static_cast<int>(PacketClass::CutShort))
+  {
+    ambiguity += std::string(ambiguity.empty() ? "" : ", ") + "the GPU's loop cap cut this pixel short (packet_class " +
+      packetClassLabel(PacketClass::CutShort) + "): its visibility is not exact";
+  }
+  else if ((gpuClass == static_cast<int>(PacketClass::OverBudget)) != (result.packetClass == PacketClass::OverBudget))
+  {
+    ambiguity += std::string(ambiguity.empty() ? "" : ", ") +
+      "the GPU's packet pass was cut by the loop cap and finished pixel-wise (packet_class " +
+      packetClassLabel(PacketClass::OverBudget) + "), or only the twin's packet outgrew the budget: the class and "
+      "visited nodes differ, the visibility is exact";
+  }
+  return ambiguity;
 }
 
 } // namespace
@@ -91,6 +143,20 @@ TechniqueDescriptor yfgl09Technique()
   // Like gbp07: the registry-wide sweeps use small maps (brute-force kernels grow with the resolution squared).
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLYfgl09Pass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    const FrameResult& frame = *context.frame;
+    requireSingleSubLight(frame);
+    const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex);
+    const HierarchicalShadowMap mssm =
+      HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth));
+    std::vector<Yfgl09Pixel> packet;
+    const Yfgl09Pixel result = yfgl09ReferencePixel(inputs, mssm, frame.parameters, pixel.x, pixel.y, &recorder, &packet);
+    // Yfgl09Test.MatchesTheCpuImplementation: visibility within 1e-3 on pixels without a decision near its
+    // boundary (float back-projection and clipping, as gbp07's).
+    ProbeOutcome outcome = probeOutcome(result.sample, 1e-3, "yfgl09ReferencePixel (yfgl09/Yfgl09Technique.h): the pixel's packet, double precision");
+    outcome.ambiguity = yfgl09Ambiguity(result, packet, frame, pixel);
+    return outcome;
+  };
   return descriptor;
 }
 
@@ -130,24 +196,36 @@ bool comparisonRangeOverCells(const std::vector<ContourReceiver*>& receivers, in
 }
 
 // One traversal (Alg. 2 + Alg. 3) for a set of receivers: a packet (pass 1), or a single pixel (pass 2).
+// `recorder` (a probe's, optional): the nodes visited (decisions prefixed `name`), the Eq. 3 statuses read and,
+// for receiver `probed`, its light centre and every contour edge extracted, with the area it integrated.
 class PacketTraversal
 {
 public:
-  PacketTraversal(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, std::vector<ContourReceiver*> receivers)
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+
+  PacketTraversal(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, std::vector<ContourReceiver*> receivers,
+    ProbeRecorder* recorder = nullptr, std::size_t probed = none, std::string name = {})
     : inputs_(inputs)
     , mssm_(mssm)
     , receivers_(std::move(receivers))
     , areas_(receivers_.size(), 0.0)
+    , recorder_(probed < receivers_.size() ? recorder : nullptr)
+    , probed_(probed)
+    , name_(std::move(name))
   {
   }
 
   // Returns false when a sample's status was null (Eq. 3) or the packet outgrew its budget.
   bool run(const Cells& region, bool hierarchy)
   {
+    if (recorder_)
+    {
+      recorder_->beginGroup(name_ + ": light centre (radial integration)");
+    }
     for (std::size_t p = 0; p < receivers_.size(); ++p)
     {
       const double lightArea = 4.0 * receivers_[p]->lightHalfSize * receivers_[p]->lightHalfSize;
-      areas_[p] = receivers_[p]->centreOccluded(inputs_) ? lightArea : 0.0;
+      areas_[p] = receivers_[p]->centreOccluded(inputs_, p == probed_ ? recorder_ : nullptr) ? lightArea : 0.0;
     }
     if (!hierarchy)
     {
@@ -156,7 +234,9 @@ public:
         for (int i = region.lo.x; i <= region.hi.x; ++i)
         {
           ++visitedNodes;
-          if (nodeComparisonRange(0, { i, j }) && !leaf({ i, j }))
+          const bool shared = nodeComparisonRange(0, { i, j });
+          recordNode(0, { i, j }, shared ? "leaf: marching squares" : "pruned: no pixel's kernel holds the cell");
+          if (shared && !leaf({ i, j }))
           {
             return false;
           }
@@ -175,6 +255,12 @@ public:
     while ((1 << rootLevel) < std::max(extent.x, extent.y))
     {
       ++rootLevel;
+    }
+    if (recorder_)
+    {
+      recorder_->beginGroup(name_ + " (Alg. 3)");
+      recorder_->quantity("root_level", rootLevel, "level",
+        "§4.2, YFGL09: the lowest MSSM level whose node covers the kernel, its top-left side on the kernel's");
     }
     ++visitedNodes;
     if (!overlaps(rootLevel, region.lo))
@@ -238,6 +324,11 @@ public:
   long packetWork = 0; // loop iterations over the packet's pixels, as the GLSL counts them
   bool caughtNull = false;
   bool budgetExceeded = false;
+  // For a probe: the cell whose null status stopped the traversal, and the statuses read (1, 0, null).
+  glm::ivec2 nullCell{ 0 };
+  int occluderStatuses = 0;
+  int freeStatuses = 0;
+  int nullStatuses = 0;
 
 private:
   bool overBudget()
@@ -251,6 +342,19 @@ private:
     const glm::ivec2 first = receiver.firstCell();
     const glm::ivec2 last = receiver.lastCell();
     return cell.x >= first.x && cell.y >= first.y && cell.x <= last.x && cell.y <= last.y;
+  }
+
+  // A probe's record of the node of `level` whose first cell is `firstCell`: the samples of its cells.
+  void recordNode(int level, glm::ivec2 firstCell, const std::string& decision)
+  {
+    if (!recorder_)
+    {
+      return;
+    }
+    const glm::dvec2 range = mssm_.dualNode(level, firstCell);
+    const glm::ivec2 last(mssm_.mapSize - 1);
+    recorder_->node({ "mssm", level, glm::clamp(firstCell, glm::ivec2(0), last),
+      glm::clamp(firstCell + (1 << level), glm::ivec2(0), last), range.x, range.y, name_ + ": " + decision });
   }
 
   // Eq. 3's [z_pmin, z_pmax] over the samples of the node's cells: the comparison depths of the receivers whose
@@ -268,10 +372,32 @@ private:
   {
     if (!nodeComparisonRange(level, firstCell))
     {
+      recordNode(level, firstCell, "pruned: no pixel's kernel shares a cell with it");
       return false;
     }
     const glm::dvec2 node = mssm_.dualNode(level, firstCell);
-    return !(node.x >= nodeComparison_.y || node.y < nodeComparison_.x);
+    const bool behind = node.x >= nodeComparison_.y;
+    const bool inFront = node.y < nodeComparison_.x;
+    recordNode(level, firstCell, behind ? "pruned: every sample behind the pixels (Fig. 6 case 4)"
+      : inFront ? "pruned: every sample in front of the pixels (Fig. 6 case 5)"
+      : level == 0 ? "leaf: marching squares" : "descend");
+    return !(behind || inFront);
+  }
+
+  // A probe's record of an Eq. 3 status read (each sample once per traversal).
+  void recordStatus(glm::ivec2 sample, double z, int status)
+  {
+    occluderStatuses += status == 1 ? 1 : 0;
+    freeStatuses += status == 0 ? 1 : 0;
+    nullStatuses += status < 0 ? 1 : 0;
+    if (!recorder_ || !recordedStatuses_.insert({ sample.x, sample.y }).second)
+    {
+      return;
+    }
+    const ContourReceiver& probed = *receivers_[probed_];
+    const double compared = probed.geometry.tapComparisonDepth(glm::dvec2(sample) + 0.5, probed.bias);
+    recorder_->texel({ sample, status == 1 ? "Eq. 3 status 1 (occluder)" : status == 0 ? "Eq. 3 status 0 (free)" : "Eq. 3 status null",
+      z, compared, status == 1, 1.0 });
   }
 
   // Eq. 3 for a corner of `cell` (whose node comparison range is current): 1 / 0 for every receiver outside
@@ -294,10 +420,12 @@ private:
     }
     if (z < nodeComparison_.x)
     {
+      recordStatus(sample, z, 1);
       return 1;
     }
     if (z >= nodeComparison_.y)
     {
+      recordStatus(sample, z, 0);
       return 0;
     }
     int occluded = 0;
@@ -312,7 +440,9 @@ private:
       }
     }
     packetWork += static_cast<long>(receivers_.size());
-    return occluded == 0 ? 0 : occluded == sharing ? 1 : -1;
+    const int result = occluded == 0 ? 0 : occluded == sharing ? 1 : -1;
+    recordStatus(sample, z, result);
+    return result;
   }
 
   // Marching squares on one dual cell with the packet's statuses; edges integrated for each receiver whose
@@ -327,6 +457,7 @@ private:
       if (s < 0)
       {
         caughtNull = true;
+        nullCell = cell;
         return false;
       }
       occluding[k] = s == 1;
@@ -340,8 +471,15 @@ private:
       {
         if (holdsCell(*receivers_[p], cell))
         {
-          areas_[p] += receivers_[p]->edgeArea(edge.a, edge.depthA, edge.b, edge.depthB);
+          areas_[p] += receivers_[p]->edgeArea(edge.a, edge.depthA, edge.b, edge.depthB, p == probed_ ? recorder_ : nullptr);
         }
+      }
+      if (recorder_ && !holdsCell(*receivers_[probed_], cell))
+      {
+        // Extracted for the packet, outside this pixel's kernel: it integrates nothing of it.
+        const ContourReceiver& probed = *receivers_[probed_];
+        recorder_->contourEdge({ edge.a, edge.b, probed.backProjectToLight(edge.a, edge.depthA),
+          probed.backProjectToLight(edge.b, edge.depthB), 0.0 });
       }
     }
     packetWork += static_cast<long>(count) * static_cast<long>(receivers_.size());
@@ -354,6 +492,10 @@ private:
   std::vector<ContourReceiver*> receivers_;
   std::vector<double> areas_;
   glm::dvec2 nodeComparison_{ 0.0 };
+  ProbeRecorder* recorder_ = nullptr;
+  std::size_t probed_ = none;
+  std::string name_;
+  std::set<std::pair<int, int>> recordedStatuses_;
 };
 
 double rectangleArea(const TexelRectangle& r)
@@ -380,7 +522,355 @@ double nodeCost(int width)
   return std::log2(static_cast<double>(width)) * width;
 }
 
+// The settings the packets read (§4.1-4.3).
+struct PacketSettings
+{
+  explicit PacketSettings(const ParameterValues& values)
+    : packetWidth(values.getInt("packet_width"))
+    , packetHeight(values.getInt("packet_height"))
+    , hierarchy(values.choice("hierarchy") == "on")
+    , divergenceTest(values.choice("coherence_test") == "both" || values.choice("coherence_test") == "divergence")
+    , costTest(values.choice("coherence_test") == "both" || values.choice("coherence_test") == "cost")
+    , divergenceThreshold(values.get("divergence_threshold"))
+    , edgeCost(values.get("edge_cost"))
+    , visibilityCost(values.get("visibility_cost"))
+    , paperPacketCost(values.choice("packet_cost") == "paper")
+    , coherenceDepth(values.choice("coherence_depth"))
+  {
+  }
+
+  int packetWidth;
+  int packetHeight;
+  bool hierarchy;
+  bool divergenceTest;
+  bool costTest;
+  double divergenceThreshold;
+  double edgeCost;
+  double visibilityCost;
+  bool paperPacketCost;
+  std::string coherenceDepth;
+};
+
+const char* const packetSource = "§4.1, Alg. 2, YFGL09 (Yang et al. 2009)";
+
+// A traversal's record for a probe: what it visited and extracted.
+void recordTraversal(ProbeRecorder& recorder, const PacketTraversal& traversal, bool completed, const std::string& what)
+{
+  recorder.quantity(what + "_visited_nodes", traversal.visitedNodes, "nodes",
+    "Alg. 3, YFGL09: MSSM nodes (or dual cells, hierarchy off) examined");
+  recorder.quantity(what + "_contour_edges", traversal.contourEdges, "edges", "Alg. 2, YFGL09: contour edges extracted");
+  recorder.quantity("eq3_occluder_statuses", traversal.occluderStatuses, "count", "Eq. 3, YFGL09: f(s) = 1 (z_s <= z_pmin, or every pixel occluded)");
+  recorder.quantity("eq3_free_statuses", traversal.freeStatuses, "count", "Eq. 3, YFGL09: f(s) = 0 (z_pmax <= z_s, or no pixel occluded)");
+  recorder.quantity("eq3_null_statuses", traversal.nullStatuses, "count", "Eq. 3, YFGL09: f(s) = null (the pixels disagree)");
+  recorder.quantity("packet_work", static_cast<double>(traversal.packetWork), "iterations",
+    "ShadowLab: loop iterations over the packet's pixels, against yfgl09PacketBudget with the visited nodes");
+  recorder.category(what + "_outcome",
+    completed ? std::string("completed")
+      : traversal.caughtNull ? "caught null (Eq. 3) at cell (" + std::to_string(traversal.nullCell.x) + ", " +
+          std::to_string(traversal.nullCell.y) + "): the packet goes pixel-wise"
+      : "over the packet budget: the packet goes pixel-wise",
+    "§4.3, YFGL09: a null status met during traversal marks the packet non coherent");
+}
+
+// Appends what a packet traversal recorded into a scratch recorder: its nodes and statuses always (they count
+// toward the pixel's visited_nodes), its light centre and edges only when the packet computed the pixel.
+void appendPacketRecord(ProbeRecorder& to, const ProbeRecord& from, bool computedThePixel)
+{
+  for (const ProbeNode& node : from.nodes)
+  {
+    to.node(node);
+  }
+  to.record().droppedNodes += from.droppedNodes;
+  for (const ProbeTexel& texel : from.texels)
+  {
+    if (computedThePixel || texel.role.rfind("Eq. 3", 0) == 0)
+    {
+      to.texel(texel);
+    }
+  }
+  to.record().droppedTexels += from.droppedTexels;
+  if (!computedThePixel)
+  {
+    return;
+  }
+  to.record().quantities.insert(to.record().quantities.end(), from.quantities.begin(), from.quantities.end());
+  for (const ProbeLightPolygon& polygon : from.lightPolygons)
+  {
+    to.lightPolygon(polygon);
+  }
+  for (const ProbeContourEdge& edge : from.contourEdges)
+  {
+    to.contourEdge(edge);
+  }
+  to.record().droppedPolygons += from.droppedPolygons;
+  to.record().droppedEdges += from.droppedEdges;
+}
+
+// Alg. 1 steps 5-8 for the packet whose first pixel is `origin`: every pixel of it, as the frame holds them.
+// `recorder` (optional) records the steps of pixel `probed`, which must lie in the packet.
+std::vector<Yfgl09Pixel> evaluatePacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const ParameterValues& values, const PacketSettings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
+  glm::ivec2 probed)
+{
+  const int width = inputs.position.width;
+  const int height = inputs.position.height;
+  const int px = origin.x;
+  const int py = origin.y;
+  // Alg. 1 step 5 for every pixel of the packet; the penumbra ones form the packet.
+  std::vector<ContourReceiver> receivers;
+  std::vector<Yfgl09Pixel> results;
+  std::vector<ContourReceiver*> penumbra;
+  std::vector<std::size_t> penumbraResults; // index in `results` of each penumbra pixel
+  receivers.reserve(static_cast<std::size_t>(settings.packetWidth * settings.packetHeight));
+  ContourReceiver* reference = nullptr;
+  glm::ivec2 referencePixel(0);
+  std::size_t probedPenumbra = PacketTraversal::none; // the probed pixel's index in `penumbra`
+  std::size_t probedResult = PacketTraversal::none;
+  for (int y = py; y < std::min(py + settings.packetHeight, height); ++y)
+  {
+    for (int x = px; x < std::min(px + settings.packetWidth, width); ++x)
+    {
+      const bool isProbed = recorder != nullptr && glm::ivec2(x, y) == probed;
+      receivers.push_back(prepareContourReceiver(inputs, values, mssm, x, y, isProbed ? recorder : nullptr));
+      ContourReceiver& receiver = receivers.back();
+      Yfgl09Pixel result;
+      result.pixel = { x, y };
+      result.kernelTexels = receiver.kernelTexels;
+      result.packetClass = receiver.lookup.sample.evaluated ? PacketClass::Trivial : PacketClass::NotTested;
+      probedResult = isProbed ? results.size() : probedResult;
+      results.push_back(result);
+      if (receiver.classification == BackprojectionClass::Penumbra)
+      {
+        probedPenumbra = isProbed ? penumbra.size() : probedPenumbra;
+        penumbra.push_back(&receiver);
+        penumbraResults.push_back(results.size() - 1);
+        if (x == px + settings.packetWidth / 2 && y == py + settings.packetHeight / 2)
+        {
+          reference = &receiver;
+          referencePixel = { x, y };
+        }
+      }
+    }
+  }
+  SL_CHECK_MSG(recorder == nullptr || probedResult != PacketTraversal::none, "pixel ", probed.x, ",", probed.y,
+    " lies outside the packet at ", px, ",", py);
+  // A probe's traversals record into `probe` (null unless the probed pixel is in the packet's penumbra).
+  ProbeRecorder* const probe = probedPenumbra != PacketTraversal::none ? recorder : nullptr;
+  const auto finish = [&]() {
+    for (std::size_t p = 0; p < receivers.size(); ++p)
+    {
+      results[p].sample = receivers[p].lookup.sample;
+      results[p].kernelEdgeMargin = receivers[p].kernelEdgeMargin;
+      results[p].decisionMargin = receivers[p].decisionMargin;
+    }
+    if (recorder)
+    {
+      const Yfgl09Pixel& result = results[probedResult];
+      recorder->beginGroup("the pixel's buffers");
+      if (probe == nullptr)
+      {
+        recorder->quantity("coherence", result.coherence, "", "Eq. 2, YFGL09: 0, the pixel is in no packet's traversal");
+        recorder->quantity("divergence_probability", result.divergenceProbability, "", "Eq. 5, YFGL09: 0, no prediction");
+      }
+      recorder->category("packet_class", static_cast<int>(result.packetClass), packetClassLabel(result.packetClass),
+        "§4.3, Alg. 1 steps 5-8, YFGL09; ShadowLab: the packet_class buffer's code (PacketClass)");
+      recorder->quantity("visited_nodes", result.visitedNodes, "nodes",
+        "Fig. 8, YFGL09: the pixel's share of its packet's traversal plus its own");
+      recorder->quantity("contour_edges", result.contourEdges, "edges", "Alg. 2, YFGL09: edges of the traversal that computed the pixel");
+      recorder->quantity("visibility", result.sample.visibility, "",
+        probe == nullptr ? decisionSourceOf(receivers[probedResult].classification)
+                         : "GBP07 / YFGL09: V = clamp(1 - (f(O) A + sum of s_e |L beyond e|) / A, 0, 1)");
+    }
+    return results;
+  };
+  if (recorder)
+  {
+    recorder->beginGroup("packet (§4.1, Alg. 2)");
+    recorder->quantity("packet_origin", glm::dvec2(origin), "pixels", "§4.1, YFGL09: packets of w x h pixels from the image's corner");
+    recorder->quantity("packet_size", glm::dvec2(settings.packetWidth, settings.packetHeight), "pixels", "§4.1, YFGL09: w x h");
+    recorder->quantity("packet_penumbra_pixels", static_cast<double>(penumbra.size()), "pixels",
+      "Alg. 1 step 5, YFGL09: the packet's pixels neither lit nor umbra, traversed together");
+    recorder->category("packet_membership", probe ? "penumbra: computed with the packet" : "lit or umbra: no traversal",
+      "Alg. 1 step 5, YFGL09");
+  }
+  if (penumbra.empty())
+  {
+    return finish();
+  }
+  const std::size_t count = penumbra.size();
+  if (!reference)
+  {
+    reference = penumbra.front();
+    referencePixel = results[penumbraResults.front()].pixel;
+  }
+
+  // The packet kernel: the bounding box of its pixels' kernels (Alg. 2), as texels, samples and cells.
+  TexelRectangle kernel = penumbra.front()->kernel;
+  TexelRectangle samples = penumbra.front()->samples;
+  for (const ContourReceiver* receiver : penumbra)
+  {
+    kernel = { glm::min(kernel.lo, receiver->kernel.lo), glm::max(kernel.hi, receiver->kernel.hi) };
+    samples = { glm::min(samples.lo, receiver->samples.lo), glm::max(samples.hi, receiver->samples.hi) };
+  }
+  const Cells region{ kernel.lo - 1, kernel.hi };
+  // The packet's depth range (§4.3: its pixels' comparison depths).
+  glm::dvec2 comparison(1e300, -1e300);
+  double pixelCost = 0.0;
+  for (const ContourReceiver* receiver : penumbra)
+  {
+    const double own = receiver->geometry.d - receiver->bias;
+    comparison = { std::min(comparison.x, own), std::max(comparison.y, own) };
+    const int w = widthTexels(receiver->kernel);
+    pixelCost += nodeCost(w) + (settings.edgeCost + settings.visibilityCost) * w;
+  }
+
+  // §4.3: Eq. 2 (reported), Eq. 4-5 and Eq. 6 (deciding), for packets of more than one pixel.
+  double coherence = 0.0;
+  double divergence = 0.0;
+  PacketClass packetClass = PacketClass::Coherent;
+  if (count > 1)
+  {
+    for (const ContourReceiver* receiver : penumbra)
+    {
+      coherence = std::max(coherence, outsideFraction(receiver->kernel, reference->kernel));
+    }
+    glm::dvec2 kernelRange = mssm.range(samples.lo, samples.hi);
+    if (settings.coherenceDepth == "comparison")
+    {
+      comparisonRangeOverCells(penumbra, mssm.mapSize, region.lo, region.hi, comparison);
+    }
+    else if (settings.coherenceDepth == "window")
+    {
+      const LightView& view = inputs.lightView;
+      comparison = { view.windowDepth(comparison.x), view.windowDepth(comparison.y) };
+      kernelRange = { view.windowDepth(kernelRange.x), view.windowDepth(kernelRange.y) };
+    }
+    const double overlap = std::max(std::min(comparison.y, kernelRange.y) - std::max(comparison.x, kernelRange.x), 0.0);
+    const double nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
+    const int packetKernelWidth = widthTexels(kernel);
+    divergence = 1.0 - std::pow(1.0 - nullProbability, static_cast<double>(packetKernelWidth) * packetKernelWidth); // Eq. 5
+    const double packetPixels = settings.paperPacketCost ? settings.packetWidth * settings.packetHeight : static_cast<double>(count);
+    const double packetCost = nodeCost(packetKernelWidth) + (settings.edgeCost + settings.visibilityCost * packetPixels) * packetKernelWidth; // Eq. 6
+    const bool divergent = settings.divergenceTest && divergence > settings.divergenceThreshold;
+    const bool costly = settings.costTest && packetCost > pixelCost;
+    if (divergent || costly)
+    {
+      packetClass = PacketClass::NonCoherent;
+    }
+    if (probe)
+    {
+      const std::string depthUnit = settings.coherenceDepth == "window" ? "window depth" : "linear depth";
+      probe->beginGroup("coherence prediction (§4.3)");
+      probe->quantity("reference_pixel", glm::dvec2(referencePixel), "pixels", "Eq. 2, YFGL09: k_0, the packet's centre pixel's kernel");
+      probe->quantity("coherence", coherence, "", "Eq. 2, YFGL09: max_i |k_i \\ k_0| / |k_i|");
+      probe->category("coherence_depth", settings.coherenceDepth, "§4.3, YFGL09 (issue 13: which depths Eq. 4 compares)");
+      probe->quantity("packet_depth_range", comparison, depthUnit, "§4.3, YFGL09: [z_pmin, z_pmax] of the packet");
+      probe->quantity("kernel_depth_range", kernelRange, depthUnit, "§4.3, YFGL09: the packet kernel's MSSM range");
+      probe->quantity("null_probability", nullProbability, "", "Eq. 4, YFGL09: P_null, the overlap of the two ranges over the kernel's");
+      probe->quantity("packet_kernel_width", packetKernelWidth, "texels", "Eq. 5, YFGL09: n, the packet kernel's width");
+      probe->quantity("divergence_probability", divergence, "", "Eq. 5, YFGL09: P_d = 1 - (1 - P_null)^(n^2)");
+      probe->quantity("divergence_threshold", settings.divergenceThreshold, "", "§4.3, YFGL09: T_d");
+      probe->quantity("packet_cost", packetCost, "node visits", "Eq. 6, YFGL09: n log2 n + (Q_e + Q_v w h) n, Q_n = 1");
+      probe->quantity("pixel_cost", pixelCost, "node visits", "Eq. 6, YFGL09: the sum over the pixels of n_i log2 n_i + (Q_e + Q_v) n_i");
+      probe->category("prediction", divergent ? "non-coherent: P_d > T_d" : costly ? "non-coherent: Eq. 6 prefers pixels"
+        : "coherent", "§4.3, Eq. 5-6, YFGL09");
+    }
+  }
+  else if (probe)
+  {
+    probe->beginGroup("coherence prediction (§4.3)");
+    probe->quantity("coherence", coherence, "", "Eq. 2, YFGL09: 0, a packet of one penumbra pixel");
+    probe->quantity("divergence_probability", divergence, "", "Eq. 5, YFGL09: 0, a packet of one penumbra pixel is coherent");
+    probe->category("prediction", "coherent: one penumbra pixel", "§4.3, YFGL09");
+  }
+  if (probe)
+  {
+    probe->kernel({ "packet", glm::dvec2(kernel.lo), glm::dvec2(kernel.hi + 1), packetClassLabel(packetClass), packetSource });
+    for (std::size_t p = 0; p < count; ++p)
+    {
+      const glm::ivec2 pixel = results[penumbraResults[p]].pixel;
+      probe->kernel({ "packet pixel kernel", glm::dvec2(penumbra[p]->kernel.lo), glm::dvec2(penumbra[p]->kernel.hi + 1),
+        "pixel " + std::to_string(pixel.x) + "," + std::to_string(pixel.y), "Eq. 1, YFGL09" });
+    }
+  }
+  double packetVisitedShare = 0.0;
+  std::vector<double> packetAreas;
+  if (packetClass == PacketClass::Coherent)
+  {
+    // A probe's view of the packet's traversal goes through a scratch record: its edges belong to the pixel
+    // only if the packet completes.
+    ProbeRecorder scratch;
+    PacketTraversal traversal(inputs, mssm, penumbra, probe ? &scratch : nullptr, probedPenumbra, "packet traversal");
+    const bool completed = traversal.run(region, settings.hierarchy);
+    if (completed)
+    {
+      for (std::size_t p = 0; p < count; ++p)
+      {
+        const double lightArea = 4.0 * penumbra[p]->lightHalfSize * penumbra[p]->lightHalfSize;
+        penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(p) / lightArea, 0.0, 1.0);
+        results[penumbraResults[p]].contourEdges = traversal.contourEdges;
+        packetAreas.push_back(traversal.area(p));
+      }
+    }
+    else
+    {
+      packetClass = traversal.caughtNull ? PacketClass::CaughtNull : PacketClass::OverBudget;
+    }
+    packetVisitedShare = static_cast<double>(traversal.visitedNodes) / count;
+    if (probe)
+    {
+      appendPacketRecord(*probe, scratch.record(), completed);
+      probe->beginGroup("packet traversal (Alg. 2, Alg. 3)");
+      recordTraversal(*probe, traversal, completed, "packet");
+      probe->quantity("packet_visited_share", packetVisitedShare, "nodes",
+        "Fig. 8, YFGL09: the packet's visited nodes / its penumbra pixels, each pixel's share");
+    }
+  }
+  for (std::size_t p = 0; p < count; ++p)
+  {
+    Yfgl09Pixel& result = results[penumbraResults[p]];
+    const double lightArea = 4.0 * penumbra[p]->lightHalfSize * penumbra[p]->lightHalfSize;
+    double visited = packetVisitedShare;
+    double occludedArea = packetAreas.empty() ? 0.0 : packetAreas[p];
+    if (packetClass != PacketClass::Coherent)
+    {
+      // Step 8: the pixel alone, over its own kernel.
+      const bool isProbed = p == probedPenumbra;
+      PacketTraversal traversal(inputs, mssm, { penumbra[p] }, isProbed ? probe : nullptr, 0, "pixel traversal");
+      const bool completed = traversal.run({ penumbra[p]->firstCell(), penumbra[p]->lastCell() }, settings.hierarchy);
+      penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(0) / lightArea, 0.0, 1.0);
+      result.contourEdges = traversal.contourEdges;
+      visited += traversal.visitedNodes;
+      occludedArea = traversal.area(0);
+      if (isProbed && probe)
+      {
+        probe->beginGroup("pixel traversal (Alg. 1 step 8)");
+        recordTraversal(*probe, traversal, completed, "pixel");
+      }
+    }
+    result.visitedNodes = visited;
+    result.packetClass = packetClass;
+    result.coherence = coherence;
+    result.divergenceProbability = divergence;
+    if (p == probedPenumbra && probe)
+    {
+      probe->beginGroup("radial integration");
+      probe->quantity("light_area", lightArea, "world units^2", "GBP07: A, the square light");
+      probe->quantity("occluded_area", occludedArea, "world units^2",
+        "GBP07 radial integration: f(O) A + sum over the pixel's edges of s_e |L beyond e| (light polygon and edges' signed areas)");
+    }
+  }
+  return finish();
+}
+
 } // namespace
+
+std::string packetClassLabel(PacketClass packetClass)
+{
+  const std::size_t code = static_cast<std::size_t>(packetClass);
+  SL_CHECK(code < std::size(packetCategories));
+  return packetCategories[code].label;
+}
 
 Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const ParameterValues& values)
 {
@@ -396,162 +886,50 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
   frame.samples.resize(static_cast<std::size_t>(width) * height);
   frame.kernelEdgeMargin.assign(frame.samples.size(), 1e300);
   frame.decisionMargin.assign(frame.samples.size(), 1e300);
-
-  const int packetWidth = values.getInt("packet_width");
-  const int packetHeight = values.getInt("packet_height");
-  const bool hierarchy = values.choice("hierarchy") == "on";
-  const std::string& test = values.choice("coherence_test");
-  const bool divergenceTest = test == "both" || test == "divergence";
-  const bool costTest = test == "both" || test == "cost";
-  const double divergenceThreshold = values.get("divergence_threshold");
-  const double edgeCost = values.get("edge_cost");
-  const double visibilityCost = values.get("visibility_cost");
-  const bool paperPacketCost = values.choice("packet_cost") == "paper";
-  const std::string& coherenceDepth = values.choice("coherence_depth");
-
-  for (int py = 0; py < height; py += packetHeight)
+  const PacketSettings settings(values);
+  for (int py = 0; py < height; py += settings.packetHeight)
   {
-    for (int px = 0; px < width; px += packetWidth)
+    for (int px = 0; px < width; px += settings.packetWidth)
     {
-      // Alg. 1 step 5 for every pixel of the packet; the penumbra ones form the packet.
-      std::vector<ContourReceiver> receivers;
-      std::vector<glm::ivec2> pixels;
-      std::vector<ContourReceiver*> penumbra;
-      std::vector<glm::ivec2> penumbraPixels;
-      receivers.reserve(static_cast<std::size_t>(packetWidth * packetHeight));
-      ContourReceiver* reference = nullptr;
-      for (int y = py; y < std::min(py + packetHeight, height); ++y)
+      for (const Yfgl09Pixel& result : evaluatePacket(inputs, mssm, values, settings, { px, py }, nullptr, {}))
       {
-        for (int x = px; x < std::min(px + packetWidth, width); ++x)
-        {
-          receivers.push_back(prepareContourReceiver(inputs, values, mssm, x, y));
-          pixels.emplace_back(x, y);
-          ContourReceiver& receiver = receivers.back();
-          frame.kernelTexels.at(x, y) = static_cast<float>(receiver.kernelTexels);
-          frame.packetClass.at(x, y) = static_cast<float>(receiver.lookup.sample.evaluated ? PacketClass::Trivial : PacketClass::NotTested);
-          if (receiver.classification == BackprojectionClass::Penumbra)
-          {
-            penumbra.push_back(&receiver);
-            penumbraPixels.emplace_back(x, y);
-            if (x == px + packetWidth / 2 && y == py + packetHeight / 2)
-            {
-              reference = &receiver;
-            }
-          }
-        }
+        const int x = result.pixel.x;
+        const int y = result.pixel.y;
+        const std::size_t index = static_cast<std::size_t>(y) * width + x;
+        frame.samples[index] = result.sample;
+        frame.kernelEdgeMargin[index] = result.kernelEdgeMargin;
+        frame.decisionMargin[index] = result.decisionMargin;
+        frame.visibility.at(x, y) = static_cast<float>(result.sample.visibility);
+        frame.kernelTexels.at(x, y) = static_cast<float>(result.kernelTexels);
+        frame.coherence.at(x, y) = static_cast<float>(result.coherence);
+        frame.packetClass.at(x, y) = static_cast<float>(result.packetClass);
+        frame.divergenceProbability.at(x, y) = static_cast<float>(result.divergenceProbability);
+        frame.visitedNodes.at(x, y) = static_cast<float>(result.visitedNodes);
+        frame.contourEdges.at(x, y) = static_cast<float>(result.contourEdges);
       }
-      const auto finish = [&]() {
-        for (std::size_t p = 0; p < receivers.size(); ++p)
-        {
-          const std::size_t index = static_cast<std::size_t>(pixels[p].y) * width + pixels[p].x;
-          frame.samples[index] = receivers[p].lookup.sample;
-          frame.kernelEdgeMargin[index] = receivers[p].kernelEdgeMargin;
-          frame.decisionMargin[index] = receivers[p].decisionMargin;
-          frame.visibility.at(pixels[p].x, pixels[p].y) = static_cast<float>(receivers[p].lookup.sample.visibility);
-        }
-      };
-      if (penumbra.empty())
-      {
-        finish();
-        continue;
-      }
-      const std::size_t count = penumbra.size();
-      reference = reference ? reference : penumbra.front();
-
-      // The packet kernel: the bounding box of its pixels' kernels (Alg. 2), as texels, samples and cells.
-      TexelRectangle kernel = penumbra.front()->kernel;
-      TexelRectangle samples = penumbra.front()->samples;
-      for (const ContourReceiver* receiver : penumbra)
-      {
-        kernel = { glm::min(kernel.lo, receiver->kernel.lo), glm::max(kernel.hi, receiver->kernel.hi) };
-        samples = { glm::min(samples.lo, receiver->samples.lo), glm::max(samples.hi, receiver->samples.hi) };
-      }
-      const Cells region{ kernel.lo - 1, kernel.hi };
-      // The packet's depth range (§4.3: its pixels' comparison depths).
-      glm::dvec2 comparison(1e300, -1e300);
-      double pixelCost = 0.0;
-      for (const ContourReceiver* receiver : penumbra)
-      {
-        const double own = receiver->geometry.d - receiver->bias;
-        comparison = { std::min(comparison.x, own), std::max(comparison.y, own) };
-        const int w = widthTexels(receiver->kernel);
-        pixelCost += nodeCost(w) + (edgeCost + visibilityCost) * w;
-      }
-
-      // §4.3: Eq. 2 (reported), Eq. 4-5 and Eq. 6 (deciding), for packets of more than one pixel.
-      double coherence = 0.0;
-      double divergence = 0.0;
-      PacketClass packetClass = PacketClass::Coherent;
-      if (count > 1)
-      {
-        for (const ContourReceiver* receiver : penumbra)
-        {
-          coherence = std::max(coherence, outsideFraction(receiver->kernel, reference->kernel));
-        }
-        glm::dvec2 kernelRange = mssm.range(samples.lo, samples.hi);
-        if (coherenceDepth == "comparison")
-        {
-          comparisonRangeOverCells(penumbra, mssm.mapSize, region.lo, region.hi, comparison);
-        }
-        else if (coherenceDepth == "window")
-        {
-          const LightView& view = inputs.lightView;
-          comparison = { view.windowDepth(comparison.x), view.windowDepth(comparison.y) };
-          kernelRange = { view.windowDepth(kernelRange.x), view.windowDepth(kernelRange.y) };
-        }
-        const double overlap = std::max(std::min(comparison.y, kernelRange.y) - std::max(comparison.x, kernelRange.x), 0.0);
-        const double nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
-        const int packetKernelWidth = widthTexels(kernel);
-        divergence = 1.0 - std::pow(1.0 - nullProbability, static_cast<double>(packetKernelWidth) * packetKernelWidth); // Eq. 5
-        const double packetPixels = paperPacketCost ? packetWidth * packetHeight : static_cast<double>(count);
-        const double packetCost = nodeCost(packetKernelWidth) + (edgeCost + visibilityCost * packetPixels) * packetKernelWidth; // Eq. 6
-        if ((divergenceTest && divergence > divergenceThreshold) || (costTest && packetCost > pixelCost))
-        {
-          packetClass = PacketClass::NonCoherent;
-        }
-      }
-      double packetVisitedShare = 0.0;
-      if (packetClass == PacketClass::Coherent)
-      {
-        PacketTraversal traversal(inputs, mssm, penumbra);
-        if (traversal.run(region, hierarchy))
-        {
-          for (std::size_t p = 0; p < count; ++p)
-          {
-            const double lightArea = 4.0 * penumbra[p]->lightHalfSize * penumbra[p]->lightHalfSize;
-            penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(p) / lightArea, 0.0, 1.0);
-            frame.contourEdges.at(penumbraPixels[p].x, penumbraPixels[p].y) = static_cast<float>(traversal.contourEdges);
-          }
-        }
-        else
-        {
-          packetClass = traversal.caughtNull ? PacketClass::CaughtNull : PacketClass::OverBudget;
-        }
-        packetVisitedShare = static_cast<double>(traversal.visitedNodes) / count;
-      }
-      for (std::size_t p = 0; p < count; ++p)
-      {
-        const glm::ivec2 pixel = penumbraPixels[p];
-        double visited = packetVisitedShare;
-        if (packetClass != PacketClass::Coherent)
-        {
-          // Step 8: the pixel alone, over its own kernel.
-          PacketTraversal traversal(inputs, mssm, { penumbra[p] });
-          traversal.run({ penumbra[p]->firstCell(), penumbra[p]->lastCell() }, hierarchy);
-          const double lightArea = 4.0 * penumbra[p]->lightHalfSize * penumbra[p]->lightHalfSize;
-          penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(0) / lightArea, 0.0, 1.0);
-          frame.contourEdges.at(pixel.x, pixel.y) = static_cast<float>(traversal.contourEdges);
-          visited += traversal.visitedNodes;
-        }
-        frame.visitedNodes.at(pixel.x, pixel.y) = static_cast<float>(visited);
-        frame.packetClass.at(pixel.x, pixel.y) = static_cast<float>(packetClass);
-        frame.coherence.at(pixel.x, pixel.y) = static_cast<float>(coherence);
-        frame.divergenceProbability.at(pixel.x, pixel.y) = static_cast<float>(divergence);
-      }
-      finish();
     }
   }
   return frame;
+}
+
+Yfgl09Pixel yfgl09ReferencePixel(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const ParameterValues& values, int x, int y, ProbeRecorder* recorder, std::vector<Yfgl09Pixel>* packet)
+{
+  SL_CHECK(mssm.layout == HsmLayout::DualMssm);
+  SL_CHECK_MSG(x >= 0 && y >= 0 && x < inputs.position.width && y < inputs.position.height, "pixel ", x, ",", y,
+    " outside the image");
+  const PacketSettings settings(values);
+  // The frame's packets start at the image's corner (yfgl09Reference).
+  const glm::ivec2 origin(x - x % settings.packetWidth, y - y % settings.packetHeight);
+  std::vector<Yfgl09Pixel> results = evaluatePacket(inputs, mssm, values, settings, origin, recorder, { x, y });
+  const auto it = std::find_if(results.begin(), results.end(), [&](const Yfgl09Pixel& r) { return r.pixel == glm::ivec2(x, y); });
+  SL_CHECK(it != results.end());
+  const Yfgl09Pixel pixel = *it;
+  if (packet)
+  {
+    *packet = std::move(results);
+  }
+  return pixel;
 }
 
 } // namespace sl

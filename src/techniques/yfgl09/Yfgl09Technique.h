@@ -13,6 +13,7 @@
 #pragma once
 
 #include "core/Image.h"
+#include "frame/ProbeRecord.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
@@ -65,5 +66,35 @@ struct Yfgl09Frame
 // CPU reference (double precision) of both passes over the whole image; `mssm` is the dual-grid MSSM of
 // inputs.shadowMapLinear (HierarchicalShadowMap::buildDual with 2 x far outside).
 Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const ParameterValues& values);
+
+// What the twin computes for one pixel: Yfgl09Frame's values at it.
+struct Yfgl09Pixel
+{
+  glm::ivec2 pixel{ 0 };
+  ReferenceSample sample; // visibility and margins
+  double kernelTexels = 0.0;
+  double coherence = 0.0;
+  PacketClass packetClass = PacketClass::NotTested;
+  double divergenceProbability = 0.0;
+  double visitedNodes = 0.0;
+  double contourEdges = 0.0;
+  double kernelEdgeMargin = 1e300;
+  double decisionMargin = 1e300;
+};
+
+// One pixel of yfgl09Reference's frame, replayed: the packet that holds it is evaluated exactly as in the frame
+// (the same code), and `recorder` (optional, `shadowlab probe`) records that pixel's steps: its contour receiver;
+// the packet (origin and size in pixels, its kernel and its pixels' kernels as ProbeKernel "packet" / "packet
+// pixel kernel"); Eq. 2, Eq. 4-6 and the prediction; every MSSM node the traversals that count toward the
+// pixel's visited_nodes visited (ProbeNode "mssm", decision prefixed "packet traversal: " or "pixel traversal: ");
+// the Eq. 3 statuses read (ProbeTexel role "Eq. 3 status ..."); every contour edge of the traversal that computed
+// the pixel, with its back-projection from this pixel and the signed area it integrated (0 for edges outside
+// this pixel's kernel); the packet class and the visibility. `packet` (optional) receives every pixel of the
+// packet (the probe's ambiguity: one pixel near a boundary can change the packet's decisions).
+Yfgl09Pixel yfgl09ReferencePixel(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const ParameterValues& values, int x, int y, ProbeRecorder* recorder = nullptr, std::vector<Yfgl09Pixel>* packet = nullptr);
+
+// The label of a PacketClass, as the packet_class buffer's categories.
+std::string packetClassLabel(PacketClass packetClass);
 
 } // namespace sl
