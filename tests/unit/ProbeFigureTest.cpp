@@ -1,0 +1,633 @@
+// probe.vtm and probe.png (probe/Probe.h: probeDataSet, probeFigure; probe/ProbeGeometry.h; vis/CanvasShapes.h)
+// on a synthetic frame: an area light 5 units above a ground plane, a 2 x 2 quad caster at height 1, a 64^2
+// shadow map rasterised here by intersecting each texel's ray with the two quads, and a hand-made record (texels,
+// a kernel, nodes, light polygons, samples) whose every item has a known place in the output.
+#include "probe/Probe.h"
+#include "probe/ProbeFigure.h"
+#include "probe/ProbeGeometry.h"
+
+#include "io/ImageIO.h"
+#include "lightspace/LightView.h"
+#include "lightspace/ShadowMapMath.h"
+#include "support/TempDir.h"
+#include "vis/Canvas.h"
+#include "vis/CanvasShapes.h"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkIdList.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLMultiBlockDataReader.h>
+#include <vtkXMLMultiBlockDataWriter.h>
+
+#include <glm/gtc/matrix_access.hpp>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+
+namespace sl
+{
+namespace
+{
+
+constexpr double kLightHeight = 5.0;
+constexpr double kCasterHeight = 1.0;
+constexpr double kCasterHalf = 1.0;
+constexpr double kGroundHalf = 4.0;
+constexpr int kMapSize = 64;
+
+SceneObject horizontalQuad(const std::string& name, double height, double half, bool castShadows)
+{
+  SceneObject object;
+  object.name = name;
+  object.castShadows = castShadows;
+  const float h = static_cast<float>(height);
+  const float s = static_cast<float>(half);
+  object.mesh.positions = { { -s, h, -s }, { s, h, -s }, { s, h, s }, { -s, h, s } };
+  object.mesh.normals.assign(4, glm::vec3(0.0f, 1.0f, 0.0f));
+  object.mesh.indices = { 0, 2, 1, 0, 3, 2 };
+  return object;
+}
+
+Scene syntheticScene()
+{
+  Scene scene;
+  Light light;
+  light.type = LightType::Area;
+  light.shape = LightShape::Square;
+  light.center = { 0.0, kLightHeight, 0.0 };
+  light.normal = { 0.0, -1.0, 0.0 };
+  light.up = { 0.0, 0.0, 1.0 };
+  light.size = 1.0;
+  scene.lights.push_back(light);
+  scene.objects.push_back(horizontalQuad("caster", kCasterHeight, kCasterHalf, true));
+  scene.objects.push_back(horizontalQuad("ground", 0.0, kGroundHalf, false));
+  return scene;
+}
+
+// The light view fitted to ground receivers in x, z in [-3, 3].
+LightView syntheticLightView(const Scene& scene)
+{
+  const int side = 16;
+  ImageF position(side, side, 4, 0.0f);
+  ImageF normal(side, side, 4, 0.0f);
+  for (int y = 0; y < side; ++y)
+  {
+    for (int x = 0; x < side; ++x)
+    {
+      const float px = -3.0f + 6.0f * x / (side - 1);
+      const float pz = -3.0f + 6.0f * y / (side - 1);
+      const float p[4] = { px, 0.0f, pz, 1.0f };
+      const float n[4] = { 0.0f, 1.0f, 0.0f, 1.0f };
+      for (int c = 0; c < 4; ++c)
+      {
+        position.at(x, y, c) = p[c];
+        normal.at(x, y, c) = n[c];
+      }
+    }
+  }
+  FocusSettings settings;
+  settings.resolution = kMapSize;
+  settings.lightFootprintWidth = scene.lights[0].size;
+  return fitLightView(scene.lights[0], scene, position, normal, settings);
+}
+
+// The linear depth of the nearest quad along each texel centre's ray, found from the clip-space inverse (not
+// through the code under test); empty texels hold 2 x far as the GPU's map does.
+ImageF rasteriseShadowMap(const LightView& view)
+{
+  ImageF map(kMapSize, kMapSize, 1, static_cast<float>(2.0 * view.farDepth));
+  const glm::dmat4 worldFromClip = glm::inverse(view.clipFromWorld);
+  for (int j = 0; j < kMapSize; ++j)
+  {
+    for (int i = 0; i < kMapSize; ++i)
+    {
+      const glm::dvec2 ndc((i + 0.5) / kMapSize * 2.0 - 1.0, (j + 0.5) / kMapSize * 2.0 - 1.0);
+      glm::dvec4 nearPoint = worldFromClip * glm::dvec4(ndc, -1.0, 1.0);
+      glm::dvec4 farPoint = worldFromClip * glm::dvec4(ndc, 1.0, 1.0);
+      const glm::dvec3 a = glm::dvec3(nearPoint) / nearPoint.w;
+      const glm::dvec3 b = glm::dvec3(farPoint) / farPoint.w;
+      for (const auto& [height, half] : { std::pair{ kCasterHeight, kCasterHalf }, std::pair{ 0.0, kGroundHalf } })
+      {
+        const glm::dvec3 hit = a + (b - a) * ((height - a.y) / (b.y - a.y));
+        if (std::abs(hit.x) <= half && std::abs(hit.z) <= half)
+        {
+          map.at(i, j) = static_cast<float>(-(view.viewFromWorld * glm::dvec4(hit, 1.0)).z);
+          break;
+        }
+      }
+    }
+  }
+  return map;
+}
+
+// A 64 x 48 image with a colour per pixel that no marker uses (blue fixed at 90, red and green from x and y).
+ImageU8 gradientImage()
+{
+  ImageU8 image(64, 48, 3);
+  for (int y = 0; y < image.height; ++y)
+  {
+    for (int x = 0; x < image.width; ++x)
+    {
+      image.at(x, y, 0) = static_cast<std::uint8_t>(3 * x);
+      image.at(x, y, 1) = static_cast<std::uint8_t>(5 * y);
+      image.at(x, y, 2) = 90;
+    }
+  }
+  return image;
+}
+
+double shoelace(const std::vector<glm::dvec2>& points)
+{
+  double twiceArea = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const glm::dvec2& p = points[i];
+    const glm::dvec2& q = points[(i + 1) % points.size()];
+    twiceArea += p.x * q.y - q.x * p.y;
+  }
+  return 0.5 * twiceArea;
+}
+
+struct Synthetic
+{
+  Scene scene;
+  FrameResult frame;
+  ProbeResult probe;
+  glm::dvec3 receiver{ 0.3, 0.0, 0.2 };
+  std::set<std::pair<int, int>> occludingTexels;
+  std::set<std::pair<int, int>> readTexels;
+  std::set<std::pair<int, int>> comparedTexels;
+};
+
+Synthetic makeSynthetic(glm::ivec2 pixel = { 20, 30 })
+{
+  Synthetic s;
+  s.scene = syntheticScene();
+  const LightView view = syntheticLightView(s.scene);
+  FrameResult& frame = s.frame;
+  frame.technique = "hard";
+  frame.resolution = { 64, 48 };
+  frame.lightView = view;
+  frame.lightSpace.push_back({ "shadow_map_depth", rasteriseShadowMap(view), "world units", "linear depth", {}, {} });
+  frame.image = gradientImage();
+
+  ProbeResult& probe = s.probe;
+  probe.technique = "hard";
+  probe.pixel = pixel;
+  probe.gpuVisibility = 0.25;
+  probe.outcome.evaluated = true;
+  probe.outcome.visibility = 0.25;
+  probe.outcome.tolerance = 1e-4;
+  probe.outcome.twin = "synthetic record";
+  ProbeRecorder recorder;
+  const ShadowMapSample sample = projectToShadowMap(view, s.receiver);
+  recorder.beginGroup("receiver");
+  recorder.quantity("position", s.receiver, "world units", "test");
+  recorder.quantity("normal", glm::dvec3(0.0, 1.0, 0.0), "", "test");
+  recorder.quantity("shadow_map_position", sample.uvTexels, "texels", "test");
+  recorder.quantity("receiver_depth", sample.depthLin, "linear depth", "test");
+  recorder.quantity("depth_bias", 0.01, "linear depth", "test");
+  recorder.beginGroup("filter");
+  const glm::ivec2 centre(glm::floor(sample.uvTexels));
+  for (int dy = -1; dy <= 1; ++dy)
+  {
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      const glm::ivec2 texel = centre + glm::ivec2(dx, dy);
+      const bool occluding = (dx + dy + 2) % 2 == 0;
+      recorder.texel({ texel, "filter tap", 4.0, sample.depthLin - 0.01, occluding, 1.0 / 9.0 });
+      s.readTexels.insert({ texel.x, texel.y });
+      s.comparedTexels.insert({ texel.x, texel.y });
+      if (occluding)
+      {
+        s.occludingTexels.insert({ texel.x, texel.y });
+      }
+    }
+  }
+  // Read without a comparison (a blocker search's read, say).
+  const glm::ivec2 readOnly = centre + glm::ivec2(3, 0);
+  recorder.texel({ readOnly, "blocker search", 4.0, std::numeric_limits<double>::quiet_NaN(), false, 1.0 });
+  s.readTexels.insert({ readOnly.x, readOnly.y });
+  recorder.kernel({ "filter", glm::dvec2(centre - 1), glm::dvec2(centre + 2), "", "test" });
+  recorder.node({ "hsm", 2, centre - 2, centre + 1, 4.0, 5.0, "descend" });
+  recorder.node({ "hsm", 0, centre, centre, 4.0, 4.0, "umbra" });
+  // Light polygons in light coordinates: one counter-clockwise, one clockwise.
+  const std::vector<glm::dvec2> positive = { { -0.4, -0.4 }, { 0.1, -0.4 }, { 0.1, 0.2 } };
+  const std::vector<glm::dvec2> negative = { { 0.2, 0.0 }, { 0.2, 0.45 }, { 0.45, 0.0 } };
+  recorder.lightPolygon({ "micropatch", positive, shoelace(positive) });
+  recorder.lightPolygon({ "micropatch", negative, shoelace(negative) });
+  recorder.contourEdge({ { 1.0, 2.0 }, { 3.0, 4.0 }, { -0.3, 0.3 }, { 0.3, 0.3 }, 0.05 });
+  recorder.lightSample({ { -0.25, -0.25 }, true, 1 });
+  recorder.lightSample({ { 0.25, -0.25 }, false, 0 });
+  recorder.lightSample({ { 0.25, 0.25 }, true, 2 });
+  recorder.lightSample({ { -0.25, 0.25 }, false, 0 });
+  probe.record = recorder.record();
+  return s;
+}
+
+std::string blockName(vtkMultiBlockDataSet* blocks, unsigned int index)
+{
+  vtkInformation* metaData = blocks->HasMetaData(index) ? blocks->GetMetaData(index) : nullptr;
+  const char* name = metaData != nullptr ? metaData->Get(vtkCompositeDataSet::NAME()) : nullptr;
+  return name != nullptr ? name : "";
+}
+
+vtkDataObject* piece(vtkMultiBlockDataSet* root, const std::string& block, const std::string& name)
+{
+  for (unsigned int b = 0; b < root->GetNumberOfBlocks(); ++b)
+  {
+    if (blockName(root, b) != block)
+    {
+      continue;
+    }
+    auto* children = vtkMultiBlockDataSet::SafeDownCast(root->GetBlock(b));
+    for (unsigned int c = 0; children != nullptr && c < children->GetNumberOfBlocks(); ++c)
+    {
+      if (blockName(children, c) == name)
+      {
+        return children->GetBlock(c);
+      }
+    }
+  }
+  return nullptr;
+}
+
+enum class Writer
+{
+  ShadowLab, // io/ImageIO.h writeVtm, what `shadowlab probe` writes
+  Vtk        // vtkXMLMultiBlockDataWriter
+};
+
+vtkSmartPointer<vtkMultiBlockDataSet> roundTrip(vtkMultiBlockDataSet* blocks, const std::filesystem::path& dir, Writer writer)
+{
+  const std::filesystem::path file = dir / (writer == Writer::Vtk ? "vtk.vtm" : "probe.vtm");
+  if (writer == Writer::Vtk)
+  {
+    vtkNew<vtkXMLMultiBlockDataWriter> xmlWriter;
+    xmlWriter->SetInputData(blocks);
+    xmlWriter->SetFileName(file.string().c_str());
+    EXPECT_EQ(xmlWriter->Write(), 1);
+  }
+  else
+  {
+    writeVtm(file, blocks);
+  }
+  vtkNew<vtkXMLMultiBlockDataReader> reader;
+  reader->SetFileName(file.string().c_str());
+  reader->Update();
+  auto result = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+  result->ShallowCopy(reader->GetOutput());
+  return result;
+}
+
+glm::dvec3 pointOf(vtkPolyData* data, vtkIdType id)
+{
+  double p[3];
+  data->GetPoint(id, p);
+  return { p[0], p[1], p[2] };
+}
+
+TEST(ProbeDataSet, RoundTripsThroughXmlWithItsBlocksAndArrays)
+{
+  const Synthetic s = makeSynthetic();
+  const vtkSmartPointer<vtkMultiBlockDataSet> blocks = probeDataSet(s.probe, s.frame, s.scene);
+  const test::TempDir dir;
+  for (const Writer writer : { Writer::ShadowLab, Writer::Vtk })
+  {
+    SCOPED_TRACE(writer == Writer::Vtk ? "vtkXMLMultiBlockDataWriter" : "writeVtm");
+    const auto read = roundTrip(blocks, dir.path(), writer);
+    ASSERT_EQ(read->GetNumberOfBlocks(), 3u);
+    EXPECT_EQ(blockName(read, 0), "world");
+    EXPECT_EQ(blockName(read, 1), "shadow_map");
+    EXPECT_EQ(blockName(read, 2), "light_plane");
+    const std::map<std::string, std::vector<std::string>> pieces = {
+      { "world", { "light", "receiver", "rays_to_light", "rays_to_samples", "kernel_frustum" } },
+      { "shadow_map", { "crop", "visited_nodes", "kernels", "receiver" } },
+      { "light_plane", { "light_outline", "polygons", "contour_edges", "light_samples" } },
+    };
+    for (const auto& [block, names] : pieces)
+    {
+      for (const std::string& name : names)
+      {
+        EXPECT_NE(piece(read, block, name), nullptr) << block << "/" << name;
+      }
+    }
+    auto* crop = vtkImageData::SafeDownCast(piece(read, "shadow_map", "crop"));
+    ASSERT_NE(crop, nullptr);
+    for (const char* array : { "depth", "read", "compared", "occluding", "weight", "visited_level" })
+    {
+      EXPECT_NE(crop->GetCellData()->GetArray(array), nullptr) << array;
+    }
+    auto* nodes = vtkPolyData::SafeDownCast(piece(read, "shadow_map", "visited_nodes"));
+    ASSERT_NE(nodes, nullptr);
+    EXPECT_EQ(nodes->GetNumberOfCells(), 2);
+    ASSERT_NE(nodes->GetCellData()->GetArray("level"), nullptr);
+    EXPECT_EQ(nodes->GetCellData()->GetArray("level")->GetTuple1(0), 2.0);
+    ASSERT_NE(nodes->GetCellData()->GetArray("decision_code"), nullptr);
+    EXPECT_EQ(nodes->GetCellData()->GetArray("decision_code")->GetTuple1(1), 1.0); // "umbra", second seen
+    auto* samples = vtkPolyData::SafeDownCast(piece(read, "light_plane", "light_samples"));
+    ASSERT_NE(samples, nullptr);
+    ASSERT_EQ(samples->GetNumberOfPoints(), 4);
+    vtkDataArray* blocked = samples->GetPointData()->GetArray("blocked");
+    ASSERT_NE(blocked, nullptr);
+    for (vtkIdType i = 0; i < 4; ++i)
+    {
+      EXPECT_EQ(blocked->GetTuple1(i), s.probe.record.lightSamples[i].blocked ? 1.0 : 0.0) << "sample " << i;
+    }
+    // The kernel's frustum: 6 faces; its far cap at the receiver's depth projects back onto the kernel's corners.
+    auto* frustum = vtkPolyData::SafeDownCast(piece(read, "world", "kernel_frustum"));
+    ASSERT_NE(frustum, nullptr);
+    EXPECT_EQ(frustum->GetNumberOfCells(), 6);
+    const ProbeKernel& kernel = s.probe.record.kernels.front();
+    const ShadowMapSample corner = projectToShadowMap(*s.frame.lightView, pointOf(frustum, 4));
+    EXPECT_NEAR(corner.uvTexels.x, kernel.lo.x, 1e-9);
+    EXPECT_NEAR(corner.uvTexels.y, kernel.lo.y, 1e-9);
+    EXPECT_NEAR(corner.depthLin, projectToShadowMap(*s.frame.lightView, s.receiver).depthLin, 1e-9);
+  }
+}
+
+TEST(ProbeDataSet, CropArraysMarkExactlyTheRecordedTexels)
+{
+  const Synthetic s = makeSynthetic();
+  const test::TempDir dir;
+  const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
+  auto* crop = vtkImageData::SafeDownCast(piece(read, "shadow_map", "crop"));
+  ASSERT_NE(crop, nullptr);
+  int dims[3];
+  crop->GetDimensions(dims);
+  double origin[3];
+  crop->GetOrigin(origin);
+  const int width = dims[0] - 1; // one cell per texel
+  const int height = dims[1] - 1;
+  ASSERT_GT(width, 3);
+  ASSERT_GT(height, 3);
+  vtkDataArray* occluding = crop->GetCellData()->GetArray("occluding");
+  vtkDataArray* readArray = crop->GetCellData()->GetArray("read");
+  vtkDataArray* compared = crop->GetCellData()->GetArray("compared");
+  vtkDataArray* depth = crop->GetCellData()->GetArray("depth");
+  vtkDataArray* level = crop->GetCellData()->GetArray("visited_level");
+  ASSERT_TRUE(occluding && readArray && compared && depth && level);
+  const ImageF& map = s.frame.lightSpace.front().image;
+  const glm::ivec2 centre(glm::floor(projectToShadowMap(*s.frame.lightView, s.receiver).uvTexels));
+  std::size_t occludingSeen = 0;
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const vtkIdType cell = y * width + x;
+      const std::pair<int, int> texel{ int(origin[0]) + x, int(origin[1]) + y };
+      EXPECT_EQ(occluding->GetTuple1(cell), s.occludingTexels.count(texel) ? 1.0 : 0.0) << texel.first << "," << texel.second;
+      EXPECT_EQ(readArray->GetTuple1(cell), s.readTexels.count(texel) ? 1.0 : 0.0) << texel.first << "," << texel.second;
+      EXPECT_EQ(compared->GetTuple1(cell), s.comparedTexels.count(texel) ? 1.0 : 0.0) << texel.first << "," << texel.second;
+      EXPECT_EQ(depth->GetTuple1(cell), map.at(texel.first, texel.second));
+      // The finest visited node over each texel: the single umbra texel at level 0 inside the level-2 block.
+      const glm::ivec2 offset = glm::ivec2(texel.first, texel.second) - centre;
+      const double expectedLevel = offset == glm::ivec2(0) ? 0.0 : (offset.x >= -2 && offset.x <= 1 && offset.y >= -2 && offset.y <= 1) ? 2.0 : -1.0;
+      EXPECT_EQ(level->GetTuple1(cell), expectedLevel) << texel.first << "," << texel.second;
+      occludingSeen += occluding->GetTuple1(cell) != 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(occludingSeen, s.occludingTexels.size()); // every recorded occluding texel lies in the crop
+}
+
+TEST(ProbeDataSet, WorldReceiverAndLightPlanePolygonsMatchTheRecord)
+{
+  const Synthetic s = makeSynthetic();
+  const test::TempDir dir;
+  const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
+  auto* receiver = vtkPolyData::SafeDownCast(piece(read, "world", "receiver"));
+  ASSERT_NE(receiver, nullptr);
+  ASSERT_GE(receiver->GetNumberOfPoints(), 1);
+  const glm::dvec3 point = pointOf(receiver, 0);
+  EXPECT_EQ(point, s.receiver) << point.x << "," << point.y << "," << point.z;
+
+  // The square light's corners, in world space.
+  auto* light = vtkPolyData::SafeDownCast(piece(read, "world", "light"));
+  ASSERT_NE(light, nullptr);
+  ASSERT_EQ(light->GetNumberOfPoints(), 4);
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    const glm::dvec3 corner = pointOf(light, i);
+    EXPECT_NEAR(corner.y, kLightHeight, 1e-12);
+    EXPECT_NEAR(std::abs(corner.x), 0.5, 1e-12);
+    EXPECT_NEAR(std::abs(corner.z), 0.5, 1e-12);
+  }
+
+  auto* polygons = vtkPolyData::SafeDownCast(piece(read, "light_plane", "polygons"));
+  ASSERT_NE(polygons, nullptr);
+  ASSERT_EQ(polygons->GetNumberOfCells(), 2);
+  vtkDataArray* signedArea = polygons->GetCellData()->GetArray("signed_area");
+  ASSERT_NE(signedArea, nullptr);
+  const glm::dmat4& viewFromWorld = s.frame.lightView->viewFromWorld;
+  for (vtkIdType c = 0; c < 2; ++c)
+  {
+    vtkNew<vtkIdList> ids;
+    polygons->GetCellPoints(c, ids);
+    std::vector<glm::dvec2> lightXY;
+    glm::dvec3 twiceWorldArea(0.0); // sum of p_k x p_k+1: twice the vector area
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      const glm::dvec3 p = pointOf(polygons, ids->GetId(k));
+      twiceWorldArea += glm::cross(p, pointOf(polygons, ids->GetId((k + 1) % ids->GetNumberOfIds())));
+      const glm::dvec4 pLs = viewFromWorld * glm::dvec4(p, 1.0);
+      EXPECT_NEAR(pLs.z, 0.0, 1e-12) << "a light-plane point off the light's plane";
+      lightXY.emplace_back(pLs.x, pLs.y);
+    }
+    const double recorded = s.probe.record.lightPolygons[std::size_t(c)].signedArea;
+    EXPECT_NEAR(shoelace(lightXY), recorded, 1e-12) << "polygon " << c;
+    EXPECT_EQ(signedArea->GetTuple1(c), recorded);
+    // The world-space polygon has the recorded area too (the light frame is rigid).
+    EXPECT_NEAR(0.5 * glm::length(twiceWorldArea), std::abs(recorded), 1e-12);
+  }
+  EXPECT_LT(signedArea->GetTuple1(1), 0.0);
+}
+
+TEST(ProbeSection, HorizontalQuadCasterCutsAtItsHeight)
+{
+  const Synthetic s = makeSynthetic();
+  const Light& light = s.scene.lights[0];
+  const ProbeSection section = probeSection(light.center, light.normal, s.receiver, glm::dvec3(0.0, 1.0, 0.0));
+  EXPECT_FALSE(section.usesReceiverNormal);
+  EXPECT_NEAR(section.towardLight.y, 1.0, 1e-12);
+  // The plane holds the light's centre, the receiver and the vertical axis: across = the receiver's horizontal
+  // direction.
+  const glm::dvec3 horizontal = glm::normalize(glm::dvec3(s.receiver.x, 0.0, s.receiver.z));
+  EXPECT_NEAR(glm::dot(section.across, horizontal), 1.0, 1e-12);
+  // The square |x|, |z| <= 1 cut along that direction: |t| <= 1 / max(|dir.x|, |dir.z|).
+  const double reach = kCasterHalf / std::max(std::abs(horizontal.x), std::abs(horizontal.z));
+  double casterMin = 1e300;
+  double casterMax = -1e300;
+  std::size_t groundSegments = 0;
+  for (const SectionSegment& segment : sceneSection(s.scene, section))
+  {
+    const double expectedY = (segment.object == 0 ? kCasterHeight : 0.0) - kLightHeight;
+    EXPECT_NEAR(segment.a.y, expectedY, 1e-12);
+    EXPECT_NEAR(segment.b.y, expectedY, 1e-12);
+    if (segment.object == 0)
+    {
+      EXPECT_TRUE(segment.castsShadows);
+      casterMin = std::min({ casterMin, segment.a.x, segment.b.x });
+      casterMax = std::max({ casterMax, segment.a.x, segment.b.x });
+    }
+    else
+    {
+      EXPECT_FALSE(segment.castsShadows);
+      ++groundSegments;
+    }
+  }
+  EXPECT_NEAR(casterMin, -reach, 1e-6); // float vertices
+  EXPECT_NEAR(casterMax, reach, 1e-6);
+  EXPECT_GE(groundSegments, 1u);
+  // The light's half chord along `across` (a 1 x 1 square).
+  EXPECT_NEAR(lightHalfExtentInSection(light, section), 0.5 / std::max(std::abs(horizontal.x), std::abs(horizontal.z)), 1e-12);
+
+  // The shadow map's stored depths drawn along the section: over the caster at its height, elsewhere the ground's.
+  const std::vector<SectionTexelColumn> columns = sectionShadowMapColumns(
+    *s.frame.lightView, s.frame.lightSpace.front().image, section, s.receiver);
+  ASSERT_GT(columns.size(), 10u);
+  std::size_t casterColumns = 0;
+  for (const SectionTexelColumn& column : columns)
+  {
+    const bool onCaster = std::abs(column.storedDepth - (kLightHeight - kCasterHeight)) < 1e-4;
+    const double expectedY = (onCaster ? kCasterHeight : 0.0) - kLightHeight;
+    EXPECT_NEAR(column.enter.y, expectedY, 1e-5) << column.texel.x << "," << column.texel.y;
+    EXPECT_NEAR(column.exit.y, expectedY, 1e-5) << column.texel.x << "," << column.texel.y;
+    if (onCaster)
+    {
+      ++casterColumns;
+      // The texel's centre ray hit the caster; where the section crosses the texel is within a texel of it.
+      const double texelSize = s.frame.lightView->texelWorldSize(column.storedDepth);
+      EXPECT_LE(std::abs(0.5 * (column.enter.x + column.exit.x)), reach + texelSize);
+    }
+  }
+  EXPECT_GT(casterColumns, 3u);
+}
+
+RgbColor rgbOf(const ImageU8& image, int x, int y)
+{
+  return { image.at(x, y, 0) / 255.0, image.at(x, y, 1) / 255.0, image.at(x, y, 2) / 255.0 };
+}
+
+bool isMarker(const ImageU8& image, int x, int y)
+{
+  const auto marker = toRgb8(kProbeMarkerColor);
+  return image.at(x, y, 0) == marker[0] && image.at(x, y, 1) == marker[1] && image.at(x, y, 2) == marker[2];
+}
+
+TEST(ProbeFigure, HasTheDocumentedSizeAndMarksThePixel)
+{
+  for (const glm::ivec2 pixel : { glm::ivec2(20, 30), glm::ivec2(45, 10) })
+  {
+    SCOPED_TRACE(format("pixel ", pixel.x, ",", pixel.y));
+    const Synthetic s = makeSynthetic(pixel);
+    const ImageU8 figure = probeFigure(s.probe, s.frame, s.scene);
+    ASSERT_EQ(figure.width, kProbeFigureWidth);
+    ASSERT_EQ(figure.height, kProbeFigureHeight);
+    ASSERT_EQ(figure.components, 3);
+    // For a look at the figure: build/test-output/probe_figure_<x>_<y>.png.
+    std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+    writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / format("probe_figure_", pixel.x, "_", pixel.y, ".png"), figure);
+    EXPECT_EQ(kProbeFigureWidth, 1200);
+    EXPECT_EQ(kProbeFigureHeight, 800);
+
+    // Panel (a) shows the image where probeImagePlacement says: image pixels away from the marker keep their
+    // colour.
+    const ImagePlacement placement = probeImagePlacement({ 64, 48 });
+    EXPECT_GE(placement.scale, 5.0);
+    for (const glm::ivec2 imagePixel : { glm::ivec2(2, 2), glm::ivec2(61, 45), glm::ivec2(5, 40) })
+    {
+      const glm::dvec2 at = placement.figureOf(glm::dvec2(imagePixel) + 0.5);
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_EQ(figure.at(int(at.x), int(at.y), c), s.frame.image.at(imagePixel.x, imagePixel.y, c))
+          << "image pixel " << imagePixel.x << "," << imagePixel.y;
+      }
+    }
+    // The marker: magenta pixels inside panel (a), centred on the pixel's centre.
+    const FigureRect panel = probeFigurePanel(ProbePanel::Image);
+    glm::dvec2 sum(0.0);
+    double count = 0.0;
+    for (int y = panel.bottom; y < panel.bottom + panel.height; ++y)
+    {
+      for (int x = panel.left; x < panel.left + panel.width; ++x)
+      {
+        if (isMarker(figure, x, y))
+        {
+          sum += glm::dvec2(x + 0.5, y + 0.5);
+          count += 1.0;
+        }
+      }
+    }
+    ASSERT_GT(count, 20.0);
+    const glm::dvec2 expected = placement.figureOf(glm::dvec2(pixel) + 0.5);
+    const glm::dvec2 centroid = sum / count;
+    EXPECT_NEAR(centroid.x, expected.x, 1.0);
+    EXPECT_NEAR(centroid.y, expected.y, 1.0);
+    // The marker surrounds the pixel: it leaves the pixel's own colour visible at its centre.
+    const RgbColor inside = rgbOf(figure, int(expected.x), int(expected.y));
+    const auto pixelColor = s.frame.image;
+    EXPECT_EQ(toRgb8(inside)[0], pixelColor.at(pixel.x, pixel.y, 0));
+    EXPECT_EQ(toRgb8(inside)[1], pixelColor.at(pixel.x, pixel.y, 1));
+  }
+}
+
+TEST(CanvasShapes, FillsAndStrokesWhatTheyCover)
+{
+  ImageU8 canvas(40, 30, 3, 0);
+  fillPolygon(canvas, { { 10, 5 }, { 20, 5 }, { 20, 15 }, { 10, 15 } }, kWhite);
+  int filled = 0;
+  for (int y = 0; y < canvas.height; ++y)
+  {
+    for (int x = 0; x < canvas.width; ++x)
+    {
+      const bool inside = x >= 10 && x < 20 && y >= 5 && y < 15;
+      filled += canvas.at(x, y, 0) == 255 ? 1 : 0;
+      EXPECT_EQ(canvas.at(x, y, 0), inside ? 255 : 0) << x << "," << y;
+    }
+  }
+  EXPECT_EQ(filled, 100);
+  // A thin diagonal line leaves no column empty between its ends, and nothing far from it is painted.
+  ImageU8 line(40, 30, 3, 0);
+  drawLine(line, { 2.5, 3.5 }, { 37.5, 20.5 }, kWhite, 1.0);
+  for (int x = 3; x <= 37; ++x)
+  {
+    int painted = 0;
+    for (int y = 0; y < line.height; ++y)
+    {
+      if (line.at(x, y, 0) == 255)
+      {
+        ++painted;
+        const double lineY = 3.5 + (x + 0.5 - 2.5) * (17.0 / 35.0);
+        EXPECT_LE(std::abs(y + 0.5 - lineY), 1.0) << x << "," << y;
+      }
+    }
+    EXPECT_GE(painted, 1) << "column " << x;
+  }
+  // Far outside the canvas: nothing, and no endless loop.
+  ImageU8 empty(10, 10, 3, 0);
+  drawLine(empty, { -1e12, -1e12 }, { -1e12 + 1, 5e11 }, kWhite, 3.0);
+  drawDashedLine(empty, { -1e9, 5.0 }, { 1e9, 5.0 }, kWhite, 1.0, 4.0);
+  int paintedRow = 0;
+  for (int x = 0; x < 10; ++x)
+  {
+    paintedRow += empty.at(x, 5, 0) == 255 ? 1 : 0;
+  }
+  EXPECT_GE(paintedRow, 3); // the dashed line crosses the canvas: dashes and gaps 4 px long (plus round caps)
+  EXPECT_LE(paintedRow, 8);
+}
+
+} // namespace
+} // namespace sl
