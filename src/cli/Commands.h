@@ -93,6 +93,25 @@ struct BenchRunOptions
 };
 int runBenchConfiguration(const BenchRunOptions& options);
 
+// shadowlab probe: one pixel replayed on the technique's CPU twin with a recorder (src/probe/Probe.h).
+struct ProbeOptions
+{
+  std::string sceneFile;
+  std::vector<std::string> sceneOverrides;
+  std::string technique = "pcf";
+  std::vector<std::string> settings;
+  std::string resolution;
+  std::string pixel;              // "X,Y", image coordinates, row 0 at the bottom
+  std::vector<std::string> pick;  // {"world", "x,y,z"}
+  std::string outDir = "out-probe";
+  int lightIndex = 0;
+  bool force = false;
+  bool quiet = false;
+};
+// Exit 0 when the twin agrees with the GPU buffer (or the pixel is ambiguous: within float rounding of a
+// decision), 3 when they differ beyond the tests' tolerance (the probe's files are still written).
+int runProbe(const ProbeOptions& options, std::ostream& log);
+
 // "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);
 

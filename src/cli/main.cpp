@@ -105,6 +105,22 @@ int main(int argc, char** argv)
   benchRunCommand->add_option("--reference", benchRun.referenceFile);
   benchRunCommand->add_option("--result", benchRun.resultFile)->required();
 
+  sl::ProbeOptions probe;
+  CLI::App* probeCommand = app.add_subcommand("probe",
+    "Replay one pixel on the technique's CPU twin and record every step (probe.json, probe.vtm, probe.png)");
+  probeCommand->add_option("scene", probe.sceneFile, "Scene file (JSON)")->required();
+  probeCommand->add_option("--technique,-t", probe.technique, "Technique name (see `shadowlab list`)")->capture_default_str();
+  probeCommand->add_option("--pixel", probe.pixel, "X,Y in image coordinates, row 0 at the bottom (as buffers.vti)");
+  probeCommand->add_option("--pick", probe.pick, "world X,Y,Z: the pixel that shows this visible surface point")
+    ->expected(2);
+  probeCommand->add_option("--set,-s", probe.settings, "Technique parameter, key=value (repeatable)");
+  probeCommand->add_option("--scene-set", probe.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
+  probeCommand->add_option("--resolution,-r", probe.resolution, "Image size WxH (default: the scene camera's)");
+  probeCommand->add_option("--out,-o", probe.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
+  addForceFlag(probeCommand, probe.force);
+  probeCommand->add_option("--light", probe.lightIndex, "Index of the scene light that casts shadows")->capture_default_str();
+  probeCommand->add_flag("--quiet,-q", probe.quiet, "Print nothing on success");
+
   bool listJson = false;
   CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
   listCommand->add_flag("--json", listJson, "Machine-readable output");
@@ -133,6 +149,10 @@ int main(int argc, char** argv)
     if (renderCommand->parsed())
     {
       return sl::runRender(render, std::cerr);
+    }
+    if (probeCommand->parsed())
+    {
+      return sl::runProbe(probe, std::cerr);
     }
     if (listCommand->parsed())
     {

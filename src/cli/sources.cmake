@@ -7,4 +7,5 @@ set(SL_CLI_SOURCES
   src/cli/ReferenceCommand.cpp
   src/cli/CompareCommand.cpp
   src/cli/BenchCommand.cpp
-  src/cli/BenchRunCommand.cpp)
+  src/cli/BenchRunCommand.cpp
+  src/cli/ProbeCommand.cpp)

@@ -134,6 +134,11 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
       { "source", quantity.source } };
     if (!quantity.text.empty())
     {
+      // A categorical value: its label, and its code where the buffer that publishes it stores one.
+      item["label"] = quantity.text;
+    }
+    if (quantity.value.empty())
+    {
       item["value"] = quantity.text;
     }
     else if (quantity.value.size() == 1)

@@ -1,0 +1,138 @@
+// shadowlab probe: render one frame, replay one pixel on the technique's CPU twin with a recorder, and write what
+// it did (src/probe/Probe.h): probe.json, probe.vtm (+ probe/ pieces), probe.png.
+#include "cli/Commands.h"
+
+#include "core/Error.h"
+#include "core/Parse.h"
+#include "frame/FrameResult.h"
+#include "io/ImageIO.h"
+#include "io/OutputDirectory.h"
+#include "lightspace/CameraView.h"
+#include "output/OutputWriter.h"
+#include "pipeline/ShadowRenderer.h"
+#include "probe/Probe.h"
+#include "scene/Scene.h"
+#include "techniques/Registry.h"
+
+#include <vtkMultiBlockDataSet.h>
+
+#include <iomanip>
+#include <regex>
+
+namespace sl
+{
+namespace
+{
+
+glm::ivec2 parsePixel(const std::string& text)
+{
+  static const std::regex pattern(R"((-?\d{1,7}),(-?\d{1,7}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern))
+  {
+    throw InputError("--pixel " + text + ": expected X,Y (integers, image coordinates, row 0 at the bottom)");
+  }
+  return { std::stoi(match[1]), std::stoi(match[2]) };
+}
+
+glm::dvec3 parsePick(const std::vector<std::string>& pick)
+{
+  SL_CHECK(pick.size() == 2);
+  if (pick[0] != "world")
+  {
+    throw InputError("--pick " + pick[0] + " " + pick[1] + ": expected `--pick world X,Y,Z`");
+  }
+  glm::dvec3 point(0.0);
+  std::size_t start = 0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const std::size_t end = pick[1].find(',', start);
+    const bool last = axis == 2;
+    if ((end == std::string::npos) != last)
+    {
+      throw InputError("--pick world " + pick[1] + ": expected three comma-separated numbers X,Y,Z");
+    }
+    const std::optional<double> value = parseNumber(pick[1].substr(start, last ? std::string::npos : end - start));
+    if (!value || !std::isfinite(*value))
+    {
+      throw InputError("--pick world " + pick[1] + ": expected three comma-separated finite numbers X,Y,Z");
+    }
+    point[axis] = *value;
+    start = end + 1;
+  }
+  return point;
+}
+
+} // namespace
+
+int runProbe(const ProbeOptions& options, std::ostream& log)
+{
+  // Everything the user typed is checked before the GPU or the disk is touched.
+  if (options.pixel.empty() == options.pick.empty())
+  {
+    throw InputError("probe: give exactly one of --pixel X,Y and --pick world X,Y,Z");
+  }
+  const std::optional<glm::ivec2> pixel =
+    options.pixel.empty() ? std::nullopt : std::optional<glm::ivec2>(parsePixel(options.pixel));
+  const std::optional<glm::dvec3> pick =
+    options.pick.empty() ? std::nullopt : std::optional<glm::dvec3>(parsePick(options.pick));
+  const TechniqueDescriptor& technique = findTechnique(options.technique);
+  if (!technique.probe)
+  {
+    throw InputError("--technique " + technique.name + ": this technique has no probe recorder");
+  }
+  RenderRequest request;
+  request.technique = options.technique;
+  request.settings = options.settings;
+  request.lightIndex = options.lightIndex;
+  if (!options.resolution.empty())
+  {
+    request.resolution = parseResolution(options.resolution);
+  }
+  checkSettings(technique, request.settings);
+  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
+  const OutputTarget output{ options.outDir, "probe", options.force, sceneInputs(scene, options.sceneFile) };
+  checkOutputTarget(output);
+  reportDroppedTriangles(scene, options.sceneFile, log);
+  ShadowRenderer renderer;
+  const FrameResult frame = renderer.render(scene, request);
+  glm::ivec2 probed{ 0 };
+  if (pixel)
+  {
+    probed = *pixel;
+  }
+  else
+  {
+    // A visible point is within a fraction of a pixel's footprint of the G-buffer's surface point; the footprint
+    // grows with the distance, so the tolerance is relative to it (1 %).
+    const glm::dvec3 nearPoint = frame.camera.nearOrigin;
+    probed = pickPixel(frame, *pick, 0.01 * glm::length(*pick - nearPoint) + 1e-6);
+  }
+  const ProbeResult probe = probePixel(frame, scene, options.lightIndex, probed);
+  writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
+    writeJson(probeJson(probe, frame, scene), dir / "probe.json");
+    writeVtm(dir / "probe.vtm", probeDataSet(probe, frame, scene));
+    writePng(dir / "probe.png", probeFigure(probe, frame, scene));
+  });
+  const std::string summary = format(frame.technique, " pixel ", probed.x, ",", probed.y, ": GPU visibility ",
+    probe.gpuVisibility, ", twin ", probe.outcome.visibility, " (|difference| ", probe.difference(), ", tolerance ",
+    probe.outcome.tolerance, ")");
+  if (!probe.agrees())
+  {
+    log << "shadowlab: error: probe " << summary << ": the GPU and its CPU twin differ beyond the tests' tolerance ("
+        << "files written to " << printable(options.outDir) << ")\n";
+    return 3;
+  }
+  if (!probe.outcome.ambiguity.empty() && probe.difference() > probe.outcome.tolerance + 1e-6)
+  {
+    log << "shadowlab: warning: probe " << summary << ": differ at a decision within float rounding ("
+        << probe.outcome.ambiguity << ")\n";
+  }
+  if (!options.quiet)
+  {
+    log << "shadowlab: probe " << summary << " -> " << printable(options.outDir) << "\n";
+  }
+  return 0;
+}
+
+} // namespace sl
