@@ -19,11 +19,14 @@ jobs="${JOBS:-$(nproc)}"
 
 # Build tools, the libraries of the stack, and Mesa's EGL/llvmpipe for headless rendering.
 # python3-imath only silences a Debian packaging warning from Imath's CMake config (it names that file).
+# xvfb and xauth: xvfb-run gives the test of `shadowlab view` (tests/cli/ViewTest.cpp) a display; on a desktop the
+# viewer opens its window on the desktop's.
 packages=(
   cmake g++ make pkg-config
   libvtk9-dev libglm-dev libopenmesh-dev libopenexr-dev python3-imath libgtest-dev
   libegl-dev libgl-dev libglew-dev libegl-mesa0 libgl1-mesa-dri
   nlohmann-json3-dev libcli11-dev libembree-dev libpng-dev
+  xvfb xauth
 )
 missing=()
 for package in "${packages[@]}"; do

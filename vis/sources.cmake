@@ -1,5 +1,6 @@
 # Heat maps and their colour keys (see vis/HeatMap.h), the bench charts (vis/SpeedErrorChart.h, vis/SweepChart.h). Needs VTK RenderingFreeType (text) and IOImage (PNG).
 set(SL_VIS_SOURCES
+  vis/BufferHeatMap.cxx
   vis/Canvas.cxx
   vis/CanvasShapes.cxx
   vis/ColorKey.cxx

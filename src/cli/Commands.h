@@ -112,6 +112,23 @@ struct ProbeOptions
 // decision), 3 when they differ beyond the tests' tolerance (the probe's files are still written).
 int runProbe(const ProbeOptions& options, std::ostream& log);
 
+// shadowlab view: a desktop window on the offscreen pipeline's frames (cli/ViewerWindow.h, README "Viewer keys").
+struct ViewOptions
+{
+  std::string sceneFile;
+  std::vector<std::string> sceneOverrides;
+  std::string technique = "pcf";
+  std::vector<std::string> settings;
+  std::string resolution;
+  int lightIndex = 0;
+  std::string recordFile;            // --record: the session's events (vtkInteractorEventRecorder)
+  std::string playFile;              // --play: replay these events, then exit
+  std::string screenshotDir = ".";   // where the s key writes view-NNN-<technique>-<buffer>.png
+};
+// Exit 2 with one line when there is no display (no DISPLAY, XOpenDisplay fails, no GLX), before any window or
+// frame. Every action of the session prints one line on `out`.
+int runView(const ViewOptions& options, std::ostream& out);
+
 // "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);
 

@@ -121,6 +121,22 @@ int main(int argc, char** argv)
   probeCommand->add_option("--light", probe.lightIndex, "Index of the scene light that casts shadows")->capture_default_str();
   probeCommand->add_flag("--quiet,-q", probe.quiet, "Print nothing on success");
 
+  sl::ViewOptions view;
+  CLI::App* viewCommand = app.add_subcommand("view",
+    "A desktop window on the pipeline's frames: keys cycle techniques, buffers and parameters, a click probes a "
+    "pixel (h in the window lists the keys)");
+  viewCommand->add_option("scene", view.sceneFile, "Scene file (JSON)")->required();
+  viewCommand->add_option("--technique,-t", view.technique, "Technique to start with")->capture_default_str();
+  viewCommand->add_option("--set,-s", view.settings, "Parameter of that technique, key=value (repeatable)");
+  viewCommand->add_option("--scene-set", view.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
+  viewCommand->add_option("--resolution,-r", view.resolution, "Image size WxH (default: the scene camera's)");
+  viewCommand->add_option("--light", view.lightIndex, "Index of the scene light that casts shadows")
+    ->capture_default_str();
+  viewCommand->add_option("--record", view.recordFile, "Write the session's events to FILE (VTK's event recorder)");
+  viewCommand->add_option("--play", view.playFile, "Replay the events in FILE (as --record wrote them), then exit");
+  viewCommand->add_option("--screenshot-dir", view.screenshotDir, "Where the s key saves screenshots (PNG)")
+    ->capture_default_str();
+
   bool listJson = false;
   CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
   listCommand->add_flag("--json", listJson, "Machine-readable output");
@@ -153,6 +169,10 @@ int main(int argc, char** argv)
     if (probeCommand->parsed())
     {
       return sl::runProbe(probe, std::cerr);
+    }
+    if (viewCommand->parsed())
+    {
+      return sl::runView(view, std::cout);
     }
     if (listCommand->parsed())
     {

@@ -8,4 +8,9 @@ set(SL_CLI_SOURCES
   src/cli/CompareCommand.cpp
   src/cli/BenchCommand.cpp
   src/cli/BenchRunCommand.cpp
-  src/cli/ProbeCommand.cpp)
+  src/cli/ProbeCommand.cpp
+  src/cli/ViewCommand.cpp
+  src/cli/ViewerSession.cpp
+  src/cli/ViewerWindow.cpp
+  src/cli/vtkSLViewerInteractorStyle.cxx
+  src/cli/XDisplay.cpp)

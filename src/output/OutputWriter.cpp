@@ -2,7 +2,7 @@
 
 #include "core/Error.h"
 #include "io/ImageIO.h"
-#include "vis/HeatMap.h"
+#include "vis/BufferHeatMap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,17 +13,6 @@ namespace sl
 namespace
 {
 
-ColorMapKind colorMapFor(BufferKind kind)
-{
-  switch (kind)
-  {
-    case BufferKind::Signed: return ColorMapKind::Diverging;
-    case BufferKind::Categorical: return ColorMapKind::Categorical;
-    case BufferKind::Continuous: return ColorMapKind::Viridis;
-  }
-  return ColorMapKind::Viridis;
-}
-
 void writeHeatMaps(const std::vector<NamedImage>& images, const ImageU8* mask, const std::filesystem::path& dir,
   const std::string& prefix)
 {
@@ -33,42 +22,7 @@ void writeHeatMaps(const std::vector<NamedImage>& images, const ImageU8* mask, c
     {
       continue;
     }
-    HeatMapOptions options;
-    options.title = named.name;
-    options.unit = named.unit;
-    options.colorMap = colorMapFor(named.kind);
-    options.categoryLabels = named.categoryLabels;
-    if (named.name == "visibility" || named.name == "coverage")
-    {
-      options.rangeMin = 0.0;
-      options.rangeMax = 1.0;
-    }
-    else if (named.kind == BufferKind::Continuous)
-    {
-      // A few extreme values (texel_ratio where a surface runs parallel to the light) would flatten the
-      // colour scale; clip the scale at the 99th percentile then. The title still gives the true range.
-      std::vector<float> valid;
-      for (std::size_t i = 0; i < named.image.pixelCount(); ++i)
-      {
-        if ((!mask || mask->data[i]) && std::isfinite(named.image.data[i]))
-        {
-          valid.push_back(named.image.data[i]);
-        }
-      }
-      if (valid.size() > 100)
-      {
-        const auto percentile = valid.begin() + static_cast<std::ptrdiff_t>(0.99 * (valid.size() - 1));
-        std::nth_element(valid.begin(), percentile, valid.end());
-        const double p99 = *percentile;
-        const double maximum = *std::max_element(percentile, valid.end());
-        const double minimum = *std::min_element(valid.begin(), percentile + 1);
-        if (maximum - minimum > 4.0 * (p99 - minimum) && p99 > minimum)
-        {
-          options.rangeMin = minimum;
-          options.rangeMax = p99;
-        }
-      }
-    }
+    const HeatMapOptions options = bufferHeatMapOptions(named, mask);
     writeHeatMapPng(named.image, mask, options, dir / (prefix + named.name + ".png"));
   }
 }
@@ -247,11 +201,7 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
   }
   const NamedImage* coverage = findNamed(buffers, "coverage");
   SL_CHECK(coverage);
-  ImageU8 mask(coverage->image.width, coverage->image.height, 1);
-  for (std::size_t i = 0; i < mask.data.size(); ++i)
-  {
-    mask.data[i] = coverage->image.data[i] > 0.5f ? 1 : 0;
-  }
+  const ImageU8 mask = coverageMask(*coverage);
   writeHeatMaps(buffers, &mask, dir, "heatmap_");
   writeHeatMaps(lightSpace, nullptr, dir, "heatmap_");
 }
