@@ -14,6 +14,8 @@
 #include "scene/WeldedMesh.h"
 #include "techniques/shadowvolume/ShadowVolumeGeometry.h"
 #include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 
@@ -114,11 +116,7 @@ struct Agreement
 // orthographic camera.
 glm::dvec3 inFrontOfSurface(const Scene& scene, const FrameResult& frame, const glm::dvec3& pWs)
 {
-  const Camera& camera = scene.camera;
-  const glm::dvec3 towardCamera = camera.projection == Projection::Perspective
-    ? camera.position - pWs
-    : glm::normalize(camera.position - camera.focalPoint) * scene.bounds().radius();
-  return pWs + frame.parameters.get("receiver_offset") * towardCamera;
+  return shadowVolumeReceiverPoint(scene, frame.parameters.get("receiver_offset"), pWs);
 }
 
 FrameResult renderShadowVolume(const Scene& scene, int width, int height, const std::vector<std::string>& settings = {})
@@ -426,6 +424,98 @@ TEST(ShadowVolume, WithoutTheReceiverOffsetCastersShadowThemselves)
   std::cout << "[ measured ] contact, receiver_offset=0: " << describe(agreement) << "\n";
   EXPECT_LT(agreement.visibilityShare(), 0.95);
   EXPECT_LT(agreement.countShare(), 0.95);
+}
+
+TEST(ShadowVolume, ProbeRecordsTheCrossedTrianglesAndTheGpuCount)
+{
+  // Every covered pixel: the probe's count is the GPU's depth_complexity_center, and its visibility the GPU's,
+  // except where it reports a volume face within 1/512 pixel of the pixel centre (rasterisation decides those).
+  std::vector<glm::ivec2> byCount(3, glm::ivec2(-1)); // stacked-occluders: a pixel with 0, 1 and >= 2 crossings
+  for (const std::string dataset : { "stacked-occluders", "bunny" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult frame = renderShadowVolume(scene, 128, 128);
+    const ImageF& count = frame.find("depth_complexity_center")->image;
+    const ImageF& visibility = frame.find("visibility")->image;
+    const ImageF& coverage = frame.find("coverage")->image;
+    int compared = 0;
+    int ambiguous = 0;
+    int mismatched = 0;
+    std::string firstMismatch;
+    for (int y = 0; y < 128; ++y)
+    {
+      for (int x = 0; x < 128; ++x)
+      {
+        if (coverage.at(x, y) <= 0.5f)
+        {
+          continue;
+        }
+        ProbeRecorder recorder;
+        const ProbeOutcome outcome = probeShadowVolume(frame, scene, 0, { x, y }, recorder);
+        if (!outcome.ambiguity.empty())
+        {
+          ++ambiguous;
+          continue;
+        }
+        ++compared;
+        const double probed = recorder.record().find("depth_complexity_center")->value.at(0);
+        if (probed != count.at(x, y) || outcome.visibility != visibility.at(x, y))
+        {
+          if (mismatched++ == 0)
+          {
+            firstMismatch = format("pixel ", x, ",", y, ": probe count ", probed, " visibility ", outcome.visibility,
+              ", GPU ", count.at(x, y), " ", visibility.at(x, y));
+          }
+        }
+        const std::size_t slot = std::min<std::size_t>(2, static_cast<std::size_t>(probed));
+        if (dataset == "stacked-occluders" && outcome.evaluated && byCount[slot].x < 0 && (x + y) % 7 == 0)
+        {
+          byCount[slot] = { x, y };
+        }
+      }
+    }
+    std::cout << "[ measured ] shadow-volume probe on " << dataset << ": " << compared << " pixels compared, "
+              << ambiguous << " ambiguous (a volume face within 1/512 pixel), " << mismatched << " mismatched\n";
+    EXPECT_EQ(mismatched, 0) << dataset << ": " << firstMismatch;
+    EXPECT_LT(ambiguous, compared / 50) << dataset;
+  }
+  // Lit, one volume, two or more: the record through the registry's probe.
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = renderShadowVolume(scene, 128, 128);
+  for (const glm::ivec2 pixel : byCount)
+  {
+    ASSERT_GE(pixel.x, 0) << "no pixel with that many crossings";
+    const std::string label = format("pixel ", pixel.x, ",", pixel.y);
+    ProbeRecorder recorder;
+    const ProbeOutcome outcome = findTechnique("shadow-volume").probe({ &frame, &scene, 0 }, pixel, recorder);
+    const ProbeRecord& record = recorder.record();
+    const int crossings = static_cast<int>(record.find("depth_complexity_center")->value.at(0));
+    EXPECT_EQ(crossings, frame.find("depth_complexity_center")->image.at(pixel.x, pixel.y)) << label;
+    EXPECT_EQ(record.find("stencil_count")->value.at(0), frame.find("stencil_count")->image.at(pixel.x, pixel.y)) << label;
+    EXPECT_EQ(outcome.visibility, crossings == 0 ? 1.0 : 0.0) << label;
+    ASSERT_EQ(record.lightSamples.size(), 1u) << label;
+    EXPECT_EQ(record.lightSamples.front().depthComplexity, crossings) << label;
+    EXPECT_EQ(record.lightSamples.front().blocked, crossings > 0) << label;
+    // Each crossing recorded, on the segment from the counted point to the light's centre.
+    const glm::dvec3 from(record.find("counted_point")->value[0], record.find("counted_point")->value[1],
+      record.find("counted_point")->value[2]);
+    const glm::dvec3 to = scene.lights[0].center;
+    int points = 0;
+    for (const ProbeQuantity& quantity : record.quantities)
+    {
+      if (quantity.name != "crossing_point")
+      {
+        continue;
+      }
+      ++points;
+      const glm::dvec3 point(quantity.value[0], quantity.value[1], quantity.value[2]);
+      const double along = glm::dot(point - from, to - from) / glm::dot(to - from, to - from);
+      EXPECT_GT(along, 0.0) << label;
+      EXPECT_LT(along, 1.0) << label;
+      EXPECT_LT(glm::length(from + along * (to - from) - point), 1e-9) << label << ": off the segment";
+    }
+    EXPECT_EQ(points, crossings) << label;
+  }
 }
 
 TEST(ShadowVolume, ExactCountBeyondTheEightBitStencil)

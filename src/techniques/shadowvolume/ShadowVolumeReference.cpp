@@ -3,6 +3,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <cmath>
+#include <string>
 
 namespace sl
 {
@@ -29,14 +30,15 @@ double volumeWindingNumber(const ShadowVolumeGeometry& geometry, const glm::dvec
   return solidAngle / (4.0 * glm::pi<double>());
 }
 
-int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point)
+int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point, ProbeRecorder* recorder)
 {
   // Segment point + t direction, t in (0, tMax).
   const glm::dvec3 direction = light.directional ? -light.direction : light.position - point;
   const double tMax = light.directional ? HUGE_VAL : 1.0;
   int crossings = 0;
-  for (const SceneObject& object : scene.objects)
+  for (std::size_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex)
   {
+    const SceneObject& object = scene.objects[objectIndex];
     if (!object.castShadows)
     {
       continue;
@@ -70,10 +72,26 @@ int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dve
       if (t > 0.0 && t < tMax)
       {
         ++crossings;
+        if (recorder)
+        {
+          recorder->quantity("crossing_point", point + t * direction, "world units",
+            "Crow 1977: the segment to the light leaves this caster triangle's shadow volume (Moller-Trumbore)");
+          recorder->category("crossed_triangle", "objects[" + std::to_string(objectIndex) + "] (" + object.name +
+            ") triangle " + std::to_string(triangle), "Crow 1977 (one volume per caster triangle)");
+        }
       }
     }
   }
   return crossings;
+}
+
+glm::dvec3 shadowVolumeReceiverPoint(const Scene& scene, double receiverOffset, const glm::dvec3& pWs)
+{
+  const Camera& camera = scene.camera;
+  const glm::dvec3 towardCamera = camera.projection == Projection::Perspective
+    ? camera.position - pWs
+    : glm::normalize(camera.position - camera.focalPoint) * scene.bounds().radius();
+  return pWs + receiverOffset * towardCamera;
 }
 
 } // namespace sl

@@ -5,6 +5,7 @@
 //    (the definition of `depth_complexity_center`), counted directly.
 #pragma once
 
+#include "frame/ProbeRecord.h"
 #include "scene/Scene.h"
 #include "techniques/shadowvolume/ShadowVolumeGeometry.h"
 
@@ -23,7 +24,14 @@ double volumeWindingNumber(const ShadowVolumeGeometry& geometry, const glm::dvec
 
 // Caster triangles (objects with castShadows, every triangle, alpha textures ignored as the volumes do)
 // crossed by the open segment from `point` to the light (to infinity against a directional light's
-// direction). Moller-Trumbore in double.
-int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point);
+// direction). Moller-Trumbore in double. `recorder` (optional, `shadowlab probe`): each crossing's point
+// (crossing_point) and triangle (crossed_triangle: object and triangle index), in the current group.
+int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point,
+  ProbeRecorder* recorder = nullptr);
+
+// The point whose crossings the z-fail count describes (the parameter receiver_offset): the visible point `pWs`
+// moved `receiverOffset` of its distance to the eye toward the camera (orthographic cameras: of the scene's
+// radius), so its own caster's near cap lies behind it.
+glm::dvec3 shadowVolumeReceiverPoint(const Scene& scene, double receiverOffset, const glm::dvec3& pWs);
 
 } // namespace sl

@@ -1,6 +1,13 @@
 #include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 
+#include "lightspace/LightView.h"
+#include "techniques/ProbeSupport.h"
+#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "techniques/shadowvolume/ShadowVolumeReference.h"
 #include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+
+#include <cmath>
+#include <string>
 
 namespace sl
 {
@@ -24,7 +31,118 @@ TechniqueDescriptor shadowVolumeTechnique()
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLShadowVolumePass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    return probeShadowVolume(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
   return descriptor;
+}
+
+namespace
+{
+
+// Where the camera ray through the pixel centre moved by `pixels` meets the receiver's tangent plane (the point
+// `pWs`, normal `nWs`): the visible point of a pixel position that close, on the same surface.
+glm::dvec3 shiftedOnSurface(
+  const CameraView& camera, glm::ivec2 pixel, const glm::dvec3& pWs, const glm::dvec3& nWs, const glm::dvec2& pixels)
+{
+  const double x = pixel.x + 0.5 + pixels.x;
+  const double y = pixel.y + 0.5 + pixels.y;
+  const glm::dvec3 nearPoint = camera.nearOrigin + x * camera.nearStepX + y * camera.nearStepY;
+  const glm::dvec3 ray = camera.rayOrigin + x * camera.rayStepX + y * camera.rayStepY;
+  const double along = glm::dot(nWs, ray);
+  if (std::abs(along) < 1e-12 * glm::length(ray))
+  {
+    return pWs; // the ray grazes the surface
+  }
+  return nearPoint + (glm::dot(nWs, pWs - nearPoint) / along) * ray;
+}
+
+} // namespace
+
+ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder)
+{
+  const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
+  const auto vec3At = [&](const char* buffer) {
+    const ImageF& image = frame.find(buffer)->image;
+    return glm::dvec3(image.at(pixel.x, pixel.y, 0), image.at(pixel.x, pixel.y, 1), image.at(pixel.x, pixel.y, 2));
+  };
+  ProbeOutcome outcome;
+  outcome.twin = "casterCrossings (shadowvolume/ShadowVolumeReference.h): caster triangles crossed by the segment "
+                 "from the offset point to the light's centre, Moller-Trumbore in double";
+  // The count is exact on the GPU (float blending of +-1, exact to 2^24), so visibility is too: ShadowVolumeTest
+  // (ProbeRecordsTheCrossedTrianglesAndTheGpuCount) finds no pixel that differs outside the rasterisation margin
+  // noted below.
+  outcome.tolerance = 0.0;
+  if (bufferValue(frame, "coverage", pixel) <= 0.5)
+  {
+    return outcome;
+  }
+  const glm::dvec3 pWs = vec3At("position");
+  const glm::dvec3 nWs = vec3At("normal");
+  const double receiverOffset = frame.parameters.get("receiver_offset");
+  const glm::dvec3 point = shadowVolumeReceiverPoint(scene, receiverOffset, pWs);
+  recorder.beginGroup("receiver");
+  recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
+  recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
+  recorder.quantity("receiver_offset", receiverOffset, "of the eye distance",
+    "ShadowLab (receiver_offset): the point taken toward the camera so its own caster's near cap lies behind it");
+  recorder.quantity("counted_point", point, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
+  const VolumeLight volumeLight = VolumeLight::from(light);
+  recorder.quantity(volumeLight.directional ? "light_direction" : "light_centre",
+    volumeLight.directional ? volumeLight.direction : volumeLight.position, volumeLight.directional ? "" : "world units",
+    "Crow 1977: the volumes are cast from the light's centre (an area light's centre)");
+
+  recorder.beginGroup("crossings to the light centre");
+  const int count = casterCrossings(scene, volumeLight, point, &recorder);
+  recorder.quantity("depth_complexity_center", count, "count",
+    "Crow 1977; Everitt & Kilgard 2002 (z-fail): shadow volumes containing the point = caster triangles crossed");
+  recorder.quantity("stencil_count", count % 256, "count", "Everitt & Kilgard 2002: the 8-bit stencil holds the count modulo 256");
+  recorder.lightSample({ glm::dvec2(0.0), count > 0, count });
+
+  // A volume face within rasterisation's sub-pixel precision of the pixel centre covers it or not on the GPU
+  // (llvmpipe snaps vertices to 1/256 pixel, moving an edge by up to 1/512): the count at the visible points of
+  // the pixel positions 1/512 pixel away on either axis, on the receiver's tangent plane. Measured at 128^2 on
+  // stacked-occluders and the bunny (ShadowVolumeTest): no pixel outside this margin differs from the GPU.
+  constexpr double kRasterMargin = 1.0 / 512.0;
+  for (const glm::dvec2& shift : { glm::dvec2(kRasterMargin, 0.0), glm::dvec2(-kRasterMargin, 0.0),
+         glm::dvec2(0.0, kRasterMargin), glm::dvec2(0.0, -kRasterMargin) })
+  {
+    const int shifted = casterCrossings(
+      scene, volumeLight, shadowVolumeReceiverPoint(scene, receiverOffset, shiftedOnSurface(frame.camera, pixel, pWs, nWs, shift)));
+    if (shifted != count)
+    {
+      outcome.ambiguity = "a shadow-volume face within 1/512 pixel of the pixel centre (count " + std::to_string(count) +
+        ", " + std::to_string(shifted) + " beside it): rasterisation may cover it either way";
+      break;
+    }
+  }
+
+  recorder.beginGroup("result");
+  if (bufferValue(frame, "receives_shadows", pixel) <= 0.5)
+  {
+    outcome.visibility = 1.0;
+    recorder.category("receives_shadows", "no: lit, no shadow test", "ShadowLab (receive_shadows)");
+    return outcome;
+  }
+  // The reach decision's margin, as prepareShadowLookup measures it (facing, and an area light's plane).
+  const glm::dvec3 toLight = directionToLight(light, pWs);
+  double reachMargin = std::abs(glm::dot(nWs, toLight));
+  if (light.type == LightType::Area)
+  {
+    reachMargin = std::min(reachMargin, std::abs(glm::dot(light.normal, toLight)));
+  }
+  noteAmbiguity(outcome.ambiguity, "light-reach cosine", reachMargin, probeReachAmbiguity);
+  if (!lightCanReach(light, pWs, nWs))
+  {
+    recorder.category("light_reach", "faces away / outside the light's reach: unlit, no shadow test",
+      "ShadowLab (lightCanReach, LightView.h)");
+    return outcome;
+  }
+  outcome.evaluated = true;
+  outcome.visibility = count == 0 ? 1.0 : 0.0;
+  recorder.quantity("visibility", outcome.visibility, "", "Crow 1977: lit when no shadow volume contains the point");
+  return outcome;
 }
 
 } // namespace sl

@@ -29,11 +29,19 @@
 // Hasselgren & Akenine-Moeller 2007, are a later technique); the volume count is exact up to 2^24.
 #pragma once
 
+#include "frame/FrameResult.h"
+#include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
 
 namespace sl
 {
 
 TechniqueDescriptor shadowVolumeTechnique();
+
+// The technique's probe (TechniqueDescriptor::probe): the crossing count of the segment from the pixel's point
+// (moved by receiver_offset) to the light's centre (casterCrossings), each crossed caster triangle, the count
+// as depth_complexity_center and stencil_count, and the visibility the resolve derives from it.
+ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder);
 
 } // namespace sl
