@@ -1,6 +1,13 @@
 #include "techniques/vtk/VtkTechnique.h"
 
+#include "lightspace/LightView.h"
+#include "techniques/ProbeSupport.h"
+#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "techniques/shadowvolume/ShadowVolumeReference.h"
 #include "techniques/vtk/vtkSLVtkShadowMapPass.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace sl
 {
@@ -21,7 +28,81 @@ TechniqueDescriptor vtkTechnique()
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLVtkShadowMapPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    return probeVtk(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
   return descriptor;
+}
+
+ProbeOutcome probeVtk(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder)
+{
+  const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
+  ProbeOutcome outcome;
+  outcome.twin = "the extraction of VtkVisibilityRatio.glsl replayed in double on the frame's vtk_shadowed and "
+                 "vtk_unshadowed buffers (VTK's own shadow map has no twin; the hard ray to the light's centre is "
+                 "context only)";
+  // The shader divides the same two float values in float: the double quotient differs by float rounding.
+  outcome.tolerance = 1e-6;
+  if (bufferValue(frame, "coverage", pixel) <= 0.5)
+  {
+    return outcome;
+  }
+  const auto vec3At = [&](const char* buffer) {
+    const ImageF& image = frame.find(buffer)->image;
+    return glm::dvec3(image.at(pixel.x, pixel.y, 0), image.at(pixel.x, pixel.y, 1), image.at(pixel.x, pixel.y, 2));
+  };
+  const glm::dvec3 pWs = vec3At("position");
+  const glm::dvec3 nWs = vec3At("normal");
+  recorder.beginGroup("receiver");
+  recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
+  recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
+
+  recorder.beginGroup("vtk radiance");
+  const double shadowed = bufferValue(frame, "vtk_shadowed", pixel);
+  const double unshadowed = bufferValue(frame, "vtk_unshadowed", pixel);
+  recorder.quantity("vtk_shadowed", shadowed, "", "VTK 9.1 vtkShadowMapPass: radiance of a white diffuse material with shadows (S)");
+  recorder.quantity("vtk_unshadowed", unshadowed, "", "VTK 9.1: the same material and light without shadows (U)");
+
+  // Context: what a hard shadow from the light's centre would say (VTK's map is a spot cone at that centre;
+  // alpha textures are ignored there as VTK bakes opaque geometry). The ray leaves the surface by the ray-traced
+  // reference's offset.
+  recorder.beginGroup("context: hard ray to the light centre");
+  const double rayOffset = 1e-4 * scene.bounds().radius();
+  const int crossings = casterCrossings(scene, VolumeLight::from(light), pWs + rayOffset * nWs, &recorder);
+  recorder.quantity("caster_crossings_to_light_centre", crossings, "count",
+    "ShadowLab: caster triangles crossed by the segment from pWs + 1e-4 r n to the light's centre (context, not VTK's)");
+  recorder.quantity("hard_ray_visibility", crossings == 0 ? 1.0 : 0.0, "", "Williams 1978 (exact, by a ray): lit when nothing crosses");
+
+  recorder.beginGroup("result");
+  if (bufferValue(frame, "receives_shadows", pixel) <= 0.5)
+  {
+    outcome.visibility = 1.0;
+    recorder.category("receives_shadows", "no: lit, no shadow test", "ShadowLab (receive_shadows)");
+    return outcome;
+  }
+  const glm::dvec3 toLight = directionToLight(light, pWs);
+  double reachMargin = std::abs(glm::dot(nWs, toLight));
+  if (light.type == LightType::Area)
+  {
+    reachMargin = std::min(reachMargin, std::abs(glm::dot(light.normal, toLight)));
+  }
+  noteAmbiguity(outcome.ambiguity, "light-reach cosine", reachMargin, probeReachAmbiguity);
+  // Below 1e-3 of full irradiance the ratio is noise (VtkVisibilityRatio.glsl).
+  constexpr double kMinUnshadowed = 1e-3;
+  noteAmbiguity(outcome.ambiguity, "vtk_unshadowed from the 1e-3 cut (relative)",
+    std::abs(unshadowed - kMinUnshadowed) / kMinUnshadowed, 1e-6);
+  if (!lightCanReach(light, pWs, nWs) || unshadowed < kMinUnshadowed)
+  {
+    recorder.category("light_reach", "faces away, outside the light's reach, or vtk_unshadowed < 1e-3: unlit",
+      "ShadowLab (VtkVisibilityRatio.glsl)");
+    return outcome;
+  }
+  outcome.evaluated = true;
+  outcome.visibility = std::clamp(shadowed / unshadowed, 0.0, 1.0);
+  recorder.quantity("visibility", outcome.visibility, "",
+    "ShadowLab (VtkVisibilityRatio.glsl): clamp(S / U, 0, 1), S = U x VTK's shadow factor where the light reaches");
+  return outcome;
 }
 
 } // namespace sl

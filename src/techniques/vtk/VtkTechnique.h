@@ -11,11 +11,20 @@
 // Parameters: shadow_map_size (VTK's baker resolution). Buffers: vtk_shadowed, vtk_unshadowed.
 #pragma once
 
+#include "frame/FrameResult.h"
+#include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
 
 namespace sl
 {
 
 TechniqueDescriptor vtkTechnique();
+
+// The technique's probe (TechniqueDescriptor::probe). VTK's passes keep their shadow map to themselves, so there
+// is no twin of the map: the probe replays the extraction (visibility = vtk_shadowed / vtk_unshadowed under the
+// project's reach rules, VtkVisibilityRatio.glsl) from the frame's buffers, and records, for context, the hard
+// ray test from the point to the light's centre (caster crossings).
+ProbeOutcome probeVtk(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder);
 
 } // namespace sl
