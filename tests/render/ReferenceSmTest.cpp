@@ -5,6 +5,9 @@
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
+#include "frame/ProbeRecord.h"
+#include "techniques/Registry.h"
+#include "techniques/referencesm/ReferenceSmTechnique.h"
 
 #include <gtest/gtest.h>
 
@@ -111,6 +114,114 @@ TEST(ReferenceSm, AgreesWithTheRayTracedReferenceWithinItsDiscretisationError)
     EXPECT_GT(metrics.penumbra.pixels, 100u) << c.dataset;
     EXPECT_LT(metrics.covered.rmse, c.maxRmse) << c.dataset;
     EXPECT_LT(metrics.penumbra.rmse, c.maxPenumbraRmse) << c.dataset;
+  }
+}
+
+// The probe's replay (ReferenceSmReplay: the K samples' hard tests, each map's texel replayed by a ray through its
+// centre, views fitted on the CPU) against the GPU on every covered pixel of two datasets: |GPU - replay| within the
+// pixel's tolerance (K 2^-24 of float accumulation plus 1/K per sample the replay marks uncertain). The measured
+// maximum and the share of pixels with uncertain samples are printed: they are the probe's honest tolerance.
+TEST(ReferenceSm, ProbeReplaysTheKHardTestsOfEveryPixel)
+{
+  struct Case
+  {
+    const char* dataset;
+    std::vector<std::string> settings;
+  };
+  for (const Case& c : { Case{ "stacked-occluders", { "samples=16", "shadow_map_size=512" } },
+         Case{ "fence", { "samples=8", "shadow_map_size=512", "seed=3" } },
+         Case{ "contact", { "samples=8", "shadow_map_size=256", "caster_faces=back", "bias_constant_texels=0", "bias_slope_texels=0" } } })
+  {
+    const Scene scene = test::loadDataset(c.dataset);
+    const FrameResult frame = test::renderDataset(scene, "reference-sm", 64, 64, c.settings);
+    const ImageF& visibility = frame.find("visibility")->image;
+    ReferenceSmReplay replay(frame, scene);
+    int evaluated = 0;
+    int partial = 0;
+    int withUncertain = 0;
+    int uncertainSamples = 0;
+    int beyond = 0;
+    double maxDifference = 0.0;
+    double maxCertainDifference = 0.0;
+    std::string first;
+    for (int y = 0; y < 64; ++y)
+    {
+      for (int x = 0; x < 64; ++x)
+      {
+        const ReferenceSmReplay::Pixel pixel = replay.replay({ x, y });
+        const double difference = std::abs(pixel.visibility - visibility.at(x, y));
+        evaluated += pixel.evaluated ? 1 : 0;
+        partial += pixel.visibility > 0.0 && pixel.visibility < 1.0 ? 1 : 0;
+        withUncertain += pixel.uncertain > 0 ? 1 : 0;
+        uncertainSamples += pixel.uncertain;
+        maxDifference = std::max(maxDifference, difference);
+        if (pixel.uncertain == 0)
+        {
+          maxCertainDifference = std::max(maxCertainDifference, difference);
+        }
+        if (difference > pixel.tolerance && beyond++ == 0)
+        {
+          first = format("pixel ", x, ",", y, ": GPU ", visibility.at(x, y), ", replay ", pixel.visibility, " (", pixel.lit,
+            " lit, ", pixel.uncertain, " uncertain of ", replay.sampleCount(), ")");
+        }
+      }
+    }
+    std::cout << "[ measured ] reference-sm replay on " << c.dataset << " (K = " << replay.sampleCount() << "): "
+              << evaluated << " pixels, " << partial << " partial, " << withUncertain << " with uncertain samples ("
+              << uncertainSamples << " samples), max |GPU - replay| " << maxDifference << " (" << maxCertainDifference
+              << " where no sample is uncertain), " << beyond << " beyond the pixel's tolerance\n";
+    EXPECT_EQ(beyond, 0) << c.dataset << ": " << first;
+    EXPECT_GT(evaluated, 64 * 64 / 4) << c.dataset;
+    EXPECT_GT(partial, 20) << c.dataset;
+    EXPECT_LT(withUncertain, evaluated / 10) << c.dataset << ": the margins excuse too much";
+  }
+}
+
+// Through the registry's probe: each light sample recorded (light coordinates inside the light, blocked or not),
+// the lit ones making the visibility, and the buffers sample_count and visibility_stderr the GPU's; on a lit, a
+// penumbra and an umbra pixel.
+TEST(ReferenceSm, ProbeRecordsEveryLightSample)
+{
+  const Scene scene = test::loadDataset("planar-occluder");
+  const FrameResult frame = test::renderDataset(scene, "reference-sm", 64, 64, { "samples=16", "shadow_map_size=512" });
+  const ImageF& visibility = frame.find("visibility")->image;
+  std::vector<glm::ivec2> pixels(3, glm::ivec2(-1));
+  for (int y = 0; y < 64; ++y)
+  {
+    for (int x = 0; x < 64; ++x)
+    {
+      const float v = visibility.at(x, y);
+      const int kind = v == 1.0f ? 0 : v == 0.0f ? 2 : 1;
+      if (frame.find("coverage")->image.at(x, y) > 0.5f && pixels[kind].x < 0 && (x + 2 * y) % 5 == 0)
+      {
+        pixels[kind] = { x, y };
+      }
+    }
+  }
+  const Light& light = scene.lights[0];
+  for (const glm::ivec2 pixel : pixels)
+  {
+    ASSERT_GE(pixel.x, 0);
+    const std::string label = format("pixel ", pixel.x, ",", pixel.y);
+    ProbeRecorder recorder;
+    const ProbeOutcome outcome = findTechnique("reference-sm").probe({ &frame, &scene, 0 }, pixel, recorder);
+    const ProbeRecord& record = recorder.record();
+    ASSERT_TRUE(outcome.evaluated) << label;
+    EXPECT_LE(std::abs(outcome.visibility - visibility.at(pixel.x, pixel.y)), outcome.tolerance) << label;
+    ASSERT_EQ(record.lightSamples.size(), 16u) << label;
+    int unblocked = 0;
+    for (const ProbeLightSample& sample : record.lightSamples)
+    {
+      unblocked += sample.blocked ? 0 : 1;
+      EXPECT_LE(std::max(std::abs(sample.position.x), std::abs(sample.position.y)), 0.5 * light.size + 1e-12) << label;
+    }
+    EXPECT_EQ(unblocked / 16.0, outcome.visibility) << label;
+    EXPECT_EQ(record.find("sample_count")->value.at(0), frame.find("sample_count")->image.at(pixel.x, pixel.y)) << label;
+    if (std::abs(outcome.visibility - visibility.at(pixel.x, pixel.y)) < 1e-4)
+    {
+      EXPECT_NEAR(record.find("visibility_stderr")->value.at(0),
+        frame.find("visibility_stderr")->image.at(pixel.x, pixel.y), 1e-3) << label;
+    }
   }
 }
 

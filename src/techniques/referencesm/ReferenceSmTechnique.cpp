@@ -1,7 +1,13 @@
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 
+#include "lightspace/LightSamples.h"
+#include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/referencesm/vtkSLReferenceShadowMapPass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace sl
 {
@@ -33,7 +39,286 @@ TechniqueDescriptor referenceSmTechnique()
   descriptor.createPass = [] {
     return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLReferenceShadowMapPass>::New());
   };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    return probeReferenceSm(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
   return descriptor;
+}
+
+namespace
+{
+
+// Nearest texel under repeat wrap (AlphaMask.glsl): texel i covers [i, i+1)/size, coordinates wrap modulo 1.
+int wrapTexel(double coordinate, int size)
+{
+  const double texel = std::floor(coordinate * size);
+  if (!std::isfinite(texel))
+  {
+    return 0;
+  }
+  const long long wrapped = static_cast<long long>(std::fmod(texel, static_cast<double>(size)));
+  return static_cast<int>(wrapped < 0 ? wrapped + size : wrapped);
+}
+
+} // namespace
+
+ReferenceSmReplay::ReferenceSmReplay(const FrameResult& frame, const Scene& scene, int lightIndex)
+  : light_(scene.lights.at(static_cast<std::size_t>(lightIndex)))
+  , bias_(biasSettings(frame.parameters))
+{
+  const ParameterValues& values = frame.parameters;
+  inputs_.camera = frame.camera;
+  inputs_.position = frame.find("position")->image;
+  inputs_.normal = frame.find("normal")->image;
+  inputs_.coverage = frame.find("coverage")->image;
+  inputs_.receives = frame.find("receives_shadows")->image;
+
+  // The G-buffer as the focus fit reads it (ImageReceivers: xyz + coverage, xyz + receives).
+  const int width = inputs_.position.width;
+  const int height = inputs_.position.height;
+  ImageF positionRgba(width, height, 4);
+  ImageF normalRgba(width, height, 4);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        positionRgba.at(x, y, c) = inputs_.position.at(x, y, c);
+        normalRgba.at(x, y, c) = inputs_.normal.at(x, y, c);
+      }
+      positionRgba.at(x, y, 3) = inputs_.coverage.at(x, y);
+      normalRgba.at(x, y, 3) = inputs_.receives.at(x, y);
+    }
+  }
+  ImageReceivers receivers(positionRgba, normalRgba);
+  // As vtkSLReferenceShadowMapPass::Execute: the samples, a point light of the area light's orientation at each,
+  // its map focused with a one-texel margin.
+  const std::vector<glm::dvec3> samples =
+    lightSamplePoints(light_, values.getInt("samples"), static_cast<std::uint64_t>(values.getInt("seed")));
+  const bool directional = light_.type == LightType::Directional;
+  const std::size_t sampleCount = directional ? 1 : samples.size();
+  FocusSettings focus;
+  focus.resolution = values.getInt("shadow_map_size");
+  focus.marginTexels = 1.0;
+  lights_.reserve(sampleCount);
+  for (std::size_t k = 0; k < sampleCount; ++k)
+  {
+    Light sampleLight = light_;
+    if (!directional)
+    {
+      sampleLight.center = samples[k];
+    }
+    lights_.push_back(sampleLight);
+    views_.push_back(fitLightView(lights_.back(), scene, receivers, focus));
+    worldFromClip_.push_back(glm::inverse(views_.back().clipFromWorld));
+  }
+
+  backFaces_ = values.choice("caster_faces") == "back";
+  for (const SceneObject& object : scene.objects)
+  {
+    if (!object.castShadows)
+    {
+      continue;
+    }
+    const TriangleMesh& mesh = object.mesh;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      const std::uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
+      Triangle triangle;
+      triangle.a = glm::dvec3(mesh.positions[i0]);
+      triangle.edge1 = glm::dvec3(mesh.positions[i1]) - triangle.a;
+      triangle.edge2 = glm::dvec3(mesh.positions[i2]) - triangle.a;
+      triangle.normal = glm::cross(triangle.edge1, triangle.edge2);
+      if (!mesh.uvs.empty())
+      {
+        triangle.uvA = glm::dvec2(mesh.uvs[i0]);
+        triangle.uvB = glm::dvec2(mesh.uvs[i1]);
+        triangle.uvC = glm::dvec2(mesh.uvs[i2]);
+      }
+      triangle.alpha = object.hasAlphaTexture ? &object.alphaTexture.alpha : nullptr;
+      casters_.push_back(triangle);
+    }
+  }
+}
+
+double ReferenceSmReplay::storedDepth(std::size_t k, const glm::dvec2& texelPosition) const
+{
+  const LightView& view = views_[k];
+  // The ray through the position from the near to the far plane (clip z = -1 .. 1): what the rasteriser covers
+  // there, clipped to the view's depth range as the hardware clips it.
+  const glm::dvec2 ndc = texelPosition / static_cast<double>(view.resolution) * 2.0 - 1.0;
+  glm::dvec4 nearPoint = worldFromClip_[k] * glm::dvec4(ndc, -1.0, 1.0);
+  glm::dvec4 farPoint = worldFromClip_[k] * glm::dvec4(ndc, 1.0, 1.0);
+  const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
+  const glm::dvec3 direction = glm::dvec3(farPoint) / farPoint.w - origin;
+  double nearest = 2.0 * view.farDepth; // the clear value: no caster covers the texel
+  for (const Triangle& triangle : casters_)
+  {
+    const double facing = glm::dot(triangle.normal, direction);
+    // caster_faces = back (second-depth): only faces turned away from the light (gl_FrontFacing false); an
+    // edge-on triangle covers nothing.
+    if (facing == 0.0 || (backFaces_ && facing < 0.0))
+    {
+      continue;
+    }
+    const glm::dvec3 p = glm::cross(direction, triangle.edge2);
+    const double determinant = glm::dot(triangle.edge1, p);
+    if (determinant == 0.0)
+    {
+      continue;
+    }
+    const double inverse = 1.0 / determinant;
+    const glm::dvec3 s = origin - triangle.a;
+    const double u = glm::dot(s, p) * inverse;
+    if (u < 0.0 || u > 1.0)
+    {
+      continue;
+    }
+    const glm::dvec3 q = glm::cross(s, triangle.edge1);
+    const double v = glm::dot(direction, q) * inverse;
+    if (v < 0.0 || u + v > 1.0)
+    {
+      continue;
+    }
+    const double t = glm::dot(triangle.edge2, q) * inverse;
+    if (t < 0.0 || t > 1.0)
+    {
+      continue;
+    }
+    if (triangle.alpha != nullptr)
+    {
+      const glm::dvec2 uv = (1.0 - u - v) * triangle.uvA + u * triangle.uvB + v * triangle.uvC;
+      const ImageF& alpha = *triangle.alpha;
+      if (alpha.at(wrapTexel(uv.x, alpha.width), wrapTexel(uv.y, alpha.height)) < 0.5f)
+      {
+        continue; // a hole: the light-depth pass discards it
+      }
+    }
+    const glm::dvec3 hit = origin + t * direction;
+    nearest = std::min(nearest, -(view.viewFromWorld * glm::dvec4(hit, 1.0)).z);
+  }
+  return nearest;
+}
+
+ReferenceSmReplay::Pixel ReferenceSmReplay::replay(glm::ivec2 pixel, ProbeRecorder* recorder)
+{
+  Pixel result;
+  const int sampleCount = static_cast<int>(lights_.size());
+  // Float accumulation of K weights 1/K into the R32F target: at most one rounding of 2^-24 per addition.
+  const double accumulation = sampleCount * std::ldexp(1.0, -24);
+  result.tolerance = accumulation;
+  if (inputs_.coverage.at(pixel.x, pixel.y) <= 0.5f)
+  {
+    return result;
+  }
+  const glm::dvec3 pWs(inputs_.position.at(pixel.x, pixel.y, 0), inputs_.position.at(pixel.x, pixel.y, 1),
+    inputs_.position.at(pixel.x, pixel.y, 2));
+  const glm::dvec3 nWs(inputs_.normal.at(pixel.x, pixel.y, 0), inputs_.normal.at(pixel.x, pixel.y, 1),
+    inputs_.normal.at(pixel.x, pixel.y, 2));
+  if (recorder)
+  {
+    recorder->beginGroup("receiver");
+    recorder->quantity("position", pWs, "world units", "G-buffer (pWs)");
+    recorder->quantity("normal", nWs, "", "G-buffer (nWs)");
+    recorder->beginGroup("light samples");
+    recorder->quantity("samples", sampleCount, "light samples",
+      "VSSM (Yang et al. 2010) §7: K shadow maps from points spread over the light (Hammersley, rotated by seed)");
+    recorder->quantity("shadow_map_size", views_.front().resolution, "texels", "ShadowLab (shadow_map_size): each sample's map");
+  }
+  if (inputs_.receives.at(pixel.x, pixel.y) <= 0.5f)
+  {
+    result.visibility = 1.0;
+    if (recorder)
+    {
+      recorder->category("receives_shadows", "no: lit, no shadow test", "ShadowLab (receive_shadows)");
+    }
+    return result;
+  }
+  result.evaluated = true;
+  int blocked = 0;
+  for (std::size_t k = 0; k < lights_.size(); ++k)
+  {
+    inputs_.light = &lights_[k];
+    inputs_.lightView = views_[k];
+    const ShadowLookup lookup = prepareShadowLookup(inputs_, bias_, pixel.x, pixel.y);
+    bool uncertain = lookup.sample.reachMargin < probeReachAmbiguity;
+    bool lit = false;
+    if (!lookup.sample.evaluated)
+    {
+      ++result.unreachable; // below the receiver's horizon for this sample, or behind the light's plane
+    }
+    else
+    {
+      const int size = views_[k].resolution;
+      const glm::dvec2 uv = lookup.sm.uvTexels;
+      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(uv)), glm::ivec2(0), glm::ivec2(size - 1));
+      const glm::dvec2 centre = glm::dvec2(texel) + 0.5;
+      const double compared = lookup.comparisonDepth;
+      const double stored = storedDepth(k, centre);
+      lit = compared <= stored; // ReferenceSmAccumulate.glsl: shadowTest, as `hard`
+      const auto decidesOtherwise = [&](const glm::dvec2& position) { return (compared <= storedDepth(k, position)) != lit; };
+      uncertain = uncertain || std::abs(compared - stored) < probeDepthAmbiguity * std::max(1e-30, std::abs(stored));
+      for (const glm::dvec2& shift : { glm::dvec2(kTexelMargin, 0.0), glm::dvec2(-kTexelMargin, 0.0),
+             glm::dvec2(0.0, kTexelMargin), glm::dvec2(0.0, -kTexelMargin) })
+      {
+        uncertain = uncertain || decidesOtherwise(centre + shift);
+      }
+      for (const TexelEdge& edge : texelWithEdges(uv).edges)
+      {
+        const glm::ivec2 neighbour = glm::clamp(edge.neighbour, glm::ivec2(0), glm::ivec2(size - 1));
+        uncertain = uncertain || (edge.distance < kTexelMargin && neighbour != texel && decidesOtherwise(glm::dvec2(neighbour) + 0.5));
+      }
+    }
+    result.lit += lit ? 1 : 0;
+    blocked += !lit && lookup.sample.evaluated ? 1 : 0;
+    result.uncertain += uncertain ? 1 : 0;
+    if (recorder)
+    {
+      // Light coordinates: the sample's offset from the light's centre in the light view's x and y.
+      const glm::dvec3 offset = glm::dmat3(views_[k].viewFromWorld) * (lights_[k].center - light_.center);
+      recorder->lightSample({ glm::dvec2(offset.x, offset.y), !lit, -1 });
+    }
+  }
+  result.visibility = static_cast<double>(result.lit) / sampleCount;
+  result.tolerance = accumulation + static_cast<double>(result.uncertain) / sampleCount;
+  if (recorder)
+  {
+    recorder->quantity("lit_samples", result.lit, "light samples",
+      "Williams 1978 per sample: d - bias <= the depth its map stores at the receiver's texel");
+    recorder->quantity("blocked_samples", blocked, "light samples", "Williams 1978 per sample: a caster nearer than d - bias");
+    recorder->quantity("unreachable_samples", result.unreachable, "light samples",
+      "ShadowLab (lightCanReach): the sample lies below the receiver's tangent plane (or the receiver behind the light)");
+    recorder->quantity("uncertain_samples", result.uncertain, "light samples",
+      "ShadowLab: samples float rounding, rasterisation or the fitted window may decide either way (1/128 texel, 2e-6)");
+    recorder->beginGroup("result");
+    recorder->quantity("sample_count", sampleCount, "light samples", "ShadowLab: light samples averaged in the pixel");
+    recorder->quantity("visibility", result.visibility, "", "VSSM (Yang et al. 2010) §7: the average of the K hard shadow tests");
+    recorder->quantity("visibility_stderr",
+      sampleCount > 1 ? std::sqrt(result.visibility * (1.0 - result.visibility) / (sampleCount - 1)) : 0.0, "",
+      "ShadowLab: Bernoulli bound sqrt(v (1 - v) / (K - 1))");
+  }
+  return result;
+}
+
+ProbeOutcome probeReferenceSm(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder)
+{
+  ReferenceSmReplay replay(frame, scene, lightIndex);
+  const ReferenceSmReplay::Pixel result = replay.replay(pixel, &recorder);
+  ProbeOutcome outcome;
+  outcome.evaluated = result.evaluated;
+  outcome.visibility = result.visibility;
+  // Per pixel: the GPU's K tests are replayed texel by texel, so it may differ by the float accumulation of the
+  // K weights (K 2^-24) and by 1/K per sample the replay marks uncertain, no more. ReferenceSmTest holds that on
+  // every pixel of three 64^2 frames; measured there (llvmpipe): |GPU - replay| = 0 on every pixel without an
+  // uncertain sample (stacked-occluders K = 16, fence K = 8 with alpha-tested casters, contact with second-depth
+  // maps), 0.0625 = 1/K at most where one is (9, 75 and 10 of the 4096 pixels have one).
+  outcome.tolerance = result.tolerance;
+  outcome.twin = "ReferenceSmReplay (referencesm/ReferenceSmTechnique.h): the K samples' hard tests, each map's "
+                 "texel replayed by a ray through its centre (nearest caster, Moller-Trumbore in double), views "
+                 "fitted on the CPU";
+  return outcome;
 }
 
 } // namespace sl
