@@ -43,7 +43,9 @@ struct ProbeOutcome
 {
   bool evaluated = false;   // the pixel reached a shadow test (false: decided without one, e.g. facing away)
   double visibility = 0.0;  // the twin's
-  double tolerance = 0.0;   // the largest |GPU - twin| the technique's GPU-CPU tests accept on an unambiguous pixel
+  // The largest |GPU - twin| the technique's GPU-CPU tests accept on an unambiguous pixel; a twin that knows how many
+  // of its decisions sit at a float-rounding boundary may widen it for this pixel (reference-sm: 1/K per such sample).
+  double tolerance = 0.0;
   // Non-empty when a decision of this pixel lies within float rounding of its boundary (the tests' ambiguity
   // thresholds): GPU and twin may then differ by more than `tolerance`, and the probe says why instead of failing.
   std::string ambiguity;

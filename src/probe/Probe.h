@@ -55,7 +55,8 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
 // and kernels), "light_plane" (back-projected polygons or micro-occluders clipped to the light, light samples).
 vtkSmartPointer<vtkMultiBlockDataSet> probeDataSet(const ProbeResult& probe, const FrameResult& frame, const Scene& scene);
 
-// probe.png (probe/ProbeFigure.cxx): panels rendered offscreen: the image with the pixel marked, the shadow-map
+// probe.png (probe/ProbeFigure.cxx): panels drawn on a CPU canvas (vis/Canvas.h, text through VTK's FreeType
+// renderer; no GL context needed, so the viewer can call it between frames): the image with the pixel marked, the shadow-map
 // crop with kernel and traversal, the light plane with what covers it, a cross-section through the light centre
 // and the receiver point, and a legend of key numbers. RGB, row 0 at the bottom.
 ImageU8 probeFigure(const ProbeResult& probe, const FrameResult& frame, const Scene& scene);
