@@ -6,6 +6,7 @@ set(SL_VIS_SOURCES
   vis/ColorKey.cxx
   vis/ColorMap.cxx
   vis/HeatMap.cxx
+  vis/Montage.cxx
   vis/ChartSupport.cxx
   vis/SpeedErrorChart.cxx
   vis/SweepChart.cxx)

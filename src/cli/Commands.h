@@ -129,6 +129,28 @@ struct ViewOptions
 // frame. Every action of the session prints one line on `out`.
 int runView(const ViewOptions& options, std::ostream& out);
 
+// shadowlab montage: one buffer of several run directories side by side on one colour scale (vis/Montage.h).
+struct MontageCommandOptions
+{
+  std::vector<std::string> runDirs; // output directories of render / reference (buffers.vti + stats.json)
+  std::string buffer;
+  std::string outFile = "montage.png";
+  std::string referenceDir; // a run whose visibility the others' error labels are measured against ("" = none)
+  bool quiet = false;
+};
+int runMontage(const MontageCommandOptions& options, std::ostream& log);
+
+// shadowlab lessons: the lesson pages generated from real runs (src/lessons/).
+struct LessonsOptions
+{
+  std::string outDir = "docs/lessons";
+  std::string resolution = "256x256";
+  std::vector<std::string> only; // lesson names; empty = every lesson
+  bool force = false;            // --force (OutputDirectory.h)
+  bool quiet = false;
+};
+int runLessons(const LessonsOptions& options, std::ostream& log);
+
 // "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);
 

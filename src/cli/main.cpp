@@ -137,6 +137,27 @@ int main(int argc, char** argv)
   viewCommand->add_option("--screenshot-dir", view.screenshotDir, "Where the s key saves screenshots (PNG)")
     ->capture_default_str();
 
+  sl::MontageCommandOptions montage;
+  CLI::App* montageCommand = app.add_subcommand("montage",
+    "One buffer of several runs side by side on one colour scale, labelled from each run's stats.json");
+  montageCommand->add_option("runs", montage.runDirs, "Output directories of render or reference")->required();
+  montageCommand->add_option("--buffer,-b", montage.buffer, "Buffer to show (a scalar array of buffers.vti)")->required();
+  montageCommand->add_option("--out,-o", montage.outFile, "PNG to write (replaced atomically)")->capture_default_str();
+  montageCommand->add_option("--reference", montage.referenceDir,
+    "Run whose visibility is the truth: each panel is labelled with its RMSE against it");
+  montageCommand->add_flag("--quiet,-q", montage.quiet, "Print nothing on success");
+
+  sl::LessonsOptions lessons;
+  CLI::App* lessonsCommand = app.add_subcommand("lessons",
+    "Lesson pages (Markdown) with figures and numbers from runs made now (src/lessons/)");
+  lessonsCommand->add_option("--out,-o", lessons.outDir, "Output directory (replaced atomically; see --force)")
+    ->capture_default_str();
+  lessonsCommand->add_option("--resolution,-r", lessons.resolution, "Image size WxH of every run")->capture_default_str();
+  lessonsCommand->add_option("--only", lessons.only,
+    "Only this lesson (repeatable); the other lessons of an existing --out are kept");
+  addForceFlag(lessonsCommand, lessons.force);
+  lessonsCommand->add_flag("--quiet,-q", lessons.quiet, "Print nothing on success");
+
   bool listJson = false;
   CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
   listCommand->add_flag("--json", listJson, "Machine-readable output");
@@ -166,13 +187,21 @@ int main(int argc, char** argv)
     {
       return sl::runRender(render, std::cerr);
     }
-    if (probeCommand->parsed())
-    {
-      return sl::runProbe(probe, std::cerr);
-    }
     if (viewCommand->parsed())
     {
       return sl::runView(view, std::cout);
+    }
+    if (montageCommand->parsed())
+    {
+      return sl::runMontage(montage, std::cerr);
+    }
+    if (lessonsCommand->parsed())
+    {
+      return sl::runLessons(lessons, std::cerr);
+    }
+    if (probeCommand->parsed())
+    {
+      return sl::runProbe(probe, std::cerr);
     }
     if (listCommand->parsed())
     {

@@ -1,0 +1,83 @@
+// Lesson: shadow acne and depth bias, measured by hard's depth_margin (receiver depth - bias - stored caster depth;
+// survey Scherzer et al. 2011 §5) and by the error against exact hard shadows (stencil shadow volumes, z-fail).
+#include "lessons/Lesson.h"
+#include "lessons/LessonBuilder.h"
+
+namespace sl
+{
+
+Lesson acneAndBiasLesson()
+{
+  Lesson lesson;
+  lesson.name = "acne-and-bias";
+  lesson.title = "Acne and bias: depth_margin with the bias off, on, and too large";
+  lesson.question = "Why does a lit surface shadow itself in speckles (acne) when a shadow map is compared without a "
+                    "bias, and what does too much bias do instead?";
+  lesson.build = [](LessonBuilder& lesson) {
+    lesson.sceneNote(
+      "`grazing`: a small box on the ground under a light about 80 degrees from the ground's normal, the case where "
+      "the ground's depth changes fastest from one shadow-map texel to the next. A texel stores one depth for its "
+      "whole footprint, and a receiver point inside the footprint compares its own depth against it: on a sloped "
+      "footprint half of the points lie behind the stored depth and shadow themselves. `depth_margin` is the "
+      "comparison itself (receiver depth - bias - stored depth: > 0 shadowed), so acne is where it is positive on "
+      "a lit surface. The bias (`bias_constant_texels` plus `bias_slope_texels` times the slope, in texel "
+      "footprints) moves the comparison back; too much of it lets light under the caster's foot (*peter panning*). "
+      "The truth is the exact hard shadow of the light's centre, from stencil shadow volumes (`shadow-volume`), "
+      "which have no depth map and so no acne.");
+    lesson.render({ "exact", "grazing", "shadow-volume", {}, {}, "" });
+    lesson.render({ "bias-off", "grazing", "hard",
+      { "shadow_map_size=1024", "bias_constant_texels=0", "bias_slope_texels=0" }, {}, "exact" });
+    lesson.render({ "bias-default", "grazing", "hard", { "shadow_map_size=1024" }, {}, "exact" });
+    lesson.render({ "bias-large", "grazing", "hard",
+      { "shadow_map_size=1024", "bias_constant_texels=16", "bias_slope_texels=16" }, {}, "exact" });
+
+    lesson.montage("depth_margin", "**depth_margin on one diverging scale** (white = 0, red = shadowed by the "
+      "comparison, blue = lit with room to spare), clipped at the 10th percentile of the magnitudes so that the values around 0, "
+      "where acne starts, are not washed out by the far-off ones.",
+      { "bias-off", "bias-default", "bias-large" }, "depth_margin", 0.1);
+    lesson.errorMontage("error", "**Against the exact hard shadow** (blue = too dark: acne or aliasing; red = too "
+      "bright: light leaking under the caster).", { "bias-off", "bias-default", "bias-large" });
+    lesson.probe("probe", "**A wrong pixel of the unbiased run, inside:** its receiver depth against the depth the "
+      "texel stores (the section shows the texel columns), and the margin between them.", "bias-off",
+      LessonPixel::largestError());
+
+    for (const char* run : { "bias-off", "bias-default", "bias-large" })
+    {
+      lesson.measure("mean depth bias applied (world units)", run, "/buffers/depth_bias/mean");
+      lesson.measure("share of pixels wrong by more than 0.05", run, "/error/covered/fraction_above_0.05");
+      lesson.measure("RMSE against the exact hard shadow", run, "/error/covered/rmse");
+      lesson.measure("mean visibility", run, "/buffers/visibility/mean");
+    }
+    lesson.measure("mean visibility", "exact", "/buffers/visibility/mean");
+
+    const auto wrong = [&](const char* run) { return lesson.value(run, "/error/covered/fraction_above_0.05"); };
+    lesson.observation(wrong("bias-off") > wrong("bias-default")
+        ? "Without a bias, more pixels differ from the exact shadow than with the default bias: the difference is "
+          "acne, lit ground that shadows itself."
+        : "Without a bias, no more pixels differ from the exact shadow than with the default bias at this map size.");
+    lesson.observation(lesson.value("bias-off", "/buffers/visibility/mean") < lesson.value("exact", "/buffers/visibility/mean")
+        ? "Acne only darkens: the unbiased run's mean visibility is below the exact one's."
+        : "The unbiased run's mean visibility is not below the exact one's here.");
+    const bool largeLosesShadow = wrong("bias-large") > wrong("bias-default") &&
+      lesson.value("bias-large", "/buffers/visibility/mean") > lesson.value("exact", "/buffers/visibility/mean");
+    lesson.observation(largeLosesShadow
+        ? "The large bias is wrong on more pixels than the default and brighter on average than the exact shadow: it "
+          "pushes the comparison so far back that shadow is lost next to the casters (peter panning; see where in the "
+          "error figure). The bias is a trade, not a fix."
+        : "The large bias does not lose more shadow than the default here.");
+
+    const std::string resolution = lesson.resolutionText();
+    lesson.tryNext("Sweep the constant bias and watch acne give way to peter panning (the bench's error is against "
+                   "a ray-traced reference of the area light, so hard shadows keep a penumbra error):",
+      "shadowlab bench datasets/grazing/scene.json -t hard --set bias_slope_texels=0 --sweep "
+      "bias_constant_texels=0,0.5,2,8,32 -r " + resolution + " --repeat 1 --samples 64 --out out/bias-sweep");
+    lesson.tryNext("A second-depth map (back faces) needs no bias for closed casters (Wang & Molnar 1994):",
+      "shadowlab render datasets/grazing/scene.json -t hard --set caster_faces=back --set bias_constant_texels=0 --set "
+      "bias_slope_texels=0 -r " + resolution + " --out out/second-depth");
+    lesson.tryNext("Write the unbiased run with its buffers and open depth_margin in ParaView (buffers.vti):",
+      lesson.renderCommand("bias-off", "out/bias-off"));
+  };
+  return lesson;
+}
+
+} // namespace sl

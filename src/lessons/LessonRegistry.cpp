@@ -1,0 +1,48 @@
+// The lesson registry: one line per lesson (src/lessons/Lesson.h says how to add one).
+#include "lessons/LessonRegistry.h"
+
+#include "core/Error.h"
+
+namespace sl
+{
+
+// Defined in src/lessons/<Name>Lesson.cpp, one file each.
+Lesson perspectiveAliasingLesson();
+Lesson acneAndBiasLesson();
+Lesson pcfFixedKernelLesson();
+Lesson pcssBlockerSearchLesson();
+Lesson vsmLightBleedingLesson();
+Lesson vssmNonPlanarityLesson();
+Lesson backProjectionLesson();
+Lesson packetsHierarchyLesson();
+
+const std::vector<Lesson>& lessonRegistry()
+{
+  static const std::vector<Lesson> registry = {
+    perspectiveAliasingLesson(),
+    acneAndBiasLesson(),
+    pcfFixedKernelLesson(),
+    pcssBlockerSearchLesson(),
+    vsmLightBleedingLesson(),
+    vssmNonPlanarityLesson(),
+    backProjectionLesson(),
+    packetsHierarchyLesson(),
+  };
+  return registry;
+}
+
+const Lesson& findLesson(const std::string& name)
+{
+  std::string available;
+  for (const Lesson& lesson : lessonRegistry())
+  {
+    if (lesson.name == name)
+    {
+      return lesson;
+    }
+    available += (available.empty() ? "" : ", ") + lesson.name;
+  }
+  throw InputError("--only " + printable(name) + ": no such lesson (lessons: " + available + ")");
+}
+
+} // namespace sl

@@ -1,0 +1,75 @@
+// Lesson: VSSM's non-planarity (Yang et al. 2010, §5, Alg. 1-2, Fig. 3): a kernel whose depths are not one plane is
+// split into sub-kernels; where a sub-kernel is still non-planar (E(x) >= t) it is filtered point by point.
+#include "lessons/Lesson.h"
+#include "lessons/LessonBuilder.h"
+
+namespace sl
+{
+
+Lesson vssmNonPlanarityLesson()
+{
+  Lesson lesson;
+  lesson.name = "vssm-non-planarity";
+  lesson.title = "VSSM's non-planarity: sub-kernels where one plane is not enough";
+  lesson.question = "VSSM estimates blockers and visibility from the mean and variance of a kernel, which assumes the "
+                    "blockers form one plane; how does it find the kernels where they do not, and what does splitting "
+                    "them buy?";
+  lesson.build = [](LessonBuilder& lesson) {
+    lesson.sceneNote(
+      "VSSM (Yang et al. 2010) takes the average blocker depth from a summed-area table of moments instead of PCSS's "
+      "search (Eq. 4), and the visibility from Chebyshev's bound over the penumbra kernel. Both read only the mean "
+      "and variance of the kernel, which describe it fully only when the blockers are planar (Fig. 3 a: VSM's lit "
+      "assumption). Where the mean is not below the receiver (E(x) >= t), §5 splits the kernel into sub-kernels, "
+      "uniformly or by an adaptive quad-tree (Alg. 2), and filters the non-planar ones by PCF. `stacked-occluders` "
+      "has two blockers at different depths over the same receivers. The run `planar-assumption` turns both "
+      "subdivisions off; `vssm` is the paper's configuration (uniform 5 x 5 blocker sub-kernels, an adaptive "
+      "quad-tree of height 3 for the visibility). Both use a 1024-texel map.");
+    lesson.reference("reference", "stacked-occluders");
+    lesson.render({ "planar-assumption", "stacked-occluders", "vssm",
+      { "shadow_map_size=1024", "blocker_subdivision=none", "shadow_subdivision=none" }, {}, "reference" });
+    lesson.render({ "vssm", "stacked-occluders", "vssm", { "shadow_map_size=1024" }, {}, "reference" });
+
+    lesson.montage("classification", "**How each pixel was decided** (Alg. 1: lit or umbra from the hierarchical "
+      "shadow map, penumbra, or contact).", { "planar-assumption", "vssm" }, "classification");
+    lesson.montage("nonplanar_subkernels", "**Non-planar sub-kernels per pixel** (both steps): where the planar "
+      "assumption failed and VSSM fell back to point samples.", { "planar-assumption", "vssm" }, "nonplanar_subkernels");
+    lesson.errorMontage("error", "**Error against the reference** (blue = too dark, red = too bright).",
+      { "planar-assumption", "vssm" });
+    lesson.probe("probe", "**The pixel with the most non-planar sub-kernels, inside:** its kernels, their "
+      "sub-kernels and which of them were filtered point by point.", "vssm",
+      LessonPixel::largestValue("nonplanar_subkernels"));
+
+    for (const char* run : { "planar-assumption", "vssm" })
+    {
+      lesson.measure("penumbra pixels (classification)", run, "/buffers/classification/category_pixels/penumbra");
+      lesson.measure("mean non-planar sub-kernels", run, "/buffers/nonplanar_subkernels/mean");
+      lesson.measure("mean quad-tree nodes visited", run, "/buffers/quadtree_nodes_visited/mean");
+      lesson.measure("mean point-sampled comparisons", run, "/buffers/pcf_samples/mean");
+      lesson.measure("RMSE over the penumbra", run, "/error/penumbra/rmse");
+      lesson.measure("RMSE over every covered pixel", run, "/error/covered/rmse");
+      lesson.measure("GPU time of the frame (ms)", run, "/total_gpu_ms");
+    }
+
+    lesson.observation(lesson.value("vssm", "/error/penumbra/rmse") < lesson.value("planar-assumption", "/error/penumbra/rmse")
+        ? "Splitting the kernels lowers the penumbra error: the sub-kernels that are planar get the right blocker "
+          "depth, and the rest are filtered exactly."
+        : "Splitting the kernels does not lower the penumbra error here.");
+    lesson.observation(lesson.value("vssm", "/buffers/nonplanar_subkernels/mean") > 0.0
+        ? "The subdivided run finds non-planar sub-kernels: the places the mean and variance alone cannot describe."
+        : "The subdivided run finds no non-planar sub-kernel here.");
+
+    const std::string resolution = lesson.resolutionText();
+    lesson.tryNext("Uniform against adaptive subdivision of the visibility kernel (§6.2):",
+      "shadowlab bench datasets/stacked-occluders/scene.json -t vssm --set shadow_map_size=1024 --sweep "
+      "shadow_subdivision=none,uniform,adaptive -r " + resolution + " --repeat 1 --samples 64 --out out/vssm-subdivision");
+    lesson.tryNext("The contact case of §6.4, where the blocker touches the receiver:",
+      "shadowlab render datasets/contact/scene.json -t vssm --set shadow_map_size=1024 -r " + resolution +
+        " --out out/vssm-contact");
+    lesson.tryNext("Write the subdivided run with its buffers (classification, nonplanar_subkernels, "
+                   "quadtree_nodes_visited):",
+      lesson.renderCommand("vssm", "out/vssm"));
+  };
+  return lesson;
+}
+
+} // namespace sl
