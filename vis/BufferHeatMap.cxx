@@ -6,8 +6,6 @@
 
 namespace sl
 {
-namespace
-{
 
 ColorMapKind colorMapFor(BufferKind kind)
 {
@@ -19,8 +17,6 @@ ColorMapKind colorMapFor(BufferKind kind)
   }
   return ColorMapKind::Viridis;
 }
-
-} // namespace
 
 HeatMapOptions bufferHeatMapOptions(const NamedImage& buffer, const ImageU8* validMask)
 {

@@ -15,6 +15,8 @@ namespace sl
 // (validMask nonzero, or all when null) when the maximum lies more than 4 times as far from the minimum as the
 // percentile does. The title keeps the true range either way.
 HeatMapOptions bufferHeatMapOptions(const NamedImage& buffer, const ImageU8* validMask);
+// The colour map alone, by the buffer's kind (also the montage's, vis/Montage.h).
+ColorMapKind colorMapFor(BufferKind kind);
 
 // The pixels a surface covers (coverage > 0.5), 1 component: the valid mask of a frame's heat maps.
 ImageU8 coverageMask(const NamedImage& coverage);

@@ -1,6 +1,7 @@
 #include "vis/Montage.h"
 
 #include "core/Error.h"
+#include "vis/BufferHeatMap.h"
 #include "vis/Canvas.h"
 #include "vis/ColorKey.h"
 
@@ -16,18 +17,6 @@ namespace sl
 
 namespace
 {
-
-// The colour map of a buffer of `kind`, as the run directory's heat maps choose it (vis/BufferHeatMap.h).
-ColorMapKind montageColorMap(BufferKind kind)
-{
-  switch (kind)
-  {
-    case BufferKind::Signed: return ColorMapKind::Diverging;
-    case BufferKind::Categorical: return ColorMapKind::Categorical;
-    case BufferKind::Continuous: return ColorMapKind::Viridis;
-  }
-  return ColorMapKind::Viridis;
-}
 
 bool isValidPixel(const MontagePanel& panel, int x, int y)
 {
@@ -65,7 +54,7 @@ long long categoryId(double value)
 
 ColorKey makeKey(const MontageOptions& options, const MontageLayout& layout)
 {
-  const ColorMap colorMap(montageColorMap(options.kind));
+  const ColorMap colorMap(colorMapFor(options.kind));
   if (options.kind != BufferKind::Categorical)
     return ColorKey::continuous(colorMap, layout.colorRange.min, layout.colorRange.max, layout.fontPx);
   if (!options.categoryLabels.empty())
@@ -151,7 +140,7 @@ MontageLayout montageLayout(const std::vector<MontagePanel>& panels, const Monta
   layout.validRange = montageValueRange(panels);
   HeatMapOptions heatMap;
   heatMap.title = options.title;
-  heatMap.colorMap = montageColorMap(options.kind);
+  heatMap.colorMap = colorMapFor(options.kind);
   // One range for every panel: what makes the panels comparable (colorMapRange centres Signed buffers on 0).
   if (options.clipQuantile && options.kind != BufferKind::Categorical)
   {
@@ -210,7 +199,7 @@ ImageU8 renderMontage(const std::vector<MontagePanel>& panels, const MontageOpti
 {
   const MontageLayout layout = montageLayout(panels, options);
   ImageU8 canvas(layout.width, layout.height, 3, 255); // white margins
-  const ColorMap colorMap(montageColorMap(options.kind));
+  const ColorMap colorMap(colorMapFor(options.kind));
   const double rangeWidth = layout.colorRange.max - layout.colorRange.min;
   const int lineHeight = measureText("0", layout.fontPx).height;
   for (std::size_t p = 0; p < panels.size(); ++p)
