@@ -5,6 +5,7 @@ set(SL_SCENE_SOURCES
   src/scene/Primitives.cpp
   src/scene/MeshIO.cpp
   src/scene/AlphaTexture.cpp
+  src/scene/RayTriangle.cpp
   src/scene/WeldedMesh.cpp)
 # GCC 12 reports a false -Wmaybe-uninitialized inside libstdc++'s allocator while instantiating OpenMesh's
 # property containers; the warning is about library code, not ours.

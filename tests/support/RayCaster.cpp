@@ -1,8 +1,10 @@
 #include "support/RayCaster.h"
 
 #include "lightspace/LightView.h"
+#include "scene/RayTriangle.h"
 
 #include <cmath>
+#include <optional>
 
 namespace sl::test
 {
@@ -40,33 +42,15 @@ bool RayCaster::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
 {
   for (const Triangle& triangle : triangles_)
   {
-    const glm::dvec3 p = glm::cross(direction, triangle.edge2);
-    const double determinant = glm::dot(triangle.edge1, p);
-    if (std::abs(determinant) < 1e-15)
-    {
-      continue;
-    }
-    const double inverse = 1.0 / determinant;
-    const glm::dvec3 s = origin - triangle.a;
-    const double u = glm::dot(s, p) * inverse;
-    if (u < 0.0 || u > 1.0)
-    {
-      continue;
-    }
-    const glm::dvec3 q = glm::cross(s, triangle.edge1);
-    const double v = glm::dot(direction, q) * inverse;
-    if (v < 0.0 || u + v > 1.0)
-    {
-      continue;
-    }
-    const double t = glm::dot(triangle.edge2, q) * inverse;
-    if (t <= tMin || t >= tMax)
+    const std::optional<RayTriangleHit> hit =
+      intersectRayTriangle(origin, direction, triangle.a, triangle.edge1, triangle.edge2, 1e-15);
+    if (!hit || hit->t <= tMin || hit->t >= tMax)
     {
       continue;
     }
     if (triangle.alpha)
     {
-      const glm::dvec2 uv = (1.0 - u - v) * triangle.uvA + u * triangle.uvB + v * triangle.uvC;
+      const glm::dvec2 uv = (1.0 - hit->u - hit->v) * triangle.uvA + hit->u * triangle.uvB + hit->v * triangle.uvC;
       const ImageF& alpha = triangle.alpha->alpha;
       const auto wrap = [](double coordinate, int size) {
         const int texel = static_cast<int>(std::floor(coordinate * size));

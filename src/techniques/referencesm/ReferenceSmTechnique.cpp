@@ -1,6 +1,7 @@
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 
 #include "lightspace/LightSamples.h"
+#include "scene/RayTriangle.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/referencesm/vtkSLReferenceShadowMapPass.h"
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 namespace sl
 {
@@ -162,41 +164,23 @@ double ReferenceSmReplay::storedDepth(std::size_t k, const glm::dvec2& texelPosi
     {
       continue;
     }
-    const glm::dvec3 p = glm::cross(direction, triangle.edge2);
-    const double determinant = glm::dot(triangle.edge1, p);
-    if (determinant == 0.0)
-    {
-      continue;
-    }
-    const double inverse = 1.0 / determinant;
-    const glm::dvec3 s = origin - triangle.a;
-    const double u = glm::dot(s, p) * inverse;
-    if (u < 0.0 || u > 1.0)
-    {
-      continue;
-    }
-    const glm::dvec3 q = glm::cross(s, triangle.edge1);
-    const double v = glm::dot(direction, q) * inverse;
-    if (v < 0.0 || u + v > 1.0)
-    {
-      continue;
-    }
-    const double t = glm::dot(triangle.edge2, q) * inverse;
-    if (t < 0.0 || t > 1.0)
+    const std::optional<RayTriangleHit> hit =
+      intersectRayTriangle(origin, direction, triangle.a, triangle.edge1, triangle.edge2);
+    if (!hit || hit->t < 0.0 || hit->t > 1.0)
     {
       continue;
     }
     if (triangle.alpha != nullptr)
     {
-      const glm::dvec2 uv = (1.0 - u - v) * triangle.uvA + u * triangle.uvB + v * triangle.uvC;
+      const glm::dvec2 uv = (1.0 - hit->u - hit->v) * triangle.uvA + hit->u * triangle.uvB + hit->v * triangle.uvC;
       const ImageF& alpha = *triangle.alpha;
       if (alpha.at(wrapTexel(uv.x, alpha.width), wrapTexel(uv.y, alpha.height)) < 0.5f)
       {
         continue; // a hole: the light-depth pass discards it
       }
     }
-    const glm::dvec3 hit = origin + t * direction;
-    nearest = std::min(nearest, -(view.viewFromWorld * glm::dvec4(hit, 1.0)).z);
+    const glm::dvec3 hitPoint = origin + hit->t * direction;
+    nearest = std::min(nearest, -(view.viewFromWorld * glm::dvec4(hitPoint, 1.0)).z);
   }
   return nearest;
 }

@@ -1,8 +1,11 @@
 #include "techniques/shadowvolume/ShadowVolumeReference.h"
 
+#include "scene/RayTriangle.h"
+
 #include <glm/gtc/constants.hpp>
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace sl
@@ -49,32 +52,14 @@ int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dve
       const glm::dvec3 a(mesh.positions[mesh.indices[3 * triangle]]);
       const glm::dvec3 edge1 = glm::dvec3(mesh.positions[mesh.indices[3 * triangle + 1]]) - a;
       const glm::dvec3 edge2 = glm::dvec3(mesh.positions[mesh.indices[3 * triangle + 2]]) - a;
-      const glm::dvec3 p = glm::cross(direction, edge2);
-      const double determinant = glm::dot(edge1, p);
-      if (determinant == 0.0)
-      {
-        continue; // the segment runs parallel to the triangle's plane
-      }
-      const double inverse = 1.0 / determinant;
-      const glm::dvec3 s = point - a;
-      const double u = glm::dot(s, p) * inverse;
-      if (u < 0.0 || u > 1.0)
-      {
-        continue;
-      }
-      const glm::dvec3 q = glm::cross(s, edge1);
-      const double v = glm::dot(direction, q) * inverse;
-      if (v < 0.0 || u + v > 1.0)
-      {
-        continue;
-      }
-      const double t = glm::dot(edge2, q) * inverse;
-      if (t > 0.0 && t < tMax)
+      // A segment parallel to the triangle's plane (determinant 0) crosses nothing.
+      const std::optional<RayTriangleHit> hit = intersectRayTriangle(point, direction, a, edge1, edge2);
+      if (hit && hit->t > 0.0 && hit->t < tMax)
       {
         ++crossings;
         if (recorder)
         {
-          recorder->quantity("crossing_point", point + t * direction, "world units",
+          recorder->quantity("crossing_point", point + hit->t * direction, "world units",
             "Crow 1977: the segment to the light leaves this caster triangle's shadow volume (Moller-Trumbore)");
           recorder->category("crossed_triangle", "objects[" + std::to_string(objectIndex) + "] (" + object.name +
             ") triangle " + std::to_string(triangle), "Crow 1977 (one volume per caster triangle)");
