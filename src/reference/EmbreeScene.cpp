@@ -1,6 +1,7 @@
 #include "reference/EmbreeScene.h"
 
 #include "core/Error.h"
+#include "scene/AlphaTexture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,18 +58,6 @@ void rejectHitsInHoles(const RTCFilterFunctionNArguments* args)
   }
 }
 
-// Nearest texel under repeat wrap: texel i covers [i, i+1)/size, and coordinates wrap modulo 1.
-int wrapTexel(double coordinate, int size)
-{
-  const double texel = std::floor(coordinate * size);
-  if (!std::isfinite(texel))
-  {
-    return 0;
-  }
-  const long long wrapped = static_cast<long long>(std::fmod(texel, static_cast<double>(size)));
-  return static_cast<int>(wrapped < 0 ? wrapped + size : wrapped);
-}
-
 } // namespace
 
 bool EmbreeScene::Perforation::isHole(unsigned primitive, float u, float v) const
@@ -85,7 +74,7 @@ bool EmbreeScene::Perforation::isHole(unsigned primitive, float u, float v) cons
     const glm::dvec2 c(uvs[indices[3 * primitive + 2]]);
     uv = (1.0 - double(u) - double(v)) * a + double(u) * b + double(v) * c;
   }
-  return alpha.at(wrapTexel(uv.x, alpha.width), wrapTexel(uv.y, alpha.height)) < 0.5f;
+  return alphaHoleAt(alpha, uv);
 }
 
 EmbreeScene::EmbreeScene(const Scene& scene)

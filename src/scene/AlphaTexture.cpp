@@ -156,6 +156,28 @@ ImageF makeLeavesAlpha(int size)
   return alpha;
 }
 
+namespace
+{
+
+// Nearest texel under repeat wrap: texel i covers [i, i+1)/size, and coordinates wrap modulo 1.
+int wrapTexel(double coordinate, int size)
+{
+  const double texel = std::floor(coordinate * size);
+  if (!std::isfinite(texel))
+  {
+    return 0;
+  }
+  const long long wrapped = static_cast<long long>(std::fmod(texel, static_cast<double>(size)));
+  return static_cast<int>(wrapped < 0 ? wrapped + size : wrapped);
+}
+
+} // namespace
+
+bool alphaHoleAt(const ImageF& alpha, const glm::dvec2& uv)
+{
+  return alpha.at(wrapTexel(uv.x, alpha.width), wrapTexel(uv.y, alpha.height)) < 0.5f;
+}
+
 bool isProceduralAlphaName(const std::string& source)
 {
   return source == "fence" || source == "leaves";

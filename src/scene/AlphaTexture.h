@@ -18,6 +18,8 @@
 #include "core/Image.h"
 #include "scene/Scene.h"
 
+#include <glm/glm.hpp>
+
 #include <filesystem>
 #include <string>
 
@@ -39,6 +41,13 @@ ImageF makeLeavesAlpha(int size = kProceduralAlphaSize);
 
 // True for the names the scene format reserves for procedural patterns ("fence", "leaves").
 bool isProceduralAlphaName(const std::string& source);
+
+// True where the mask `alpha` has a hole at texture coordinates `uv`: alpha < 0.5 at the nearest texel under
+// repeat wrap (texel i covers [i, i+1)/size, coordinates wrap modulo 1), as isPerforated in
+// shaders/common/AlphaMask.glsl decides. A coordinate too large to name a texel (non-finite) reads texel 0.
+// For the CPU references that sample the mask themselves (Embree's occlusion filter, reference-sm's replay, the
+// tests' ray caster).
+bool alphaHoleAt(const ImageF& alpha, const glm::dvec2& uv);
 
 // The alpha texture a scene's `alpha_texture` string names: a procedural pattern, or a PNG path resolved
 // relative to `baseDir`. Throws InputError as readAlphaPng does.

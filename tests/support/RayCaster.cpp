@@ -1,9 +1,9 @@
 #include "support/RayCaster.h"
 
 #include "lightspace/LightView.h"
+#include "scene/AlphaTexture.h"
 #include "scene/RayTriangle.h"
 
-#include <cmath>
 #include <optional>
 
 namespace sl::test
@@ -51,12 +51,7 @@ bool RayCaster::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
     if (triangle.alpha)
     {
       const glm::dvec2 uv = (1.0 - hit->u - hit->v) * triangle.uvA + hit->u * triangle.uvB + hit->v * triangle.uvC;
-      const ImageF& alpha = triangle.alpha->alpha;
-      const auto wrap = [](double coordinate, int size) {
-        const int texel = static_cast<int>(std::floor(coordinate * size));
-        return ((texel % size) + size) % size;
-      };
-      if (alpha.at(wrap(uv.x, alpha.width), wrap(uv.y, alpha.height)) < 0.5f)
+      if (alphaHoleAt(triangle.alpha->alpha, uv))
       {
         continue; // a hole: the ray passes
       }

@@ -1,6 +1,7 @@
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 
 #include "lightspace/LightSamples.h"
+#include "scene/AlphaTexture.h"
 #include "scene/RayTriangle.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
@@ -46,23 +47,6 @@ TechniqueDescriptor referenceSmTechnique()
   };
   return descriptor;
 }
-
-namespace
-{
-
-// Nearest texel under repeat wrap (AlphaMask.glsl): texel i covers [i, i+1)/size, coordinates wrap modulo 1.
-int wrapTexel(double coordinate, int size)
-{
-  const double texel = std::floor(coordinate * size);
-  if (!std::isfinite(texel))
-  {
-    return 0;
-  }
-  const long long wrapped = static_cast<long long>(std::fmod(texel, static_cast<double>(size)));
-  return static_cast<int>(wrapped < 0 ? wrapped + size : wrapped);
-}
-
-} // namespace
 
 ReferenceSmReplay::ReferenceSmReplay(const FrameResult& frame, const Scene& scene, int lightIndex)
   : light_(scene.lights.at(static_cast<std::size_t>(lightIndex)))
@@ -173,8 +157,7 @@ double ReferenceSmReplay::storedDepth(std::size_t k, const glm::dvec2& texelPosi
     if (triangle.alpha != nullptr)
     {
       const glm::dvec2 uv = (1.0 - hit->u - hit->v) * triangle.uvA + hit->u * triangle.uvB + hit->v * triangle.uvC;
-      const ImageF& alpha = *triangle.alpha;
-      if (alpha.at(wrapTexel(uv.x, alpha.width), wrapTexel(uv.y, alpha.height)) < 0.5f)
+      if (alphaHoleAt(*triangle.alpha, uv))
       {
         continue; // a hole: the light-depth pass discards it
       }
