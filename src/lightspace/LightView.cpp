@@ -85,6 +85,16 @@ glm::dvec3 directionToLight(const Light& light, const glm::dvec3& pWs)
   return glm::normalize(light.center - pWs);
 }
 
+double lightReachMargin(const Light& light, const glm::dvec3& nWs, const glm::dvec3& toLight)
+{
+  double margin = std::abs(glm::dot(nWs, toLight));
+  if (light.type == LightType::Area)
+  {
+    margin = std::min(margin, std::abs(glm::dot(light.normal, toLight)));
+  }
+  return margin;
+}
+
 bool lightCanReach(const Light& light, const glm::dvec3& pWs, const glm::dvec3& nWs)
 {
   if (glm::dot(nWs, directionToLight(light, pWs)) <= 0.0)

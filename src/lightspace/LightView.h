@@ -63,6 +63,10 @@ struct FocusSettings
 bool lightCanReach(const Light& light, const glm::dvec3& pWs, const glm::dvec3& nWs);
 // Direction from pWs toward the light's centre (or against a directional light's direction), unit.
 glm::dvec3 directionToLight(const Light& light, const glm::dvec3& pWs);
+// How near lightCanReach's decisions are to their boundary, as the twins and probes measure it: the smaller of
+// |nWs . toLight| (the facing test) and, for an area light, |light.normal . toLight| (its plane); toLight as
+// directionToLight gives it. The tests count a margin under 1e-5 as one float rounding may decide either way.
+double lightReachMargin(const Light& light, const glm::dvec3& nWs, const glm::dvec3& toLight);
 
 // What the fit needs to know about the visible receivers (covered pixels that receive shadows and that
 // the light can reach), in two questions. A ReceiverSource answers them: on the CPU from read-back

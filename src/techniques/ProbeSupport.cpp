@@ -67,6 +67,17 @@ double bufferValue(const FrameResult& frame, const std::string& buffer, glm::ive
   return named->image.at(pixel.x, pixel.y);
 }
 
+bool litWithoutShadowTest(const FrameResult& frame, glm::ivec2 pixel, ProbeRecorder& recorder, ProbeOutcome& outcome)
+{
+  if (bufferValue(frame, "receives_shadows", pixel) <= 0.5)
+  {
+    outcome.visibility = 1.0;
+    recorder.category("receives_shadows", "no: lit, no shadow test", "ShadowLab (receive_shadows)");
+    return true;
+  }
+  return false;
+}
+
 void requireSingleSubLight(const FrameResult& frame)
 {
   if (frame.descriptor != nullptr && frame.descriptor->hasSubLights() && frame.parameters.getInt("sublights") > 1)

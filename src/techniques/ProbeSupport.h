@@ -34,6 +34,11 @@ ProbeOutcome probeOutcome(const ReferenceSample& sample, double tolerance, std::
 // The frame's value of a buffer at a pixel (component 0), throws when the frame has no buffer of that name.
 double bufferValue(const FrameResult& frame, const std::string& buffer, glm::ivec2 pixel);
 
+// For recorders that read the G-buffer themselves: a pixel whose receives_shadows buffer says no is lit without a
+// shadow test. Then sets outcome.visibility = 1, records the category in the current group and returns true;
+// false for a shadow receiver.
+bool litWithoutShadowTest(const FrameResult& frame, glm::ivec2 pixel, ProbeRecorder& recorder, ProbeOutcome& outcome);
+
 // Throws InputError for sublights = S > 1: a frame keeps one light-space export, so a replay of S x S sub-light
 // shadow maps has nothing to read.
 void requireSingleSubLight(const FrameResult& frame);

@@ -119,20 +119,12 @@ ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int
   }
 
   recorder.beginGroup("result");
-  if (bufferValue(frame, "receives_shadows", pixel) <= 0.5)
+  if (litWithoutShadowTest(frame, pixel, recorder, outcome))
   {
-    outcome.visibility = 1.0;
-    recorder.category("receives_shadows", "no: lit, no shadow test", "ShadowLab (receive_shadows)");
     return outcome;
   }
-  // The reach decision's margin, as prepareShadowLookup measures it (facing, and an area light's plane).
-  const glm::dvec3 toLight = directionToLight(light, pWs);
-  double reachMargin = std::abs(glm::dot(nWs, toLight));
-  if (light.type == LightType::Area)
-  {
-    reachMargin = std::min(reachMargin, std::abs(glm::dot(light.normal, toLight)));
-  }
-  noteAmbiguity(outcome.ambiguity, "light-reach cosine", reachMargin, probeReachAmbiguity);
+  noteAmbiguity(outcome.ambiguity, "light-reach cosine", lightReachMargin(light, nWs, directionToLight(light, pWs)),
+    probeReachAmbiguity);
   if (!lightCanReach(light, pWs, nWs))
   {
     recorder.category("light_reach", "faces away / outside the light's reach: unlit, no shadow test",

@@ -75,19 +75,12 @@ ProbeOutcome probeVtk(const FrameResult& frame, const Scene& scene, int lightInd
   recorder.quantity("hard_ray_visibility", crossings == 0 ? 1.0 : 0.0, "", "Williams 1978 (exact, by a ray): lit when nothing crosses");
 
   recorder.beginGroup("result");
-  if (bufferValue(frame, "receives_shadows", pixel) <= 0.5)
+  if (litWithoutShadowTest(frame, pixel, recorder, outcome))
   {
-    outcome.visibility = 1.0;
-    recorder.category("receives_shadows", "no: lit, no shadow test", "ShadowLab (receive_shadows)");
     return outcome;
   }
-  const glm::dvec3 toLight = directionToLight(light, pWs);
-  double reachMargin = std::abs(glm::dot(nWs, toLight));
-  if (light.type == LightType::Area)
-  {
-    reachMargin = std::min(reachMargin, std::abs(glm::dot(light.normal, toLight)));
-  }
-  noteAmbiguity(outcome.ambiguity, "light-reach cosine", reachMargin, probeReachAmbiguity);
+  noteAmbiguity(outcome.ambiguity, "light-reach cosine", lightReachMargin(light, nWs, directionToLight(light, pWs)),
+    probeReachAmbiguity);
   // Below 1e-3 of full irradiance the ratio is noise (VtkVisibilityRatio.glsl).
   constexpr double kMinUnshadowed = 1e-3;
   noteAmbiguity(outcome.ambiguity, "vtk_unshadowed from the 1e-3 cut (relative)",
