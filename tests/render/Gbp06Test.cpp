@@ -29,7 +29,7 @@ constexpr int kHeight = 48;
 
 HierarchicalShadowMap structureOf(const FrameResult& frame, const ShadowMapInputs& inputs)
 {
-  return HierarchicalShadowMap::build(inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
+  return buildHierarchicalShadowMap(inputs.shadowMapLinear, frame.parameters);
 }
 
 // Pixels whose decisions lie within float rounding of a boundary: a texel within rounding of its comparison

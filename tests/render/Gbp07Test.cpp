@@ -178,8 +178,7 @@ TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
   const Scene scene = test::loadDataset("stacked-occluders");
   const FrameResult frame = test::renderDataset(scene, "gbp07", 64, 48, { "shadow_map_size=256" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-  const HierarchicalShadowMap hsm =
-    HierarchicalShadowMap::build(inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
+  const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, frame.parameters);
   const TechniqueDescriptor& technique = findTechnique("gbp07");
   ASSERT_TRUE(static_cast<bool>(technique.probe));
   const ImageF& classes = frame.find("classification")->image;

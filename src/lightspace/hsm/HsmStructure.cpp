@@ -19,6 +19,11 @@ HierarchicalShadowMapSettings hierarchicalShadowMapSettings(const ParameterValue
   return settings;
 }
 
+HierarchicalShadowMap buildHierarchicalShadowMap(const ImageF& shadowMapLinear, const ParameterValues& values)
+{
+  return HierarchicalShadowMap::build(shadowMapLinear, hierarchicalShadowMapSettings(values).layout);
+}
+
 std::vector<NamedImage> exportMinMaxDepth(const MinMaxDepthData& data, int mapSize)
 {
   // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level;

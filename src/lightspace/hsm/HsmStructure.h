@@ -20,6 +20,9 @@ struct HierarchicalShadowMapSettings
   HsmLayout layout = HsmLayout::MipMap; // hsm = mipmap | nbuffers | ysm
 };
 HierarchicalShadowMapSettings hierarchicalShadowMapSettings(const ParameterValues& values);
+// The CPU build of the hierarchy those parameters ask for, from a read-back shadow map: what the twins and probe
+// replays traverse where the GPU traversed vtkSLHsmPass's.
+HierarchicalShadowMap buildHierarchicalShadowMap(const ImageF& shadowMapLinear, const ParameterValues& values);
 
 // What the build leaves in the frame (this structure's and the dual-grid MSSM's).
 struct MinMaxDepthData : LightSpaceData

@@ -59,8 +59,7 @@ TechniqueDescriptor gbp06Technique()
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLGbp06Pass>::New()); };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear,
-      hierarchicalShadowMapSettings(context.frame->parameters).layout);
+    const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);
     const Gbp06Sample sample = gbp06Reference(inputs, hsm, context.frame->parameters, pixel.x, pixel.y, &recorder);
     // Gbp06Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping, ~1e-7 of the light per
     // micropatch), on pixels without a decision near its boundary; visited_nodes where no pruning test is.

@@ -58,8 +58,7 @@ TechniqueDescriptor gbp07Technique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     requireSingleSubLight(*context.frame);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear,
-      hierarchicalShadowMapSettings(context.frame->parameters).layout);
+    const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);
     const Gbp07Sample sample = gbp07Reference(inputs, hsm, context.frame->parameters, pixel.x, pixel.y, &recorder);
     // Gbp07Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping over up to a few hundred
     // edges), on pixels without a decision near its boundary.

@@ -858,7 +858,7 @@ Ss08Twin ss08TwinOf(const FrameResult& frame, const Scene& scene, int lightIndex
 {
   Ss08Twin twin;
   twin.inputs = shadowMapInputsOf(frame, scene, lightIndex);
-  twin.hsm = HierarchicalShadowMap::build(twin.inputs.shadowMapLinear, hierarchicalShadowMapSettings(frame.parameters).layout);
+  twin.hsm = buildHierarchicalShadowMap(twin.inputs.shadowMapLinear, frame.parameters);
   if (microrectsOn(frame.parameters))
   {
     twin.microrects = Microrects::build(twin.inputs.shadowMapLinear);

@@ -215,7 +215,7 @@ VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const 
 {
   VssmReferenceInputs inputs;
   inputs.shadowMap = &shadowMap;
-  inputs.hsm = HierarchicalShadowMap::build(shadowMap.shadowMapLinear, hierarchicalShadowMapSettings(values).layout);
+  inputs.hsm = buildHierarchicalShadowMap(shadowMap.shadowMapLinear, values);
   const bool integer = values.choice("sat_precision") == "int32";
   if (integer)
   {
