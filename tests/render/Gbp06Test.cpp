@@ -7,6 +7,7 @@
 #include "lightspace/hsm/HsmStructure.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
+#include "support/ProbeChecks.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
 #include "techniques/gbp06/Gbp06Technique.h"
@@ -664,46 +665,14 @@ TEST(Gbp06, ProbeRecordsTheMicropatchesAndNodesTheGpuCountedAndTheAreaTheyCover)
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap hsm = structureOf(frame, inputs);
     const ImageF& classes = frame.find("classification")->image;
-    std::map<BackprojectionClass, int> probed;
     int partial = 0;
-    // The candidates of each class (penumbra: partial visibility), taken evenly spaced in scan order so that
-    // the pixels probed come from all over the frame.
-    std::map<BackprojectionClass, std::vector<glm::ivec2>> candidates;
-    for (int y = 0; y < kHeight; ++y)
-    {
-      for (int x = 0; x < kWidth; ++x)
-      {
-        const auto gpuClass = static_cast<BackprojectionClass>(std::lround(classes.at(x, y)));
-        if (gpuClass != BackprojectionClass::NotTested && gpuClass != BackprojectionClass::OverLoopBudget &&
-          (gpuClass != BackprojectionClass::Penumbra || std::abs(frame.find("visibility")->image.at(x, y) - 0.5f) < 0.48f))
-        {
-          candidates[gpuClass].emplace_back(x, y);
-        }
-      }
-    }
-    for (const auto& entry : candidates)
-    {
-      const BackprojectionClass gpuClass = entry.first;
-      const std::vector<glm::ivec2>& pixels = entry.second;
-      const std::size_t attempts = std::min<std::size_t>(pixels.size(), 24); // evenly spaced, ambiguous ones skipped
-      for (std::size_t k = 0; k < attempts && probed[gpuClass] < (gpuClass == BackprojectionClass::Penumbra ? 6 : 2); ++k)
-      {
-        const int x = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].x;
-        const int y = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].y;
-        ProbeRecorder recorder;
-        const ProbeOutcome outcome = technique.probe({ &frame, &scene, 0 }, { x, y }, recorder);
-if (!outcome.ambiguity.empty())
-        {
-          continue;
-        }
-        ++probed[gpuClass];
-        const ProbeRecord& record = recorder.record();
+    // Lit, umbra and penumbra (partial visibility) pixels from all over the frame.
+    std::map<BackprojectionClass, int> probed = test::probeBackprojectionPixels(technique, frame, scene,
+      [&](glm::ivec2 pixel, BackprojectionClass gpuClass, const ProbeOutcome& outcome, const ProbeRecord& record) {
+        const int x = pixel.x;
+        const int y = pixel.y;
         const std::string label = "traversal=" + traversal + " pixel " + std::to_string(x) + "," + std::to_string(y);
-        const auto value = [&](const std::string& name) {
-          const ProbeQuantity* quantity = record.find(name);
-          EXPECT_NE(quantity, nullptr) << label << ": no " << name;
-          return quantity && !quantity->value.empty() ? quantity->value[0] : std::nan("");
-        };
+        const auto value = [&](const std::string& name) { return test::recordedValue(record, name, label); };
         const auto count = [&](auto&& items, auto&& predicate) {
           return static_cast<double>(std::count_if(items.begin(), items.end(), predicate));
         };
@@ -735,7 +704,7 @@ if (!outcome.ambiguity.empty())
         {
           EXPECT_TRUE(record.lightPolygons.empty()) << label;
           EXPECT_EQ(micropatches, 0.0) << label;
-          continue;
+          return;
         }
         const double h = value("light_half_size");
         const double lightArea = 4.0 * h * h;
@@ -755,12 +724,7 @@ if (!outcome.ambiguity.empty())
           covered += polygon.signedArea;
         }
         EXPECT_LE(static_cast<double>(record.lightPolygons.size()), micropatches) << label;
-        EXPECT_NEAR(covered, value("occluded_area"), 1e-9 * lightArea) << label;
-        if (outcome.visibility > 0.0 && outcome.visibility < 1.0)
-        {
-          ++partial;
-          EXPECT_NEAR(covered, (1.0 - outcome.visibility) * lightArea, 1e-9 * lightArea) << label;
-        }
+        partial += test::expectCoveredAreaIsOccludedArea(record, covered, outcome.visibility, lightArea, label) ? 1 : 0;
         gapFilledPixels += value("gap_filled_micropatches") > 0.0 ? 1 : 0;
 
         EXPECT_GE(value("gap_filling_area"), -1e-12 * lightArea) << label << ": gap filling only grows micropatches";
@@ -772,8 +736,7 @@ if (!outcome.ambiguity.empty())
         ASSERT_NE(unfilled.record().find("occluded_area"), nullptr) << label;
         EXPECT_NEAR(value("occluded_area") - unfilled.record().find("occluded_area")->value[0], value("gap_filling_area"),
           1e-12 * lightArea) << label;
-      }
-    }
+      });
     std::cout << "[ measured ] gbp06 probe, traversal=" << traversal << " on the mirror tests' scene: " << probed[BackprojectionClass::Lit]
               << " lit, " << probed[BackprojectionClass::Umbra] << " umbra, " << probed[BackprojectionClass::Penumbra]
               << " penumbra pixels (" << partial << " partial) replayed unambiguous and consistent\n";

@@ -2,6 +2,7 @@
 // read-back buffers, and against the closed-form overlap of a parallel square occluder, converging as the
 // shadow map's resolution doubles.
 #include "lightspace/hsm/HsmStructure.h"
+#include "support/ProbeChecks.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
 #include "techniques/backprojection/ContourBackprojection.h"
@@ -182,46 +183,14 @@ TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
   const TechniqueDescriptor& technique = findTechnique("gbp07");
   ASSERT_TRUE(static_cast<bool>(technique.probe));
   const ImageF& classes = frame.find("classification")->image;
-  std::map<BackprojectionClass, int> probed;
   int partial = 0;
-  // The candidates of each class (penumbra: partial visibility), taken evenly spaced in scan order so that
-  // the pixels probed come from all over the frame.
-  std::map<BackprojectionClass, std::vector<glm::ivec2>> candidates;
-  for (int y = 0; y < 48; ++y)
-  {
-    for (int x = 0; x < 64; ++x)
-    {
-      const auto gpuClass = static_cast<BackprojectionClass>(std::lround(classes.at(x, y)));
-      if (gpuClass != BackprojectionClass::NotTested && gpuClass != BackprojectionClass::OverLoopBudget &&
-        (gpuClass != BackprojectionClass::Penumbra || std::abs(frame.find("visibility")->image.at(x, y) - 0.5f) < 0.48f))
-      {
-        candidates[gpuClass].emplace_back(x, y);
-      }
-    }
-  }
-  for (const auto& entry : candidates)
-  {
-    const BackprojectionClass gpuClass = entry.first;
-    const std::vector<glm::ivec2>& pixels = entry.second;
-    const std::size_t attempts = std::min<std::size_t>(pixels.size(), 24); // evenly spaced, ambiguous ones skipped
-    for (std::size_t k = 0; k < attempts && probed[gpuClass] < (gpuClass == BackprojectionClass::Penumbra ? 6 : 2); ++k)
-    {
-      const int x = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].x;
-      const int y = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].y;
-      ProbeRecorder recorder;
-      const ProbeOutcome outcome = technique.probe({ &frame, &scene, 0 }, { x, y }, recorder);
-      if (!outcome.ambiguity.empty())
-      {
-        continue;
-      }
-      ++probed[gpuClass];
-      const ProbeRecord& record = recorder.record();
+  // Lit, umbra and penumbra (partial visibility) pixels from all over the frame.
+  std::map<BackprojectionClass, int> probed = test::probeBackprojectionPixels(technique, frame, scene,
+    [&](glm::ivec2 pixel, BackprojectionClass gpuClass, const ProbeOutcome& outcome, const ProbeRecord& record) {
+      const int x = pixel.x;
+      const int y = pixel.y;
       const std::string label = "pixel " + std::to_string(x) + "," + std::to_string(y);
-      const auto value = [&](const std::string& name) {
-        const ProbeQuantity* quantity = record.find(name);
-        EXPECT_NE(quantity, nullptr) << label << ": no " << name;
-        return quantity && !quantity->value.empty() ? quantity->value[0] : std::nan("");
-      };
+      const auto value = [&](const std::string& name) { return test::recordedValue(record, name, label); };
       // The replay is the twin's default run, and the GPU's.
       const Gbp07Sample twin = gbp07Reference(inputs, hsm, frame.parameters, x, y);
       EXPECT_EQ(outcome.visibility, twin.sample.visibility) << label;
@@ -244,26 +213,11 @@ TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
       {
         EXPECT_TRUE(record.contourEdges.empty()) << label;
         EXPECT_EQ(outcome.visibility, gpuClass == BackprojectionClass::Lit ? 1.0 : 0.0) << label;
-        continue;
+        return;
       }
       const double h = value("light_half_size");
-      const double lightArea = 4.0 * h * h;
-      double covered = 0.0;
-      for (const ProbeLightPolygon& polygon : record.lightPolygons)
-      {
-        covered += polygon.signedArea; // f(O) A: the whole light
-      }
-      for (const ProbeContourEdge& edge : record.contourEdges)
-      {
-        EXPECT_NEAR(edge.signedArea, radialEdgeArea(edge.lightA, edge.lightB, h), 1e-15 * lightArea) << label;
-        covered += edge.signedArea;
-      }
-      EXPECT_NEAR(covered, value("occluded_area"), 1e-9 * lightArea) << label;
-      if (outcome.visibility > 0.0 && outcome.visibility < 1.0)
-      {
-        ++partial;
-        EXPECT_NEAR(covered, (1.0 - outcome.visibility) * lightArea, 1e-9 * lightArea) << label;
-      }
+      const double covered = test::contourCoveredArea(record, h, test::ZeroAreaEdges::Checked, label);
+      partial += test::expectCoveredAreaIsOccludedArea(record, covered, outcome.visibility, 4.0 * h * h, label) ? 1 : 0;
       // The marching-squares input: every searched sample once (those over the recorder's cap counted; the light
       // centre's four are recorded before them).
       const auto samples = static_cast<std::size_t>(std::count_if(record.texels.begin(), record.texels.end(),
@@ -273,8 +227,7 @@ TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
       ASSERT_NE(last, record.quantities.rend()) << label;
       const std::vector<double>& searched = last->value;
       EXPECT_EQ(static_cast<double>(samples + record.droppedTexels), searched[0] * searched[1]) << label;
-    }
-  }
+    });
   std::cout << "[ measured ] gbp07 probe on stacked-occluders: " << probed[BackprojectionClass::Lit] << " lit, "
             << probed[BackprojectionClass::Umbra] << " umbra, " << probed[BackprojectionClass::Penumbra] << " penumbra pixels ("
             << partial << " partial) replayed unambiguous and consistent\n";

@@ -2,6 +2,7 @@
 // read-back buffers; the paper's central claim (the same visibility as gbp07, whatever the packets and the
 // hierarchy); the hierarchy visiting fewer nodes than the MSSM-only brute force; the hard cases.
 #include "techniques/Registry.h"
+#include "support/ProbeChecks.h"
 #include "support/TestSupport.h"
 #include "techniques/backprojection/ContourBackprojection.h"
 #include "techniques/gbp07/Gbp07Technique.h"
@@ -192,13 +193,15 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
     }
     for (const auto& entry : candidates)
     {
-      const std::vector<glm::ivec2>& pixels = entry.second;
-      const std::size_t attempts = std::min<std::size_t>(pixels.size(), 24); // ambiguous ones skipped
       int kept = 0;
-      for (std::size_t k = 0; k < attempts && kept < (entry.first <= static_cast<int>(code(PacketClass::Trivial)) ? 2 : 4); ++k)
+      for (const glm::ivec2 pixel : test::evenlySpaced(entry.second, 24)) // ambiguous ones skipped
       {
-        const int x = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].x;
-        const int y = pixels[(2 * k + 1) * pixels.size() / (2 * attempts)].y;
+        if (kept >= (entry.first <= static_cast<int>(code(PacketClass::Trivial)) ? 2 : 4))
+        {
+          break;
+        }
+        const int x = pixel.x;
+        const int y = pixel.y;
         const auto gpuClass = static_cast<PacketClass>(std::lround(classes.at(x, y)));
         const double gpuVisibility = frame.find("visibility")->image.at(x, y);
         ProbeRecorder recorder;
@@ -224,11 +227,7 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
         lit += gpuClass == PacketClass::Trivial && gpuVisibility == 1.0 ? 1 : 0;
         umbra += gpuClass == PacketClass::Trivial && gpuVisibility == 0.0 ? 1 : 0;
         const ProbeRecord& record = recorder.record();
-        const auto value = [&](const std::string& name) {
-          const ProbeQuantity* quantity = record.find(name);
-          EXPECT_NE(quantity, nullptr) << label << ": no " << name;
-          return quantity && !quantity->value.empty() ? quantity->value[0] : std::nan("");
-        };
+        const auto value = [&](const std::string& name) { return test::recordedValue(record, name, label); };
         EXPECT_NEAR(outcome.visibility, gpuVisibility, outcome.tolerance) << label;
         EXPECT_EQ(value("packet_class"), classes.at(x, y)) << label;
         EXPECT_NEAR(value("visited_nodes"), frame.find("visited_nodes")->image.at(x, y), 1e-3) << label;
@@ -259,27 +258,9 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
                     [](const ProbeKernel& kernel) { return kernel.role == "packet pixel kernel"; })),
           penumbraPixels) << label;
         const double h = value("light_half_size");
-        const double lightArea = 4.0 * h * h;
-        double covered = 0.0;
-        for (const ProbeLightPolygon& polygon : record.lightPolygons)
-        {
-          covered += polygon.signedArea; // f(O) A
-        }
-        for (const ProbeContourEdge& edge : record.contourEdges)
-        {
-          // Edges outside the pixel's kernel integrate nothing: their back-projection misses the light.
-          if (edge.signedArea != 0.0)
-          {
-            EXPECT_NEAR(edge.signedArea, radialEdgeArea(edge.lightA, edge.lightB, h), 1e-15 * lightArea) << label;
-          }
-          covered += edge.signedArea;
-        }
-        EXPECT_NEAR(covered, value("occluded_area"), 1e-9 * lightArea) << label;
-        if (outcome.visibility > 0.0 && outcome.visibility < 1.0)
-        {
-          ++partial;
-          EXPECT_NEAR(covered, (1.0 - outcome.visibility) * lightArea, 1e-9 * lightArea) << label;
-        }
+        // Edges outside the pixel's kernel integrate nothing: their back-projection misses the light.
+        const double covered = test::contourCoveredArea(record, h, test::ZeroAreaEdges::Skipped, label);
+        partial += test::expectCoveredAreaIsOccludedArea(record, covered, outcome.visibility, 4.0 * h * h, label) ? 1 : 0;
       }
     }
   }
