@@ -32,8 +32,10 @@ double explicitBound(const std::optional<double>& bound, const char* name, const
   return *bound;
 }
 
-void paintValues(ImageU8& canvas, const ImageF& values, const ImageU8* validMask, const ColorMap& colorMap,
-  const ValueRange& colorRange)
+} // namespace
+
+void paintHeatMapValues(ImageU8& canvas, int left, int bottom, const ImageF& values, const ImageU8* validMask,
+  const ColorMap& colorMap, const ValueRange& colorRange)
 {
   const double rangeWidth = colorRange.max - colorRange.min;
   for (int y = 0; y < values.height; ++y)
@@ -47,13 +49,11 @@ void paintValues(ImageU8& canvas, const ImageF& values, const ImageU8* validMask
                   ? ColorMap::categoryColor(categoryId(value))
                   : colorMap.map((value - colorRange.min) / rangeWidth);
       }
-      const auto rgb8 = toRgb8(color);
-      for (int c = 0; c < 3; ++c)
-        canvas.at(x, y, c) = rgb8[c];
+      fillRect(canvas, left + x, bottom + y, 1, 1, color);
     }
 }
 
-ColorKey makeColorKey(const ColorMap& colorMap, const std::optional<ValueRange>& validRange,
+ColorKey heatMapColorKey(const ColorMap& colorMap, const std::optional<ValueRange>& validRange,
   const ValueRange& colorRange, const HeatMapOptions& options, int fontPx)
 {
   if (colorMap.kind() != ColorMapKind::Categorical)
@@ -68,8 +68,6 @@ ColorKey makeColorKey(const ColorMap& colorMap, const std::optional<ValueRange>&
   const long long firstId = categoryId(validRange->min);
   return ColorKey::categorical(firstId, categoryId(validRange->max) - firstId + 1, {}, fontPx);
 }
-
-} // namespace
 
 std::optional<ValueRange> validValueRange(const ImageF& values, const ImageU8* validMask)
 {
@@ -149,7 +147,7 @@ ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const Heat
   const ValueRange colorRange = colorMapRange(validRange, options);
   const ColorMap colorMap(options.colorMap);
   const int fontPx = heatMapFontPx(values.height);
-  const ColorKey colorKey = makeColorKey(colorMap, validRange, colorRange, options, fontPx);
+  const ColorKey colorKey = heatMapColorKey(colorMap, validRange, colorRange, options, fontPx);
   const std::string title = heatMapTitle(options, validRange);
   const TextSize titleSize = measureText(title, fontPx);
   const int paddingPx = std::max(3, fontPx / 2);
@@ -161,7 +159,7 @@ ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const Heat
   const int canvasWidth = std::max(keyLeft + colorKey.width(), titleSize.width + 2 * paddingPx);
   ImageU8 canvas(canvasWidth, bodyHeight + titleBandHeight, 3, 255); // white margins
 
-  paintValues(canvas, values, validMask, colorMap, colorRange);
+  paintHeatMapValues(canvas, 0, 0, values, validMask, colorMap, colorRange);
   colorKey.draw(canvas, keyLeft, 0, bodyHeight);
   drawText(canvas, title, fontPx, paddingPx, bodyHeight + paddingPx);
   return canvas;

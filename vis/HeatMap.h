@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/Image.h"
+#include "vis/ColorKey.h"
 #include "vis/ColorMap.h"
 
 #include <cstdint>
@@ -48,6 +49,17 @@ std::optional<ValueRange> validValueRange(const ImageF& values, const ImageU8* v
 // value c is widened to c -/+ 1% (or -/+ 1 for 0), so a constant image shows the colour map's middle colour and
 // the key keeps a scale. Throws InputError when an explicit bound is not finite or rangeMin > rangeMax.
 ValueRange colorMapRange(const std::optional<ValueRange>& validRange, const HeatMapOptions& options);
+
+// Paints `values` 1:1 with values.at(0, 0) at canvas pixel (left, bottom): a valid pixel (validMask nonzero, or
+// all when null, and a finite value) in `colorMap` over `colorRange` (categorical: its class id's colour, the
+// nearest integer), the others kInvalidPixelColor; what falls outside the canvas is clipped.
+void paintHeatMapValues(ImageU8& canvas, int left, int bottom, const ImageF& values, const ImageU8* validMask,
+  const ColorMap& colorMap, const ValueRange& colorRange);
+
+// The colour key beside a heat map drawn with `colorMap` over `colorRange`: a continuous scale, or for a categorical
+// map the classes of options.categoryLabels, or without labels the ids from the smallest to the largest valid value.
+ColorKey heatMapColorKey(const ColorMap& colorMap, const std::optional<ValueRange>& validRange,
+  const ValueRange& colorRange, const HeatMapOptions& options, int fontPx);
 
 // "<title> [<unit>]  range [<min>, <max>]" with the range of the valid values, 3 significant digits;
 // "... no valid pixels" when there are none.

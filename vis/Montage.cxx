@@ -18,6 +18,12 @@ namespace sl
 namespace
 {
 
+// The panel's mask as the heat map functions take it (null: every pixel valid).
+const ImageU8* validMaskOf(const MontagePanel& panel)
+{
+  return panel.validMask.empty() ? nullptr : &panel.validMask;
+}
+
 bool isValidPixel(const MontagePanel& panel, int x, int y)
 {
   return std::isfinite(panel.values.at(x, y)) && (panel.validMask.empty() || panel.validMask.at(x, y) != 0);
@@ -47,23 +53,13 @@ void checkPanels(const std::vector<MontagePanel>& panels)
   }
 }
 
-long long categoryId(double value)
-{
-  return std::llround(std::clamp(value, -1e15, 1e15));
-}
-
+// The heat map's key over all panels (one scale).
 ColorKey makeKey(const MontageOptions& options, const MontageLayout& layout)
 {
-  const ColorMap colorMap(colorMapFor(options.kind));
-  if (options.kind != BufferKind::Categorical)
-    return ColorKey::continuous(colorMap, layout.colorRange.min, layout.colorRange.max, layout.fontPx);
-  if (!options.categoryLabels.empty())
-    return ColorKey::categorical(
-      0, static_cast<long long>(options.categoryLabels.size()), options.categoryLabels, layout.fontPx);
-  if (!layout.validRange)
-    return ColorKey::categorical(0, 0, {}, layout.fontPx);
-  const long long firstId = categoryId(layout.validRange->min);
-  return ColorKey::categorical(firstId, categoryId(layout.validRange->max) - firstId + 1, {}, layout.fontPx);
+  HeatMapOptions heatMap;
+  heatMap.colorMap = colorMapFor(options.kind);
+  heatMap.categoryLabels = options.categoryLabels;
+  return heatMapColorKey(ColorMap(heatMap.colorMap), layout.validRange, layout.colorRange, heatMap, layout.fontPx);
 }
 
 std::string montageTitle(const MontageOptions& options, const std::optional<ValueRange>& validRange,
@@ -119,17 +115,15 @@ std::optional<ValueRange> montageValueRange(const std::vector<MontagePanel>& pan
 {
   std::optional<ValueRange> range;
   for (const MontagePanel& panel : panels)
-    for (int y = 0; y < panel.values.height; ++y)
-      for (int x = 0; x < panel.values.width; ++x)
-      {
-        if (!isValidPixel(panel, x, y))
-          continue;
-        const double value = panel.values.at(x, y);
-        if (!range)
-          range = ValueRange{ value, value };
-        range->min = std::min(range->min, value);
-        range->max = std::max(range->max, value);
-      }
+  {
+    const std::optional<ValueRange> panelRange = validValueRange(panel.values, validMaskOf(panel));
+    if (!panelRange)
+      continue;
+    if (!range)
+      range = panelRange;
+    range->min = std::min(range->min, panelRange->min);
+    range->max = std::max(range->max, panelRange->max);
+  }
   return range;
 }
 
@@ -200,25 +194,12 @@ ImageU8 renderMontage(const std::vector<MontagePanel>& panels, const MontageOpti
   const MontageLayout layout = montageLayout(panels, options);
   ImageU8 canvas(layout.width, layout.height, 3, 255); // white margins
   const ColorMap colorMap(colorMapFor(options.kind));
-  const double rangeWidth = layout.colorRange.max - layout.colorRange.min;
   const int lineHeight = measureText("0", layout.fontPx).height;
   for (std::size_t p = 0; p < panels.size(); ++p)
   {
     const MontagePanel& panel = panels[p];
     const int left = layout.panelLeft[p];
-    for (int y = 0; y < panel.values.height; ++y)
-      for (int x = 0; x < panel.values.width; ++x)
-      {
-        RgbColor color = kInvalidPixelColor;
-        if (isValidPixel(panel, x, y))
-        {
-          const double value = panel.values.at(x, y);
-          color = options.kind == BufferKind::Categorical
-            ? ColorMap::categoryColor(categoryId(value))
-            : colorMap.map((value - layout.colorRange.min) / rangeWidth);
-        }
-        fillRect(canvas, left + x, layout.panelBottom + y, 1, 1, color);
-      }
+    paintHeatMapValues(canvas, left, layout.panelBottom, panel.values, validMaskOf(panel), colorMap, layout.colorRange);
     // Label lines top to bottom under the panel.
     int lineBottom = layout.panelBottom - layout.paddingPx / 2 - lineHeight;
     for (const std::string& line : panel.labels)
