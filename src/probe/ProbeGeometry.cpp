@@ -43,12 +43,19 @@ glm::dvec3 gbufferVector(const FrameResult& frame, const char* buffer, glm::ivec
     named->image.at(pixel.x, pixel.y, 2) };
 }
 
-void addLabel(std::vector<std::string>& labels, const std::string& label)
+// The distinct values of `label` over `items`, in order of first appearance.
+template <typename Item>
+std::vector<std::string> labelsInOrder(const std::vector<Item>& items, std::string Item::*label)
 {
-  if (std::find(labels.begin(), labels.end(), label) == labels.end())
+  std::vector<std::string> labels;
+  for (const Item& item : items)
   {
-    labels.push_back(label);
+    if (std::find(labels.begin(), labels.end(), item.*label) == labels.end())
+    {
+      labels.push_back(item.*label);
+    }
   }
+  return labels;
 }
 
 } // namespace
@@ -325,32 +332,17 @@ ProbeCropArrays probeCropArrays(const ProbeRecord& record, const ImageF& shadowM
 
 std::vector<std::string> nodeDecisionLabels(const ProbeRecord& record)
 {
-  std::vector<std::string> labels;
-  for (const ProbeNode& node : record.nodes)
-  {
-    addLabel(labels, node.decision);
-  }
-  return labels;
+  return labelsInOrder(record.nodes, &ProbeNode::decision);
 }
 
 std::vector<std::string> kernelRoleLabels(const ProbeRecord& record)
 {
-  std::vector<std::string> labels;
-  for (const ProbeKernel& kernel : record.kernels)
-  {
-    addLabel(labels, kernel.role);
-  }
-  return labels;
+  return labelsInOrder(record.kernels, &ProbeKernel::role);
 }
 
 std::vector<std::string> polygonRoleLabels(const ProbeRecord& record)
 {
-  std::vector<std::string> labels;
-  for (const ProbeLightPolygon& polygon : record.lightPolygons)
-  {
-    addLabel(labels, polygon.role);
-  }
-  return labels;
+  return labelsInOrder(record.lightPolygons, &ProbeLightPolygon::role);
 }
 
 int labelCode(const std::vector<std::string>& labels, const std::string& label)
