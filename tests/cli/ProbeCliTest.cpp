@@ -1,5 +1,6 @@
 // `shadowlab probe` end to end (issue 15): the files it writes and what they hold, --pick, and the bad-input
 // contract (one line, nonzero exit, no output directory).
+#include "lightspace/CameraView.h"
 #include "probe/Probe.h"
 #include "support/CliRun.h"
 #include "support/TempDir.h"
@@ -27,16 +28,22 @@ using Json = nlohmann::json;
 
 constexpr int kSide = 64;
 
-// stacked-occluders at 64 x 64 with `technique`, rendered in this process exactly as the CLI renders it.
-const FrameResult& stackedFrame(const std::string& technique)
+// `dataset` at 64 x 64 with `technique`, rendered in this process exactly as the CLI renders it.
+const FrameResult& frameOf(const std::string& dataset, const std::string& technique)
 {
   static std::map<std::string, FrameResult> frames;
-  auto found = frames.find(technique);
+  const std::string key = dataset + "/" + technique;
+  auto found = frames.find(key);
   if (found == frames.end())
   {
-    found = frames.emplace(technique, test::renderDataset(test::loadDataset("stacked-occluders"), technique, kSide, kSide)).first;
+    found = frames.emplace(key, test::renderDataset(test::loadDataset(dataset), technique, kSide, kSide)).first;
   }
   return found->second;
+}
+
+const FrameResult& stackedFrame(const std::string& technique)
+{
+  return frameOf("stacked-occluders", technique);
 }
 
 // The first pixel in scan order whose visibility satisfies `wanted` and that is covered (or not, for background).
@@ -58,9 +65,10 @@ glm::ivec2 firstPixel(const FrameResult& frame, bool covered, const std::functio
   return { 0, 0 };
 }
 
-std::vector<std::string> probeArguments(const std::string& technique, const std::vector<std::string>& where, const fs::path& out)
+std::vector<std::string> probeArguments(const std::string& technique, const std::vector<std::string>& where, const fs::path& out,
+  const std::string& dataset = "stacked-occluders")
 {
-  std::vector<std::string> arguments = { "probe", test::datasetPath("stacked-occluders").string(), "-t", technique,
+  std::vector<std::string> arguments = { "probe", test::datasetPath(dataset).string(), "-t", technique,
     "--resolution", std::to_string(kSide) + "x" + std::to_string(kSide), "--out", out.string() };
   arguments.insert(arguments.end(), where.begin(), where.end());
   return arguments;
@@ -128,11 +136,11 @@ TEST(CliProbe, PickFindsThePixelThatShowsAWorldPoint)
 
 // One line on stderr mentioning each of `mentions`, a nonzero exit, and nothing written.
 void expectCleanProbeFailure(const std::string& technique, const std::vector<std::string>& where,
-  const std::vector<std::string>& mentions)
+  const std::vector<std::string>& mentions, const std::string& dataset = "stacked-occluders")
 {
   test::TempDir temp;
   const fs::path out = temp.path() / "probe";
-  const test::RunResult run = test::runShadowlabIn(probeArguments(technique, where, out), temp.path());
+  const test::RunResult run = test::runShadowlabIn(probeArguments(technique, where, out, dataset), temp.path());
   EXPECT_NE(run.exitCode, 0) << run.describe();
   EXPECT_EQ(run.errLines(), 1u) << run.describe();
   for (const std::string& mention : mentions)
@@ -150,8 +158,10 @@ TEST(CliProbeErrors, PixelOutsideTheImage)
 
 TEST(CliProbeErrors, BackgroundPixel)
 {
-  const glm::ivec2 background = firstPixel(stackedFrame("hard"), false, [](float) { return true; });
-  expectCleanProbeFailure("hard", { "--pixel", pixelText(background) }, { "--pixel " + pixelText(background), "background" });
+  // The bunny's ground ends inside the view (stacked-occluders' ground fills it).
+  const glm::ivec2 background = firstPixel(frameOf("bunny", "hard"), false, [](float) { return true; });
+  expectCleanProbeFailure(
+    "hard", { "--pixel", pixelText(background) }, { "--pixel " + pixelText(background), "background" }, "bunny");
 }
 
 TEST(CliProbeErrors, MalformedOrMissingPixel)
@@ -165,8 +175,15 @@ TEST(CliProbeErrors, MalformedOrMissingPixel)
 
 TEST(CliProbeErrors, PickOfAPointNoPixelShows)
 {
-  // Half way between the light and the ground under it: projects into the image, but no surface is there.
-  expectCleanProbeFailure("hard", { "--pick", "world", "0,2.5,0" }, { "--pick world 0,2.5,0", "not a visible surface point" });
+  // Half way from the camera's near plane to the surface a pixel shows: it projects into that pixel, but no surface
+  // is there.
+  const FrameResult& frame = stackedFrame("hard");
+  const glm::ivec2 pixel = firstPixel(frame, true, [](float) { return true; }) + glm::ivec2(kSide / 2, kSide / 2);
+  const ImageF& position = frame.find("position")->image;
+  const glm::dvec3 surface(position.at(pixel.x, pixel.y, 0), position.at(pixel.x, pixel.y, 1), position.at(pixel.x, pixel.y, 2));
+  const glm::dvec3 midway = 0.5 * (surface + unprojectPixel(frame.camera, pixel.x + 0.5, pixel.y + 0.5, -1.0));
+  const std::string point = format(midway.x, ",", midway.y, ",", midway.z);
+  expectCleanProbeFailure("hard", { "--pick", "world", point }, { "--pick world " + point, "not a visible surface point" });
 }
 
 TEST(CliProbeErrors, UnknownTechnique)
