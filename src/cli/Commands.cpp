@@ -5,6 +5,7 @@
 #include "core/Error.h"
 #include "core/Image.h"
 #include "frame/FrameResult.h"
+#include "pipeline/ShadowRenderer.h"
 #include "scene/Scene.h"
 #include "techniques/Registry.h"
 
@@ -15,6 +16,21 @@
 
 namespace sl
 {
+RenderRequest checkedRenderRequest(const std::string& technique, const std::vector<std::string>& settings,
+  int lightIndex, const std::string& resolution)
+{
+  RenderRequest request;
+  request.technique = technique;
+  request.settings = settings;
+  request.lightIndex = lightIndex;
+  if (!resolution.empty())
+  {
+    request.resolution = parseResolution(resolution);
+  }
+  checkSettings(findTechnique(technique), settings);
+  return request;
+}
+
 glm::ivec2 parseResolution(const std::string& text)
 {
   static const std::regex pattern(R"((\d{1,6})x(\d{1,6}))");

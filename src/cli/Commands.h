@@ -14,6 +14,7 @@ namespace sl
 {
 
 struct FrameResult;
+struct RenderRequest;
 struct Scene;
 struct TechniqueDescriptor;
 
@@ -150,6 +151,11 @@ struct LessonsOptions
   bool quiet = false;
 };
 int runLessons(const LessonsOptions& options, std::ostream& log);
+
+// The request `render` and `probe` make from what the user typed, checked (technique known, every --set valid,
+// --resolution well formed) before anything touches the GPU or the disk.
+RenderRequest checkedRenderRequest(const std::string& technique, const std::vector<std::string>& settings,
+  int lightIndex, const std::string& resolution);
 
 // "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);

@@ -81,15 +81,8 @@ int runProbe(const ProbeOptions& options, std::ostream& log)
   {
     throw InputError("--technique " + technique.name + ": this technique has no probe recorder");
   }
-  RenderRequest request;
-  request.technique = options.technique;
-  request.settings = options.settings;
-  request.lightIndex = options.lightIndex;
-  if (!options.resolution.empty())
-  {
-    request.resolution = parseResolution(options.resolution);
-  }
-  checkSettings(technique, request.settings);
+  const RenderRequest request =
+    checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   const OutputTarget output{ options.outDir, "probe", options.force, sceneInputs(scene, options.sceneFile) };
   checkOutputTarget(output);

@@ -45,14 +45,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   }
   ShadowRenderer renderer;
   FrameResult gbuffer = renderer.render(scene, request);
-
-  ReferenceInputs inputs;
-  inputs.scene = &scene;
-  inputs.light = &scene.lights[static_cast<std::size_t>(options.lightIndex)];
-  inputs.position = gbuffer.find("position")->image;
-  inputs.normal = gbuffer.find("normal")->image;
-  inputs.coverage = gbuffer.find("coverage")->image;
-  inputs.receives = gbuffer.find("receives_shadows")->image;
+  const ReferenceInputs inputs = referenceInputsOf(gbuffer, scene, options.lightIndex);
   ReferenceSettings settings;
   settings.samples = options.samples;
   settings.sampling = options.sampling == "halton" ? LightSampling::Halton : LightSampling::Stratified;

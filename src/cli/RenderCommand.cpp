@@ -16,15 +16,8 @@ namespace sl
 int runRender(const RenderOptions& options, std::ostream& log)
 {
   // Validate everything the user typed before touching the GPU or the disk.
-  RenderRequest request;
-  request.technique = options.technique;
-  request.settings = options.settings;
-  request.lightIndex = options.lightIndex;
-  if (!options.resolution.empty())
-  {
-    request.resolution = parseResolution(options.resolution);
-  }
-  checkSettings(findTechnique(request.technique), request.settings);
+  const RenderRequest request =
+    checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   const OutputTarget output{ options.outDir, "render", options.force, sceneInputs(scene, options.sceneFile) };
   checkOutputTarget(output);

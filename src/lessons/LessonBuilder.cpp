@@ -182,13 +182,7 @@ void LessonBuilder::reference(const std::string& name, const std::string& datase
   request.resolution = settings_.resolution;
   FrameResult gbuffer = renderer_.render(scene, request);
 
-  ReferenceInputs inputs;
-  inputs.scene = &scene;
-  inputs.light = &scene.lights.front();
-  inputs.position = gbuffer.find("position")->image;
-  inputs.normal = gbuffer.find("normal")->image;
-  inputs.coverage = gbuffer.find("coverage")->image;
-  inputs.receives = gbuffer.find("receives_shadows")->image;
+  const ReferenceInputs inputs = referenceInputsOf(gbuffer, scene, 0);
   ReferenceSettings referenceSettings;
   referenceSettings.samples = settings_.referenceSamples;
   referenceSettings.sampling = LightSampling::Stratified;

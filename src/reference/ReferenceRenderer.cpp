@@ -1,5 +1,7 @@
 #include "reference/ReferenceRenderer.h"
 
+#include "frame/FrameResult.h"
+
 #include "core/Error.h"
 #include "lightspace/LightView.h"
 #include "reference/EmbreeScene.h"
@@ -18,6 +20,23 @@
 
 namespace sl
 {
+
+ReferenceInputs referenceInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex)
+{
+  if (lightIndex < 0 || lightIndex >= static_cast<int>(scene.lights.size()))
+  {
+    throw InputError(format("--light ", lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
+  }
+  ReferenceInputs inputs;
+  inputs.scene = &scene;
+  inputs.light = &scene.lights[static_cast<std::size_t>(lightIndex)];
+  inputs.position = frame.find("position")->image;
+  inputs.normal = frame.find("normal")->image;
+  inputs.coverage = frame.find("coverage")->image;
+  inputs.receives = frame.find("receives_shadows")->image;
+  return inputs;
+}
+
 namespace
 {
 

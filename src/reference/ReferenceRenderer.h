@@ -64,6 +64,12 @@ struct ReferenceInputs
   ImageF receives; // >= 1 component
 };
 
+struct FrameResult; // frame/FrameResult.h
+
+// The receivers of a rendered frame (its G-buffer: position, normal, coverage, receives_shadows) under the scene's
+// light `lightIndex` (checked: throws InputError naming --light when the scene has no such light).
+ReferenceInputs referenceInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex);
+
 struct ReferenceResult
 {
   ImageF visibility;     // 1 component, in [0, 1]

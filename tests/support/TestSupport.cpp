@@ -232,14 +232,7 @@ FrameResult renderDataset(const Scene& scene, const std::string& technique, int 
 
 ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
 {
-  ReferenceInputs inputs;
-  inputs.scene = &scene;
-  inputs.light = &scene.lights.at(static_cast<std::size_t>(lightIndex));
-  inputs.position = frame.find("position")->image;
-  inputs.normal = frame.find("normal")->image;
-  inputs.coverage = frame.find("coverage")->image;
-  inputs.receives = frame.find("receives_shadows")->image;
-  return inputs;
+  return referenceInputsOf(frame, scene, lightIndex);
 }
 
 std::string caseLabel(const std::string& dataset, const std::vector<std::string>& settings)
