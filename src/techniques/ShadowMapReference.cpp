@@ -30,11 +30,7 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
     recorder->quantity("normal", nWs, "", "G-buffer (nWs)");
     recorder->quantity("direction_to_light", toLight, "", "ShadowLab: toward the light's centre");
   }
-  sample.reachMargin = std::abs(glm::dot(nWs, toLight));
-  if (inputs.light->type == LightType::Area)
-  {
-    sample.reachMargin = std::min(sample.reachMargin, std::abs(glm::dot(inputs.light->normal, toLight)));
-  }
+  sample.reachMargin = lightReachMargin(*inputs.light, nWs, toLight);
   if (!lightCanReach(*inputs.light, pWs, nWs))
   {
     if (recorder)
