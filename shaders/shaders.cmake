@@ -17,6 +17,7 @@ set(SL_SHADER_FILES
   common/HsmLookup.glsl
   common/MipAtlasLayout.glsl
   common/MicrorectLookup.glsl
+  common/LightSampleSet.glsl
   microrect/MicrorectBuild.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl

@@ -39,7 +39,9 @@ struct ReferenceOptions
   std::string sceneFile;
   std::vector<std::string> sceneOverrides;
   int samples = 1024;
+  bool samplesGiven = false;  // --samples was on the command line (with --light-samples, N defaults to 16)
   std::string sampling = "stratified";
+  std::string lightSamples;   // --light-samples PATTERN (lightSamplePatternNames()); "" = `sampling`
   std::uint64_t seed = 1;
   std::string resolution; // "WxH" or empty
   std::string outDir = "out-reference";

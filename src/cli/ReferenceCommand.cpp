@@ -1,9 +1,12 @@
 // shadowlab reference: the ray-traced ground truth (Embree) for the surface points the GPU pipeline
 // shades. The G-buffer is rendered by the same pipeline (G-buffer stage only), then every covered pixel's
-// visible fraction of the light is estimated with shadow rays (src/reference/ReferenceRenderer.h).
+// visible fraction of the light is estimated with shadow rays (src/reference/ReferenceRenderer.h). With
+// --light-samples, the samples are the shared light-sample set of technique `dcs` (lightspace/LightSampleSet.h)
+// and every sample's crossing count and hidden bit are written too, to check dcs sample by sample.
 #include "cli/Commands.h"
 
 #include "core/Error.h"
+#include "lightspace/LightSampleSet.h"
 #include "output/OutputWriter.h"
 #include "pipeline/ShadowRenderer.h"
 #include "reference/ReferenceRenderer.h"
@@ -12,14 +15,39 @@
 #include <chrono>
 #include <cstdio>
 #include <iomanip>
+#include <limits>
+#include <optional>
 #include <thread>
 #include <unistd.h>
 
 namespace sl
 {
 
+namespace
+{
+
+// The light-sample set --light-samples names, checked before anything is rendered (InputErrors of
+// lightSampleSetSettings: "--light-samples spiral: ...", "--samples 10: ..."); none without the option.
+std::optional<LightSampleSetSettings> lightSampleSetOf(const ReferenceOptions& options)
+{
+  if (options.lightSamples.empty())
+  {
+    return std::nullopt;
+  }
+  if (options.seed > std::numeric_limits<std::uint32_t>::max())
+  {
+    throw InputError(
+      format("--seed ", options.seed, ": must be < 2^32 with --light-samples (the sets' seeds are 32-bit)"));
+  }
+  const int count = options.samplesGiven ? options.samples : LightSampleSetSettings{}.count;
+  return lightSampleSetSettings(options.lightSamples, count, static_cast<std::uint32_t>(options.seed));
+}
+
+} // namespace
+
 int runReference(const ReferenceOptions& options, std::ostream& log)
 {
+  const std::optional<LightSampleSetSettings> sampleSet = lightSampleSetOf(options);
   if (options.samples < 1)
   {
     throw InputError("--samples " + std::to_string(options.samples) + ": must be >= 1");
@@ -28,6 +56,8 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   {
     throw InputError("--sampling " + options.sampling + ": expected stratified or halton");
   }
+  const int sampleCount = sampleSet ? sampleSet->count : options.samples;
+  const std::string samplingName = sampleSet ? lightSamplePatternName(*sampleSet) : options.sampling;
   RenderRequest request;
   request.gbufferOnly = true;
   request.lightIndex = options.lightIndex;
@@ -51,6 +81,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   settings.sampling = options.sampling == "halton" ? LightSampling::Halton : LightSampling::Stratified;
   settings.seed = options.seed;
   settings.threads = options.threads;
+  settings.lightSampleSet = sampleSet;
 
   // A progress bar only where a person watches (a terminal), so logs and tests stay one line.
   const bool showProgress = !options.quiet && ::isatty(STDERR_FILENO);
@@ -75,6 +106,15 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   std::vector<NamedImage> buffers;
   buffers.push_back({ "visibility", result.visibility, "", "ray-traced visible fraction of the light (ground truth)" });
   buffers.push_back({ "visibility_stderr", result.standardError, "", "standard error of the estimate (Bernoulli bound)" });
+  if (sampleSet)
+  {
+    buffers.push_back({ "sample_crossings", result.sampleCrossings, "triangles",
+      "per light sample (component i = sample i of the set): caster triangles crossed by the segment from the "
+      "ray origin to the sample (depth complexity; 0 where uncovered)" });
+    buffers.push_back({ "light_sample_mask", result.lightSampleMask, "bits",
+      "16 samples per component: bit i % 16 of component i / 16 set when sample i is hidden (below the tangent "
+      "plane or crossed); 0 where uncovered" });
+  }
   for (NamedImage& named : gbuffer.buffers)
   {
     buffers.push_back(std::move(named));
@@ -85,8 +125,8 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     { "scene_overrides", options.sceneOverrides },
     { "light_index", options.lightIndex },
     { "resolution", { gbuffer.resolution.x, gbuffer.resolution.y } },
-    { "samples", options.samples },
-    { "sampling", options.sampling },
+    { "samples", sampleCount },
+    { "sampling", samplingName },
     { "seed", options.seed },
     { "threads", options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency()) },
     { "ray_offset", referenceRayOffset(scene, settings) },
@@ -95,6 +135,11 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     { "rays_per_second", result.raysPerSecond },
     { "gl_renderer", gbuffer.glRenderer },
   };
+  if (sampleSet)
+  {
+    stats["light_samples"] = { { "pattern", samplingName }, { "count", sampleSet->count },
+      { "seed", sampleSet->seed } };
+  }
   stats["buffers"] = bufferSummaries(buffers);
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     writeBufferFiles(buffers, {}, nullptr, dir);
@@ -103,7 +148,8 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   if (!options.quiet)
   {
     log << "shadowlab: reference of " << printable(options.sceneFile) << " at " << gbuffer.resolution.x << "x"
-        << gbuffer.resolution.y << ", " << options.samples << " " << options.sampling << " samples: " << std::fixed
+        << gbuffer.resolution.y << ", " << sampleCount << " " << samplingName << " samples"
+        << (sampleSet ? format(" (light-sample set, seed ", sampleSet->seed, ")") : std::string()) << ": " << std::fixed
         << std::setprecision(2) << result.seconds << " s, " << result.raysPerSecond * 1e-6 << " Mrays/s -> "
         << printable(options.outDir) << "\n";
   }

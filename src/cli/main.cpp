@@ -4,6 +4,7 @@
 #include "core/Error.h"
 #include "io/OutputDirectory.h"
 #include "io/vtkSLOutputWindow.h"
+#include "lightspace/LightSampleSet.h"
 
 #include <CLI/CLI.hpp>
 
@@ -18,6 +19,17 @@ void addForceFlag(CLI::App* command, bool& force)
   command->add_flag("--force", force,
     "Replace --out even when it is a non-empty directory that shadowlab did not write (never the current "
     "directory, an ancestor of it, the home directory, or a directory holding an input)");
+}
+
+// "grid | stratified | ...": the choices of --light-samples, from the list the parser checks against.
+std::string joinedLightSamplePatterns()
+{
+  std::string names;
+  for (const std::string& name : sl::lightSamplePatternNames())
+  {
+    names += (names.empty() ? "" : " | ") + name;
+  }
+  return names;
 }
 
 } // namespace
@@ -50,9 +62,17 @@ int main(int argc, char** argv)
   CLI::App* referenceCommand = app.add_subcommand("reference",
     "Ray-traced ground truth (Embree): the visible fraction of the light for every pixel the pipeline shades");
   referenceCommand->add_option("scene", reference.sceneFile, "Scene file (JSON)")->required();
-  referenceCommand->add_option("--samples,-n", reference.samples, "Light samples per pixel")->capture_default_str();
+  CLI::Option* referenceSamples = referenceCommand
+    ->add_option("--samples,-n", reference.samples, "Light samples per pixel (with --light-samples: 16, 64 or 256, default 16)")
+    ->capture_default_str();
   referenceCommand->add_option("--scene-set", reference.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
-  referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
+  CLI::Option* referenceSampling =
+    referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
+  referenceCommand
+    ->add_option("--light-samples", reference.lightSamples,
+      "Shared light-sample set, the samples of technique dcs (" + joinedLightSamplePatterns() +
+        "); also writes sample_crossings and light_sample_mask")
+    ->excludes(referenceSampling);
   referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")
     ->check(CLI::NonNegativeNumber)
     ->capture_default_str();
@@ -209,6 +229,7 @@ int main(int argc, char** argv)
     }
     if (referenceCommand->parsed())
     {
+      reference.samplesGiven = referenceSamples->count() > 0;
       return sl::runReference(reference, std::cerr);
     }
     if (compareCommand->parsed())

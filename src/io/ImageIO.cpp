@@ -257,9 +257,9 @@ void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
       throw arrayError(format("is not numeric (type \"", array["type"], "\")"));
     long long components = 1;
     if (array.count("NumberOfComponents") != 0 && !integerOf(array["NumberOfComponents"], components))
-      throw arrayError(format("has NumberOfComponents=\"", array["NumberOfComponents"], "\" (an integer 1 to 4 expected)"));
-    if (components < 1 || components > 4)
-      throw arrayError(format("has ", components, " components (1 to 4 supported)"));
+      throw arrayError(format("has NumberOfComponents=\"", array["NumberOfComponents"], "\" (an integer 1 to ", kMaxVtiComponents, " expected)"));
+    if (components < 1 || components > kMaxVtiComponents)
+      throw arrayError(format("has ", components, " components (1 to ", kMaxVtiComponents, " supported)"));
     const bool pointData = pointDataBegin != std::string::npos && pointDataEnd != std::string::npos &&
       tagBegin > pointDataBegin && tagBegin < pointDataEnd;
     long long tuples = pixelCount;
@@ -601,9 +601,10 @@ std::vector<NamedImage> readVti(const std::filesystem::path& path)
       throw InputError(format(file, ": array '", arrayName, "' is not numeric (", abstractArray->GetClassName(), ")"));
     }
     const int components = array->GetNumberOfComponents();
-    if (components < 1 || components > 4)
+    if (components < 1 || components > kMaxVtiComponents)
     {
-      throw InputError(format(file, ": array '", arrayName, "' has ", components, " components (1 to 4 supported)"));
+      throw InputError(
+        format(file, ": array '", arrayName, "' has ", components, " components (1 to ", kMaxVtiComponents, " supported)"));
     }
     if (array->GetNumberOfTuples() != pixelCount)
     {

@@ -37,6 +37,9 @@ void writeVtm(const std::filesystem::path& path, vtkMultiBlockDataSet* blocks);
 // Reads back the arrays of a 2-D .vti (tests, compare tools): dimensions width x height x 1 with
 // 1 <= width, height <= kMaxImageSide; every named point-data array numeric, 1..4 components, one tuple
 // per pixel (converted to float). Throws InputError naming the file (and the array) otherwise.
+// The most components readVti accepts in one array: per-light-sample arrays hold up to 256 (dcs's
+// sample_depth_complexity, the reference's sample_crossings at N = 256).
+constexpr int kMaxVtiComponents = 256;
 std::vector<NamedImage> readVti(const std::filesystem::path& path);
 
 void writePng(const std::filesystem::path& path, const ImageU8& rgb);

@@ -4,6 +4,7 @@
 
 #include "core/Error.h"
 #include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/lightsamples/LightSampleSetStructure.h"
 #include "lightspace/microrect/MicrorectStructure.h"
 #include "lightspace/moments/MomentMapStructure.h"
 #include "lightspace/mssm/DualMssmStructure.h"
@@ -26,6 +27,7 @@ const std::vector<const LightSpaceStructure*>& lightSpaceStructureRegistry()
     &hierarchicalShadowMapStructure(),
     &dualMssmStructure(),
     &microrectStructure(),
+    &lightSampleSetStructure(),
   };
   return registry;
 }

@@ -6,6 +6,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/CameraView.cpp
   src/lightspace/LightView.cpp
   src/lightspace/LightSamples.cpp
+  src/lightspace/LightSampleSet.cpp
   src/lightspace/ShadowMapMath.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
@@ -23,4 +24,6 @@ set(SL_STRUCTURES_SOURCES
   src/lightspace/hsm/vtkSLHsmPass.cxx
   src/lightspace/mssm/DualMssmStructure.cpp
   src/lightspace/microrect/MicrorectStructure.cpp
-  src/lightspace/microrect/vtkSLMicrorectPass.cxx)
+  src/lightspace/microrect/vtkSLMicrorectPass.cxx
+  src/lightspace/lightsamples/LightSampleSetStructure.cpp
+  src/lightspace/lightsamples/vtkSLLightSamplePass.cxx)

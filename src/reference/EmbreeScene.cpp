@@ -58,6 +58,73 @@ void rejectHitsInHoles(const RTCFilterFunctionNArguments* args)
   }
 }
 
+// What crossings() hands its intersection filter: Embree passes the RTCIntersectContext it was given to every
+// filter call, so the per-ray record travels in a struct that starts with it (Embree's tutorials' idiom).
+struct RawCrossing
+{
+  unsigned geometry;
+  unsigned primitive;
+  float t;
+};
+
+struct CrossingContext
+{
+  RTCIntersectContext embree; // must stay the first member: the filter casts the context back
+  std::vector<RawCrossing>* crossed;
+};
+
+// Intersection filter of every geometry (used by crossings() only: rtcOccluded1 calls the occlusion filter):
+// records the hit unless it lies in a hole or its triangle was already recorded for this ray (spatial splits
+// report one triangle once per BVH leaf it was split into), then rejects it so that traversal goes on.
+void recordCrossingAndContinue(const RTCFilterFunctionNArguments* args)
+{
+  auto* context = reinterpret_cast<CrossingContext*>(args->context);
+  const auto* perforation = static_cast<const EmbreeScene::Perforation*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i)
+  {
+    if (args->valid[i] != -1)
+    {
+      continue;
+    }
+    args->valid[i] = 0; // rejected: the ray's tfar stays, every farther hit is still reported
+    const unsigned primitive = RTCHitN_primID(args->hit, args->N, i);
+    if (perforation && perforation->isHole(primitive, RTCHitN_u(args->hit, args->N, i),
+                         RTCHitN_v(args->hit, args->N, i)))
+    {
+      continue;
+    }
+    const unsigned geometry = RTCHitN_geomID(args->hit, args->N, i);
+    std::vector<RawCrossing>& crossed = *context->crossed;
+    const bool seen = std::any_of(crossed.begin(), crossed.end(), [&](const RawCrossing& crossing) {
+      return crossing.geometry == geometry && crossing.primitive == primitive;
+    });
+    if (!seen)
+    {
+      // During an intersection filter call Embree holds the candidate's distance in the ray's tfar.
+      crossed.push_back({ geometry, primitive, RTCRayN_tfar(args->ray, args->N, i) });
+    }
+  }
+}
+
+RTCRay makeRay(const glm::dvec3& origin, const glm::dvec3& direction, double tNear, double tFar)
+{
+  RTCRay ray;
+  ray.org_x = static_cast<float>(origin.x);
+  ray.org_y = static_cast<float>(origin.y);
+  ray.org_z = static_cast<float>(origin.z);
+  ray.tnear = static_cast<float>(tNear);
+  ray.dir_x = static_cast<float>(direction.x);
+  ray.dir_y = static_cast<float>(direction.y);
+  ray.dir_z = static_cast<float>(direction.z);
+  ray.time = 0.0f;
+  ray.tfar = tFar >= double(std::numeric_limits<float>::max()) ? std::numeric_limits<float>::infinity()
+                                                                : static_cast<float>(tFar);
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
 } // namespace
 
 bool EmbreeScene::Perforation::isHole(unsigned primitive, float u, float v) const
@@ -92,15 +159,16 @@ EmbreeScene::EmbreeScene(const Scene& scene)
       throw GraphicsError("Embree: this Embree was built with backface culling; the reference needs two-sided "
                           "triangles (casters block light from both sides)");
     }
-    const bool filtersSupported = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;
+    filtersSupported_ = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;
 
     scene_ = rtcNewScene(device_);
     throwIfFailed("creating the scene");
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
-    for (const SceneObject& object : scene.objects)
+    for (std::size_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex)
     {
+      const SceneObject& object = scene.objects[objectIndex];
       const TriangleMesh& mesh = object.mesh;
       if (!object.castShadows || mesh.triangleCount() == 0)
       {
@@ -141,7 +209,7 @@ EmbreeScene::EmbreeScene(const Scene& scene)
       }
       if (object.hasAlphaTexture)
       {
-        if (!filtersSupported)
+        if (!filtersSupported_)
         {
           rtcReleaseGeometry(geometry);
           throw GraphicsError(format("Embree: this Embree was built without filter functions, needed for the "
@@ -155,10 +223,19 @@ EmbreeScene::EmbreeScene(const Scene& scene)
         rtcSetGeometryOccludedFilterFunction(geometry, rejectHitsInHoles);
         perforations_.push_back(std::move(perforation));
       }
+      if (filtersSupported_)
+      {
+        rtcSetGeometryIntersectFilterFunction(geometry, recordCrossingAndContinue); // crossings() only
+      }
       rtcCommitGeometry(geometry);
-      rtcAttachGeometry(scene_, geometry);
+      const unsigned geometryId = rtcAttachGeometry(scene_, geometry);
       rtcReleaseGeometry(geometry); // the scene holds it now
       throwIfFailed(format("adding ", object.name).c_str());
+      if (objectOfGeometry_.size() <= geometryId)
+      {
+        objectOfGeometry_.resize(geometryId + 1, 0);
+      }
+      objectOfGeometry_[geometryId] = objectIndex;
       ++geometryCount_;
       triangleCount_ += mesh.triangleCount();
     }
@@ -195,22 +272,42 @@ bool EmbreeScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction
 {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray;
-  ray.org_x = static_cast<float>(origin.x);
-  ray.org_y = static_cast<float>(origin.y);
-  ray.org_z = static_cast<float>(origin.z);
-  ray.tnear = static_cast<float>(tNear);
-  ray.dir_x = static_cast<float>(direction.x);
-  ray.dir_y = static_cast<float>(direction.y);
-  ray.dir_z = static_cast<float>(direction.z);
-  ray.time = 0.0f;
-  ray.tfar = tFar >= double(std::numeric_limits<float>::max()) ? std::numeric_limits<float>::infinity()
-                                                                : static_cast<float>(tFar);
-  ray.mask = 0xFFFFFFFFu;
-  ray.id = 0;
-  ray.flags = 0;
+  RTCRay ray = makeRay(origin, direction, tNear, tFar);
   rtcOccluded1(scene_, &context, &ray);
   return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+int EmbreeScene::crossings(const glm::dvec3& origin, const glm::dvec3& direction, double tNear, double tFar,
+  std::vector<Crossing>* crossed) const
+{
+  if (!filtersSupported_)
+  {
+    throw GraphicsError("Embree: this Embree was built without filter functions, needed to count the casters a "
+                        "segment crosses");
+  }
+  // One record per calling thread, reused: no allocation per ray once it has grown.
+  thread_local std::vector<RawCrossing> raw;
+  raw.clear();
+  CrossingContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.crossed = &raw;
+  RTCRayHit rayHit;
+  rayHit.ray = makeRay(origin, direction, tNear, tFar);
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context.embree, &rayHit);
+  SL_CHECK_MSG(rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID, "Embree accepted a hit the crossing filter rejected");
+  if (crossed)
+  {
+    crossed->clear();
+    for (const RawCrossing& crossing : raw)
+    {
+      SL_CHECK(crossing.geometry < objectOfGeometry_.size());
+      crossed->push_back({ objectOfGeometry_[crossing.geometry], crossing.primitive, crossing.t });
+    }
+  }
+  return static_cast<int>(raw.size());
 }
 
 } // namespace sl

@@ -46,9 +46,34 @@ constexpr double kLightEndShortening = 1e-6;
 constexpr double kDefaultRayOffsetPerRadius = 1e-4;
 // The progress callback is called at most this many times (plus a final 1.0).
 constexpr int kProgressReports = 32;
+// lightSampleMask packs this many sample bits into one float component (exact: < 2^24).
+constexpr int kMaskBitsPerComponent = 16;
 
-void validate(const ReferenceSettings& settings)
+const char* lightTypeName(LightType type)
 {
+  switch (type)
+  {
+    case LightType::Area: return "area";
+    case LightType::Point: return "point";
+    case LightType::Directional: return "directional";
+    case LightType::Spot: return "spot";
+  }
+  return "unknown";
+}
+
+void validate(const ReferenceSettings& settings, const Light& light)
+{
+  if (settings.lightSampleSet)
+  {
+    const LightSampleSetSettings& set = *settings.lightSampleSet;
+    // The CLI's own checks (pattern, count, seed), so a set built in code gets the same InputError, not an abort.
+    lightSampleSetSettings(lightSamplePatternName(set), set.count, set.seed);
+    if (light.type != LightType::Area)
+    {
+      throw InputError(format("--light-samples ", lightSamplePatternName(set), ": the light is a ",
+        lightTypeName(light.type), " light; a light-sample set needs an area light"));
+    }
+  }
   if (settings.samples < 1)
   {
     throw InputError(format("--samples ", settings.samples, ": must be >= 1"));
@@ -83,30 +108,84 @@ struct PixelResult
   double standardError = 0.0;
 };
 
+// The estimate from `visible` of `sampleCount` samples, with the Bernoulli standard error (see the header).
+PixelResult estimate(int visible, int sampleCount)
+{
+  const double visibility = static_cast<double>(visible) / sampleCount;
+  const double standardError =
+    sampleCount > 1 ? std::sqrt(visibility * (1.0 - visibility) / (sampleCount - 1)) : 0.5;
+  return { visibility, standardError };
+}
+
+// Where a pixel's per-sample results go (light-sample sets only): its components of sampleCrossings and
+// lightSampleMask.
+struct SampleOutputs
+{
+  float* crossings = nullptr; // N values
+  float* mask = nullptr;      // N / 16 values
+};
+
 // Everything a worker needs to shade one pixel; read-only during tracing.
 struct Tracer
 {
   const ReferenceInputs& inputs;
   const Light& light;
   const EmbreeScene& casters;
-  const std::optional<LightSampler>& sampler; // area lights only
+  const std::optional<LightSampler>& sampler; // area lights without a light-sample set only
+  const std::optional<LightSampleSet>& sampleSet;
   double rayOffset;
 
-  PixelResult pixel(int x, int y, std::uint64_t& rays) const
+  // With a light-sample set: counts the crossings of every sample of covered pixel (x, y) into `outputs`, sets
+  // the mask bits of the hidden ones, and returns how many are hidden.
+  int countSampleSet(int x, int y, const glm::dvec3& pWs, const glm::dvec3& nWs, std::uint64_t& rays,
+    const SampleOutputs& outputs) const
+  {
+    const glm::dvec3 origin = pWs + rayOffset * nWs;
+    const int sampleCount = sampleSet->count();
+    int hidden = 0;
+    std::uint32_t maskBits = 0;
+    for (int i = 0; i < sampleCount; ++i)
+    {
+      const glm::dvec3 onLight = sampleSet->point(light, x, y, i);
+      ++rays;
+      const int crossed = casters.crossings(origin, onLight - origin, 0.0, 1.0 - kLightEndShortening);
+      outputs.crossings[i] = static_cast<float>(crossed);
+      // Hidden by the surface itself (on or below the tangent plane) or by at least one caster.
+      if (glm::dot(nWs, onLight - pWs) <= 0.0 || crossed > 0)
+      {
+        ++hidden;
+        maskBits |= 1u << (i % kMaskBitsPerComponent);
+      }
+      if ((i + 1) % kMaskBitsPerComponent == 0)
+      {
+        outputs.mask[i / kMaskBitsPerComponent] = static_cast<float>(maskBits);
+        maskBits = 0;
+      }
+    }
+    return hidden;
+  }
+
+  PixelResult pixel(int x, int y, std::uint64_t& rays, const SampleOutputs& outputs) const
   {
     if (inputs.coverage.at(x, y) <= 0.5f)
     {
       return { 0.0, 0.0 };
     }
+    const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+    const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
+    // The per-sample arrays are computed at every covered pixel, whatever the pixel rules below decide.
+    const int hiddenSamples = sampleSet ? countSampleSet(x, y, pWs, nWs, rays, outputs) : 0;
     if (inputs.receives.at(x, y) <= 0.5f)
     {
       return { 1.0, 0.0 };
     }
-    const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
-    const glm::dvec3 nWs(inputs.normal.at(x, y, 0), inputs.normal.at(x, y, 1), inputs.normal.at(x, y, 2));
     if (!lightCanReach(light, pWs, nWs))
     {
       return { 0.0, 0.0 };
+    }
+    if (sampleSet)
+    {
+      return estimate(sampleSet->count() - hiddenSamples, sampleSet->count());
     }
     const glm::dvec3 origin = pWs + rayOffset * nWs;
     switch (light.type)
@@ -137,10 +216,7 @@ struct Tracer
         ++visible;
       }
     }
-    const double visibility = static_cast<double>(visible) / sampleCount;
-    const double standardError =
-      sampleCount > 1 ? std::sqrt(visibility * (1.0 - visibility) / (sampleCount - 1)) : 0.5;
-    return { visibility, standardError };
+    return estimate(visible, sampleCount);
   }
 };
 
@@ -164,8 +240,8 @@ double referenceRayOffset(const Scene& scene, const ReferenceSettings& settings)
 ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSettings& settings,
   const std::function<void(double fractionDone)>& progress)
 {
-  validate(settings);
   checkInputs(inputs);
+  validate(settings, *inputs.light);
   const auto start = std::chrono::steady_clock::now();
   const Light& light = *inputs.light;
   const int width = inputs.position.width;
@@ -177,11 +253,18 @@ ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSe
 
   const EmbreeScene casters(*inputs.scene);
   std::optional<LightSampler> sampler;
-  if (light.type == LightType::Area)
+  std::optional<LightSampleSet> sampleSet;
+  if (settings.lightSampleSet)
+  {
+    sampleSet.emplace(*settings.lightSampleSet);
+    result.sampleCrossings = ImageF(width, height, sampleSet->count(), 0.0f);
+    result.lightSampleMask = ImageF(width, height, sampleSet->count() / kMaskBitsPerComponent, 0.0f);
+  }
+  else if (light.type == LightType::Area)
   {
     sampler.emplace(light, settings.samples, settings.sampling, settings.seed);
   }
-  const Tracer tracer{ inputs, light, casters, sampler, referenceRayOffset(*inputs.scene, settings) };
+  const Tracer tracer{ inputs, light, casters, sampler, sampleSet, referenceRayOffset(*inputs.scene, settings) };
 
   const unsigned hardwareThreads = std::max(1u, std::thread::hardware_concurrency());
   const int threadCount =
@@ -204,7 +287,13 @@ ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSe
       {
         for (int x = 0; x < width; ++x)
         {
-          const PixelResult pixel = tracer.pixel(x, y, rays);
+          SampleOutputs outputs;
+          if (sampleSet)
+          {
+            outputs.crossings = &result.sampleCrossings.at(x, y, 0);
+            outputs.mask = &result.lightSampleMask.at(x, y, 0);
+          }
+          const PixelResult pixel = tracer.pixel(x, y, rays, outputs);
           result.visibility.at(x, y) = static_cast<float>(pixel.visibility);
           result.standardError.at(x, y) = static_cast<float>(pixel.standardError);
         }

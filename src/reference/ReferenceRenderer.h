@@ -16,6 +16,20 @@
 //    V(p, s) = 0 if s is on or below p's tangent plane (dot(n, s - p) <= 0: the surface itself hides it)
 //    or if a caster blocks the segment from the ray origin o to s, shortened by a relative 1e-6 at the
 //    light's end (t in (0, 1 - 1e-6) along s - o, so the light's own plane never occludes); else 1.
+//  - Shared light-sample set (ReferenceSettings::lightSampleSet, area lights only): the N points s_i of pixel
+//    (x, y) are exactly LightSampleSet::point(light, x, y, i), i < N (lightspace/LightSampleSet.h), the points the
+//    technique `dcs` takes, so the two can be compared sample by sample; `samples`, `sampling` and `seed` are
+//    then unused (the set has its own seed).
+//    V(p, s_i) is decided as above, but by counting rather than by an occlusion ray: for every covered pixel
+//    and every sample, hidden or not,
+//        crossings_i = EmbreeScene::crossings(o, s_i - o, 0, 1 - 1e-6)
+//    (caster triangles crossed, holes excluded: the depth complexity that depth complexity sampling counts,
+//    paper 003 §3.2), and sample i is hidden when dot(n, s_i - p) <= 0 or crossings_i > 0. The result then
+//    also holds sampleCrossings (crossings_i in component i) and lightSampleMask (see ReferenceResult).
+//    visibility = (1/N) #(samples not hidden); standard error as below. The pixel rules above still decide
+//    the visibility of uncovered, non-receiving and unreachable pixels; the two per-sample arrays are facts
+//    about the samples, computed at every covered pixel whatever its visibility (0 at uncovered pixels,
+//    where there is no point).
 //  - Point and spot lights: one ray from o to the light's centre (same shortening); directional: one ray
 //    from o along -direction, to infinity. Visibility is exactly 0 or 1 and the standard error 0.
 //  - Ray origin: o = p + rayOffset * n, with rayOffset = 1e-4 * scene.bounds().radius() (the bounding
@@ -36,11 +50,13 @@
 #pragma once
 
 #include "core/Image.h"
+#include "lightspace/LightSampleSet.h"
 #include "reference/LightSampler.h"
 #include "scene/Scene.h"
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 namespace sl
 {
@@ -52,6 +68,8 @@ struct ReferenceSettings
   std::uint64_t seed = 1;
   int threads = 0;                                   // 0 = all cores
   double rayOffset = -1.0;                           // < 0: 1e-4 * scene bounding-sphere radius
+  // The shared per-pixel sample set instead of `samples`/`sampling`/`seed` (area lights only; see above).
+  std::optional<LightSampleSetSettings> lightSampleSet;
 };
 
 struct ReferenceInputs
@@ -74,13 +92,21 @@ struct ReferenceResult
 {
   ImageF visibility;     // 1 component, in [0, 1]
   ImageF standardError;  // 1 component
-  std::uint64_t raysTraced = 0; // occlusion rays actually cast (samples below the horizon cost none)
+  // Only with a light-sample set (else empty), N = its count:
+  ImageF sampleCrossings; // N components: caster triangles crossed on the way to sample i (0 where uncovered)
+  // N / 16 components: bit i % 16 of component i / 16 set when sample i is hidden (below the tangent plane or
+  // crossed), the 16-bit integer held exactly as a float (0 .. 65535); 0 where uncovered. Where no pixel rule
+  // decides, visibility = 1 - popcount / N.
+  ImageF lightSampleMask;
+  std::uint64_t raysTraced = 0; // rays actually cast: occlusion rays (samples below the horizon cost none), or
+                                // with a light-sample set one crossing-count ray per sample of a covered pixel
   double seconds = 0.0;         // wall time of the whole call: BVH build + tracing
   double raysPerSecond = 0.0;   // raysTraced / wall time of the tracing alone (BVH build excluded)
 };
 
 // Throws InputError for bad settings ("--samples 0: must be >= 1", "--threads -2: must be >= 0",
-// non-finite rayOffset) and GraphicsError for Embree failures. Inputs of mismatched size are a bug
+// non-finite rayOffset, a light-sample set with a light that is not an area light) and GraphicsError for
+// Embree failures. Inputs of mismatched size are a bug
 // (SL_CHECK).
 ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSettings& settings,
   const std::function<void(double fractionDone)>& progress = {});

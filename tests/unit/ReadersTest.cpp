@@ -481,13 +481,13 @@ TEST(ReadersVti, ExtentsAndArraysAreCheckedBeforeCopying)
   image->SetDimensions(4, 3, 1);
   vtkNew<vtkFloatArray> fiveComponents;
   fiveComponents->SetName("five");
-  fiveComponents->SetNumberOfComponents(5);
+  fiveComponents->SetNumberOfComponents(kMaxVtiComponents + 1);
   fiveComponents->SetNumberOfTuples(12);
   fiveComponents->Fill(0.0);
   image->GetPointData()->AddArray(fiveComponents);
   const fs::path five = dir.path() / "five.vti";
   writeVtkImage(five, image);
-  EXPECT_CONTAINS(inputErrorOf([&] { readVti(five); }, five), "array 'five' has 5 components (1 to 4 supported)");
+  EXPECT_CONTAINS(inputErrorOf([&] { readVti(five); }, five), "array 'five' has 257 components (1 to 256 supported)");
 
   image->GetPointData()->RemoveArray("five");
   vtkNew<vtkStringArray> labels;
@@ -987,7 +987,7 @@ TEST(ReadersVti, DataArrayAttributesAreCheckedBeforeVtkReads)
   };
   const std::vector<Case> cases = {
     { "fractional-components.vti", edited("NumberOfComponents=\"3\"", "NumberOfComponents=\"3.16\""),
-      "array 'noise' has NumberOfComponents=\"3.16\" (an integer 1 to 4 expected)" },
+      "array 'noise' has NumberOfComponents=\"3.16\" (an integer 1 to 256 expected)" },
     { "no-format.vti", edited("format=\"appended\"", ""), "array 'noise': format \"\" (appended, binary or ascii" },
     { "bit-type.vti", edited("type=\"Float32\"", "type=\"Bit\""), "array 'noise' is not numeric (type \"Bit\")" },
     { "fractional-offset.vti", edited("offset=\"0\"", "offset=\"0.5\""), "array 'noise': no valid offset" },
