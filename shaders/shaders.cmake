@@ -50,4 +50,5 @@ set(SL_SHADER_FILES
   vtk/VtkVisibilityRatio.glsl
   referencesm/ReferenceSmAccumulate.glsl
   referencesm/ReferenceSmResolve.glsl
-  shadowvolume/ShadowVolumeVertex.glsl shadowvolume/ShadowVolumeCount.glsl shadowvolume/ShadowVolumeResolve.glsl)
+  shadowvolume/ShadowVolumeVertex.glsl shadowvolume/ShadowVolumeCount.glsl shadowvolume/ShadowVolumeResolve.glsl shadowvolume/ReceiverOffset.glsl
+  dcs/DcsWedgeVertex.glsl dcs/DcsWedgeUpdate.glsl dcs/DcsResolve.glsl dcs/DcsSampleCounters.glsl)

@@ -8,11 +8,7 @@
 // where the ray, beyond the point, leaves a volume.
 #include "common/CameraRay.glsl"
 #include "common/GBufferInputs.glsl"
-
-// The receiver is taken `receiverOffsetS` (in s) toward the camera, plus receiverOffsetPerS * s for a
-// perspective camera: a fraction of the distance to the eye (the parameter receiver_offset).
-uniform float receiverOffsetS;
-uniform float receiverOffsetPerS;
+#include "shadowvolume/ReceiverOffset.glsl"
 
 flat in vec4 volumePlane;
 
@@ -36,7 +32,7 @@ void main()
       discard; // the ray runs in the triangle's plane
     }
     float sVolume = (volumePlane.w - dot(volumePlane.xyz, nearPoint)) / along;
-    if (sVolume < sReceiver - (receiverOffsetS + receiverOffsetPerS * sReceiver))
+    if (sVolume < countedPointS(sReceiver))
     {
       discard; // in front of the receiver: z-fail does not count it
     }

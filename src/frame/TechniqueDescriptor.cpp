@@ -23,7 +23,10 @@ std::vector<std::string> TechniqueDescriptor::outputNames() const
   std::vector<std::string> names{ "visibility" };
   for (const BufferSpec& buffer : buffers)
   {
-    names.push_back(buffer.name);
+    if (!buffer.fromPass)
+    {
+      names.push_back(buffer.name);
+    }
   }
   return names;
 }

@@ -80,6 +80,10 @@ struct BufferSpec
   // is therefore not exact, or -1. The pipeline counts such pixels (`cut_short_pixels` in stats.json), render
   // and bench warn about them, and sub-light combination keeps the mark from any sub-light.
   int cutShortCode = -1;
+  // Not a render target: the technique's pass reads it back itself (vtkSLTechniquePass::CollectPassBuffers),
+  // with as many components as it needs (e.g. dcs's light_sample_mask, N/16 of them); no OUT_ location. The pass
+  // may leave out one that its parameters do not ask for (the doc says when).
+  bool fromPass = false;
 };
 
 // An integer the technique's shaders and its C++ share (a loop budget, the bound of an array, the codes of a

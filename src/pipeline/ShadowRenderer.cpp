@@ -194,8 +194,11 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
   }
   for (const BufferSpec& spec : frame.technique->buffers)
   {
-    result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
-      spec.doc, spec.kind, spec.categoryLabels });
+    if (!spec.fromPass)
+    {
+      result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
+        spec.doc, spec.kind, spec.categoryLabels });
+    }
   }
   if (!frame.subLightVisibility.empty())
   {
@@ -316,6 +319,32 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
   result.eglPlatform = window_->GetEglContext()->platformName();
 }
 
+void ShadowRenderer::appendPassBuffers(const FrameResources& frame, FrameResult& result)
+{
+  for (const auto& stage : stagesFor(frame, false))
+  {
+    if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
+    {
+      std::vector<NamedImage> passBuffers = techniquePass->CollectPassBuffers();
+      for (const BufferSpec& spec : frame.technique->buffers)
+      {
+        if (!spec.fromPass)
+        {
+          continue;
+        }
+        const auto found = std::find_if(
+          passBuffers.begin(), passBuffers.end(), [&](const NamedImage& image) { return image.name == spec.name; });
+        if (found == passBuffers.end())
+        {
+          continue; // not asked for by this frame's parameters
+        }
+        SL_CHECK(found->image.width == frame.width() && found->image.height == frame.height());
+        result.buffers.push_back({ spec.name, std::move(found->image), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
+      }
+    }
+  }
+}
+
 void ShadowRenderer::releaseFrame(FrameResources& frame, bool gbufferOnly)
 {
   renderer_->SetPass(nullptr);
@@ -342,6 +371,7 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   readBackBuffers(frame, request, result);
   if (!request.gbufferOnly)
   {
+    appendPassBuffers(frame, result);
     readBackLightSpace(frame, result);
     // Counted beside the technique's own statistics so that stats.json and bench's columns carry it.
     if (const std::optional<CutShortPixels> cutShort = cutShortPixels(result))

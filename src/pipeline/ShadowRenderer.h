@@ -60,6 +60,8 @@ private:
   void allocateFrameTargets(FrameResources& frame, const Scene& scene, bool gbufferOnly); // GPU scene, targets
   double renderStages(FrameResources& frame, bool gbufferOnly); // returns the frame's wall time (ms)
   void collectStageResults(const FrameResources& frame, bool gbufferOnly, FrameResult& result); // timings, stats
+  // The technique's BufferSpec::fromPass buffers, from its pass (vtkSLTechniquePass::CollectPassBuffers).
+  void appendPassBuffers(const FrameResources& frame, FrameResult& result);
   void releaseFrame(FrameResources& frame, bool gbufferOnly);
 
   vtkSmartPointer<vtkSLEglRenderWindow> window_;

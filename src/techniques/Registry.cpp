@@ -16,6 +16,7 @@
 #include "techniques/vsm/VsmTechnique.h"
 #include "techniques/vssm/VssmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
+#include "techniques/dcs/DcsTechnique.h"
 #include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 
 namespace sl
@@ -38,6 +39,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     vtkTechnique(),
     referenceSmTechnique(),
     shadowVolumeTechnique(),
+    dcsTechnique(),
   };
   return registry;
 }

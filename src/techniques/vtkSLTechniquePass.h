@@ -44,6 +44,9 @@ public:
   // Geometry an object-space technique exports (written as <name>.vtp), read like CollectStatistics; none by
   // default.
   virtual std::vector<sl::NamedPolyData> CollectObjectSpaceExports() { return {}; }
+  // The descriptor's buffers marked fromPass (any number of components), read back by the pass itself, read like
+  // CollectStatistics; every such buffer must be returned (the pipeline checks).
+  virtual std::vector<sl::NamedImage> CollectPassBuffers() { return {}; }
 
 protected:
   vtkSLTechniquePass();

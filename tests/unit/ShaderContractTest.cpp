@@ -620,7 +620,10 @@ std::vector<std::string> contractViolations(
   std::set<std::string> outputs{ "OUT_VISIBILITY" };
   for (const BufferSpec& buffer : descriptor.buffers)
   {
-    outputs.insert("OUT_" + upperCase(buffer.name));
+    if (!buffer.fromPass) // read back by the pass itself, no output location
+    {
+      outputs.insert("OUT_" + upperCase(buffer.name));
+    }
   }
   std::map<std::string, int> categoryCodes; // CLASSIFICATION_LIT -> 1
   std::vector<std::string> categoryPrefixes;

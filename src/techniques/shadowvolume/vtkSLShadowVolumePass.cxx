@@ -54,7 +54,13 @@ private:
 
 void vtkSLShadowVolumePass::Execute(const vtkRenderState* state)
 {
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  this->BuildAndCountVolumes(vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow()));
+  // Step 3: the resolve, the base class's full-screen shader.
+  this->Superclass::Execute(state);
+}
+
+void vtkSLShadowVolumePass::BuildAndCountVolumes(vtkOpenGLRenderWindow* window)
+{
   const sl::FrameResources& frame = *this->Frame;
 
   // Step 1: the volumes, on the CPU.
@@ -73,9 +79,6 @@ void vtkSLShadowVolumePass::Execute(const vtkRenderState* state)
   // Step 2: z-fail count.
   this->CountVolumes(window, geometry);
   sl::checkGlErrors("shadow-volume (volume count)");
-
-  // Step 3: the resolve, the base class's full-screen shader.
-  this->Superclass::Execute(state);
 }
 
 void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl::ShadowVolumeGeometry& geometry)
@@ -117,17 +120,7 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
   vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("shadowvolume/ShadowVolumeVertex.glsl", defines),
     sl::assembleShader("shadowvolume/ShadowVolumeCount.glsl", defines), "shadow-volume count");
   sl::setMatrix(program, "clipFromWorld", frame.camera.clipFromWorld);
-  const sl::CameraView& camera = frame.camera;
-  sl::setCameraRayUniforms(program, camera);
-  // receiver_offset as a fraction of the distance to the eye: the eye lies at s = -near / (far - near) on
-  // every perspective ray N + s R, so the distance is (near / (far - near) + s) |R|. Orthographic: of the
-  // scene's bounding radius, |R| = far - near.
-  const double offset = frame.parameters.get("receiver_offset");
-  const double range = camera.farDepth - camera.nearDepth;
-  const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
-  program->SetUniformf("receiverOffsetS",
-    static_cast<float>(perspective ? offset * camera.nearDepth / range : offset * frame.scene->bounds().radius() / range));
-  program->SetUniformf("receiverOffsetPerS", static_cast<float>(perspective ? offset : 0.0));
+  this->SetReceiverOffsetUniforms(program);
   const std::vector<vtkTextureObject*> gbuffer = { sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition),
     sl::bindTexture(program, "gbufferNormal", frame.gbufferNormal) };
   if (this->VolumeArray)
@@ -166,6 +159,22 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
   }
   glState->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glState->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+}
+
+void vtkSLShadowVolumePass::SetReceiverOffsetUniforms(vtkShaderProgram* program) const
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const sl::CameraView& camera = frame.camera;
+  sl::setCameraRayUniforms(program, camera);
+  // receiver_offset as a fraction of the distance to the eye: the eye lies at s = -near / (far - near) on
+  // every perspective ray N + s R, so the distance is (near / (far - near) + s) |R|. Orthographic: of the
+  // scene's bounding radius, |R| = far - near.
+  const double offset = frame.parameters.get("receiver_offset");
+  const double range = camera.farDepth - camera.nearDepth;
+  const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
+  program->SetUniformf("receiverOffsetS",
+    static_cast<float>(perspective ? offset * camera.nearDepth / range : offset * frame.scene->bounds().radius() / range));
+  program->SetUniformf("receiverOffsetPerS", static_cast<float>(perspective ? offset : 0.0));
 }
 
 std::vector<vtkTextureObject*> vtkSLShadowVolumePass::SetTechniqueUniforms(vtkShaderProgram* program)

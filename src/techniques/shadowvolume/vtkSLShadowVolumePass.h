@@ -54,18 +54,25 @@ protected:
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
   void AfterDraw() override;
 
+  // Steps 1 and 2 (ShadowVolumeTechnique.h): the volumes from the light's centre, built on the CPU, and their z-fail
+  // count into VolumeCount and the G-buffer's stencil. Technique `dcs` takes its reference sample's count from here.
+  void BuildAndCountVolumes(vtkOpenGLRenderWindow* window);
+  // The camera-ray uniforms and receiverOffsetS / receiverOffsetPerS (parameter receiver_offset) of a shader that
+  // finds the counted point as shadowvolume/ShadowVolumeCount.glsl does.
+  void SetReceiverOffsetUniforms(vtkShaderProgram* program) const;
+
+  vtkSmartPointer<vtkTextureObject> VolumeCount; // R32F, the exact z-fail count
+  sl::ShadowVolumeStatistics Statistics;
+  double BuildMilliseconds = 0.0;
+  vtkSmartPointer<vtkPolyData> Silhouettes;
+
 private:
   vtkSLShadowVolumePass(const vtkSLShadowVolumePass&) = delete;
   void operator=(const vtkSLShadowVolumePass&) = delete;
 
-  // Step 2 of ShadowVolumeTechnique.h: the z-fail count into VolumeCount and the G-buffer's stencil.
   void CountVolumes(vtkOpenGLRenderWindow* window, const sl::ShadowVolumeGeometry& geometry);
 
   vtkSmartPointer<vtkOpenGLBufferObject> VolumeVertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> VolumeArray;
-  vtkSmartPointer<vtkTextureObject> VolumeCount; // R32F, the exact z-fail count
   vtkNew<vtkOpenGLFramebufferObject> CountFramebuffer;
-  sl::ShadowVolumeStatistics Statistics;
-  double BuildMilliseconds = 0.0;
-  vtkSmartPointer<vtkPolyData> Silhouettes;
 };

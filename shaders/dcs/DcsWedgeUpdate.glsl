@@ -1,0 +1,155 @@
+// Technique dcs (Forest, Barthe & Paulin 2008 via Forest et al. 2009 §3.2): for a pixel inside a wedge's screen
+// polygon, the wedge's edge e = (v0, v1) changes the depth complexity of every light sample s whose segment from the
+// light's centre c crosses e's projection from the counted point p -- the rule of src/techniques/dcs/DcsGeometry.h,
+// in float, relative to v0:
+//   count(s) += sign(g(s)) M_e(p)  when e crosses triangle (p, c, s),
+//   g(x) = orient(v0, v1, p, x),  M_e(p) = sum over e's triangles of sign(orient(v0, v1, p, w_T)).
+// Each orientation is linear in s = c + a right + b up, so it is evaluated per sample from its value at c and its two
+// slopes.
+#include "common/CameraRay.glsl"
+#include "common/GBufferInputs.glsl"
+#include "common/LightSampleSet.glsl"
+#include "shadowvolume/ReceiverOffset.glsl"
+#include "dcs/DcsSampleCounters.glsl"
+
+// Per wedge, four vec4: (v0, number of triangles), (v1, 0), (w_0, 0), (w_1, 0).
+layout(std430, binding = 0) readonly buffer DcsWedges
+{
+  vec4 wedgeData[];
+};
+layout(r32ui, binding = 0) uniform coherent uimage2DArray sampleCounters;
+
+uniform vec3 dcsLightCenter;
+uniform vec3 dcsLightRight;
+uniform vec3 dcsLightUp;
+uniform vec3 dcsLightNormal; // toward the scene
+uniform vec3 dcsOutline[DCS_MAX_OUTLINE_CORNERS];
+uniform int dcsOutlineCorners;
+
+flat in int wedgeIndex;
+
+// Cyrus-Beck clipping of e = v0 + t (v1 - v0) by one half-space (inside where the value <= 0); false once empty.
+bool clipEdge(float atV0, float atV1, inout vec2 range)
+{
+  if (atV0 > 0.0 && atV1 > 0.0)
+  {
+    return false;
+  }
+  if (atV0 > 0.0 || atV1 > 0.0)
+  {
+    float t = atV0 / (atV0 - atV1);
+    if (atV0 > 0.0)
+    {
+      range.x = max(range.x, t);
+    }
+    else
+    {
+      range.y = min(range.y, t);
+    }
+  }
+  return range.x <= range.y;
+}
+
+// wedgeContains (DcsGeometry.h): e meets the pyramid with apex p over the light's outline.
+bool wedgeContains(vec3 p, vec3 v0, vec3 v1)
+{
+  vec2 range = vec2(0.0, 1.0);
+  vec3 corner0 = dcsOutline[0];
+  if (!clipEdge(-dot(dcsLightNormal, v0 - corner0), -dot(dcsLightNormal, v1 - corner0), range))
+  {
+    return false;
+  }
+  vec3 outlineCentre = vec3(0.0);
+  for (int i = 0; i < dcsOutlineCorners; ++i)
+  {
+    outlineCentre += dcsOutline[i];
+  }
+  outlineCentre /= float(dcsOutlineCorners);
+  bool inside = true;
+  for (int i = 0; i < dcsOutlineCorners; ++i)
+  {
+    vec3 normal = cross(dcsOutline[i] - p, dcsOutline[(i + 1) % dcsOutlineCorners] - p);
+    normal = dot(normal, outlineCentre - p) > 0.0 ? -normal : normal;
+    inside = inside && clipEdge(dot(normal, v0 - p), dot(normal, v1 - p), range);
+  }
+  float heightP = dot(dcsLightNormal, p - corner0);
+  return inside && clipEdge(dot(dcsLightNormal, v0 - corner0) - heightP, dot(dcsLightNormal, v1 - corner0) - heightP, range);
+}
+
+void main()
+{
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  Surface surface = readSurface(pixel);
+  if (!surface.covered)
+  {
+    return;
+  }
+  vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
+  vec3 ray = cameraRayDirection(gl_FragCoord.xy);
+  float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
+  vec3 pWs = nearPoint + countedPointS(sReceiver) * ray;
+
+  int base = 4 * wedgeIndex;
+  vec3 v0 = wedgeData[base].xyz;
+  int triangles = int(wedgeData[base].w);
+  vec3 v1 = wedgeData[base + 1].xyz;
+  if (!wedgeContains(pWs, v0, v1))
+  {
+    return;
+  }
+  imageAtomicAdd(sampleCounters, ivec3(pixel, DCS_COVERING_LAYER), 1u);
+
+  // Relative to v0 (float differences of nearby points, not of large coordinates).
+  vec3 p = pWs - v0;
+  vec3 edge = v1 - v0;
+  vec3 c = dcsLightCenter - v0;
+  vec3 planeNormal = cross(edge, p); // g(x) = dot(x - v0, planeNormal)
+  int multiplicity = 0;
+  for (int k = 0; k < triangles; ++k)
+  {
+    multiplicity += int(sign(dot(wedgeData[base + 2 + k].xyz - v0, planeNormal)));
+  }
+  if (multiplicity == 0)
+  {
+    return; // the edge's triangles lie on both sides of Pi(p, e): no count changes
+  }
+  float gCentre = dot(c, planeNormal);
+  vec2 gSlope = vec2(dot(dcsLightRight, planeNormal), dot(dcsLightUp, planeNormal));
+  vec3 centreNormal = cross(edge, c); // orient(v0, v1, c, s) = dot(s - v0, centreNormal), 0 at s = c
+  vec2 centreSlope = vec2(dot(dcsLightRight, centreNormal), dot(dcsLightUp, centreNormal));
+  vec3 toCentre = c - p;
+  vec3 normal0 = cross(-p, toCentre);       // orient(p, c, s, v0) = dot(s - p, normal0), 0 at s = c
+  vec3 normal1 = cross(edge - p, toCentre); // orient(p, c, s, v1)
+  vec2 slope0 = vec2(dot(dcsLightRight, normal0), dot(dcsLightUp, normal0));
+  vec2 slope1 = vec2(dot(dcsLightRight, normal1), dot(dcsLightUp, normal1));
+
+  int checksum = 0;
+  int weightedChecksum = 0;
+  for (int word = 0; word < lightSampleCount / 4; ++word)
+  {
+    uint wordChange = 0u;
+    for (int field = 0; field < 4; ++field)
+    {
+      int index = 4 * word + field;
+      vec2 ab = lightSampleOffset(lightSampleUnit(pixel, index));
+      float g = gCentre + dot(gSlope, ab);
+      bool crosses = g * gCentre < 0.0 && dot(centreSlope, ab) * gCentre > 0.0 && dot(slope0, ab) * dot(slope1, ab) < 0.0;
+      int change = crosses ? int(sign(g)) * multiplicity : 0;
+      wordChange += uint(change) << uint(8 * field); // two's complement: a negative change borrows, as it should
+      checksum += change;
+      weightedChecksum += (index + 1) * change;
+    }
+    if (wordChange != 0u)
+    {
+      imageAtomicAdd(sampleCounters, ivec3(pixel, word), wordChange);
+    }
+  }
+  if (checksum != 0)
+  {
+    imageAtomicAdd(sampleCounters, ivec3(pixel, DCS_CHECKSUM_LAYER), uint(checksum));
+  }
+  if (weightedChecksum != 0)
+  {
+    imageAtomicAdd(sampleCounters, ivec3(pixel, DCS_WEIGHTED_CHECKSUM_LAYER), uint(weightedChecksum));
+  }
+}

@@ -1,0 +1,41 @@
+// CPU twin of technique `dcs` for one pixel (double precision): the centre's count by direct crossing (as the shadow
+// volumes give it), every light sample's count by the wedges' update rule (DcsGeometry.h), and the resolve's
+// visibility. Tests compare it with the GPU; `shadowlab probe` records it.
+#pragma once
+
+#include "frame/ProbeRecord.h"
+#include "lightspace/LightSampleSet.h"
+#include "scene/Scene.h"
+#include "techniques/dcs/DcsGeometry.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace sl
+{
+
+struct DcsPixelTwin
+{
+  glm::dvec3 countedPoint{ 0.0 };  // the visible point moved receiver_offset toward the camera
+  int centreCount = 0;             // depth_complexity_center
+  std::vector<int> sampleCounts;   // per light sample: centreCount + the wedges' changes
+  std::vector<bool> hidden;        // count > 0, or on or below the receiver's tangent plane
+  int wedgesCovering = 0;          // wedges whose region R_e holds the counted point
+  int occludedSamples = 0;         // samples with count > 0
+  int dcMin = 0;
+  int dcMax = 0;
+  double visibility = 0.0;         // fraction of samples not hidden
+};
+
+// The samples' positions of pixel `pixel` on `light` (world): the set's points on an area light, the centre for
+// a point light.
+std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel);
+
+// One pixel whose visible point is `pWs` with normal `nWs`. `recorder` (optional): the counted point, the centre's
+// crossings, each wedge containing the point with its multiplicity and the samples it changes, every sample.
+DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeSet& wedges,
+  const LightSampleSet& samples, glm::ivec2 pixel, const glm::dvec3& pWs, const glm::dvec3& nWs,
+  double receiverOffset, ProbeRecorder* recorder = nullptr);
+
+} // namespace sl

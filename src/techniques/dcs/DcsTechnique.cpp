@@ -1,0 +1,132 @@
+#include "techniques/dcs/DcsTechnique.h"
+
+#include "lightspace/LightView.h"
+#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "scene/WeldedMesh.h"
+#include "techniques/ProbeSupport.h"
+#include "techniques/dcs/DcsGeometry.h"
+#include "techniques/dcs/DcsReference.h"
+#include "techniques/dcs/vtkSLDcsPass.h"
+
+#include <string>
+
+namespace sl
+{
+namespace
+{
+
+const Category<DcsCounterStatus> dcsCounterCategories[] = {
+  { DcsCounterStatus::Exact, "EXACT", "counters exact" },
+  { DcsCounterStatus::RangeExceeded, "RANGE_EXCEEDED", "8-bit counter range exceeded: not exact", true },
+};
+
+} // namespace
+
+TechniqueDescriptor dcsTechnique()
+{
+  TechniqueDescriptor descriptor;
+  descriptor.name = "dcs";
+  descriptor.title = "Depth complexity sampling (per-sample occluder counts from silhouette wedges)";
+  descriptor.paper = "Forest, Barthe & Paulin 2008 (DCS); Forest et al. 2009 §3.2, §4.1 (paper 003)";
+  descriptor.parameters = {
+    { "receiver_offset", 1e-5, 0.0, 1e-2, "of the eye distance",
+      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before its samples are counted, as shadow-volume does" },
+  };
+  // The light-sample set's own parameters (light_samples, samples, sample_seed), declared as the structure does.
+  const LightSpaceStructure& samples = lightSampleSetStructure();
+  descriptor.parameters.insert(descriptor.parameters.end(), samples.parameters.begin(), samples.parameters.end());
+  ParameterSpec exportCounts{ "export_sample_counts", 0.0, 0.0, 1.0, "",
+    "1: also publish sample_depth_complexity, every sample's count (N floats per pixel; for tests and probes)" };
+  exportCounts.integer = true;
+  descriptor.parameters.push_back(exportCounts);
+  descriptor.lightStructures = { &samples };
+  descriptor.drawsSceneGeometry = true;
+  descriptor.buffers = {
+    { "visibility_stderr", "", "sqrt(v (1 - v) / (N - 1)), the Bernoulli bound of N light samples, as the reference's" },
+    { "depth_complexity_center", "surfaces",
+      "caster triangles crossed by the segment from the point to the light's centre (the reference sample, from the shadow volumes)" },
+    { "occluded_samples", "light samples", "samples whose count is > 0 (of N)" },
+    { "dc_min", "surfaces", "the smallest sample count; < 0 flags a topology error (FBP08)" },
+    { "dc_max", "surfaces", "the largest sample count" },
+    { "wedges_covering", "wedges", "wedges whose region holds the point (the per-pixel cost of the wedge pass)" },
+    categoricalBuffer("counter_status",
+      "the range check of the packed 8-bit counters (vtkSLDcsPass.h): range exceeded marks a pixel whose counts are not exact",
+      dcsCounterCategories),
+  };
+  BufferSpec mask{ "light_sample_mask", "bits",
+    "which samples are hidden (blocked or below the tangent plane): bit i % 16 of component i / 16, N/16 components (003 L614-628's LS_buffer)" };
+  mask.fromPass = true;
+  BufferSpec counts{ "sample_depth_complexity", "surfaces",
+    "every sample's count, N components; only with export_sample_counts = 1" };
+  counts.fromPass = true;
+  descriptor.buffers.push_back(mask);
+  descriptor.buffers.push_back(counts);
+  descriptor.supportedLights = { LightType::Area, LightType::Point };
+  descriptor.shaderConstants = {
+    { "DCS_COUNTER_BIAS", kDcsCounterBias, "the 8-bit counters' bias (DcsTechnique.h)" },
+    { "DCS_MAX_OUTLINE_CORNERS", kDcsMaxOutlineCorners, "corners of a light's outline (DcsGeometry.h lightOutline)" },
+  };
+  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLDcsPass>::New()); };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    return probeDcs(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
+  return descriptor;
+}
+
+ProbeOutcome probeDcs(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder)
+{
+  const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
+  ProbeOutcome outcome;
+  outcome.twin = "dcsPixelTwin (dcs/DcsReference.h): the centre's crossings in double plus every wedge's per-sample "
+                 "change (DcsGeometry.h), on the frame's light samples";
+  outcome.tolerance = 0.0;
+  if (bufferValue(frame, "coverage", pixel) <= 0.5)
+  {
+    return outcome;
+  }
+  const auto vec3At = [&](const char* buffer) {
+    const ImageF& image = frame.find(buffer)->image;
+    return glm::dvec3(image.at(pixel.x, pixel.y, 0), image.at(pixel.x, pixel.y, 1), image.at(pixel.x, pixel.y, 2));
+  };
+  const glm::dvec3 pWs = vec3At("position");
+  const glm::dvec3 nWs = vec3At("normal");
+  const LightSampleSet samples(lightSampleSetSettings(frame.parameters));
+  const DcsEdgeSet wedges = potentialSilhouetteWedges(weldCasters(scene), light);
+  recorder.beginGroup("receiver");
+  recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
+  recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
+  recorder.quantity("light_samples", samples.count(), "samples",
+    "003 L526-533: " + lightSamplePatternName(samples.settings()) + ", toroidally shifted per pixel");
+  const DcsPixelTwin twin = dcsPixelTwin(scene, light, wedges, samples, pixel, pWs, nWs,
+    frame.parameters.get("receiver_offset"), &recorder);
+  recorder.beginGroup("counts");
+  recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
+  recorder.quantity("depth_complexity_center", twin.centreCount, "surfaces",
+    "FBP08: the reference sample's count, from the centre's shadow volumes");
+  recorder.quantity("wedges_covering", twin.wedgesCovering, "wedges", "DcsGeometry.h wedgeContains");
+  recorder.quantity("occluded_samples", twin.occludedSamples, "light samples", "FBP08: samples with count > 0");
+  recorder.quantity("dc_min", twin.dcMin, "surfaces", "FBP08: < 0 flags a topology error");
+  recorder.quantity("dc_max", twin.dcMax, "surfaces", "FBP08");
+  // A sample whose segment passes within float rounding of an edge may be counted either way on the GPU.
+  outcome.ambiguity = "";
+  recorder.beginGroup("result");
+  if (litWithoutShadowTest(frame, pixel, recorder, outcome))
+  {
+    return outcome;
+  }
+  if (!lightCanReach(light, pWs, nWs))
+  {
+    recorder.category("light_reach", "faces away / outside the light's reach: unlit, no shadow test",
+      "ShadowLab (lightCanReach, LightView.h)");
+    return outcome;
+  }
+  outcome.evaluated = true;
+  outcome.visibility = twin.visibility;
+  // One sample decided within float rounding changes the visibility by 1/N: the tests' per-pixel bound.
+  outcome.tolerance = 1.0 / samples.count();
+  recorder.quantity("visibility", twin.visibility, "", "003 §3.2: the fraction of samples with count 0 (above the tangent plane)");
+  return outcome;
+}
+
+} // namespace sl

@@ -1,0 +1,367 @@
+#include "techniques/dcs/vtkSLDcsPass.h"
+
+#include "core/Error.h"
+#include "gl/ComputeProgram.h"
+#include "gl/GlResources.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
+#include "techniques/dcs/DcsTechnique.h"
+#include "techniques/dcs/DcsWedgeExport.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLBufferObject.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLState.h>
+#include <vtkOpenGLVertexArrayObject.h>
+#include <vtkPolyData.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <chrono>
+#include <cstring>
+
+vtkStandardNewMacro(vtkSLDcsPass);
+
+vtkSLDcsPass::vtkSLDcsPass() = default;
+vtkSLDcsPass::~vtkSLDcsPass() = default;
+
+void vtkSLDcsPass::ArrayTexture::allocate(int w, int h, int l)
+{
+  if (handle != 0 && width == w && height == h && layers == l)
+  {
+    return;
+  }
+  release();
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &handle);
+  glTextureStorage3D(handle, 1, GL_R32UI, w, h, l);
+  width = w;
+  height = h;
+  layers = l;
+}
+
+void vtkSLDcsPass::ArrayTexture::release()
+{
+  if (handle != 0)
+  {
+    glDeleteTextures(1, &handle);
+    handle = 0;
+  }
+}
+
+std::vector<std::uint32_t> vtkSLDcsPass::ArrayTexture::read() const
+{
+  std::vector<std::uint32_t> words(static_cast<std::size_t>(width) * height * layers);
+  glGetTextureImage(handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(words.size() * sizeof(std::uint32_t)),
+    words.data());
+  return words;
+}
+
+int vtkSLDcsPass::SampleCount() const
+{
+  return std::stoi(this->Frame->parameters.choice("samples"));
+}
+
+void vtkSLDcsPass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  const sl::FrameResources& frame = *this->Frame;
+  if (this->Timestamps[0] == 0)
+  {
+    glGenQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
+    glGenQueries(1, &this->FragmentQuery);
+  }
+  glQueryCounter(this->Timestamps[0], GL_TIMESTAMP);
+
+  // Step 1: the centre's count (the shadow-volume pass).
+  this->BuildAndCountVolumes(window);
+  glQueryCounter(this->Timestamps[1], GL_TIMESTAMP);
+
+  // Step 2: the wedges, built on the CPU, drawn into the sample counters.
+  const int samples = this->SampleCount();
+  this->Counters.allocate(frame.width(), frame.height(), samples / 4 + 3);
+  this->Mask.allocate(frame.width(), frame.height(), (samples + 31) / 32);
+  const GLuint bias = 0x01010101u * static_cast<GLuint>(sl::kDcsCounterBias);
+  const GLuint zero = 0u;
+  glClearTexSubImage(this->Counters.handle, 0, 0, 0, 0, frame.width(), frame.height(), samples / 4, GL_RED_INTEGER,
+    GL_UNSIGNED_INT, &bias);
+  glClearTexSubImage(this->Counters.handle, 0, 0, 0, samples / 4, frame.width(), frame.height(), 3, GL_RED_INTEGER,
+    GL_UNSIGNED_INT, &zero);
+  this->DrawWedges(window);
+  sl::checkGlErrors("dcs (wedges)");
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glQueryCounter(this->Timestamps[2], GL_TIMESTAMP);
+
+  // Step 3: the resolve, the base class's full-screen shader.
+  this->vtkSLTechniquePass::Execute(state);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
+  this->TimestampsValid = true;
+  sl::checkGlErrors("dcs (resolve)");
+}
+
+void vtkSLDcsPass::SetDcsLightUniforms(vtkShaderProgram* program) const
+{
+  const sl::Light& light = *this->Frame->light;
+  sl::setVector(program, "dcsLightCenter", light.center);
+  sl::setVector(program, "dcsLightRight", light.right());
+  sl::setVector(program, "dcsLightUp", light.up);
+  sl::setVector(program, "dcsLightNormal", light.normal);
+  const std::vector<glm::dvec3> outline = sl::lightOutline(light);
+  std::vector<float> corners;
+  for (const glm::dvec3& corner : outline)
+  {
+    corners.insert(corners.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), static_cast<float>(corner.z) });
+  }
+  program->SetUniform3fv("dcsOutline", static_cast<int>(outline.size()), reinterpret_cast<const float(*)[3]>(corners.data()));
+  program->SetUniformi("dcsOutlineCorners", static_cast<int>(outline.size()));
+}
+
+void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const auto buildStart = std::chrono::steady_clock::now();
+  this->Wedges = sl::potentialSilhouetteWedges(*frame.weldedCasters, *frame.light);
+  const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
+  const std::vector<glm::dvec3> outline = sl::lightOutline(*frame.light);
+  const sl::Bounds bounds = frame.scene->bounds();
+  // Per vertex: NDC x, y and the wedge's index; a fan per polygon.
+  std::vector<float> vertices;
+  std::vector<std::uint32_t> wedgeWords;
+  this->DrawnWedges = 0;
+  for (const sl::DcsWedgeEdge& wedge : this->Wedges.wedges)
+  {
+    const std::vector<glm::dvec2> polygon =
+      sl::wedgeScreenPolygon(wedge, *frame.light, outline, frame.camera, perspective, bounds);
+    if (polygon.empty())
+    {
+      continue;
+    }
+    const float index = static_cast<float>(this->DrawnWedges++);
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+    {
+      for (const glm::dvec2& corner : { polygon[0], polygon[k], polygon[k + 1] })
+      {
+        vertices.insert(vertices.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), index });
+      }
+    }
+    const auto pushVec4 = [&](const glm::dvec3& xyz, float w) {
+      for (const float value : { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), w })
+      {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &value, sizeof bits);
+        wedgeWords.push_back(bits);
+      }
+    };
+    pushVec4(wedge.v0, static_cast<float>(wedge.oppositeCount));
+    pushVec4(wedge.v1, 0.0f);
+    pushVec4(wedge.opposite[0], 0.0f);
+    pushVec4(wedge.oppositeCount > 1 ? wedge.opposite[1] : wedge.opposite[0], 0.0f);
+  }
+  this->WedgeExport = sl::wedgePolyData(this->Wedges, *frame.light, bounds);
+  this->WedgeBuildMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
+
+  // Fragments counted with an occlusion query (the shader never discards, so every rasterised fragment passes).
+  glBeginQuery(GL_SAMPLES_PASSED, this->FragmentQuery);
+  if (vertices.empty())
+  {
+    glEndQuery(GL_SAMPLES_PASSED);
+    return;
+  }
+  if (!this->WedgeData || this->WedgeDataWords != wedgeWords.size())
+  {
+    this->WedgeData = std::make_unique<sl::StorageBuffer>(wedgeWords.size());
+    this->WedgeDataWords = wedgeWords.size();
+  }
+  this->WedgeData->upload(wedgeWords);
+  if (!this->WedgeVertices)
+  {
+    this->WedgeVertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+    this->WedgeVertices->SetType(vtkOpenGLBufferObject::ArrayBuffer);
+  }
+  if (!this->WedgeVertices->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer))
+  {
+    throw sl::GraphicsError("dcs: cannot upload " + std::to_string(vertices.size() / 3) + " wedge vertices: " +
+      this->WedgeVertices->GetError());
+  }
+  const sl::ShaderDefines defines = this->TechniqueDefines();
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
+    sl::assembleShader("dcs/DcsWedgeUpdate.glsl", defines, this->ParameterDeclarations()), "dcs wedges");
+  std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+  this->SetReceiverOffsetUniforms(program);
+  this->SetDcsLightUniforms(program);
+  this->WedgeData->bind(0);
+  glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+
+  if (this->WedgeArray)
+  {
+    this->WedgeArray->ReleaseGraphicsResources();
+  }
+  this->WedgeArray = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
+  this->WedgeArray->Bind();
+  const int stride = 3 * sizeof(float);
+  this->WedgeArray->AddAttributeArray(program, this->WedgeVertices, "wedgeNdcIn", 0, stride, VTK_FLOAT, 2, false);
+  this->WedgeArray->AddAttributeArray(
+    program, this->WedgeVertices, "wedgeIndexIn", 2 * sizeof(float), stride, VTK_FLOAT, 1, false);
+
+  // The counters are written through the image; the colour target only gives the draw a framebuffer.
+  const sl::ScopedRenderTarget target(window, this->WedgeFramebuffer, { this->VolumeCount });
+  vtkOpenGLState* glState = window->GetState();
+  const vtkOpenGLState::ScopedglColorMask colorMask(glState);
+  glState->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  const vtkOpenGLState::ScopedglEnableDisable depthTest(glState, GL_DEPTH_TEST);
+  glState->vtkglDisable(GL_DEPTH_TEST);
+  const vtkOpenGLState::ScopedglEnableDisable cull(glState, GL_CULL_FACE);
+  glState->vtkglDisable(GL_CULL_FACE);
+  const vtkOpenGLState::ScopedglEnableDisable blend(glState, GL_BLEND);
+  glState->vtkglDisable(GL_BLEND);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size() / 3));
+  glEndQuery(GL_SAMPLES_PASSED);
+
+  this->WedgeArray->Release();
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+}
+
+std::vector<vtkTextureObject*> vtkSLDcsPass::SetTechniqueUniforms(vtkShaderProgram* program)
+{
+  glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+  glBindImageTexture(1, this->Mask.handle, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+  return { sl::bindTexture(program, "volumeCount", this->VolumeCount) };
+}
+
+void vtkSLDcsPass::AfterDraw()
+{
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+  glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+}
+
+std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
+{
+  std::map<std::string, double> statistics = this->Superclass::CollectStatistics();
+  const sl::DcsEdgeStatistics& s = this->Wedges.statistics;
+  statistics["silhouette_edges_centre"] = static_cast<double>(s.centreSilhouetteEdges);
+  statistics["potential_silhouette_edges"] = static_cast<double>(s.potentialSilhouetteEdges);
+  statistics["edges_at_light_plane"] = static_cast<double>(s.edgesAtLightPlane);
+  statistics["wedges"] = static_cast<double>(s.wedges);
+  statistics["wedges_drawn"] = static_cast<double>(this->DrawnWedges);
+  statistics["wedge_build_ms"] = this->WedgeBuildMilliseconds;
+  GLuint fragments = 0;
+  glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
+  statistics["wedge_fragments"] = static_cast<double>(fragments);
+  const std::size_t pixels = static_cast<std::size_t>(this->Counters.width) * this->Counters.height;
+  statistics["sample_buffer_bytes"] = static_cast<double>(4 * pixels * (this->Counters.layers + this->Mask.layers));
+  // 003 L614-628: N x W x H x 1 bit of LS_buffer plus the N x 16-bit sample pattern.
+  const int samples = this->SampleCount();
+  statistics["paper_sample_buffer_bytes"] = static_cast<double>(samples) * pixels / 8.0 + 2.0 * samples;
+  statistics["light_samples"] = samples;
+  if (this->TimestampsValid)
+  {
+    std::array<GLuint64, 4> times{};
+    for (std::size_t k = 0; k < times.size(); ++k)
+    {
+      glGetQueryObjectui64v(this->Timestamps[k], GL_QUERY_RESULT, &times[k]);
+    }
+    statistics["volumes_gpu_ms"] = 1e-6 * static_cast<double>(times[1] - times[0]);
+    statistics["wedges_gpu_ms"] = 1e-6 * static_cast<double>(times[2] - times[1]);
+    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
+  }
+  return statistics;
+}
+
+std::vector<sl::NamedPolyData> vtkSLDcsPass::CollectObjectSpaceExports()
+{
+  std::vector<sl::NamedPolyData> exports = this->Superclass::CollectObjectSpaceExports();
+  if (this->WedgeExport)
+  {
+    exports.push_back({ "wedges",
+      "each wedge's two supporting faces (the planes through its edge touching the light) as quads; cell data wedge_id, "
+      "caster_id, triangles (of the edge in this record), incident_triangles, centre_silhouette",
+      this->WedgeExport });
+  }
+  return exports;
+}
+
+std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const int samples = this->SampleCount();
+  const int width = frame.width();
+  const int height = frame.height();
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  std::vector<sl::NamedImage> buffers;
+
+  // light_sample_mask: N/16 components of 16 bits each (exact in a float).
+  const std::vector<std::uint32_t> maskWords = this->Mask.read();
+  const int chunks = samples / 16;
+  sl::ImageF mask(width, height, chunks);
+  for (std::size_t pixel = 0; pixel < pixels; ++pixel)
+  {
+    for (int chunk = 0; chunk < chunks; ++chunk)
+    {
+      const std::uint32_t word = maskWords[static_cast<std::size_t>(chunk / 2) * pixels + pixel];
+      mask.data[pixel * chunks + chunk] = static_cast<float>((word >> (16 * (chunk % 2))) & 0xFFFFu);
+    }
+  }
+  buffers.push_back({ "light_sample_mask", std::move(mask), "", "" });
+
+  if (frame.parameters.getInt("export_sample_counts") != 0)
+  {
+    const std::vector<std::uint32_t> counterWords = this->Counters.read();
+    const sl::ImageF centre = sl::readFloatTexture(this->VolumeCount, 1);
+    sl::ImageF counts(width, height, samples);
+    for (std::size_t pixel = 0; pixel < pixels; ++pixel)
+    {
+      for (int index = 0; index < samples; ++index)
+      {
+        const std::uint32_t word = counterWords[static_cast<std::size_t>(index / 4) * pixels + pixel];
+        const int change = static_cast<int>((word >> (8 * (index % 4))) & 0xFFu) - sl::kDcsCounterBias;
+        counts.data[pixel * samples + index] = centre.data[pixel] + static_cast<float>(change);
+      }
+    }
+    buffers.push_back({ "sample_depth_complexity", std::move(counts), "", "" });
+  }
+  return buffers;
+}
+
+void vtkSLDcsPass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->WedgeArray)
+  {
+    this->WedgeArray->ReleaseGraphicsResources();
+    this->WedgeArray = nullptr;
+  }
+  if (this->WedgeVertices)
+  {
+    this->WedgeVertices->ReleaseGraphicsResources();
+    this->WedgeVertices = nullptr;
+  }
+  this->WedgeData.reset();
+  this->Counters.release();
+  this->Mask.release();
+  if (this->Timestamps[0] != 0)
+  {
+    glDeleteQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
+    glDeleteQueries(1, &this->FragmentQuery);
+    this->Timestamps = {};
+    this->FragmentQuery = 0;
+    this->TimestampsValid = false;
+  }
+  this->WedgeFramebuffer->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkSLDcsPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Wedges: " << this->Wedges.wedges.size() << " (" << this->DrawnWedges << " drawn)\n";
+}

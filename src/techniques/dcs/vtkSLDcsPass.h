@@ -1,0 +1,98 @@
+// The `dcs` technique's pass (DcsTechnique.h): depth complexity sampling (Forest, Barthe & Paulin 2008, as used by
+// Forest et al. 2009 §3.2) on the object-space seam of `shadow-volume`.
+//  1. volumes: the reference sample's (the light centre's) count, the shadow-volume pass's z-fail count;
+//  2. wedges: one screen polygon per potential-silhouette record (DcsGeometry.h), built on the CPU in double; each
+//     fragment applies the per-sample update rule to its pixel's light-sample counters with image atomics
+//     (shaders/dcs/DcsWedgeUpdate.glsl);
+//  3. resolve: the base class's full-screen shader (shaders/dcs/DcsResolve.glsl) decodes the counters, checks their
+//     range, and writes visibility and the instrumentation buffers, and the hidden-sample bit mask.
+//
+// Counters. An R32UI 2-D array of N/4 + 3 layers: four 8-bit counters per word biased by 128 (no 8-bit stencil
+// wrap: a counter holds the change relative to the centre, from -128 to +127), then two checksums and the covering
+// count (shaders/dcs/DcsSampleCounters.glsl). Range check: packed words are summed modulo 2^32 in any order, so a
+// word is exact whenever each of its final counters is in range; a counter out of range carries into its neighbour,
+// which changes the decoded sum of changes by a multiple of 255 and the index-weighted sum differently. The resolve
+// compares both with the sums the wedges added unpacked; a pixel that fails is marked counter_status = range
+// exceeded (a cut-short mark: counted in stats.json, never passed off as exact). Memory: W H (N/4 + 3) 4 bytes of
+// counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside the paper's 003 L614-628 formula.
+#pragma once
+
+#include "techniques/dcs/DcsGeometry.h"
+#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLBufferObject;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLVertexArrayObject;
+class vtkPolyData;
+
+namespace sl
+{
+class StorageBuffer;
+}
+
+class vtkSLDcsPass : public vtkSLShadowVolumePass
+{
+public:
+  static vtkSLDcsPass* New();
+  vtkTypeMacro(vtkSLDcsPass, vtkSLShadowVolumePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  std::map<std::string, double> CollectStatistics() override;
+  // silhouettes.vtp (the centre's, from shadow-volume) and wedges.vtp (DcsWedgeExport.h).
+  std::vector<sl::NamedPolyData> CollectObjectSpaceExports() override;
+  // light_sample_mask, and sample_depth_complexity with export_sample_counts = 1.
+  std::vector<sl::NamedImage> CollectPassBuffers() override;
+
+protected:
+  vtkSLDcsPass();
+  ~vtkSLDcsPass() override;
+  void Execute(const vtkRenderState* state) override;
+  std::string GetFragmentShaderPath() const override { return "dcs/DcsResolve.glsl"; }
+  std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
+  void AfterDraw() override;
+
+private:
+  vtkSLDcsPass(const vtkSLDcsPass&) = delete;
+  void operator=(const vtkSLDcsPass&) = delete;
+
+  // A raw R32UI 2-D array texture (VTK 9.1's vtkTextureObject has no integer array textures with image binding).
+  struct ArrayTexture
+  {
+    unsigned int handle = 0;
+    int width = 0;
+    int height = 0;
+    int layers = 0;
+    void allocate(int w, int h, int l);
+    void release();
+    std::vector<std::uint32_t> read() const; // layer after layer, rows bottom up
+  };
+
+  void DrawWedges(vtkOpenGLRenderWindow* window);
+  void SetDcsLightUniforms(vtkShaderProgram* program) const;
+  int SampleCount() const;
+
+  sl::DcsEdgeSet Wedges;
+  std::size_t DrawnWedges = 0;
+  double WedgeBuildMilliseconds = 0.0;
+  ArrayTexture Counters;
+  ArrayTexture Mask;
+  std::unique_ptr<sl::StorageBuffer> WedgeData; // 16 words per drawn wedge
+  std::size_t WedgeDataWords = 0;
+  vtkSmartPointer<vtkOpenGLBufferObject> WedgeVertices;
+  vtkSmartPointer<vtkOpenGLVertexArrayObject> WedgeArray;
+  vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
+  unsigned int FragmentQuery = 0;
+  std::array<unsigned int, 4> Timestamps{}; // before volumes, after volumes, after wedges, after resolve
+  bool TimestampsValid = false;
+  vtkSmartPointer<vtkPolyData> WedgeExport;
+};
