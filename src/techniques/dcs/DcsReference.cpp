@@ -64,7 +64,7 @@ DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeS
       };
       recorder->lightPolygon({ "wedge of caster " + std::to_string(wedge.objectIndex) + ": M_e = " +
           std::to_string(multiplicity) + ", " + std::to_string(changed) + " samples changed",
-        { onLight(wedge.v0), onLight(wedge.v1) }, static_cast<double>(multiplicity) });
+        { onLight(wedge.v0), onLight(wedge.v1) }, 0.0 }); // a segment, no area: M_e is in its role
     }
   }
   twin.dcMin = *std::min_element(twin.sampleCounts.begin(), twin.sampleCounts.end());
