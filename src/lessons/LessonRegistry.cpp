@@ -15,6 +15,7 @@ Lesson vsmLightBleedingLesson();
 Lesson vssmNonPlanarityLesson();
 Lesson backProjectionLesson();
 Lesson packetsHierarchyLesson();
+Lesson depthComplexityLesson();
 
 const std::vector<Lesson>& lessonRegistry()
 {
@@ -27,6 +28,7 @@ const std::vector<Lesson>& lessonRegistry()
     vssmNonPlanarityLesson(),
     backProjectionLesson(),
     packetsHierarchyLesson(),
+    depthComplexityLesson(),
   };
   return registry;
 }

@@ -11,4 +11,5 @@ set(SL_LESSONS_SOURCES
   src/lessons/VsmLightBleedingLesson.cpp
   src/lessons/VssmNonPlanarityLesson.cpp
   src/lessons/BackProjectionLesson.cpp
-  src/lessons/PacketsHierarchyLesson.cpp)
+  src/lessons/PacketsHierarchyLesson.cpp
+  src/lessons/DepthComplexityLesson.cpp)
