@@ -338,25 +338,42 @@ std::vector<glm::dvec2> wedgeScreenPolygon(const DcsWedgeEdge& wedge, const Ligh
   {
     corners.push_back(light.center + 1.01 * (corner - light.center));
   }
-  double farthest = 0.0;
+  // Every receiver of the scene's box lies at most `deepest` below the light plane; a point p = y + t (q - y) of R_e
+  // has height t h(q), so t <= deepest / h(q) <= scale, and the hull of the images at that scale, cut at `deepest`,
+  // holds every such p (a convex hull cut by a plane is the hull of its points on the inner side and of the crossings
+  // of the segments between them).
+  double deepest = 0.0;
+  for (int k = 0; k < 8; ++k)
+  {
+    const glm::dvec3 boxCorner((k & 1) ? sceneBounds.max.x : sceneBounds.min.x,
+      (k & 2) ? sceneBounds.max.y : sceneBounds.min.y, (k & 4) ? sceneBounds.max.z : sceneBounds.min.z);
+    deepest = std::max(deepest, glm::dot(light.normal, boxCorner - light.center));
+  }
+  deepest += 1e-6 * radius;
+  const double scale = std::max(1.0, deepest / std::min(ha, hb));
+  std::vector<glm::dvec3> hullPoints = { a, b };
   for (const glm::dvec3& corner : corners)
   {
-    for (int k = 0; k < 8; ++k)
-    {
-      const glm::dvec3 boxCorner((k & 1) ? sceneBounds.max.x : sceneBounds.min.x,
-        (k & 2) ? sceneBounds.max.y : sceneBounds.min.y, (k & 4) ? sceneBounds.max.z : sceneBounds.min.z);
-      farthest = std::max(farthest, glm::length(boxCorner - corner));
-    }
+    hullPoints.push_back(corner + scale * (a - corner));
+    hullPoints.push_back(corner + scale * (b - corner));
   }
-  const double scale = 1.0 + farthest / std::min(ha, hb);
   std::vector<glm::dvec4> clip;
   const auto add = [&](const glm::dvec3& point) { clip.push_back(camera.clipFromWorld * glm::dvec4(point, 1.0)); };
-  add(a);
-  add(b);
-  for (const glm::dvec3& corner : corners)
+  for (std::size_t i = 0; i < hullPoints.size(); ++i)
   {
-    add(corner + scale * (a - corner));
-    add(corner + scale * (b - corner));
+    const double hi = glm::dot(light.normal, hullPoints[i] - light.center) - deepest;
+    if (hi <= 0.0)
+    {
+      add(hullPoints[i]);
+    }
+    for (std::size_t j = i + 1; j < hullPoints.size(); ++j)
+    {
+      const double hj = glm::dot(light.normal, hullPoints[j] - light.center) - deepest;
+      if (hi * hj < 0.0)
+      {
+        add(hullPoints[i] + (hi / (hi - hj)) * (hullPoints[j] - hullPoints[i]));
+      }
+    }
   }
   // Perspective: the hull's part in front of half the near plane's depth (every receiver lies beyond the near
   // plane), from the points there and the hull's edges' crossings of that plane.

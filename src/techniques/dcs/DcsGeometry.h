@@ -35,9 +35,9 @@
 //
 // Where a wedge is drawn. A point p can only be changed by e when some segment from p to the light crosses e: p
 // lies in R_e = {y + t (q - y) : y on the light, q on e, t >= 1}. R_e (up to where it leaves the scene's bounds)
-// lies in the convex hull of e and of e's images from each outline corner L_i at the scale T = 1 + D / h_min (D:
-// the largest distance between an outline corner and a corner of the scene's box, h_min: the edge's smallest
-// height below the light plane), since t <= |p - y| / |q - y| <= D / h(q). The wedge is rasterised as that hull's
+// lies in the convex hull of e and of e's images from each outline corner L_i at the scale T = h_far / h_min, cut at
+// the height h_far (h: height below the light plane; h_far: the deepest corner of the scene's box, h_min: the edge's
+// shallowest end), since p = y + t (q - y) has height t h(q) <= h_far. The wedge is rasterised as that cut hull's
 // screen projection (a convex polygon, cut at the camera's near plane, widened by 1.5 pixels, clipped to the
 // viewport), so every pixel of R_e is covered exactly once; each fragment runs the exact per-sample rule above, so
 // the hull only has to be conservative. A disk light's outline is the regular octagon around it.
