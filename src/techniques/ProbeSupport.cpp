@@ -67,6 +67,13 @@ double bufferValue(const FrameResult& frame, const std::string& buffer, glm::ive
   return named->image.at(pixel.x, pixel.y);
 }
 
+glm::dvec3 bufferVector(const FrameResult& frame, const std::string& buffer, glm::ivec2 pixel)
+{
+  const NamedImage* named = frame.find(buffer);
+  SL_CHECK_MSG(named != nullptr && named->image.components >= 3, "frame of ", frame.technique, " has no 3-component buffer ", buffer);
+  return glm::dvec3(named->image.at(pixel.x, pixel.y, 0), named->image.at(pixel.x, pixel.y, 1), named->image.at(pixel.x, pixel.y, 2));
+}
+
 bool litWithoutShadowTest(const FrameResult& frame, glm::ivec2 pixel, ProbeRecorder& recorder, ProbeOutcome& outcome)
 {
   if (bufferValue(frame, "receives_shadows", pixel) <= 0.5)

@@ -33,6 +33,8 @@ ProbeOutcome probeOutcome(const ReferenceSample& sample, double tolerance, std::
 
 // The frame's value of a buffer at a pixel (component 0), throws when the frame has no buffer of that name.
 double bufferValue(const FrameResult& frame, const std::string& buffer, glm::ivec2 pixel);
+// Components 0..2 of a buffer at a pixel (the G-buffer's position and normal), same check.
+glm::dvec3 bufferVector(const FrameResult& frame, const std::string& buffer, glm::ivec2 pixel);
 
 // For recorders that read the G-buffer themselves: a pixel whose receives_shadows buffer says no is lit without a
 // shadow test. Then sets outcome.visibility = 1, records the category in the current group and returns true;

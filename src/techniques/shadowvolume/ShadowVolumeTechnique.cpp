@@ -63,10 +63,6 @@ ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int
   ProbeRecorder& recorder)
 {
   const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
-  const auto vec3At = [&](const char* buffer) {
-    const ImageF& image = frame.find(buffer)->image;
-    return glm::dvec3(image.at(pixel.x, pixel.y, 0), image.at(pixel.x, pixel.y, 1), image.at(pixel.x, pixel.y, 2));
-  };
   ProbeOutcome outcome;
   outcome.twin = "casterCrossings (shadowvolume/ShadowVolumeReference.h): caster triangles crossed by the segment "
                  "from the offset point to the light's centre, Moller-Trumbore in double";
@@ -78,8 +74,8 @@ ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int
   {
     return outcome;
   }
-  const glm::dvec3 pWs = vec3At("position");
-  const glm::dvec3 nWs = vec3At("normal");
+  const glm::dvec3 pWs = bufferVector(frame, "position", pixel);
+  const glm::dvec3 nWs = bufferVector(frame, "normal", pixel);
   const double receiverOffset = frame.parameters.get("receiver_offset");
   const glm::dvec3 point = shadowVolumeReceiverPoint(scene, receiverOffset, pWs);
   recorder.beginGroup("receiver");

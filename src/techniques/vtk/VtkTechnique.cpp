@@ -48,12 +48,8 @@ ProbeOutcome probeVtk(const FrameResult& frame, const Scene& scene, int lightInd
   {
     return outcome;
   }
-  const auto vec3At = [&](const char* buffer) {
-    const ImageF& image = frame.find(buffer)->image;
-    return glm::dvec3(image.at(pixel.x, pixel.y, 0), image.at(pixel.x, pixel.y, 1), image.at(pixel.x, pixel.y, 2));
-  };
-  const glm::dvec3 pWs = vec3At("position");
-  const glm::dvec3 nWs = vec3At("normal");
+  const glm::dvec3 pWs = bufferVector(frame, "position", pixel);
+  const glm::dvec3 nWs = bufferVector(frame, "normal", pixel);
   recorder.beginGroup("receiver");
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
   recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
