@@ -40,6 +40,9 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCellData.h>
+#include <vtkPolyData.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -646,6 +649,28 @@ TEST_P(DcsDatasets, SampleCountsAndVisibilityEqualEmbree)
   std::printf("[ measured ] dcs %s: %g wedges drawn of %g, %g wedge fragments\n", dataset.c_str(),
     frame.techniqueStatistics.at("wedges_drawn"), frame.techniqueStatistics.at("wedges"),
     frame.techniqueStatistics.at("wedge_fragments"));
+
+  // wedges.vtp: each wedge's two supporting faces (a wedge whose edge lies in the light's plane has none), with its
+  // cell data; silhouettes.vtp beside it.
+  const auto exported = [&](const std::string& name) -> vtkPolyData* {
+    for (const NamedPolyData& polyData : frame.objectSpace)
+    {
+      if (polyData.name == name)
+      {
+        return polyData.data;
+      }
+    }
+    return nullptr;
+  };
+  vtkPolyData* wedgesExport = exported("wedges");
+  ASSERT_NE(wedgesExport, nullptr) << dataset;
+  ASSERT_NE(exported("silhouettes"), nullptr) << dataset;
+  EXPECT_LE(wedgesExport->GetNumberOfCells(), 2 * static_cast<vtkIdType>(frame.techniqueStatistics.at("wedges")));
+  EXPECT_GE(wedgesExport->GetNumberOfCells(), static_cast<vtkIdType>(frame.techniqueStatistics.at("wedges")));
+  for (const char* array : { "wedge_id", "caster_id", "triangles", "incident_triangles", "centre_silhouette" })
+  {
+    EXPECT_NE(wedgesExport->GetCellData()->GetArray(array), nullptr) << dataset << ": wedges.vtp lacks " << array;
+  }
 
   // At dcs's default receiver_offset, against the reference as `shadowlab reference` runs it (its default ray
   // origin, 1e-4 of the scene's radius along the normal): the same bars on visibility.

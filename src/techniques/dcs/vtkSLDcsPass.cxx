@@ -163,7 +163,6 @@ void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
     pushVec4(wedge.opposite[0], 0.0f);
     pushVec4(wedge.oppositeCount > 1 ? wedge.opposite[1] : wedge.opposite[0], 0.0f);
   }
-  this->WedgeExport = sl::wedgePolyData(this->Wedges, *frame.light, bounds);
   this->WedgeBuildMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
 
@@ -281,13 +280,11 @@ std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
 std::vector<sl::NamedPolyData> vtkSLDcsPass::CollectObjectSpaceExports()
 {
   std::vector<sl::NamedPolyData> exports = this->Superclass::CollectObjectSpaceExports();
-  if (this->WedgeExport)
-  {
-    exports.push_back({ "wedges",
-      "each wedge's two supporting faces (the planes through its edge touching the light) as quads; cell data wedge_id, "
-      "caster_id, triangles (of the edge in this record), incident_triangles, centre_silhouette",
-      this->WedgeExport });
-  }
+  // Built here, once per frame whose results are collected, not inside the timed pass.
+  exports.push_back({ "wedges",
+    "each wedge's two supporting faces (the planes through its edge touching the light) as quads; cell data wedge_id, "
+    "caster_id, triangles (of the edge in this record), incident_triangles, centre_silhouette",
+    sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
   return exports;
 }
 

@@ -94,5 +94,4 @@ private:
   unsigned int FragmentQuery = 0;
   std::array<unsigned int, 4> Timestamps{}; // before volumes, after volumes, after wedges, after resolve
   bool TimestampsValid = false;
-  vtkSmartPointer<vtkPolyData> WedgeExport;
 };
