@@ -76,41 +76,6 @@ Scene sceneFromJson(const std::string& camera, const std::string& light, const s
 
 const char* const kGround = R"({ "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] })";
 
-// An object from a triangle list with split vertices and flat normals (the G-buffer needs normals).
-SceneObject flatObject(const std::string& name, const std::vector<glm::dvec3>& corners)
-{
-  SceneObject object;
-  object.name = name;
-  for (std::size_t first = 0; first + 2 < corners.size(); first += 3)
-  {
-    const glm::dvec3 normal =
-      glm::normalize(glm::cross(corners[first + 1] - corners[first], corners[first + 2] - corners[first]));
-    for (std::size_t corner = first; corner < first + 3; ++corner)
-    {
-      object.mesh.indices.push_back(static_cast<std::uint32_t>(object.mesh.positions.size()));
-      object.mesh.positions.emplace_back(corners[corner]);
-      object.mesh.normals.emplace_back(normal);
-    }
-  }
-  return object;
-}
-
-// The faces of the tetrahedron (a, b, c, d), wound outward.
-void appendTetrahedron(std::vector<glm::dvec3>& corners, const std::array<glm::dvec3, 4>& vertices)
-{
-  const glm::dvec3 centre = 0.25 * (vertices[0] + vertices[1] + vertices[2] + vertices[3]);
-  const int faces[4][3] = { { 0, 1, 2 }, { 0, 3, 1 }, { 0, 2, 3 }, { 1, 3, 2 } };
-  for (const auto& face : faces)
-  {
-    glm::dvec3 a = vertices[face[0]], b = vertices[face[1]], c = vertices[face[2]];
-    if (glm::dot(glm::cross(b - a, c - a), a - centre) < 0.0)
-    {
-      std::swap(b, c);
-    }
-    corners.insert(corners.end(), { a, b, c });
-  }
-}
-
 // Two tetrahedra sharing the horizontal edge from `base` to `base` + (0.5, 0, 0), one above it and one below: that
 // edge has four triangles (non-manifold), and a near-vertical segment passing beside the edge crosses both
 // tetrahedra, four faces.
@@ -118,9 +83,9 @@ SceneObject twoTetrahedra(const glm::dvec3& base)
 {
   const glm::dvec3 a = base, b = base + glm::dvec3(0.5, 0.0, 0.0);
   std::vector<glm::dvec3> corners;
-  appendTetrahedron(corners, { a, b, base + glm::dvec3(0.15, 0.3, 0.15), base + glm::dvec3(0.35, 0.25, -0.15) });
-  appendTetrahedron(corners, { a, b, base + glm::dvec3(0.2, -0.3, 0.15), base + glm::dvec3(0.3, -0.25, -0.15) });
-  return flatObject("two tetrahedra", corners);
+  test::appendTetrahedron(corners, { a, b, base + glm::dvec3(0.15, 0.3, 0.15), base + glm::dvec3(0.35, 0.25, -0.15) });
+  test::appendTetrahedron(corners, { a, b, base + glm::dvec3(0.2, -0.3, 0.15), base + glm::dvec3(0.3, -0.25, -0.15) });
+  return test::flatObject("two tetrahedra", corners);
 }
 
 // A box of square cross-section `width` whose long axis runs `length` from `base` along `axis`: its four long edges
@@ -151,7 +116,7 @@ SceneObject orientedBox(const std::string& name, const glm::dvec3& base, const g
       corners.insert(corners.end(), { a, b, c });
     }
   }
-  return flatObject(name, corners);
+  return test::flatObject(name, corners);
 }
 
 // ---- rendering and per-sample data ----------------------------------------------------------------------------
@@ -855,7 +820,7 @@ TEST(Dcs, EdgesPointingAtTheLightCentre)
   scene.objects.push_back(orientedBox("box toward the light", base, centre - base, 1.2, 0.12));
   const glm::dvec3 q0(0.55, 0.7, -0.45);
   const glm::dvec3 toLight = glm::normalize(centre - q0);
-  scene.objects.push_back(flatObject("thin triangle", { q0, q0 + 0.9 * toLight, q0 + 0.45 * toLight + glm::dvec3(0.2, 0.0, 0.1) }));
+  scene.objects.push_back(test::flatObject("thin triangle", { q0, q0 + 0.9 * toLight, q0 + 0.45 * toLight + glm::dvec3(0.2, 0.0, 0.1) }));
   const FrameResult frame = renderDcs(scene, kHardCaseSize);
   const DcsCheck check = checkFrame("edges toward the light", scene, frame);
   expectExact("edges toward the light", check);

@@ -39,25 +39,6 @@ constexpr int kSize = 160;
 
 // ---- scenes ---------------------------------------------------------------------------------------------
 
-// An object from a triangle list with split vertices and flat normals (the G-buffer needs normals).
-SceneObject flatObject(const std::string& name, const std::vector<glm::dvec3>& corners)
-{
-  SceneObject object;
-  object.name = name;
-  for (std::size_t first = 0; first + 2 < corners.size(); first += 3)
-  {
-    const glm::dvec3 normal =
-      glm::normalize(glm::cross(corners[first + 1] - corners[first], corners[first + 2] - corners[first]));
-    for (std::size_t corner = first; corner < first + 3; ++corner)
-    {
-      object.mesh.indices.push_back(static_cast<std::uint32_t>(object.mesh.positions.size()));
-      object.mesh.positions.emplace_back(corners[corner]);
-      object.mesh.normals.emplace_back(normal);
-    }
-  }
-  return object;
-}
-
 // Two tetrahedra sharing the edge from `base` to `base` + (0, 0.4, 0): that edge has four triangles.
 SceneObject twoTetrahedra(const glm::dvec3& base)
 {
@@ -67,20 +48,9 @@ SceneObject twoTetrahedra(const glm::dvec3& base)
   std::vector<glm::dvec3> corners;
   for (const auto& wing : wings)
   {
-    const glm::dvec3 vertices[4] = { bottom, top, wing[0], wing[1] };
-    const glm::dvec3 centre = 0.25 * (vertices[0] + vertices[1] + vertices[2] + vertices[3]);
-    const int faces[4][3] = { { 0, 1, 2 }, { 0, 3, 1 }, { 0, 2, 3 }, { 1, 3, 2 } };
-    for (const auto& face : faces)
-    {
-      glm::dvec3 a = vertices[face[0]], b = vertices[face[1]], c = vertices[face[2]];
-      if (glm::dot(glm::cross(b - a, c - a), a - centre) < 0.0)
-      {
-        std::swap(b, c);
-      }
-      corners.insert(corners.end(), { a, b, c });
-    }
+    test::appendTetrahedron(corners, { bottom, top, wing[0], wing[1] });
   }
-  return flatObject("two tetrahedra", corners);
+  return test::flatObject("two tetrahedra", corners);
 }
 
 Scene sceneFromJson(const std::string& camera, const std::string& light, const std::string& objects)

@@ -98,6 +98,39 @@ std::filesystem::path datasetPath(const std::string& name)
   return sourceDir() / "datasets" / name / "scene.json";
 }
 
+void appendTetrahedron(std::vector<glm::dvec3>& corners, const std::array<glm::dvec3, 4>& vertices)
+{
+  const glm::dvec3 centre = 0.25 * (vertices[0] + vertices[1] + vertices[2] + vertices[3]);
+  const int faces[4][3] = { { 0, 1, 2 }, { 0, 3, 1 }, { 0, 2, 3 }, { 1, 3, 2 } };
+  for (const auto& face : faces)
+  {
+    glm::dvec3 a = vertices[face[0]], b = vertices[face[1]], c = vertices[face[2]];
+    if (glm::dot(glm::cross(b - a, c - a), a - centre) < 0.0)
+    {
+      std::swap(b, c);
+    }
+    corners.insert(corners.end(), { a, b, c });
+  }
+}
+
+SceneObject flatObject(const std::string& name, const std::vector<glm::dvec3>& corners)
+{
+  SceneObject object;
+  object.name = name;
+  for (std::size_t first = 0; first + 2 < corners.size(); first += 3)
+  {
+    const glm::dvec3 normal =
+      glm::normalize(glm::cross(corners[first + 1] - corners[first], corners[first + 2] - corners[first]));
+    for (std::size_t corner = first; corner < first + 3; ++corner)
+    {
+      object.mesh.indices.push_back(static_cast<std::uint32_t>(object.mesh.positions.size()));
+      object.mesh.positions.emplace_back(corners[corner]);
+      object.mesh.normals.emplace_back(normal);
+    }
+  }
+  return object;
+}
+
 Scene loadDataset(const std::string& name)
 {
   return loadScene(datasetPath(name));

@@ -41,6 +41,11 @@ std::vector<std::string> randomRectangleStack(std::mt19937& generator, int count
 // clamped by the map's border.
 std::vector<std::string> borderClampedKernelOverrides();
 Scene loadDataset(const std::string& name);
+// An object from a triangle list (3 corners each) with split vertices and flat normals (the G-buffer needs normals),
+// for scenes built in code (object-space techniques: open, non-manifold, degenerate casters).
+SceneObject flatObject(const std::string& name, const std::vector<glm::dvec3>& corners);
+// Appends the four faces of the tetrahedron `vertices` to `corners`, each wound outward (for flatObject).
+void appendTetrahedron(std::vector<glm::dvec3>& corners, const std::array<glm::dvec3, 4>& vertices);
 std::vector<std::string> datasetNames();      // every datasets/*/scene.json
 
 // One case of the suites that run every registered technique on every dataset (the regression baselines, the
