@@ -10,6 +10,11 @@
 // Both levels go through one loop and one back-projection call site (llvmpipe compiles each call site and
 // caps loop iterations per invocation at 65535: the loop notes its last iteration, so a pixel the cap cut is
 // flagged CLASSIFICATION_CUT_SHORT, exactly).
+// ACCUMULATION: area (above) or bitmask, SS07's occlusion bitmask (001 L140-144, L842-853): 256 bits, one per
+// light sample of the shared stratified 16 x 16 set (ss08BitmaskSamples in Ss08Technique.h), OR-ed over a level's
+// micro-occluders, V = 1 - popcount / 256. Each back-projection is an axis-aligned rectangle, so its bits are set
+// without a table and without a loop: the cells strictly inside it in x (or y) hold only samples inside it in x
+// (or y), and only the <= 2 boundary columns and rows are tested sample by sample (four vec4 compares each).
 // Outputs: the first eight as fragment outputs, the rest (IMAGE_OUTPUT_FIRST and after) by image stores.
 // CPU mirror: src/techniques/ss08/Ss08Technique.cpp (ss08Reference).
 #include "common/GBufferInputs.glsl"
@@ -40,6 +45,8 @@ layout(r32f, binding = OUT_LOQ_BUDGET_VIOLATION - IMAGE_OUTPUT_FIRST) uniform wr
 layout(r32f, binding = OUT_QUERY_GROWTH_TEXELS - IMAGE_OUTPUT_FIRST) uniform writeonly image2D queryGrowthImage;
 layout(r32f, binding = OUT_MICRO_OCCLUDERS_FLOOR - IMAGE_OUTPUT_FIRST) uniform writeonly image2D floorSlotsImage;
 layout(r32f, binding = OUT_MICRO_OCCLUDERS_CEIL - IMAGE_OUTPUT_FIRST) uniform writeonly image2D ceilSlotsImage;
+layout(r32f, binding = OUT_OCCLUDED_BITS - IMAGE_OUTPUT_FIRST) uniform writeonly image2D occludedBitsImage;
+layout(r32f, binding = OUT_AREA_OVERCOUNT - IMAGE_OUTPUT_FIRST) uniform writeonly image2D areaOvercountImage;
 
 uniform sampler2D loqSmoothed; // x: l after smoothing (ss08/Ss08LoqSmoothing.glsl)
 
@@ -104,8 +111,12 @@ bool neighbourOccludes(int level, ivec2 slot, out float depth)
 // loop iteration, and Mesa may lower an early return from a function called in a loop to a loop exit that
 // costs one (measured here: with early returns the slot loop was cut at about a third of the cap; gbp06's
 // per-texel returns cost nothing, so it depends on the code around them).
-float microOccluderArea(int level, ivec2 slot)
+// `rectangleLo`, `rectangleHi`: the back-projection on the unit square (u = x / size + 1/2, not clipped) when the
+// micro-occluder occludes, an empty rectangle outside the square otherwise.
+float microOccluderArea(int level, ivec2 slot, out vec2 rectangleLo, out vec2 rectangleHi)
 {
+  rectangleLo = vec2(2.0);
+  rectangleHi = vec2(-1.0);
   ivec2 texelLo;
   ivec2 texelHi;
   float depth;
@@ -141,9 +152,100 @@ float microOccluderArea(int level, ivec2 slot)
 #endif
     vec2 extent = max(min(hi, vec2(halfSize)) - max(lo, vec2(-halfSize)), vec2(0.0));
     area = extent.x * extent.y;
+    rectangleLo = lo / (2.0 * halfSize) + 0.5;
+    rectangleHi = hi / (2.0 * halfSize) + 0.5;
   }
   return area;
 }
+
+#if ACCUMULATION == ACCUMULATION_BITMASK
+// The samples by column and by row (vtkSLSs08Pass): [4 i + q] holds the x of rows 4q..4q+3 of column i, and
+// bitmaskSampleY[4 j + q] the y of columns 4q..4q+3 of row j. Sample (i, j) lies in cell (i, j) of the grid.
+uniform vec4 bitmaskSampleX[BITMASK_GRID_SIDE * BITMASK_GRID_SIDE / 4];
+uniform vec4 bitmaskSampleY[BITMASK_GRID_SIDE * BITMASK_GRID_SIDE / 4];
+
+// Bit c of the result: component c of `inside` (c = 0..3).
+uint packFour(bvec4 inside)
+{
+  uvec4 bits = uvec4(inside) << uvec4(0u, 1u, 2u, 3u);
+  return bits.x | bits.y | bits.z | bits.w;
+}
+
+// The 16-bit mask of the four vec4 `values` (components in order) inside [lo, hi): lo <= v < hi, as the twin.
+uint insideMask(vec4 v0, vec4 v1, vec4 v2, vec4 v3, float lo, float hi)
+{
+  return packFour(bvec4(uvec4(greaterThanEqual(v0, vec4(lo))) & uvec4(lessThan(v0, vec4(hi))))) |
+    (packFour(bvec4(uvec4(greaterThanEqual(v1, vec4(lo))) & uvec4(lessThan(v1, vec4(hi))))) << 4u) |
+    (packFour(bvec4(uvec4(greaterThanEqual(v2, vec4(lo))) & uvec4(lessThan(v2, vec4(hi))))) << 8u) |
+    (packFour(bvec4(uvec4(greaterThanEqual(v3, vec4(lo))) & uvec4(lessThan(v3, vec4(hi))))) << 12u);
+}
+
+// Bits a..b (0..15) set; none when a > b.
+uint bitRun(int a, int b)
+{
+  int first = clamp(a, 0, 15);
+  int last = clamp(b, 0, 15);
+  return a > b ? 0u : (0xFFFFu >> uint(15 - last)) & (0xFFFFu << uint(first));
+}
+
+// Four words of rectangleBits, rows firstRow .. firstRow + 7: a sample is inside when it is inside in x (the run of
+// columns strictly inside, or its boundary column's bit for its row) and in y (a row strictly inside, or its
+// boundary row's bit for its column).
+uvec4 rectangleWords(int firstRow, uint columnRun, uint loColumnRows, uint hiColumnRows, uint loShift, uint hiShift,
+  ivec2 rowCells, uint loRowColumns, uint hiRowColumns)
+{
+  ivec4 evenRows = ivec4(0, 2, 4, 6) + firstRow;
+  ivec4 oddRows = evenRows + 1;
+  uvec4 xEven = uvec4(columnRun) | (((uvec4(loColumnRows) >> uvec4(evenRows)) & 1u) << loShift) |
+    (((uvec4(hiColumnRows) >> uvec4(evenRows)) & 1u) << hiShift);
+  uvec4 xOdd = uvec4(columnRun) | (((uvec4(loColumnRows) >> uvec4(oddRows)) & 1u) << loShift) |
+    (((uvec4(hiColumnRows) >> uvec4(oddRows)) & 1u) << hiShift);
+  uvec4 yEven = (uvec4(greaterThan(evenRows, ivec4(rowCells.x))) & uvec4(lessThan(evenRows, ivec4(rowCells.y)))) * 0xFFFFu |
+    uvec4(equal(evenRows, ivec4(rowCells.x))) * loRowColumns | uvec4(equal(evenRows, ivec4(rowCells.y))) * hiRowColumns;
+  uvec4 yOdd = (uvec4(greaterThan(oddRows, ivec4(rowCells.x))) & uvec4(lessThan(oddRows, ivec4(rowCells.y)))) * 0xFFFFu |
+    uvec4(equal(oddRows, ivec4(rowCells.x))) * loRowColumns | uvec4(equal(oddRows, ivec4(rowCells.y))) * hiRowColumns;
+  return (xEven & yEven) | ((xOdd & yOdd) << 16u);
+}
+
+// The rectangle [lo, hi) on the unit square as bits: word w of the 8 (w < 4: `lowWords`[w], else `highWords`[w - 4])
+// holds row 2w in bits 0..15 and row 2w + 1 in bits 16..31, bit i of a row being the sample of column i.
+void rectangleBits(vec2 lo, vec2 hi, out uvec4 lowWords, out uvec4 highWords)
+{
+  // The cells holding lo and hi (exact: a power-of-two scale), clamped before the int conversion.
+  ivec2 cellLo = ivec2(clamp(floor(lo * float(BITMASK_GRID_SIDE)), -1.0, float(BITMASK_GRID_SIDE)));
+  ivec2 cellHi = ivec2(clamp(floor(hi * float(BITMASK_GRID_SIDE)), -1.0, float(BITMASK_GRID_SIDE)));
+  ivec2 fetchLo = 4 * clamp(cellLo, 0, BITMASK_GRID_SIDE - 1);
+  ivec2 fetchHi = 4 * clamp(cellHi, 0, BITMASK_GRID_SIDE - 1);
+  // Columns strictly between the two hold samples inside in x; the boundary columns by test (rows as bits).
+  uint columnRun = bitRun(cellLo.x + 1, cellHi.x - 1);
+  bool loColumnIn = cellLo.x >= 0 && cellLo.x < BITMASK_GRID_SIDE;
+  bool hiColumnIn = cellHi.x >= 0 && cellHi.x < BITMASK_GRID_SIDE && cellHi.x != cellLo.x;
+  uint loColumnRows = loColumnIn ? insideMask(bitmaskSampleX[fetchLo.x], bitmaskSampleX[fetchLo.x + 1],
+    bitmaskSampleX[fetchLo.x + 2], bitmaskSampleX[fetchLo.x + 3], lo.x, hi.x) : 0u;
+  uint hiColumnRows = hiColumnIn ? insideMask(bitmaskSampleX[fetchHi.x], bitmaskSampleX[fetchHi.x + 1],
+    bitmaskSampleX[fetchHi.x + 2], bitmaskSampleX[fetchHi.x + 3], lo.x, hi.x) : 0u;
+  // The same in y: whole rows strictly between, the boundary rows by test (columns as bits).
+  bool loRowIn = cellLo.y >= 0 && cellLo.y < BITMASK_GRID_SIDE;
+  bool hiRowIn = cellHi.y >= 0 && cellHi.y < BITMASK_GRID_SIDE && cellHi.y != cellLo.y;
+  uint loRowColumns = loRowIn ? insideMask(bitmaskSampleY[fetchLo.y], bitmaskSampleY[fetchLo.y + 1],
+    bitmaskSampleY[fetchLo.y + 2], bitmaskSampleY[fetchLo.y + 3], lo.y, hi.y) : 0u;
+  uint hiRowColumns = hiRowIn ? insideMask(bitmaskSampleY[fetchHi.y], bitmaskSampleY[fetchHi.y + 1],
+    bitmaskSampleY[fetchHi.y + 2], bitmaskSampleY[fetchHi.y + 3], lo.y, hi.y) : 0u;
+  uint loShift = uint(clamp(cellLo.x, 0, 15));
+  uint hiShift = uint(clamp(cellHi.x, 0, 15));
+  // Two calls, not a loop: llvmpipe counts every loop iteration against its cap.
+  lowWords = rectangleWords(0, columnRun, loColumnRows, hiColumnRows, loShift, hiShift, ivec2(cellLo.y, cellHi.y),
+    loRowColumns, hiRowColumns);
+  highWords = rectangleWords(8, columnRun, loColumnRows, hiColumnRows, loShift, hiShift, ivec2(cellLo.y, cellHi.y),
+    loRowColumns, hiRowColumns);
+}
+
+uint popcount(uvec4 words)
+{
+  uvec4 counts = uvec4(bitCount(words));
+  return counts.x + counts.y + counts.z + counts.w;
+}
+#endif
 
 // The blend weight of ceil(l) for the fractional part `fraction` (L370-392): with band 1 (the paper's
 // choice, "we always perform alpha-blending") the fraction itself; with band < 1 only its last `band` of each
@@ -180,6 +282,8 @@ void main()
   int queryGrowth = 0;
   int floorSlots = 0;
   int ceilSlots = 0;
+  float occludedBits = 0.0;
+  float areaOvercount = 0.0;
   if (receiver.needsShadowTest)
   {
     Ss08Search search = ss08Search(receiver, pixel);
@@ -232,19 +336,47 @@ void main()
       int total = counts[0] + counts[1];
       bool reachedLast = total == 0;
       int examined = 0; // total, unless the cap cut the loop
+#if ACCUMULATION == ACCUMULATION_BITMASK
+      // The two levels' bitmasks (rectangleBits' word layout), OR-ed.
+      uvec4 floorMask[2] = uvec4[2](uvec4(0u), uvec4(0u));
+      uvec4 ceilMask[2] = uvec4[2](uvec4(0u), uvec4(0u));
+#endif
       for (int k = 0; k < total; ++k)
       {
         int which = k < counts[0] ? 0 : 1;
         int local = k - which * counts[0];
         int width = last[which].x - first[which].x + 1;
         ivec2 slot = first[which] + ivec2(local % width, local / width);
-        areas[which] += microOccluderArea(levels[which], slot);
+        vec2 rectangleLo;
+        vec2 rectangleHi;
+        areas[which] += microOccluderArea(levels[which], slot, rectangleLo, rectangleHi);
+#if ACCUMULATION == ACCUMULATION_BITMASK
+        uvec4 lowWords;
+        uvec4 highWords;
+        rectangleBits(rectangleLo, rectangleHi, lowWords, highWords);
+        uvec4 toFloor = uvec4(which == 0 ? 0xFFFFFFFFu : 0u);
+        floorMask[0] |= lowWords & toFloor;
+        floorMask[1] |= highWords & toFloor;
+        ceilMask[0] |= lowWords & ~toFloor;
+        ceilMask[1] |= highWords & ~toFloor;
+#endif
         reachedLast = k == total - 1;
         examined = k + 1;
       }
       float lightArea = 4.0 * halfSize * halfSize;
+#if ACCUMULATION == ACCUMULATION_BITMASK
+      // V = 1 - popcount / N per level (SS07, 001 L842-853), blended as the areas.
+      float sampleCount = float(BITMASK_GRID_SIDE * BITMASK_GRID_SIDE);
+      float bits[2] = float[2](float(popcount(floorMask[0]) + popcount(floorMask[1])),
+        float(popcount(ceilMask[0]) + popcount(ceilMask[1])));
+      outVisibility = weights[0] * (1.0 - bits[0] / sampleCount) + weights[1] * (1.0 - bits[1] / sampleCount);
+      occludedBits = weights[0] * bits[0] + weights[1] * bits[1];
+      areaOvercount = weights[0] * (areas[0] / lightArea - bits[0] / sampleCount) +
+        weights[1] * (areas[1] / lightArea - bits[1] / sampleCount);
+#else
       outVisibility = weights[0] * clamp(1.0 - areas[0] / lightArea, 0.0, 1.0) +
         weights[1] * clamp(1.0 - areas[1] / lightArea, 0.0, 1.0);
+#endif
       outMicroOccluders = float(examined);
       if (!reachedLast)
       {
@@ -257,4 +389,6 @@ void main()
   imageStore(queryGrowthImage, pixel, vec4(float(queryGrowth)));
   imageStore(floorSlotsImage, pixel, vec4(float(floorSlots)));
   imageStore(ceilSlotsImage, pixel, vec4(float(ceilSlots)));
+  imageStore(occludedBitsImage, pixel, vec4(occludedBits));
+  imageStore(areaOvercountImage, pixel, vec4(areaOvercount));
 }

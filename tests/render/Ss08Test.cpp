@@ -1275,5 +1275,204 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
             << buffer(frame, "micro_occluders").at(pixel.x, pixel.y) << "; ambiguity: " << outcome.ambiguity << "\n";
 }
 
+// ---------------------------------------------------------------------------------------------------------------
+// Occlusion bitmasks (accumulation=bitmask; 001 L140-144, L842-853; notes §1.3 items 3 and 5).
+
+// The GPU's bitmask equals the twin's (per-sample tests in double) on every pixel none of whose samples lies within
+// float rounding of a back-projected rectangle's edge (nor any other ambiguity of the area twin).
+TEST(Ss08Bitmask, MatchesTheTwinSampleForSample)
+{
+  struct Case
+  {
+    std::string dataset;
+    std::vector<std::string> settings;
+  };
+  // With blend_band=0 one level counts, so occluded_bits is an integer popcount and must be equal exactly.
+  const std::vector<Case> cases = {
+    { "stacked-occluders", { "accumulation=bitmask", "micro_occluder=micropatch", "budget=9", "blend_band=1" } },
+    { "bunny", { "accumulation=bitmask", "micro_occluder=microrect", "budget=5", "blend_band=0" } },
+  };
+  for (const Case& c : cases)
+  {
+    const Scene scene = test::loadDataset(c.dataset);
+    const std::string label = test::caseLabel(c.dataset, c.settings);
+    const FrameResult frame = test::renderDataset(scene, "ss08", 64, 64, c.settings);
+    const Ss08Twin twin = twinOf(frame, scene);
+    const ImageF& loq = buffer(frame, "loq");
+    const bool oneLevel = frame.parameters.get("blend_band") <= 0.0;
+    int evaluated = 0;
+    int ambiguousPixels = 0;
+    int compared = 0;
+    int partlyOccluded = 0; // compared pixels with 0 < popcount < 256 at some level
+    int mismatches = 0;
+    double maxVisibility = 0.0;
+    double maxBits = 0.0;
+    double maxOvercount = 0.0;
+    std::string first;
+    for (int y = 0; y < 64; ++y)
+    {
+      for (int x = 0; x < 64; ++x)
+      {
+        const Ss08Sample cpu =
+          ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y, loq.at(x, y), twin.budgets());
+        if (!cpu.sample.evaluated)
+        {
+          continue;
+        }
+        ++evaluated;
+        if (ambiguous(cpu) || cpu.bitmaskMargin < 2e-6 || cpu.search.classification == Ss08Class::CutShort)
+        {
+          ++ambiguousPixels;
+          continue;
+        }
+        ++compared;
+        const double visibility = buffer(frame, "visibility").at(x, y);
+        const double bits = buffer(frame, "occluded_bits").at(x, y);
+        const double overcount = buffer(frame, "area_overcount").at(x, y);
+        const double dv = std::abs(visibility - cpu.sample.visibility);
+        const double db = std::abs(bits - cpu.occludedBitsBlended);
+        const double doc = std::abs(overcount - cpu.areaOvercount);
+        maxVisibility = std::max(maxVisibility, dv);
+        maxBits = std::max(maxBits, db);
+        maxOvercount = std::max(maxOvercount, doc);
+        for (const int levelBits : cpu.occludedBits)
+        {
+          if (levelBits > 0 && levelBits < ss08BitmaskSampleCount)
+          {
+            ++partlyOccluded;
+            break;
+          }
+        }
+        // A single differing bit moves V by weight / 256: 1e-5 separates that from float rounding unless a weight is
+        // below 0.0026; with one level (blend_band=0) the popcount itself is compared exactly.
+        if (!(dv <= 1e-5) || !(db <= (oneLevel ? 0.0 : 1e-3)) || !(doc <= 1e-4))
+        {
+          if (mismatches++ == 0)
+          {
+            std::ostringstream text;
+            text << "pixel " << x << "," << y << ": gpu V " << visibility << " bits " << bits << " overcount "
+                 << overcount << ", twin V " << cpu.sample.visibility << " bits " << cpu.occludedBitsBlended
+                 << " overcount " << cpu.areaOvercount;
+            first = text.str();
+          }
+        }
+      }
+    }
+    std::cout << "[ measured ] ss08 bitmask twin, " << label << ": " << compared << " of " << evaluated
+              << " pixels compared (" << ambiguousPixels << " ambiguous), " << partlyOccluded
+              << " partly occluded; max |gpu - twin| V " << maxVisibility << ", occluded_bits " << maxBits
+              << ", area_overcount " << maxOvercount << "\n";
+    EXPECT_EQ(mismatches, 0) << label << ": first " << first;
+    EXPECT_LE(ambiguousPixels, evaluated / 50) << label << ": more than 2% ambiguous pixels";
+    EXPECT_GT(partlyOccluded, 100) << label << ": too few penumbra pixels to show anything";
+  }
+}
+
+// The bitmask counts a light sample once however many micro-occluders hide it, area accumulation once per
+// micro-occluder: V_bitmask >= V_area up to the samples' discrepancy, and overlaps (stacked occluders) make the
+// difference visible (notes §1.3 item 5, whose "- 1/256" bound the jittered set does not meet: see below).
+TEST(Ss08Bitmask, NeverDarkerThanAreaAndLighterWhereMicroOccludersOverlap)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const std::vector<std::string> settings = { "budget=9", "micro_occluder=microrect" };
+  const FrameResult area = test::renderDataset(scene, "ss08", 96, 96, settings);
+  const FrameResult bitmask = test::renderDataset(scene, "ss08", 96, 96, plus(settings, { "accumulation=bitmask" }));
+  const ImageF& vArea = buffer(area, "visibility");
+  const ImageF& vBitmask = buffer(bitmask, "visibility");
+  const ImageF& overcount = buffer(bitmask, "area_overcount");
+  int darker = 0;
+  int lighter = 0;
+  int penumbra = 0;
+  double worst = 0.0;
+  double largest = 0.0;
+  double sumDifference = 0.0; // over the partly occluded pixels
+  std::string first;
+  for (int y = 0; y < 96; ++y)
+  {
+    for (int x = 0; x < 96; ++x)
+    {
+      const double difference = vBitmask.at(x, y) - vArea.at(x, y);
+      const bool partly = buffer(bitmask, "occluded_bits").at(x, y) > 0.0 && vBitmask.at(x, y) > 0.0;
+      penumbra += partly ? 1 : 0;
+      sumDifference += partly ? difference : 0.0;
+      largest = std::max(largest, difference);
+      lighter += difference > 0.05 ? 1 : 0;
+      if (difference < -1.0 / 256.0)
+      {
+        if (darker++ == 0)
+        {
+          std::ostringstream text;
+          text << "pixel " << x << "," << y << ": V_bitmask " << vBitmask.at(x, y) << ", V_area " << vArea.at(x, y)
+               << ", area_overcount " << overcount.at(x, y);
+          first = text.str();
+        }
+        worst = std::min(worst, difference);
+      }
+    }
+  }
+  std::cout << "[ measured ] ss08 bitmask vs area, stacked-occluders: " << penumbra << " partly occluded pixels, "
+            << lighter << " lighter by > 0.05 (largest " << largest << "), " << darker << " darker by > 1/256 (worst "
+            << worst << ", first " << first << "), mean V_bitmask - V_area " << sumDifference / std::max(penumbra, 1)
+            << "\n";
+  // Not "never darker by more than 1/256": 256 jittered samples estimate a small rectangle's area with an error of
+  // up to its boundary cells (measured: a micro-occluder of 0.27 % of the light holding 2 samples, 0.78 %). What
+  // holds is the discrepancy bound of one edge across a row of 16 cells, 1/16, and darker pixels are the exception
+  // where overlaps make the bitmask lighter as a rule.
+  EXPECT_GE(worst, -1.0 / 16.0) << first;
+  EXPECT_LE(darker, penumbra / 10) << first;
+  EXPECT_GT(sumDifference / std::max(penumbra, 1), 0.01) << "the bitmask must be lighter on average";
+  EXPECT_GT(lighter, 0) << "stacked occluders must overlap somewhere";
+  EXPECT_GT(penumbra, 100);
+}
+
+// One square occluder parallel to the light at level 0: the bitmask's error against the closed form is the
+// 16 x 16 jittered set's discrepancy (an edge crossing a row of 16 cells misplaces at most 16 samples: 1/16) plus
+// the texel discretisation.
+TEST(Ss08Bitmask, PlanarOccluderAtLevelZeroIsTheClosedFormWithinOneSixteenth)
+{
+  const Scene scene = test::loadDataset("planar-occluder");
+  const auto exact = [](double x, double z) { return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z); };
+  const FrameResult frame =
+    test::renderDataset(scene, "ss08", 128, 128, { "shadow_map_size=512", "budget=0", "accumulation=bitmask" });
+  const test::GroundError error = test::groundErrorAgainst(frame, exact);
+  std::cout << "[ measured ] ss08 bitmask on planar-occluder, level 0, 512^2 map: RMSE " << error.rmse
+            << ", penumbra RMSE " << error.penumbraRmse << ", max " << error.maxError << " over " << error.penumbra
+            << " penumbra pixels\n";
+  EXPECT_GT(error.penumbra, 1000);
+  EXPECT_LE(error.maxError, 1.0 / 16.0);
+  EXPECT_LE(error.rmse, 0.01);
+}
+
+// The bitmask adds no counted loop iteration to the slot loop (rectangleBits has no loop): at 436^2 with an
+// unlimited budget on near-light, where llvmpipe's cap runs through the frame, the cap cuts the same pixels with
+// either accumulation, give or take the few pixels whose slot counts lie within the search's own iterations of it.
+TEST(Ss08Bitmask, CostsNoLoopIterations)
+{
+  const Scene scene = test::loadDataset("near-light");
+  const std::vector<std::string> settings = { "shadow_map_size=436", "budget=0" };
+  const FrameResult area = test::renderDataset(scene, "ss08", 64, 48, settings);
+  if (area.glRenderer.find("llvmpipe") == std::string::npos)
+  {
+    return; // no cap to compare
+  }
+  const FrameResult bitmask = test::renderDataset(scene, "ss08", 64, 48, plus(settings, { "accumulation=bitmask" }));
+  const float cutShort = static_cast<float>(code(Ss08Class::CutShort));
+  int cutArea = 0;
+  int cutBitmask = 0;
+  int cutDiffer = 0;
+  for (std::size_t i = 0; i < buffer(area, "classification").data.size(); ++i)
+  {
+    const bool a = buffer(area, "classification").data[i] == cutShort;
+    const bool b = buffer(bitmask, "classification").data[i] == cutShort;
+    cutArea += a ? 1 : 0;
+    cutBitmask += b ? 1 : 0;
+    cutDiffer += a != b ? 1 : 0;
+  }
+  std::cout << "[ measured ] ss08 loop cap on near-light 436^2, budget 0: " << cutArea << " pixels cut with area, "
+            << cutBitmask << " with bitmask, " << cutDiffer << " differ\n";
+  EXPECT_GT(cutArea, 100) << "the cap must run through the frame";
+  EXPECT_LE(cutDiffer, cutArea / 50);
+}
+
 } // namespace
 } // namespace sl

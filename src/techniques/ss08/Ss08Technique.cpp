@@ -88,6 +88,7 @@ TechniqueDescriptor ss08Technique()
     { "gap_filling", 1, 0, 2, "", "micropatches: extend each back-projection to its occluding left and bottom neighbours (GBP06's rule, 001 L132-134), right and top, or off; as gbp06", { "off", "left_bottom", "right_top" }, true },
     { "level_bias", 1, 0, 1, "", "scale the depth bias by 2^level at level j (min aggregation puts coarse texels in front of tilted receivers; 001's future work, L889-891)", { "off", "on" }, true },
     { "force_level", -1, -1, 13, "level", "experiments: use this level everywhere (no budget, smoothing or blending); -1 = off", {}, true },
+    { "accumulation", 0, 0, 1, "", "how a level's back-projected micro-occluders combine (001 L140-144, L842-853): area, the sum of their clipped areas (overlaps count twice), or bitmask, SS07's occlusion bitmask over 256 light samples (the shared stratified 16 x 16 set, fixed seed), OR-ed, V = 1 - popcount / 256", { "area", "bitmask" }, true },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure(), &microrectStructure() };
   descriptor.structureNeeded = [](const LightSpaceStructure& structure, const ParameterValues& values) {
@@ -108,6 +109,8 @@ TechniqueDescriptor ss08Technique()
     { "query_growth_texels", "texels", "how far the depth-range query was grown beyond the search area (001 L605-611)" },
     { "micro_occluders_floor", "micro-occluders", "slots level floor(l) alone examines (the blend overhead's baseline, 001 L820-822)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     { "micro_occluders_ceil", "micro-occluders", "slots level ceil(l) alone examines", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    { "occluded_bits", "light samples (of 256)", "accumulation=bitmask: popcount of the occlusion bitmask, blended as the visibility ((1 - a) floor + a ceil); 0 with area accumulation (001 L842-853)" },
+    { "area_overcount", "fraction of light area", "accumulation=bitmask: summed clipped areas / light area minus popcount / 256, blended: where overlapping micro-occluders over-occlude under area accumulation; 0 with area accumulation", BufferKind::Signed },
   };
   descriptor.shaderConstants = contourKernelShaderConstants();
   descriptor.shaderConstants.insert(descriptor.shaderConstants.end(), {
@@ -116,6 +119,7 @@ TechniqueDescriptor ss08Technique()
     { "LOQ_STATE_NONE", static_cast<int>(LoqState::None), "LOQ map: the pixel does not back-project" },
     { "LOQ_STATE_SMOOTHED", static_cast<int>(LoqState::Smoothed), "LOQ map: smoothed" },
     { "LOQ_STATE_FIXED", static_cast<int>(LoqState::Fixed), "LOQ map: back-projects at a level smoothing keeps" },
+    { "BITMASK_GRID_SIDE", ss08BitmaskGridSide, "accumulation=bitmask: light samples per axis (one per cell, 001 L846)" },
   });
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
@@ -643,8 +647,14 @@ struct Ss08Accumulator
       occluding ? "occludes" : "behind the receiver" });
   }
 
-  double area(int level, glm::ivec2 slot)
+  // The clipped area the micro-occluder of `slot` hides; `rectangle` (if given) receives its back-projection
+  // (lo, hi in light view x, y, not clipped) when it occludes, and is left empty (lo > hi) otherwise.
+  double area(int level, glm::ivec2 slot, std::array<glm::dvec2, 2>* rectangle = nullptr)
   {
+    if (rectangle)
+    {
+      *rectangle = { glm::dvec2(1.0), glm::dvec2(-1.0) };
+    }
     const MicroOccluder occluder = at(level, slot);
     const bool occluding = occludes(level, occluder);
     if (recorder)
@@ -689,6 +699,10 @@ struct Ss08Accumulator
     }
     const glm::dvec2 extent =
       glm::max(glm::min(hi, glm::dvec2(halfSize)) - glm::max(lo, glm::dvec2(-halfSize)), glm::dvec2(0.0));
+    if (rectangle)
+    {
+      *rectangle = { lo, hi };
+    }
     if (recorder)
     {
       // The back-projected rectangle as it lands (not clipped); its area over the light [-h, h]^2 is what counts.
@@ -698,6 +712,34 @@ struct Ss08Accumulator
     return extent.x * extent.y;
   }
 };
+
+// accumulation=bitmask: OR into `mask` the samples inside the back-projected rectangle [lo, hi) (light view x, y)
+// on a light of half side `halfSize`, by testing each sample (the shader sets whole runs of cells instead: the
+// same set, since sample (i, j) lies in cell (i, j)); `margin` receives the least distance, on the unit square, of a
+// sample to the rectangle's boundary (the float rectangle may put it on the other side).
+void setBits(std::array<bool, ss08BitmaskSampleCount>& mask, const std::array<glm::dvec2, 2>& rectangle,
+  double halfSize, double& margin)
+{
+  if (rectangle[0].x > rectangle[1].x)
+  {
+    return; // does not occlude
+  }
+  // The rectangle on the unit square (u = x / size + 1/2), as the shader maps it.
+  const glm::dvec2 lo = rectangle[0] / (2.0 * halfSize) + 0.5;
+  const glm::dvec2 hi = rectangle[1] / (2.0 * halfSize) + 0.5;
+  const std::vector<glm::dvec2>& points = ss08BitmaskSamples().basePoints();
+  for (int k = 0; k < ss08BitmaskSampleCount; ++k)
+  {
+    const glm::dvec2 p = points[static_cast<std::size_t>(k)];
+    // Signed distance to the boundary (negative inside): a sample on an edge counts as inside on lo, outside on hi.
+    const double outside = std::max(std::max(lo.x - p.x, p.x - hi.x), std::max(lo.y - p.y, p.y - hi.y));
+    margin = std::min(margin, std::abs(outside));
+    if (p.x >= lo.x && p.x < hi.x && p.y >= lo.y && p.y < hi.y)
+    {
+      mask[static_cast<std::size_t>(k)] = true;
+    }
+  }
+}
 
 double blendWeight(double fraction, double band)
 {
@@ -736,6 +778,10 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
         cite("L818-826 (slots floor(l) alone examines)"));
       recorder->quantity("micro_occluders_ceil", result.slotsPerAxis[1].x * result.slotsPerAxis[1].y, "count",
         cite("L818-826 (slots ceil(l) alone examines)"));
+      recorder->quantity("occluded_bits", result.occludedBitsBlended, "light samples (of 256)",
+        cite("L842-853 (the bitmask's popcount, blended as V; 0 with area accumulation)"));
+      recorder->quantity("area_overcount", result.areaOvercount, "fraction of light area",
+        cite("L140-144 (summed areas minus the bitmask's coverage: the overlaps area accumulation counts twice)"));
       if (search.classification == Ss08Class::CutShort)
       {
         recorder->category("cut_short", format("the GPU's slot loop stops near ", ss08LoopCap,
@@ -797,6 +843,7 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
   accumulator.gapFilling = values.choice("gap_filling");
   accumulator.recorder = recorder;
   const double lightArea = 4.0 * accumulator.halfSize * accumulator.halfSize;
+  const bool bitmask = values.choice("accumulation") == "bitmask";
   double visibility = 0.0;
   for (int k = 0; k < 2; ++k)
   {
@@ -819,22 +866,43 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
         "linear depth", "ShadowLab (level_bias: the depth bias times 2^j; 001's future work L889-891)");
     }
     double area = 0.0;
+    std::array<bool, ss08BitmaskSampleCount> mask{};
+    std::array<glm::dvec2, 2> rectangle;
     for (int j = slots.lo.y; j <= slots.hi.y; ++j)
     {
       for (int i = slots.lo.x; i <= slots.hi.x; ++i)
       {
-        area += accumulator.area(levels[k], { i, j });
+        area += accumulator.area(levels[k], { i, j }, bitmask ? &rectangle : nullptr);
+        if (bitmask)
+        {
+          setBits(mask, rectangle, accumulator.halfSize, result.bitmaskMargin);
+        }
         ++result.microOccluders;
       }
     }
-    const double levelVisibility = std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+    double levelVisibility = std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+    if (bitmask)
+    {
+      // SS07's occlusion bitmask (L842-853): V = 1 - popcount / N; area_overcount = the area's fraction minus it.
+      const int bits = static_cast<int>(std::count(mask.begin(), mask.end(), true));
+      result.occludedBits[static_cast<std::size_t>(k)] = bits;
+      levelVisibility = 1.0 - static_cast<double>(bits) / ss08BitmaskSampleCount;
+      result.occludedBitsBlended += weights[k] * bits;
+      result.areaOvercount += weights[k] * (area / lightArea - static_cast<double>(bits) / ss08BitmaskSampleCount);
+    }
     visibility += weights[k] * levelVisibility;
     if (recorder)
     {
       recorder->quantity("occluded_area", area, "world units^2",
         cite("L127-138 (back-projected micro-occluders' areas over the light, accumulated: overlaps count twice)"));
       recorder->quantity("light_area", lightArea, "world units^2", "scene (square light)");
-      recorder->quantity("level_visibility", levelVisibility, "", cite("L127-138 (1 - occluded area / light area, clamped)"));
+      if (bitmask)
+      {
+        recorder->quantity("level_occluded_bits", result.occludedBits[static_cast<std::size_t>(k)], "light samples (of 256)",
+          cite("L140-144, L842-853 (the occlusion bitmask's popcount: samples inside some back-projection)"));
+      }
+      recorder->quantity("level_visibility", levelVisibility, "", bitmask
+          ? cite("L842-853 (1 - popcount / 256)") : cite("L127-138 (1 - occluded area / light area, clamped)"));
     }
   }
   result.sample.visibility = visibility;
@@ -844,6 +912,13 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
   }
   recordResult();
   return result;
+}
+
+const LightSampleSet& ss08BitmaskSamples()
+{
+  static const LightSampleSet samples(
+    lightSampleSetSettings("stratified", ss08BitmaskSampleCount, ss08BitmaskSeed));
+  return samples;
 }
 
 Ss08Structures Ss08Twin::structures() const

@@ -26,7 +26,7 @@
 //     not blend (ceil(l) alone).
 // Micro-occluders (`micro_occluder`): micropatches, level-j texels of the min-max pyramid at their minimum depth
 // (L127-138, L436-437), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, lightspace/microrect), whose
-// extents may overlap (area accumulation then over-occludes; occlusion bitmasks come with part 2).
+// extents may overlap (area accumulation then over-occludes; `accumulation=bitmask` counts each sample once).
 // A micro-occluder occludes when its depth is in front of the receiver's comparison depth at its centre, the
 // depth bias scaled by 2^level (`level_bias`, on by default: min aggregation puts coarse texels in front of a
 // tilted receiver, the paper's future work L889-891).
@@ -35,19 +35,26 @@
 // Buffers: budget, search_area_texels, loq_raw, loq, level_floor, blend_alpha, micro_occluders (slots
 // examined, both levels: Table 2's count), classification (Ss08Class), loq_budget_violation,
 // query_growth_texels, micro_occluders_floor / _ceil (the slots each level alone would examine: the blend
-// overhead's baselines, L818-826).
+// overhead's baselines, L818-826); occluded_bits and area_overcount (accumulation=bitmask, 0 otherwise).
+// Accumulation (`accumulation`): area (the clipped areas summed, overlaps counted twice) or bitmask (SS07's
+// occlusion bitmask, L140-144, L842-853: one bit per light sample of ss08BitmaskSamples(), OR-ed over a level's
+// micro-occluders, V = 1 - popcount / 256; each micro-occluder's back-projection is an axis-aligned rectangle,
+// so its bits are whole runs of the 16 x 16 grid's cells plus the samples of its <= 2 boundary rows and columns).
 #pragma once
 
 #include "core/Image.h"
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
 #include "lightspace/HierarchicalShadowMap.h"
+#include "lightspace/LightSampleSet.h"
 #include "lightspace/Microrects.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
 
 #include <glm/glm.hpp>
 
+#include <array>
+#include <cstdint>
 #include <optional>
 
 namespace sl
@@ -79,6 +86,15 @@ enum class LoqState
 };
 
 constexpr int ss08SmoothingRadius = 5; // 11 x 11 support (L814-815)
+
+// accumulation=bitmask: the light samples, the project's shared set (lightspace/LightSampleSet.h) as pattern
+// `stratified`, N = 256, seed ss08BitmaskSeed, its base points only (no per-pixel shift): one jittered point per
+// cell of a 16 x 16 grid on the unit square, "jittered 16 x 16" as the paper (L846). Sample (i, j) = base point
+// j * 16 + i lies in cell (i, j); on the light it is at ((u - 1/2) size, (v - 1/2) size) in light view x, y.
+constexpr int ss08BitmaskGridSide = 16;
+constexpr int ss08BitmaskSampleCount = ss08BitmaskGridSide * ss08BitmaskGridSide;
+constexpr std::uint32_t ss08BitmaskSeed = 1;
+const LightSampleSet& ss08BitmaskSamples();
 
 // The micro-occluder sources of the twin: the min-max pyramid the `hsm` parameter names (micropatches and the
 // range queries) and, with micro_occluder=microrect, the microrects.
@@ -141,6 +157,13 @@ struct Ss08Sample
   int budgetViolation = 0;
   int queryGrowth = 0;
   double occlusionMargin = 1e300; // the micro-occluders' depth tests, relative to d
+  // accumulation=bitmask: the occluded samples of floor(l) / ceil(l) (examined levels only), the published
+  // popcount sum(weight_k popcount_k) and area sum(weight_k (area_k / light area - popcount_k / 256)), and the
+  // least distance (unit square) of a sample to a back-projected rectangle's edge (float may round across).
+  std::array<int, 2> occludedBits{ 0, 0 };
+  double occludedBitsBlended = 0.0;
+  double areaOvercount = 0.0;
+  double bitmaskMargin = 1e300;
 };
 // `evaluateLit`: back-project pixels the search classified lit as well, at level `level` (the over-precision
 // test: with growth a lit pixel's micro-occluders hide nothing; the GPU never evaluates them).

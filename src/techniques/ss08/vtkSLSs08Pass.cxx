@@ -41,6 +41,26 @@ std::vector<vtkTextureObject*> vtkSLSs08Pass::SetTechniqueUniforms(vtkShaderProg
   {
     program->SetUniform2i("imageSize", size);
   }
+  if (program->IsUniformUsed("bitmaskSampleX"))
+  {
+    // accumulation=bitmask: the samples by column (x of rows 4q..4q+3 of column i at [4 i + q]) and by row (y of
+    // columns 4q..4q+3 of row j at [4 j + q]), so that a boundary column or row is tested with four vec4 compares
+    // (Ss08Visibility.glsl). Multiples of 2^-16 below 1: exact in float.
+    const std::vector<glm::dvec2>& points = sl::ss08BitmaskSamples().basePoints();
+    constexpr int side = sl::ss08BitmaskGridSide;
+    float byColumn[side * side / 4][4];
+    float byRow[side * side / 4][4];
+    for (int a = 0; a < side; ++a)
+    {
+      for (int b = 0; b < side; ++b)
+      {
+        byColumn[4 * a + b / 4][b % 4] = static_cast<float>(points[static_cast<std::size_t>(b * side + a)].x);
+        byRow[4 * a + b / 4][b % 4] = static_cast<float>(points[static_cast<std::size_t>(a * side + b)].y);
+      }
+    }
+    program->SetUniform4fv("bitmaskSampleX", side * side / 4, byColumn);
+    program->SetUniform4fv("bitmaskSampleY", side * side / 4, byRow);
+  }
   std::vector<vtkTextureObject*> bound;
   if (this->BudgetMapTexture && program->IsUniformUsed("budgetMapTexture"))
   {
