@@ -19,7 +19,11 @@ gpu_subset='GpuCpuFocus.*:GpuCpuBias.*:SummedAreaTable.*:HierarchicalShadowMap.G
 gpu_subset+=':HardCases.ContactShadowExistsWhereTheBoxTouchesTheGround:Pcss.PointLightGivesTheHardShadow'
 gpu_subset+=':MomentTechniques.MatchTheCpuImplementations:Savsm.ExactForAParallelPlanarOccluder'
 
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSL_SANITIZE=ON >/dev/null
+# -O1 -g1 instead of RelWithDebInfo's -O2 -g: AddressSanitizer's own recommendation (-O1 keeps reports exact), and
+# line tables are all its reports need (file:line per frame); the build, most of this script's time, compiles about
+# twice as fast (measured per file: ShadowRenderer.cpp 13.0 s -> 6.2 s, ReferenceRenderer.cpp 6.6 s -> 3.1 s).
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSL_SANITIZE=ON >/dev/null
 # gpu_sanitize_tests: the six GPU test files the subset below needs (tests/CMakeLists.txt), not all of gpu_tests.
 cmake --build "$build_dir" -j "$jobs" --target shadowlab unit_tests cli_tests gpu_sanitize_tests \
   fuzz_replay_scene fuzz_replay_vti fuzz_replay_mesh
