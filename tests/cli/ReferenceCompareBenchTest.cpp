@@ -22,20 +22,6 @@ namespace
 
 using test::RunResult;
 
-// shadowlab with `arguments` in a fresh working directory (every output path here is absolute, in test-output).
-RunResult runShadowlab(const std::vector<std::string>& arguments)
-{
-  const test::TempDir workDir;
-  return test::runShadowlabIn(arguments, workDir.path());
-}
-
-std::filesystem::path freshDir(const std::string& name)
-{
-  const std::filesystem::path dir = test::testOutputDir() / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
 const NamedImage& arrayNamed(const std::vector<NamedImage>& images, const std::string& name)
 {
   const NamedImage* named = findNamed(images, name);
@@ -54,8 +40,8 @@ nlohmann::json readJson(const std::filesystem::path& path)
 
 TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 {
-  const std::filesystem::path out = freshDir("reference-out");
-  const RunResult run = runShadowlab({ "reference", test::datasetPath("stacked-occluders").string(), "--samples", "64",
+  const std::filesystem::path out = test::freshOutputDir("reference-out");
+  const RunResult run = test::runShadowlabInTempDir({ "reference", test::datasetPath("stacked-occluders").string(), "--samples", "64",
     "--resolution", "64x48", "--out", out.string(), "--quiet" });
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_TRUE(run.err.empty()) << run.err;
@@ -89,10 +75,10 @@ TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 
 TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
 {
-  const std::filesystem::path out = freshDir("reference-bad");
+  const std::filesystem::path out = test::freshOutputDir("reference-bad");
   for (const auto& [option, value] : { std::pair<std::string, std::string>("--samples", "0"), { "--sampling", "sobol" } })
   {
-    const RunResult run = runShadowlab({ "reference", test::datasetPath("planar-occluder").string(), option, value,
+    const RunResult run = test::runShadowlabInTempDir({ "reference", test::datasetPath("planar-occluder").string(), option, value,
       "--resolution", "32x32", "--out", out.string() });
     EXPECT_NE(run.exitCode, 0) << option << " " << value;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
@@ -103,14 +89,14 @@ TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
 
 TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
 {
-  const std::filesystem::path hard = freshDir("compare-hard");
-  const std::filesystem::path reference = freshDir("compare-reference");
-  const std::filesystem::path out = freshDir("compare-out");
+  const std::filesystem::path hard = test::freshOutputDir("compare-hard");
+  const std::filesystem::path reference = test::freshOutputDir("compare-reference");
+  const std::filesystem::path out = test::freshOutputDir("compare-out");
   const std::string scene = test::datasetPath("planar-occluder").string();
-  ASSERT_EQ(runShadowlab({ "render", scene, "-t", "hard", "-r", "64x64", "-q", "--out", hard.string() }).exitCode, 0);
+  ASSERT_EQ(test::runShadowlabInTempDir({ "render", scene, "-t", "hard", "-r", "64x64", "-q", "--out", hard.string() }).exitCode, 0);
   ASSERT_EQ(
-    runShadowlab({ "reference", scene, "--samples", "64", "-r", "64x64", "-q", "--out", reference.string() }).exitCode, 0);
-  const RunResult run = runShadowlab({ "compare", (hard / "buffers.vti").string(), (reference / "buffers.vti").string(),
+    test::runShadowlabInTempDir({ "reference", scene, "--samples", "64", "-r", "64x64", "-q", "--out", reference.string() }).exitCode, 0);
+  const RunResult run = test::runShadowlabInTempDir({ "compare", (hard / "buffers.vti").string(), (reference / "buffers.vti").string(),
     "-q", "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json metrics = readJson(out / "metrics.json");
@@ -126,15 +112,15 @@ TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
   EXPECT_TRUE(std::filesystem::exists(out / "error.png"));
 
   // Mismatched sizes, a missing array: one line naming the file, no output.
-  const std::filesystem::path small = freshDir("compare-small");
-  ASSERT_EQ(runShadowlab({ "render", scene, "-t", "hard", "-r", "32x32", "-q", "--out", small.string() }).exitCode, 0);
-  const std::filesystem::path badOut = freshDir("compare-bad-out");
-  const RunResult mismatched = runShadowlab({ "compare", (small / "buffers.vti").string(),
+  const std::filesystem::path small = test::freshOutputDir("compare-small");
+  ASSERT_EQ(test::runShadowlabInTempDir({ "render", scene, "-t", "hard", "-r", "32x32", "-q", "--out", small.string() }).exitCode, 0);
+  const std::filesystem::path badOut = test::freshOutputDir("compare-bad-out");
+  const RunResult mismatched = test::runShadowlabInTempDir({ "compare", (small / "buffers.vti").string(),
     (reference / "buffers.vti").string(), "--out", badOut.string() });
   EXPECT_NE(mismatched.exitCode, 0);
   EXPECT_EQ(std::count(mismatched.err.begin(), mismatched.err.end(), '\n'), 1) << mismatched.err;
   EXPECT_NE(mismatched.err.find("32x32"), std::string::npos) << mismatched.err;
-  const RunResult missing = runShadowlab({ "compare", (hard / "buffers.vti").string(),
+  const RunResult missing = test::runShadowlabInTempDir({ "compare", (hard / "buffers.vti").string(),
     (reference / "buffers.vti").string(), "--array", "kernel_size", "--out", badOut.string() });
   EXPECT_NE(missing.exitCode, 0);
   EXPECT_NE(missing.err.find("kernel_size"), std::string::npos) << missing.err;
@@ -145,7 +131,7 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
 {
   // A scene that loads but fails at render time: a point light just above a wide ground sees visible
   // receivers all around it, which one shadow map cannot cover.
-  const std::filesystem::path sceneDir = freshDir("bench-scenes");
+  const std::filesystem::path sceneDir = test::freshOutputDir("bench-scenes");
   std::filesystem::create_directories(sceneDir);
   {
     std::ofstream bad(sceneDir / "surrounded.json");
@@ -153,12 +139,12 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
       "lights": [ { "type": "point", "center": [0, 0.05, 0] } ],
       "objects": [ { "primitive": "quad", "size": [40, 40], "normal": [0, 1, 0], "up": [0, 0, -1] } ] })";
   }
-  const std::filesystem::path out = freshDir("bench-out");
-  const std::filesystem::path cache = freshDir("bench-cache");
+  const std::filesystem::path out = test::freshOutputDir("bench-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-cache");
   const std::vector<std::string> arguments = { "bench", test::datasetPath("planar-occluder").string(),
     (sceneDir / "surrounded.json").string(), "-t", "hard,pcf", "--sweep", "kernel_texels=1,5", "--repeat", "2", "-r",
     "48x48", "--samples", "16", "--cache", cache.string(), "--out", out.string() };
-  const RunResult run = runShadowlab(arguments);
+  const RunResult run = test::runShadowlabInTempDir(arguments);
   EXPECT_EQ(run.exitCode, 4) << run.err; // some configurations failed
   const nlohmann::json bench = readJson(out / "bench.json");
   int ok = 0;
@@ -195,7 +181,7 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   // The references are cached: a second run computes none.
   std::vector<std::string> quietArguments = arguments;
   quietArguments.push_back("--quiet");
-  const RunResult again = runShadowlab(quietArguments);
+  const RunResult again = test::runShadowlabInTempDir(quietArguments);
   EXPECT_EQ(again.exitCode, 4);
   EXPECT_EQ(again.err.find("ray-traced reference of"), std::string::npos) << again.err;
 }
@@ -204,9 +190,9 @@ TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
 {
   // A light-size sweep (the papers' benchmarks): each size is its own scene variant with its own cached
   // reference; hard shadows sample the light's centre, so their error must grow with the light.
-  const std::filesystem::path out = freshDir("bench-sweep-out");
-  const std::filesystem::path cache = freshDir("bench-sweep-cache");
-  const RunResult run = runShadowlab({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard",
+  const std::filesystem::path out = test::freshOutputDir("bench-sweep-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-sweep-cache");
+  const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard",
     "--scene-sweep", "/lights/0/size=0.25,1,2", "--repeat", "1", "-r", "48x48", "--samples", "64", "--quiet", "--cache",
     cache.string(), "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -230,13 +216,13 @@ TEST(BenchCommand, WorkCounterColumnsAreTheImageTotalsOfTheCounterBuffers)
   // gbp07's visited_cells and contour_edges are work counters (summed over sub-lights): the bench reports
   // each one's total over the covered pixels as <buffer>_sum, the number Yang et al. 2009's Eq. 9 is about.
   // The totals must be those of the buffers `shadowlab render` writes for the same configuration.
-  const std::filesystem::path out = freshDir("bench-counters-out");
-  const std::filesystem::path cache = freshDir("bench-counters-cache");
+  const std::filesystem::path out = test::freshOutputDir("bench-counters-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-counters-cache");
   const std::vector<std::string> common = { "-s", "shadow_map_size=128", "-r", "32x32" };
   std::vector<std::string> bench = { "bench", test::datasetPath("planar-occluder").string(), "-t", "gbp07", "--sweep",
     "sublights=1,2", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out", out.string() };
   bench.insert(bench.end(), common.begin(), common.end());
-  const RunResult run = runShadowlab(bench);
+  const RunResult run = test::runShadowlabInTempDir(bench);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
   ASSERT_EQ(rows.size(), 2u);
@@ -248,11 +234,11 @@ TEST(BenchCommand, WorkCounterColumnsAreTheImageTotalsOfTheCounterBuffers)
     EXPECT_GT(sums.at("visited_cells").get<double>(), 0.0);
   }
 
-  const std::filesystem::path rendered = freshDir("bench-counters-render");
+  const std::filesystem::path rendered = test::freshOutputDir("bench-counters-render");
   std::vector<std::string> render = { "render", test::datasetPath("planar-occluder").string(), "--technique", "gbp07",
     "-s", "sublights=2", "--out", rendered.string() };
   render.insert(render.end(), common.begin(), common.end());
-  const RunResult renderRun = runShadowlab(render);
+  const RunResult renderRun = test::runShadowlabInTempDir(render);
   ASSERT_EQ(renderRun.exitCode, 0) << renderRun.err;
   const std::vector<NamedImage> buffers = readVti(rendered / "buffers.vti");
   const ImageF& coverage = arrayNamed(buffers, "coverage").image;
@@ -279,14 +265,14 @@ TEST(BenchCommand, CutShortPixelsAreAColumnAndAWarningEvenWhenQuiet)
 {
   // yfgl09's brute force over ~400-texel kernels at the default map outruns llvmpipe's loop cap (issue 13):
   // the row's cut_short_pixels column holds the count and bench says so, with --quiet too.
-  const std::filesystem::path out = freshDir("bench-cut-out");
-  const std::filesystem::path cache = freshDir("bench-cut-cache");
+  const std::filesystem::path out = test::freshOutputDir("bench-cut-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-cut-cache");
   std::vector<std::string> bench = { "bench", test::datasetPath("stacked-occluders").string(), "-t", "yfgl09", "--sweep",
     "hierarchy=off,on", "-r", "16x12", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out",
     out.string() };
   const std::vector<std::string> scene = test::sceneSetArguments(test::wideKernelOverrides());
   bench.insert(bench.end(), scene.begin(), scene.end());
-  const RunResult run = runShadowlab(bench);
+  const RunResult run = test::runShadowlabInTempDir(bench);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
   ASSERT_EQ(rows.size(), 2u);
@@ -308,11 +294,11 @@ TEST(BenchCommand, CutShortPixelsAreAColumnAndAWarningEvenWhenQuiet)
 
 TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
 {
-  const std::filesystem::path out = freshDir("scene-set-bad");
+  const std::filesystem::path out = test::freshOutputDir("scene-set-bad");
   for (const std::string& override : { std::string("/lights/9/size=2"), std::string("/lights/0/size=0"),
          std::string("lights/0/size=2") })
   {
-    const RunResult run = runShadowlab({ "render", test::datasetPath("planar-occluder").string(), "--scene-set", override,
+    const RunResult run = test::runShadowlabInTempDir({ "render", test::datasetPath("planar-occluder").string(), "--scene-set", override,
       "-r", "32x32", "--out", out.string() });
     EXPECT_EQ(run.exitCode, 1) << override;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
@@ -322,11 +308,11 @@ TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
 
 TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
 {
-  const std::filesystem::path out = freshDir("bench-bad");
+  const std::filesystem::path out = test::freshOutputDir("bench-bad");
   for (const auto& [option, value] : { std::pair<std::string, std::string>("-t", "hard,nope"),
          { "--sweep", "kernel_texels" }, { "--sweep", "kernel_texels=0,3" }, { "--repeat", "0" } })
   {
-    const RunResult run = runShadowlab({ "bench", test::datasetPath("planar-occluder").string(), option, value, "-r",
+    const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("planar-occluder").string(), option, value, "-r",
       "32x32", "--out", out.string() });
     EXPECT_EQ(run.exitCode, 1) << option << " " << value << ": " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;

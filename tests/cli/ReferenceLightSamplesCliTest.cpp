@@ -29,19 +29,6 @@ namespace
 
 using test::RunResult;
 
-RunResult runShadowlab(const std::vector<std::string>& arguments)
-{
-  const test::TempDir workDir;
-  return test::runShadowlabIn(arguments, workDir.path());
-}
-
-std::filesystem::path freshDir(const std::string& name)
-{
-  const std::filesystem::path dir = test::testOutputDir() / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
 // Every point-data array of a .vti as VTK (and ParaView) read it, any number of components: the per-sample arrays
 // have N of them, beyond what readVti accepts.
 std::vector<NamedImage> readArraysWithVtk(const std::filesystem::path& file)
@@ -160,8 +147,8 @@ void expectConsistentArrays(const std::filesystem::path& out, int sampleCount, c
 TEST(ReferenceLightSamplesCommand, WritesSampleCrossingsAndMaskWithTheSetsCount)
 {
   const std::string scene = test::datasetPath("planar-occluder").string();
-  const std::filesystem::path out = freshDir("reference-light-samples");
-  const RunResult run = runShadowlab({ "reference", scene, "--light-samples", "poisson", "--samples", "64", "--seed",
+  const std::filesystem::path out = test::freshOutputDir("reference-light-samples");
+  const RunResult run = test::runShadowlabInTempDir({ "reference", scene, "--light-samples", "poisson", "--samples", "64", "--seed",
     "3", "-r", "32x32", "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.describe();
   // The log says the pattern, N and the seed.
@@ -177,20 +164,20 @@ TEST(ReferenceLightSamplesCommand, WritesSampleCrossingsAndMaskWithTheSetsCount)
   EXPECT_EQ(stats.at("buffers").at("light_sample_mask").at("components").get<int>(), 4);
 
   // Interleaved, N = 256 (16 mask components), and N = 16 by default.
-  const std::filesystem::path interleaved = freshDir("reference-light-samples-256");
-  const RunResult run256 = runShadowlab({ "reference", scene, "--light-samples", "zero_two_4x4", "-n", "256", "-r",
+  const std::filesystem::path interleaved = test::freshOutputDir("reference-light-samples-256");
+  const RunResult run256 = test::runShadowlabInTempDir({ "reference", scene, "--light-samples", "zero_two_4x4", "-n", "256", "-r",
     "32x32", "-q", "--out", interleaved.string() });
   ASSERT_EQ(run256.exitCode, 0) << run256.describe();
   expectConsistentArrays(interleaved, 256, "zero_two_4x4 x 256");
-  const std::filesystem::path byDefault = freshDir("reference-light-samples-16");
-  const RunResult run16 = runShadowlab({ "reference", scene, "--light-samples", "grid", "-r", "32x32", "-q", "--out",
+  const std::filesystem::path byDefault = test::freshOutputDir("reference-light-samples-16");
+  const RunResult run16 = test::runShadowlabInTempDir({ "reference", scene, "--light-samples", "grid", "-r", "32x32", "-q", "--out",
     byDefault.string() });
   ASSERT_EQ(run16.exitCode, 0) << run16.describe();
   expectConsistentArrays(byDefault, 16, "grid, default N");
 
   // Without --light-samples, neither array.
-  const std::filesystem::path plain = freshDir("reference-plain-samples");
-  ASSERT_EQ(runShadowlab({ "reference", scene, "-n", "16", "-r", "32x32", "-q", "--out", plain.string() }).exitCode, 0);
+  const std::filesystem::path plain = test::freshOutputDir("reference-plain-samples");
+  ASSERT_EQ(test::runShadowlabInTempDir({ "reference", scene, "-n", "16", "-r", "32x32", "-q", "--out", plain.string() }).exitCode, 0);
   const std::vector<NamedImage> plainBuffers = readArraysWithVtk(plain / "buffers.vti");
   EXPECT_EQ(findNamed(plainBuffers, "sample_crossings"), nullptr);
   EXPECT_EQ(findNamed(plainBuffers, "light_sample_mask"), nullptr);
@@ -201,14 +188,14 @@ TEST(ReferenceLightSamplesCommand, WritesSampleCrossingsAndMaskWithTheSetsCount)
 TEST(ReferenceLightSamplesCommand, CompareReadsTheReference)
 {
   const std::string scene = test::datasetPath("planar-occluder").string();
-  const std::filesystem::path hard = freshDir("reference-light-samples-hard");
-  const std::filesystem::path reference = freshDir("reference-light-samples-compared");
-  const std::filesystem::path out = freshDir("reference-light-samples-compare");
-  ASSERT_EQ(runShadowlab({ "render", scene, "-t", "hard", "-r", "32x32", "-q", "--out", hard.string() }).exitCode, 0);
-  const RunResult referenceRun = runShadowlab({ "reference", scene, "--light-samples", "stratified", "-n", "64", "-r",
+  const std::filesystem::path hard = test::freshOutputDir("reference-light-samples-hard");
+  const std::filesystem::path reference = test::freshOutputDir("reference-light-samples-compared");
+  const std::filesystem::path out = test::freshOutputDir("reference-light-samples-compare");
+  ASSERT_EQ(test::runShadowlabInTempDir({ "render", scene, "-t", "hard", "-r", "32x32", "-q", "--out", hard.string() }).exitCode, 0);
+  const RunResult referenceRun = test::runShadowlabInTempDir({ "reference", scene, "--light-samples", "stratified", "-n", "64", "-r",
     "32x32", "-q", "--out", reference.string() });
   ASSERT_EQ(referenceRun.exitCode, 0) << referenceRun.describe();
-  const RunResult run = runShadowlab({ "compare", (hard / "buffers.vti").string(),
+  const RunResult run = test::runShadowlabInTempDir({ "compare", (hard / "buffers.vti").string(),
     (reference / "buffers.vti").string(), "-q", "--out", out.string() });
   EXPECT_EQ(run.exitCode, 0) << run.describe();
   EXPECT_TRUE(std::filesystem::exists(out / "metrics.json"));
@@ -217,7 +204,7 @@ TEST(ReferenceLightSamplesCommand, CompareReadsTheReference)
 TEST(ReferenceLightSamplesCommand, BadSetsAreOneLineErrorsWithNoOutput)
 {
   const std::string planar = test::datasetPath("planar-occluder").string();
-  const std::filesystem::path out = freshDir("reference-light-samples-bad");
+  const std::filesystem::path out = test::freshOutputDir("reference-light-samples-bad");
   struct Case
   {
     std::vector<std::string> arguments;
@@ -237,7 +224,7 @@ TEST(ReferenceLightSamplesCommand, BadSetsAreOneLineErrorsWithNoOutput)
     std::vector<std::string> arguments = { "reference" };
     arguments.insert(arguments.end(), c.arguments.begin(), c.arguments.end());
     arguments.insert(arguments.end(), { "-r", "32x32", "--out", out.string() });
-    const RunResult run = runShadowlab(arguments);
+    const RunResult run = test::runShadowlabInTempDir(arguments);
     EXPECT_NE(run.exitCode, 0) << run.describe();
     EXPECT_EQ(run.errLines(), 1u) << run.describe();
     for (const std::string& name : c.named)

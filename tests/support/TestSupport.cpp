@@ -1,4 +1,5 @@
 #include "support/TestSupport.h"
+#include "support/TempDir.h"
 
 #include "techniques/ProbeSupport.h"
 
@@ -42,6 +43,19 @@ std::filesystem::path testOutputDir()
   const std::filesystem::path dir = SL_TEST_OUTPUT_DIR;
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+std::filesystem::path freshOutputDir(const std::string& name)
+{
+  const std::filesystem::path dir = testOutputDir() / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+RunResult runShadowlabInTempDir(const std::vector<std::string>& arguments)
+{
+  const TempDir workDir;
+  return runShadowlabIn(arguments, workDir.path());
 }
 
 std::vector<std::string> wideKernelOverrides()

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "pipeline/ShadowRenderer.h"
+#include "support/CliRun.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/Scene.h"
 #include "techniques/ShadowMapReference.h"
@@ -23,6 +24,10 @@ namespace sl::test
 std::filesystem::path sourceDir();           // the repository root
 std::filesystem::path testOutputDir();        // <build>/test-output, created on demand
 std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/scene.json
+// <test-output>/<name>, removed if it exists (a test's absolute output path).
+std::filesystem::path freshOutputDir(const std::string& name);
+// shadowlab with `arguments` in a fresh temporary working directory (runShadowlabIn, CliRun.h).
+RunResult runShadowlabInTempDir(const std::vector<std::string>& arguments);
 // Overrides of stacked-occluders that put its upper occluder 1 below a light of size 2 (issue 13): at the default
 // 1024^2 map the contour kernels reach ~500 texels, past what a brute force finishes under llvmpipe's loop cap.
 std::vector<std::string> wideKernelOverrides();
