@@ -53,13 +53,17 @@ void main()
   int weightedChecksum = 0;
   bool reachable = lightCanReach(surface.pWs, surface.nWs);
   int hidden = 0;
+  uint word = 0u;
   for (int layer = 0; layer < (lightSampleCount + 31) / 32; ++layer)
   {
     uint bits = 0u;
     for (int bit = 0; bit < 32 && 32 * layer + bit < lightSampleCount; ++bit)
     {
       int index = 32 * layer + bit;
-      uint word = imageLoad(sampleCounters, ivec3(pixel, index / 4)).r;
+      if (index % 4 == 0)
+      {
+        word = imageLoad(sampleCounters, ivec3(pixel, index / 4)).r; // four counters per word: read once
+      }
       int change = int((word >> uint(8 * (index % 4))) & 0xFFu) - DCS_COUNTER_BIAS;
       checksum += change;
       weightedChecksum += (index + 1) * change;
