@@ -21,6 +21,8 @@ set(SL_SHADER_FILES
   microrect/MicrorectBuild.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
+  gbuffer/GBufferFirstSample.glsl
+  msaa/MsaaResolve.glsl
   lightspace/LightDepthVertex.glsl
   lightspace/LightDepthFragment.glsl
   lightspace/FocusReduction.glsl

@@ -94,7 +94,7 @@ private:
   std::uint64_t hash_ = 1469598103934665603ull;
 };
 
-std::string referenceKey(const Scene& scene, const std::string& resolution, int samples)
+std::string referenceKey(const Scene& scene, const std::string& resolution, int samples, int msaa)
 {
   Hasher hasher;
   for (const SceneObject& object : scene.objects)
@@ -128,6 +128,10 @@ std::string referenceKey(const Scene& scene, const std::string& resolution, int 
   hasher.addValue(camera.parallelScale);
   hasher.add(resolution.data(), resolution.size());
   hasher.addValue(samples);
+  if (msaa > 1)
+  {
+    hasher.addValue(msaa); // single-sampled keys stay those of earlier caches
+  }
   return hasher.hex();
 }
 
@@ -504,23 +508,23 @@ void createCacheDirectory(const std::string& cacheDir)
 // cache by a `shadowlab reference` child. Empty (with a warning) when none could be made; the variant's
 // configurations then run without error metrics.
 std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& resolution, const SceneVariant& variant,
-  const std::filesystem::path& logFile, std::ostream& log)
+  int msaa, const std::filesystem::path& logFile, std::ostream& log)
 {
   const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
-    referenceKey(variant.scene, options.resolution, options.referenceSamples);
+    referenceKey(variant.scene, options.resolution, options.referenceSamples, msaa);
   // A cache entry is re-validated on every use; a bad one (cut short, altered) is computed again.
   if (const std::string problem = cachedReferenceProblem(cached, resolution); !problem.empty())
   {
     if (!options.quiet)
     {
-      log << "bench: ray-traced reference of " << variant.name << " (" << options.referenceSamples
-          << " samples) -> " << cached.string()
+      log << "bench: ray-traced reference of " << variant.name << " (" << options.referenceSamples << " samples"
+          << (msaa > 1 ? format(", ", msaa, " per pixel") : std::string()) << ") -> " << cached.string()
           << (problem == "missing" ? std::string() : " (the cached one is unusable: " + problem + ")") << "\n";
     }
     // --force: the entry (named by its hash) belongs to the cache; a bad one is replaced, marker or not.
     std::vector<std::string> arguments{ "reference", variant.file, "--samples",
-      std::to_string(options.referenceSamples), "--resolution", options.resolution, "--out", cached.string(),
-      "--quiet", "--force" };
+      std::to_string(options.referenceSamples), "--resolution", options.resolution, "--msaa", std::to_string(msaa),
+      "--out", cached.string(), "--quiet", "--force" };
     for (const std::string& override : variant.overrides)
     {
       arguments.insert(arguments.end(), { "--scene-set", override });
@@ -537,14 +541,46 @@ std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& reso
   return (cached / "buffers.vti").string();
 }
 
-// One reference per scene variant, before any configuration runs.
-std::vector<std::string> prepareReferences(const BenchOptions& options, const glm::ivec2& resolution,
-  const std::vector<SceneVariant>& variants, const std::filesystem::path& logsDir, std::ostream& log)
+// The G-buffer samples per pixel a configuration renders with (TechniqueDescriptor::multisampleFor): its error is
+// measured against the reference of as many samples per pixel (like for like, 001 §7).
+// A configuration whose settings do not parse is run anyway: its child fails with the message, in its row.
+int multisamplesOf(const Configuration& configuration)
 {
-  std::vector<std::string> referenceFiles(variants.size());
+  const TechniqueDescriptor& technique = findTechnique(configuration.technique);
+  ParameterValues values = technique.defaultParameters();
+  try
+  {
+    for (const std::string& setting : configuration.settings)
+    {
+      values.set(setting);
+    }
+  }
+  catch (const InputError&)
+  {
+    return 1;
+  }
+  return technique.multisampleFor(values).samples;
+}
+
+// Per scene variant, by samples per pixel, the references its configurations need, before any configuration runs.
+using ReferenceFiles = std::vector<std::map<int, std::string>>;
+ReferenceFiles prepareReferences(const BenchOptions& options, const glm::ivec2& resolution,
+  const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations,
+  const std::filesystem::path& logsDir, std::ostream& log)
+{
+  std::vector<std::set<int>> needed(variants.size());
+  for (const Configuration& configuration : configurations)
+  {
+    needed[configuration.sceneIndex].insert(multisamplesOf(configuration));
+  }
+  ReferenceFiles referenceFiles(variants.size());
   for (std::size_t s = 0; s < variants.size(); ++s)
   {
-    referenceFiles[s] = referenceFileFor(options, resolution, variants[s], logsDir / format("reference-", s, ".txt"), log);
+    for (const int msaa : needed[s])
+    {
+      referenceFiles[s][msaa] = referenceFileFor(options, resolution, variants[s], msaa,
+        logsDir / (msaa > 1 ? format("reference-", s, "-msaa", msaa, ".txt") : format("reference-", s, ".txt")), log);
+    }
   }
   return referenceFiles;
 }
@@ -593,7 +629,7 @@ std::string numberText(const nlohmann::json& value)
 // Runs every configuration in its own `shadowlab bench-run` child; one row of bench.json each, "ok" with the
 // child's result or "failed" with its last line.
 nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<SceneVariant>& variants,
-  const std::vector<Configuration>& configurations, const std::vector<std::string>& referenceFiles,
+  const std::vector<Configuration>& configurations, const ReferenceFiles& referenceFiles,
   const std::filesystem::path& dir, std::ostream& log)
 {
   nlohmann::json rows = nlohmann::json::array();
@@ -603,7 +639,8 @@ nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<
     const std::filesystem::path resultFile = dir / "runs" / format(c, ".json");
     const SceneVariant& variant = variants[configuration.sceneIndex];
     const ChildResult child =
-      runChild(benchRunArguments(options, variant, configuration, referenceFiles[configuration.sceneIndex], resultFile),
+      runChild(benchRunArguments(options, variant, configuration,
+                 referenceFiles[configuration.sceneIndex].at(multisamplesOf(configuration)), resultFile),
         dir / "logs" / format("run-", c, ".txt"));
     nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
       { "scene_name", variant.name },
@@ -863,7 +900,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::create_directories(dir / "logs");
-    const std::vector<std::string> referenceFiles = prepareReferences(options, resolution, variants, dir / "logs", log);
+    const ReferenceFiles referenceFiles = prepareReferences(options, resolution, variants, configurations, dir / "logs", log);
     const nlohmann::json rows = runConfigurations(options, variants, configurations, referenceFiles, dir, log);
     failures = countFailed(rows);
     removeIfEmptyDirectory(dir / "logs");

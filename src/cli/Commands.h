@@ -42,6 +42,7 @@ struct ReferenceOptions
   bool samplesGiven = false;  // --samples was on the command line (with --light-samples, N defaults to 16)
   std::string sampling = "stratified";
   std::string lightSamples;   // --light-samples PATTERN (lightSamplePatternNames()); "" = `sampling`
+  int msaa = 1;               // --msaa 1 | 4: trace every sample position of a 4x multisampled G-buffer, average
   std::uint64_t seed = 1;
   std::string resolution; // "WxH" or empty
   std::string outDir = "out-reference";

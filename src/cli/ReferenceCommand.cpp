@@ -73,9 +73,23 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   {
     throw InputError(format("--light ", options.lightIndex, ": the scene has ", scene.lights.size(), " light(s)"));
   }
+  if (options.msaa != 1 && options.msaa != 4)
+  {
+    throw InputError(format("--msaa ", options.msaa, ": expected 1 or 4"));
+  }
+  if (options.msaa > 1 && sampleSet)
+  {
+    throw InputError("--light-samples: per-sample facts of one surface point; not available with --msaa 4");
+  }
   ShadowRenderer renderer;
-  FrameResult gbuffer = renderer.render(scene, request);
-  const ReferenceInputs inputs = referenceInputsOf(gbuffer, scene, options.lightIndex);
+  std::vector<FrameResult> sampleGBuffers = renderer.renderSampleGBuffers(scene, request, options.msaa);
+  std::vector<ReferenceInputs> sampleInputs;
+  for (const FrameResult& sampleGBuffer : sampleGBuffers)
+  {
+    sampleInputs.push_back(referenceInputsOf(sampleGBuffer, scene, options.lightIndex));
+  }
+  // The buffers written beside the reference: sample 0's G-buffer, the multisampled frame's coverage.
+  FrameResult& gbuffer = sampleGBuffers.front();
   ReferenceSettings settings;
   settings.samples = options.samples;
   settings.sampling = options.sampling == "halton" ? LightSampling::Halton : LightSampling::Stratified;
@@ -97,7 +111,8 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
           << std::flush;
     }
   };
-  const ReferenceResult result = renderReference(inputs, settings, progress);
+  const ReferenceResult result = options.msaa > 1 ? renderMultisampleReference(sampleInputs, settings, progress)
+                                                 : renderReference(sampleInputs.front(), settings, progress);
   if (showProgress)
   {
     log << "\n";
@@ -130,6 +145,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     { "seed", options.seed },
     { "threads", options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency()) },
     { "ray_offset", referenceRayOffset(scene, settings) },
+    { "msaa", options.msaa },
     { "rays_traced", result.raysTraced },
     { "seconds", result.seconds },
     { "rays_per_second", result.raysPerSecond },

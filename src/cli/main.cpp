@@ -76,6 +76,11 @@ int main(int argc, char** argv)
   referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")
     ->check(CLI::NonNegativeNumber)
     ->capture_default_str();
+  referenceCommand
+    ->add_option("--msaa", reference.msaa,
+      "1 | 4: with 4, trace at each sample position of a 4x multisampled G-buffer and average the covered samples "
+      "(the like-for-like reference of techniques rendered with msaa=4)")
+    ->capture_default_str();
   referenceCommand->add_option("--resolution,-r", reference.resolution, "Image size WxH (default: the scene camera's)");
   referenceCommand->add_option("--out,-o", reference.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(referenceCommand, reference.force);

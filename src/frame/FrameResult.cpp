@@ -39,7 +39,7 @@ const std::vector<BufferSpec>& commonBufferSpecs()
     { "position", "world units", "world-space position of the surface seen in the pixel (3 components)" },
     { "normal", "", "unit world-space normal, facing the camera (3 components)" },
     { "depth", "world units", "linear view depth along the camera axis" },
-    { "coverage", "", "1 where a surface covers the pixel centre, 0 for background" },
+    { "coverage", "", "1 where a surface covers the pixel centre (multisampled frames: the first sample), 0 for background" },
     { "albedo", "", "surface albedo (3 components)" },
     { "receives_shadows", "", "1 where the surface receives shadows (the object's receive_shadows), else 0" },
   };
@@ -52,6 +52,24 @@ const std::vector<BufferSpec>& subLightBufferSpecs()
     { "sublight_visibility", "", "techniques with `sublights` = S (multi-view shadow maps, Yang et al. 2009 §5): the "
                                  "visibility of each of the S x S sub-lights, one component each, row by row from the "
                                  "light's (-right, -up) corner; `visibility` is their mean" },
+  };
+  return specs;
+}
+
+const std::vector<BufferSpec>& multisampleBufferSpecs()
+{
+  static const std::vector<BufferSpec> specs = {
+    { "msaa_distinct_samples", "samples", "multisampled frames (Schwarz and Stamminger 2008 §7): covered samples whose view depth "
+                                           "differs from the first sample's s_z by more than tau (relative); 0 .. samples - 1" },
+    { "msaa_interpolated_samples", "samples", "multisampled frames: samples that took the visibility of a 4-neighbour (the one "
+                                               "whose s_z is closest to the sample's depth) instead of the pixel's" },
+    { "msaa_pixel_visibility", "", "multisampled frames: the technique's visibility, evaluated once per pixel from the "
+                                    "first sample (001 L731-734), before the resolve" },
+    { "msaa_sample_depth", "world units", "multisampled frames: each sample's view depth (one component per sample; 0 where "
+                                           "the sample is uncovered)" },
+    { "msaa_sample_visibility", "", "multisampled frames: each sample's visibility after the resolve (one component per "
+                                     "sample; 0 where uncovered); `visibility` is their mean over the covered samples where "
+                                     "sample 0 is covered, else 0" },
   };
   return specs;
 }

@@ -59,6 +59,9 @@ struct FrameResult
   std::string glRenderer;
   std::string glVersion;
   std::string eglPlatform;
+  // Multisampled frames (MultisampleSettings, RenderRequest::gbufferSamples): the G-buffer's sample positions within
+  // the pixel, in [0, 1)^2 as GL reports them (glGetMultisamplefv); empty when single-sampled.
+  std::vector<glm::dvec2> samplePositions;
 
   const NamedImage* find(const std::string& name) const;
 };
@@ -77,5 +80,8 @@ std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame);
 const std::vector<BufferSpec>& commonBufferSpecs();
 // The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
 const std::vector<BufferSpec>& subLightBufferSpecs();
+// The buffers of multisampled frames (MultisampleSettings::samples > 1): msaa_distinct_samples,
+// msaa_interpolated_samples, msaa_pixel_visibility, msaa_sample_depth, msaa_sample_visibility.
+const std::vector<BufferSpec>& multisampleBufferSpecs();
 
 } // namespace sl

@@ -129,6 +129,17 @@ BufferSpec categoricalBuffer(std::string name, std::string doc, const Category<E
   return spec;
 }
 
+// Multisampled rendering (Schwarz and Stamminger 2008 §7): a `samples`x multisampled G-buffer, the technique evaluated
+// once per pixel from the first sample (the single-sampled G-buffer targets hold sample 0), and a custom resolve in
+// which a sample whose view depth d_s is within `depthTolerance` (relative: |d_s - s_z| <= tau s_z) of the pixel's
+// s_z takes the pixel's visibility and any other the visibility of the pixel or 4-neighbour whose s_z is closest
+// (passes/vtkSLMsaaResolvePass.h).
+struct MultisampleSettings
+{
+  int samples = 1; // 1 (off) or 4
+  double depthTolerance = 0.0;
+};
+
 struct TechniqueDescriptor
 {
   std::string name;    // CLI name: "pcf"
@@ -172,6 +183,12 @@ struct TechniqueDescriptor
   // structures each); buffers combine per BufferSpec::subLightCombine and `sublight_visibility` holds the S^2
   // sub-light visibilities. See subLightsParameter() (techniques/SoftShadowSupport.h).
   bool hasSubLights() const { return findParameter("sublights") != nullptr; }
+  // The multisampling a frame rendered with the given values asks for; unset: none (samples = 1).
+  std::function<MultisampleSettings(const ParameterValues& values)> multisample;
+  MultisampleSettings multisampleFor(const ParameterValues& values) const
+  {
+    return multisample ? multisample(values) : MultisampleSettings{};
+  }
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;
   // Every parameter at its default.

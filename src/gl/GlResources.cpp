@@ -83,6 +83,39 @@ vtkSmartPointer<vtkTextureObject> makeDepthStencilTarget(vtkOpenGLRenderWindow* 
   return texture;
 }
 
+vtkSmartPointer<vtkTextureObject> makeMultisampleFloatTarget(vtkOpenGLRenderWindow* window, int width, int height,
+  int components, int samples)
+{
+  static const unsigned internalFormats[] = { 0, GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F };
+  static const unsigned formats[] = { 0, GL_RED, GL_RG, GL_RGB, GL_RGBA };
+  SL_CHECK(components >= 1 && components <= 4 && samples > 1);
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  texture->SetSamples(static_cast<unsigned>(samples));
+  texture->SetInternalFormat(internalFormats[components]);
+  texture->SetFormat(formats[components]);
+  texture->SetDataType(GL_FLOAT);
+  if (!texture->Allocate2D(width, height, components, VTK_FLOAT))
+  {
+    throw GraphicsError(format("cannot allocate a ", width, "x", height, " ", samples, "x multisampled float target"));
+  }
+  return texture;
+}
+
+vtkSmartPointer<vtkTextureObject> makeMultisampleDepthStencilTarget(vtkOpenGLRenderWindow* window, int width,
+  int height, int samples)
+{
+  SL_CHECK(samples > 1);
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  texture->SetSamples(static_cast<unsigned>(samples));
+  if (!texture->AllocateDepthStencil(width, height))
+  {
+    throw GraphicsError(format("cannot allocate a ", width, "x", height, " ", samples, "x multisampled depth-stencil target"));
+  }
+  return texture;
+}
+
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height)
 {
   auto texture = vtkSmartPointer<vtkTextureObject>::New();

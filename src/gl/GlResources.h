@@ -30,6 +30,11 @@ vtkSmartPointer<vtkTextureObject> makeDepthTarget(vtkOpenGLRenderWindow* window,
 // GL_DEPTH32F_STENCIL8: the G-buffer's depth, which object-space techniques (shadow volumes) test against and
 // write stencil into. Its depth is the same 32-bit float as makeDepthTarget's.
 vtkSmartPointer<vtkTextureObject> makeDepthStencilTarget(vtkOpenGLRenderWindow* window, int width, int height);
+// Multisampled variants (GL_TEXTURE_2D_MULTISAMPLE, fixed sample locations): read with texelFetch on a sampler2DMS.
+vtkSmartPointer<vtkTextureObject> makeMultisampleFloatTarget(vtkOpenGLRenderWindow* window, int width, int height,
+  int components, int samples);
+vtkSmartPointer<vtkTextureObject> makeMultisampleDepthStencilTarget(vtkOpenGLRenderWindow* window, int width,
+  int height, int samples);
 // An RGBA8 target for the shaded image.
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height);
 

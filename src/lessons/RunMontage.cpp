@@ -9,7 +9,7 @@ namespace sl
 
 BufferSpec runBufferSpec(const nlohmann::json& stats, const std::string& buffer)
 {
-  std::vector<const std::vector<BufferSpec>*> lists = { &commonBufferSpecs(), &subLightBufferSpecs() };
+  std::vector<const std::vector<BufferSpec>*> lists = { &commonBufferSpecs(), &subLightBufferSpecs(), &multisampleBufferSpecs() };
   const nlohmann::json technique = stats.is_object() ? stats.value("technique", nlohmann::json()) : nlohmann::json();
   if (technique.is_string())
   {

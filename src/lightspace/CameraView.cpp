@@ -27,6 +27,19 @@ glm::dvec2 depthRange(const Bounds& bounds, const glm::dvec3& eye, const glm::dv
   return range;
 }
 
+// The terms that follow from viewFromWorld and clipFromView: the combined matrices and the camera rays.
+void finishCameraView(CameraView& view)
+{
+  view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+  view.worldFromClip = glm::inverse(view.clipFromWorld);
+  view.nearOrigin = unprojectPixel(view, 0.0, 0.0, -1.0);
+  view.nearStepX = unprojectPixel(view, 1.0, 0.0, -1.0) - view.nearOrigin;
+  view.nearStepY = unprojectPixel(view, 0.0, 1.0, -1.0) - view.nearOrigin;
+  view.rayOrigin = unprojectPixel(view, 0.0, 0.0, 1.0) - view.nearOrigin;
+  view.rayStepX = unprojectPixel(view, 1.0, 0.0, 1.0) - view.nearOrigin - view.nearStepX - view.rayOrigin;
+  view.rayStepY = unprojectPixel(view, 0.0, 1.0, 1.0) - view.nearOrigin - view.nearStepY - view.rayOrigin;
+}
+
 } // namespace
 
 CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::ivec2 resolution,
@@ -75,15 +88,21 @@ CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::
     view.clipFromView = glm::ortho(-halfHeight * aspect, halfHeight * aspect, -halfHeight, halfHeight,
       view.nearDepth, view.farDepth);
   }
-  view.clipFromWorld = view.clipFromView * view.viewFromWorld;
-  view.worldFromClip = glm::inverse(view.clipFromWorld);
-  view.nearOrigin = unprojectPixel(view, 0.0, 0.0, -1.0);
-  view.nearStepX = unprojectPixel(view, 1.0, 0.0, -1.0) - view.nearOrigin;
-  view.nearStepY = unprojectPixel(view, 0.0, 1.0, -1.0) - view.nearOrigin;
-  view.rayOrigin = unprojectPixel(view, 0.0, 0.0, 1.0) - view.nearOrigin;
-  view.rayStepX = unprojectPixel(view, 1.0, 0.0, 1.0) - view.nearOrigin - view.nearStepX - view.rayOrigin;
-  view.rayStepY = unprojectPixel(view, 0.0, 1.0, 1.0) - view.nearOrigin - view.nearStepY - view.rayOrigin;
+  finishCameraView(view);
   return view;
+}
+
+CameraView offsetCameraView(const CameraView& view, glm::dvec2 pixelOffset)
+{
+  CameraView offset = view;
+  // Window x = (ndc x + 1) W / 2, so moving the scene by -2 offset / W in NDC brings window position x + 0.5 + offset
+  // to the centre x + 0.5. A clip-space translation scales with w, as the perspective divide requires.
+  glm::dmat4 shift(1.0);
+  shift[3][0] = -2.0 * pixelOffset.x / view.resolution.x;
+  shift[3][1] = -2.0 * pixelOffset.y / view.resolution.y;
+  offset.clipFromView = shift * view.clipFromView;
+  finishCameraView(offset);
+  return offset;
 }
 
 glm::dvec3 unprojectPixel(const CameraView& view, double x, double y, double ndcZ)

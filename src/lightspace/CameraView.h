@@ -41,6 +41,10 @@ constexpr double kMinNearOverFarForObjects = 1e-7;
 CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, glm::ivec2 resolution,
   const std::vector<Bounds>& objectBounds = {});
 
+// `view` with its projection shifted so that pixel (x, y) sees window position (x + 0.5 + pixelOffset.x,
+// y + 0.5 + pixelOffset.y) (a translation in clip space; the camera-ray terms follow).
+CameraView offsetCameraView(const CameraView& view, glm::dvec2 pixelOffset);
+
 // World-space point on the near (ndcZ = -1) or far (ndcZ = 1) plane under pixel position (x, y) in
 // pixels (pixel centres at +0.5).
 glm::dvec3 unprojectPixel(const CameraView& view, double x, double y, double ndcZ);

@@ -139,6 +139,15 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     structureBytes[name] = bytes;
   }
   stats["light_structure_gpu_bytes"] = structureBytes;
+  if (!frame.samplePositions.empty())
+  {
+    nlohmann::json positions = nlohmann::json::array();
+    for (const glm::dvec2& position : frame.samplePositions)
+    {
+      positions.push_back({ position.x, position.y });
+    }
+    stats["sample_positions"] = positions;
+  }
   if (frame.lightView)
   {
     const LightView& view = *frame.lightView;

@@ -51,6 +51,22 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> gbufferNormal;
   vtkSmartPointer<vtkTextureObject> gbufferAlbedoDepth;
   vtkSmartPointer<vtkTextureObject> gbufferDepth; // GL_DEPTH32F_STENCIL8, stencil cleared to 0
+  // Multisampled frames (TechniqueDescriptor::multisampleFor, RenderRequest::gbufferSamples): the G-buffer rendered
+  // gbufferSamples x multisampled, one fragment per pixel and primitive (attributes at the pixel centre, extrapolating
+  // the primitive: 001 §7, L719-724), into these targets; the single-sampled ones above then hold sample 0.
+  MultisampleSettings multisample;
+  vtkSmartPointer<vtkTextureObject> gbufferMsPosition;
+  vtkSmartPointer<vtkTextureObject> gbufferMsNormal;
+  vtkSmartPointer<vtkTextureObject> gbufferMsAlbedoDepth;
+  vtkSmartPointer<vtkTextureObject> gbufferMsDepth;
+  std::vector<glm::dvec2> samplePositions; // in the pixel, [0, 1)^2 (glGetMultisamplefv)
+  // The MSAA resolve's outputs (passes/vtkSLMsaaResolvePass.h): the technique's visibility before it, then RGBA32F,
+  // one component per sample, and the counts.
+  vtkSmartPointer<vtkTextureObject> pixelVisibility;
+  vtkSmartPointer<vtkTextureObject> sampleVisibility;
+  vtkSmartPointer<vtkTextureObject> sampleDepth;
+  vtkSmartPointer<vtkTextureObject> distinctSamples;     // R32F
+  vtkSmartPointer<vtkTextureObject> interpolatedSamples; // R32F
 
   // The shadow map (lightspace/shadowmap), the structure every other one is built from (only when the technique
   // needs it).

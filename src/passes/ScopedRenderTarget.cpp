@@ -51,8 +51,9 @@ ScopedRenderTarget::ScopedRenderTarget(vtkOpenGLRenderWindow* window, vtkOpenGLF
     if (hasStencil_)
     {
       // VTK 9.1 attaches a depth texture to GL_DEPTH_ATTACHMENT only; a depth-stencil texture's stencil must be
-      // attached too, or stencil tests see no stencil buffer.
-      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depthTarget->GetHandle(), 0);
+      // attached too, or stencil tests see no stencil buffer (its target: multisampled G-buffers have one too).
+      glFramebufferTexture2D(
+        GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, depthTarget->GetTarget(), depthTarget->GetHandle(), 0);
     }
   }
   framebuffer_->ActivateDrawBuffers(colorCount_);

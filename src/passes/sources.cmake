@@ -9,5 +9,6 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLGBufferPass.cxx
   src/passes/GpuReceivers.cpp
   src/passes/vtkSLShadingPass.cxx
+  src/passes/vtkSLMsaaResolvePass.cxx
   src/passes/vtkSLSubLightAccumulatePass.cxx
   src/passes/vtkSLMultiViewPass.cxx)

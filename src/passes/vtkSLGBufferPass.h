@@ -1,11 +1,16 @@
-// Stage 1: rasterises every scene object into the G-buffer (layout in FrameResources.h).
+// Stage 1: rasterises every scene object into the G-buffer (layout in FrameResources.h). Multisampled frames
+// (FrameResources::multisample) rasterise into multisampled targets, one fragment per pixel and primitive as
+// Schwarz and Stamminger 2008 §7 assume (no sample shading: attributes at the pixel centre, L719-724), then copy
+// sample 0 into the single-sampled targets (the paper's s_z, "always the first", L731-734) for every later pass.
 #pragma once
 
+#include "passes/FullScreenQuad.h"
 #include "passes/vtkSLStagePass.h"
 
 #include <vtkNew.h>
 
 class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
 
 class vtkSLGBufferPass : public vtkSLStagePass
 {
@@ -25,6 +30,11 @@ private:
   vtkSLGBufferPass(const vtkSLGBufferPass&) = delete;
   void operator=(const vtkSLGBufferPass&) = delete;
 
+  // Multisampled frames: sample 0 of the multisampled targets into the single-sampled ones (depth included).
+  void CopyFirstSample(vtkOpenGLRenderWindow* window);
+
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkNew<vtkOpenGLFramebufferObject> MultisampleFramebuffer;
   sl::MeshDrawer Drawer;
+  sl::FullScreenQuad FirstSampleQuad;
 };

@@ -15,6 +15,9 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
+#include <string>
+#include <vector>
+
 vtkStandardNewMacro(vtkSLShadingPass);
 
 vtkSLShadingPass::vtkSLShadingPass() = default;
@@ -27,14 +30,27 @@ void vtkSLShadingPass::Execute(const vtkRenderState* state)
   frame.shadedImage = sl::makeColorTarget(window, frame.width(), frame.height());
 
   const sl::ScopedRenderTarget target(window, this->Framebuffer, { frame.shadedImage });
-  vtkShaderProgram* program = this->Quad.ready(
-    window, sl::assembleShader("shading/ShadingFragment.glsl", sl::commonDefines()), "shading");
-  vtkTextureObject* bound[] = {
+  const bool multisampled = frame.multisample.samples > 1;
+  sl::ShaderDefines defines = sl::commonDefines();
+  if (multisampled)
+  {
+    defines.emplace_back("MSAA_SAMPLES", std::to_string(frame.multisample.samples));
+  }
+  vtkShaderProgram* program =
+    this->Quad.ready(window, sl::assembleShader("shading/ShadingFragment.glsl", defines), "shading");
+  std::vector<vtkTextureObject*> bound = {
     sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition),
     sl::bindTexture(program, "gbufferNormal", frame.gbufferNormal),
     sl::bindTexture(program, "gbufferAlbedoDepth", frame.gbufferAlbedoDepth),
     sl::bindTexture(program, "visibilityTexture", frame.techniqueTargets.at("visibility")),
   };
+  if (multisampled)
+  {
+    bound.push_back(sl::bindTexture(program, "multisamplePosition", frame.gbufferMsPosition));
+    bound.push_back(sl::bindTexture(program, "multisampleNormal", frame.gbufferMsNormal));
+    bound.push_back(sl::bindTexture(program, "multisampleAlbedoDepth", frame.gbufferMsAlbedoDepth));
+    bound.push_back(sl::bindTexture(program, "sampleVisibility", frame.sampleVisibility));
+  }
   sl::setLightUniforms(program, *frame.light);
   sl::setFloatIfUsed(program, "lightIntensity", frame.light->intensity);
   if (program->IsUniformUsed("backgroundColor"))

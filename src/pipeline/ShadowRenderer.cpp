@@ -7,6 +7,7 @@
 #include "lightspace/LightSpaceStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/vtkSLGBufferPass.h"
+#include "passes/vtkSLMsaaResolvePass.h"
 #include "passes/vtkSLMultiViewPass.h"
 #include "passes/vtkSLSubLightAccumulatePass.h"
 #include "passes/vtkSLShadingPass.h"
@@ -54,6 +55,10 @@ std::string ShadowRenderer::stageKey(const FrameResources& frame)
   {
     key += "|" + structure->name;
   }
+  if (frame.multisample.samples > 1)
+  {
+    key += "|msaa"; // the resolve stage
+  }
   return key;
 }
 
@@ -91,6 +96,11 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
       multiView->SetStages(std::vector<vtkSLStagePass*>(stages.begin() + 1, stages.end()), accumulate);
       multiViewByTechnique_[key] = multiView;
       stages.push_back(accumulate);
+    }
+    if (frame.multisample.samples > 1)
+    {
+      SL_CHECK_MSG(!technique.hasSubLights(), "multisampling with sub-lights is not supported");
+      stages.push_back(vtkSmartPointer<vtkSLMsaaResolvePass>::New());
     }
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
   }
@@ -165,6 +175,22 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
     throw InputError(format("--resolution ", resolution.x, "x", resolution.y, ": each side must be in 1..", kMaxImageSide));
   }
   frame.camera = makeCameraView(scene.camera, scene.bounds(), resolution, scene.objectBounds());
+  if (request.pixelOffset != glm::dvec2(0.0))
+  {
+    frame.camera = offsetCameraView(frame.camera, request.pixelOffset);
+  }
+  if (request.gbufferOnly)
+  {
+    if (request.gbufferSamples != 1 && request.gbufferSamples != 4)
+    {
+      throw InputError(format("--msaa ", request.gbufferSamples, ": expected 1 or 4"));
+    }
+    frame.multisample.samples = request.gbufferSamples;
+  }
+  else
+  {
+    frame.multisample = technique.multisampleFor(frame.parameters);
+  }
 }
 
 // The per-pixel buffers: the common ones (G-buffer, visibility), the technique's, and the sub-lights'.
@@ -191,6 +217,20 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
   if (request.gbufferOnly)
   {
     return;
+  }
+  if (frame.multisample.samples > 1)
+  {
+    const auto multisampleBuffer = [&](const std::string& name, vtkTextureObject* texture, int components) {
+      const auto& specs = multisampleBufferSpecs();
+      const auto spec = std::find_if(specs.begin(), specs.end(), [&](const BufferSpec& s) { return s.name == name; });
+      result.buffers.push_back(
+        { name, readFloatTexture(texture, components), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
+    };
+    multisampleBuffer("msaa_distinct_samples", frame.distinctSamples, 1);
+    multisampleBuffer("msaa_interpolated_samples", frame.interpolatedSamples, 1);
+    multisampleBuffer("msaa_pixel_visibility", frame.pixelVisibility, 1);
+    multisampleBuffer("msaa_sample_depth", frame.sampleDepth, frame.multisample.samples);
+    multisampleBuffer("msaa_sample_visibility", frame.sampleVisibility, frame.multisample.samples);
   }
   for (const BufferSpec& spec : frame.technique->buffers)
   {
@@ -232,6 +272,23 @@ void readBackLightSpace(const FrameResources& frame, FrameResult& result)
     result.lightSpace.insert(result.lightSpace.end(), images.begin(), images.end());
     result.lightStructureGpuBytes[structure->name] = structure->gpuBytes(frame);
   }
+}
+
+// The MSAA resolve's counts for stats.json and bench's columns (001 §7: "usually the vast majority of pixels require
+// only a single visibility determination", L719-724).
+void addMultisampleStatistics(FrameResult& result)
+{
+  const ImageF& distinct = result.find("msaa_distinct_samples")->image;
+  const ImageF& interpolated = result.find("msaa_interpolated_samples")->image;
+  double pixelsWithDistinct = 0.0;
+  double interpolatedSamples = 0.0;
+  for (std::size_t i = 0; i < distinct.data.size(); ++i)
+  {
+    pixelsWithDistinct += distinct.data[i] > 0.0f ? 1.0 : 0.0;
+    interpolatedSamples += interpolated.data[i];
+  }
+  result.techniqueStatistics["msaa_pixels_with_distinct_samples"] = pixelsWithDistinct;
+  result.techniqueStatistics["msaa_interpolated_samples"] = interpolatedSamples;
 }
 
 } // namespace
@@ -317,6 +374,7 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
   result.glRenderer = window_->GetRendererString();
   result.glVersion = window_->GetVersionString();
   result.eglPlatform = window_->GetEglContext()->platformName();
+  result.samplePositions = frame.samplePositions;
 }
 
 void ShadowRenderer::appendPassBuffers(const FrameResources& frame, FrameResult& result)
@@ -378,6 +436,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     {
       result.techniqueStatistics["cut_short_pixels"] = static_cast<double>(cutShort->count);
     }
+    if (frame.multisample.samples > 1)
+    {
+      addMultisampleStatistics(result);
+    }
   }
   if (frame.shadedImage)
   {
@@ -385,6 +447,26 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   }
   releaseFrame(frame, request.gbufferOnly);
   return result;
+}
+
+std::vector<FrameResult> ShadowRenderer::renderSampleGBuffers(const Scene& scene, RenderRequest request, int samples)
+{
+  request.gbufferOnly = true;
+  request.gbufferSamples = samples;
+  request.pixelOffset = glm::dvec2(0.0);
+  const FrameResult multisampled = render(scene, request);
+  if (samples == 1)
+  {
+    return { multisampled };
+  }
+  std::vector<FrameResult> perSample;
+  request.gbufferSamples = 1;
+  for (const glm::dvec2& position : multisampled.samplePositions)
+  {
+    request.pixelOffset = position - glm::dvec2(0.5);
+    perSample.push_back(render(scene, request));
+  }
+  return perSample;
 }
 
 } // namespace sl

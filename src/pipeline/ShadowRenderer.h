@@ -34,6 +34,13 @@ struct RenderRequest
   // Only the G-buffer stage: buffers position, normal, depth, coverage, albedo, receives_shadows (no
   // visibility, no image). The ray-traced reference shades exactly these surface points.
   bool gbufferOnly = false;
+  // G-buffer-only frames: render the G-buffer this many times multisampled (1 or 4) and report the sample positions
+  // (FrameResult::samplePositions); the buffers then hold sample 0. Technique frames take their technique's
+  // (TechniqueDescriptor::multisampleFor) and ignore this.
+  int gbufferSamples = 1;
+  // Shifts the camera so that pixel (x, y) sees window position (x + 0.5 + pixelOffset.x, y + 0.5 + pixelOffset.y):
+  // the ray-traced reference's multisample mode traces each sample position this way (one G-buffer per sample).
+  glm::dvec2 pixelOffset{ 0.0 };
 };
 
 class ShadowRenderer
@@ -46,6 +53,11 @@ public:
 
   // Throws InputError for bad requests (unknown technique/parameter, out-of-range value, unsupported light).
   FrameResult render(const Scene& scene, const RenderRequest& request);
+  // The ray-traced reference's multisample mode: G-buffer-only frames of `request` (gbufferOnly is implied), one per
+  // sample of a `samples`x multisampled G-buffer, each seen through that sample's position as GL reports it (the
+  // camera shifted by position - 0.5: pixelOffset), so that frame s's pixel (x, y) holds the surface sample s of the
+  // multisampled frame covers. samples = 1: the one ordinary G-buffer.
+  std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, RenderRequest request, int samples);
 
   vtkSLEglRenderWindow* window() const { return window_; }
 

@@ -43,12 +43,34 @@ ProbeResult probePixel(const FrameResult& frame, const Scene& scene, int lightIn
   result.technique = frame.technique;
   result.pixel = pixel;
   result.lightIndex = lightIndex;
-  const NamedImage* visibility = frame.find("visibility");
+  // Multisampled frames: the technique ran once per pixel, from the first sample (001 L731-734); its value before the
+  // resolve is what the twin replays.
+  const NamedImage* pixelVisibility = frame.find("msaa_pixel_visibility");
+  const NamedImage* visibility = pixelVisibility ? pixelVisibility : frame.find("visibility");
   SL_CHECK(visibility != nullptr);
   result.gpuVisibility = visibility->image.at(pixel.x, pixel.y);
   ProbeRecorder recorder;
   const ProbeContext context{ &frame, &scene, lightIndex };
   result.outcome = frame.descriptor->probe(context, pixel, recorder);
+  if (pixelVisibility)
+  {
+    // The resolve that followed (passes/vtkSLMsaaResolvePass.h): each sample's depth and the visibility it took.
+    recorder.beginGroup("msaa resolve");
+    const ImageF& depths = frame.find("msaa_sample_depth")->image;
+    const ImageF& sampleVisibility = frame.find("msaa_sample_visibility")->image;
+    for (int s = 0; s < depths.components; ++s)
+    {
+      const std::string sample = "sample " + std::to_string(s);
+      recorder.quantity(sample + " depth", depths.at(pixel.x, pixel.y, s), "world units",
+        "001 L719-724 (0: the sample is uncovered)");
+      recorder.quantity(sample + " visibility", sampleVisibility.at(pixel.x, pixel.y, s), "",
+        "001 L714-733 (the pixel's within tau of the first sample's depth, else the closest-depth 4-neighbour's)");
+    }
+    recorder.quantity("interpolated samples", frame.find("msaa_interpolated_samples")->image.at(pixel.x, pixel.y),
+      "samples", "001 L725-733");
+    recorder.quantity("resolved visibility", frame.find("visibility")->image.at(pixel.x, pixel.y), "",
+      "the mean of the covered samples' visibilities");
+  }
   result.record = std::move(recorder.record());
   return result;
 }

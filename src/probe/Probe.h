@@ -27,7 +27,7 @@ struct ProbeResult
   glm::ivec2 pixel{ 0 };     // image coordinates, row 0 at the bottom (as the buffers)
   int lightIndex = 0;
   ProbeOutcome outcome;      // the twin's visibility, tolerance, ambiguity
-  double gpuVisibility = 0.0; // the frame's `visibility` at the pixel
+  double gpuVisibility = 0.0; // the frame's `visibility` at the pixel (multisampled: msaa_pixel_visibility)
   ProbeRecord record;
 
   double difference() const;

@@ -379,4 +379,67 @@ ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSe
   return result;
 }
 
+ReferenceResult renderMultisampleReference(const std::vector<ReferenceInputs>& perSample,
+  const ReferenceSettings& settings, const std::function<void(double fractionDone)>& progress)
+{
+  SL_CHECK(!perSample.empty());
+  if (settings.lightSampleSet)
+  {
+    throw InputError("--light-samples: per-sample facts of one surface point; not available with --msaa (multisample mode)");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const int samples = static_cast<int>(perSample.size());
+  std::vector<ReferenceResult> traced;
+  for (int s = 0; s < samples; ++s)
+  {
+    const auto sampleProgress = [&](double fraction) {
+      if (progress)
+      {
+        progress((s + fraction) / samples);
+      }
+    };
+    traced.push_back(renderReference(perSample[static_cast<std::size_t>(s)], settings, sampleProgress));
+  }
+  const int width = traced.front().visibility.width;
+  const int height = traced.front().visibility.height;
+  ReferenceResult result;
+  result.visibility = ImageF(width, height, 1, 0.0f);
+  result.standardError = ImageF(width, height, 1, 0.0f);
+  double traceSeconds = 0.0;
+  for (const ReferenceResult& one : traced)
+  {
+    SL_CHECK(one.visibility.width == width && one.visibility.height == height);
+    result.raysTraced += one.raysTraced;
+    traceSeconds += one.raysPerSecond > 0.0 ? static_cast<double>(one.raysTraced) / one.raysPerSecond : 0.0;
+  }
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      if (perSample.front().coverage.at(x, y) <= 0.5f)
+      {
+        continue;
+      }
+      double sum = 0.0;
+      double squaredErrors = 0.0;
+      int covered = 0;
+      for (int s = 0; s < samples; ++s)
+      {
+        if (perSample[static_cast<std::size_t>(s)].coverage.at(x, y) > 0.5f)
+        {
+          const ReferenceResult& one = traced[static_cast<std::size_t>(s)];
+          sum += one.visibility.at(x, y);
+          squaredErrors += static_cast<double>(one.standardError.at(x, y)) * one.standardError.at(x, y);
+          ++covered;
+        }
+      }
+      result.visibility.at(x, y) = static_cast<float>(sum / covered);
+      result.standardError.at(x, y) = static_cast<float>(std::sqrt(squaredErrors) / covered);
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.raysPerSecond = traceSeconds > 0.0 ? static_cast<double>(result.raysTraced) / traceSeconds : 0.0;
+  return result;
+}
+
 } // namespace sl

@@ -57,6 +57,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 namespace sl
 {
@@ -110,6 +111,16 @@ struct ReferenceResult
 // (SL_CHECK).
 ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSettings& settings,
   const std::function<void(double fractionDone)>& progress = {});
+
+// Multisample mode (the like-for-like reference of multisampled frames, Schwarz and Stamminger 2008 §7): one set of
+// inputs per sample, the G-buffer seen through that sample's position (ShadowRenderer::renderSampleGBuffers), each
+// traced as renderReference does; then per pixel
+//     visibility = the mean over the samples whose surface is covered, where sample 0's is; else 0
+// (the multisampled frame's rule: its coverage is sample 0's), standard error sqrt(sum of the covered samples'
+// squared errors) / their count, raysTraced summed, seconds the whole call. Light-sample sets are per-sample facts
+// and cannot be averaged: an InputError names --light-samples.
+ReferenceResult renderMultisampleReference(const std::vector<ReferenceInputs>& perSample,
+  const ReferenceSettings& settings, const std::function<void(double fractionDone)>& progress = {});
 
 // The ray offset renderReference uses for `scene` under `settings` (see above).
 double referenceRayOffset(const Scene& scene, const ReferenceSettings& settings);

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -76,13 +78,24 @@ TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
 {
   const std::filesystem::path out = test::freshOutputDir("reference-bad");
-  for (const auto& [option, value] : { std::pair<std::string, std::string>("--samples", "0"), { "--sampling", "sobol" } })
+  // {option, value, what the message names}: the multisample mode takes 1 or 4 samples, and no light-sample set
+  // (its per-sample facts are of one surface point).
+  const std::vector<std::array<std::string, 3>> cases = { { "--samples", "0", "--samples" },
+    { "--sampling", "sobol", "--sampling" }, { "--msaa", "3", "--msaa" }, { "--msaa", "0", "--msaa" },
+    { "--msaa", "4 --light-samples stratified", "--light-samples" } };
+  for (const auto& [option, value, named] : cases)
   {
-    const RunResult run = test::runShadowlabInTempDir({ "reference", test::datasetPath("planar-occluder").string(), option, value,
-      "--resolution", "32x32", "--out", out.string() });
+    std::vector<std::string> arguments = { "reference", test::datasetPath("planar-occluder").string(), option };
+    std::istringstream words(value);
+    for (std::string word; words >> word;)
+    {
+      arguments.push_back(word);
+    }
+    arguments.insert(arguments.end(), { "--resolution", "32x32", "--out", out.string() });
+    const RunResult run = test::runShadowlabInTempDir(arguments);
     EXPECT_NE(run.exitCode, 0) << option << " " << value;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    EXPECT_NE(run.err.find(option), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(named), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
   }
 }

@@ -277,6 +277,13 @@ FrameResult renderDataset(const Scene& scene, const std::string& technique, int 
   return sharedRenderer().render(scene, request);
 }
 
+std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, int width, int height, int samples)
+{
+  RenderRequest request;
+  request.resolution = glm::ivec2(width, height);
+  return sharedRenderer().renderSampleGBuffers(scene, request, samples);
+}
+
 ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
 {
   return referenceInputsOf(frame, scene, lightIndex);

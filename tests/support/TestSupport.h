@@ -98,6 +98,10 @@ GroundError groundErrorAgainst(const FrameResult& frame, const std::function<dou
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
   const std::vector<std::string>& settings = {});
 
+// The reference's multisample mode on the shared renderer: one G-buffer-only frame per sample position
+// (ShadowRenderer::renderSampleGBuffers).
+std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, int width, int height, int samples);
+
 // The shared renderer's window, for tests that run a pass outside a frame (tests/render/MicrorectGpuTest.cpp).
 // Use it rather than a second EGL context: each context terminates the process's EGL display when it goes, which
 // breaks the other one's teardown.

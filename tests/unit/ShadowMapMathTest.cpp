@@ -67,6 +67,36 @@ TEST(TexelRatio, OrthographicCameraAndLightStraightDown)
   }
 }
 
+TEST(CameraView, OffsetViewShowsEachPixelTheShiftedWindowPosition)
+{
+  // offsetCameraView (the reference's multisample mode): pixel (x, y) of the shifted view sees what window position
+  // (x + 0.5 + o.x, y + 0.5 + o.y) of the original sees, for perspective and orthographic cameras.
+  Camera perspective;
+  perspective.position = { 2.0, 3.0, 4.0 };
+  perspective.focalPoint = { 0.0, 0.0, 0.0 };
+  perspective.viewAngleDeg = 40.0;
+  for (const Camera& camera : { perspective, orthographicCameraLookingDown(2.0) })
+  {
+    const CameraView view = makeCameraView(camera, unitBounds(), { 160, 120 });
+    for (const glm::dvec2 offset : { glm::dvec2(-0.125, -0.375), glm::dvec2(0.375, 0.125), glm::dvec2(0.3, -0.2) })
+    {
+      const CameraView shifted = offsetCameraView(view, offset);
+      for (const glm::dvec2 pixel : { glm::dvec2(0.5, 0.5), glm::dvec2(80.5, 60.5), glm::dvec2(159.5, 3.5) })
+      {
+        for (const double ndcZ : { -1.0, 0.0, 1.0 })
+        {
+          const glm::dvec3 seen = unprojectPixel(shifted, pixel.x, pixel.y, ndcZ);
+          const glm::dvec3 original = unprojectPixel(view, pixel.x + offset.x, pixel.y + offset.y, ndcZ);
+          EXPECT_LT(glm::length(seen - original), 1e-9 * (1.0 + glm::length(original))) << pixel.x << "," << pixel.y;
+          // The camera-ray terms follow the shift (CameraRay.glsl reconstructs rays from them).
+          const glm::dvec3 nearPoint = shifted.nearOrigin + pixel.x * shifted.nearStepX + pixel.y * shifted.nearStepY;
+          EXPECT_LT(glm::length(nearPoint - unprojectPixel(view, pixel.x + offset.x, pixel.y + offset.y, -1.0)), 1e-9);
+        }
+      }
+    }
+  }
+}
+
 TEST(TexelRatio, TiltedLightStretchesTexelsByOneOverCosine)
 {
   // Projection aliasing (survey §3.2): a light at angle theta from the normal stretches a texel's

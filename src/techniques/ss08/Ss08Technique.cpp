@@ -89,7 +89,12 @@ TechniqueDescriptor ss08Technique()
     { "level_bias", 1, 0, 1, "", "scale the depth bias by 2^level at level j (min aggregation puts coarse texels in front of tilted receivers; 001's future work, L889-891)", { "off", "on" }, true },
     { "force_level", -1, -1, 13, "level", "experiments: use this level everywhere (no budget, smoothing or blending); -1 = off", {}, true },
     { "accumulation", 0, 0, 1, "", "how a level's back-projected micro-occluders combine (001 L140-144, L842-853): area, the sum of their clipped areas (overlaps count twice), or bitmask, SS07's occlusion bitmask over 256 light samples (the shared stratified 16 x 16 set, fixed seed), OR-ed, V = 1 - popcount / 256", { "area", "bitmask" }, true },
+    { "msaa", 0, 0, 1, "samples", "multisampling (001 §7): 4 = a 4x multisampled G-buffer, soft shadows evaluated once per pixel from the first sample and a custom resolve (passes/vtkSLMsaaResolvePass.h: msaa_distinct_samples, msaa_interpolated_samples, msaa_sample_depth, msaa_sample_visibility)", { "1", "4" }, true },
+    { "msaa_depth_tolerance", 0.001, 0.0, 1e30, "relative depth", "msaa=4: tau, the largest |d - s_z| / s_z at which a sample takes its pixel's visibility; others take the 4-neighbour's whose s_z is closest (001 L714-733, which gives tau no value). 0 = per sample (every sample off the first's depth interpolates), >= 1e30 = per pixel", {}, false },
   });
+  descriptor.multisample = [](const ParameterValues& values) {
+    return MultisampleSettings{ values.choice("msaa") == "4" ? 4 : 1, values.get("msaa_depth_tolerance") };
+  };
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure(), &microrectStructure() };
   descriptor.structureNeeded = [](const LightSpaceStructure& structure, const ParameterValues& values) {
     return &structure != &microrectStructure() || microrectsOn(values);
