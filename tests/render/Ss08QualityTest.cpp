@@ -1,12 +1,14 @@
 // ss08 (quality-scalable soft shadow mapping, Schwarz & Stamminger 2008, paper 001) against the paper's claims as
-// numbers (notes Part 1 §1.3 tests 7-9, and the budget map of Fig. 1 d):
+// numbers (notes Part 1 §1.3 tests 7-10, and the budget map of Fig. 1 d):
 //  - the smoothed LOQ map is continuous on each surface although the raw one is not (001 L363-368);
 //  - blending between floor(l) and ceil(l) weakens the seams where ceil(l) changes (Fig. 1 a vs b), and without
 //    blending microrects show weaker seams than micropatches (Fig. 13);
 //  - quality scales with the budget: the error against the Embree reference does not grow as the budget grows,
 //    the micro-occluders examined do, and the share of back-projecting pixels does not (Table 2, Fig. 10);
-//  - a budget map lowers the cost where it lowers the budget (Fig. 1 d).
-// Each prints its figures in [ measured ] lines. Frames 128^2, shadow maps 512^2 (llvmpipe).
+//  - a budget map lowers the cost where it lowers the budget (Fig. 1 d);
+//  - at coarse forced levels microrects with occlusion bitmasks beat micropatches (Fig. 12), and the bitmasks help
+//    microrects where they overlap.
+// Each prints its figures in [ measured ] lines. Frames 128^2, shadow maps 512^2 (llvmpipe; Fig. 12: 256^2).
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/TestSupport.h"
@@ -18,8 +20,10 @@
 #include <cctype>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 namespace sl
@@ -50,14 +54,79 @@ double statistic(const FrameResult& frame, const std::string& name)
   return found->second;
 }
 
-std::string datasetTestName(const ::testing::TestParamInfo<std::string>& info)
+// A gtest name: every character that is not a letter or digit turned into '_'.
+std::string gtestName(std::string name)
 {
-  std::string name = info.param;
   for (char& c : name)
   {
     c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   }
   return name;
+}
+
+std::string datasetTestName(const ::testing::TestParamInfo<std::string>& info)
+{
+  return gtestName(info.param);
+}
+
+// The Embree reference at a frame's G-buffer points (the ground truth of Table 2's and Fig. 12's comparisons, which
+// the paper makes against many shadow maps), with the RMS of its standard error: the noise every RMSE against it
+// carries.
+constexpr int kReferenceSamples = 2048;
+
+struct Reference
+{
+  ImageF visibility;
+  ImageF standardError;
+  ImageF coverage;               // the frame's: ErrorMetrics compares the covered pixels
+  double rmsErrorCovered = 0.0;  // RMS of the standard error (Bernoulli bound) over the covered pixels
+  double rmsErrorPenumbra = 0.0; // ... over the reference's penumbra (0 < V < 1)
+
+  bool covered(std::size_t i) const { return coverage.data[i * coverage.components] > 0.5f; }
+  // The error of a frame of the same camera (any ss08 settings) over the pixels ErrorMetrics compares.
+  ErrorMetrics errorOf(const FrameResult& frame) const
+  {
+    return computeErrorMetrics(bufferOf(frame, "visibility"), visibility, coverage, coverage);
+  }
+};
+
+Reference referenceOf(const FrameResult& frame, const Scene& scene)
+{
+  const ReferenceInputs inputs = test::referenceInputs(frame, scene);
+  ReferenceSettings settings;
+  settings.samples = kReferenceSamples;
+  const ReferenceResult rays = renderReference(inputs, settings);
+  Reference reference;
+  reference.visibility = rays.visibility;
+  reference.standardError = rays.standardError;
+  reference.coverage = inputs.coverage;
+  double sums[2] = { 0.0, 0.0 };
+  int counts[2] = { 0, 0 };
+  for (std::size_t i = 0; i < reference.visibility.data.size(); ++i)
+  {
+    if (!reference.covered(i))
+    {
+      continue;
+    }
+    const double variance = static_cast<double>(rays.standardError.data[i]) * rays.standardError.data[i];
+    const bool penumbra = reference.visibility.data[i] > 0.0f && reference.visibility.data[i] < 1.0f;
+    for (int set = 0; set < (penumbra ? 2 : 1); ++set)
+    {
+      sums[set] += variance;
+      ++counts[set];
+    }
+  }
+  reference.rmsErrorCovered = counts[0] > 0 ? std::sqrt(sums[0] / counts[0]) : 0.0;
+  reference.rmsErrorPenumbra = counts[1] > 0 ? std::sqrt(sums[1] / counts[1]) : 0.0;
+  return reference;
+}
+
+std::string describe(const Reference& reference)
+{
+  std::ostringstream text;
+  text << kReferenceSamples << " samples, RMS standard error (Bernoulli bound) " << reference.rmsErrorCovered
+       << " over the covered pixels, " << reference.rmsErrorPenumbra << " over its penumbra";
+  return text.str();
 }
 
 // Pixels that back-project micro-occluders: the search's penumbra, or (growth=on) the penumbra of the grown query
@@ -387,43 +456,18 @@ TEST_P(Ss08Scaling, QualityAndCostScaleWithTheBudget)
     double cutShort = 0.0;
   };
   std::vector<Row> rows;
-  ImageF reference;
-  double referenceErrorCovered = 0.0;  // RMS of the reference's standard error over the covered pixels
-  double referenceErrorPenumbra = 0.0; // ... over its penumbra (0 < V < 1)
-  const int referenceSamples = 2048;
+  std::optional<Reference> reference; // the camera, hence the G-buffer points, are the same at every budget
   for (const int budget : budgets)
   {
     const FrameResult frame = test::renderDataset(scene, "ss08", kFrameSize, kFrameSize,
       { kMapSetting, "budget=" + std::to_string(budget) });
-    const ReferenceInputs inputs = test::referenceInputs(frame, scene);
-    if (reference.data.empty()) // the camera, hence the G-buffer points, are the same at every budget
+    if (!reference)
     {
-      ReferenceSettings settings;
-      settings.samples = referenceSamples;
-      const ReferenceResult rays = renderReference(inputs, settings);
-      reference = rays.visibility;
-      double sums[2] = { 0.0, 0.0 };
-      int counts[2] = { 0, 0 };
-      for (std::size_t i = 0; i < reference.data.size(); ++i)
-      {
-        if (inputs.coverage.data[i * inputs.coverage.components] <= 0.5f)
-        {
-          continue;
-        }
-        const double variance = static_cast<double>(rays.standardError.data[i]) * rays.standardError.data[i];
-        const bool penumbra = reference.data[i] > 0.0f && reference.data[i] < 1.0f;
-        for (int set = 0; set < (penumbra ? 2 : 1); ++set)
-        {
-          sums[set] += variance;
-          ++counts[set];
-        }
-      }
-      referenceErrorCovered = counts[0] > 0 ? std::sqrt(sums[0] / counts[0]) : 0.0;
-      referenceErrorPenumbra = counts[1] > 0 ? std::sqrt(sums[1] / counts[1]) : 0.0;
+      reference = referenceOf(frame, scene);
     }
     Row row;
     row.budget = budget;
-    row.error = computeErrorMetrics(bufferOf(frame, "visibility"), reference, inputs.coverage, inputs.coverage);
+    row.error = reference->errorOf(frame);
     row.backProjectingPercent = statistic(frame, "backprojecting_pixels_percent");
     row.microOccludersMean = statistic(frame, "micro_occluders_mean");
     row.microOccludersStdev = statistic(frame, "micro_occluders_stdev");
@@ -434,8 +478,7 @@ TEST_P(Ss08Scaling, QualityAndCostScaleWithTheBudget)
     rows.push_back(row);
   }
   std::cout << "[ measured ] ss08 quality by budget on " << dataset << " (" << kFrameSize << "^2, " << kMapSetting
-            << "; Embree " << referenceSamples << " samples, RMS standard error (Bernoulli bound) " << referenceErrorCovered
-            << " over the covered pixels, " << referenceErrorPenumbra << " over its penumbra)\n"
+            << "; Embree " << describe(*reference) << ")\n"
             << "[ measured ]   budget | RMSE | penumbra RMSE | % back-projecting | micro-occluders mean | stdev | floor(l) alone | blend overhead | mean l | cut short\n";
   for (const Row& row : rows)
   {
@@ -447,7 +490,7 @@ TEST_P(Ss08Scaling, QualityAndCostScaleWithTheBudget)
   // The reference is the same image for every budget, so its noise shifts the RMSEs alike; it must still be small
   // next to the spread being measured.
   const double spread = rows.front().error.covered.rmse - rows.back().error.covered.rmse;
-  EXPECT_LT(referenceErrorCovered, 0.25 * spread) << dataset << ": the reference's noise must be well below the differences";
+  EXPECT_LT(reference->rmsErrorCovered, 0.25 * spread) << dataset << ": the reference's noise must be well below the differences";
   for (std::size_t i = 0; i < rows.size(); ++i)
   {
     const std::string label = dataset + " budget " + std::to_string(rows[i].budget);
@@ -559,6 +602,139 @@ TEST(Ss08Quality, BudgetMapLowersTheCostAtTheBorders)
   EXPECT_LT(rampOuter, rampCentre);
   EXPECT_LT(rampOuter, uniformOuter) << "the lower border budget must lower the border's cost";
 }
+
+// The standard error that the reference's own noise puts on MSE(a) - MSE(b) over the covered pixels: its error e_i
+// enters the difference as -2 (a_i - b_i) e_i / N (e_i^2 cancels), so sigma = 2 sqrt(sum (a_i - b_i)^2 s_i^2) / N with
+// s_i its standard error (Bernoulli bound).
+double mseDifferenceNoise(const Reference& reference, const ImageF& a, const ImageF& b)
+{
+  double sum = 0.0;
+  std::size_t pixels = 0;
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+  {
+    if (reference.covered(i))
+    {
+      const double difference = static_cast<double>(a.data[i]) - b.data[i];
+      const double standardError = reference.standardError.data[i];
+      sum += difference * difference * standardError * standardError;
+      ++pixels;
+    }
+  }
+  return pixels > 0 ? 2.0 * std::sqrt(sum) / static_cast<double>(pixels) : 0.0;
+}
+
+// Test 10 of notes §1.3, Fig. 12 (001 L828-835): at a coarse level, microrects approximate the occluders better than
+// micropatches (min-aggregated texels, which grow each occluder to whole level-j texels), with the occlusion bitmasks
+// the paper pairs them with: microrects overlap by design (L515-529), so area accumulation counts the overlaps twice.
+// One case per dataset and forced level (force_level: l = level everywhere, alpha = 0, one level), each printing the
+// four RMSEs against the Embree reference over the covered pixels (ErrorMetrics' `covered`, as Ss08Scaling):
+// micropatch + area, micropatch + bitmask (Fig. 12 b), microrect + area (c), microrect + bitmask (d).
+//
+// Map 256^2: levels 2 and 3 are then 64 and 32 micro-occluders across the map, coarse next to these occluders, as in
+// Fig. 12; a case takes 2-4 s on llvmpipe (5-7 s as a ctest case at -j2). On finer maps the same levels are finer and
+// the claim stops holding in places: at 1024^2 on bunny level 2 and stacked-occluders levels 2 and 3 (256^2 images,
+// docs/bench/ss08/table.md §5), and with 128^2 images also on stacked-occluders level 2 at 512^2 (0.0284 against
+// 0.0274). Where it fails the error is a leak: on the ground of stacked-occluders under the upper square's edge, where
+// the lower square hides behind it in the map, both kinds let through light that the hidden part blocks, microrects
+// more (256^2 image, pixel 132,146, level 2, 512^2 map: reference 0.148, micropatch 0.293, microrect 0.543, GPU =
+// twin); micropatches, grown to whole level-j texels, cover more of the gap ("rather conservative concerning
+// occlusion", L452-453).
+const char* const kFig12MapSetting = "shadow_map_size=256";
+// The bitmasks help microrects where they overlap (L525-529): there area accumulation over-occludes, and the bitmask's
+// 256 samples cost less than that. Where they hardly overlap, area accumulation is the exact integral and the bitmask
+// only adds its sampling error (near-light level 2: microrect + area 0.0028 RMSE, + bitmask 0.0088). The measure of
+// overlap is the mean area_overcount over the back-projecting pixels. Micropatches of one level do not overlap in the
+// map (their back-projections may, from different depths), and theirs stays within |mean| <= 0.0086 on these six
+// cases: the bitmask pairing is gated where the microrects' exceeds 0.01.
+constexpr double kMicrorectOverlapGate = 0.01;
+
+class Ss08Fig12 : public ::testing::TestWithParam<std::tuple<std::string, int>>
+{
+};
+
+TEST_P(Ss08Fig12, MicrorectsBeatMicropatchesAtCoarseLevelsWithBitmasks)
+{
+  const std::string dataset = std::get<0>(GetParam());
+  const int level = std::get<1>(GetParam());
+  const Scene scene = test::loadDataset(dataset);
+  const char* const kinds[2] = { "micropatch", "microrect" };
+  const char* const accumulations[2] = { "area", "bitmask" };
+  std::optional<Reference> reference; // force_level changes no camera: one reference for the four frames
+  ErrorMetrics error[2][2];           // [micro-occluder][accumulation]
+  ImageF visibility[2][2];
+  double overcount[2] = { 0.0, 0.0 }; // mean area_overcount over the back-projecting pixels, bitmask frames
+  for (int k = 0; k < 2; ++k)
+  {
+    for (int a = 0; a < 2; ++a)
+    {
+      const std::vector<std::string> settings = { kFig12MapSetting, "force_level=" + std::to_string(level),
+        std::string("micro_occluder=") + kinds[k], std::string("accumulation=") + accumulations[a] };
+      const FrameResult frame = test::renderDataset(scene, "ss08", kFrameSize, kFrameSize, settings);
+      if (!reference)
+      {
+        reference = referenceOf(frame, scene);
+      }
+      error[k][a] = reference->errorOf(frame);
+      visibility[k][a] = bufferOf(frame, "visibility");
+      const std::string label = test::caseLabel(dataset, settings);
+      EXPECT_EQ(statistic(frame, "cut_short_pixels"), 0.0) << label << ": pixels cut short by the loop cap are not exact";
+      EXPECT_GT(error[k][a].penumbra.pixels, 200u) << label;
+      if (a == 1)
+      {
+        const std::vector<bool> backProjects = backProjectingPixels(frame);
+        const ImageF& overcounts = bufferOf(frame, "area_overcount");
+        std::size_t pixels = 0;
+        for (std::size_t i = 0; i < backProjects.size(); ++i)
+        {
+          if (backProjects[i])
+          {
+            overcount[k] += overcounts.data[i];
+            ++pixels;
+          }
+        }
+        overcount[k] /= static_cast<double>(std::max<std::size_t>(pixels, 1));
+      }
+    }
+  }
+  const auto mse = [&](int k, int a) { return error[k][a].covered.rmse * error[k][a].covered.rmse; };
+  const double rectVsPatchNoise = mseDifferenceNoise(*reference, visibility[0][1], visibility[1][1]);
+  const double bitmaskVsAreaNoise = mseDifferenceNoise(*reference, visibility[1][0], visibility[1][1]);
+  std::cout << "[ measured ] ss08 Fig. 12 on " << dataset << ", force_level=" << level << " (" << kFrameSize << "^2, "
+            << kFig12MapSetting << "; Embree " << describe(*reference) << "): RMSE micropatch+area "
+            << error[0][0].covered.rmse << ", micropatch+bitmask " << error[0][1].covered.rmse << ", microrect+area "
+            << error[1][0].covered.rmse << ", microrect+bitmask " << error[1][1].covered.rmse << " over "
+            << error[0][0].covered.pixels << " covered pixels; penumbra RMSE " << error[0][0].penumbra.rmse << ", "
+            << error[0][1].penumbra.rmse << ", " << error[1][0].penumbra.rmse << ", " << error[1][1].penumbra.rmse
+            << "; MSE gaps (reference noise sigma): micropatch - microrect with bitmasks " << mse(0, 1) - mse(1, 1) << " ("
+            << rectVsPatchNoise << "), microrect area - bitmask " << mse(1, 0) - mse(1, 1) << " (" << bitmaskVsAreaNoise
+            << "); mean area_overcount over back-projecting pixels: micropatch " << overcount[0] << ", microrect "
+            << overcount[1] << "\n";
+  const std::string label = dataset + " force_level=" + std::to_string(level) + " " + kFig12MapSetting;
+  EXPECT_LT(error[1][1].covered.rmse, error[0][1].covered.rmse) << label << ": microrect+bitmask must beat micropatch+bitmask";
+  EXPECT_GT(mse(0, 1) - mse(1, 1), 3.0 * rectVsPatchNoise) << label << ": the gap must stand out of the reference's noise";
+  if (dataset != "near-light") // one occluder (a square) near the light; bunny and stacked-occluders must not lose the gate
+  {
+    EXPECT_GT(overcount[1], kMicrorectOverlapGate) << label << ": microrects must overlap here";
+  }
+  if (overcount[1] > kMicrorectOverlapGate)
+  {
+    EXPECT_LE(error[1][1].covered.rmse, error[1][0].covered.rmse) << label << ": bitmasks must help overlapping microrects";
+    EXPECT_GT(mse(1, 0) - mse(1, 1), 3.0 * bitmaskVsAreaNoise) << label << ": the gap must stand out of the reference's noise";
+  }
+  else
+  {
+    std::cout << "[ measured ] ss08 Fig. 12 on " << label << ": microrect+bitmask <= microrect+area not gated, mean "
+              << "area_overcount " << overcount[1] << " <= " << kMicrorectOverlapGate << " (microrects hardly overlap)\n";
+  }
+}
+
+std::string fig12CaseName(const ::testing::TestParamInfo<std::tuple<std::string, int>>& info)
+{
+  return gtestName(std::get<0>(info.param) + "_level" + std::to_string(std::get<1>(info.param)));
+}
+
+INSTANTIATE_TEST_SUITE_P(CoarseLevels, Ss08Fig12,
+  ::testing::Combine(::testing::Values("bunny", "stacked-occluders", "near-light"), ::testing::Values(2, 3)), fig12CaseName);
 
 } // namespace
 } // namespace sl

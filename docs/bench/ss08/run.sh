@@ -1,6 +1,7 @@
 #!/bin/bash
 # ss08 (paper 001, Schwarz & Stamminger 2008): quality against budget (issue 14). From the repository root:
-#   bash docs/bench/ss08/run.sh [probe] [budget] [rerun] [structures] [bytes] [table]   (no argument: all but probe)
+#   bash docs/bench/ss08/run.sh [probe] [budget] [rerun] [structures] [bytes] [fig12] [cost] [table]
+#   (no argument: all but probe)
 # Every `bench` writes its own sub-directory through --out (bench replaces it atomically); the scripts and the
 # files copied from `render` live beside them. Timings come from llvmpipe on a 2-core machine shared with other
 # jobs: compare ratios within one run, not absolute milliseconds across runs.
@@ -8,11 +9,13 @@
 # built from commit 8b0ba52 plus the ss08 edits then uncommitted, which 223b716 committed unchanged (slot-loop
 # helpers without early returns, microrect levels); the probe's render used the earlier build of 68bfede, whose
 # slot loop llvmpipe cut at ~22900 slots instead of ~65200.
+# fig12 and cost (issue 17) were made on 2026-12-02 with SHADOWLAB=/tmp/ss08bench2/shadowlab, a copy of build/shadowlab
+# built from commit 7392a41 (occlusion bitmasks: e70674e).
 set -euo pipefail
 D=docs/bench/ss08
 SL=${SHADOWLAB:-build/shadowlab}
 CACHE="--cache /tmp/slcache-ss08"
-PARTS=${*:-budget rerun structures bytes table}
+PARTS=${*:-budget rerun structures bytes fig12 cost table}
 
 for part in $PARTS; do
   case $part in
@@ -79,6 +82,37 @@ for name in sorted(os.listdir(sys.argv[1])):
 print(json.dumps(rows, indent=1))
 PY
     rm -rf "$OUT"
+    ;;
+  fig12)
+    # Fig. 12 (001 L828-835) as numbers: RMSE against Embree of ss08 at a forced coarse level (force_level: l fixed
+    # everywhere, one level, no blend) for the four pairings micropatch / microrect x area / bitmask, on the three
+    # scenes of issue 17's Fig. 12 test. The same level is coarser next to the occluders on a smaller map (level 3:
+    # 32, 64, 128 micro-occluders per axis at 256^2, 512^2, 1024^2), so both levels 2 and 3 at three map sizes;
+    # tests/render/Ss08QualityTest.cpp gates the claim at 256^2 (128^2 images), this shows where it stops holding.
+    # Timings are not used (--repeat 1).
+    "$SL" bench datasets/bunny/scene.json datasets/stacked-occluders/scene.json datasets/near-light/scene.json -t ss08 \
+      --sweep force_level=2,3 --sweep shadow_map_size=256,512,1024 --sweep micro_occluder=micropatch,microrect \
+      --sweep accumulation=area,bitmask -r 256x256 --repeat 1 --samples 1024 $CACHE --out $D/fig12
+    ;;
+  cost)
+    # The slow-down of occlusion bitmasks and of microrects against area-accumulated micropatches (001 L840-849:
+    # "up to 72 %", of which the bitmasks "up to almost 50 %", register pressure on a GeForce 8800): ss08 at budget 12
+    # (the default 1024^2 YSM) on bunny 512x512 (as `budget`) and near-light 256x256 (99 % of its tested pixels
+    # back-project), the four pairings, medians of 5 frames. Twice, the second with the sweeps in reverse order, so
+    # that a drift of the shared machine's load does not always favour the same pairing.
+    for scene in bunny:512x512 near-light:256x256; do
+      name=${scene%%:*}
+      size=${scene##*:}
+      "$SL" bench datasets/$name/scene.json -t ss08 -s budget=12 --sweep micro_occluder=micropatch,microrect \
+        --sweep accumulation=area,bitmask -r $size --repeat 5 --samples 256 $CACHE --out $D/cost-$name-${size%%x*}
+      "$SL" bench datasets/$name/scene.json -t ss08 -s budget=12 --sweep micro_occluder=microrect,micropatch \
+        --sweep accumulation=bitmask,area -r $size --repeat 5 --samples 256 $CACHE --out $D/cost-$name-${size%%x*}-run2
+      # The baseline's micropatches are gap-filled (gap_filling=left_bottom, two neighbour reads per slot) and
+      # microrects are not: the baseline again without gap filling, to separate that from the bitmasks' cost.
+      "$SL" bench datasets/$name/scene.json -t ss08 -s budget=12 -s micro_occluder=micropatch -s accumulation=area \
+        --sweep gap_filling=left_bottom,off -r $size --repeat 5 --samples 256 $CACHE \
+        --out $D/cost-gap-filling-$name-${size%%x*}
+    done
     ;;
   table)
     python3 $D/table.py > $D/table.md
