@@ -287,11 +287,27 @@ struct SettingSweep
   std::vector<std::string> values;
 };
 
-// Per-stage GPU times in bench.csv, in pipeline order; a technique without the stage leaves its cell empty.
-const std::vector<std::string>& stageColumns()
+// Per-stage GPU times in bench.csv: the common stages in pipeline order, then every other stage some row ran
+// (structures such as microrects, the MSAA resolve), by name; a configuration without the stage leaves its cell empty.
+std::vector<std::string> stageColumns(const nlohmann::json& rows)
 {
-  static const std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "moment_map", "summed_area_table",
+  std::vector<std::string> stages{ "gbuffer", "focus", "shadow_map", "moment_map", "summed_area_table",
     "hierarchical_shadow_map", "technique", "sublight_accumulate", "shading" };
+  std::set<std::string> others;
+  for (const nlohmann::json& row : rows)
+  {
+    if (row["status"] == "ok")
+    {
+      for (const auto& [stage, timing] : row["result"]["stages"].items())
+      {
+        if (std::find(stages.begin(), stages.end(), stage) == stages.end())
+        {
+          others.insert(stage);
+        }
+      }
+    }
+  }
+  stages.insert(stages.end(), others.begin(), others.end());
   return stages;
 }
 
@@ -709,7 +725,7 @@ std::string statisticsText(const nlohmann::json& result, const std::set<std::str
 
 std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& statisticNames)
 {
-  const std::vector<std::string>& stages = stageColumns();
+  const std::vector<std::string> stages = stageColumns(rows);
   std::ostringstream csv;
   csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
   for (const std::string& stage : stages)

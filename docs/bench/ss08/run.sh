@@ -1,6 +1,6 @@
 #!/bin/bash
 # ss08 (paper 001, Schwarz & Stamminger 2008): quality against budget (issue 14). From the repository root:
-#   bash docs/bench/ss08/run.sh [probe] [budget] [rerun] [structures] [bytes] [fig12] [cost] [table]
+#   bash docs/bench/ss08/run.sh [probe] [budget] [rerun] [structures] [bytes] [fig12] [cost] [msaa] [table]
 #   (no argument: all but probe)
 # Every `bench` writes its own sub-directory through --out (bench replaces it atomically); the scripts and the
 # files copied from `render` live beside them. Timings come from llvmpipe on a 2-core machine shared with other
@@ -10,12 +10,13 @@
 # helpers without early returns, microrect levels); the probe's render used the earlier build of 68bfede, whose
 # slot loop llvmpipe cut at ~22900 slots instead of ~65200.
 # fig12 and cost (issue 17) were made on 2026-12-02 with SHADOWLAB=/tmp/ss08bench2/shadowlab, a copy of build/shadowlab
-# built from commit 7392a41 (occlusion bitmasks: e70674e).
+# built from commit 7392a41 (occlusion bitmasks: e70674e). msaa was made the same day with SHADOWLAB=/tmp/ss08bench3/shadowlab,
+# a copy of build/shadowlab built from a08e2c4 (MSAA: 2be6059).
 set -euo pipefail
 D=docs/bench/ss08
 SL=${SHADOWLAB:-build/shadowlab}
 CACHE="--cache /tmp/slcache-ss08"
-PARTS=${*:-budget rerun structures bytes fig12 cost table}
+PARTS=${*:-budget rerun structures bytes fig12 cost msaa table}
 
 for part in $PARTS; do
   case $part in
@@ -113,6 +114,17 @@ PY
         --sweep gap_filling=left_bottom,off -r $size --repeat 5 --samples 256 $CACHE \
         --out $D/cost-gap-filling-$name-${size%%x*}
     done
+    ;;
+  msaa)
+    # §7's overheads (001 L861-867: MSAA with visibility interpolation < 9 % over single-sampled rendering, MSAA
+    # alone about 5 %): ss08 at its defaults (budget 12, YSM 1024^2) on bunny 512x512, msaa=1 against msaa=4 with the
+    # default tau (0.001: the neighbour rule) and with tau = 1e30 (one visibility per pixel: the multisampled
+    # G-buffer, the copy of its first sample and a plain resolve, "MSAA alone"). Each configuration's error is against
+    # the reference of as many samples per pixel (bench's multisample mode). Twice, the second in reverse order.
+    "$SL" bench datasets/bunny/scene.json -t ss08 --sweep msaa=1,4 --sweep msaa_depth_tolerance=0.001,1e30 \
+      -r 512x512 --repeat 5 --samples 256 $CACHE --out $D/msaa-bunny-512
+    "$SL" bench datasets/bunny/scene.json -t ss08 --sweep msaa=4,1 --sweep msaa_depth_tolerance=1e30,0.001 \
+      -r 512x512 --repeat 5 --samples 256 $CACHE --out $D/msaa-bunny-512-run2
     ;;
   table)
     python3 $D/table.py > $D/table.md
