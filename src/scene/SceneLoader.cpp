@@ -8,6 +8,10 @@
 //    on a box or sphere.
 //  - `alpha_texture` "fence" and "leaves" name the procedural patterns; any other string is a PNG path
 //    relative to the scene file. Mesh paths are relative to the scene file too (absolute paths work).
+//  - `mesh_alpha` (true or false, default false) is valid only on a quad with an `alpha_texture`, whatever its
+//    value; true replaces the quad, after its transform, by the mesh of its opaque texels (scene/AlphaMesh.h,
+//    the equivalent mesh of paper 003 Fig. 11), which has no alpha texture. A mask without opaque texels is an
+//    error (an object needs triangles).
 //  - Integers (`resolution`) may be written as 512 or 512.0, not 512.5. View vectors are normalised; a direction
 //    is any non-zero vector, however large or small its components ([1e308, -1e308, 0] is a valid normal).
 //  - The limits of Scene.h (file size, nesting depth, magnitudes, light and camera distance) are checked here,
@@ -17,6 +21,7 @@
 // and builds the one-line messages "<file>: <json path>: <problem>"; the readers below it (readCamera,
 // readLight, readObject) then read each key in one line and only add the checks that involve several keys.
 #include "core/Error.h"
+#include "scene/AlphaMesh.h"
 #include "scene/AlphaTexture.h"
 #include "scene/MeshIO.h"
 #include "scene/Primitives.h"
@@ -475,7 +480,7 @@ TriangleMesh readPrimitive(const ObjectFields& fields, std::string& kindName)
       { "disk", PrimitiveKind::Disk } },
     "primitive");
   const std::initializer_list<std::string_view> allObjectKeys = { "mesh", "primitive", "center", "size", "normal",
-    "up", "transform", "material", "alpha_texture", "cast_shadows", "receive_shadows" };
+    "up", "transform", "material", "alpha_texture", "mesh_alpha", "cast_shadows", "receive_shadows" };
   const Range positive = Range::positiveMagnitude();
   const glm::dvec3 defaultNormal{ 0.0, 0.0, 1.0 };
 
@@ -484,8 +489,9 @@ TriangleMesh readPrimitive(const ObjectFields& fields, std::string& kindName)
   case PrimitiveKind::Quad:
   case PrimitiveKind::Disk:
   {
+    // mesh_alpha on a disk never gets here: readObject refuses it on anything but a quad first.
     fields.allowOnly({ "primitive", "center", "size", "normal", "up", "transform", "material", "alpha_texture",
-                       "cast_shadows", "receive_shadows" },
+                       "mesh_alpha", "cast_shadows", "receive_shadows" },
       allObjectKeys, kind == PrimitiveKind::Quad ? "a quad" : "a disk");
     const glm::dvec3 center = fields.vec3("center", glm::dvec3(0.0), Range::coordinate());
     const glm::dvec3 normal = fields.direction("normal", defaultNormal);
@@ -546,6 +552,18 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
   if (!hasMesh && !hasPrimitive)
     fields.node().fail("needs 'mesh' (a file) or 'primitive' (quad, box, sphere, disk)");
 
+  // mesh_alpha needs makeQuad's uv layout, one copy of the mask over [0,1]^2 (AlphaMesh.h), which only a quad has.
+  bool meshAlpha = false;
+  if (const auto key = fields.optional("mesh_alpha"))
+  {
+    meshAlpha = key->boolean();
+    const Json& primitive = fields.node().json().value("primitive", Json());
+    if (!(primitive.is_string() && primitive.get<std::string>() == "quad"))
+      key->fail("applies only to a 'quad' primitive (with an 'alpha_texture')");
+    if (!fields.has("alpha_texture"))
+      key->fail("needs an 'alpha_texture' on the quad (the mask whose opaque texels it meshes)");
+  }
+
   SceneObject object;
   std::string meshFile;
   if (hasMesh)
@@ -595,6 +613,23 @@ SceneObject readObject(const ObjectFields& fields, std::size_t index, const std:
       alpha->fail(error.what());
     }
     object.hasAlphaTexture = true;
+  }
+  if (meshAlpha)
+  {
+    try
+    {
+      object.mesh = meshOpaqueTexels(quadUvFrame(object.mesh), object.alphaTexture.alpha);
+    }
+    catch (const InputError& error)
+    {
+      fields.fail("mesh_alpha", error.what());
+    }
+    if (object.mesh.indices.empty())
+      fields.fail("mesh_alpha", format("alpha texture '", object.alphaTexture.source,
+        "' has no opaque texel (alpha >= 0.5), so the mesh would be empty"));
+    object.name = format("objects[", index, "] (quad, alpha texture ", object.alphaTexture.source, " meshed)");
+    object.hasAlphaTexture = false;
+    object.alphaTexture = AlphaTexture{};
   }
   object.castShadows = fields.boolean("cast_shadows", object.castShadows);
   object.receiveShadows = fields.boolean("receive_shadows", object.receiveShadows);

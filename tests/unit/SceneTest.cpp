@@ -265,7 +265,7 @@ void addDegenerateTriangles(std::vector<glm::vec3>& vertices, std::vector<std::a
 // ---- datasets -------------------------------------------------------------------------------------------
 
 const std::vector<std::string> kExpectedDatasets = { "bunny", "planar-occluder", "near-light", "contact",
-  "stacked-occluders", "grazing", "fence", "sphere-point" };
+  "stacked-occluders", "grazing", "fence", "fence-meshed", "sphere-point" };
 
 TEST(SceneDatasets, AllExpectedDatasetsExistAndLoad)
 {
