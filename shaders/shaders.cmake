@@ -53,4 +53,5 @@ set(SL_SHADER_FILES
   referencesm/ReferenceSmAccumulate.glsl
   referencesm/ReferenceSmResolve.glsl
   shadowvolume/ShadowVolumeVertex.glsl shadowvolume/ShadowVolumeCount.glsl shadowvolume/ShadowVolumeResolve.glsl shadowvolume/ReceiverOffset.glsl
-  dcs/DcsWedgeVertex.glsl dcs/DcsWedgeUpdate.glsl dcs/DcsResolve.glsl dcs/DcsSampleCounters.glsl)
+  dcs/DcsWedgeVertex.glsl dcs/DcsWedgeCommon.glsl dcs/DcsWedgeUpdate.glsl dcs/DcsResolve.glsl dcs/DcsSampleCounters.glsl
+  penumbrawedge/PenumbraWedgeArea.glsl penumbrawedge/PenumbraWedgeResolve.glsl)

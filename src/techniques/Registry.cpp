@@ -17,6 +17,7 @@
 #include "techniques/vssm/VssmTechnique.h"
 #include "techniques/vtk/VtkTechnique.h"
 #include "techniques/dcs/DcsTechnique.h"
+#include "techniques/penumbrawedge/PenumbraWedgeTechnique.h"
 #include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 
 namespace sl
@@ -40,6 +41,7 @@ const std::vector<TechniqueDescriptor>& techniqueRegistry()
     referenceSmTechnique(),
     shadowVolumeTechnique(),
     dcsTechnique(),
+    penumbraWedgeTechnique(),
   };
   return registry;
 }

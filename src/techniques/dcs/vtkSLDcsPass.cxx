@@ -1,7 +1,6 @@
 #include "techniques/dcs/vtkSLDcsPass.h"
 
 #include "core/Error.h"
-#include "gl/ComputeProgram.h"
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameResources.h"
@@ -11,11 +10,9 @@
 #include "techniques/dcs/DcsWedgeExport.h"
 
 #include <vtkObjectFactory.h>
-#include <vtkOpenGLBufferObject.h>
 #include <vtkOpenGLFramebufferObject.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLState.h>
-#include <vtkOpenGLVertexArrayObject.h>
 #include <vtkPolyData.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
@@ -24,7 +21,6 @@
 #include <vtk_glew.h>
 
 #include <chrono>
-#include <cstring>
 
 vtkStandardNewMacro(vtkSLDcsPass);
 
@@ -105,125 +101,32 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
   sl::checkGlErrors("dcs (resolve)");
 }
 
-void vtkSLDcsPass::SetDcsLightUniforms(vtkShaderProgram* program) const
-{
-  const sl::Light& light = *this->Frame->light;
-  sl::setVector(program, "dcsLightCenter", light.center);
-  sl::setVector(program, "dcsLightRight", light.right());
-  sl::setVector(program, "dcsLightUp", light.up);
-  sl::setVector(program, "dcsLightNormal", light.normal);
-  const std::vector<glm::dvec3> outline = sl::lightOutline(light);
-  std::vector<float> corners;
-  for (const glm::dvec3& corner : outline)
-  {
-    corners.insert(corners.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), static_cast<float>(corner.z) });
-  }
-  program->SetUniform3fv("dcsOutline", static_cast<int>(outline.size()), reinterpret_cast<const float(*)[3]>(corners.data()));
-  program->SetUniformi("dcsOutlineCorners", static_cast<int>(outline.size()));
-}
-
 void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
 {
   const sl::FrameResources& frame = *this->Frame;
   const auto buildStart = std::chrono::steady_clock::now();
   this->Wedges = sl::potentialSilhouetteWedges(*frame.weldedCasters, *frame.light);
-  const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
-  const std::vector<glm::dvec3> outline = sl::lightOutline(*frame.light);
-  const sl::Bounds bounds = frame.scene->bounds();
-  // Per vertex: NDC x, y and the wedge's index; a fan per polygon.
-  std::vector<float> vertices;
-  std::vector<std::uint32_t> wedgeWords;
-  this->DrawnWedges = 0;
-  for (const sl::DcsWedgeEdge& wedge : this->Wedges.wedges)
-  {
-    const std::vector<glm::dvec2> polygon =
-      sl::wedgeScreenPolygon(wedge, *frame.light, outline, frame.camera, perspective, bounds);
-    if (polygon.empty())
-    {
-      continue;
-    }
-    const float index = static_cast<float>(this->DrawnWedges++);
-    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-    {
-      for (const glm::dvec2& corner : { polygon[0], polygon[k], polygon[k + 1] })
-      {
-        vertices.insert(vertices.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), index });
-      }
-    }
-    const auto pushVec4 = [&](const glm::dvec3& xyz, float w) {
-      for (const float value : { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), w })
-      {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &value, sizeof bits);
-        wedgeWords.push_back(bits);
-      }
-    };
-    pushVec4(wedge.v0, static_cast<float>(wedge.oppositeCount));
-    pushVec4(wedge.v1, 0.0f);
-    pushVec4(wedge.opposite[0], 0.0f);
-    pushVec4(wedge.oppositeCount > 1 ? wedge.opposite[1] : wedge.opposite[0], 0.0f);
-  }
+  this->DrawnWedges = this->WedgeDrawer.prepare(this->Wedges.wedges, frame);
   this->WedgeBuildMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
 
-  // Fragments counted with an occlusion query (the shader never discards, so every rasterised fragment passes).
-  glBeginQuery(GL_SAMPLES_PASSED, this->FragmentQuery);
-  if (vertices.empty())
-  {
-    glEndQuery(GL_SAMPLES_PASSED);
-    return;
-  }
-  if (!this->WedgeData || this->WedgeDataWords != wedgeWords.size())
-  {
-    this->WedgeData = std::make_unique<sl::StorageBuffer>(wedgeWords.size());
-    this->WedgeDataWords = wedgeWords.size();
-  }
-  this->WedgeData->upload(wedgeWords);
-  if (!this->WedgeVertices)
-  {
-    this->WedgeVertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
-    this->WedgeVertices->SetType(vtkOpenGLBufferObject::ArrayBuffer);
-  }
-  if (!this->WedgeVertices->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer))
-  {
-    throw sl::GraphicsError("dcs: cannot upload " + std::to_string(vertices.size() / 3) + " wedge vertices: " +
-      this->WedgeVertices->GetError());
-  }
   const sl::ShaderDefines defines = this->TechniqueDefines();
   vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
     sl::assembleShader("dcs/DcsWedgeUpdate.glsl", defines, this->ParameterDeclarations()), "dcs wedges");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
-  this->SetDcsLightUniforms(program);
-  this->WedgeData->bind(0);
   glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-
-  if (this->WedgeArray)
-  {
-    this->WedgeArray->ReleaseGraphicsResources();
-  }
-  this->WedgeArray = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
-  this->WedgeArray->Bind();
-  const int stride = 3 * sizeof(float);
-  this->WedgeArray->AddAttributeArray(program, this->WedgeVertices, "wedgeNdcIn", 0, stride, VTK_FLOAT, 2, false);
-  this->WedgeArray->AddAttributeArray(
-    program, this->WedgeVertices, "wedgeIndexIn", 2 * sizeof(float), stride, VTK_FLOAT, 1, false);
 
   // The counters are written through the image; the colour target only gives the draw a framebuffer.
   const sl::ScopedRenderTarget target(window, this->WedgeFramebuffer, { this->VolumeCount });
   vtkOpenGLState* glState = window->GetState();
   const vtkOpenGLState::ScopedglColorMask colorMask(glState);
   glState->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  const vtkOpenGLState::ScopedglEnableDisable depthTest(glState, GL_DEPTH_TEST);
-  glState->vtkglDisable(GL_DEPTH_TEST);
-  const vtkOpenGLState::ScopedglEnableDisable cull(glState, GL_CULL_FACE);
-  glState->vtkglDisable(GL_CULL_FACE);
-  const vtkOpenGLState::ScopedglEnableDisable blend(glState, GL_BLEND);
-  glState->vtkglDisable(GL_BLEND);
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size() / 3));
+  // Fragments counted with an occlusion query (the shader never discards, so every rasterised fragment passes).
+  glBeginQuery(GL_SAMPLES_PASSED, this->FragmentQuery);
+  this->WedgeDrawer.draw(program, *frame.light);
   glEndQuery(GL_SAMPLES_PASSED);
 
-  this->WedgeArray->Release();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   for (vtkTextureObject* texture : bound)
   {
@@ -332,17 +235,7 @@ std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
 
 void vtkSLDcsPass::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->WedgeArray)
-  {
-    this->WedgeArray->ReleaseGraphicsResources();
-    this->WedgeArray = nullptr;
-  }
-  if (this->WedgeVertices)
-  {
-    this->WedgeVertices->ReleaseGraphicsResources();
-    this->WedgeVertices = nullptr;
-  }
-  this->WedgeData.reset();
+  this->WedgeDrawer.releaseGraphicsResources();
   this->Counters.release();
   this->Mask.release();
   if (this->Timestamps[0] != 0)

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "techniques/dcs/DcsGeometry.h"
+#include "techniques/dcs/WedgeDrawer.h"
 #include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
@@ -29,15 +30,8 @@
 #include <string>
 #include <vector>
 
-class vtkOpenGLBufferObject;
 class vtkOpenGLFramebufferObject;
-class vtkOpenGLVertexArrayObject;
 class vtkPolyData;
-
-namespace sl
-{
-class StorageBuffer;
-}
 
 class vtkSLDcsPass : public vtkSLShadowVolumePass
 {
@@ -78,7 +72,6 @@ private:
   };
 
   void DrawWedges(vtkOpenGLRenderWindow* window);
-  void SetDcsLightUniforms(vtkShaderProgram* program) const;
   int SampleCount() const;
 
   sl::DcsEdgeSet Wedges;
@@ -86,10 +79,7 @@ private:
   double WedgeBuildMilliseconds = 0.0;
   ArrayTexture Counters;
   ArrayTexture Mask;
-  std::unique_ptr<sl::StorageBuffer> WedgeData; // 16 words per drawn wedge
-  std::size_t WedgeDataWords = 0;
-  vtkSmartPointer<vtkOpenGLBufferObject> WedgeVertices;
-  vtkSmartPointer<vtkOpenGLVertexArrayObject> WedgeArray;
+  sl::WedgeDrawer WedgeDrawer;
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
   unsigned int FragmentQuery = 0;
   std::array<unsigned int, 4> Timestamps{}; // before volumes, after volumes, after wedges, after resolve

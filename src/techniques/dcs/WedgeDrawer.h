@@ -1,0 +1,56 @@
+// Draws wedges (DcsGeometry.h) for a wedge pass: each wedge as its screen polygon (wedgeScreenPolygon, built on the
+// CPU in double), fan-triangulated, every vertex carrying the wedge's index (shaders/dcs/DcsWedgeVertex.glsl), and
+// the wedges' data in a storage buffer at binding 0 with the light's frame and outline as uniforms
+// (shaders/dcs/DcsWedgeCommon.glsl). Technique `dcs` draws its potential silhouettes with it, `penumbra-wedge` its
+// centre silhouettes. The caller sets the render target and raster state and owns the fragment shader.
+#pragma once
+
+#include "scene/Scene.h"
+#include "techniques/dcs/DcsGeometry.h"
+
+#include <vtkSmartPointer.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class vtkOpenGLBufferObject;
+class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
+
+namespace sl
+{
+
+struct FrameResources;
+class StorageBuffer;
+
+class WedgeDrawer
+{
+public:
+  WedgeDrawer();
+  ~WedgeDrawer();
+  WedgeDrawer(const WedgeDrawer&) = delete;
+  WedgeDrawer& operator=(const WedgeDrawer&) = delete;
+
+  // The screen polygons and data of `wedges` under the frame's light and camera; returns how many have a polygon
+  // (a wedge no receiver in view can lie in has none and is not drawn).
+  std::size_t prepare(const std::vector<DcsWedgeEdge>& wedges, const FrameResources& frame);
+  // Uploads what prepare built, binds the data (binding 0), sets the light uniforms and the vertex attributes of
+  // `program` (bound), and draws the polygons. Nothing to draw: nothing happens.
+  void draw(vtkShaderProgram* program, const Light& light);
+  void releaseGraphicsResources();
+
+private:
+  std::vector<float> vertices_;       // per vertex: NDC x, y and the wedge's index
+  std::vector<std::uint32_t> words_;  // 16 per drawn wedge: (v0, triangles), (v1, 0), (w_0, 0), (w_1, 0) as floats
+  std::unique_ptr<StorageBuffer> data_;
+  std::size_t dataWords_ = 0;
+  vtkSmartPointer<vtkOpenGLBufferObject> vertexBuffer_;
+  vtkSmartPointer<vtkOpenGLVertexArrayObject> vertexArray_;
+};
+
+// The light uniforms of shaders/dcs/DcsWedgeCommon.glsl: centre, frame, normal and outline.
+void setWedgeLightUniforms(vtkShaderProgram* program, const Light& light);
+
+} // namespace sl

@@ -1,0 +1,90 @@
+#include "techniques/penumbrawedge/PenumbraWedgeTechnique.h"
+
+#include "lightspace/LightView.h"
+#include "scene/WeldedMesh.h"
+#include "techniques/ProbeSupport.h"
+#include "techniques/dcs/DcsTechnique.h"
+#include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
+#include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
+
+namespace sl
+{
+
+TechniqueDescriptor penumbraWedgeTechnique()
+{
+  TechniqueDescriptor descriptor;
+  descriptor.name = "penumbra-wedge";
+  descriptor.title = "Penumbra wedges (hard shadow from the centre plus each centre silhouette's share of the light)";
+  descriptor.paper = "Akenine-Moller & Assarsson 2002; Assarsson & Akenine-Moller 2003; Forest et al. 2009 §3.1 (paper 003)";
+  descriptor.parameters = {
+    { "receiver_offset", 1e-4, 0.0, 1e-2, "of the eye distance",
+      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before the centre's volumes and the wedges are evaluated, as dcs does" },
+  };
+  descriptor.drawsSceneGeometry = true;
+  descriptor.buffers = {
+    { "pw_occlusion_raw", "fraction of light",
+      "the centre's hard-shadow status plus every wedge's signed share, before clamping: > 1 or < 0 where overlapping silhouettes are counted twice (003 L384-387)",
+      BufferKind::Signed },
+    { "depth_complexity_center", "surfaces",
+      "caster triangles crossed by the segment from the point to the light's centre (the shadow volumes' count)" },
+    { "wedges_covering", "wedges", "centre-silhouette wedges whose region holds the point (the per-pixel cost of the wedge pass)" },
+  };
+  descriptor.supportedLights = { LightType::Area };
+  descriptor.supportedAreaShapes = { LightShape::Square };
+  descriptor.shaderConstants = {
+    { "DCS_MAX_OUTLINE_CORNERS", kDcsMaxOutlineCorners, "corners of a light's outline (DcsGeometry.h lightOutline)" },
+  };
+  descriptor.createPass = [] {
+    return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPenumbraWedgePass>::New());
+  };
+  descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
+    return probePenumbraWedge(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
+  return descriptor;
+}
+
+ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder)
+{
+  const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
+  ProbeOutcome outcome;
+  outcome.twin = "penumbraWedgePixel (penumbrawedge/PenumbraWedgeGeometry.h): the centre's crossings and every "
+                 "centre-silhouette wedge's far region, in double";
+  if (bufferValue(frame, "coverage", pixel) <= 0.5)
+  {
+    return outcome;
+  }
+  const glm::dvec3 pWs = bufferVector(frame, "position", pixel);
+  const glm::dvec3 nWs = bufferVector(frame, "normal", pixel);
+  recorder.beginGroup("receiver");
+  recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
+  recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
+  const std::vector<DcsWedgeEdge> wedges = centreSilhouetteWedges(potentialSilhouetteWedges(weldCasters(scene), light));
+  const PenumbraWedgePixel twin =
+    penumbraWedgePixel(scene, light, wedges, pWs, frame.parameters.get("receiver_offset"), &recorder);
+  recorder.beginGroup("result");
+  recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
+  recorder.quantity("depth_complexity_center", twin.centreCount, "surfaces", "AAM03: the hard shadow from the centre");
+  recorder.quantity("wedges_covering", twin.wedgesCovering, "wedges", "DcsGeometry.h wedgeContains");
+  recorder.quantity("pw_occlusion_raw", twin.occlusionRaw, "fraction of light",
+    "AAM03: [centre hidden] + sum of the wedges' signed shares (003 L384-387: > 1 where overlaps count twice)");
+  if (litWithoutShadowTest(frame, pixel, recorder, outcome))
+  {
+    return outcome;
+  }
+  if (!lightCanReach(light, pWs, nWs))
+  {
+    recorder.category("light_reach", "faces away / outside the light's reach: unlit, no shadow test",
+      "ShadowLab (lightCanReach, LightView.h)");
+    return outcome;
+  }
+  outcome.evaluated = true;
+  outcome.visibility = twin.visibility;
+  // Float clipping of the far regions (magnified where an edge lies close to the point) and blending's summation
+  // order: the GPU tests' per-pixel bound.
+  outcome.tolerance = 1e-3;
+  recorder.quantity("visibility", twin.visibility, "", "AAM03: 1 - clamp(pw_occlusion_raw, 0, 1)");
+  return outcome;
+}
+
+} // namespace sl

@@ -1,0 +1,30 @@
+// Technique `penumbra-wedge`: soft shadows by penumbra wedges (Akenine-Moller & Assarsson 2002, Assarsson &
+// Akenine-Moller 2003 = AAM03), the opaque half of paper 003's PWedge+STSV (Forest et al. 2009 §3.1 L381-406). The hard
+// shadow of the light's centre (shadow volumes), then one wedge per silhouette edge from the centre, whose pixels add
+// the signed fraction of the light that the edge's projection moves across the centre's status
+// (PenumbraWedgeGeometry.h). Exact for one convex occluder; overlapping silhouettes are counted twice and
+// silhouettes from the rest of the light are missed, AAM03's known limitations, measured rather than fixed. Square
+// area lights.
+//
+// Buffers: pw_occlusion_raw (the occlusion before clamping: > 1 or < 0 mark the overlap artifact),
+// depth_complexity_center, wedges_covering. Statistics: the shadow volumes' and silhouette_edges_centre,
+// potential_silhouette_edges, wedges, wedges_drawn, wedge_fragments, wedge_build_ms (CPU), volumes_gpu_ms,
+// wedges_gpu_ms, resolve_gpu_ms. Object-space exports: silhouettes.vtp, wedges.vtp.
+// Limits: alpha textures are not honoured (a perforated caster shadows as solid; STSV is a later part of issue 18).
+#pragma once
+
+#include "frame/FrameResult.h"
+#include "frame/ProbeRecord.h"
+#include "frame/TechniqueDescriptor.h"
+
+namespace sl
+{
+
+TechniqueDescriptor penumbraWedgeTechnique();
+
+// The technique's probe: the centre's crossings, each covering wedge's far region and share, and the resolve
+// (PenumbraWedgeGeometry.h penumbraWedgePixel).
+ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder);
+
+} // namespace sl

@@ -1,0 +1,157 @@
+#include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
+
+#include "core/Error.h"
+#include "gl/GlResources.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
+#include "techniques/dcs/DcsWedgeExport.h"
+#include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLState.h>
+#include <vtkPolyData.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <chrono>
+
+vtkStandardNewMacro(vtkSLPenumbraWedgePass);
+
+vtkSLPenumbraWedgePass::vtkSLPenumbraWedgePass() = default;
+vtkSLPenumbraWedgePass::~vtkSLPenumbraWedgePass() = default;
+
+void vtkSLPenumbraWedgePass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  if (this->Timestamps[0] == 0)
+  {
+    glGenQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
+    glGenQueries(1, &this->FragmentQuery);
+  }
+  glQueryCounter(this->Timestamps[0], GL_TIMESTAMP);
+  // Step 1: the centre's hard shadow (the shadow-volume pass).
+  this->BuildAndCountVolumes(window);
+  glQueryCounter(this->Timestamps[1], GL_TIMESTAMP);
+  // Step 2: the centre silhouettes' wedges, built on the CPU, blended into the occlusion.
+  this->DrawWedges(window);
+  sl::checkGlErrors("penumbra-wedge (wedges)");
+  glQueryCounter(this->Timestamps[2], GL_TIMESTAMP);
+  // Step 3: the resolve, the base class's full-screen shader.
+  this->vtkSLTechniquePass::Execute(state);
+  glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
+  this->TimestampsValid = true;
+  sl::checkGlErrors("penumbra-wedge (resolve)");
+}
+
+void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const auto buildStart = std::chrono::steady_clock::now();
+  const sl::DcsEdgeSet potential = sl::potentialSilhouetteWedges(*frame.weldedCasters, *frame.light);
+  this->Wedges.statistics = potential.statistics;
+  this->Wedges.wedges = sl::centreSilhouetteWedges(potential);
+  this->DrawnWedges = this->WedgeDrawer.prepare(this->Wedges.wedges, frame);
+  this->WedgeBuildMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
+
+  this->OcclusionDelta = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  this->WedgesCovering = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  const sl::ShaderDefines defines = this->TechniqueDefines();
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
+    sl::assembleShader("penumbrawedge/PenumbraWedgeArea.glsl", defines, this->ParameterDeclarations()),
+    "penumbra-wedge wedges");
+  std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+  this->SetReceiverOffsetUniforms(program);
+  sl::setFloatIfUsed(program, "lightHalfSize", 0.5 * frame.light->size);
+
+  const sl::ScopedRenderTarget target(window, this->WedgeFramebuffer, { this->OcclusionDelta, this->WedgesCovering });
+  target.clearColor(0, 0.0f);
+  target.clearColor(1, 0.0f);
+  // Every wedge adds its share: one, one blending (float targets blend unclamped).
+  vtkOpenGLState* glState = window->GetState();
+  const vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(glState);
+  glState->vtkglEnable(GL_BLEND);
+  glState->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  glBlendEquation(GL_FUNC_ADD);
+  glBeginQuery(GL_SAMPLES_PASSED, this->FragmentQuery);
+  this->WedgeDrawer.draw(program, *frame.light);
+  glEndQuery(GL_SAMPLES_PASSED);
+  glState->vtkglDisable(GL_BLEND);
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+}
+
+std::vector<vtkTextureObject*> vtkSLPenumbraWedgePass::SetTechniqueUniforms(vtkShaderProgram* program)
+{
+  return { sl::bindTexture(program, "volumeCount", this->VolumeCount),
+    sl::bindTexture(program, "occlusionDelta", this->OcclusionDelta),
+    sl::bindTexture(program, "wedgesCovering", this->WedgesCovering) };
+}
+
+std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
+{
+  std::map<std::string, double> statistics = this->Superclass::CollectStatistics();
+  const sl::DcsEdgeStatistics& s = this->Wedges.statistics;
+  statistics["silhouette_edges_centre"] = static_cast<double>(s.centreSilhouetteEdges);
+  statistics["potential_silhouette_edges"] = static_cast<double>(s.potentialSilhouetteEdges);
+  statistics["wedges"] = static_cast<double>(this->Wedges.wedges.size());
+  statistics["wedges_drawn"] = static_cast<double>(this->DrawnWedges);
+  statistics["wedge_build_ms"] = this->WedgeBuildMilliseconds;
+  GLuint fragments = 0;
+  glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
+  statistics["wedge_fragments"] = static_cast<double>(fragments);
+  if (this->TimestampsValid)
+  {
+    std::array<GLuint64, 4> times{};
+    for (std::size_t k = 0; k < times.size(); ++k)
+    {
+      glGetQueryObjectui64v(this->Timestamps[k], GL_QUERY_RESULT, &times[k]);
+    }
+    statistics["volumes_gpu_ms"] = 1e-6 * static_cast<double>(times[1] - times[0]);
+    statistics["wedges_gpu_ms"] = 1e-6 * static_cast<double>(times[2] - times[1]);
+    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
+  }
+  return statistics;
+}
+
+std::vector<sl::NamedPolyData> vtkSLPenumbraWedgePass::CollectObjectSpaceExports()
+{
+  std::vector<sl::NamedPolyData> exports = this->Superclass::CollectObjectSpaceExports();
+  exports.push_back({ "wedges",
+    "each centre-silhouette wedge's two supporting faces (the planes through its edge touching the light) as quads; "
+    "cell data wedge_id, caster_id, triangles, incident_triangles, centre_silhouette",
+    sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
+  return exports;
+}
+
+void vtkSLPenumbraWedgePass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->WedgeDrawer.releaseGraphicsResources();
+  this->OcclusionDelta = nullptr;
+  this->WedgesCovering = nullptr;
+  if (this->Timestamps[0] != 0)
+  {
+    glDeleteQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
+    glDeleteQueries(1, &this->FragmentQuery);
+    this->Timestamps = {};
+    this->FragmentQuery = 0;
+    this->TimestampsValid = false;
+  }
+  this->WedgeFramebuffer->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkSLPenumbraWedgePass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Centre-silhouette wedges: " << this->Wedges.wedges.size() << " (" << this->DrawnWedges << " drawn)\n";
+}

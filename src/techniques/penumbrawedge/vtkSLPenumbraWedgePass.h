@@ -1,0 +1,59 @@
+// The `penumbra-wedge` technique's pass (PenumbraWedgeTechnique.h), on the object-space seam of `shadow-volume`:
+//  1. volumes: the light centre's count, the shadow-volume pass's z-fail count (the hard shadow from the centre);
+//  2. wedges: one screen polygon per centre-silhouette wedge (DcsGeometry.h, drawn by WedgeDrawer); each fragment
+//     adds the wedge's signed share of the light (shaders/penumbrawedge/PenumbraWedgeArea.glsl) to an R32F occlusion
+//     target and 1 to a covering count, by additive blending;
+//  3. resolve: the base class's full-screen shader (PenumbraWedgeResolve.glsl).
+#pragma once
+
+#include "techniques/dcs/DcsGeometry.h"
+#include "techniques/dcs/WedgeDrawer.h"
+#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+class vtkOpenGLFramebufferObject;
+class vtkTextureObject;
+
+class vtkSLPenumbraWedgePass : public vtkSLShadowVolumePass
+{
+public:
+  static vtkSLPenumbraWedgePass* New();
+  vtkTypeMacro(vtkSLPenumbraWedgePass, vtkSLShadowVolumePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  std::map<std::string, double> CollectStatistics() override;
+  // silhouettes.vtp (the centre's, from shadow-volume) and wedges.vtp (the centre-silhouette wedges drawn).
+  std::vector<sl::NamedPolyData> CollectObjectSpaceExports() override;
+
+protected:
+  vtkSLPenumbraWedgePass();
+  ~vtkSLPenumbraWedgePass() override;
+  void Execute(const vtkRenderState* state) override;
+  std::string GetFragmentShaderPath() const override { return "penumbrawedge/PenumbraWedgeResolve.glsl"; }
+  std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
+
+private:
+  vtkSLPenumbraWedgePass(const vtkSLPenumbraWedgePass&) = delete;
+  void operator=(const vtkSLPenumbraWedgePass&) = delete;
+
+  void DrawWedges(vtkOpenGLRenderWindow* window);
+
+  sl::DcsEdgeSet Wedges; // the centre silhouettes' wedges (statistics: of all potential silhouettes)
+  std::size_t DrawnWedges = 0;
+  double WedgeBuildMilliseconds = 0.0;
+  sl::WedgeDrawer WedgeDrawer;
+  vtkSmartPointer<vtkTextureObject> OcclusionDelta; // R32F, the wedges' summed signed shares
+  vtkSmartPointer<vtkTextureObject> WedgesCovering; // R32F, wedges whose region holds the point
+  vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
+  unsigned int FragmentQuery = 0;
+  std::array<unsigned int, 4> Timestamps{}; // before volumes, after volumes, after wedges, after resolve
+  bool TimestampsValid = false;
+};
