@@ -164,6 +164,9 @@ struct TechniqueDescriptor
   // depth-stencil texture to test against and write stencil into; it may export vtkPolyData
   // (vtkSLTechniquePass::CollectObjectSpaceExports, written as <name>.vtp).
   bool drawsSceneGeometry = false;
+  // With drawsSceneGeometry: perforated casters (alpha textures) are left out of FrameResources::weldedCasters, because
+  // the technique shadows them itself, by soft textured shadow volumes (paper 003: S-triangles go through STSV).
+  bool perforatedCastersByStsv = false;
   // Settings the registry-wide test sweeps (regression baselines, the NaN/inf sweep) add, to keep a brute-force
   // technique's cost on llvmpipe bounded (e.g. a smaller shadow map). Empty for most techniques.
   std::vector<std::string> sweepTestSettings;

@@ -116,6 +116,37 @@ vtkSmartPointer<vtkTextureObject> makeMultisampleDepthStencilTarget(vtkOpenGLRen
   return texture;
 }
 
+void UintArrayTexture::allocate(int w, int h, int l)
+{
+  if (handle != 0 && width == w && height == h && layers == l)
+  {
+    return;
+  }
+  release();
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &handle);
+  glTextureStorage3D(handle, 1, GL_R32UI, w, h, l);
+  width = w;
+  height = h;
+  layers = l;
+}
+
+void UintArrayTexture::release()
+{
+  if (handle != 0)
+  {
+    glDeleteTextures(1, &handle);
+    handle = 0;
+  }
+}
+
+std::vector<std::uint32_t> UintArrayTexture::read() const
+{
+  std::vector<std::uint32_t> words(static_cast<std::size_t>(width) * height * layers);
+  glGetTextureImage(handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(words.size() * sizeof(std::uint32_t)),
+    words.data());
+  return words;
+}
+
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height)
 {
   auto texture = vtkSmartPointer<vtkTextureObject>::New();

@@ -38,6 +38,19 @@ vtkSmartPointer<vtkTextureObject> makeMultisampleDepthStencilTarget(vtkOpenGLRen
 // An RGBA8 target for the shaded image.
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height);
 
+// A raw R32UI 2-D array texture for image load/store and atomics (VTK 9.1's vtkTextureObject has no integer array
+// textures with image binding): per-pixel counters and bit masks of the object-space techniques.
+struct UintArrayTexture
+{
+  unsigned int handle = 0;
+  int width = 0;
+  int height = 0;
+  int layers = 0;
+  void allocate(int w, int h, int l); // keeps the texture when the size is unchanged (contents undefined)
+  void release();
+  std::vector<std::uint32_t> read() const; // layer after layer, rows bottom up
+};
+
 // Reads a whole texture back (glGetTextureImage). Row 0 is the bottom row.
 ImageF readFloatTexture(vtkTextureObject* texture, int components);
 ImageF readDepthTexture(vtkTextureObject* texture);

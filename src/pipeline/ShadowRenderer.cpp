@@ -310,7 +310,8 @@ void ShadowRenderer::allocateFrameTargets(FrameResources& frame, const Scene& sc
   }
   if (frame.technique->drawsSceneGeometry)
   {
-    frame.weldedCasters = std::make_shared<const std::vector<WeldedMesh>>(weldCasters(scene));
+    frame.weldedCasters =
+      std::make_shared<const std::vector<WeldedMesh>>(weldCasters(scene, frame.technique->perforatedCastersByStsv));
   }
   for (const std::string& output : frame.technique->outputNames())
   {

@@ -201,12 +201,12 @@ WeldedMesh weldMesh(const TriangleMesh& mesh, std::size_t objectIndex)
   return welded;
 }
 
-std::vector<WeldedMesh> weldCasters(const Scene& scene)
+std::vector<WeldedMesh> weldCasters(const Scene& scene, bool opaqueOnly)
 {
   std::vector<WeldedMesh> casters;
   for (std::size_t object = 0; object < scene.objects.size(); ++object)
   {
-    if (scene.objects[object].castShadows)
+    if (scene.objects[object].castShadows && !(opaqueOnly && scene.objects[object].hasAlphaTexture))
     {
       casters.push_back(weldMesh(scene.objects[object].mesh, object));
     }

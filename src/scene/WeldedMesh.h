@@ -75,8 +75,9 @@ double weldTolerance(const TriangleMesh& mesh);
 // Welds one object's mesh (its world-space positions) and builds the edge table.
 WeldedMesh weldMesh(const TriangleMesh& mesh, std::size_t objectIndex);
 
-// Every object that casts shadows (castShadows), in scene order. Alpha textures are not looked at: a welded
-// caster is its whole triangle set.
-std::vector<WeldedMesh> weldCasters(const Scene& scene);
+// Every object that casts shadows (castShadows), in scene order. A welded caster is its whole triangle set: alpha
+// textures are not looked at, unless `opaqueOnly` leaves perforated objects (hasAlphaTexture) out altogether (the
+// techniques whose STSVs shadow them, paper 003 C1).
+std::vector<WeldedMesh> weldCasters(const Scene& scene, bool opaqueOnly = false);
 
 } // namespace sl

@@ -375,6 +375,11 @@ std::vector<glm::dvec2> wedgeScreenPolygon(const DcsWedgeEdge& wedge, const Ligh
       }
     }
   }
+  return convexScreenPolygon(clip, camera, perspective);
+}
+
+std::vector<glm::dvec2> convexScreenPolygon(const std::vector<glm::dvec4>& clip, const CameraView& camera, bool perspective)
+{
   // Perspective: the hull's part in front of half the near plane's depth (every receiver lies beyond the near
   // plane), from the points there and the hull's edges' crossings of that plane.
   std::vector<glm::dvec4> kept;

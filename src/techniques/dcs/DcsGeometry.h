@@ -116,6 +116,12 @@ bool wedgeContains(const DcsWedgeEdge& wedge, const glm::dvec3& p, const std::ve
 std::vector<glm::dvec2> wedgeScreenPolygon(const DcsWedgeEdge& wedge, const Light& light,
   const std::vector<glm::dvec3>& outline, const CameraView& camera, bool perspective, const Bounds& sceneBounds);
 
+// The screen polygon (normalised device coordinates, counter-clockwise, convex) of the convex hull of the clip-space
+// points `clip` (clipFromWorld applied): with a perspective camera the hull's part in front of half the near plane's
+// depth, widened by 1.5 pixels and clipped to just beyond the viewport; empty when nothing is left. Wedges and STSVs
+// are rasterised as these.
+std::vector<glm::dvec2> convexScreenPolygon(const std::vector<glm::dvec4>& clip, const CameraView& camera, bool perspective);
+
 // The two outline corners whose planes through the edge support the light (the penumbra wedge's front and back planes,
 // Akenine-Moller & Assarsson 2002), as indices into `outline`; {-1, -1} when the edge lies in the light's plane.
 std::array<int, 2> wedgeSupportingCorners(const DcsWedgeEdge& wedge, const std::vector<glm::dvec3>& outline);

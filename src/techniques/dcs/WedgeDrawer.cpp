@@ -19,14 +19,37 @@ namespace sl
 WedgeDrawer::WedgeDrawer() = default;
 WedgeDrawer::~WedgeDrawer() = default;
 
-std::size_t WedgeDrawer::prepare(const std::vector<DcsWedgeEdge>& wedges, const FrameResources& frame)
+void WedgeDrawer::clear()
 {
   vertices_.clear();
   words_.clear();
+  polygons_ = 0;
+}
+
+void WedgeDrawer::addPolygon(const std::vector<glm::dvec2>& polygon, const std::vector<float>& record)
+{
+  const float index = static_cast<float>(polygons_++); // exact: fewer than 2^24 polygons
+  for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+  {
+    for (const glm::dvec2& corner : { polygon[0], polygon[k], polygon[k + 1] })
+    {
+      vertices_.insert(vertices_.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), index });
+    }
+  }
+  for (const float value : record)
+  {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    words_.push_back(bits);
+  }
+}
+
+std::size_t WedgeDrawer::prepare(const std::vector<DcsWedgeEdge>& wedges, const FrameResources& frame)
+{
+  clear();
   const bool perspective = frame.scene->camera.projection == Projection::Perspective;
   const std::vector<glm::dvec3> outline = lightOutline(*frame.light);
   const Bounds bounds = frame.scene->bounds();
-  std::size_t drawn = 0;
   for (const DcsWedgeEdge& wedge : wedges)
   {
     const std::vector<glm::dvec2> polygon = wedgeScreenPolygon(wedge, *frame.light, outline, frame.camera, perspective, bounds);
@@ -34,33 +57,27 @@ std::size_t WedgeDrawer::prepare(const std::vector<DcsWedgeEdge>& wedges, const 
     {
       continue;
     }
-    const float index = static_cast<float>(drawn++);
-    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-    {
-      for (const glm::dvec2& corner : { polygon[0], polygon[k], polygon[k + 1] })
-      {
-        vertices_.insert(vertices_.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), index });
-      }
-    }
+    std::vector<float> record;
     const auto pushVec4 = [&](const glm::dvec3& xyz, float w) {
-      for (const float value : { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), w })
-      {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &value, sizeof bits);
-        words_.push_back(bits);
-      }
+      record.insert(record.end(), { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), w });
     };
     pushVec4(wedge.v0, static_cast<float>(wedge.oppositeCount));
     pushVec4(wedge.v1, 0.0f);
     pushVec4(wedge.opposite[0], 0.0f);
     pushVec4(wedge.oppositeCount > 1 ? wedge.opposite[1] : wedge.opposite[0], 0.0f);
+    addPolygon(polygon, record);
   }
-  return drawn;
+  return polygons_;
 }
 
 void WedgeDrawer::draw(vtkShaderProgram* program, const Light& light)
 {
-  if (vertices_.empty())
+  draw(program, light, 0, vertexCount());
+}
+
+void WedgeDrawer::draw(vtkShaderProgram* program, const Light& light, std::size_t firstVertex, std::size_t count)
+{
+  if (vertices_.empty() || count == 0)
   {
     return;
   }
@@ -90,7 +107,7 @@ void WedgeDrawer::draw(vtkShaderProgram* program, const Light& light)
   const int stride = 3 * sizeof(float);
   vertexArray_->AddAttributeArray(program, vertexBuffer_, "wedgeNdcIn", 0, stride, VTK_FLOAT, 2, false);
   vertexArray_->AddAttributeArray(program, vertexBuffer_, "wedgeIndexIn", 2 * sizeof(float), stride, VTK_FLOAT, 1, false);
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size() / 3));
+  glDrawArrays(GL_TRIANGLES, static_cast<GLint>(firstVertex), static_cast<GLsizei>(count));
   vertexArray_->Release();
 }
 

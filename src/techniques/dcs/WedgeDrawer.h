@@ -36,14 +36,22 @@ public:
   // The screen polygons and data of `wedges` under the frame's light and camera; returns how many have a polygon
   // (a wedge no receiver in view can lie in has none and is not drawn).
   std::size_t prepare(const std::vector<DcsWedgeEdge>& wedges, const FrameResources& frame);
+  // Any other convex screen polygons with a record of floats each (STSVs): clear, then add them in order; the
+  // fragment shader reads polygon i's record at index i (wedgeIndex) in records of a size it knows.
+  void clear();
+  void addPolygon(const std::vector<glm::dvec2>& polygon, const std::vector<float>& record);
+  std::size_t vertexCount() const { return vertices_.size() / 3; }
   // Uploads what prepare built, binds the data (binding 0), sets the light uniforms and the vertex attributes of
-  // `program` (bound), and draws the polygons. Nothing to draw: nothing happens.
+  // `program` (bound), and draws the polygons (or the vertices [firstVertex, firstVertex + count) of them). Nothing
+  // to draw: nothing happens.
   void draw(vtkShaderProgram* program, const Light& light);
+  void draw(vtkShaderProgram* program, const Light& light, std::size_t firstVertex, std::size_t count);
   void releaseGraphicsResources();
 
 private:
-  std::vector<float> vertices_;       // per vertex: NDC x, y and the wedge's index
-  std::vector<std::uint32_t> words_;  // 16 per drawn wedge: (v0, triangles), (v1, 0), (w_0, 0), (w_1, 0) as floats
+  std::vector<float> vertices_;       // per vertex: NDC x, y and the polygon's index
+  std::vector<std::uint32_t> words_;  // the records; a wedge's: (v0, triangles), (v1, 0), (w_0, 0), (w_1, 0) as floats
+  std::size_t polygons_ = 0;
   std::unique_ptr<StorageBuffer> data_;
   std::size_t dataWords_ = 0;
   vtkSmartPointer<vtkOpenGLBufferObject> vertexBuffer_;

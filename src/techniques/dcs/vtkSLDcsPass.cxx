@@ -27,37 +27,6 @@ vtkStandardNewMacro(vtkSLDcsPass);
 vtkSLDcsPass::vtkSLDcsPass() = default;
 vtkSLDcsPass::~vtkSLDcsPass() = default;
 
-void vtkSLDcsPass::ArrayTexture::allocate(int w, int h, int l)
-{
-  if (handle != 0 && width == w && height == h && layers == l)
-  {
-    return;
-  }
-  release();
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &handle);
-  glTextureStorage3D(handle, 1, GL_R32UI, w, h, l);
-  width = w;
-  height = h;
-  layers = l;
-}
-
-void vtkSLDcsPass::ArrayTexture::release()
-{
-  if (handle != 0)
-  {
-    glDeleteTextures(1, &handle);
-    handle = 0;
-  }
-}
-
-std::vector<std::uint32_t> vtkSLDcsPass::ArrayTexture::read() const
-{
-  std::vector<std::uint32_t> words(static_cast<std::size_t>(width) * height * layers);
-  glGetTextureImage(handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(words.size() * sizeof(std::uint32_t)),
-    words.data());
-  return words;
-}
-
 int vtkSLDcsPass::SampleCount() const
 {
   return std::stoi(this->Frame->parameters.choice("samples"));

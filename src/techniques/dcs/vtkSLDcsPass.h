@@ -59,26 +59,14 @@ private:
   vtkSLDcsPass(const vtkSLDcsPass&) = delete;
   void operator=(const vtkSLDcsPass&) = delete;
 
-  // A raw R32UI 2-D array texture (VTK 9.1's vtkTextureObject has no integer array textures with image binding).
-  struct ArrayTexture
-  {
-    unsigned int handle = 0;
-    int width = 0;
-    int height = 0;
-    int layers = 0;
-    void allocate(int w, int h, int l);
-    void release();
-    std::vector<std::uint32_t> read() const; // layer after layer, rows bottom up
-  };
-
   void DrawWedges(vtkOpenGLRenderWindow* window);
   int SampleCount() const;
 
   sl::DcsEdgeSet Wedges;
   std::size_t DrawnWedges = 0;
   double WedgeBuildMilliseconds = 0.0;
-  ArrayTexture Counters;
-  ArrayTexture Mask;
+  sl::UintArrayTexture Counters;
+  sl::UintArrayTexture Mask;
   sl::WedgeDrawer WedgeDrawer;
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
   unsigned int FragmentQuery = 0;

@@ -136,8 +136,26 @@ std::vector<DcsWedgeEdge> centreSilhouetteWedges(const DcsEdgeSet& wedges)
   return centre;
 }
 
-PenumbraWedgePixel penumbraWedgePixel(const Scene& scene, const Light& light, const std::vector<DcsWedgeEdge>& wedges,
-  const glm::dvec3& pWs, double receiverOffset, ProbeRecorder* recorder)
+PenumbraWedgeScene penumbraWedgeScene(const Scene& scene, const Light& light)
+{
+  PenumbraWedgeScene prepared;
+  prepared.opaque = scene;
+  for (SceneObject& object : prepared.opaque.objects)
+  {
+    object.castShadows = object.castShadows && !object.hasAlphaTexture;
+  }
+  prepared.wedges = centreSilhouetteWedges(potentialSilhouetteWedges(weldCasters(scene, true), light));
+  prepared.perforated = perforatedTriangles(scene);
+  for (const StsvTriangle& triangle : prepared.perforated)
+  {
+    prepared.stsvs.push_back(buildStsvs(triangle, light, scene.bounds()));
+  }
+  return prepared;
+}
+
+PenumbraWedgePixel penumbraWedgePixel(const PenumbraWedgeScene& prepared, const Scene& scene, const Light& light,
+  const glm::dvec3& pWs, double receiverOffset, const std::vector<glm::dvec3>& samples, StsvOcclusionTest test,
+  ProbeRecorder* recorder)
 {
   PenumbraWedgePixel pixel;
   pixel.countedPoint = shadowVolumeReceiverPoint(scene, receiverOffset, pWs);
@@ -146,14 +164,14 @@ PenumbraWedgePixel penumbraWedgePixel(const Scene& scene, const Light& light, co
   {
     recorder->beginGroup("centre (hard shadow volume)");
   }
-  pixel.centreCount = casterCrossings(scene, VolumeLight::from(light), p, recorder);
+  pixel.centreCount = casterCrossings(prepared.opaque, VolumeLight::from(light), p, recorder);
   pixel.occlusionRaw = pixel.centreCount > 0 ? 1.0 : 0.0;
   const std::vector<glm::dvec3> outline = lightOutline(light);
   if (recorder)
   {
     recorder->beginGroup("wedges containing the point");
   }
-  for (const DcsWedgeEdge& wedge : wedges)
+  for (const DcsWedgeEdge& wedge : prepared.wedges)
   {
     if (!wedgeContains(wedge, p, outline, light.normal))
     {
@@ -168,6 +186,44 @@ PenumbraWedgePixel penumbraWedgePixel(const Scene& scene, const Light& light, co
           std::to_string(area.multiplicity) + ", count change " + std::to_string(area.change),
         area.farRegion, area.occlusionDelta * light.size * light.size });
     }
+  }
+  // STSVs (003 Alg. 1): OR the samples each STSV holding p hides.
+  if (recorder && !prepared.perforated.empty())
+  {
+    recorder->beginGroup("STSVs containing the point");
+  }
+  pixel.stsvHidden.assign(samples.size(), false);
+  for (std::size_t t = 0; t < prepared.perforated.size(); ++t)
+  {
+    const StsvTriangle& triangle = prepared.perforated[t];
+    const ImageF& alpha = scene.objects[triangle.objectIndex].alphaTexture.alpha;
+    for (const Stsv& stsv : prepared.stsvs[t])
+    {
+      if (!stsvContains(stsv, p))
+      {
+        continue;
+      }
+      ++pixel.stsvCovering;
+      const std::vector<bool> hidden = stsvOcclusion(stsv, triangle, alpha, p, samples, test);
+      int count = 0;
+      for (std::size_t i = 0; i < hidden.size(); ++i)
+      {
+        count += hidden[i];
+        pixel.stsvHidden[i] = pixel.stsvHidden[i] || hidden[i];
+      }
+      pixel.stsvEmptyHits += count == 0;
+      if (recorder)
+      {
+        recorder->quantity("stsv of triangle " + std::to_string(triangle.triangleIndex) + " of object " +
+            std::to_string(triangle.objectIndex) + " (light side " + std::to_string(stsv.lightSide) + ")",
+          count, "light samples", "003 Eq. 1-5: the samples it hides");
+      }
+    }
+  }
+  pixel.stsvOccludedSamples = static_cast<int>(std::count(pixel.stsvHidden.begin(), pixel.stsvHidden.end(), true));
+  if (!samples.empty())
+  {
+    pixel.occlusionRaw += static_cast<double>(pixel.stsvOccludedSamples) / static_cast<double>(samples.size());
   }
   pixel.visibility = 1.0 - std::clamp(pixel.occlusionRaw, 0.0, 1.0);
   return pixel;

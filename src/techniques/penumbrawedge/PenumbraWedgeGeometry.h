@@ -19,11 +19,18 @@
 // from part of the light but not from its centre are ignored (the "single light sample" silhouette artifact). Samples
 // below the receiver's tangent plane are not modelled (AAM03 has no receiver term), as the reference hides them.
 // Square area lights only (the far region is clipped from the square's outline).
+// Perforated casters (alpha textures) are not part of that: they go through soft textured shadow volumes (003 §3.1
+// L388-406, stsv/StsvGeometry.h). For every STSV holding p, the light samples its triangle hides (Eq. 1-5) are OR-ed
+// into the pixel's light-sample mask (the LS_buffer), and its popcount's share of the N samples is added to the
+// occlusion -- "we add this v_coef with the one computed during the penumbra-wedge pass" (L400-402), read as adding
+// occlusions: occlusion_raw = AAM03's + popcount / N, so a perforated and an opaque occluder that overlap are both
+// counted (Fig. 4 a).
 #pragma once
 
 #include "frame/ProbeRecord.h"
 #include "scene/Scene.h"
 #include "techniques/dcs/DcsGeometry.h"
+#include "techniques/stsv/StsvGeometry.h"
 
 #include <glm/glm.hpp>
 
@@ -48,18 +55,34 @@ PenumbraWedgeArea penumbraWedgeArea(const DcsWedgeEdge& wedge, const glm::dvec3&
 // The centre silhouettes of `wedges` (DcsWedgeEdge::silhouetteFromCentre): the wedges AAM03 draws.
 std::vector<DcsWedgeEdge> centreSilhouetteWedges(const DcsEdgeSet& wedges);
 
+// What the twin needs of a scene under one light, built once.
+struct PenumbraWedgeScene
+{
+  Scene opaque;                          // the scene with its perforated casters not casting: the hard shadow's
+  std::vector<DcsWedgeEdge> wedges;      // and the wedges' casters; these are their centre silhouettes
+  std::vector<StsvTriangle> perforated;  // the S-triangles (003 C1)
+  std::vector<std::vector<Stsv>> stsvs;  // per S-triangle, its one or two STSVs
+};
+PenumbraWedgeScene penumbraWedgeScene(const Scene& scene, const Light& light);
+
 struct PenumbraWedgePixel
 {
   glm::dvec3 countedPoint{ 0.0 }; // the visible point moved receiver_offset toward the camera (as shadow-volume)
-  int centreCount = 0;            // depth_complexity_center
+  int centreCount = 0;            // depth_complexity_center (opaque casters)
   int wedgesCovering = 0;         // centre-silhouette wedges whose region holds the point (wedgeContains)
-  double occlusionRaw = 0.0;      // pw_occlusion_raw, before clamping
+  int stsvCovering = 0;           // STSVs holding the point (stsvContains)
+  int stsvEmptyHits = 0;          // of those, the ones that hide none of its samples
+  std::vector<bool> stsvHidden;   // per light sample: hidden by some S-triangle (the LS_buffer)
+  int stsvOccludedSamples = 0;    // popcount of stsvHidden
+  double occlusionRaw = 0.0;      // pw_occlusion_raw, before clamping: AAM03's plus popcount / N
   double visibility = 0.0;
 };
 
-// One pixel whose visible point is `pWs`, under the centre-silhouette wedges `wedges`. `recorder` (optional): the
-// counted point, the centre's crossings, each covering wedge's far region (a light polygon) and share.
-PenumbraWedgePixel penumbraWedgePixel(const Scene& scene, const Light& light, const std::vector<DcsWedgeEdge>& wedges,
-  const glm::dvec3& pWs, double receiverOffset, ProbeRecorder* recorder = nullptr);
+// One pixel whose visible point is `pWs`; `samples` are its light samples (world points; may be empty without
+// perforated casters). `recorder` (optional): the counted point, the centre's crossings, each covering wedge's far
+// region (a light polygon) and share, each covering STSV and the samples it hides.
+PenumbraWedgePixel penumbraWedgePixel(const PenumbraWedgeScene& prepared, const Scene& scene, const Light& light,
+  const glm::dvec3& pWs, double receiverOffset, const std::vector<glm::dvec3>& samples,
+  StsvOcclusionTest test = StsvOcclusionTest::PaperAndOppositeSides, ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

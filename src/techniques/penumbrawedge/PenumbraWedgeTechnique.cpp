@@ -1,11 +1,14 @@
 #include "techniques/penumbrawedge/PenumbraWedgeTechnique.h"
 
 #include "lightspace/LightView.h"
-#include "scene/WeldedMesh.h"
+#include "lightspace/lightsamples/LightSampleSetStructure.h"
 #include "techniques/ProbeSupport.h"
+#include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/DcsTechnique.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 #include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
+
+#include <algorithm>
 
 namespace sl
 {
@@ -18,17 +21,40 @@ TechniqueDescriptor penumbraWedgeTechnique()
   descriptor.paper = "Akenine-Moller & Assarsson 2002; Assarsson & Akenine-Moller 2003; Forest et al. 2009 §3.1 (paper 003)";
   descriptor.parameters = {
     { "receiver_offset", 1e-4, 0.0, 1e-2, "of the eye distance",
-      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before the centre's volumes and the wedges are evaluated, as dcs does" },
+      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before the centre's volumes, the wedges and the STSVs are evaluated, as dcs does" },
+    { "stsv_opposite_side_check", 1, 0, 1, "",
+      "STSVs: also require a sample and the point to lie on opposite sides of the perforated triangle's plane (h.z > 1), the test the paper's Eq. 1 lacks (reading notes C5); off = the paper's test alone",
+      { "off", "on" }, true },
   };
+  // The light samples of the perforated casters' LS_buffer (003 L390-400): the shared set, 64 by default (the
+  // paper's PWedge+STSV64).
+  const LightSpaceStructure& samples = lightSampleSetStructure();
+  for (ParameterSpec spec : samples.parameters)
+  {
+    if (spec.name == "samples")
+    {
+      spec.defaultValue = static_cast<double>(std::find(spec.choices.begin(), spec.choices.end(), "64") - spec.choices.begin());
+    }
+    descriptor.parameters.push_back(spec);
+  }
+  descriptor.lightStructures = { &samples };
   descriptor.drawsSceneGeometry = true;
+  descriptor.perforatedCastersByStsv = true;
   descriptor.buffers = {
     { "pw_occlusion_raw", "fraction of light",
-      "the centre's hard-shadow status plus every wedge's signed share, before clamping: > 1 or < 0 where overlapping silhouettes are counted twice (003 L384-387)",
+      "the centre's hard-shadow status plus every wedge's signed share, plus the STSVs' hidden samples / N, before clamping: > 1 or < 0 where overlapping silhouettes are counted twice (003 L384-387)",
       BufferKind::Signed },
     { "depth_complexity_center", "surfaces",
-      "caster triangles crossed by the segment from the point to the light's centre (the shadow volumes' count)" },
+      "opaque caster triangles crossed by the segment from the point to the light's centre (the shadow volumes' count)" },
     { "wedges_covering", "wedges", "centre-silhouette wedges whose region holds the point (the per-pixel cost of the wedge pass)" },
+    { "stsv_covering", "STSVs", "soft textured shadow volumes holding the point (003 §2.3)" },
+    { "stsv_empty_hits", "STSVs", "STSVs holding the point that hide none of its samples: how conservative the extrusion is" },
+    { "stsv_occluded_samples", "light samples", "samples hidden by perforated casters (the LS_buffer's popcount, of N)" },
   };
+  BufferSpec mask{ "light_sample_mask", "bits",
+    "which samples perforated casters hide (the STSVs' LS_buffer, 003 L390-400): bit i % 16 of component i / 16, N/16 components" };
+  mask.fromPass = true;
+  descriptor.buffers.push_back(mask);
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.shaderConstants = {
@@ -41,6 +67,12 @@ TechniqueDescriptor penumbraWedgeTechnique()
     return probePenumbraWedge(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };
   return descriptor;
+}
+
+StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values)
+{
+  return values.choice("stsv_opposite_side_check") == "on" ? StsvOcclusionTest::PaperAndOppositeSides
+                                                            : StsvOcclusionTest::Paper;
 }
 
 ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
@@ -59,15 +91,20 @@ ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, in
   recorder.beginGroup("receiver");
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
   recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
-  const std::vector<DcsWedgeEdge> wedges = centreSilhouetteWedges(potentialSilhouetteWedges(weldCasters(scene), light));
-  const PenumbraWedgePixel twin =
-    penumbraWedgePixel(scene, light, wedges, pWs, frame.parameters.get("receiver_offset"), &recorder);
+  const LightSampleSet samples(lightSampleSetSettings(frame.parameters));
+  const PenumbraWedgePixel twin = penumbraWedgePixel(penumbraWedgeScene(scene, light), scene, light, pWs,
+    frame.parameters.get("receiver_offset"), dcsSamplePoints(light, samples, pixel), stsvOcclusionTestOf(frame.parameters),
+    &recorder);
   recorder.beginGroup("result");
   recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
   recorder.quantity("depth_complexity_center", twin.centreCount, "surfaces", "AAM03: the hard shadow from the centre");
   recorder.quantity("wedges_covering", twin.wedgesCovering, "wedges", "DcsGeometry.h wedgeContains");
+  recorder.quantity("stsv_covering", twin.stsvCovering, "STSVs", "003 §2.3: STSVs holding the point");
+  recorder.quantity("stsv_occluded_samples", twin.stsvOccludedSamples, "light samples",
+    "003 §3.1 L390-400: the LS_buffer's popcount (perforated casters)");
   recorder.quantity("pw_occlusion_raw", twin.occlusionRaw, "fraction of light",
-    "AAM03: [centre hidden] + sum of the wedges' signed shares (003 L384-387: > 1 where overlaps count twice)");
+    "AAM03: [centre hidden] + sum of the wedges' signed shares (003 L384-387: > 1 where overlaps count twice), + the "
+    "STSVs' popcount / N (L400-402)");
   if (litWithoutShadowTest(frame, pixel, recorder, outcome))
   {
     return outcome;

@@ -10,17 +10,24 @@
 // depth_complexity_center, wedges_covering. Statistics: the shadow volumes' and silhouette_edges_centre,
 // potential_silhouette_edges, wedges, wedges_drawn, wedge_fragments, wedge_build_ms (CPU), volumes_gpu_ms,
 // wedges_gpu_ms, resolve_gpu_ms. Object-space exports: silhouettes.vtp, wedges.vtp.
-// Limits: alpha textures are not honoured (a perforated caster shadows as solid; STSV is a later part of issue 18).
+// Perforated casters (alpha textures) are left out of the volumes and wedges and go through soft textured shadow volumes
+// (Forest et al. 2009 §2, §3.1): per STSV holding the point, the samples of the shared light-sample set its triangle
+// hides (Eq. 1-5) are OR-ed into the pixel's mask, and their share is added to the occlusion. More buffers:
+// stsv_covering, stsv_empty_hits, stsv_occluded_samples, light_sample_mask; export stsv.vtp.
 #pragma once
 
 #include "frame/FrameResult.h"
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
+#include "techniques/stsv/StsvGeometry.h"
 
 namespace sl
 {
 
 TechniqueDescriptor penumbraWedgeTechnique();
+
+// The STSV occlusion test the parameter stsv_opposite_side_check picks (stsv/StsvGeometry.h).
+StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values);
 
 // The technique's probe: the centre's crossings, each covering wedge's far region and share, and the resolve
 // (PenumbraWedgeGeometry.h penumbraWedgePixel).

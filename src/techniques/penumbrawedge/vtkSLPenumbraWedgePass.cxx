@@ -13,6 +13,10 @@
 #include <vtkOpenGLFramebufferObject.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLState.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkIntArray.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
@@ -20,7 +24,9 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
+#include <algorithm>
 #include <chrono>
+#include <string>
 
 vtkStandardNewMacro(vtkSLPenumbraWedgePass);
 
@@ -34,6 +40,7 @@ void vtkSLPenumbraWedgePass::Execute(const vtkRenderState* state)
   {
     glGenQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glGenQueries(1, &this->FragmentQuery);
+    glGenQueries(1, &this->StsvFragmentQuery);
   }
   glQueryCounter(this->Timestamps[0], GL_TIMESTAMP);
   // Step 1: the centre's hard shadow (the shadow-volume pass).
@@ -43,9 +50,15 @@ void vtkSLPenumbraWedgePass::Execute(const vtkRenderState* state)
   this->DrawWedges(window);
   sl::checkGlErrors("penumbra-wedge (wedges)");
   glQueryCounter(this->Timestamps[2], GL_TIMESTAMP);
-  // Step 3: the resolve, the base class's full-screen shader.
-  this->vtkSLTechniquePass::Execute(state);
+  // Step 3: the perforated casters' STSVs into the light-sample mask.
+  this->DrawStsvs(window);
+  sl::checkGlErrors("penumbra-wedge (STSVs)");
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
+  // Step 4: the resolve, the base class's full-screen shader.
+  this->vtkSLTechniquePass::Execute(state);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  glQueryCounter(this->Timestamps[4], GL_TIMESTAMP);
   this->TimestampsValid = true;
   sl::checkGlErrors("penumbra-wedge (resolve)");
 }
@@ -90,11 +103,158 @@ void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
   }
 }
 
+int vtkSLPenumbraWedgePass::SampleCount() const
+{
+  return std::stoi(this->Frame->parameters.choice("samples"));
+}
+
+void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const int samples = this->SampleCount();
+  this->Mask.allocate(frame.width(), frame.height(), (samples + 31) / 32);
+  const GLuint zero = 0u;
+  glClearTexImage(this->Mask.handle, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  this->StsvCovering = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  this->StsvEmptyHits = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+
+  // The volumes, in double on the CPU; one polygon and record per STSV, grouped by object (its alpha texture).
+  const auto buildStart = std::chrono::steady_clock::now();
+  this->Perforated = sl::perforatedTriangles(*frame.scene);
+  this->Stsvs.clear();
+  this->StsvCount = 0;
+  this->TruncatedStsvs = 0;
+  this->StsvDrawer.clear();
+  const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
+  const sl::Bounds bounds = frame.scene->bounds();
+  const std::vector<glm::dvec2> viewport = { { -1.0, -1.0 }, { 1.0, -1.0 }, { 1.0, 1.0 }, { -1.0, 1.0 } };
+  struct Range
+  {
+    std::size_t object;
+    std::size_t first;
+    std::size_t count;
+  };
+  std::vector<Range> ranges;
+  for (const sl::StsvTriangle& triangle : this->Perforated)
+  {
+    this->Stsvs.push_back(sl::buildStsvs(triangle, *frame.light, bounds));
+    if (ranges.empty() || ranges.back().object != triangle.objectIndex)
+    {
+      ranges.push_back({ triangle.objectIndex, this->StsvDrawer.vertexCount(), 0 });
+    }
+    const double onPlaneDistance = sl::stsvOnPlaneDistance(triangle);
+    for (const sl::Stsv& stsv : this->Stsvs.back())
+    {
+      ++this->StsvCount;
+      this->TruncatedStsvs += stsv.closedVolumeTruncated;
+      std::vector<glm::dvec4> clip;
+      for (int k = 0; k < 3; ++k)
+      {
+        clip.push_back(frame.camera.clipFromWorld * glm::dvec4(stsv.frontCap[static_cast<std::size_t>(k)], 1.0));
+        clip.push_back(frame.camera.clipFromWorld * glm::dvec4(stsv.backCap[static_cast<std::size_t>(k)], 1.0));
+      }
+      const std::vector<glm::dvec2> polygon =
+        stsv.closedVolumeTruncated ? viewport : sl::convexScreenPolygon(clip, frame.camera, perspective);
+      if (polygon.empty())
+      {
+        continue;
+      }
+      std::vector<float> record;
+      const auto push = [&](const glm::dvec3& xyz, double w) {
+        record.insert(record.end(),
+          { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), static_cast<float>(w) });
+      };
+      for (const sl::StsvPlane& plane : stsv.outerPlanes)
+      {
+        push(plane.normal, plane.offset);
+      }
+      push(stsv.frontCapPlane.normal, stsv.frontCapPlane.offset);
+      push(triangle.vertices[0], stsv.lightSide);
+      push(triangle.normal, onPlaneDistance);
+      for (int column = 0; column < 3; ++column)
+      {
+        push(triangle.triangleFromWorld[column], 0.0);
+      }
+      const glm::dmat3& S = triangle.textureFromBarycentric;
+      push({ S[0][0], S[1][0], S[2][0] }, 0.0); // row 0 of Eq. 4's S
+      push({ S[0][1], S[1][1], S[2][1] }, 0.0); // row 1
+      this->StsvDrawer.addPolygon(polygon, record);
+    }
+    ranges.back().count = this->StsvDrawer.vertexCount() - ranges.back().first;
+  }
+  this->StsvBuildMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
+
+  const sl::ShaderDefines defines = this->TechniqueDefines();
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
+    sl::assembleShader("penumbrawedge/StsvSamples.glsl", defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
+  std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+  this->SetReceiverOffsetUniforms(program);
+  sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);
+  glBindImageTexture(1, this->Mask.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+
+  const sl::ScopedRenderTarget target(window, this->StsvFramebuffer, { this->StsvCovering, this->StsvEmptyHits });
+  target.clearColor(0, 0.0f);
+  target.clearColor(1, 0.0f);
+  vtkOpenGLState* glState = window->GetState();
+  const vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(glState);
+  glState->vtkglEnable(GL_BLEND);
+  glState->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  glBlendEquation(GL_FUNC_ADD);
+  glBeginQuery(GL_SAMPLES_PASSED, this->StsvFragmentQuery);
+  for (const Range& range : ranges)
+  {
+    const sl::SceneObject* object = &frame.scene->objects[range.object];
+    const auto& meshes = frame.gpuScene->meshes();
+    const auto mesh = std::find_if(meshes.begin(), meshes.end(), [&](const sl::GpuMesh& m) { return m.object == object; });
+    vtkTextureObject* alpha = mesh != meshes.end() ? mesh->alphaTexture.Get() : nullptr;
+    SL_CHECK_MSG(alpha != nullptr, "a perforated caster without its alpha texture on the GPU");
+    program->SetUniformi("hasAlphaTexture", 1);
+    vtkTextureObject* alphaBound = sl::bindTexture(program, "alphaTexture", alpha);
+    this->StsvDrawer.draw(program, *frame.light, range.first, range.count);
+    alphaBound->Deactivate();
+  }
+  glEndQuery(GL_SAMPLES_PASSED);
+  glState->vtkglDisable(GL_BLEND);
+  glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+}
+
 std::vector<vtkTextureObject*> vtkSLPenumbraWedgePass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
+  glBindImageTexture(1, this->Mask.handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
   return { sl::bindTexture(program, "volumeCount", this->VolumeCount),
     sl::bindTexture(program, "occlusionDelta", this->OcclusionDelta),
-    sl::bindTexture(program, "wedgesCovering", this->WedgesCovering) };
+    sl::bindTexture(program, "wedgesCovering", this->WedgesCovering),
+    sl::bindTexture(program, "stsvCovering", this->StsvCovering),
+    sl::bindTexture(program, "stsvEmptyHits", this->StsvEmptyHits) };
+}
+
+void vtkSLPenumbraWedgePass::AfterDraw()
+{
+  glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+}
+
+std::vector<sl::NamedImage> vtkSLPenumbraWedgePass::CollectPassBuffers()
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const int samples = this->SampleCount();
+  const std::size_t pixels = static_cast<std::size_t>(frame.width()) * frame.height();
+  const std::vector<std::uint32_t> words = this->Mask.read();
+  const int chunks = samples / 16;
+  sl::ImageF mask(frame.width(), frame.height(), chunks);
+  for (std::size_t pixel = 0; pixel < pixels; ++pixel)
+  {
+    for (int chunk = 0; chunk < chunks; ++chunk)
+    {
+      const std::uint32_t word = words[static_cast<std::size_t>(chunk / 2) * pixels + pixel];
+      mask.data[pixel * chunks + chunk] = static_cast<float>((word >> (16 * (chunk % 2))) & 0xFFFFu);
+    }
+  }
+  return { { "light_sample_mask", std::move(mask), "", "" } };
 }
 
 std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
@@ -109,16 +269,25 @@ std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
   GLuint fragments = 0;
   glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
   statistics["wedge_fragments"] = static_cast<double>(fragments);
+  GLuint stsvFragments = 0;
+  glGetQueryObjectuiv(this->StsvFragmentQuery, GL_QUERY_RESULT, &stsvFragments);
+  statistics["stsv_fragments"] = static_cast<double>(stsvFragments);
+  statistics["perforated_triangles"] = static_cast<double>(this->Perforated.size());
+  statistics["stsvs"] = static_cast<double>(this->StsvCount);
+  statistics["stsvs_truncated"] = static_cast<double>(this->TruncatedStsvs);
+  statistics["stsv_build_ms"] = this->StsvBuildMilliseconds;
+  statistics["light_samples"] = this->SampleCount();
   if (this->TimestampsValid)
   {
-    std::array<GLuint64, 4> times{};
+    std::array<GLuint64, 5> times{};
     for (std::size_t k = 0; k < times.size(); ++k)
     {
       glGetQueryObjectui64v(this->Timestamps[k], GL_QUERY_RESULT, &times[k]);
     }
     statistics["volumes_gpu_ms"] = 1e-6 * static_cast<double>(times[1] - times[0]);
     statistics["wedges_gpu_ms"] = 1e-6 * static_cast<double>(times[2] - times[1]);
-    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
+    statistics["stsv_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
+    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[4] - times[3]);
   }
   return statistics;
 }
@@ -130,20 +299,76 @@ std::vector<sl::NamedPolyData> vtkSLPenumbraWedgePass::CollectObjectSpaceExports
     "each centre-silhouette wedge's two supporting faces (the planes through its edge touching the light) as quads; "
     "cell data wedge_id, caster_id, triangles, incident_triangles, centre_silhouette",
     sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
+  if (this->StsvCount > 0)
+  {
+    // Each STSV's closed mesh, the 8 triangles of Fig. 6's strip (003 L569-570).
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> triangles;
+    vtkNew<vtkIntArray> stsvId;
+    stsvId->SetName("stsv_id");
+    vtkNew<vtkIntArray> casterId;
+    casterId->SetName("caster_id");
+    vtkNew<vtkIntArray> lightSide;
+    lightSide->SetName("light_side");
+    vtkNew<vtkIntArray> truncated;
+    truncated->SetName("truncated");
+    int id = 0;
+    for (std::size_t t = 0; t < this->Perforated.size(); ++t)
+    {
+      for (const sl::Stsv& stsv : this->Stsvs[t])
+      {
+        const std::array<glm::dvec3, 10> strip = sl::stsvStrip(stsv);
+        const vtkIdType first = points->GetNumberOfPoints();
+        for (const glm::dvec3& corner : strip)
+        {
+          points->InsertNextPoint(corner.x, corner.y, corner.z);
+        }
+        for (vtkIdType k = 0; k + 2 < 10; ++k)
+        {
+          // GL's strip rule: odd triangles swap their first two vertices, so every one faces outwards.
+          const vtkIdType triangle[3] = { first + (k % 2 ? k + 1 : k), first + (k % 2 ? k : k + 1), first + k + 2 };
+          triangles->InsertNextCell(3, triangle);
+          stsvId->InsertNextValue(id);
+          casterId->InsertNextValue(static_cast<int>(this->Perforated[t].objectIndex));
+          lightSide->InsertNextValue(stsv.lightSide);
+          truncated->InsertNextValue(stsv.closedVolumeTruncated ? 1 : 0);
+        }
+        ++id;
+      }
+    }
+    vtkNew<vtkPolyData> volumes;
+    volumes->SetPoints(points);
+    volumes->SetPolys(triangles);
+    volumes->GetCellData()->AddArray(stsvId);
+    volumes->GetCellData()->AddArray(casterId);
+    volumes->GetCellData()->AddArray(lightSide);
+    volumes->GetCellData()->AddArray(truncated);
+    exports.push_back({ "stsv",
+      "each soft textured shadow volume's closed mesh (Fig. 6's strip, 8 triangles); cell data stsv_id, caster_id, "
+      "light_side (+1: the light piece on the triangle normal's side), truncated (the mesh may miss part of the box)",
+      volumes.Get() });
+  }
   return exports;
 }
 
 void vtkSLPenumbraWedgePass::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->WedgeDrawer.releaseGraphicsResources();
+  this->StsvDrawer.releaseGraphicsResources();
+  this->Mask.release();
+  this->StsvCovering = nullptr;
+  this->StsvEmptyHits = nullptr;
+  this->StsvFramebuffer->ReleaseGraphicsResources(window);
   this->OcclusionDelta = nullptr;
   this->WedgesCovering = nullptr;
   if (this->Timestamps[0] != 0)
   {
     glDeleteQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glDeleteQueries(1, &this->FragmentQuery);
+    glDeleteQueries(1, &this->StsvFragmentQuery);
     this->Timestamps = {};
     this->FragmentQuery = 0;
+    this->StsvFragmentQuery = 0;
     this->TimestampsValid = false;
   }
   this->WedgeFramebuffer->ReleaseGraphicsResources(window);

@@ -3,11 +3,17 @@
 //  2. wedges: one screen polygon per centre-silhouette wedge (DcsGeometry.h, drawn by WedgeDrawer); each fragment
 //     adds the wedge's signed share of the light (shaders/penumbrawedge/PenumbraWedgeArea.glsl) to an R32F occlusion
 //     target and 1 to a covering count, by additive blending;
-//  3. resolve: the base class's full-screen shader (PenumbraWedgeResolve.glsl).
+//  3. STSVs: for every perforated triangle its one or two soft textured shadow volumes (stsv/StsvGeometry.h, built on
+//     the CPU in double), drawn as the screen polygon of their closed mesh (the whole viewport when the mesh is
+//     truncated); each fragment holding its point in the volume ORs the samples Eq. 1-5 hide into the pixel's mask
+//     (R32UI array, image atomics; shaders/penumbrawedge/StsvSamples.glsl) and counts itself (covering, empty);
+//  4. resolve: the base class's full-screen shader (PenumbraWedgeResolve.glsl).
 #pragma once
 
 #include "techniques/dcs/DcsGeometry.h"
+#include "gl/GlResources.h"
 #include "techniques/dcs/WedgeDrawer.h"
+#include "techniques/stsv/StsvGeometry.h"
 #include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
@@ -32,6 +38,8 @@ public:
   std::map<std::string, double> CollectStatistics() override;
   // silhouettes.vtp (the centre's, from shadow-volume) and wedges.vtp (the centre-silhouette wedges drawn).
   std::vector<sl::NamedPolyData> CollectObjectSpaceExports() override;
+  // light_sample_mask: the STSVs' LS_buffer, N/16 components of 16 bits.
+  std::vector<sl::NamedImage> CollectPassBuffers() override;
 
 protected:
   vtkSLPenumbraWedgePass();
@@ -39,12 +47,15 @@ protected:
   void Execute(const vtkRenderState* state) override;
   std::string GetFragmentShaderPath() const override { return "penumbrawedge/PenumbraWedgeResolve.glsl"; }
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
+  void AfterDraw() override;
 
 private:
   vtkSLPenumbraWedgePass(const vtkSLPenumbraWedgePass&) = delete;
   void operator=(const vtkSLPenumbraWedgePass&) = delete;
 
   void DrawWedges(vtkOpenGLRenderWindow* window);
+  void DrawStsvs(vtkOpenGLRenderWindow* window);
+  int SampleCount() const;
 
   sl::DcsEdgeSet Wedges; // the centre silhouettes' wedges (statistics: of all potential silhouettes)
   std::size_t DrawnWedges = 0;
@@ -53,7 +64,19 @@ private:
   vtkSmartPointer<vtkTextureObject> OcclusionDelta; // R32F, the wedges' summed signed shares
   vtkSmartPointer<vtkTextureObject> WedgesCovering; // R32F, wedges whose region holds the point
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
+  // STSVs: per perforated triangle its volumes; the draw ranges of each perforated object (its alpha texture).
+  std::vector<sl::StsvTriangle> Perforated;
+  std::vector<std::vector<sl::Stsv>> Stsvs;
+  std::size_t StsvCount = 0;
+  std::size_t TruncatedStsvs = 0;
+  double StsvBuildMilliseconds = 0.0;
+  sl::WedgeDrawer StsvDrawer;
+  sl::UintArrayTexture Mask; // the LS_buffer: N/32 layers
+  vtkSmartPointer<vtkTextureObject> StsvCovering;  // R32F
+  vtkSmartPointer<vtkTextureObject> StsvEmptyHits; // R32F
+  vtkNew<vtkOpenGLFramebufferObject> StsvFramebuffer;
   unsigned int FragmentQuery = 0;
-  std::array<unsigned int, 4> Timestamps{}; // before volumes, after volumes, after wedges, after resolve
+  unsigned int StsvFragmentQuery = 0;
+  std::array<unsigned int, 5> Timestamps{}; // before volumes, after volumes, after wedges, after STSVs, after resolve
   bool TimestampsValid = false;
 };

@@ -1,0 +1,99 @@
+// Soft textured shadow volumes (paper 003 §2, Alg. 1; the CPU twin is src/techniques/stsv/StsvGeometry.h): for a
+// pixel inside an STSV's screen polygon, whether its point p lies in the volume (the three outer planes and the front
+// cap plane, §2.3), then for every light sample on this STSV's side of the triangle's plane the transmittance test of
+// Eq. 1-5 on the homogeneous barycentrics, and the hidden samples OR-ed into the pixel's light-sample mask (the
+// LS_buffer, §3.1 L390-400; image atomics instead of the fixed-function logic op).
+//   Eq. 2-3: (a, b, e) = M (v0 - p), W = [1 0 -a/e; 0 1 -b/e; 0 0 1/e];  Eq. 1: h = W M (s - p)
+//   occluded iff h.x >= 0, h.y >= 0, h.z >= h.x + h.y (the paper, L346-350), h.z > 1 (ShadowLab's added check: s and
+//   p on opposite sides of the plane; parameter stsv_opposite_side_check), and the texel at (S h).xy / h.z is opaque
+//   (Eq. 4-5; nearest, repeat, alpha < 0.5 is a hole: common/AlphaMask.glsl's rule).
+#include "common/CameraRay.glsl"
+#include "common/GBufferInputs.glsl"
+#include "common/LightSampleSet.glsl"
+#include "common/AlphaMask.glsl"
+#include "shadowvolume/ReceiverOffset.glsl"
+#include "dcs/DcsWedgeCommon.glsl"
+
+// The hidden samples, 32 per layer (sample i: layer i / 32, bit i % 32).
+layout(r32ui, binding = 1) uniform coherent uimage2DArray stsvMask;
+uniform int stsvOppositeSideCheck;
+
+layout(location = 0) out float outStsvCovering;
+layout(location = 1) out float outStsvEmptyHits;
+
+// Per STSV, STSV_RECORD vec4 in wedgeData (WedgeDrawer's records): the three outer planes and the front cap plane
+// (normal, offset; inside positive), (v0, light side), (unit normal n, on-plane distance), M's three columns, S's two
+// rows.
+const int STSV_RECORD = 11;
+
+void main()
+{
+  outStsvCovering = 0.0;
+  outStsvEmptyHits = 0.0;
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  Surface surface = readSurface(pixel);
+  if (!surface.covered)
+  {
+    return;
+  }
+  vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
+  vec3 ray = cameraRayDirection(gl_FragCoord.xy);
+  float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
+  vec3 pWs = nearPoint + countedPointS(sReceiver) * ray;
+
+  int base = STSV_RECORD * wedgeIndex;
+  for (int k = 0; k < 4; ++k)
+  {
+    vec4 plane = wedgeData[base + k];
+    if (dot(plane.xyz, pWs) + plane.w < 0.0)
+    {
+      return;
+    }
+  }
+  outStsvCovering = 1.0;
+  vec3 v0 = wedgeData[base + 4].xyz;
+  float lightSide = wedgeData[base + 4].w;
+  vec3 normal = wedgeData[base + 5].xyz;
+  float onPlaneDistance = wedgeData[base + 5].w;
+  mat3 triangleFromWorld = mat3(wedgeData[base + 6].xyz, wedgeData[base + 7].xyz, wedgeData[base + 8].xyz);
+  vec3 textureRow0 = wedgeData[base + 9].xyz;
+  vec3 textureRow1 = wedgeData[base + 10].xyz;
+
+  vec3 planeOffset = triangleFromWorld * (v0 - pWs); // (a, b, e), Eq. 3
+  float e = planeOffset.z;
+  bool anyHidden = false;
+  if (abs(e) > onPlaneDistance)
+  {
+    for (int word = 0; word < (lightSampleCount + 31) / 32; ++word)
+    {
+      uint bits = 0u;
+      for (int bit = 0; bit < 32 && 32 * word + bit < lightSampleCount; ++bit)
+      {
+        vec3 s = lightSamplePoint(pixel, 32 * word + bit);
+        // Only this STSV's light piece: a sample on the other side is the other STSV's (003 §6 L847-852).
+        if (sign(dot(normal, s - v0)) != lightSide)
+        {
+          continue;
+        }
+        vec3 md = triangleFromWorld * (s - pWs);
+        vec3 h = vec3(md.x - (planeOffset.x / e) * md.z, md.y - (planeOffset.y / e) * md.z, md.z / e); // Eq. 1
+        bool inside = h.x >= 0.0 && h.y >= 0.0 && h.z >= h.x + h.y;
+        bool opposite = h.z > 1.0;
+        if (inside && (opposite || stsvOppositeSideCheck == 0))
+        {
+          vec2 uv = vec2(dot(textureRow0, h), dot(textureRow1, h)) / h.z; // Eq. 4-5
+          if (texture(alphaTexture, uv).r >= 0.5)
+          {
+            bits |= 1u << uint(bit);
+          }
+        }
+      }
+      if (bits != 0u)
+      {
+        imageAtomicOr(stsvMask, ivec3(pixel, word), bits);
+        anyHidden = true;
+      }
+    }
+  }
+  outStsvEmptyHits = anyHidden ? 0.0 : 1.0;
+}
