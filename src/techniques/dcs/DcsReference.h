@@ -7,6 +7,7 @@
 #include "lightspace/LightSampleSet.h"
 #include "scene/Scene.h"
 #include "techniques/dcs/DcsGeometry.h"
+#include "techniques/stsv/StsvGeometry.h"
 
 #include <glm/glm.hpp>
 
@@ -32,10 +33,14 @@ struct DcsPixelTwin
 // a point light.
 std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel);
 
-// One pixel whose visible point is `pWs` with normal `nWs`. `recorder` (optional): the counted point, the centre's
-// crossings, each wedge containing the point with its multiplicity and the samples it changes, every sample.
+// One pixel whose visible point is `pWs` with normal `nWs`. `wedges` are the opaque casters' (weldCasters(scene,
+// true)): perforated ones go through STSVs (003 §3.2 L450-458, STSV_DCS), each STSV holding the point adding 1 to
+// the count of every sample its triangle hides (stsv/StsvGeometry.h, under `test`). `recorder` (optional): the
+// counted point, the centre's crossings, each wedge containing the point with its multiplicity and the samples it
+// changes, the STSVs, every sample.
 DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeSet& wedges,
   const LightSampleSet& samples, glm::ivec2 pixel, const glm::dvec3& pWs, const glm::dvec3& nWs,
-  double receiverOffset, ProbeRecorder* recorder = nullptr);
+  double receiverOffset, ProbeRecorder* recorder = nullptr,
+  StsvOcclusionTest test = StsvOcclusionTest::PaperAndOppositeSides);
 
 } // namespace sl

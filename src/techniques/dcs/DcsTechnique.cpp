@@ -7,6 +7,7 @@
 #include "techniques/dcs/DcsGeometry.h"
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/vtkSLDcsPass.h"
+#include "techniques/stsv/StsvDrawer.h"
 
 #include <string>
 
@@ -42,8 +43,10 @@ TechniqueDescriptor dcsTechnique()
     "1: also publish sample_depth_complexity, every sample's count (N floats per pixel; for tests and probes)" };
   exportCounts.integer = true;
   descriptor.parameters.push_back(exportCounts);
+  descriptor.parameters.push_back(stsvOppositeSideCheckParameter());
   descriptor.lightStructures = { &samples };
   descriptor.drawsSceneGeometry = true;
+  descriptor.perforatedCastersByStsv = true;
   descriptor.buffers = {
     { "visibility_stderr", "", "sqrt(v (1 - v) / (N - 1)), the Bernoulli bound of N light samples, as the reference's" },
     { "depth_complexity_center", "surfaces",
@@ -91,14 +94,14 @@ ProbeOutcome probeDcs(const FrameResult& frame, const Scene& scene, int lightInd
   const glm::dvec3 pWs = bufferVector(frame, "position", pixel);
   const glm::dvec3 nWs = bufferVector(frame, "normal", pixel);
   const LightSampleSet samples(lightSampleSetSettings(frame.parameters));
-  const DcsEdgeSet wedges = potentialSilhouetteWedges(weldCasters(scene), light);
+  const DcsEdgeSet wedges = potentialSilhouetteWedges(weldCasters(scene, true), light);
   recorder.beginGroup("receiver");
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
   recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
   recorder.quantity("light_samples", samples.count(), "samples",
     "003 L526-533: " + lightSamplePatternName(samples.settings()) + ", toroidally shifted per pixel");
   const DcsPixelTwin twin = dcsPixelTwin(scene, light, wedges, samples, pixel, pWs, nWs,
-    frame.parameters.get("receiver_offset"), &recorder);
+    frame.parameters.get("receiver_offset"), &recorder, stsvOcclusionTestOf(frame.parameters));
   recorder.beginGroup("counts");
   recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
   recorder.quantity("depth_complexity_center", twin.centreCount, "surfaces",

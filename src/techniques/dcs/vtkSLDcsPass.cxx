@@ -40,6 +40,7 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
   {
     glGenQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glGenQueries(1, &this->FragmentQuery);
+    glGenQueries(1, &this->StsvFragmentQuery);
   }
   glQueryCounter(this->Timestamps[0], GL_TIMESTAMP);
 
@@ -59,13 +60,17 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
     GL_UNSIGNED_INT, &zero);
   this->DrawWedges(window);
   sl::checkGlErrors("dcs (wedges)");
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   glQueryCounter(this->Timestamps[2], GL_TIMESTAMP);
+  // Step 2b: the perforated casters' STSVs add 1 to the counters of the samples they hide (003 §3.2, STSV_DCS).
+  this->DrawStsvs(window);
+  sl::checkGlErrors("dcs (STSVs)");
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
 
   // Step 3: the resolve, the base class's full-screen shader.
   this->vtkSLTechniquePass::Execute(state);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
+  glQueryCounter(this->Timestamps[4], GL_TIMESTAMP);
   this->TimestampsValid = true;
   sl::checkGlErrors("dcs (resolve)");
 }
@@ -103,6 +108,33 @@ void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
   }
 }
 
+void vtkSLDcsPass::DrawStsvs(vtkOpenGLRenderWindow* window)
+{
+  const sl::FrameResources& frame = *this->Frame;
+  this->Stsvs.prepare(frame);
+  sl::ShaderDefines defines = this->TechniqueDefines();
+  defines.emplace_back("STSV_DCS_COUNTERS", "");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
+    sl::assembleShader("stsv/StsvSamples.glsl", defines, this->ParameterDeclarations()), "dcs STSVs");
+  std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
+  this->SetReceiverOffsetUniforms(program);
+  sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);
+  glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+  // As for the wedges: the counters are written through the image.
+  const sl::ScopedRenderTarget target(window, this->WedgeFramebuffer, { this->VolumeCount });
+  vtkOpenGLState* glState = window->GetState();
+  const vtkOpenGLState::ScopedglColorMask colorMask(glState);
+  glState->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glBeginQuery(GL_SAMPLES_PASSED, this->StsvFragmentQuery);
+  this->Stsvs.draw(program, frame);
+  glEndQuery(GL_SAMPLES_PASSED);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  for (vtkTextureObject* texture : bound)
+  {
+    texture->Deactivate();
+  }
+}
+
 std::vector<vtkTextureObject*> vtkSLDcsPass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
@@ -129,6 +161,13 @@ std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
   GLuint fragments = 0;
   glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
   statistics["wedge_fragments"] = static_cast<double>(fragments);
+  GLuint stsvFragments = 0;
+  glGetQueryObjectuiv(this->StsvFragmentQuery, GL_QUERY_RESULT, &stsvFragments);
+  statistics["stsv_fragments"] = static_cast<double>(stsvFragments);
+  statistics["perforated_triangles"] = static_cast<double>(this->Stsvs.perforatedTriangles());
+  statistics["stsvs"] = static_cast<double>(this->Stsvs.volumes());
+  statistics["stsvs_truncated"] = static_cast<double>(this->Stsvs.truncatedVolumes());
+  statistics["stsv_build_ms"] = this->Stsvs.buildMilliseconds();
   const std::size_t pixels = static_cast<std::size_t>(this->Counters.width) * this->Counters.height;
   statistics["sample_buffer_bytes"] = static_cast<double>(4 * pixels * (this->Counters.layers + this->Mask.layers));
   // 003 L614-628: N x W x H x 1 bit of LS_buffer plus the N x 16-bit sample pattern.
@@ -137,14 +176,15 @@ std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
   statistics["light_samples"] = samples;
   if (this->TimestampsValid)
   {
-    std::array<GLuint64, 4> times{};
+    std::array<GLuint64, 5> times{};
     for (std::size_t k = 0; k < times.size(); ++k)
     {
       glGetQueryObjectui64v(this->Timestamps[k], GL_QUERY_RESULT, &times[k]);
     }
     statistics["volumes_gpu_ms"] = 1e-6 * static_cast<double>(times[1] - times[0]);
     statistics["wedges_gpu_ms"] = 1e-6 * static_cast<double>(times[2] - times[1]);
-    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
+    statistics["stsv_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
+    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[4] - times[3]);
   }
   return statistics;
 }
@@ -157,6 +197,13 @@ std::vector<sl::NamedPolyData> vtkSLDcsPass::CollectObjectSpaceExports()
     "each wedge's two supporting faces (the planes through its edge touching the light) as quads; cell data wedge_id, "
     "caster_id, triangles (of the edge in this record), incident_triangles, centre_silhouette",
     sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
+  if (this->Stsvs.volumes() > 0)
+  {
+    exports.push_back({ "stsv",
+      "each soft textured shadow volume's closed mesh (Fig. 6's strip, 8 triangles); cell data stsv_id, caster_id, "
+      "light_side (+1: the light piece on the triangle normal's side), truncated (the mesh may miss part of the box)",
+      this->Stsvs.polyData() });
+  }
   return exports;
 }
 
@@ -205,14 +252,17 @@ std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
 void vtkSLDcsPass::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->WedgeDrawer.releaseGraphicsResources();
+  this->Stsvs.releaseGraphicsResources();
   this->Counters.release();
   this->Mask.release();
   if (this->Timestamps[0] != 0)
   {
     glDeleteQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glDeleteQueries(1, &this->FragmentQuery);
+    glDeleteQueries(1, &this->StsvFragmentQuery);
     this->Timestamps = {};
     this->FragmentQuery = 0;
+    this->StsvFragmentQuery = 0;
     this->TimestampsValid = false;
   }
   this->WedgeFramebuffer->ReleaseGraphicsResources(window);

@@ -4,6 +4,9 @@
 //  2. wedges: one screen polygon per potential-silhouette record (DcsGeometry.h), built on the CPU in double; each
 //     fragment applies the per-sample update rule to its pixel's light-sample counters with image atomics
 //     (shaders/dcs/DcsWedgeUpdate.glsl);
+//  2b. STSVs: perforated casters (left out of steps 1 and 2, TechniqueDescriptor::perforatedCastersByStsv) through
+//     their soft textured shadow volumes (stsv/StsvDrawer.h): each fragment holding its point adds 1 to the counter of
+//     every sample Eq. 1-5 hides (003 §3.2 L450-458, shaders/stsv/StsvSamples.glsl with STSV_DCS_COUNTERS);
 //  3. resolve: the base class's full-screen shader (shaders/dcs/DcsResolve.glsl) decodes the counters, checks their
 //     range, and writes visibility and the instrumentation buffers, and the hidden-sample bit mask.
 //
@@ -19,6 +22,7 @@
 
 #include "techniques/dcs/DcsGeometry.h"
 #include "techniques/dcs/WedgeDrawer.h"
+#include "techniques/stsv/StsvDrawer.h"
 #include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
@@ -60,6 +64,7 @@ private:
   void operator=(const vtkSLDcsPass&) = delete;
 
   void DrawWedges(vtkOpenGLRenderWindow* window);
+  void DrawStsvs(vtkOpenGLRenderWindow* window);
   int SampleCount() const;
 
   sl::DcsEdgeSet Wedges;
@@ -69,7 +74,9 @@ private:
   sl::UintArrayTexture Mask;
   sl::WedgeDrawer WedgeDrawer;
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
+  sl::StsvDrawer Stsvs;
   unsigned int FragmentQuery = 0;
-  std::array<unsigned int, 4> Timestamps{}; // before volumes, after volumes, after wedges, after resolve
+  unsigned int StsvFragmentQuery = 0;
+  std::array<unsigned int, 5> Timestamps{}; // before volumes, after volumes, after wedges, after STSVs, after resolve
   bool TimestampsValid = false;
 };

@@ -139,17 +139,8 @@ std::vector<DcsWedgeEdge> centreSilhouetteWedges(const DcsEdgeSet& wedges)
 PenumbraWedgeScene penumbraWedgeScene(const Scene& scene, const Light& light)
 {
   PenumbraWedgeScene prepared;
-  prepared.opaque = scene;
-  for (SceneObject& object : prepared.opaque.objects)
-  {
-    object.castShadows = object.castShadows && !object.hasAlphaTexture;
-  }
   prepared.wedges = centreSilhouetteWedges(potentialSilhouetteWedges(weldCasters(scene, true), light));
-  prepared.perforated = perforatedTriangles(scene);
-  for (const StsvTriangle& triangle : prepared.perforated)
-  {
-    prepared.stsvs.push_back(buildStsvs(triangle, light, scene.bounds()));
-  }
+  prepared.stsvs = buildStsvSet(scene, light);
   return prepared;
 }
 
@@ -164,7 +155,7 @@ PenumbraWedgePixel penumbraWedgePixel(const PenumbraWedgeScene& prepared, const 
   {
     recorder->beginGroup("centre (hard shadow volume)");
   }
-  pixel.centreCount = casterCrossings(prepared.opaque, VolumeLight::from(light), p, recorder);
+  pixel.centreCount = casterCrossings(scene, VolumeLight::from(light), p, recorder, true);
   pixel.occlusionRaw = pixel.centreCount > 0 ? 1.0 : 0.0;
   const std::vector<glm::dvec3> outline = lightOutline(light);
   if (recorder)
@@ -188,37 +179,19 @@ PenumbraWedgePixel penumbraWedgePixel(const PenumbraWedgeScene& prepared, const 
     }
   }
   // STSVs (003 Alg. 1): OR the samples each STSV holding p hides.
-  if (recorder && !prepared.perforated.empty())
+  const StsvPointOcclusion stsv = stsvPointOcclusion(prepared.stsvs, scene, p, samples, test);
+  pixel.stsvCovering = stsv.covering;
+  pixel.stsvEmptyHits = stsv.emptyHits;
+  pixel.stsvHidden.assign(samples.size(), false);
+  for (std::size_t i = 0; i < samples.size(); ++i)
+  {
+    pixel.stsvHidden[i] = stsv.hiddenBy[i] > 0;
+  }
+  if (recorder && stsv.covering > 0)
   {
     recorder->beginGroup("STSVs containing the point");
-  }
-  pixel.stsvHidden.assign(samples.size(), false);
-  for (std::size_t t = 0; t < prepared.perforated.size(); ++t)
-  {
-    const StsvTriangle& triangle = prepared.perforated[t];
-    const ImageF& alpha = scene.objects[triangle.objectIndex].alphaTexture.alpha;
-    for (const Stsv& stsv : prepared.stsvs[t])
-    {
-      if (!stsvContains(stsv, p))
-      {
-        continue;
-      }
-      ++pixel.stsvCovering;
-      const std::vector<bool> hidden = stsvOcclusion(stsv, triangle, alpha, p, samples, test);
-      int count = 0;
-      for (std::size_t i = 0; i < hidden.size(); ++i)
-      {
-        count += hidden[i];
-        pixel.stsvHidden[i] = pixel.stsvHidden[i] || hidden[i];
-      }
-      pixel.stsvEmptyHits += count == 0;
-      if (recorder)
-      {
-        recorder->quantity("stsv of triangle " + std::to_string(triangle.triangleIndex) + " of object " +
-            std::to_string(triangle.objectIndex) + " (light side " + std::to_string(stsv.lightSide) + ")",
-          count, "light samples", "003 Eq. 1-5: the samples it hides");
-      }
-    }
+    recorder->quantity("stsv_covering", stsv.covering, "STSVs", "003 §2.3");
+    recorder->quantity("stsv_empty_hits", stsv.emptyHits, "STSVs", "STSVs holding the point that hide none of its samples");
   }
   pixel.stsvOccludedSamples = static_cast<int>(std::count(pixel.stsvHidden.begin(), pixel.stsvHidden.end(), true));
   if (!samples.empty())

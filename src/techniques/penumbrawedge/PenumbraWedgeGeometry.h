@@ -58,10 +58,8 @@ std::vector<DcsWedgeEdge> centreSilhouetteWedges(const DcsEdgeSet& wedges);
 // What the twin needs of a scene under one light, built once.
 struct PenumbraWedgeScene
 {
-  Scene opaque;                          // the scene with its perforated casters not casting: the hard shadow's
-  std::vector<DcsWedgeEdge> wedges;      // and the wedges' casters; these are their centre silhouettes
-  std::vector<StsvTriangle> perforated;  // the S-triangles (003 C1)
-  std::vector<std::vector<Stsv>> stsvs;  // per S-triangle, its one or two STSVs
+  std::vector<DcsWedgeEdge> wedges; // the opaque casters' centre silhouettes (perforated ones have STSVs instead)
+  StsvSet stsvs;                    // the S-triangles (003 C1) and their STSVs
 };
 PenumbraWedgeScene penumbraWedgeScene(const Scene& scene, const Light& light);
 

@@ -7,6 +7,7 @@
 #include "techniques/dcs/DcsTechnique.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 #include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
+#include "techniques/stsv/StsvDrawer.h"
 
 #include <algorithm>
 
@@ -22,9 +23,7 @@ TechniqueDescriptor penumbraWedgeTechnique()
   descriptor.parameters = {
     { "receiver_offset", 1e-4, 0.0, 1e-2, "of the eye distance",
       "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before the centre's volumes, the wedges and the STSVs are evaluated, as dcs does" },
-    { "stsv_opposite_side_check", 1, 0, 1, "",
-      "STSVs: also require a sample and the point to lie on opposite sides of the perforated triangle's plane (h.z > 1), the test the paper's Eq. 1 lacks (reading notes C5); off = the paper's test alone",
-      { "off", "on" }, true },
+    stsvOppositeSideCheckParameter(),
   };
   // The light samples of the perforated casters' LS_buffer (003 L390-400): the shared set, 64 by default (the
   // paper's PWedge+STSV64).
@@ -67,12 +66,6 @@ TechniqueDescriptor penumbraWedgeTechnique()
     return probePenumbraWedge(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };
   return descriptor;
-}
-
-StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values)
-{
-  return values.choice("stsv_opposite_side_check") == "on" ? StsvOcclusionTest::PaperAndOppositeSides
-                                                            : StsvOcclusionTest::Paper;
 }
 
 ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,

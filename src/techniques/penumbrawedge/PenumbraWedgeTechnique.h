@@ -19,15 +19,11 @@
 #include "frame/FrameResult.h"
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
-#include "techniques/stsv/StsvGeometry.h"
 
 namespace sl
 {
 
 TechniqueDescriptor penumbraWedgeTechnique();
-
-// The STSV occlusion test the parameter stsv_opposite_side_check picks (stsv/StsvGeometry.h).
-StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values);
 
 // The technique's probe: the centre's crossings, each covering wedge's far region and share, and the resolve
 // (PenumbraWedgeGeometry.h penumbraWedgePixel).

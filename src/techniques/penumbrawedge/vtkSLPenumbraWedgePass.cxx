@@ -13,10 +13,6 @@
 #include <vtkOpenGLFramebufferObject.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLState.h>
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkIntArray.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
@@ -24,7 +20,6 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
-#include <algorithm>
 #include <chrono>
 #include <string>
 
@@ -118,76 +113,11 @@ void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
   this->StsvCovering = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   this->StsvEmptyHits = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
 
-  // The volumes, in double on the CPU; one polygon and record per STSV, grouped by object (its alpha texture).
-  const auto buildStart = std::chrono::steady_clock::now();
-  this->Perforated = sl::perforatedTriangles(*frame.scene);
-  this->Stsvs.clear();
-  this->StsvCount = 0;
-  this->TruncatedStsvs = 0;
-  this->StsvDrawer.clear();
-  const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
-  const sl::Bounds bounds = frame.scene->bounds();
-  const std::vector<glm::dvec2> viewport = { { -1.0, -1.0 }, { 1.0, -1.0 }, { 1.0, 1.0 }, { -1.0, 1.0 } };
-  struct Range
-  {
-    std::size_t object;
-    std::size_t first;
-    std::size_t count;
-  };
-  std::vector<Range> ranges;
-  for (const sl::StsvTriangle& triangle : this->Perforated)
-  {
-    this->Stsvs.push_back(sl::buildStsvs(triangle, *frame.light, bounds));
-    if (ranges.empty() || ranges.back().object != triangle.objectIndex)
-    {
-      ranges.push_back({ triangle.objectIndex, this->StsvDrawer.vertexCount(), 0 });
-    }
-    const double onPlaneDistance = sl::stsvOnPlaneDistance(triangle);
-    for (const sl::Stsv& stsv : this->Stsvs.back())
-    {
-      ++this->StsvCount;
-      this->TruncatedStsvs += stsv.closedVolumeTruncated;
-      std::vector<glm::dvec4> clip;
-      for (int k = 0; k < 3; ++k)
-      {
-        clip.push_back(frame.camera.clipFromWorld * glm::dvec4(stsv.frontCap[static_cast<std::size_t>(k)], 1.0));
-        clip.push_back(frame.camera.clipFromWorld * glm::dvec4(stsv.backCap[static_cast<std::size_t>(k)], 1.0));
-      }
-      const std::vector<glm::dvec2> polygon =
-        stsv.closedVolumeTruncated ? viewport : sl::convexScreenPolygon(clip, frame.camera, perspective);
-      if (polygon.empty())
-      {
-        continue;
-      }
-      std::vector<float> record;
-      const auto push = [&](const glm::dvec3& xyz, double w) {
-        record.insert(record.end(),
-          { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), static_cast<float>(w) });
-      };
-      for (const sl::StsvPlane& plane : stsv.outerPlanes)
-      {
-        push(plane.normal, plane.offset);
-      }
-      push(stsv.frontCapPlane.normal, stsv.frontCapPlane.offset);
-      push(triangle.vertices[0], stsv.lightSide);
-      push(triangle.normal, onPlaneDistance);
-      for (int column = 0; column < 3; ++column)
-      {
-        push(triangle.triangleFromWorld[column], 0.0);
-      }
-      const glm::dmat3& S = triangle.textureFromBarycentric;
-      push({ S[0][0], S[1][0], S[2][0] }, 0.0); // row 0 of Eq. 4's S
-      push({ S[0][1], S[1][1], S[2][1] }, 0.0); // row 1
-      this->StsvDrawer.addPolygon(polygon, record);
-    }
-    ranges.back().count = this->StsvDrawer.vertexCount() - ranges.back().first;
-  }
-  this->StsvBuildMilliseconds =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
+  this->Stsvs.prepare(frame);
 
   const sl::ShaderDefines defines = this->TechniqueDefines();
   vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
-    sl::assembleShader("penumbrawedge/StsvSamples.glsl", defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
+    sl::assembleShader("stsv/StsvSamples.glsl", defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);
@@ -202,18 +132,7 @@ void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
   glState->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
   glBeginQuery(GL_SAMPLES_PASSED, this->StsvFragmentQuery);
-  for (const Range& range : ranges)
-  {
-    const sl::SceneObject* object = &frame.scene->objects[range.object];
-    const auto& meshes = frame.gpuScene->meshes();
-    const auto mesh = std::find_if(meshes.begin(), meshes.end(), [&](const sl::GpuMesh& m) { return m.object == object; });
-    vtkTextureObject* alpha = mesh != meshes.end() ? mesh->alphaTexture.Get() : nullptr;
-    SL_CHECK_MSG(alpha != nullptr, "a perforated caster without its alpha texture on the GPU");
-    program->SetUniformi("hasAlphaTexture", 1);
-    vtkTextureObject* alphaBound = sl::bindTexture(program, "alphaTexture", alpha);
-    this->StsvDrawer.draw(program, *frame.light, range.first, range.count);
-    alphaBound->Deactivate();
-  }
+  this->Stsvs.draw(program, frame);
   glEndQuery(GL_SAMPLES_PASSED);
   glState->vtkglDisable(GL_BLEND);
   glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
@@ -272,10 +191,10 @@ std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
   GLuint stsvFragments = 0;
   glGetQueryObjectuiv(this->StsvFragmentQuery, GL_QUERY_RESULT, &stsvFragments);
   statistics["stsv_fragments"] = static_cast<double>(stsvFragments);
-  statistics["perforated_triangles"] = static_cast<double>(this->Perforated.size());
-  statistics["stsvs"] = static_cast<double>(this->StsvCount);
-  statistics["stsvs_truncated"] = static_cast<double>(this->TruncatedStsvs);
-  statistics["stsv_build_ms"] = this->StsvBuildMilliseconds;
+  statistics["perforated_triangles"] = static_cast<double>(this->Stsvs.perforatedTriangles());
+  statistics["stsvs"] = static_cast<double>(this->Stsvs.volumes());
+  statistics["stsvs_truncated"] = static_cast<double>(this->Stsvs.truncatedVolumes());
+  statistics["stsv_build_ms"] = this->Stsvs.buildMilliseconds();
   statistics["light_samples"] = this->SampleCount();
   if (this->TimestampsValid)
   {
@@ -299,54 +218,12 @@ std::vector<sl::NamedPolyData> vtkSLPenumbraWedgePass::CollectObjectSpaceExports
     "each centre-silhouette wedge's two supporting faces (the planes through its edge touching the light) as quads; "
     "cell data wedge_id, caster_id, triangles, incident_triangles, centre_silhouette",
     sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
-  if (this->StsvCount > 0)
+  if (this->Stsvs.volumes() > 0)
   {
-    // Each STSV's closed mesh, the 8 triangles of Fig. 6's strip (003 L569-570).
-    vtkNew<vtkPoints> points;
-    vtkNew<vtkCellArray> triangles;
-    vtkNew<vtkIntArray> stsvId;
-    stsvId->SetName("stsv_id");
-    vtkNew<vtkIntArray> casterId;
-    casterId->SetName("caster_id");
-    vtkNew<vtkIntArray> lightSide;
-    lightSide->SetName("light_side");
-    vtkNew<vtkIntArray> truncated;
-    truncated->SetName("truncated");
-    int id = 0;
-    for (std::size_t t = 0; t < this->Perforated.size(); ++t)
-    {
-      for (const sl::Stsv& stsv : this->Stsvs[t])
-      {
-        const std::array<glm::dvec3, 10> strip = sl::stsvStrip(stsv);
-        const vtkIdType first = points->GetNumberOfPoints();
-        for (const glm::dvec3& corner : strip)
-        {
-          points->InsertNextPoint(corner.x, corner.y, corner.z);
-        }
-        for (vtkIdType k = 0; k + 2 < 10; ++k)
-        {
-          // GL's strip rule: odd triangles swap their first two vertices, so every one faces outwards.
-          const vtkIdType triangle[3] = { first + (k % 2 ? k + 1 : k), first + (k % 2 ? k : k + 1), first + k + 2 };
-          triangles->InsertNextCell(3, triangle);
-          stsvId->InsertNextValue(id);
-          casterId->InsertNextValue(static_cast<int>(this->Perforated[t].objectIndex));
-          lightSide->InsertNextValue(stsv.lightSide);
-          truncated->InsertNextValue(stsv.closedVolumeTruncated ? 1 : 0);
-        }
-        ++id;
-      }
-    }
-    vtkNew<vtkPolyData> volumes;
-    volumes->SetPoints(points);
-    volumes->SetPolys(triangles);
-    volumes->GetCellData()->AddArray(stsvId);
-    volumes->GetCellData()->AddArray(casterId);
-    volumes->GetCellData()->AddArray(lightSide);
-    volumes->GetCellData()->AddArray(truncated);
     exports.push_back({ "stsv",
       "each soft textured shadow volume's closed mesh (Fig. 6's strip, 8 triangles); cell data stsv_id, caster_id, "
       "light_side (+1: the light piece on the triangle normal's side), truncated (the mesh may miss part of the box)",
-      volumes.Get() });
+      this->Stsvs.polyData() });
   }
   return exports;
 }
@@ -354,7 +231,7 @@ std::vector<sl::NamedPolyData> vtkSLPenumbraWedgePass::CollectObjectSpaceExports
 void vtkSLPenumbraWedgePass::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->WedgeDrawer.releaseGraphicsResources();
-  this->StsvDrawer.releaseGraphicsResources();
+  this->Stsvs.releaseGraphicsResources();
   this->Mask.release();
   this->StsvCovering = nullptr;
   this->StsvEmptyHits = nullptr;

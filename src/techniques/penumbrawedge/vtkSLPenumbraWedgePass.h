@@ -13,7 +13,7 @@
 #include "techniques/dcs/DcsGeometry.h"
 #include "gl/GlResources.h"
 #include "techniques/dcs/WedgeDrawer.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "techniques/stsv/StsvDrawer.h"
 #include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
@@ -64,13 +64,7 @@ private:
   vtkSmartPointer<vtkTextureObject> OcclusionDelta; // R32F, the wedges' summed signed shares
   vtkSmartPointer<vtkTextureObject> WedgesCovering; // R32F, wedges whose region holds the point
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
-  // STSVs: per perforated triangle its volumes; the draw ranges of each perforated object (its alpha texture).
-  std::vector<sl::StsvTriangle> Perforated;
-  std::vector<std::vector<sl::Stsv>> Stsvs;
-  std::size_t StsvCount = 0;
-  std::size_t TruncatedStsvs = 0;
-  double StsvBuildMilliseconds = 0.0;
-  sl::WedgeDrawer StsvDrawer;
+  sl::StsvDrawer Stsvs;
   sl::UintArrayTexture Mask; // the LS_buffer: N/32 layers
   vtkSmartPointer<vtkTextureObject> StsvCovering;  // R32F
   vtkSmartPointer<vtkTextureObject> StsvEmptyHits; // R32F

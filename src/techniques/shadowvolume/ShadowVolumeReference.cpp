@@ -33,7 +33,8 @@ double volumeWindingNumber(const ShadowVolumeGeometry& geometry, const glm::dvec
   return solidAngle / (4.0 * glm::pi<double>());
 }
 
-int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point, ProbeRecorder* recorder)
+int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point, ProbeRecorder* recorder,
+  bool opaqueOnly)
 {
   // Segment point + t direction, t in (0, tMax).
   const glm::dvec3 direction = light.directional ? -light.direction : light.position - point;
@@ -42,7 +43,7 @@ int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dve
   for (std::size_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex)
   {
     const SceneObject& object = scene.objects[objectIndex];
-    if (!object.castShadows)
+    if (!object.castShadows || (opaqueOnly && object.hasAlphaTexture))
     {
       continue;
     }

@@ -25,9 +25,11 @@ double volumeWindingNumber(const ShadowVolumeGeometry& geometry, const glm::dvec
 // Caster triangles (objects with castShadows, every triangle, alpha textures ignored as the volumes do)
 // crossed by the open segment from `point` to the light (to infinity against a directional light's
 // direction). Moller-Trumbore in double. `recorder` (optional, `shadowlab probe`): each crossing's point
-// (crossing_point) and triangle (crossed_triangle: object and triangle index), in the current group.
+// (crossing_point) and triangle (crossed_triangle: object and triangle index), in the current group. `opaqueOnly`:
+// perforated objects (hasAlphaTexture) are left out, as the techniques that shadow them by STSVs leave them out of
+// their volumes (TechniqueDescriptor::perforatedCastersByStsv).
 int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dvec3& point,
-  ProbeRecorder* recorder = nullptr);
+  ProbeRecorder* recorder = nullptr, bool opaqueOnly = false);
 
 // The point whose crossings the z-fail count describes (the parameter receiver_offset): the visible point `pWs`
 // moved `receiverOffset` of its distance to the eye toward the camera (orthographic cameras: of the scene's

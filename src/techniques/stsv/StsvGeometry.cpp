@@ -451,4 +451,44 @@ std::array<glm::dvec3, 10> stsvStrip(const Stsv& stsv)
   return strip;
 }
 
+StsvSet buildStsvSet(const Scene& scene, const Light& light)
+{
+  StsvSet set;
+  set.triangles = perforatedTriangles(scene);
+  for (const StsvTriangle& triangle : set.triangles)
+  {
+    set.volumes.push_back(buildStsvs(triangle, light, scene.bounds()));
+  }
+  return set;
+}
+
+StsvPointOcclusion stsvPointOcclusion(const StsvSet& set, const Scene& scene, const glm::dvec3& p,
+  const std::vector<glm::dvec3>& samples, StsvOcclusionTest test)
+{
+  StsvPointOcclusion result;
+  result.hiddenBy.assign(samples.size(), 0);
+  for (std::size_t t = 0; t < set.triangles.size(); ++t)
+  {
+    const StsvTriangle& triangle = set.triangles[t];
+    const ImageF& alpha = scene.objects[triangle.objectIndex].alphaTexture.alpha;
+    for (const Stsv& stsv : set.volumes[t])
+    {
+      if (!stsvContains(stsv, p))
+      {
+        continue;
+      }
+      ++result.covering;
+      const std::vector<bool> hidden = stsvOcclusion(stsv, triangle, alpha, p, samples, test);
+      bool any = false;
+      for (std::size_t i = 0; i < hidden.size(); ++i)
+      {
+        result.hiddenBy[i] += hidden[i] ? 1 : 0;
+        any = any || hidden[i];
+      }
+      result.emptyHits += any ? 0 : 1;
+    }
+  }
+  return result;
+}
+
 } // namespace sl

@@ -216,6 +216,25 @@ std::vector<bool> stsvOcclusion(const Stsv& stsv, const StsvTriangle& triangle, 
   const glm::dvec3& p, const std::vector<glm::dvec3>& samples,
   StsvOcclusionTest test = StsvOcclusionTest::PaperAndOppositeSides, bool onlyThisSide = true);
 
+// The perforated casters of a scene under one light, for the CPU twins: every S-triangle with its STSVs.
+struct StsvSet
+{
+  std::vector<StsvTriangle> triangles;
+  std::vector<std::vector<Stsv>> volumes; // per triangle
+};
+StsvSet buildStsvSet(const Scene& scene, const Light& light);
+
+// What a pass over every STSV of `set` finds at the point p: per sample, how many STSVs holding p hide it (the
+// counters STSV_DCS increments; > 0 is the LS_buffer's bit), the STSVs holding p, and those that hide nothing.
+struct StsvPointOcclusion
+{
+  std::vector<int> hiddenBy;
+  int covering = 0;
+  int emptyHits = 0;
+};
+StsvPointOcclusion stsvPointOcclusion(const StsvSet& set, const Scene& scene, const glm::dvec3& p,
+  const std::vector<glm::dvec3>& samples, StsvOcclusionTest test = StsvOcclusionTest::PaperAndOppositeSides);
+
 // Fig. 6's 10-vertex strip (L569-570): indices into {frontCap[0..2], backCap[0..2]} = vertices 0..5.
 constexpr std::array<int, 10> kStsvStripOrder{ 3, 4, 5, 2, 3, 0, 4, 1, 2, 0 };
 // The strip's 10 positions.

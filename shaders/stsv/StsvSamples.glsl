@@ -1,8 +1,10 @@
 // Soft textured shadow volumes (paper 003 §2, Alg. 1; the CPU twin is src/techniques/stsv/StsvGeometry.h): for a
 // pixel inside an STSV's screen polygon, whether its point p lies in the volume (the three outer planes and the front
 // cap plane, §2.3), then for every light sample on this STSV's side of the triangle's plane the transmittance test of
-// Eq. 1-5 on the homogeneous barycentrics, and the hidden samples OR-ed into the pixel's light-sample mask (the
-// LS_buffer, §3.1 L390-400; image atomics instead of the fixed-function logic op).
+// Eq. 1-5 on the homogeneous barycentrics. The hidden samples are OR-ed into the pixel's light-sample mask (the
+// LS_buffer, §3.1 L390-400; image atomics instead of the fixed-function logic op: technique penumbra-wedge), or with
+// STSV_DCS_COUNTERS defined increment the depth-complexity counters of those samples (§3.2 L450-458, STSV_DCS:
+// technique dcs, whose range check they join).
 //   Eq. 2-3: (a, b, e) = M (v0 - p), W = [1 0 -a/e; 0 1 -b/e; 0 0 1/e];  Eq. 1: h = W M (s - p)
 //   occluded iff h.x >= 0, h.y >= 0, h.z >= h.x + h.y (the paper, L346-350), h.z > 1 (ShadowLab's added check: s and
 //   p on opposite sides of the plane; parameter stsv_opposite_side_check), and the texel at (S h).xy / h.z is opaque
@@ -14,8 +16,13 @@
 #include "shadowvolume/ReceiverOffset.glsl"
 #include "dcs/DcsWedgeCommon.glsl"
 
+#ifdef STSV_DCS_COUNTERS
+#include "dcs/DcsSampleCounters.glsl"
+layout(r32ui, binding = 0) uniform coherent uimage2DArray sampleCounters;
+#else
 // The hidden samples, 32 per layer (sample i: layer i / 32, bit i % 32).
 layout(r32ui, binding = 1) uniform coherent uimage2DArray stsvMask;
+#endif
 uniform int stsvOppositeSideCheck;
 
 layout(location = 0) out float outStsvCovering;
@@ -62,6 +69,8 @@ void main()
   vec3 planeOffset = triangleFromWorld * (v0 - pWs); // (a, b, e), Eq. 3
   float e = planeOffset.z;
   bool anyHidden = false;
+  int checksum = 0;
+  int weightedChecksum = 0;
   if (abs(e) > onPlaneDistance)
   {
     for (int word = 0; word < (lightSampleCount + 31) / 32; ++word)
@@ -90,10 +99,31 @@ void main()
       }
       if (bits != 0u)
       {
-        imageAtomicOr(stsvMask, ivec3(pixel, word), bits);
         anyHidden = true;
+#ifdef STSV_DCS_COUNTERS
+        // One more occluder crossed for each hidden sample: +1 in its 8-bit counter.
+        for (int bit = 0; bit < 32; ++bit)
+        {
+          if ((bits & (1u << uint(bit))) != 0u)
+          {
+            int index = 32 * word + bit;
+            imageAtomicAdd(sampleCounters, ivec3(pixel, index / 4), 1u << uint(8 * (index % 4)));
+            checksum += 1;
+            weightedChecksum += index + 1;
+          }
+        }
+#else
+        imageAtomicOr(stsvMask, ivec3(pixel, word), bits);
+#endif
       }
     }
   }
+#ifdef STSV_DCS_COUNTERS
+  if (checksum != 0)
+  {
+    imageAtomicAdd(sampleCounters, ivec3(pixel, DCS_CHECKSUM_LAYER), uint(checksum));
+    imageAtomicAdd(sampleCounters, ivec3(pixel, DCS_WEIGHTED_CHECKSUM_LAYER), uint(weightedChecksum));
+  }
+#endif
   outStsvEmptyHits = anyHidden ? 0.0 : 1.0;
 }
