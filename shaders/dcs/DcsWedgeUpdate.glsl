@@ -23,10 +23,7 @@ void main()
   {
     return;
   }
-  vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
-  vec3 ray = cameraRayDirection(gl_FragCoord.xy);
-  float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
-  vec3 pWs = nearPoint + countedPointS(sReceiver) * ray;
+  vec3 pWs = countedPoint(surface.pWs);
 
   int base = 4 * wedgeIndex;
   vec3 v0 = wedgeData[base].xyz;

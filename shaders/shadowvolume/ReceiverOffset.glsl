@@ -9,3 +9,13 @@ float countedPointS(float sReceiver)
 {
   return sReceiver - (receiverOffsetS + receiverOffsetPerS * sReceiver);
 }
+
+// The counted point of the visible point `pWs` seen through this fragment's pixel (a shader that calls it includes
+// common/CameraRay.glsl first): the wedge and STSV passes evaluate their rules there.
+vec3 countedPoint(vec3 pWs)
+{
+  vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
+  vec3 ray = cameraRayDirection(gl_FragCoord.xy);
+  float sReceiver = dot(pWs - nearPoint, ray) / dot(ray, ray);
+  return nearPoint + countedPointS(sReceiver) * ray;
+}

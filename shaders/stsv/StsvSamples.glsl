@@ -43,10 +43,7 @@ void main()
   {
     return;
   }
-  vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
-  vec3 ray = cameraRayDirection(gl_FragCoord.xy);
-  float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
-  vec3 pWs = nearPoint + countedPointS(sReceiver) * ray;
+  vec3 pWs = countedPoint(surface.pWs);
 
   int base = STSV_RECORD * wedgeIndex;
   for (int k = 0; k < 4; ++k)

@@ -147,6 +147,52 @@ std::vector<std::uint32_t> UintArrayTexture::read() const
   return words;
 }
 
+StepTimestamps::StepTimestamps(std::vector<std::string> steps)
+  : steps_(std::move(steps))
+{
+}
+
+StepTimestamps::~StepTimestamps() = default; // the queries go with the context: release() while it is current
+
+void StepTimestamps::mark(std::size_t boundary)
+{
+  SL_CHECK(boundary <= steps_.size());
+  if (queries_.empty())
+  {
+    queries_.resize(steps_.size() + 1);
+    glGenQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
+  }
+  glQueryCounter(queries_[boundary], GL_TIMESTAMP);
+  complete_ = boundary == steps_.size();
+}
+
+void StepTimestamps::addTo(std::map<std::string, double>& statistics) const
+{
+  if (!complete_)
+  {
+    return;
+  }
+  std::vector<GLuint64> times(queries_.size());
+  for (std::size_t k = 0; k < times.size(); ++k)
+  {
+    glGetQueryObjectui64v(queries_[k], GL_QUERY_RESULT, &times[k]);
+  }
+  for (std::size_t step = 0; step < steps_.size(); ++step)
+  {
+    statistics[steps_[step] + "_gpu_ms"] = 1e-6 * static_cast<double>(times[step + 1] - times[step]);
+  }
+}
+
+void StepTimestamps::release()
+{
+  if (!queries_.empty())
+  {
+    glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
+    queries_.clear();
+  }
+  complete_ = false;
+}
+
 vtkSmartPointer<vtkTextureObject> makeColorTarget(vtkOpenGLRenderWindow* window, int width, int height)
 {
   auto texture = vtkSmartPointer<vtkTextureObject>::New();

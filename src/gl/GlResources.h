@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,6 +88,25 @@ private:
   std::chrono::steady_clock::time_point wallStart_;
   double gpuMs_ = 0.0;
   double wallMs_ = 0.0;
+};
+
+// GPU timestamps at the boundaries of a pass's steps (glQueryCounter): mark(0) before the first step, mark(i + 1)
+// after step i; addTo reports each step's time as "<step>_gpu_ms" once every boundary of a frame was marked.
+class StepTimestamps
+{
+public:
+  explicit StepTimestamps(std::vector<std::string> steps);
+  ~StepTimestamps();
+  StepTimestamps(const StepTimestamps&) = delete;
+  StepTimestamps& operator=(const StepTimestamps&) = delete;
+  void mark(std::size_t boundary);
+  void addTo(std::map<std::string, double>& statistics) const;
+  void release();
+
+private:
+  std::vector<std::string> steps_;
+  std::vector<unsigned int> queries_;
+  bool complete_ = false;
 };
 
 // One scene object on the GPU: interleaved vertices (pWs xyz, nWs xyz, uv) + triangle indices, and the

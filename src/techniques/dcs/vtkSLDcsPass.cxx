@@ -36,17 +36,15 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   const sl::FrameResources& frame = *this->Frame;
-  if (this->Timestamps[0] == 0)
+  if (this->FragmentQuery == 0)
   {
-    glGenQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glGenQueries(1, &this->FragmentQuery);
-    glGenQueries(1, &this->StsvFragmentQuery);
   }
-  glQueryCounter(this->Timestamps[0], GL_TIMESTAMP);
+  this->Steps.mark(0);
 
   // Step 1: the centre's count (the shadow-volume pass).
   this->BuildAndCountVolumes(window);
-  glQueryCounter(this->Timestamps[1], GL_TIMESTAMP);
+  this->Steps.mark(1);
 
   // Step 2: the wedges, built on the CPU, drawn into the sample counters.
   const int samples = this->SampleCount();
@@ -60,18 +58,17 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
     GL_UNSIGNED_INT, &zero);
   this->DrawWedges(window);
   sl::checkGlErrors("dcs (wedges)");
-  glQueryCounter(this->Timestamps[2], GL_TIMESTAMP);
+  this->Steps.mark(2);
   // Step 2b: the perforated casters' STSVs add 1 to the counters of the samples they hide (003 §3.2, STSV_DCS).
   this->DrawStsvs(window);
   sl::checkGlErrors("dcs (STSVs)");
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
+  this->Steps.mark(3);
 
   // Step 3: the resolve, the base class's full-screen shader.
   this->vtkSLTechniquePass::Execute(state);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glQueryCounter(this->Timestamps[4], GL_TIMESTAMP);
-  this->TimestampsValid = true;
+  this->Steps.mark(4);
   sl::checkGlErrors("dcs (resolve)");
 }
 
@@ -125,9 +122,7 @@ void vtkSLDcsPass::DrawStsvs(vtkOpenGLRenderWindow* window)
   vtkOpenGLState* glState = window->GetState();
   const vtkOpenGLState::ScopedglColorMask colorMask(glState);
   glState->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glBeginQuery(GL_SAMPLES_PASSED, this->StsvFragmentQuery);
   this->Stsvs.draw(program, frame);
-  glEndQuery(GL_SAMPLES_PASSED);
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   for (vtkTextureObject* texture : bound)
   {
@@ -161,31 +156,14 @@ std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
   GLuint fragments = 0;
   glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
   statistics["wedge_fragments"] = static_cast<double>(fragments);
-  GLuint stsvFragments = 0;
-  glGetQueryObjectuiv(this->StsvFragmentQuery, GL_QUERY_RESULT, &stsvFragments);
-  statistics["stsv_fragments"] = static_cast<double>(stsvFragments);
-  statistics["perforated_triangles"] = static_cast<double>(this->Stsvs.perforatedTriangles());
-  statistics["stsvs"] = static_cast<double>(this->Stsvs.volumes());
-  statistics["stsvs_truncated"] = static_cast<double>(this->Stsvs.truncatedVolumes());
-  statistics["stsv_build_ms"] = this->Stsvs.buildMilliseconds();
+  this->Stsvs.addStatistics(statistics);
   const std::size_t pixels = static_cast<std::size_t>(this->Counters.width) * this->Counters.height;
   statistics["sample_buffer_bytes"] = static_cast<double>(4 * pixels * (this->Counters.layers + this->Mask.layers));
   // 003 L614-628: N x W x H x 1 bit of LS_buffer plus the N x 16-bit sample pattern.
   const int samples = this->SampleCount();
   statistics["paper_sample_buffer_bytes"] = static_cast<double>(samples) * pixels / 8.0 + 2.0 * samples;
   statistics["light_samples"] = samples;
-  if (this->TimestampsValid)
-  {
-    std::array<GLuint64, 5> times{};
-    for (std::size_t k = 0; k < times.size(); ++k)
-    {
-      glGetQueryObjectui64v(this->Timestamps[k], GL_QUERY_RESULT, &times[k]);
-    }
-    statistics["volumes_gpu_ms"] = 1e-6 * static_cast<double>(times[1] - times[0]);
-    statistics["wedges_gpu_ms"] = 1e-6 * static_cast<double>(times[2] - times[1]);
-    statistics["stsv_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
-    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[4] - times[3]);
-  }
+  this->Steps.addTo(statistics);
   return statistics;
 }
 
@@ -255,15 +233,11 @@ void vtkSLDcsPass::ReleaseGraphicsResources(vtkWindow* window)
   this->Stsvs.releaseGraphicsResources();
   this->Counters.release();
   this->Mask.release();
-  if (this->Timestamps[0] != 0)
+  this->Steps.release();
+  if (this->FragmentQuery != 0)
   {
-    glDeleteQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glDeleteQueries(1, &this->FragmentQuery);
-    glDeleteQueries(1, &this->StsvFragmentQuery);
-    this->Timestamps = {};
     this->FragmentQuery = 0;
-    this->StsvFragmentQuery = 0;
-    this->TimestampsValid = false;
   }
   this->WedgeFramebuffer->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);

@@ -76,7 +76,5 @@ private:
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
   sl::StsvDrawer Stsvs;
   unsigned int FragmentQuery = 0;
-  unsigned int StsvFragmentQuery = 0;
-  std::array<unsigned int, 5> Timestamps{}; // before volumes, after volumes, after wedges, after STSVs, after resolve
-  bool TimestampsValid = false;
+  sl::StepTimestamps Steps{ { "volumes", "wedges", "stsv", "resolve" } };
 };

@@ -31,30 +31,27 @@ vtkSLPenumbraWedgePass::~vtkSLPenumbraWedgePass() = default;
 void vtkSLPenumbraWedgePass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
-  if (this->Timestamps[0] == 0)
+  if (this->FragmentQuery == 0)
   {
-    glGenQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glGenQueries(1, &this->FragmentQuery);
-    glGenQueries(1, &this->StsvFragmentQuery);
   }
-  glQueryCounter(this->Timestamps[0], GL_TIMESTAMP);
+  this->Steps.mark(0);
   // Step 1: the centre's hard shadow (the shadow-volume pass).
   this->BuildAndCountVolumes(window);
-  glQueryCounter(this->Timestamps[1], GL_TIMESTAMP);
+  this->Steps.mark(1);
   // Step 2: the centre silhouettes' wedges, built on the CPU, blended into the occlusion.
   this->DrawWedges(window);
   sl::checkGlErrors("penumbra-wedge (wedges)");
-  glQueryCounter(this->Timestamps[2], GL_TIMESTAMP);
+  this->Steps.mark(2);
   // Step 3: the perforated casters' STSVs into the light-sample mask.
   this->DrawStsvs(window);
   sl::checkGlErrors("penumbra-wedge (STSVs)");
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glQueryCounter(this->Timestamps[3], GL_TIMESTAMP);
+  this->Steps.mark(3);
   // Step 4: the resolve, the base class's full-screen shader.
   this->vtkSLTechniquePass::Execute(state);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-  glQueryCounter(this->Timestamps[4], GL_TIMESTAMP);
-  this->TimestampsValid = true;
+  this->Steps.mark(4);
   sl::checkGlErrors("penumbra-wedge (resolve)");
 }
 
@@ -131,9 +128,7 @@ void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
   glState->vtkglEnable(GL_BLEND);
   glState->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
-  glBeginQuery(GL_SAMPLES_PASSED, this->StsvFragmentQuery);
   this->Stsvs.draw(program, frame);
-  glEndQuery(GL_SAMPLES_PASSED);
   glState->vtkglDisable(GL_BLEND);
   glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   for (vtkTextureObject* texture : bound)
@@ -188,26 +183,9 @@ std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
   GLuint fragments = 0;
   glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
   statistics["wedge_fragments"] = static_cast<double>(fragments);
-  GLuint stsvFragments = 0;
-  glGetQueryObjectuiv(this->StsvFragmentQuery, GL_QUERY_RESULT, &stsvFragments);
-  statistics["stsv_fragments"] = static_cast<double>(stsvFragments);
-  statistics["perforated_triangles"] = static_cast<double>(this->Stsvs.perforatedTriangles());
-  statistics["stsvs"] = static_cast<double>(this->Stsvs.volumes());
-  statistics["stsvs_truncated"] = static_cast<double>(this->Stsvs.truncatedVolumes());
-  statistics["stsv_build_ms"] = this->Stsvs.buildMilliseconds();
+  this->Stsvs.addStatistics(statistics);
   statistics["light_samples"] = this->SampleCount();
-  if (this->TimestampsValid)
-  {
-    std::array<GLuint64, 5> times{};
-    for (std::size_t k = 0; k < times.size(); ++k)
-    {
-      glGetQueryObjectui64v(this->Timestamps[k], GL_QUERY_RESULT, &times[k]);
-    }
-    statistics["volumes_gpu_ms"] = 1e-6 * static_cast<double>(times[1] - times[0]);
-    statistics["wedges_gpu_ms"] = 1e-6 * static_cast<double>(times[2] - times[1]);
-    statistics["stsv_gpu_ms"] = 1e-6 * static_cast<double>(times[3] - times[2]);
-    statistics["resolve_gpu_ms"] = 1e-6 * static_cast<double>(times[4] - times[3]);
-  }
+  this->Steps.addTo(statistics);
   return statistics;
 }
 
@@ -238,15 +216,11 @@ void vtkSLPenumbraWedgePass::ReleaseGraphicsResources(vtkWindow* window)
   this->StsvFramebuffer->ReleaseGraphicsResources(window);
   this->OcclusionDelta = nullptr;
   this->WedgesCovering = nullptr;
-  if (this->Timestamps[0] != 0)
+  this->Steps.release();
+  if (this->FragmentQuery != 0)
   {
-    glDeleteQueries(static_cast<GLsizei>(this->Timestamps.size()), this->Timestamps.data());
     glDeleteQueries(1, &this->FragmentQuery);
-    glDeleteQueries(1, &this->StsvFragmentQuery);
-    this->Timestamps = {};
     this->FragmentQuery = 0;
-    this->StsvFragmentQuery = 0;
-    this->TimestampsValid = false;
   }
   this->WedgeFramebuffer->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);

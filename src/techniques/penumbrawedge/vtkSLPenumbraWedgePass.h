@@ -70,7 +70,5 @@ private:
   vtkSmartPointer<vtkTextureObject> StsvEmptyHits; // R32F
   vtkNew<vtkOpenGLFramebufferObject> StsvFramebuffer;
   unsigned int FragmentQuery = 0;
-  unsigned int StsvFragmentQuery = 0;
-  std::array<unsigned int, 5> Timestamps{}; // before volumes, after volumes, after wedges, after STSVs, after resolve
-  bool TimestampsValid = false;
+  sl::StepTimestamps Steps{ { "volumes", "wedges", "stsv", "resolve" } };
 };

@@ -14,6 +14,7 @@
 #include <vtkPolyData.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
+#include <vtk_glew.h>
 
 #include <algorithm>
 #include <array>
@@ -100,6 +101,11 @@ void StsvDrawer::prepare(const FrameResources& frame)
 
 void StsvDrawer::draw(vtkShaderProgram* program, const FrameResources& frame)
 {
+  if (fragmentQuery_ == 0)
+  {
+    glGenQueries(1, &fragmentQuery_);
+  }
+  glBeginQuery(GL_SAMPLES_PASSED, fragmentQuery_);
   for (const Range& range : ranges_)
   {
     const SceneObject* object = &frame.scene->objects[range.object];
@@ -111,6 +117,31 @@ void StsvDrawer::draw(vtkShaderProgram* program, const FrameResources& frame)
     drawer_.draw(program, *frame.light, range.firstVertex, range.vertexCount);
     alpha->Deactivate();
   }
+  glEndQuery(GL_SAMPLES_PASSED);
+}
+
+void StsvDrawer::releaseGraphicsResources()
+{
+  drawer_.releaseGraphicsResources();
+  if (fragmentQuery_ != 0)
+  {
+    glDeleteQueries(1, &fragmentQuery_);
+    fragmentQuery_ = 0;
+  }
+}
+
+void StsvDrawer::addStatistics(std::map<std::string, double>& statistics) const
+{
+  statistics["perforated_triangles"] = static_cast<double>(perforated_.size());
+  statistics["stsvs"] = static_cast<double>(volumes_);
+  statistics["stsvs_truncated"] = static_cast<double>(truncated_);
+  statistics["stsv_build_ms"] = buildMilliseconds_;
+  GLuint fragments = 0;
+  if (fragmentQuery_ != 0)
+  {
+    glGetQueryObjectuiv(fragmentQuery_, GL_QUERY_RESULT, &fragments);
+  }
+  statistics["stsv_fragments"] = static_cast<double>(fragments);
 }
 
 vtkSmartPointer<vtkPolyData> StsvDrawer::polyData() const

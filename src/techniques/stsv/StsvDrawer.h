@@ -12,6 +12,8 @@
 #include <vtkSmartPointer.h>
 
 #include <cstddef>
+#include <map>
+#include <string>
 #include <vector>
 
 class vtkPolyData;
@@ -33,8 +35,11 @@ public:
   void prepare(const FrameResources& frame);
   // Binds each perforated object's alpha texture (common/AlphaMask.glsl's uniforms) and draws its STSVs with
   // `program` (bound; the caller sets the target, state and the rest of the uniforms).
+  // (Fragments are counted with an occlusion query around the draws.)
   void draw(vtkShaderProgram* program, const FrameResources& frame);
-  void releaseGraphicsResources() { drawer_.releaseGraphicsResources(); }
+  void releaseGraphicsResources();
+  // perforated_triangles, stsvs, stsvs_truncated, stsv_build_ms (CPU), stsv_fragments.
+  void addStatistics(std::map<std::string, double>& statistics) const;
 
   std::size_t perforatedTriangles() const { return perforated_.size(); }
   std::size_t volumes() const { return volumes_; }
@@ -57,6 +62,7 @@ private:
   std::size_t truncated_ = 0;
   double buildMilliseconds_ = 0.0;
   WedgeDrawer drawer_;
+  unsigned int fragmentQuery_ = 0;
 };
 
 } // namespace sl
