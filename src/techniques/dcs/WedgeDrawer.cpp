@@ -21,6 +21,7 @@ WedgeDrawer::~WedgeDrawer() = default;
 
 void WedgeDrawer::clear()
 {
+  uploaded_ = false;
   vertices_.clear();
   words_.clear();
   polygons_ = 0;
@@ -28,6 +29,7 @@ void WedgeDrawer::clear()
 
 void WedgeDrawer::addPolygon(const std::vector<glm::dvec2>& polygon, const std::vector<float>& record)
 {
+  uploaded_ = false;
   const float index = static_cast<float>(polygons_++); // exact: fewer than 2^24 polygons
   for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
   {
@@ -81,20 +83,26 @@ void WedgeDrawer::draw(vtkShaderProgram* program, const Light& light, std::size_
   {
     return;
   }
-  if (!data_ || dataWords_ != words_.size())
+  // Uploaded once per prepare (an STSV pass draws one range per perforated object).
+  if (!uploaded_)
   {
-    data_ = std::make_unique<StorageBuffer>(words_.size());
-    dataWords_ = words_.size();
-  }
-  data_->upload(words_);
-  if (!vertexBuffer_)
-  {
-    vertexBuffer_ = vtkSmartPointer<vtkOpenGLBufferObject>::New();
-    vertexBuffer_->SetType(vtkOpenGLBufferObject::ArrayBuffer);
-  }
-  if (!vertexBuffer_->Upload(vertices_, vtkOpenGLBufferObject::ArrayBuffer))
-  {
-    throw GraphicsError("cannot upload " + std::to_string(vertices_.size() / 3) + " wedge vertices: " + vertexBuffer_->GetError());
+    if (!data_ || dataWords_ != words_.size())
+    {
+      data_ = std::make_unique<StorageBuffer>(words_.size());
+      dataWords_ = words_.size();
+    }
+    data_->upload(words_);
+    if (!vertexBuffer_)
+    {
+      vertexBuffer_ = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+      vertexBuffer_->SetType(vtkOpenGLBufferObject::ArrayBuffer);
+    }
+    if (!vertexBuffer_->Upload(vertices_, vtkOpenGLBufferObject::ArrayBuffer))
+    {
+      throw GraphicsError(
+        "cannot upload " + std::to_string(vertices_.size() / 3) + " wedge vertices: " + vertexBuffer_->GetError());
+    }
+    uploaded_ = true;
   }
   setWedgeLightUniforms(program, light);
   data_->bind(0);
@@ -125,6 +133,7 @@ void WedgeDrawer::releaseGraphicsResources()
   }
   data_.reset();
   dataWords_ = 0;
+  uploaded_ = false;
 }
 
 void setWedgeLightUniforms(vtkShaderProgram* program, const Light& light)

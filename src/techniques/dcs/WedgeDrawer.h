@@ -52,6 +52,7 @@ private:
   std::vector<float> vertices_;       // per vertex: NDC x, y and the polygon's index
   std::vector<std::uint32_t> words_;  // the records; a wedge's: (v0, triangles), (v1, 0), (w_0, 0), (w_1, 0) as floats
   std::size_t polygons_ = 0;
+  bool uploaded_ = false; // vertices_ and words_ are on the GPU
   std::unique_ptr<StorageBuffer> data_;
   std::size_t dataWords_ = 0;
   vtkSmartPointer<vtkOpenGLBufferObject> vertexBuffer_;
