@@ -147,6 +147,25 @@ std::vector<std::uint32_t> UintArrayTexture::read() const
   return words;
 }
 
+ImageF UintArrayTexture::readSampleMask(int bits) const
+{
+  SL_CHECK(bits % 16 == 0 && (bits + 31) / 32 <= layers);
+  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::vector<std::uint32_t> words = read();
+  const int chunks = bits / 16;
+  ImageF mask(width, height, chunks);
+  for (std::size_t pixel = 0; pixel < pixels; ++pixel)
+  {
+    for (int chunk = 0; chunk < chunks; ++chunk)
+    {
+      const std::uint32_t word = words[static_cast<std::size_t>(chunk / 2) * pixels + pixel];
+      mask.data[pixel * static_cast<std::size_t>(chunks) + static_cast<std::size_t>(chunk)] =
+        static_cast<float>((word >> (16 * (chunk % 2))) & 0xFFFFu);
+    }
+  }
+  return mask;
+}
+
 StepTimestamps::StepTimestamps(std::vector<std::string> steps)
   : steps_(std::move(steps))
 {

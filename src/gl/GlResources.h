@@ -50,6 +50,9 @@ struct UintArrayTexture
   void allocate(int w, int h, int l); // keeps the texture when the size is unchanged (contents undefined)
   void release();
   std::vector<std::uint32_t> read() const; // layer after layer, rows bottom up
+  // A per-pixel bit mask of `bits` light samples held 32 per layer (sample i: layer i / 32, bit i % 32), read back as
+  // bits / 16 float components of 16 bits each (exact in a float): the light_sample_mask buffers.
+  ImageF readSampleMask(int bits) const;
 };
 
 // Reads a whole texture back (glGetTextureImage). Row 0 is the bottom row.

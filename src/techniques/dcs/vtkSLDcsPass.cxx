@@ -175,13 +175,7 @@ std::vector<sl::NamedPolyData> vtkSLDcsPass::CollectObjectSpaceExports()
     "each wedge's two supporting faces (the planes through its edge touching the light) as quads; cell data wedge_id, "
     "caster_id, triangles (of the edge in this record), incident_triangles, centre_silhouette",
     sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
-  if (this->Stsvs.volumes() > 0)
-  {
-    exports.push_back({ "stsv",
-      "each soft textured shadow volume's closed mesh (Fig. 6's strip, 8 triangles); cell data stsv_id, caster_id, "
-      "light_side (+1: the light piece on the triangle normal's side), truncated (the mesh may miss part of the box)",
-      this->Stsvs.polyData() });
-  }
+  this->Stsvs.addExport(exports);
   return exports;
 }
 
@@ -194,19 +188,7 @@ std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<sl::NamedImage> buffers;
 
-  // light_sample_mask: N/16 components of 16 bits each (exact in a float).
-  const std::vector<std::uint32_t> maskWords = this->Mask.read();
-  const int chunks = samples / 16;
-  sl::ImageF mask(width, height, chunks);
-  for (std::size_t pixel = 0; pixel < pixels; ++pixel)
-  {
-    for (int chunk = 0; chunk < chunks; ++chunk)
-    {
-      const std::uint32_t word = maskWords[static_cast<std::size_t>(chunk / 2) * pixels + pixel];
-      mask.data[pixel * chunks + chunk] = static_cast<float>((word >> (16 * (chunk % 2))) & 0xFFFFu);
-    }
-  }
-  buffers.push_back({ "light_sample_mask", std::move(mask), "", "" });
+  buffers.push_back({ "light_sample_mask", this->Mask.readSampleMask(samples), "", "" });
 
   if (frame.parameters.getInt("export_sample_counts") != 0)
   {

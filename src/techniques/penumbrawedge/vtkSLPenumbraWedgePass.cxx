@@ -154,21 +154,7 @@ void vtkSLPenumbraWedgePass::AfterDraw()
 
 std::vector<sl::NamedImage> vtkSLPenumbraWedgePass::CollectPassBuffers()
 {
-  const sl::FrameResources& frame = *this->Frame;
-  const int samples = this->SampleCount();
-  const std::size_t pixels = static_cast<std::size_t>(frame.width()) * frame.height();
-  const std::vector<std::uint32_t> words = this->Mask.read();
-  const int chunks = samples / 16;
-  sl::ImageF mask(frame.width(), frame.height(), chunks);
-  for (std::size_t pixel = 0; pixel < pixels; ++pixel)
-  {
-    for (int chunk = 0; chunk < chunks; ++chunk)
-    {
-      const std::uint32_t word = words[static_cast<std::size_t>(chunk / 2) * pixels + pixel];
-      mask.data[pixel * chunks + chunk] = static_cast<float>((word >> (16 * (chunk % 2))) & 0xFFFFu);
-    }
-  }
-  return { { "light_sample_mask", std::move(mask), "", "" } };
+  return { { "light_sample_mask", this->Mask.readSampleMask(this->SampleCount()), "", "" } };
 }
 
 std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
@@ -196,13 +182,7 @@ std::vector<sl::NamedPolyData> vtkSLPenumbraWedgePass::CollectObjectSpaceExports
     "each centre-silhouette wedge's two supporting faces (the planes through its edge touching the light) as quads; "
     "cell data wedge_id, caster_id, triangles, incident_triangles, centre_silhouette",
     sl::wedgePolyData(this->Wedges, *this->Frame->light, this->Frame->scene->bounds()) });
-  if (this->Stsvs.volumes() > 0)
-  {
-    exports.push_back({ "stsv",
-      "each soft textured shadow volume's closed mesh (Fig. 6's strip, 8 triangles); cell data stsv_id, caster_id, "
-      "light_side (+1: the light piece on the triangle normal's side), truncated (the mesh may miss part of the box)",
-      this->Stsvs.polyData() });
-  }
+  this->Stsvs.addExport(exports);
   return exports;
 }
 

@@ -190,4 +190,15 @@ vtkSmartPointer<vtkPolyData> StsvDrawer::polyData() const
   return volumes;
 }
 
+void StsvDrawer::addExport(std::vector<NamedPolyData>& exports) const
+{
+  if (volumes_ > 0)
+  {
+    exports.push_back({ "stsv",
+      "each soft textured shadow volume's closed mesh (Fig. 6's strip, 8 triangles); cell data stsv_id, caster_id, "
+      "light_side (+1: the light piece on the triangle normal's side), truncated (the mesh may miss part of the box)",
+      polyData() });
+  }
+}
+
 } // namespace sl

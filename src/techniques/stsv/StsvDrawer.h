@@ -6,6 +6,7 @@
 #pragma once
 
 #include "core/Parameters.h"
+#include "frame/FrameResult.h"
 #include "techniques/dcs/WedgeDrawer.h"
 #include "techniques/stsv/StsvGeometry.h"
 
@@ -47,6 +48,8 @@ public:
   double buildMilliseconds() const { return buildMilliseconds_; }
   // Each STSV's closed mesh (Fig. 6's strip) with cell data stsv_id, caster_id, light_side, truncated: stsv.vtp.
   vtkSmartPointer<vtkPolyData> polyData() const;
+  // Appends stsv.vtp to a pass's object-space exports when the frame had STSVs.
+  void addExport(std::vector<NamedPolyData>& exports) const;
 
 private:
   struct Range
