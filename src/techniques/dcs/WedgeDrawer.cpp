@@ -77,6 +77,27 @@ void WedgeDrawer::draw(vtkShaderProgram* program, const Light& light)
   draw(program, light, 0, vertexCount());
 }
 
+void WedgeDrawer::drawCounted(vtkShaderProgram* program, const Light& light)
+{
+  if (fragmentQuery_ == 0)
+  {
+    glGenQueries(1, &fragmentQuery_);
+  }
+  glBeginQuery(GL_SAMPLES_PASSED, fragmentQuery_);
+  draw(program, light);
+  glEndQuery(GL_SAMPLES_PASSED);
+}
+
+std::size_t WedgeDrawer::fragments() const
+{
+  GLuint fragments = 0;
+  if (fragmentQuery_ != 0)
+  {
+    glGetQueryObjectuiv(fragmentQuery_, GL_QUERY_RESULT, &fragments);
+  }
+  return fragments;
+}
+
 void WedgeDrawer::draw(vtkShaderProgram* program, const Light& light, std::size_t firstVertex, std::size_t count)
 {
   if (vertices_.empty() || count == 0)
@@ -134,6 +155,11 @@ void WedgeDrawer::releaseGraphicsResources()
   data_.reset();
   dataWords_ = 0;
   uploaded_ = false;
+  if (fragmentQuery_ != 0)
+  {
+    glDeleteQueries(1, &fragmentQuery_);
+    fragmentQuery_ = 0;
+  }
 }
 
 void setWedgeLightUniforms(vtkShaderProgram* program, const Light& light)

@@ -46,6 +46,10 @@ public:
   // to draw: nothing happens.
   void draw(vtkShaderProgram* program, const Light& light);
   void draw(vtkShaderProgram* program, const Light& light, std::size_t firstVertex, std::size_t count);
+  // draw(program, light) counting the fragments rasterised with an occlusion query (the wedge passes' shaders never
+  // discard, so every fragment passes); fragments() reads the count of the last such draw (0 before any).
+  void drawCounted(vtkShaderProgram* program, const Light& light);
+  std::size_t fragments() const;
   void releaseGraphicsResources();
 
 private:
@@ -53,6 +57,7 @@ private:
   std::vector<std::uint32_t> words_;  // the records; a wedge's: (v0, triangles), (v1, 0), (w_0, 0), (w_1, 0) as floats
   std::size_t polygons_ = 0;
   bool uploaded_ = false; // vertices_ and words_ are on the GPU
+  unsigned int fragmentQuery_ = 0;
   std::unique_ptr<StorageBuffer> data_;
   std::size_t dataWords_ = 0;
   vtkSmartPointer<vtkOpenGLBufferObject> vertexBuffer_;

@@ -36,10 +36,6 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   const sl::FrameResources& frame = *this->Frame;
-  if (this->FragmentQuery == 0)
-  {
-    glGenQueries(1, &this->FragmentQuery);
-  }
   this->Steps.mark(0);
 
   // Step 1: the centre's count (the shadow-volume pass).
@@ -93,10 +89,7 @@ void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
   vtkOpenGLState* glState = window->GetState();
   const vtkOpenGLState::ScopedglColorMask colorMask(glState);
   glState->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  // Fragments counted with an occlusion query (the shader never discards, so every rasterised fragment passes).
-  glBeginQuery(GL_SAMPLES_PASSED, this->FragmentQuery);
-  this->WedgeDrawer.draw(program, *frame.light);
-  glEndQuery(GL_SAMPLES_PASSED);
+  this->WedgeDrawer.drawCounted(program, *frame.light);
 
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   for (vtkTextureObject* texture : bound)
@@ -153,9 +146,7 @@ std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
   statistics["wedges"] = static_cast<double>(s.wedges);
   statistics["wedges_drawn"] = static_cast<double>(this->DrawnWedges);
   statistics["wedge_build_ms"] = this->WedgeBuildMilliseconds;
-  GLuint fragments = 0;
-  glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
-  statistics["wedge_fragments"] = static_cast<double>(fragments);
+  statistics["wedge_fragments"] = static_cast<double>(this->WedgeDrawer.fragments());
   this->Stsvs.addStatistics(statistics);
   const std::size_t pixels = static_cast<std::size_t>(this->Counters.width) * this->Counters.height;
   statistics["sample_buffer_bytes"] = static_cast<double>(4 * pixels * (this->Counters.layers + this->Mask.layers));
@@ -216,11 +207,6 @@ void vtkSLDcsPass::ReleaseGraphicsResources(vtkWindow* window)
   this->Counters.release();
   this->Mask.release();
   this->Steps.release();
-  if (this->FragmentQuery != 0)
-  {
-    glDeleteQueries(1, &this->FragmentQuery);
-    this->FragmentQuery = 0;
-  }
   this->WedgeFramebuffer->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }

@@ -75,6 +75,5 @@ private:
   sl::WedgeDrawer WedgeDrawer;
   vtkNew<vtkOpenGLFramebufferObject> WedgeFramebuffer;
   sl::StsvDrawer Stsvs;
-  unsigned int FragmentQuery = 0;
   sl::StepTimestamps Steps{ { "volumes", "wedges", "stsv", "resolve" } };
 };

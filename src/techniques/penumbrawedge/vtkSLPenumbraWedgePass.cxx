@@ -31,10 +31,6 @@ vtkSLPenumbraWedgePass::~vtkSLPenumbraWedgePass() = default;
 void vtkSLPenumbraWedgePass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
-  if (this->FragmentQuery == 0)
-  {
-    glGenQueries(1, &this->FragmentQuery);
-  }
   this->Steps.mark(0);
   // Step 1: the centre's hard shadow (the shadow-volume pass).
   this->BuildAndCountVolumes(window);
@@ -85,9 +81,7 @@ void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
   glState->vtkglEnable(GL_BLEND);
   glState->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
-  glBeginQuery(GL_SAMPLES_PASSED, this->FragmentQuery);
-  this->WedgeDrawer.draw(program, *frame.light);
-  glEndQuery(GL_SAMPLES_PASSED);
+  this->WedgeDrawer.drawCounted(program, *frame.light);
   glState->vtkglDisable(GL_BLEND);
   for (vtkTextureObject* texture : bound)
   {
@@ -166,9 +160,7 @@ std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()
   statistics["wedges"] = static_cast<double>(this->Wedges.wedges.size());
   statistics["wedges_drawn"] = static_cast<double>(this->DrawnWedges);
   statistics["wedge_build_ms"] = this->WedgeBuildMilliseconds;
-  GLuint fragments = 0;
-  glGetQueryObjectuiv(this->FragmentQuery, GL_QUERY_RESULT, &fragments);
-  statistics["wedge_fragments"] = static_cast<double>(fragments);
+  statistics["wedge_fragments"] = static_cast<double>(this->WedgeDrawer.fragments());
   this->Stsvs.addStatistics(statistics);
   statistics["light_samples"] = this->SampleCount();
   this->Steps.addTo(statistics);
@@ -197,11 +189,6 @@ void vtkSLPenumbraWedgePass::ReleaseGraphicsResources(vtkWindow* window)
   this->OcclusionDelta = nullptr;
   this->WedgesCovering = nullptr;
   this->Steps.release();
-  if (this->FragmentQuery != 0)
-  {
-    glDeleteQueries(1, &this->FragmentQuery);
-    this->FragmentQuery = 0;
-  }
   this->WedgeFramebuffer->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }

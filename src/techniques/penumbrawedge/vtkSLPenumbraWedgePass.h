@@ -69,6 +69,5 @@ private:
   vtkSmartPointer<vtkTextureObject> StsvCovering;  // R32F
   vtkSmartPointer<vtkTextureObject> StsvEmptyHits; // R32F
   vtkNew<vtkOpenGLFramebufferObject> StsvFramebuffer;
-  unsigned int FragmentQuery = 0;
   sl::StepTimestamps Steps{ { "volumes", "wedges", "stsv", "resolve" } };
 };
