@@ -5,8 +5,8 @@
 // below). Micro-occluders (MICRO_OCCLUDER): micropatches, level-j texels of the min-max pyramid at their
 // minimum depth (001 L127-138, L436-437; gbp06's back-projection and gap filling), or microrects (001 §5.2, the
 // extents and depths of lightspace/microrect). A micro-occluder occludes when its depth is in front of the
-// receiver's comparison depth at its centre, with the depth bias scaled by 2^level (LEVEL_BIAS: min
-// aggregation puts coarse texels in front of tilted receivers, 001 L889-891).
+// receiver's comparison depth at its centre, less (LEVEL_BIAS) how much nearer the receiver's tangent plane comes
+// over the micro-occluder's footprint: min aggregation puts coarse texels in front of tilted receivers.
 // Both levels go through one loop and one back-projection call site (llvmpipe compiles each call site and
 // caps loop iterations per invocation at 65535: the loop notes its last iteration, so a pixel the cap cut is
 // flagged CLASSIFICATION_CUT_SHORT, exactly).
@@ -56,13 +56,36 @@ float receiverBias;
 vec2 receiverXy; // light view x, y
 float halfSize;  // of the square light
 
-float levelBias(int level)
+// The receiver's tangent plane's depth along the light ray through `texels`, clamped as tapComparisonDepth does
+// (0.5 d where the plane turns away).
+float clampedPlaneDepth(vec2 texels)
 {
+  vec3 ray = vec3(shadowWindowMin + texels * shadowTexelTangent, -1.0);
+  float planeDepth = 1.0 / dot(receiverPlane, ray);
+  return planeDepth > 0.0 ? clamp(planeDepth, 0.5 * receiverDepth, 2.0 * receiverDepth) : 0.5 * receiverDepth;
+}
+
+// LEVEL_BIAS (001 §9 leaves biasing across levels as future work): min aggregation gives a level-j micro-occluder
+// the nearest depth of its 2^j block, so a receiver's own tilted surface inside the block comes nearer than the
+// receiver's tangent plane at the block's centre by the plane's drop over the block. That drop, taken at the
+// block's corners (the plane's depth is 1 / linear, its extremes lie there), is added to the bias above level 0.
+// It grows with the receiver's slope and the block's size, not with the bias itself: a receiver facing the light
+// gets none, so occluders close to the light (blocks of 2^7 texels and more) still occlude. No loop, no early
+// return (llvmpipe's loop cap, see microOccluderArea).
+float footprintDrop(int level, ivec2 lo, ivec2 hi)
+{
+  float drop = 0.0;
 #if LEVEL_BIAS == LEVEL_BIAS_ON
-  return receiverBias * float(1 << level);
-#else
-  return receiverBias;
+  if (level > 0 && hasReceiverPlane)
+  {
+    vec2 a = vec2(lo);
+    vec2 b = vec2(hi + 1);
+    float nearest = min(min(clampedPlaneDepth(a), clampedPlaneDepth(vec2(b.x, a.y))),
+      min(clampedPlaneDepth(vec2(a.x, b.y)), clampedPlaneDepth(b)));
+    drop = max(clampedPlaneDepth(0.5 * (a + b)) - nearest, 0.0);
+  }
 #endif
+  return drop;
 }
 
 // The micro-occluder of `slot` at `level`: its level-0 texel rectangle [lo, hi] and its depth.
@@ -81,10 +104,11 @@ void microOccluder(int level, ivec2 slot, out ivec2 lo, out ivec2 hi, out float 
 #endif
 }
 
-// Whether the micro-occluder [lo, hi] at `depth` is in front of the receiver (at its centre, level bias).
+// Whether the micro-occluder [lo, hi] at `depth` is in front of the receiver (at its centre, less the footprint's
+// drop with LEVEL_BIAS).
 bool microOccludes(int level, ivec2 lo, ivec2 hi, float depth)
 {
-  return depth < tapComparisonDepth(0.5 * vec2(lo + hi + 1), receiverDepth, levelBias(level));
+  return depth < tapComparisonDepth(0.5 * vec2(lo + hi + 1), receiverDepth, receiverBias) - footprintDrop(level, lo, hi);
 }
 
 #if MICRO_OCCLUDER == MICRO_OCCLUDER_MICROPATCH

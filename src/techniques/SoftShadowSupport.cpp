@@ -82,6 +82,13 @@ glm::dvec2 SoftShadowGeometry::comparisonDepthRange(glm::ivec2 lo, glm::ivec2 hi
   return range;
 }
 
+double SoftShadowGeometry::clampedPlaneDepth(const glm::dvec2& texels) const
+{
+  const glm::dvec3 ray(windowMin + texels * texelTangent, -1.0);
+  const double depth = 1.0 / glm::dot(plane, ray);
+  return depth > 0.0 ? std::clamp(depth, 0.5 * d, 2.0 * d) : 0.5 * d;
+}
+
 SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const ShadowLookup& lookup,
   bool receiverPlaneBias, int x, int y)
 {
@@ -99,8 +106,9 @@ SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const Shado
   const glm::dvec3 nLs = glm::dmat3(view.viewFromWorld) * nWs;
   const glm::dvec3 pLs = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
   const double planeOffset = glm::dot(nLs, pLs);
-  geometry.usePlane = receiverPlaneBias && std::abs(planeOffset) > 1e-12;
-  geometry.plane = geometry.usePlane ? nLs / planeOffset : glm::dvec3(0.0);
+  geometry.hasPlane = std::abs(planeOffset) > 1e-12;
+  geometry.usePlane = receiverPlaneBias && geometry.hasPlane;
+  geometry.plane = geometry.hasPlane ? nLs / planeOffset : glm::dvec3(0.0);
   return geometry;
 }
 

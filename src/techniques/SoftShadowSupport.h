@@ -47,8 +47,9 @@ struct SoftShadowGeometry
   glm::dvec2 windowMin{ 0.0 };
   int mapSize = 0;
   double d = 0.0; // the receiver's depth
-  bool usePlane = false;
-  glm::dvec3 plane{ 0.0 }; // receiver_plane_bias: dot(plane, X) = 1 on the receiver's tangent plane
+  bool hasPlane = false;   // the receiver's tangent plane does not pass through the light (setReceiverPlane)
+  bool usePlane = false;   // receiver_plane_bias and hasPlane: the taps compare against the plane
+  glm::dvec3 plane{ 0.0 }; // dot(plane, X) = 1 on the receiver's tangent plane (when hasPlane)
 
   // kernelHalfTexels(d, planeDepth).
   glm::dvec2 kernelHalfTexels(double planeDepth) const;
@@ -58,6 +59,9 @@ struct SoftShadowGeometry
   double tapComparisonDepth(const glm::dvec2& tapTexels, double bias) const;
   // comparisonDepthRange(lo, hi, d, bias): lowest and highest comparison depth of the texels [lo, hi].
   glm::dvec2 comparisonDepthRange(glm::ivec2 lo, glm::ivec2 hi, double bias) const;
+  // The tangent plane's depth along the ray through `texels`, clamped to [0.5 d, 2 d] (0.5 d where it turns away),
+  // whether or not the taps use it: clampedPlaneDepth of Ss08Visibility.glsl. Needs hasPlane.
+  double clampedPlaneDepth(const glm::dvec2& texels) const;
 };
 SoftShadowGeometry softShadowGeometry(const ShadowMapInputs& inputs, const ShadowLookup& lookup,
   bool receiverPlaneBias, int x, int y);

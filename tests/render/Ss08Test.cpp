@@ -977,14 +977,14 @@ TEST(Ss08, NoNanOrInfWithMicrorectsWithoutGrowthAndANarrowBlendBand)
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// 7. The level-dependent bias (L889-891) on a grazing receiver.
+// 7. The level-dependent bias (001 §9's future work) on a grazing receiver.
 
 TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
 {
   // At level j a micro-occluder of the tilted ground is the minimum of 2^j x 2^j texels, (2^j - 1) / 2 texel
-  // steps of the slope in front of the ground's comparison depth at its centre: without scaling the bias by 2^j
-  // the ground shadows itself at coarse levels. The slope bias is lowered to 0.25 (the default 1 covers up to
-  // level 3 unscaled here; the ground then shadows itself from level 4). The lit receiver: ground pixels whose
+  // steps of the slope in front of the ground's comparison depth at its centre: without the level bias (the ground
+  // plane's drop over the micro-occluder's footprint) the ground shadows itself at coarse levels. The slope bias is
+  // lowered to 0.25 (the default 1 covers up to level 3 here; the ground then shadows itself from level 4). The lit receiver: ground pixels whose
   // visibility is 1 at force_level 0 (where the bias is unscaled either way), outside a band around the box's
   // shadow (behind it, x < 0.3, and |z| < 0.6), which coarse micro-occluders holding the box's texels widen by
   // min aggregation whatever the bias.
@@ -1028,7 +1028,7 @@ TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
       darkenedWithoutBias += darkened[0];
     }
   }
-  EXPECT_GT(darkenedWithoutBias, 0) << "without the scaled bias the grazing ground must shadow itself at levels 2-3";
+  EXPECT_GT(darkenedWithoutBias, 0) << "without the level bias the grazing ground must shadow itself at levels 2-3";
 }
 
 TEST(Ss08, ContactShadowLeaksAtCoarseLevelsAndMicrorectsLeakLess)

@@ -86,7 +86,7 @@ TechniqueDescriptor ss08Technique()
     { "growth", 1, 0, 1, "", "grow each depth-range query to the whole support of the level-j micro-occluders it partly covers (001 L583-611, Fig. 7: without it pixels next to the penumbra are classified lit)", { "off", "on" }, true },
     { "micro_occluder", 0, 0, 1, "", "micropatches (min-aggregated level-j texels, 001 L127-138) or microrects (001 §5.2: rectangles of level-0 texels merged by depth, lightspace/microrect)", { "micropatch", "microrect" }, true },
     { "gap_filling", 1, 0, 2, "", "micropatches: extend each back-projection to its occluding left and bottom neighbours (GBP06's rule, 001 L132-134), right and top, or off; as gbp06", { "off", "left_bottom", "right_top" }, true },
-    { "level_bias", 1, 0, 1, "", "scale the depth bias by 2^level at level j (min aggregation puts coarse texels in front of tilted receivers; 001's future work, L889-891)", { "off", "on" }, true },
+    { "level_bias", 1, 0, 1, "", "above level 0, add to the depth bias how much nearer the receiver's tangent plane comes over the micro-occluder's footprint than at its centre (min aggregation puts coarse texels in front of tilted receivers; 001 §9 leaves biasing across levels to future work)", { "off", "on" }, true },
     { "force_level", -1, -1, 13, "level", "experiments: use this level everywhere (no budget, smoothing or blending); -1 = off", {}, true },
     { "accumulation", 0, 0, 1, "", "how a level's back-projected micro-occluders combine (001 L140-144, L842-853): area, the sum of their clipped areas (overlaps count twice), or bitmask, SS07's occlusion bitmask over 256 light samples (the shared stratified 16 x 16 set, fixed seed), OR-ed, V = 1 - popcount / 256", { "area", "bitmask" }, true },
     { "msaa", 0, 0, 1, "samples", "multisampling (001 §7): 4 = a 4x multisampled G-buffer, soft shadows evaluated once per pixel from the first sample and a custom resolve (passes/vtkSLMsaaResolvePass.h: msaa_distinct_samples, msaa_interpolated_samples, msaa_sample_depth, msaa_sample_visibility)", { "1", "4" }, true },
@@ -622,10 +622,26 @@ struct Ss08Accumulator
     return occluder;
   }
 
+  // footprintDrop of Ss08Visibility.glsl: how much nearer than at the micro-occluder's centre the receiver's tangent
+  // plane comes over its footprint (level_bias=on, levels above 0).
+  double footprintDrop(int level, const MicroOccluder& occluder) const
+  {
+    const SoftShadowGeometry& geometry = search.geometry;
+    if (!levelBias || level == 0 || !geometry.hasPlane)
+    {
+      return 0.0;
+    }
+    const glm::dvec2 a(occluder.lo);
+    const glm::dvec2 b(occluder.hi + 1);
+    const double nearest = std::min({ geometry.clampedPlaneDepth(a), geometry.clampedPlaneDepth(glm::dvec2(b.x, a.y)),
+      geometry.clampedPlaneDepth(glm::dvec2(a.x, b.y)), geometry.clampedPlaneDepth(b) });
+    return std::max(geometry.clampedPlaneDepth(0.5 * (a + b)) - nearest, 0.0);
+  }
+
   bool occludes(int level, const MicroOccluder& occluder)
   {
-    const double bias = levelBias ? search.bias * static_cast<double>(1 << level) : search.bias;
-    const double compared = search.geometry.tapComparisonDepth(0.5 * glm::dvec2(occluder.lo + occluder.hi + 1), bias);
+    const double compared =
+      search.geometry.tapComparisonDepth(0.5 * glm::dvec2(occluder.lo + occluder.hi + 1), search.bias) - footprintDrop(level, occluder);
     result.occlusionMargin = std::min(result.occlusionMargin, std::abs(occluder.depth - compared) / search.geometry.d);
     return occluder.depth < compared;
   }
@@ -867,8 +883,9 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
         cite("L818-820 (at most b at ceil(l), 2b - 1 at floor(l))"));
       recorder->quantity("receiver_light_xy", accumulator.receiverXy, "world units",
         "ShadowLab: the receiver in light coordinates (light view x, y at its depth)");
-      recorder->quantity("micro_occluder_bias", accumulator.levelBias ? search.bias * static_cast<double>(1 << levels[k]) : search.bias,
-        "linear depth", "ShadowLab (level_bias: the depth bias times 2^j; 001's future work L889-891)");
+      recorder->quantity("micro_occluder_bias", search.bias, "linear depth",
+        "ShadowLab: the receiver's depth bias; with level_bias=on a micro-occluder above level 0 adds the receiver "
+        "plane's drop over its footprint (001 §9 leaves biasing across levels to future work)");
     }
     double area = 0.0;
     std::array<bool, ss08BitmaskSampleCount> mask{};

@@ -27,9 +27,11 @@
 // Micro-occluders (`micro_occluder`): micropatches, level-j texels of the min-max pyramid at their minimum depth
 // (L127-138, L436-437), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, lightspace/microrect), whose
 // extents may overlap (area accumulation then over-occludes; `accumulation=bitmask` counts each sample once).
-// A micro-occluder occludes when its depth is in front of the receiver's comparison depth at its centre, the
-// depth bias scaled by 2^level (`level_bias`, on by default: min aggregation puts coarse texels in front of a
-// tilted receiver, the paper's future work L889-891).
+// A micro-occluder occludes when its depth is in front of the receiver's comparison depth at its centre, less
+// (`level_bias`, on by default, levels above 0) how much nearer the receiver's tangent plane comes over the
+// micro-occluder's footprint: min aggregation puts coarse texels in front of a tilted receiver (001 §9 leaves
+// biasing across levels to future work). It does not grow with the level alone: scaling the bias by 2^level lit
+// the umbra of occluders close to the light, whose large kernels select levels 6 and more.
 // Acceleration structure (`hsm`): mipmap = the HSM, nbuffers = the MSSM (SS07's multi-scale shadow map is
 // N-buffers), ysm = the Y shadow map (§6, the paper's choice). Micropatches read the min-max pyramid's nodes.
 // Buffers: budget, search_area_texels, loq_raw, loq, level_floor, blend_alpha, micro_occluders (slots

@@ -102,6 +102,13 @@ void vtkSLSs08Pass::Execute(const vtkRenderState* state)
   const int width = frame.width();
   const int height = frame.height();
   this->EnsureTargets(window, width, height);
+  // A forced level above the map's top would be clamped by the shader while stats.json kept the requested one.
+  const int topLevel = sl::hsmLevelCount(frame.lightView.resolution);
+  if (const int forced = frame.parameters.getInt("force_level"); forced > topLevel)
+  {
+    throw sl::InputError(sl::format("ss08: --set force_level=", forced, ": a ", frame.lightView.resolution, "^2 shadow map has levels 0 to ",
+      topLevel, " (level ", topLevel, " is one texel for the whole map)"));
+  }
   this->BudgetMapTexture = nullptr;
   if (frame.parameters.choice("budget_map") == "image")
   {
