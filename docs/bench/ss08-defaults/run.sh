@@ -1,0 +1,24 @@
+#!/bin/bash
+# ss08's defaults on held-out scenes (issue 27). From the repository root:
+#   bash docs/bench/ss08-defaults/run.sh [settings] [budget]   (no argument: both)
+# The four scenes here (three-plates, near-gap, overlap-squares, wide-light) are parallel rectangles under a square
+# light that no test or dataset holds; 128 x 128 frames, the default 1024^2 map, 1024-sample Embree references.
+#  settings: ss08's micro-occluders x accumulations beside vssm, dcs and penumbra-wedge at their defaults;
+#  budget:   ss08 at its defaults over budgets 3, 5, 9, 12, 16.
+# Timings come from llvmpipe on a 2-core machine shared with builds and other benches: compare ratios within one run.
+set -euo pipefail
+D=docs/bench/ss08-defaults
+SL=${SHADOWLAB:-build/shadowlab}
+CACHE="--cache /tmp/slcache-ss08-defaults"
+SCENES="$D/near-gap/scene.json $D/overlap-squares/scene.json $D/three-plates/scene.json $D/wide-light/scene.json"
+for part in ${*:-settings budget}; do
+  case $part in
+  settings)
+    "$SL" bench $SCENES -t ss08,vssm,dcs,penumbra-wedge --sweep micro_occluder=micropatch,microrect \
+      --sweep accumulation=area,bitmask --repeat 2 -r 128x128 $CACHE -o $D/settings --force
+    ;;
+  budget)
+    "$SL" bench $SCENES -t ss08 --sweep budget=3,5,9,12,16 --repeat 2 -r 128x128 $CACHE -o $D/budget --force
+    ;;
+  esac
+done
