@@ -11,11 +11,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <sys/wait.h>
 #include <filesystem>
 #include <map>
+#include <pwd.h>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -173,6 +175,23 @@ TEST(OutputSafety, HomeDirectoryIsRefusedEvenWithForce)
     "export HOME=" + test::shellQuote(home.string()));
   expectOneLineRefusal(run, "home directory");
   EXPECT_EQ(snapshot(home), before);
+}
+
+TEST(OutputSafety, ThePasswordDatabaseHomeIsRefusedWithHomeUnset)
+{
+  // `env -u HOME shadowlab render ... -o ~ --force`: the shell expands ~ from the password database. The real
+  // home is named here, so the run is fenced should the refusal ever regress: under a file size limit of 1 KiB
+  // (room for the one-line error, SIGXFSZ ignored) writing buffers.vti into the temporary sibling fails, and the
+  // run ends before anything could be replaced. tests/unit/OutputDirectoryTest.cpp checks the rule itself.
+  const struct passwd* entry = ::getpwuid(::getuid());
+  ASSERT_TRUE(entry && entry->pw_dir && *entry->pw_dir);
+  const fs::path home = entry->pw_dir;
+  ASSERT_TRUE(fs::is_directory(home)) << home;
+  TempDir temp;
+  const RunResult run = test::runShadowlabIn(
+    renderArguments(test::datasetPath("planar-occluder"), home.string(), { "--force" }), temp.path(),
+    "unset HOME; ulimit -f 1; trap '' XFSZ");
+  expectOneLineRefusal(run, home == home.root_path() ? "filesystem root" : "home directory");
 }
 
 TEST(OutputSafety, DirectoryHoldingTheMeshIsRefusedEvenWithForce)
