@@ -497,14 +497,22 @@ std::vector<Configuration> expandConfigurations(std::size_t variantCount, const 
   return configurations;
 }
 
-// The scenes' files and the reference cache are inputs: --out may neither hold nor replace them.
-std::vector<std::filesystem::path> benchInputs(const BenchOptions& options, const std::vector<SceneVariant>& variants)
+// The scenes' files, the reference cache and the files every configuration's file parameters name are inputs:
+// --out may neither hold nor replace them.
+std::vector<std::filesystem::path> benchInputs(const BenchOptions& options, const std::vector<SceneVariant>& variants,
+  const std::vector<Configuration>& configurations)
 {
   std::vector<std::filesystem::path> inputs{ options.cacheDir };
   for (const SceneVariant& variant : variants)
   {
     const std::vector<std::filesystem::path> sceneFiles = sceneInputs(variant.scene, variant.file);
     inputs.insert(inputs.end(), sceneFiles.begin(), sceneFiles.end());
+  }
+  for (const Configuration& configuration : configurations)
+  {
+    const std::vector<std::filesystem::path> files =
+      fileParameterInputs(findTechnique(configuration.technique), configuration.settings);
+    inputs.insert(inputs.end(), files.begin(), files.end());
   }
   return inputs;
 }
@@ -908,7 +916,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
-  const OutputTarget output{ options.outDir, "bench", options.force, benchInputs(options, variants) };
+  const OutputTarget output{ options.outDir, "bench", options.force, benchInputs(options, variants, configurations) };
   checkOutputTarget(output);
   createCacheDirectory(options.cacheDir);
 

@@ -99,4 +99,23 @@ std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::st
   return inputs;
 }
 
+std::vector<std::filesystem::path> fileParameterInputs(const TechniqueDescriptor& technique,
+  const std::vector<std::string>& settings)
+{
+  ParameterValues values = technique.defaultParameters();
+  for (const std::string& assignment : settings)
+  {
+    values.set(assignment);
+  }
+  std::vector<std::filesystem::path> inputs;
+  for (const ParameterSpec& spec : values.specs())
+  {
+    if (spec.file && !values.file(spec.name).empty())
+    {
+      inputs.emplace_back(values.file(spec.name));
+    }
+  }
+  return inputs;
+}
+
 } // namespace sl

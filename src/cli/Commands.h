@@ -175,5 +175,9 @@ std::size_t reportCutShortPixels(const FrameResult& frame, std::ostream& log);
 
 // The files a command reads for a scene (the scene file, its meshes and alpha textures): --out must not hold them.
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile);
+// The files `settings` name through `technique`'s file parameters (ParameterSpec::file, e.g. ss08's
+// budget_image): inputs too, whichever the technique. `settings` must be valid (checkSettings).
+std::vector<std::filesystem::path> fileParameterInputs(const TechniqueDescriptor& technique,
+  const std::vector<std::string>& settings);
 
 } // namespace sl

@@ -258,6 +258,59 @@ TEST(OutputSafety, BenchRefusesItsCacheAsOutput) // H13
   expectOneLineRefusal(holds, "an input of this command");
 }
 
+TEST(OutputSafety, AFileParameterIsAnInputOfEveryCommandThatTakesSet)
+{
+  // ss08's budget_image (ParameterSpec::file) inside --out: refused naming it, with --force too; and inside an
+  // earlier output, which --out would otherwise replace without --force.
+  TempDir temp;
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  const fs::path dir = temp.path() / "dir";
+  fs::create_directories(dir);
+  writePng(dir / "b.png", ImageU8(8, 8, 3, 10));
+  writeFile(dir / "notes.txt", "mine");
+  const auto before = snapshot(dir);
+  const std::vector<std::string> budget = { "-t", "ss08", "-r", "16x16", "--set", "budget_map=image", "--set",
+    "budget_image=" + (dir / "b.png").string() };
+  const auto command = [&](const std::string& name, const std::string& out, bool force) {
+    std::vector<std::string> arguments{ name, scene };
+    arguments.insert(arguments.end(), budget.begin(), budget.end());
+    if (name == "probe")
+    {
+      arguments.insert(arguments.end(), { "--pixel", "8,8" });
+    }
+    if (name == "bench")
+    {
+      arguments.insert(arguments.end(), { "--samples", "4", "--repeat", "1", "--cache", "cache" });
+    }
+    arguments.insert(arguments.end(), { "--out", out });
+    if (force)
+    {
+      arguments.push_back("--force");
+    }
+    return arguments;
+  };
+  for (const std::string& name : { "render", "probe", "bench" })
+  {
+    SCOPED_TRACE(name);
+    expectOneLineRefusal(test::runShadowlabIn(command(name, dir.string(), true), temp.path()), "b.png");
+    EXPECT_EQ(snapshot(dir), before);
+  }
+  // An earlier output holding the image.
+  ASSERT_EQ(test::runShadowlabIn(renderArguments(test::datasetPath("planar-occluder"), "earlier"), temp.path()).exitCode, 0);
+  const fs::path earlier = temp.path() / "earlier";
+  writePng(earlier / "b.png", ImageU8(8, 8, 3, 10));
+  const auto earlierBefore = snapshot(earlier);
+  for (const std::string& name : { "render", "probe", "bench" })
+  {
+    SCOPED_TRACE(name + " into an earlier output");
+    std::vector<std::string> arguments = command(name, "earlier", false);
+    std::replace(arguments.begin(), arguments.end(), "budget_image=" + (dir / "b.png").string(),
+      "budget_image=" + (earlier / "b.png").string());
+    expectOneLineRefusal(test::runShadowlabIn(arguments, temp.path()), "b.png");
+    EXPECT_EQ(snapshot(earlier), earlierBefore);
+  }
+}
+
 // ---- paths that used to go wrong (D11, D12, D14) ------------------------------------------------------------
 
 TEST(OutputSafety, EmptyLongAndSymlinkedOutPaths)
