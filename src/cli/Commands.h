@@ -128,6 +128,7 @@ struct ViewOptions
   std::string recordFile;            // --record: the session's events (vtkInteractorEventRecorder)
   std::string playFile;              // --play: replay these events, then exit
   std::string screenshotDir = ".";   // where the s key writes view-NNN-<technique>-<buffer>.png
+  bool force = false;                // --force: --record may replace an existing file that is not a recording
 };
 // Exit 2 with one line when there is no display (no DISPLAY, XOpenDisplay fails, no GLX), before any window or
 // frame. Every action of the session prints one line on `out`.

@@ -157,8 +157,13 @@ int main(int argc, char** argv)
   viewCommand->add_option("--resolution,-r", view.resolution, "Image size WxH (default: the scene camera's)");
   viewCommand->add_option("--light", view.lightIndex, "Index of the scene light that casts shadows")
     ->capture_default_str();
-  viewCommand->add_option("--record", view.recordFile, "Write the session's events to FILE (VTK's event recorder)");
+  viewCommand->add_option("--record", view.recordFile,
+    "Write the session's events to FILE (VTK's event recorder); an existing file is replaced only when it is a "
+    "recording (see --force)");
   viewCommand->add_option("--play", view.playFile, "Replay the events in FILE (as --record wrote them), then exit");
+  viewCommand->add_flag("--force", view.force,
+    "Let --record replace an existing file that is not a recording (never an input: the scene, its meshes and "
+    "textures, --play, a file parameter)");
   viewCommand->add_option("--screenshot-dir", view.screenshotDir, "Where the s key saves screenshots (PNG)")
     ->capture_default_str();
 
