@@ -311,6 +311,32 @@ TEST(OutputSafety, AFileParameterIsAnInputOfEveryCommandThatTakesSet)
   }
 }
 
+TEST(OutputSafety, MontageRemovesThePartialFilesOfDeadRuns) // a Ctrl-C'd or killed montage
+{
+  TempDir temp;
+  ASSERT_EQ(test::runShadowlabIn(renderArguments(test::datasetPath("planar-occluder"), "run"), temp.path()).exitCode, 0);
+  const pid_t dead = ::fork();
+  if (dead == 0)
+  {
+    ::_exit(0);
+  }
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  const fs::path stale = temp.path() / (".m.png.shadowlab-partial-" + std::to_string(dead));
+  const fs::path live = temp.path() / (".m.png.shadowlab-partial-" + std::to_string(::getpid()));
+  const fs::path other = temp.path() / (".other.png.shadowlab-partial-" + std::to_string(dead));
+  for (const fs::path& file : { stale, live, other })
+  {
+    writeFile(file, "half a png");
+  }
+  const RunResult run =
+    test::runShadowlabIn({ "montage", "run", "--buffer", "visibility", "-q", "--out", "m.png" }, temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  EXPECT_FALSE(fs::exists(stale)) << "a dead run's partial file was left";
+  EXPECT_TRUE(fs::exists(live)) << "a running process's partial file was removed";
+  EXPECT_TRUE(fs::exists(other)) << "the partial file of another output was removed";
+}
+
 // ---- paths that used to go wrong (D11, D12, D14) ------------------------------------------------------------
 
 TEST(OutputSafety, EmptyLongAndSymlinkedOutPaths)
