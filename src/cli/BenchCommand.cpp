@@ -7,7 +7,8 @@
 // the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md, one
 // speed_vs_error_<scene>.png per scene, runs/<n>.json (each child's result), logs/ (a child's stdout and
 // stderr, kept only when it printed something).
-// Exit status: 0 when every configuration ran, 4 when some failed (their rows say why).
+// Exit status: 0 when every configuration ran, 4 when some failed (their rows say why) or a reference could not
+// be made (an error line says why).
 #include "cli/Commands.h"
 
 #include "core/Error.h"
@@ -528,11 +529,29 @@ void createCacheDirectory(const std::string& cacheDir)
   }
 }
 
+// The last line of a `reference` child that failed, as the bench's user can act on it: the child's --out is the
+// cache entry, named as the path it is (the user typed no such --out).
+std::string referenceFailure(const ChildResult& child, const std::filesystem::path& cached)
+{
+  std::string line = child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine;
+  const std::string prefix = "shadowlab: error: ";
+  if (line.rfind(prefix, 0) == 0)
+  {
+    line = line.substr(prefix.size());
+  }
+  const std::string childOut = "--out " + cached.string();
+  for (std::size_t at = line.find(childOut); at != std::string::npos; at = line.find(childOut, at))
+  {
+    line.replace(at, childOut.size(), "cache entry " + cached.string());
+  }
+  return line;
+}
+
 // buffers.vti of `variant`'s ray-traced reference: the cached one when it is usable, else computed into the
-// cache by a `shadowlab reference` child. Empty (with a warning) when none could be made; the variant's
-// configurations then run without error metrics.
+// cache by a `shadowlab reference` child. Empty (with an error line, counted in `failures`) when none could be
+// made; the variant's configurations then run without error metrics and bench exits 4.
 std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& resolution, const SceneVariant& variant,
-  int msaa, const std::filesystem::path& logFile, std::ostream& log)
+  int msaa, const std::filesystem::path& logFile, std::ostream& log, int& failures)
 {
   const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
     referenceKey(variant.scene, options.resolution, options.referenceSamples, msaa);
@@ -557,8 +576,10 @@ std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& reso
     const std::string stillWrong = child.exitCode == 0 ? cachedReferenceProblem(cached, resolution) : "";
     if (child.exitCode != 0 || !stillWrong.empty())
     {
-      log << "bench: warning: no reference for " << variant.name << ": "
-          << (child.exitCode != 0 ? child.lastLine : stillWrong) << "\n";
+      // Said even with --quiet: the run's error columns will be empty.
+      log << "bench: error: no reference for " << variant.name << ": "
+          << (child.exitCode != 0 ? referenceFailure(child, cached) : cached.string() + ": " + stillWrong) << "\n";
+      ++failures;
       return {};
     }
   }
@@ -590,7 +611,7 @@ int multisamplesOf(const Configuration& configuration)
 using ReferenceFiles = std::vector<std::map<int, std::string>>;
 ReferenceFiles prepareReferences(const BenchOptions& options, const glm::ivec2& resolution,
   const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations,
-  const std::filesystem::path& logsDir, std::ostream& log)
+  const std::filesystem::path& logsDir, std::ostream& log, int& failures)
 {
   std::vector<std::set<int>> needed(variants.size());
   for (const Configuration& configuration : configurations)
@@ -603,7 +624,8 @@ ReferenceFiles prepareReferences(const BenchOptions& options, const glm::ivec2& 
     for (const int msaa : needed[s])
     {
       referenceFiles[s][msaa] = referenceFileFor(options, resolution, variants[s], msaa,
-        logsDir / (msaa > 1 ? format("reference-", s, "-msaa", msaa, ".txt") : format("reference-", s, ".txt")), log);
+        logsDir / (msaa > 1 ? format("reference-", s, "-msaa", msaa, ".txt") : format("reference-", s, ".txt")), log,
+        failures);
     }
   }
   return referenceFiles;
@@ -921,10 +943,12 @@ int runBench(const BenchOptions& options, std::ostream& log)
   createCacheDirectory(options.cacheDir);
 
   int failures = 0;
+  int referenceFailures = 0;
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::create_directories(dir / "logs");
-    const ReferenceFiles referenceFiles = prepareReferences(options, resolution, variants, configurations, dir / "logs", log);
+    const ReferenceFiles referenceFiles =
+      prepareReferences(options, resolution, variants, configurations, dir / "logs", log, referenceFailures);
     const nlohmann::json rows = runConfigurations(options, variants, configurations, referenceFiles, dir, log);
     failures = countFailed(rows);
     removeIfEmptyDirectory(dir / "logs");
@@ -932,10 +956,11 @@ int runBench(const BenchOptions& options, std::ostream& log)
   });
   if (!options.quiet)
   {
-    log << "shadowlab: bench of " << configurations.size() << " configuration(s), " << failures << " failed -> "
-        << printable(options.outDir) << "\n";
+    log << "shadowlab: bench of " << configurations.size() << " configuration(s), " << failures << " failed"
+        << (referenceFailures > 0 ? format(", ", referenceFailures, " reference(s) could not be made") : std::string())
+        << " -> " << printable(options.outDir) << "\n";
   }
-  return failures == 0 ? 0 : 4;
+  return failures == 0 && referenceFailures == 0 ? 0 : 4;
 }
 
 } // namespace sl

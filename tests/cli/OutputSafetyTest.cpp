@@ -337,6 +337,36 @@ TEST(OutputSafety, MontageRemovesThePartialFilesOfDeadRuns) // a Ctrl-C'd or kil
   EXPECT_TRUE(fs::exists(other)) << "the partial file of another output was removed";
 }
 
+TEST(OutputSafety, BenchCountsAReferenceItCouldNotWriteAsAFailure)
+{
+  TempDir temp;
+  const std::vector<std::string> arguments{ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard", "-r",
+    "16x16", "--samples", "4", "--repeat", "1", "--cache", "cache", "--out", "out-bench" };
+  ASSERT_EQ(test::runShadowlabIn(arguments, temp.path()).exitCode, 0);
+  const std::vector<std::string> entries = entriesOf(temp.path() / "cache");
+  ASSERT_EQ(entries.size(), 1u) << joined(entries);
+  // The cache entry's path is taken by a plain file.
+  const fs::path entry = temp.path() / "cache" / entries.front();
+  fs::remove_all(entry);
+  writeFile(entry, "in the way");
+  const RunResult blocked = test::runShadowlabIn(arguments, temp.path());
+  EXPECT_EQ(blocked.exitCode, 4) << blocked.describe();
+  EXPECT_NE(blocked.err.find("cache/" + entries.front()), std::string::npos) << blocked.describe();
+  EXPECT_EQ(blocked.err.find("--out cache"), std::string::npos) << "blames an --out the user did not give: "
+                                                                << blocked.describe();
+  EXPECT_EQ(blocked.err.find(" 0 failed ->"), std::string::npos) << blocked.describe();
+  fs::remove(entry);
+  // A file size limit (SIGXFSZ left at its default: shadowlab ignores it itself): the reference cannot be written.
+  const RunResult limited = test::runShadowlabIn({ "bench", test::datasetPath("planar-occluder").string(), "-t",
+                                                   "hard", "-r", "128x128", "--samples", "4", "--repeat", "1",
+                                                   "--cache", "cache", "--out", "out-limited" },
+    temp.path(), "ulimit -f 24");
+  EXPECT_NE(limited.exitCode, 0) << limited.describe();
+  EXPECT_NE(limited.err.find("cache/"), std::string::npos) << limited.describe();
+  EXPECT_NE(limited.err.find("cannot write"), std::string::npos) << limited.describe();
+  EXPECT_EQ(limited.err.find("crashed"), std::string::npos) << limited.describe();
+}
+
 // ---- paths that used to go wrong (D11, D12, D14) ------------------------------------------------------------
 
 TEST(OutputSafety, EmptyLongAndSymlinkedOutPaths)
