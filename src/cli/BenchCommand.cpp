@@ -52,19 +52,26 @@ struct Configuration
   std::vector<std::string> settings;
 };
 
-std::vector<std::string> splitList(const std::string& text, char separator)
+// The comma-separated items of `text`; an empty item ("3,,9", "3,9,", "pcf,") is refused, naming `shown` (the
+// option and its value): it is a slip, and dropping it silently would run another bench than the one typed.
+std::vector<std::string> splitList(const std::string& text, const std::string& shown)
 {
   std::vector<std::string> items;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, separator))
+  for (std::size_t start = 0;;)
   {
-    if (!item.empty())
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty())
     {
-      items.push_back(item);
+      throw InputError(shown + ": an empty item in the comma-separated list");
     }
+    items.push_back(item);
+    if (comma == std::string::npos)
+    {
+      return items;
+    }
+    start = comma + 1;
   }
-  return items;
 }
 
 // FNV-1a over everything that changes the reference image.
@@ -343,7 +350,7 @@ std::vector<std::vector<std::string>> sceneSweepCombinations(const std::vector<s
     std::vector<std::vector<std::string>> extended;
     for (const auto& combination : combinations)
     {
-      for (const std::string& value : splitList(sweep.substr(equals + 1), ','))
+      for (const std::string& value : splitList(sweep.substr(equals + 1), "--scene-sweep " + sweep))
       {
         auto next = combination;
         next.push_back(sweep.substr(0, equals) + "=" + value);
@@ -380,12 +387,11 @@ std::vector<SceneVariant> loadSceneVariants(const BenchOptions& options)
 
 std::vector<std::string> selectedTechniqueNames(const std::string& techniques)
 {
-  const std::vector<std::string> names = splitList(techniques, ',');
-  if (names.empty())
+  if (techniques.empty())
   {
     throw InputError("--techniques '" + techniques + "': no technique named");
   }
-  return names;
+  return splitList(techniques, "--techniques " + techniques);
 }
 
 std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& sweepTexts)
@@ -398,7 +404,7 @@ std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& swe
     {
       throw InputError("--sweep '" + sweep + "': expected key=v1,v2,...");
     }
-    sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), ',') });
+    sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), "--sweep " + sweep) });
   }
   return sweeps;
 }
@@ -931,6 +937,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
 {
   // Everything the user typed is checked before any child runs.
   checkScenesRepeatAndSamples(options);
+  checkSceneOverrides(options.sceneOverrides, options.sceneSweeps);
   const glm::ivec2 resolution = parseResolution(options.resolution);
   const std::vector<SceneVariant> variants = loadSceneVariants(options);
   const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <map>
 #include <regex>
 #include <set>
 
@@ -59,6 +60,28 @@ void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::
     {
       throw InputError("--set " + assignment + ": " + key + " is given more than once");
     }
+  }
+}
+
+void checkSceneOverrides(const std::vector<std::string>& overrides, const std::vector<std::string>& sweeps)
+{
+  std::map<std::string, std::string> given; // pointer -> the option that gave it
+  const auto check = [&given](const std::string& option, const std::string& text) {
+    const std::string pointer = text.substr(0, text.find('='));
+    const auto [at, inserted] = given.emplace(pointer, option);
+    if (!inserted)
+    {
+      throw InputError(format(option, " ", text, ": ", pointer, at->second == option
+        ? " is given more than once" : " is also given by " + at->second));
+    }
+  };
+  for (const std::string& override : overrides)
+  {
+    check("--scene-set", override);
+  }
+  for (const std::string& sweep : sweeps)
+  {
+    check("--scene-sweep", sweep);
   }
 }
 

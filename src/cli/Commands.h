@@ -42,6 +42,7 @@ struct ReferenceOptions
   bool samplesGiven = false;  // --samples was on the command line (with --light-samples, N defaults to 16)
   std::string sampling = "stratified";
   std::string lightSamples;   // --light-samples PATTERN (lightSamplePatternNames()); "" = `sampling`
+  bool lightSamplesGiven = false; // --light-samples was on the command line (an empty PATTERN is refused)
   int msaa = 1;               // --msaa 1 | 4: trace every sample position of a 4x multisampled G-buffer, average
   std::uint64_t seed = 1;
   std::string resolution; // "WxH" or empty
@@ -167,6 +168,10 @@ glm::ivec2 parseResolution(const std::string& text);
 // Every --set assignment valid for `technique` (known key, value in range) and no key given twice; throws
 // InputError naming the assignment.
 void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::string>& settings);
+
+// Every --scene-set pointer given once, and every --scene-sweep pointer once and not also by --scene-set (the
+// later value would silently win, as a repeated --set key would); throws InputError naming the pointer.
+void checkSceneOverrides(const std::vector<std::string>& overrides, const std::vector<std::string>& sweeps = {});
 
 // One warning line per object whose mesh had degenerate triangles (dropped by the loader); returns their sum.
 std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneFile, std::ostream& log);

@@ -83,6 +83,7 @@ int runProbe(const ProbeOptions& options, std::ostream& log)
   }
   const RenderRequest request =
     checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
+  checkSceneOverrides(options.sceneOverrides);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
   const std::vector<std::filesystem::path> parameterFiles =

@@ -18,6 +18,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   // Validate everything the user typed before touching the GPU or the disk.
   const RenderRequest request =
     checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
+  checkSceneOverrides(options.sceneOverrides);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
   const std::vector<std::filesystem::path> parameterFiles =

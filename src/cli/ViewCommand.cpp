@@ -105,6 +105,7 @@ int runView(const ViewOptions& options, std::ostream& out)
   {
     start.resolution = parseResolution(options.resolution);
   }
+  checkSceneOverrides(options.sceneOverrides);
   checkEventFiles(options);
   // Declared in this order so that they go in the reverse: the window (its GLX context) before the pipeline
   // (its EGL context, ViewerSession.h), and the X connection after the window.

@@ -367,6 +367,40 @@ TEST(OutputSafety, BenchCountsAReferenceItCouldNotWriteAsAFailure)
   EXPECT_EQ(limited.err.find("crashed"), std::string::npos) << limited.describe();
 }
 
+TEST(OutputSafety, RepeatedPointersEmptyListItemsAndOutOfRangeSeedsAreOneLineErrors)
+{
+  TempDir temp;
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  struct Case
+  {
+    std::vector<std::string> arguments;
+    std::string mention;
+  };
+  const std::vector<Case> cases = {
+    { { "render", scene, "--scene-set", "/lights/0/size=1", "--scene-set", "/lights/0/size=2" }, "/lights/0/size" },
+    { { "reference", scene, "--scene-set", "/lights/0/size=1", "--scene-set", "/lights/0/size=2" }, "/lights/0/size" },
+    { { "bench", scene, "-t", "hard", "--scene-sweep", "/lights/0/size=1,2", "--scene-sweep", "/lights/0/size=3" },
+      "/lights/0/size" },
+    { { "bench", scene, "-t", "hard", "--scene-set", "/lights/0/size=1", "--scene-sweep", "/lights/0/size=3,4" },
+      "/lights/0/size" },
+    { { "bench", scene, "-t", "pcf", "--sweep", "kernel_texels=3,,9" }, "kernel_texels=3,,9" },
+    { { "bench", scene, "-t", "pcf", "--sweep", "kernel_texels=3,9," }, "kernel_texels=3,9," },
+    { { "bench", scene, "-t", "pcf," }, "pcf," },
+    { { "bench", scene, "-t", "hard", "--scene-sweep", "/lights/0/size=1,,2" }, "/lights/0/size=1,,2" },
+    { { "reference", scene, "--light-samples", "" }, "--light-samples" },
+    { { "reference", scene, "--seed", "99999999999999999999999" }, "18446744073709551615" },
+    { { "reference", scene, "--seed", "-1" }, "18446744073709551615" },
+    { { "reference", scene, "--seed", "18446744073709551616" }, "--seed" },
+  };
+  for (const Case& refused : cases)
+  {
+    const RunResult run = test::runShadowlabIn(refused.arguments, temp.path());
+    expectOneLineRefusal(run, refused.mention);
+    EXPECT_LT(run.err.size(), 300u) << run.describe();
+    EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{}) << "output written: " << run.describe();
+  }
+}
+
 // ---- paths that used to go wrong (D11, D12, D14) ------------------------------------------------------------
 
 TEST(OutputSafety, EmptyLongAndSymlinkedOutPaths)
