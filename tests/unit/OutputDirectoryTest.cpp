@@ -1,6 +1,6 @@
-// The output contract's protected directories (io/OutputDirectory.h), checked without the executable: these
-// tests only ask whether a target would be refused (checkOutputTarget never writes), so a regression cannot
-// touch a real home directory.
+// The output contract (io/OutputDirectory.h) without the executable: the protected home directories, asked only
+// whether a target would be refused (checkOutputTarget never writes, so a regression cannot touch a real home),
+// and TemporaryOutputFile's clean-up in a directory of the test's own.
 #include "core/Error.h"
 #include "io/OutputDirectory.h"
 
@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <pwd.h>
 #include <string>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace sl
@@ -96,6 +98,43 @@ TEST(OutputDirectory, HomeAndThePasswordDatabaseHomeAreBothProtected)
   EXPECT_TRUE(listed(homes, home));
   EXPECT_THROW(checkOutputTarget({ elsewhere, "render", true, {} }), InputError);
   EXPECT_THROW(checkOutputTarget({ home, "render", true, {} }), InputError);
+}
+
+TEST(OutputDirectory, TemporaryOutputFileRemovesStaleSiblingsAndItselfUnlessCommitted)
+{
+  const fs::path dir = fs::temp_directory_path() / ("shadowlab-unit-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const pid_t dead = ::fork();
+  if (dead == 0)
+  {
+    ::_exit(0);
+  }
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  const fs::path stale = dir / (".m.png.shadowlab-partial-" + std::to_string(dead));
+  const fs::path otherName = dir / (".n.png.shadowlab-partial-" + std::to_string(dead));
+  std::ofstream(stale) << "half";
+  std::ofstream(otherName) << "half";
+  fs::path temporary;
+  {
+    TemporaryOutputFile output(dir / "m.png");
+    temporary = output.path();
+    EXPECT_FALSE(fs::exists(stale)) << "a dead process's partial file was left";
+    EXPECT_TRUE(fs::exists(otherName)) << "another output's partial file was removed";
+    std::ofstream(temporary) << "not committed";
+  }
+  EXPECT_FALSE(fs::exists(temporary)) << "an uncommitted temporary file was left";
+  EXPECT_FALSE(fs::exists(dir / "m.png"));
+  {
+    TemporaryOutputFile output(dir / "m.png");
+    std::ofstream(output.path()) << "complete";
+    output.commit();
+  }
+  std::ifstream written(dir / "m.png");
+  std::string text;
+  written >> text;
+  EXPECT_EQ(text, "complete");
+  fs::remove_all(dir);
 }
 
 } // namespace
