@@ -7,7 +7,8 @@
 // the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md, one
 // speed_vs_error_<scene>.png per scene, runs/<n>.json (each child's result), logs/ (a child's stdout and
 // stderr, kept only when it printed something).
-// Exit status: 0 when every configuration ran, 4 when some failed (their rows say why).
+// Exit status: 0 when every configuration ran, 4 when some failed (their rows say why) or a reference could not
+// be made (an error line says why).
 #include "cli/Commands.h"
 
 #include "core/Error.h"
@@ -51,19 +52,26 @@ struct Configuration
   std::vector<std::string> settings;
 };
 
-std::vector<std::string> splitList(const std::string& text, char separator)
+// The comma-separated items of `text`; an empty item ("3,,9", "3,9,", "pcf,") is refused, naming `shown` (the
+// option and its value): it is a slip, and dropping it silently would run another bench than the one typed.
+std::vector<std::string> splitList(const std::string& text, const std::string& shown)
 {
   std::vector<std::string> items;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, separator))
+  for (std::size_t start = 0;;)
   {
-    if (!item.empty())
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty())
     {
-      items.push_back(item);
+      throw InputError(shown + ": an empty item in the comma-separated list");
     }
+    items.push_back(item);
+    if (comma == std::string::npos)
+    {
+      return items;
+    }
+    start = comma + 1;
   }
-  return items;
 }
 
 // FNV-1a over everything that changes the reference image.
@@ -342,7 +350,7 @@ std::vector<std::vector<std::string>> sceneSweepCombinations(const std::vector<s
     std::vector<std::vector<std::string>> extended;
     for (const auto& combination : combinations)
     {
-      for (const std::string& value : splitList(sweep.substr(equals + 1), ','))
+      for (const std::string& value : splitList(sweep.substr(equals + 1), "--scene-sweep " + sweep))
       {
         auto next = combination;
         next.push_back(sweep.substr(0, equals) + "=" + value);
@@ -379,12 +387,11 @@ std::vector<SceneVariant> loadSceneVariants(const BenchOptions& options)
 
 std::vector<std::string> selectedTechniqueNames(const std::string& techniques)
 {
-  const std::vector<std::string> names = splitList(techniques, ',');
-  if (names.empty())
+  if (techniques.empty())
   {
     throw InputError("--techniques '" + techniques + "': no technique named");
   }
-  return names;
+  return splitList(techniques, "--techniques " + techniques);
 }
 
 std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& sweepTexts)
@@ -397,7 +404,7 @@ std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& swe
     {
       throw InputError("--sweep '" + sweep + "': expected key=v1,v2,...");
     }
-    sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), ',') });
+    sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), "--sweep " + sweep) });
   }
   return sweeps;
 }
@@ -497,14 +504,22 @@ std::vector<Configuration> expandConfigurations(std::size_t variantCount, const 
   return configurations;
 }
 
-// The scenes' files and the reference cache are inputs: --out may neither hold nor replace them.
-std::vector<std::filesystem::path> benchInputs(const BenchOptions& options, const std::vector<SceneVariant>& variants)
+// The scenes' files, the reference cache and the files every configuration's file parameters name are inputs:
+// --out may neither hold nor replace them.
+std::vector<std::filesystem::path> benchInputs(const BenchOptions& options, const std::vector<SceneVariant>& variants,
+  const std::vector<Configuration>& configurations)
 {
   std::vector<std::filesystem::path> inputs{ options.cacheDir };
   for (const SceneVariant& variant : variants)
   {
     const std::vector<std::filesystem::path> sceneFiles = sceneInputs(variant.scene, variant.file);
     inputs.insert(inputs.end(), sceneFiles.begin(), sceneFiles.end());
+  }
+  for (const Configuration& configuration : configurations)
+  {
+    const std::vector<std::filesystem::path> files =
+      fileParameterInputs(findTechnique(configuration.technique), configuration.settings);
+    inputs.insert(inputs.end(), files.begin(), files.end());
   }
   return inputs;
 }
@@ -520,11 +535,29 @@ void createCacheDirectory(const std::string& cacheDir)
   }
 }
 
+// The last line of a `reference` child that failed, as the bench's user can act on it: the child's --out is the
+// cache entry, named as the path it is (the user typed no such --out).
+std::string referenceFailure(const ChildResult& child, const std::filesystem::path& cached)
+{
+  std::string line = child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine;
+  const std::string prefix = "shadowlab: error: ";
+  if (line.rfind(prefix, 0) == 0)
+  {
+    line = line.substr(prefix.size());
+  }
+  const std::string childOut = "--out " + cached.string();
+  for (std::size_t at = line.find(childOut); at != std::string::npos; at = line.find(childOut, at))
+  {
+    line.replace(at, childOut.size(), "cache entry " + cached.string());
+  }
+  return line;
+}
+
 // buffers.vti of `variant`'s ray-traced reference: the cached one when it is usable, else computed into the
-// cache by a `shadowlab reference` child. Empty (with a warning) when none could be made; the variant's
-// configurations then run without error metrics.
+// cache by a `shadowlab reference` child. Empty (with an error line, counted in `failures`) when none could be
+// made; the variant's configurations then run without error metrics and bench exits 4.
 std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& resolution, const SceneVariant& variant,
-  int msaa, const std::filesystem::path& logFile, std::ostream& log)
+  int msaa, const std::filesystem::path& logFile, std::ostream& log, int& failures)
 {
   const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
     referenceKey(variant.scene, options.resolution, options.referenceSamples, msaa);
@@ -549,8 +582,10 @@ std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& reso
     const std::string stillWrong = child.exitCode == 0 ? cachedReferenceProblem(cached, resolution) : "";
     if (child.exitCode != 0 || !stillWrong.empty())
     {
-      log << "bench: warning: no reference for " << variant.name << ": "
-          << (child.exitCode != 0 ? child.lastLine : stillWrong) << "\n";
+      // Said even with --quiet: the run's error columns will be empty.
+      log << "bench: error: no reference for " << variant.name << ": "
+          << (child.exitCode != 0 ? referenceFailure(child, cached) : cached.string() + ": " + stillWrong) << "\n";
+      ++failures;
       return {};
     }
   }
@@ -582,7 +617,7 @@ int multisamplesOf(const Configuration& configuration)
 using ReferenceFiles = std::vector<std::map<int, std::string>>;
 ReferenceFiles prepareReferences(const BenchOptions& options, const glm::ivec2& resolution,
   const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations,
-  const std::filesystem::path& logsDir, std::ostream& log)
+  const std::filesystem::path& logsDir, std::ostream& log, int& failures)
 {
   std::vector<std::set<int>> needed(variants.size());
   for (const Configuration& configuration : configurations)
@@ -595,7 +630,8 @@ ReferenceFiles prepareReferences(const BenchOptions& options, const glm::ivec2& 
     for (const int msaa : needed[s])
     {
       referenceFiles[s][msaa] = referenceFileFor(options, resolution, variants[s], msaa,
-        logsDir / (msaa > 1 ? format("reference-", s, "-msaa", msaa, ".txt") : format("reference-", s, ".txt")), log);
+        logsDir / (msaa > 1 ? format("reference-", s, "-msaa", msaa, ".txt") : format("reference-", s, ".txt")), log,
+        failures);
     }
   }
   return referenceFiles;
@@ -901,6 +937,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
 {
   // Everything the user typed is checked before any child runs.
   checkScenesRepeatAndSamples(options);
+  checkSceneOverrides(options.sceneOverrides, options.sceneSweeps);
   const glm::ivec2 resolution = parseResolution(options.resolution);
   const std::vector<SceneVariant> variants = loadSceneVariants(options);
   const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);
@@ -908,15 +945,17 @@ int runBench(const BenchOptions& options, std::ostream& log)
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
-  const OutputTarget output{ options.outDir, "bench", options.force, benchInputs(options, variants) };
+  const OutputTarget output{ options.outDir, "bench", options.force, benchInputs(options, variants, configurations) };
   checkOutputTarget(output);
   createCacheDirectory(options.cacheDir);
 
   int failures = 0;
+  int referenceFailures = 0;
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::create_directories(dir / "logs");
-    const ReferenceFiles referenceFiles = prepareReferences(options, resolution, variants, configurations, dir / "logs", log);
+    const ReferenceFiles referenceFiles =
+      prepareReferences(options, resolution, variants, configurations, dir / "logs", log, referenceFailures);
     const nlohmann::json rows = runConfigurations(options, variants, configurations, referenceFiles, dir, log);
     failures = countFailed(rows);
     removeIfEmptyDirectory(dir / "logs");
@@ -924,10 +963,11 @@ int runBench(const BenchOptions& options, std::ostream& log)
   });
   if (!options.quiet)
   {
-    log << "shadowlab: bench of " << configurations.size() << " configuration(s), " << failures << " failed -> "
-        << printable(options.outDir) << "\n";
+    log << "shadowlab: bench of " << configurations.size() << " configuration(s), " << failures << " failed"
+        << (referenceFailures > 0 ? format(", ", referenceFailures, " reference(s) could not be made") : std::string())
+        << " -> " << printable(options.outDir) << "\n";
   }
-  return failures == 0 ? 0 : 4;
+  return failures == 0 && referenceFailures == 0 ? 0 : 4;
 }
 
 } // namespace sl

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <map>
 #include <regex>
 #include <set>
 
@@ -62,6 +63,28 @@ void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::
   }
 }
 
+void checkSceneOverrides(const std::vector<std::string>& overrides, const std::vector<std::string>& sweeps)
+{
+  std::map<std::string, std::string> given; // pointer -> the option that gave it
+  const auto check = [&given](const std::string& option, const std::string& text) {
+    const std::string pointer = text.substr(0, text.find('='));
+    const auto [at, inserted] = given.emplace(pointer, option);
+    if (!inserted)
+    {
+      throw InputError(format(option, " ", text, ": ", pointer, at->second == option
+        ? " is given more than once" : " is also given by " + at->second));
+    }
+  };
+  for (const std::string& override : overrides)
+  {
+    check("--scene-set", override);
+  }
+  for (const std::string& sweep : sweeps)
+  {
+    check("--scene-sweep", sweep);
+  }
+}
+
 std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneFile, std::ostream& log)
 {
   std::size_t dropped = 0;
@@ -96,6 +119,25 @@ std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::st
 {
   std::vector<std::filesystem::path> inputs = scene.inputFiles;
   inputs.emplace_back(sceneFile);
+  return inputs;
+}
+
+std::vector<std::filesystem::path> fileParameterInputs(const TechniqueDescriptor& technique,
+  const std::vector<std::string>& settings)
+{
+  ParameterValues values = technique.defaultParameters();
+  for (const std::string& assignment : settings)
+  {
+    values.set(assignment);
+  }
+  std::vector<std::filesystem::path> inputs;
+  for (const ParameterSpec& spec : values.specs())
+  {
+    if (spec.file && !values.file(spec.name).empty())
+    {
+      inputs.emplace_back(values.file(spec.name));
+    }
+  }
   return inputs;
 }
 

@@ -42,6 +42,7 @@ struct ReferenceOptions
   bool samplesGiven = false;  // --samples was on the command line (with --light-samples, N defaults to 16)
   std::string sampling = "stratified";
   std::string lightSamples;   // --light-samples PATTERN (lightSamplePatternNames()); "" = `sampling`
+  bool lightSamplesGiven = false; // --light-samples was on the command line (an empty PATTERN is refused)
   int msaa = 1;               // --msaa 1 | 4: trace every sample position of a 4x multisampled G-buffer, average
   std::uint64_t seed = 1;
   std::string resolution; // "WxH" or empty
@@ -128,6 +129,7 @@ struct ViewOptions
   std::string recordFile;            // --record: the session's events (vtkInteractorEventRecorder)
   std::string playFile;              // --play: replay these events, then exit
   std::string screenshotDir = ".";   // where the s key writes view-NNN-<technique>-<buffer>.png
+  bool force = false;                // --force: --record may replace an existing file that is not a recording
 };
 // Exit 2 with one line when there is no display (no DISPLAY, XOpenDisplay fails, no GLX), before any window or
 // frame. Every action of the session prints one line on `out`.
@@ -167,6 +169,10 @@ glm::ivec2 parseResolution(const std::string& text);
 // InputError naming the assignment.
 void checkSettings(const TechniqueDescriptor& technique, const std::vector<std::string>& settings);
 
+// Every --scene-set pointer given once, and every --scene-sweep pointer once and not also by --scene-set (the
+// later value would silently win, as a repeated --set key would); throws InputError naming the pointer.
+void checkSceneOverrides(const std::vector<std::string>& overrides, const std::vector<std::string>& sweeps = {});
+
 // One warning line per object whose mesh had degenerate triangles (dropped by the loader); returns their sum.
 std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneFile, std::ostream& log);
 // One warning line when some pixels of `frame` were cut short (a GL's loop cap, a budget): their values are
@@ -175,5 +181,9 @@ std::size_t reportCutShortPixels(const FrameResult& frame, std::ostream& log);
 
 // The files a command reads for a scene (the scene file, its meshes and alpha textures): --out must not hold them.
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile);
+// The files `settings` name through `technique`'s file parameters (ParameterSpec::file, e.g. ss08's
+// budget_image): inputs too, whichever the technique. `settings` must be valid (checkSettings).
+std::vector<std::filesystem::path> fileParameterInputs(const TechniqueDescriptor& technique,
+  const std::vector<std::string>& settings);
 
 } // namespace sl

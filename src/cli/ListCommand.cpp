@@ -3,10 +3,13 @@
 #include "cli/Commands.h"
 
 #include "lightspace/LightSpaceStructure.h"
+#include "lightspace/hsm/HsmStructure.h"
+#include "lightspace/mssm/DualMssmStructure.h"
 #include "techniques/Registry.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
@@ -50,6 +53,24 @@ std::string describeDefault(const ParameterSpec& spec)
   return value.str();
 }
 
+// A bound `list` cannot print as a number: it depends on the GL a frame runs on, and knowing it would mean
+// making a GL context (seconds on llvmpipe) for a command that only reads the registry. Said where it applies:
+// the shadow map's size for techniques whose min-max structure may be a 3D texture (N-buffers, the dual-grid
+// MSSM), which vtkSLHsmPass checks against GL_MAX_3D_TEXTURE_SIZE when the frame renders.
+std::string glLimitNote(const TechniqueDescriptor& technique, const ParameterSpec& spec)
+{
+  const bool threeDimensional = std::any_of(technique.lightStructures.begin(), technique.lightStructures.end(),
+    [](const LightSpaceStructure* structure) {
+      return structure == &hierarchicalShadowMapStructure() || structure == &dualMssmStructure();
+    });
+  if (spec.name != "shadow_map_size" || !threeDimensional)
+  {
+    return {};
+  }
+  return "with an N-buffer or dual-grid MSSM (a 3D texture) at most the GL's GL_MAX_3D_TEXTURE_SIZE (2048 on "
+         "llvmpipe), less 1 for the dual grid; a larger map is refused when the frame renders";
+}
+
 void listAsJson(std::ostream& out)
 {
   nlohmann::json techniques = nlohmann::json::array();
@@ -63,6 +84,10 @@ void listAsJson(std::ostream& out)
       parameters.push_back({ { "name", spec.name }, { "default", defaultValue },
         { "min", spec.minValue }, { "max", spec.maxValue }, { "unit", spec.unit }, { "choices", spec.choices },
         { "integer", spec.integer }, { "file", spec.file }, { "doc", spec.doc } });
+      if (const std::string note = glLimitNote(technique, spec); !note.empty())
+      {
+        parameters.back()["gl_limit"] = note;
+      }
     }
     nlohmann::json buffers = nlohmann::json::array();
     for (const BufferSpec& buffer : technique.buffers)
@@ -97,6 +122,10 @@ void listAsText(std::ostream& out)
       out << "    " << std::left << std::setw(22) << spec.name << " default " << std::setw(8) << describeDefault(spec)
           << " range " << std::setw(22) << describeRange(spec) << " " << spec.unit << "\n"
           << "      " << spec.doc << "\n";
+      if (const std::string note = glLimitNote(technique, spec); !note.empty())
+      {
+        out << "      GL limit: " << note << "\n";
+      }
     }
     out << "  buffers: visibility, position, normal, depth, coverage, albedo";
     for (const BufferSpec& buffer : technique.buffers)

@@ -5,11 +5,12 @@
 //
 // The PNG is written to a temporary sibling of --out (".<name>.shadowlab-partial-<pid>") and renamed onto --out only
 // when complete, so a failure leaves no partial file and an existing --out as it was. An existing --out is replaced
-// only when it is a PNG file (what montage writes), never another kind of file.
+// only when it is a PNG file (what montage writes), never another kind of file, and never inside a RUN_DIR.
 #include "cli/Commands.h"
 
 #include "core/Error.h"
 #include "io/ImageIO.h"
+#include "io/OutputDirectory.h"
 #include "lessons/RunMontage.h"
 #include "metrics/Comparison.h"
 #include "metrics/ErrorMetrics.h"
@@ -161,33 +162,25 @@ void checkOutFile(const fs::path& out)
   }
 }
 
-// Writes `canvas` to a temporary sibling of `out`, then renames it onto `out`.
+// Writes `canvas` to a temporary sibling of `out` (io/OutputDirectory.h: removed on failure and on Ctrl-C, and by
+// the next run when a killed one left it), then renames it onto `out`.
 void writePngAtomically(const ImageU8& canvas, const fs::path& out)
 {
-  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  const fs::path temporary =
-    parent / ("." + out.filename().string() + ".shadowlab-partial-" + std::to_string(::getpid()));
-  std::error_code ignored;
+  TemporaryOutputFile temporary(out);
   try
   {
-    writePng(temporary, canvas);
+    writePng(temporary.path(), canvas);
+    temporary.commit();
   }
   catch (const InputError& error)
   {
-    fs::remove(temporary, ignored);
     std::string message = error.what();
-    const std::string temporaryName = temporary.string();
+    const std::string temporaryName = temporary.path().string();
     for (std::size_t at = message.find(temporaryName); at != std::string::npos; at = message.find(temporaryName))
     {
       message.replace(at, temporaryName.size(), out.string());
     }
     throw InputError("--out " + message);
-  }
-  if (std::rename(temporary.c_str(), out.c_str()) != 0)
-  {
-    const int renameError = errno;
-    fs::remove(temporary, ignored);
-    throw InputError("--out " + quoted(out) + ": cannot write (" + std::strerror(renameError) + ")");
   }
 }
 
@@ -211,6 +204,16 @@ int runMontage(const MontageCommandOptions& options, std::ostream& log)
   if (!options.referenceDir.empty())
   {
     reference = readRun(options.referenceDir);
+  }
+  // The runs are ShadowLab's outputs: the montage goes beside them, never into one.
+  std::vector<fs::path> inputs(options.runDirs.begin(), options.runDirs.end());
+  if (!options.referenceDir.empty())
+  {
+    inputs.emplace_back(options.referenceDir);
+  }
+  if (const std::string reason = inputConflict(out, inputs); !reason.empty())
+  {
+    throw InputError("--out " + quoted(out) + ": refused, it " + printable(reason) + " (nothing was written)");
   }
 
   // The buffer in every run, scalar, drawn the same way in every run.

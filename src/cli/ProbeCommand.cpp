@@ -83,8 +83,13 @@ int runProbe(const ProbeOptions& options, std::ostream& log)
   }
   const RenderRequest request =
     checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
+  checkSceneOverrides(options.sceneOverrides);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
-  const OutputTarget output{ options.outDir, "probe", options.force, sceneInputs(scene, options.sceneFile) };
+  std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
+  const std::vector<std::filesystem::path> parameterFiles =
+    fileParameterInputs(findTechnique(options.technique), options.settings);
+  inputs.insert(inputs.end(), parameterFiles.begin(), parameterFiles.end());
+  const OutputTarget output{ options.outDir, "probe", options.force, inputs };
   checkOutputTarget(output);
   reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;

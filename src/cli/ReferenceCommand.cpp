@@ -32,6 +32,16 @@ std::optional<LightSampleSetSettings> lightSampleSetOf(const ReferenceOptions& o
 {
   if (options.lightSamples.empty())
   {
+    if (options.lightSamplesGiven)
+    {
+      // `--light-samples ''` (an unset shell variable) would otherwise run the plain reference unnoticed.
+      std::string names;
+      for (const std::string& name : lightSamplePatternNames())
+      {
+        names += (names.empty() ? "" : ", ") + name;
+      }
+      throw InputError("--light-samples '': empty; expected one of " + names);
+    }
     return std::nullopt;
   }
   if (options.seed > std::numeric_limits<std::uint32_t>::max())
@@ -65,6 +75,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   {
     request.resolution = parseResolution(options.resolution);
   }
+  checkSceneOverrides(options.sceneOverrides);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   const OutputTarget output{ options.outDir, "reference", options.force, sceneInputs(scene, options.sceneFile) };
   checkOutputTarget(output);

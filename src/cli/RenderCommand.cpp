@@ -18,8 +18,13 @@ int runRender(const RenderOptions& options, std::ostream& log)
   // Validate everything the user typed before touching the GPU or the disk.
   const RenderRequest request =
     checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
+  checkSceneOverrides(options.sceneOverrides);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
-  const OutputTarget output{ options.outDir, "render", options.force, sceneInputs(scene, options.sceneFile) };
+  std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
+  const std::vector<std::filesystem::path> parameterFiles =
+    fileParameterInputs(findTechnique(options.technique), options.settings);
+  inputs.insert(inputs.end(), parameterFiles.begin(), parameterFiles.end());
+  const OutputTarget output{ options.outDir, "render", options.force, inputs };
   checkOutputTarget(output);
   const std::size_t dropped = reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;

@@ -7,6 +7,8 @@
 #include "cli/ViewerWindow.h"
 #include "cli/XDisplay.h"
 #include "core/Error.h"
+#include "io/OutputDirectory.h"
+#include "techniques/Registry.h"
 
 #include <filesystem>
 #include <fstream>
@@ -40,15 +42,52 @@ void checkEventFiles(const ViewOptions& options)
     {
       throw InputError("--record " + printable(options.recordFile) + ": its directory does not exist");
     }
-    if (!options.playFile.empty() && fs::equivalent(options.playFile, options.recordFile, error))
-    {
-      throw InputError("--record " + printable(options.recordFile) + ": is the --play file (it would be emptied)");
-    }
   }
   std::error_code error;
   if (fs::exists(options.screenshotDir, error) && !fs::is_directory(options.screenshotDir, error))
   {
     throw InputError("--screenshot-dir " + printable(options.screenshotDir) + ": exists and is not a directory");
+  }
+}
+
+// The first line VTK's event recorder (vtkInteractorEventRecorder) writes: what makes a file a recording.
+constexpr const char* kRecordingHeader = "# StreamVersion ";
+
+bool isRecording(const fs::path& file)
+{
+  std::ifstream stream(file, std::ios::binary);
+  std::string firstLine;
+  return std::getline(stream, firstLine) && firstLine.rfind(kRecordingHeader, 0) == 0;
+}
+
+// --record empties its file when the window opens: never an input of the session (read, or read again when a
+// key reloads the scene), and an existing file only when it is an earlier recording or the user said --force.
+// Checked once the session has loaded the scene (its meshes and textures are known) and before the display.
+void checkRecordTarget(const ViewOptions& options, const std::vector<fs::path>& inputs)
+{
+  if (options.recordFile.empty())
+  {
+    return;
+  }
+  const std::string named = "--record " + printable(options.recordFile);
+  if (const std::string reason = inputConflict(options.recordFile, inputs); !reason.empty())
+  {
+    throw InputError(named + ": refused, it " + printable(reason) + " (nothing was written)");
+  }
+  std::error_code error;
+  const fs::file_status status = fs::status(options.recordFile, error);
+  if (!fs::exists(status))
+  {
+    return;
+  }
+  if (!fs::is_regular_file(status))
+  {
+    throw InputError(named + ": exists and is not a regular file; not replaced");
+  }
+  if (!options.force && !isRecording(options.recordFile))
+  {
+    throw InputError(named + ": refused, the file exists and is not a recording (its first line is not \"" +
+      std::string(kRecordingHeader) + "...\"); choose another --record, or add --force to replace it");
   }
 }
 
@@ -66,10 +105,19 @@ int runView(const ViewOptions& options, std::ostream& out)
   {
     start.resolution = parseResolution(options.resolution);
   }
+  checkSceneOverrides(options.sceneOverrides);
   checkEventFiles(options);
   // Declared in this order so that they go in the reverse: the window (its GLX context) before the pipeline
   // (its EGL context, ViewerSession.h), and the X connection after the window.
   ViewerSession session(start); // the technique, its settings, the scene
+  std::vector<fs::path> inputs = sceneInputs(session.scene(), options.sceneFile);
+  const std::vector<fs::path> parameterFiles = fileParameterInputs(findTechnique(options.technique), options.settings);
+  inputs.insert(inputs.end(), parameterFiles.begin(), parameterFiles.end());
+  if (!options.playFile.empty())
+  {
+    inputs.emplace_back(options.playFile); // it would be emptied before it is read
+  }
+  checkRecordTarget(options, inputs);
   const XDisplay display;
   session.renderFirstFrame();
   ViewerWindow window(session, display.handle(), options.sceneFile, options.screenshotDir, out);

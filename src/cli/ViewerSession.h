@@ -94,6 +94,7 @@ public:
 
   const std::string& technique() const;
   const std::string& buffer() const { return buffer_; }
+  const Scene& scene() const { return scene_; } // with the session's light size
   // Status lines: technique, buffer, selected parameter and light size, probe.
   std::vector<std::string> statusLines() const;
   // The `shadowlab render` command that renders the frame on show.

@@ -8,7 +8,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <iostream>
+#include <limits>
 
 namespace
 {
@@ -30,6 +32,21 @@ std::string joinedLightSamplePatterns()
     names += (names.empty() ? "" : " | ") + name;
   }
   return names;
+}
+
+// --seed: a decimal integer in 0 .. 2^64-1, checked on the text before CLI11 converts it (its conversion
+// saturates a larger value, and CLI::NonNegativeNumber names its bound as a 309-digit DBL_MAX).
+CLI::Validator seedRange()
+{
+  return CLI::Validator(
+    [](std::string& text) -> std::string {
+      const std::string max = std::to_string(std::numeric_limits<std::uint64_t>::max());
+      const bool digits = !text.empty() && text.size() <= max.size() &&
+        text.find_first_not_of("0123456789") == std::string::npos;
+      const bool inRange = digits && (text.size() < max.size() || text <= max);
+      return inRange ? std::string() : sl::printable(text) + ": expected an integer in 0 .. " + max;
+    },
+    "0 .. 2^64-1");
 }
 
 } // namespace
@@ -68,13 +85,13 @@ int main(int argc, char** argv)
   referenceCommand->add_option("--scene-set", reference.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
   CLI::Option* referenceSampling =
     referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
-  referenceCommand
+  CLI::Option* referenceLightSamples = referenceCommand
     ->add_option("--light-samples", reference.lightSamples,
       "Shared light-sample set, the samples of technique dcs (" + joinedLightSamplePatterns() +
         "); also writes sample_crossings and light_sample_mask")
     ->excludes(referenceSampling);
   referenceCommand->add_option("--seed", reference.seed, "Seed (results are deterministic for a seed)")
-    ->check(CLI::NonNegativeNumber)
+    ->check(seedRange())
     ->capture_default_str();
   referenceCommand
     ->add_option("--msaa", reference.msaa,
@@ -157,8 +174,13 @@ int main(int argc, char** argv)
   viewCommand->add_option("--resolution,-r", view.resolution, "Image size WxH (default: the scene camera's)");
   viewCommand->add_option("--light", view.lightIndex, "Index of the scene light that casts shadows")
     ->capture_default_str();
-  viewCommand->add_option("--record", view.recordFile, "Write the session's events to FILE (VTK's event recorder)");
+  viewCommand->add_option("--record", view.recordFile,
+    "Write the session's events to FILE (VTK's event recorder); an existing file is replaced only when it is a "
+    "recording (see --force)");
   viewCommand->add_option("--play", view.playFile, "Replay the events in FILE (as --record wrote them), then exit");
+  viewCommand->add_flag("--force", view.force,
+    "Let --record replace an existing file that is not a recording (never an input: the scene, its meshes and "
+    "textures, --play, a file parameter)");
   viewCommand->add_option("--screenshot-dir", view.screenshotDir, "Where the s key saves screenshots (PNG)")
     ->capture_default_str();
 
@@ -235,6 +257,7 @@ int main(int argc, char** argv)
     if (referenceCommand->parsed())
     {
       reference.samplesGiven = referenceSamples->count() > 0;
+      reference.lightSamplesGiven = referenceLightSamples->count() > 0;
       return sl::runReference(reference, std::cerr);
     }
     if (compareCommand->parsed())

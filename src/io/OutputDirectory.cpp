@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
+#include <pwd.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -44,6 +46,11 @@ constexpr int kHandledSignals[] = { SIGINT, SIGTERM, SIGHUP };
 void removeTreeSignalSafe(int parentFd, const char* name, int depth)
 {
   const int fd = ::openat(parentFd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0 && errno == ENOTDIR && depth == 0)
+  {
+    ::unlinkat(parentFd, name, 0); // a temporary file (TemporaryOutputFile), not a directory
+    return;
+  }
   if (fd >= 0)
   {
     alignas(8) char buffer[4096];
@@ -254,23 +261,14 @@ std::string protectedReason(const fs::path& resolved, const OutputTarget& target
   {
     return resolved == resolveInputPath(cwd) ? "is the current directory" : "holds the current directory";
   }
-  if (const char* home = std::getenv("HOME"); home && *home && isAncestorOrSelf(resolved, resolveInputPath(home)))
+  for (const fs::path& home : protectedHomeDirectories())
   {
-    return "is or holds the home directory";
-  }
-  for (const fs::path& input : target.inputs)
-  {
-    const fs::path resolvedInput = resolveInputPath(input);
-    if (isAncestorOrSelf(resolved, resolvedInput))
+    if (isAncestorOrSelf(resolved, home))
     {
-      return "holds " + input.string() + ", an input of this command";
-    }
-    if (fs::is_directory(resolvedInput, error) && isAncestorOrSelf(resolvedInput, resolved))
-    {
-      return "lies inside " + input.string() + ", an input directory of this command";
+      return "is or holds the home directory";
     }
   }
-  return {};
+  return inputConflict(resolved, target.inputs);
 }
 
 std::string timestamp()
@@ -311,6 +309,35 @@ void removeStaleSiblings(const fs::path& parent)
   }
 }
 
+// Temporary files `.<name>.shadowlab-partial-<pid>` of `file` left by a process that no longer runs: removed.
+// The name says whose they are (no marker fits in a PNG); other names, links and live processes' are left alone.
+void removeStaleFileSiblings(const fs::path& file)
+{
+  const fs::path parent = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  const std::string prefix = "." + file.filename().string() + kPartialPrefix;
+  std::error_code error;
+  for (fs::directory_iterator it(parent, error), end; !error && it != end; it.increment(error))
+  {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !fs::is_regular_file(it->symlink_status(error)))
+    {
+      continue;
+    }
+    const std::string pidText = name.substr(prefix.size());
+    char* endOfPid = nullptr;
+    const long pid = std::strtol(pidText.c_str(), &endOfPid, 10);
+    if (pidText.empty() || pid <= 0 || *endOfPid != '\0' || pid == ::getpid())
+    {
+      continue;
+    }
+    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH)
+    {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
 void removeQuietly(const fs::path& path)
 {
   std::error_code ignored;
@@ -323,6 +350,56 @@ std::string systemReason(int errorNumber)
 }
 
 } // namespace
+
+std::string inputConflict(const fs::path& output, const std::vector<fs::path>& inputs)
+{
+  const fs::path resolved = resolveInputPath(output);
+  std::error_code error;
+  for (const fs::path& input : inputs)
+  {
+    const fs::path resolvedInput = resolveInputPath(input);
+    if (resolved == resolvedInput)
+    {
+      return "is " + input.string() + ", an input of this command";
+    }
+    if (isAncestorOrSelf(resolved, resolvedInput))
+    {
+      return "holds " + input.string() + ", an input of this command";
+    }
+    if (fs::is_directory(resolvedInput, error) && isAncestorOrSelf(resolvedInput, resolved))
+    {
+      return "lies inside " + input.string() + ", an input directory of this command";
+    }
+  }
+  return {};
+}
+
+std::vector<fs::path> protectedHomeDirectories()
+{
+  std::vector<fs::path> homes;
+  const auto add = [&homes](const char* home) {
+    if (home && *home)
+    {
+      const fs::path resolved = resolveInputPath(home);
+      if (std::find(homes.begin(), homes.end(), resolved) == homes.end())
+      {
+        homes.push_back(resolved);
+      }
+    }
+  };
+  add(std::getenv("HOME"));
+  // With HOME unset (env -u HOME, cron, some services) a shell still expands ~ from the password database.
+  std::vector<char> buffer(16384);
+  struct passwd entry
+  {
+  };
+  struct passwd* found = nullptr;
+  if (::getpwuid_r(::getuid(), &entry, buffer.data(), buffer.size(), &found) == 0 && found)
+  {
+    add(found->pw_dir);
+  }
+  return homes;
+}
 
 void checkOutputTarget(const OutputTarget& target)
 {
@@ -380,6 +457,9 @@ void writeFileChecked(const fs::path& path, const std::string& bytes)
 
 void installOutputSignalHandlers()
 {
+  // A write past the file size limit (ulimit -f) would kill the process with SIGXFSZ and leave the temporary
+  // directory behind; ignored, the write fails with EFBIG and is reported like a full disk (children inherit it).
+  std::signal(SIGXFSZ, SIG_IGN);
   struct sigaction action
   {
   };
@@ -514,6 +594,38 @@ void TemporaryOutput::commit()
   }
   committed_ = true;
   removeQuietly(temporary_);
+}
+
+TemporaryOutputFile::TemporaryOutputFile(const fs::path& file)
+  : file_(file)
+{
+  SL_CHECK_MSG(g_temporaryPath[0] == '\0', "one output at a time per process");
+  removeStaleFileSiblings(file_);
+  const fs::path parent = file_.has_parent_path() ? file_.parent_path() : fs::path(".");
+  // Absolute: the signal handler removes it by this path whatever the current directory is by then.
+  temporary_ = fs::absolute(parent / ("." + file_.filename().string() + kPartialPrefix + std::to_string(::getpid())));
+  const CleanupPathSection section;
+  setSignalCleanupPath(temporary_.string());
+}
+
+TemporaryOutputFile::~TemporaryOutputFile()
+{
+  if (!committed_)
+  {
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+  }
+  const CleanupPathSection section;
+  setSignalCleanupPath("");
+}
+
+void TemporaryOutputFile::commit()
+{
+  if (::rename(temporary_.c_str(), file_.c_str()) != 0)
+  {
+    throw InputError(format(file_.string(), ": cannot write (", systemReason(errno), ")"));
+  }
+  committed_ = true;
 }
 
 } // namespace sl

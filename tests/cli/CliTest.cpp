@@ -510,6 +510,33 @@ TEST(CliList, TextListsEveryParameterWithDefaultAndRange)
   EXPECT_NE(run.out.find("pattern                default grid     range grid|poisson"), std::string::npos) << run.out;
 }
 
+TEST(CliList, TheShadowMapSizeSaysWhereItsBoundDependsOnTheGl)
+{
+  // With hsm=nbuffers or the dual-grid MSSM (a 3D texture), gbp06, gbp07, yfgl09, ss08 and vssm refuse maps
+  // beyond the GL's GL_MAX_3D_TEXTURE_SIZE (2048 on llvmpipe) when they render; list has no context, so it names
+  // the limit.
+  TempDir temp;
+  const RunResult run = runShadowlab({ "list" }, temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const auto block = [&](const std::string& name) {
+    const std::size_t start = run.out.find(name + " - ");
+    const std::size_t end = run.out.find("\n\n", start);
+    return start == std::string::npos ? std::string() : run.out.substr(start, end - start);
+  };
+  for (const char* name : { "gbp06", "gbp07", "yfgl09", "ss08", "vssm" })
+  {
+    EXPECT_NE(block(name).find("GL limit: "), std::string::npos) << name << "\n" << block(name);
+    EXPECT_NE(block(name).find("GL_MAX_3D_TEXTURE_SIZE"), std::string::npos) << name;
+  }
+  for (const char* name : { "hard", "pcf", "pcss" })
+  {
+    EXPECT_EQ(block(name).find("GL limit: "), std::string::npos) << name << "\n" << block(name);
+  }
+  const RunResult json = runShadowlab({ "list", "--json" }, temp.path());
+  ASSERT_EQ(json.exitCode, 0) << json.describe();
+  EXPECT_NE(json.out.find("\"gl_limit\""), std::string::npos);
+}
+
 TEST(CliList, JsonListsTechniquesWithParameterTables)
 {
   TempDir temp;

@@ -11,11 +11,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <sys/wait.h>
 #include <filesystem>
 #include <map>
+#include <pwd.h>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -175,6 +177,23 @@ TEST(OutputSafety, HomeDirectoryIsRefusedEvenWithForce)
   EXPECT_EQ(snapshot(home), before);
 }
 
+TEST(OutputSafety, ThePasswordDatabaseHomeIsRefusedWithHomeUnset)
+{
+  // `env -u HOME shadowlab render ... -o ~ --force`: the shell expands ~ from the password database. The real
+  // home is named here, so the run is fenced should the refusal ever regress: under a file size limit of 1 KiB
+  // (room for the one-line error, SIGXFSZ ignored) writing buffers.vti into the temporary sibling fails, and the
+  // run ends before anything could be replaced. tests/unit/OutputDirectoryTest.cpp checks the rule itself.
+  const struct passwd* entry = ::getpwuid(::getuid());
+  ASSERT_TRUE(entry && entry->pw_dir && *entry->pw_dir);
+  const fs::path home = entry->pw_dir;
+  ASSERT_TRUE(fs::is_directory(home)) << home;
+  TempDir temp;
+  const RunResult run = test::runShadowlabIn(
+    renderArguments(test::datasetPath("planar-occluder"), home.string(), { "--force" }), temp.path(),
+    "unset HOME; ulimit -f 1; trap '' XFSZ");
+  expectOneLineRefusal(run, home == home.root_path() ? "filesystem root" : "home directory");
+}
+
 TEST(OutputSafety, DirectoryHoldingTheMeshIsRefusedEvenWithForce)
 {
   TempDir temp;
@@ -237,6 +256,149 @@ TEST(OutputSafety, BenchRefusesItsCacheAsOutput) // H13
                                                  "--out", "out-bench", "--force" },
     temp.path());
   expectOneLineRefusal(holds, "an input of this command");
+}
+
+TEST(OutputSafety, AFileParameterIsAnInputOfEveryCommandThatTakesSet)
+{
+  // ss08's budget_image (ParameterSpec::file) inside --out: refused naming it, with --force too; and inside an
+  // earlier output, which --out would otherwise replace without --force.
+  TempDir temp;
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  const fs::path dir = temp.path() / "dir";
+  fs::create_directories(dir);
+  writePng(dir / "b.png", ImageU8(8, 8, 3, 10));
+  writeFile(dir / "notes.txt", "mine");
+  const auto before = snapshot(dir);
+  const std::vector<std::string> budget = { "-t", "ss08", "-r", "16x16", "--set", "budget_map=image", "--set",
+    "budget_image=" + (dir / "b.png").string() };
+  const auto command = [&](const std::string& name, const std::string& out, bool force) {
+    std::vector<std::string> arguments{ name, scene };
+    arguments.insert(arguments.end(), budget.begin(), budget.end());
+    if (name == "probe")
+    {
+      arguments.insert(arguments.end(), { "--pixel", "8,8" });
+    }
+    if (name == "bench")
+    {
+      arguments.insert(arguments.end(), { "--samples", "4", "--repeat", "1", "--cache", "cache" });
+    }
+    arguments.insert(arguments.end(), { "--out", out });
+    if (force)
+    {
+      arguments.push_back("--force");
+    }
+    return arguments;
+  };
+  for (const std::string& name : { "render", "probe", "bench" })
+  {
+    SCOPED_TRACE(name);
+    expectOneLineRefusal(test::runShadowlabIn(command(name, dir.string(), true), temp.path()), "b.png");
+    EXPECT_EQ(snapshot(dir), before);
+  }
+  // An earlier output holding the image.
+  ASSERT_EQ(test::runShadowlabIn(renderArguments(test::datasetPath("planar-occluder"), "earlier"), temp.path()).exitCode, 0);
+  const fs::path earlier = temp.path() / "earlier";
+  writePng(earlier / "b.png", ImageU8(8, 8, 3, 10));
+  const auto earlierBefore = snapshot(earlier);
+  for (const std::string& name : { "render", "probe", "bench" })
+  {
+    SCOPED_TRACE(name + " into an earlier output");
+    std::vector<std::string> arguments = command(name, "earlier", false);
+    std::replace(arguments.begin(), arguments.end(), "budget_image=" + (dir / "b.png").string(),
+      "budget_image=" + (earlier / "b.png").string());
+    expectOneLineRefusal(test::runShadowlabIn(arguments, temp.path()), "b.png");
+    EXPECT_EQ(snapshot(earlier), earlierBefore);
+  }
+}
+
+TEST(OutputSafety, MontageRemovesThePartialFilesOfDeadRuns) // a Ctrl-C'd or killed montage
+{
+  TempDir temp;
+  ASSERT_EQ(test::runShadowlabIn(renderArguments(test::datasetPath("planar-occluder"), "run"), temp.path()).exitCode, 0);
+  const pid_t dead = ::fork();
+  if (dead == 0)
+  {
+    ::_exit(0);
+  }
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  const fs::path stale = temp.path() / (".m.png.shadowlab-partial-" + std::to_string(dead));
+  const fs::path live = temp.path() / (".m.png.shadowlab-partial-" + std::to_string(::getpid()));
+  const fs::path other = temp.path() / (".other.png.shadowlab-partial-" + std::to_string(dead));
+  for (const fs::path& file : { stale, live, other })
+  {
+    writeFile(file, "half a png");
+  }
+  const RunResult run =
+    test::runShadowlabIn({ "montage", "run", "--buffer", "visibility", "-q", "--out", "m.png" }, temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  EXPECT_FALSE(fs::exists(stale)) << "a dead run's partial file was left";
+  EXPECT_TRUE(fs::exists(live)) << "a running process's partial file was removed";
+  EXPECT_TRUE(fs::exists(other)) << "the partial file of another output was removed";
+}
+
+TEST(OutputSafety, BenchCountsAReferenceItCouldNotWriteAsAFailure)
+{
+  TempDir temp;
+  const std::vector<std::string> arguments{ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard", "-r",
+    "16x16", "--samples", "4", "--repeat", "1", "--cache", "cache", "--out", "out-bench" };
+  ASSERT_EQ(test::runShadowlabIn(arguments, temp.path()).exitCode, 0);
+  const std::vector<std::string> entries = entriesOf(temp.path() / "cache");
+  ASSERT_EQ(entries.size(), 1u) << joined(entries);
+  // The cache entry's path is taken by a plain file.
+  const fs::path entry = temp.path() / "cache" / entries.front();
+  fs::remove_all(entry);
+  writeFile(entry, "in the way");
+  const RunResult blocked = test::runShadowlabIn(arguments, temp.path());
+  EXPECT_EQ(blocked.exitCode, 4) << blocked.describe();
+  EXPECT_NE(blocked.err.find("cache/" + entries.front()), std::string::npos) << blocked.describe();
+  EXPECT_EQ(blocked.err.find("--out cache"), std::string::npos) << "blames an --out the user did not give: "
+                                                                << blocked.describe();
+  EXPECT_EQ(blocked.err.find(" 0 failed ->"), std::string::npos) << blocked.describe();
+  fs::remove(entry);
+  // A file size limit (SIGXFSZ left at its default: shadowlab ignores it itself): the reference cannot be written.
+  const RunResult limited = test::runShadowlabIn({ "bench", test::datasetPath("planar-occluder").string(), "-t",
+                                                   "hard", "-r", "128x128", "--samples", "4", "--repeat", "1",
+                                                   "--cache", "cache", "--out", "out-limited" },
+    temp.path(), "ulimit -f 24");
+  EXPECT_NE(limited.exitCode, 0) << limited.describe();
+  EXPECT_NE(limited.err.find("cache/"), std::string::npos) << limited.describe();
+  EXPECT_NE(limited.err.find("cannot write"), std::string::npos) << limited.describe();
+  EXPECT_EQ(limited.err.find("crashed"), std::string::npos) << limited.describe();
+}
+
+TEST(OutputSafety, RepeatedPointersEmptyListItemsAndOutOfRangeSeedsAreOneLineErrors)
+{
+  TempDir temp;
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  struct Case
+  {
+    std::vector<std::string> arguments;
+    std::string mention;
+  };
+  const std::vector<Case> cases = {
+    { { "render", scene, "--scene-set", "/lights/0/size=1", "--scene-set", "/lights/0/size=2" }, "/lights/0/size" },
+    { { "reference", scene, "--scene-set", "/lights/0/size=1", "--scene-set", "/lights/0/size=2" }, "/lights/0/size" },
+    { { "bench", scene, "-t", "hard", "--scene-sweep", "/lights/0/size=1,2", "--scene-sweep", "/lights/0/size=3" },
+      "/lights/0/size" },
+    { { "bench", scene, "-t", "hard", "--scene-set", "/lights/0/size=1", "--scene-sweep", "/lights/0/size=3,4" },
+      "/lights/0/size" },
+    { { "bench", scene, "-t", "pcf", "--sweep", "kernel_texels=3,,9" }, "kernel_texels=3,,9" },
+    { { "bench", scene, "-t", "pcf", "--sweep", "kernel_texels=3,9," }, "kernel_texels=3,9," },
+    { { "bench", scene, "-t", "pcf," }, "pcf," },
+    { { "bench", scene, "-t", "hard", "--scene-sweep", "/lights/0/size=1,,2" }, "/lights/0/size=1,,2" },
+    { { "reference", scene, "--light-samples", "" }, "--light-samples" },
+    { { "reference", scene, "--seed", "99999999999999999999999" }, "18446744073709551615" },
+    { { "reference", scene, "--seed", "-1" }, "18446744073709551615" },
+    { { "reference", scene, "--seed", "18446744073709551616" }, "--seed" },
+  };
+  for (const Case& refused : cases)
+  {
+    const RunResult run = test::runShadowlabIn(refused.arguments, temp.path());
+    expectOneLineRefusal(run, refused.mention);
+    EXPECT_LT(run.err.size(), 300u) << run.describe();
+    EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{}) << "output written: " << run.describe();
+  }
 }
 
 // ---- paths that used to go wrong (D11, D12, D14) ------------------------------------------------------------

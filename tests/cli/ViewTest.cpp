@@ -179,6 +179,50 @@ TEST(ViewCommand, BadInputIsOneLineAndExitOneBeforeTheDisplayIsChecked)
   expectFailure(with(viewArguments(), { "--screenshot-dir", file.string() }), { "--screenshot-dir" });
 }
 
+TEST(ViewCommand, RecordNeverReplacesAnInputNorAFileThatIsNotARecordingWithoutForce)
+{
+  // Checked after the scene is loaded and before the display: without one, exit 1 is a refusal and exit 2 means
+  // the checks let the file through (and nothing was written yet).
+  TempDir temp;
+  fs::create_directories(temp.path() / "data");
+  fs::copy(test::datasetPath("contact").parent_path(), temp.path() / "data", fs::copy_options::recursive);
+  const std::string scene = (temp.path() / "data" / "scene.json").string();
+  const std::string sceneBytes = test::readFile(scene);
+  test::writeFile(temp.path() / "notes.txt", "my notes");
+  test::writeFile(temp.path() / "old.log", "# StreamVersion 1.1\nExposeEvent 0 0 0 0 0 0\n");
+  writePng(temp.path() / "b.png", ImageU8(8, 8, 3, 10));
+  const auto view = [&](const std::vector<std::string>& more) {
+    std::vector<std::string> arguments{ "view", scene, "--resolution", "16x16", "--technique", "hard" };
+    arguments.insert(arguments.end(), more.begin(), more.end());
+    return test::runShadowlabIn(arguments, temp.path(), "unset DISPLAY");
+  };
+  const auto expectExit = [](const RunResult& run, int exitCode, const std::string& mention) {
+    EXPECT_EQ(run.exitCode, exitCode) << run.describe();
+    EXPECT_EQ(run.errLines(), 1u) << run.describe();
+    EXPECT_NE(run.err.find(mention), std::string::npos) << run.describe();
+  };
+  for (const bool force : { false, true })
+  {
+    const std::vector<std::string> forced = force ? std::vector<std::string>{ "--force" } : std::vector<std::string>{};
+    SCOPED_TRACE(force ? "--force" : "no --force");
+    expectExit(view(with({ "--record", scene }, forced)), 1, "an input");
+    expectExit(view(with({ "--record", "data/../data/scene.json" }, forced)), 1, "an input");
+    expectExit(view(with({ "--record", "old.log", "--play", "old.log" }, forced)), 1, "an input");
+  }
+  EXPECT_EQ(test::readFile(scene), sceneBytes);
+  // A file parameter is an input too (ss08's budget image).
+  const RunResult budget = test::runShadowlabIn({ "view", scene, "--resolution", "16x16", "--technique", "ss08",
+                                                  "--set", "budget_map=image", "--set", "budget_image=b.png",
+                                                  "--record", "b.png", "--force" },
+    temp.path(), "unset DISPLAY");
+  expectExit(budget, 1, "b.png");
+  // Not a recording: refused without --force, let through with it; an earlier recording is let through.
+  expectExit(view({ "--record", "notes.txt" }), 1, "--force");
+  expectExit(view({ "--record", "notes.txt", "--force" }), 2, "no display");
+  EXPECT_EQ(test::readFile(temp.path() / "notes.txt"), "my notes");
+  expectExit(view({ "--record", "old.log" }), 2, "no display");
+}
+
 // ---- a recorded session under Xvfb ------------------------------------------------------------------------
 
 TEST(ViewCommand, RecordedSessionDrivesTheWindowAndItsScreenshotsMatchTheBaselines)
