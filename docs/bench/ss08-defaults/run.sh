@@ -5,6 +5,8 @@
 # light that no test or dataset holds; 128 x 128 frames, the default 1024^2 map, 1024-sample Embree references.
 #  settings: ss08's micro-occluders x accumulations beside vssm, dcs and penumbra-wedge at their defaults;
 #  budget:   ss08 at its defaults over budgets 3, 5, 9, 12, 16.
+# Made on 2026-12-03: `settings` with build/shadowlab of 0aa3f6f from a copy of the scene directories (bench.csv names
+# them relatively), `budget` with 9377c3f's parent (the microrect+bitmask defaults, 1db28c0) by this script.
 # Timings come from llvmpipe on a 2-core machine shared with builds and other benches: compare ratios within one run.
 set -euo pipefail
 D=docs/bench/ss08-defaults
