@@ -11,6 +11,8 @@
 #include "shadowvolume/ReceiverOffset.glsl"
 
 flat in vec4 volumePlane;
+// The eye's parameter on every camera ray N + s R (perspective: -near / (far - near)); orthographic: -1e30.
+uniform float eyeS;
 
 layout(location = 0) out float outVolumeCount;
 
@@ -26,13 +28,13 @@ void main()
   float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
   if (volumePlane.xyz != vec3(0.0)) // a far cap at infinity lies behind every receiver
   {
+    // A fragment is only rasterised where the ray meets the triangle in front of the eye. A ray (nearly) parallel
+    // to the plane of a side quad, near the quad's vanishing line, meets it far away, but the float `along` may be
+    // 0 or of the wrong sign, which puts the crossing behind the eye: that fragment lies at infinity, behind the
+    // receiver (a whole image row of ground once lost the exit from its own volume this way and read -1).
     float along = dot(volumePlane.xyz, ray);
-    if (along == 0.0)
-    {
-      discard; // the ray runs in the triangle's plane
-    }
-    float sVolume = (volumePlane.w - dot(volumePlane.xyz, nearPoint)) / along;
-    if (sVolume < countedPointS(sReceiver))
+    float sVolume = along == 0.0 ? eyeS : (volumePlane.w - dot(volumePlane.xyz, nearPoint)) / along;
+    if (sVolume > eyeS && sVolume < countedPointS(sReceiver))
     {
       discard; // in front of the receiver: z-fail does not count it
     }
