@@ -14,7 +14,9 @@ flat in vec4 volumePlane;
 // The eye's parameter on every camera ray N + s R (perspective: -near / (far - near)); orthographic: -1e30.
 uniform float eyeS;
 
-layout(location = 0) out float outVolumeCount;
+// x: the z-fail count; y: every face's +1/-1 (the second draw, VOLUME_TOTAL, no depth decision), for
+// shadowvolume/VolumeCountCheck.glsl. The colour mask picks the component each draw writes.
+layout(location = 0) out vec2 outVolumeCount;
 
 void main()
 {
@@ -23,6 +25,7 @@ void main()
   {
     discard; // no receiver: the resolve writes 0 there
   }
+#ifndef VOLUME_TOTAL
   vec3 nearPoint = cameraNearPoint(gl_FragCoord.xy);
   vec3 ray = cameraRayDirection(gl_FragCoord.xy);
   float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
@@ -39,5 +42,6 @@ void main()
       discard; // in front of the receiver: z-fail does not count it
     }
   }
-  outVolumeCount = gl_FrontFacing ? -1.0 : 1.0;
+#endif
+  outVolumeCount = vec2(gl_FrontFacing ? -1.0 : 1.0);
 }

@@ -1,6 +1,8 @@
 #include "frame/FrameResult.h"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 namespace sl
 {
@@ -16,6 +18,11 @@ std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame)
   {
     return std::nullopt;
   }
+  // A technique may mark pixels in several buffers (dcs: counter_status and volume_count_status): a pixel marked in
+  // any of them counts once; buffer and label name those that mark some pixel ("a / b" when several do).
+  std::optional<CutShortPixels> marked;
+  std::vector<bool> any;
+  bool named = false; // a buffer that marks some pixel is named already
   for (const BufferSpec& spec : frame.descriptor->buffers)
   {
     const NamedImage* buffer = spec.cutShortCode >= 0 ? frame.find(spec.name) : nullptr;
@@ -23,12 +30,31 @@ std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame)
     {
       continue;
     }
-    CutShortPixels marked{ spec.name, spec.categoryLabels.at(static_cast<std::size_t>(spec.cutShortCode)), 0 };
+    const std::string label = spec.categoryLabels.at(static_cast<std::size_t>(spec.cutShortCode));
+    if (!marked)
+    {
+      marked = CutShortPixels{ spec.name, label, 0 };
+    }
     const float code = static_cast<float>(spec.cutShortCode);
-    marked.count = static_cast<std::size_t>(std::count(buffer->image.data.begin(), buffer->image.data.end(), code));
-    return marked;
+    any.resize(std::max(any.size(), buffer->image.data.size()), false);
+    std::size_t here = 0;
+    for (std::size_t i = 0; i < buffer->image.data.size(); ++i)
+    {
+      if (buffer->image.data[i] == code)
+      {
+        ++here;
+        marked->count += any[i] ? 0 : 1;
+        any[i] = true;
+      }
+    }
+    if (here > 0)
+    {
+      marked->buffer = named ? marked->buffer + " / " + spec.name : spec.name;
+      marked->label = named ? marked->label + " / " + label : label;
+      named = true;
+    }
   }
-  return std::nullopt;
+  return marked;
 }
 
 const std::vector<BufferSpec>& commonBufferSpecs()

@@ -7,6 +7,7 @@
 #include "techniques/dcs/DcsGeometry.h"
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/vtkSLDcsPass.h"
+#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 #include "techniques/stsv/StsvDrawer.h"
 
 #include <string>
@@ -58,6 +59,7 @@ TechniqueDescriptor dcsTechnique()
     categoricalBuffer("counter_status",
       "the range check of the packed 8-bit counters (vtkSLDcsPass.h): range exceeded marks a pixel whose counts are not exact",
       dcsCounterCategories),
+    volumeCountStatusBuffer(),
   };
   BufferSpec mask{ "light_sample_mask", "bits",
     "which samples are hidden (blocked or below the tangent plane): bit i % 16 of component i / 16, N/16 components (003 L614-628's LS_buffer)" };

@@ -180,6 +180,7 @@ std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
   std::vector<sl::NamedImage> buffers;
 
   buffers.push_back({ "light_sample_mask", this->Mask.readSampleMask(samples), "", "" });
+  buffers.push_back(this->VolumeCountStatusImage());
 
   if (frame.parameters.getInt("export_sample_counts") != 0)
   {

@@ -7,6 +7,7 @@
 #include "techniques/dcs/DcsTechnique.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 #include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
+#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 #include "techniques/stsv/StsvDrawer.h"
 
 #include <algorithm>
@@ -49,6 +50,7 @@ TechniqueDescriptor penumbraWedgeTechnique()
     { "stsv_covering", "STSVs", "soft textured shadow volumes holding the point (003 §2.3)" },
     { "stsv_empty_hits", "STSVs", "STSVs holding the point that hide none of its samples: how conservative the extrusion is" },
     { "stsv_occluded_samples", "light samples", "samples hidden by perforated casters (the LS_buffer's popcount, of N)" },
+    volumeCountStatusBuffer(),
   };
   BufferSpec mask{ "light_sample_mask", "bits",
     "which samples perforated casters hide (the STSVs' LS_buffer, 003 L390-400): bit i % 16 of component i / 16, N/16 components" };

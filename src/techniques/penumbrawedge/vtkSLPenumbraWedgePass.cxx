@@ -148,7 +148,8 @@ void vtkSLPenumbraWedgePass::AfterDraw()
 
 std::vector<sl::NamedImage> vtkSLPenumbraWedgePass::CollectPassBuffers()
 {
-  return { { "light_sample_mask", this->Mask.readSampleMask(this->SampleCount()), "", "" } };
+  return { { "light_sample_mask", this->Mask.readSampleMask(this->SampleCount()), "", "" },
+    this->VolumeCountStatusImage() };
 }
 
 std::map<std::string, double> vtkSLPenumbraWedgePass::CollectStatistics()

@@ -11,6 +11,28 @@
 
 namespace sl
 {
+namespace
+{
+
+const Category<VolumeCountStatus> volumeCountCategories[] = {
+  { VolumeCountStatus::Consistent, "CONSISTENT", "volume count consistent" },
+  { VolumeCountStatus::Inconsistent, "INCONSISTENT",
+    "volume count inconsistent (below 0, or the faces along the ray miss the eye's count): not exact", true },
+};
+
+} // namespace
+
+BufferSpec volumeCountStatusBuffer()
+{
+  BufferSpec spec = categoricalBuffer("volume_count_status",
+    "the shadow volumes' count checked against itself (vtkSLShadowVolumePass.h): inconsistent marks a pixel whose "
+    "depth_complexity_center is below 0, or whose volume faces along the camera ray do not sum to the eye's count",
+    volumeCountCategories);
+  // Decided when the pass reads the count back, not by the resolves: dcs's resolve already writes the 8 outputs
+  // llvmpipe allows.
+  spec.fromPass = true;
+  return spec;
+}
 
 TechniqueDescriptor shadowVolumeTechnique()
 {
@@ -28,6 +50,7 @@ TechniqueDescriptor shadowVolumeTechnique()
     { "depth_complexity_center", "surfaces",
       "caster triangles crossed by the segment from the point to the light's centre (shadow volumes containing it)" },
     { "stencil_count", "", "the 8-bit stencil's z-fail count: depth_complexity_center modulo 256" },
+    volumeCountStatusBuffer(),
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLShadowVolumePass>::New()); };

@@ -20,7 +20,7 @@
 // visible point is taken that far toward the camera, so its own caster's near cap counts as behind it.
 // Buffers: depth_complexity_center (the count of caster triangles crossed by the segment from the point to
 // the light's centre, the point moved by receiver_offset), stencil_count (the same modulo 256, as the stencil
-// holds it).
+// holds it), volume_count_status (the count's self-check, a cut-short mark).
 // Statistics (stats.json technique_statistics): silhouette_edges, boundary_edges, non_manifold_edges,
 // inconsistent_edges, edges, edge_on_triangles, flipped_triangles, side_quads, near_caps, far_caps,
 // volume_triangles, caster_triangles, collapsed_triangles, volume_build_ms (CPU).
@@ -37,6 +37,19 @@ namespace sl
 {
 
 TechniqueDescriptor shadowVolumeTechnique();
+
+// volume_count_status codes (vtkSLShadowVolumePass.h, VolumeCountStatusImage).
+enum class VolumeCountStatus
+{
+  Consistent = 0,
+  Inconsistent = 1
+};
+
+// The categorical buffer volume_count_status: the volume count checked against itself on the GPU (below 0, or the
+// volume faces along the camera ray not summing to the eye's count: a face lost or doubled). Its inconsistent
+// category is a cut-short mark (counted in cut_short_pixels). shadow-volume, dcs and penumbra-wedge, which all take
+// the centre's count from these volumes, publish it.
+BufferSpec volumeCountStatusBuffer();
 
 // The technique's probe (TechniqueDescriptor::probe): the crossing count of the segment from the pixel's point
 // (moved by receiver_offset) to the light's centre (casterCrossings), each crossed caster triangle, the count

@@ -6,6 +6,8 @@
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
+#include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 #include "techniques/shadowvolume/SilhouetteExport.h"
 
 #include <vtkObjectFactory.h>
@@ -22,6 +24,7 @@
 #include <vtk_glew.h>
 
 #include <chrono>
+#include <cmath>
 
 vtkStandardNewMacro(vtkSLShadowVolumePass);
 
@@ -74,6 +77,15 @@ void vtkSLShadowVolumePass::BuildAndCountVolumes(vtkOpenGLRenderWindow* window)
   this->BuildMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
   this->Statistics = geometry.statistics;
+  // The volumes holding the eye (the self-check, vtkSLShadowVolumePass.h): their winding number there, from the very
+  // triangles drawn.
+  // Not an integer when the eye lies on a volume face; then every pixel is marked. Orthographic: the whole line.
+  this->EyeVolumeCount = 0.0;
+  if (extrusion == sl::VolumeExtrusion::ToInfinity)
+  {
+    const double winding = sl::volumeWindingNumber(geometry, frame.scene->camera.position);
+    this->EyeVolumeCount = std::abs(winding - std::round(winding)) < 1e-3 ? std::round(winding) : winding;
+  }
   this->Silhouettes = sl::silhouettePolyData(geometry.silhouettes);
 
   // Step 2: z-fail count.
@@ -85,7 +97,7 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
 {
   const sl::FrameResources& frame = *this->Frame;
   vtkTextureObject* depthStencil = frame.gbufferDepth;
-  this->VolumeCount = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  this->VolumeCount = sl::makeFloatTarget(window, frame.width(), frame.height(), 2);
 
   // The G-buffer's depth-stencil (FrameResources: GL_DEPTH32F_STENCIL8), attached as depth and stencil.
   const sl::ScopedRenderTarget target(window, this->CountFramebuffer, { this->VolumeCount }, depthStencil);
@@ -153,7 +165,27 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
   glState->vtkglEnable(GL_BLEND);
   glState->vtkglBlendFunc(GL_ONE, GL_ONE);
   glState->vtkglBlendEquation(GL_FUNC_ADD);
+  const vtkOpenGLState::ScopedglColorMask colorMask(glState);
+  glState->vtkglColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(geometry.vertices.size()));
+
+  // The self-check's sum (vtkSLShadowVolumePass.h): every face along the ray, in front of the point or behind it,
+  // into the second component, without the stencil. Same triangles, same vertex shader: the same fragments.
+  sl::ShaderDefines totalDefines = defines;
+  totalDefines.emplace_back("VOLUME_TOTAL", "");
+  vtkShaderProgram* totalProgram = sl::readyProgram(window,
+    sl::assembleShader("shadowvolume/ShadowVolumeVertex.glsl", totalDefines),
+    sl::assembleShader("shadowvolume/ShadowVolumeCount.glsl", totalDefines), "shadow-volume face sum");
+  sl::setMatrix(totalProgram, "clipFromWorld", frame.camera.clipFromWorld);
+  const std::vector<vtkTextureObject*> totalGbuffer = { sl::bindTexture(totalProgram, "gbufferPosition", frame.gbufferPosition),
+    sl::bindTexture(totalProgram, "gbufferNormal", frame.gbufferNormal) };
+  glState->vtkglDisable(GL_STENCIL_TEST);
+  glState->vtkglColorMask(GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(geometry.vertices.size()));
+  for (vtkTextureObject* texture : totalGbuffer)
+  {
+    texture->Deactivate();
+  }
 
   this->VolumeArray->Release();
   for (vtkTextureObject* texture : gbuffer)
@@ -178,6 +210,31 @@ void vtkSLShadowVolumePass::SetReceiverOffsetUniforms(vtkShaderProgram* program)
   program->SetUniformf("receiverOffsetS",
     static_cast<float>(perspective ? offset * camera.nearDepth / range : offset * frame.scene->bounds().radius() / range));
   program->SetUniformf("receiverOffsetPerS", static_cast<float>(perspective ? offset : 0.0));
+}
+
+sl::NamedImage vtkSLShadowVolumePass::VolumeCountStatusImage() const
+{
+  const sl::ImageF counts = sl::readFloatTexture(this->VolumeCount, 2);
+  const sl::ImageF position = sl::readFloatTexture(this->Frame->gbufferPosition, 4);
+  // An eye on a volume face (a winding number that is no integer) leaves nothing to compare with: every pixel marked.
+  const bool eyeKnown = this->EyeVolumeCount == std::round(this->EyeVolumeCount);
+  sl::ImageF status(counts.width, counts.height, 1, static_cast<float>(sl::VolumeCountStatus::Consistent));
+  for (std::size_t pixel = 0; pixel < status.data.size(); ++pixel)
+  {
+    const float zFail = counts.data[2 * pixel];
+    const float faceSum = counts.data[2 * pixel + 1];
+    const bool covered = position.data[4 * pixel + 3] > 0.5f;
+    if (covered && (zFail < -0.5f || !eyeKnown || std::abs(faceSum - this->EyeVolumeCount) >= 0.5))
+    {
+      status.data[pixel] = static_cast<float>(sl::VolumeCountStatus::Inconsistent);
+    }
+  }
+  return { "volume_count_status", status, "", "" };
+}
+
+std::vector<sl::NamedImage> vtkSLShadowVolumePass::CollectPassBuffers()
+{
+  return { this->VolumeCountStatusImage() };
 }
 
 std::vector<vtkTextureObject*> vtkSLShadowVolumePass::SetTechniqueUniforms(vtkShaderProgram* program)
@@ -212,6 +269,7 @@ std::map<std::string, double> vtkSLShadowVolumePass::CollectStatistics()
     { "far_caps", static_cast<double>(s.farCaps) },
     { "volume_triangles", static_cast<double>(s.volumeTriangles()) },
     { "volume_build_ms", this->BuildMilliseconds },
+    { "eye_volume_count", this->EyeVolumeCount },
   };
 }
 

@@ -14,6 +14,14 @@
 // the equality a caster's own near cap would need with the depth test (bit-identical depths, which a near cap
 // wound the other way round does not even get on llvmpipe: it came out in front along whole rows).
 // The depth-stencil's depth is therefore not tested here, only its stencil written.
+//
+// The count checked against itself (buffer volume_count_status, a cut-short mark). The volume triangles are drawn a
+// second time without the depth decision, summing every face's +1/-1 along the camera ray into VolumeCount's second
+// component. Along the ray from the eye the faces sum to the number of volumes holding the eye (EyeVolumeCount, the
+// CPU's winding number there; 0 for orthographic views, whose finite volumes the whole line enters and leaves), so a
+// face lost or doubled by rasterisation makes it differ. A z-fail count below 0 is impossible too. Either marks the
+// pixel inconsistent. A face put on the wrong side of the point (a grazing view of the point's own surface) escapes
+// the first test and is marked only when it drives the count below 0.
 #pragma once
 
 #include "techniques/vtkSLTechniquePass.h"
@@ -45,6 +53,8 @@ public:
   std::map<std::string, double> CollectStatistics() override;
   // The last frame's silhouette edges (SilhouetteExport.h), written as silhouettes.vtp.
   std::vector<sl::NamedPolyData> CollectObjectSpaceExports() override;
+  // volume_count_status (VolumeCountStatusImage).
+  std::vector<sl::NamedImage> CollectPassBuffers() override;
 
 protected:
   vtkSLShadowVolumePass();
@@ -61,7 +71,13 @@ protected:
   // finds the counted point as shadowvolume/ShadowVolumeCount.glsl does.
   void SetReceiverOffsetUniforms(vtkShaderProgram* program) const;
 
-  vtkSmartPointer<vtkTextureObject> VolumeCount; // R32F, the exact z-fail count
+  // The buffer volume_count_status (the self-check above) from VolumeCount and the G-buffer's coverage; dcs and
+  // penumbra-wedge add it to their own pass buffers.
+  sl::NamedImage VolumeCountStatusImage() const;
+
+  // RG32F: x the exact z-fail count, y the signed sum of every volume face along the ray (the self-check above).
+  vtkSmartPointer<vtkTextureObject> VolumeCount;
+  double EyeVolumeCount = 0.0; // volumes holding the eye (0 for orthographic views), for the self-check
   sl::ShadowVolumeStatistics Statistics;
   double BuildMilliseconds = 0.0;
   vtkSmartPointer<vtkPolyData> Silhouettes;
