@@ -11,8 +11,8 @@
 #include "shadowvolume/ReceiverOffset.glsl"
 
 flat in vec4 volumePlane;
-// The eye's parameter on every camera ray N + s R (perspective: -near / (far - near)); orthographic: -1e30.
-uniform float eyeS;
+// The eye (w = 1); orthographic views have none (w = 0): there every crossing is decided by its parameter.
+uniform vec4 eyePoint;
 
 // x: the z-fail count; y: every face's +1/-1 (the second draw, VOLUME_TOTAL, no depth decision), for
 // shadowvolume/VolumeCountCheck.glsl. The colour mask picks the component each draw writes.
@@ -31,13 +31,18 @@ void main()
   float sReceiver = dot(surface.pWs - nearPoint, ray) / dot(ray, ray);
   if (volumePlane.xyz != vec3(0.0)) // a far cap at infinity lies behind every receiver
   {
-    // A fragment is only rasterised where the ray meets the triangle in front of the eye. A ray (nearly) parallel
-    // to the plane of a side quad, near the quad's vanishing line, meets it far away, but the float `along` may be
-    // 0 or of the wrong sign, which puts the crossing behind the eye: that fragment lies at infinity, behind the
-    // receiver (a whole image row of ground once lost the exit from its own volume this way and read -1).
+    // A ray parallel, to float rounding, to the plane of a side quad (at the quad's vanishing line, where it meets
+    // the far cap at infinity) meets it at infinity, yet the float `along` is 0 or of either sign and the crossing
+    // came out behind the eye: the exit from the volume was discarded (a whole image row of ground once read -1). A
+    // rasterised fragment meets its triangle in front of the eye, so a crossing behind an eye that lies clearly off
+    // the plane is such a one, at infinity: counted. An eye within rounding of the plane decides nothing (the
+    // triangle is seen edge-on, its crossing anywhere along the ray): discarded as before.
     float along = dot(volumePlane.xyz, ray);
-    float sVolume = along == 0.0 ? eyeS : (volumePlane.w - dot(volumePlane.xyz, nearPoint)) / along;
-    if (sVolume > eyeS && sVolume < countedPointS(sReceiver))
+    float sVolume = along == 0.0 ? -1e30 : (volumePlane.w - dot(volumePlane.xyz, nearPoint)) / along;
+    float eyeSide = volumePlane.w - dot(volumePlane.xyz, eyePoint.xyz);
+    bool eyeOffPlane = abs(eyeSide) > 1e-5 * (abs(volumePlane.w) + abs(dot(volumePlane.xyz, eyePoint.xyz)));
+    bool atInfinity = eyePoint.w > 0.5 && eyeOffPlane && (along == 0.0 || eyeSide / along < 0.0);
+    if (!atInfinity && sVolume < countedPointS(sReceiver))
     {
       discard; // in front of the receiver: z-fail does not count it
     }

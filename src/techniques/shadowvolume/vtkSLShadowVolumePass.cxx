@@ -133,9 +133,10 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
     sl::assembleShader("shadowvolume/ShadowVolumeCount.glsl", defines), "shadow-volume count");
   sl::setMatrix(program, "clipFromWorld", frame.camera.clipFromWorld);
   this->SetReceiverOffsetUniforms(program);
-  program->SetUniformf("eyeS", frame.scene->camera.projection == sl::Projection::Perspective
-      ? static_cast<float>(-frame.camera.nearDepth / (frame.camera.farDepth - frame.camera.nearDepth))
-      : -1e30f);
+  const glm::vec3 eye(frame.scene->camera.position);
+  const float eyePoint[4] = { eye.x, eye.y, eye.z,
+    frame.scene->camera.projection == sl::Projection::Perspective ? 1.0f : 0.0f };
+  program->SetUniform4f("eyePoint", eyePoint);
   const std::vector<vtkTextureObject*> gbuffer = { sl::bindTexture(program, "gbufferPosition", frame.gbufferPosition),
     sl::bindTexture(program, "gbufferNormal", frame.gbufferNormal) };
   if (this->VolumeArray)
