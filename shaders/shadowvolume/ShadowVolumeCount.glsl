@@ -14,8 +14,8 @@ flat in vec4 volumePlane;
 // The eye (w = 1); orthographic views have none (w = 0): there every crossing is decided by its parameter.
 uniform vec4 eyePoint;
 
-// x: the z-fail count; y: every face's +1/-1 (the second draw, VOLUME_TOTAL, no depth decision), for
-// shadowvolume/VolumeCountCheck.glsl. The colour mask picks the component each draw writes.
+// x: the z-fail count; y: every face's +1/-1 (the second draw, VOLUME_TOTAL, no depth decision), for the self-check
+// (vtkSLShadowVolumePass.h). The colour mask picks the component each draw writes.
 layout(location = 0) out vec2 outVolumeCount;
 
 void main()

@@ -78,8 +78,8 @@ void vtkSLShadowVolumePass::BuildAndCountVolumes(vtkOpenGLRenderWindow* window)
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
   this->Statistics = geometry.statistics;
   // The volumes holding the eye (the self-check, vtkSLShadowVolumePass.h): their winding number there, from the very
-  // triangles drawn.
-  // Not an integer when the eye lies on a volume face; then every pixel is marked. Orthographic: the whole line.
+  // triangles drawn. Not an integer when the eye lies on a volume face; then every pixel is marked. Orthographic
+  // views: 0, the whole line enters and leaves the finite volumes.
   this->EyeVolumeCount = 0.0;
   if (extrusion == sl::VolumeExtrusion::ToInfinity)
   {
@@ -180,6 +180,9 @@ void vtkSLShadowVolumePass::CountVolumes(vtkOpenGLRenderWindow* window, const sl
   sl::setMatrix(totalProgram, "clipFromWorld", frame.camera.clipFromWorld);
   const std::vector<vtkTextureObject*> totalGbuffer = { sl::bindTexture(totalProgram, "gbufferPosition", frame.gbufferPosition),
     sl::bindTexture(totalProgram, "gbufferNormal", frame.gbufferNormal) };
+  // Its own attribute location (the plane is not read there, so the linker may place the position elsewhere).
+  this->VolumeArray->AddAttributeArray(
+    totalProgram, this->VolumeVertices, "volumePositionIn", 0, stride, VTK_FLOAT, 4, false);
   glState->vtkglDisable(GL_STENCIL_TEST);
   glState->vtkglColorMask(GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(geometry.vertices.size()));
