@@ -143,6 +143,7 @@ struct MontageCommandOptions
   std::string outFile = "montage.png";
   std::string referenceDir; // a run whose visibility the others' error labels are measured against ("" = none)
   bool quiet = false;
+  bool force = false; // --out may replace an existing file montage did not write (never an input)
 };
 int runMontage(const MontageCommandOptions& options, std::ostream& log);
 

@@ -5,7 +5,8 @@
 //
 // The PNG is written to a temporary sibling of --out (".<name>.shadowlab-partial-<pid>") and renamed onto --out only
 // when complete, so a failure leaves no partial file and an existing --out as it was. An existing --out is replaced
-// only when it is a PNG file (what montage writes), never another kind of file, and never inside a RUN_DIR.
+// only when montage wrote it (its tEXt chunk "Software" reads "ShadowLab montage"), or with --force; a PNG of the
+// user's is a file montage did not create. Never an input, nor inside a RUN_DIR, even with --force.
 #include "cli/Commands.h"
 
 #include "core/Error.h"
@@ -118,8 +119,13 @@ const char* kindName(BufferKind kind)
   return "?";
 }
 
-// --out: a file name ending in .png whose directory exists; an existing file there must be a PNG.
-void checkOutFile(const fs::path& out)
+// The tEXt chunk that marks a PNG as montage's own (see checkOutFile); a standard PNG keyword, so image viewers
+// show it too.
+constexpr const char* kSignatureKeyword = "Software";
+constexpr const char* kSignatureValue = "ShadowLab montage";
+
+// --out: a file name ending in .png whose directory exists; an existing file there must be a montage (or --force).
+void checkOutFile(const fs::path& out, bool force)
 {
   std::error_code error;
   const std::string name = "--out " + quoted(out);
@@ -152,12 +158,10 @@ void checkOutFile(const fs::path& out)
     {
       throw InputError(name + ": exists and is not a regular file; not replaced");
     }
-    std::ifstream stream(out, std::ios::binary);
-    char signature[8] = {};
-    stream.read(signature, sizeof(signature));
-    if (stream.gcount() != 8 || std::memcmp(signature, "\x89PNG\r\n\x1a\n", 8) != 0)
+    if (!force && readPngText(out, kSignatureKeyword).rfind(kSignatureValue, 0) != 0)
     {
-      throw InputError(name + ": exists and is not a PNG; not replaced");
+      throw InputError(name + ": refused, the file exists and montage did not write it (no \"" + kSignatureKeyword +
+        ": " + kSignatureValue + "\" text in it); choose another --out, or add --force to replace it");
     }
   }
 }
@@ -169,7 +173,7 @@ void writePngAtomically(const ImageU8& canvas, const fs::path& out)
   TemporaryOutputFile temporary(out);
   try
   {
-    writePng(temporary.path(), canvas);
+    writePng(temporary.path(), canvas, { { kSignatureKeyword, kSignatureValue } });
     temporary.commit();
   }
   catch (const InputError& error)
@@ -193,7 +197,7 @@ int runMontage(const MontageCommandOptions& options, std::ostream& log)
     throw InputError("montage: give at least one RUN_DIR");
   }
   const fs::path out = options.outFile;
-  checkOutFile(out);
+  checkOutFile(out, options.force);
 
   std::vector<Run> runs;
   for (const std::string& dir : options.runDirs)

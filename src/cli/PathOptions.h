@@ -14,8 +14,8 @@ enum class PathRole
   // empty or carrying the marker, or with --force.
   WritesDirectory,
   // One file replaced atomically (TemporaryOutputFile): never an input nor inside an input directory; an existing
-  // file only when it is what the command writes (montage: a PNG; view --record: a recording), or with --force
-  // where the command has it.
+  // file only when the command wrote it (montage: a PNG with its "Software: ShadowLab montage" text; view --record:
+  // a recording), or with --force.
   WritesFile,
   // New files under a directory, numbered or named by a hash, never replacing a user's file (view's screenshots,
   // bench's cache entries; `--out` may not lie inside the cache).

@@ -189,9 +189,11 @@ int main(int argc, char** argv)
     "One buffer of several runs side by side on one colour scale, labelled from each run's stats.json");
   montageCommand->add_option("runs", montage.runDirs, "Output directories of render or reference")->required();
   montageCommand->add_option("--buffer,-b", montage.buffer, "Buffer to show (a scalar array of buffers.vti)")->required();
-  montageCommand->add_option("--out,-o", montage.outFile, "PNG to write (replaced atomically)")->capture_default_str();
+  montageCommand->add_option("--out,-o", montage.outFile, "PNG to write (replaced atomically; see --force)")->capture_default_str();
   montageCommand->add_option("--reference", montage.referenceDir,
     "Run whose visibility is the truth: each panel is labelled with its RMSE against it");
+  montageCommand->add_flag("--force", montage.force,
+    "Let --out replace an existing file montage did not write (never an input: a RUN_DIR or a file in one)");
   montageCommand->add_flag("--quiet,-q", montage.quiet, "Print nothing on success");
 
   sl::LessonsOptions lessons;

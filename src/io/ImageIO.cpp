@@ -626,7 +626,8 @@ std::vector<NamedImage> readVti(const std::filesystem::path& path)
   return images;
 }
 
-void writePng(const std::filesystem::path& path, const ImageU8& rgb)
+void writePng(const std::filesystem::path& path, const ImageU8& rgb,
+  const std::vector<std::pair<std::string, std::string>>& text)
 {
   SL_CHECK(rgb.components == 3 && rgb.width > 0 && rgb.height > 0);
   // vtkImageData has the same bottom-up row order as Image; vtkPNGWriter writes its top row (highest y)
@@ -639,6 +640,10 @@ void writePng(const std::filesystem::path& path, const ImageU8& rgb)
   const VtkErrorCapture capture;
   vtkNew<vtkPNGWriter> writer;
   writer->SetInputData(data);
+  for (const auto& [keyword, value] : text)
+  {
+    writer->AddText(keyword.c_str(), value.c_str());
+  }
   writer->WriteToMemoryOn();
   writer->Write();
   vtkUnsignedCharArray* png = writer->GetResult();
@@ -646,6 +651,51 @@ void writePng(const std::filesystem::path& path, const ImageU8& rgb)
     "encoding ", path.string(), " in memory failed: ", capture.firstError());
   writeEncodedFile(path,
     std::string(reinterpret_cast<const char*>(png->GetPointer(0)), static_cast<std::size_t>(png->GetNumberOfValues())));
+}
+
+std::string readPngText(const std::filesystem::path& path, const std::string& keyword)
+{
+  std::ifstream stream(path, std::ios::binary);
+  char signature[kPngSignatureBytes] = {};
+  if (!stream.read(signature, sizeof(signature)) || std::memcmp(signature, "\x89PNG\r\n\x1a\n", 8) != 0)
+  {
+    return "";
+  }
+  // Chunks: 4-byte big-endian length, 4-byte type, data, 4-byte CRC. Text is looked for up to the image data,
+  // where writePng puts it; a chunk longer than a text chunk can sensibly be is skipped unread.
+  for (;;)
+  {
+    unsigned char header[8];
+    if (!stream.read(reinterpret_cast<char*>(header), sizeof(header)))
+    {
+      return "";
+    }
+    const std::uint32_t length = (std::uint32_t{ header[0] } << 24) | (std::uint32_t{ header[1] } << 16) |
+      (std::uint32_t{ header[2] } << 8) | header[3];
+    const std::string type(reinterpret_cast<const char*>(header) + 4, 4);
+    if (type == "IDAT" || type == "IEND")
+    {
+      return "";
+    }
+    if (type == "tEXt" && length <= 65536)
+    {
+      std::string data(length, '\0');
+      if (!stream.read(data.data(), length))
+      {
+        return "";
+      }
+      const std::size_t separator = data.find('\0');
+      if (separator != std::string::npos && data.compare(0, separator, keyword) == 0 && separator == keyword.size())
+      {
+        return data.substr(separator + 1);
+      }
+      stream.seekg(4, std::ios::cur); // CRC
+    }
+    else
+    {
+      stream.seekg(std::streamoff{ length } + 4, std::ios::cur);
+    }
+  }
 }
 
 PngImage readPngImage(const std::filesystem::path& path)

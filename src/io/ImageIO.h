@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkPolyData;
@@ -42,7 +43,13 @@ void writeVtm(const std::filesystem::path& path, vtkMultiBlockDataSet* blocks);
 constexpr int kMaxVtiComponents = 256;
 std::vector<NamedImage> readVti(const std::filesystem::path& path);
 
-void writePng(const std::filesystem::path& path, const ImageU8& rgb);
+// `text`: tEXt chunks (keyword, Latin-1 value) written before the image data, e.g. montage's signature.
+void writePng(const std::filesystem::path& path, const ImageU8& rgb,
+  const std::vector<std::pair<std::string, std::string>>& text = {});
+// The value of the first uncompressed tEXt chunk with `keyword` before the image data, or "" when there is none or
+// `path` is not a readable PNG. Walks the chunk headers only (no decoding): montage uses it to recognise its own
+// files before replacing one.
+std::string readPngText(const std::filesystem::path& path, const std::string& keyword);
 // RGB, row 0 at the bottom: gray is replicated, alpha ignored, 16-bit samples rounded to 8 bits.
 ImageU8 readPng(const std::filesystem::path& path);
 

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <regex>
 #include <set>
@@ -292,7 +293,7 @@ TEST_F(MontageCommand, BadInputsAreOneLineErrorsAndWriteNothing)
     { "nowhere", "does not exist" });
   expectCleanFailure(temp, { "montage", hard, "--buffer", "visibility", "--out", "m.jpg" }, { "m.jpg", ".png" });
   expectCleanFailure(temp, { "montage", hard, "--buffer", "visibility", "--out", "notes.png" },
-    { "notes.png", "not a PNG" });
+    { "notes.png", "montage did not write it", "--force" });
   EXPECT_EQ(test::readFile(temp.path() / "notes.png"), "my notes, not a PNG");
   // A write that fails part way (a file size limit, like a full disk): no partial PNG.
   expectCleanFailure(temp, { "montage", hard, pcf, "--buffer", "texel_ratio", "--out", "m.png" },
@@ -319,6 +320,35 @@ TEST_F(MontageCommand, AnExistingMontageIsReplacedAndAReferenceIsAccepted)
   }
   EXPECT_EQ(test::entriesOf(temp.path()), std::vector<std::string>{ "again.png" });
   EXPECT_GT(readPng(temp.path() / "again.png").width, 2 * 64);
+}
+
+// "No option of any command can delete or overwrite a file it did not create": a PNG of the user's (here a
+// render's image.png, a valid PNG montage did not write) is kept byte for byte without --force; with it, it is
+// replaced, and the new file carries the signature that lets the next montage replace it without --force.
+TEST_F(MontageCommand, APngMontageDidNotWriteIsReplacedOnlyWithForce)
+{
+  TempDir temp;
+  fs::copy_file(run("hard") / "image.png", temp.path() / "photo.png");
+  const std::string photo = test::readFile(temp.path() / "photo.png");
+  EXPECT_EQ(readPngText(temp.path() / "photo.png", "Software"), "");
+  expectCleanFailure(temp, { "montage", run("hard").string(), "--buffer", "visibility", "--out", "photo.png" },
+    { "photo.png", "montage did not write it", "--force" });
+  EXPECT_EQ(test::readFile(temp.path() / "photo.png"), photo);
+
+  const std::vector<std::string> montage = { "montage", run("hard").string(), "--buffer", "visibility", "-q",
+    "--out", "photo.png" };
+  std::vector<std::string> forced = montage;
+  forced.push_back("--force");
+  const RunResult withForce = test::runShadowlabIn(forced, temp.path());
+  ASSERT_EQ(withForce.exitCode, 0) << withForce.describe();
+  EXPECT_NE(test::readFile(temp.path() / "photo.png"), photo);
+  const std::string signature = readPngText(temp.path() / "photo.png", "Software");
+  std::cout << "montage's tEXt Software: \"" << signature << "\"\n";
+  EXPECT_EQ(signature, "ShadowLab montage");
+  EXPECT_GT(readPng(temp.path() / "photo.png").width, 64);
+  const RunResult again = test::runShadowlabIn(montage, temp.path());
+  EXPECT_EQ(again.exitCode, 0) << again.describe();
+  EXPECT_EQ(test::entriesOf(temp.path()), std::vector<std::string>{ "photo.png" });
 }
 
 TEST(Montage, ClipQuantileEndsTheScaleAtThatQuantile)

@@ -231,7 +231,7 @@ const std::map<std::string, Writer>& writers()
       [](const Inputs& in, const std::string& out) {
         return std::vector<std::string>{ "montage", in.run.string(), "--buffer", "visibility", "-q", "--out", out };
       },
-      false, true, [](const Inputs& in) { return in.run; }, true, 0, "",
+      true, true, [](const Inputs& in) { return in.run; }, true, 0, "",
       [](const Inputs& in, const fs::path& file) {
         const RunResult run = test::runShadowlabIn(
           { "montage", in.run.string(), "--buffer", "visibility", "-q", "--out", file.string() }, file.parent_path());
