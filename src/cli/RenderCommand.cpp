@@ -3,6 +3,7 @@
 #include "cli/Commands.h"
 
 #include "core/Error.h"
+#include "core/Progress.h"
 #include "output/OutputWriter.h"
 #include "pipeline/ShadowRenderer.h"
 #include "scene/Scene.h"
@@ -28,6 +29,9 @@ int runRender(const RenderOptions& options, std::ostream& log)
   checkOutputTarget(output);
   const std::size_t dropped = reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;
+  // Passes with long CPU-side loops (reference-sm's maps, dcs's wedges) print an estimate and progress when the
+  // frame is expected to take long (core/Progress.h); --quiet keeps them silent.
+  const ProgressStreamScope progress(options.quiet ? nullptr : &log);
   const FrameResult frame = renderer.render(scene, request);
   OutputContext context;
   context.sceneFile = options.sceneFile;

@@ -10,6 +10,7 @@
 #include <vtkShaderProgram.h>
 #include <vtk_glew.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -85,6 +86,29 @@ void WedgeDrawer::drawCounted(vtkShaderProgram* program, const Light& light)
   }
   glBeginQuery(GL_SAMPLES_PASSED, fragmentQuery_);
   draw(program, light);
+  glEndQuery(GL_SAMPLES_PASSED);
+}
+
+void WedgeDrawer::drawCounted(vtkShaderProgram* program, const Light& light, std::size_t chunks,
+  const std::function<void(std::size_t)>& afterChunk)
+{
+  if (fragmentQuery_ == 0)
+  {
+    glGenQueries(1, &fragmentQuery_);
+  }
+  glBeginQuery(GL_SAMPLES_PASSED, fragmentQuery_);
+  const std::size_t triangles = vertexCount() / 3;
+  chunks = std::max<std::size_t>(1, std::min(chunks, triangles));
+  for (std::size_t c = 0; c < chunks; ++c)
+  {
+    const std::size_t first = triangles * c / chunks;
+    const std::size_t last = triangles * (c + 1) / chunks;
+    draw(program, light, 3 * first, 3 * (last - first));
+    if (afterChunk)
+    {
+      afterChunk(c + 1);
+    }
+  }
   glEndQuery(GL_SAMPLES_PASSED);
 }
 

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -49,6 +50,10 @@ public:
   // draw(program, light) counting the fragments rasterised with an occlusion query (the wedge passes' shaders never
   // discard, so every fragment passes); fragments() reads the count of the last such draw (0 before any).
   void drawCounted(vtkShaderProgram* program, const Light& light);
+  // The same in `chunks` consecutive ranges of whole triangles (the same fragments in the same order), calling
+  // afterChunk(k) after the k-th (1-based): where dcs reports progress on a long frame (core/Progress.h).
+  void drawCounted(vtkShaderProgram* program, const Light& light, std::size_t chunks,
+    const std::function<void(std::size_t)>& afterChunk);
   std::size_t fragments() const;
   void releaseGraphicsResources();
 

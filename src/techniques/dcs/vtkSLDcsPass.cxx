@@ -1,6 +1,7 @@
 #include "techniques/dcs/vtkSLDcsPass.h"
 
 #include "core/Error.h"
+#include "core/Progress.h"
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameResources.h"
@@ -89,7 +90,38 @@ void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
   vtkOpenGLState* glState = window->GetState();
   const vtkOpenGLState::ScopedglColorMask colorMask(glState);
   glState->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  this->WedgeDrawer.drawCounted(program, *frame.light);
+  if (sl::progressStream() == nullptr)
+  {
+    this->WedgeDrawer.drawCounted(program, *frame.light); // one draw: bench's children and tests
+  }
+  else
+  {
+    // A 1 M triangle mesh draws its wedges for minutes: the draw in chunks, with an estimate after the first and
+    // progress when the whole is expected to be long (core/Progress.h).
+    constexpr std::size_t kChunks = 16;
+    std::size_t triangles = 0;
+    for (const sl::GpuMesh& mesh : frame.gpuScene->meshes())
+    {
+      triangles += mesh.indexCount / 3;
+    }
+    sl::Progress progress("dcs",
+      sl::format(triangles, " triangles, ", this->DrawnWedges, " wedges at ", frame.width(), "x", frame.height(),
+        " with N = ", this->SampleCount()),
+      "wedge chunk", kChunks);
+    if (progress.needsSync(0))
+    {
+      glFinish(); // the first chunk's time without the volumes still queued
+    }
+    progress.begin();
+    this->WedgeDrawer.drawCounted(program, *frame.light, kChunks, [&progress](std::size_t done) {
+      if (progress.needsSync(done))
+      {
+        glFinish(); // the clock measures the wedges drawn, not the commands queued
+      }
+      progress.step(done);
+    });
+    progress.finish();
+  }
 
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   for (vtkTextureObject* texture : bound)

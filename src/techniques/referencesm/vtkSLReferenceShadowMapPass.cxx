@@ -5,6 +5,7 @@
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "core/Progress.h"
 #include "passes/ScopedRenderTarget.h"
 #include "passes/ShadowMapRendering.h"
 
@@ -57,6 +58,20 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
   const sl::Light* originalLight = frame.light;
   const std::string accumulateSource = sl::assembleShader(
     "referencesm/ReferenceSmAccumulate.glsl", this->TechniqueDefines(), this->ParameterDeclarations());
+  // A 2-million-triangle mesh at K = 64 maps runs for minutes: an estimate and progress after the first map when
+  // the whole is expected to be long (core/Progress.h; silent and never waiting for the GPU without a stream).
+  std::size_t triangles = 0;
+  for (const sl::GpuMesh& mesh : frame.gpuScene->meshes())
+  {
+    triangles += mesh.indexCount / 3;
+  }
+  sl::Progress progress("reference-sm", sl::format(triangles, " triangles x ", sampleCount, " maps"), "map",
+    static_cast<std::size_t>(sampleCount));
+  if (progress.needsSync(0))
+  {
+    glFinish(); // the first map's time without the G-buffer still queued
+  }
+  progress.begin();
   for (int k = 0; k < sampleCount; ++k)
   {
     // A point light at the sample, with the area light's orientation (the one-sided plane, the axis).
@@ -89,7 +104,13 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
     {
       texture->Deactivate();
     }
+    if (progress.needsSync(static_cast<std::size_t>(k) + 1))
+    {
+      glFinish(); // the clock measures the maps drawn, not the commands queued
+    }
+    progress.step(static_cast<std::size_t>(k) + 1);
   }
+  progress.finish();
   frame.light = originalLight;
   // The per-sample light views are internal; the frame exports no light-space structure.
   frame.hasLightView = false;
