@@ -36,7 +36,7 @@ layout(location = OUT_BLOCKER_KERNEL_TEXELS) out float outBlockerKernelTexels;
 layout(location = OUT_PENUMBRA_KERNEL_TEXELS) out float outPenumbraKernelTexels;
 layout(location = OUT_AVG_BLOCKER_DEPTH) out float outAvgBlockerDepth;
 layout(location = OUT_CLASSIFICATION) out float outClassification;
-layout(location = OUT_NONPLANAR_SUBKERNELS) out float outNonplanarSubkernels;
+layout(location = OUT_SUBKERNELS_MEAN_NOT_IN_FRONT) out float outSubkernelsMeanNotInFront;
 layout(location = OUT_QUADTREE_NODES_VISITED) out float outQuadtreeNodesVisited;
 layout(location = OUT_PCF_SAMPLES) out float outPcfSamples;
 
@@ -47,7 +47,7 @@ uniform float satHalfStep;   // int32 SAT: half a fixed-point step of the depth 
 // subdivision schemes SCHEME_NONE, SCHEME_UNIFORM, SCHEME_ADAPTIVE (the values of the blocker_subdivision and
 // shadow_subdivision choices).
 
-int nonplanarSubkernels = 0;
+int subkernelsMeanNotInFront = 0;
 int quadtreeNodesVisited = 0;
 int pcfSamples = 0;
 int contactSubkernels = 0; // contact_test = subkernel_mean: sub-kernels filtered by §6.4's PCF
@@ -161,7 +161,7 @@ bool visitSubKernel(ivec2 lo, ivec2 hi, bool isLeaf, bool nonPlanarIsLit, bool d
     acc.vsmSumSquares += area * (moments.y + meanOffset * meanOffset);
     return false;
   }
-  ++nonplanarSubkernels;
+  ++subkernelsMeanNotInFront;
   if (nonPlanarIsLit || moments.y < param_lit_variance_threshold * sceneRadius)
   {
     acc.litArea += area; // Alg. 2 L10-12 (§6.5 threshold)
@@ -236,7 +236,7 @@ Accumulation subdivide(ivec2 lo, ivec2 hi, int scheme, int cells, int height, bo
 
 void writeCounters()
 {
-  outNonplanarSubkernels = float(nonplanarSubkernels);
+  outSubkernelsMeanNotInFront = float(subkernelsMeanNotInFront);
   outQuadtreeNodesVisited = float(quadtreeNodesVisited);
   outPcfSamples = float(pcfSamples);
 }

@@ -31,18 +31,23 @@ Lesson vssmNonPlanarityLesson()
 
     lesson.montage("classification", "**How each pixel was decided** (Alg. 1: lit or umbra from the hierarchical "
       "shadow map, penumbra, or contact).", { "planar-assumption", "vssm" }, "classification");
-    lesson.montage("nonplanar_subkernels", "**Non-planar sub-kernels per pixel** (both steps): where the planar "
-      "assumption failed and VSSM fell back to point samples.", { "planar-assumption", "vssm" }, "nonplanar_subkernels");
+    lesson.montage("subkernels_mean_not_in_front", "**Sub-kernels whose mean is not in front of the receiver, per "
+      "pixel** (E(x) >= t, §5.1's non-planarity test; both steps, quad-tree nodes included): where the planar "
+      "assumption was questioned. Most of these sub-kernels are then found lit by the variance threshold; only the "
+      "non-planar leaves are filtered point by point, next figure.", { "planar-assumption", "vssm" },
+      "subkernels_mean_not_in_front");
+    lesson.montage("pcf_samples", "**Point-sampled comparisons per pixel** (`pcf_samples`: the non-planar leaves' "
+      "PCF and the contact PCF): where VSSM fell back to point samples.", { "planar-assumption", "vssm" }, "pcf_samples");
     lesson.errorMontage("error", "**Error against the reference** (blue = too dark, red = too bright).",
       { "planar-assumption", "vssm" });
-    lesson.probe("probe", "**The pixel with the most non-planar sub-kernels, inside:** its kernels, their "
-      "sub-kernels and which of them were filtered point by point.", "vssm",
-      LessonPixel::largestValue("nonplanar_subkernels"));
+    lesson.probe("probe", "**The pixel with the most sub-kernels whose mean is not in front of the receiver, "
+      "inside:** its kernels, their sub-kernels and which of them were lit, refined or filtered point by point.",
+      "vssm", LessonPixel::largestValue("subkernels_mean_not_in_front"));
 
     for (const char* run : { "planar-assumption", "vssm" })
     {
       lesson.measure("penumbra pixels (classification)", run, "/buffers/classification/category_pixels/penumbra");
-      lesson.measure("mean non-planar sub-kernels", run, "/buffers/nonplanar_subkernels/mean");
+      lesson.measure("mean sub-kernels with E(x) >= t", run, "/buffers/subkernels_mean_not_in_front/mean");
       lesson.measure("mean quad-tree nodes visited", run, "/buffers/quadtree_nodes_visited/mean");
       lesson.measure("mean point-sampled comparisons", run, "/buffers/pcf_samples/mean");
       lesson.measure("RMSE over the penumbra", run, "/error/penumbra/rmse");
@@ -51,12 +56,14 @@ Lesson vssmNonPlanarityLesson()
     }
 
     lesson.observation(lesson.value("vssm", "/error/penumbra/rmse") < lesson.value("planar-assumption", "/error/penumbra/rmse")
-        ? "Splitting the kernels lowers the penumbra error: the sub-kernels that are planar get the right blocker "
-          "depth, and the rest are filtered exactly."
+        ? "Splitting the kernels lowers the penumbra error against the ray tracer: the sub-kernels that are planar "
+          "get the right blocker depth, and the non-planar leaves are point-sampled instead of assumed lit."
         : "Splitting the kernels does not lower the penumbra error here.");
-    lesson.observation(lesson.value("vssm", "/buffers/nonplanar_subkernels/mean") > 0.0
-        ? "The subdivided run finds non-planar sub-kernels: the places the mean and variance alone cannot describe."
-        : "The subdivided run finds no non-planar sub-kernel here.");
+    lesson.observation(lesson.value("vssm", "/buffers/subkernels_mean_not_in_front/mean") >
+          lesson.value("vssm", "/buffers/pcf_samples/mean")
+        ? "The subdivided run questions many more sub-kernels (E(x) >= t) than it point-samples: most of them are "
+          "then lit by the variance threshold (§6.5), and only a few leaves fall back to PCF."
+        : "The subdivided run point-samples more comparisons than it questions sub-kernels here.");
 
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Uniform against adaptive subdivision of the visibility kernel (§6.2):",
@@ -65,8 +72,8 @@ Lesson vssmNonPlanarityLesson()
     lesson.tryNext("The contact case of §6.4, where the blocker touches the receiver:",
       "shadowlab render datasets/contact/scene.json -t vssm --set shadow_map_size=1024 -r " + resolution +
         " --out out/vssm-contact");
-    lesson.tryNext("Write the subdivided run with its buffers (classification, nonplanar_subkernels, "
-                   "quadtree_nodes_visited):",
+    lesson.tryNext("Write the subdivided run with its buffers (classification, subkernels_mean_not_in_front, "
+                   "quadtree_nodes_visited, pcf_samples):",
       lesson.renderCommand("vssm", "out/vssm"));
   };
   return lesson;

@@ -179,7 +179,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
         maxDifference = std::max(maxDifference, std::abs(gpu - cpu.sample.visibility));
         EXPECT_NEAR(gpu, cpu.sample.visibility, 2e-3) << label << " pixel " << x << "," << y;
         EXPECT_EQ(frame.find("classification")->image.at(x, y), static_cast<float>(cpu.classification)) << label << " pixel " << x << "," << y;
-        EXPECT_EQ(frame.find("nonplanar_subkernels")->image.at(x, y), cpu.nonplanarSubkernels) << label << " pixel " << x << "," << y;
+        EXPECT_EQ(frame.find("subkernels_mean_not_in_front")->image.at(x, y), cpu.subkernelsMeanNotInFront) << label << " pixel " << x << "," << y;
         EXPECT_EQ(frame.find("quadtree_nodes_visited")->image.at(x, y), cpu.quadtreeNodesVisited) << label << " pixel " << x << "," << y;
         EXPECT_EQ(frame.find("pcf_samples")->image.at(x, y), cpu.pcfSamples) << label << " pixel " << x << "," << y;
         EXPECT_NEAR(frame.find("blocker_kernel_texels")->image.at(x, y), cpu.blockerKernelTexels, 1e-4 * (1.0 + cpu.blockerKernelTexels)) << label;
@@ -267,7 +267,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
   // sub-kernels. Each must agree with the GPU within the twin tolerance, record the buffers' values under their
   // names equal to the GPU's at the pixel, and record steps consistent with them: as many quad-tree nodes as
   // quadtree_nodes_visited, each refined node followed by its four children, as many sub-kernels classed
-  // non-planar (E(x) >= t: lit, refined or PCF) as nonplanar_subkernels, as many PCF taps as pcf_samples, terminal
+  // non-planar (E(x) >= t: lit, refined or PCF) as subkernels_mean_not_in_front, as many PCF taps as pcf_samples, terminal
   // sub-kernels of w_p tiling w_p, their areas by class adding up to Alg. 2's VSMArea / LitArea / PCFArea, and
   // those areas with Eq. 1's bound giving the visibility (Alg. 2 L29-32).
   const Scene scene = test::loadDataset("stacked-occluders");
@@ -333,7 +333,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
     EXPECT_NEAR(outcome.visibility, gpu("visibility"), outcome.tolerance) << where;
     // The buffers under their names, with Vssm.MatchesTheCpuImplementation's tolerances.
     EXPECT_NEAR(valueOf(record, "result", "visibility"), gpu("visibility"), outcome.tolerance) << where;
-    for (const std::string name : { "classification", "nonplanar_subkernels", "quadtree_nodes_visited", "pcf_samples" })
+    for (const std::string name : { "classification", "subkernels_mean_not_in_front", "quadtree_nodes_visited", "pcf_samples" })
     {
       EXPECT_EQ(valueOf(record, "", name), gpu(name)) << where << ": " << name;
     }
@@ -375,7 +375,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
         nonPlanar += quantity.text == "lit" || quantity.text == "descend" || quantity.text == "non-planar" ? 1 : 0;
       }
     }
-    EXPECT_EQ(nonPlanar, gpu("nonplanar_subkernels")) << where;
+    EXPECT_EQ(nonPlanar, gpu("subkernels_mean_not_in_front")) << where;
     int taps = 0;
     for (const ProbeTexel& texel : record.texels)
     {

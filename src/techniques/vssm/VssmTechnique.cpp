@@ -88,7 +88,11 @@ TechniqueDescriptor vssmTechnique()
     { "penumbra_kernel_texels", "texels", "width of the penumbra kernel w_p (Alg. 1 L16)" },
     { "avg_blocker_depth", "world units", "average blocker depth z_avg, Eq. 4 combined with the PCF sub-kernels (0: none)" },
     classificationBuffer(),
-    { "nonplanar_subkernels", "sub-kernels", "sub-kernels with E(x) >= t, both steps (§5.1)" },
+    // Every sub-kernel §5.1's test calls "non-planarity" (its mean not in front of t), quad-tree nodes included:
+    // most are then lit by the variance threshold (§6.5); only leaves are filtered point by point (pcf_samples).
+    { "subkernels_mean_not_in_front", "sub-kernels", "sub-kernels visited whose mean depth is not in front of the "
+      "receiver (E(x) >= t, §5.1's non-planarity test), both steps, quad-tree nodes included: each is then lit "
+      "(variance below lit_variance_threshold), refined, or a leaf filtered point by point (counted in pcf_samples)" },
     { "quadtree_nodes_visited", "nodes", "nodes of the adaptive quad-trees traversed, both steps (Alg. 2)" },
     { "pcf_samples", "taps", "point-sampled depth comparisons: non-planar leaves and contact PCF" },
   };
@@ -385,7 +389,7 @@ public:
       acc.vsmSumSquares += area * (moments.variance + meanOffset * meanOffset);
       return false;
     }
-    ++result_.nonplanarSubkernels;
+    ++result_.subkernelsMeanNotInFront;
     const double threshold = values_.get("lit_variance_threshold") * inputs_.sceneRadius;
     if (!nonPlanarIsLit)
     {
@@ -542,8 +546,8 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
     once("blocker_kernel_texels", result.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
     once("avg_blocker_depth", result.averageBlockerDepth, "linear depth", cite("Eq. 4 (0: not computed)"));
     once("penumbra_kernel_texels", result.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p; 0: not computed)"));
-    recorder->quantity("nonplanar_subkernels", result.nonplanarSubkernels, "count",
-      cite("§5.1 (sub-kernels with E(x) >= t, both steps)"));
+    recorder->quantity("subkernels_mean_not_in_front", result.subkernelsMeanNotInFront, "count",
+      cite("§5.1 (sub-kernels with E(x) >= t: lit, refined or point-sampled; both steps)"));
     recorder->quantity("quadtree_nodes_visited", result.quadtreeNodesVisited, "count",
       cite("Alg. 2 L4 (linear quad-tree nodes traversed, both steps)"));
     recorder->quantity("pcf_samples", result.pcfSamples, "count",

@@ -10,7 +10,7 @@
 // (blocker_average | subkernel_mean), min_variance.
 // Buffers: blocker_kernel_texels, penumbra_kernel_texels, avg_blocker_depth, classification
 // (not tested / lit / umbra / penumbra / contact: the §6.4 PCF decided the pixel, or with subkernel_mean at
-// least one of its sub-kernels), nonplanar_subkernels, quadtree_nodes_visited,
+// least one of its sub-kernels), subkernels_mean_not_in_front, quadtree_nodes_visited,
 // pcf_samples (eight outputs in all, GL's guaranteed draw-buffer count).
 #pragma once
 
@@ -87,7 +87,7 @@ struct VssmSample
   double blockerKernelTexels = 0.0;
   double penumbraKernelTexels = 0.0;
   double averageBlockerDepth = 0.0;
-  int nonplanarSubkernels = 0;
+  int subkernelsMeanNotInFront = 0;
   int quadtreeNodesVisited = 0;
   int pcfSamples = 0;
   double kernelEdgeMargin = 1e300;
