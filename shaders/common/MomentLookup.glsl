@@ -1,8 +1,12 @@
 // Reading the prefiltered moment map (passes/vtkSLMomentMapPass), and the true PCF over the same box it
-// averages (the reference of the light-leak buffers). Needs common/ShadowMapCommon.glsl; PREFILTER_* come
-// from the technique's `prefilter` parameter.
+// averages (the reference of the light-leak buffers). Needs common/ShadowMapCommon.glsl and
+// common/ShadowReceiver.glsl; PREFILTER_* come from the technique's `prefilter` parameter.
 uniform sampler2D momentMap;
 uniform float momentLod; // prefilter = mipmap: log2(prefilter_texels)
+// The bias `pcf` applies at its defaults (constant, slope, max slope; texel footprints, survey §5): the light-leak
+// PCF compares with it whatever the technique's own bias is, since vsm's is 0 and an unbiased test shadows a
+// receiver with its own texels wherever it slopes in depth.
+uniform vec3 leakBiasTexels;
 
 vec4 filteredMoments(vec2 uvTexels)
 {
@@ -30,4 +34,13 @@ float boxPcf(vec2 uvTexels, float comparisonDepthLin, int width)
     }
   }
   return lit / float(width * width);
+}
+
+// The depth the light-leak PCF compares against: the receiver's depth minus `pcf`'s default bias, as `pcf` does.
+float leakComparisonDepth(ShadowReceiver receiver)
+{
+  float tanTheta = tanAngleToLight(receiver.nWs, directionToLight(receiver.pWs));
+  float biasWs = texelWorldSize(receiver.depthLin) *
+    (leakBiasTexels.x + leakBiasTexels.y * min(tanTheta, leakBiasTexels.z));
+  return receiver.depthLin - biasWs;
 }

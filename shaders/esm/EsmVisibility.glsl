@@ -35,6 +35,6 @@ void main()
   float expected = filteredMoments(receiver.uvTexels).z;
   float visibility = clamp(expected * exp(-param_esm_exponent * tNormalized), 0.0, 1.0);
   outVisibility = visibility;
-  outLightLeak = visibility - boxPcf(receiver.uvTexels, t, kernelWidth);
+  outLightLeak = visibility - boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
   outKernelTexels = float(kernelWidth);
 }

@@ -40,6 +40,6 @@ void main()
   float pMax = chebyshevUpperBound(mean, variance, t);
   outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
   outPMax = pMax;
-  outLightLeak = pMax - boxPcf(receiver.uvTexels, t, kernelWidth);
+  outLightLeak = pMax - boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
   outKernelTexels = float(kernelWidth);
 }

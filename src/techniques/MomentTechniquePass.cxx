@@ -2,6 +2,8 @@
 
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
+#include "lightspace/ShadowMapMath.h"
+#include "techniques/ShadowMapParameters.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkShaderProgram.h>
@@ -19,6 +21,11 @@ std::vector<vtkTextureObject*> vtkSLMomentTechniquePass::SetTechniqueUniforms(vt
   sl::setFloatIfUsed(program, "momentLod", std::log2(static_cast<double>(width)));
   sl::setFloatIfUsed(program, "depthNear", frame.lightView.nearDepth);
   sl::setFloatIfUsed(program, "depthFar", frame.lightView.farDepth);
+  if (program->IsUniformUsed("leakBiasTexels"))
+  {
+    const sl::BiasSettings leakBias = sl::defaultBiasSettings();
+    sl::setVector(program, "leakBiasTexels", { leakBias.constantTexels, leakBias.slopeTexels, leakBias.maxSlope });
+  }
   return {}; // the moment map itself is bound by its structure (lightspace/moments)
 }
 

@@ -1,5 +1,6 @@
 // The visibility pass of the moment-map techniques (vsm, esm): their full-screen shader with the
-// prefiltered moment map (passes/vtkSLMomentMapPass), its mip level, the box width and the depth range.
+// prefiltered moment map (passes/vtkSLMomentMapPass), its mip level, the box width, the depth range and the bias
+// the light-leak PCF compares with (`pcf`'s default).
 #pragma once
 
 #include "techniques/vtkSLTechniquePass.h"

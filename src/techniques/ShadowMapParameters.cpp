@@ -32,4 +32,25 @@ BiasSettings biasSettings(const ParameterValues& values)
   return bias;
 }
 
+BiasSettings defaultBiasSettings()
+{
+  BiasSettings bias;
+  for (const ParameterSpec& spec : shadowMapParameters())
+  {
+    if (spec.name == "bias_constant_texels")
+    {
+      bias.constantTexels = spec.defaultValue;
+    }
+    else if (spec.name == "bias_slope_texels")
+    {
+      bias.slopeTexels = spec.defaultValue;
+    }
+    else if (spec.name == "bias_max_slope")
+    {
+      bias.maxSlope = spec.defaultValue;
+    }
+  }
+  return bias;
+}
+
 } // namespace sl

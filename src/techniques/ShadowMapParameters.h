@@ -20,5 +20,8 @@ std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot
 
 struct BiasSettings;
 BiasSettings biasSettings(const ParameterValues& values);
+// The bias at the shadow-map parameters' defaults: what `pcf` applies unless told otherwise. The moment techniques'
+// light_leak compares its PCF with it, whatever bias the technique itself uses (vsm's is 0).
+BiasSettings defaultBiasSettings();
 
 } // namespace sl

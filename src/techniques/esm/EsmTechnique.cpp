@@ -28,7 +28,7 @@ TechniqueDescriptor esmTechnique()
   });
   descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
-    { "light_leak", "", "visibility minus the true PCF over the same box of texels", BufferKind::Signed },
+    { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias)", BufferKind::Signed },
     { "kernel_texels", "texels", "width of the prefilter box" },
     { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
   };
@@ -84,9 +84,11 @@ ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValue
     recorder->quantity("visibility_unclamped", unclamped, "", "Annen et al. 2008: E[exp(c z_n)] exp(-c t_n) (the step d <= z as exp(c (z_n - t_n)))");
     recorder->quantity("visibility", lookup.sample.visibility, "", "Annen et al. 2008: clamped to [0, 1]");
     recorder->beginGroup("light leak");
-    const double pcf = boxPcf(inputs, lookup.sm.uvTexels, lookup.comparisonDepth, width, recorder);
+    // As `pcf` compares (its default bias), whatever esm's own bias (MomentLookup.glsl leakComparisonDepth).
+    const double leakDepth = prepareShadowLookup(inputs, defaultBiasSettings(), x, y).comparisonDepth;
+    const double pcf = boxPcf(inputs, lookup.sm.uvTexels, leakDepth, width, recorder);
     recordLightLeak(*recorder, lookup.sample.visibility, pcf,
-      boxPcfRange(inputs, lookup.sm.uvTexels, lookup.comparisonDepth, width, probeDepthAmbiguity),
+      boxPcfRange(inputs, lookup.sm.uvTexels, leakDepth, width, probeDepthAmbiguity),
       "ShadowLab: visibility - PCF over the same box");
   }
   return lookup.sample;

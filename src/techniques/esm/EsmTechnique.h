@@ -1,6 +1,7 @@
 // Technique `esm`: exponential shadow maps (Annen et al. 2008), prefiltered like vsm. Math:
 // shaders/esm/EsmVisibility.glsl. Parameters: the shadow-map ones and prefilter, prefilter_texels,
-// esm_exponent (c). Buffers: light_leak (visibility - true PCF over the same box), kernel_texels, depth_bias.
+// esm_exponent (c). Buffers: light_leak (visibility - pcf, at pcf's default bias, over the same
+// box), kernel_texels, depth_bias.
 #pragma once
 
 #include "techniques/ShadowMapReference.h"

@@ -40,7 +40,7 @@ TechniqueDescriptor vsmTechnique()
   descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the lit fraction, before light-bleeding reduction" },
-    { "light_leak", "", "p_max minus the true PCF over the same box of texels: > 0 where VSM bleeds light", BufferKind::Signed },
+    { "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where VSM bleeds light", BufferKind::Signed },
     { "kernel_texels", "texels", "width of the prefilter box" },
     { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
   };
@@ -107,11 +107,15 @@ VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& val
     recorder->quantity("visibility", result.sample.visibility, "", "Lauritzen 2007: clamp((p_max - amount) / (1 - amount), 0, 1)");
     recorder->beginGroup("light leak");
   }
-  const double pcf = boxPcf(inputs, lookup.sm.uvTexels, t, width, recorder);
+  // The leak's PCF compares as `pcf` does (its default bias), not with t: unbiased, a receiver sloped in depth
+  // fails against its own texels and the "leak" would be p_max minus self-shadowing.
+  const double leakDepth = prepareShadowLookup(inputs, defaultBiasSettings(), x, y).comparisonDepth;
+  const double pcf = boxPcf(inputs, lookup.sm.uvTexels, leakDepth, width, recorder);
   result.lightLeak = result.pMax - pcf;
   if (recorder)
   {
-    recordLightLeak(*recorder, result.pMax, pcf, boxPcfRange(inputs, lookup.sm.uvTexels, t, width, probeDepthAmbiguity),
+    recordLightLeak(*recorder, result.pMax, pcf,
+      boxPcfRange(inputs, lookup.sm.uvTexels, leakDepth, width, probeDepthAmbiguity),
       "Lauritzen 2007 (light bleeding): p_max - PCF over the same box");
   }
   return result;
