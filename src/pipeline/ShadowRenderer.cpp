@@ -5,6 +5,7 @@
 #include "core/Error.h"
 #include "gl/vtkSLEglRenderWindow.h"
 #include "lightspace/LightSpaceStructure.h"
+#include "lightspace/shadowmap/ShadowMapStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLMsaaResolvePass.h"
@@ -168,6 +169,10 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   for (const std::string& assignment : request.settings)
   {
     frame.parameters.set(assignment);
+  }
+  if (frame.parameters.has("shadow_map_size"))
+  {
+    shadowMapSettings(frame.parameters); // its InputError before any GL, rather than inside the focus pass
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
   if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)

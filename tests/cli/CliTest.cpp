@@ -306,6 +306,18 @@ TEST(CliRender, PixelsCutShortAreWarnedAboutAndCounted)
 
 // ---- render: errors ---------------------------------------------------------------------------------------
 
+TEST(CliRenderErrors, AFilterWiderThanTheShadowMapAllowsIsRefused)
+{
+  // The focus leaves ceil(w / 2) + 1 texels on each side for a filter of w texels (pcf's kernel, the moment
+  // techniques' prefilter box): one that leaves nothing for the receivers is an input error, not an internal check.
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--technique", "pcf", "--set",
+                       "shadow_map_size=16", "--set", "kernel_texels=64" },
+    { "kernel_texels", "shadow_map_size" });
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--technique", "vsm", "--set",
+                       "shadow_map_size=16", "--set", "prefilter_texels=13" },
+    { "prefilter_texels", "shadow_map_size" });
+}
+
 TEST(CliRenderErrors, UnknownTechniqueListsTheAvailableOnes)
 {
   std::vector<std::string> mentions = { "nope" };

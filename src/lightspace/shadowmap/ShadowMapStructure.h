@@ -15,9 +15,10 @@ const LightSpaceStructure& shadowMapStructure();
 struct ShadowMapSettings
 {
   int resolution = 2048;     // shadow_map_size
-  double marginTexels = 1.0; // the technique's kernel_texels when declared: ceil(kernel / 2) + 1, else 1
+  double marginTexels = 1.0; // its filter's width w (kernel_texels, else prefilter_texels): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
 };
+// Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
 ShadowMapSettings shadowMapSettings(const ParameterValues& values);
 
 } // namespace sl
