@@ -18,6 +18,7 @@ layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_LIGHT_LEAK) out float outLightLeak;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
+layout(location = OUT_BIAS_GAIN) out float outBiasGain;
 
 void main()
 {
@@ -26,6 +27,7 @@ void main()
   outLightLeak = 0.0;
   outKernelTexels = 0.0;
   outDepthBias = receiver.bias;
+  outBiasGain = 0.0;
   if (!receiver.needsShadowTest)
   {
     return;
@@ -37,4 +39,6 @@ void main()
   outVisibility = visibility;
   outLightLeak = visibility - boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
   outKernelTexels = float(kernelWidth);
+  // A lit texel at the receiver's own depth weighs exp(c (d_n - t_n)) = exp(c bias_n), not 1 (EsmTechnique.cpp).
+  outBiasGain = exp(param_esm_exponent * receiver.bias / (depthFar - depthNear));
 }

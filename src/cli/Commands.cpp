@@ -115,6 +115,26 @@ std::size_t reportCutShortPixels(const FrameResult& frame, std::ostream& log)
   return cutShort->count;
 }
 
+std::size_t reportFlaggedPixels(const FrameResult& frame, std::ostream& log)
+{
+  std::size_t total = 0;
+  for (const FlaggedPixels& flagged : flaggedPixels(frame))
+  {
+    if (flagged.count == 0)
+    {
+      continue;
+    }
+    const double percent = 100.0 * static_cast<double>(flagged.count) /
+      static_cast<double>(std::max(1, frame.resolution.x * frame.resolution.y));
+    log << "shadowlab: warning: " << frame.technique << ": " << flagged.count << " pixel(s) (" << std::fixed
+        << std::setprecision(2) << percent << std::defaultfloat << " % of the image) have " << flagged.buffer
+        << " >= " << flagged.threshold << ": " << flagged.warning << " (counted as " << flagged.buffer
+        << "_flagged_pixels in stats.json)\n";
+    total += flagged.count;
+  }
+  return total;
+}
+
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile)
 {
   std::vector<std::filesystem::path> inputs = scene.inputFiles;

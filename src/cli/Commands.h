@@ -179,6 +179,9 @@ std::size_t reportDroppedTriangles(const Scene& scene, const std::string& sceneF
 // One warning line when some pixels of `frame` were cut short (a GL's loop cap, a budget): their values are
 // not exact. Returns how many.
 std::size_t reportCutShortPixels(const FrameResult& frame, std::ostream& log);
+// One warning line per technique buffer that flags pixels of `frame` (BufferSpec::flagAtOrAbove): how many, the
+// buffer and its threshold, and the buffer's warning. Returns how many pixels in all.
+std::size_t reportFlaggedPixels(const FrameResult& frame, std::ostream& log);
 
 // The files a command reads for a scene (the scene file, its meshes and alpha textures): --out must not hold them.
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile);

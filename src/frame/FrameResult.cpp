@@ -1,6 +1,7 @@
 #include "frame/FrameResult.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,27 @@ std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame)
     }
   }
   return marked;
+}
+
+std::vector<FlaggedPixels> flaggedPixels(const FrameResult& frame)
+{
+  std::vector<FlaggedPixels> flagged;
+  if (!frame.descriptor)
+  {
+    return flagged;
+  }
+  for (const BufferSpec& spec : frame.descriptor->buffers)
+  {
+    const NamedImage* buffer = std::isfinite(spec.flagAtOrAbove) ? frame.find(spec.name) : nullptr;
+    if (!buffer)
+    {
+      continue;
+    }
+    const auto count = std::count_if(buffer->image.data.begin(), buffer->image.data.end(),
+      [&](float value) { return static_cast<double>(value) >= spec.flagAtOrAbove; });
+    flagged.push_back({ spec.name, spec.flagAtOrAbove, spec.flagWarning, static_cast<std::size_t>(count) });
+  }
+  return flagged;
 }
 
 const std::vector<BufferSpec>& commonBufferSpecs()

@@ -76,6 +76,16 @@ struct CutShortPixels
 // The technique's cut-short marks in `frame`'s buffers; nullopt for a technique that declares none.
 std::optional<CutShortPixels> cutShortPixels(const FrameResult& frame);
 
+// Pixels a technique's continuous buffer flags (BufferSpec::flagAtOrAbove): one entry per such buffer of the frame.
+struct FlaggedPixels
+{
+  std::string buffer;
+  double threshold = 0.0;
+  std::string warning; // BufferSpec::flagWarning
+  std::size_t count = 0;
+};
+std::vector<FlaggedPixels> flaggedPixels(const FrameResult& frame);
+
 // The buffers every technique's buffers.vti has, with their documentation (README lists them).
 const std::vector<BufferSpec>& commonBufferSpecs();
 // The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -84,6 +85,11 @@ struct BufferSpec
   // with as many components as it needs (e.g. dcs's light_sample_mask, N/16 of them); no OUT_ location. The pass
   // may leave out one that its parameters do not ask for (the doc says when).
   bool fromPass = false;
+  // A continuous buffer whose value at or above this marks a pixel the method cannot be trusted at (esm's
+  // bias_gain): the pipeline counts such pixels (technique statistic "<name>_flagged_pixels") and render warns
+  // with `flagWarning`, which says why and what to change. Infinity: the buffer flags nothing.
+  double flagAtOrAbove = std::numeric_limits<double>::infinity();
+  std::string flagWarning;
 };
 
 // An integer the technique's shaders and its C++ share (a loop budget, the bound of an array, the codes of a

@@ -442,6 +442,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     {
       result.techniqueStatistics["cut_short_pixels"] = static_cast<double>(cutShort->count);
     }
+    for (const FlaggedPixels& flagged : flaggedPixels(result))
+    {
+      result.techniqueStatistics[flagged.buffer + "_flagged_pixels"] = static_cast<double>(flagged.count);
+    }
     if (frame.multisample.samples > 1)
     {
       addMultisampleStatistics(result);

@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <random>
 #include <set>
 #include <sstream>
@@ -302,6 +303,63 @@ TEST(CliRender, PixelsCutShortAreWarnedAboutAndCounted)
   EXPECT_EQ(exact.err, "") << exact.describe();
   const Json exactStats = Json::parse(readFile(temp.path() / "exact" / "stats.json"));
   EXPECT_EQ(exactStats.at("technique_statistics").at("cut_short_pixels").get<double>(), 0.0);
+}
+
+TEST(CliRender, EsmPixelsWhoseBiasSaturatesTheExponentialAreFlagged)
+{
+  // esm at shadow_map_size=16 (issue 27): the bias, in texel footprints, is so large in the light's depth range that
+  // exp(c bias_n) (bias_gain) weighs each lit texel at the receiver's depth by 12 to 10^6, so one lit texel of the
+  // 5 x 5 box lights the pixel and every pixel of stacked-occluders read 1 (the reference's mean is 0.818). Each
+  // such pixel is flagged (bias_gain >= 2), counted in stats.json, and warned about in one line; without the bias the
+  // same map is close to the truth, and at the default 2048 map nothing is flagged.
+  TempDir temp;
+  const auto render = [&](const std::string& outName, const std::vector<std::string>& settings) {
+    std::vector<std::string> arguments = { "render", datasetScene("stacked-occluders").string(), "--technique", "esm",
+      "--resolution", "32x32", "--quiet", "--out", (temp.path() / outName).string() };
+    for (const std::string& setting : settings)
+    {
+      arguments.insert(arguments.end(), { "--set", setting });
+    }
+    return runShadowlab(arguments, temp.path());
+  };
+  const auto statsOf = [&](const std::string& outName) { return Json::parse(readFile(temp.path() / outName / "stats.json")); };
+
+  const RunResult coarse = render("coarse", { "shadow_map_size=16" });
+  ASSERT_EQ(coarse.exitCode, 0) << coarse.describe();
+  const Json stats = statsOf("coarse");
+  const double flagged = stats.at("technique_statistics").at("bias_gain_flagged_pixels").get<double>();
+  const std::vector<NamedImage> arrays = readVti(temp.path() / "coarse" / "buffers.vti");
+  const NamedImage* gain = findArray(arrays, "bias_gain");
+  ASSERT_NE(gain, nullptr);
+  const auto counted = std::count_if(gain->image.data.begin(), gain->image.data.end(), [](float g) { return g >= 2.0f; });
+  const double coarseMean = stats.at("buffers").at("visibility").at("mean").get<double>();
+  const double smallestGain = stats.at("buffers").at("bias_gain").at("min").get<double>();
+  std::cout << "[ measured ] esm at shadow_map_size=16: " << flagged << " of 1024 pixels flagged, bias_gain >= "
+            << smallestGain << ", mean visibility " << coarseMean << "\n";
+  EXPECT_EQ(flagged, static_cast<double>(counted));
+  EXPECT_EQ(flagged, 32.0 * 32.0) << "every pixel of this view is covered and its bias saturates";
+  EXPECT_GT(smallestGain, 2.0);
+  EXPECT_GT(coarseMean, 0.99) << "the failure the flag explains";
+  EXPECT_EQ(coarse.errLines(), 1u) << coarse.describe();
+  EXPECT_NE(coarse.err.find("warning: esm: 1024 pixel(s)"), std::string::npos) << coarse.describe();
+  EXPECT_NE(coarse.err.find("bias_gain >= 2"), std::string::npos) << coarse.describe();
+  EXPECT_NE(coarse.err.find("shadow_map_size"), std::string::npos) << "the warning says what to change: " << coarse.describe();
+
+  // The cause: the same map without the bias is no longer lit everywhere, and nothing is flagged.
+  const RunResult unbiased = render("unbiased", { "shadow_map_size=16", "bias_constant_texels=0", "bias_slope_texels=0" });
+  ASSERT_EQ(unbiased.exitCode, 0) << unbiased.describe();
+  EXPECT_EQ(unbiased.err, "") << unbiased.describe();
+  const Json unbiasedStats = statsOf("unbiased");
+  const double unbiasedMean = unbiasedStats.at("buffers").at("visibility").at("mean").get<double>();
+  std::cout << "[ measured ] esm at shadow_map_size=16 without bias: mean visibility " << unbiasedMean << "\n";
+  EXPECT_LT(unbiasedMean, 0.9);
+  EXPECT_EQ(unbiasedStats.at("technique_statistics").at("bias_gain_flagged_pixels").get<double>(), 0.0);
+
+  // The default map: a clean stderr and nothing flagged.
+  const RunResult fine = render("fine", {});
+  ASSERT_EQ(fine.exitCode, 0) << fine.describe();
+  EXPECT_EQ(fine.err, "") << fine.describe();
+  EXPECT_EQ(statsOf("fine").at("technique_statistics").at("bias_gain_flagged_pixels").get<double>(), 0.0);
 }
 
 // ---- render: errors ---------------------------------------------------------------------------------------

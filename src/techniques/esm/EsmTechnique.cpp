@@ -14,6 +14,23 @@
 namespace sl
 {
 
+BufferSpec esmBiasGainBuffer()
+{
+  // exp(c (z_n - t_n)) weighs a lit texel at the receiver's own depth by exp(c bias_n), not 1: the bias, in
+  // texel footprints, grows with the texel, so on a small map one lit texel can outweigh a box of occluders
+  // (stacked-occluders at shadow_map_size=16: e^5, every pixel lit). ESM's exponential holds only where no
+  // texel lies behind the compared depth (survey §6: "for larger kernel sizes this approximation does not
+  // hold"; VSSM §2.2: ESM "relies on standard PCF for non-planarity regions").
+  BufferSpec spec{ "bias_gain", "",
+    "exp(c bias_n): the weight the depth bias gives a lit texel at the receiver's own depth (1 = none); at 2 or more "
+    "a half-lit box reads fully lit (0 where not tested)" };
+  spec.flagAtOrAbove = 2.0;
+  spec.flagWarning = "the depth bias, in texel footprints, doubles the weight of every lit texel in the exponential, "
+                     "so those pixels read too bright (up to fully lit); use a larger shadow_map_size, a smaller "
+                     "esm_exponent or bias_constant_texels/bias_slope_texels";
+  return spec;
+}
+
 TechniqueDescriptor esmTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -31,6 +48,7 @@ TechniqueDescriptor esmTechnique()
     { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias)", BufferKind::Signed },
     { "kernel_texels", "texels", "width of the prefilter box" },
     { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
+    esmBiasGainBuffer(),
   };
   descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] {

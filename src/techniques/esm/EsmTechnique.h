@@ -1,7 +1,7 @@
 // Technique `esm`: exponential shadow maps (Annen et al. 2008), prefiltered like vsm. Math:
 // shaders/esm/EsmVisibility.glsl. Parameters: the shadow-map ones and prefilter, prefilter_texels,
 // esm_exponent (c). Buffers: light_leak (visibility - pcf, at pcf's default bias, over the same
-// box), kernel_texels, depth_bias.
+// box), kernel_texels, depth_bias, bias_gain (exp(c bias_n); pixels at 2 or more are flagged and warned about).
 #pragma once
 
 #include "techniques/ShadowMapReference.h"
@@ -11,6 +11,8 @@ namespace sl
 {
 
 TechniqueDescriptor esmTechnique();
+// The bias_gain buffer: exp(c bias_n) per pixel, flagged (BufferSpec::flagAtOrAbove) at 2.
+BufferSpec esmBiasGainBuffer();
 
 // CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur. `recorder` (optional, `shadowlab
 // probe`): the receiver, the moment box (kernel_texels, its texels), E[exp(c z_n)], the exponential test, and the
