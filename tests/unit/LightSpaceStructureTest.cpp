@@ -276,6 +276,27 @@ TEST(LightSpaceStructureSettings, ShadowMapSettingsFollowTheParameters)
   ParameterValues hard = findTechnique("hard").defaultParameters();
   ASSERT_FALSE(hard.has("kernel_texels"));
   EXPECT_EQ(shadowMapSettings(hard).marginTexels, 1.0);
+
+  // The moment techniques' prefilter box reaches as far as a pcf kernel of its width: the same margin, so vsm and
+  // pcf over one box focus the same map.
+  for (const std::string technique : { "vsm", "esm" })
+  {
+    ParameterValues moments = findTechnique(technique).defaultParameters();
+    for (const int width : { 1, 5, 21 })
+    {
+      moments.set("prefilter_texels", width);
+      pcf.set("kernel_texels", width);
+      EXPECT_EQ(shadowMapSettings(moments).marginTexels, shadowMapSettings(pcf).marginTexels)
+        << technique << " prefilter_texels=" << width;
+    }
+  }
+
+  // A margin that leaves no texel for the receivers is an input error naming the filter.
+  pcf.set("shadow_map_size=16");
+  pcf.set("kernel_texels", 13);
+  EXPECT_THROW(shadowMapSettings(pcf), InputError) << "2 x 8 texels of margin on a 16-texel map";
+  pcf.set("kernel_texels", 11);
+  EXPECT_EQ(shadowMapSettings(pcf).marginTexels, 7.0);
 }
 
 TEST(LightSpaceStructureSettings, MomentMapSettingsFollowThePrefilter)
