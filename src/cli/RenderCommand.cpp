@@ -39,6 +39,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   context.droppedDegenerateTriangles = dropped;
   writeFrameOutputs(frame, context, output);
   reportCutShortPixels(frame, log);
+  reportApproximatePixels(frame, log);
   if (!options.quiet)
   {
     double gpuMs = 0.0;

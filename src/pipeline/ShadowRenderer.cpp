@@ -1,5 +1,7 @@
 #include "pipeline/ShadowRenderer.h"
 
+#include "frame/Approximations.h"
+
 #include "techniques/Registry.h"
 
 #include "core/Error.h"
@@ -441,6 +443,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     {
       addMultisampleStatistics(result);
     }
+    // Where the technique's declared approximations apply (AccuracyContract), published and counted like the
+    // cut-short pixels.
+    result.buffers.push_back(approximationBuffer(result, scene, request.lightIndex));
+    result.techniqueStatistics["approximate_pixels"] = static_cast<double>(approximatePixels(result).count);
   }
   if (frame.shadedImage)
   {
