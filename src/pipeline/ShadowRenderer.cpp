@@ -427,7 +427,18 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   allocateFrameTargets(frame, scene, request.gbufferOnly);
 
   FrameResult result;
-  result.frameWallMs = renderStages(frame, request.gbufferOnly);
+  try
+  {
+    result.frameWallMs = renderStages(frame, request.gbufferOnly);
+  }
+  catch (...)
+  {
+    // A stage that refuses its settings mid-frame (e.g. ss08's budget_map=image without budget_image) must not
+    // leave the passes holding this frame: the renderer's next frame would use them (found by the differential
+    // test, issue 27: the next render crashed).
+    releaseFrame(frame, request.gbufferOnly);
+    throw;
+  }
   collectStageResults(frame, request.gbufferOnly, result);
   readBackBuffers(frame, request, result);
   if (!request.gbufferOnly)
