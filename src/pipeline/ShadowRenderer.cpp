@@ -435,7 +435,9 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   {
     // A stage that refuses its settings mid-frame (e.g. ss08's budget_map=image without budget_image) must not
     // leave the passes holding this frame: the renderer's next frame would use them (found by the differential
-    // test, issue 27: the next render crashed).
+    // test, issue 27: the next render crashed). VTK's window also still believes it is rendering (its InRender flag,
+    // which makes every later Render() return at once, so the next frame's G-buffer was never drawn).
+    window_->ClearInRenderStatus();
     releaseFrame(frame, request.gbufferOnly);
     throw;
   }
