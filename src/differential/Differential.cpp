@@ -61,6 +61,8 @@ ReferenceResult centreReference(const FrameResult& gbuffer, const Scene& scene)
 void compare(const FrameResult& frame, const ReferenceResult& reference, bool centreEdges, double tolerance,
   double sigmas, ConfigurationOutcome& outcome)
 {
+  const AccuracyContract& contract = frame.descriptor->accuracy;
+  const int sampleCount = contract.lightSampleCount ? contract.lightSampleCount(frame.parameters) : 0;
   const ImageF& visibility = frame.find("visibility")->image;
   const ImageF& coverage = frame.find("coverage")->image;
   const ImageF& receives = frame.find("receives_shadows")->image;
@@ -93,8 +95,12 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
       }
       outcome.flagged += flagged ? 1 : 0;
       const double difference = std::abs(static_cast<double>(visibility.at(x, y)) - truth.at(x, y));
-      const double allowed =
-        tolerance + sigmas * (reference.standardError.at(x, y) + (ownError ? ownError->image.at(x, y) : 0.0f));
+      // A sampling technique's own noise: its published stderr, or the spread of N samples about the true value,
+      // whichever is larger (its stderr is 0 where all its samples agree).
+      const double truthValue = truth.at(x, y);
+      const double ownNoise = std::max(ownError ? static_cast<double>(ownError->image.at(x, y)) : 0.0,
+        sampleCount > 0 ? std::sqrt(truthValue * (1.0 - truthValue) / sampleCount) : 0.0);
+      const double allowed = tolerance + sigmas * (reference.standardError.at(x, y) + ownNoise);
       if (difference <= allowed)
       {
         continue;

@@ -173,6 +173,10 @@ struct AccuracyContract
   // techniques that publish `visibility_stderr`, their own) is added.
   double tolerance = 0.0;
   std::vector<Approximation> approximations;
+  // Techniques that estimate the visible fraction from N light samples: N for a frame's parameters (unset: not
+  // sampled). Their estimate of a pixel whose true visibility is v spreads by sqrt(v (1 - v) / N) even where their
+  // own visibility_stderr, computed from their estimate, is 0 (all N samples on one side of a thin penumbra).
+  std::function<int(const ParameterValues& values)> lightSampleCount;
   // Sets codes(x, y) = 1 + the index of the declared approximation that applies at the pixel, 0 where none does
   // (`codes` arrives W x H x 1, all 0). Unset: the technique declares no approximation.
   std::function<void(const ApproximationContext& context, ImageF& codes)> markApproximations;

@@ -120,6 +120,7 @@ ShadowMapFootprint::CasterRange ShadowMapFootprint::casterRange(int x, int y) co
       const double nodeMin = mins.at(nx, ny);
       if (!(nodeMin < threshold))
       {
+        range.receiverSeen = true;
         continue;
       }
       // The node's nearest point to the receiver's texel position, against the region of its nearest caster depth.
@@ -136,6 +137,14 @@ ShadowMapFootprint::CasterRange ShadowMapFootprint::casterRange(int x, int y) co
       if (nodeMax < threshold)
       {
         hi = std::max(hi, nodeMax);
+      }
+      else
+      {
+        range.receiverSeen = true;
+      }
+      if (lightSize_ > 0.0 && nodeMin < d)
+      {
+        range.texelOnLight = std::max(range.texelOnLight, view.texelWorldSize(nodeMin) * d / (d - nodeMin) / lightSize_);
       }
     }
   }
@@ -221,7 +230,34 @@ void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResul
   }
 }
 
+namespace
+{
+
+void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code, bool wholeLight);
+
+} // namespace
+
 void markCentreRayThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code)
+{
+  markRaysThroughPerforatedCaster(context, codes, code, false);
+}
+
+void markLightRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code)
+{
+  markRaysThroughPerforatedCaster(context, codes, code, true);
+}
+
+Approximation perforatedCasterInMapApproximation()
+{
+  return { "perforated caster in the map",
+    "a segment from the point to the light's centre or to a corner of it crosses a caster with an alpha texture: "
+    "the shadow map samples its holes at texel centres" };
+}
+
+namespace
+{
+
+void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code, bool wholeLight)
 {
   const Scene& scene = *context.scene;
   const Light& light = scene.lights.at(static_cast<std::size_t>(context.lightIndex));
@@ -248,23 +284,41 @@ void markCentreRayThroughPerforatedCaster(const ApproximationContext& context, I
         continue;
       }
       const glm::dvec3 p(position->image.at(x, y, 0), position->image.at(x, y, 1), position->image.at(x, y, 2));
-      // To the centre, or 1e6 along a directional light's reverse direction.
-      const glm::dvec3 toLight = light.type == LightType::Directional ? -1e6 * light.direction : light.center - p;
-      bool crossed = false;
-      for (const SceneObject* object : perforated)
+      // To the centre (and the light's extreme points), or 1e6 along a directional light's reverse direction.
+      std::vector<glm::dvec3> targets;
+      if (light.type == LightType::Directional)
       {
-        const TriangleMesh& mesh = object->mesh;
-        for (std::size_t t = 0; t < mesh.triangleCount() && !crossed; ++t)
+        targets.push_back(p - 1e6 * light.direction);
+      }
+      else
+      {
+        targets.push_back(light.center);
+        if (wholeLight && light.type == LightType::Area)
         {
-          const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
-          const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
-          const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
-          const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, toLight, a, b - a, c - a);
-          crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
+          const glm::dvec3 right = 0.5 * light.size * light.right();
+          const glm::dvec3 up = 0.5 * light.size * light.up;
+          const bool square = light.shape == LightShape::Square;
+          for (const glm::dvec2 corner : { glm::dvec2(1, 1), glm::dvec2(1, -1), glm::dvec2(-1, 1), glm::dvec2(-1, -1) })
+          {
+            targets.push_back(square ? light.center + corner.x * right + corner.y * up
+                                     : light.center + (corner.x > 0 ? 1.0 : -1.0) * (corner.y > 0 ? right : up));
+          }
         }
-        if (crossed)
+      }
+      bool crossed = false;
+      for (const glm::dvec3& target : targets)
+      {
+        for (const SceneObject* object : perforated)
         {
-          break;
+          const TriangleMesh& mesh = object->mesh;
+          for (std::size_t t = 0; t < mesh.triangleCount() && !crossed; ++t)
+          {
+            const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
+            const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+            const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, target - p, a, b - a, c - a);
+            crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
+          }
         }
       }
       if (crossed)
@@ -273,6 +327,44 @@ void markCentreRayThroughPerforatedCaster(const ApproximationContext& context, I
       }
     }
   }
+}
+
+} // namespace
+
+void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double fraction)
+{
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f)
+      {
+        continue;
+      }
+      const std::optional<ShadowMapFootprint::Receiver> point = footprint.receiver(x, y);
+      if (!point)
+      {
+        continue;
+      }
+      // A texel so wide at the receiver that its own surface's margin (about the depth bias) spans more than 5% of
+      // the distance to the light: casters within that margin are invisible to the technique.
+      const bool wideReceiverTexel = point->margin > 0.05 * point->sample.depthLin;
+      const ShadowMapFootprint::CasterRange range = footprint.casterRange(x, y);
+      if (wideReceiverTexel || (range.found && range.receiverSeen && range.texelOnLight > fraction))
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+Approximation coarseShadowMapApproximation()
+{
+  return { "coarse shadow map",
+    "a shadow edge runs through the texels that can hide part of the light from the point, and one of their caster "
+    "texels back-projects onto more than a tenth of the light, or the receiver's own texel is so wide that its "
+    "margin (about the depth bias) exceeds 5% of the distance to the light: the map's resolution decides the "
+    "visible fraction" };
 }
 
 Approximation averageBlockerDepthApproximation()

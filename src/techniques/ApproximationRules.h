@@ -45,6 +45,11 @@ public:
     bool found = false;
     double minDepth = 0.0;
     double maxDepth = 0.0;
+    bool receiverSeen = false; // the region also holds texels that are not casters (the light is partly seen)
+    // The largest caster texel of the region back-projected from the point onto the light's plane, as a fraction of
+    // the light's size: texelWorldSize(z) d / (d - z) / w. A caster edge is placed to within one texel, so the
+    // visible fraction is known to about this much along it.
+    double texelOnLight = 0.0;
   };
   CasterRange casterRange(int x, int y) const;
 
@@ -76,11 +81,24 @@ void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResul
 // Marks with `code` every pixel whose segment to the light's centre crosses a caster with an alpha texture (double
 // precision, RayTriangle.h), wherever the texture is: for techniques that shadow such casters as solid.
 void markCentreRayThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code);
+// The same for the segments to the light's centre and to its four corners (square) or the four ends of its
+// right/up diameters (disk): a caster with an alpha texture lies between the point and the light, and a shadow map
+// samples its holes at texel centres only (alpha texture detail finer than a texel is lost or aliased).
+void markLightRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code);
+Approximation perforatedCasterInMapApproximation();
 
 // The declarations several techniques share: PCSS's average blocker depth (also VSSM Eq. 4) and back-projection's
 // occluder fusion (GBP06, GBP07, Yang et al. 2009, SS08), both marked by markMultipleBlockerDepths.
 Approximation averageBlockerDepthApproximation();
 Approximation occluderFusionApproximation();
+
+// Marks with `code` every pixel whose light footprint holds both casters and uncovered texels (an edge of the
+// shadow runs through it) where a caster texel back-projects onto more than `fraction` of the light
+// (CasterRange::texelOnLight): the map's resolution, not the technique, decides how much of the light the edge hides.
+// Typical where a caster nearly touches the light (the focus window then spans a wide angle, survey §4.1) or the
+// light is small against the texels. Keeps codes already set.
+void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double fraction = 0.1);
+Approximation coarseShadowMapApproximation();
 
 // Marks with `code` every pixel whose value lies strictly inside (epsilon, 1 - epsilon): a filtered (partial) value.
 void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon = 1e-3);

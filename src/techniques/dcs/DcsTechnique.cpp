@@ -84,6 +84,7 @@ TechniqueDescriptor dcsTechnique()
   // (the differential test adds it to the tolerance).
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.05;
+  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return std::stoi(values.choice("samples")); };
   return descriptor;
 }
 

@@ -73,9 +73,13 @@ TechniqueDescriptor gbp07Technique()
   // overlap or leave gaps (occluder fusion) and casters hidden from the light's centre are missed.
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.05;
-  descriptor.accuracy.approximations = { occluderFusionApproximation() };
+  descriptor.accuracy.approximations = { occluderFusionApproximation(), coarseShadowMapApproximation(),
+    perforatedCasterInMapApproximation() };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    markMultipleBlockerDepths(ShadowMapFootprint(context), codes, 1.0f);
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 1.0f);
+    markCoarseShadowMap(footprint, codes, 2.0f);
+    markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
   };
   return descriptor;
 }

@@ -58,9 +58,13 @@ TechniqueDescriptor pcssTechnique()
   // to the light, approximate wherever the casters that hide part of the light lie at different depths.
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.1;
-  descriptor.accuracy.approximations = { averageBlockerDepthApproximation() };
+  descriptor.accuracy.approximations = { averageBlockerDepthApproximation(), coarseShadowMapApproximation(),
+    perforatedCasterInMapApproximation() };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    markMultipleBlockerDepths(ShadowMapFootprint(context), codes, 1.0f);
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 1.0f);
+    markCoarseShadowMap(footprint, codes, 2.0f);
+    markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
   };
   return descriptor;
 }

@@ -77,11 +77,12 @@ TechniqueDescriptor penumbraWedgeTechnique()
   descriptor.accuracy.approximations = {
     { "overlapping silhouettes",
       "the segment to the light's centre crosses two or more caster surfaces (depth_complexity_center >= 2), or "
-      "three or more wedges hold the point (wedges_covering >= 3)" },
+      "two or more wedges hold the point (wedges_covering >= 2: their silhouettes' projections onto the light may "
+      "overlap; the buffers do not say whether they belong to one convex caster, where the method is exact)" },
     { "sampled stsv", "a soft textured shadow volume holds the point (stsv_covering > 0): N light samples" } };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
     markWhere(*context.frame, "depth_complexity_center", [](float count) { return count >= 2.0f; }, codes, 1.0f);
-    markWhere(*context.frame, "wedges_covering", [](float count) { return count >= 3.0f; }, codes, 1.0f);
+    markWhere(*context.frame, "wedges_covering", [](float count) { return count >= 2.0f; }, codes, 1.0f);
     markWhere(*context.frame, "stsv_covering", [](float count) { return count > 0.0f; }, codes, 2.0f);
   };
   return descriptor;

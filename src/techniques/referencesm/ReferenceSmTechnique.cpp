@@ -51,6 +51,7 @@ TechniqueDescriptor referenceSmTechnique()
   // visibility_stderr publishes (the differential test adds it to the tolerance).
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.02;
+  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return values.getInt("samples"); };
   return descriptor;
 }
 

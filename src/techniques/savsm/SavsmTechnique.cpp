@@ -84,10 +84,14 @@ TechniqueDescriptor savsmTechnique()
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.1;
   descriptor.accuracy.approximations = { averageBlockerDepthApproximation(),
-    { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" } };
+    { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" },
+    coarseShadowMapApproximation(), perforatedCasterInMapApproximation() };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    markMultipleBlockerDepths(ShadowMapFootprint(context), codes, 1.0f);
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 1.0f);
     markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
+    markCoarseShadowMap(footprint, codes, 3.0f);
+    markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
   };
   return descriptor;
 }
