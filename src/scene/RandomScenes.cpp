@@ -81,7 +81,8 @@ RandomScene randomScene(std::uint64_t seed, int maxSide)
 
   nlohmann::json objects = nlohmann::json::array();
   objects.push_back({ { "primitive", "quad" }, { "center", vec(0, 0, 0) }, { "size", { 8, 8 } },
-    { "normal", vec(0, 1, 0) }, { "up", vec(0, 0, -1) }, { "material", { { "albedo", vec(0.8, 0.8, 0.8) } } } });
+    { "normal", vec(0, 1, 0) }, { "up", vec(0, 0, -1) }, { "material", { { "albedo", vec(0.8, 0.8, 0.8) } } },
+    { "cast_shadows", false } });
 
   // The occluders, highest first: the first at topGap below the light, the others anywhere below it.
   const int count = draw.integer(1, 5);
