@@ -4,6 +4,7 @@
 
 #include "core/Error.h"
 #include "core/Image.h"
+#include "frame/Approximations.h"
 #include "frame/FrameResult.h"
 #include "pipeline/ShadowRenderer.h"
 #include "scene/Scene.h"
@@ -133,6 +134,23 @@ std::size_t reportFlaggedPixels(const FrameResult& frame, std::ostream& log)
     total += flagged.count;
   }
   return total;
+}
+
+std::size_t reportApproximatePixels(const FrameResult& frame, std::ostream& log)
+{
+  const ApproximatePixels marked = approximatePixels(frame);
+  if (marked.count == 0)
+  {
+    return 0;
+  }
+  log << "shadowlab: note: " << frame.technique << ": " << marked.count
+      << " pixel(s) lie where the technique is approximate by design (";
+  for (std::size_t index = 0; index < marked.byApproximation.size(); ++index)
+  {
+    log << (index ? ", " : "") << marked.byApproximation[index].first << " " << marked.byApproximation[index].second;
+  }
+  log << "; buffer approximation, counted as approximate_pixels in stats.json)\n";
+  return marked.count;
 }
 
 std::vector<std::filesystem::path> sceneInputs(const Scene& scene, const std::string& sceneFile)

@@ -158,6 +158,25 @@ struct LessonsOptions
 };
 int runLessons(const LessonsOptions& options, std::ostream& log);
 
+// shadowlab differential: every technique and choice against the ray tracer on random scenes (issue 27;
+// differential/Differential.h). Exit 4 when a configuration failed (its line names the seed and the command).
+struct DifferentialCommandOptions
+{
+  std::string seeds = "1..4";   // "A..B" or "A,B,..."
+  std::string techniques;       // comma-separated; empty: all
+  std::string choice;           // "default" or key=value; empty: every enumerated choice
+  int maxSide = 128;
+  int samples = 256;            // reference samples per pixel
+  std::filesystem::path outDir = "out-differential";
+  bool force = false;
+  bool quiet = false;
+};
+int runDifferential(const DifferentialCommandOptions& options, std::ostream& log);
+
+// One line when some pixels of `frame` are marked by the technique's declared approximations (the buffer
+// `approximation`), naming the count and the approximations. Returns how many.
+std::size_t reportApproximatePixels(const FrameResult& frame, std::ostream& log);
+
 // The request `render` and `probe` make from what the user typed, checked (technique known, every --set valid,
 // --resolution well formed) before anything touches the GPU or the disk.
 RenderRequest checkedRenderRequest(const std::string& technique, const std::vector<std::string>& settings,

@@ -71,6 +71,7 @@ inline constexpr PathArgument kPathArguments[] = {
   { "montage", "--reference", PathRole::Reads },
   { "montage", "--out", PathRole::WritesFile },
   { "lessons", "--out", PathRole::WritesDirectory }, // reads the source tree's datasets/
+  { "differential", "--out", PathRole::WritesDirectory }, // its scenes are generated, it reads no file
 };
 
 // The arguments that take a value naming no file or directory (flags take none and are not listed).
@@ -91,6 +92,7 @@ inline constexpr OtherArguments kOtherArguments[] = {
   { "montage", "--buffer" },
   { "lessons", "--resolution --only" },
   { "list", "" },
+  { "differential", "--seeds --technique --choice --max-side --samples" },
 };
 
 } // namespace sl

@@ -40,6 +40,7 @@ int runRender(const RenderOptions& options, std::ostream& log)
   writeFrameOutputs(frame, context, output);
   reportCutShortPixels(frame, log);
   reportFlaggedPixels(frame, log);
+  reportApproximatePixels(frame, log);
   if (!options.quiet)
   {
     double gpuMs = 0.0;

@@ -207,6 +207,22 @@ int main(int argc, char** argv)
   addForceFlag(lessonsCommand, lessons.force);
   lessonsCommand->add_flag("--quiet,-q", lessons.quiet, "Print nothing on success");
 
+  sl::DifferentialCommandOptions differential;
+  CLI::App* differentialCommand = app.add_subcommand("differential",
+    "Every technique and each enumerated choice against the ray tracer on random scenes (seeded); exit 4 on a failure");
+  differentialCommand->add_option("--seeds", differential.seeds, "A..B or A,B,...")->capture_default_str();
+  differentialCommand->add_option("--technique,-t", differential.techniques, "Comma-separated techniques (default: all)");
+  differentialCommand->add_option("--choice", differential.choice,
+    "Only this choice: default, or key=value of an enumerated parameter (default: every choice)");
+  differentialCommand->add_option("--max-side", differential.maxSide, "Longest image side of the random scenes")
+    ->capture_default_str();
+  differentialCommand->add_option("--samples", differential.samples, "Reference light samples per pixel (stratified)")
+    ->capture_default_str();
+  differentialCommand->add_option("--out,-o", differential.outDir, "Output directory: report.md, differential.json, "
+    "seed-S/scene.json (replaced atomically; see --force)")->capture_default_str();
+  addForceFlag(differentialCommand, differential.force);
+  differentialCommand->add_flag("--quiet,-q", differential.quiet, "Print only failures and the table");
+
   bool listJson = false;
   CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
   listCommand->add_flag("--json", listJson, "Machine-readable output");
@@ -251,6 +267,10 @@ int main(int argc, char** argv)
     if (probeCommand->parsed())
     {
       return sl::runProbe(probe, std::cerr);
+    }
+    if (differentialCommand->parsed())
+    {
+      return sl::runDifferential(differential, std::cerr);
     }
     if (listCommand->parsed())
     {

@@ -9,6 +9,7 @@ set(SL_CLI_SOURCES
   src/cli/BenchCommand.cpp
   src/cli/BenchRunCommand.cpp
   src/cli/ProbeCommand.cpp
+  src/cli/DifferentialCommand.cpp
   src/cli/MontageCommand.cpp
   src/cli/LessonsCommand.cpp
   src/cli/ViewCommand.cpp

@@ -146,6 +146,48 @@ struct MultisampleSettings
   double depthTolerance = 0.0;
 };
 
+// Where a technique is approximate by design, and how close it must come to the ray-traced truth elsewhere (issue
+// 27): the differential test (differential/Differential.h) holds every technique to its contract on random scenes,
+// and the pipeline publishes, per pixel, which declared approximation applies (buffer `approximation`, counted as
+// `approximate_pixels` in stats.json), so a user sees where a value may legitimately be off.
+enum class ReferenceModel
+{
+  AreaLight,  // the fraction of the whole light visible (the ray tracer's area integral)
+  LightCentre // the single ray to the light's centre: techniques that sample an area light from its centre
+};
+
+// One approximation a technique makes by design (its paper's, or the project's documented choice).
+struct Approximation
+{
+  std::string name; // the label of its code in `approximation`, e.g. "average blocker depth"
+  std::string doc;  // when it applies, as the marking rule decides it per pixel
+};
+
+// What a technique's marking rule reads: the rendered frame (its read-back buffers and light-space exports) and the
+// scene and light it was rendered from.
+struct ApproximationContext
+{
+  const FrameResult* frame = nullptr;
+  const Scene* scene = nullptr;
+  int lightIndex = 0;
+};
+
+struct AccuracyContract
+{
+  ReferenceModel reference = ReferenceModel::AreaLight;
+  // The largest |V - V_ref| accepted on a pixel no flag marks, before the reference's own noise (and, for
+  // techniques that publish `visibility_stderr`, their own) is added.
+  double tolerance = 0.0;
+  std::vector<Approximation> approximations;
+  // Techniques that estimate the visible fraction from N light samples: N for a frame's parameters (unset: not
+  // sampled). Their estimate of a pixel whose true visibility is v spreads by sqrt(v (1 - v) / N) even where their
+  // own visibility_stderr, computed from their estimate, is 0 (all N samples on one side of a thin penumbra).
+  std::function<int(const ParameterValues& values)> lightSampleCount;
+  // Sets codes(x, y) = 1 + the index of the declared approximation that applies at the pixel, 0 where none does
+  // (`codes` arrives W x H x 1, all 0). Unset: the technique declares no approximation.
+  std::function<void(const ApproximationContext& context, ImageF& codes)> markApproximations;
+};
+
 struct TechniqueDescriptor
 {
   std::string name;    // CLI name: "pcf"
@@ -183,6 +225,9 @@ struct TechniqueDescriptor
   // ({} = the generated preamble alone); the shader-contract test assembles every one.
   std::vector<std::vector<std::string>> shaderFlagSets = { {} };
   std::function<vtkSmartPointer<vtkSLTechniquePass>()> createPass;
+  // Where the technique is approximate by design and the tolerance it meets elsewhere (AccuracyContract). Declared
+  // in the technique's own folder, beside the rest of its descriptor.
+  AccuracyContract accuracy;
   // `shadowlab probe` (issue 15): replays the technique's CPU twin on one pixel of a rendered frame, recording
   // every step into `recorder`. Every registered technique has one (tests/render/ProbeTest.cpp asserts it);
   // it throws InputError for a setting it cannot replay.

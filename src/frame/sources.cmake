@@ -3,4 +3,5 @@ set(SL_FRAME_SOURCES
   src/frame/TechniqueDescriptor.cpp
   src/frame/FrameResult.cpp
   src/frame/ProbeRecord.cpp
-  src/frame/MsaaResolve.cpp)
+  src/frame/MsaaResolve.cpp
+  src/frame/Approximations.cpp)

@@ -1,5 +1,7 @@
 #include "pipeline/ShadowRenderer.h"
 
+#include "frame/Approximations.h"
+
 #include "techniques/Registry.h"
 
 #include "core/Error.h"
@@ -430,7 +432,20 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
   allocateFrameTargets(frame, scene, request.gbufferOnly);
 
   FrameResult result;
-  result.frameWallMs = renderStages(frame, request.gbufferOnly);
+  try
+  {
+    result.frameWallMs = renderStages(frame, request.gbufferOnly);
+  }
+  catch (...)
+  {
+    // A stage that refuses its settings mid-frame (e.g. ss08's budget_map=image without budget_image) must not
+    // leave the passes holding this frame: the renderer's next frame would use them (found by the differential
+    // test, issue 27: the next render crashed). VTK's window also still believes it is rendering (its InRender flag,
+    // which makes every later Render() return at once, so the next frame's G-buffer was never drawn).
+    window_->ClearInRenderStatus();
+    releaseFrame(frame, request.gbufferOnly);
+    throw;
+  }
   collectStageResults(frame, request.gbufferOnly, result);
   readBackBuffers(frame, request, result);
   if (!request.gbufferOnly)
@@ -450,6 +465,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     {
       addMultisampleStatistics(result);
     }
+    // Where the technique's declared approximations apply (AccuracyContract), published and counted like the
+    // cut-short pixels.
+    result.buffers.push_back(approximationBuffer(result, scene, request.lightIndex));
+    result.techniqueStatistics["approximate_pixels"] = static_cast<double>(approximatePixels(result).count);
   }
   if (frame.shadedImage)
   {

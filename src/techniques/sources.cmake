@@ -4,6 +4,7 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/ShadowMapParameters.cpp
   src/techniques/ShadowMapReference.cpp
   src/techniques/ProbeSupport.cpp
+  src/techniques/ApproximationRules.cpp
   src/techniques/SamplingPatterns.cpp
   src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp

@@ -227,6 +227,12 @@ const std::map<std::string, Writer>& writers()
         return small({ "lessons", "--only", "acne-and-bias", "--out", out });
       },
       true, false, [](const Inputs&) { return test::sourceDir() / "datasets"; }, false };
+    w["differential --out"] = { [](const fs::path&) { return Inputs{}; },
+      [](const Inputs&, const std::string& out) {
+        return std::vector<std::string>{ "differential", "--seeds", "1", "-t", "hard", "--choice", "default",
+          "--max-side", "16", "--samples", "4", "-q", "--out", out };
+      },
+      true, false };
     w["montage --out"] = { datasetAndRun,
       [](const Inputs& in, const std::string& out) {
         return std::vector<std::string>{ "montage", in.run.string(), "--buffer", "visibility", "-q", "--out", out };

@@ -16,17 +16,12 @@
 
 namespace sl::test
 {
-namespace
-{
-
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer()
 {
   static ShadowRenderer renderer;
   return renderer;
 }
-
-} // namespace
 
 vtkSLEglRenderWindow* sharedRenderWindow()
 {

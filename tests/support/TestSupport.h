@@ -94,6 +94,9 @@ struct GroundError
 };
 GroundError groundErrorAgainst(const FrameResult& frame, const std::function<double(double x, double z)>& exact);
 
+// The test process's one renderer (its EGL context and VTK window), for tests that drive it themselves.
+ShadowRenderer& sharedRenderer();
+
 // Renders with one renderer per test process (its EGL context and VTK window are the slow part on llvmpipe).
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
   const std::vector<std::string>& settings = {});

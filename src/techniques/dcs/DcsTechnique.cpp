@@ -1,5 +1,7 @@
 #include "techniques/dcs/DcsTechnique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/LightView.h"
 #include "lightspace/lightsamples/LightSampleSetStructure.h"
 #include "scene/WeldedMesh.h"
@@ -78,6 +80,11 @@ TechniqueDescriptor dcsTechnique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeDcs(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };
+  // Exact per light sample (FBP08): the area integral up to the N samples' noise, which visibility_stderr publishes
+  // (the differential test adds it to the tolerance).
+  descriptor.accuracy.reference = ReferenceModel::AreaLight;
+  descriptor.accuracy.tolerance = 0.05;
+  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return std::stoi(values.choice("samples")); };
   return descriptor;
 }
 

@@ -1,5 +1,7 @@
 #include "techniques/hard/HardTechnique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/ProbeSupport.h"
@@ -31,6 +33,17 @@ TechniqueDescriptor hardTechnique()
       hardReference(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y, &recorder);
     // GpuCpuTest: identical on unambiguous pixels (0 or 1).
     return probeOutcome(sample, 0.0, "hardReference (hard/HardTechnique.h), double precision");
+  };
+  // Area lights are sampled from their centre (README "Common to hard and pcf"): held to the single ray to the centre.
+  // One depth comparison is exact there except where the texels around the receiver's disagree about it, or the
+  // bias hides a caster touching the receiver (survey §5): the map's sampling decides those pixels, not the geometry.
+  descriptor.accuracy.reference = ReferenceModel::LightCentre;
+  descriptor.accuracy.tolerance = 1e-3;
+  descriptor.accuracy.approximations = { { "shadow-map sampling",
+    "the texels within one of the receiver's hold occluding and non-occluding depths after the pixel's depth_bias, "
+    "or a caster lies within twice the bias of the receiver" } };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    markShadowMapSampling(ShadowMapFootprint(context), *context.frame, codes, 1.0f, nullptr);
   };
   return descriptor;
 }

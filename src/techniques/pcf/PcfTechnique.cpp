@@ -1,5 +1,7 @@
 #include "techniques/pcf/PcfTechnique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/ProbeSupport.h"
@@ -43,6 +45,18 @@ TechniqueDescriptor pcfTechnique()
     // the hardware's bilinear weights have the texture unit's sub-texel precision (8 bits on llvmpipe: 2^-7).
     const bool hardware = values.choice("filter") == "hardware_bilinear";
     return probeOutcome(sample, hardware ? 1.0 / 128.0 : 1e-5, "pcfReference (pcf/PcfTechnique.h), double precision");
+  };
+  // Area lights are sampled from their centre (README "Common to hard and pcf"): held to the single ray to the centre.
+  // The filter averages the comparisons over its kernel (survey §6): where they differ the value is a blend, by
+  // design, and a caster within twice the bias of the receiver is hidden by it (survey §5).
+  descriptor.accuracy.reference = ReferenceModel::LightCentre;
+  descriptor.accuracy.tolerance = 1e-3;
+  descriptor.accuracy.approximations = { { "filter footprint",
+    "the comparisons within kernel_texels / 2 + 1 texels of the receiver's differ after the pixel's depth_bias (a "
+    "filtered edge), or a caster lies within twice the bias of the receiver" } };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    const ImageF& kernel = context.frame->find("kernel_texels")->image;
+    markShadowMapSampling(ShadowMapFootprint(context), *context.frame, codes, 1.0f, &kernel);
   };
   return descriptor;
 }

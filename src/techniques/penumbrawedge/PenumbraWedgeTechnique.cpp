@@ -1,5 +1,7 @@
 #include "techniques/penumbrawedge/PenumbraWedgeTechnique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/LightView.h"
 #include "lightspace/lightsamples/LightSampleSetStructure.h"
 #include "techniques/ProbeSupport.h"
@@ -66,6 +68,22 @@ TechniqueDescriptor penumbraWedgeTechnique()
   };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probePenumbraWedge(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
+  // Exact for one convex occluder (AAM03); where silhouettes overlap their wedges' contributions are added twice and
+  // silhouettes seen only from the rest of the light are missed, as in the paper. Perforated casters are sampled by
+  // STSV's N shared light samples (003 Eq. 1-5).
+  descriptor.accuracy.reference = ReferenceModel::AreaLight;
+  descriptor.accuracy.tolerance = 0.05;
+  descriptor.accuracy.approximations = {
+    { "overlapping silhouettes",
+      "the segment to the light's centre crosses two or more caster surfaces (depth_complexity_center >= 2), or "
+      "two or more wedges hold the point (wedges_covering >= 2: their silhouettes' projections onto the light may "
+      "overlap; the buffers do not say whether they belong to one convex caster, where the method is exact)" },
+    { "sampled stsv", "a soft textured shadow volume holds the point (stsv_covering > 0): N light samples" } };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    markWhere(*context.frame, "depth_complexity_center", [](float count) { return count >= 2.0f; }, codes, 1.0f);
+    markWhere(*context.frame, "wedges_covering", [](float count) { return count >= 2.0f; }, codes, 1.0f);
+    markWhere(*context.frame, "stsv_covering", [](float count) { return count > 0.0f; }, codes, 2.0f);
   };
   return descriptor;
 }

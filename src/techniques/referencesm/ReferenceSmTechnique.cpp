@@ -1,5 +1,7 @@
 #include "techniques/referencesm/ReferenceSmTechnique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/LightSamples.h"
 #include "scene/AlphaTexture.h"
 #include "scene/RayTriangle.h"
@@ -45,6 +47,11 @@ TechniqueDescriptor referenceSmTechnique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeReferenceSm(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };
+  // K hard shadow maps from points on the light, averaged: the area integral up to the K samples' noise, which
+  // visibility_stderr publishes (the differential test adds it to the tolerance).
+  descriptor.accuracy.reference = ReferenceModel::AreaLight;
+  descriptor.accuracy.tolerance = 0.02;
+  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return values.getInt("samples"); };
   return descriptor;
 }
 

@@ -1,5 +1,7 @@
 #include "techniques/shadowvolume/ShadowVolumeTechnique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/LightView.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/shadowvolume/ShadowVolumeGeometry.h"
@@ -56,6 +58,15 @@ TechniqueDescriptor shadowVolumeTechnique()
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLShadowVolumePass>::New()); };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeShadowVolume(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
+  };
+  // Exact hard shadows of the light's centre (Crow 1977); alpha textures are ignored by design, so a perforated
+  // caster shadows as if solid.
+  descriptor.accuracy.reference = ReferenceModel::LightCentre;
+  descriptor.accuracy.tolerance = 1e-3;
+  descriptor.accuracy.approximations = { { "perforated caster as solid",
+    "the segment to the light's centre crosses a caster with an alpha texture" } };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    markCentreRayThroughPerforatedCaster(context, codes, 1.0f);
   };
   return descriptor;
 }

@@ -1,5 +1,7 @@
 #include "techniques/ss08/Ss08Technique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "core/Error.h"
 #include "frame/FrameResult.h"
 #include "io/ImageIO.h"
@@ -171,6 +173,26 @@ TechniqueDescriptor ss08Technique()
         cite("L363-368, L813-817 (the twin's 11 x 11 depth-aware box over its own raw levels; beside loq, the GPU's)"));
     }
     return outcome;
+  };
+  // Quality-scalable (Schwarz & Stamminger 2008): a pixel evaluated above level 0 back-projects coarser
+  // micro-occluders by design (its level of quality); at level 0 it is GBP06's back-projection, with its occluder
+  // fusion where blockers lie at different depths.
+  descriptor.accuracy.reference = ReferenceModel::AreaLight;
+  descriptor.accuracy.tolerance = 0.05;
+  descriptor.accuracy.approximations = { { "level of quality",
+    "the pixel was evaluated above level 0 (loq > 0 or level_floor > 0)" }, occluderFusionApproximation(),
+    coarseShadowMapApproximation(),
+    { "multisample resolve", "msaa=4: a sample of the pixel lies off its first sample's depth (msaa_distinct_samples > "
+      "0): the resolve gives it the pixel's or a neighbour's value, evaluated at another point (SS08 §7)" },
+    perforatedCasterInMapApproximation() };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    markWhere(*context.frame, "loq", [](float level) { return level > 0.0f; }, codes, 1.0f);
+    markWhere(*context.frame, "level_floor", [](float level) { return level > 0.0f; }, codes, 1.0f);
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 2.0f);
+    markCoarseShadowMap(footprint, codes, 3.0f);
+    markWhere(*context.frame, "msaa_distinct_samples", [](float samples) { return samples > 0.0f; }, codes, 4.0f);
+    markLightRaysThroughPerforatedCaster(context, codes, 5.0f);
   };
   return descriptor;
 }

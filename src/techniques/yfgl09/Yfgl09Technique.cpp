@@ -1,5 +1,7 @@
 #include "techniques/yfgl09/Yfgl09Technique.h"
 
+#include "techniques/ApproximationRules.h"
+
 #include "lightspace/mssm/DualMssmStructure.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
@@ -156,6 +158,19 @@ TechniqueDescriptor yfgl09Technique()
     ProbeOutcome outcome = probeOutcome(result.sample, 1e-3, "yfgl09ReferencePixel (yfgl09/Yfgl09Technique.h): the pixel's packet, double precision");
     outcome.ambiguity = yfgl09Ambiguity(result, packet, frame, pixel);
     return outcome;
+  };
+  // Back-projection of one shadow-map layer (GBP06, GBP07, Yang et al. 2009): exact for blockers on one plane parallel
+  // to the light; where the casters that hide part of the light lie at different depths their back-projections
+  // overlap or leave gaps (occluder fusion) and casters hidden from the light's centre are missed.
+  descriptor.accuracy.reference = ReferenceModel::AreaLight;
+  descriptor.accuracy.tolerance = 0.05;
+  descriptor.accuracy.approximations = { occluderFusionApproximation(), coarseShadowMapApproximation(),
+    perforatedCasterInMapApproximation() };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 1.0f);
+    markCoarseShadowMap(footprint, codes, 2.0f);
+    markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
   };
   return descriptor;
 }

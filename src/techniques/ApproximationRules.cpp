@@ -1,0 +1,410 @@
+#include "techniques/ApproximationRules.h"
+
+#include "core/Error.h"
+#include "frame/FrameResult.h"
+#include "lightspace/LightView.h"
+#include "lightspace/ShadowMapMath.h"
+#include "scene/RayTriangle.h"
+#include "techniques/ProbeSupport.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sl
+{
+
+ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context)
+  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex))
+{
+  SL_CHECK_MSG(!inputs_.shadowMapLinear.data.empty(), context.frame->technique, ": no shadow_map_depth export");
+  const Light& light = *inputs_.light;
+  lightSize_ = light.type == LightType::Area ? light.size : 0.0;
+  minLevels_.push_back(inputs_.shadowMapLinear);
+  maxLevels_.push_back(inputs_.shadowMapLinear);
+  while (minLevels_.back().width > 1 && minLevels_.back().height > 1)
+  {
+    const ImageF& fineMin = minLevels_.back();
+    const ImageF& fineMax = maxLevels_.back();
+    ImageF coarseMin((fineMin.width + 1) / 2, (fineMin.height + 1) / 2, 1, 0.0f);
+    ImageF coarseMax = coarseMin;
+    for (int y = 0; y < coarseMin.height; ++y)
+    {
+      for (int x = 0; x < coarseMin.width; ++x)
+      {
+        float lo = 1e30f;
+        float hi = -1e30f;
+        for (int dy = 0; dy < 2; ++dy)
+        {
+          for (int dx = 0; dx < 2; ++dx)
+          {
+            const int fx = std::min(2 * x + dx, fineMin.width - 1);
+            const int fy = std::min(2 * y + dy, fineMin.height - 1);
+            lo = std::min(lo, fineMin.at(fx, fy));
+            hi = std::max(hi, fineMax.at(fx, fy));
+          }
+        }
+        coarseMin.at(x, y) = lo;
+        coarseMax.at(x, y) = hi;
+      }
+    }
+    minLevels_.push_back(std::move(coarseMin));
+    maxLevels_.push_back(std::move(coarseMax));
+  }
+}
+
+std::optional<ShadowMapFootprint::Receiver> ShadowMapFootprint::receiver(int x, int y) const
+{
+  if (inputs_.coverage.at(x, y) <= 0.5f || inputs_.receives.at(x, y) <= 0.5f)
+  {
+    return std::nullopt;
+  }
+  const glm::dvec3 pWs(inputs_.position.at(x, y, 0), inputs_.position.at(x, y, 1), inputs_.position.at(x, y, 2));
+  const glm::dvec3 nWs(inputs_.normal.at(x, y, 0), inputs_.normal.at(x, y, 1), inputs_.normal.at(x, y, 2));
+  if (!lightCanReach(*inputs_.light, pWs, nWs))
+  {
+    return std::nullopt;
+  }
+  Receiver receiver;
+  receiver.sample = projectToShadowMap(inputs_.lightView, pWs);
+  if (!(receiver.sample.depthLin > 0.0))
+  {
+    return std::nullopt;
+  }
+  // The receiver's own surface, sampled up to a texel away on a slope (the default bias's rule, ShadowMapMath.h).
+  const double tanTheta = tanAngleToLight(nWs, directionToLight(*inputs_.light, pWs));
+  receiver.margin = inputs_.lightView.texelWorldSize(receiver.sample.depthLin) * (1.0 + 2.0 * std::min(tanTheta, 10.0));
+  return receiver;
+}
+
+ShadowMapFootprint::CasterRange ShadowMapFootprint::casterRange(int x, int y) const
+{
+  CasterRange range;
+  const std::optional<Receiver> point = receiver(x, y);
+  if (!point)
+  {
+    return range;
+  }
+  const LightView& view = inputs_.lightView;
+  const double d = point->sample.depthLin;
+  const double threshold = d - point->margin;
+  const int resolution = inputs_.shadowMapLinear.width;
+  // Texels per unit of light-space x/y (tangents for a perspective light).
+  const glm::dvec2 texelsPerUnit(resolution / (view.window.y - view.window.x), resolution / (view.window.w - view.window.z));
+  const bool perspective = view.projection == LightProjection::Perspective;
+  const auto halfWidth = [&](double z) {
+    // Orthographic (directional) lights have no area: only the point's own texel.
+    return perspective ? 0.5 * lightSize_ * std::max(0.0, d - z) / (d * std::max(z, 1e-12)) : 0.0;
+  };
+  const double largest = halfWidth(std::max(view.nearDepth, 1e-6));
+  const glm::dvec2 radius = glm::dvec2(largest) * texelsPerUnit + glm::dvec2(1.0);
+  int level = 0;
+  while (level + 1 < static_cast<int>(minLevels_.size()) && std::max(radius.x, radius.y) / double(1 << level) > 16.0)
+  {
+    ++level;
+  }
+  const ImageF& mins = minLevels_[static_cast<std::size_t>(level)];
+  const ImageF& maxs = maxLevels_[static_cast<std::size_t>(level)];
+  const double scale = 1.0 / double(1 << level);
+  const glm::dvec2 centre = point->sample.uvTexels;
+  const int x0 = std::max(0, static_cast<int>(std::floor((centre.x - radius.x) * scale)));
+  const int x1 = std::min(mins.width - 1, static_cast<int>(std::floor((centre.x + radius.x) * scale)));
+  const int y0 = std::max(0, static_cast<int>(std::floor((centre.y - radius.y) * scale)));
+  const int y1 = std::min(mins.height - 1, static_cast<int>(std::floor((centre.y + radius.y) * scale)));
+  const double nodeHalf = 0.5 * double(1 << level);
+  double lo = 1e300;
+  double hi = -1e300;
+  for (int ny = y0; ny <= y1; ++ny)
+  {
+    for (int nx = x0; nx <= x1; ++nx)
+    {
+      const double nodeMin = mins.at(nx, ny);
+      if (!(nodeMin < threshold))
+      {
+        range.receiverSeen = true;
+        continue;
+      }
+      // The node's nearest point to the receiver's texel position, against the region of its nearest caster depth.
+      const glm::dvec2 nodeCentre = (glm::dvec2(nx, ny) + 0.5) * double(1 << level);
+      const glm::dvec2 offset = glm::max(glm::abs(nodeCentre - centre) - glm::dvec2(nodeHalf), glm::dvec2(0.0));
+      const glm::dvec2 reach = glm::dvec2(halfWidth(nodeMin)) * texelsPerUnit + glm::dvec2(0.5);
+      if (offset.x > reach.x || offset.y > reach.y)
+      {
+        continue;
+      }
+      lo = std::min(lo, nodeMin);
+      hi = std::max(hi, nodeMin);
+      const double nodeMax = maxs.at(nx, ny);
+      if (nodeMax < threshold)
+      {
+        hi = std::max(hi, nodeMax);
+      }
+      else
+      {
+        range.receiverSeen = true;
+      }
+      if (lightSize_ > 0.0 && nodeMin < d)
+      {
+        range.texelOnLight = std::max(range.texelOnLight, view.texelWorldSize(nodeMin) * d / (d - nodeMin) / lightSize_);
+      }
+    }
+  }
+  if (lo <= hi)
+  {
+    range.found = true;
+    range.minDepth = lo;
+    range.maxDepth = hi;
+  }
+  return range;
+}
+
+bool ShadowMapFootprint::depthTestMixed(int x, int y, double radius, double bias, bool nearBias) const
+{
+  const std::optional<Receiver> point = receiver(x, y);
+  if (!point)
+  {
+    return false;
+  }
+  const ImageF& map = inputs_.shadowMapLinear;
+  const double d = point->sample.depthLin;
+  const int cx = static_cast<int>(std::floor(point->sample.uvTexels.x));
+  const int cy = static_cast<int>(std::floor(point->sample.uvTexels.y));
+  const int r = static_cast<int>(std::ceil(radius));
+  bool occluded = false;
+  bool lit = false;
+  for (int dy = -r; dy <= r; ++dy)
+  {
+    for (int dx = -r; dx <= r; ++dx)
+    {
+      const double stored = map.at(std::clamp(cx + dx, 0, map.width - 1), std::clamp(cy + dy, 0, map.height - 1));
+      const bool occludes = stored < d - bias;
+      occluded |= occludes;
+      lit |= !occludes;
+      if (nearBias && !occludes && stored < d - 1e-6 * d && stored >= d - 2.0 * bias - point->margin)
+      {
+        return true;
+      }
+    }
+  }
+  return occluded && lit;
+}
+
+void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& codes, float code, double relativeSpread)
+{
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f)
+      {
+        continue;
+      }
+      const ShadowMapFootprint::CasterRange range = footprint.casterRange(x, y);
+      if (!range.found)
+      {
+        continue;
+      }
+      const std::optional<ShadowMapFootprint::Receiver> point = footprint.receiver(x, y);
+      if (range.maxDepth - range.minDepth > relativeSpread * point->sample.depthLin)
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResult& frame, ImageF& codes, float code,
+  const ImageF* kernelTexels)
+{
+  const NamedImage* bias = frame.find("depth_bias");
+  SL_CHECK_MSG(bias, frame.technique, ": no depth_bias buffer");
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      const double radius = kernelTexels ? 0.5 * kernelTexels->at(x, y) + 1.0 : 1.0;
+      if (codes.at(x, y) == 0.0f && footprint.depthTestMixed(x, y, radius, bias->image.at(x, y), true))
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+namespace
+{
+
+void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code, bool wholeLight);
+
+} // namespace
+
+void markCentreRayThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code)
+{
+  markRaysThroughPerforatedCaster(context, codes, code, false);
+}
+
+void markLightRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code)
+{
+  markRaysThroughPerforatedCaster(context, codes, code, true);
+}
+
+Approximation perforatedCasterInMapApproximation()
+{
+  return { "perforated caster in the map",
+    "a segment from the point to the light's centre or to a corner of it crosses a caster with an alpha texture: "
+    "the shadow map samples its holes at texel centres" };
+}
+
+namespace
+{
+
+void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code, bool wholeLight)
+{
+  const Scene& scene = *context.scene;
+  const Light& light = scene.lights.at(static_cast<std::size_t>(context.lightIndex));
+  std::vector<const SceneObject*> perforated;
+  for (const SceneObject& object : scene.objects)
+  {
+    if (object.castShadows && object.hasAlphaTexture)
+    {
+      perforated.push_back(&object);
+    }
+  }
+  const NamedImage* position = context.frame->find("position");
+  const NamedImage* coverage = context.frame->find("coverage");
+  if (perforated.empty() || !position || !coverage)
+  {
+    return;
+  }
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f || coverage->image.at(x, y) <= 0.5f)
+      {
+        continue;
+      }
+      const glm::dvec3 p(position->image.at(x, y, 0), position->image.at(x, y, 1), position->image.at(x, y, 2));
+      // To the centre (and the light's extreme points), or 1e6 along a directional light's reverse direction.
+      std::vector<glm::dvec3> targets;
+      if (light.type == LightType::Directional)
+      {
+        targets.push_back(p - 1e6 * light.direction);
+      }
+      else
+      {
+        targets.push_back(light.center);
+        if (wholeLight && light.type == LightType::Area)
+        {
+          const glm::dvec3 right = 0.5 * light.size * light.right();
+          const glm::dvec3 up = 0.5 * light.size * light.up;
+          const bool square = light.shape == LightShape::Square;
+          for (const glm::dvec2 corner : { glm::dvec2(1, 1), glm::dvec2(1, -1), glm::dvec2(-1, 1), glm::dvec2(-1, -1) })
+          {
+            targets.push_back(square ? light.center + corner.x * right + corner.y * up
+                                     : light.center + (corner.x > 0 ? 1.0 : -1.0) * (corner.y > 0 ? right : up));
+          }
+        }
+      }
+      bool crossed = false;
+      for (const glm::dvec3& target : targets)
+      {
+        for (const SceneObject* object : perforated)
+        {
+          const TriangleMesh& mesh = object->mesh;
+          for (std::size_t t = 0; t < mesh.triangleCount() && !crossed; ++t)
+          {
+            const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
+            const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+            const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, target - p, a, b - a, c - a);
+            crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
+          }
+        }
+      }
+      if (crossed)
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+} // namespace
+
+void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double fraction)
+{
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f)
+      {
+        continue;
+      }
+      const std::optional<ShadowMapFootprint::Receiver> point = footprint.receiver(x, y);
+      if (!point)
+      {
+        continue;
+      }
+      // A texel so wide at the receiver that its own surface's margin (about the depth bias) spans more than 5% of
+      // the distance to the light: casters within that margin are invisible to the technique.
+      const bool wideReceiverTexel = point->margin > 0.05 * point->sample.depthLin;
+      const ShadowMapFootprint::CasterRange range = footprint.casterRange(x, y);
+      if (wideReceiverTexel || (range.found && range.receiverSeen && range.texelOnLight > fraction))
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+Approximation coarseShadowMapApproximation()
+{
+  return { "coarse shadow map",
+    "a shadow edge runs through the texels that can hide part of the light from the point, and one of their caster "
+    "texels back-projects onto more than a tenth of the light, or the receiver's own texel is so wide that its "
+    "margin (about the depth bias) exceeds 5% of the distance to the light: the map's resolution decides the "
+    "visible fraction" };
+}
+
+Approximation averageBlockerDepthApproximation()
+{
+  return { "average blocker depth",
+    "the shadow-map texels that can hide part of the light from the point (PCSS's blocker-search region, at each "
+    "texel's own depth) hold casters whose depths differ by more than 1% of the receiver's" };
+}
+
+Approximation occluderFusionApproximation()
+{
+  return { "occluder fusion",
+    "the shadow-map texels that can hide part of the light from the point hold casters whose depths differ by more "
+    "than 1% of the receiver's: their back-projections overlap or leave gaps, and casters hidden from the light's "
+    "centre are not in the map" };
+}
+
+void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon)
+{
+  markWhere(frame, "visibility", [&](float value) { return value > epsilon && value < 1.0 - epsilon; }, codes, code);
+}
+
+void markWhere(const FrameResult& frame, const std::string& buffer, const std::function<bool(float)>& predicate,
+  ImageF& codes, float code)
+{
+  const NamedImage* named = frame.find(buffer);
+  if (!named)
+  {
+    return;
+  }
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) == 0.0f && predicate(named->image.at(x, y, 0)))
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+} // namespace sl

@@ -1,0 +1,111 @@
+// Per-pixel rules that decide where a technique's declared approximation applies (TechniqueDescriptor::accuracy,
+// issue 27), computed from a rendered frame's published buffers and light-space exports. Each technique's
+// descriptor picks the rules that describe its own approximations; the rules live here because several
+// techniques share them (every shadow-map soft-shadow method reads one depth layer of blockers).
+#pragma once
+
+#include "core/Image.h"
+#include "frame/TechniqueDescriptor.h"
+#include "techniques/ShadowMapReference.h"
+
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+
+// The shadow map of a frame, with a min-max pyramid over its linear depths, asked about the caster texels that can
+// hide some part of the light from a pixel.
+class ShadowMapFootprint
+{
+public:
+  explicit ShadowMapFootprint(const ApproximationContext& context); // throws when the frame has no shadow map
+  const ShadowMapInputs& inputs() const { return inputs_; }
+
+  // The pixel's receiver point projected into the map, or nullopt where no shadow test happens (uncovered, not
+  // receiving, the light cannot reach it, outside the map's depth range).
+  struct Receiver
+  {
+    ShadowMapSample sample;
+    double margin = 0.0; // a stored depth below sample.depthLin - margin is a caster, not the receiver itself
+  };
+  std::optional<Receiver> receiver(int x, int y) const;
+
+  // The depth range of the caster texels that can hide part of the light from the pixel's point: a texel of depth
+  // z at lateral offset t (light-space tangent) from the point's own is counted when |t| <= (w/2)(d - z)/(d z)
+  // on both axes (PCSS's blocker-search region, Fernando 2005, for the circumscribed square of side w; exact
+  // for a square light) and z < d - margin. Large regions are read through the pyramid's level whose texels are
+  // at most 1/32 of the region, each node taken as a whole (its min, and its max when the node holds casters only),
+  // so the spread found is never more than the texels' own.
+  struct CasterRange
+  {
+    bool found = false;
+    double minDepth = 0.0;
+    double maxDepth = 0.0;
+    bool receiverSeen = false; // the region also holds texels that are not casters (the light is partly seen)
+    // The largest caster texel of the region back-projected from the point onto the light's plane, as a fraction of
+    // the light's size: texelWorldSize(z) d / (d - z) / w. A caster edge is placed to within one texel, so the
+    // visible fraction is known to about this much along it.
+    double texelOnLight = 0.0;
+  };
+  CasterRange casterRange(int x, int y) const;
+
+  // Whether the depth test against the receiver differs among the texels within `radius` texels of its nearest one,
+  // with `bias` subtracted from the receiver's depth (stored < d - bias: occluded): the value then depends on which
+  // texel the GPU reads or how its filter weights them, not on the geometry. `nearBias` also counts a texel whose
+  // stored depth lies in [d - 2 bias, d) on the lit side: a caster so close to the receiver that the bias hides it.
+  bool depthTestMixed(int x, int y, double radius, double bias, bool nearBias) const;
+
+private:
+  ShadowMapInputs inputs_;
+  double lightSize_ = 0.0;
+  std::vector<ImageF> minLevels_; // level k: min over 2^k x 2^k texels
+  std::vector<ImageF> maxLevels_;
+};
+
+// Marks with `code` every pixel whose caster texels (ShadowMapFootprint::casterRange) span more than
+// `relativeSpread` of the receiver's depth: blockers at more than one depth, where an average blocker depth (PCSS,
+// VSSM Eq. 4) or back-projected micro-occluders of one depth layer (occluder fusion) are approximate. Keeps codes
+// already set.
+void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& codes, float code,
+  double relativeSpread = 0.01);
+
+// Marks with `code` every pixel where ShadowMapFootprint::depthTestMixed holds with the pixel's depth_bias (buffer)
+// and radius 1 texel, or kernel_texels / 2 + 1 with `kernelTexels` (a filter's footprint): shadow-map sampling.
+void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResult& frame, ImageF& codes, float code,
+  const ImageF* kernelTexels);
+
+// Marks with `code` every pixel whose segment to the light's centre crosses a caster with an alpha texture (double
+// precision, RayTriangle.h), wherever the texture is: for techniques that shadow such casters as solid.
+void markCentreRayThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code);
+// The same for the segments to the light's centre and to its four corners (square) or the four ends of its
+// right/up diameters (disk): a caster with an alpha texture lies between the point and the light, and a shadow map
+// samples its holes at texel centres only (alpha texture detail finer than a texel is lost or aliased).
+void markLightRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code);
+Approximation perforatedCasterInMapApproximation();
+
+// The declarations several techniques share: PCSS's average blocker depth (also VSSM Eq. 4) and back-projection's
+// occluder fusion (GBP06, GBP07, Yang et al. 2009, SS08), both marked by markMultipleBlockerDepths.
+Approximation averageBlockerDepthApproximation();
+Approximation occluderFusionApproximation();
+
+// Marks with `code` every pixel whose light footprint holds both casters and uncovered texels (an edge of the
+// shadow runs through it) where a caster texel back-projects onto more than `fraction` of the light
+// (CasterRange::texelOnLight): the map's resolution, not the technique, decides how much of the light the edge hides.
+// Typical where a caster nearly touches the light (the focus window then spans a wide angle, survey §4.1) or the
+// light is small against the texels. Keeps codes already set.
+void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double fraction = 0.1);
+Approximation coarseShadowMapApproximation();
+
+// Marks with `code` every pixel whose value lies strictly inside (epsilon, 1 - epsilon): a filtered (partial) value.
+void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon = 1e-3);
+
+// Marks with `code` every pixel where `buffer` (component 0) satisfies `predicate`; nothing when the frame has no
+// such buffer.
+void markWhere(const FrameResult& frame, const std::string& buffer, const std::function<bool(float)>& predicate,
+  ImageF& codes, float code);
+
+} // namespace sl

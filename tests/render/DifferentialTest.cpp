@@ -1,0 +1,121 @@
+// The bounded slice of the randomized differential test (issue 27, differential/Differential.h): every technique and
+// each of its enumerated parameter choices against the Embree reference on a fixed set of random scenes, at a small
+// image size, held to the technique's accuracy contract (TechniqueDescriptor::accuracy). One gtest, hence one ctest
+// case, per technique so that `ctest -j` spreads them. The full sweep is docs/bench/differential.
+#include "differential/Differential.h"
+#include "frame/Approximations.h"
+#include "scene/RandomScenes.h"
+#include "support/TestSupport.h"
+#include "techniques/Registry.h"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+namespace sl
+{
+namespace
+{
+
+// Seeds nobody tuned a technique for: the first ones of the sweep's range (docs/bench/differential/run.sh).
+const std::vector<std::uint64_t> kSliceSeeds = { 1, 2, 3 };
+constexpr int kSliceMaxSide = 64;
+
+std::vector<std::string> techniqueNames()
+{
+  std::vector<std::string> names;
+  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  {
+    names.push_back(technique.name);
+  }
+  return names;
+}
+
+std::string caseName(const testing::TestParamInfo<std::string>& info)
+{
+  std::string name = info.param;
+  for (char& c : name)
+  {
+    c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  }
+  return name;
+}
+
+class DifferentialSlice : public testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(DifferentialSlice, EveryChoiceMeetsItsAccuracyContractOnRandomScenes)
+{
+  DifferentialOptions options;
+  options.seeds = kSliceSeeds;
+  options.techniques = { GetParam() };
+  options.maxSide = kSliceMaxSide;
+  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  for (const ConfigurationOutcome& outcome : outcomes)
+  {
+    if (outcome.failed())
+    {
+      ADD_FAILURE() << describeFailure(outcome);
+    }
+  }
+  const DifferentialTally tally = tallyByTechnique(outcomes).at(GetParam());
+  std::cout << "[ measured ] " << GetParam() << ": " << tally.configurations << " configurations ("
+            << tally.unsupported << " unsupported), " << tally.pixels << " pixels, " << tally.flagged << " flagged ("
+            << tally.flaggedMisses << " beyond tolerance), " << tally.ambiguous << " ambiguous, " << tally.failures
+            << " failures\n";
+  // The slice compares something: at least one configuration ran on pixels.
+  EXPECT_GT(tally.configurations, 0);
+  EXPECT_GT(tally.pixels, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Techniques, DifferentialSlice, testing::ValuesIn(techniqueNames()), caseName);
+
+// The contract has teeth: a technique held to the wrong reference fails. hard (the light's centre) compared with
+// the whole light's integral misses on every penumbra pixel its flags do not cover.
+TEST(Differential, TheComparisonFailsATechniqueThatIsWrong)
+{
+  // A scene with a wide light, whose penumbra hard cannot render.
+  std::uint64_t seed = 0;
+  for (std::uint64_t candidate = 1; candidate < 200 && seed == 0; ++candidate)
+  {
+    if (randomScene(candidate, kSliceMaxSide).summary.rfind("square light ", 0) == 0 &&
+      std::stod(randomScene(candidate, kSliceMaxSide).summary.substr(13)) > 1.0)
+    {
+      seed = candidate;
+    }
+  }
+  ASSERT_NE(seed, 0u);
+  DifferentialOptions options;
+  options.seeds = { seed };
+  options.techniques = { "hard" };
+  options.choice = "default";
+  options.maxSide = kSliceMaxSide;
+  const std::vector<ConfigurationOutcome> asDeclared = runDifferential(test::sharedRenderer(), options);
+  ASSERT_EQ(asDeclared.size(), 1u);
+  EXPECT_FALSE(asDeclared.front().failed()) << describeFailure(asDeclared.front());
+
+  // The same frame against the area reference: what the comparison would say if hard claimed the whole light.
+  options.referenceModelOverride = ReferenceModel::AreaLight;
+  const std::vector<ConfigurationOutcome> misdeclared = runDifferential(test::sharedRenderer(), options);
+  ASSERT_EQ(misdeclared.size(), 1u);
+  EXPECT_GT(misdeclared.front().failures, 0) << describeFailure(misdeclared.front());
+}
+
+// Every frame publishes `approximation` and counts its marks in approximate_pixels.
+TEST(Differential, EveryFramePublishesItsApproximationBuffer)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = test::renderDataset(scene, "pcss", 64, 64);
+  const NamedImage* buffer = frame.find(kApproximationBuffer);
+  ASSERT_NE(buffer, nullptr);
+  ASSERT_EQ(buffer->categoryLabels.size(), frame.descriptor->accuracy.approximations.size() + 1);
+  EXPECT_EQ(buffer->categoryLabels.at(1), "average blocker depth");
+  const ApproximatePixels marked = approximatePixels(frame);
+  EXPECT_EQ(frame.techniqueStatistics.at("approximate_pixels"), static_cast<double>(marked.count));
+  // Two occluders at different heights: their overlapping penumbrae mix blocker depths.
+  EXPECT_GT(marked.count, 0u) << "stacked-occluders has blockers at two depths";
+}
+
+} // namespace
+} // namespace sl
