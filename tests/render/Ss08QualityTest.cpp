@@ -31,28 +31,6 @@ namespace sl
 namespace
 {
 
-// The settings these tests were written for, ss08's defaults until issue 27: micropatches accumulated by area (the
-// defaults are now microrects with occlusion bitmasks, docs/bench/ss08-defaults). A test's own settings override them.
-std::vector<std::string> withMicropatchAreaDefaults(std::vector<std::string> settings)
-{
-  const auto sets = [&](const std::string& key) {
-    return std::any_of(settings.begin(), settings.end(), [&](const std::string& s) { return s.rfind(key + "=", 0) == 0; });
-  };
-  if (!sets("micro_occluder"))
-  {
-    settings.insert(settings.begin(), "micro_occluder=micropatch");
-  }
-  if (!sets("accumulation"))
-  {
-    settings.insert(settings.begin(), "accumulation=area");
-  }
-  return settings;
-}
-
-FrameResult renderSs08(const Scene& scene, int width, int height, const std::vector<std::string>& settings = {})
-{
-  return test::renderDataset(scene, "ss08", width, height, withMicropatchAreaDefaults(settings));
-}
 
 constexpr int kFrameSize = 128;
 const char* const kMapSetting = "shadow_map_size=512";
@@ -352,7 +330,7 @@ TEST(Ss08Quality, LoqMapIsContinuousOnEachSurfaceAfterSmoothing)
       for (const std::string floor : { "none", "raw" })
       {
         const std::vector<std::string> settings = { kMapSetting, "budget=" + std::to_string(budget), "loq_floor=" + floor };
-        const FrameResult frame = renderSs08(scene, kFrameSize, kFrameSize, settings);
+        const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize, settings);
         const Continuity continuity = continuityOf(frame);
         const std::string label = test::caseLabel(dataset, settings);
         const bool gated = budget == gatedBudget && floor == "none"; // the default floor; raw restores the raw steps
@@ -390,7 +368,7 @@ TEST_P(Ss08Seams, BlendingWeakensTheSeamsWhereTheLevelChanges)
     SeamRatio ratios[2];
     for (int blend = 0; blend < 2; ++blend)
     {
-      const FrameResult frame = renderSs08(scene, kFrameSize, kFrameSize,
+      const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize,
         { kMapSetting, "budget=" + std::to_string(budget), "blend_band=" + std::to_string(blend) });
       ratios[blend] = seamRatioOf(frame);
       pooled[blend] += ratios[blend];
@@ -433,7 +411,7 @@ TEST(Ss08Quality, MicrorectsShowWeakerSeamsThanMicropatchesWithoutBlending)
       SeamRatio ratios[2];
       for (int k = 0; k < 2; ++k)
       {
-        const FrameResult frame = renderSs08(scene, kFrameSize, kFrameSize,
+        const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize,
           { kMapSetting, "budget=" + std::to_string(budget), "blend_band=0", std::string("micro_occluder=") + kinds[k] });
         ratios[k] = seamRatioOf(frame);
         pooled[k] += ratios[k];
@@ -482,7 +460,7 @@ TEST_P(Ss08Scaling, QualityAndCostScaleWithTheBudget)
   std::optional<Reference> reference; // the camera, hence the G-buffer points, are the same at every budget
   for (const int budget : budgets)
   {
-    const FrameResult frame = renderSs08(scene, kFrameSize, kFrameSize,
+    const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize,
       { kMapSetting, "budget=" + std::to_string(budget) });
     if (!reference)
     {
@@ -549,9 +527,9 @@ INSTANTIATE_TEST_SUITE_P(Datasets, Ss08Scaling, ::testing::Values("bunny", "stac
 TEST(Ss08Quality, BudgetMapLowersTheCostAtTheBorders)
 {
   const Scene scene = test::loadDataset("bunny");
-  const FrameResult ramp = renderSs08(scene, kFrameSize, kFrameSize,
+  const FrameResult ramp = test::renderSs08(scene, kFrameSize, kFrameSize,
     { kMapSetting, "budget_map=ramp_x", "budget=12", "budget_border=5" });
-  const FrameResult uniform = renderSs08(scene, kFrameSize, kFrameSize, { kMapSetting, "budget=12" });
+  const FrameResult uniform = test::renderSs08(scene, kFrameSize, kFrameSize, { kMapSetting, "budget=12" });
   const ImageF& budget = bufferOf(ramp, "budget");
   const ImageF& classes = bufferOf(ramp, "classification");
   const int width = budget.width;
@@ -692,7 +670,7 @@ TEST_P(Ss08Fig12, MicrorectsBeatMicropatchesAtCoarseLevelsWithBitmasks)
     {
       const std::vector<std::string> settings = { kFig12MapSetting, "force_level=" + std::to_string(level),
         std::string("micro_occluder=") + kinds[k], std::string("accumulation=") + accumulations[a] };
-      const FrameResult frame = renderSs08(scene, kFrameSize, kFrameSize, settings);
+      const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize, settings);
       if (!reference)
       {
         reference = referenceOf(frame, scene);

@@ -30,28 +30,6 @@ namespace sl
 namespace
 {
 
-// The settings these tests were written for, ss08's defaults until issue 27: micropatches accumulated by area (the
-// defaults are now microrects with occlusion bitmasks, docs/bench/ss08-defaults). A test's own settings override them.
-std::vector<std::string> withMicropatchAreaDefaults(std::vector<std::string> settings)
-{
-  const auto sets = [&](const std::string& key) {
-    return std::any_of(settings.begin(), settings.end(), [&](const std::string& s) { return s.rfind(key + "=", 0) == 0; });
-  };
-  if (!sets("micro_occluder"))
-  {
-    settings.insert(settings.begin(), "micro_occluder=micropatch");
-  }
-  if (!sets("accumulation"))
-  {
-    settings.insert(settings.begin(), "accumulation=area");
-  }
-  return settings;
-}
-
-FrameResult renderSs08(const Scene& scene, int width, int height, const std::vector<std::string>& settings = {})
-{
-  return test::renderDataset(scene, "ss08", width, height, withMicropatchAreaDefaults(settings));
-}
 
 constexpr int classCount = static_cast<int>(Ss08Class::CutShort) + 1;
 using ClassCounts = std::array<int, classCount>;
@@ -326,7 +304,7 @@ void expectSameAsGbp06(const std::string& dataset, const std::vector<std::string
   const std::string label = test::caseLabel(dataset, settings);
   const FrameResult gbp06 = test::renderDataset(scene, "gbp06", width, height, settings);
   const FrameResult ss08 =
-    renderSs08(scene, width, height, plus(settings, { "budget=0", "micro_occluder=micropatch" }));
+    test::renderSs08(scene, width, height, plus(settings, { "budget=0", "micro_occluder=micropatch" }));
   const ImageF& expected = buffer(gbp06, "visibility");
   const ImageF& actual = buffer(ss08, "visibility");
   double maxDifference = 0.0;
@@ -435,7 +413,7 @@ TEST_P(Ss08MatchesTheTwin, OnFiveSettingMixesAtBudgets3And9)
     {
       const std::vector<std::string> settings = plus(plus(c.settings, mix), { "budget=" + std::to_string(budget) });
       const std::string label = test::caseLabel(c.name, settings);
-      const FrameResult frame = renderSs08(scene, 64, 64, settings);
+      const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
       const SmoothingCheck smoothing = checkSmoothing(frame);
       const Ss08Twin twin = twinOf(frame, scene);
       const TwinAgreement agreement = compareWithTwin(frame, twin);
@@ -535,7 +513,7 @@ TEST_P(Ss08Budget, HonouredPerPixelOnEveryDataset)
       const std::vector<std::string> settings =
         plus({ "shadow_map_size=256", "budget=" + std::to_string(budget), "loq_floor=raw" }, variant);
       const std::string label = test::caseLabel(dataset, settings);
-      const FrameResult frame = renderSs08(scene, 64, 64, settings);
+      const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
       const BudgetCount count = countBudget(frame, twinOf(frame, scene), budget);
       backProjecting += count.backProjecting;
       std::cout << "[ measured ] ss08 budget " << budget << ", " << label << ": " << count.backProjecting
@@ -552,7 +530,7 @@ TEST_P(Ss08Budget, HonouredPerPixelOnEveryDataset)
     }
     // The paper's plain smoothing (loq_floor=none): levels below the budget's where neighbours are finer.
     const std::vector<std::string> none = { "shadow_map_size=256", "budget=" + std::to_string(budget), "loq_floor=none" };
-    const FrameResult frame = renderSs08(scene, 64, 64, none);
+    const FrameResult frame = test::renderSs08(scene, 64, 64, none);
     int violating = 0;
     double worst = 0.0;
     for (const float levels : buffer(frame, "loq_budget_violation").data)
@@ -595,7 +573,7 @@ TEST(Ss08, GrowthLeavesNoLitPixelThatItsMicroOccludersShadow)
     {
       const std::vector<std::string> settings = { "shadow_map_size=256", "budget=5", "kernel_refinements=1",
         on ? "growth=on" : "growth=off" };
-      const FrameResult frame = renderSs08(scene, 64, 64, settings);
+      const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
       const Ss08Twin twin = twinOf(frame, scene);
       const ImageF& classes = buffer(frame, "classification");
       for (int y = 0; y < 64; ++y)
@@ -652,7 +630,7 @@ TEST(Ss08, TighterRangesBackProjectFewerPixels)
     std::map<std::string, double> meanFloor;
     for (const std::string hsm : { "nbuffers", "ysm", "mipmap" })
     {
-      const FrameResult frame = renderSs08(scene, 64, 64, { "shadow_map_size=512", "budget=9", "hsm=" + hsm });
+      const FrameResult frame = test::renderSs08(scene, 64, 64, { "shadow_map_size=512", "budget=9", "hsm=" + hsm });
       const ImageF& classes = buffer(frame, "classification");
       int tested = 0;
       int backProjecting = 0;
@@ -697,7 +675,7 @@ TEST(Ss08, PixelsOverTheLoopCapAreFlaggedAndTheOthersExact)
   {
     const std::vector<std::string> settings = { "shadow_map_size=" + std::to_string(size), "budget=0" };
     const std::string label = test::caseLabel("near-light", settings);
-    const FrameResult frame = renderSs08(scene, 64, 48, settings);
+    const FrameResult frame = test::renderSs08(scene, 64, 48, settings);
     const Ss08Twin twin = twinOf(frame, scene);
     const bool llvmpipe = frame.glRenderer.find("llvmpipe") != std::string::npos;
     int flagged = 0;
@@ -788,7 +766,7 @@ TEST(Ss08, IntegerLevelsBlendNothingAndBlendBandZeroPicksOneLevel)
          { "shadow_map_size=256", "force_level=2" }, { "shadow_map_size=256", "budget=5", "blend_band=0" } })
   {
     const std::string label = test::caseLabel("stacked-occluders", settings);
-    const FrameResult frame = renderSs08(scene, 64, 64, settings);
+    const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
     const bool forced = settings[1] == "force_level=2";
     int zero = 0;
     int one = 0;
@@ -840,7 +818,7 @@ TEST(Ss08, BudgetOneIsTheTopLevelEverywhere)
   {
     const bool microrects = settings.size() == 3;
     const std::string label = test::caseLabel("bunny", settings);
-    const FrameResult frame = renderSs08(scene, 64, 64, settings);
+    const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
     int backProjecting = 0;
     int atTop = 0;
     int wrongLevel = 0;
@@ -902,7 +880,7 @@ TEST(Ss08, BudgetMapsArePerPixel)
   {
     const bool image = settings[1] == "budget_map=image";
     const std::string label = image ? "stacked-occluders budget_map=image (0 | 6)" : test::caseLabel("stacked-occluders", settings);
-    const FrameResult frame = renderSs08(scene, width, height, settings);
+    const FrameResult frame = test::renderSs08(scene, width, height, settings);
     const ImageF& budgets = buffer(frame, "budget");
     const ImageF& classes = buffer(frame, "classification");
     std::map<int, int> pixelsByBudget;
@@ -953,7 +931,7 @@ TEST(Ss08, KernelsClampedByTheMapBorderMatchTheTwin)
   {
     const std::vector<std::string> settings = { "shadow_map_size=128", budget };
     const std::string label = test::caseLabel("near-light + border caster", settings);
-    const FrameResult frame = renderSs08(scene, 64, 48, settings);
+    const FrameResult frame = test::renderSs08(scene, 64, 48, settings);
     const Ss08Twin twin = twinOf(frame, scene);
     int clamped = 0;
     for (int y = 0; y < 48; ++y)
@@ -979,7 +957,7 @@ TEST(Ss08, NoNanOrInfWithMicrorectsWithoutGrowthAndANarrowBlendBand)
   const std::vector<std::string> settings = { "shadow_map_size=256", "micro_occluder=microrect", "growth=off", "blend_band=0.1" };
   for (const std::string& dataset : squareLightDatasets())
   {
-    const FrameResult frame = renderSs08(test::loadDataset(dataset), 64, 64, settings);
+    const FrameResult frame = test::renderSs08(test::loadDataset(dataset), 64, 64, settings);
     int nonFinite = 0;
     for (const NamedImage& named : frame.buffers)
     {
@@ -1013,7 +991,7 @@ TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
   // min aggregation whatever the bias.
   const Scene scene = test::loadDataset("grazing");
   const std::vector<std::string> base = { "shadow_map_size=256", "bias_slope_texels=0.25" };
-  const FrameResult level0 = renderSs08(scene, 96, 96, plus(base, { "force_level=0" }));
+  const FrameResult level0 = test::renderSs08(scene, 96, 96, plus(base, { "force_level=0" }));
   std::vector<std::size_t> lit;
   for (std::size_t i = 0; i < buffer(level0, "visibility").data.size(); ++i)
   {
@@ -1033,7 +1011,7 @@ TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
     double lowest[2] = { 1.0, 1.0 };
     for (const int on : { 1, 0 })
     {
-      const FrameResult frame = renderSs08(scene, 96, 96,
+      const FrameResult frame = test::renderSs08(scene, 96, 96,
         plus(base, { "force_level=" + std::to_string(level), on ? "level_bias=on" : "level_bias=off" }));
       for (const std::size_t i : lit)
       {
@@ -1065,7 +1043,7 @@ TEST(Ss08, ContactShadowLeaksAtCoarseLevelsAndMicrorectsLeakLess)
   // pixels within 0.03 of the box: the leak shrinks as the budget grows, and microrects, whose extents follow
   // the box (§5.2), leak less than micropatches.
   const Scene scene = test::loadDataset("contact");
-  const FrameResult unlimited = renderSs08(scene, 128, 128, { "shadow_map_size=512", "budget=0" });
+  const FrameResult unlimited = test::renderSs08(scene, 128, 128, { "shadow_map_size=512", "budget=0" });
   const ImageF& position = unlimited.find("position")->image;
   double leak[2][2] = { { 0.0, 0.0 }, { 0.0, 0.0 } }; // [budget 3, 5][micropatch, microrect]
   const int budgets[2] = { 3, 5 };
@@ -1076,7 +1054,7 @@ TEST(Ss08, ContactShadowLeaksAtCoarseLevelsAndMicrorectsLeakLess)
       const std::vector<std::string> settings = { "shadow_map_size=512", "budget=" + std::to_string(budgets[b]),
         kind == 0 ? "micro_occluder=micropatch" : "micro_occluder=microrect" };
       const std::string label = test::caseLabel("contact", settings);
-      const FrameResult frame = renderSs08(scene, 128, 128, settings);
+      const FrameResult frame = test::renderSs08(scene, 128, 128, settings);
       int contactPixels = 0;
       double levelSum = 0.0;
       double darkeningSum = 0.0;
@@ -1160,7 +1138,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
   {
     const std::vector<std::string> settings = { "shadow_map_size=256", "hsm=nbuffers", "budget=5",
       "micro_occluder=" + want.microOccluder };
-    const FrameResult frame = renderSs08(scene, 64, 64, settings);
+    const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
     const Ss08Twin twin = twinOf(frame, scene);
     const bool penumbra = want.classification == Ss08Class::Penumbra;
     // The first unambiguous pixel of the wanted class; for a penumbra, the blended one whose visibility is nearest 0.5.
@@ -1273,7 +1251,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
   // partial, so the probe must say so in `ambiguity` instead of failing, while recording every slot the twin
   // examined (those over the recorder's cap counted as dropped). Only llvmpipe has the cap.
   const Scene nearLight = test::loadDataset("near-light");
-  const FrameResult frame = renderSs08(nearLight, 64, 48, { "shadow_map_size=436", "budget=0" });
+  const FrameResult frame = test::renderSs08(nearLight, 64, 48, { "shadow_map_size=436", "budget=0" });
   if (frame.glRenderer.find("llvmpipe") == std::string::npos)
   {
     return;
@@ -1322,7 +1300,7 @@ TEST(Ss08Bitmask, MatchesTheTwinSampleForSample)
   {
     const Scene scene = test::loadDataset(c.dataset);
     const std::string label = test::caseLabel(c.dataset, c.settings);
-    const FrameResult frame = renderSs08(scene, 64, 64, c.settings);
+    const FrameResult frame = test::renderSs08(scene, 64, 64, c.settings);
     const Ss08Twin twin = twinOf(frame, scene);
     const ImageF& loq = buffer(frame, "loq");
     const bool oneLevel = frame.parameters.get("blend_band") <= 0.0;
@@ -1401,8 +1379,8 @@ TEST(Ss08Bitmask, NeverDarkerThanAreaAndLighterWhereMicroOccludersOverlap)
 {
   const Scene scene = test::loadDataset("stacked-occluders");
   const std::vector<std::string> settings = { "budget=9", "micro_occluder=microrect" };
-  const FrameResult area = renderSs08(scene, 96, 96, settings);
-  const FrameResult bitmask = renderSs08(scene, 96, 96, plus(settings, { "accumulation=bitmask" }));
+  const FrameResult area = test::renderSs08(scene, 96, 96, settings);
+  const FrameResult bitmask = test::renderSs08(scene, 96, 96, plus(settings, { "accumulation=bitmask" }));
   const ImageF& vArea = buffer(area, "visibility");
   const ImageF& vBitmask = buffer(bitmask, "visibility");
   const ImageF& overcount = buffer(bitmask, "area_overcount");
@@ -1459,7 +1437,7 @@ TEST(Ss08Bitmask, PlanarOccluderAtLevelZeroIsTheClosedFormWithinOneSixteenth)
   const Scene scene = test::loadDataset("planar-occluder");
   const auto exact = [](double x, double z) { return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z); };
   const FrameResult frame =
-    renderSs08(scene, 128, 128, { "shadow_map_size=512", "budget=0", "accumulation=bitmask" });
+    test::renderSs08(scene, 128, 128, { "shadow_map_size=512", "budget=0", "accumulation=bitmask" });
   const test::GroundError error = test::groundErrorAgainst(frame, exact);
   std::cout << "[ measured ] ss08 bitmask on planar-occluder, level 0, 512^2 map: RMSE " << error.rmse
             << ", penumbra RMSE " << error.penumbraRmse << ", max " << error.maxError << " over " << error.penumbra
@@ -1476,12 +1454,12 @@ TEST(Ss08Bitmask, CostsNoLoopIterations)
 {
   const Scene scene = test::loadDataset("near-light");
   const std::vector<std::string> settings = { "shadow_map_size=436", "budget=0" };
-  const FrameResult area = renderSs08(scene, 64, 48, settings);
+  const FrameResult area = test::renderSs08(scene, 64, 48, settings);
   if (area.glRenderer.find("llvmpipe") == std::string::npos)
   {
     return; // no cap to compare
   }
-  const FrameResult bitmask = renderSs08(scene, 64, 48, plus(settings, { "accumulation=bitmask" }));
+  const FrameResult bitmask = test::renderSs08(scene, 64, 48, plus(settings, { "accumulation=bitmask" }));
   const float cutShort = static_cast<float>(code(Ss08Class::CutShort));
   int cutArea = 0;
   int cutBitmask = 0;

@@ -272,6 +272,23 @@ FrameResult renderDataset(const Scene& scene, const std::string& technique, int 
   return sharedRenderer().render(scene, request);
 }
 
+FrameResult renderSs08(const Scene& scene, int width, int height, const std::vector<std::string>& settings)
+{
+  std::vector<std::string> withDefaults = settings;
+  const auto sets = [&](const std::string& key) {
+    return std::any_of(settings.begin(), settings.end(), [&](const std::string& s) { return s.rfind(key + "=", 0) == 0; });
+  };
+  if (!sets("micro_occluder"))
+  {
+    withDefaults.insert(withDefaults.begin(), "micro_occluder=micropatch");
+  }
+  if (!sets("accumulation"))
+  {
+    withDefaults.insert(withDefaults.begin(), "accumulation=area");
+  }
+  return renderDataset(scene, "ss08", width, height, withDefaults);
+}
+
 std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, int width, int height, int samples)
 {
   RenderRequest request;

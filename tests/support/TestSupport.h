@@ -101,6 +101,10 @@ ShadowRenderer& sharedRenderer();
 FrameResult renderDataset(const Scene& scene, const std::string& technique, int width, int height,
   const std::vector<std::string>& settings = {});
 
+// ss08 with the settings its older tests were written for, its defaults until issue 27: micropatches accumulated by
+// area (the defaults are now microrects with occlusion bitmasks, docs/bench/ss08-defaults). `settings` override them.
+FrameResult renderSs08(const Scene& scene, int width, int height, const std::vector<std::string>& settings = {});
+
 // The reference's multisample mode on the shared renderer: one G-buffer-only frame per sample position
 // (ShadowRenderer::renderSampleGBuffers).
 std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, int width, int height, int samples);
