@@ -275,8 +275,9 @@ void readBackLightSpace(const FrameResources& frame, FrameResult& result)
   }
   for (const LightSpaceStructure* structure : withBuildDependencies(needed))
   {
-    const std::vector<NamedImage> images = structure->exportImages(frame, result);
-    result.lightSpace.insert(result.lightSpace.end(), images.begin(), images.end());
+    std::vector<NamedImage> images = structure->exportImages(frame, result);
+    result.lightSpace.insert(
+      result.lightSpace.end(), std::make_move_iterator(images.begin()), std::make_move_iterator(images.end()));
     result.lightStructureGpuBytes[structure->name] = structure->gpuBytes(frame);
   }
 }

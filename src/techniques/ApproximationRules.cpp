@@ -14,7 +14,7 @@ namespace sl
 {
 
 ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context)
-  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex))
+  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex, false))
 {
   SL_CHECK_MSG(!inputs_.shadowMapLinear.data.empty(), context.frame->technique, ": no shadow_map_depth export");
   const Light& light = *inputs_.light;

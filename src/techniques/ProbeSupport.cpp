@@ -7,7 +7,7 @@
 namespace sl
 {
 
-ShadowMapInputs shadowMapInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex)
+ShadowMapInputs shadowMapInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth)
 {
   SL_CHECK_MSG(frame.lightView.has_value(), "technique ", frame.technique, " rendered no shadow map");
   ShadowMapInputs inputs;
@@ -24,7 +24,7 @@ ShadowMapInputs shadowMapInputsOf(const FrameResult& frame, const Scene& scene, 
     {
       inputs.shadowMapLinear = named.image;
     }
-    else if (named.name == "shadow_map_window_depth")
+    else if (withWindowDepth && named.name == "shadow_map_window_depth")
     {
       inputs.shadowMapWindow = named.image;
     }

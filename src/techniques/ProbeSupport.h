@@ -14,7 +14,10 @@ namespace sl
 
 // The read-back inputs a shadow-map twin needs (G-buffer, shadow map, light view) from a rendered frame; throws
 // when the frame has no shadow map.
-ShadowMapInputs shadowMapInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex = 0);
+// `withWindowDepth` false leaves shadowMapWindow empty: one map-sized copy fewer for callers that only read the
+// linear depths (the approximation rules run on every frame).
+ShadowMapInputs shadowMapInputsOf(
+  const FrameResult& frame, const Scene& scene, int lightIndex = 0, bool withWindowDepth = true);
 
 // The tests' float-rounding thresholds (GpuCpuTest.cpp): a depth comparison within 2e-6 (relative), a tap within
 // 1e-4 texel of a texel edge, a light-reach cosine under 1e-5.

@@ -1094,50 +1094,70 @@ TEST(ShaderContract, DescriptorsNameEveryCategoryOnceAndGenerateEachNameOnce)
   }
 }
 
-TEST(ShaderContract, EveryTechniqueShaderKeepsItsDescriptorsContractInEveryVariant)
+// One ctest case per technique (ss08's 13 824 variants alone take most of the sweep), so ctest -j spreads them.
+class ShaderContractOf : public testing::TestWithParam<std::string>
 {
-  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
+};
+
+TEST_P(ShaderContractOf, EveryVariantOfTheTechniqueShaderKeepsItsDescriptorsContract)
+{
+  const TechniqueDescriptor& descriptor = findTechnique(GetParam());
+  const vtkSmartPointer<vtkSLTechniquePass> pass = descriptor.createPass();
+  FrameResources frame;
+  frame.technique = &descriptor;
+  pass->SetFrame(&frame);
+  int programs = 0;
+  int failing = 0;
+  for (const std::vector<std::string>& combination : enumerationCombinations(descriptor))
   {
-    const vtkSmartPointer<vtkSLTechniquePass> pass = descriptor.createPass();
-    FrameResources frame;
-    frame.technique = &descriptor;
-    pass->SetFrame(&frame);
-    int programs = 0;
-    int failing = 0;
-    for (const std::vector<std::string>& combination : enumerationCombinations(descriptor))
+    frame.parameters = descriptor.defaultParameters();
+    for (const std::string& assignment : combination)
     {
-      frame.parameters = descriptor.defaultParameters();
+      frame.parameters.set(assignment);
+    }
+    for (const std::vector<std::string>& flags : descriptor.shaderFlagSets)
+    {
+      ShaderDefines defines = PreambleAccess::defines(*pass);
+      std::string label = descriptor.name + " " + PreambleAccess::fragmentShaderPath(*pass);
       for (const std::string& assignment : combination)
       {
-        frame.parameters.set(assignment);
+        label += " " + assignment;
       }
-      for (const std::vector<std::string>& flags : descriptor.shaderFlagSets)
+      for (const std::string& flag : flags)
       {
-        ShaderDefines defines = PreambleAccess::defines(*pass);
-        std::string label = descriptor.name + " " + PreambleAccess::fragmentShaderPath(*pass);
-        for (const std::string& assignment : combination)
-        {
-          label += " " + assignment;
-        }
-        for (const std::string& flag : flags)
-        {
-          defines.push_back({ flag, "" });
-          label += " #define " + flag;
-        }
-        const std::string source =
-          assembleShader(PreambleAccess::fragmentShaderPath(*pass), defines, PreambleAccess::declarations(*pass));
-        const std::vector<std::string> violations = contractViolations(descriptor, defines, source);
-        ++programs;
-        if (!violations.empty() && ++failing <= 3) // the first few, not hundreds of copies of one mistake
-        {
-          ADD_FAILURE() << label << ":" << joined(violations);
-        }
+        defines.push_back({ flag, "" });
+        label += " #define " + flag;
+      }
+      const std::string source =
+        assembleShader(PreambleAccess::fragmentShaderPath(*pass), defines, PreambleAccess::declarations(*pass));
+      const std::vector<std::string> violations = contractViolations(descriptor, defines, source);
+      ++programs;
+      if (!violations.empty() && ++failing <= 3) // the first few, not hundreds of copies of one mistake
+      {
+        ADD_FAILURE() << label << ":" << joined(violations);
       }
     }
-    EXPECT_EQ(failing, 0) << descriptor.name << ": " << failing << " of " << programs << " programs break the contract";
-    std::cout << "[ measured ] " << descriptor.name << ": " << programs << " programs checked\n";
   }
+  EXPECT_EQ(failing, 0) << descriptor.name << ": " << failing << " of " << programs << " programs break the contract";
+  std::cout << "[ measured ] " << descriptor.name << ": " << programs << " programs checked\n";
 }
+
+std::vector<std::string> registeredTechniqueNames()
+{
+  std::vector<std::string> names;
+  for (const TechniqueDescriptor& descriptor : techniqueRegistry())
+  {
+    names.push_back(descriptor.name);
+  }
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryTechnique, ShaderContractOf, testing::ValuesIn(registeredTechniqueNames()),
+  [](const testing::TestParamInfo<std::string>& info) {
+    std::string name = info.param;
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+  });
 
 } // namespace
 } // namespace sl

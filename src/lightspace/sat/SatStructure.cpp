@@ -45,10 +45,11 @@ std::vector<NamedImage> exportTable(const FrameResources& frame, FrameResult& re
   {
     table = readFloatTexture(data.table, 2);
   }
-  return {
-    { "sat_z", table.channels(0, 1), "", "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)" },
-    { "sat_z2", table.channels(1, 1), "", "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" },
-  };
+  // Built in place: an initializer list would copy both tables once more.
+  std::vector<NamedImage> images(2);
+  images[0] = { "sat_z", table.channels(0, 1), "", "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)" };
+  images[1] = { "sat_z2", table.channels(1, 1), "", "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
+  return images;
 }
 
 std::vector<vtkTextureObject*> bindTable(vtkShaderProgram* program, const FrameResources& frame)

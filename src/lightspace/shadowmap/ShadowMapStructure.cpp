@@ -39,12 +39,13 @@ namespace
 
 std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult&)
 {
-  return {
-    { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
-      "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" },
-    { "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
-      "hardware depth buffer of the shadow map, window coordinates in [0, 1]" },
-  };
+  // Built in place: an initializer list would copy both maps (16 MiB each at the default size) once more.
+  std::vector<NamedImage> images(2);
+  images[0] = { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
+    "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" };
+  images[1] = { "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
+    "hardware depth buffer of the shadow map, window coordinates in [0, 1]" };
+  return images;
 }
 
 std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const FrameResources& frame)
