@@ -424,6 +424,10 @@ TEST(ShadowVolume, ProbeRecordsTheCrossedTrianglesAndTheGpuCount)
         }
         ProbeRecorder recorder;
         const ProbeOutcome outcome = probeShadowVolume(frame, scene, 0, { x, y }, recorder);
+        // The record carries the GPU's own count and status at the pixel, whatever the twin finds.
+        ASSERT_EQ(recorder.record().find("gpu_depth_complexity_center")->value.at(0), count.at(x, y));
+        ASSERT_EQ(recorder.record().find("volume_count_status")->value.at(0),
+          frame.find("volume_count_status")->image.at(x, y));
         if (!outcome.ambiguity.empty())
         {
           ++ambiguous;

@@ -130,6 +130,21 @@ ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int
   recorder.quantity("stencil_count", count % 256, "count", "Everitt & Kilgard 2002: the 8-bit stencil holds the count modulo 256");
   recorder.lightSample({ glm::dvec2(0.0), count > 0, count });
 
+  // What the GPU counted and whether its own check flagged the count (vtkSLShadowVolumePass.h): a flagged pixel is
+  // the pass saying its value is not exact, so the probe says so too instead of reporting a disagreement.
+  recorder.beginGroup("GPU count");
+  const double gpuCount = bufferValue(frame, "depth_complexity_center", pixel);
+  recorder.quantity("gpu_depth_complexity_center", gpuCount, "count", "the pass's z-fail count at the pixel");
+  const auto status = static_cast<VolumeCountStatus>(std::lround(bufferValue(frame, "volume_count_status", pixel)));
+  recorder.category("volume_count_status", static_cast<int>(status),
+    volumeCountCategories[status == VolumeCountStatus::Inconsistent ? 1 : 0].label,
+    "ShadowLab: count below 0, or the volume faces along the camera ray miss the eye's count");
+  if (status == VolumeCountStatus::Inconsistent)
+  {
+    outcome.ambiguity = "the GPU flagged this pixel's count as inconsistent (volume_count_status), GPU count " +
+      std::to_string(static_cast<long>(gpuCount)) + ", twin " + std::to_string(count);
+  }
+
   // A volume face within rasterisation's sub-pixel precision of the pixel centre covers it or not on the GPU
   // (llvmpipe snaps vertices to 1/256 pixel, moving an edge by up to 1/512): the count at the visible points of
   // the pixel positions 1/512 pixel away on either axis, on the receiver's tangent plane. Measured at 128^2 on
