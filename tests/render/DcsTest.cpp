@@ -1047,26 +1047,6 @@ TEST(Dcs, ChangesPastTheEightBitCountersAreMarkedRangeExceeded)
 
 // ---- issue 27 item 2b: generated scenes, every (pixel, sample) against Embree -------------------------------------
 
-// The 16-hole plate of ShadowVolumeCracks (ShadowVolumeTest.cpp): a 20 x 20 texel mask, 4 x 4 holes of 2 x 2 texels.
-std::string sixteenHoleMask()
-{
-  const std::filesystem::path path = test::testOutputDir() / "dcs-sixteen-holes.png";
-  ImageU8 mask(20, 20, 3);
-  for (int y = 0; y < 20; ++y)
-  {
-    for (int x = 0; x < 20; ++x)
-    {
-      const bool hole = x % 5 >= 2 && x % 5 < 4 && y % 5 >= 2 && y % 5 < 4;
-      for (int c = 0; c < 3; ++c)
-      {
-        mask.at(x, y, c) = hole ? 0 : 255;
-      }
-    }
-  }
-  writePng(path, mask);
-  return path.string();
-}
-
 TEST(DcsGenerated, RandomStacksAndPerforatedPlatesEqualEmbreeSampleBySample)
 {
   // Three random 3-stacks of rectangles and six meshed 16-hole plates (fence-meshed's layout, plate height and light
@@ -1078,7 +1058,7 @@ TEST(DcsGenerated, RandomStacksAndPerforatedPlatesEqualEmbreeSampleBySample)
     std::vector<std::string> overrides = test::randomRectangleStack(stacks, 3);
     cases.push_back({ format("stacked-occluders random 3-stack ", k), overrides });
   }
-  const std::string mask = sixteenHoleMask();
+  const std::string mask = test::sixteenHoleMaskPng("dcs-sixteen-holes.png");
   std::mt19937 generator(27);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int k = 0; k < 6; ++k)

@@ -531,27 +531,6 @@ TEST(ShadowVolume, ExactCountBeyondTheEightBitStencil)
 
 // ---- cracks (issue 27 item 2b): generated scenes, every miscounted pixel flagged or ambiguous -------------------
 
-// A perforated plate meshed like fence-meshed: a 20 x 20 texel mask with 16 square holes of 2 x 2 texels (4 x 4 of
-// them), written as a PNG into the test output and meshed by mesh_alpha (two triangles per opaque texel, 672).
-std::string sixteenHoleMask()
-{
-  const std::filesystem::path path = test::testOutputDir() / "sixteen-holes.png";
-  ImageU8 mask(20, 20, 3);
-  for (int y = 0; y < 20; ++y)
-  {
-    for (int x = 0; x < 20; ++x)
-    {
-      const bool hole = x % 5 >= 2 && x % 5 < 4 && y % 5 >= 2 && y % 5 < 4;
-      for (int c = 0; c < 3; ++c)
-      {
-        mask.at(x, y, c) = hole ? 0 : 255;
-      }
-    }
-  }
-  writePng(path, mask);
-  return path.string();
-}
-
 // A seeded random scene: the ground, a tilted meshed 16-hole plate, up to two boxes and spheres, a point light and a
 // camera anywhere above.
 Scene randomPlateScene(std::mt19937& generator, const std::string& mask)
@@ -701,7 +680,7 @@ TEST(ShadowVolumeCracks, GroundRowOfTheRandomStackAt96)
 void expectPlateScenesFlagged(int first, int last)
 {
   std::mt19937 generator(27);
-  const std::string mask = sixteenHoleMask();
+  const std::string mask = test::sixteenHoleMaskPng("sixteen-holes.png");
   for (int k = 0; k <= last; ++k)
   {
     const Scene scene = randomPlateScene(generator, mask); // drawn for every k: scene k is the same in both tests

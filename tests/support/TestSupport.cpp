@@ -4,6 +4,7 @@
 #include "techniques/ProbeSupport.h"
 
 #include "core/Error.h"
+#include "io/ImageIO.h"
 #include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
@@ -299,6 +300,25 @@ std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, int width, int
 ReferenceInputs referenceInputs(const FrameResult& frame, const Scene& scene, int lightIndex)
 {
   return referenceInputsOf(frame, scene, lightIndex);
+}
+
+std::string sixteenHoleMaskPng(const std::string& fileName)
+{
+  const std::filesystem::path path = testOutputDir() / fileName;
+  ImageU8 mask(20, 20, 3);
+  for (int y = 0; y < 20; ++y)
+  {
+    for (int x = 0; x < 20; ++x)
+    {
+      const bool hole = x % 5 >= 2 && x % 5 < 4 && y % 5 >= 2 && y % 5 < 4;
+      for (int c = 0; c < 3; ++c)
+      {
+        mask.at(x, y, c) = hole ? 0 : 255;
+      }
+    }
+  }
+  writePng(path, mask);
+  return path.string();
 }
 
 std::string caseLabel(const std::string& dataset, const std::vector<std::string>& settings)

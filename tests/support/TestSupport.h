@@ -23,6 +23,9 @@ namespace sl::test
 
 std::filesystem::path sourceDir();           // the repository root
 std::filesystem::path testOutputDir();        // <build>/test-output, created on demand
+// A perforated plate's alpha mask like fence-meshed's: 20 x 20 texels with 16 square holes of 2 x 2 texels (4 x 4 of
+// them), written as a PNG named `fileName` into the test output; mesh_alpha meshes it as 672 triangles.
+std::string sixteenHoleMaskPng(const std::string& fileName);
 std::filesystem::path datasetPath(const std::string& name); // datasets/<name>/scene.json
 // <test-output>/<name>, removed if it exists (a test's absolute output path).
 std::filesystem::path freshOutputDir(const std::string& name);
