@@ -1,6 +1,7 @@
 #include "techniques/MomentReference.h"
 
 #include "core/Error.h"
+#include "techniques/ApproximationRules.h"
 #include "techniques/ProbeSupport.h"
 
 #include <algorithm>
@@ -136,6 +137,20 @@ void noteMomentTexelEdge(std::string& ambiguity, const glm::dvec2& uvTexels)
     nearest = std::min(nearest, edge.distance);
   }
   noteAmbiguity(ambiguity, "receiver from a texel edge of the moment map (texels)", nearest, probeTexelEdgeAmbiguity);
+}
+
+AccuracyContract prefilteredCentreShadowAccuracy()
+{
+  AccuracyContract accuracy;
+  accuracy.reference = ReferenceModel::LightCentre;
+  accuracy.tolerance = 1e-3;
+  accuracy.approximations = { { "filtered edge", "the value lies strictly between 0 and 1 (by 1e-3)" },
+    { "light bleeding", "the value exceeds the PCF over the same texels by more than 1e-3 (light_leak)" } };
+  accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    markPartialVisibility(*context.frame, codes, 1.0f);
+    markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 1e-3f; }, codes, 2.0f);
+  };
+  return accuracy;
 }
 
 } // namespace sl

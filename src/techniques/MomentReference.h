@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/Parameters.h"
+#include "frame/TechniqueDescriptor.h"
 #include "techniques/ShadowMapReference.h"
 
 #include <string>
@@ -49,5 +50,10 @@ void recordMomentBox(ProbeRecorder& recorder, const ShadowMapInputs& inputs, con
 // Notes (ProbeSupport.h noteAmbiguity) a receiver within 1e-4 texel of a texel edge: the GPU may fetch the
 // neighbouring texel of the moment map, whose box average differs.
 void noteMomentTexelEdge(std::string& ambiguity, const glm::dvec2& uvTexels);
+
+// vsm's and esm's accuracy contract: a prefiltered hard shadow of the light's centre. The filter blurs its edges and
+// the moment bound bleeds light where the filtered depths are not two-valued (survey §6); held to the centre's ray
+// where the value is 0 or 1, flagged "filtered edge" or, from the pass's light_leak buffer, "light bleeding".
+AccuracyContract prefilteredCentreShadowAccuracy();
 
 } // namespace sl

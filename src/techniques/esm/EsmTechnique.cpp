@@ -1,6 +1,5 @@
 #include "techniques/esm/EsmTechnique.h"
 
-#include "techniques/ApproximationRules.h"
 
 #include "lightspace/moments/MomentMapStructure.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
@@ -71,16 +70,7 @@ TechniqueDescriptor esmTechnique()
     }
     return outcome;
   };
-  // A prefiltered hard shadow of the light's centre: the filter blurs its edges and the bound bleeds light where
-  // the filtered depths are not two-valued (survey §6). Held to the centre's ray where the value is 0 or 1.
-  descriptor.accuracy.reference = ReferenceModel::LightCentre;
-  descriptor.accuracy.tolerance = 1e-3;
-  descriptor.accuracy.approximations = { { "filtered edge", "the value lies strictly between 0 and 1 (by 1e-3)" },
-    { "light bleeding", "the value exceeds the PCF over the same texels by more than 1e-3 (light_leak)" } };
-  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    markPartialVisibility(*context.frame, codes, 1.0f);
-    markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 1e-3f; }, codes, 2.0f);
-  };
+  descriptor.accuracy = prefilteredCentreShadowAccuracy();
   return descriptor;
 }
 
