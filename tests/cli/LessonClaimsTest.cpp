@@ -405,7 +405,9 @@ TEST(LessonClaims, AcneAndBias)
   int lost = 0;
   int lostInTracedShadow = 0;
   const int covered = forEachCovered(exact, [&](int x, int y) {
-    unordered += offVisibility.at(x, y) > standardVisibility.at(x, y) || standardVisibility.at(x, y) > largeVisibility.at(x, y);
+    const bool ordered =
+      offVisibility.at(x, y) <= standardVisibility.at(x, y) && standardVisibility.at(x, y) <= largeVisibility.at(x, y);
+    unordered += ordered ? 0 : 1;
     if (exactVisibility.at(x, y) > 0.5f && offVisibility.at(x, y) < 0.5f)
     {
       ++acne;
