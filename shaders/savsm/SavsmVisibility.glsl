@@ -70,8 +70,10 @@ void main()
   outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
   outPMax = pMax;
 
-  // Light leak: p_max against the true PCF over the same rectangle (every texel up to MAX_GRID_TAPS per
-  // axis, a regular sub-grid beyond).
+  // Light leak: p_max against the PCF over the same rectangle (every texel up to MAX_GRID_TAPS per axis, a
+  // regular sub-grid beyond), each tap compared as PCSS's filter step compares it (the bias and, with
+  // receiver_plane_bias, the receiver's tangent plane), not at t: unbiased, a receiver sloped in depth fails
+  // against its own texels and the "leak" would be p_max minus self-shadowing.
   KernelGrid grid;
   for (int axis = 0; axis < 2; ++axis)
   {
@@ -94,7 +96,8 @@ void main()
   {
     for (int i = 0; i < grid.count.x; ++i)
     {
-      lit += shadowTest(grid.origin + vec2(i, j) * grid.step, t);
+      vec2 tap = grid.origin + vec2(i, j) * grid.step;
+      lit += shadowTest(tap, tapComparisonDepth(tap, d, receiver.bias));
     }
   }
   outLightLeak = pMax - lit / float(grid.count.x * grid.count.y);

@@ -7,9 +7,11 @@
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/savsm/SavsmTechnique.h"
 #include "lightspace/sat/SummedAreaTable.h"
+#include "reference/ReferenceRenderer.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -216,6 +218,75 @@ TEST(Savsm, ProbeRecordsThePenumbraBoxAndTheGpuBuffers)
     EXPECT_GE(gpu("light_leak"), leak.x - 2e-3) << label;
     EXPECT_LE(gpu("light_leak"), leak.y + 2e-3) << label;
   }
+}
+
+// light_leak is p_max minus the PCF over the same rectangle of texels, each tap compared as pcss's filter compares
+// it (bias, receiver plane). It used to compare the unbiased receiver depth t = d (as vsm's did, 74482a2): on
+// ground lit from the side, whose depth grows across w_p, the receiver's own texels then failed the test and the
+// "leak" was p_max minus self-shadowing. Checked against the CPU twin pixel by pixel, and against the ray tracer:
+// the PCF light_leak compares with (p_max - light_leak) is PCSS's estimate of the visibility, close to Embree's,
+// where the unbiased PCF was far darker.
+TEST(Savsm, LightLeakComparesAsPcssFilters)
+{
+  const Scene scene = test::loadDataset("contact");
+  const FrameResult frame = test::renderDataset(scene, "savsm", 64, 64, { "shadow_map_size=512", "sat_precision=int32" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  ReferenceSettings settings;
+  settings.samples = 256;
+  const ImageF truth = renderReference(test::referenceInputs(frame, scene), settings).visibility;
+  const ImageF& leak = frame.find("light_leak")->image;
+  const ImageF& pMax = frame.find("p_max")->image;
+  int compared = 0;
+  int mismatched = 0;
+  double largestMismatch = 0.0;
+  double pcfError = 0.0;         // sum of |PCF light_leak compares with - Embree|
+  double unbiasedPcfError = 0.0; // the same with the unbiased PCF at t = d (every texel of w_p)
+  double leakSum = 0.0;
+  for (int y = 0; y < 64; ++y)
+  {
+    for (int x = 0; x < 64; ++x)
+    {
+      const SavsmSample cpu = savsmReference(inputs, frame.parameters, x, y);
+      if (!cpu.sample.evaluated || !cpu.foundBlockers)
+      {
+        EXPECT_EQ(leak.at(x, y), 0.0f) << "pixel " << x << "," << y << ": no blockers, no leak";
+        continue;
+      }
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(frame.parameters), x, y);
+      const double d = lookup.sm.depthLin;
+      if (cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 || cpu.sample.texelEdgeMargin < 1e-4 ||
+        cpu.sample.reachMargin < 1e-5 || cpu.variance < 1e-3 * d * d)
+      {
+        continue; // float on the GPU, as MatchesTheCpuImplementation
+      }
+      ++compared;
+      const double mismatch = std::abs(leak.at(x, y) - cpu.lightLeak);
+      largestMismatch = std::max(largestMismatch, mismatch);
+      mismatched += mismatch > 2e-3 ? 1 : 0;
+      leakSum += leak.at(x, y);
+      pcfError += std::abs(pMax.at(x, y) - leak.at(x, y) - truth.at(x, y));
+      double unbiasedLit = 0.0;
+      for (int j = cpu.lo.y; j <= cpu.hi.y; ++j)
+      {
+        for (int i = cpu.lo.x; i <= cpu.hi.x; ++i)
+        {
+          unbiasedLit += d <= inputs.shadowMapLinear.at(i, j) ? 1.0 : 0.0;
+        }
+      }
+      unbiasedPcfError +=
+        std::abs(unbiasedLit / ((cpu.hi.x - cpu.lo.x + 1.0) * (cpu.hi.y - cpu.lo.y + 1.0)) - truth.at(x, y));
+    }
+  }
+  ASSERT_GT(compared, 200);
+  std::cout << "[ measured ] savsm light_leak on contact at 64x64: " << compared << " pixels with blockers compared, "
+            << mismatched << " differ from the twin by > 2e-3 (largest " << largestMismatch << "); mean light_leak "
+            << leakSum / compared << "; mean |PCF - Embree| " << pcfError / compared << " (unbiased at t = d "
+            << unbiasedPcfError / compared << ")\n";
+  EXPECT_LE(mismatched, compared / 100);
+  EXPECT_LT(pcfError / compared, 0.05);
+  // What the fix removed: on this sloped ground the unbiased comparison is ten times as far from the truth.
+  EXPECT_GT(unbiasedPcfError, 4.0 * pcfError);
+  EXPECT_LT(std::abs(leakSum / compared), 0.05);
 }
 
 TEST(Savsm, ExactForAParallelPlanarOccluder)

@@ -38,7 +38,7 @@ TechniqueDescriptor savsmTechnique()
   descriptor.lightStructures = { &shadowMapStructure(), &summedAreaTableStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the lit fraction over w_p, before light-bleeding reduction" },
-    { "light_leak", "", "p_max minus the true PCF over the same rectangle of texels", BufferKind::Signed },
+    { "light_leak", "", "p_max minus the PCF over the same rectangle of texels, compared as pcss filters (bias, receiver plane)", BufferKind::Signed },
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
     { "blocker_samples", "taps", "depth samples read in the blocker search" },
     { "avg_blocker_depth", "world units", "average depth of the blockers found (0: none, lit)" },
@@ -99,11 +99,12 @@ TechniqueDescriptor savsmTechnique()
 namespace
 {
 
-// What SavsmVisibility.glsl's light_leak buffer compares p_max with: the PCF at t over the penumbra rectangle,
-// every texel up to max_grid_taps per axis, a regular sub-grid beyond; recorded with the light leak
-// (recordLightLeak). For the probe only: the twin's visibility does not depend on it.
-double recordLightLeakPcf(ProbeRecorder& recorder, const ShadowMapInputs& inputs, const ParameterValues& values,
-  glm::ivec2 lo, glm::ivec2 hi, double t, double pMax)
+// What SavsmVisibility.glsl's light_leak buffer compares p_max with: the PCF over the penumbra rectangle, every
+// texel up to max_grid_taps per axis, a regular sub-grid beyond, each tap compared as PCSS's filter step compares
+// it (the bias and, with receiver_plane_bias, the receiver's tangent plane). With `recorder`, the taps and the
+// light leak (recordLightLeak).
+double lightLeakPcf(const ShadowMapInputs& inputs, const ParameterValues& values, const SoftShadowGeometry& geometry,
+  double bias, glm::ivec2 lo, glm::ivec2 hi, double pMax, ProbeRecorder* recorder)
 {
   const int size = inputs.shadowMapLinear.width;
   const int maxTaps = values.getInt("max_grid_taps");
@@ -136,16 +137,23 @@ double recordLightLeakPcf(ProbeRecorder& recorder, const ShadowMapInputs& inputs
       const glm::dvec2 tap = origin + glm::dvec2(i, j) * step;
       const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(size - 1));
       const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
-      lit += t <= z ? 1.0 : 0.0;
-      const bool tie = std::abs(t - z) < probeDepthAmbiguity * std::max(1e-30, std::abs(z));
-      range.ties += tie ? 1 : 0;
-      range.lowest += !tie && t <= z ? weight : 0.0;
-      range.highest += tie || t <= z ? weight : 0.0;
-      recorder.texel({ texel, "light-leak pcf", z, t, !(t <= z), weight });
+      const double compared = geometry.tapComparisonDepth(tap, bias);
+      lit += compared <= z ? 1.0 : 0.0;
+      if (recorder)
+      {
+        const bool tie = std::abs(compared - z) < probeDepthAmbiguity * std::max(1e-30, std::abs(z));
+        range.ties += tie ? 1 : 0;
+        range.lowest += !tie && compared <= z ? weight : 0.0;
+        range.highest += tie || compared <= z ? weight : 0.0;
+        recorder->texel({ texel, "light-leak pcf", z, compared, !(compared <= z), weight });
+      }
     }
   }
   const double pcf = lit * weight;
-  recordLightLeak(recorder, pMax, pcf, range, "Lauritzen 2007 (light bleeding): p_max - PCF over w_p");
+  if (recorder)
+  {
+    recordLightLeak(*recorder, pMax, pcf, range, "Lauritzen 2007 (light bleeding): p_max - PCF over w_p, compared as PCSS filters");
+  }
   return pcf;
 }
 
@@ -197,8 +205,11 @@ SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues&
     recorder->quantity("light_bleeding_reduction", amount, "", "Lauritzen 2007 (GPU Gems 3 ch. 8): [amount, 1] -> [0, 1]");
     recorder->quantity("visibility", result.sample.visibility, "", "Lauritzen 2007: clamp((p_max - amount) / (1 - amount), 0, 1)");
     recorder->beginGroup("light leak");
-    recordLightLeakPcf(*recorder, inputs, values, result.lo, result.hi, t, result.pMax);
   }
+  const SoftShadowGeometry geometry =
+    softShadowGeometry(inputs, lookup, values.choice("receiver_plane_bias") == "on", x, y);
+  result.lightLeak = result.pMax -
+    lightLeakPcf(inputs, values, geometry, lookup.sample.bias, result.lo, result.hi, result.pMax, recorder);
   return result;
 }
 

@@ -4,7 +4,8 @@
 // Parameters: the shadow-map ones (the bias applies to the blocker search; Chebyshev compares the receiver's
 // own depth), the PCSS-family ones (SoftShadowSupport.h),
 // sat_precision (float_centred | int32, survey §6.4), light_bleeding_reduction, min_variance.
-// Buffers: p_max, light_leak (p_max - true PCF over w_p), blocker_kernel_texels, blocker_samples,
+// Buffers: p_max, light_leak (p_max - PCF over w_p, compared as pcss's filter compares), blocker_kernel_texels,
+// blocker_samples,
 // avg_blocker_depth, penumbra_kernel_texels, depth_bias.
 #pragma once
 
@@ -20,6 +21,7 @@ struct SavsmSample
 {
   ReferenceSample sample;
   double pMax = 0.0;
+  double lightLeak = 0.0; // the light_leak buffer: p_max - PCF over w_p with pcss's comparison (0 without blockers)
   double variance = 0.0;
   double kernelEdgeMargin = 1e300; // as PcssSample
   glm::ivec2 lo{ 0 };              // the penumbra rectangle, inclusive texels
@@ -30,7 +32,8 @@ struct SavsmSample
 // CPU reference (double precision, exact box moments of the encoded depths) of SavsmVisibility.glsl.
 // `recorder` (optional, `shadowlab probe`): PCSS's blocker search and penumbra estimate (pcssReference), the SAT
 // box (w_p's texel rectangle) with its moments, p_max and the light-bleeding reduction, and the light leak against
-// the PCF at t over the same rectangle (as the shader's light_leak buffer computes it).
+// the PCF over the same rectangle, each tap compared as pcss's filter compares it (as the shader's light_leak
+// buffer computes it).
 SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder = nullptr);
 
