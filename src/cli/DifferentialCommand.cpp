@@ -98,13 +98,15 @@ std::string tallyTable(const std::map<std::string, DifferentialTally>& tallies)
 std::string flagTable(const std::map<std::string, DifferentialTally>& tallies)
 {
   std::ostringstream table;
-  table << "| technique | flag | flagged (% of pixels) | flagged beyond tolerance (% of flagged) |\n| --- | --- | --- | --- |\n";
+  table << "| technique | flag | flagged (% of pixels) | flagged beyond tolerance (% of flagged) |\n"
+           "| --- | --- | --- | --- |\n";
   for (const auto& [technique, tally] : tallies)
   {
     for (const auto& [name, count] : tally.flaggedBy)
     {
-      table << "| `" << technique << "` | " << name << " | " << count.flagged << " (" << percent(count.flagged, tally.pixels)
-            << ") | " << count.beyondTolerance << " (" << percent(count.beyondTolerance, count.flagged) << ") |\n";
+      table << "| `" << technique << "` | " << name << " | " << count.flagged << " ("
+            << percent(count.flagged, tally.pixels) << ") | " << count.beyondTolerance << " ("
+            << percent(count.beyondTolerance, count.flagged) << ") |\n";
     }
   }
   return table.str();

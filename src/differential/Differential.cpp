@@ -79,7 +79,8 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
   {
     if (spec.cutShortCode >= 0 && frame.find(spec.name))
     {
-      cutShort.push_back({ &frame.find(spec.name)->image, static_cast<float>(spec.cutShortCode), "cut short: " + spec.name });
+      cutShort.push_back(
+        { &frame.find(spec.name)->image, static_cast<float>(spec.cutShortCode), "cut short: " + spec.name });
     }
   }
   const ImageF& truth = reference.visibility;
@@ -99,8 +100,8 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
       if (approximationCode > 0.0f)
       {
         const std::size_t index = static_cast<std::size_t>(approximationCode) - 1;
-        SL_CHECK_MSG(index < contract.approximations.size(), frame.technique, ": approximation code ", approximationCode,
-          " declares no approximation");
+        SL_CHECK_MSG(index < contract.approximations.size(), frame.technique, ": approximation code ",
+          approximationCode, " declares no approximation");
         flag = &contract.approximations[index].name;
       }
       for (const CutShort& cut : cutShort)
