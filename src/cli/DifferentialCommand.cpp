@@ -94,6 +94,24 @@ std::string tallyTable(const std::map<std::string, DifferentialTally>& tallies)
   return table.str();
 }
 
+// Per technique and flag (ConfigurationOutcome::flaggedBy): which rule excuses what, as report.md holds it.
+std::string flagTable(const std::map<std::string, DifferentialTally>& tallies)
+{
+  std::ostringstream table;
+  table << "| technique | flag | flagged (% of pixels) | flagged beyond tolerance (% of flagged) |\n"
+           "| --- | --- | --- | --- |\n";
+  for (const auto& [technique, tally] : tallies)
+  {
+    for (const auto& [name, count] : tally.flaggedBy)
+    {
+      table << "| `" << technique << "` | " << name << " | " << count.flagged << " ("
+            << percent(count.flagged, tally.pixels) << ") | " << count.beyondTolerance << " ("
+            << percent(count.beyondTolerance, count.flagged) << ") |\n";
+    }
+  }
+  return table.str();
+}
+
 nlohmann::json outcomeJson(const ConfigurationOutcome& outcome)
 {
   nlohmann::json json = { { "seed", outcome.seed }, { "technique", outcome.technique }, { "choice", outcome.choice },
@@ -101,6 +119,11 @@ nlohmann::json outcomeJson(const ConfigurationOutcome& outcome)
     { "error", outcome.error }, { "pixels", outcome.pixels }, { "flagged", outcome.flagged },
     { "flagged_beyond_tolerance", outcome.flaggedMisses }, { "ambiguous", outcome.ambiguous },
     { "failures", outcome.failures }, { "seconds", outcome.seconds }, { "command", outcome.command } };
+  json["flagged_by"] = nlohmann::json::object();
+  for (const auto& [name, count] : outcome.flaggedBy)
+  {
+    json["flagged_by"][name] = { { "flagged", count.flagged }, { "beyond_tolerance", count.beyondTolerance } };
+  }
   if (outcome.worst)
   {
     json["worst"] = { { "pixel", { outcome.worst->x, outcome.worst->y } }, { "visibility", outcome.worst->visibility },
@@ -169,7 +192,8 @@ int runDifferential(const DifferentialCommandOptions& options, std::ostream& log
     }
     writeFileChecked(directory / "differential.json", json.dump(2) + "\n");
     std::ostringstream report;
-    report << table << "\n" << failed << " failed configuration(s) of " << outcomes.size() << "; " << std::fixed
+    report << table << "\nFlagged pixels by flag (each pixel under the first rule that marks it):\n\n" << flagTable(tallies)
+           << "\n" << failed << " failed configuration(s) of " << outcomes.size() << "; " << std::fixed
            << std::setprecision(0) << seconds << " s wall\n";
     for (const ConfigurationOutcome& outcome : outcomes)
     {

@@ -68,12 +68,19 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
   const ImageF& receives = frame.find("receives_shadows")->image;
   const NamedImage* approximation = frame.find(kApproximationBuffer);
   const NamedImage* ownError = frame.find("visibility_stderr");
-  std::vector<std::pair<const ImageF*, float>> cutShort;
+  struct CutShort
+  {
+    const ImageF* buffer;
+    float code;
+    std::string label;
+  };
+  std::vector<CutShort> cutShort;
   for (const BufferSpec& spec : frame.descriptor->buffers)
   {
     if (spec.cutShortCode >= 0 && frame.find(spec.name))
     {
-      cutShort.emplace_back(&frame.find(spec.name)->image, static_cast<float>(spec.cutShortCode));
+      cutShort.push_back(
+        { &frame.find(spec.name)->image, static_cast<float>(spec.cutShortCode), "cut short: " + spec.name });
     }
   }
   const ImageF& truth = reference.visibility;
@@ -88,12 +95,29 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
         continue;
       }
       ++outcome.pixels;
-      bool flagged = approximation && approximation->image.at(x, y) > 0.0f;
-      for (const auto& [buffer, code] : cutShort)
+      const float approximationCode = approximation ? approximation->image.at(x, y) : 0.0f;
+      const std::string* flag = nullptr;
+      if (approximationCode > 0.0f)
       {
-        flagged |= buffer->at(x, y) == code;
+        const std::size_t index = static_cast<std::size_t>(approximationCode) - 1;
+        SL_CHECK_MSG(index < contract.approximations.size(), frame.technique, ": approximation code ",
+          approximationCode, " declares no approximation");
+        flag = &contract.approximations[index].name;
       }
-      outcome.flagged += flagged ? 1 : 0;
+      for (const CutShort& cut : cutShort)
+      {
+        if (!flag && cut.buffer->at(x, y) == cut.code)
+        {
+          flag = &cut.label;
+        }
+      }
+      const bool flagged = flag != nullptr;
+      FlagCount* flagCount = flagged ? &outcome.flaggedBy[*flag] : nullptr;
+      if (flagCount)
+      {
+        ++outcome.flagged;
+        ++flagCount->flagged;
+      }
       const double difference = std::abs(static_cast<double>(visibility.at(x, y)) - truth.at(x, y));
       // A sampling technique's own noise: its published stderr, or the spread of N samples about the true value,
       // whichever is larger (its stderr is 0 where all its samples agree).
@@ -108,6 +132,7 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
       if (flagged)
       {
         ++outcome.flaggedMisses;
+        ++flagCount->beyondTolerance;
         continue;
       }
       bool edge = false;
@@ -224,14 +249,21 @@ std::vector<ConfigurationOutcome> runDifferential(ShadowRenderer& renderer, cons
 
     SeedReferences references;
     RenderRequest gbufferRequest;
-    gbufferRequest.technique = techniques.front()->name;
+    // The G-buffer is the same for every technique, but the renderer checks the light against the request's: take
+    // one that supports it (with none, every configuration of the seed is unsupported and nothing is rendered).
+    const auto supporting = std::find_if(techniques.begin(), techniques.end(),
+      [&](const TechniqueDescriptor* technique) { return technique->supports(scene.lights.front()); });
+    gbufferRequest.technique = (supporting != techniques.end() ? *supporting : techniques.front())->name;
     gbufferRequest.gbufferOnly = true;
-    references.gbuffer = renderer.render(scene, gbufferRequest);
     ReferenceSettings areaSettings;
     areaSettings.samples = options.referenceSamples;
     areaSettings.seed = seed;
-    references.area = renderReference(referenceInputsOf(references.gbuffer, scene, 0), areaSettings);
-    references.centre = centreReference(references.gbuffer, scene);
+    if (supporting != techniques.end())
+    {
+      references.gbuffer = renderer.render(scene, gbufferRequest);
+      references.area = renderReference(referenceInputsOf(references.gbuffer, scene, 0), areaSettings);
+      references.centre = centreReference(references.gbuffer, scene);
+    }
 
     for (const TechniqueDescriptor* technique : techniques)
     {
@@ -325,6 +357,11 @@ std::map<std::string, DifferentialTally> tallyByTechnique(const std::vector<Conf
     tally.pixels += outcome.pixels;
     tally.flagged += outcome.flagged;
     tally.flaggedMisses += outcome.flaggedMisses;
+    for (const auto& [name, count] : outcome.flaggedBy)
+    {
+      tally.flaggedBy[name].flagged += count.flagged;
+      tally.flaggedBy[name].beyondTolerance += count.beyondTolerance;
+    }
     tally.ambiguous += outcome.ambiguous;
     tally.failures += outcome.failures;
     tally.failedConfigurations += outcome.failed() ? 1 : 0;

@@ -51,6 +51,13 @@ struct PixelMiss
   double allowed = 0.0;
 };
 
+// Pixels one flag excuses: marked (compared pixels it flags) and, of those, beyond the allowance.
+struct FlagCount
+{
+  long long flagged = 0;
+  long long beyondTolerance = 0;
+};
+
 struct ConfigurationOutcome
 {
   std::uint64_t seed = 0;
@@ -67,6 +74,9 @@ struct ConfigurationOutcome
   int pixels = 0;                     // compared (covered, receiving)
   int flagged = 0;                    // marked by an approximation or cut-short code
   int flaggedMisses = 0;              // of those, beyond the allowance
+  // The same split by flag: the declared approximation's name (the pixel's `approximation` code, set by the first of
+  // the technique's rules that marks it), else "cut short: <buffer>" for a pixel only a cut-short code marks.
+  std::map<std::string, FlagCount> flaggedBy;
   int ambiguous = 0;                  // beyond the allowance on a centre-ray edge (see above)
   int failures = 0;                   // beyond the allowance, unmarked
   std::optional<PixelMiss> worst;     // the failure with the largest excess
@@ -93,6 +103,7 @@ struct DifferentialTally
   long long pixels = 0;
   long long flagged = 0;
   long long flaggedMisses = 0;
+  std::map<std::string, FlagCount> flaggedBy; // summed over the configurations (ConfigurationOutcome::flaggedBy)
   long long ambiguous = 0;
   long long failures = 0;
   int failedConfigurations = 0;

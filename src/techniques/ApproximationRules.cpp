@@ -188,7 +188,106 @@ bool ShadowMapFootprint::depthTestMixed(int x, int y, double radius, double bias
   return occluded && lit;
 }
 
-void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& codes, float code, double relativeSpread)
+double ShadowMapFootprint::hiddenByMargin(int x, int y, double limit) const
+{
+  const std::optional<Receiver> point = receiver(x, y);
+  const LightView& view = inputs_.lightView;
+  if (!point || !(lightSize_ > 0.0) || view.projection != LightProjection::Perspective)
+  {
+    return 0.0;
+  }
+  const double d = point->sample.depthLin;
+  const double hiddenFrom = std::max(d - point->margin, 0.0);
+  const glm::dvec3 pWs(inputs_.position.at(x, y, 0), inputs_.position.at(x, y, 1), inputs_.position.at(x, y, 2));
+  const glm::dvec3 nWs(inputs_.normal.at(x, y, 0), inputs_.normal.at(x, y, 1), inputs_.normal.at(x, y, 2));
+  const glm::dvec3 pLs(view.viewFromWorld * glm::dvec4(pWs, 1.0));
+  const glm::dvec3 nLs = glm::dmat3(view.viewFromWorld) * nWs;
+  const int resolution = inputs_.shadowMapLinear.width;
+  const glm::dvec2 unitsPerTexel(
+    (view.window.y - view.window.x) / resolution, (view.window.w - view.window.z) / resolution);
+  const glm::dvec2 pointTangent = glm::dvec2(view.window.x, view.window.z) + point->sample.uvTexels * unitsPerTexel;
+  const double halfLight = 0.5 * lightSize_;
+  const double lightArea = inputs_.light->shape == LightShape::Disk ? 0.25 * M_PI * lightSize_ * lightSize_
+                                                                   : lightSize_ * lightSize_;
+  // The receiver's plane at tangent (u, v): depth z where n . (z (u, v, -1) - p) = 0; +inf where the ray misses it.
+  const auto planeDepth = [&](glm::dvec2 tangent) {
+    const double denominator = glm::dot(nLs, glm::dvec3(tangent, -1.0));
+    const double depth = glm::dot(nLs, pLs) / denominator;
+    return denominator != 0.0 && depth > 0.0 ? depth : 1e300;
+  };
+  double hidden = 0.0;
+  // Texels [t0, t1) of a node, stored depths [lo, hi]: 0 outside the light, else its clipped back-projection.
+  const auto area = [&](glm::dvec2 t0, glm::dvec2 t1, double lo, double hi) {
+    const glm::dvec2 a0 = t0 * unitsPerTexel + glm::dvec2(view.window.x, view.window.z) - pointTangent;
+    const glm::dvec2 a1 = t1 * unitsPerTexel + glm::dvec2(view.window.x, view.window.z) - pointTangent;
+    const double sLo = lo * d / (d - lo);
+    const double sHi = hi * d / (d - hi);
+    const glm::dvec2 from = glm::min(a0 * sLo, a0 * sHi);
+    const glm::dvec2 to = glm::max(a1 * sLo, a1 * sHi);
+    const glm::dvec2 overlap = glm::max(glm::min(to, glm::dvec2(halfLight)) - glm::max(from, glm::dvec2(-halfLight)),
+      glm::dvec2(0.0));
+    return overlap.x * overlap.y / lightArea;
+  };
+  const std::function<void(int, int, int)> visit = [&](int level, int nx, int ny) {
+    if (hidden > limit)
+    {
+      return;
+    }
+    const ImageF& mins = minLevels_[static_cast<std::size_t>(level)];
+    const ImageF& maxs = maxLevels_[static_cast<std::size_t>(level)];
+    const double nodeMin = mins.at(nx, ny);
+    const double nodeMax = maxs.at(nx, ny);
+    const glm::dvec2 t0 = glm::dvec2(nx, ny) * double(1 << level);
+    const glm::dvec2 t1 = glm::min(t0 + double(1 << level), glm::dvec2(resolution));
+    // Deeper than the receiver's plane anywhere in the node, or not hidden, or outside the light: nothing.
+    double plane = 1e300;
+    for (const glm::dvec2 corner : { t0, t1, glm::dvec2(t0.x, t1.y), glm::dvec2(t1.x, t0.y) })
+    {
+      plane = std::min(plane, planeDepth(glm::dvec2(view.window.x, view.window.z) + corner * unitsPerTexel));
+    }
+    const double hiddenTo = std::min(plane, d) - 1e-3 * d;
+    const double lo = std::max(nodeMin, hiddenFrom);
+    const double hi = std::min(nodeMax, hiddenTo);
+    if (lo > hi || area(t0, t1, lo, hi) <= 0.0)
+    {
+      return;
+    }
+    if (nodeMin >= hiddenFrom && nodeMax <= hiddenTo)
+    {
+      hidden += area(t0, t1, nodeMin, nodeMax);
+      return;
+    }
+    if (level == 0)
+    {
+      return; // one texel: its depth lies outside the band
+    }
+    const ImageF& finer = minLevels_[static_cast<std::size_t>(level - 1)];
+    for (int cy = 2 * ny; cy <= std::min(2 * ny + 1, finer.height - 1); ++cy)
+    {
+      for (int cx = 2 * nx; cx <= std::min(2 * nx + 1, finer.width - 1); ++cx)
+      {
+        visit(level - 1, cx, cy);
+      }
+    }
+  };
+  const int top = static_cast<int>(minLevels_.size()) - 1;
+  for (int ny = 0; ny < minLevels_[static_cast<std::size_t>(top)].height; ++ny)
+  {
+    for (int nx = 0; nx < minLevels_[static_cast<std::size_t>(top)].width; ++nx)
+    {
+      visit(top, nx, ny);
+    }
+  }
+  return std::min(hidden, 1.0);
+}
+
+double blockerDepthRatio(double minDepth, double maxDepth, double receiverDepth)
+{
+  const double d = receiverDepth;
+  return maxDepth * (d - minDepth) / (minDepth * (d - maxDepth));
+}
+
+void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& codes, float code, double tolerance)
 {
   for (int y = 0; y < codes.height; ++y)
   {
@@ -204,7 +303,7 @@ void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& code
         continue;
       }
       const std::optional<ShadowMapFootprint::Receiver> point = footprint.receiver(x, y);
-      if (range.maxDepth - range.minDepth > relativeSpread * point->sample.depthLin)
+      if (blockerDepthRatio(range.minDepth, range.maxDepth, point->sample.depthLin) - 1.0 > tolerance)
       {
         codes.at(x, y) = code;
       }
@@ -331,7 +430,7 @@ void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF
 
 } // namespace
 
-void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double fraction)
+void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double tolerance)
 {
   for (int y = 0; y < codes.height; ++y)
   {
@@ -347,10 +446,19 @@ void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, flo
         continue;
       }
       // A texel so wide at the receiver that its own surface's margin (about the depth bias) spans more than 5% of
-      // the distance to the light: casters within that margin are invisible to the technique.
+      // the distance to the light: casters within that margin are invisible to the technique, and a caster the map
+      // holds stands, in its one layer, for everything behind it down to the margin. Without a caster in the
+      // footprint the value changes by at most the part of the light the invisible ones hide.
       const bool wideReceiverTexel = point->margin > 0.05 * point->sample.depthLin;
       const ShadowMapFootprint::CasterRange range = footprint.casterRange(x, y);
-      if (wideReceiverTexel || (range.found && range.receiverSeen && range.texelOnLight > fraction))
+      if (wideReceiverTexel && (range.found || footprint.hiddenByMargin(x, y, tolerance) > tolerance))
+      {
+        codes.at(x, y) = code;
+        continue;
+      }
+      // An edge placed to within one texel moves the shadow's boundary on the light by texelOnLight of its size:
+      // along an edge that crosses the light, about texelOnLight of the light is seen or hidden.
+      if (range.found && range.receiverSeen && range.texelOnLight > tolerance)
       {
         codes.at(x, y) = code;
       }
@@ -361,25 +469,44 @@ void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, flo
 Approximation coarseShadowMapApproximation()
 {
   return { "coarse shadow map",
-    "a shadow edge runs through the texels that can hide part of the light from the point, and one of their caster "
-    "texels back-projects onto more than a tenth of the light, or the receiver's own texel is so wide that its "
-    "margin (about the depth bias) exceeds 5% of the distance to the light: the map's resolution decides the "
-    "visible fraction" };
+    "the map's resolution decides the visible fraction by more than the tolerance: the receiver's texel is so wide "
+    "that its margin (about the depth bias) exceeds 5% of the distance to the light and either the texels that can "
+    "hide part of the light hold casters or the casters within the margin hide more than the tolerance of the "
+    "light, or a shadow edge runs through the texels that can hide part of the light "
+    "and one of their caster texels back-projects onto more than the tolerance of the light's size" };
 }
 
 Approximation averageBlockerDepthApproximation()
 {
   return { "average blocker depth",
     "the shadow-map texels that can hide part of the light from the point (PCSS's blocker-search region, at each "
-    "texel's own depth) hold casters whose depths differ by more than 1% of the receiver's" };
+    "texel's own depth) hold casters at depths whose penumbra estimates (d - z) / z differ by a factor of more than "
+    "1 + the tolerance" };
 }
 
 Approximation occluderFusionApproximation()
 {
   return { "occluder fusion",
-    "the shadow-map texels that can hide part of the light from the point hold casters whose depths differ by more "
-    "than 1% of the receiver's: their back-projections overlap or leave gaps, and casters hidden from the light's "
-    "centre are not in the map" };
+    "the shadow-map texels that can hide part of the light from the point hold casters at depths whose "
+    "back-projection scales (d - z) / z differ by a factor of more than 1 + the tolerance: their back-projections "
+    "overlap or leave gaps, and casters hidden from the light's centre are not in the map" };
+}
+
+AccuracyContract oneLayerSoftShadowContract(BlockerDepthModel model, double tolerance)
+{
+  AccuracyContract contract;
+  contract.reference = ReferenceModel::AreaLight;
+  contract.tolerance = tolerance;
+  contract.approximations = { model == BlockerDepthModel::Average ? averageBlockerDepthApproximation()
+                                                                  : occluderFusionApproximation(),
+    coarseShadowMapApproximation(), perforatedCasterInMapApproximation() };
+  contract.markApproximations = [tolerance](const ApproximationContext& context, ImageF& codes) {
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 1.0f, tolerance);
+    markCoarseShadowMap(footprint, codes, 2.0f, tolerance);
+    markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
+  };
+  return contract;
 }
 
 void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon)

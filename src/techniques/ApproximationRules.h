@@ -59,6 +59,13 @@ public:
   // stored depth lies in [d - 2 bias, d) on the lit side: a caster so close to the receiver that the bias hides it.
   bool depthTestMixed(int x, int y, double radius, double bias, bool nearBias) const;
 
+  // An upper bound on the fraction of the light hidden from the pixel's point by casters that the receiver's margin
+  // hides from the technique: texels whose stored depth z lies in [d - margin, d) and above the receiver's own plane
+  // (the tangent plane through the point, at its shallowest over the texel, less 1e-3 d), each back-projected from
+  // the point onto the light's plane (scale z d / (d - z)) and clipped to the light. Stops counting once the sum
+  // exceeds `limit`. 0 for a light without area.
+  double hiddenByMargin(int x, int y, double limit) const;
+
 private:
   ShadowMapInputs inputs_;
   double lightSize_ = 0.0;
@@ -66,12 +73,16 @@ private:
   std::vector<ImageF> maxLevels_;
 };
 
-// Marks with `code` every pixel whose caster texels (ShadowMapFootprint::casterRange) span more than
-// `relativeSpread` of the receiver's depth: blockers at more than one depth, where an average blocker depth (PCSS,
-// VSSM Eq. 4) or back-projected micro-occluders of one depth layer (occluder fusion) are approximate. Keeps codes
-// already set.
-void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& codes, float code,
-  double relativeSpread = 0.01);
+// How much an average blocker depth can misjudge a penumbra: blockers at depths [minDepth, maxDepth] above a receiver
+// at receiverDepth estimate penumbra widths (d - z) / z (PCSS Eq. 1, similar triangles) whose largest over smallest
+// is zmax (d - zmin) / (zmin (d - zmax)) >= 1; 1 for one depth.
+double blockerDepthRatio(double minDepth, double maxDepth, double receiverDepth);
+
+// Marks with `code` every pixel whose caster texels (ShadowMapFootprint::casterRange) lie at depths whose
+// blockerDepthRatio exceeds 1 + `tolerance`: an average blocker depth (PCSS, VSSM Eq. 4) or back-projected
+// micro-occluders of one depth layer (occluder fusion) then scale the penumbra, hence the visible fraction along a
+// shadow edge crossing the light, by more than the tolerance. Keeps codes already set.
+void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& codes, float code, double tolerance);
 
 // Marks with `code` every pixel where ShadowMapFootprint::depthTestMixed holds with the pixel's depth_bias (buffer)
 // and radius 1 texel, or kernel_texels / 2 + 1 with `kernelTexels` (a filter's footprint): shadow-map sampling.
@@ -92,13 +103,29 @@ Approximation perforatedCasterInMapApproximation();
 Approximation averageBlockerDepthApproximation();
 Approximation occluderFusionApproximation();
 
-// Marks with `code` every pixel whose light footprint holds both casters and uncovered texels (an edge of the
-// shadow runs through it) where a caster texel back-projects onto more than `fraction` of the light
-// (CasterRange::texelOnLight): the map's resolution, not the technique, decides how much of the light the edge hides.
+// Marks with `code` every pixel where the map's resolution, not the technique, decides the value by more than
+// `tolerance`: the receiver's texel is so wide that its margin (about the depth bias) exceeds 5% of the distance to
+// the light and either the pixel's light footprint holds casters (CasterRange::found: one layer of texels this wide
+// loses whatever lies behind them) or the casters the margin hides cover more than `tolerance` of the light
+// (ShadowMapFootprint::hiddenByMargin); or the pixel's light footprint holds both casters and uncovered texels (an
+// edge of the shadow runs through it) and a caster texel back-projects onto more than `tolerance` of the light's
+// size (CasterRange::texelOnLight: an edge crossing the light, misplaced by one texel, changes that much of it).
 // Typical where a caster nearly touches the light (the focus window then spans a wide angle, survey §4.1) or the
 // light is small against the texels. Keeps codes already set.
-void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double fraction = 0.1);
+void markCoarseShadowMap(const ShadowMapFootprint& footprint, ImageF& codes, float code, double tolerance);
 Approximation coarseShadowMapApproximation();
+
+// The accuracy contract of a shadow-map soft-shadow technique that reads one depth layer of blockers (PCSS, VSSM,
+// GBP06, GBP07, Yang et al. 2009): the whole light as reference, `tolerance`, and three declared approximations,
+// codes 1-3: its blocker depths (BlockerDepthModel, markMultipleBlockerDepths), "coarse shadow map"
+// (markCoarseShadowMap) and "perforated caster in the map" (markLightRaysThroughPerforatedCaster), all held to
+// `tolerance`.
+enum class BlockerDepthModel
+{
+  Average,       // one average blocker depth: averageBlockerDepthApproximation
+  OccluderFusion // back-projected micro-occluders: occluderFusionApproximation
+};
+AccuracyContract oneLayerSoftShadowContract(BlockerDepthModel model, double tolerance);
 
 // Marks with `code` every pixel whose value lies strictly inside (epsilon, 1 - epsilon): a filtered (partial) value.
 void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon = 1e-3);

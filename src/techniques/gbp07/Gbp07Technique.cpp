@@ -71,16 +71,7 @@ TechniqueDescriptor gbp07Technique()
   // Back-projection of one shadow-map layer (GBP06, GBP07, Yang et al. 2009): exact for blockers on one plane parallel
   // to the light; where the casters that hide part of the light lie at different depths their back-projections
   // overlap or leave gaps (occluder fusion) and casters hidden from the light's centre are missed.
-  descriptor.accuracy.reference = ReferenceModel::AreaLight;
-  descriptor.accuracy.tolerance = 0.05;
-  descriptor.accuracy.approximations = { occluderFusionApproximation(), coarseShadowMapApproximation(),
-    perforatedCasterInMapApproximation() };
-  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    const ShadowMapFootprint footprint(context);
-    markMultipleBlockerDepths(footprint, codes, 1.0f);
-    markCoarseShadowMap(footprint, codes, 2.0f);
-    markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
-  };
+  descriptor.accuracy = oneLayerSoftShadowContract(BlockerDepthModel::OccluderFusion, 0.05);
   return descriptor;
 }
 

@@ -86,11 +86,12 @@ TechniqueDescriptor savsmTechnique()
   descriptor.accuracy.approximations = { averageBlockerDepthApproximation(),
     { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" },
     coarseShadowMapApproximation(), perforatedCasterInMapApproximation() };
-  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+  descriptor.accuracy.markApproximations = [tolerance = descriptor.accuracy.tolerance](
+    const ApproximationContext& context, ImageF& codes) {
     const ShadowMapFootprint footprint(context);
-    markMultipleBlockerDepths(footprint, codes, 1.0f);
+    markMultipleBlockerDepths(footprint, codes, 1.0f, tolerance);
     markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
-    markCoarseShadowMap(footprint, codes, 3.0f);
+    markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
     markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
   };
   return descriptor;

@@ -185,12 +185,13 @@ TechniqueDescriptor ss08Technique()
     { "multisample resolve", "msaa=4: a sample of the pixel lies off its first sample's depth (msaa_distinct_samples > "
       "0): the resolve gives it the pixel's or a neighbour's value, evaluated at another point (SS08 §7)" },
     perforatedCasterInMapApproximation() };
-  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+  descriptor.accuracy.markApproximations = [tolerance = descriptor.accuracy.tolerance](
+    const ApproximationContext& context, ImageF& codes) {
     markWhere(*context.frame, "loq", [](float level) { return level > 0.0f; }, codes, 1.0f);
     markWhere(*context.frame, "level_floor", [](float level) { return level > 0.0f; }, codes, 1.0f);
     const ShadowMapFootprint footprint(context);
-    markMultipleBlockerDepths(footprint, codes, 2.0f);
-    markCoarseShadowMap(footprint, codes, 3.0f);
+    markMultipleBlockerDepths(footprint, codes, 2.0f, tolerance);
+    markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
     markWhere(*context.frame, "msaa_distinct_samples", [](float samples) { return samples > 0.0f; }, codes, 4.0f);
     markLightRaysThroughPerforatedCaster(context, codes, 5.0f);
   };

@@ -131,16 +131,7 @@ TechniqueDescriptor vssmTechnique()
   };
   // VSSM's average blocker depth (Eq. 4) and penumbra kernel are PCSS's: exact for blockers on one plane parallel to
   // the light, approximate wherever the casters that hide part of the light lie at different depths.
-  descriptor.accuracy.reference = ReferenceModel::AreaLight;
-  descriptor.accuracy.tolerance = 0.1;
-  descriptor.accuracy.approximations = { averageBlockerDepthApproximation(), coarseShadowMapApproximation(),
-    perforatedCasterInMapApproximation() };
-  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    const ShadowMapFootprint footprint(context);
-    markMultipleBlockerDepths(footprint, codes, 1.0f);
-    markCoarseShadowMap(footprint, codes, 2.0f);
-    markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
-  };
+  descriptor.accuracy = oneLayerSoftShadowContract(BlockerDepthModel::Average, 0.1);
   return descriptor;
 }
 
