@@ -19,12 +19,11 @@ ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context)
   SL_CHECK_MSG(!inputs_.shadowMapLinear.data.empty(), context.frame->technique, ": no shadow_map_depth export");
   const Light& light = *inputs_.light;
   lightSize_ = light.type == LightType::Area ? light.size : 0.0;
-  minLevels_.push_back(inputs_.shadowMapLinear);
-  maxLevels_.push_back(inputs_.shadowMapLinear);
-  while (minLevels_.back().width > 1 && minLevels_.back().height > 1)
+  // Level 0 is the map itself (read through minLevel/maxLevel): no copy of a map that is 16 MiB at the default size.
+  while (minLevel(levelCount() - 1).width > 1 && minLevel(levelCount() - 1).height > 1)
   {
-    const ImageF& fineMin = minLevels_.back();
-    const ImageF& fineMax = maxLevels_.back();
+    const ImageF& fineMin = minLevel(levelCount() - 1);
+    const ImageF& fineMax = maxLevel(levelCount() - 1);
     ImageF coarseMin((fineMin.width + 1) / 2, (fineMin.height + 1) / 2, 1, 0.0f);
     ImageF coarseMax = coarseMin;
     for (int y = 0; y < coarseMin.height; ++y)
@@ -47,8 +46,8 @@ ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context)
         coarseMax.at(x, y) = hi;
       }
     }
-    minLevels_.push_back(std::move(coarseMin));
-    maxLevels_.push_back(std::move(coarseMax));
+    coarseMinLevels_.push_back(std::move(coarseMin));
+    coarseMaxLevels_.push_back(std::move(coarseMax));
   }
 }
 
@@ -98,12 +97,12 @@ ShadowMapFootprint::CasterRange ShadowMapFootprint::casterRange(int x, int y) co
   const double largest = halfWidth(std::max(view.nearDepth, 1e-6));
   const glm::dvec2 radius = glm::dvec2(largest) * texelsPerUnit + glm::dvec2(1.0);
   int level = 0;
-  while (level + 1 < static_cast<int>(minLevels_.size()) && std::max(radius.x, radius.y) / double(1 << level) > 16.0)
+  while (level + 1 < levelCount() && std::max(radius.x, radius.y) / double(1 << level) > 16.0)
   {
     ++level;
   }
-  const ImageF& mins = minLevels_[static_cast<std::size_t>(level)];
-  const ImageF& maxs = maxLevels_[static_cast<std::size_t>(level)];
+  const ImageF& mins = minLevel(level);
+  const ImageF& maxs = maxLevel(level);
   const double scale = 1.0 / double(1 << level);
   const glm::dvec2 centre = point->sample.uvTexels;
   const int x0 = std::max(0, static_cast<int>(std::floor((centre.x - radius.x) * scale)));
@@ -233,8 +232,8 @@ double ShadowMapFootprint::hiddenByMargin(int x, int y, double limit) const
     {
       return;
     }
-    const ImageF& mins = minLevels_[static_cast<std::size_t>(level)];
-    const ImageF& maxs = maxLevels_[static_cast<std::size_t>(level)];
+    const ImageF& mins = minLevel(level);
+    const ImageF& maxs = maxLevel(level);
     const double nodeMin = mins.at(nx, ny);
     const double nodeMax = maxs.at(nx, ny);
     const glm::dvec2 t0 = glm::dvec2(nx, ny) * double(1 << level);
@@ -261,7 +260,7 @@ double ShadowMapFootprint::hiddenByMargin(int x, int y, double limit) const
     {
       return; // one texel: its depth lies outside the band
     }
-    const ImageF& finer = minLevels_[static_cast<std::size_t>(level - 1)];
+    const ImageF& finer = minLevel(level - 1);
     for (int cy = 2 * ny; cy <= std::min(2 * ny + 1, finer.height - 1); ++cy)
     {
       for (int cx = 2 * nx; cx <= std::min(2 * nx + 1, finer.width - 1); ++cx)
@@ -270,10 +269,10 @@ double ShadowMapFootprint::hiddenByMargin(int x, int y, double limit) const
       }
     }
   };
-  const int top = static_cast<int>(minLevels_.size()) - 1;
-  for (int ny = 0; ny < minLevels_[static_cast<std::size_t>(top)].height; ++ny)
+  const int top = levelCount() - 1;
+  for (int ny = 0; ny < minLevel(top).height; ++ny)
   {
-    for (int nx = 0; nx < minLevels_[static_cast<std::size_t>(top)].width; ++nx)
+    for (int nx = 0; nx < minLevel(top).width; ++nx)
     {
       visit(top, nx, ny);
     }

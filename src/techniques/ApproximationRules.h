@@ -69,8 +69,18 @@ public:
 private:
   ShadowMapInputs inputs_;
   double lightSize_ = 0.0;
-  std::vector<ImageF> minLevels_; // level k: min over 2^k x 2^k texels
-  std::vector<ImageF> maxLevels_;
+  // Level k: min (max) over 2^k x 2^k texels; level 0 is inputs_.shadowMapLinear, levels 1.. are stored.
+  const ImageF& minLevel(int level) const
+  {
+    return level == 0 ? inputs_.shadowMapLinear : coarseMinLevels_[static_cast<std::size_t>(level - 1)];
+  }
+  const ImageF& maxLevel(int level) const
+  {
+    return level == 0 ? inputs_.shadowMapLinear : coarseMaxLevels_[static_cast<std::size_t>(level - 1)];
+  }
+  int levelCount() const { return 1 + static_cast<int>(coarseMinLevels_.size()); }
+  std::vector<ImageF> coarseMinLevels_;
+  std::vector<ImageF> coarseMaxLevels_;
 };
 
 // How much an average blocker depth can misjudge a penumbra: blockers at depths [minDepth, maxDepth] above a receiver
