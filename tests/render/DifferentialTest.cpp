@@ -52,8 +52,6 @@ class DifferentialSlice : public testing::TestWithParam<std::string>
 // declared approximation yet; docs/bench/differential/README.md says what is known of each. A failure outside this
 // list fails the case; one inside it is printed as known, so that it stays visible and a fix shows as "now passes".
 const std::set<std::tuple<std::string, std::uint64_t, std::string>> kKnownFailures = {
-  { "pcf", 1, "filter=hardware_bilinear" }, // a caster 0.004 below the light: lit ground shadowed, cause not found
-  { "pcf", 2, "filter=hardware_bilinear" },
   { "vtk", 1, "default" }, // VTK's own pass: whole-frame limitations (README, "Known limitations of the vtk technique")
   { "vtk", 2, "default" },
   { "reference-sm", 1, "default" }, // a caster 0.004 below the light: K per-sample maps, no rule covers them
