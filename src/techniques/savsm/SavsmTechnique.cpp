@@ -85,13 +85,14 @@ TechniqueDescriptor savsmTechnique()
   descriptor.accuracy.tolerance = 0.1;
   descriptor.accuracy.approximations = { averageBlockerDepthApproximation(),
     { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" },
-    coarseShadowMapApproximation(), perforatedCasterInMapApproximation() };
+    coarseShadowMapApproximation(), perforatedCasterInMapApproximation(), blockerSearchBeyondTheLightApproximation() };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
     const ShadowMapFootprint footprint(context);
     markMultipleBlockerDepths(footprint, codes, 1.0f);
     markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
     markCoarseShadowMap(footprint, codes, 3.0f);
     markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
+    markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 5.0f);
   };
   return descriptor;
 }

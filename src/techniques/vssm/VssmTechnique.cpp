@@ -134,12 +134,13 @@ TechniqueDescriptor vssmTechnique()
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.1;
   descriptor.accuracy.approximations = { averageBlockerDepthApproximation(), coarseShadowMapApproximation(),
-    perforatedCasterInMapApproximation() };
+    perforatedCasterInMapApproximation(), blockerSearchBeyondTheLightApproximation() };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
     const ShadowMapFootprint footprint(context);
     markMultipleBlockerDepths(footprint, codes, 1.0f);
     markCoarseShadowMap(footprint, codes, 2.0f);
     markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
+    markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 4.0f);
   };
   return descriptor;
 }
