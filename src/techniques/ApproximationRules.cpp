@@ -526,3 +526,58 @@ Approximation blockerSearchBeyondTheLightApproximation()
 }
 
 } // namespace sl
+
+namespace sl
+{
+
+void markSampleRaysThroughPerforatedCaster(const ApproximationContext& context, const std::vector<glm::dvec3>& samples,
+  ImageF& codes, float code)
+{
+  std::vector<const SceneObject*> perforated;
+  for (const SceneObject& object : context.scene->objects)
+  {
+    if (object.castShadows && object.hasAlphaTexture)
+    {
+      perforated.push_back(&object);
+    }
+  }
+  const NamedImage* position = context.frame->find("position");
+  const NamedImage* coverage = context.frame->find("coverage");
+  if (perforated.empty() || !position || !coverage)
+  {
+    return;
+  }
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f || coverage->image.at(x, y) <= 0.5f)
+      {
+        continue;
+      }
+      const glm::dvec3 p(position->image.at(x, y, 0), position->image.at(x, y, 1), position->image.at(x, y, 2));
+      bool crossed = false;
+      for (std::size_t s = 0; s < samples.size() && !crossed; ++s)
+      {
+        for (const SceneObject* object : perforated)
+        {
+          const TriangleMesh& mesh = object->mesh;
+          for (std::size_t t = 0; t < mesh.triangleCount() && !crossed; ++t)
+          {
+            const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
+            const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+            const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, samples[s] - p, a, b - a, c - a);
+            crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
+          }
+        }
+      }
+      if (crossed)
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+} // namespace sl

@@ -124,3 +124,14 @@ void markBlockerSearchBeyondTheLight(const ShadowMapFootprint& footprint, const 
 Approximation blockerSearchBeyondTheLightApproximation();
 
 } // namespace sl
+
+namespace sl
+{
+
+// Marks with `code` every covered pixel whose segment to one of `samples` (points on the light) crosses a caster with
+// an alpha texture: for techniques that render one shadow map per light sample (each samples the holes at texel
+// centres). Keeps codes already set.
+void markSampleRaysThroughPerforatedCaster(const ApproximationContext& context, const std::vector<glm::dvec3>& samples,
+  ImageF& codes, float code);
+
+} // namespace sl

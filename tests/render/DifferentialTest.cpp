@@ -177,5 +177,23 @@ TEST(Differential, PcssBlockerSearchBeyondTheLightIsFlaggedWhereItMisses)
   EXPECT_LT(marked, 64 * 53 / 4);
 }
 
+// Seed 4 holds a `leaves` quad finer than reference-sm's texels: its K maps sample the holes at texel centres. The
+// flag (segments to the K samples crossing the quad) covers most of what the ray tracer finds beyond the contract.
+TEST(Differential, ReferenceSmFlagsItsMapsOfAPerforatedCaster)
+{
+  DifferentialOptions options;
+  options.seeds = { 4 };
+  options.techniques = { "reference-sm" };
+  options.choice = "default";
+  options.maxSide = kSliceMaxSide;
+  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  ASSERT_EQ(outcomes.size(), 1u);
+  const ConfigurationOutcome& outcome = outcomes.front();
+  std::cout << "[ measured ] reference-sm seed 4: " << outcome.flagged << " flagged, " << outcome.flaggedMisses
+            << " of them beyond tolerance, " << outcome.failures << " unflagged failures\n";
+  EXPECT_GT(outcome.flaggedMisses, 0) << "the leaves' misses are flagged";
+  EXPECT_LT(outcome.failures, outcome.flaggedMisses) << describeFailure(outcome);
+}
+
 } // namespace
 } // namespace sl

@@ -52,6 +52,22 @@ TechniqueDescriptor referenceSmTechnique()
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.02;
   descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return values.getInt("samples"); };
+  // Each of the K maps samples an alpha-textured caster at its texel centres, as every shadow map does: flagged where
+  // the segment to one of the K samples crosses such a caster.
+  descriptor.accuracy.approximations = { { "perforated caster in the map",
+    "the segment from the point to one of the K light samples crosses a caster with an alpha texture: each sample's "
+    "map samples its holes at texel centres" } };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    const ParameterValues& values = context.frame->parameters;
+    const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
+    if (light.type == LightType::Directional)
+    {
+      markCentreRayThroughPerforatedCaster(context, codes, 1.0f);
+      return;
+    }
+    markSampleRaysThroughPerforatedCaster(context,
+      lightSamplePoints(light, values.getInt("samples"), static_cast<std::uint64_t>(values.getInt("seed"))), codes, 1.0f);
+  };
   return descriptor;
 }
 
