@@ -56,10 +56,10 @@ float shadowTest(vec2 uvTexels, float comparisonDepthLin)
 }
 
 // The depth the map's depth buffer stores for linear depth `depthLin`: window z in [0, 1] (hyperbolic for a
-// perspective light). CPU twin: LightView::windowDepth.
+// perspective light); 0 for any depth before the near plane. CPU twin: LightView::windowDepth.
 float windowDepth(float depthLin)
 {
   float clipZ = -lightDepthToClip.x * depthLin + lightDepthToClip.y;
   float clipW = -lightDepthToClip.z * depthLin + lightDepthToClip.w;
-  return 0.5 * clipZ / clipW + 0.5;
+  return clipW > 0.0 ? max(0.5 * clipZ / clipW + 0.5, 0.0) : 0.0; // at or behind the light's centre: before near
 }

@@ -66,8 +66,10 @@ std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& polygon, cons
 
 double LightView::windowDepth(double depthLin) const
 {
+  // A depth at or behind a perspective light's centre (w <= 0: a receiver's depth less a bias larger than it) wraps
+  // past 1 in z / w; like any depth before the near plane it lies in front of everything the map stores: 0.
   const glm::dvec4 clip = clipFromView * glm::dvec4(0.0, 0.0, -depthLin, 1.0);
-  return 0.5 * clip.z / clip.w + 0.5;
+  return clip.w > 0.0 ? std::max(0.5 * clip.z / clip.w + 0.5, 0.0) : 0.0;
 }
 
 double LightView::texelWorldSize(double depthLin) const

@@ -45,7 +45,8 @@ struct LightView
   // World-space size of one shadow-map texel at linear depth `depthLin` (the larger of its two sides).
   double texelWorldSize(double depthLin) const;
   // The depth the map's depth buffer stores for linear depth `depthLin`: window z in [0, 1] (hyperbolic for a
-  // perspective light). GLSL twin: windowDepth (common/ShadowMapCommon.glsl).
+  // perspective light); 0 for any depth before the near plane, the light's centre and behind it included.
+  // GLSL twin: windowDepth (common/ShadowMapCommon.glsl).
   double windowDepth(double depthLin) const;
 };
 

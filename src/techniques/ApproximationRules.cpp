@@ -499,11 +499,22 @@ AccuracyContract oneLayerSoftShadowContract(BlockerDepthModel model, double tole
   contract.approximations = { model == BlockerDepthModel::Average ? averageBlockerDepthApproximation()
                                                                   : occluderFusionApproximation(),
     coarseShadowMapApproximation(), perforatedCasterInMapApproximation() };
-  contract.markApproximations = [tolerance](const ApproximationContext& context, ImageF& codes) {
+  // PCSS's blocker search is sized at the near plane (Fernando 2005, step 1), so its average also takes casters that
+  // cannot hide the light; back-projection keeps each micro-occluder's own footprint on the light.
+  const bool averagesTheSearch = model == BlockerDepthModel::Average;
+  if (averagesTheSearch)
+  {
+    contract.approximations.push_back(blockerSearchBeyondTheLightApproximation());
+  }
+  contract.markApproximations = [tolerance, averagesTheSearch](const ApproximationContext& context, ImageF& codes) {
     const ShadowMapFootprint footprint(context);
     markMultipleBlockerDepths(footprint, codes, 1.0f, tolerance);
     markCoarseShadowMap(footprint, codes, 2.0f, tolerance);
     markLightRaysThroughPerforatedCaster(context, codes, 3.0f);
+    if (averagesTheSearch)
+    {
+      markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 4.0f);
+    }
   };
   return contract;
 }
@@ -526,6 +537,179 @@ void markWhere(const FrameResult& frame, const std::string& buffer, const std::f
     for (int x = 0; x < codes.width; ++x)
     {
       if (codes.at(x, y) == 0.0f && predicate(named->image.at(x, y, 0)))
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+} // namespace sl
+
+namespace sl
+{
+
+void markBlockerSearchBeyondTheLight(const ShadowMapFootprint& footprint, const FrameResult& frame, ImageF& codes,
+  float code, double visibilityChange)
+{
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ShadowMapInputs& inputs = footprint.inputs();
+  const LightView& view = inputs.lightView;
+  if (inputs.light->type != LightType::Area || view.projection != LightProjection::Perspective)
+  {
+    return;
+  }
+  const double lightSize = inputs.light->size;
+  const ImageF& map = inputs.shadowMapLinear;
+  const glm::dvec2 texelsPerUnit(map.width / (view.window.y - view.window.x), map.height / (view.window.w - view.window.z));
+  constexpr int kTapsPerAxis = 32; // pcss's default max_grid_taps: a regular sub-grid beyond it
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f)
+      {
+        continue;
+      }
+      const std::optional<ShadowMapFootprint::Receiver> point = footprint.receiver(x, y);
+      if (!point)
+      {
+        continue;
+      }
+      const double d = point->sample.depthLin;
+      const double threshold = d - point->margin;
+      const glm::dvec2 centre = point->sample.uvTexels;
+      double searchLo = 1e300;
+      double searchHi = -1e300;
+      // The casters of a square of half-width `half` (texels) about the point, read on at most kTapsPerAxis^2 taps.
+      const auto casters = [&](const glm::dvec2& half, double& depthSum, double nearest = -1e300, double farthest = 1e300) {
+        int count = 0;
+        depthSum = 0.0;
+        const glm::ivec2 taps = glm::min(glm::ivec2(glm::ceil(2.0 * half)) + 1, glm::ivec2(kTapsPerAxis));
+        for (int j = 0; j < taps.y; ++j)
+        {
+          for (int i = 0; i < taps.x; ++i)
+          {
+            const glm::dvec2 offset = (glm::dvec2(i, j) + 0.5) / glm::dvec2(taps) * 2.0 - 1.0;
+            const glm::dvec2 uv = centre + offset * half;
+            const double z = map.at(std::clamp(static_cast<int>(std::floor(uv.x)), 0, map.width - 1),
+              std::clamp(static_cast<int>(std::floor(uv.y)), 0, map.height - 1));
+            if (z < threshold && z >= nearest && z <= farthest)
+            {
+              searchLo = std::min(searchLo, z);
+              searchHi = std::max(searchHi, z);
+              depthSum += z;
+              ++count;
+            }
+          }
+        }
+        return count;
+      };
+      const auto kernelHalf = [&](double z) {
+        return glm::dvec2(0.5 * lightSize * std::max(0.0, d - z) / (d * z)) * texelsPerUnit;
+      };
+      // The search region of PCSS step 1 / VSSM Alg. 1 L7: w_i at the near plane, and its average blocker depth.
+      double searchSum = 0.0;
+      const int found = casters(kernelHalf(view.nearDepth), searchSum);
+      if (found == 0)
+      {
+        continue;
+      }
+      const double average = searchSum / found;
+      const double searchNearest = searchLo;
+      const double searchFarthest = searchHi;
+      const double slack = 0.01 * d;
+      // The PCF step's value with the penumbra kernel at blocker depth z, counting the casters of depths in
+      // [nearest, farthest].
+      const auto filtered = [&](double z, double nearest, double farthest) {
+        const glm::dvec2 half = kernelHalf(z);
+        const glm::ivec2 taps = glm::min(glm::ivec2(glm::ceil(2.0 * half)) + 1, glm::ivec2(kTapsPerAxis));
+        double sum = 0.0;
+        return 1.0 - static_cast<double>(casters(half, sum, nearest, farthest)) / (taps.x * taps.y);
+      };
+      // What the kernel gives from the casters that can hide the light only, at their depths (exact for one depth;
+      // a spread of them is "average blocker depth"), or 1 where none can.
+      const ShadowMapFootprint::CasterRange reached = footprint.casterRange(x, y);
+      double lowest = 1.0;
+      double highest = 1.0;
+      if (reached.found)
+      {
+        const double nearer = filtered(reached.minDepth, reached.minDepth - slack, reached.maxDepth + slack);
+        const double farther = filtered(reached.maxDepth, reached.minDepth - slack, reached.maxDepth + slack);
+        lowest = std::min(nearer, farther);
+        highest = std::max(nearer, farther);
+      }
+      // Casters beyond the light's reach at other depths than those within it, and a value that strays from the
+      // latter's kernel.
+      const bool beyond = !reached.found || searchNearest < reached.minDepth - slack ||
+        searchFarthest > reached.maxDepth + slack;
+      const double value = visibility.at(x, y);
+      const bool misplaced = beyond && (value < lowest - visibilityChange || value > highest + visibilityChange);
+      if (misplaced)
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+Approximation blockerSearchBeyondTheLightApproximation()
+{
+  return { "blocker search beyond the light",
+    "the blocker search region, sized at the near plane (Fernando 2005 step 1; VSSM Alg. 1 L7), holds caster texels "
+    "that cannot hide any of the light from the point, at depths more than 1% of the receiver's outside those of the "
+    "casters that can, and the value differs by more than 0.1 from what the penumbra kernel gives at those casters' "
+    "depths counting only them (1 where none can)" };
+}
+
+} // namespace sl
+
+namespace sl
+{
+
+void markSampleRaysThroughPerforatedCaster(const ApproximationContext& context, const std::vector<glm::dvec3>& samples,
+  ImageF& codes, float code)
+{
+  std::vector<const SceneObject*> perforated;
+  for (const SceneObject& object : context.scene->objects)
+  {
+    if (object.castShadows && object.hasAlphaTexture)
+    {
+      perforated.push_back(&object);
+    }
+  }
+  const NamedImage* position = context.frame->find("position");
+  const NamedImage* coverage = context.frame->find("coverage");
+  if (perforated.empty() || !position || !coverage)
+  {
+    return;
+  }
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f || coverage->image.at(x, y) <= 0.5f)
+      {
+        continue;
+      }
+      const glm::dvec3 p(position->image.at(x, y, 0), position->image.at(x, y, 1), position->image.at(x, y, 2));
+      bool crossed = false;
+      for (std::size_t s = 0; s < samples.size() && !crossed; ++s)
+      {
+        for (const SceneObject* object : perforated)
+        {
+          const TriangleMesh& mesh = object->mesh;
+          for (std::size_t t = 0; t < mesh.triangleCount() && !crossed; ++t)
+          {
+            const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
+            const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+            const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, samples[s] - p, a, b - a, c - a);
+            crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
+          }
+        }
+      }
+      if (crossed)
       {
         codes.at(x, y) = code;
       }

@@ -146,3 +146,29 @@ void markWhere(const FrameResult& frame, const std::string& buffer, const std::f
   ImageF& codes, float code);
 
 } // namespace sl
+
+namespace sl
+{
+
+// Marks with `code` every pixel whose blocker search region (PCSS step 1, VSSM Alg. 1 L7: the light's footprint at
+// the near plane, the square of side w) holds casters that cannot hide the light, at depths more than 1% of the
+// receiver's outside the range of those that can (ShadowMapFootprint::casterRange), and whose `visibility` lies more
+// than `visibilityChange` outside what the penumbra kernel gives at the latter's depths counting only them (1 where
+// none can): the search and the filter counted casters that hide nothing. Kernels are read on at most 32 x 32 taps.
+// Keeps codes already set.
+void markBlockerSearchBeyondTheLight(const ShadowMapFootprint& footprint, const FrameResult& frame, ImageF& codes,
+  float code, double visibilityChange = 0.1);
+Approximation blockerSearchBeyondTheLightApproximation();
+
+} // namespace sl
+
+namespace sl
+{
+
+// Marks with `code` every covered pixel whose segment to one of `samples` (points on the light) crosses a caster with
+// an alpha texture: for techniques that render one shadow map per light sample (each samples the holes at texel
+// centres). Keeps codes already set.
+void markSampleRaysThroughPerforatedCaster(const ApproximationContext& context, const std::vector<glm::dvec3>& samples,
+  ImageF& codes, float code);
+
+} // namespace sl

@@ -157,6 +157,27 @@ TEST(TexelRatio, PerspectiveMatchesFiniteDifferences)
   }
 }
 
+// The depth buffer's value for a linear depth: the closed form f (d - n) / (d (f - n)) between the planes, and 0 for
+// every depth before the near plane, the light's centre and behind it included (z / w alone wraps past 1 for d < 0,
+// which made a bias larger than the receiver's depth shadow it in pcf's hardware comparison).
+TEST(LightView, WindowDepthIsTheHyperbolaAndZeroBeforeTheNearPlane)
+{
+  LightView light;
+  light.nearDepth = 0.001;
+  light.farDepth = 1.8;
+  light.clipFromView = glm::frustum(-1.0, 1.0, -1.0, 1.0, light.nearDepth, light.farDepth);
+  const double n = light.nearDepth;
+  const double f = light.farDepth;
+  for (const double d : { 0.001, 0.01, 0.5, 1.0, 1.8 })
+  {
+    EXPECT_NEAR(light.windowDepth(d), f * (d - n) / (d * (f - n)), 1e-12) << "d " << d;
+  }
+  for (const double d : { 0.0005, 0.0, -1e-6, -0.45, -3.0 })
+  {
+    EXPECT_EQ(light.windowDepth(d), 0.0) << "d " << d;
+  }
+}
+
 TEST(DepthBias, ConstantPlusSlopeInTexelFootprints)
 {
   LightView light;

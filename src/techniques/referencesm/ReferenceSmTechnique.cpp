@@ -3,6 +3,7 @@
 #include "techniques/ApproximationRules.h"
 
 #include "lightspace/LightSamples.h"
+#include "lightspace/ShadowMapMath.h"
 #include "scene/AlphaTexture.h"
 #include "scene/RayTriangle.h"
 #include "techniques/ProbeSupport.h"
@@ -52,6 +53,54 @@ TechniqueDescriptor referenceSmTechnique()
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.02;
   descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return values.getInt("samples"); };
+  // Each of the K maps samples an alpha-textured caster at its texel centres, as every shadow map does: flagged where
+  // the segment to one of the K samples crosses such a caster.
+  // A caster just below the light makes each sample's map span a huge angle (its focus fits the receivers on that
+  // caster too): the texels, and the bias with them, can then exceed the receiver's own distance (differential seed 1).
+  descriptor.accuracy.approximations = { { "perforated caster in the map",
+    "the segment from the point to one of the K light samples crosses a caster with an alpha texture: each sample's "
+    "map samples its holes at texel centres" },
+    { "coarse shadow map", "in one of the K maps the receiver's texel is so wide that its margin (one texel plus two "
+      "per unit slope, about the depth bias) exceeds 5% of the distance to the sample" } };
+  descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    const ParameterValues& values = context.frame->parameters;
+    const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
+    if (light.type == LightType::Directional)
+    {
+      markCentreRayThroughPerforatedCaster(context, codes, 1.0f);
+      return;
+    }
+    markSampleRaysThroughPerforatedCaster(context,
+      lightSamplePoints(light, values.getInt("samples"), static_cast<std::uint64_t>(values.getInt("seed"))), codes, 1.0f);
+    // The K views as the replay fits them (the pass's own are internal); the margin is ShadowMapFootprint's.
+    const ReferenceSmReplay replay(*context.frame, *context.scene, context.lightIndex);
+    const ImageF& position = context.frame->find("position")->image;
+    const ImageF& normal = context.frame->find("normal")->image;
+    const ImageF& coverage = context.frame->find("coverage")->image;
+    for (int y = 0; y < codes.height; ++y)
+    {
+      for (int x = 0; x < codes.width; ++x)
+      {
+        if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f)
+        {
+          continue;
+        }
+        const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+        const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+        for (int k = 0; k < replay.sampleCount(); ++k)
+        {
+          const LightView& view = replay.sampleView(k);
+          const double d = projectToShadowMap(view, pWs).depthLin;
+          const double tanTheta = tanAngleToLight(nWs, glm::normalize(view.eyeWs - pWs));
+          if (d > 0.0 && view.texelWorldSize(d) * (1.0 + 2.0 * std::min(tanTheta, 10.0)) > 0.05 * d)
+          {
+            codes.at(x, y) = 2.0f;
+            break;
+          }
+        }
+      }
+    }
+  };
   return descriptor;
 }
 

@@ -85,7 +85,7 @@ TechniqueDescriptor savsmTechnique()
   descriptor.accuracy.tolerance = 0.1;
   descriptor.accuracy.approximations = { averageBlockerDepthApproximation(),
     { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" },
-    coarseShadowMapApproximation(), perforatedCasterInMapApproximation() };
+    coarseShadowMapApproximation(), perforatedCasterInMapApproximation(), blockerSearchBeyondTheLightApproximation() };
   descriptor.accuracy.markApproximations = [tolerance = descriptor.accuracy.tolerance](
     const ApproximationContext& context, ImageF& codes) {
     const ShadowMapFootprint footprint(context);
@@ -93,6 +93,7 @@ TechniqueDescriptor savsmTechnique()
     markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
     markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
     markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
+    markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 5.0f);
   };
   return descriptor;
 }
