@@ -615,7 +615,6 @@ void markBlockerSearchBeyondTheLight(const ShadowMapFootprint& footprint, const 
       {
         continue;
       }
-      const double average = searchSum / found;
       const double searchNearest = searchLo;
       const double searchFarthest = searchHi;
       const double slack = 0.01 * d;
