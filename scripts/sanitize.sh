@@ -37,9 +37,11 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # Unit, CLI and fuzz-replay cases through ctest, one process per case and `jobs` at a time (run one binary after
 # the other, the CLI suite alone took most of this stage). Not under the sanitizers: the exhaustive shader-contract
-# sweep, which preprocesses every variant of every shader (about 15 000 strings, a minute at -O2 already); the
-# synthetic ShaderContract cases run the same preprocessor and checks here.
+# sweep, which preprocesses every variant of every shader (about 15 000 strings, a minute at -O2 already; the
+# synthetic ShaderContract cases run the same preprocessor and checks here), and the lesson pages' claims and
+# numbers, which regenerate whole lessons (renders and Embree references at 64 px) through the render and reference
+# paths the other CLI cases already run under ASan (LessonsCommand's argument handling still runs).
 ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" -L '^(unit|cli)$' \
-  -E '^EveryTechnique/ShaderContractOf\.'
+  -E '^(EveryTechnique/ShaderContractOf\.|LessonClaims\.|Lessons/LessonPage\.)'
 "$build_dir/tests/gpu_sanitize_tests" --gtest_filter="$gpu_subset"
 echo "sanitize.sh: unit, CLI, fuzz replays and GPU subset ($gpu_subset) clean under ASan + UBSan"
