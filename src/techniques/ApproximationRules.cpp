@@ -355,12 +355,13 @@ Approximation perforatedCasterInMapApproximation()
 namespace
 {
 
-void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code, bool wholeLight)
+// Marks with `code` every covered, unmarked pixel whose segment from its point to one of the targets `targetsOf`
+// gives crosses a caster with an alpha texture (double precision, RayTriangle.h).
+void markSegmentsThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code,
+  const std::function<void(const glm::dvec3& point, std::vector<glm::dvec3>& targets)>& targetsOf)
 {
-  const Scene& scene = *context.scene;
-  const Light& light = scene.lights.at(static_cast<std::size_t>(context.lightIndex));
   std::vector<const SceneObject*> perforated;
-  for (const SceneObject& object : scene.objects)
+  for (const SceneObject& object : context.scene->objects)
   {
     if (object.castShadows && object.hasAlphaTexture)
     {
@@ -373,6 +374,7 @@ void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF
   {
     return;
   }
+  std::vector<glm::dvec3> targets;
   for (int y = 0; y < codes.height; ++y)
   {
     for (int x = 0; x < codes.width; ++x)
@@ -382,29 +384,10 @@ void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF
         continue;
       }
       const glm::dvec3 p(position->image.at(x, y, 0), position->image.at(x, y, 1), position->image.at(x, y, 2));
-      // To the centre (and the light's extreme points), or 1e6 along a directional light's reverse direction.
-      std::vector<glm::dvec3> targets;
-      if (light.type == LightType::Directional)
-      {
-        targets.push_back(p - 1e6 * light.direction);
-      }
-      else
-      {
-        targets.push_back(light.center);
-        if (wholeLight && light.type == LightType::Area)
-        {
-          const glm::dvec3 right = 0.5 * light.size * light.right();
-          const glm::dvec3 up = 0.5 * light.size * light.up;
-          const bool square = light.shape == LightShape::Square;
-          for (const glm::dvec2 corner : { glm::dvec2(1, 1), glm::dvec2(1, -1), glm::dvec2(-1, 1), glm::dvec2(-1, -1) })
-          {
-            targets.push_back(square ? light.center + corner.x * right + corner.y * up
-                                     : light.center + (corner.x > 0 ? 1.0 : -1.0) * (corner.y > 0 ? right : up));
-          }
-        }
-      }
+      targets.clear();
+      targetsOf(p, targets);
       bool crossed = false;
-      for (const glm::dvec3& target : targets)
+      for (std::size_t k = 0; k < targets.size() && !crossed; ++k)
       {
         for (const SceneObject* object : perforated)
         {
@@ -414,7 +397,7 @@ void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF
             const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
             const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
             const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
-            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, target - p, a, b - a, c - a);
+            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, targets[k] - p, a, b - a, c - a);
             crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
           }
         }
@@ -425,6 +408,31 @@ void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF
       }
     }
   }
+}
+
+void markRaysThroughPerforatedCaster(const ApproximationContext& context, ImageF& codes, float code, bool wholeLight)
+{
+  const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
+  markSegmentsThroughPerforatedCaster(context, codes, code, [&](const glm::dvec3& p, std::vector<glm::dvec3>& targets) {
+    // To the centre (and the light's extreme points), or 1e6 along a directional light's reverse direction.
+    if (light.type == LightType::Directional)
+    {
+      targets.push_back(p - 1e6 * light.direction);
+      return;
+    }
+    targets.push_back(light.center);
+    if (wholeLight && light.type == LightType::Area)
+    {
+      const glm::dvec3 right = 0.5 * light.size * light.right();
+      const glm::dvec3 up = 0.5 * light.size * light.up;
+      const bool square = light.shape == LightShape::Square;
+      for (const glm::dvec2 corner : { glm::dvec2(1, 1), glm::dvec2(1, -1), glm::dvec2(-1, 1), glm::dvec2(-1, -1) })
+      {
+        targets.push_back(square ? light.center + corner.x * right + corner.y * up
+                                 : light.center + (corner.x > 0 ? 1.0 : -1.0) * (corner.y > 0 ? right : up));
+      }
+    }
+  });
 }
 
 } // namespace
@@ -669,51 +677,8 @@ namespace sl
 void markSampleRaysThroughPerforatedCaster(const ApproximationContext& context, const std::vector<glm::dvec3>& samples,
   ImageF& codes, float code)
 {
-  std::vector<const SceneObject*> perforated;
-  for (const SceneObject& object : context.scene->objects)
-  {
-    if (object.castShadows && object.hasAlphaTexture)
-    {
-      perforated.push_back(&object);
-    }
-  }
-  const NamedImage* position = context.frame->find("position");
-  const NamedImage* coverage = context.frame->find("coverage");
-  if (perforated.empty() || !position || !coverage)
-  {
-    return;
-  }
-  for (int y = 0; y < codes.height; ++y)
-  {
-    for (int x = 0; x < codes.width; ++x)
-    {
-      if (codes.at(x, y) != 0.0f || coverage->image.at(x, y) <= 0.5f)
-      {
-        continue;
-      }
-      const glm::dvec3 p(position->image.at(x, y, 0), position->image.at(x, y, 1), position->image.at(x, y, 2));
-      bool crossed = false;
-      for (std::size_t s = 0; s < samples.size() && !crossed; ++s)
-      {
-        for (const SceneObject* object : perforated)
-        {
-          const TriangleMesh& mesh = object->mesh;
-          for (std::size_t t = 0; t < mesh.triangleCount() && !crossed; ++t)
-          {
-            const glm::dvec3 a = mesh.positions[mesh.indices[3 * t]];
-            const glm::dvec3 b = mesh.positions[mesh.indices[3 * t + 1]];
-            const glm::dvec3 c = mesh.positions[mesh.indices[3 * t + 2]];
-            const std::optional<RayTriangleHit> hit = intersectRayTriangle(p, samples[s] - p, a, b - a, c - a);
-            crossed = hit && hit->t > 1e-6 && hit->t < 1.0;
-          }
-        }
-      }
-      if (crossed)
-      {
-        codes.at(x, y) = code;
-      }
-    }
-  }
+  markSegmentsThroughPerforatedCaster(
+    context, codes, code, [&](const glm::dvec3&, std::vector<glm::dvec3>& targets) { targets = samples; });
 }
 
 } // namespace sl
