@@ -8,6 +8,7 @@ in float viewDepth;
 
 uniform vec3 objectAlbedo;
 uniform int objectReceivesShadows;
+uniform vec2 alphaTestOffset; // pixels: FrameResources::alphaTestOffset
 
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
@@ -15,7 +16,8 @@ layout(location = 2) out vec4 outAlbedoDepth;
 
 void main()
 {
-  if (isPerforated(uv))
+  // At the pixel centre of a multisampled frame (uv extended linearly over the fraction of a pixel).
+  if (isPerforated(uv + dFdx(uv) * alphaTestOffset.x + dFdy(uv) * alphaTestOffset.y))
   {
     discard;
   }

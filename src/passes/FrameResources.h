@@ -60,6 +60,11 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> gbufferMsAlbedoDepth;
   vtkSmartPointer<vtkTextureObject> gbufferMsDepth;
   std::vector<glm::dvec2> samplePositions; // in the pixel, [0, 1)^2 (glGetMultisamplefv)
+  // Where the G-buffer's alpha test reads an alpha texture, in pixels from the fragment's own position. A multisampled
+  // G-buffer runs one fragment per pixel and primitive, so its alpha test decides at the pixel centre for every sample;
+  // the reference's per-sample frames (RenderRequest::pixelOffset) are shifted by the sample's offset and test at
+  // -pixelOffset to decide as it does.
+  glm::dvec2 alphaTestOffset{ 0.0 };
   // The MSAA resolve's outputs (passes/vtkSLMsaaResolvePass.h): the technique's visibility before it, then RGBA32F,
   // one component per sample, and the counts.
   vtkSmartPointer<vtkTextureObject> pixelVisibility;

@@ -64,6 +64,9 @@ void vtkSLGBufferPass::Execute(const vtkRenderState* state)
     vtkShaderProgram* program = sl::readyProgram(window, vertexSource, fragmentSource, "gbuffer");
     sl::setMatrix(program, "clipFromWorld", frame.camera.clipFromWorld);
     sl::setMatrix(program, "viewFromWorld", frame.camera.viewFromWorld);
+    const float alphaTestOffset[2] = { static_cast<float>(frame.alphaTestOffset.x),
+      static_cast<float>(frame.alphaTestOffset.y) };
+    program->SetUniform2f("alphaTestOffset", alphaTestOffset);
     // One fragment per pixel and primitive, replicated to the samples it covers (001 L719-724), whatever the
     // driver's default (nothing in ShadowLab or VTK enables sample shading; GL_MULTISAMPLE is on by default).
     glDisable(GL_SAMPLE_SHADING);

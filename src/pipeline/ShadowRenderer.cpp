@@ -185,6 +185,7 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   if (request.pixelOffset != glm::dvec2(0.0))
   {
     frame.camera = offsetCameraView(frame.camera, request.pixelOffset);
+    frame.alphaTestOffset = -request.pixelOffset;
   }
   if (request.gbufferOnly)
   {

@@ -56,7 +56,8 @@ public:
   // The ray-traced reference's multisample mode: G-buffer-only frames of `request` (gbufferOnly is implied), one per
   // sample of a `samples`x multisampled G-buffer, each seen through that sample's position as GL reports it (the
   // camera shifted by position - 0.5: pixelOffset), so that frame s's pixel (x, y) holds the surface sample s of the
-  // multisampled frame covers. samples = 1: the one ordinary G-buffer.
+  // multisampled frame covers; an alpha texture is tested at the pixel centre (FrameResources::alphaTestOffset), as that
+  // frame's one fragment per pixel tests it for all its samples. samples = 1: the one ordinary G-buffer.
   std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, RenderRequest request, int samples);
 
   vtkSLEglRenderWindow* window() const { return window_; }

@@ -138,6 +138,39 @@ TEST(Differential, EveryFramePublishesItsApproximationBuffer)
   EXPECT_GT(marked.count, 0u) << "stacked-occluders has blockers at two depths";
 }
 
+// The pixels of a frame whose `approximation` code is the declared approximation `label`.
+struct FlaggedBy
+{
+  ImageF marks;
+  int count = 0;
+  bool at(int x, int y) const { return marks.at(x, y) != 0.0f; }
+};
+FlaggedBy flaggedBy(const FrameResult& frame, const std::string& label)
+{
+  const NamedImage* codes = frame.find(kApproximationBuffer);
+  const auto found = codes ? std::find(codes->categoryLabels.begin(), codes->categoryLabels.end(), label)
+                           : std::vector<std::string>::const_iterator{};
+  if (!codes || found == codes->categoryLabels.end())
+  {
+    ADD_FAILURE() << frame.technique << " declares no approximation '" << label << "'";
+    return {};
+  }
+  const float code = static_cast<float>(found - codes->categoryLabels.begin());
+  FlaggedBy flagged{ ImageF(codes->image.width, codes->image.height, 1, 0.0f) };
+  for (int y = 0; y < codes->image.height; ++y)
+  {
+    for (int x = 0; x < codes->image.width; ++x)
+    {
+      if (codes->image.at(x, y) == code)
+      {
+        flagged.marks.at(x, y) = 1.0f;
+        ++flagged.count;
+      }
+    }
+  }
+  return flagged;
+}
+
 // PCSS's blocker search is sized at the near plane (Fernando 2005 step 1): on seed 6 (a disk light over a quad at the
 // near plane and lower casters) it averages casters that cannot hide the light, which halves the penumbra kernel
 // (V 0.40 against 0.80 at pixel 33,40). The rule flags those pixels and few others: the configuration passes the
@@ -155,24 +188,56 @@ TEST(Differential, PcssBlockerSearchBeyondTheLightIsFlaggedWhereItMisses)
 
   const Scene scene = parseScene(randomScene(6, kSliceMaxSide).json, "differential seed 6", ".");
   const FrameResult frame = test::renderDataset(scene, "pcss", 64, 53, { "shadow_map_size=512" });
-  const NamedImage* codes = frame.find(kApproximationBuffer);
-  ASSERT_NE(codes, nullptr);
-  const auto label =
-    std::find(codes->categoryLabels.begin(), codes->categoryLabels.end(), "blocker search beyond the light");
-  ASSERT_NE(label, codes->categoryLabels.end());
-  const float code = static_cast<float>(label - codes->categoryLabels.begin());
-  int marked = 0;
-  for (int y = 0; y < codes->image.height; ++y)
-  {
-    for (int x = 0; x < codes->image.width; ++x)
-    {
-      marked += codes->image.at(x, y) == code ? 1 : 0;
-    }
-  }
-  std::cout << "[ measured ] pcss seed 6: " << marked << " pixels flagged 'blocker search beyond the light'\n";
-  EXPECT_EQ(codes->image.at(33, 40), code) << "the worst miss before the rule";
-  EXPECT_GT(marked, 20);
-  EXPECT_LT(marked, 64 * 53 / 4);
+  const FlaggedBy flagged = flaggedBy(frame, "blocker search beyond the light");
+  std::cout << "[ measured ] pcss seed 6: " << flagged.count << " pixels flagged 'blocker search beyond the light'\n";
+  EXPECT_TRUE(flagged.at(33, 40)) << "the worst miss before the rule";
+  EXPECT_GT(flagged.count, 20);
+  EXPECT_LT(flagged.count, 64 * 53 / 4);
+}
+
+// VSSM's planar sub-kernels take Chebyshev's bound (Eq. 1), an upper bound unless a sub-kernel's depths are two, one of
+// them the receiver's. Seed 6's box top (d 1.69) sees the quad at 0.73 beside empty texels at the far plane (5.7):
+// V 0.998 at pixel 40,41 where the ray tracer gives 0.73. The rule flags it, the configuration passes, and on
+// planar-occluder (one caster plane over the receiver, where the bound is exact) it flags nothing.
+TEST(Differential, VssmChebyshevBoundIsFlaggedWhereItOverestimates)
+{
+  DifferentialOptions options;
+  options.seeds = { 6 };
+  options.techniques = { "vssm" };
+  options.choice = "default";
+  options.maxSide = kSliceMaxSide;
+  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
+
+  const Scene scene = parseScene(randomScene(6, kSliceMaxSide).json, "differential seed 6", ".");
+  const FrameResult frame = test::renderDataset(scene, "vssm", 64, 53, { "shadow_map_size=512" });
+  const FlaggedBy flagged = flaggedBy(frame, "chebyshev bound");
+  std::cout << "[ measured ] vssm seed 6: " << flagged.count << " pixels flagged 'chebyshev bound'\n";
+  EXPECT_TRUE(flagged.at(40, 41)) << "the worst miss before the rule";
+  EXPECT_GT(flagged.count, 20);
+  EXPECT_LT(flagged.count, 64 * 53 / 4);
+
+  const FrameResult planar = test::renderDataset(test::loadDataset("planar-occluder"), "vssm", 96, 96);
+  EXPECT_EQ(flaggedBy(planar, "chebyshev bound").count, 0);
+}
+
+// Seed 4 shows a `leaves` quad whose holes are finer than the pixels. ss08's multisampled G-buffer decides its alpha
+// test once per pixel (at the centre) for all four samples; the reference's sample frames must decide it there too, or
+// they trace the ground below the holes where the frame shades the leaves (40 misses, V 1 against 0.36, before). At the
+// leaves' penumbra onset (32,5) the centre is lit and the samples average 0.87: one value per pixel (§7), flagged
+// "multisample resolve" where the visibility steps by more than the tolerance to a neighbour.
+TEST(Differential, Ss08MultisampledFrameIsComparedOnTheSurfacesItShades)
+{
+  DifferentialOptions options;
+  options.seeds = { 4 };
+  options.techniques = { "ss08" };
+  options.choice = "msaa=4";
+  options.maxSide = kSliceMaxSide;
+  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_GT(outcomes.front().pixels, 0);
+  EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
 }
 
 // Seed 4 holds a `leaves` quad finer than reference-sm's texels: its K maps sample the holes at texel centres. The

@@ -57,6 +57,41 @@ void recordCode(ProbeRecorder& recorder, const std::string& name, int code, cons
 const char* const loqStateLabels[] = { "none (no back-projection: a stop for the smoothing)",
   "smoothed (back-projects at a budget-derived level)", "fixed (back-projects at a level smoothing keeps)" };
 
+// msaa=4: a pixel's samples on its first sample's depth take the value computed once, at the pixel centre (§7).
+// Where the visibility changes by more than `tolerance` from the pixel to a covered 4-neighbour, it also changes across
+// the pixel's own samples (up to ~0.4 pixel from the centre), which that one value does not show.
+void markSteepAcrossMultisampledPixels(const FrameResult& frame, ImageF& codes, float code, double tolerance)
+{
+  if (frame.parameters.choice("msaa") != "4")
+  {
+    return;
+  }
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const glm::ivec2 neighbours[] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f)
+      {
+        continue;
+      }
+      for (const glm::ivec2& offset : neighbours)
+      {
+        const int nx = x + offset.x;
+        const int ny = y + offset.y;
+        if (nx >= 0 && ny >= 0 && nx < codes.width && ny < codes.height && coverage.at(nx, ny) > 0.5f &&
+          std::abs(visibility.at(nx, ny) - visibility.at(x, y)) > tolerance)
+        {
+          codes.at(x, y) = code;
+          break;
+        }
+      }
+    }
+  }
+}
+
 } // namespace
 
 TechniqueDescriptor ss08Technique()
@@ -183,7 +218,8 @@ TechniqueDescriptor ss08Technique()
     "the pixel was evaluated above level 0 (loq > 0 or level_floor > 0)" }, occluderFusionApproximation(),
     coarseShadowMapApproximation(),
     { "multisample resolve", "msaa=4: a sample of the pixel lies off its first sample's depth (msaa_distinct_samples > "
-      "0): the resolve gives it the pixel's or a neighbour's value, evaluated at another point (SS08 §7)" },
+      "0), or the visibility changes by more than the tolerance to a neighbouring pixel: the resolve gives the samples "
+      "the pixel's or a neighbour's value, evaluated at another point (SS08 §7)" },
     perforatedCasterInMapApproximation() };
   descriptor.accuracy.markApproximations = [tolerance = descriptor.accuracy.tolerance](
     const ApproximationContext& context, ImageF& codes) {
@@ -193,6 +229,7 @@ TechniqueDescriptor ss08Technique()
     markMultipleBlockerDepths(footprint, codes, 2.0f, tolerance);
     markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
     markWhere(*context.frame, "msaa_distinct_samples", [](float samples) { return samples > 0.0f; }, codes, 4.0f);
+    markSteepAcrossMultisampledPixels(*context.frame, codes, 4.0f, tolerance);
     markLightRaysThroughPerforatedCaster(context, codes, 5.0f);
   };
   return descriptor;

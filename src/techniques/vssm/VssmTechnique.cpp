@@ -56,6 +56,71 @@ void recordCode(ProbeRecorder& recorder, const std::string& name, int code, cons
   recorder.record().quantities.back().text = label;
 }
 
+const char* const chebyshevBoundDescription =
+  "the value exceeds by more than 0.05 the PCF over its own penumbra kernel w_p (its texels compared as the filter "
+  "step compares them): the normal sub-kernels' pooled moments take Eq. 1's Chebyshev bound, exact only for two "
+  "depths one of which is the receiver's, an upper bound elsewhere (e.g. a caster over empty texels far behind the "
+  "receiver)";
+
+// Marks with `code` each penumbra pixel whose value exceeds the PCF over its penumbra kernel by more than `excess`.
+// Alg. 1 L17-20 estimate that PCF: the planar sub-kernels by Chebyshev's one-tailed bound (Eq. 1 on Eq. 5's
+// moments), which overestimates the lit fraction wherever a sub-kernel's depths spread beyond the receiver (§5 only
+// subdivides sub-kernels whose mean lies behind it). The kernel is w_p of the frame's own avg_blocker_depth, read on
+// at most 32 x 32 taps (a regular sub-grid beyond, as savsm's light_leak).
+void markChebyshevBound(const ApproximationContext& context, ImageF& codes, float code, double excess)
+{
+  const FrameResult& frame = *context.frame;
+  const NamedImage* visibility = frame.find("visibility");
+  const NamedImage* classification = frame.find("classification");
+  const NamedImage* blockerDepth = frame.find("avg_blocker_depth");
+  if (!visibility || !classification || !blockerDepth)
+  {
+    return;
+  }
+  const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
+  const ParameterValues& values = frame.parameters;
+  const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
+  const ImageF& map = inputs.shadowMapLinear;
+  constexpr int kTapsPerAxis = 32;
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f ||
+        classification->image.at(x, y) != static_cast<float>(static_cast<int>(VssmClass::Penumbra)))
+      {
+        continue;
+      }
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+      if (!lookup.sample.evaluated)
+      {
+        continue;
+      }
+      const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
+      const TexelRectangle kernel = kernelRectangle(lookup.sm.uvTexels,
+        geometry.kernelHalfTexels(blockerDepth->image.at(x, y)), geometry.mapSize);
+      const glm::ivec2 texels = kernel.hi - kernel.lo + 1;
+      const glm::ivec2 taps = glm::min(texels, glm::ivec2(kTapsPerAxis));
+      const glm::dvec2 step = glm::dvec2(texels) / glm::dvec2(taps);
+      int lit = 0;
+      for (int j = 0; j < taps.y; ++j)
+      {
+        for (int i = 0; i < taps.x; ++i)
+        {
+          const glm::dvec2 tap = glm::dvec2(kernel.lo) + (glm::dvec2(i, j) + 0.5) * step;
+          const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(map.width - 1));
+          lit += geometry.tapComparisonDepth(tap, lookup.sample.bias) <= map.at(texel.x, texel.y) ? 1 : 0;
+        }
+      }
+      const double pcf = static_cast<double>(lit) / (static_cast<double>(taps.x) * taps.y);
+      if (visibility->image.at(x, y) > pcf + excess)
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
 } // namespace
 
 TechniqueDescriptor vssmTechnique()
@@ -132,6 +197,13 @@ TechniqueDescriptor vssmTechnique()
   // VSSM's average blocker depth (Eq. 4) and penumbra kernel are PCSS's: exact for blockers on one plane parallel to
   // the light, approximate wherever the casters that hide part of the light lie at different depths.
   descriptor.accuracy = oneLayerSoftShadowContract(BlockerDepthModel::Average, 0.1);
+  descriptor.accuracy.approximations.push_back({ "chebyshev bound", chebyshevBoundDescription });
+  const float chebyshevCode = static_cast<float>(descriptor.accuracy.approximations.size());
+  descriptor.accuracy.markApproximations = [shared = descriptor.accuracy.markApproximations, chebyshevCode](
+    const ApproximationContext& context, ImageF& codes) {
+    shared(context, codes);
+    markChebyshevBound(context, codes, chebyshevCode, 0.05);
+  };
   return descriptor;
 }
 
