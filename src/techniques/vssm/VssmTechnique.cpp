@@ -57,16 +57,53 @@ void recordCode(ProbeRecorder& recorder, const std::string& name, int code, cons
 }
 
 const char* const chebyshevBoundDescription =
-  "the value exceeds by more than 0.05 the PCF over its own penumbra kernel w_p (its texels compared as the filter "
-  "step compares them): the normal sub-kernels' pooled moments take Eq. 1's Chebyshev bound, exact only for two "
+  "the value exceeds by more than 0.05 the PCF over the pixel's penumbra kernel w_p (its texels compared as the "
+  "filter step compares them; for a pixel the blocker step called lit although texels of w_i lie in front of it, "
+  "w_p of those texels' mean depth): Eq. 1's Chebyshev bound over the normal sub-kernels is exact only for two "
   "depths one of which is the receiver's, an upper bound elsewhere (e.g. a caster over empty texels far behind the "
-  "receiver)";
+  "receiver), and with blocker_subdivision=none it can hide every blocker";
 
-// Marks with `code` each penumbra pixel whose value exceeds the PCF over its penumbra kernel by more than `excess`.
-// Alg. 1 L17-20 estimate that PCF: the planar sub-kernels by Chebyshev's one-tailed bound (Eq. 1 on Eq. 5's
+// The PCF over `kernel` (at most 32 x 32 taps, a regular sub-grid beyond, as savsm's light_leak), each tap compared as
+// the filter step compares it, and the blocked taps' depth sum and count.
+struct KernelPcf
+{
+  double lit = 1.0;
+  double blockedDepthSum = 0.0;
+  int blocked = 0;
+};
+KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double bias, const TexelRectangle& kernel)
+{
+  constexpr int kTapsPerAxis = 32;
+  const glm::ivec2 texels = kernel.hi - kernel.lo + 1;
+  const glm::ivec2 taps = glm::min(texels, glm::ivec2(kTapsPerAxis));
+  const glm::dvec2 step = glm::dvec2(texels) / glm::dvec2(taps);
+  KernelPcf result;
+  for (int j = 0; j < taps.y; ++j)
+  {
+    for (int i = 0; i < taps.x; ++i)
+    {
+      const glm::dvec2 tap = glm::dvec2(kernel.lo) + (glm::dvec2(i, j) + 0.5) * step;
+      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(map.width - 1));
+      const double z = map.at(texel.x, texel.y);
+      if (z < geometry.tapComparisonDepth(tap, bias))
+      {
+        result.blockedDepthSum += z;
+        ++result.blocked;
+      }
+    }
+  }
+  result.lit = 1.0 - static_cast<double>(result.blocked) / (static_cast<double>(taps.x) * taps.y);
+  return result;
+}
+
+// Marks with `code` each pixel whose value exceeds by more than `excess` the PCF the filter step estimates. Alg. 1
+// L17-20 estimate the PCF over w_p: the normal sub-kernels by Chebyshev's one-tailed bound (Eq. 1 on Eq. 5's
 // moments), which overestimates the lit fraction wherever a sub-kernel's depths spread beyond the receiver (§5 only
-// subdivides sub-kernels whose mean lies behind it). The kernel is w_p of the frame's own avg_blocker_depth, read on
-// at most 32 x 32 taps (a regular sub-grid beyond, as savsm's light_leak).
+// subdivides sub-kernels whose mean lies behind it). Penumbra pixels (and, with contact_test=subkernel_mean, contact
+// pixels, whose other sub-kernels still take the bound) are held to the PCF over their own w_p (avg_blocker_depth);
+// a pixel the blocker step (L11-15) called lit although w_i holds texels in front of it (the same bound, or VSM's lit
+// assumption, hid them) to the PCF over the w_p those texels' mean depth gives. A lit pixel the HSM decided has no
+// such texel.
 void markChebyshevBound(const ApproximationContext& context, ImageF& codes, float code, double excess)
 {
   const FrameResult& frame = *context.frame;
@@ -80,14 +117,16 @@ void markChebyshevBound(const ApproximationContext& context, ImageF& codes, floa
   const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
   const ParameterValues& values = frame.parameters;
   const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
-  const ImageF& map = inputs.shadowMapLinear;
-  constexpr int kTapsPerAxis = 32;
+  const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
+  const auto classOf = [](VssmClass value) { return static_cast<float>(static_cast<int>(value)); };
   for (int y = 0; y < codes.height; ++y)
   {
     for (int x = 0; x < codes.width; ++x)
     {
-      if (codes.at(x, y) != 0.0f ||
-        classification->image.at(x, y) != static_cast<float>(static_cast<int>(VssmClass::Penumbra)))
+      const float pixelClass = classification->image.at(x, y);
+      const bool filtered = pixelClass == classOf(VssmClass::Penumbra) ||
+        (contactPerSubkernel && pixelClass == classOf(VssmClass::Contact));
+      if (codes.at(x, y) != 0.0f || !(filtered || pixelClass == classOf(VssmClass::Lit)))
       {
         continue;
       }
@@ -97,23 +136,65 @@ void markChebyshevBound(const ApproximationContext& context, ImageF& codes, floa
         continue;
       }
       const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
-      const TexelRectangle kernel = kernelRectangle(lookup.sm.uvTexels,
-        geometry.kernelHalfTexels(blockerDepth->image.at(x, y)), geometry.mapSize);
-      const glm::ivec2 texels = kernel.hi - kernel.lo + 1;
-      const glm::ivec2 taps = glm::min(texels, glm::ivec2(kTapsPerAxis));
-      const glm::dvec2 step = glm::dvec2(texels) / glm::dvec2(taps);
-      int lit = 0;
-      for (int j = 0; j < taps.y; ++j)
+      const double bias = lookup.sample.bias;
+      double penumbraPlaneDepth = blockerDepth->image.at(x, y);
+      if (!filtered)
       {
-        for (int i = 0; i < taps.x; ++i)
+        const KernelPcf search = pcfOver(inputs.shadowMapLinear, geometry, bias,
+          kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(geometry.nearDepth), geometry.mapSize));
+        if (search.blocked == 0)
         {
-          const glm::dvec2 tap = glm::dvec2(kernel.lo) + (glm::dvec2(i, j) + 0.5) * step;
-          const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(map.width - 1));
-          lit += geometry.tapComparisonDepth(tap, lookup.sample.bias) <= map.at(texel.x, texel.y) ? 1 : 0;
+          continue;
         }
+        penumbraPlaneDepth = std::clamp(search.blockedDepthSum / search.blocked, geometry.nearDepth, geometry.d);
       }
-      const double pcf = static_cast<double>(lit) / (static_cast<double>(taps.x) * taps.y);
-      if (visibility->image.at(x, y) > pcf + excess)
+      const KernelPcf penumbra = pcfOver(inputs.shadowMapLinear, geometry, bias,
+        kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(penumbraPlaneDepth), geometry.mapSize));
+      if (visibility->image.at(x, y) > penumbra.lit + excess)
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+const char* const contactPcfDescription =
+  "a contact pixel's value differs by more than 0.05 from the PCF over its penumbra kernel w_p: §6.4 filters the "
+  "contact sub-kernels (or all of w_p, contact_test=blocker_average) by a 3 x 3 jittered bilinear PCF, nine taps "
+  "for the kernel's texels";
+
+// Marks with `code` each contact pixel (§6.4) whose value lies more than `difference` from the PCF over its w_p.
+void markContactPcf(const ApproximationContext& context, ImageF& codes, float code, double difference)
+{
+  const FrameResult& frame = *context.frame;
+  const NamedImage* visibility = frame.find("visibility");
+  const NamedImage* classification = frame.find("classification");
+  const NamedImage* blockerDepth = frame.find("avg_blocker_depth");
+  if (!visibility || !classification || !blockerDepth)
+  {
+    return;
+  }
+  const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
+  const ParameterValues& values = frame.parameters;
+  const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      if (codes.at(x, y) != 0.0f ||
+        classification->image.at(x, y) != static_cast<float>(static_cast<int>(VssmClass::Contact)))
+      {
+        continue;
+      }
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+      if (!lookup.sample.evaluated)
+      {
+        continue;
+      }
+      const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
+      const KernelPcf penumbra = pcfOver(inputs.shadowMapLinear, geometry, lookup.sample.bias,
+        kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(blockerDepth->image.at(x, y)), geometry.mapSize));
+      if (std::abs(visibility->image.at(x, y) - penumbra.lit) > difference)
       {
         codes.at(x, y) = code;
       }
@@ -199,10 +280,13 @@ TechniqueDescriptor vssmTechnique()
   descriptor.accuracy = oneLayerSoftShadowContract(BlockerDepthModel::Average, 0.1);
   descriptor.accuracy.approximations.push_back({ "chebyshev bound", chebyshevBoundDescription });
   const float chebyshevCode = static_cast<float>(descriptor.accuracy.approximations.size());
-  descriptor.accuracy.markApproximations = [shared = descriptor.accuracy.markApproximations, chebyshevCode](
-    const ApproximationContext& context, ImageF& codes) {
+  descriptor.accuracy.approximations.push_back({ "contact pcf", contactPcfDescription });
+  const float contactCode = static_cast<float>(descriptor.accuracy.approximations.size());
+  descriptor.accuracy.markApproximations = [shared = descriptor.accuracy.markApproximations, chebyshevCode,
+                                             contactCode](const ApproximationContext& context, ImageF& codes) {
     shared(context, codes);
     markChebyshevBound(context, codes, chebyshevCode, 0.05);
+    markContactPcf(context, codes, contactCode, 0.05);
   };
   return descriptor;
 }
