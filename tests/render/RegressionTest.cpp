@@ -259,6 +259,8 @@ TEST_P(RegressionTest, Matches)
   ASSERT_EQ(frame.image.width, kWidth);
   ASSERT_EQ(frame.image.height, kHeight);
   ASSERT_EQ(frame.image.components, 3);
+  // The NaN/inf sweep's check on the defaults (HardCasesTest.cpp checks the variants).
+  test::expectFiniteBuffersAndVisibilityInRange(frame, param.dataset + " " + param.technique);
 
   const CaseTolerance tolerance = toleranceFor(param.dataset, param.technique);
   const bool bless = blessRequested();

@@ -347,6 +347,30 @@ std::string caseLabel(const std::string& dataset, const std::vector<std::string>
   return label;
 }
 
+void expectFiniteBuffersAndVisibilityInRange(const FrameResult& frame, const std::string& label)
+{
+  for (const auto* list : { &frame.buffers, &frame.lightSpace })
+  {
+    for (const NamedImage& named : *list)
+    {
+      std::size_t bad = 0;
+      for (const float value : named.image.data)
+      {
+        bad += std::isfinite(value) ? 0 : 1;
+      }
+      EXPECT_EQ(bad, 0u) << label << ": " << named.name;
+    }
+  }
+  const NamedImage* visibility = frame.find("visibility");
+  ASSERT_NE(visibility, nullptr) << label << ": no visibility buffer";
+  std::size_t outside = 0;
+  for (const float value : visibility->image.data)
+  {
+    outside += value >= 0.0f && value <= 1.0f ? 0 : 1;
+  }
+  EXPECT_EQ(outside, 0u) << label << ": visibility values outside [0, 1]";
+}
+
 const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name)
 {
   const NamedImage* named = findNamed(frame.lightSpace, name);

@@ -120,6 +120,11 @@ vtkSLEglRenderWindow* sharedRenderWindow();
 // "dataset setting setting ..." for failure messages and [ measured ] lines.
 std::string caseLabel(const std::string& dataset, const std::vector<std::string>& settings);
 
+// Adds a gtest failure, naming `label` and the buffer, for every non-finite value in any buffer or light-space array
+// of `frame` and for a visibility outside [0, 1] (the NaN/inf sweep's check; the regression suite applies it to its
+// default frames, the sweep to the variants).
+void expectFiniteBuffersAndVisibilityInRange(const FrameResult& frame, const std::string& label);
+
 // A light-space array of a frame by name (throws when the frame has none of that name).
 const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name);
 // The float summed-area table as stored (2 components, centred z and z^2), from sat_z and sat_z2.

@@ -34,21 +34,31 @@ std::vector<NamedImage> exportTable(const FrameResources& frame, FrameResult& re
   // Exported as floats: for the int32 table these are the wrapped unsigned sums (only box differences of
   // them are meaningful), for the float table the centred sums. The int32 table is also kept exactly.
   const SummedAreaTableData& data = summedAreaTableData(frame);
-  ImageF table;
+  // Built in place: an initializer list would copy both tables once more.
+  std::vector<NamedImage> images(2);
+  images[0] = { "sat_z", {}, "", "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)" };
+  images[1] = { "sat_z2", {}, "", "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
   if (data.integer)
   {
+    // Each component straight from the exact table (no two-component float copy: at 2048^2 it is 32 MB).
     result.integerSummedAreaTable = readUnsignedTextureExact(data.table, 2);
-    table = ImageF(result.integerSummedAreaTable->width, result.integerSummedAreaTable->height, 2);
-    std::copy(result.integerSummedAreaTable->data.begin(), result.integerSummedAreaTable->data.end(), table.data.begin());
+    const Image<std::uint32_t>& exact = *result.integerSummedAreaTable;
+    for (int component = 0; component < 2; ++component)
+    {
+      ImageF& table = images[static_cast<std::size_t>(component)].image;
+      table = ImageF(exact.width, exact.height, 1);
+      for (std::size_t i = 0; i < table.data.size(); ++i)
+      {
+        table.data[i] = static_cast<float>(exact.data[2 * i + static_cast<std::size_t>(component)]);
+      }
+    }
   }
   else
   {
-    table = readFloatTexture(data.table, 2);
+    const ImageF table = readFloatTexture(data.table, 2);
+    images[0].image = table.channels(0, 1);
+    images[1].image = table.channels(1, 1);
   }
-  // Built in place: an initializer list would copy both tables once more.
-  std::vector<NamedImage> images(2);
-  images[0] = { "sat_z", table.channels(0, 1), "", "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)" };
-  images[1] = { "sat_z2", table.channels(1, 1), "", "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
   return images;
 }
 
