@@ -138,6 +138,25 @@ TEST(Differential, EveryFramePublishesItsApproximationBuffer)
   EXPECT_GT(marked.count, 0u) << "stacked-occluders has blockers at two depths";
 }
 
+// The sweep's configurations of `technique` with `choice` on `seeds`, at the slice's image size.
+std::vector<ConfigurationOutcome> runConfigurations(
+  const std::vector<std::uint64_t>& seeds, const std::string& technique, const std::string& choice)
+{
+  DifferentialOptions options;
+  options.seeds = seeds;
+  options.techniques = { technique };
+  options.choice = choice;
+  options.maxSide = kSliceMaxSide;
+  return runDifferential(test::sharedRenderer(), options);
+}
+
+// Seed `seed`'s scene rendered as the sweep renders it for `technique` at `mapSize`.
+FrameResult renderSeed(std::uint64_t seed, const std::string& technique, glm::ivec2 size, int mapSize)
+{
+  const Scene scene = parseScene(randomScene(seed, kSliceMaxSide).json, "differential seed " + std::to_string(seed), ".");
+  return test::renderDataset(scene, technique, size.x, size.y, { "shadow_map_size=" + std::to_string(mapSize) });
+}
+
 // The pixels of a frame whose `approximation` code is the declared approximation `label`.
 struct FlaggedBy
 {
@@ -177,17 +196,11 @@ FlaggedBy flaggedBy(const FrameResult& frame, const std::string& label)
 // reference, and the flags stay a minority of the frame.
 TEST(Differential, PcssBlockerSearchBeyondTheLightIsFlaggedWhereItMisses)
 {
-  DifferentialOptions options;
-  options.seeds = { 6 };
-  options.techniques = { "pcss" };
-  options.choice = "default";
-  options.maxSide = kSliceMaxSide;
-  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 6 }, "pcss", "default");
   ASSERT_EQ(outcomes.size(), 1u);
   EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
 
-  const Scene scene = parseScene(randomScene(6, kSliceMaxSide).json, "differential seed 6", ".");
-  const FrameResult frame = test::renderDataset(scene, "pcss", 64, 53, { "shadow_map_size=512" });
+  const FrameResult frame = renderSeed(6, "pcss", { 64, 53 }, 512);
   const FlaggedBy flagged = flaggedBy(frame, "blocker search beyond the light");
   std::cout << "[ measured ] pcss seed 6: " << flagged.count << " pixels flagged 'blocker search beyond the light'\n";
   EXPECT_TRUE(flagged.at(33, 40)) << "the worst miss before the rule";
@@ -201,17 +214,11 @@ TEST(Differential, PcssBlockerSearchBeyondTheLightIsFlaggedWhereItMisses)
 // planar-occluder (one caster plane over the receiver, where the bound is exact) it flags nothing.
 TEST(Differential, VssmChebyshevBoundIsFlaggedWhereItOverestimates)
 {
-  DifferentialOptions options;
-  options.seeds = { 6 };
-  options.techniques = { "vssm" };
-  options.choice = "default";
-  options.maxSide = kSliceMaxSide;
-  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 6 }, "vssm", "default");
   ASSERT_EQ(outcomes.size(), 1u);
   EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
 
-  const Scene scene = parseScene(randomScene(6, kSliceMaxSide).json, "differential seed 6", ".");
-  const FrameResult frame = test::renderDataset(scene, "vssm", 64, 53, { "shadow_map_size=512" });
+  const FrameResult frame = renderSeed(6, "vssm", { 64, 53 }, 512);
   const FlaggedBy flagged = flaggedBy(frame, "chebyshev bound");
   std::cout << "[ measured ] vssm seed 6: " << flagged.count << " pixels flagged 'chebyshev bound'\n";
   EXPECT_TRUE(flagged.at(40, 41)) << "the worst miss before the rule";
@@ -229,12 +236,7 @@ TEST(Differential, VssmChebyshevBoundIsFlaggedWhereItOverestimates)
 // "multisample resolve" where the visibility steps by more than the tolerance to a neighbour.
 TEST(Differential, Ss08MultisampledFrameIsComparedOnTheSurfacesItShades)
 {
-  DifferentialOptions options;
-  options.seeds = { 4 };
-  options.techniques = { "ss08" };
-  options.choice = "msaa=4";
-  options.maxSide = kSliceMaxSide;
-  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 4 }, "ss08", "msaa=4");
   ASSERT_EQ(outcomes.size(), 1u);
   EXPECT_GT(outcomes.front().pixels, 0);
   EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
@@ -244,12 +246,7 @@ TEST(Differential, Ss08MultisampledFrameIsComparedOnTheSurfacesItShades)
 // flag (segments to the K samples crossing the quad) covers most of what the ray tracer finds beyond the contract.
 TEST(Differential, ReferenceSmFlagsItsMapsOfAPerforatedCaster)
 {
-  DifferentialOptions options;
-  options.seeds = { 4 };
-  options.techniques = { "reference-sm" };
-  options.choice = "default";
-  options.maxSide = kSliceMaxSide;
-  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 4 }, "reference-sm", "default");
   ASSERT_EQ(outcomes.size(), 1u);
   const ConfigurationOutcome& outcome = outcomes.front();
   std::cout << "[ measured ] reference-sm seed 4: " << outcome.flagged << " flagged, " << outcome.flaggedMisses
@@ -264,12 +261,7 @@ TEST(Differential, ReferenceSmFlagsItsMapsOfAPerforatedCaster)
 // scene) unflagged.
 TEST(Differential, ReferenceSmFlagsItsCoarseMapsNearTheLight)
 {
-  DifferentialOptions options;
-  options.seeds = { 1, 3 };
-  options.techniques = { "reference-sm" };
-  options.choice = "default";
-  options.maxSide = kSliceMaxSide;
-  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 1, 3 }, "reference-sm", "default");
   ASSERT_EQ(outcomes.size(), 2u);
   for (const ConfigurationOutcome& outcome : outcomes)
   {
@@ -286,12 +278,7 @@ TEST(Differential, ReferenceSmFlagsItsCoarseMapsNearTheLight)
 // (seed 3: 1259 of 4096 pixels).
 TEST(Differential, VtkFlagsTheFramesItsDocumentedLimitationsCover)
 {
-  DifferentialOptions options;
-  options.seeds = { 1, 3 };
-  options.techniques = { "vtk" };
-  options.choice = "default";
-  options.maxSide = kSliceMaxSide;
-  const std::vector<ConfigurationOutcome> outcomes = runDifferential(test::sharedRenderer(), options);
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 1, 3 }, "vtk", "default");
   ASSERT_EQ(outcomes.size(), 2u);
   for (const ConfigurationOutcome& outcome : outcomes)
   {

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
 
@@ -96,6 +97,65 @@ KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double 
   return result;
 }
 
+// A pixel a rule examines: its published value, class and z_avg, and the receiver as the twin prepares it.
+struct RulePixel
+{
+  float visibility = 0.0f;
+  VssmClass classification = VssmClass::NotTested;
+  double averageBlockerDepth = 0.0;
+  const ShadowLookup* lookup = nullptr;
+  const SoftShadowGeometry* geometry = nullptr;
+};
+
+// Calls `mark` on every pixel no earlier rule marked, of a class `examines` accepts, that reaches the shadow test; sets
+// `code` where it returns true.
+void markReceivers(const ApproximationContext& context, ImageF& codes, float code,
+  const std::function<bool(VssmClass)>& examines,
+  const std::function<bool(const ShadowMapInputs&, const RulePixel&)>& mark)
+{
+  const FrameResult& frame = *context.frame;
+  const NamedImage* visibility = frame.find("visibility");
+  const NamedImage* classification = frame.find("classification");
+  const NamedImage* blockerDepth = frame.find("avg_blocker_depth");
+  if (!visibility || !classification || !blockerDepth)
+  {
+    return;
+  }
+  const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
+  const ParameterValues& values = frame.parameters;
+  const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      const auto pixelClass = static_cast<VssmClass>(static_cast<int>(classification->image.at(x, y)));
+      if (codes.at(x, y) != 0.0f || !examines(pixelClass))
+      {
+        continue;
+      }
+      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+      if (!lookup.sample.evaluated)
+      {
+        continue;
+      }
+      const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
+      const RulePixel pixel{ visibility->image.at(x, y), pixelClass, blockerDepth->image.at(x, y), &lookup, &geometry };
+      if (mark(inputs, pixel))
+      {
+        codes.at(x, y) = code;
+      }
+    }
+  }
+}
+
+// The PCF over the kernel of blockers at `planeDepth` about the pixel's point: w_i at the near plane, w_p at z_avg.
+KernelPcf planePcf(const ShadowMapInputs& inputs, const RulePixel& pixel, double planeDepth)
+{
+  const SoftShadowGeometry& geometry = *pixel.geometry;
+  return pcfOver(inputs.shadowMapLinear, geometry, pixel.lookup->sample.bias,
+    kernelRectangle(pixel.lookup->sm.uvTexels, geometry.kernelHalfTexels(planeDepth), geometry.mapSize));
+}
+
 // Marks with `code` each pixel whose value exceeds by more than `excess` the PCF the filter step estimates. Alg. 1
 // L17-20 estimate the PCF over w_p: the normal sub-kernels by Chebyshev's one-tailed bound (Eq. 1 on Eq. 5's
 // moments), which overestimates the lit fraction wherever a sub-kernel's depths spread beyond the receiver (§5 only
@@ -106,56 +166,26 @@ KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double 
 // such texel.
 void markChebyshevBound(const ApproximationContext& context, ImageF& codes, float code, double excess)
 {
-  const FrameResult& frame = *context.frame;
-  const NamedImage* visibility = frame.find("visibility");
-  const NamedImage* classification = frame.find("classification");
-  const NamedImage* blockerDepth = frame.find("avg_blocker_depth");
-  if (!visibility || !classification || !blockerDepth)
-  {
-    return;
-  }
-  const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
-  const ParameterValues& values = frame.parameters;
-  const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
-  const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
-  const auto classOf = [](VssmClass value) { return static_cast<float>(static_cast<int>(value)); };
-  for (int y = 0; y < codes.height; ++y)
-  {
-    for (int x = 0; x < codes.width; ++x)
-    {
-      const float pixelClass = classification->image.at(x, y);
-      const bool filtered = pixelClass == classOf(VssmClass::Penumbra) ||
-        (contactPerSubkernel && pixelClass == classOf(VssmClass::Contact));
-      if (codes.at(x, y) != 0.0f || !(filtered || pixelClass == classOf(VssmClass::Lit)))
+  const bool contactPerSubkernel = context.frame->parameters.choice("contact_test") == "subkernel_mean";
+  const auto filtered = [contactPerSubkernel](VssmClass pixelClass) {
+    return pixelClass == VssmClass::Penumbra || (contactPerSubkernel && pixelClass == VssmClass::Contact);
+  };
+  markReceivers(context, codes, code,
+    [&](VssmClass pixelClass) { return filtered(pixelClass) || pixelClass == VssmClass::Lit; },
+    [&](const ShadowMapInputs& inputs, const RulePixel& pixel) {
+      double planeDepth = pixel.averageBlockerDepth;
+      if (!filtered(pixel.classification))
       {
-        continue;
-      }
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
-      if (!lookup.sample.evaluated)
-      {
-        continue;
-      }
-      const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
-      const double bias = lookup.sample.bias;
-      double penumbraPlaneDepth = blockerDepth->image.at(x, y);
-      if (!filtered)
-      {
-        const KernelPcf search = pcfOver(inputs.shadowMapLinear, geometry, bias,
-          kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(geometry.nearDepth), geometry.mapSize));
+        const SoftShadowGeometry& geometry = *pixel.geometry;
+        const KernelPcf search = planePcf(inputs, pixel, geometry.nearDepth);
         if (search.blocked == 0)
         {
-          continue;
+          return false;
         }
-        penumbraPlaneDepth = std::clamp(search.blockedDepthSum / search.blocked, geometry.nearDepth, geometry.d);
+        planeDepth = std::clamp(search.blockedDepthSum / search.blocked, geometry.nearDepth, geometry.d);
       }
-      const KernelPcf penumbra = pcfOver(inputs.shadowMapLinear, geometry, bias,
-        kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(penumbraPlaneDepth), geometry.mapSize));
-      if (visibility->image.at(x, y) > penumbra.lit + excess)
-      {
-        codes.at(x, y) = code;
-      }
-    }
-  }
+      return pixel.visibility > planePcf(inputs, pixel, planeDepth).lit + excess;
+    });
 }
 
 const char* const contactPcfDescription =
@@ -166,40 +196,10 @@ const char* const contactPcfDescription =
 // Marks with `code` each contact pixel (§6.4) whose value lies more than `difference` from the PCF over its w_p.
 void markContactPcf(const ApproximationContext& context, ImageF& codes, float code, double difference)
 {
-  const FrameResult& frame = *context.frame;
-  const NamedImage* visibility = frame.find("visibility");
-  const NamedImage* classification = frame.find("classification");
-  const NamedImage* blockerDepth = frame.find("avg_blocker_depth");
-  if (!visibility || !classification || !blockerDepth)
-  {
-    return;
-  }
-  const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
-  const ParameterValues& values = frame.parameters;
-  const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
-  for (int y = 0; y < codes.height; ++y)
-  {
-    for (int x = 0; x < codes.width; ++x)
-    {
-      if (codes.at(x, y) != 0.0f ||
-        classification->image.at(x, y) != static_cast<float>(static_cast<int>(VssmClass::Contact)))
-      {
-        continue;
-      }
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
-      if (!lookup.sample.evaluated)
-      {
-        continue;
-      }
-      const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
-      const KernelPcf penumbra = pcfOver(inputs.shadowMapLinear, geometry, lookup.sample.bias,
-        kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(blockerDepth->image.at(x, y)), geometry.mapSize));
-      if (std::abs(visibility->image.at(x, y) - penumbra.lit) > difference)
-      {
-        codes.at(x, y) = code;
-      }
-    }
-  }
+  markReceivers(context, codes, code, [](VssmClass pixelClass) { return pixelClass == VssmClass::Contact; },
+    [&](const ShadowMapInputs& inputs, const RulePixel& pixel) {
+      return std::abs(pixel.visibility - planePcf(inputs, pixel, pixel.averageBlockerDepth).lit) > difference;
+    });
 }
 
 } // namespace
