@@ -1,6 +1,6 @@
 // Layout of the min-max hierarchical shadow map (VSSM Alg. 1 L4, §6.1), shared by its build
 // (hsm/HsmBuild.glsl, hsm/YsmMssmBuild.glsl) and its lookup (common/HsmLookup.glsl). HSM_LAYOUT_* come from
-// the `hsm` parameter. The Y shadow map (HSM_LAYOUT_YSM, paper 001 §6) holds the mip-map levels in the same
+// the `hsm` parameter. The Y shadow map (HSM_LAYOUT_YSM, SS08 §6) holds the mip-map levels in the same
 // atlas, plus its MSSM part (HsmLookup.glsl).
 // CPU mirror: src/lightspace/HierarchicalShadowMap.cpp (hsmLevelSize, hsmAtlasOffset).
 #include "common/MipAtlasLayout.glsl"

@@ -9,7 +9,7 @@ uniform sampler2D hsmTexture; // the atlas of levels 1..L
 uniform sampler3D hsmTexture; // N-buffers: layer k - 1 holds level k; dual-grid MSSM: layer k holds level k
 #endif
 #if HSM_LAYOUT == HSM_LAYOUT_YSM
-// The Y shadow map's MSSM part (paper 001 §6, L629-635): N-buffers over the nodes of HSM level ysmBaseLevel
+// The Y shadow map's MSSM part (SS08 §6): N-buffers over the nodes of HSM level ysmBaseLevel
 // (its level 0, not stored); layer j - 1 holds its level j.
 uniform sampler3D ysmMssmTexture;
 uniform int ysmBaseLevel;
@@ -100,7 +100,7 @@ vec2 hsmTiledRange(ivec2 lo, ivec2 hi)
 // (min, max) depth over the inclusive rectangle [lo, hi] inside the map (dual-grid MSSM: of cells).
 // Mip-map: the <= 2 x 2 nodes of the first level k as wide as the rectangle (a conservative superset);
 // N-buffers and dual-grid MSSM: the rectangle tiled by the largest squares that fit, the last of each axis
-// ending at hi (exact). YSM (paper 001 §6): the mip-map query for k <= ysmBaseLevel, else the rectangle's
+// ending at hi (exact). YSM (SS08 §6): the mip-map query for k <= ysmBaseLevel, else the rectangle's
 // level-ysmBaseLevel nodes tiled by the MSSM part (exact on rectangles aligned to those nodes, and never looser
 // than the mip-map query, whose level-k nodes contain them).
 vec2 hsmRange(ivec2 lo, ivec2 hi)

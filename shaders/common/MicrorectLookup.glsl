@@ -1,4 +1,4 @@
-// Microrects (Schwarz & Stamminger 2008, paper 001 §5.2): the extent and depth of microrect `index` of `level`,
+// Microrects (Schwarz & Stamminger 2008, §5.2): the extent and depth of microrect `index` of `level`,
 // from the two atlases the microrect build leaves (lightspace/microrect/MicrorectStructure.h, bound by the
 // structure: microrectExtentTexture, microrectDepthTexture, microrectMapSize). Level 0 is the shadow map's
 // micropatches, so the including shader declares `uniform sampler2D shadowMapLinear` first (common/
@@ -16,7 +16,7 @@ int microrectLevelSize(int level)
   return mipAtlasLevelSize(microrectMapSize, level);
 }
 
-// Its reference point, the level-0 texel it is anchored at (subsampling, L470-472).
+// Its reference point, the level-0 texel it is anchored at (subsampling, §5.2).
 ivec2 microrectReferencePoint(int level, ivec2 index)
 {
   return index << level;

@@ -1,7 +1,7 @@
 // Technique dcs, resolve (full screen): each light sample's depth complexity is the centre's (shadow volumes,
 // `volumeCount`) plus its counter's change (dcs/DcsSampleCounters.glsl); a sample is hidden when it is behind an
 // occluder (count > 0) or on or below the receiver's tangent plane (the reference's rule,
-// src/reference/ReferenceRenderer.h). Visibility is the fraction of samples not hidden (the v_coef of 003 §3.2).
+// src/reference/ReferenceRenderer.h). Visibility is the fraction of samples not hidden (the v_coef of Forest et al. 2009 §3.2).
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/LightSampleSet.glsl"

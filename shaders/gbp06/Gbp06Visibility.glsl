@@ -2,7 +2,7 @@
 // of Eq. 1 (Yang et al. 2009) tightened by the minimum depth inside it and lit / umbra from the min-max
 // structure (the preamble of gbp07/Gbp07Visibility.glsl), then every occluding texel of the kernel and its ring
 // as a micropatch, back-projected onto the light and clipped to it, gap-filled toward its left and bottom
-// neighbours in texture space as Schwarz & Stamminger 2008 (paper 001, L132-134) describe GBP06's rule, or
+// neighbours in texture space as Schwarz & Stamminger 2008 (SS08 §3) describe GBP06's rule, or
 // toward the right and top ones, the mirror convention (GAP_FILLING), found by a loop over the texels or by
 // the DU07 walk of the min-max quadtree (TRAVERSAL). Conventions, the gap rule and the traversal:
 // src/techniques/gbp06/Gbp06Technique.h.
@@ -72,7 +72,7 @@ void examineTexel(ivec2 texel)
     // beyond the ring shares with its ring neighbour an edge outside the kernel, which back-projects outside the
     // light at every depth the kernel allows, so no region bound depends on the direction.
 #if GAP_FILLING == GAP_FILLING_LEFT_BOTTOM
-    // 001 L132-134: "extending a micropatch to its left and bottom neighbors in texture space" (GBP06). The left
+    // SS08 §3: "extending a micropatch to its left and bottom neighbors in texture space" (GBP06). The left
     // neighbour's right edge and the bottom neighbour's top edge both pass through this texel's corner tangentLo.
     float neighbourDepth;
     if (occludesAt(texel - ivec2(1, 0), neighbourDepth))

@@ -1,5 +1,5 @@
 // Multisampled G-buffer: sample 0 of each pixel into the single-sampled targets, depth included, so that every later
-// pass reads the first sample as Schwarz and Stamminger 2008 §7 prescribe (s_z, "always the first", L731-734).
+// pass reads the first sample as Schwarz and Stamminger 2008 §7 prescribe (s_z, "always the first", §7).
 // Layout: src/passes/FrameResources.h.
 uniform sampler2DMS multisamplePosition;
 uniform sampler2DMS multisampleNormal;

@@ -1,5 +1,5 @@
-// Builds level `level` (>= 1) of the Y shadow map's MSSM part (Schwarz & Stamminger 2008, paper 001 §6,
-// L629-635), one invocation per texel: the N-buffers (Décoret 2005) over the M x M nodes of HSM level b =
+// Builds level `level` (>= 1) of the Y shadow map's MSSM part (Schwarz & Stamminger 2008, §6),
+// one invocation per texel: the N-buffers (Décoret 2005) over the M x M nodes of HSM level b =
 // ysmBaseLevel, whose level 0 is that HSM level itself (read from the mip-map atlas, already built by
 // hsm/HsmBuild.glsl with HSM_LAYOUT_MIPMAP, or from the shadow map for b = 0) and is not stored. Texel (x, y)
 // of level j = range of the four level j - 1 squares at (x, y) + 2^(j-1) {0, 1}^2, reads clamped to the grid;

@@ -1,12 +1,12 @@
-// Builds level `level` (>= 1) of the microrects from level - 1 (Schwarz & Stamminger 2008, paper 001 §5.2,
-// L531-547, Fig. 6), one invocation per level-`level` microrect (x, y), in two dispatches:
-//  - MICRORECT_BUILD_PASS 1 (L538-545): the retained A = (2x, 2y) of level - 1 absorbs B = (2x+1, 2y) unless
+// Builds level `level` (>= 1) of the microrects from level - 1 (Schwarz & Stamminger 2008, §5.2,
+// Fig. 6), one invocation per level-`level` microrect (x, y), in two dispatches:
+//  - MICRORECT_BUILD_PASS 1 (§5.2): the retained A = (2x, 2y) of level - 1 absorbs B = (2x+1, 2y) unless
 //    C = (2x+2, 2y) exists and is strictly closer in depth (ties to A), D = (2x, 2y+1) against G = (2x, 2y+2)
 //    likewise, then E = (2x+1, 2y+1) if the rectangle so far contains E's extent or (2x+2, 2y+2) does not exist.
 //    Writes the partial extent and depth into the level's atlas texels and what it claimed into the claim image.
-//  - MICRORECT_BUILD_PASS 2 (L545-547): adds F = (2x-1, 2y), H = (2x, 2y-1), E' = (2x-1, 2y-1) unless their own
+//  - MICRORECT_BUILD_PASS 2 (§5.2): adds F = (2x-1, 2y), H = (2x, 2y-1), E' = (2x-1, 2y-1) unless their own
 //    retained microrect claimed them in pass 1.
-// Extent = bounding rectangle of the members' extents, depth = min of their depths (L500-501, L519-521). Level
+// Extent = bounding rectangle of the members' extents, depth = min of their depths (§5.2). Level
 // - 1 is read through the lookup a technique uses (common/MicrorectLookup.glsl: level 0 from the shadow map,
 // the others from the atlases as textures, written by earlier dispatches); level `level` through images.
 // The definition and the proofs (every microrect absorbed once, reference points): src/lightspace/Microrects.h,

@@ -1,8 +1,8 @@
-// The custom multisample resolve of Schwarz and Stamminger 2008 §7 (L700-737; CPU twin: techniques/MsaaResolve.h):
-// the technique ran once per pixel from the first sample (s_z = sample 0's view depth, L731-734). A covered sample
+// The custom multisample resolve of Schwarz and Stamminger 2008 §7 (CPU twin: techniques/MsaaResolve.h):
+// the technique ran once per pixel from the first sample (s_z = sample 0's view depth, §7). A covered sample
 // whose view depth d is within tau of s_z (relative: |d - s_z| <= tau s_z, the project's reading of the paper's
-// threshold tau, which has no value, L714-717) takes the pixel's visibility; any other takes the visibility of the
-// pixel or 4-neighbour (-x, +x, -y, +y; ties keep the first) whose s_z is closest to d (L725-733). Pixels whose sample
+// threshold tau, which has no value, §7) takes the pixel's visibility; any other takes the visibility of the
+// pixel or 4-neighbour (-x, +x, -y, +y; ties keep the first) whose s_z is closest to d (§7). Pixels whose sample
 // 0 is uncovered have no s_z: their covered samples all take a neighbour's visibility (or 0 where no neighbour is
 // covered). `visibility` is the mean over the covered samples where sample 0 is covered, else 0 (the frame's
 // coverage is sample 0's).

@@ -4,7 +4,7 @@
 //     through which occluders can hide part of the light from P (Alg. 1 L7: the frustum from P to the light
 //     cut by the map's near plane, which focusing places at the nearest caster);
 //  2. penumbra estimate by similar triangles (planar, parallel blockers): the same construction with the
-//     average blocker depth plane instead (L16), w_p = w_light (d - z_avg) / z_avg at the receiver;
+//     average blocker depth plane instead (Alg. 1 L16), w_p = w_light (d - z_avg) / z_avg at the receiver;
 //  3. PCF over the penumbra kernel.
 // Kernels are rectangles in texels (the map's texels may be anisotropic). Sampling, per step:
 // grid = every texel whose centre lies in the kernel (the brute-force baseline of the VSSM paper), or a
@@ -67,7 +67,7 @@ void main()
     return;
   }
 
-  // 2. Penumbra estimate (similar triangles, L16).
+  // 2. Penumbra estimate (similar triangles, Alg. 1 L16).
   float averageBlockerDepth = blockerDepthSum / float(blockerCount);
   outAvgBlockerDepth = averageBlockerDepth;
   outPenumbraWidth = lightSizeWorld * (d - averageBlockerDepth) / averageBlockerDepth;

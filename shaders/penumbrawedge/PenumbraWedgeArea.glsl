@@ -1,4 +1,4 @@
-// Technique penumbra-wedge (AAM03 as paper 003 §3.1 L381-406 uses it): for a pixel inside a centre-silhouette
+// Technique penumbra-wedge (AAM03 as Forest et al. 2009 §3.1 uses it): for a pixel inside a centre-silhouette
 // wedge's screen polygon, the wedge's signed share of the light, added (blending one, one) to the pixel's occlusion.
 // The rule of src/techniques/penumbrawedge/PenumbraWedgeGeometry.h, in float, relative to v0: the far region F_e(p)
 // = the light's square clipped by

@@ -1,8 +1,8 @@
 // Technique penumbra-wedge, resolve (full screen): AAM03's occlusion is the centre's hard-shadow status (the shadow
 // volumes' count, `volumeCount`) plus what the wedges added (`occlusionDelta`, PenumbraWedgeArea.glsl); visibility
 // = 1 - clamp(occlusion, 0, 1) (src/techniques/penumbrawedge/PenumbraWedgeGeometry.h). The perforated casters' share,
-// the popcount of the STSVs' light-sample mask over N, is added to it (003 L400-402). pw_occlusion_raw keeps the value
-// before clamping: < 0 or > 1 where overlapping silhouettes were counted twice (003 L384-387).
+// the popcount of the STSVs' light-sample mask over N, is added to it (Forest et al. 2009 §3.1). pw_occlusion_raw keeps the value
+// before clamping: < 0 or > 1 where overlapping silhouettes were counted twice (Forest et al. 2009 §3.1).
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/LightSampleSet.glsl"

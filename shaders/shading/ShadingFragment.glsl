@@ -2,7 +2,7 @@
 // surfaces stay readable. Output is sRGB-encoded 8-bit. Multisampled frames (MSAA_SAMPLES defined): each sample is
 // shaded with its own surface and its resolved visibility (passes/vtkSLMsaaResolvePass.h) and the linear radiances
 // are averaged, the ordinary MSAA resolve (Schwarz and Stamminger 2008 §7 apply visibility "to the multisampled
-// colour buffer with a custom resolve", L700-703).
+// colour buffer with a custom resolve", §7).
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 

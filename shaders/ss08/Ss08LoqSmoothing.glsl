@@ -1,7 +1,7 @@
-// ss08, passes 2 and 3 of 4 (Schwarz & Stamminger 2008, Fig. 3 step 2; L363-368, L813-817): one direction of
+// ss08, passes 2 and 3 of 4 (Schwarz & Stamminger 2008, Fig. 3 step 2; §4.2, §8): one direction of
 // the separable LOQ-map smoothing, "a variant of separable bilateral filtering where the smoothing kernel stops
 // at depth discontinuities and at the interface to regions where no backprojection is required". Support
-// 11 x 11 (L814-815): from the pixel, up to 5 neighbours each way are averaged (box weights, the project's
+// 11 x 11 (§8): from the pixel, up to 5 neighbours each way are averaged (box weights, the project's
 // reading), the run stopping before the first neighbour that is not smoothed (LOQ_STATE_SMOOTHED) or whose
 // camera depth differs from the previous one's by more than param_smoothing_depth_threshold times the smaller
 // of the two. Pixels not smoothed keep their level. The second pass (finalPass) applies LOQ_FLOOR: with `raw`,

@@ -1,19 +1,19 @@
 // The per-pixel search of ss08 (Schwarz & Stamminger 2008, Fig. 3 step 1), shared by its LOQ pass
 // (ss08/Ss08Loq.glsl) and its visibility pass (ss08/Ss08Visibility.glsl), which recomputes it rather than
 // storing the search region (the result is the same, bit for bit: the same code on the same inputs):
-//  - the budget b_mo(x, y) of the pixel (001 L352-356): uniform, a ramp in x (Fig. 1 d) or an image;
-//  - the search area of Fig. 2 b, refined param_kernel_refinements times (001 L146-156; gbp06's kernel plus one
+//  - the budget b_mo(x, y) of the pixel (SS08 §4.2): uniform, a ramp in x (Fig. 1 d) or an image;
+//  - the search area of Fig. 2 b, refined param_kernel_refinements times (SS08 §3; gbp06's kernel plus one
 //    ring), with the depth-range query grown before each query to the whole support of every level-j
-//    micro-occluder the area partly covers (001 L605-611, "over-precision", Fig. 7; GROWTH);
-//  - the fractional level l from the search area and the budget (the project's rule, 001 gives none):
+//    micro-occluder the area partly covers (SS08 §6, "over-precision", Fig. 7; GROWTH);
+//  - the fractional level l from the search area and the budget (the project's rule, SS08 gives none):
 //    span = the search area's larger side minus 1 (level-0 texels), l = clamp(log2(span / (b - 1)), 0, L) for
 //    micropatches: at level j the slots examined per axis (the level-j texels over the area) are at most
-//    ceil(span / 2^j) + 1, so ceil(l) holds at most b per axis and floor(l) at most 2b - 1 (001 L818-820:
+//    ceil(span / 2^j) + 1, so ceil(l) holds at most b per axis and floor(l) at most 2b - 1 (SS08 §8:
 //    "(2 b_mo)^2" and "(b_mo)^2"). Microrects may need one slot more on the high side (ss08SlotRange), at most
 //    ceil((span + 2^j - 1) / 2^j) + 1, so for them l = log2((span - 1) / (b - 2)): at most b at ceil(l) and
 //    2b - 2 at floor(l). b = 1 (b = 2 with microrects) is met only by the top level; b = 0 (unlimited) is
 //    level 0 (Table 2's caption: no smoothing, no blending);
-//  - lit / umbra from the (grown) area's depth range (001 L154-156), and the class of a pixel only the grown
+//  - lit / umbra from the (grown) area's depth range (SS08 §3), and the class of a pixel only the grown
 //    query makes penumbra.
 // CPU mirror: src/techniques/ss08/Ss08Technique.cpp (ss08Search). Needs common/GBufferInputs.glsl,
 // LightModel.glsl, ShadowMapCommon.glsl, ShadowReceiver.glsl, SoftShadowKernels.glsl, HsmLookup.glsl.
@@ -117,7 +117,7 @@ void ss08SlotRange(int level, ivec2 lo, ivec2 hi, out ivec2 first, out ivec2 las
 #endif
 }
 
-// The area [lo, hi] grown to the whole support of the level-j slots covering it (001 L605-611): micropatches,
+// The area [lo, hi] grown to the whole support of the level-j slots covering it (SS08 §6): micropatches,
 // their 2^j blocks; microrects, the boxes between their neighbouring reference points. Clamped to the map.
 void grownArea(int level, ivec2 lo, ivec2 hi, out ivec2 grownLo, out ivec2 grownHi)
 {

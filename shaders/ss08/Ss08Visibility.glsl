@@ -1,16 +1,16 @@
 // ss08, pass 4 of 4 (Schwarz & Stamminger 2008, Fig. 3 step 3): soft shadow mapping with a per-pixel level of
 // quality. The search of ss08/Ss08Search.glsl (recomputed), then the micro-occluders of levels floor(l) and
 // ceil(l) of the smoothed LOQ map, back-projected onto the square light, clipped to it and accumulated by area
-// (001 §3, L140-144), alpha-blended: V = (1 - a) V(floor l) + a V(ceil l) (L370-392; the band of BLEND_BAND
+// (SS08 §3), alpha-blended: V = (1 - a) V(floor l) + a V(ceil l) (§4.2; the band of BLEND_BAND
 // below). Micro-occluders (MICRO_OCCLUDER): micropatches, level-j texels of the min-max pyramid at their
-// minimum depth (001 L127-138, L436-437; gbp06's back-projection and gap filling), or microrects (001 §5.2, the
+// minimum depth (SS08 §3, §5.1; gbp06's back-projection and gap filling), or microrects (SS08 §5.2, the
 // extents and depths of lightspace/microrect). A micro-occluder occludes when its depth is in front of the
 // receiver's comparison depth at its centre, less (LEVEL_BIAS) how much nearer the receiver's tangent plane comes
 // over the micro-occluder's footprint: min aggregation puts coarse texels in front of tilted receivers.
 // Both levels go through one loop and one back-projection call site (llvmpipe compiles each call site and
 // caps loop iterations per invocation at 65535: the loop notes its last iteration, so a pixel the cap cut is
 // flagged CLASSIFICATION_CUT_SHORT, exactly).
-// ACCUMULATION: area (above) or bitmask, SS07's occlusion bitmask (001 L140-144, L842-853): 256 bits, one per
+// ACCUMULATION: area (above) or bitmask, SS07's occlusion bitmask (SS08 §3, §8): 256 bits, one per
 // light sample of the shared stratified 16 x 16 set (ss08BitmaskSamples in Ss08Technique.h), OR-ed over a level's
 // micro-occluders, V = 1 - popcount / 256. Each back-projection is an axis-aligned rectangle, so its bits are set
 // without a table and without a loop: the cells strictly inside it in x (or y) hold only samples inside it in x
@@ -65,7 +65,7 @@ float clampedPlaneDepth(vec2 texels)
   return planeDepth > 0.0 ? clamp(planeDepth, 0.5 * receiverDepth, 2.0 * receiverDepth) : 0.5 * receiverDepth;
 }
 
-// LEVEL_BIAS (001 §9 leaves biasing across levels as future work): min aggregation gives a level-j micro-occluder
+// LEVEL_BIAS (SS08 §9 leaves biasing across levels as future work): min aggregation gives a level-j micro-occluder
 // the nearest depth of its 2^j block, so a receiver's own tilted surface inside the block comes nearer than the
 // receiver's tangent plane at the block's centre by the plane's drop over the block. That drop, taken at the
 // block's corners (the plane's depth is 1 / linear, its extremes lie there), is added to the bias above level 0.
@@ -271,7 +271,7 @@ uint popcount(uvec4 words)
 }
 #endif
 
-// The blend weight of ceil(l) for the fractional part `fraction` (L370-392): with band 1 (the paper's
+// The blend weight of ceil(l) for the fractional part `fraction` (§4.2): with band 1 (the paper's
 // choice, "we always perform alpha-blending") the fraction itself; with band < 1 only its last `band` of each
 // level (GBP07's suggestion, 0.1); band 0: no blending, ceil(l) alone.
 float blendWeight(float fraction)
@@ -389,7 +389,7 @@ void main()
       }
       float lightArea = 4.0 * halfSize * halfSize;
 #if ACCUMULATION == ACCUMULATION_BITMASK
-      // V = 1 - popcount / N per level (SS07, 001 L842-853), blended as the areas.
+      // V = 1 - popcount / N per level (SS07, SS08 §8), blended as the areas.
       float sampleCount = float(BITMASK_GRID_SIDE * BITMASK_GRID_SIDE);
       float bits[2] = float[2](float(popcount(floorMask[0]) + popcount(floorMask[1])),
         float(popcount(ceilMask[0]) + popcount(ceilMask[1])));

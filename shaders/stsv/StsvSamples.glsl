@@ -1,12 +1,12 @@
-// Soft textured shadow volumes (paper 003 §2, Alg. 1; the CPU twin is src/techniques/stsv/StsvGeometry.h): for a
+// Soft textured shadow volumes (Forest et al. 2009 §2, Alg. 1; the CPU twin is src/techniques/stsv/StsvGeometry.h): for a
 // pixel inside an STSV's screen polygon, whether its point p lies in the volume (the three outer planes and the front
 // cap plane, §2.3), then for every light sample on this STSV's side of the triangle's plane the transmittance test of
 // Eq. 1-5 on the homogeneous barycentrics. The hidden samples are OR-ed into the pixel's light-sample mask (the
-// LS_buffer, §3.1 L390-400; image atomics instead of the fixed-function logic op: technique penumbra-wedge), or with
-// STSV_DCS_COUNTERS defined increment the depth-complexity counters of those samples (§3.2 L450-458, STSV_DCS:
+// LS_buffer, §3.1; image atomics instead of the fixed-function logic op: technique penumbra-wedge), or with
+// STSV_DCS_COUNTERS defined increment the depth-complexity counters of those samples (§3.2, STSV_DCS:
 // technique dcs, whose range check they join).
 //   Eq. 2-3: (a, b, e) = M (v0 - p), W = [1 0 -a/e; 0 1 -b/e; 0 0 1/e];  Eq. 1: h = W M (s - p)
-//   occluded iff h.x >= 0, h.y >= 0, h.z >= h.x + h.y (the paper, L346-350), h.z > 1 (ShadowLab's added check: s and
+//   occluded iff h.x >= 0, h.y >= 0, h.z >= h.x + h.y (the paper, §2.4), h.z > 1 (ShadowLab's added check: s and
 //   p on opposite sides of the plane; parameter stsv_opposite_side_check), and the texel at (S h).xy / h.z is opaque
 //   (Eq. 4-5; nearest, repeat, alpha < 0.5 is a hole: common/AlphaMask.glsl's rule).
 #include "common/CameraRay.glsl"
@@ -76,7 +76,7 @@ void main()
       for (int bit = 0; bit < 32 && 32 * word + bit < lightSampleCount; ++bit)
       {
         vec3 s = lightSamplePoint(pixel, 32 * word + bit);
-        // Only this STSV's light piece: a sample on the other side is the other STSV's (003 §6 L847-852).
+        // Only this STSV's light piece: a sample on the other side is the other STSV's (Forest et al. 2009 §6).
         if (sign(dot(normal, s - v0)) != lightSide)
         {
           continue;

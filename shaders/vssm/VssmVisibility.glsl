@@ -285,7 +285,7 @@ void main()
   }
 #endif
 
-  // L11-15: average blocker depth, Eq. 4 with z_unocc = t over the normal sub-kernels, combined with the
+  // Alg. 1 L11-15: average blocker depth, Eq. 4 with z_unocc = t over the normal sub-kernels, combined with the
   // PCF-sampled blockers of the non-planar ones, weighted by their blocked areas (§5.2).
   // §6.4's test is not applied here: it is "applied for evaluating soft shadow", and the blocker depth "is
   // less sensitive to precision" (§6.2).
@@ -315,7 +315,7 @@ void main()
   float averageBlockerDepth = clamp(blockerDepthSum / blockedArea, lightNearDepth, d);
   outAvgBlockerDepth = averageBlockerDepth;
 
-  // L16: the penumbra kernel w_p.
+  // Alg. 1 L16: the penumbra kernel w_p.
   vec2 filterHalf = kernelHalfTexels(d, averageBlockerDepth);
   outPenumbraKernelTexels = 2.0 * max(filterHalf.x, filterHalf.y);
 
@@ -330,7 +330,7 @@ void main()
   }
 #endif
 
-  // L17-20: visibility over w_p (Alg. 2 L29-32).
+  // Alg. 1 L17-20: visibility over w_p (Alg. 2 L29-32).
   kernelRectangle(receiver.uvTexels, filterHalf, lo, hi);
   Accumulation shadow = subdivide(lo, hi, SHADOW_SUBDIVISION, int(param_shadow_uniform_n),
     int(param_shadow_tree_height), CONTACT_TEST == CONTACT_TEST_SUBKERNEL_MEAN, d, bias);

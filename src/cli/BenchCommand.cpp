@@ -593,7 +593,7 @@ std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& reso
 }
 
 // The G-buffer samples per pixel a configuration renders with (TechniqueDescriptor::multisampleFor): its error is
-// measured against the reference of as many samples per pixel (like for like, 001 §7).
+// measured against the reference of as many samples per pixel (like for like, SS08 §7).
 // A configuration whose settings do not parse is run anyway: its child fails with the message, in its row.
 int multisamplesOf(const Configuration& configuration)
 {

@@ -1,4 +1,4 @@
-// Errors in ShadowLab come in three kinds (see STYLE.md, "Errors"):
+// Errors in ShadowLab come in three kinds:
 //  - InputError: something the user gave us (scene file, mesh, CLI, parameter) is wrong. It carries a
 //    one-line message naming the file / JSON path / key / value; the CLI catches it once, prints it and
 //    exits 1.

@@ -112,7 +112,7 @@ const std::vector<BufferSpec>& multisampleBufferSpecs()
     { "msaa_interpolated_samples", "samples", "multisampled frames: samples that took the visibility of a 4-neighbour (the one "
                                                "whose s_z is closest to the sample's depth) instead of the pixel's" },
     { "msaa_pixel_visibility", "", "multisampled frames: the technique's visibility, evaluated once per pixel from the "
-                                    "first sample (001 L731-734), before the resolve" },
+                                    "first sample (SS08 §7), before the resolve" },
     { "msaa_sample_depth", "world units", "multisampled frames: each sample's view depth (one component per sample; 0 where "
                                            "the sample is uncovered)" },
     { "msaa_sample_visibility", "", "multisampled frames: each sample's visibility after the resolve (one component per "

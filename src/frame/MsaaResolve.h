@@ -2,10 +2,10 @@
 // passes/vtkSLMsaaResolvePass.h), in the shader's float arithmetic so that the two agree bit for bit on read-back
 // buffers. Rule, per covered sample s of pixel p (sample depth d_s; covered where d_s != 0, msaa_sample_depth's
 // convention):
-//  - p's first sample covered and |d_s - s_z(p)| <= tau s_z(p): s takes p's visibility (L714-724);
+//  - p's first sample covered and |d_s - s_z(p)| <= tau s_z(p): s takes p's visibility (§7);
 //  - otherwise s is distinct and takes the visibility of whichever of p (when its first sample is covered) and its
 //    4-neighbours -x, +x, -y, +y (inside the image, first sample covered) has the s_z closest to d_s, ties keeping
-//    the first in that order (L725-733); it counts as interpolated when that is a neighbour. With no candidate: 0.
+//    the first in that order (§7); it counts as interpolated when that is a neighbour. With no candidate: 0.
 // visibility(p) = the mean of its covered samples' values where p's first sample is covered, else 0.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The vocabulary of the technique registry (techniques/Registry.h; STYLE.md, "Adding a technique touches one place").
+// The vocabulary of the technique registry (techniques/Registry.h): adding a technique touches one place.
 //
 // A technique is described by data: its parameters (bgfx-style table: default, range, unit, doc), the
 // light-space structures it needs (the pipeline builds only those), the instrumentation buffers it
@@ -213,7 +213,7 @@ struct TechniqueDescriptor
   // (vtkSLTechniquePass::CollectObjectSpaceExports, written as <name>.vtp).
   bool drawsSceneGeometry = false;
   // With drawsSceneGeometry: perforated casters (alpha textures) are left out of FrameResources::weldedCasters, because
-  // the technique shadows them itself, by soft textured shadow volumes (paper 003: S-triangles go through STSV).
+  // the technique shadows them itself, by soft textured shadow volumes (Forest et al. 2009: S-triangles go through STSV).
   bool perforatedCastersByStsv = false;
   // Settings the registry-wide test sweeps (regression baselines, the NaN/inf sweep) add, to keep a brute-force
   // technique's cost on llvmpipe bounded (e.g. a smaller shadow map). Empty for most techniques.

@@ -3,7 +3,7 @@
 // A stage file may contain `#include "common/LightModel.glsl"` lines; they are replaced by that file's text
 // (recursively, each file at most once per stage, like #pragma once). The `#version` line and a block of
 // `#define`s generated from C++ (technique variants, output locations) are prepended, so constants are
-// never kept in sync by hand between C++ and GLSL (STYLE.md, "Shaders").
+// never kept in sync by hand between C++ and GLSL (the house style).
 #pragma once
 
 #include <string>

@@ -1,7 +1,7 @@
 // Lesson: depth complexity sampling (Forest, Barthe & Paulin 2008, as used by Forest et al. 2009 §3.2): every light
 // sample gets the number of occluders between the point and it, from the centre's shadow-volume count and the
 // silhouette wedges; visibility is the share of samples at count 0. Exact per sample, so what is left is sampling
-// noise, which the pattern and N decide (003 Fig. 5).
+// noise, which the pattern and N decide (Forest et al. 2009 Fig. 5).
 #include "lessons/Lesson.h"
 #include "lessons/LessonBuilder.h"
 
@@ -72,7 +72,7 @@ Lesson depthComplexityLesson()
         : "At 16 samples the shifted grid is as good as the Poisson pattern in this penumbra.");
 
     const std::string resolution = lesson.resolutionText();
-    lesson.tryNext("Compare every pattern at N = 16 and 64 against the ray tracer (paper 003, Fig. 5):",
+    lesson.tryNext("Compare every pattern at N = 16 and 64 against the ray tracer (Forest et al. 2009, Fig. 5):",
       "shadowlab bench datasets/stacked-occluders/scene.json -t dcs --sweep light_samples=grid,stratified,poisson,zero_two,poisson_4x4 "
       "--sweep samples=16,64 -r " + resolution + " --repeat 1 --samples 256 --out out/dcs-patterns");
     lesson.tryNext("Trace the same samples and get every sample's crossing count from Embree:",

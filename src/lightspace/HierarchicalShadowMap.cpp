@@ -37,7 +37,7 @@ int hsmLevelSize(HsmLayout layout, int mapSize, int level)
 
 int ysmBaseLevel(int mapSize)
 {
-  // b = floor(log2 (N / 256)), at least 0 (paper 001: n - 1 = log2 (N / 256), L629-641).
+  // b = floor(log2 (N / 256)), at least 0 (SS08: n - 1 = log2 (N / 256), §6).
   int level = 0;
   while ((ysmMssmPartTargetSize << (level + 1)) <= mapSize)
   {
@@ -342,7 +342,7 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
     level = std::min(level, static_cast<int>(levels.size()) - 1);
     if (layout == HsmLayout::Ysm && level > ysmBaseLevel)
     {
-      // YSM (001 §6): the level-b nodes the rectangle touches, tiled exactly by the MSSM part (its level 0 is
+      // YSM (SS08 §6): the level-b nodes the rectangle touches, tiled exactly by the MSSM part (its level 0 is
       // HSM level b). They lie inside the level-k nodes the mip-map query reads, so the range is never looser.
       tile(lo >> ysmBaseLevel, hi >> ysmBaseLevel, [&](int partLevel, int x, int y) {
         visitImage(partLevel == 0 ? levels[static_cast<std::size_t>(ysmBaseLevel)]

@@ -17,12 +17,12 @@
 //    2^k + 1 samples per side and a quadtree over cells needs no neighbour reads. Cells -1 .. N - 1 exist (the
 //    border ones half outside the map, whose outside samples hold `outsideDepth`, 2 x far: they never occlude),
 //    so each level has (N + 1)^2 texels, texel t holding cell t - 1.
-//  - Y shadow map (YSM; Schwarz & Stamminger 2008, paper 001 §6, L629-656, Table 1): a hybrid of the two. The
+//  - Y shadow map (YSM; Schwarz & Stamminger 2008, §6, Table 1): a hybrid of the two. The
 //    full mip-map HSM above (`levels`, the same atlas; the paper's implementation keeps the HSM untruncated for
-//    micro-occluder construction, L646-651) plus an "MSSM part": the N-buffers of HSM level b (the paper's
-//    n - 1), b = max(0, floor(log2 (N / 256))) so that the part is about 256^2 (L637-641: 256^2 at N = 1024
+//    micro-occluder construction, §6) plus an "MSSM part": the N-buffers of HSM level b (the paper's
+//    n - 1), b = max(0, floor(log2 (N / 256))) so that the part is about 256^2 (§6: 256^2 at N = 1024
 //    and 2048; b = 0, the part as large as the map, for N <= 511). The part's level 0 is HSM level b and is not
-//    stored (L631-633); `mssmPart[j - 1]` holds its level j = 1..ceil(log2 M), M = ceil(N / 2^b), as M x M.
+//    stored (§6); `mssmPart[j - 1]` holds its level j = 1..ceil(log2 M), M = ceil(N / 2^b), as M x M.
 //    A query first takes the mip-map level k the mip-map query would use; for k <= b it is that query, else
 //    the rectangle's level-b nodes [lo >> b, hi >> b] are tiled like the N-buffers by the part's squares:
 //    conservative, exact on rectangles aligned to level-b blocks, never looser than the mip-map query (the mip
@@ -44,7 +44,7 @@ enum class HsmLayout
   MipMap,
   NBuffers,
   DualMssm,
-  Ysm // the mip-map levels plus an N-buffers part from level ysmBaseLevel (paper 001 §6)
+  Ysm // the mip-map levels plus an N-buffers part from level ysmBaseLevel (SS08 §6)
 };
 
 // Levels above 0 of an N x N map: ceil(log2 N) (the last mip level is 1 x 1).
@@ -55,7 +55,7 @@ int dualMssmLevelCount(int mapSize);
 int hsmLevelSize(HsmLayout layout, int mapSize, int level);
 // Mip-map layout (and the YSM's): where level k >= 1 starts in the N x N atlas.
 glm::ivec2 hsmAtlasOffset(int mapSize, int level);
-// YSM: the MSSM part's resolution the paper recommends (001 L637-641).
+// YSM: the MSSM part's resolution the paper recommends (SS08 §6).
 constexpr int ysmMssmPartTargetSize = 256;
 // YSM: the HSM level b the MSSM part is built from: the largest b with 256 * 2^b <= N, 0 for N < 512.
 int ysmBaseLevel(int mapSize);

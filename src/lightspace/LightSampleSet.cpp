@@ -1,4 +1,4 @@
-// Named light-sample sets (LightSampleSet.h; paper 003 §4.1, L506-533). Every coordinate is a 16-bit fixed-point
+// Named light-sample sets (LightSampleSet.h; Forest et al. 2009 §4.1). Every coordinate is a 16-bit fixed-point
 // number (k 2^-16, k in 0..65535), so what the CPU computes in double the GPU computes in float without rounding,
 // and the GLSL twin, shaders/common/LightSampleSet.glsl, mirrors the integer steps below one for one.
 #include "lightspace/LightSampleSet.h"
@@ -81,7 +81,7 @@ std::vector<glm::dvec2> gridPoints(int count)
   return points;
 }
 
-// One point per cell of the same grid, uniform on the cell's 2^-16 lattice (003 Fig. 5 b).
+// One point per cell of the same grid, uniform on the cell's 2^-16 lattice (Forest et al. 2009 Fig. 5 b).
 std::vector<glm::dvec2> stratifiedPoints(int count, std::uint32_t seed)
 {
   const int side = gridSide(count);
@@ -99,7 +99,7 @@ std::vector<glm::dvec2> stratifiedPoints(int count, std::uint32_t seed)
   return points;
 }
 
-// Dart throwing (Cook 1986, 003's [Coo86]) on the 2^-16 lattice of the unit square: a candidate is kept when it is
+// Dart throwing (Cook 1986, Forest et al. 2009's [Coo86]) on the 2^-16 lattice of the unit square: a candidate is kept when it is
 // at least the minimum distance from every point kept so far; after kMaxMisses candidates in a row are rejected
 // the set is jammed and starts again from empty (the stream goes on, so the restart draws other darts). At the
 // paper's distances this finishes in a few restarts (N = 16: a mean of ~3, N = 64 and 256: < 1; each well under a
@@ -175,7 +175,7 @@ std::uint32_t sobolSecondDimension(std::uint32_t index)
   return result;
 }
 
-// The first N points of the Sobol (0,2)-sequence (003 L530-531): van der Corput base 2 and Sobol's second
+// The first N points of the Sobol (0,2)-sequence (Forest et al. 2009 §4.1): van der Corput base 2 and Sobol's second
 // dimension. For N = 2^m they are a (0, m, 2)-net; cutting them to 16 bits keeps that (an elementary interval of
 // area 2^-m, m <= 8, is decided by the top 8 bits of each coordinate).
 std::vector<glm::dvec2> zeroTwoPoints(int count)
@@ -250,7 +250,7 @@ std::string lightSamplePatternName(const LightSampleSetSettings& settings)
   return lightSamplePatternNames().at(static_cast<std::size_t>(settings.pattern) + (settings.interleaved ? 4 : 0));
 }
 
-// 003 fixes the distance "experimentally" for 16 and 64 samples (L531-533) without saying in which domain. It is
+// Forest et al. 2009 fixes the distance "experimentally" for 16 and 64 samples (§4.1) without saying in which domain. It is
 // the plain unit square: N disks of diameter d around points of the square lie in the square grown by d / 2, so
 // the packing density is eta = N pi d^2 / 4 / (1 + d)^2, 0.4886 for (16, 0.2456139) and 0.4749 for
 // (64, 0.1076681), both below the jamming density of random sequential addition (~0.547), where dart throwing

@@ -1,20 +1,20 @@
 // Named light-sample sets shared by object-space soft shadows (technique `dcs`, Forest, Barthe & Paulin 2008 as
-// used by Forest et al. 2009 = paper 003 §4.1) and the ray-traced reference (`shadowlab reference
+// used by Forest et al. 2009 §4.1) and the ray-traced reference (`shadowlab reference
 // --light-samples PATTERN --samples N --seed S`): both take the very same N points per pixel, so the technique's
 // per-sample depth complexity can be checked sample by sample, not statistically.
 //
-// A set is one base pattern of N points in the unit square (003 L506-533):
+// A set is one base pattern of N points in the unit square (Forest et al. 2009 §4.1):
 //  - grid:       the sqrt(N) x sqrt(N) cell centres;
-//  - stratified: one uniformly jittered point per cell of the same grid (003 Fig. 5 b);
+//  - stratified: one uniformly jittered point per cell of the same grid (Forest et al. 2009 Fig. 5 b);
 //  - poisson:    a Poisson-disk set in the unit square with the paper's minimum distances, 0.2456139 for N = 16
-//                and 0.1076681 for N = 64 (003 L531-533); for N = 256, which the paper does not use, the
+//                and 0.1076681 for N = 64 (Forest et al. 2009 §4.1); for N = 256, which the paper does not use, the
 //                distance at the same packing density (see LightSampleSet.cpp);
 //  - zero_two:   the first N points of the Sobol (0,2)-sequence (its first two dimensions), a (0, log2 N, 2)-net;
 // and a per-pixel toroidal shift (Cranley-Patterson rotation) that decorrelates neighbouring pixels. The paper
-// rotates its samples per pixel (003 L526-527); a rotation would carry samples off a square light, a toroidal
+// rotates its samples per pixel (Forest et al. 2009 §4.1); a rotation would carry samples off a square light, a toroidal
 // shift keeps every sample on it and keeps the set's stratification. With the suffix `_4x4`, the shift is
 // not hashed per pixel but set by the pixel's place in a 4 x 4 tile (interleaved sampling, Keller & Heidrich
-// 2001, 003 Fig. 5 f): the 16 shifted copies of a grid-like pattern fill a 4 sqrt(N) x 4 sqrt(N) grid.
+// 2001, Forest et al. 2009 Fig. 5 f): the 16 shifted copies of a grid-like pattern fill a 4 sqrt(N) x 4 sqrt(N) grid.
 //
 // The shifts, exactly (the GLSL twin repeats this in uint arithmetic; hash32 is Wellons' "lowbias32", a
 // bijection of 32-bit words, h0 = hash32(seed + 0x9E3779B9)):
@@ -72,7 +72,7 @@ const std::vector<std::string>& lightSamplePatternNames();
 LightSampleSetSettings lightSampleSetSettings(const std::string& patternName, int count, std::uint32_t seed);
 // The name lightSamplePatternNames() gives `settings`' pattern and interleaving.
 std::string lightSamplePatternName(const LightSampleSetSettings& settings);
-// The minimum distance between the `count` points of a poisson set (unit square, not toroidal): 003's 0.2456139
+// The minimum distance between the `count` points of a poisson set (unit square, not toroidal): Forest et al. 2009's 0.2456139
 // (N = 16) and 0.1076681 (N = 64); for N = 256 the distance at N = 64's packing density (LightSampleSet.cpp).
 double lightSamplePoissonDistance(int count);
 

@@ -88,7 +88,7 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
     std::vector<std::uint8_t> claims(built.size(), 0);
 
     // Level-(i-1) microrect `index` joins `merged`, microrect `self` of level i: the bounding rectangle of the
-    // extents, the min of the depths (L500-501, L519-521); the member is recorded when members are tracked.
+    // extents, the min of the depths (§5.2); the member is recorded when members are tracked.
     const auto absorbInto = [&](Microrect& merged, std::size_t self, glm::ivec2 index) {
       const Microrect& member = finerAt(index);
       merged.lo = glm::min(merged.lo, member.lo);
@@ -99,7 +99,7 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
         (*members)[self].push_back(index);
       }
     };
-    // Pass 1 (L538-545): each retained A = (2x, 2y) absorbs B and D by the smaller depth difference, then E if
+    // Pass 1 (§5.2): each retained A = (2x, 2y) absorbs B and D by the smaller depth difference, then E if
     // the rectangle so far contains it (or E has no other retained neighbour).
     for (int y = 0; y < size.y; ++y)
     {
@@ -149,7 +149,7 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
       }
     }
 
-    // Pass 2 (L545-547): each retained P = (2x, 2y) absorbs F, H and E' unless their own retained microrect
+    // Pass 2 (§5.2): each retained P = (2x, 2y) absorbs F, H and E' unless their own retained microrect
     // claimed them in pass 1.
     for (int y = 0; y < size.y; ++y)
     {

@@ -1,43 +1,43 @@
-// Microrects (Schwarz & Stamminger 2008, "Quality Scalability of Soft Shadow Mapping", paper 001 §5.2,
-// L447-555, Figs. 4-6): micro-occluders of shadow-map level i whose extent is any rectangle of level-0 texels
+// Microrects (Schwarz & Stamminger 2008, "Quality Scalability of Soft Shadow Mapping", SS08 §5.2,
+// Figs. 4-6): micro-occluders of shadow-map level i whose extent is any rectangle of level-0 texels
 // instead of the 2^i x 2^i block of a micropatch. The CPU twin of shaders/microrect/MicrorectBuild.glsl and of
 // the lookup shaders/common/MicrorectLookup.glsl; the GPU build must equal it bit for bit.
 //
 // Definition (the paper's text, made exact; the choices the paper leaves open are marked "project choice"):
-//  - Level 0 microrects are micropatches (L485-490): microrect (x, y) of level 0 is texel (x, y), extent
+//  - Level 0 microrects are micropatches (§5.2): microrect (x, y) of level 0 is texel (x, y), extent
 //    [x, x] x [y, y] in level-0 texels (inclusive), depth the shadow map's linear depth (empty texels hold
 //    2 x far and never occlude).
 //  - Level i >= 1 has ceil(size_{i-1} / 2) = ceil(N / 2^i) microrects per side, the HSM mip levels' sizes
 //    (hsmLevelSize), so levels 0..L exist with L = hsmLevelCount(N) = ceil(log2 N). One microrect per texel
-//    (L466-467). Reference points by subsampling (L470-472, L492-494): level-i microrect (x, y) keeps level-(i-1)
+//    (§5.2). Reference points by subsampling (§5.2): level-i microrect (x, y) keeps level-(i-1)
 //    microrect A = (2x, 2y), so its reference point is the centre of level-0 texel (2^i x, 2^i y).
-//  - Construction from level i - 1, greedy and in two passes (L531-547, Fig. 6). With B = (2x+1, 2y),
+//  - Construction from level i - 1, greedy and in two passes (§5.2, Fig. 6). With B = (2x+1, 2y),
 //    C = (2x+2, 2y), D = (2x, 2y+1), G = (2x, 2y+2), E = (2x+1, 2y+1) of level i - 1 ("exists" = inside level
 //    i - 1):
-//      pass 1 (L538-545): A absorbs B if B exists and (C does not, or |z_B - z_A| <= |z_B - z_C|): B joins the
-//      partner of smaller depth difference (L494-499, L541-543), and on a tie the negative-side partner A (project
+//      pass 1 (§5.2): A absorbs B if B exists and (C does not, or |z_B - z_A| <= |z_B - z_C|): B joins the
+//      partner of smaller depth difference (§5.2), and on a tie the negative-side partner A (project
 //      choice). Likewise D against G. A absorbs E if E exists and (the bounding rectangle of A and what A
-//      absorbed so far contains E's extent (L543-545), or E's other retained neighbour (2x+2, 2y+2) does not
+//      absorbed so far contains E's extent (§5.2), or E's other retained neighbour (2x+2, 2y+2) does not
 //      exist: project choice, or E would be absorbed by nobody).
-//      pass 2 (L545-547): each retained P = (2x, 2y) absorbs every negative-side neighbour F = (2x-1, 2y),
+//      pass 2 (§5.2): each retained P = (2x, 2y) absorbs every negative-side neighbour F = (2x-1, 2y),
 //      H = (2x, 2y-1), E' = (2x-1, 2y-1) that exists and was not absorbed in pass 1 by its own retained
 //      microrect ((2x-2, 2y), (2x, 2y-2), (2x-2, 2y-2) respectively).
-//    Extent = bounding rectangle of the absorbed members' extents (L519-521); depth = min of their depths (min
-//    aggregation, L500-501, L534-535). No third pass (L552-555). Depth differences are taken in float, as the
+//    Extent = bounding rectangle of the absorbed members' extents (§5.2); depth = min of their depths (min
+//    aggregation, §5.2). No third pass (§5.2). Depth differences are taken in float, as the
 //    GPU does, so that every decision (ties included) is the GPU's.
 //  - Every level-(i-1) microrect is absorbed exactly once: A by itself; B by A or else, in pass 2, by C (which
 //    then exists, C = (2(x+1), 2y) is retained and B is its F); D by A or G likewise (B's H); E by A or else by
 //    (2x+2, 2y+2) (which then exists; E is its E').
-//  - The extent contains the microrect's own reference point and no other level-i reference point (L468-474),
+//  - The extent contains the microrect's own reference point and no other level-i reference point (§5.2),
 //    by induction: a level-(i-1) extent at index u lies strictly between the neighbouring level-(i-1) reference
 //    points, inside (2^(i-1) (u - 1), 2^(i-1) (u + 1)) per axis (level 0: [u, u] inside (u - 1, u + 1)). The
 //    members of level-i microrect x have u in {2x - 1, 2x, 2x + 1}, so their union lies inside
 //    (2^i (x - 1), 2^i (x + 1)), which holds level-i reference point 2^i x and no other; it contains it because
 //    A's extent contains A's reference point, which is the same texel. Overlaps between microrects are allowed
-//    (L521-529); Microrects::overlapCount counts them.
+//    (§5.2); Microrects::overlapCount counts them.
 //  - Extents are inside the map, so they fit RGBA16UI for every map side up to 65536 (kMaxImageSide is 16384).
 //
-// Storage on the GPU (L479-481: "two additional textures"): levels 1..L in two N x N atlases laid out like the
+// Storage on the GPU (§5.2: "two additional textures"): levels 1..L in two N x N atlases laid out like the
 // HSM mip-map atlas (level 1 at the origin, levels 2.. stacked in a column to its right; hsmAtlasOffset):
 // extents RGBA16UI (x0, y0, x1, y1) and depths R32F; level 0 is the shadow map itself.
 #pragma once
@@ -83,7 +83,7 @@ struct Microrects
   glm::ivec2 levelSize(int level) const;
   // Microrect `index` of `level` (0..levelCount()), `index` inside levelSize(level).
   Microrect at(int level, glm::ivec2 index) const;
-  // Its reference point: level-0 texel (2^level x, 2^level y) (subsampling, L471-472).
+  // Its reference point: level-0 texel (2^level x, 2^level y) (subsampling, §5.2).
   static glm::ivec2 referencePoint(int level, glm::ivec2 index);
 
   // Levels 1..L in the N x N atlas (square maps only), 0 outside the levels: extents (4 components) and depths.

@@ -53,7 +53,7 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> gbufferDepth; // GL_DEPTH32F_STENCIL8, stencil cleared to 0
   // Multisampled frames (TechniqueDescriptor::multisampleFor, RenderRequest::gbufferSamples): the G-buffer rendered
   // gbufferSamples x multisampled, one fragment per pixel and primitive (attributes at the pixel centre, extrapolating
-  // the primitive: 001 §7, L719-724), into these targets; the single-sampled ones above then hold sample 0.
+  // the primitive: SS08 §7), into these targets; the single-sampled ones above then hold sample 0.
   MultisampleSettings multisample;
   vtkSmartPointer<vtkTextureObject> gbufferMsPosition;
   vtkSmartPointer<vtkTextureObject> gbufferMsNormal;

@@ -1,7 +1,7 @@
 // Binds a framebuffer with the given colour (and optional depth or depth-stencil) targets for one pass, sets the viewport
 // to their size and the raster state every ShadowLab pass starts from (no blending, no scissor, no face
 // culling; depth test only when a depth target is given), and restores all of it on destruction, so a
-// pass never leaves VTK's OpenGL state half-configured (STYLE.md, "Errors").
+// pass never leaves VTK's OpenGL state half-configured.
 #pragma once
 
 #include <vtkOpenGLState.h>

@@ -67,7 +67,7 @@ void vtkSLGBufferPass::Execute(const vtkRenderState* state)
     const float alphaTestOffset[2] = { static_cast<float>(frame.alphaTestOffset.x),
       static_cast<float>(frame.alphaTestOffset.y) };
     program->SetUniform2f("alphaTestOffset", alphaTestOffset);
-    // One fragment per pixel and primitive, replicated to the samples it covers (001 L719-724), whatever the
+    // One fragment per pixel and primitive, replicated to the samples it covers (SS08 §7), whatever the
     // driver's default (nothing in ShadowLab or VTK enables sample shading; GL_MULTISAMPLE is on by default).
     glDisable(GL_SAMPLE_SHADING);
     this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject&) { return true; });

@@ -1,7 +1,7 @@
 // Stage 1: rasterises every scene object into the G-buffer (layout in FrameResources.h). Multisampled frames
 // (FrameResources::multisample) rasterise into multisampled targets, one fragment per pixel and primitive as
-// Schwarz and Stamminger 2008 §7 assume (no sample shading: attributes at the pixel centre, L719-724), then copy
-// sample 0 into the single-sampled targets (the paper's s_z, "always the first", L731-734) for every later pass.
+// Schwarz and Stamminger 2008 §7 assume (no sample shading: attributes at the pixel centre, §7), then copy
+// sample 0 into the single-sampled targets (the paper's s_z, "always the first", §7) for every later pass.
 #pragma once
 
 #include "passes/FullScreenQuad.h"

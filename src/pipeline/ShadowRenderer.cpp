@@ -283,8 +283,8 @@ void readBackLightSpace(const FrameResources& frame, FrameResult& result)
   }
 }
 
-// The MSAA resolve's counts for stats.json and bench's columns (001 §7: "usually the vast majority of pixels require
-// only a single visibility determination", L719-724).
+// The MSAA resolve's counts for stats.json and bench's columns (SS08 §7: "usually the vast majority of pixels require
+// only a single visibility determination", §7).
 void addMultisampleStatistics(FrameResult& result)
 {
   const ImageF& distinct = result.find("msaa_distinct_samples")->image;

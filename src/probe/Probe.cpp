@@ -43,7 +43,7 @@ ProbeResult probePixel(const FrameResult& frame, const Scene& scene, int lightIn
   result.technique = frame.technique;
   result.pixel = pixel;
   result.lightIndex = lightIndex;
-  // Multisampled frames: the technique ran once per pixel, from the first sample (001 L731-734); its value before the
+  // Multisampled frames: the technique ran once per pixel, from the first sample (SS08 §7); its value before the
   // resolve is what the twin replays.
   const NamedImage* pixelVisibility = frame.find("msaa_pixel_visibility");
   const NamedImage* visibility = pixelVisibility ? pixelVisibility : frame.find("visibility");
@@ -62,12 +62,12 @@ ProbeResult probePixel(const FrameResult& frame, const Scene& scene, int lightIn
     {
       const std::string sample = "sample " + std::to_string(s);
       recorder.quantity(sample + " depth", depths.at(pixel.x, pixel.y, s), "world units",
-        "001 L719-724 (0: the sample is uncovered)");
+        "SS08 §7 (0: the sample is uncovered)");
       recorder.quantity(sample + " visibility", sampleVisibility.at(pixel.x, pixel.y, s), "",
-        "001 L714-733 (the pixel's within tau of the first sample's depth, else the closest-depth 4-neighbour's)");
+        "SS08 §7 (the pixel's within tau of the first sample's depth, else the closest-depth 4-neighbour's)");
     }
     recorder.quantity("interpolated samples", frame.find("msaa_interpolated_samples")->image.at(pixel.x, pixel.y),
-      "samples", "001 L725-733");
+      "samples", "SS08 §7");
     recorder.quantity("resolved visibility", frame.find("visibility")->image.at(pixel.x, pixel.y), "",
       "the mean of the covered samples' visibilities");
   }

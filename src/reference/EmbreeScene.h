@@ -13,7 +13,7 @@
 // Scene may be destroyed after construction. Queries are const and thread-safe.
 //
 // Crossing counts (crossings()): the depth complexity of a segment, the number of caster triangles it passes
-// through, which depth complexity sampling (Forest, Barthe & Paulin 2008, used by paper 003 §3.2) counts per
+// through, which depth complexity sampling (Forest, Barthe & Paulin 2008, used by Forest et al. 2009 §3.2) counts per
 // light sample. Every geometry also gets an intersection filter that records each hit and rejects it, so that
 // one rtcIntersect1 walks every triangle along the segment instead of stopping at the closest. Hits in a
 // perforated caster's holes are rejected without being recorded (the occlusion filter's rule above), so a

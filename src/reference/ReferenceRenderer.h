@@ -24,7 +24,7 @@
 //    and every sample, hidden or not,
 //        crossings_i = EmbreeScene::crossings(o, s_i - o, 0, 1 - 1e-6)
 //    (caster triangles crossed, holes excluded: the depth complexity that depth complexity sampling counts,
-//    paper 003 §3.2), and sample i is hidden when dot(n, s_i - p) <= 0 or crossings_i > 0. The result then
+//    Forest et al. 2009 §3.2), and sample i is hidden when dot(n, s_i - p) <= 0 or crossings_i > 0. The result then
 //    also holds sampleCrossings (crossings_i in component i) and lightSampleMask (see ReferenceResult).
 //    visibility = (1/N) #(samples not hidden); standard error as below. The pixel rules above still decide
 //    the visibility of uncovered, non-receiving and unreachable pixels; the two per-sample arrays are facts

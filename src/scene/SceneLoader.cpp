@@ -10,7 +10,7 @@
 //    relative to the scene file. Mesh paths are relative to the scene file too (absolute paths work).
 //  - `mesh_alpha` (true or false, default false) is valid only on a quad with an `alpha_texture`, whatever its
 //    value; true replaces the quad, after its transform, by the mesh of its opaque texels (scene/AlphaMesh.h,
-//    the equivalent mesh of paper 003 Fig. 11), which has no alpha texture. A mask without opaque texels is an
+//    the equivalent mesh of Forest et al. 2009 Fig. 11), which has no alpha texture. A mask without opaque texels is an
 //    error (an object needs triangles).
 //  - Integers (`resolution`) may be written as 512 or 512.0, not 512.5. View vectors are normalised; a direction
 //    is any non-zero vector, however large or small its components ([1e308, -1e308, 0] is a valid normal).

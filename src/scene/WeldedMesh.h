@@ -77,7 +77,7 @@ WeldedMesh weldMesh(const TriangleMesh& mesh, std::size_t objectIndex);
 
 // Every object that casts shadows (castShadows), in scene order. A welded caster is its whole triangle set: alpha
 // textures are not looked at, unless `opaqueOnly` leaves perforated objects (hasAlphaTexture) out altogether (the
-// techniques whose STSVs shadow them, paper 003 C1).
+// techniques whose STSVs shadow them, Forest et al. 2009 §2).
 std::vector<WeldedMesh> weldCasters(const Scene& scene, bool opaqueOnly = false);
 
 } // namespace sl

@@ -1,4 +1,4 @@
-// Technique `dcs` (depth complexity sampling, Forest, Barthe & Paulin 2008 via paper 003 §3.2) on the GPU (llvmpipe
+// Technique `dcs` (depth complexity sampling, Forest, Barthe & Paulin 2008 via Forest et al. 2009 §3.2) on the GPU (llvmpipe
 // in CI) against independent CPU answers. DCS is exact for its light samples, so it is checked sample by sample:
 //  1. every (pixel, sample) count (export_sample_counts = 1, buffer sample_depth_complexity) equals Embree's crossing
 //     count of the segment from the counted point p' (shadowVolumeReceiverPoint, the point the GPU counts from) to the
@@ -6,7 +6,7 @@
 //     ambiguous when the segment passes within 1e-6 of the scene's radius of a welded caster edge or vertex (rounding
 //     decides it); the others are <= 0.1 % of the pairs, and every one of them has p' within that distance of a
 //     caster triangle (a grazing view of the receiver's own surface, where the centre's z-fail depth test decides):
-//     none is unexplained (notes 2.3 item 2);
+//     none is unexplained;
 //  2. every covered receiving pixel's visibility equals the Embree reference's on the same sample set
 //     (ReferenceSettings::lightSampleSet, rays from p + 1e-6 radius n, see compareVisibility) exactly on >= 99.5 % of
 //     them; the rest differ only on samples whose blocking differs between Embree from p' and Embree from the
@@ -18,7 +18,7 @@
 //     and the penumbra RMSE below the Bernoulli one (item 6; the sampling counterpart of the reference's own check);
 //  4. counts never negative: dc_min >= 0 on every covered pixel of the bunny; an open quad and two tetrahedra sharing
 //     an edge (non-manifold) give Embree's counts (the multiplicity rule of DcsGeometry.h);
-//  5. hard cases (notes 2.3): edges pointing at the light's centre, receivers touching casters (contact, a box and a
+//  5. hard cases: edges pointing at the light's centre, receivers touching casters (contact, a box and a
 //     sphere resting on the ground), the camera inside a shadow volume, a light straddling casters' planes, a
 //     receiver whose tangent plane cuts the light; a disk light, N = 64 and N = 256 once each;
 //  6. counter_status: no pixel of any scene above is marked range exceeded (cut_short_pixels 0), and a stack of 140
@@ -634,7 +634,7 @@ void expectExact(const std::string& label, const DcsCheck& check)
   const VisibilityAgreement& v = check.visibility;
   EXPECT_GT(s.pixels, 0) << label;
   EXPECT_GE(s.share(), 0.999) << label << ": " << s.equal << "/" << s.pairs << " pairs equal to Embree";
-  // Mismatches away from every edge are at most 0.1 % of the pairs (notes 2.3 item 2), and each of them has its
+  // Mismatches away from every edge are at most 0.1 % of the pairs, and each of them has its
   // counted point on a caster triangle (the centre's count decided by the z-fail depth test at a grazing view).
   EXPECT_LE(static_cast<double>(s.atReceiver + s.unexplained), 0.001 * static_cast<double>(s.pairs)) << label;
   EXPECT_EQ(s.unexplained, 0) << label << ": first: " << (s.unexplainedExamples.empty() ? "" : s.unexplainedExamples.front());
@@ -864,7 +864,7 @@ TEST(Dcs, EdgesPointingAtTheLightCentre)
 {
   // A long thin box and a thin triangle whose edges run toward the light's centre: for every point, the plane
   // Pi(p, e) of such an edge holds the centre (orient(v0, v1, p, c) = 0 up to the float mesh), the degenerate
-  // case of the crossing test (notes 2.3, "wedge degeneracy").
+  // case of the crossing test (wedge degeneracy).
   const glm::dvec3 centre(0.2, 3.0, -0.1);
   Scene scene = sceneFromJson(R"({ "position": [2.5, 2.6, 3.0], "focal_point": [0, 0.5, 0], "view_angle": 40 })",
     R"({ "type": "area", "shape": "square", "center": [0.2, 3.0, -0.1], "normal": [0, -1, 0], "size": 0.8 })",

@@ -1,7 +1,7 @@
 // gbp06 (micropatch back-projection with gap filling, kernel or DU07 traversal): the GLSL against its
 // double-precision twin on read-back buffers; the hsm traversal against the kernel one (same visibility, fewer
 // nodes); against the closed-form overlap of a parallel square occluder, converging as the map's resolution doubles;
-// the gap-filling conventions (left/bottom, 001 L132-134, and right/top) swapped by mirroring the scene in light
+// the gap-filling conventions (left/bottom, SS08 §3, and right/top) swapped by mirroring the scene in light
 // x and y, and the searched texels enough for both; at 1024^2 maps, kernels under llvmpipe's loop cap exact and
 // unflagged, and every pixel whose traversal the cap cuts short flagged (detected, not counted).
 #include "lightspace/hsm/HsmStructure.h"
@@ -57,7 +57,7 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     { "stacked-occluders", { "shadow_map_size=256", "traversal=hsm", "gap_filling=left_bottom" } },
     { "stacked-occluders", { "shadow_map_size=256", "traversal=kernel", "gap_filling=right_top" } },
     { "bunny", { "shadow_map_size=256", "traversal=hsm", "gap_filling=left_bottom", "hsm=mipmap" } },
-    // The Y shadow map (paper 001 §6): at 512^2, b = 1: the walk reads its mip-map nodes (hsmNode), kernels wider
+    // The Y shadow map (SS08 §6): at 512^2, b = 1: the walk reads its mip-map nodes (hsmNode), kernels wider
     // than 2 texels their ranges from the 256^2 MSSM part.
     { "stacked-occluders", { "shadow_map_size=512", "traversal=hsm", "gap_filling=left_bottom", "hsm=ysm" } },
   };
@@ -304,7 +304,7 @@ Scene turnedAboutTheLightAxis(Scene scene)
 
 TEST(Gbp06, MirroringTheSceneInLightXAndYSwapsTheGapFillingConventions)
 {
-  // 001 L132-134 extend a micropatch toward its left and bottom neighbours in texture space; mirrored in light x
+  // SS08 §3 extend a micropatch toward its left and bottom neighbours in texture space; mirrored in light x
   // and y those are the right and top ones. So left_bottom on the scene S and right_top on its mirror image M
   // must agree pixel for pixel (the same pixels, see turnedAboutTheLightAxis) to float rounding, and so must
   // right_top on S and left_bottom on M, and off on both; while one convention on S and on M differ, because the

@@ -55,7 +55,7 @@ TEST(Gbp07, MatchesTheCpuImplementation)
     { "stacked-occluders", { "shadow_map_size=512" } },
     { "contact", { "shadow_map_size=512", "hsm=mipmap" } },
     { "bunny", { "shadow_map_size=512", "receiver_plane_bias=off", "kernel_refinements=0" } },
-    // The Y shadow map (paper 001 §6) at 1024^2: kernels wider than 2^b = 4 texels take their ranges from the
+    // The Y shadow map (SS08 §6) at 1024^2: kernels wider than 2^b = 4 texels take their ranges from the
     // 256^2 MSSM part (hsmRange's YSM branch), narrower ones from the mip-map levels.
     { "planar-occluder", { "shadow_map_size=1024", "hsm=ysm" } },
   };

@@ -61,7 +61,7 @@ std::size_t nBuffersHsmBytes(std::size_t n)
 }
 std::size_t ysmBytes(std::size_t n)
 {
-  // The mip-map atlas plus the MSSM part, RG32F M x M x ceil(log2 M) (paper 001 §6; HierarchicalShadowMap.h).
+  // The mip-map atlas plus the MSSM part, RG32F M x M x ceil(log2 M) (SS08 §6; HierarchicalShadowMap.h).
   const std::size_t m = static_cast<std::size_t>(ysmMssmPartSize(static_cast<int>(n)));
   return mipMapHsmBytes(n) + 8 * m * m * static_cast<std::size_t>(ysmMssmPartLevelCount(static_cast<int>(n)));
 }
@@ -243,7 +243,7 @@ TEST_P(LightSpaceStructureFrame, BuildsTimesExportsAndCountsExactlyItsStructures
 
 INSTANTIATE_TEST_SUITE_P(Cases, LightSpaceStructureFrame, testing::ValuesIn(structureCases()), caseName);
 
-// Paper 001 Table 1: the YSM costs the HSM plus 4 MiB at 1024^2 (a 256^2 MSSM part of 8 levels, RG32F). The
+// SS08 Table 1: the YSM costs the HSM plus 4 MiB at 1024^2 (a 256^2 MSSM part of 8 levels, RG32F). The
 // project's HSM is the N x N atlas (level 0 stays in the shadow map), so its bytes are 8 N^2 and the YSM's
 // 8 N^2 + 8 * 256^2 * 8; the difference is the paper's.
 TEST(LightSpaceStructureGpu, YShadowMapCostsTheHsmPlusFourMebibytesAt1024)

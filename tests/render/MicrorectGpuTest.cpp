@@ -257,7 +257,7 @@ TEST(MicrorectGpu, ReusedTexturesKeepNothingOfThePreviousMap)
   EXPECT_EQ(differingTexels(before, Microrects::build(first)), 0);
 }
 
-// The paper's figure is 1.89 ms for a 1024^2 map on an 8800 GTX (L840-841); here llvmpipe on a shared machine.
+// The paper's figure is 1.89 ms for a 1024^2 map on an 8800 GTX (§8); here llvmpipe on a shared machine.
 TEST(MicrorectGpu, BuildTimeAt1024)
 {
   const ImageF map = randomMapWithTies(1024, 4u, true);

@@ -1,9 +1,9 @@
-// The CPU side of technique `penumbra-wedge` (techniques/penumbrawedge/PenumbraWedgeGeometry.h, AAM03 as paper 003
+// The CPU side of technique `penumbra-wedge` (techniques/penumbrawedge/PenumbraWedgeGeometry.h, AAM03 as Forest et al. 2009
 // §3.1 uses it) against closed forms: parallel squares under a square light, where each occluder's shadow is the
 // light clipped by the occluder's projection, so AAM03's result is known exactly:
 //     occlusion_raw = sum_i A_i + [k > 0] - k,   A_i = |L ∩ proj_i| / |L|,  k = occluders whose projection holds c
 // (each convex occluder's wedges move its own area; the hard shadow of the centre counts once however many hold it).
-// With one occluder that is the exact shadow; with overlapping ones it double-counts the overlap (003 L384-387).
+// With one occluder that is the exact shadow; with overlapping ones it double-counts the overlap (Forest et al. 2009 §3.1).
 // Then the GPU technique against this twin pixel by pixel, against the closed form, and against Embree and `dcs`.
 #include "frame/FrameResult.h"
 #include "lightspace/LightSampleSet.h"
@@ -452,7 +452,7 @@ TEST(PenumbraWedgeGpuClosedForm, StackedOccludersOverShadowWhereTheyOverlap)
 
 TEST(PenumbraWedgeGpuClosedForm, BunnyErrorsAboveDcsWherePotentialSilhouettesOutnumberCentreOnes)
 {
-  // 003 §3.1 against §3.2: on the bunny penumbra wedges miss the silhouettes seen from the rest of the light. The
+  // Forest et al. 2009 §3.1 against §3.2: on the bunny penumbra wedges miss the silhouettes seen from the rest of the light. The
   // pixels where dcs (potential silhouettes) finds more wedges than penumbra-wedge (centre silhouettes) hold its
   // excess error.
   const Scene scene = test::loadDataset("bunny");
@@ -500,7 +500,7 @@ TEST(PenumbraWedgeGpuClosedForm, BunnyErrorsAboveDcsWherePotentialSilhouettesOut
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Perforated casters: soft textured shadow volumes (paper 003 §2, §3.1) on `fence`, against Embree on the same light
+// Perforated casters: soft textured shadow volumes (Forest et al. 2009 §2, §3.1) on `fence`, against Embree on the same light
 // samples, the twin, and dcs on the fence's equivalent mesh (Fig. 11's comparison).
 
 // The counted point close to the receiver, so that it and Embree's ray origin (1e-4 of the scene's radius along the
@@ -550,7 +550,7 @@ ImageF referenceMask(const FrameResult& frame, const Scene& scene)
 }
 
 // `fence` with its light moved into the canopy's plane (y = 1), turned to face -x: the plane cuts the light, so
-// every perforated triangle has two STSVs (003 §6 L847-852).
+// every perforated triangle has two STSVs (Forest et al. 2009 §6).
 std::vector<std::string> straddlingLight()
 {
   return { "/lights/0/center=[1.6, 1.0, 0.2]", "/lights/0/normal=[-1, -0.05, 0]", "/lights/0/up=[0, 1, 0]" };

@@ -1,4 +1,4 @@
-// ss08's multisample support (Schwarz and Stamminger 2008 §7, L658-737, Fig. 9): a 4x multisampled G-buffer whose
+// ss08's multisample support (Schwarz and Stamminger 2008 §7, Fig. 9): a 4x multisampled G-buffer whose
 // first sample feeds the passes, soft shadows once per pixel, and the custom resolve (passes/vtkSLMsaaResolvePass.h,
 // CPU twin frame/MsaaResolve.h), checked
 //  - against its twin bit for bit, and at the extremes tau = 0 (every sample off the first's depth looks for the

@@ -1,6 +1,6 @@
-// ss08 (quality-scalable soft shadow mapping, Schwarz & Stamminger 2008, paper 001) against the paper's claims as
-// numbers (notes Part 1 §1.3 tests 7-10, and the budget map of Fig. 1 d):
-//  - the smoothed LOQ map is continuous on each surface although the raw one is not (001 L363-368);
+// ss08 (quality-scalable soft shadow mapping, Schwarz & Stamminger 2008, SS08) against the paper's claims as
+// numbers (tests 7-10 below, and the budget map of Fig. 1 d):
+//  - the smoothed LOQ map is continuous on each surface although the raw one is not (SS08 §4.2);
 //  - blending between floor(l) and ceil(l) weakens the seams where ceil(l) changes (Fig. 1 a vs b), and without
 //    blending microrects show weaker seams than micropatches (Fig. 13);
 //  - quality scales with the budget: the error against the Embree reference does not grow as the budget grows,
@@ -158,7 +158,7 @@ struct PixelPair
   std::size_t b = 0;
 };
 
-// The eligible pairs of notes §1.3 test 7: 4-neighbour pairs of back-projecting pixels on the same surface.
+// The eligible pairs of test 7: 4-neighbour pairs of back-projecting pixels on the same surface.
 std::vector<PixelPair> eligiblePairs(const FrameResult& frame)
 {
   const ImageF& depth = bufferOf(frame, "depth");
@@ -258,7 +258,7 @@ Continuity continuityOf(const FrameResult& frame)
   return result;
 }
 
-// The seam ratio of notes §1.3 test 8: R = mean |delta V| over the eligible pairs whose ceil(loq) differs (seam
+// The seam ratio of test 8: R = mean |delta V| over the eligible pairs whose ceil(loq) differs (seam
 // pairs) / mean |delta V| over the other eligible pairs. Sums, so that frames can be pooled.
 struct SeamRatio
 {
@@ -313,7 +313,7 @@ std::string describe(const SeamRatio& seams)
 // 80), and where they fall moves with the budget, so a single budget's R is noisy.
 const std::vector<int> kSeamBudgets = { 3, 4, 5, 7, 9 };
 
-// Test 7 of notes §1.3 (001 L363-368: the LOQ map is smoothed "to avoid abrupt changes" of quality). At a 512^2
+// Test 7 (SS08 §4.2: the LOQ map is smoothed "to avoid abrupt changes" of quality). At a 512^2
 // map the raw map steps by whole levels between neighbours where the refined search area's span jumps (the minimum
 // depth inside it switches occluder); budget 5 is gated. Budget 3 is reported: there the bunny's raw map steps by up
 // to 4 levels, more than an 11-wide box spreads below 0.3 per pixel (4 / 11 > 0.36), so the 99 % cannot hold by
@@ -351,7 +351,7 @@ TEST(Ss08Quality, LoqMapIsContinuousOnEachSurfaceAfterSmoothing)
   }
 }
 
-// Test 8 of notes §1.3, blending (Fig. 1 a vs b; 001 L370-392): at the pairs where ceil(l) changes, visibility
+// Test 8, blending (Fig. 1 a vs b; SS08 §4.2): at the pairs where ceil(l) changes, visibility
 // steps more than elsewhere unless the two levels are blended. One case per square-light dataset; a dataset with
 // fewer than 20 seam pairs over the budgets is skipped (said in its [ measured ] line).
 class Ss08Seams : public ::testing::TestWithParam<std::string>
@@ -394,8 +394,8 @@ INSTANTIATE_TEST_SUITE_P(SquareLightDatasets, Ss08Seams,
   ::testing::Values("bunny", "contact", "fence", "grazing", "near-light", "planar-occluder", "stacked-occluders"),
   datasetTestName);
 
-// Test 8 of notes §1.3, Fig. 13: without blending, micropatches (min-aggregated texels) step more at the level seams
-// than microrects (bounding rectangles of texels merged by depth, 001 §5.2), with area accumulation (the bitmasks
+// Test 8, Fig. 13: without blending, micropatches (min-aggregated texels) step more at the level seams
+// than microrects (bounding rectangles of texels merged by depth, SS08 §5.2), with area accumulation (the bitmasks
 // the paper pairs microrects with come later). The paper says "often"; per budget the order flips on some budgets
 // (printed), so the gate is on the pooled ratio. Micro_occluder changes the grown queries, hence the LOQ map and
 // the seams: each kind is measured on its own seams.
@@ -427,11 +427,11 @@ TEST(Ss08Quality, MicrorectsShowWeakerSeamsThanMicropatchesWithoutBlending)
   }
 }
 
-// Test 9 of notes §1.3 (Table 2, Fig. 10): over budgets 3, 5, 9, 12, 16 and unlimited, the RMSE against the Embree
+// Test 9 (Table 2, Fig. 10): over budgets 3, 5, 9, 12, 16 and unlimited, the RMSE against the Embree
 // reference at the same pixels does not grow (to 0.002), the share of back-projecting pixels does not grow (small
 // budgets mean coarse levels, whose grown depth-range queries (Fig. 7) reach more occluders), and the micro-occluders
 // examined per back-projecting pixel grow strictly over the finite budgets. The unlimited budget neither smooths nor
-// blends (level 0 alone), while every finite one blends floor(l) and ceil(l) (up to (2b)^2 + b^2 slots, L818-826):
+// blends (level 0 alone), while every finite one blends floor(l) and ceil(l) (up to (2b)^2 + b^2 slots, §8):
 // where a budget hardly binds (the bunny at 512^2: mean l 0.03 at b = 16) the blend's second level costs more than
 // the budget saves. So the unlimited budget is compared with the finite ones' floor(l) slots alone (the cost of one
 // level, micro_occluders / blend_overhead_vs_floor_level), and the blend overhead is printed.
@@ -624,9 +624,9 @@ double mseDifferenceNoise(const Reference& reference, const ImageF& a, const Ima
   return pixels > 0 ? 2.0 * std::sqrt(sum) / static_cast<double>(pixels) : 0.0;
 }
 
-// Test 10 of notes §1.3, Fig. 12 (001 L828-835): at a coarse level, microrects approximate the occluders better than
+// Test 10, Fig. 12 (SS08 §8): at a coarse level, microrects approximate the occluders better than
 // micropatches (min-aggregated texels, which grow each occluder to whole level-j texels), with the occlusion bitmasks
-// the paper pairs them with: microrects overlap by design (L515-529), so area accumulation counts the overlaps twice.
+// the paper pairs them with: microrects overlap by design (§5.2), so area accumulation counts the overlaps twice.
 // One case per dataset and forced level (force_level: l = level everywhere, alpha = 0, one level), each printing the
 // four RMSEs against the Embree reference over the covered pixels (ErrorMetrics' `covered`, as Ss08Scaling):
 // micropatch + area, micropatch + bitmask (Fig. 12 b), microrect + area (c), microrect + bitmask (d).
@@ -639,9 +639,9 @@ double mseDifferenceNoise(const Reference& reference, const ImageF& a, const Ima
 // the lower square hides behind it in the map, both kinds let through light that the hidden part blocks, microrects
 // more (256^2 image, pixel 132,146, level 2, 512^2 map: reference 0.148, micropatch 0.293, microrect 0.543, GPU =
 // twin); micropatches, grown to whole level-j texels, cover more of the gap ("rather conservative concerning
-// occlusion", L452-453).
+// occlusion", §5.2).
 const char* const kFig12MapSetting = "shadow_map_size=256";
-// The bitmasks help microrects where they overlap (L525-529): there area accumulation over-occludes, and the bitmask's
+// The bitmasks help microrects where they overlap (§5.2): there area accumulation over-occludes, and the bitmask's
 // 256 samples cost less than that. Where they hardly overlap, area accumulation is the exact integral and the bitmask
 // only adds its sampling error (near-light level 2: microrect + area 0.0028 RMSE, + bitmask 0.0088). The measure of
 // overlap is the mean area_overcount over the back-projecting pixels. Micropatches of one level do not overlap in the

@@ -1,9 +1,9 @@
-// ss08 (Schwarz & Stamminger 2008, paper 001: quality-scalable soft shadow mapping; ../shared/papers/
-// quality-scalability-ssm-schwarz2008.txt): the GLSL against its double-precision twin (ss08Search, ss08SmoothLoq,
+// ss08 (Schwarz & Stamminger 2008, SS08: quality-scalable soft shadow mapping): the GLSL
+// against its double-precision twin (ss08Search, ss08SmoothLoq,
 // ss08Reference) on read-back buffers, buffer by buffer; the anchor to gbp06 at an unlimited budget; the budget
-// honoured per pixel (L352-356, L818-820); over-precision (Fig. 7); the structures' ordering (Fig. 8); the hard
+// honoured per pixel (§4.2, §8); over-precision (Fig. 7); the structures' ordering (Fig. 8); the hard
 // cases (the loop cap, alpha at 0 and 1, b = 1, budget maps, kernels at the map border, NaN); the level-dependent
-// bias on a grazing receiver (L889-891). Notes: ../shared/notes/papers-001-002-003.md §1.3.
+// bias on a grazing receiver (§9).
 #include "io/ImageIO.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/Microrects.h"
@@ -218,7 +218,7 @@ TwinAgreement compareWithTwin(const FrameResult& frame, const Ss08Twin& twin)
 {
   TwinAgreement agreement;
   const ImageF& loq = buffer(frame, "loq");
-  // msaa=4: the twin evaluates the first sample, as the GPU did before the resolve (001 L731-734).
+  // msaa=4: the twin evaluates the first sample, as the GPU did before the resolve (SS08 §7).
   const std::string visibilityName = frame.find("msaa_pixel_visibility") ? "msaa_pixel_visibility" : "visibility";
   const auto check = [&](const std::string& name, int x, int y, double expected, double tolerance) {
     BufferMismatches& mismatch = agreement.mismatches[name];
@@ -292,7 +292,7 @@ void expectAgreement(const TwinAgreement& agreement, const std::string& label)
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// 1. Unlimited budget: level 0 micropatches with gbp06's gap filling and search are gbp06 (notes §1.3 item 4).
+// 1. Unlimited budget: level 0 micropatches with gbp06's gap filling and search are gbp06.
 
 class Ss08UnlimitedBudget : public testing::TestWithParam<std::string>
 {
@@ -397,7 +397,7 @@ TEST_P(Ss08MatchesTheTwin, OnFiveSettingMixesAtBudgets3And9)
   const TwinScene& c = GetParam();
   const Scene scene = loadScene(test::datasetPath(c.dataset), c.overrides);
   // {micropatch, microrect} x {blend_band 1, 0} x {growth on, off}: 5 of the 8, each value at least twice; the
-  // last multisampled (its G-buffer's first sample feeds every pass, 001 §7).
+  // last multisampled (its G-buffer's first sample feeds every pass, SS08 §7).
   const std::vector<std::vector<std::string>> mixes = {
     { "micro_occluder=micropatch", "blend_band=1", "growth=on" },
     { "micro_occluder=micropatch", "blend_band=0", "growth=off" },
@@ -439,7 +439,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Ss08MatchesTheTwin, testing::ValuesIn(twinScene
   [](const testing::TestParamInfo<TwinScene>& info) { return info.param.name; });
 
 // ---------------------------------------------------------------------------------------------------------------
-// 3. The budget per pixel (L352-356, L818-820): at most b slots per axis at ceil(l), 2b at floor(l).
+// 3. The budget per pixel (§4.2, §8): at most b slots per axis at ceil(l), 2b at floor(l).
 
 class Ss08Budget : public testing::TestWithParam<int>
 {
@@ -550,7 +550,7 @@ INSTANTIATE_TEST_SUITE_P(Budgets, Ss08Budget, testing::Values(3, 5, 9, 12, 16),
   [](const testing::TestParamInfo<int>& info) { return "b" + std::to_string(info.param); });
 
 // ---------------------------------------------------------------------------------------------------------------
-// 4. Over-precision (Fig. 7, L583-611).
+// 4. Over-precision (Fig. 7, §6).
 
 TEST(Ss08, GrowthLeavesNoLitPixelThatItsMicroOccludersShadow)
 {
@@ -978,7 +978,7 @@ TEST(Ss08, NoNanOrInfWithMicrorectsWithoutGrowthAndANarrowBlendBand)
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// 7. The level-dependent bias (001 §9's future work) on a grazing receiver.
+// 7. The level-dependent bias (SS08 §9's future work) on a grazing receiver.
 
 TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
 {
@@ -1034,7 +1034,7 @@ TEST(Ss08, LevelBiasKeepsTheLitGrazingReceiverLit)
 
 TEST(Ss08, ContactShadowLeaksAtCoarseLevelsAndMicrorectsLeakLess)
 {
-  // 001 L771-772: coarse levels are "objectionable where occluders and receivers touch". On `contact` (a box
+  // SS08 §8: coarse levels are "objectionable where occluders and receivers touch". On `contact` (a box
   // standing on the ground, footprint |x|, |z| <= 0.25) the search areas next to the box are not small (their
   // nearest blocker is the box's top), so small budgets evaluate the ground there at levels 3-5. Min aggregation
   // replaces the box's sides, at the receiver's own depth and back-projecting over the whole light, by the box
@@ -1118,7 +1118,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
   // at the pixel (Ss08MatchesTheTwin's tolerances), record as many micro-occluders as micro_occluders, each level's
   // slots_per_axis product of them at that level, one light polygon per occluding one, and the polygons' clipped
   // areas per level must give the GPU's visibility: V = sum over the examined levels of weight x clamp(1 - area /
-  // light area) (L370-392). The twin's own 11 x 11 smoothing must give the GPU's smoothed level.
+  // light area) (§4.2). The twin's own 11 x 11 smoothing must give the GPU's smoothed level.
   const Scene scene = test::loadDataset("stacked-occluders");
   const TechniqueDescriptor& descriptor = findTechnique("ss08");
   ASSERT_TRUE(descriptor.probe);
@@ -1242,7 +1242,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
       EXPECT_NEAR(probeValue(record, group, "light_area"), lightArea, 1e-9 * lightArea) << where;
       visibility += weights[k] * std::clamp(1.0 - area / lightArea, 0.0, 1.0);
     }
-    EXPECT_NEAR(visibility, gpu("visibility"), outcome.tolerance) << where << ": L370-392 from the recorded polygons";
+    EXPECT_NEAR(visibility, gpu("visibility"), outcome.tolerance) << where << ": SS08 §4.2 from the recorded polygons";
     std::cout << "[ measured ] ss08 probe " << where << ": levels " << levels[0] << " / " << levels[1] << " (alpha "
               << gpu("blend_alpha") << "), " << total << " micro-occluders, " << record.lightPolygons.size()
               << " occluding; twin " << outcome.visibility << ", gpu " << gpu("visibility") << "\n";
@@ -1280,7 +1280,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Occlusion bitmasks (accumulation=bitmask; 001 L140-144, L842-853; notes §1.3 items 3 and 5).
+// Occlusion bitmasks (accumulation=bitmask; SS08 §3, §8).
 
 // The GPU's bitmask equals the twin's (per-sample tests in double) on every pixel none of whose samples lies within
 // float rounding of a back-projected rectangle's edge (nor any other ambiguity of the area twin).
@@ -1374,7 +1374,7 @@ TEST(Ss08Bitmask, MatchesTheTwinSampleForSample)
 
 // The bitmask counts a light sample once however many micro-occluders hide it, area accumulation once per
 // micro-occluder: V_bitmask >= V_area up to the samples' discrepancy, and overlaps (stacked occluders) make the
-// difference visible (notes §1.3 item 5, whose "- 1/256" bound the jittered set does not meet: see below).
+// difference visible (the expected "- 1/256" bound, which the jittered set does not meet: see below).
 TEST(Ss08Bitmask, NeverDarkerThanAreaAndLighterWhereMicroOccludersOverlap)
 {
   const Scene scene = test::loadDataset("stacked-occluders");

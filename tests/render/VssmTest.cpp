@@ -138,7 +138,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
   const std::vector<Case> cases = {
     { "stacked-occluders", {} },
     { "stacked-occluders", { "shadow_subdivision=uniform", "blocker_subdivision=adaptive", "hsm=nbuffers" } },
-    { "stacked-occluders", { "hsm=ysm" } }, // b = 1 at 512^2: wider early-out kernels read the MSSM part (paper 001 §6)
+    { "stacked-occluders", { "hsm=ysm" } }, // b = 1 at 512^2: wider early-out kernels read the MSSM part (SS08 §6)
     { "contact", {} },
     { "bunny", { "receiver_plane_bias=off" } },
     { "near-light", { "sat_precision=float_centred", "nonplanar_pcf_taps=3" } },
@@ -355,7 +355,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
       }
     }
     EXPECT_EQ(quadtreeNodes, gpu("quadtree_nodes_visited")) << where;
-    // One root per adaptive step taken (Alg. 2 L3), four children per refined node (L21: TreeNode.Child).
+    // One root per adaptive step taken (Alg. 2 L3), four children per refined node (Alg. 2 L21: TreeNode.Child).
     const int roots = want.refined ? (frame.parameters.choice("blocker_subdivision") == "adaptive" ? 1 : 0) +
         (frame.parameters.choice("shadow_subdivision") == "adaptive" ? 1 : 0) : 0;
     EXPECT_EQ(nodesByLevel[0], roots) << where;

@@ -1,5 +1,5 @@
 // The texel-exact mesh of a perforated quad (scene/AlphaMesh.h, scene key `mesh_alpha`, dataset `fence-meshed`): the
-// "equivalent mesh" paper 003 (Forest et al. 2009, Fig. 11) compares its two perforated triangles with. Checked
+// "equivalent mesh" Forest et al. 2009 (Fig. 11) compares its two perforated triangles with. Checked
 // against the mask itself, texel by texel, with code that does not share the generator's: the area is the opaque
 // texel count times the texel area (exactly, on dyadic frames); every triangle's centre is opaque; every opaque
 // texel is covered exactly once and no hole at all (2D point-in-triangle over a bucket grid of the plane); every

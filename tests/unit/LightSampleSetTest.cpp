@@ -1,4 +1,4 @@
-// The named light-sample sets (lightspace/LightSampleSet.h; paper 003 §4.1, L506-533), without GL: each pattern
+// The named light-sample sets (lightspace/LightSampleSet.h; Forest et al. 2009 §4.1), without GL: each pattern
 // against its definition (grid exact, one stratified point per cell, the paper's Poisson-disk distances, every
 // elementary interval of the (0, m, 2)-net), the 2^-16 lattice that makes the GLSL twin exact, the per-pixel and
 // interleaved shifts against the formulas LightSampleSet.h documents (recomputed here), Keller & Heidrich's
@@ -204,7 +204,7 @@ TEST(LightSampleSet, StratifiedHasOnePointPerCellAndItsJitterFollowsTheSeed)
   }
 }
 
-// 003 L531-533: the minimum distances 0.2456139 (16) and 0.1076681 (64); 256 at N = 64's packing density with the
+// Forest et al. 2009 §4.1: the minimum distances 0.2456139 (16) and 0.1076681 (64); 256 at N = 64's packing density with the
 // boundary allowance, N pi d^2 / 4 / (1 + d)^2.
 TEST(LightSampleSet, PoissonSetsKeepThePapersMinimumDistance)
 {

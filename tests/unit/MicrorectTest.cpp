@@ -54,7 +54,7 @@ ImageF rowMap(const std::vector<float>& depths)
   return map;
 }
 
-// Fig. 5 (L494-501, L503-513), one row of 8 texels: every second microrect B joins the neighbour (A or C) of the
+// Fig. 5 (§5.2), one row of 8 texels: every second microrect B joins the neighbour (A or C) of the
 // smaller depth difference; extent = union, depth = min. The depths force each case: level 1 has B -> C twice
 // (the figure's B, C -> N), B -> A by a smaller difference, and B -> A because C is past the end; level 2 has a
 // tie (ties go to A) and a missing C again.
@@ -100,7 +100,7 @@ TEST(Microrects, Fig5RowJoinsEachBWithThePartnerOfSmallerDepthDifference)
   EXPECT_EQ(microrects.levelSize(3), glm::ivec2(1, 1));
 }
 
-// The 2-D rule (L531-547, Fig. 6) worked by hand on 4 x 4 maps. Level 1 keeps (0, 0), (2, 0), (0, 2), (2, 2) of
+// The 2-D rule (§5.2, Fig. 6) worked by hand on 4 x 4 maps. Level 1 keeps (0, 0), (2, 0), (0, 2), (2, 2) of
 // level 0. Depths (x right, y up): 9 everywhere but A = (0, 0) = 1, E = (1, 1) = 1, (2, 1) = 4, (2, 2) = 4, and
 // B = (1, 0), D = (0, 1) set per variant to 1.5 (joins A: |0.5| against |1.5 - 9|) or 8.5 (joins C = (2, 0) or
 // G = (0, 2), both 9). Then:
@@ -154,7 +154,7 @@ TEST(Microrects, DiagonalJoinsAWhenContainedElseItsOtherRetainedNeighbour)
     EXPECT_EQ(asSet(membersOf(microrects, 1, { 1, 0 })), asSet(variant.right)) << label.str();
     EXPECT_EQ(asSet(membersOf(microrects, 1, { 0, 1 })), asSet(variant.up)) << label.str();
     EXPECT_EQ(asSet(membersOf(microrects, 1, { 1, 1 })), asSet(variant.diagonal)) << label.str();
-    // (1, 0)'s extent [., 3] x [0, 1] overlaps (1, 1)'s, which holds (2, 1) (L521-529: overlaps are allowed).
+    // (1, 0)'s extent [., 3] x [0, 1] overlaps (1, 1)'s, which holds (2, 1) (§5.2: overlaps are allowed).
     EXPECT_EQ(microrects.at(1, { 1, 0 }).lo, variant.rightLo) << label.str();
     EXPECT_EQ(microrects.at(1, { 1, 0 }).hi, glm::ivec2(3, 1)) << label.str();
     EXPECT_EQ(microrects.at(1, { 1, 1 }).lo, variant.diagonalLo) << label.str();

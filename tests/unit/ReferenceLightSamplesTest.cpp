@@ -1,5 +1,5 @@
 // The Embree reference's crossing counts (EmbreeScene::crossings) and its shared light-sample sets
-// (ReferenceSettings::lightSampleSet), the ground truth that technique `dcs` (depth complexity sampling, paper 003
+// (ReferenceSettings::lightSampleSet), the ground truth that technique `dcs` (depth complexity sampling, Forest et al. 2009
 // §3.2) is checked against sample by sample. Counts are compared with closed forms (stacks of quads, closed boxes,
 // holes) and with a brute-force double-precision Moller-Trumbore count over every triangle; a (segment, triangle)
 // pair whose line passes within 1e-6 (relative to the scene) of an edge, a segment end or a texel boundary is

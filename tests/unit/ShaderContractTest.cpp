@@ -1,4 +1,4 @@
-// The contract between a technique's descriptor and its shaders (STYLE.md, "Numbers in two languages drift"):
+// The contract between a technique's descriptor and its shaders: numbers kept in two languages drift.
 // output locations, category codes and shared constants are generated into the shader preamble from the
 // descriptor (vtkSLTechniquePass::TechniqueDefines), so a shader may
 //  - write only the outputs its descriptor declares, and write every one of them;

@@ -1,10 +1,10 @@
-// Soft textured shadow volumes' CPU core (src/techniques/stsv/StsvGeometry.h; paper 003 §2.2-2.4, Eq. 1-5), without
+// Soft textured shadow volumes' CPU core (src/techniques/stsv/StsvGeometry.h; Forest et al. 2009 §2.2-2.4, Eq. 1-5), without
 // GL. Eq. 1's homogeneous barycentrics against Moller-Trumbore (scene/RayTriangle.h) over 10^5 random cases, which
 // decides the reconstruction of W (1/e, not the text's 1); the paper's occlusion test with and without ShadowLab's
 // opposite-side check; the volume's conservativeness over 10^6 random points (a sample the triangle hides implies the
 // point is inside the STSV of that sample's side) and its tightness (a point light gives exactly the hard shadow
 // volume; each outer plane touches the shadow); Fig. 6's strip; an opaque quad against the closed form of a square
-// light over a parallel rectangle; and the hard cases of the reading notes §2.3 (points on the perforated triangle, a
+// light over a parallel rectangle; and the hard cases (points on the perforated triangle, a
 // plate just above the fence, a light straddling the triangle's plane).
 #include "lightspace/LightSampleSet.h"
 #include "lightspace/LightSamples.h"
@@ -189,7 +189,7 @@ double secondsSince(const std::chrono::steady_clock::time_point& start)
 // ---- Eq. 1-5 -----------------------------------------------------------------------------------------------------
 
 // The four readings of Eq. 1/3 the test tells apart: the derived W (last entry 1/e, signed e, applied to s - p), the
-// text's last entry 1, an unsigned e ("orthogonal distance", L227), and J applied to the world sample s itself.
+// text's last entry 1, an unsigned e ("orthogonal distance", §2.4), and J applied to the world sample s itself.
 enum class Reading
 {
   Derived,
@@ -474,7 +474,7 @@ const Stsv* volumeOfSide(const VolumeCase& c, int side)
   return nullptr;
 }
 
-// The paper's front cap plane for `triangle` and centre c, recomputed here from 003 L180-206 (the closest vertex
+// The paper's front cap plane for `triangle` and centre c, recomputed here from Forest et al. 2009 §2.2 (the closest vertex
 // stays, the others move towards c to its distance), positive away from c: where StsvGeometry falls back to t, this
 // shows what t' would have cut off.
 StsvPlane paperFrontCapPlane(const StsvTriangle& triangle, const glm::dvec3& c)
@@ -547,7 +547,7 @@ void accumulateInvariants(const VolumeCase& c, Invariants& invariants)
 // in its shadow (a light point, a triangle point, and beyond, jittered: many points on the shadow's boundary). Each
 // point against 24 light samples (16 stratified + the light's corners and edge midpoints) and an opaque triangle, so
 // every segment that crosses t is blocked. Any blocked sample of side sigma implies p inside the STSV of side sigma
-// (conservativeness, reading notes test 5); a point of the scene box inside it is inside the closed volume too
+// (conservativeness); a point of the scene box inside it is inside the closed volume too
 // (the back cap lies beyond the box) unless the STSV says its back cap was clamped. Also measured: how tight (empty
 // hits, with the front cap and with t's plane as the fourth plane) and what the opposite-side check changes inside
 // and outside the volumes.
@@ -1012,7 +1012,7 @@ TEST(StsvClosedForm, OpaqueQuadUnderASquareLight)
   std::cout << "[ measured ] " << secondsSince(start) << " s\n";
 }
 
-// ---- Hard cases (reading notes §2.3) -----------------------------------------------------------------------------
+// ---- Hard cases ---------------------------------------------------------------------------------------------------
 
 // Points on the perforated triangle itself (a fence pixel): exactly on it, and as a float G-buffer stores them (a few
 // 1e-8 off the plane). t never shadows them (it is skipped within kStsvOnPlaneRelative of its plane, and e is never
@@ -1156,7 +1156,7 @@ std::vector<glm::dvec3> stratifiedSamples(const Light& light, int count, int poi
 // 0.02 above the fence, between it and the light, and a layer of points beyond the light. On the plate and under the
 // fence the STSV pass equals the ray tracer (16 samples, fence alpha) on every unambiguous pair. Between the fence
 // and the light a sample can never lie between p and the plane (the light is farther from it), so even the paper's
-// test alone finds no false shadow there (measured 0): the reading notes' "points between the fence and the light are
+// test alone finds no false shadow there (measured 0): the expected "points between the fence and the light are
 // shadowed falsely" needs a point farther from the plane than a sample, e.g. beyond the light, where Eq. 1 without the
 // check does hide samples, and where no STSV reaches.
 TEST(StsvHardCases, PlateJustAboveTheFence)
@@ -1227,7 +1227,7 @@ TEST(StsvHardCases, PlateJustAboveTheFence)
 // piece on its side; the pieces' areas add up to the light's. On ground points and random points below the light,
 // every blocked sample of side sigma lies in STSV_sigma, and the STSV pass (each STSV its own side's samples) equals
 // the ray tracer on 64 samples; samples on the side away from the light's centre are blocked too (what the paper's
-// single STSV per triangle, built from the centre, misses: the "single light sample artifact", 003 §6). Three fences:
+// single STSV per triangle, built from the centre, misses: the "single light sample artifact", Forest et al. 2009 §6). Three fences:
 // under the light (z in [-1, 1], top at y = 1.5); beside it and reaching above it (z in [1.1, 3.1], top at y = 4); and
 // through it (z in [-1, 1], top at y = 4: the fence cuts the light's square, its STSVs are the half-spaces beyond its
 // plane and say closedVolumeTruncated). Reaching above the light, a point can be lit by a sample s of its own side

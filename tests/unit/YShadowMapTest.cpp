@@ -1,4 +1,4 @@
-// The Y shadow map (Schwarz & Stamminger 2008, paper 001 §6, L629-656, Table 1) on the CPU
+// The Y shadow map (Schwarz & Stamminger 2008, SS08 §6, Table 1) on the CPU
 // (HierarchicalShadowMap, layout Ysm): its base level and MSSM-part size, its MSSM part against brute force,
 // its range query against brute force (conservative, exact on rectangles aligned to level-b blocks) and against
 // the mip-map HSM's query (never looser), and its memory against Table 1's closed forms.
@@ -68,7 +68,7 @@ glm::dvec2 bruteForceRange(const ImageF& depth, glm::ivec2 lo, glm::ivec2 hi)
 
 TEST(YShadowMap, BaseLevelGivesAbout256SquaredMssmPart)
 {
-  // b = max(0, floor(log2 (N / 256))) (001 L629-641: n - 1 = 2 at 1024^2, 3 at 2048^2), M = ceil(N / 2^b).
+  // b = max(0, floor(log2 (N / 256))) (SS08 §6: n - 1 = 2 at 1024^2, 3 at 2048^2), M = ceil(N / 2^b).
   for (const int n : { 1, 2, 100, 128, 255, 256, 300, 511, 512, 513, 1000, 1023, 1024, 1500, 2047, 2048, 4096 })
   {
     const int expectedBase = std::max(0, static_cast<int>(std::floor(std::log2(n / 256.0))));
@@ -260,7 +260,7 @@ TEST(YShadowMap, NodeIsTheAlignedBlocksRangeInEveryLayout)
   }
 }
 
-// Table 1 (001 L613-624) counts RG32F (8 B per texel) in MiB: HSM = 8 N^2 4/3 (level 0 included, the full mip
+// Table 1 (SS08 §6) counts RG32F (8 B per texel) in MiB: HSM = 8 N^2 4/3 (level 0 included, the full mip
 // pyramid), YSM = HSM + 8 M^2 log2 M with M = 256. The project keeps level 0 in the shadow map and packs levels
 // 1..L in one N x N atlas (8 N^2 bytes on the GPU), and adds the MSSM part, RG32F M x M x ceil(log2 M): its GPU
 // bytes are 8 N^2 + 8 M^2 ceil(log2 M) (checked on the GPU in LightSpaceStructureGpuTest). Here: the CPU twin

@@ -1,5 +1,5 @@
 #!/bin/bash
-# dcs (depth complexity sampling; FBP08 via paper 003 §3.2, §4.1): the bench of issue 16, item 5. From the
+# dcs (depth complexity sampling; FBP08 via Forest et al. 2009 §3.2, §4.1): the bench of issue 16, item 5. From the
 # repository root:
 #   bash docs/bench/dcs/run.sh [patterns] [patterns-offset] [receiver-offset] [light-size-bunny]
 #     [light-size-near-light] [patterns-near-light] [memory] [table]
@@ -22,7 +22,7 @@ PATTERNS=grid,stratified,poisson,zero_two,grid_4x4,stratified_4x4,poisson_4x4,ze
 for part in $PARTS; do
   case $part in
   patterns)
-    # Paper 003 Fig. 5's kind: every light-sample pattern (and its 4x4-interleaved variant) at N = 16 and 64,
+    # Forest et al. 2009 Fig. 5's kind: every light-sample pattern (and its 4x4-interleaved variant) at N = 16 and 64,
     # RMSE against the 1024-sample reference, on bunny and planar-occluder; N = 256 too, to show where the
     # reference's own noise (1024 samples) sets the floor.
     "$SL" bench datasets/bunny/scene.json datasets/planar-occluder/scene.json -t dcs \

@@ -1,5 +1,5 @@
 #!/bin/bash
-# ss08 (paper 001, Schwarz & Stamminger 2008): quality against budget (issue 14). From the repository root:
+# ss08 (SS08, Schwarz & Stamminger 2008): quality against budget (issue 14). From the repository root:
 #   bash docs/bench/ss08/run.sh [probe] [budget] [rerun] [structures] [bytes] [fig12] [cost] [msaa] [table]
 #   (no argument: all but probe)
 # Every `bench` writes its own sub-directory through --out (bench replaces it atomically); the scripts and the
@@ -85,7 +85,7 @@ PY
     rm -rf "$OUT"
     ;;
   fig12)
-    # Fig. 12 (001 L828-835) as numbers: RMSE against Embree of ss08 at a forced coarse level (force_level: l fixed
+    # Fig. 12 (SS08 §8) as numbers: RMSE against Embree of ss08 at a forced coarse level (force_level: l fixed
     # everywhere, one level, no blend) for the four pairings micropatch / microrect x area / bitmask, on the three
     # scenes of issue 17's Fig. 12 test. The same level is coarser next to the occluders on a smaller map (level 3:
     # 32, 64, 128 micro-occluders per axis at 256^2, 512^2, 1024^2), so both levels 2 and 3 at three map sizes;
@@ -96,7 +96,7 @@ PY
       --sweep accumulation=area,bitmask -r 256x256 --repeat 1 --samples 1024 $CACHE --out $D/fig12
     ;;
   cost)
-    # The slow-down of occlusion bitmasks and of microrects against area-accumulated micropatches (001 L840-849:
+    # The slow-down of occlusion bitmasks and of microrects against area-accumulated micropatches (SS08 §8:
     # "up to 72 %", of which the bitmasks "up to almost 50 %", register pressure on a GeForce 8800): ss08 at budget 12
     # (the default 1024^2 YSM) on bunny 512x512 (as `budget`) and near-light 256x256 (99 % of its tested pixels
     # back-project), the four pairings, medians of 5 frames. Twice, the second with the sweeps in reverse order, so
@@ -116,7 +116,7 @@ PY
     done
     ;;
   msaa)
-    # §7's overheads (001 L861-867: MSAA with visibility interpolation < 9 % over single-sampled rendering, MSAA
+    # §7's overheads (SS08 §8: MSAA with visibility interpolation < 9 % over single-sampled rendering, MSAA
     # alone about 5 %): ss08 at its defaults (budget 12, YSM 1024^2) on bunny 512x512, msaa=1 against msaa=4 with the
     # default tau (0.001: the neighbour rule) and with tau = 1e30 (one visibility per pixel: the multisampled
     # G-buffer, the copy of its first sample and a plain resolve, "MSAA alone"). Each configuration's error is against

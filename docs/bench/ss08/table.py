@@ -2,14 +2,14 @@
 """The tables of README's "ss08: quality against budget" from the benches in docs/bench/ss08 (run from the
 repository root):
     python3 docs/bench/ss08/table.py > docs/bench/ss08/table.md
-1. Table 2 of paper 001 (L776-791) beside ss08 at budgets 5, 9, 12, 16 and unlimited (0) on bunny and near-light.
-2. Table 1 (L613-624): the hierarchical_shadow_map stage per layout and map size as ratios to the mip-map HSM,
+1. Table 2 of SS08 (§8) beside ss08 at budgets 5, 9, 12, 16 and unlimited (0) on bunny and near-light.
+2. Table 1 (§6): the hierarchical_shadow_map stage per layout and map size as ratios to the mip-map HSM,
    the microrects stage, and the structures' GPU bytes beside the paper's memory column.
-3. The blend overhead (L818-826) against floor(l) alone and ceil(l) alone.
+3. The blend overhead (§8) against floor(l) alone and ceil(l) alone.
 4. Speed against error: ss08 per budget beside gbp06, gbp07, yfgl09 and pcss (their defaults).
-5. Fig. 12 (L828-835): RMSE of micropatches and microrects with area accumulation and occlusion bitmasks at forced
+5. Fig. 12 (§8): RMSE of micropatches and microrects with area accumulation and occlusion bitmasks at forced
    coarse levels (issue 17).
-6. The slow-down of occlusion bitmasks and microrects against area-accumulated micropatches (L840-849).
+6. The slow-down of occlusion bitmasks and microrects against area-accumulated micropatches (§8).
 Times are medians of the timed frames (timer queries, llvmpipe on a shared 2-core machine): compare ratios
 within one run."""
 import json
@@ -21,7 +21,7 @@ BUDGET_RUNS = [("bunny", "budget-bunny-512", "budget-bunny-512-run2"), ("near-li
 BUDGETS = [5, 9, 12, 16, 0]
 MIB = 1024.0 * 1024.0
 
-# Table 2 of paper 001 (GeForce 8800 GTX, 1024 x 768, YSM 1024^2/256^2): scene, b_mo, fps, % pixels, mean, stdev.
+# Table 2 of SS08 (GeForce 8800 GTX, 1024 x 768, YSM 1024^2/256^2): scene, b_mo, fps, % pixels, mean, stdev.
 PAPER_TABLE_2 = [
     ("Fig. 1 b", "5", 82.6, 15.6, 33.3, 13.7),
     ("Fig. 1 d", "5-12", 35.8, 13.0, 164, 138),
@@ -36,11 +36,11 @@ PAPER_TABLE_2 = [
 PAPER_UNLIMITED = {"Fig. 1 b": "Fig. 1", "Fig. 1 d": "Fig. 1", "Fig. 1 c": "Fig. 1", "Fig. 8": "Fig. 8",
                    "Fig. 10 a": "Fig. 10 b"}
 
-# Table 1 (L613-624): structure, N, build ms, memory MB (MiB).
+# Table 1 (§6): structure, N, build ms, memory MB (MiB).
 PAPER_TABLE_1 = {("mipmap", 1024): (0.26, 10.67), ("nbuffers", 1024): (3.92, 88.00), ("ysm", 1024): (0.46, 14.67),
                  ("mipmap", 2048): (0.87, 42.67), ("nbuffers", 2048): (18.65, 384.00), ("ysm", 2048): (1.07, 46.67)}
 PAPER_NAME = {"mipmap": "HSM", "nbuffers": "MSSM (N-buffers)", "ysm": "YSM"}
-PAPER_MICRORECTS_MS = 1.89  # 1024^2 (L840-841)
+PAPER_MICRORECTS_MS = 1.89  # 1024^2 (§8)
 
 
 def configurations(directory):
@@ -71,7 +71,7 @@ def image_percent(result):
 
 def table_2():
     print("### 1. Table 2: ss08 by budget\n")
-    print("Paper 001, Table 2 (GeForce 8800 GTX, 1024×768; ratios to the same figure's b = ∞ row):\n")
+    print("SS08, Table 2 (GeForce 8800 GTX, 1024×768; ratios to the same figure's b = ∞ row):\n")
     print("| scene | b_mo | fps | pixels | mean | stdev | b² + (2b)² | frame time ∞ / b | mean ∞ / b |")
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     unlimited_rows = {row[0]: row for row in PAPER_TABLE_2 if row[1] == "∞"}
@@ -159,7 +159,7 @@ def structures():
                   f"{paper_ratio:.2f} | {structure:.2f} | {shadow_map:.2f} | {structure + 4 * size * size / MIB:.2f} | "
                   f"{paper_mb:.2f} |")
     print("\n`microrects` stage (micro_occluder=microrect, hsm=mipmap, same image and repeat), against the mip-map "
-          "HSM built in the same frame; paper: 1.89 ms at 1024² (L840-841), 7.3× its HSM's 0.26 ms:\n")
+          "HSM built in the same frame; paper: 1.89 ms at 1024² (§8), 7.3× its HSM's 0.26 ms:\n")
     print("| N | microrects GPU ms | wall ms | HSM GPU ms (same frame) | microrects / HSM | MiB |")
     print("| ---: | ---: | ---: | ---: | ---: | ---: |")
     microrect_bytes = {int(r["parameters"]["shadow_map_size"]): r["light_structure_gpu_bytes"].get("microrects", 0)
@@ -176,7 +176,7 @@ def structures():
 def blend_overhead():
     print("\n### 3. Blend overhead: micro-occluders examined (both levels) over one level alone\n")
     print("Paper: \"about 30 % more micro-occluders\" than \"normal SSM where only level ⌊ℓ⌋ is considered\" "
-          "(L820-824), i.e. vs_floor ≈ 1.3.\n")
+          "(§8), i.e. vs_floor ≈ 1.3.\n")
     print("| scene | b_mo | Σ both / Σ floor(l) alone (the paper's ratio) | Σ both / Σ ceil(l) alone | mean LOQ |")
     print("| --- | ---: | ---: | ---: | ---: |")
     for scene, directory, _ in BUDGET_RUNS:
@@ -212,10 +212,10 @@ def speed_against_error():
 
 FIG12_SCENES = ["bunny", "stacked-occluders", "near-light"]
 PAIRINGS = [("micropatch", "area"), ("micropatch", "bitmask"), ("microrect", "area"), ("microrect", "bitmask")]
-# 001 L842-849 (GeForce 8800 GTX): "a slow-down of up to 72%, with the utilization of (jittered 16x16) occlusion
+# SS08 §8 (GeForce 8800 GTX): "a slow-down of up to 72%, with the utilization of (jittered 16x16) occlusion
 # bitmasks already accounting for a slow-down of up to almost 50%"; Radeon HD 2900 XT "less than 35%" overall.
-PAPER_SLOWDOWN = {("micropatch", "area"): "1 (baseline)", ("micropatch", "bitmask"): "up to ≈ 1.50 (L845-846)",
-                  ("microrect", "area"): "not given", ("microrect", "bitmask"): "up to 1.72 (L844-845); < 1.35 on HD 2900 XT (L847-849)"}
+PAPER_SLOWDOWN = {("micropatch", "area"): "1 (baseline)", ("micropatch", "bitmask"): "up to ≈ 1.50 (§8)",
+                  ("microrect", "area"): "not given", ("microrect", "bitmask"): "up to 1.72 (§8); < 1.35 on HD 2900 XT (§8)"}
 
 
 def pairing(result):
@@ -225,9 +225,9 @@ def pairing(result):
 
 def fig12():
     print("\n### 5. Fig. 12: micropatches against microrects at a forced coarse level\n")
-    print("Paper 001, Fig. 12 (L828-835): \"(a) 1024 shadow maps, (b) coarse micropatches and occlusion bitmasks, "
+    print("SS08, Fig. 12 (§8): \"(a) 1024 shadow maps, (b) coarse micropatches and occlusion bitmasks, "
           "(c) coarse microrects with area accumulation and (d) with occlusion bitmasks\"; images only, no numbers; "
-          "the claim: at coarser levels microrects \"yield superior results compared to micropatches\" (L829-832), "
+          "the claim: at coarser levels microrects \"yield superior results compared to micropatches\" (§8), "
           "i.e. (d) < (b). Here (a) is the Embree reference (1024 samples) and the numbers are its RMSE over the "
           "covered pixels (penumbra RMSE in brackets), ss08 at force_level 2 and 3 (one level everywhere, no blend), "
           "256×256 images; micro-occluders per axis = map size / 2^level:\n")
@@ -266,10 +266,10 @@ def cost():
           "in reverse order). Ratios to micropatch + area of the same run: the `technique` stage (search, smoothing, "
           "visibility: the shaders whose registers the paper's slow-down is about), the whole frame (which with "
           "microrects includes building them, the `microrects` stage; the paper counts that apart, 1.89 ms at 1024², "
-          "L840-841), and the micro-occluder slots examined (microrects may take one slot more per axis, so their "
+          "§8), and the micro-occluder slots examined (microrects may take one slot more per axis, so their "
           "level and slot count at a budget differ):\n")
     print("| scene | pairing | technique GPU ms | technique / baseline | frame GPU ms | frame / baseline | "
-          "mean micro-occluders | slots examined / baseline | technique ms per slot / baseline | paper 001 (8800 GTX) |")
+          "mean micro-occluders | slots examined / baseline | technique ms per slot / baseline | SS08 (8800 GTX) |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
     for scene, size, *directories in runs:
         results = [{pairing(c["result"]): c["result"] for c in configurations(d) if c["status"] == "ok"}
@@ -299,14 +299,14 @@ def cost():
               f"{times['off'] / times['left_bottom']:.2f}× |")
     print("\nWhy llvmpipe need not reproduce the paper's ratios: the paper puts its slow-down on the register count "
           "(\"the shader register count is increased slightly compared to simple area accumulation of micropatches, "
-          "causing a slow-down\", L842-845), i.e. on a 2008 GPU's occupancy: more registers per fragment, fewer "
+          "causing a slow-down\", §8), i.e. on a 2008 GPU's occupancy: more registers per fragment, fewer "
           "fragments in flight to hide the texture reads' latency; the HD 2900 XT, with a larger register file, lost "
-          "less than 35 % (L847-849). llvmpipe runs the same shader as LLVM-compiled SIMD code on the CPU, a few "
+          "less than 35 % (§8). llvmpipe runs the same shader as LLVM-compiled SIMD code on the CPU, a few "
           "fragments per invocation; a value that does not fit the vector registers goes to the stack, in cache, and "
           "there is no occupancy to lose. What it measures is the arithmetic: per micro-occluder, the bitmask sets a "
           "run of cells per covered row and tests the samples of its boundary rows and columns, where area "
           "accumulation adds one clipped area. Micropatches here are gap-filled (gap_filling=left_bottom, GBP06's rule, "
-          "L132-134: two neighbour reads and back-projections per slot) and microrects are not (one extent and one depth "
+          "§3: two neighbour reads and back-projections per slot) and microrects are not (one extent and one depth "
           "read): the table above shows what gap filling costs, and why microrect + area can cost less per slot than "
           "the baseline. The bitmask's share grows with the micro-occluders "
           "per back-projecting pixel (the mean column), as the visibility pass then dominates the technique stage. The 8800 GTX's occupancy cost is not in these numbers.")
@@ -314,7 +314,7 @@ def cost():
 
 def msaa():
     print("\n### 7. MSAA visibility interpolation: the overhead over single-sampled rendering\n")
-    print("Paper 001 §7 (L861-867, GeForce 8800 GTX): 4× MSAA with the visibility interpolation costs less than 9 % "
+    print("SS08 §8 (GeForce 8800 GTX): 4× MSAA with the visibility interpolation costs less than 9 % "
           "over single-sampled rendering, MSAA alone about 5 %. Here ss08 at its defaults (budget 12, YSM 1024²) on "
           "bunny 512×512, medians of 5 frames; run 1, run 2 (reverse order). \"MSAA alone\" is msaa=4 with "
           "msaa_depth_tolerance = 1e30 (the multisampled G-buffer, the copy of its first sample, a resolve that takes "
@@ -332,8 +332,8 @@ def msaa():
 
     by_key = [{key(c): c["result"] for c in run if c["status"] == "ok"} for run in runs]
     labels = ((("1", 0.001), "msaa=1", "1 (baseline)"), (("1", 1e30), "msaa=1 (again)", "1 (baseline)"),
-              (("4", 1e30), "msaa=4, one visibility per pixel (MSAA alone)", "≈ 1.05 (L866-867)"),
-              (("4", 0.001), "msaa=4, tau 0.001 (+ interpolation)", "< 1.09 (L861-866)"))
+              (("4", 1e30), "msaa=4, one visibility per pixel (MSAA alone)", "≈ 1.05 (§8)"),
+              (("4", 0.001), "msaa=4, tau 0.001 (+ interpolation)", "< 1.09 (§8)"))
     for k, label, paper in labels:
         results = [run[k] for run in by_key]
         base = [run[("1", 0.001)] for run in by_key]

@@ -1,11 +1,11 @@
 #!/bin/bash
-# Soft textured shadow volumes (paper 003, Forest et al. 2009): the claims of issue 18, item 4. From the repository
+# Soft textured shadow volumes (Forest et al. 2009): the claims of issue 18, item 4. From the repository
 # root:
 #   bash docs/bench/stsv/run.sh [fence] [fence-dcs] [meshed] [references] [coverage] [fence-512] [fence-dcs-512]
 #     [meshed-512] [rerun] [spread] [table]
 #   (no argument: all)
-# - Fig. 11 (L902-904: 2 perforated triangles with STSV at 90 fps against the 233 358-triangle mesh with DCS16 at
-#   3.3 fps, 27x) and the 25-35x of the abstract / §1 (L113-117): the technique stage of penumbra-wedge (PWedge+STSV)
+# - Fig. 11 (§6: 2 perforated triangles with STSV at 90 fps against the 233 358-triangle mesh with DCS16 at
+#   3.3 fps, 27x) and the 25-35x of the abstract / §1: the technique stage of penumbra-wedge (PWedge+STSV)
 #   and dcs (dcs+STSV) on `fence` against dcs (and penumbra-wedge) on `fence-meshed`, the same fence meshed along
 #   texel boundaries (63 488 triangles of canopy), same light samples (poisson, N = 16 and 64).
 # - Figs. 2, 4, 10 as numbers: RMSE against the ray tracer (Embree, 1024 stratified samples, alpha-tested) on
@@ -24,7 +24,7 @@ D=docs/bench/stsv
 SL=${SHADOWLAB:-build/shadowlab}
 CACHE="--cache /tmp/slcache-stsv"
 PARTS=${*:-fence fence-dcs meshed references coverage fence-512 fence-dcs-512 meshed-512 rerun spread table}
-# The paper's pattern (003 L531-533), set explicitly so that a change of a technique's default cannot split the
+# The paper's pattern (Forest et al. 2009 §4.1), set explicitly so that a change of a technique's default cannot split the
 # two sides of the ratio (bench refuses a --set no technique of the run has, so gbp07's map size is set in `fence`).
 COMMON="-s light_samples=poisson --samples 1024 $CACHE"
 

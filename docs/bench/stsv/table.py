@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The tables of docs/bench/stsv/summary.md from the benches beside this script (run from the repository root):
     python3 docs/bench/stsv/table.py > docs/bench/stsv/tables.md
-1. Fig. 11 (003 L902-904: STSV on 2 perforated triangles at 90 fps, DCS16 on the 233 358-triangle mesh at 3.3 fps)
-   and the 25-35x of the abstract / §1 (L113-117): the mesh (dcs on fence-meshed) against the perforated fence
+1. Fig. 11 (Forest et al. 2009 §6: STSV on 2 perforated triangles at 90 fps, DCS16 on the 233 358-triangle mesh at 3.3 fps)
+   and the 25-35x of the abstract / §1: the mesh (dcs on fence-meshed) against the perforated fence
    (penumbra-wedge = PWedge+STSV, dcs = dcs+STSV), same samples, for the technique stage, the frame, and the
    mesh's wedge step against the STSV step.
 2. Figs. 2, 4, 10 as numbers: RMSE against Embree on fence (PWedge+STSV, dcs+STSV, the mesh, gbp07 at 1024^2).
@@ -16,8 +16,8 @@ import os
 
 ROOT = "docs/bench/stsv"
 REFERENCE_SAMPLES = 1024
-PAPER_FIG11_FPS = (90.0, 3.3)  # STSV on 2 perforated triangles, DCS16 on the 233 358-triangle mesh (L902-904)
-PAPER_RANGE = (25, 35)  # abstract / §1, L113-117
+PAPER_FIG11_FPS = (90.0, 3.3)  # STSV on 2 perforated triangles, DCS16 on the 233 358-triangle mesh (§6)
+PAPER_RANGE = (25, 35)  # abstract / §1
 STEPS = ["volumes_gpu_ms", "wedges_gpu_ms", "stsv_gpu_ms", "resolve_gpu_ms"]
 
 

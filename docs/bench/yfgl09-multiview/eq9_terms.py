@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Eq. 9 of Yang et al. 2009 against this bench's summed visited_nodes, term by term.
 
-Eq. 9 (paper 000 L671-705) counts the shadow-map samples visited for one receiver point, in units of the main
+Eq. 9 (Yang et al. 2009 §5) counts the shadow-map samples visited for one receiver point, in units of the main
 view's texels, and assumes that every sub-light's map covers the main view's region: the S^2 sub-lights' kernels
 are each 1/S^2 of the main kernel's area, so their total is the main kernel's. Over an image, two things this
 assumption leaves out change the total of the pixel-wise brute force (1 x 1 packets, hierarchy=off, where

@@ -94,7 +94,7 @@ std::vector<NamedImage> exportMinMaxDepth(const MinMaxDepthData& data, int mapSi
 
 std::size_t minMaxDepthBytes(const MinMaxDepthData& data)
 {
-  // YSM: the atlas plus the MSSM part (paper 001 Table 1).
+  // YSM: the atlas plus the MSSM part (SS08 Table 1).
   return textureBytes(data.texture, 8) + (data.mssmPart ? textureBytes(data.mssmPart, 8) : 0);
 }
 

@@ -120,7 +120,7 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
 vtkTextureObject* vtkSLHsmPass::BuildYsmMssmPart(vtkOpenGLRenderWindow* window, sl::FrameResources& frame,
   vtkTextureObject* atlas)
 {
-  // Paper 001 §6 (L629-635): N-buffers over the M x M nodes of HSM level b, level j in layer j - 1 (level 0 is
+  // SS08 §6: N-buffers over the M x M nodes of HSM level b, level j in layer j - 1 (level 0 is
   // that HSM level, read from the atlas just built). Reused across frames like the atlas.
   const int size = frame.lightView.resolution;
   const int partSize = sl::ysmMssmPartSize(size);

@@ -68,7 +68,7 @@ std::vector<NamedImage> exportSamples(const FrameResources& frame)
   const std::string pattern = lightSamplePatternName(data.samples->settings());
   return {
     { "light_samples", readFloatTexture(data.baseTexture, 2), "unit square",
-      "the " + pattern + " set's base points (pattern 0, before the per-pixel shift) in [0, 1)^2 (003 §4.1)" },
+      "the " + pattern + " set's base points (pattern 0, before the per-pixel shift) in [0, 1)^2 (Forest et al. 2009 §4.1)" },
     { "light_sample_offsets", offsets, "world units",
       "the base points on the light: offsets along its right and up vectors from its centre" },
   };
@@ -122,10 +122,10 @@ const LightSpaceStructure& lightSampleSetStructure()
     s.parameters = {
       { "light_samples", choiceIndex(lightSamplePatternNames(), "poisson"), 0,
         static_cast<double>(lightSamplePatternNames().size() - 1), "",
-        "light-sample pattern (003 §4.1 L506-533, Fig. 5): grid, stratified, poisson (Poisson disk at the paper's minimum distance, L531-533), zero_two (Sobol (0,2)-sequence, L530-531); _4x4: shifted by the pixel's place in a 4 x 4 tile (interleaved sampling, Fig. 5 f) instead of per pixel (L526-527)",
+        "light-sample pattern (Forest et al. 2009 §4.1, Fig. 5): grid, stratified, poisson (Poisson disk at the paper's minimum distance, §4.1), zero_two (Sobol (0,2)-sequence, §4.1); _4x4: shifted by the pixel's place in a 4 x 4 tile (interleaved sampling, Fig. 5 f) instead of per pixel (§4.1)",
         lightSamplePatternNames(), true },
       { "samples", choiceIndex(counts, "16"), 0, static_cast<double>(counts.size() - 1), "light samples",
-        "light samples per pixel, N: 16 or 64 as in 003 (L528-530), or 256", counts, true },
+        "light samples per pixel, N: 16 or 64 as in Forest et al. 2009 (§4.1), or 256", counts, true },
       { "sample_seed", 1, 0, 2147483647, "",
         "seed of the stratified jitter, the Poisson set and the per-pixel shifts; the reference's --seed draws the same samples",
         {}, true },

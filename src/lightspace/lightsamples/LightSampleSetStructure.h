@@ -1,4 +1,4 @@
-// The light-sample set of a frame (lightspace/LightSampleSet.h; Forest et al. 2009 = paper 003 §4.1, L506-533,
+// The light-sample set of a frame (lightspace/LightSampleSet.h; Forest et al. 2009 = Forest et al. 2009 §4.1,
 // Fig. 5): the N base points of a named pattern in an N x 1 RG32F texture, and, as uniforms, what
 // shaders/common/LightSampleSet.glsl needs to give each pixel its N shifted samples on the light
 // (lightSampleShift, lightSampleUnit, lightSampleOffset, lightSamplePoint). Object-space techniques (dcs) and the

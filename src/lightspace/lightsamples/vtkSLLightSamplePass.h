@@ -1,4 +1,4 @@
-// The light-sample set's build (lightspace/lightsamples/LightSampleSetStructure.h; paper 003 §4.1): constructs the
+// The light-sample set's build (lightspace/lightsamples/LightSampleSetStructure.h; Forest et al. 2009 §4.1): constructs the
 // named pattern on the CPU (lightspace/LightSampleSet.h) and uploads its N base points into an N x 1 RG32F
 // texture, only when the settings (pattern, interleaving, N, seed) or the context change; otherwise the previous
 // set and texture are handed to the frame again. One timed stage, "light_samples". Parameters read:

@@ -22,7 +22,7 @@ const MicrorectData& microrectData(const FrameResources& frame)
 }
 
 // The two atlases as stored, and for k = 1..L how many level-k extents cover each texel (from the read-back
-// extents, by a difference array), which shows how much microrects overlap (L521-529).
+// extents, by a difference array), which shows how much microrects overlap (§5.2).
 std::vector<NamedImage> exportMicrorects(const FrameResources& frame)
 {
   const MicrorectData& data = microrectData(frame);

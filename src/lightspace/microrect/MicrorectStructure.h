@@ -1,7 +1,7 @@
-// Microrects (Schwarz & Stamminger 2008, paper 001 §5.2, L447-555, Figs. 4-6): per shadow-map level i >= 1 one
+// Microrects (Schwarz & Stamminger 2008, SS08 §5.2, Figs. 4-6): per shadow-map level i >= 1 one
 // micro-occluder per texel whose extent is a rectangle of level-0 texels (containing its reference point
 // (2^i x, 2^i y) and no other) and whose depth is the min over the level-(i-1) microrects it absorbed. Definition,
-// proofs and the CPU twin: lightspace/Microrects.h. Stored (L479-481) as two N x N atlases in the HSM mip-map
+// proofs and the CPU twin: lightspace/Microrects.h. Stored (§5.2) as two N x N atlases in the HSM mip-map
 // layout (levels 1..L): extents RGBA16UI (x0, y0, x1, y1), depths R32F; level 0 is the shadow map. Built by
 // vtkSLMicrorectPass (stage microrects); GLSL lookup: shaders/common/MicrorectLookup.glsl (microrectAt). No
 // parameters.

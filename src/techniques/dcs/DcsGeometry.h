@@ -1,5 +1,5 @@
 // The CPU side of technique `dcs` (depth complexity sampling, Forest, Barthe & Paulin 2008 = FBP08, as used by
-// Forest et al. 2009 = paper 003 §3.2 L443-458), in double precision: which edges draw a wedge, the per-sample
+// Forest et al. 2009 §3.2), in double precision: which edges draw a wedge, the per-sample
 // update rule each wedge applies, and the screen polygon each wedge is rasterised as. The GLSL of
 // shaders/dcs/DcsWedgeUpdate.glsl computes the same rule in float; tests/unit/DcsTest.cpp checks the rule against
 // direct crossing counts, tests/render/DcsTest.cpp the GPU against Embree.
@@ -25,7 +25,7 @@
 // products on the light plane (two of them, orient(v0, v1, c, s) and orient(p, c, s, v_i), vanish at s = c and
 // have no constant term).
 //
-// Which edges draw a wedge (potential silhouettes, 003 notes C8). At a light point x on Pi(p, e), M_e(p) is, up to
+// Which edges draw a wedge (potential silhouettes). At a light point x on Pi(p, e), M_e(p) is, up to
 // sign, sum_T sign(orient(v0, v1, x, w_T)): the facing of e's triangles seen from x. An edge whose triangles keep
 // a facing over the whole light that sums to 0 can never change a count, and is skipped. The facing of one
 // triangle is linear in x, so it is constant over the light when the light's outline corners (square) or its disk

@@ -76,7 +76,7 @@ DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeS
   if (recorder && stsv.covering > 0)
   {
     recorder->beginGroup("STSVs containing the point");
-    recorder->quantity("stsv_covering", stsv.covering, "STSVs", "003 §2.3");
+    recorder->quantity("stsv_covering", stsv.covering, "STSVs", "Forest et al. 2009 §2.3");
   }
   twin.dcMin = *std::min_element(twin.sampleCounts.begin(), twin.sampleCounts.end());
   twin.dcMax = *std::max_element(twin.sampleCounts.begin(), twin.sampleCounts.end());

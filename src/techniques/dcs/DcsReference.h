@@ -34,7 +34,7 @@ struct DcsPixelTwin
 std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel);
 
 // One pixel whose visible point is `pWs` with normal `nWs`. `wedges` are the opaque casters' (weldCasters(scene,
-// true)): perforated ones go through STSVs (003 §3.2 L450-458, STSV_DCS), each STSV holding the point adding 1 to
+// true)): perforated ones go through STSVs (Forest et al. 2009 §3.2, STSV_DCS), each STSV holding the point adding 1 to
 // the count of every sample its triangle hides (stsv/StsvGeometry.h, under `test`). `recorder` (optional): the
 // counted point, the centre's crossings, each wedge containing the point with its multiplicity and the samples it
 // changes, the STSVs, every sample.

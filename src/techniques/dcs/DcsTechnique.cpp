@@ -31,7 +31,7 @@ TechniqueDescriptor dcsTechnique()
   TechniqueDescriptor descriptor;
   descriptor.name = "dcs";
   descriptor.title = "Depth complexity sampling (per-sample occluder counts from silhouette wedges)";
-  descriptor.paper = "Forest, Barthe & Paulin 2008 (DCS); Forest et al. 2009 §3.2, §4.1 (paper 003)";
+  descriptor.paper = "Forest, Barthe & Paulin 2008 (DCS); Forest et al. 2009 §3.2, §4.1";
   descriptor.parameters = {
     // 1e-4, ten times shadow-volume's: at 1e-5, segments to samples that graze a faceted surface re-enter it next to
     // the point, and every pattern's bunny penumbra RMSE against the reference (whose rays start 1e-4 of the scene's
@@ -64,7 +64,7 @@ TechniqueDescriptor dcsTechnique()
     volumeCountStatusBuffer(),
   };
   BufferSpec mask{ "light_sample_mask", "bits",
-    "which samples are hidden (blocked or below the tangent plane): bit i % 16 of component i / 16, N/16 components (003 L614-628's LS_buffer)" };
+    "which samples are hidden (blocked or below the tangent plane): bit i % 16 of component i / 16, N/16 components (Forest et al. 2009 §5.1's LS_buffer)" };
   mask.fromPass = true;
   BufferSpec counts{ "sample_depth_complexity", "surfaces",
     "every sample's count, N components; only with export_sample_counts = 1" };
@@ -108,7 +108,7 @@ ProbeOutcome probeDcs(const FrameResult& frame, const Scene& scene, int lightInd
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
   recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
   recorder.quantity("light_samples", samples.count(), "samples",
-    "003 L526-533: " + lightSamplePatternName(samples.settings()) + ", toroidally shifted per pixel");
+    "Forest et al. 2009 §4.1: " + lightSamplePatternName(samples.settings()) + ", toroidally shifted per pixel");
   const DcsPixelTwin twin = dcsPixelTwin(scene, light, wedges, samples, pixel, pWs, nWs,
     frame.parameters.get("receiver_offset"), &recorder, stsvOcclusionTestOf(frame.parameters));
   recorder.beginGroup("counts");
@@ -136,7 +136,7 @@ ProbeOutcome probeDcs(const FrameResult& frame, const Scene& scene, int lightInd
   outcome.visibility = twin.visibility;
   // One sample decided within float rounding changes the visibility by 1/N: the tests' per-pixel bound.
   outcome.tolerance = 1.0 / samples.count();
-  recorder.quantity("visibility", twin.visibility, "", "003 §3.2: the fraction of samples with count 0 (above the tangent plane)");
+  recorder.quantity("visibility", twin.visibility, "", "Forest et al. 2009 §3.2: the fraction of samples with count 0 (above the tangent plane)");
   return outcome;
 }
 

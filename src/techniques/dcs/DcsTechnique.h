@@ -1,8 +1,8 @@
 // Technique `dcs`: depth complexity sampling (Forest, Barthe & Paulin 2008 = FBP08; the object-space half of paper
-// 003, Forest et al. 2009 §3.2 L443-458) for opaque casters. For every visible point and every one of N light samples
+// Forest et al. 2009 §3.2) for opaque casters. For every visible point and every one of N light samples
 // (the shared sets of lightspace/LightSampleSet.h, N = 16, 64 or 256), the number of caster surfaces the segment to
 // the sample crosses; visibility is the fraction of samples with count 0 and above the receiver's tangent plane
-// (003's v_coef, the reference's rule). Exact for its samples, so it is checked sample by sample against Embree.
+// (Forest et al. 2009's v_coef, the reference's rule). Exact for its samples, so it is checked sample by sample against Embree.
 //
 // Per frame (vtkSLDcsPass.h): the reference sample's count from the centre's shadow volumes (the shadow-volume
 // pass), then one wedge per potential silhouette edge updating the samples it separates from the centre (the rule of

@@ -56,7 +56,7 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
   this->DrawWedges(window);
   sl::checkGlErrors("dcs (wedges)");
   this->Steps.mark(2);
-  // Step 2b: the perforated casters' STSVs add 1 to the counters of the samples they hide (003 §3.2, STSV_DCS).
+  // Step 2b: the perforated casters' STSVs add 1 to the counters of the samples they hide (Forest et al. 2009 §3.2, STSV_DCS).
   this->DrawStsvs(window);
   sl::checkGlErrors("dcs (STSVs)");
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -182,7 +182,7 @@ std::map<std::string, double> vtkSLDcsPass::CollectStatistics()
   this->Stsvs.addStatistics(statistics);
   const std::size_t pixels = static_cast<std::size_t>(this->Counters.width) * this->Counters.height;
   statistics["sample_buffer_bytes"] = static_cast<double>(4 * pixels * (this->Counters.layers + this->Mask.layers));
-  // 003 L614-628: N x W x H x 1 bit of LS_buffer plus the N x 16-bit sample pattern.
+  // Forest et al. 2009 §5.1: N x W x H x 1 bit of LS_buffer plus the N x 16-bit sample pattern.
   const int samples = this->SampleCount();
   statistics["paper_sample_buffer_bytes"] = static_cast<double>(samples) * pixels / 8.0 + 2.0 * samples;
   statistics["light_samples"] = samples;

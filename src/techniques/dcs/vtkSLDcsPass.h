@@ -6,7 +6,7 @@
 //     (shaders/dcs/DcsWedgeUpdate.glsl);
 //  2b. STSVs: perforated casters (left out of steps 1 and 2, TechniqueDescriptor::perforatedCastersByStsv) through
 //     their soft textured shadow volumes (stsv/StsvDrawer.h): each fragment holding its point adds 1 to the counter of
-//     every sample Eq. 1-5 hides (003 §3.2 L450-458, shaders/stsv/StsvSamples.glsl with STSV_DCS_COUNTERS);
+//     every sample Eq. 1-5 hides (Forest et al. 2009 §3.2, shaders/stsv/StsvSamples.glsl with STSV_DCS_COUNTERS);
 //  3. resolve: the base class's full-screen shader (shaders/dcs/DcsResolve.glsl) decodes the counters, checks their
 //     range, and writes visibility and the instrumentation buffers, and the hidden-sample bit mask.
 //
@@ -17,7 +17,7 @@
 // which changes the decoded sum of changes by a multiple of 255 and the index-weighted sum differently. The resolve
 // compares both with the sums the wedges added unpacked; a pixel that fails is marked counter_status = range
 // exceeded (a cut-short mark: counted in stats.json, never passed off as exact). Memory: W H (N/4 + 3) 4 bytes of
-// counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside the paper's 003 L614-628 formula.
+// counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside Forest et al. 2009's §5.1 formula.
 #pragma once
 
 #include "techniques/dcs/DcsGeometry.h"

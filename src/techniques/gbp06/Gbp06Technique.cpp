@@ -38,7 +38,7 @@ TechniqueDescriptor gbp06Technique()
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "hsm", 1, 0, 2, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007), mipmap (the HSM of Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level for the ranges, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
-    { "gap_filling", 1, 0, 2, "", "extend each occluding micropatch's back-projection to the shared edges of its occluding neighbours, closing the gaps between micropatches of different depths: left_bottom, to its left and bottom neighbours in texture space, GBP06's rule as Schwarz & Stamminger 2008 describe it (paper 001, L132-134); right_top, to its right and top ones (the mirror convention); off", { "off", "left_bottom", "right_top" }, true },
+    { "gap_filling", 1, 0, 2, "", "extend each occluding micropatch's back-projection to the shared edges of its occluding neighbours, closing the gaps between micropatches of different depths: left_bottom, to its left and bottom neighbours in texture space, GBP06's rule as Schwarz & Stamminger 2008 describe it (SS08 §3); right_top, to its right and top ones (the mirror convention); off", { "off", "left_bottom", "right_top" }, true },
     { "traversal", 0, 0, 1, "", "micropatches from every texel of the kernel, or from a depth-first walk of the min-max quadtree pruning nodes that cannot occlude (Dmitriev & Uralsky 2007); same visibility", { "kernel", "hsm" }, true },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure() };
@@ -92,7 +92,7 @@ glm::dvec2 quadtreeNode(const HierarchicalShadowMap& hsm, int level, glm::ivec2 
 enum class GapFilling
 {
   Off,
-  LeftBottom, // GBP06's rule as paper 001 L132-134 gives it
+  LeftBottom, // GBP06's rule as SS08 §3 gives it
   RightTop    // the mirror convention
 };
 
@@ -159,7 +159,7 @@ struct MicropatchAccumulator
     double neighbourDepth = 0.0;
     if (gapFilling == GapFilling::LeftBottom)
     {
-      // 001 L132-134 (GBP06): "extending a micropatch to its left and bottom neighbors in texture space". The
+      // SS08 §3 (GBP06): "extending a micropatch to its left and bottom neighbors in texture space". The
       // left neighbour's right edge and the bottom neighbour's top edge pass through the corner tangentLo.
       if (neighbourOccludes(texel - glm::ivec2(1, 0), neighbourDepth))
       {
@@ -259,7 +259,7 @@ Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShad
     recorder->beginGroup(values.choice("traversal") == "kernel" ? "micropatches (every texel of the kernel + ring)"
                                                                  : "micropatches (DU07 quadtree walk)");
     recorder->category("gap_filling", values.choice("gap_filling"),
-      "Schwarz & Stamminger 2008 (paper 001 L132-134): GBP06 extends a micropatch to its left and bottom neighbours "
+      "Schwarz & Stamminger 2008 (SS08 §3): GBP06 extends a micropatch to its left and bottom neighbours "
       "(right_top: the mirror convention)");
   }
   if (values.choice("traversal") == "kernel")
@@ -357,7 +357,7 @@ Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShad
       "ShadowLab: the twin's estimate of the GL's loop cap (gbp06LoopBudget; the shader detects the cut)");
     recorder->beginGroup("gap filling");
     recorder->quantity("gap_filled_micropatches", accumulator.gapFilled, "count",
-      "Schwarz & Stamminger 2008 (paper 001 L132-134): micropatches extended to an occluding neighbour's shared edge");
+      "Schwarz & Stamminger 2008 (SS08 §3): micropatches extended to an occluding neighbour's shared edge");
     recorder->quantity("gap_filling_area", accumulator.gapFillingArea, "world units^2",
       "ShadowLab: light area the extensions added (clipped), included in occluded_area");
     recorder->beginGroup("back-projection onto the light");

@@ -13,7 +13,7 @@
 //     occluded area = the sum of the clipped areas, visibility = clamp(1 - occluded / (2h)^2, 0, 1). Overlaps
 //     of the back-projections are counted twice, as in GBP06 (the clamp bounds the result).
 //  3. gap_filling (GBP06's remedy for the gaps between adjacent micropatches at different depths). The stored
-//     copies of GBP06 stop after its introduction; Schwarz & Stamminger 2008 (paper 001, L132-134) state the
+//     copies of GBP06 stop after its introduction; Schwarz & Stamminger 2008 (SS08 §3) state the
 //     rule: "extending a micropatch to its left and bottom neighbors in texture space". `left_bottom` (the
 //     default): when the left (resp. bottom) neighbour texel is an occluding micropatch too, the rectangle's
 //     left (bottom) edge is moved out to the right (top) edge of that neighbour's back-projection, i.e. the

@@ -5,7 +5,7 @@
 // marching squares, back-projection and radial integration (techniques/backprojection). Square area lights.
 // Math: shaders/gbp07/Gbp07Visibility.glsl; CPU mirror below.
 // Parameters: the shadow-map ones, receiver_plane_bias, hsm (nbuffers = the MSSM's exact ranges, default;
-// mipmap = a conservative HSM; ysm = the HSM plus an MSSM of its ~256^2 level, paper 001 §6), kernel_refinements.
+// mipmap = a conservative HSM; ysm = the HSM plus an MSSM of its ~256^2 level, SS08 §6), kernel_refinements.
 // Buffers: kernel_texels, contour_edges, visited_cells, classification (not tested / lit / umbra / penumbra /
 // penumbra over the loop budget).
 #pragma once

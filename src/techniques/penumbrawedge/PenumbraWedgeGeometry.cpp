@@ -178,7 +178,7 @@ PenumbraWedgePixel penumbraWedgePixel(const PenumbraWedgeScene& prepared, const 
         area.farRegion, area.occlusionDelta * light.size * light.size });
     }
   }
-  // STSVs (003 Alg. 1): OR the samples each STSV holding p hides.
+  // STSVs (Forest et al. 2009 Alg. 1): OR the samples each STSV holding p hides.
   const StsvPointOcclusion stsv = stsvPointOcclusion(prepared.stsvs, scene, p, samples, test);
   pixel.stsvCovering = stsv.covering;
   pixel.stsvEmptyHits = stsv.emptyHits;
@@ -190,7 +190,7 @@ PenumbraWedgePixel penumbraWedgePixel(const PenumbraWedgeScene& prepared, const 
   if (recorder && stsv.covering > 0)
   {
     recorder->beginGroup("STSVs containing the point");
-    recorder->quantity("stsv_covering", stsv.covering, "STSVs", "003 §2.3");
+    recorder->quantity("stsv_covering", stsv.covering, "STSVs", "Forest et al. 2009 §2.3");
     recorder->quantity("stsv_empty_hits", stsv.emptyHits, "STSVs", "STSVs holding the point that hide none of its samples");
   }
   pixel.stsvOccludedSamples = static_cast<int>(std::count(pixel.stsvHidden.begin(), pixel.stsvHidden.end(), true));

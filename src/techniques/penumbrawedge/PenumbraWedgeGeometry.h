@@ -1,5 +1,5 @@
 // The CPU side of technique `penumbra-wedge` (Akenine-Moller & Assarsson 2002, Assarsson & Akenine-Moller 2003 =
-// AAM03, as paper 003 §3.1 L381-406 uses it), in double precision: what one penumbra wedge adds to a point's
+// AAM03, as Forest et al. 2009 §3.1 uses it), in double precision: what one penumbra wedge adds to a point's
 // occlusion, and the twin of a whole pixel. shaders/penumbrawedge/PenumbraWedgeArea.glsl computes the same in float.
 //
 // The radial reading. The light's centre c has a hard-shadow status (the shadow volumes' count, technique
@@ -15,14 +15,14 @@
 //     occlusion_raw(p) = [count(c) > 0] + sum over centre-silhouette wedges of  sign(-sign(g(c)) M_e(p)) |F_e(p)| / |L|
 //     visibility       = 1 - clamp(occlusion_raw, 0, 1)
 // Exact for one convex occluder; where two occluders' projections overlap their areas are both counted (the
-// over-shadowing of 003 L384-387: occlusion_raw > 1, or a deficit in the overlap), and edges that are silhouettes
+// over-shadowing of Forest et al. 2009 §3.1: occlusion_raw > 1, or a deficit in the overlap), and edges that are silhouettes
 // from part of the light but not from its centre are ignored (the "single light sample" silhouette artifact). Samples
 // below the receiver's tangent plane are not modelled (AAM03 has no receiver term), as the reference hides them.
 // Square area lights only (the far region is clipped from the square's outline).
-// Perforated casters (alpha textures) are not part of that: they go through soft textured shadow volumes (003 §3.1
-// L388-406, stsv/StsvGeometry.h). For every STSV holding p, the light samples its triangle hides (Eq. 1-5) are OR-ed
+// Perforated casters (alpha textures) are not part of that: they go through soft textured shadow volumes (Forest et al. 2009 §3.1
+// §3.1, stsv/StsvGeometry.h). For every STSV holding p, the light samples its triangle hides (Eq. 1-5) are OR-ed
 // into the pixel's light-sample mask (the LS_buffer), and its popcount's share of the N samples is added to the
-// occlusion -- "we add this v_coef with the one computed during the penumbra-wedge pass" (L400-402), read as adding
+// occlusion -- "we add this v_coef with the one computed during the penumbra-wedge pass" (§3.1), read as adding
 // occlusions: occlusion_raw = AAM03's + popcount / N, so a perforated and an opaque occluder that overlap are both
 // counted (Fig. 4 a).
 #pragma once
@@ -59,7 +59,7 @@ std::vector<DcsWedgeEdge> centreSilhouetteWedges(const DcsEdgeSet& wedges);
 struct PenumbraWedgeScene
 {
   std::vector<DcsWedgeEdge> wedges; // the opaque casters' centre silhouettes (perforated ones have STSVs instead)
-  StsvSet stsvs;                    // the S-triangles (003 C1) and their STSVs
+  StsvSet stsvs;                    // the S-triangles (Forest et al. 2009 §2) and their STSVs
 };
 PenumbraWedgeScene penumbraWedgeScene(const Scene& scene, const Light& light);
 

@@ -22,13 +22,13 @@ TechniqueDescriptor penumbraWedgeTechnique()
   TechniqueDescriptor descriptor;
   descriptor.name = "penumbra-wedge";
   descriptor.title = "Penumbra wedges (hard shadow from the centre plus each centre silhouette's share of the light)";
-  descriptor.paper = "Akenine-Moller & Assarsson 2002; Assarsson & Akenine-Moller 2003; Forest et al. 2009 §3.1 (paper 003)";
+  descriptor.paper = "Akenine-Moller & Assarsson 2002; Assarsson & Akenine-Moller 2003; Forest et al. 2009 §3.1";
   descriptor.parameters = {
     { "receiver_offset", 1e-4, 0.0, 1e-2, "of the eye distance",
       "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before the centre's volumes, the wedges and the STSVs are evaluated, as dcs does" },
     stsvOppositeSideCheckParameter(),
   };
-  // The light samples of the perforated casters' LS_buffer (003 L390-400): the shared set, 64 by default (the
+  // The light samples of the perforated casters' LS_buffer (Forest et al. 2009 §3.1): the shared set, 64 by default (the
   // paper's PWedge+STSV64).
   const LightSpaceStructure& samples = lightSampleSetStructure();
   for (ParameterSpec spec : samples.parameters)
@@ -44,18 +44,18 @@ TechniqueDescriptor penumbraWedgeTechnique()
   descriptor.perforatedCastersByStsv = true;
   descriptor.buffers = {
     { "pw_occlusion_raw", "fraction of light",
-      "the centre's hard-shadow status plus every wedge's signed share, plus the STSVs' hidden samples / N, before clamping: > 1 or < 0 where overlapping silhouettes are counted twice (003 L384-387)",
+      "the centre's hard-shadow status plus every wedge's signed share, plus the STSVs' hidden samples / N, before clamping: > 1 or < 0 where overlapping silhouettes are counted twice (Forest et al. 2009 §3.1)",
       BufferKind::Signed },
     { "depth_complexity_center", "surfaces",
       "opaque caster triangles crossed by the segment from the point to the light's centre (the shadow volumes' count)" },
     { "wedges_covering", "wedges", "centre-silhouette wedges whose region holds the point (the per-pixel cost of the wedge pass)" },
-    { "stsv_covering", "STSVs", "soft textured shadow volumes holding the point (003 §2.3)" },
+    { "stsv_covering", "STSVs", "soft textured shadow volumes holding the point (Forest et al. 2009 §2.3)" },
     { "stsv_empty_hits", "STSVs", "STSVs holding the point that hide none of its samples: how conservative the extrusion is" },
     { "stsv_occluded_samples", "light samples", "samples hidden by perforated casters (the LS_buffer's popcount, of N)" },
     volumeCountStatusBuffer(),
   };
   BufferSpec mask{ "light_sample_mask", "bits",
-    "which samples perforated casters hide (the STSVs' LS_buffer, 003 L390-400): bit i % 16 of component i / 16, N/16 components" };
+    "which samples perforated casters hide (the STSVs' LS_buffer, Forest et al. 2009 §3.1): bit i % 16 of component i / 16, N/16 components" };
   mask.fromPass = true;
   descriptor.buffers.push_back(mask);
   descriptor.supportedLights = { LightType::Area };
@@ -71,7 +71,7 @@ TechniqueDescriptor penumbraWedgeTechnique()
   };
   // Exact for one convex occluder (AAM03); where silhouettes overlap their wedges' contributions are added twice and
   // silhouettes seen only from the rest of the light are missed, as in the paper. Perforated casters are sampled by
-  // STSV's N shared light samples (003 Eq. 1-5).
+  // STSV's N shared light samples (Forest et al. 2009 Eq. 1-5).
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.05;
   descriptor.accuracy.approximations = {
@@ -112,12 +112,12 @@ ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, in
   recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
   recorder.quantity("depth_complexity_center", twin.centreCount, "surfaces", "AAM03: the hard shadow from the centre");
   recorder.quantity("wedges_covering", twin.wedgesCovering, "wedges", "DcsGeometry.h wedgeContains");
-  recorder.quantity("stsv_covering", twin.stsvCovering, "STSVs", "003 §2.3: STSVs holding the point");
+  recorder.quantity("stsv_covering", twin.stsvCovering, "STSVs", "Forest et al. 2009 §2.3: STSVs holding the point");
   recorder.quantity("stsv_occluded_samples", twin.stsvOccludedSamples, "light samples",
-    "003 §3.1 L390-400: the LS_buffer's popcount (perforated casters)");
+    "Forest et al. 2009 §3.1: the LS_buffer's popcount (perforated casters)");
   recorder.quantity("pw_occlusion_raw", twin.occlusionRaw, "fraction of light",
-    "AAM03: [centre hidden] + sum of the wedges' signed shares (003 L384-387: > 1 where overlaps count twice), + the "
-    "STSVs' popcount / N (L400-402)");
+    "AAM03: [centre hidden] + sum of the wedges' signed shares (Forest et al. 2009 §3.1: > 1 where overlaps count twice), + the "
+    "STSVs' popcount / N (§3.1)");
   if (litWithoutShadowTest(frame, pixel, recorder, outcome))
   {
     return outcome;

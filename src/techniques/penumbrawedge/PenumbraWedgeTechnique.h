@@ -1,5 +1,5 @@
 // Technique `penumbra-wedge`: soft shadows by penumbra wedges (Akenine-Moller & Assarsson 2002, Assarsson &
-// Akenine-Moller 2003 = AAM03), the opaque half of paper 003's PWedge+STSV (Forest et al. 2009 §3.1 L381-406). The hard
+// Akenine-Moller 2003 = AAM03), the opaque half of Forest et al. 2009's PWedge+STSV (§3.1). The hard
 // shadow of the light's centre (shadow volumes), then one wedge per silhouette edge from the centre, whose pixels add
 // the signed fraction of the light that the edge's projection moves across the centre's status
 // (PenumbraWedgeGeometry.h). Exact for one convex occluder; overlapping silhouettes are counted twice and

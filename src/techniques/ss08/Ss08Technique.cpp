@@ -40,7 +40,7 @@ bool microrectsOn(const ParameterValues& values)
   return values.choice("micro_occluder") == "microrect";
 }
 
-// Paper 001's lines (../shared/papers/quality-scalability-ssm-schwarz2008.txt) as a probe quantity's source.
+// Where in SS08 (section, figure or table as printed) a probe quantity comes from, as its source.
 std::string cite(const std::string& where)
 {
   return where + ", SS08 (Schwarz & Stamminger 2008)";
@@ -105,29 +105,29 @@ TechniqueDescriptor ss08Technique()
   {
     if (spec.name == "shadow_map_size")
     {
-      spec.defaultValue = 1024; // the paper's runs: YSM 1024^2 / 256^2 (L742-744)
+      spec.defaultValue = 1024; // the paper's runs: YSM 1024^2 / 256^2 (§8)
     }
   }
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.parameters.insert(descriptor.parameters.end(), {
-    { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (001 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },
-    { "kernel_refinements", 2, 0, 4, "iterations", "times the search area is shrunk to the minimum depth inside it (001 Fig. 2 b)", {}, true },
-    { "budget", 12, 0, 64, "micro-occluders per axis", "b_mo: micro-occluders per light axis at level ceil(l) (001 L352-356); 0 = unlimited (level 0, no smoothing or blending); with budget_map=ramp_x the value at the centre column", {}, true },
-    { "budget_map", 0, 0, 2, "", "the budget map b_mo(x, y): uniform `budget`; ramp_x, `budget` at the centre column falling linearly to `budget_border` at the left and right borders (001 Fig. 1 d: 12 to 5); image, the grey values of `budget_image` (0 = unlimited)", { "uniform", "ramp_x", "image" }, true },
-    { "budget_image", 0, 0, 1, "", "budget_map=image: a PNG whose grey values (first channel) are b_mo per pixel, 0 = unlimited, resampled to the frame by nearest neighbour (001 Fig. 11: a lower budget where texture masking hides the shadow)", {}, false, true },
-    { "budget_border", 5, 1, 64, "micro-occluders per axis", "budget_map=ramp_x: b_mo at the left and right borders (001 Fig. 1 d: 5)", {}, true },
-    { "loq_smoothing", 1, 0, 1, "", "smooth the LOQ map (001 L363-368): a separable 11 x 11 box whose runs stop at depth discontinuities and at pixels that do not back-project", { "off", "on" }, true },
+    { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (SS08 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },
+    { "kernel_refinements", 2, 0, 4, "iterations", "times the search area is shrunk to the minimum depth inside it (SS08 Fig. 2 b)", {}, true },
+    { "budget", 12, 0, 64, "micro-occluders per axis", "b_mo: micro-occluders per light axis at level ceil(l) (SS08 §4.2); 0 = unlimited (level 0, no smoothing or blending); with budget_map=ramp_x the value at the centre column", {}, true },
+    { "budget_map", 0, 0, 2, "", "the budget map b_mo(x, y): uniform `budget`; ramp_x, `budget` at the centre column falling linearly to `budget_border` at the left and right borders (SS08 Fig. 1 d: 12 to 5); image, the grey values of `budget_image` (0 = unlimited)", { "uniform", "ramp_x", "image" }, true },
+    { "budget_image", 0, 0, 1, "", "budget_map=image: a PNG whose grey values (first channel) are b_mo per pixel, 0 = unlimited, resampled to the frame by nearest neighbour (SS08 Fig. 11: a lower budget where texture masking hides the shadow)", {}, false, true },
+    { "budget_border", 5, 1, 64, "micro-occluders per axis", "budget_map=ramp_x: b_mo at the left and right borders (SS08 Fig. 1 d: 5)", {}, true },
+    { "loq_smoothing", 1, 0, 1, "", "smooth the LOQ map (SS08 §4.2): a separable 11 x 11 box whose runs stop at depth discontinuities and at pixels that do not back-project", { "off", "on" }, true },
     { "smoothing_depth_threshold", 0.02, 0.0, 1.0, "relative depth", "the smoothing stops between neighbours whose camera depths differ by more than this times the smaller one (the paper's filter stops at depth discontinuities; its threshold is the project's)", {}, false },
     { "loq_floor", 0, 0, 1, "", "whether smoothing may lower l below the budget's level l_raw: none (the paper's plain smoothing; loq_budget_violation counts the levels lost) or raw (l = max(smoothed, l_raw): the budget holds)", { "none", "raw" }, true },
-    { "blend_band", 1.0, 0.0, 1.0, "levels", "alpha blending between floor(l) and ceil(l) (001 L370-392): over the last blend_band of each level; 1 = always (the paper's choice), 0.1 = GBP07's band, 0 = off (ceil(l) alone)", {}, false },
-    { "growth", 1, 0, 1, "", "grow each depth-range query to the whole support of the level-j micro-occluders it partly covers (001 L583-611, Fig. 7: without it pixels next to the penumbra are classified lit)", { "off", "on" }, true },
-    { "micro_occluder", 1, 0, 1, "", "micropatches (min-aggregated level-j texels, 001 §3) or microrects (001 §5.2: rectangles of level-0 texels merged by depth, lightspace/microrect)", { "micropatch", "microrect" }, true },
-    { "gap_filling", 1, 0, 2, "", "micropatches: extend each back-projection to its occluding left and bottom neighbours (GBP06's rule, 001 L132-134), right and top, or off; as gbp06", { "off", "left_bottom", "right_top" }, true },
-    { "level_bias", 1, 0, 1, "", "above level 0, add to the depth bias how much nearer the receiver's tangent plane comes over the micro-occluder's footprint than at its centre (min aggregation puts coarse texels in front of tilted receivers; 001 §9 leaves biasing across levels to future work)", { "off", "on" }, true },
+    { "blend_band", 1.0, 0.0, 1.0, "levels", "alpha blending between floor(l) and ceil(l) (SS08 §4.2): over the last blend_band of each level; 1 = always (the paper's choice), 0.1 = GBP07's band, 0 = off (ceil(l) alone)", {}, false },
+    { "growth", 1, 0, 1, "", "grow each depth-range query to the whole support of the level-j micro-occluders it partly covers (SS08 §6, Fig. 7: without it pixels next to the penumbra are classified lit)", { "off", "on" }, true },
+    { "micro_occluder", 1, 0, 1, "", "micropatches (min-aggregated level-j texels, SS08 §3) or microrects (SS08 §5.2: rectangles of level-0 texels merged by depth, lightspace/microrect)", { "micropatch", "microrect" }, true },
+    { "gap_filling", 1, 0, 2, "", "micropatches: extend each back-projection to its occluding left and bottom neighbours (GBP06's rule, SS08 §3), right and top, or off; as gbp06", { "off", "left_bottom", "right_top" }, true },
+    { "level_bias", 1, 0, 1, "", "above level 0, add to the depth bias how much nearer the receiver's tangent plane comes over the micro-occluder's footprint than at its centre (min aggregation puts coarse texels in front of tilted receivers; SS08 §9 leaves biasing across levels to future work)", { "off", "on" }, true },
     { "force_level", -1, -1, 13, "level", "experiments: use this level everywhere (no budget, smoothing or blending); -1 = off", {}, true },
-    { "accumulation", 1, 0, 1, "", "how a level's back-projected micro-occluders combine (001 §3, §8): area, the sum of their clipped areas (overlaps count twice), or bitmask, SS07's occlusion bitmask over 256 light samples (the shared stratified 16 x 16 set, fixed seed), OR-ed, V = 1 - popcount / 256", { "area", "bitmask" }, true },
-    { "msaa", 0, 0, 1, "samples", "multisampling (001 §7): 4 = a 4x multisampled G-buffer, soft shadows evaluated once per pixel from the first sample and a custom resolve (passes/vtkSLMsaaResolvePass.h: msaa_distinct_samples, msaa_interpolated_samples, msaa_sample_depth, msaa_sample_visibility)", { "1", "4" }, true },
-    { "msaa_depth_tolerance", 0.001, 0.0, 1e30, "relative depth", "msaa=4: tau, the largest |d - s_z| / s_z at which a sample takes its pixel's visibility; others take the 4-neighbour's whose s_z is closest (001 L714-733, which gives tau no value). 0 = per sample (every sample off the first's depth interpolates), >= 1e30 = per pixel", {}, false },
+    { "accumulation", 1, 0, 1, "", "how a level's back-projected micro-occluders combine (SS08 §3, §8): area, the sum of their clipped areas (overlaps count twice), or bitmask, SS07's occlusion bitmask over 256 light samples (the shared stratified 16 x 16 set, fixed seed), OR-ed, V = 1 - popcount / 256", { "area", "bitmask" }, true },
+    { "msaa", 0, 0, 1, "samples", "multisampling (SS08 §7): 4 = a 4x multisampled G-buffer, soft shadows evaluated once per pixel from the first sample and a custom resolve (passes/vtkSLMsaaResolvePass.h: msaa_distinct_samples, msaa_interpolated_samples, msaa_sample_depth, msaa_sample_visibility)", { "1", "4" }, true },
+    { "msaa_depth_tolerance", 0.001, 0.0, 1e30, "relative depth", "msaa=4: tau, the largest |d - s_z| / s_z at which a sample takes its pixel's visibility; others take the 4-neighbour's whose s_z is closest (SS08 §7, which gives tau no value). 0 = per sample (every sample off the first's depth interpolates), >= 1e30 = per pixel", {}, false },
   });
   descriptor.multisample = [](const ParameterValues& values) {
     return MultisampleSettings{ values.choice("msaa") == "4" ? 4 : 1, values.get("msaa_depth_tolerance") };
@@ -138,30 +138,30 @@ TechniqueDescriptor ss08Technique()
   };
   descriptor.buffers = {
     // Fragment outputs (at most eight).
-    { "budget", "micro-occluders per axis", "b_mo(x, y) as used (0 = unlimited; 001 L352-356)" },
-    { "search_area_texels", "texels", "larger side of the refined search area (kernel plus one ring, 001 Fig. 2 b)" },
+    { "budget", "micro-occluders per axis", "b_mo(x, y) as used (0 = unlimited; SS08 §4.2)" },
+    { "search_area_texels", "texels", "larger side of the refined search area (kernel plus one ring, SS08 Fig. 2 b)" },
     { "loq_raw", "levels", "l from the search area and the budget, before smoothing" },
-    { "loq", "levels", "l after smoothing: the LOQ map (001 Fig. 3 step 2)" },
-    { "level_floor", "level", "floor(l) of back-projecting pixels (001 Fig. 8, Fig. 13 a)" },
-    { "blend_alpha", "", "weight of ceil(l) in the blend (001 L370-392; 0 where one level)" },
+    { "loq", "levels", "l after smoothing: the LOQ map (SS08 Fig. 3 step 2)" },
+    { "level_floor", "level", "floor(l) of back-projecting pixels (SS08 Fig. 8, Fig. 13 a)" },
+    { "blend_alpha", "", "weight of ceil(l) in the blend (SS08 §4.2; 0 where one level)" },
     { "micro_occluders", "micro-occluders", "slots examined, both levels (Table 2's count; where the loop cap cut the pixel, those it reached)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     // Image stores (IMAGE_OUTPUT_FIRST and after).
-    categoricalBuffer("classification", "how the pixel was decided; growth penumbra: lit by the search area's own range, penumbra by the grown one (001 Fig. 7)", ss08Categories),
+    categoricalBuffer("classification", "how the pixel was decided; growth penumbra: lit by the search area's own range, penumbra by the grown one (SS08 Fig. 7)", ss08Categories),
     { "loq_budget_violation", "levels", "ceil(l_raw) - ceil(l) where smoothing lowered the level below the budget's (loq_floor=none)" },
-    { "query_growth_texels", "texels", "how far the depth-range query was grown beyond the search area (001 L605-611)" },
-    { "micro_occluders_floor", "micro-occluders", "slots level floor(l) alone examines (the blend overhead's baseline, 001 L820-822)", BufferKind::Continuous, {}, SubLightCombine::Sum },
+    { "query_growth_texels", "texels", "how far the depth-range query was grown beyond the search area (SS08 §6)" },
+    { "micro_occluders_floor", "micro-occluders", "slots level floor(l) alone examines (the blend overhead's baseline, SS08 §8)", BufferKind::Continuous, {}, SubLightCombine::Sum },
     { "micro_occluders_ceil", "micro-occluders", "slots level ceil(l) alone examines", BufferKind::Continuous, {}, SubLightCombine::Sum },
-    { "occluded_bits", "light samples (of 256)", "accumulation=bitmask: popcount of the occlusion bitmask, blended as the visibility ((1 - a) floor + a ceil); 0 with area accumulation (001 L842-853)" },
+    { "occluded_bits", "light samples (of 256)", "accumulation=bitmask: popcount of the occlusion bitmask, blended as the visibility ((1 - a) floor + a ceil); 0 with area accumulation (SS08 §8)" },
     { "area_overcount", "fraction of light area", "accumulation=bitmask: summed clipped areas / light area minus popcount / 256, blended: where overlapping micro-occluders over-occlude under area accumulation; 0 with area accumulation", BufferKind::Signed },
   };
   descriptor.shaderConstants = contourKernelShaderConstants();
   descriptor.shaderConstants.insert(descriptor.shaderConstants.end(), {
     { "IMAGE_OUTPUT_FIRST", 8, "the first output written by image stores (GL guarantees eight colour outputs)" },
-    { "LOQ_SMOOTHING_RADIUS", ss08SmoothingRadius, "neighbours each way of the LOQ smoothing (11 x 11, 001 L814-815)" },
+    { "LOQ_SMOOTHING_RADIUS", ss08SmoothingRadius, "neighbours each way of the LOQ smoothing (11 x 11, SS08 §8)" },
     { "LOQ_STATE_NONE", static_cast<int>(LoqState::None), "LOQ map: the pixel does not back-project" },
     { "LOQ_STATE_SMOOTHED", static_cast<int>(LoqState::Smoothed), "LOQ map: smoothed" },
     { "LOQ_STATE_FIXED", static_cast<int>(LoqState::Fixed), "LOQ map: back-projects at a level smoothing keeps" },
-    { "BITMASK_GRID_SIDE", ss08BitmaskGridSide, "accumulation=bitmask: light samples per axis (one per cell, 001 L846)" },
+    { "BITMASK_GRID_SIDE", ss08BitmaskGridSide, "accumulation=bitmask: light samples per axis (one per cell, SS08 §8)" },
   });
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
@@ -205,7 +205,7 @@ TechniqueDescriptor ss08Technique()
       recorder.beginGroup("smoothing (twin)");
       recorder.quantity("loq_twin_smoothed",
         ss08SmoothedLevelAt(twin, frame.parameters, frame.find("depth")->image, pixel.x, pixel.y), "levels",
-        cite("L363-368, L813-817 (the twin's 11 x 11 depth-aware box over its own raw levels; beside loq, the GPU's)"));
+        cite("§4.2, §8 (the twin's 11 x 11 depth-aware box over its own raw levels; beside loq, the GPU's)"));
     }
     return outcome;
   };
@@ -415,9 +415,9 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
   if (recorder)
   {
     recorder->beginGroup("budget");
-    recorder->category("budget_map", values.choice("budget_map"), cite("L352-356 (the budget map b_mo(x, y))"));
+    recorder->category("budget_map", values.choice("budget_map"), cite("§4.2 (the budget map b_mo(x, y))"));
     recorder->quantity("budget", search.budget, "micro-occluders per axis",
-      cite("L352-356 (b_mo at the pixel; 0 = unlimited, Table 2)"));
+      cite("§4.2 (b_mo at the pixel; 0 = unlimited, Table 2)"));
   }
   const HierarchicalShadowMap& hsm = *structures.hsm;
   // The probe's view of each range query: the nodes it read, recorded with the decision they led to.
@@ -454,16 +454,16 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     recorder->beginGroup("search area " + std::to_string(refinement));
     recorder->quantity("kernel_half_texels", half, "texels",
       refinement == 0 ? cite("Fig. 2 b (the light seen from the receiver, at the near plane)")
-                      : cite("Fig. 2 b, L146-156 (refined: at the minimum depth of the previous area)"));
+                      : cite("Fig. 2 b, §3 (refined: at the minimum depth of the previous area)"));
     recorder->kernel({ "search area", glm::dvec2(search.area.lo), glm::dvec2(search.area.hi + 1),
       "refinement " + std::to_string(refinement), cite("Fig. 2 b (kernel plus one ring of texels)") });
     if (search.query.lo != search.area.lo || search.query.hi != search.area.hi)
     {
       recorder->kernel({ "grown query", glm::dvec2(search.query.lo), glm::dvec2(search.query.hi + 1),
-        "refinement " + std::to_string(refinement), cite("L583-611, Fig. 7 (grown to the micro-occluders' support)") });
+        "refinement " + std::to_string(refinement), cite("§6, Fig. 7 (grown to the micro-occluders' support)") });
     }
-    recorder->quantity("query_min_depth", depthRange.x, "linear depth", cite("L146-156 (min over the query, from the HSM)"));
-    recorder->quantity("query_max_depth", depthRange.y, "linear depth", cite("L146-156 (max over the query, from the HSM)"));
+    recorder->quantity("query_min_depth", depthRange.x, "linear depth", cite("§3 (min over the query, from the HSM)"));
+    recorder->quantity("query_max_depth", depthRange.y, "linear depth", cite("§3 (max over the query, from the HSM)"));
     recordQueryNodes(decision);
   };
   glm::dvec2 half = geometry.kernelHalfTexels(geometry.nearDepth);
@@ -513,8 +513,8 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     {
       recorder->beginGroup("growth test");
       recorder->kernel({ growth ? "area's own query" : "grown query", glm::dvec2(area.lo), glm::dvec2(area.hi + 1),
-        otherAreaLit ? "lit" : "not lit", cite("L583-611, Fig. 7 (the other query decides the growth class)") });
-      recorder->quantity("query_min_depth", otherRange.x, "linear depth", cite("L583-611, Fig. 7"));
+        otherAreaLit ? "lit" : "not lit", cite("§6, Fig. 7 (the other query decides the growth class)") });
+      recorder->quantity("query_min_depth", otherRange.x, "linear depth", cite("§6, Fig. 7"));
       recorder->quantity("comparison_depth_max", otherComparison, "linear depth", "ShadowLab: the largest comparison depth over it");
       recordQueryNodes(otherAreaLit ? "lit" : "not lit");
     }
@@ -531,7 +531,7 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     recorder->category("range_decision",
       rangeClass == Ss08Class::Lit ? "lit: min >= every comparison depth"
         : rangeClass == Ss08Class::Umbra ? "umbra: max < every comparison depth" : "penumbra: back-project",
-      cite("L154-156 (lit / umbra from the search area's depth range)"));
+      cite("§3 (lit / umbra from the search area's depth range)"));
   }
   if (growth && search.classification == Ss08Class::Penumbra && litFor(search.area))
   {
@@ -554,10 +554,10 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
       recorder->category("growth_class", growth
           ? "penumbra only by the grown query (the area's own range says lit): back-projected"
           : "lit by the area's own range, penumbra by the grown one: left lit (the over-precision artifact)",
-        cite("L583-611, Fig. 7 (over-precision)"));
+        cite("§6, Fig. 7 (over-precision)"));
     }
     recorder->category("class", ss08Categories[static_cast<int>(search.classification)].label,
-      cite("L154-156, Fig. 7"));
+      cite("§3, Fig. 7"));
     recorder->beginGroup("level of quality");
     recorder->quantity("span", search.span, "texels", "ShadowLab: the search area's larger side minus one, level-0 texels");
     recorder->quantity("search_area_texels", search.span + 1, "texels", cite("Fig. 2 b (the search area's larger side)"));
@@ -568,10 +568,10 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
       "ShadowLab: the least level j with span - extra <= (b - 1 - extra) 2^j (at most b slots per axis at ceil(l))");
     recorder->quantity("loq_raw", search.levelRaw, "levels",
       values.getInt("force_level") >= 0 ? std::string("ShadowLab: force_level")
-        : fromLog2 ? cite("L352-356, L818-820 (l = log2((span - extra) / (b - 1 - extra)), the project's rule)")
-                   : cite("L352-356, L818-820 (an integer level: level 0 when span <= b - 1, the top level when b - 1 - extra <= 0)"));
+        : fromLog2 ? cite("§4.2, §8 (l = log2((span - extra) / (b - 1 - extra)), the project's rule)")
+                   : cite("§4.2, §8 (an integer level: level 0 when span <= b - 1, the top level when b - 1 - extra <= 0)"));
     recorder->category("loq_state", loqStateLabels[static_cast<int>(search.state)],
-      cite("L363-368, L813-817 (who the smoothing averages and where it stops)"));
+      cite("§4.2, §8 (who the smoothing averages and where it stops)"));
   }
   return search;
 }
@@ -849,20 +849,20 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     recorder->beginGroup("result");
     if (search.lookup.sample.evaluated)
     {
-      recorder->quantity("level_floor", result.levelFloor, "level", cite("L370-392 (floor(l); 0 where no back-projection)"));
-      recorder->quantity("blend_alpha", result.blendAlpha, "", cite("L370-392 (weight of ceil(l); 0 where one level)"));
+      recorder->quantity("level_floor", result.levelFloor, "level", cite("§4.2 (floor(l); 0 where no back-projection)"));
+      recorder->quantity("blend_alpha", result.blendAlpha, "", cite("§4.2 (weight of ceil(l); 0 where one level)"));
       recorder->quantity("loq_budget_violation", result.budgetViolation, "levels",
-        cite("L363-368 (levels the smoothing lowered ceil(l) below the budget's)"));
-      recorder->quantity("query_growth_texels", result.queryGrowth, "texels", cite("L583-611, Fig. 7 (query grown by)"));
+        cite("§4.2 (levels the smoothing lowered ceil(l) below the budget's)"));
+      recorder->quantity("query_growth_texels", result.queryGrowth, "texels", cite("§6, Fig. 7 (query grown by)"));
       recorder->quantity("micro_occluders", result.microOccluders, "count", cite("Table 2 (slots examined, both levels)"));
       recorder->quantity("micro_occluders_floor", result.slotsPerAxis[0].x * result.slotsPerAxis[0].y, "count",
-        cite("L818-826 (slots floor(l) alone examines)"));
+        cite("§8 (slots floor(l) alone examines)"));
       recorder->quantity("micro_occluders_ceil", result.slotsPerAxis[1].x * result.slotsPerAxis[1].y, "count",
-        cite("L818-826 (slots ceil(l) alone examines)"));
+        cite("§8 (slots ceil(l) alone examines)"));
       recorder->quantity("occluded_bits", result.occludedBitsBlended, "light samples (of 256)",
-        cite("L842-853 (the bitmask's popcount, blended as V; 0 with area accumulation)"));
+        cite("§8 (the bitmask's popcount, blended as V; 0 with area accumulation)"));
       recorder->quantity("area_overcount", result.areaOvercount, "fraction of light area",
-        cite("L140-144 (summed areas minus the bitmask's coverage: the overlaps area accumulation counts twice)"));
+        cite("§3 (summed areas minus the bitmask's coverage: the overlaps area accumulation counts twice)"));
       if (search.classification == Ss08Class::CutShort)
       {
         recorder->category("cut_short", format("the GPU's slot loop stops near ", ss08LoopCap,
@@ -871,9 +871,9 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
       }
     }
     const int code = static_cast<int>(search.classification);
-    recordCode(*recorder, "classification", code, ss08Categories[code].label, cite("L154-156, Fig. 7"));
+    recordCode(*recorder, "classification", code, ss08Categories[code].label, cite("§3, Fig. 7"));
     recorder->quantity("visibility", result.sample.visibility, "",
-      cite("L370-392 (V = (1 - a) V(floor l) + a V(ceil l))"));
+      cite("§4.2 (V = (1 - a) V(floor l) + a V(ceil l))"));
   };
   if (!search.lookup.sample.evaluated)
   {
@@ -910,11 +910,11 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
   if (recorder)
   {
     recorder->beginGroup("blend");
-    recorder->quantity("loq", level, "levels", cite("Fig. 3 step 2, L363-368 (the smoothed LOQ map at the pixel)"));
-    recorder->quantity("level_ceil", levelCeil, "level", cite("L370-392 (ceil(l))"));
-    recorder->quantity("blend_band", values.get("blend_band"), "levels", cite("L380-383 (1: always; GBP07: 0.1)"));
-    recorder->quantity("weight_floor", weights[0], "", cite("L370-392 (1 - a)"));
-    recorder->quantity("weight_ceil", weights[1], "", cite("L370-392 (a)"));
+    recorder->quantity("loq", level, "levels", cite("Fig. 3 step 2, §4.2 (the smoothed LOQ map at the pixel)"));
+    recorder->quantity("level_ceil", levelCeil, "level", cite("§4.2 (ceil(l))"));
+    recorder->quantity("blend_band", values.get("blend_band"), "levels", cite("§4.2 (1: always; GBP07: 0.1)"));
+    recorder->quantity("weight_floor", weights[0], "", cite("§4.2 (1 - a)"));
+    recorder->quantity("weight_ceil", weights[1], "", cite("§4.2 (a)"));
   }
   Ss08Accumulator accumulator{ values, structures, search, result };
   accumulator.receiverXy = (search.geometry.windowMin + search.lookup.sm.uvTexels * search.geometry.texelTangent) * search.geometry.d;
@@ -937,15 +937,15 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     if (recorder)
     {
       recorder->beginGroup("level " + std::to_string(levels[k]) + (k == 0 ? " (floor)" : " (ceil)"));
-      recorder->quantity("slot_lo", glm::dvec2(slots.lo), "level-j texels", cite("L818-820 (first slot examined)"));
-      recorder->quantity("slot_hi", glm::dvec2(slots.hi), "level-j texels", cite("L818-820 (last slot examined)"));
+      recorder->quantity("slot_lo", glm::dvec2(slots.lo), "level-j texels", cite("§8 (first slot examined)"));
+      recorder->quantity("slot_hi", glm::dvec2(slots.hi), "level-j texels", cite("§8 (last slot examined)"));
       recorder->quantity("slots_per_axis", glm::dvec2(result.slotsPerAxis[k]), "slots",
-        cite("L818-820 (at most b at ceil(l), 2b - 1 at floor(l))"));
+        cite("§8 (at most b at ceil(l), 2b - 1 at floor(l))"));
       recorder->quantity("receiver_light_xy", accumulator.receiverXy, "world units",
         "ShadowLab: the receiver in light coordinates (light view x, y at its depth)");
       recorder->quantity("micro_occluder_bias", search.bias, "linear depth",
         "ShadowLab: the receiver's depth bias; with level_bias=on a micro-occluder above level 0 adds the receiver "
-        "plane's drop over its footprint (001 §9 leaves biasing across levels to future work)");
+        "plane's drop over its footprint (SS08 §9 leaves biasing across levels to future work)");
     }
     double area = 0.0;
     std::array<bool, ss08BitmaskSampleCount> mask{};
@@ -965,7 +965,7 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     double levelVisibility = std::clamp(1.0 - area / lightArea, 0.0, 1.0);
     if (bitmask)
     {
-      // SS07's occlusion bitmask (L842-853): V = 1 - popcount / N; area_overcount = the area's fraction minus it.
+      // SS07's occlusion bitmask (§8): V = 1 - popcount / N; area_overcount = the area's fraction minus it.
       const int bits = static_cast<int>(std::count(mask.begin(), mask.end(), true));
       result.occludedBits[static_cast<std::size_t>(k)] = bits;
       levelVisibility = 1.0 - static_cast<double>(bits) / ss08BitmaskSampleCount;
@@ -976,15 +976,15 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     if (recorder)
     {
       recorder->quantity("occluded_area", area, "world units^2",
-        cite("L127-138 (back-projected micro-occluders' areas over the light, accumulated: overlaps count twice)"));
+        cite("§3 (back-projected micro-occluders' areas over the light, accumulated: overlaps count twice)"));
       recorder->quantity("light_area", lightArea, "world units^2", "scene (square light)");
       if (bitmask)
       {
         recorder->quantity("level_occluded_bits", result.occludedBits[static_cast<std::size_t>(k)], "light samples (of 256)",
-          cite("L140-144, L842-853 (the occlusion bitmask's popcount: samples inside some back-projection)"));
+          cite("§3, §8 (the occlusion bitmask's popcount: samples inside some back-projection)"));
       }
       recorder->quantity("level_visibility", levelVisibility, "", bitmask
-          ? cite("L842-853 (1 - popcount / 256)") : cite("L127-138 (1 - occluded area / light area, clamped)"));
+          ? cite("§8 (1 - popcount / 256)") : cite("§3 (1 - occluded area / light area, clamped)"));
     }
   }
   result.sample.visibility = visibility;

@@ -1,35 +1,36 @@
-// Technique `ss08`: quality-scalable soft shadow mapping (Schwarz and Stamminger 2008, paper 001): soft shadow
+// Technique `ss08`: quality-scalable soft shadow mapping (Schwarz and Stamminger 2008, SS08): soft shadow
 // mapping by back-projection of micro-occluders whose shadow-map level varies per pixel under a budget, with a
 // smoothed level-of-quality (LOQ) map and alpha blending between levels so that the quality changes without
-// seams. Square area lights. Paper: ../shared/papers/quality-scalability-ssm-schwarz2008.txt (cited as L...).
+// seams. Square area lights. Cited by section, figure
+// and table as printed in the paper (docs/bibliography.md).
 //
 // Pipeline (Fig. 3), four full-screen passes (vtkSLSs08Pass):
-//  1. search (shaders/ss08/Ss08Search.glsl): per pixel the budget b_mo(x, y) (L352-356; `budget_map`), the
-//     search area of Fig. 2 b refined `kernel_refinements` times (L146-156) with each depth-range query grown to
-//     the whole support of the level-j micro-occluders it partly covers (L583-611, Fig. 7; `growth`), lit /
-//     umbra from that range (L154-156), and the fractional level l, written to the LOQ map. The rule for l is
+//  1. search (shaders/ss08/Ss08Search.glsl): per pixel the budget b_mo(x, y) (§4.2; `budget_map`), the
+//     search area of Fig. 2 b refined `kernel_refinements` times (§3) with each depth-range query grown to
+//     the whole support of the level-j micro-occluders it partly covers (§6, Fig. 7; `growth`), lit /
+//     umbra from that range (§3), and the fractional level l, written to the LOQ map. The rule for l is
 //     the project's (the paper gives none): with span = the search area's larger side minus one, in level-0
 //     texels, l = clamp(log2(span / (b - 1)), 0, L) for micropatches, whose slots examined per axis at level j
 //     are at most ceil(span / 2^j) + 1, so level ceil(l) examines at most b per axis and floor(l) at most
-//     2b - 1 (L818-820). Microrects may take one slot more on the high side (ss08SlotRange), at most
+//     2b - 1 (§8). Microrects may take one slot more on the high side (ss08SlotRange), at most
 //     ceil((span + 2^j - 1) / 2^j) + 1, so for them l = log2((span - 1) / (b - 2)): at most b at ceil(l), 2b - 2
 //     at floor(l). Either way level 0 when span <= b - 1. b = 0 is unlimited: level 0, no smoothing, no blending
 //     (Table 2's caption). b = 1 (and b = 2 with microrects) is met by the top level L only (one texel for the
 //     map). `force_level` sets l for experiments.
 //  2-3. smoothing (Ss08LoqSmoothing.glsl): the LOQ map filtered by a separable 11 x 11 box whose runs stop at
 //     camera-depth discontinuities (`smoothing_depth_threshold`) and at pixels that do not back-project
-//     (L363-368, L813-817); `loq_floor` = raw keeps l >= l_raw (the budget); `none` lets smoothing lower it
+//     (§4.2, §8); `loq_floor` = raw keeps l >= l_raw (the budget); `none` lets smoothing lower it
 //     and `loq_budget_violation` counts the levels lost.
 //  4. visibility (Ss08Visibility.glsl): the micro-occluders of floor(l) and ceil(l) back-projected and
-//     accumulated by area, blended V = (1 - a) V(floor l) + a V(ceil l) with a = l - floor(l) (L370-392);
-//     `blend_band` < 1 blends only over the last band of each level (0.1 = GBP07's suggestion, L380-383), 0 does
+//     accumulated by area, blended V = (1 - a) V(floor l) + a V(ceil l) with a = l - floor(l) (§4.2);
+//     `blend_band` < 1 blends only over the last band of each level (0.1 = GBP07's suggestion, §4.2), 0 does
 //     not blend (ceil(l) alone).
 // Micro-occluders (`micro_occluder`): micropatches, level-j texels of the min-max pyramid at their minimum depth
-// (L127-138, L436-437), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, lightspace/microrect), whose
+// (§3, §5.1), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, lightspace/microrect), whose
 // extents may overlap (area accumulation then over-occludes; `accumulation=bitmask` counts each sample once).
 // A micro-occluder occludes when its depth is in front of the receiver's comparison depth at its centre, less
 // (`level_bias`, on by default, levels above 0) how much nearer the receiver's tangent plane comes over the
-// micro-occluder's footprint: min aggregation puts coarse texels in front of a tilted receiver (001 §9 leaves
+// micro-occluder's footprint: min aggregation puts coarse texels in front of a tilted receiver (SS08 §9 leaves
 // biasing across levels to future work). It does not grow with the level alone: scaling the bias by 2^level lit
 // the umbra of occluders close to the light, whose large kernels select levels 6 and more.
 // Acceleration structure (`hsm`): mipmap = the HSM, nbuffers = the MSSM (SS07's multi-scale shadow map is
@@ -37,9 +38,9 @@
 // Buffers: budget, search_area_texels, loq_raw, loq, level_floor, blend_alpha, micro_occluders (slots
 // examined, both levels: Table 2's count), classification (Ss08Class), loq_budget_violation,
 // query_growth_texels, micro_occluders_floor / _ceil (the slots each level alone would examine: the blend
-// overhead's baselines, L818-826); occluded_bits and area_overcount (accumulation=bitmask, 0 otherwise).
+// overhead's baselines, §8); occluded_bits and area_overcount (accumulation=bitmask, 0 otherwise).
 // Accumulation (`accumulation`): area (the clipped areas summed, overlaps counted twice) or bitmask (SS07's
-// occlusion bitmask, L140-144, L842-853: one bit per light sample of ss08BitmaskSamples(), OR-ed over a level's
+// occlusion bitmask, §3, §8: one bit per light sample of ss08BitmaskSamples(), OR-ed over a level's
 // micro-occluders, V = 1 - popcount / 256; each micro-occluder's back-projection is an axis-aligned rectangle,
 // so its bits are whole runs of the 16 x 16 grid's cells plus the samples of its <= 2 boundary rows and columns).
 #pragma once
@@ -87,11 +88,11 @@ enum class LoqState
   Fixed = 2     // back-projects at a level smoothing keeps (unlimited budget, force_level): a stop
 };
 
-constexpr int ss08SmoothingRadius = 5; // 11 x 11 support (L814-815)
+constexpr int ss08SmoothingRadius = 5; // 11 x 11 support (§8)
 
 // accumulation=bitmask: the light samples, the project's shared set (lightspace/LightSampleSet.h) as pattern
 // `stratified`, N = 256, seed ss08BitmaskSeed, its base points only (no per-pixel shift): one jittered point per
-// cell of a 16 x 16 grid on the unit square, "jittered 16 x 16" as the paper (L846). Sample (i, j) = base point
+// cell of a 16 x 16 grid on the unit square, "jittered 16 x 16" as the paper (§8). Sample (i, j) = base point
 // j * 16 + i lies in cell (i, j); on the light it is at ((u - 1/2) size, (v - 1/2) size) in light view x, y.
 constexpr int ss08BitmaskGridSide = 16;
 constexpr int ss08BitmaskSampleCount = ss08BitmaskGridSide * ss08BitmaskGridSide;

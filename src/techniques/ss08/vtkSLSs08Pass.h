@@ -23,7 +23,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
   // Table 2's columns (percentage of back-projecting pixels, mean and standard deviation of the micro-occluders
-  // they examine), the blend overhead against floor(l) alone and against ceil(l) alone (L818-826), the mean
+  // they examine), the blend overhead against floor(l) alone and against ceil(l) alone (§8), the mean
   // level and the pixels smoothing pushed below their budget's level.
   std::map<std::string, double> CollectStatistics() override;
 

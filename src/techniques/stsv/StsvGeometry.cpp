@@ -77,7 +77,7 @@ StsvPointTransform stsvPointTransform(const StsvTriangle& triangle, const glm::d
 {
   StsvPointTransform transform;
   // Eq. 3: (a, b, e) = M (v0 - p). v0 - p = a e1 + b e2 - e n, so e = n . (p - v0), the signed distance of p
-  // (the text's "orthogonal distance from p to t", L227, with its sign), and (-a, -b) are the barycentrics of p's
+  // (the text's "orthogonal distance from p to t", §2.4, with its sign), and (-a, -b) are the barycentrics of p's
   // foot point on the plane.
   transform.planeOffset = triangle.triangleFromWorld * (triangle.vertices[0] - p);
   const double e = transform.planeOffset.z;
@@ -90,7 +90,7 @@ StsvPointTransform stsvPointTransform(const StsvTriangle& triangle, const glm::d
   // 1 (see the header; decided by StsvEq1.HomogeneousBarycentricsEqualRayTriangleAndDecideW).
   transform.projection = glm::dmat3(glm::dvec3(1.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0),
     glm::dvec3(-transform.planeOffset.x / e, -transform.planeOffset.y / e, 1.0 / e));
-  // J = W M (003 L343-345), once per p.
+  // J = W M (Forest et al. 2009 §2.4), once per p.
   transform.barycentricFromSample = transform.projection * triangle.triangleFromWorld;
   return transform;
 }
@@ -106,7 +106,7 @@ StsvSampleEvaluation evaluateStsvSample(const StsvTriangle& triangle, const Stsv
   // Eq. 1 without S: s*_h = J (s - p). z = 1/lambda, lambda the line parameter of the plane hit from p towards s.
   const glm::dvec3 sh = transform.barycentricFromSample * (sample - p);
   result.homogeneousBarycentric = sh;
-  // The paper's test (L346-350, Appendix A's SUB.CC0 / LT.xyzz): u >= 0, v >= 0, u + v <= 1 in homogeneous form;
+  // The paper's test (§2.4, Appendix A's SUB.CC0 / LT.xyzz): u >= 0, v >= 0, u + v <= 1 in homogeneous form;
   // it implies z >= 0, i.e. lambda > 0, but not lambda < 1.
   result.insideTriangle = sh.x >= 0.0 && sh.y >= 0.0 && sh.z >= sh.x + sh.y;
   // ShadowLab's added check: lambda < 1 <=> z > 1, the sample beyond the plane seen from p.
@@ -190,7 +190,7 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
   const auto& v = triangle.vertices;
   stsv.trianglePlane = planeThrough(-double(side) * triangle.normal, v[0]);
 
-  // Step 1 (L180-206): the vertex closest to c stays, the others move towards c to its distance.
+  // Step 1 (§2.2): the vertex closest to c stays, the others move towards c to its distance.
   std::array<double, 3> distance{};
   for (int i = 0; i < 3; ++i)
   {
@@ -240,7 +240,7 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
   const auto& cap = stsv.frontCap;
   stsv.frontCapPlane = planeThrough(capNormal, cap[0]);
 
-  // Step 2 (L206-209): the outer plane of each cap edge (i, i + 1). In the section across the edge, the piece's
+  // Step 2 (§2.2): the outer plane of each cap edge (i, i + 1). In the section across the edge, the piece's
   // corners are directions from the edge; the outer tangent goes through the corner whose direction is closest to
   // the cap's own direction (towards the opposite vertex o): every other corner is then on one side, o on the other.
   for (std::size_t i = 0; i < 3; ++i)
@@ -289,7 +289,7 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
     stsv.outerPlaneCorner[i] = best;
   }
 
-  // Step 3 (L210-213): vertex i is shared by the planes of edges (i - 1, i) and (i, i + 1); its extrusion runs along
+  // Step 3 (§2.2): vertex i is shared by the planes of edges (i - 1, i) and (i, i + 1); its extrusion runs along
   // their intersection, away from the cone's apex: where the third plane's distance grows. m_prev x m_next . m_opp
   // = det(m_0, m_1, m_2) for every i, so one sign serves all three; when the planes share a direction (a prism, det
   // = 0) the cap's normal orients each.
@@ -315,7 +315,7 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
     stsv.extrusion[i] = (orientation < 0.0 ? -1.0 : 1.0) * direction / length;
   }
 
-  // Step 4 (L213-214, L536-537): the back cap at the level of the scene box along the cap's normal, just beyond the
+  // Step 4 (§2.2, §4.2): the back cap at the level of the scene box along the cap's normal, just beyond the
   // box's farthest corner, so every scene point inside the outer planes and the front cap is inside the closed
   // volume. Extrusions that would have to run further than kStsvMaxExtrusion are cut and flagged.
   const glm::dvec3 boxMin = sceneBounds.empty() ? glm::dvec3(0.0) : sceneBounds.min;
@@ -383,7 +383,7 @@ std::vector<Stsv> buildStsvs(const StsvTriangle& triangle, const Light& light, c
   std::vector<Stsv> volumes;
   if (above && below)
   {
-    // 003 §6 L847-852: both faces of t are lit; one STSV per side, each for its own piece of the light, whose
+    // Forest et al. 2009 §6: both faces of t are lit; one STSV per side, each for its own piece of the light, whose
     // centre is the piece's corner mean (inside it: the piece is convex).
     for (const int side : { 1, -1 })
     {

@@ -1,16 +1,16 @@
-// The CPU core of soft textured shadow volumes (Forest, Barthe, Guennebaud & Paulin 2009 = paper 003, "STSV"), in
+// The CPU core of soft textured shadow volumes (Forest, Barthe, Guennebaud & Paulin 2009 = Forest et al. 2009, "STSV"), in
 // double precision and written as the twin the GLSL will follow line by line: per perforated triangle ("S-triangle",
-// 003 L142-144) the matrices of Eq. 1-5 and the per-sample transmittance test (§2.4, L220-365, Appendix A
-// L1136-1200), and the volume (§2.2 L176-214, §4.2 L534-539, Fig. 6) with its point-in-volume test (§2.3 L215-219).
+// Forest et al. 2009 §2) the matrices of Eq. 1-5 and the per-sample transmittance test (§2.4, Appendix A
+// Appendix A), and the volume (§2.2, §4.2, Fig. 6) with its point-in-volume test (§2.3).
 // tests/unit/StsvTest.cpp checks all of it against ray/triangle intersection, closed forms and brute force.
 //
-// Eq. 1-5 as reconstructed (the text copy is garbled; reading notes Part 2, C5) and as decided by the tests:
+// Eq. 1-5 as reconstructed (the equations are hard to read in the text) and as decided by the tests:
 //   Eq. 2, per triangle:  M = [ v1 - v0 | v2 - v0 | -n ]^-1   (3 x 3, columns; n the unit normal (v1-v0)x(v2-v0))
 //   Eq. 3, per point p:   (a, b, e) = M (v0 - p);   W = [ 1 0 -a/e ]
 //                                                       [ 0 1 -b/e ]
 //                                                       [ 0 0  1/e ]
 //   Eq. 1:                s*_h = J (s - p),  J = W M    (the input is the sample RELATIVE TO p, world units)
-//   occluded by t iff     s*_h.x >= 0, s*_h.y >= 0, s*_h.z >= s*_h.x + s*_h.y         (the paper's test, L346-350)
+//   occluded by t iff     s*_h.x >= 0, s*_h.y >= 0, s*_h.z >= s*_h.x + s*_h.y         (the paper's test, §2.4)
 //                     and s*_h.z > 1                                (ShadowLab's added check, see "The gap" below)
 //                     and the texel at s is opaque:
 //   Eq. 4, per triangle:  S = [ t1.x-t0.x  t2.x-t0.x  t0.x ]
@@ -21,15 +21,15 @@
 // plane at lambda = e / d_h (e = n.(p - v0) is the SIGNED distance of p, which is exactly M(v0 - p).z), where its
 // barycentrics are u = -a + lambda d_u, v = -b + lambda d_v (u weights v1, v weights v2, as in RayTriangle.h).
 // Multiplied by d_h / e: (d_u - (a/e) d_h, d_v - (b/e) d_h, d_h / e) = W M d, so u = x/z, v = y/z and
-// z = d_h / e = 1 / lambda. The last entry of W is therefore 1/e; the text shows "1" (L289-294), which equals 1/e
+// z = d_h / e = 1 / lambda. The last entry of W is therefore 1/e; the paper prints "1" (§2.4, Eq. 2), which equals 1/e
 // only for e = 1. StsvEq1.HomogeneousBarycentricsEqualRayTriangleAndDecideW measures the readings over 10^5 cases
 // against Moller-Trumbore: 1/e agrees to 7.1e-13 (lines at least 0.6 degrees off the plane; closer to grazing both
 // methods lose ~1e-16/sin) with no wrong decision; "1" is off by up to 9.2e5 with 33 % of decisions wrong, an unsigned
-// e ("orthogonal distance", L227) by 5.3e2 (18 % wrong, every p on the -n side), J applied to s itself instead of
+// e ("orthogonal distance", §2.4) by 5.3e2 (18 % wrong, every p on the -n side), J applied to s itself instead of
 // s - p by 2.2e5 (35 % wrong). The sign and length of n do not matter: flipping or scaling n scales d_h and e alike.
 // Appendix A's DP3-only code (no translation term) also says the input is s - p.
 //
-// The gap in the paper's test (reading notes C5). z >= x + y >= 0 gives lambda > 0 but not lambda < 1: a sample on
+// The gap in the paper's test (§2.4). z >= x + y >= 0 gives lambda > 0 but not lambda < 1: a sample on
 // p's side of the plane whose line from p, continued past s, meets t passes as occluded. s and p lie on opposite
 // sides iff lambda < 1 iff z > 1 (for either sign of e), the added check. Where it matters (proved, and measured in
 // StsvTest): for p strictly inside an STSV's outer planes, no sample of that STSV's light piece can lie between p and
@@ -44,17 +44,17 @@
 // the light's square: 33 174 false of 384 000 pairs). stsvOcclusion evaluates only the STSV's own side's samples and
 // keeps the check.
 //
-// The volume (C3). For each side of t's plane that holds part of the light (the whole light's outline, or both
-// pieces of it when the plane cuts it, 003 §6 L847-852), with c the light's centre (of that piece when cut):
+// The volume (§2.2). For each side of t's plane that holds part of the light (the whole light's outline, or both
+// pieces of it when the plane cuts it, Forest et al. 2009 §6), with c the light's centre (of that piece when cut):
 //  1. front cap t': the vertex of t closest to c stays, the other two move towards c to the same distance (AAM03's
-//     robust construction, L180-206);
-//  2. one outer plane per edge of t': the plane through the edge tangent to the light piece "on the outside" (L206-
+//     robust construction, §2.2);
+//  2. one outer plane per edge of t': the plane through the edge tangent to the light piece "on the outside" (§2.2-
 //     209), i.e. with every corner of the piece on its negative side and t' on its positive side. In the section
 //     across the edge it is the tangent through the corner whose direction is closest to t' (largest cosine);
-//  3. the edge between two adjacent outer planes: direction m_prev x m_next (L210-213), oriented away from the
+//  3. the edge between two adjacent outer planes: direction m_prev x m_next (§2.2), oriented away from the
 //     cone's apex (the sign of det(m_prev, m_next, m_opposite), the same for all three);
 //  4. back cap: the three cap vertices moved along those directions to the level of the scene box along the front
-//     cap's normal (L213-214, "clamp the extrusion at the level of the scene bounding box", L536-537), so the back
+//     cap's normal (§2.2, "clamp the extrusion at the level of the scene bounding box", §4.2), so the back
 //     cap lies beyond every scene point; an extrusion that would need to go further than kStsvMaxExtrusion box
 //     diagonals is cut there and the STSV says so (closedVolumeTruncated), as it does when two outer planes
 //     coincide (t cuts through the light itself: the region is unbounded along t's plane).
@@ -69,14 +69,14 @@
 // light's side of such a t'). ShadowLab then uses t itself as the front cap (frontCapIsTriangle): t's plane always has
 // the piece on its near side. The paper does not discuss this case.
 //
-// Point in STSV (C4, 003 L216-219 "on the same side of the four STSV planes"): the three outer planes and the front
+// Point in STSV (C4, Forest et al. 2009 §2.3 "on the same side of the four STSV planes"): the three outer planes and the front
 // cap plane. Those four bound the volume the GPU rasterises; the back cap is left out because it lies beyond the
 // scene box (no receiver is behind it). The triangle's own plane would be tighter (the slab between t' and t holds
 // no point this side's samples can be blocked for), and trianglePlane is given for that: over the 10^6 random points,
 // 40 % of the (point, STSV) inclusions block no sample with the front cap, 23 % with t's plane.
 //
 // Fig. 6's strip. Vertices 0, 1, 2 are the front cap, 3, 4, 5 the back cap (3 extruded from 0, ...); the strip
-// 3 4 5 2 3 0 4 1 2 0 (L569-570) draws the back cap, the three outer quads and the front cap (8 triangles) with
+// 3 4 5 2 3 0 4 1 2 0 (§4.2) draws the back cap, the three outer quads and the front cap (8 triangles) with
 // a coherent winding: frontCap is stored in the order that makes every strip triangle face outwards
 // (counter-clockwise seen from outside, GL's strip rule: odd triangles swap their first two vertices).
 #pragma once
@@ -93,7 +93,7 @@
 namespace sl
 {
 
-// One perforated triangle with its per-triangle matrices (constant per S-triangle, 003 L342, L537-539).
+// One perforated triangle with its per-triangle matrices (constant per S-triangle, Forest et al. 2009 §2.4, §4.2).
 struct StsvTriangle
 {
   std::size_t objectIndex = 0;   // Scene::objects index
@@ -125,7 +125,7 @@ struct StsvPointTransform
 
 // The relative skip distance: p within kStsvOnPlaneRelative x (longest edge of t) of t's plane is taken to lie on
 // t and is not shadowed by it (a fence pixel and its own triangle: a G-buffer position is float, ~6e-8 relative
-// off the plane, and the line from p would meet the plane at p's own, opaque, texel). Reading notes §2.3.
+// off the plane, and the line from p would meet the plane at p's own, opaque, texel).
 constexpr double kStsvOnPlaneRelative = 1e-6;
 // kStsvOnPlaneRelative times t's longest edge, world units.
 double stsvOnPlaneDistance(const StsvTriangle& triangle);
@@ -137,7 +137,7 @@ StsvPointTransform stsvPointTransform(const StsvTriangle& triangle, const glm::d
 // Which occlusion test a sample goes through.
 enum class StsvOcclusionTest
 {
-  Paper,                  // x >= 0, y >= 0, z >= x + y only (003 L346-350, Appendix A): has the gap
+  Paper,                  // x >= 0, y >= 0, z >= x + y only (Forest et al. 2009 §2.4, Appendix A): has the gap
   PaperAndOppositeSides,  // and z > 1: the sample and p on opposite sides of t's plane (ShadowLab's default)
 };
 
@@ -194,11 +194,11 @@ struct Stsv
 };
 
 // An extrusion is cut at this many times (scene box diagonal + distance from its front cap vertex to the box's
-// centre), keeping every vertex at float-friendly magnitudes (the reason for the paper's clamp, L536-537).
+// centre), keeping every vertex at float-friendly magnitudes (the reason for the paper's clamp, §4.2).
 constexpr double kStsvMaxExtrusion = 64.0;
 
 // The STSVs of `triangle` under `light`: none when the light lies in t's plane, one when it lies on one side, two
-// when t's plane cuts it (the paper's fix of the single light sample artifact, 003 §6 L847-852). The light's
+// when t's plane cuts it (the paper's fix of the single light sample artifact, Forest et al. 2009 §6). The light's
 // outline is lightOutline (DcsGeometry.h): a square's corners, the octagon around a disk (conservative), a point
 // light's centre. `sceneBounds` (the receivers' box) places the back caps.
 std::vector<Stsv> buildStsvs(const StsvTriangle& triangle, const Light& light, const Bounds& sceneBounds);
@@ -235,7 +235,7 @@ struct StsvPointOcclusion
 StsvPointOcclusion stsvPointOcclusion(const StsvSet& set, const Scene& scene, const glm::dvec3& p,
   const std::vector<glm::dvec3>& samples, StsvOcclusionTest test = StsvOcclusionTest::PaperAndOppositeSides);
 
-// Fig. 6's 10-vertex strip (L569-570): indices into {frontCap[0..2], backCap[0..2]} = vertices 0..5.
+// Fig. 6's 10-vertex strip (§4.2): indices into {frontCap[0..2], backCap[0..2]} = vertices 0..5.
 constexpr std::array<int, 10> kStsvStripOrder{ 3, 4, 5, 2, 3, 0, 4, 1, 2, 0 };
 // The strip's 10 positions.
 std::array<glm::dvec3, 10> stsvStrip(const Stsv& stsv);

@@ -161,7 +161,7 @@ KernelPcf planePcf(const ShadowMapInputs& inputs, const RulePixel& pixel, double
 // moments), which overestimates the lit fraction wherever a sub-kernel's depths spread beyond the receiver (§5 only
 // subdivides sub-kernels whose mean lies behind it). Penumbra pixels (and, with contact_test=subkernel_mean, contact
 // pixels, whose other sub-kernels still take the bound) are held to the PCF over their own w_p (avg_blocker_depth);
-// a pixel the blocker step (L11-15) called lit although w_i holds texels in front of it (the same bound, or VSM's lit
+// a pixel the blocker step (Alg. 1 L11-15) called lit although w_i holds texels in front of it (the same bound, or VSM's lit
 // assumption, hid them) to the PCF over the w_p those texels' mean depth gives. A lit pixel the HSM decided has no
 // such texel.
 void markChebyshevBound(const ApproximationContext& context, ImageF& codes, float code, double excess)
@@ -806,7 +806,7 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
     }
   }
 
-  // L11-15.
+  // Alg. 1 L11-15.
   evaluation.beginStep("blocker");
   const Accumulation blockers = evaluation.subdivide(search.lo, search.hi, values.choice("blocker_subdivision"),
     values.getInt("blocker_uniform_m"), values.getInt("blocker_tree_height"), false);
@@ -847,7 +847,7 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
       cite("Eq. 4 with z_unocc = t, combined with the PCF sub-kernels' blocker depths (§5.2), clamped to [near, d]"));
   }
 
-  // L16.
+  // Alg. 1 L16.
   const glm::dvec2 filterHalf = geometry.kernelHalfTexels(result.averageBlockerDepth);
   result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
   if (recorder)
@@ -879,7 +879,7 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
     }
   }
 
-  // L17-20.
+  // Alg. 1 L17-20.
   const TexelRectangle filter = kernelRectangle(uv, filterHalf, geometry.mapSize, &result.kernelEdgeMargin);
   if (recorder)
   {

@@ -118,7 +118,7 @@ TechniqueDescriptor yfgl09Technique()
     { "divergence_threshold", 0.8, 0.0, 1.0, "", "T_d of §4.3 (the paper: 0.8)", {}, false },
     { "edge_cost", 4.0, 0.0, 100.0, "", "Q_e of Eq. 6, cost of extracting an edge relative to visiting a node (Q_n = 1)", {}, false },
     { "visibility_cost", 8.0, 0.0, 100.0, "", "Q_v of Eq. 6, cost of back-projecting and integrating an edge for one pixel (Q_n = 1)", {}, false },
-    { "packet_cost", 0, 0, 1, "", "Eq. 6's visibility term for the packet: paper = Q_v w h, every pixel of the packet (000 L560-563); penumbra_pixels = Q_v times the packet's penumbra pixels only (trivial pixels integrate nothing)", { "paper", "penumbra_pixels" }, true },
+    { "packet_cost", 0, 0, 1, "", "Eq. 6's visibility term for the packet: paper = Q_v w h, every pixel of the packet (Yang et al. 2009 §4.3); penumbra_pixels = Q_v times the packet's penumbra pixels only (trivial pixels integrate nothing)", { "paper", "penumbra_pixels" }, true },
     { "coherence_depth", 0, 0, 2, "", "the depths Eq. 4's P_null compares (§4.3): linear = the packet's pixel depths minus bias against the kernel samples' linear light depths (the text's reading); comparison = the receiver-plane comparison depths over the packet kernel, the range Eq. 3's statuses use; window = the linear reading in the map's window (post-projective, hyperbolic) depth, as a depth buffer stores it", { "linear", "comparison", "window" }, true },
     subLightsParameter(),
   });
