@@ -20,6 +20,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sl
@@ -315,14 +316,20 @@ TEST(Ss08Msaa, ProbeReplaysTheFirstSampleAndRecordsTheResolve)
   EXPECT_EQ(probed, 3);
 }
 
+// The reference's per-sample G-buffer frames of `scene` and ss08's multisampled frame of it, size x size.
+std::pair<std::vector<FrameResult>, FrameResult> sampleFramesBesideMultisampledFrame(const Scene& scene, int size)
+{
+  return { test::renderSampleGBuffers(scene, size, size, kSamples),
+    test::renderDataset(scene, "ss08", size, size, { "shadow_map_size=256", "msaa=4" }) };
+}
+
 TEST(MultisampleReference, EachSampleGBufferSeesItsSamplePosition)
 {
   // Frame s of renderSampleGBuffers holds at pixel (x, y) the surface on the camera ray through window position
   // (x + p_s.x, y + p_s.y) of the unshifted camera, and covers what sample s of the multisampled G-buffer covers.
   constexpr int size = 64;
   const Scene scene = test::loadDataset("bunny");
-  const std::vector<FrameResult> samples = test::renderSampleGBuffers(scene, size, size, kSamples);
-  const FrameResult multi = test::renderDataset(scene, "ss08", size, size, { "shadow_map_size=256", "msaa=4" });
+  const auto [samples, multi] = sampleFramesBesideMultisampledFrame(scene, size);
   ASSERT_EQ(samples.size(), static_cast<std::size_t>(kSamples));
   const CameraView& camera = multi.camera;
   const ImageF& depths = bufferOf(multi, "msaa_sample_depth");
@@ -369,9 +376,7 @@ TEST(MultisampleReference, EachSampleGBufferTestsAlphaAtThePixelCentre)
   // differential sweep's seed 4: V 1 on the `leaves` quad against 0.36 traced on the ground below its holes). Measured:
   // 1316 of 16 384 pairs with the alpha test at each sample's own position, 8 at the pixel centre (uv's derivatives).
   constexpr int size = 64;
-  const Scene scene = test::loadDataset("fence");
-  const std::vector<FrameResult> samples = test::renderSampleGBuffers(scene, size, size, kSamples);
-  const FrameResult multi = test::renderDataset(scene, "ss08", size, size, { "shadow_map_size=256", "msaa=4" });
+  const auto [samples, multi] = sampleFramesBesideMultisampledFrame(test::loadDataset("fence"), size);
   ASSERT_EQ(samples.size(), static_cast<std::size_t>(kSamples));
   const ImageF& depths = bufferOf(multi, "msaa_sample_depth");
   int compared = 0;
