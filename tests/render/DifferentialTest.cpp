@@ -190,22 +190,30 @@ FlaggedBy flaggedBy(const FrameResult& frame, const std::string& label)
   return flagged;
 }
 
+// Seed 6 (a disk light over a quad at the near plane and lower casters) with `technique` at its defaults: the
+// configuration passes the reference, and `label` flags the pixel that missed most before the rule, on more than 20
+// pixels and fewer than a quarter of the frame.
+void expectSeed6PassesWithItsMissFlagged(const std::string& technique, const std::string& label, glm::ivec2 worstMiss)
+{
+  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 6 }, technique, "default");
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
+
+  const FrameResult frame = renderSeed(6, technique, { 64, 53 }, 512);
+  const FlaggedBy flagged = flaggedBy(frame, label);
+  std::cout << "[ measured ] " << technique << " seed 6: " << flagged.count << " pixels flagged '" << label << "'\n";
+  EXPECT_TRUE(flagged.at(worstMiss.x, worstMiss.y)) << "the worst miss before the rule";
+  EXPECT_GT(flagged.count, 20);
+  EXPECT_LT(flagged.count, 64 * 53 / 4);
+}
+
 // PCSS's blocker search is sized at the near plane (Fernando 2005 step 1): on seed 6 (a disk light over a quad at the
 // near plane and lower casters) it averages casters that cannot hide the light, which halves the penumbra kernel
 // (V 0.40 against 0.80 at pixel 33,40). The rule flags those pixels and few others: the configuration passes the
 // reference, and the flags stay a minority of the frame.
 TEST(Differential, PcssBlockerSearchBeyondTheLightIsFlaggedWhereItMisses)
 {
-  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 6 }, "pcss", "default");
-  ASSERT_EQ(outcomes.size(), 1u);
-  EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
-
-  const FrameResult frame = renderSeed(6, "pcss", { 64, 53 }, 512);
-  const FlaggedBy flagged = flaggedBy(frame, "blocker search beyond the light");
-  std::cout << "[ measured ] pcss seed 6: " << flagged.count << " pixels flagged 'blocker search beyond the light'\n";
-  EXPECT_TRUE(flagged.at(33, 40)) << "the worst miss before the rule";
-  EXPECT_GT(flagged.count, 20);
-  EXPECT_LT(flagged.count, 64 * 53 / 4);
+  expectSeed6PassesWithItsMissFlagged("pcss", "blocker search beyond the light", { 33, 40 });
 }
 
 // VSSM's planar sub-kernels take Chebyshev's bound (Eq. 1), an upper bound unless a sub-kernel's depths are two, one of
@@ -214,16 +222,7 @@ TEST(Differential, PcssBlockerSearchBeyondTheLightIsFlaggedWhereItMisses)
 // planar-occluder (one caster plane over the receiver, where the bound is exact) it flags nothing.
 TEST(Differential, VssmChebyshevBoundIsFlaggedWhereItOverestimates)
 {
-  const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 6 }, "vssm", "default");
-  ASSERT_EQ(outcomes.size(), 1u);
-  EXPECT_FALSE(outcomes.front().failed()) << describeFailure(outcomes.front());
-
-  const FrameResult frame = renderSeed(6, "vssm", { 64, 53 }, 512);
-  const FlaggedBy flagged = flaggedBy(frame, "chebyshev bound");
-  std::cout << "[ measured ] vssm seed 6: " << flagged.count << " pixels flagged 'chebyshev bound'\n";
-  EXPECT_TRUE(flagged.at(40, 41)) << "the worst miss before the rule";
-  EXPECT_GT(flagged.count, 20);
-  EXPECT_LT(flagged.count, 64 * 53 / 4);
+  expectSeed6PassesWithItsMissFlagged("vssm", "chebyshev bound", { 40, 41 });
 
   const FrameResult planar = test::renderDataset(test::loadDataset("planar-occluder"), "vssm", 96, 96);
   EXPECT_EQ(flaggedBy(planar, "chebyshev bound").count, 0);

@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <functional>
 #include <iterator>
 #include <limits>
 
@@ -97,21 +96,31 @@ KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double 
   return result;
 }
 
-// A pixel a rule examines: its published value, class and z_avg, and the receiver as the twin prepares it.
-struct RulePixel
+// The PCF over the kernel of blockers at `planeDepth` about the pixel's point: w_i at the near plane, w_p at z_avg.
+KernelPcf planePcf(const ShadowMapInputs& inputs, const ShadowLookup& lookup, const SoftShadowGeometry& geometry,
+  double planeDepth)
 {
-  float visibility = 0.0f;
-  VssmClass classification = VssmClass::NotTested;
-  double averageBlockerDepth = 0.0;
-  const ShadowLookup* lookup = nullptr;
-  const SoftShadowGeometry* geometry = nullptr;
-};
+  return pcfOver(inputs.shadowMapLinear, geometry, lookup.sample.bias,
+    kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(planeDepth), geometry.mapSize));
+}
 
-// Calls `mark` on every pixel no earlier rule marked, of a class `examines` accepts, that reaches the shadow test; sets
-// `code` where it returns true.
-void markReceivers(const ApproximationContext& context, ImageF& codes, float code,
-  const std::function<bool(VssmClass)>& examines,
-  const std::function<bool(const ShadowMapInputs&, const RulePixel&)>& mark)
+const char* const contactPcfDescription =
+  "a contact pixel's value differs by more than 0.05 from the PCF over its penumbra kernel w_p: §6.4 filters the "
+  "contact sub-kernels (or all of w_p, contact_test=blocker_average) by a 3 x 3 jittered bilinear PCF, nine taps "
+  "for the kernel's texels";
+
+// VSSM's two estimates of the PCF the filter step stands for, in one walk over the receivers no earlier rule marked
+// (each pixel's lookup and w_p PCF computed once):
+//  - `chebyshevCode` where the value exceeds that PCF by more than `excess`. Alg. 1 L17-20 estimate the PCF over w_p:
+//    the normal sub-kernels by Chebyshev's one-tailed bound (Eq. 1 on Eq. 5's moments), which overestimates the lit
+//    fraction wherever a sub-kernel's depths spread beyond the receiver (§5 only subdivides sub-kernels whose mean
+//    lies behind it). Penumbra pixels (and, with contact_test=subkernel_mean, contact pixels, whose other sub-kernels
+//    still take the bound) are held to the PCF over their own w_p (avg_blocker_depth); a pixel the blocker step
+//    (Alg. 1 L11-15) called lit although w_i holds texels in front of it (the same bound, or VSM's lit assumption,
+//    hid them) to the PCF over the w_p those texels' mean depth gives. A lit pixel the HSM decided has no such texel.
+//  - `contactCode` where a contact pixel (§6.4) lies otherwise more than `excess` from the PCF over its w_p.
+void markFilterEstimates(const ApproximationContext& context, ImageF& codes, float chebyshevCode, float contactCode,
+  double excess)
 {
   const FrameResult& frame = *context.frame;
   const NamedImage* visibility = frame.find("visibility");
@@ -123,83 +132,47 @@ void markReceivers(const ApproximationContext& context, ImageF& codes, float cod
   }
   const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
   const ParameterValues& values = frame.parameters;
+  const BiasSettings bias = biasSettings(values);
   const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
+  const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
   for (int y = 0; y < codes.height; ++y)
   {
     for (int x = 0; x < codes.width; ++x)
     {
       const auto pixelClass = static_cast<VssmClass>(static_cast<int>(classification->image.at(x, y)));
-      if (codes.at(x, y) != 0.0f || !examines(pixelClass))
+      const bool contact = pixelClass == VssmClass::Contact;
+      if (codes.at(x, y) != 0.0f || !(pixelClass == VssmClass::Penumbra || pixelClass == VssmClass::Lit || contact))
       {
         continue;
       }
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, bias, x, y);
       if (!lookup.sample.evaluated)
       {
         continue;
       }
       const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlaneBias, x, y);
-      const RulePixel pixel{ visibility->image.at(x, y), pixelClass, blockerDepth->image.at(x, y), &lookup, &geometry };
-      if (mark(inputs, pixel))
+      const double value = visibility->image.at(x, y);
+      double planeDepth = blockerDepth->image.at(x, y);
+      if (pixelClass == VssmClass::Lit)
       {
-        codes.at(x, y) = code;
-      }
-    }
-  }
-}
-
-// The PCF over the kernel of blockers at `planeDepth` about the pixel's point: w_i at the near plane, w_p at z_avg.
-KernelPcf planePcf(const ShadowMapInputs& inputs, const RulePixel& pixel, double planeDepth)
-{
-  const SoftShadowGeometry& geometry = *pixel.geometry;
-  return pcfOver(inputs.shadowMapLinear, geometry, pixel.lookup->sample.bias,
-    kernelRectangle(pixel.lookup->sm.uvTexels, geometry.kernelHalfTexels(planeDepth), geometry.mapSize));
-}
-
-// Marks with `code` each pixel whose value exceeds by more than `excess` the PCF the filter step estimates. Alg. 1
-// L17-20 estimate the PCF over w_p: the normal sub-kernels by Chebyshev's one-tailed bound (Eq. 1 on Eq. 5's
-// moments), which overestimates the lit fraction wherever a sub-kernel's depths spread beyond the receiver (§5 only
-// subdivides sub-kernels whose mean lies behind it). Penumbra pixels (and, with contact_test=subkernel_mean, contact
-// pixels, whose other sub-kernels still take the bound) are held to the PCF over their own w_p (avg_blocker_depth);
-// a pixel the blocker step (Alg. 1 L11-15) called lit although w_i holds texels in front of it (the same bound, or VSM's lit
-// assumption, hid them) to the PCF over the w_p those texels' mean depth gives. A lit pixel the HSM decided has no
-// such texel.
-void markChebyshevBound(const ApproximationContext& context, ImageF& codes, float code, double excess)
-{
-  const bool contactPerSubkernel = context.frame->parameters.choice("contact_test") == "subkernel_mean";
-  const auto filtered = [contactPerSubkernel](VssmClass pixelClass) {
-    return pixelClass == VssmClass::Penumbra || (contactPerSubkernel && pixelClass == VssmClass::Contact);
-  };
-  markReceivers(context, codes, code,
-    [&](VssmClass pixelClass) { return filtered(pixelClass) || pixelClass == VssmClass::Lit; },
-    [&](const ShadowMapInputs& inputs, const RulePixel& pixel) {
-      double planeDepth = pixel.averageBlockerDepth;
-      if (!filtered(pixel.classification))
-      {
-        const SoftShadowGeometry& geometry = *pixel.geometry;
-        const KernelPcf search = planePcf(inputs, pixel, geometry.nearDepth);
+        const KernelPcf search = planePcf(inputs, lookup, geometry, geometry.nearDepth);
         if (search.blocked == 0)
         {
-          return false;
+          continue;
         }
         planeDepth = std::clamp(search.blockedDepthSum / search.blocked, geometry.nearDepth, geometry.d);
       }
-      return pixel.visibility > planePcf(inputs, pixel, planeDepth).lit + excess;
-    });
-}
-
-const char* const contactPcfDescription =
-  "a contact pixel's value differs by more than 0.05 from the PCF over its penumbra kernel w_p: §6.4 filters the "
-  "contact sub-kernels (or all of w_p, contact_test=blocker_average) by a 3 x 3 jittered bilinear PCF, nine taps "
-  "for the kernel's texels";
-
-// Marks with `code` each contact pixel (§6.4) whose value lies more than `difference` from the PCF over its w_p.
-void markContactPcf(const ApproximationContext& context, ImageF& codes, float code, double difference)
-{
-  markReceivers(context, codes, code, [](VssmClass pixelClass) { return pixelClass == VssmClass::Contact; },
-    [&](const ShadowMapInputs& inputs, const RulePixel& pixel) {
-      return std::abs(pixel.visibility - planePcf(inputs, pixel, pixel.averageBlockerDepth).lit) > difference;
-    });
+      const double pcf = planePcf(inputs, lookup, geometry, planeDepth).lit;
+      if ((!contact || contactPerSubkernel) && value > pcf + excess)
+      {
+        codes.at(x, y) = chebyshevCode;
+      }
+      else if (contact && std::abs(value - pcf) > excess)
+      {
+        codes.at(x, y) = contactCode;
+      }
+    }
+  }
 }
 
 } // namespace
@@ -285,8 +258,7 @@ TechniqueDescriptor vssmTechnique()
   descriptor.accuracy.markApproximations = [shared = descriptor.accuracy.markApproximations, chebyshevCode,
                                              contactCode](const ApproximationContext& context, ImageF& codes) {
     shared(context, codes);
-    markChebyshevBound(context, codes, chebyshevCode, 0.05);
-    markContactPcf(context, codes, contactCode, 0.05);
+    markFilterEstimates(context, codes, chebyshevCode, contactCode, 0.05);
   };
   return descriptor;
 }
