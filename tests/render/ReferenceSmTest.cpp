@@ -119,7 +119,8 @@ TEST(ReferenceSm, AgreesWithTheRayTracedReferenceWithinItsDiscretisationError)
 
 // The probe's replay (ReferenceSmReplay: the K samples' hard tests, each map's texel replayed by a ray through its
 // centre, views fitted on the CPU) against the GPU on every covered pixel of two datasets: |GPU - replay| within the
-// pixel's tolerance (K 2^-24 of float accumulation plus 1/K per sample the replay marks uncertain). The measured
+// pixel's tolerance (K 2^-24 of float accumulation plus 1/K per sample the replay marks uncertain), and edge_samples
+// equal to the replay's count up to the samples whose edge decision it marks uncertain. The measured
 // maximum and the share of pixels with uncertain samples are printed: they are the probe's honest tolerance.
 TEST(ReferenceSm, ProbeReplaysTheKHardTestsOfEveryPixel)
 {
@@ -135,7 +136,11 @@ TEST(ReferenceSm, ProbeReplaysTheKHardTestsOfEveryPixel)
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult frame = test::renderDataset(scene, "reference-sm", 64, 64, c.settings);
     const ImageF& visibility = frame.find("visibility")->image;
+    const ImageF& edgeSamples = frame.find("edge_samples")->image;
     ReferenceSmReplay replay(frame, scene);
+    int withEdge = 0;
+    int edgeBeyond = 0;
+    std::string firstEdge;
     int evaluated = 0;
     int partial = 0;
     int withUncertain = 0;
@@ -159,6 +164,12 @@ TEST(ReferenceSm, ProbeReplaysTheKHardTestsOfEveryPixel)
         {
           maxCertainDifference = std::max(maxCertainDifference, difference);
         }
+        withEdge += pixel.edge > 0 ? 1 : 0;
+        if (std::abs(pixel.edge - edgeSamples.at(x, y)) > pixel.edgeUncertain && edgeBeyond++ == 0)
+        {
+          firstEdge = format("pixel ", x, ",", y, ": GPU ", edgeSamples.at(x, y), " edge samples, replay ", pixel.edge,
+            " (", pixel.edgeUncertain, " uncertain)");
+        }
         if (difference > pixel.tolerance && beyond++ == 0)
         {
           first = format("pixel ", x, ",", y, ": GPU ", visibility.at(x, y), ", replay ", pixel.visibility, " (", pixel.lit,
@@ -169,8 +180,11 @@ TEST(ReferenceSm, ProbeReplaysTheKHardTestsOfEveryPixel)
     std::cout << "[ measured ] reference-sm replay on " << c.dataset << " (K = " << replay.sampleCount() << "): "
               << evaluated << " pixels, " << partial << " partial, " << withUncertain << " with uncertain samples ("
               << uncertainSamples << " samples), max |GPU - replay| " << maxDifference << " (" << maxCertainDifference
-              << " where no sample is uncertain), " << beyond << " beyond the pixel's tolerance\n";
+              << " where no sample is uncertain), " << beyond << " beyond the pixel's tolerance; " << withEdge
+              << " pixels with edge samples, " << edgeBeyond << " counted otherwise than the replay\n";
     EXPECT_EQ(beyond, 0) << c.dataset << ": " << first;
+    EXPECT_EQ(edgeBeyond, 0) << c.dataset << ": " << firstEdge;
+    EXPECT_GT(withEdge, 20) << c.dataset << ": penumbrae hold edges within a texel";
     EXPECT_GT(evaluated, 64 * 64 / 4) << c.dataset;
     EXPECT_GT(partial, 20) << c.dataset;
     EXPECT_LT(withUncertain, evaluated / 10) << c.dataset << ": the margins excuse too much";

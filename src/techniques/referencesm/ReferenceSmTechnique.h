@@ -59,6 +59,8 @@ public:
     int lit = 0;
     int unreachable = 0;      // the receiver faces away from the sample or lies behind the light's plane
     int uncertain = 0;        // samples float rounding may decide the other way
+    int edge = 0;             // edge_samples: samples whose test a texel next to the receiver's decides otherwise
+    int edgeUncertain = 0;    // samples whose edge decision float rounding or rasterisation may flip
     // The largest |GPU - replay| this pixel allows: float accumulation of K weights 1/K (K 2^-24) plus one 1/K per
     // uncertain sample.
     double tolerance = 0.0;

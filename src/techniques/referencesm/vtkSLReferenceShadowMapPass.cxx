@@ -49,7 +49,7 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
   const bool secondDepth = parameters.choice("caster_faces") == "back";
   const auto linearDepth = sl::makeFloatTarget(window, focus.resolution, focus.resolution, 1);
   const auto hardwareDepth = sl::makeDepthTarget(window, focus.resolution, focus.resolution);
-  this->Accumulated = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  this->Accumulated = sl::makeFloatTarget(window, frame.width(), frame.height(), 2); // visibility, edge
   {
     const sl::ScopedRenderTarget clearTarget(window, this->AccumulationFramebuffer, { this->Accumulated });
     clearTarget.clearColor(0, 0.0f);

@@ -64,14 +64,19 @@ const char* const chebyshevBoundDescription =
   "receiver), and with blocker_subdivision=none it can hide every blocker";
 
 // The PCF over `kernel` (at most 32 x 32 taps, a regular sub-grid beyond, as savsm's light_leak), each tap compared as
-// the filter step compares it, and the blocked taps' depth sum and count.
+// the filter step compares it, and the blocked taps' depth sum and count. `litWithinReach` counts as lit the blocked
+// taps that cannot hide any of the light from the point at `centre`: the light's footprint at the tap's own depth
+// (kernelHalfTexels of it, plus half a texel) does not reach the tap.
 struct KernelPcf
 {
   double lit = 1.0;
+  double litWithinReach = 1.0;
   double blockedDepthSum = 0.0;
   int blocked = 0;
+  int blockedBeyondReach = 0;
 };
-KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double bias, const TexelRectangle& kernel)
+KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double bias, const TexelRectangle& kernel,
+  const glm::dvec2& centre)
 {
   constexpr int kTapsPerAxis = 32;
   const glm::ivec2 texels = kernel.hi - kernel.lo + 1;
@@ -89,10 +94,15 @@ KernelPcf pcfOver(const ImageF& map, const SoftShadowGeometry& geometry, double 
       {
         result.blockedDepthSum += z;
         ++result.blocked;
+        const glm::dvec2 reach = geometry.kernelHalfTexels(z) + 0.5;
+        const glm::dvec2 offset = glm::abs(glm::dvec2(texel) + 0.5 - centre);
+        result.blockedBeyondReach += offset.x > reach.x || offset.y > reach.y ? 1 : 0;
       }
     }
   }
-  result.lit = 1.0 - static_cast<double>(result.blocked) / (static_cast<double>(taps.x) * taps.y);
+  const double tapCount = static_cast<double>(taps.x) * taps.y;
+  result.lit = 1.0 - result.blocked / tapCount;
+  result.litWithinReach = 1.0 - (result.blocked - result.blockedBeyondReach) / tapCount;
   return result;
 }
 
@@ -101,8 +111,13 @@ KernelPcf planePcf(const ShadowMapInputs& inputs, const ShadowLookup& lookup, co
   double planeDepth)
 {
   return pcfOver(inputs.shadowMapLinear, geometry, lookup.sample.bias,
-    kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(planeDepth), geometry.mapSize));
+    kernelRectangle(lookup.sm.uvTexels, geometry.kernelHalfTexels(planeDepth), geometry.mapSize), lookup.sm.uvTexels);
 }
+
+const char* const penumbraKernelBeyondTheLightDescription =
+  "the penumbra kernel w_p, one kernel for all blockers at the average blocker depth (Eq. 4, Alg. 1 L16), holds "
+  "texels the filter step counts as blocked although at their own depth they cannot hide any of the light from the "
+  "point, and the value differs by more than 0.05 from the PCF over w_p that counts only the texels that can";
 
 const char* const contactPcfDescription =
   "a contact pixel's value differs by more than 0.05 from the PCF over its penumbra kernel w_p: §6.4 filters the "
@@ -119,8 +134,12 @@ const char* const contactPcfDescription =
 //    (Alg. 1 L11-15) called lit although w_i holds texels in front of it (the same bound, or VSM's lit assumption,
 //    hid them) to the PCF over the w_p those texels' mean depth gives. A lit pixel the HSM decided has no such texel.
 //  - `contactCode` where a contact pixel (§6.4) lies otherwise more than `excess` from the PCF over its w_p.
+//  - `beyondReachCode` where w_p, one kernel for all blockers at z_avg (Eq. 4, Alg. 1 L16), holds blocked texels
+//    whose own depth puts them outside the light's footprint, and the value lies more than `excess` from the PCF
+//    that leaves them lit (differential seed 6: a caster 0.5 in front of the receiver, 43 texels out, where its
+//    footprint is 8 texels wide).
 void markFilterEstimates(const ApproximationContext& context, ImageF& codes, float chebyshevCode, float contactCode,
-  double excess)
+  float beyondReachCode, double excess)
 {
   const FrameResult& frame = *context.frame;
   const NamedImage* visibility = frame.find("visibility");
@@ -162,7 +181,8 @@ void markFilterEstimates(const ApproximationContext& context, ImageF& codes, flo
         }
         planeDepth = std::clamp(search.blockedDepthSum / search.blocked, geometry.nearDepth, geometry.d);
       }
-      const double pcf = planePcf(inputs, lookup, geometry, planeDepth).lit;
+      const KernelPcf penumbraPcf = planePcf(inputs, lookup, geometry, planeDepth);
+      const double pcf = penumbraPcf.lit;
       if ((!contact || contactPerSubkernel) && value > pcf + excess)
       {
         codes.at(x, y) = chebyshevCode;
@@ -170,6 +190,10 @@ void markFilterEstimates(const ApproximationContext& context, ImageF& codes, flo
       else if (contact && std::abs(value - pcf) > excess)
       {
         codes.at(x, y) = contactCode;
+      }
+      else if (penumbraPcf.blockedBeyondReach > 0 && std::abs(value - penumbraPcf.litWithinReach) > excess)
+      {
+        codes.at(x, y) = beyondReachCode;
       }
     }
   }
@@ -255,10 +279,14 @@ TechniqueDescriptor vssmTechnique()
   const float chebyshevCode = static_cast<float>(descriptor.accuracy.approximations.size());
   descriptor.accuracy.approximations.push_back({ "contact pcf", contactPcfDescription });
   const float contactCode = static_cast<float>(descriptor.accuracy.approximations.size());
+  descriptor.accuracy.approximations.push_back({ "penumbra kernel beyond the light",
+    penumbraKernelBeyondTheLightDescription });
+  const float beyondReachCode = static_cast<float>(descriptor.accuracy.approximations.size());
   descriptor.accuracy.markApproximations = [shared = descriptor.accuracy.markApproximations, chebyshevCode,
-                                             contactCode](const ApproximationContext& context, ImageF& codes) {
+                                             contactCode, beyondReachCode](const ApproximationContext& context,
+                                             ImageF& codes) {
     shared(context, codes);
-    markFilterEstimates(context, codes, chebyshevCode, contactCode, 0.05);
+    markFilterEstimates(context, codes, chebyshevCode, contactCode, beyondReachCode, 0.05);
   };
   return descriptor;
 }
