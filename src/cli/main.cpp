@@ -9,8 +9,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <iostream>
 #include <limits>
+#include <vector>
 
 namespace
 {
@@ -49,19 +51,16 @@ CLI::Validator seedRange()
     "0 .. 2^64-1");
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+// One subcommand: the CLI11 command its options were added to, and what runs when it was parsed. The options it
+// fills live in main, beside it.
+struct Command
 {
-  CLI::App app{ "ShadowLab: real-time shadow algorithms, rendered and opened up.\n"
-                "Every technique writes its image, visibility and internal buffers (VTK image data for ParaView)." };
-  app.require_subcommand(1);
+  CLI::App* command = nullptr;
+  std::function<int()> run;
+};
 
-  // Every error is one line on stderr with a nonzero exit (README "Outputs and exit codes").
-  sl::installOutputSignalHandlers();
-  sl::installVtkOutputWindow(); // VTK's own messages reach the user only through the error path
-
-  sl::RenderOptions render;
+Command addRenderCommand(CLI::App& app, sl::RenderOptions& render)
+{
   CLI::App* renderCommand = app.add_subcommand("render", "Render a scene with one technique into an output directory");
   renderCommand->add_option("scene", render.sceneFile, "Scene file (JSON, see README 'Scene format')")->required();
   renderCommand->add_option("--technique,-t", render.technique, "Technique name (see `shadowlab list`)")
@@ -74,8 +73,11 @@ int main(int argc, char** argv)
   renderCommand->add_option("--light", render.lightIndex, "Index of the scene light that casts shadows")
     ->capture_default_str();
   renderCommand->add_flag("--quiet,-q", render.quiet, "Print nothing on success");
+  return { renderCommand, [&render] { return sl::runRender(render, std::cerr); } };
+}
 
-  sl::ReferenceOptions reference;
+Command addReferenceCommand(CLI::App& app, sl::ReferenceOptions& reference)
+{
   CLI::App* referenceCommand = app.add_subcommand("reference",
     "Ray-traced ground truth (Embree): the visible fraction of the light for every pixel the pipeline shades");
   referenceCommand->add_option("scene", reference.sceneFile, "Scene file (JSON)")->required();
@@ -104,8 +106,15 @@ int main(int argc, char** argv)
   referenceCommand->add_option("--light", reference.lightIndex, "Index of the scene light")->capture_default_str();
   referenceCommand->add_option("--threads", reference.threads, "Worker threads (0: all cores)")->capture_default_str();
   referenceCommand->add_flag("--quiet,-q", reference.quiet, "Print nothing on success");
+  return { referenceCommand, [&reference, referenceSamples, referenceLightSamples] {
+    reference.samplesGiven = referenceSamples->count() > 0;
+    reference.lightSamplesGiven = referenceLightSamples->count() > 0;
+    return sl::runReference(reference, std::cerr);
+  } };
+}
 
-  sl::CompareOptions compare;
+Command addCompareCommand(CLI::App& app, sl::CompareOptions& compare)
+{
   CLI::App* compareCommand =
     app.add_subcommand("compare", "Error metrics of TEST.vti against REF.vti (RMSE, MAE, max, >0.05; all and penumbra)");
   compareCommand->add_option("test", compare.testFile, "buffers.vti of the technique")->required();
@@ -114,8 +123,11 @@ int main(int argc, char** argv)
   compareCommand->add_option("--out,-o", compare.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(compareCommand, compare.force);
   compareCommand->add_flag("--quiet,-q", compare.quiet, "Print nothing on success");
+  return { compareCommand, [&compare] { return sl::runCompare(compare, std::cerr); } };
+}
 
-  sl::BenchOptions bench;
+Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench)
+{
   CLI::App* benchCommand = app.add_subcommand("bench",
     "Speed against error: scenes x techniques x sweeps, each configuration in its own process");
   benchCommand->add_option("scenes", bench.sceneFiles, "Scene files")->required();
@@ -134,8 +146,11 @@ int main(int argc, char** argv)
   benchCommand->add_option("--out,-o", bench.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(benchCommand, bench.force);
   benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
+  return { benchCommand, [&bench] { return sl::runBench(bench, std::cerr); } };
+}
 
-  sl::BenchRunOptions benchRun;
+Command addBenchRunCommand(CLI::App& app, sl::BenchRunOptions& benchRun)
+{
   CLI::App* benchRunCommand = app.add_subcommand("bench-run", "One bench configuration (started by bench)");
   benchRunCommand->group(""); // hidden from --help
   benchRunCommand->add_option("scene", benchRun.sceneFile)->required();
@@ -146,8 +161,11 @@ int main(int argc, char** argv)
   benchRunCommand->add_option("--repeat", benchRun.repeat);
   benchRunCommand->add_option("--reference", benchRun.referenceFile);
   benchRunCommand->add_option("--result", benchRun.resultFile)->required();
+  return { benchRunCommand, [&benchRun] { return sl::runBenchConfiguration(benchRun); } };
+}
 
-  sl::ProbeOptions probe;
+Command addProbeCommand(CLI::App& app, sl::ProbeOptions& probe)
+{
   CLI::App* probeCommand = app.add_subcommand("probe",
     "Replay one pixel on the technique's CPU twin and record every step (probe.json, probe.vtm, probe.png)");
   probeCommand->add_option("scene", probe.sceneFile, "Scene file (JSON)")->required();
@@ -162,8 +180,11 @@ int main(int argc, char** argv)
   addForceFlag(probeCommand, probe.force);
   probeCommand->add_option("--light", probe.lightIndex, "Index of the scene light that casts shadows")->capture_default_str();
   probeCommand->add_flag("--quiet,-q", probe.quiet, "Print nothing on success");
+  return { probeCommand, [&probe] { return sl::runProbe(probe, std::cerr); } };
+}
 
-  sl::ViewOptions view;
+Command addViewCommand(CLI::App& app, sl::ViewOptions& view)
+{
   CLI::App* viewCommand = app.add_subcommand("view",
     "A desktop window on the pipeline's frames: keys cycle techniques, buffers and parameters, a click probes a "
     "pixel (h in the window lists the keys)");
@@ -183,8 +204,11 @@ int main(int argc, char** argv)
     "textures, --play, a file parameter)");
   viewCommand->add_option("--screenshot-dir", view.screenshotDir, "Where the s key saves screenshots (PNG)")
     ->capture_default_str();
+  return { viewCommand, [&view] { return sl::runView(view, std::cout); } };
+}
 
-  sl::MontageCommandOptions montage;
+Command addMontageCommand(CLI::App& app, sl::MontageCommandOptions& montage)
+{
   CLI::App* montageCommand = app.add_subcommand("montage",
     "One buffer of several runs side by side on one colour scale, labelled from each run's stats.json");
   montageCommand->add_option("runs", montage.runDirs, "Output directories of render or reference")->required();
@@ -195,8 +219,11 @@ int main(int argc, char** argv)
   montageCommand->add_flag("--force", montage.force,
     "Let --out replace an existing file montage did not write (never an input: a RUN_DIR or a file in one)");
   montageCommand->add_flag("--quiet,-q", montage.quiet, "Print nothing on success");
+  return { montageCommand, [&montage] { return sl::runMontage(montage, std::cerr); } };
+}
 
-  sl::LessonsOptions lessons;
+Command addLessonsCommand(CLI::App& app, sl::LessonsOptions& lessons)
+{
   CLI::App* lessonsCommand = app.add_subcommand("lessons",
     "Lesson pages (Markdown) with figures and numbers from runs made now (src/lessons/)");
   lessonsCommand->add_option("--out,-o", lessons.outDir, "Output directory (replaced atomically; see --force)")
@@ -206,8 +233,11 @@ int main(int argc, char** argv)
     "Only this lesson (repeatable); the other lessons of an existing --out are kept");
   addForceFlag(lessonsCommand, lessons.force);
   lessonsCommand->add_flag("--quiet,-q", lessons.quiet, "Print nothing on success");
+  return { lessonsCommand, [&lessons] { return sl::runLessons(lessons, std::cerr); } };
+}
 
-  sl::DifferentialCommandOptions differential;
+Command addDifferentialCommand(CLI::App& app, sl::DifferentialCommandOptions& differential)
+{
   CLI::App* differentialCommand = app.add_subcommand("differential",
     "Every technique and each enumerated choice against the ray tracer on random scenes (seeded); exit 4 on a failure");
   differentialCommand->add_option("--seeds", differential.seeds, "A..B or A,B,...")->capture_default_str();
@@ -222,10 +252,75 @@ int main(int argc, char** argv)
     "seed-S/scene.json (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(differentialCommand, differential.force);
   differentialCommand->add_flag("--quiet,-q", differential.quiet, "Print only failures and the table");
+  return { differentialCommand, [&differential] { return sl::runDifferential(differential, std::cerr); } };
+}
 
-  bool listJson = false;
+Command addListCommand(CLI::App& app, bool& listJson)
+{
   CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
   listCommand->add_flag("--json", listJson, "Machine-readable output");
+  return { listCommand, [&listJson] { return sl::runList(listJson, std::cout); } };
+}
+
+// Runs the parsed command, each error kind one line with its exit code (README "Outputs and exit codes").
+int runParsedCommand(const std::vector<Command>& commands)
+{
+  try
+  {
+    for (const Command& command : commands)
+    {
+      if (command.command->parsed())
+      {
+        return command.run();
+      }
+    }
+  }
+  catch (const sl::InputError& error)
+  {
+    std::cerr << "shadowlab: error: " << sl::printable(error.what()) << "\n";
+    return 1;
+  }
+  catch (const sl::GraphicsError& error)
+  {
+    std::cerr << "shadowlab: graphics error: " << sl::printable(error.what()) << "\n";
+    return 2;
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "shadowlab: internal error: " << sl::printable(error.what()) << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{ "ShadowLab: real-time shadow algorithms, rendered and opened up.\n"
+                "Every technique writes its image, visibility and internal buffers (VTK image data for ParaView)." };
+  app.require_subcommand(1);
+
+  // Every error is one line on stderr with a nonzero exit (README "Outputs and exit codes").
+  sl::installOutputSignalHandlers();
+  sl::installVtkOutputWindow(); // VTK's own messages reach the user only through the error path
+
+  sl::RenderOptions render;
+  sl::ReferenceOptions reference;
+  sl::CompareOptions compare;
+  sl::BenchOptions bench;
+  sl::BenchRunOptions benchRun;
+  sl::ProbeOptions probe;
+  sl::ViewOptions view;
+  sl::MontageCommandOptions montage;
+  sl::LessonsOptions lessons;
+  sl::DifferentialCommandOptions differential;
+  bool listJson = false;
+  // In --help's order.
+  const std::vector<Command> commands = { addRenderCommand(app, render), addReferenceCommand(app, reference),
+    addCompareCommand(app, compare), addBenchCommand(app, bench), addBenchRunCommand(app, benchRun),
+    addProbeCommand(app, probe), addViewCommand(app, view), addMontageCommand(app, montage),
+    addLessonsCommand(app, lessons), addDifferentialCommand(app, differential), addListCommand(app, listJson) };
 
   try
   {
@@ -245,70 +340,5 @@ int main(int argc, char** argv)
     std::cerr << "shadowlab: error: " << sl::printable(error.what()) << " (see shadowlab --help)\n";
     return 1;
   }
-
-  try
-  {
-    if (renderCommand->parsed())
-    {
-      return sl::runRender(render, std::cerr);
-    }
-    if (viewCommand->parsed())
-    {
-      return sl::runView(view, std::cout);
-    }
-    if (montageCommand->parsed())
-    {
-      return sl::runMontage(montage, std::cerr);
-    }
-    if (lessonsCommand->parsed())
-    {
-      return sl::runLessons(lessons, std::cerr);
-    }
-    if (probeCommand->parsed())
-    {
-      return sl::runProbe(probe, std::cerr);
-    }
-    if (differentialCommand->parsed())
-    {
-      return sl::runDifferential(differential, std::cerr);
-    }
-    if (listCommand->parsed())
-    {
-      return sl::runList(listJson, std::cout);
-    }
-    if (referenceCommand->parsed())
-    {
-      reference.samplesGiven = referenceSamples->count() > 0;
-      reference.lightSamplesGiven = referenceLightSamples->count() > 0;
-      return sl::runReference(reference, std::cerr);
-    }
-    if (compareCommand->parsed())
-    {
-      return sl::runCompare(compare, std::cerr);
-    }
-    if (benchCommand->parsed())
-    {
-      return sl::runBench(bench, std::cerr);
-    }
-    if (benchRunCommand->parsed())
-    {
-      return sl::runBenchConfiguration(benchRun);
-    }
-  }
-  catch (const sl::InputError& error)
-  {
-    std::cerr << "shadowlab: error: " << sl::printable(error.what()) << "\n";
-    return 1;
-  }
-  catch (const sl::GraphicsError& error)
-  {
-    std::cerr << "shadowlab: graphics error: " << sl::printable(error.what()) << "\n";
-    return 2;
-  }
-  catch (const std::exception& error)
-  {
-    std::cerr << "shadowlab: internal error: " << sl::printable(error.what()) << "\n";
-    return 3;
-  }
-  return 0;
+  return runParsedCommand(commands);
 }
