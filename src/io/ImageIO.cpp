@@ -45,6 +45,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <memory>
 #include <new>
 #include <regex>
@@ -176,65 +177,263 @@ void throwIfVtkFailed(const std::filesystem::path& path, const VtkErrorCapture& 
 // text (inline binary), raw or base64 as the file says: uncompressed, one header integer with the byte count,
 // then the bytes; compressed, [block count, block size, last block size, compressed size of each block],
 // then the blocks. Header integers are header_type (UInt32 or UInt64) in byte_order.
-void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
+// The file as checkDataArrays reads it: its bytes, the XML part before any AppendedData, and how the binary data
+// is laid out (vtkXMLWriter's header type, compression and byte order).
+struct VtiLayout
 {
-  std::ifstream stream(path, std::ios::binary);
-  const std::string bytes{ std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>() };
-  const auto fail = [&path](const std::string& why) {
+  std::filesystem::path path;
+  std::string bytes;
+  std::string xml;
+  std::size_t appendedTag = std::string::npos;
+  std::size_t dataBegin = 0;  // just after the appended data's '_' marker (the file's size without one)
+  bool appendedBase64 = false;
+  std::size_t headerBytes = 4;
+  bool compressed = false;
+  bool bigEndian = false;
+
+  InputError fail(const std::string& why) const
+  {
     return InputError(format(path.string(), ": not a readable VTK image file (", why, ")"));
-  };
+  }
+};
+
+std::map<std::string, std::string> xmlAttributes(const std::string& tag)
+{
+  static const std::regex attribute(R"re((\w+)\s*=\s*"([^"]*)")re");
+  std::map<std::string, std::string> values;
+  for (auto match = std::sregex_iterator(tag.begin(), tag.end(), attribute); match != std::sregex_iterator(); ++match)
+    values[(*match)[1].str()] = (*match)[2].str();
+  return values;
+}
+
+// An attribute that must be a whole integer: "3.16" or "3x" is not 3.
+bool parseWholeInteger(const std::string& text, long long& value)
+{
+  const char* end = text.data() + text.size();
+  const auto [last, error] = std::from_chars(text.data(), end, value);
+  return !text.empty() && error == std::errc() && last == end;
+}
+
+// Reads the file and locates its appended data; nullopt for a file without a VTKFile element (VTK has already
+// refused it).
+std::optional<VtiLayout> readVtiLayout(const std::filesystem::path& path)
+{
+  VtiLayout layout;
+  layout.path = path;
+  std::ifstream stream(path, std::ios::binary);
+  layout.bytes.assign(std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>());
+  const std::string& bytes = layout.bytes;
 
   // The appended data, if any: raw bytes or base64 text from just after the '_' marker to the end of the file.
-  const std::size_t appendedTag = bytes.find("<AppendedData");
-  bool appendedBase64 = false;
-  std::size_t dataBegin = bytes.size();
-  if (appendedTag != std::string::npos)
+  layout.appendedTag = bytes.find("<AppendedData");
+  layout.dataBegin = bytes.size();
+  if (layout.appendedTag != std::string::npos)
   {
-    const std::size_t tagEnd = bytes.find('>', appendedTag);
+    const std::size_t tagEnd = bytes.find('>', layout.appendedTag);
     if (tagEnd == std::string::npos)
-      throw fail("unterminated AppendedData element");
-    const std::string tag = bytes.substr(appendedTag, tagEnd - appendedTag);
+      throw layout.fail("unterminated AppendedData element");
+    const std::string tag = bytes.substr(layout.appendedTag, tagEnd - layout.appendedTag);
     if (tag.find("encoding=\"base64\"") != std::string::npos)
-      appendedBase64 = true;
+      layout.appendedBase64 = true;
     else if (tag.find("encoding=\"raw\"") == std::string::npos)
-      throw fail("AppendedData encoding is neither raw nor base64");
+      throw layout.fail("AppendedData encoding is neither raw nor base64");
     // VTK's reader (vtkXMLDataParser::FindAppendedDataPosition) skips white space after the tag and then takes
     // the next byte as the '_' marker, whatever it is: require that byte to be '_', so the data VTK will read
     // is the data checked here.
     const std::size_t marker = bytes.find_first_not_of(" \t\n\r", tagEnd + 1);
     if (marker == std::string::npos || bytes[marker] != '_')
-      throw fail("the appended data does not start with '_' after the AppendedData element");
-    dataBegin = marker + 1;
+      throw layout.fail("the appended data does not start with '_' after the AppendedData element");
+    layout.dataBegin = marker + 1;
   }
 
-  static const std::regex attribute(R"re((\w+)\s*=\s*"([^"]*)")re");
-  const auto attributesOf = [](const std::string& tag) {
-    std::map<std::string, std::string> values;
-    for (auto match = std::sregex_iterator(tag.begin(), tag.end(), attribute); match != std::sregex_iterator(); ++match)
-      values[(*match)[1].str()] = (*match)[2].str();
-    return values;
-  };
-  // An attribute that must be a whole integer: "3.16" or "3x" is not 3.
-  const auto integerOf = [](const std::string& text, long long& value) {
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    return !text.empty() && error == std::errc() && last == end;
-  };
-  const std::string xml = bytes.substr(0, appendedTag == std::string::npos ? bytes.size() : appendedTag);
-  const std::size_t fileTag = xml.find("<VTKFile");
+  layout.xml = bytes.substr(0, layout.appendedTag == std::string::npos ? bytes.size() : layout.appendedTag);
+  const std::size_t fileTag = layout.xml.find("<VTKFile");
   if (fileTag == std::string::npos)
-    return; // VTK has already refused such a file
+    return std::nullopt;
   std::map<std::string, std::string> fileAttributes =
-    attributesOf(xml.substr(fileTag, xml.find('>', fileTag) - fileTag));
-  const std::size_t headerBytes = fileAttributes["header_type"] == "UInt64" ? 8 : 4;
-  const bool compressed = !fileAttributes["compressor"].empty();
-  const bool bigEndian = fileAttributes["byte_order"] == "BigEndian";
+    xmlAttributes(layout.xml.substr(fileTag, layout.xml.find('>', fileTag) - fileTag));
+  layout.headerBytes = fileAttributes["header_type"] == "UInt64" ? 8 : 4;
+  layout.compressed = !fileAttributes["compressor"].empty();
+  layout.bigEndian = fileAttributes["byte_order"] == "BigEndian";
+  return layout;
+}
 
+// One DataArray element: its attributes checked against the format and the image, and the size its data must
+// decode to.
+struct DataArrayDeclaration
+{
+  std::map<std::string, std::string> attributes;
+  std::string label;           // "array 'NAME'"
+  int typeBytes = 0;
+  bool pointData = false;      // exactly one tuple per pixel; cell and field data no more than that
+  long double imageBytes = 0;  // one tuple per pixel
+  std::size_t tagEnd = 0;      // the element's '>'
+};
+
+DataArrayDeclaration declaredDataArray(const VtiLayout& layout, std::size_t tagBegin, long long pixelCount)
+{
   static const std::map<std::string, int> kTypeBytes = { { "Int8", 1 }, { "UInt8", 1 }, { "Int16", 2 },
     { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 }, { "UInt64", 8 }, { "Float32", 4 },
     { "Float64", 8 } };
+  const std::string& xml = layout.xml;
+  DataArrayDeclaration array;
+  array.tagEnd = xml.find('>', tagBegin);
+  if (array.tagEnd == std::string::npos)
+    throw layout.fail("unterminated DataArray element");
+  array.attributes = xmlAttributes(xml.substr(tagBegin, array.tagEnd - tagBegin));
+  std::map<std::string, std::string>& attributes = array.attributes;
+  array.label = "array '" + (attributes["Name"].empty() ? std::string("(unnamed)") : attributes["Name"]) + "'";
+  const auto arrayError = [&](const std::string& why) {
+    return InputError(format(layout.path.string(), ": ", array.label, " ", why));
+  };
+
+  const auto typeBytes = kTypeBytes.find(attributes["type"]);
+  if (typeBytes == kTypeBytes.end())
+    throw arrayError(format("is not numeric (type \"", attributes["type"], "\")"));
+  array.typeBytes = typeBytes->second;
+  long long components = 1;
+  if (attributes.count("NumberOfComponents") != 0 && !parseWholeInteger(attributes["NumberOfComponents"], components))
+    throw arrayError(format("has NumberOfComponents=\"", attributes["NumberOfComponents"], "\" (an integer 1 to ",
+      kMaxVtiComponents, " expected)"));
+  if (components < 1 || components > kMaxVtiComponents)
+    throw arrayError(format("has ", components, " components (1 to ", kMaxVtiComponents, " supported)"));
   const std::size_t pointDataBegin = xml.find("<PointData");
   const std::size_t pointDataEnd = xml.find("</PointData>");
+  array.pointData = pointDataBegin != std::string::npos && pointDataEnd != std::string::npos &&
+    tagBegin > pointDataBegin && tagBegin < pointDataEnd;
+  long long tuples = pixelCount;
+  if (attributes.count("NumberOfTuples") != 0 &&
+    (!parseWholeInteger(attributes["NumberOfTuples"], tuples) || tuples < 0 || tuples > pixelCount ||
+      (array.pointData && tuples != pixelCount)))
+    throw arrayError(format("has NumberOfTuples=\"", attributes["NumberOfTuples"], "\" (the image has ", pixelCount,
+      " pixels)"));
+  array.imageBytes = static_cast<long double>(pixelCount) * components * array.typeBytes;
+  return array;
+}
+
+// A point-data array holds exactly one tuple per pixel; any other (cell or field data) no more.
+void checkDecodedSize(const VtiLayout& layout, const DataArrayDeclaration& array, long double decodedBytes,
+  const char* unit, long double perValue, long long pixelCount)
+{
+  if (array.pointData ? decodedBytes != array.imageBytes : decodedBytes > array.imageBytes)
+    throw layout.fail(format(array.label, ": its data holds ", static_cast<unsigned long long>(decodedBytes / perValue),
+      " ", unit, ", the ", pixelCount, "-pixel image needs ", static_cast<unsigned long long>(array.imageBytes / perValue)));
+}
+
+// An array's binary data in the file: where it starts, how much of the file it may use, base64 text or raw.
+struct BinaryData
+{
+  std::string inlineText;  // inline binary data, white space removed
+  const char* begin = nullptr;
+  std::size_t available = 0;
+  bool base64 = false;
+};
+
+BinaryData locateBinaryData(const VtiLayout& layout, DataArrayDeclaration& array)
+{
+  BinaryData data;
+  const std::string& dataFormat = array.attributes["format"];
+  if (dataFormat == "appended")
+  {
+    long long offset = -1;
+    if (!parseWholeInteger(array.attributes["offset"], offset) || offset < 0)
+      throw layout.fail(array.label + ": no valid offset");
+    if (layout.appendedTag == std::string::npos)
+      throw layout.fail(array.label + ": appended, but the file has no AppendedData");
+    if (static_cast<unsigned long long>(offset) >= layout.bytes.size() - layout.dataBegin)
+      throw layout.fail(array.label + ": its offset lies beyond the appended data");
+    data.begin = layout.bytes.data() + layout.dataBegin + offset;
+    data.available = layout.bytes.size() - layout.dataBegin - static_cast<std::size_t>(offset);
+    data.base64 = layout.appendedBase64;
+    return data;
+  }
+  if (dataFormat == "binary")
+  {
+    const std::string& xml = layout.xml;
+    const std::size_t contentEnd = xml.find("</DataArray>", array.tagEnd);
+    if (xml[array.tagEnd - 1] == '/' || contentEnd == std::string::npos)
+      throw layout.fail(array.label + ": binary data without a closing </DataArray>");
+    for (std::size_t i = array.tagEnd + 1; i < contentEnd; ++i)
+      if (!std::isspace(static_cast<unsigned char>(xml[i])))
+        data.inlineText.push_back(xml[i]);
+    data.begin = data.inlineText.data();
+    data.available = data.inlineText.size();
+    data.base64 = true;
+    return data;
+  }
+  throw layout.fail(format(array.label, ": format \"", dataFormat, "\" (appended, binary or ascii expected)"));
+}
+
+// The byte count the array's binary data decodes to, from its header, checked against what the file holds.
+long double decodedByteCount(const VtiLayout& layout, const DataArrayDeclaration& array, const BinaryData& data)
+{
+  const std::size_t headerBytes = layout.headerBytes;
+  // The first `count` bytes of the data, decoded; false if the file holds fewer.
+  std::vector<unsigned char> header;
+  const auto readHeader = [&](std::size_t count) {
+    header.assign(count, 0);
+    if (!data.base64)
+    {
+      if (count > data.available)
+        return false;
+      std::memcpy(header.data(), data.begin, count);
+      return true;
+    }
+    // Only the few header bytes are decoded here; VTK decodes the data itself once the checks pass.
+    const std::size_t characters = (count + 2) / 3 * 4;
+    if (characters > data.available)
+      return false;
+    std::vector<unsigned char> decoded(characters);
+    decoded.resize(vtkBase64Utilities::DecodeSafely(
+      reinterpret_cast<const unsigned char*>(data.begin), characters, decoded.data(), decoded.size()));
+    if (decoded.size() < count)
+      return false;
+    std::memcpy(header.data(), decoded.data(), count);
+    return true;
+  };
+  const auto headerInteger = [&](std::size_t index) {
+    std::uint64_t value = 0;
+    for (std::size_t i = 0; i < headerBytes; ++i)
+      value = (value << 8) | header[index * headerBytes + (layout.bigEndian ? i : headerBytes - 1 - i)];
+    return static_cast<long double>(value);
+  };
+  // Bytes of the file that `decoded` bytes of data occupy (base64 needs 4 characters per 3 bytes).
+  const auto fileBytes = [&](long double decoded) { return data.base64 ? std::ceil(decoded / 3) * 4 : decoded; };
+
+  if (!layout.compressed)
+  {
+    if (!readHeader(headerBytes))
+      throw layout.fail(array.label + ": its header runs past the end of the file");
+    const long double decodedBytes = headerInteger(0);
+    if (fileBytes(headerBytes + decodedBytes) > data.available)
+      throw layout.fail(array.label + ": its data runs past the end of the file");
+    return decodedBytes;
+  }
+  if (!readHeader(3 * headerBytes))
+    throw layout.fail(array.label + ": its block header runs past the end of the file");
+  const long double blocks = headerInteger(0);
+  const long double blockSize = headerInteger(1);
+  const long double lastBlockSize = headerInteger(2);
+  if (fileBytes((3 + blocks) * headerBytes) > data.available ||
+    !readHeader((3 + static_cast<std::size_t>(blocks)) * headerBytes))
+    throw layout.fail(format(array.label, ": its header claims ", static_cast<unsigned long long>(blocks),
+      " compressed blocks, more than the file holds"));
+  long double compressedBytes = 0.0L;
+  for (std::size_t block = 0; block < static_cast<std::size_t>(blocks); ++block)
+    compressedBytes += headerInteger(3 + block);
+  if (fileBytes((3 + blocks) * headerBytes + compressedBytes) > data.available)
+    throw layout.fail(array.label + ": its compressed blocks run past the end of the file");
+  if (blocks > 0 && (blockSize == 0 || lastBlockSize > blockSize))
+    throw layout.fail(array.label + ": inconsistent compressed block sizes");
+  return blocks == 0 ? 0.0L : (blocks - 1) * blockSize + (lastBlockSize == 0 ? blockSize : lastBlockSize);
+}
+
+void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
+{
+  const std::optional<VtiLayout> layout = readVtiLayout(path);
+  if (!layout)
+    return; // VTK has already refused such a file
+  const std::string& xml = layout->xml;
   for (std::size_t tagBegin = xml.find("<DataArray"); tagBegin != std::string::npos;
        tagBegin = xml.find("<DataArray", tagBegin + 1))
   {
@@ -242,146 +441,21 @@ void checkDataArrays(const std::filesystem::path& path, long long pixelCount)
     if (nameEnd < xml.size() && !std::isspace(static_cast<unsigned char>(xml[nameEnd])) && xml[nameEnd] != '/' &&
       xml[nameEnd] != '>')
       continue; // another element (<DataArrayX>), which VTK does not read as an array
-    const std::size_t tagEnd = xml.find('>', tagBegin);
-    if (tagEnd == std::string::npos)
-      throw fail("unterminated DataArray element");
-    std::map<std::string, std::string> array = attributesOf(xml.substr(tagBegin, tagEnd - tagBegin));
-    const std::string name = array["Name"].empty() ? std::string("(unnamed)") : array["Name"];
-    const std::string arrayName = "array '" + name + "'";
-    const auto arrayError = [&](const std::string& why) {
-      return InputError(format(path.string(), ": ", arrayName, " ", why));
-    };
-
-    const auto typeBytes = kTypeBytes.find(array["type"]);
-    if (typeBytes == kTypeBytes.end())
-      throw arrayError(format("is not numeric (type \"", array["type"], "\")"));
-    long long components = 1;
-    if (array.count("NumberOfComponents") != 0 && !integerOf(array["NumberOfComponents"], components))
-      throw arrayError(format("has NumberOfComponents=\"", array["NumberOfComponents"], "\" (an integer 1 to ", kMaxVtiComponents, " expected)"));
-    if (components < 1 || components > kMaxVtiComponents)
-      throw arrayError(format("has ", components, " components (1 to ", kMaxVtiComponents, " supported)"));
-    const bool pointData = pointDataBegin != std::string::npos && pointDataEnd != std::string::npos &&
-      tagBegin > pointDataBegin && tagBegin < pointDataEnd;
-    long long tuples = pixelCount;
-    if (array.count("NumberOfTuples") != 0 && (!integerOf(array["NumberOfTuples"], tuples) || tuples < 0 ||
-                                                 tuples > pixelCount || (pointData && tuples != pixelCount)))
-      throw arrayError(format("has NumberOfTuples=\"", array["NumberOfTuples"], "\" (the image has ", pixelCount,
-        " pixels)"));
-    const long double imageBytes = static_cast<long double>(pixelCount) * components * typeBytes->second;
-    // A point-data array holds exactly one tuple per pixel; any other (cell or field data) no more.
-    const auto checkSize = [&](long double decodedBytes, const char* unit, long double perValue) {
-      if (pointData ? decodedBytes != imageBytes : decodedBytes > imageBytes)
-        throw fail(format(arrayName, ": its data holds ", static_cast<unsigned long long>(decodedBytes / perValue),
-          " ", unit, ", the ", pixelCount, "-pixel image needs ", static_cast<unsigned long long>(imageBytes / perValue)));
-    };
-
-    const std::string& dataFormat = array["format"];
-    if (dataFormat == "ascii")
+    DataArrayDeclaration array = declaredDataArray(*layout, tagBegin, pixelCount);
+    if (array.attributes["format"] == "ascii")
     {
       // VTK allocates one tuple per pixel before it parses the text: the values must be there.
-      const std::size_t contentEnd = xml.find("</DataArray>", tagEnd);
-      if (xml[tagEnd - 1] == '/' || contentEnd == std::string::npos)
-        throw fail(arrayName + ": ascii data without a closing </DataArray>");
-      std::istringstream values(xml.substr(tagEnd + 1, contentEnd - tagEnd - 1));
+      const std::size_t contentEnd = xml.find("</DataArray>", array.tagEnd);
+      if (xml[array.tagEnd - 1] == '/' || contentEnd == std::string::npos)
+        throw layout->fail(array.label + ": ascii data without a closing </DataArray>");
+      std::istringstream values(xml.substr(array.tagEnd + 1, contentEnd - array.tagEnd - 1));
       const auto count = std::distance(std::istream_iterator<std::string>(values), std::istream_iterator<std::string>());
-      checkSize(static_cast<long double>(count) * typeBytes->second, "values", typeBytes->second);
+      checkDecodedSize(*layout, array, static_cast<long double>(count) * array.typeBytes, "values", array.typeBytes,
+        pixelCount);
       continue;
     }
-
-    // Binary data: where it starts, how much of the file it may use, and whether it is base64 text.
-    std::string inlineText;
-    const char* binary = nullptr;
-    std::size_t available = 0;
-    bool base64 = false;
-    if (dataFormat == "appended")
-    {
-      long long offset = -1;
-      if (!integerOf(array["offset"], offset) || offset < 0)
-        throw fail(arrayName + ": no valid offset");
-      if (appendedTag == std::string::npos)
-        throw fail(arrayName + ": appended, but the file has no AppendedData");
-      if (static_cast<unsigned long long>(offset) >= bytes.size() - dataBegin)
-        throw fail(arrayName + ": its offset lies beyond the appended data");
-      binary = bytes.data() + dataBegin + offset;
-      available = bytes.size() - dataBegin - static_cast<std::size_t>(offset);
-      base64 = appendedBase64;
-    }
-    else if (dataFormat == "binary")
-    {
-      const std::size_t contentEnd = xml.find("</DataArray>", tagEnd);
-      if (xml[tagEnd - 1] == '/' || contentEnd == std::string::npos)
-        throw fail(arrayName + ": binary data without a closing </DataArray>");
-      for (std::size_t i = tagEnd + 1; i < contentEnd; ++i)
-        if (!std::isspace(static_cast<unsigned char>(xml[i])))
-          inlineText.push_back(xml[i]);
-      binary = inlineText.data();
-      available = inlineText.size();
-      base64 = true;
-    }
-    else
-      throw fail(format(arrayName, ": format \"", dataFormat, "\" (appended, binary or ascii expected)"));
-
-    // The first `count` bytes of the data, decoded; false if the file holds fewer.
-    std::vector<unsigned char> header;
-    const auto readHeader = [&](std::size_t count) {
-      header.assign(count, 0);
-      if (!base64)
-      {
-        if (count > available)
-          return false;
-        std::memcpy(header.data(), binary, count);
-        return true;
-      }
-      // Only the few header bytes are decoded here; VTK decodes the data itself once the checks pass.
-      const std::size_t characters = (count + 2) / 3 * 4;
-      if (characters > available)
-        return false;
-      std::vector<unsigned char> decoded(characters);
-      decoded.resize(vtkBase64Utilities::DecodeSafely(
-        reinterpret_cast<const unsigned char*>(binary), characters, decoded.data(), decoded.size()));
-      if (decoded.size() < count)
-        return false;
-      std::memcpy(header.data(), decoded.data(), count);
-      return true;
-    };
-    const auto headerInteger = [&](std::size_t index) {
-      std::uint64_t value = 0;
-      for (std::size_t i = 0; i < headerBytes; ++i)
-        value = (value << 8) | header[index * headerBytes + (bigEndian ? i : headerBytes - 1 - i)];
-      return static_cast<long double>(value);
-    };
-    // Bytes of the file that `decoded` bytes of data occupy (base64 needs 4 characters per 3 bytes).
-    const auto fileBytes = [&](long double decoded) { return base64 ? std::ceil(decoded / 3) * 4 : decoded; };
-
-    long double decodedBytes = 0.0L;
-    if (!compressed)
-    {
-      if (!readHeader(headerBytes))
-        throw fail(arrayName + ": its header runs past the end of the file");
-      decodedBytes = headerInteger(0);
-      if (fileBytes(headerBytes + decodedBytes) > available)
-        throw fail(arrayName + ": its data runs past the end of the file");
-    }
-    else
-    {
-      if (!readHeader(3 * headerBytes))
-        throw fail(arrayName + ": its block header runs past the end of the file");
-      const long double blocks = headerInteger(0);
-      const long double blockSize = headerInteger(1);
-      const long double lastBlockSize = headerInteger(2);
-      if (fileBytes((3 + blocks) * headerBytes) > available || !readHeader((3 + static_cast<std::size_t>(blocks)) * headerBytes))
-        throw fail(format(arrayName, ": its header claims ", static_cast<unsigned long long>(blocks),
-          " compressed blocks, more than the file holds"));
-      long double compressedBytes = 0.0L;
-      for (std::size_t block = 0; block < static_cast<std::size_t>(blocks); ++block)
-        compressedBytes += headerInteger(3 + block);
-      if (fileBytes((3 + blocks) * headerBytes + compressedBytes) > available)
-        throw fail(arrayName + ": its compressed blocks run past the end of the file");
-      if (blocks > 0 && (blockSize == 0 || lastBlockSize > blockSize))
-        throw fail(arrayName + ": inconsistent compressed block sizes");
-      decodedBytes = blocks == 0 ? 0.0L : (blocks - 1) * blockSize + (lastBlockSize == 0 ? blockSize : lastBlockSize);
-    }
-    checkSize(decodedBytes, "bytes", 1.0L);
+    const BinaryData data = locateBinaryData(*layout, array);
+    checkDecodedSize(*layout, array, decodedByteCount(*layout, array, data), "bytes", 1.0L, pixelCount);
   }
 }
 } // namespace
