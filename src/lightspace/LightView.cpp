@@ -186,15 +186,15 @@ LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbu
   return fitLightView(light, scene, receivers, settings);
 }
 
-LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings)
+namespace
 {
-  SL_CHECK(settings.resolution > 2.0 * settings.marginTexels);
-  const ReceiverSummary summary = light.type == LightType::Point ? receivers.summary(light) : ReceiverSummary();
-  const Bounds sceneBounds = scene.bounds();
 
-  LightView view;
-  view.resolution = settings.resolution;
-  glm::dvec3 forward;
+// The light's frame: its eye, axis and projection (perspective from an area, spot or point light; orthographic
+// for a directional light, its eye outside the scene's bounds).
+void orientLightView(const Light& light, const Scene& scene, const ReceiverSummary& summary, LightView& view,
+  glm::dvec3& forward)
+{
+  const Bounds sceneBounds = scene.bounds();
   glm::dvec3 up;
   switch (light.type)
   {
@@ -213,7 +213,7 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
     case LightType::Point:
     {
       // Aim at the centre of the receivers' bounding box; if the light sits at that centre (receivers all
-      // around it) any axis will do: the coverage check below rejects the configuration.
+      // around it) any axis will do: the coverage check rejects the configuration.
       view.projection = LightProjection::Perspective;
       view.eyeWs = light.center;
       const glm::dvec3 towardReceivers =
@@ -230,133 +230,132 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
       break;
   }
   view.viewFromWorld = glm::lookAt(view.eyeWs, view.eyeWs + forward, up);
+}
 
-  // Window: bounding rectangle of the receivers in light x/y.
-  const ReceiverExtent extent = receivers.extent(light, view, forward);
-  view.receiverSampleCount = extent.reachable;
-  // One perspective map covers less than a hemisphere: a point light whose visible receivers spread
-  // wider (some even behind it) would need a cube map.
-  if (light.type == LightType::Point && extent.reachable > 0 && extent.minCosToAxis < std::cos(glm::radians(80.0)))
+// One perspective map covers less than a hemisphere: a point light whose visible receivers spread wider (some even
+// behind it) would need a cube map.
+void refusePointLightBeyondOneMap(const Light& light, const Scene& scene, const ReceiverExtent& extent)
+{
+  if (light.type != LightType::Point || extent.reachable == 0 || extent.minCosToAxis >= std::cos(glm::radians(80.0)))
   {
-    // Name the light as the scene file does ("<file>: lights[i]: ..."); a light that is not one of the scene's
-    // (a copy made by a pass) is named by its position alone.
-    std::string where;
-    for (std::size_t i = 0; i < scene.lights.size(); ++i)
-    {
-      if (&scene.lights[i] == &light)
-      {
-        where = format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", i, "]: ");
-      }
-    }
-    throw InputError(format(where, "point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
-      ") sees visible receivers more than 80 degrees off its axis; one shadow map cannot cover them "
-      "(cube shadow maps are not supported): use a spot or area light"));
+    return;
   }
-  double xMin = extent.minXY.x;
-  double xMax = extent.maxXY.x;
-  double yMin = extent.minXY.y;
-  double yMax = extent.maxXY.y;
-  double receiverNear = extent.minDepth;
-  double receiverFar = extent.maxDepth;
-  if (extent.inFront == 0 || receiverFar <= 0.0)
+  // Name the light as the scene file does ("<file>: lights[i]: ..."); a light that is not one of the scene's
+  // (a copy made by a pass) is named by its position alone.
+  std::string where;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+  {
+    if (&scene.lights[i] == &light)
+    {
+      where = format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", i, "]: ");
+    }
+  }
+  throw InputError(format(where, "point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
+    ") sees visible receivers more than 80 degrees off its axis; one shadow map cannot cover them "
+    "(cube shadow maps are not supported): use a spot or area light"));
+}
+
+// The receivers' window in light x/y ({xMin, xMax, yMin, yMax}) and their depth range, never empty.
+struct ReceiverWindow
+{
+  glm::dvec4 window{ 0.0 };
+  double nearDepth = 0.0;
+  double farDepth = 0.0;
+};
+ReceiverWindow receiverWindow(const ReceiverExtent& extent)
+{
+  ReceiverWindow result{ { extent.minXY.x, extent.maxXY.x, extent.minXY.y, extent.maxXY.y }, extent.minDepth,
+    extent.maxDepth };
+  if (extent.inFront == 0 || result.farDepth <= 0.0)
   {
     // Nothing visible can receive light: keep a valid (tiny) frustum so every stage still runs.
-    xMin = yMin = -1e-3;
-    xMax = yMax = 1e-3;
-    receiverNear = 1.0;
-    receiverFar = 2.0;
+    result = { { -1e-3, 1e-3, -1e-3, 1e-3 }, 1.0, 2.0 };
   }
   // Degenerate extents (a single receiver point) still need a non-empty window.
-  const double minExtent = 1e-6 * std::max({ 1.0, std::abs(xMax), std::abs(yMax) });
-  if (xMax - xMin < minExtent)
+  glm::dvec4& window = result.window;
+  const double minExtent = 1e-6 * std::max({ 1.0, std::abs(window.y), std::abs(window.w) });
+  if (window.y - window.x < minExtent)
   {
-    xMin -= minExtent;
-    xMax += minExtent;
+    window.x -= minExtent;
+    window.y += minExtent;
   }
-  if (yMax - yMin < minExtent)
+  if (window.w - window.z < minExtent)
   {
-    yMin -= minExtent;
-    yMax += minExtent;
+    window.z -= minExtent;
+    window.w += minExtent;
   }
-  // Depth range: receivers, plus casters clipped to the frustum of a window (only the part inside can
-  // occlude). The window may still grow below, so this is a function of it.
-  const double depthEpsilon = 1e-5 * receiverFar;
-  const auto nearestDepthIn = [&](const glm::dvec4& window) {
-    double nearest = receiverNear;
-    std::vector<glm::dvec4> sidePlanes; // in light view space, dot(plane, (p, 1)) >= 0 inside
-    if (view.projection == LightProjection::Perspective)
+  return result;
+}
+
+// The near plane: the nearest depth of the receivers and of the casters clipped to the frustum of `window` (only
+// the part inside can occlude), in front of `depthEpsilon` and before the receivers' far depth.
+double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec4& window,
+  const ReceiverWindow& receivers, double depthEpsilon)
+{
+  double nearest = receivers.nearDepth;
+  std::vector<glm::dvec4> sidePlanes; // in light view space, dot(plane, (p, 1)) >= 0 inside
+  if (view.projection == LightProjection::Perspective)
+  {
+    // x >= xMin * depth  <=>  x + xMin * z >= 0 (z = -depth), etc.
+    sidePlanes = { { 1.0, 0.0, window.x, 0.0 }, { -1.0, 0.0, -window.y, 0.0 }, { 0.0, 1.0, window.z, 0.0 },
+      { 0.0, -1.0, -window.w, 0.0 } };
+  }
+  else
+  {
+    sidePlanes = { { 1.0, 0.0, 0.0, -window.x }, { -1.0, 0.0, 0.0, window.y }, { 0.0, 1.0, 0.0, -window.z },
+      { 0.0, -1.0, 0.0, window.w } };
+  }
+  const glm::dvec4 inFrontPlane(0.0, 0.0, -1.0, -depthEpsilon);     // depth >= depthEpsilon
+  const glm::dvec4 beforeFarPlane(0.0, 0.0, 1.0, receivers.farDepth); // depth <= the receivers' far depth
+  for (const SceneObject& object : scene.objects)
+  {
+    if (!object.castShadows)
     {
-      // x >= xMin * depth  <=>  x + xMin * z >= 0 (z = -depth), etc.
-      sidePlanes = { { 1.0, 0.0, window.x, 0.0 }, { -1.0, 0.0, -window.y, 0.0 }, { 0.0, 1.0, window.z, 0.0 },
-        { 0.0, -1.0, -window.w, 0.0 } };
+      continue;
     }
-    else
+    const TriangleMesh& mesh = object.mesh;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
-      sidePlanes = { { 1.0, 0.0, 0.0, -window.x }, { -1.0, 0.0, 0.0, window.y }, { 0.0, 1.0, 0.0, -window.z },
-        { 0.0, -1.0, 0.0, window.w } };
-    }
-    const glm::dvec4 inFrontPlane(0.0, 0.0, -1.0, -depthEpsilon); // depth >= depthEpsilon
-    const glm::dvec4 beforeFarPlane(0.0, 0.0, 1.0, receiverFar);  // depth <= receiverFar
-    for (const SceneObject& object : scene.objects)
-    {
-      if (!object.castShadows)
+      std::vector<glm::dvec3> polygon;
+      for (int k = 0; k < 3; ++k)
       {
-        continue;
+        const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
+        polygon.push_back(glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0)));
       }
-      const TriangleMesh& mesh = object.mesh;
-      for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+      if (view.projection == LightProjection::Perspective)
       {
-        std::vector<glm::dvec3> polygon;
-        for (int k = 0; k < 3; ++k)
+        polygon = clipPolygon(polygon, inFrontPlane);
+      }
+      polygon = clipPolygon(polygon, beforeFarPlane);
+      for (const glm::dvec4& plane : sidePlanes)
+      {
+        if (polygon.empty())
         {
-          const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
-          polygon.push_back(glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0)));
+          break;
         }
-        if (view.projection == LightProjection::Perspective)
-        {
-          polygon = clipPolygon(polygon, inFrontPlane);
-        }
-        polygon = clipPolygon(polygon, beforeFarPlane);
-        for (const glm::dvec4& plane : sidePlanes)
-        {
-          if (polygon.empty())
-          {
-            break;
-          }
-          polygon = clipPolygon(polygon, plane);
-        }
-        for (const glm::dvec3& pLs : polygon)
-        {
-          nearest = std::min(nearest, -pLs.z);
-        }
+        polygon = clipPolygon(polygon, plane);
+      }
+      for (const glm::dvec3& pLs : polygon)
+      {
+        nearest = std::min(nearest, -pLs.z);
       }
     }
-    return nearest;
-  };
-  double nearDepth = nearestDepthIn({ xMin, xMax, yMin, yMax });
-  if (settings.lightFootprintWidth > 0.0 && view.projection == LightProjection::Perspective)
-  {
-    // Soft shadows: a caster at depth z >= near hides part of a light of width w from a receiver when
-    // its tangent is within (w / 2) (d - z) / (z d) < (w / 2) / near of the receiver's (similar
-    // triangles), so the window must hold that much more around the receivers. One refinement: the
-    // grown window's casters give the near plane (a caster nearer still, outside the first window, is
-    // the approximation's limit).
-    const double extra = 0.5 * settings.lightFootprintWidth / std::max(nearDepth, depthEpsilon);
-    xMin -= extra;
-    xMax += extra;
-    yMin -= extra;
-    yMax += extra;
-    nearDepth = nearestDepthIn({ xMin, xMax, yMin, yMax });
   }
-  // Grow so that `marginTexels` texels of the final map lie outside on each side.
+  return nearest;
+}
+
+// The window grown so that `marginTexels` texels of the final map lie outside it on each side, the depth range with
+// a little slack (geometry exactly at its ends is not clipped by the rasteriser), and the projection.
+void setWindowAndProjection(LightView& view, const glm::dvec4& window, double nearDepth, double receiverFar,
+  double depthEpsilon, const FocusSettings& settings)
+{
   const double grow = settings.resolution / (settings.resolution - 2.0 * settings.marginTexels);
-  const double xCenter = 0.5 * (xMin + xMax);
-  const double yCenter = 0.5 * (yMin + yMax);
-  const double xHalf = 0.5 * (xMax - xMin) * grow;
-  const double yHalf = 0.5 * (yMax - yMin) * grow;
+  const double xCenter = 0.5 * (window.x + window.y);
+  const double yCenter = 0.5 * (window.z + window.w);
+  const double xHalf = 0.5 * (window.y - window.x) * grow;
+  const double yHalf = 0.5 * (window.w - window.z) * grow;
   view.window = { xCenter - xHalf, xCenter + xHalf, yCenter - yHalf, yCenter + yHalf };
 
-  // A little slack so geometry exactly at the range ends is not clipped by the rasteriser.
   view.nearDepth = std::max(depthEpsilon, nearDepth * (1.0 - 1e-3));
   view.farDepth = receiverFar * (1.0 + 1e-3) + depthEpsilon;
   if (view.projection == LightProjection::Orthographic)
@@ -375,6 +374,43 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
       glm::ortho(view.window.x, view.window.y, view.window.z, view.window.w, view.nearDepth, view.farDepth);
   }
   view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+}
+
+} // namespace
+
+// Focusing (survey §4.3): the light's frame, the receivers' window in it, the casters' near plane within that
+// window (grown by the light's footprint for soft shadows), then a margin and the projection.
+LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings)
+{
+  SL_CHECK(settings.resolution > 2.0 * settings.marginTexels);
+  const ReceiverSummary summary = light.type == LightType::Point ? receivers.summary(light) : ReceiverSummary();
+
+  LightView view;
+  view.resolution = settings.resolution;
+  glm::dvec3 forward;
+  orientLightView(light, scene, summary, view, forward);
+
+  const ReceiverExtent extent = receivers.extent(light, view, forward);
+  view.receiverSampleCount = extent.reachable;
+  refusePointLightBeyondOneMap(light, scene, extent);
+  const ReceiverWindow receiverRange = receiverWindow(extent);
+  glm::dvec4 window = receiverRange.window;
+
+  // Depth range: receivers, plus casters clipped to the frustum of the window; the window may still grow.
+  const double depthEpsilon = 1e-5 * receiverRange.farDepth;
+  double nearDepth = nearestDepthIn(scene, view, window, receiverRange, depthEpsilon);
+  if (settings.lightFootprintWidth > 0.0 && view.projection == LightProjection::Perspective)
+  {
+    // Soft shadows: a caster at depth z >= near hides part of a light of width w from a receiver when
+    // its tangent is within (w / 2) (d - z) / (z d) < (w / 2) / near of the receiver's (similar
+    // triangles), so the window must hold that much more around the receivers. One refinement: the
+    // grown window's casters give the near plane (a caster nearer still, outside the first window, is
+    // the approximation's limit).
+    const double extra = 0.5 * settings.lightFootprintWidth / std::max(nearDepth, depthEpsilon);
+    window += glm::dvec4(-extra, extra, -extra, extra);
+    nearDepth = nearestDepthIn(scene, view, window, receiverRange, depthEpsilon);
+  }
+  setWindowAndProjection(view, window, nearDepth, receiverRange.farDepth, depthEpsilon, settings);
   return view;
 }
 
