@@ -289,6 +289,115 @@ int slotCount(ivec2 first, ivec2 last)
   return side.x * side.y;
 }
 
+// Fig. 3 step 2 (§4.2): the two levels the smoothed LOQ selects, floor(l) weighted 1 - a and ceil(l) weighted a;
+// a level of weight 0 is skipped, and an integer l is one level of weight 1. CPU twin: selectLevels.
+struct Ss08Levels
+{
+  float level;
+  int levels[2];
+  float weights[2];
+  float alpha;
+};
+
+Ss08Levels selectLevels(ivec2 pixel)
+{
+  Ss08Levels selected;
+  selected.level = texelFetch(loqSmoothed, pixel, 0).x;
+  int levelFloor = int(floor(selected.level));
+  int levelCeil = int(ceil(selected.level));
+  selected.alpha = blendWeight(selected.level - float(levelFloor));
+  selected.levels = int[2](levelFloor, levelCeil);
+  selected.weights = float[2](1.0 - selected.alpha, selected.alpha);
+  if (levelCeil == levelFloor)
+  {
+    selected.weights = float[2](1.0, 0.0);
+  }
+  return selected;
+}
+
+// Fig. 3 step 3 (§3, §8): both levels' micro-occluders back-projected onto the light and accumulated (summed areas,
+// or SS07's occlusion bitmask), blended as §4.2 blends the levels. One loop over the slots of both levels: it is
+// the loop llvmpipe counts, and its helpers have no loops and no early returns. CPU twin: accumulateMicroOccluders.
+struct Ss08Accumulation
+{
+  float visibility;
+  int floorSlots;    // slots floor(l) alone examines, examined or not
+  int ceilSlots;
+  int examined;      // slots examined, both levels (fewer than their total where the loop cap cut it)
+  bool reachedLast;
+  float occludedBits;
+  float areaOvercount;
+};
+
+Ss08Accumulation accumulateMicroOccluders(ShadowReceiver receiver, Ss08Search search, Ss08Levels selected)
+{
+  Ss08Accumulation result;
+  ivec2 first[2];
+  ivec2 last[2];
+  int counts[2];
+  for (int k = 0; k < 2; ++k)
+  {
+    ss08SlotRange(selected.levels[k], search.lo, search.hi, first[k], last[k]);
+    counts[k] = selected.weights[k] > 0.0 ? slotCount(first[k], last[k]) : 0;
+  }
+  result.floorSlots = slotCount(first[0], last[0]);
+  result.ceilSlots = slotCount(first[1], last[1]);
+
+  receiverDepth = receiver.depthLin;
+  receiverBias = receiver.bias;
+  receiverXy = (shadowWindowMin + receiver.uvTexels * shadowTexelTangent) * receiverDepth;
+  halfSize = 0.5 * lightSizeWorld;
+  float areas[2] = float[2](0.0, 0.0);
+  int total = counts[0] + counts[1];
+  result.reachedLast = total == 0;
+  result.examined = 0; // total, unless the cap cut the loop
+#if ACCUMULATION == ACCUMULATION_BITMASK
+  // The two levels' bitmasks (rectangleBits' word layout), OR-ed.
+  uvec4 floorMask[2] = uvec4[2](uvec4(0u), uvec4(0u));
+  uvec4 ceilMask[2] = uvec4[2](uvec4(0u), uvec4(0u));
+#endif
+  for (int k = 0; k < total; ++k)
+  {
+    int which = k < counts[0] ? 0 : 1;
+    int local = k - which * counts[0];
+    int width = last[which].x - first[which].x + 1;
+    ivec2 slot = first[which] + ivec2(local % width, local / width);
+    vec2 rectangleLo;
+    vec2 rectangleHi;
+    areas[which] += microOccluderArea(selected.levels[which], slot, rectangleLo, rectangleHi);
+#if ACCUMULATION == ACCUMULATION_BITMASK
+    uvec4 lowWords;
+    uvec4 highWords;
+    rectangleBits(rectangleLo, rectangleHi, lowWords, highWords);
+    uvec4 toFloor = uvec4(which == 0 ? 0xFFFFFFFFu : 0u);
+    floorMask[0] |= lowWords & toFloor;
+    floorMask[1] |= highWords & toFloor;
+    ceilMask[0] |= lowWords & ~toFloor;
+    ceilMask[1] |= highWords & ~toFloor;
+#endif
+    result.reachedLast = k == total - 1;
+    result.examined = k + 1;
+  }
+  float lightArea = 4.0 * halfSize * halfSize;
+  float weights[2] = selected.weights;
+#if ACCUMULATION == ACCUMULATION_BITMASK
+  // V = 1 - popcount / N per level (SS07, SS08 §8), blended as the areas.
+  float sampleCount = float(BITMASK_GRID_SIDE * BITMASK_GRID_SIDE);
+  float bits[2] = float[2](float(popcount(floorMask[0]) + popcount(floorMask[1])),
+    float(popcount(ceilMask[0]) + popcount(ceilMask[1])));
+  result.visibility = weights[0] * (1.0 - bits[0] / sampleCount) + weights[1] * (1.0 - bits[1] / sampleCount);
+  result.occludedBits = weights[0] * bits[0] + weights[1] * bits[1];
+  result.areaOvercount = weights[0] * (areas[0] / lightArea - bits[0] / sampleCount) +
+    weights[1] * (areas[1] / lightArea - bits[1] / sampleCount);
+#else
+  result.visibility = weights[0] * clamp(1.0 - areas[0] / lightArea, 0.0, 1.0) +
+    weights[1] * clamp(1.0 - areas[1] / lightArea, 0.0, 1.0);
+  result.occludedBits = 0.0;
+  result.areaOvercount = 0.0;
+#endif
+  return result;
+}
+
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -310,6 +419,7 @@ void main()
   float areaOvercount = 0.0;
   if (receiver.needsShadowTest)
   {
+    // Fig. 3 step 1: the search (Ss08Search.glsl).
     Ss08Search search = ss08Search(receiver, pixel);
     classification = search.decision;
     outBudget = float(search.budget);
@@ -326,83 +436,19 @@ void main()
     }
     else
     {
-      float level = texelFetch(loqSmoothed, pixel, 0).x;
-      int levelFloor = int(floor(level));
-      int levelCeil = int(ceil(level));
-      float alpha = blendWeight(level - float(levelFloor));
-      outLoq = level;
-      outLevelFloor = float(levelFloor);
-      outBlendAlpha = alpha;
-      budgetViolation = max(search.levelCeil - levelCeil, 0);
-      // The two levels: floor(l) weighted 1 - a, ceil(l) weighted a; a level of weight 0 is skipped.
-      int levels[2] = int[2](levelFloor, levelCeil);
-      float weights[2] = float[2](1.0 - alpha, alpha);
-      if (levelCeil == levelFloor)
-      {
-        weights = float[2](1.0, 0.0);
-      }
-      ivec2 first[2];
-      ivec2 last[2];
-      int counts[2];
-      for (int k = 0; k < 2; ++k)
-      {
-        ss08SlotRange(levels[k], search.lo, search.hi, first[k], last[k]);
-        counts[k] = weights[k] > 0.0 ? slotCount(first[k], last[k]) : 0;
-      }
-      floorSlots = slotCount(first[0], last[0]);
-      ceilSlots = slotCount(first[1], last[1]);
-
-      receiverDepth = receiver.depthLin;
-      receiverBias = receiver.bias;
-      receiverXy = (shadowWindowMin + receiver.uvTexels * shadowTexelTangent) * receiverDepth;
-      halfSize = 0.5 * lightSizeWorld;
-      float areas[2] = float[2](0.0, 0.0);
-      int total = counts[0] + counts[1];
-      bool reachedLast = total == 0;
-      int examined = 0; // total, unless the cap cut the loop
-#if ACCUMULATION == ACCUMULATION_BITMASK
-      // The two levels' bitmasks (rectangleBits' word layout), OR-ed.
-      uvec4 floorMask[2] = uvec4[2](uvec4(0u), uvec4(0u));
-      uvec4 ceilMask[2] = uvec4[2](uvec4(0u), uvec4(0u));
-#endif
-      for (int k = 0; k < total; ++k)
-      {
-        int which = k < counts[0] ? 0 : 1;
-        int local = k - which * counts[0];
-        int width = last[which].x - first[which].x + 1;
-        ivec2 slot = first[which] + ivec2(local % width, local / width);
-        vec2 rectangleLo;
-        vec2 rectangleHi;
-        areas[which] += microOccluderArea(levels[which], slot, rectangleLo, rectangleHi);
-#if ACCUMULATION == ACCUMULATION_BITMASK
-        uvec4 lowWords;
-        uvec4 highWords;
-        rectangleBits(rectangleLo, rectangleHi, lowWords, highWords);
-        uvec4 toFloor = uvec4(which == 0 ? 0xFFFFFFFFu : 0u);
-        floorMask[0] |= lowWords & toFloor;
-        floorMask[1] |= highWords & toFloor;
-        ceilMask[0] |= lowWords & ~toFloor;
-        ceilMask[1] |= highWords & ~toFloor;
-#endif
-        reachedLast = k == total - 1;
-        examined = k + 1;
-      }
-      float lightArea = 4.0 * halfSize * halfSize;
-#if ACCUMULATION == ACCUMULATION_BITMASK
-      // V = 1 - popcount / N per level (SS07, SS08 §8), blended as the areas.
-      float sampleCount = float(BITMASK_GRID_SIDE * BITMASK_GRID_SIDE);
-      float bits[2] = float[2](float(popcount(floorMask[0]) + popcount(floorMask[1])),
-        float(popcount(ceilMask[0]) + popcount(ceilMask[1])));
-      outVisibility = weights[0] * (1.0 - bits[0] / sampleCount) + weights[1] * (1.0 - bits[1] / sampleCount);
-      occludedBits = weights[0] * bits[0] + weights[1] * bits[1];
-      areaOvercount = weights[0] * (areas[0] / lightArea - bits[0] / sampleCount) +
-        weights[1] * (areas[1] / lightArea - bits[1] / sampleCount);
-#else
-      outVisibility = weights[0] * clamp(1.0 - areas[0] / lightArea, 0.0, 1.0) +
-        weights[1] * clamp(1.0 - areas[1] / lightArea, 0.0, 1.0);
-#endif
-      outMicroOccluders = float(examined);
-      if (!reachedLast)
+      Ss08Levels selected = selectLevels(pixel);
+      outLoq = selected.level;
+      outLevelFloor = float(selected.levels[0]);
+      outBlendAlpha = selected.alpha;
+      budgetViolation = max(search.levelCeil - selected.levels[1], 0);
+      Ss08Accumulation accumulation = accumulateMicroOccluders(receiver, search, selected);
+      outVisibility = accumulation.visibility;
+      floorSlots = accumulation.floorSlots;
+      ceilSlots = accumulation.ceilSlots;
+      occludedBits = accumulation.occludedBits;
+      areaOvercount = accumulation.areaOvercount;
+      outMicroOccluders = float(accumulation.examined);
+      if (!accumulation.reachedLast)
       {
         classification = CLASSIFICATION_CUT_SHORT;
       }

@@ -393,105 +393,121 @@ TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int lev
   return slots;
 }
 
-Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
-  int x, int y, const ImageF* budgetImage, ProbeRecorder* recorder)
+namespace
 {
-  SL_CHECK(structures.hsm);
-  Ss08Search search;
-  search.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
-  if (!search.lookup.sample.evaluated)
+
+// The HSM's depth-range queries of one pixel's search (§3), each query's nodes kept for the probe until recorded
+// with the decision they led to.
+class Ss08RangeQueries
+{
+public:
+  Ss08RangeQueries(const HierarchicalShadowMap& hsm, ProbeRecorder* recorder) : hsm_(hsm), recorder_(recorder) {}
+
+  glm::dvec2 range(const TexelRectangle& area)
   {
-    return search;
+    return hsm_.range(area.lo, area.hi, nullptr, recorder_ ? &nodes_ : nullptr);
   }
-  search.geometry = softShadowGeometry(inputs, search.lookup, values.choice("receiver_plane_bias") == "on", x, y);
-  search.bias = search.lookup.sample.bias;
-  const SoftShadowGeometry& geometry = search.geometry;
-  const double d = geometry.d;
-  const int size = geometry.mapSize;
-  const int top = topLevel(size);
-  const bool growth = values.choice("growth") == "on";
-  const glm::dvec2 uv = search.lookup.sm.uvTexels;
-  search.budget = ss08PixelBudget(values, x, y, inputs.camera.resolution.x, budgetImage);
-  if (recorder)
+  void recordNodes(const std::string& decision)
   {
-    recorder->beginGroup("budget");
-    recorder->category("budget_map", values.choice("budget_map"), cite("§4.2 (the budget map b_mo(x, y))"));
-    recorder->quantity("budget", search.budget, "micro-occluders per axis",
-      cite("§4.2 (b_mo at the pixel; 0 = unlimited, Table 2)"));
-  }
-  const HierarchicalShadowMap& hsm = *structures.hsm;
-  // The probe's view of each range query: the nodes it read, recorded with the decision they led to.
-  std::vector<HsmQueryNode> queryNodes;
-  const auto range = [&](const TexelRectangle& area) {
-    return hsm.range(area.lo, area.hi, nullptr, recorder ? &queryNodes : nullptr);
-  };
-  const auto recordQueryNodes = [&](const std::string& decision) {
-    recorder->quantity("hsm_nodes_read", static_cast<double>(queryNodes.size()), "count",
+    recorder_->quantity("hsm_nodes_read", static_cast<double>(nodes_.size()), "count",
       "ShadowLab: nodes the range query read (HierarchicalShadowMap::range)");
-    for (const HsmQueryNode& node : queryNodes)
+    for (const HsmQueryNode& node : nodes_)
     {
-      recorder->node(probeNodeOf(node, decision));
+      recorder_->node(probeNodeOf(node, decision));
     }
-    queryNodes.clear();
-  };
-  // searchRange of the GLSL: the area grown for its level (growth=on) or the area itself.
-  const auto searchRange = [&](const TexelRectangle& area, TexelRectangle& query) {
-    query = area;
-    if (growth)
-    {
-      int levelCeil = 0;
-      fractionalLevel(values, areaSpan(area), search.budget, top, levelCeil);
-      query = grownArea(values, size, levelCeil, area);
-    }
-    return range(query);
-  };
-  // One search area (kernel plus ring) and its depth-range query, recorded as a step of Fig. 2 b.
-  const auto recordArea = [&](int refinement, const glm::dvec2& half, const glm::dvec2& depthRange, const std::string& decision) {
-    if (!recorder)
-    {
-      return;
-    }
-    recorder->beginGroup("search area " + std::to_string(refinement));
-    recorder->quantity("kernel_half_texels", half, "texels",
-      refinement == 0 ? cite("Fig. 2 b (the light seen from the receiver, at the near plane)")
-                      : cite("Fig. 2 b, §3 (refined: at the minimum depth of the previous area)"));
-    recorder->kernel({ "search area", glm::dvec2(search.area.lo), glm::dvec2(search.area.hi + 1),
-      "refinement " + std::to_string(refinement), cite("Fig. 2 b (kernel plus one ring of texels)") });
-    if (search.query.lo != search.area.lo || search.query.hi != search.area.hi)
-    {
-      recorder->kernel({ "grown query", glm::dvec2(search.query.lo), glm::dvec2(search.query.hi + 1),
-        "refinement " + std::to_string(refinement), cite("§6, Fig. 7 (grown to the micro-occluders' support)") });
-    }
-    recorder->quantity("query_min_depth", depthRange.x, "linear depth", cite("§3 (min over the query, from the HSM)"));
-    recorder->quantity("query_max_depth", depthRange.y, "linear depth", cite("§3 (max over the query, from the HSM)"));
-    recordQueryNodes(decision);
-  };
-  glm::dvec2 half = geometry.kernelHalfTexels(geometry.nearDepth);
-  TexelRectangle kernel = kernelRectangle(uv, half, size, &search.kernelEdgeMargin);
-  search.area = ringed(kernel, size);
-  glm::dvec2 depthRange = searchRange(search.area, search.query);
+    nodes_.clear();
+  }
+
+private:
+  const HierarchicalShadowMap& hsm_;
+  ProbeRecorder* recorder_;
+  std::vector<HsmQueryNode> nodes_;
+};
+
+// searchRange() of Ss08Search.glsl: the depth range of the area grown for its level (growth=on, §6) or of the area
+// itself; `query` is the rectangle queried.
+glm::dvec2 searchRange(const ParameterValues& values, const Ss08Search& search, Ss08RangeQueries& queries,
+  const TexelRectangle& area, TexelRectangle& query)
+{
+  query = area;
+  if (values.choice("growth") == "on")
+  {
+    int levelCeil = 0;
+    fractionalLevel(values, areaSpan(area), search.budget, topLevel(search.geometry.mapSize), levelCeil);
+    query = grownArea(values, search.geometry.mapSize, levelCeil, area);
+  }
+  return queries.range(query);
+}
+
+// One search area (kernel plus ring) and its depth-range query, recorded as a step of Fig. 2 b.
+void recordSearchArea(ProbeRecorder* recorder, Ss08RangeQueries& queries, const Ss08Search& search, int refinement,
+  const glm::dvec2& half, const glm::dvec2& depthRange, const std::string& decision)
+{
+  if (!recorder)
+  {
+    return;
+  }
+  recorder->beginGroup("search area " + std::to_string(refinement));
+  recorder->quantity("kernel_half_texels", half, "texels",
+    refinement == 0 ? cite("Fig. 2 b (the light seen from the receiver, at the near plane)")
+                    : cite("Fig. 2 b, §3 (refined: at the minimum depth of the previous area)"));
+  recorder->kernel({ "search area", glm::dvec2(search.area.lo), glm::dvec2(search.area.hi + 1),
+    "refinement " + std::to_string(refinement), cite("Fig. 2 b (kernel plus one ring of texels)") });
+  if (search.query.lo != search.area.lo || search.query.hi != search.area.hi)
+  {
+    recorder->kernel({ "grown query", glm::dvec2(search.query.lo), glm::dvec2(search.query.hi + 1),
+      "refinement " + std::to_string(refinement), cite("§6, Fig. 7 (grown to the micro-occluders' support)") });
+  }
+  recorder->quantity("query_min_depth", depthRange.x, "linear depth", cite("§3 (min over the query, from the HSM)"));
+  recorder->quantity("query_max_depth", depthRange.y, "linear depth", cite("§3 (max over the query, from the HSM)"));
+  queries.recordNodes(decision);
+}
+
+// The search area of Fig. 2 b, refined kernel_refinements times at the previous area's minimum depth (§3): sets
+// search.area and search.query, returns the final query's depth range, its kernel half-size and kernel.
+struct SearchArea
+{
+  glm::dvec2 depthRange{ 0.0 };
+  glm::dvec2 half{ 0.0 };
+  TexelRectangle kernel;
+};
+SearchArea refineSearchArea(const ParameterValues& values, Ss08Search& search, Ss08RangeQueries& queries,
+  ProbeRecorder* recorder)
+{
+  const SoftShadowGeometry& geometry = search.geometry;
+  const glm::dvec2 uv = search.lookup.sm.uvTexels;
+  SearchArea result;
+  result.half = geometry.kernelHalfTexels(geometry.nearDepth);
+  result.kernel = kernelRectangle(uv, result.half, geometry.mapSize, &search.kernelEdgeMargin);
+  search.area = ringed(result.kernel, geometry.mapSize);
+  result.depthRange = searchRange(values, search, queries, search.area, search.query);
   const int refinements = values.getInt("kernel_refinements");
   for (int refinement = 0; refinement < refinements; ++refinement)
   {
-    recordArea(refinement, half, depthRange, "refine at its minimum depth");
-    half = geometry.kernelHalfTexels(std::clamp(depthRange.x, geometry.nearDepth, d));
-    kernel = kernelRectangle(uv, half, size, &search.kernelEdgeMargin);
-    search.area = ringed(kernel, size);
-    depthRange = searchRange(search.area, search.query);
+    recordSearchArea(recorder, queries, search, refinement, result.half, result.depthRange, "refine at its minimum depth");
+    result.half = geometry.kernelHalfTexels(std::clamp(result.depthRange.x, geometry.nearDepth, geometry.d));
+    result.kernel = kernelRectangle(uv, result.half, geometry.mapSize, &search.kernelEdgeMargin);
+    search.area = ringed(result.kernel, geometry.mapSize);
+    result.depthRange = searchRange(values, search, queries, search.area, search.query);
   }
-  search.span = areaSpan(search.area);
-  bool fromLog2 = false;
-  search.levelRaw = fractionalLevel(values, search.span, search.budget, top, search.levelCeil, &fromLog2);
-  // Only a level from log2 may round across an integer; the integer levels are exact in float too.
-  search.levelMargin = fromLog2 ? std::abs(search.levelRaw - std::round(search.levelRaw)) : 1e300;
-  const glm::dvec2 comparison = geometry.comparisonDepthRange(search.query.lo, search.query.hi, search.bias);
-  search.decisionMargin = std::min(std::abs(depthRange.x - comparison.y), std::abs(depthRange.y - comparison.x)) / d;
-  const bool ringInsideMap = search.area.lo == kernel.lo - 1 && search.area.hi == kernel.hi + 1;
-  if (depthRange.x >= comparison.y)
+  return result;
+}
+
+// Lit / umbra / penumbra from the final query's depth range against the comparison depths over it (§3); an umbra
+// needs the whole ring inside the map.
+void decideFromDepthRange(const ParameterValues& values, Ss08Search& search, Ss08RangeQueries& queries,
+  const SearchArea& area, ProbeRecorder* recorder)
+{
+  const double d = search.geometry.d;
+  const glm::dvec2 comparison = search.geometry.comparisonDepthRange(search.query.lo, search.query.hi, search.bias);
+  search.decisionMargin =
+    std::min(std::abs(area.depthRange.x - comparison.y), std::abs(area.depthRange.y - comparison.x)) / d;
+  const bool ringInsideMap = search.area.lo == area.kernel.lo - 1 && search.area.hi == area.kernel.hi + 1;
+  if (area.depthRange.x >= comparison.y)
   {
     search.classification = Ss08Class::Lit;
   }
-  else if (ringInsideMap && depthRange.y < comparison.x)
+  else if (ringInsideMap && area.depthRange.y < comparison.x)
   {
     search.classification = Ss08Class::Umbra;
   }
@@ -500,26 +516,8 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     search.classification = Ss08Class::Penumbra;
   }
   const Ss08Class rangeClass = search.classification;
-  recordArea(refinements, half, depthRange,
+  recordSearchArea(recorder, queries, search, values.getInt("kernel_refinements"), area.half, area.depthRange,
     rangeClass == Ss08Class::Lit ? "lit" : rangeClass == Ss08Class::Umbra ? "umbra" : "penumbra");
-  // The over-precision class (Fig. 7).
-  bool otherAreaLit = false;
-  const auto litFor = [&](const TexelRectangle& area) {
-    const glm::dvec2 otherRange = range(area);
-    const double otherComparison = geometry.comparisonDepthRange(area.lo, area.hi, search.bias).y;
-    search.decisionMargin = std::min(search.decisionMargin, std::abs(otherRange.x - otherComparison) / d);
-    otherAreaLit = otherRange.x >= otherComparison;
-    if (recorder)
-    {
-      recorder->beginGroup("growth test");
-      recorder->kernel({ growth ? "area's own query" : "grown query", glm::dvec2(area.lo), glm::dvec2(area.hi + 1),
-        otherAreaLit ? "lit" : "not lit", cite("§6, Fig. 7 (the other query decides the growth class)") });
-      recorder->quantity("query_min_depth", otherRange.x, "linear depth", cite("§6, Fig. 7"));
-      recorder->quantity("comparison_depth_max", otherComparison, "linear depth", "ShadowLab: the largest comparison depth over it");
-      recordQueryNodes(otherAreaLit ? "lit" : "not lit");
-    }
-    return otherAreaLit;
-  };
   if (recorder)
   {
     recorder->beginGroup("depth range decision");
@@ -533,12 +531,37 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
         : rangeClass == Ss08Class::Umbra ? "umbra: max < every comparison depth" : "penumbra: back-project",
       cite("§3 (lit / umbra from the search area's depth range)"));
   }
+}
+
+// The over-precision class (§6, Fig. 7): penumbra only because the query grew (growth=on: back-projected), or lit
+// only because it did not (growth=off: left lit, the class shows where growth would back-project).
+void classifyOverPrecision(const ParameterValues& values, Ss08Search& search, Ss08RangeQueries& queries,
+  ProbeRecorder* recorder)
+{
+  const bool growth = values.choice("growth") == "on";
+  const double d = search.geometry.d;
+  const auto litFor = [&](const TexelRectangle& area) {
+    const glm::dvec2 otherRange = queries.range(area);
+    const double otherComparison = search.geometry.comparisonDepthRange(area.lo, area.hi, search.bias).y;
+    search.decisionMargin = std::min(search.decisionMargin, std::abs(otherRange.x - otherComparison) / d);
+    const bool otherAreaLit = otherRange.x >= otherComparison;
+    if (recorder)
+    {
+      recorder->beginGroup("growth test");
+      recorder->kernel({ growth ? "area's own query" : "grown query", glm::dvec2(area.lo), glm::dvec2(area.hi + 1),
+        otherAreaLit ? "lit" : "not lit", cite("§6, Fig. 7 (the other query decides the growth class)") });
+      recorder->quantity("query_min_depth", otherRange.x, "linear depth", cite("§6, Fig. 7"));
+      recorder->quantity("comparison_depth_max", otherComparison, "linear depth", "ShadowLab: the largest comparison depth over it");
+      queries.recordNodes(otherAreaLit ? "lit" : "not lit");
+    }
+    return otherAreaLit;
+  };
   if (growth && search.classification == Ss08Class::Penumbra && litFor(search.area))
   {
     search.classification = Ss08Class::GrowthPenumbra;
   }
   else if (!growth && search.classification == Ss08Class::Lit &&
-    !litFor(grownArea(values, size, search.levelCeil, search.area)))
+    !litFor(grownArea(values, search.geometry.mapSize, search.levelCeil, search.area)))
   {
     search.classification = Ss08Class::GrowthPenumbra;
   }
@@ -546,32 +569,76 @@ Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& struc
     (growth && search.classification == Ss08Class::GrowthPenumbra);
   search.state = !search.backProjects ? LoqState::None
     : search.budget == 0 || values.getInt("force_level") >= 0 ? LoqState::Fixed : LoqState::Smoothed;
+}
+
+void recordClassAndLevel(const ParameterValues& values, const Ss08Search& search, bool fromLog2,
+  ProbeRecorder& recorder)
+{
+  recorder.beginGroup("class");
+  if (search.classification == Ss08Class::GrowthPenumbra)
+  {
+    recorder.category("growth_class", values.choice("growth") == "on"
+        ? "penumbra only by the grown query (the area's own range says lit): back-projected"
+        : "lit by the area's own range, penumbra by the grown one: left lit (the over-precision artifact)",
+      cite("§6, Fig. 7 (over-precision)"));
+  }
+  recorder.category("class", ss08Categories[static_cast<int>(search.classification)].label, cite("§3, Fig. 7"));
+  recorder.beginGroup("level of quality");
+  recorder.quantity("span", search.span, "texels", "ShadowLab: the search area's larger side minus one, level-0 texels");
+  recorder.quantity("search_area_texels", search.span + 1, "texels", cite("Fig. 2 b (the search area's larger side)"));
+  const int extra = values.getInt("force_level") >= 0 ? 0 : extraSlot(values);
+  recorder.quantity("extra_slot", extra, "slots",
+    "ShadowLab: microrects may take one slot more on the high side (ss08SlotRange)");
+  recorder.quantity("level_ceil_raw", search.levelCeil, "level",
+    "ShadowLab: the least level j with span - extra <= (b - 1 - extra) 2^j (at most b slots per axis at ceil(l))");
+  recorder.quantity("loq_raw", search.levelRaw, "levels",
+    values.getInt("force_level") >= 0 ? std::string("ShadowLab: force_level")
+      : fromLog2 ? cite("§4.2, §8 (l = log2((span - extra) / (b - 1 - extra)), the project's rule)")
+                 : cite("§4.2, §8 (an integer level: level 0 when span <= b - 1, the top level when b - 1 - extra <= 0)"));
+  recorder.category("loq_state", loqStateLabels[static_cast<int>(search.state)],
+    cite("§4.2, §8 (who the smoothing averages and where it stops)"));
+}
+
+} // namespace
+
+// Fig. 3 step 1, in Ss08Search.glsl's steps: the pixel's budget (§4.2), the refined search area (Fig. 2 b, §3),
+// the fractional level of quality (§4.2, §8), lit / umbra / penumbra from the depth range (§3) and the
+// over-precision class (§6, Fig. 7).
+Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+  int x, int y, const ImageF* budgetImage, ProbeRecorder* recorder)
+{
+  SL_CHECK(structures.hsm);
+  Ss08Search search;
+  search.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  if (!search.lookup.sample.evaluated)
+  {
+    return search;
+  }
+  search.geometry = softShadowGeometry(inputs, search.lookup, values.choice("receiver_plane_bias") == "on", x, y);
+  search.bias = search.lookup.sample.bias;
+  search.budget = ss08PixelBudget(values, x, y, inputs.camera.resolution.x, budgetImage);
   if (recorder)
   {
-    recorder->beginGroup("class");
-    if (search.classification == Ss08Class::GrowthPenumbra)
-    {
-      recorder->category("growth_class", growth
-          ? "penumbra only by the grown query (the area's own range says lit): back-projected"
-          : "lit by the area's own range, penumbra by the grown one: left lit (the over-precision artifact)",
-        cite("§6, Fig. 7 (over-precision)"));
-    }
-    recorder->category("class", ss08Categories[static_cast<int>(search.classification)].label,
-      cite("§3, Fig. 7"));
-    recorder->beginGroup("level of quality");
-    recorder->quantity("span", search.span, "texels", "ShadowLab: the search area's larger side minus one, level-0 texels");
-    recorder->quantity("search_area_texels", search.span + 1, "texels", cite("Fig. 2 b (the search area's larger side)"));
-    const int extra = values.getInt("force_level") >= 0 ? 0 : extraSlot(values);
-    recorder->quantity("extra_slot", extra, "slots",
-      "ShadowLab: microrects may take one slot more on the high side (ss08SlotRange)");
-    recorder->quantity("level_ceil_raw", search.levelCeil, "level",
-      "ShadowLab: the least level j with span - extra <= (b - 1 - extra) 2^j (at most b slots per axis at ceil(l))");
-    recorder->quantity("loq_raw", search.levelRaw, "levels",
-      values.getInt("force_level") >= 0 ? std::string("ShadowLab: force_level")
-        : fromLog2 ? cite("§4.2, §8 (l = log2((span - extra) / (b - 1 - extra)), the project's rule)")
-                   : cite("§4.2, §8 (an integer level: level 0 when span <= b - 1, the top level when b - 1 - extra <= 0)"));
-    recorder->category("loq_state", loqStateLabels[static_cast<int>(search.state)],
-      cite("§4.2, §8 (who the smoothing averages and where it stops)"));
+    recorder->beginGroup("budget");
+    recorder->category("budget_map", values.choice("budget_map"), cite("§4.2 (the budget map b_mo(x, y))"));
+    recorder->quantity("budget", search.budget, "micro-occluders per axis",
+      cite("§4.2 (b_mo at the pixel; 0 = unlimited, Table 2)"));
+  }
+  Ss08RangeQueries queries(*structures.hsm, recorder);
+  const SearchArea area = refineSearchArea(values, search, queries, recorder);
+
+  search.span = areaSpan(search.area);
+  bool fromLog2 = false;
+  search.levelRaw =
+    fractionalLevel(values, search.span, search.budget, topLevel(search.geometry.mapSize), search.levelCeil, &fromLog2);
+  // Only a level from log2 may round across an integer; the integer levels are exact in float too.
+  search.levelMargin = fromLog2 ? std::abs(search.levelRaw - std::round(search.levelRaw)) : 1e300;
+
+  decideFromDepthRange(values, search, queries, area, recorder);
+  classifyOverPrecision(values, search, queries, recorder);
+  if (recorder)
+  {
+    recordClassAndLevel(values, search, fromLog2, *recorder);
   }
   return search;
 }
@@ -833,6 +900,173 @@ double blendWeight(double fraction, double band)
 
 } // namespace
 
+namespace
+{
+
+// The buffers' values under their names (the probe sweep compares them with the GPU's at the pixel).
+void recordSs08Result(const Ss08Sample& result, ProbeRecorder* recorder)
+{
+  if (!recorder)
+  {
+    return;
+  }
+  const Ss08Search& search = result.search;
+  recorder->beginGroup("result");
+  if (search.lookup.sample.evaluated)
+  {
+    recorder->quantity("level_floor", result.levelFloor, "level", cite("§4.2 (floor(l); 0 where no back-projection)"));
+    recorder->quantity("blend_alpha", result.blendAlpha, "", cite("§4.2 (weight of ceil(l); 0 where one level)"));
+    recorder->quantity("loq_budget_violation", result.budgetViolation, "levels",
+      cite("§4.2 (levels the smoothing lowered ceil(l) below the budget's)"));
+    recorder->quantity("query_growth_texels", result.queryGrowth, "texels", cite("§6, Fig. 7 (query grown by)"));
+    recorder->quantity("micro_occluders", result.microOccluders, "count", cite("Table 2 (slots examined, both levels)"));
+    recorder->quantity("micro_occluders_floor", result.slotsPerAxis[0].x * result.slotsPerAxis[0].y, "count",
+      cite("§8 (slots floor(l) alone examines)"));
+    recorder->quantity("micro_occluders_ceil", result.slotsPerAxis[1].x * result.slotsPerAxis[1].y, "count",
+      cite("§8 (slots ceil(l) alone examines)"));
+    recorder->quantity("occluded_bits", result.occludedBitsBlended, "light samples (of 256)",
+      cite("§8 (the bitmask's popcount, blended as V; 0 with area accumulation)"));
+    recorder->quantity("area_overcount", result.areaOvercount, "fraction of light area",
+      cite("§3 (summed areas minus the bitmask's coverage: the overlaps area accumulation counts twice)"));
+    if (search.classification == Ss08Class::CutShort)
+    {
+      recorder->category("cut_short", format("the GPU's slot loop stops near ", ss08LoopCap,
+        " slots (llvmpipe's cap on loop iterations): its value and micro_occluders are partial, the twin's complete"),
+        "ShadowLab (ss08LoopCap)");
+    }
+  }
+  const int code = static_cast<int>(search.classification);
+  recordCode(*recorder, "classification", code, ss08Categories[code].label, cite("§3, Fig. 7"));
+  recorder->quantity("visibility", result.sample.visibility, "", cite("§4.2 (V = (1 - a) V(floor l) + a V(ceil l))"));
+}
+
+// selectLevels() of Ss08Visibility.glsl (§4.2): floor(l) weighted 1 - a and ceil(l) weighted a, a from the
+// fractional part through the blend band; one level of weight 1 where l is an integer.
+struct Ss08Levels
+{
+  int levels[2] = { 0, 0 };
+  double weights[2] = { 1.0, 0.0 };
+};
+Ss08Levels selectLevels(const ParameterValues& values, double level, Ss08Sample& result, ProbeRecorder* recorder)
+{
+  result.level = level;
+  result.levelFloor = static_cast<int>(std::floor(level));
+  const int levelCeil = static_cast<int>(std::ceil(level));
+  result.blendAlpha = blendWeight(level - result.levelFloor, values.get("blend_band"));
+  result.budgetViolation = std::max(result.search.levelCeil - levelCeil, 0);
+  Ss08Levels selected{ { result.levelFloor, levelCeil }, { 1.0 - result.blendAlpha, result.blendAlpha } };
+  if (levelCeil == result.levelFloor)
+  {
+    selected.weights[0] = 1.0;
+    selected.weights[1] = 0.0;
+  }
+  if (recorder)
+  {
+    recorder->beginGroup("blend");
+    recorder->quantity("loq", level, "levels", cite("Fig. 3 step 2, §4.2 (the smoothed LOQ map at the pixel)"));
+    recorder->quantity("level_ceil", levelCeil, "level", cite("§4.2 (ceil(l))"));
+    recorder->quantity("blend_band", values.get("blend_band"), "levels", cite("§4.2 (1: always; GBP07: 0.1)"));
+    recorder->quantity("weight_floor", selected.weights[0], "", cite("§4.2 (1 - a)"));
+    recorder->quantity("weight_ceil", selected.weights[1], "", cite("§4.2 (a)"));
+  }
+  return selected;
+}
+
+// One level's slots (§8) back-projected onto the light and accumulated (§3: summed areas, or SS07's occlusion
+// bitmask with accumulation=bitmask): the level's visibility.
+double accumulateLevel(Ss08Accumulator& accumulator, const Ss08Levels& selected, int k, Ss08Sample& result,
+  ProbeRecorder* recorder)
+{
+  const Ss08Search& search = result.search;
+  const int level = selected.levels[k];
+  const TexelRectangle slots = ss08SlotRange(accumulator.values, search.geometry.mapSize, level, search.area);
+  const double lightArea = 4.0 * accumulator.halfSize * accumulator.halfSize;
+  const bool bitmask = accumulator.values.choice("accumulation") == "bitmask";
+  if (recorder)
+  {
+    recorder->beginGroup("level " + std::to_string(level) + (k == 0 ? " (floor)" : " (ceil)"));
+    recorder->quantity("slot_lo", glm::dvec2(slots.lo), "level-j texels", cite("§8 (first slot examined)"));
+    recorder->quantity("slot_hi", glm::dvec2(slots.hi), "level-j texels", cite("§8 (last slot examined)"));
+    recorder->quantity("slots_per_axis", glm::dvec2(result.slotsPerAxis[k]), "slots",
+      cite("§8 (at most b at ceil(l), 2b - 1 at floor(l))"));
+    recorder->quantity("receiver_light_xy", accumulator.receiverXy, "world units",
+      "ShadowLab: the receiver in light coordinates (light view x, y at its depth)");
+    recorder->quantity("micro_occluder_bias", search.bias, "linear depth",
+      "ShadowLab: the receiver's depth bias; with level_bias=on a micro-occluder above level 0 adds the receiver "
+      "plane's drop over its footprint (SS08 §9 leaves biasing across levels to future work)");
+  }
+  double area = 0.0;
+  std::array<bool, ss08BitmaskSampleCount> mask{};
+  std::array<glm::dvec2, 2> rectangle;
+  for (int j = slots.lo.y; j <= slots.hi.y; ++j)
+  {
+    for (int i = slots.lo.x; i <= slots.hi.x; ++i)
+    {
+      area += accumulator.area(level, { i, j }, bitmask ? &rectangle : nullptr);
+      if (bitmask)
+      {
+        setBits(mask, rectangle, accumulator.halfSize, result.bitmaskMargin);
+      }
+      ++result.microOccluders;
+    }
+  }
+  double levelVisibility = std::clamp(1.0 - area / lightArea, 0.0, 1.0);
+  if (bitmask)
+  {
+    // SS07's occlusion bitmask (§8): V = 1 - popcount / N; area_overcount = the area's fraction minus it.
+    const int bits = static_cast<int>(std::count(mask.begin(), mask.end(), true));
+    result.occludedBits[static_cast<std::size_t>(k)] = bits;
+    levelVisibility = 1.0 - static_cast<double>(bits) / ss08BitmaskSampleCount;
+    result.occludedBitsBlended += selected.weights[k] * bits;
+    result.areaOvercount +=
+      selected.weights[k] * (area / lightArea - static_cast<double>(bits) / ss08BitmaskSampleCount);
+  }
+  if (recorder)
+  {
+    recorder->quantity("occluded_area", area, "world units^2",
+      cite("§3 (back-projected micro-occluders' areas over the light, accumulated: overlaps count twice)"));
+    recorder->quantity("light_area", lightArea, "world units^2", "scene (square light)");
+    if (bitmask)
+    {
+      recorder->quantity("level_occluded_bits", result.occludedBits[static_cast<std::size_t>(k)], "light samples (of 256)",
+        cite("§3, §8 (the occlusion bitmask's popcount: samples inside some back-projection)"));
+    }
+    recorder->quantity("level_visibility", levelVisibility, "", bitmask
+        ? cite("§8 (1 - popcount / 256)") : cite("§3 (1 - occluded area / light area, clamped)"));
+  }
+  return levelVisibility;
+}
+
+// accumulateMicroOccluders() of Ss08Visibility.glsl: both levels' micro-occluders, blended (§4.2).
+double accumulateMicroOccluders(const ParameterValues& values, const Ss08Structures& structures,
+  const Ss08Levels& selected, Ss08Sample& result, ProbeRecorder* recorder)
+{
+  Ss08Search& search = result.search;
+  Ss08Accumulator accumulator{ values, structures, search, result };
+  accumulator.receiverXy =
+    (search.geometry.windowMin + search.lookup.sm.uvTexels * search.geometry.texelTangent) * search.geometry.d;
+  accumulator.halfSize = 0.5 * search.geometry.lightSize;
+  accumulator.microrects = microrectsOn(values);
+  accumulator.levelBias = values.choice("level_bias") == "on";
+  accumulator.gapFilling = values.choice("gap_filling");
+  accumulator.recorder = recorder;
+  double visibility = 0.0;
+  for (int k = 0; k < 2; ++k)
+  {
+    const TexelRectangle slots = ss08SlotRange(values, search.geometry.mapSize, selected.levels[k], search.area);
+    result.slotsPerAxis[k] = glm::max(slots.hi - slots.lo + 1, glm::ivec2(0));
+    if (selected.weights[k] > 0.0)
+    {
+      visibility += selected.weights[k] * accumulateLevel(accumulator, selected, k, result, recorder);
+    }
+  }
+  return visibility;
+}
+
+} // namespace
+
+// Fig. 3, in Ss08Visibility.glsl's steps: the search (step 1, ss08Search), the levels the smoothed LOQ selects
+// (step 2, §4.2), and the micro-occluders of both levels back-projected and accumulated (step 3, §3, §8).
 Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
   int x, int y, double level, const ImageF* budgetImage, bool evaluateLit, ProbeRecorder* recorder)
 {
@@ -840,44 +1074,9 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
   result.search = ss08Search(inputs, structures, values, x, y, budgetImage, recorder);
   Ss08Search& search = result.search;
   result.sample = search.lookup.sample;
-  // The buffers' values under their names (the probe sweep compares them with the GPU's at the pixel).
-  const auto recordResult = [&] {
-    if (!recorder)
-    {
-      return;
-    }
-    recorder->beginGroup("result");
-    if (search.lookup.sample.evaluated)
-    {
-      recorder->quantity("level_floor", result.levelFloor, "level", cite("§4.2 (floor(l); 0 where no back-projection)"));
-      recorder->quantity("blend_alpha", result.blendAlpha, "", cite("§4.2 (weight of ceil(l); 0 where one level)"));
-      recorder->quantity("loq_budget_violation", result.budgetViolation, "levels",
-        cite("§4.2 (levels the smoothing lowered ceil(l) below the budget's)"));
-      recorder->quantity("query_growth_texels", result.queryGrowth, "texels", cite("§6, Fig. 7 (query grown by)"));
-      recorder->quantity("micro_occluders", result.microOccluders, "count", cite("Table 2 (slots examined, both levels)"));
-      recorder->quantity("micro_occluders_floor", result.slotsPerAxis[0].x * result.slotsPerAxis[0].y, "count",
-        cite("§8 (slots floor(l) alone examines)"));
-      recorder->quantity("micro_occluders_ceil", result.slotsPerAxis[1].x * result.slotsPerAxis[1].y, "count",
-        cite("§8 (slots ceil(l) alone examines)"));
-      recorder->quantity("occluded_bits", result.occludedBitsBlended, "light samples (of 256)",
-        cite("§8 (the bitmask's popcount, blended as V; 0 with area accumulation)"));
-      recorder->quantity("area_overcount", result.areaOvercount, "fraction of light area",
-        cite("§3 (summed areas minus the bitmask's coverage: the overlaps area accumulation counts twice)"));
-      if (search.classification == Ss08Class::CutShort)
-      {
-        recorder->category("cut_short", format("the GPU's slot loop stops near ", ss08LoopCap,
-          " slots (llvmpipe's cap on loop iterations): its value and micro_occluders are partial, the twin's complete"),
-          "ShadowLab (ss08LoopCap)");
-      }
-    }
-    const int code = static_cast<int>(search.classification);
-    recordCode(*recorder, "classification", code, ss08Categories[code].label, cite("§3, Fig. 7"));
-    recorder->quantity("visibility", result.sample.visibility, "",
-      cite("§4.2 (V = (1 - a) V(floor l) + a V(ceil l))"));
-  };
   if (!search.lookup.sample.evaluated)
   {
-    recordResult();
+    recordSs08Result(result, recorder);
     return result;
   }
   const glm::ivec2 growth = glm::max(search.area.lo - search.query.lo, search.query.hi - search.area.hi);
@@ -891,108 +1090,17 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     {
       recorder->quantity("loq", result.level, "levels", cite("Fig. 3 step 2 (not smoothed: no back-projection)"));
     }
-    recordResult();
+    recordSs08Result(result, recorder);
     return result;
   }
   SL_CHECK_MSG(!microrectsOn(values) || structures.microrects, "micro_occluder=microrect needs the microrects");
-  result.level = level;
-  result.levelFloor = static_cast<int>(std::floor(level));
-  const int levelCeil = static_cast<int>(std::ceil(level));
-  result.blendAlpha = blendWeight(level - result.levelFloor, values.get("blend_band"));
-  result.budgetViolation = std::max(search.levelCeil - levelCeil, 0);
-  const int levels[2] = { result.levelFloor, levelCeil };
-  double weights[2] = { 1.0 - result.blendAlpha, result.blendAlpha };
-  if (levelCeil == result.levelFloor)
-  {
-    weights[0] = 1.0;
-    weights[1] = 0.0;
-  }
-  if (recorder)
-  {
-    recorder->beginGroup("blend");
-    recorder->quantity("loq", level, "levels", cite("Fig. 3 step 2, §4.2 (the smoothed LOQ map at the pixel)"));
-    recorder->quantity("level_ceil", levelCeil, "level", cite("§4.2 (ceil(l))"));
-    recorder->quantity("blend_band", values.get("blend_band"), "levels", cite("§4.2 (1: always; GBP07: 0.1)"));
-    recorder->quantity("weight_floor", weights[0], "", cite("§4.2 (1 - a)"));
-    recorder->quantity("weight_ceil", weights[1], "", cite("§4.2 (a)"));
-  }
-  Ss08Accumulator accumulator{ values, structures, search, result };
-  accumulator.receiverXy = (search.geometry.windowMin + search.lookup.sm.uvTexels * search.geometry.texelTangent) * search.geometry.d;
-  accumulator.halfSize = 0.5 * search.geometry.lightSize;
-  accumulator.microrects = microrectsOn(values);
-  accumulator.levelBias = values.choice("level_bias") == "on";
-  accumulator.gapFilling = values.choice("gap_filling");
-  accumulator.recorder = recorder;
-  const double lightArea = 4.0 * accumulator.halfSize * accumulator.halfSize;
-  const bool bitmask = values.choice("accumulation") == "bitmask";
-  double visibility = 0.0;
-  for (int k = 0; k < 2; ++k)
-  {
-    const TexelRectangle slots = ss08SlotRange(values, search.geometry.mapSize, levels[k], search.area);
-    result.slotsPerAxis[k] = glm::max(slots.hi - slots.lo + 1, glm::ivec2(0));
-    if (weights[k] <= 0.0)
-    {
-      continue;
-    }
-    if (recorder)
-    {
-      recorder->beginGroup("level " + std::to_string(levels[k]) + (k == 0 ? " (floor)" : " (ceil)"));
-      recorder->quantity("slot_lo", glm::dvec2(slots.lo), "level-j texels", cite("§8 (first slot examined)"));
-      recorder->quantity("slot_hi", glm::dvec2(slots.hi), "level-j texels", cite("§8 (last slot examined)"));
-      recorder->quantity("slots_per_axis", glm::dvec2(result.slotsPerAxis[k]), "slots",
-        cite("§8 (at most b at ceil(l), 2b - 1 at floor(l))"));
-      recorder->quantity("receiver_light_xy", accumulator.receiverXy, "world units",
-        "ShadowLab: the receiver in light coordinates (light view x, y at its depth)");
-      recorder->quantity("micro_occluder_bias", search.bias, "linear depth",
-        "ShadowLab: the receiver's depth bias; with level_bias=on a micro-occluder above level 0 adds the receiver "
-        "plane's drop over its footprint (SS08 §9 leaves biasing across levels to future work)");
-    }
-    double area = 0.0;
-    std::array<bool, ss08BitmaskSampleCount> mask{};
-    std::array<glm::dvec2, 2> rectangle;
-    for (int j = slots.lo.y; j <= slots.hi.y; ++j)
-    {
-      for (int i = slots.lo.x; i <= slots.hi.x; ++i)
-      {
-        area += accumulator.area(levels[k], { i, j }, bitmask ? &rectangle : nullptr);
-        if (bitmask)
-        {
-          setBits(mask, rectangle, accumulator.halfSize, result.bitmaskMargin);
-        }
-        ++result.microOccluders;
-      }
-    }
-    double levelVisibility = std::clamp(1.0 - area / lightArea, 0.0, 1.0);
-    if (bitmask)
-    {
-      // SS07's occlusion bitmask (§8): V = 1 - popcount / N; area_overcount = the area's fraction minus it.
-      const int bits = static_cast<int>(std::count(mask.begin(), mask.end(), true));
-      result.occludedBits[static_cast<std::size_t>(k)] = bits;
-      levelVisibility = 1.0 - static_cast<double>(bits) / ss08BitmaskSampleCount;
-      result.occludedBitsBlended += weights[k] * bits;
-      result.areaOvercount += weights[k] * (area / lightArea - static_cast<double>(bits) / ss08BitmaskSampleCount);
-    }
-    visibility += weights[k] * levelVisibility;
-    if (recorder)
-    {
-      recorder->quantity("occluded_area", area, "world units^2",
-        cite("§3 (back-projected micro-occluders' areas over the light, accumulated: overlaps count twice)"));
-      recorder->quantity("light_area", lightArea, "world units^2", "scene (square light)");
-      if (bitmask)
-      {
-        recorder->quantity("level_occluded_bits", result.occludedBits[static_cast<std::size_t>(k)], "light samples (of 256)",
-          cite("§3, §8 (the occlusion bitmask's popcount: samples inside some back-projection)"));
-      }
-      recorder->quantity("level_visibility", levelVisibility, "", bitmask
-          ? cite("§8 (1 - popcount / 256)") : cite("§3 (1 - occluded area / light area, clamped)"));
-    }
-  }
-  result.sample.visibility = visibility;
+  const Ss08Levels selected = selectLevels(values, level, result, recorder);
+  result.sample.visibility = accumulateMicroOccluders(values, structures, selected, result, recorder);
   if (result.microOccluders > ss08LoopCap)
   {
     search.classification = Ss08Class::CutShort;
   }
-  recordResult();
+  recordSs08Result(result, recorder);
   return result;
 }
 
