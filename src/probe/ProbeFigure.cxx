@@ -266,6 +266,140 @@ ImageU8 imagePanel(const ProbeResult& probe, const FrameResult& frame)
 
 // --- (b) the shadow-map crop ------------------------------------------------------------------------------------
 
+// The crop of the shadow map drawn at `scale` pixels a texel, and where a texel position lands on it.
+struct CropCanvas
+{
+  ImageU8 map;
+  double scale = 1.0;
+  glm::ivec2 cropLo{ 0 };
+
+  glm::dvec2 toMap(const glm::dvec2& uvTexels) const { return (uvTexels - glm::dvec2(cropLo)) * scale; }
+  std::vector<glm::dvec2> rectangle(const glm::dvec2& lo, const glm::dvec2& hi) const
+  {
+    const glm::dvec2 a = toMap(lo);
+    const glm::dvec2 b = toMap(hi);
+    return { a, { b.x, a.y }, b, { a.x, b.y } };
+  }
+};
+
+// The crop's depths on viridis (texels without a caster in kInvalidPixelColor), on a canvas of their own so that
+// rectangles reaching past the crop (an HSM's root node) are clipped to it.
+CropCanvas paintDepthCrop(const ProbeCropArrays& arrays, const TexelRect& crop, const ImageU8& valid,
+  const ValueRange& range, const ColorMap& viridis, double scale)
+{
+  CropCanvas canvas;
+  canvas.scale = scale;
+  canvas.cropLo = crop.lo;
+  const int drawnWidth = std::max(1, int(std::floor(crop.size.x * scale)));
+  const int drawnHeight = std::max(1, int(std::floor(crop.size.y * scale)));
+  canvas.map = ImageU8(drawnWidth, drawnHeight, 3);
+  for (int y = 0; y < drawnHeight; ++y)
+  {
+    for (int x = 0; x < drawnWidth; ++x)
+    {
+      const int tx = std::min(crop.size.x - 1, int((x + 0.5) / scale));
+      const int ty = std::min(crop.size.y - 1, int((y + 0.5) / scale));
+      const RgbColor color = valid.at(tx, ty) ? viridis.map((arrays.depth.at(tx, ty) - range.min) / (range.max - range.min))
+                                              : kInvalidPixelColor;
+      const auto rgb8 = toRgb8(color);
+      for (int c = 0; c < 3; ++c)
+      {
+        canvas.map.at(x, y, c) = rgb8[c];
+      }
+    }
+  }
+  return canvas;
+}
+
+// The hierarchy nodes the probe visited, largest first so the finer ones stay visible, coloured by decision; then
+// the kernels, white on black.
+void drawNodesAndKernels(CropCanvas& canvas, const ProbeRecord& record, const std::vector<std::string>& decisions)
+{
+  std::vector<std::size_t> order(record.nodes.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const auto nodeArea = [&](const ProbeNode& node) {
+    return (double(node.hi.x) - node.lo.x + 1.0) * (double(node.hi.y) - node.lo.y + 1.0);
+  };
+  std::stable_sort(order.begin(), order.end(),
+    [&](std::size_t a, std::size_t b) { return nodeArea(record.nodes[a]) > nodeArea(record.nodes[b]); });
+  for (const std::size_t n : order)
+  {
+    const ProbeNode& node = record.nodes[n];
+    strokePolygon(canvas.map, canvas.rectangle(glm::dvec2(node.lo), glm::dvec2(node.hi) + 1.0),
+      ColorMap::categoryColor(labelCode(decisions, node.decision)), 2.0);
+  }
+  for (const ProbeKernel& kernel : record.kernels)
+  {
+    strokePolygon(canvas.map, canvas.rectangle(kernel.lo, kernel.hi), kBlack, 4.0);
+    strokePolygon(canvas.map, canvas.rectangle(kernel.lo, kernel.hi), kWhite, 2.0);
+  }
+}
+
+// Texels read: a small white dot with a black rim; occluding ones a larger black square with a white rim (size and
+// fill, not colour, tell them apart). Sized to the texel, at least a few pixels.
+void drawTexelsRead(CropCanvas& canvas, const ProbeCropArrays& arrays, const TexelRect& crop)
+{
+  const double dotRadius = std::max(1.5, 0.12 * canvas.scale);
+  const double squareHalf = std::max(2.0, 0.28 * canvas.scale);
+  const auto square = [&](const glm::dvec2& c, double half) {
+    return std::vector<glm::dvec2>{ c + glm::dvec2(-half, -half), c + glm::dvec2(half, -half), c + glm::dvec2(half, half),
+      c + glm::dvec2(-half, half) };
+  };
+  for (int y = 0; y < crop.size.y; ++y)
+  {
+    for (int x = 0; x < crop.size.x; ++x)
+    {
+      if (!arrays.read.at(x, y))
+      {
+        continue;
+      }
+      const glm::dvec2 c = canvas.toMap(glm::dvec2(crop.lo) + glm::dvec2(x + 0.5, y + 0.5));
+      if (arrays.occluding.at(x, y))
+      {
+        fillPolygon(canvas.map, square(c, squareHalf + 1.0), kWhite);
+        fillPolygon(canvas.map, square(c, squareHalf), kBlack);
+      }
+      else
+      {
+        fillDisk(canvas.map, c, dotRadius + 1.0, kBlack);
+        fillDisk(canvas.map, c, dotRadius, kWhite);
+      }
+    }
+  }
+}
+
+// The key below the map: the marks on the first line, the node decisions (two to a line, cut to fit; the legend
+// and probe.vtm have them in full) or the crop's texel range on the next two.
+void drawShadowMapKey(ImageU8& panel, const Box& box, const std::vector<std::string>& decisions, const TexelRect& crop,
+  int mapWidth)
+{
+  const int keyTop = int(box.bottom + 2 * kKeyLinePx + 2);
+  int x = int(box.left);
+  x = drawKeyEntry(panel, x, keyTop, "kernel", paintBoxSwatch, kWhite);
+  x = drawKeyEntry(panel, x, keyTop, "read", paintDot, kWhite);
+  x = drawKeyEntry(panel, x, keyTop, "occluding", paintFilledSquare, kBlack);
+  drawKeyEntry(panel, x, keyTop, "receiver", paintMarkerSwatch, kProbeMarkerColor);
+  if (decisions.empty())
+  {
+    drawText(panel, format("texels ", crop.lo.x, "..", crop.lo.x + crop.size.x - 1, " x ", crop.lo.y, "..",
+      crop.lo.y + crop.size.y - 1, " of ", mapWidth), kBodyFontPx, int(box.left), int(box.bottom), kDarkGrey);
+  }
+  const double slotWidth = 0.5 * box.width;
+  for (std::size_t d = 0; d < decisions.size(); ++d)
+  {
+    const int line = int(d / 2);
+    const int slotLeft = int(box.left + (d % 2) * slotWidth);
+    const int slotBottom = int(box.bottom + (1 - line) * kKeyLinePx);
+    if (line == 1 && d % 2 == 1 && decisions.size() > 4)
+    {
+      drawText(panel, format("+", decisions.size() - d, " more decisions"), kBodyFontPx, slotLeft, slotBottom, kDarkGrey);
+      break;
+    }
+    drawKeyEntry(panel, slotLeft, slotBottom, fitText(decisions[d], kBodyFontPx, int(slotWidth) - 24), paintBoxSwatch,
+      ColorMap::categoryColor(long(d)));
+  }
+}
+
 ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const ProbeSetting& setting)
 {
   const FigureRect rect = probeFigurePanel(ProbePanel::ShadowMap);
@@ -303,121 +437,22 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
   const double keyBand = 3.0 * kKeyLinePx + 4.0;
   const Box mapBox{ box.left, box.bottom + keyBand, box.width - key.width() - 6.0, box.height - keyBand };
   const double scale = std::min(mapBox.width / crop.size.x, mapBox.height / crop.size.y);
-  const int drawnWidth = std::max(1, int(std::floor(crop.size.x * scale)));
-  const int drawnHeight = std::max(1, int(std::floor(crop.size.y * scale)));
-  const int mapLeft = int(mapBox.left + 0.5 * (mapBox.width - drawnWidth));
-  const int mapBottom = int(mapBox.bottom + 0.5 * (mapBox.height - drawnHeight));
   key.draw(panel, int(mapBox.left + mapBox.width + 6.0), int(mapBox.bottom),
     std::max(key.minHeight(), int(mapBox.height)));
 
-  // The map and everything on it are drawn on their own canvas, so rectangles reaching past the crop (an HSM's
-  // root node) are clipped to it.
-  ImageU8 map(drawnWidth, drawnHeight, 3);
-  for (int y = 0; y < drawnHeight; ++y)
-  {
-    for (int x = 0; x < drawnWidth; ++x)
-    {
-      const int tx = std::min(crop.size.x - 1, int((x + 0.5) / scale));
-      const int ty = std::min(crop.size.y - 1, int((y + 0.5) / scale));
-      const RgbColor color = valid.at(tx, ty) ? viridis.map((arrays.depth.at(tx, ty) - range.min) / (range.max - range.min))
-                                              : kInvalidPixelColor;
-      const auto rgb8 = toRgb8(color);
-      for (int c = 0; c < 3; ++c)
-      {
-        map.at(x, y, c) = rgb8[c];
-      }
-    }
-  }
-  const auto toMap = [&](const glm::dvec2& uvTexels) { return (uvTexels - glm::dvec2(crop.lo)) * scale; };
-  const auto rectangle = [&](const glm::dvec2& lo, const glm::dvec2& hi) {
-    const glm::dvec2 a = toMap(lo);
-    const glm::dvec2 b = toMap(hi);
-    return std::vector<glm::dvec2>{ a, { b.x, a.y }, b, { a.x, b.y } };
-  };
-  // Visited nodes, largest first so the finer ones stay visible, coloured by decision.
+  CropCanvas canvas = paintDepthCrop(arrays, crop, valid, range, viridis, scale);
   const std::vector<std::string> decisions = nodeDecisionLabels(record);
-  std::vector<std::size_t> order(record.nodes.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  const auto nodeArea = [&](const ProbeNode& node) {
-    return (double(node.hi.x) - node.lo.x + 1.0) * (double(node.hi.y) - node.lo.y + 1.0);
-  };
-  std::stable_sort(order.begin(), order.end(),
-    [&](std::size_t a, std::size_t b) { return nodeArea(record.nodes[a]) > nodeArea(record.nodes[b]); });
-  for (const std::size_t n : order)
-  {
-    const ProbeNode& node = record.nodes[n];
-    strokePolygon(map, rectangle(glm::dvec2(node.lo), glm::dvec2(node.hi) + 1.0),
-      ColorMap::categoryColor(labelCode(decisions, node.decision)), 2.0);
-  }
-  // Kernels: white on black.
-  for (const ProbeKernel& kernel : record.kernels)
-  {
-    strokePolygon(map, rectangle(kernel.lo, kernel.hi), kBlack, 4.0);
-    strokePolygon(map, rectangle(kernel.lo, kernel.hi), kWhite, 2.0);
-  }
-  // Texels read: a small white dot with a black rim; occluding ones a larger black square with a white rim (size
-  // and fill, not colour, tell them apart). Sized to the texel, at least a few pixels.
-  const double dotRadius = std::max(1.5, 0.12 * scale);
-  const double squareHalf = std::max(2.0, 0.28 * scale);
-  const auto square = [&](const glm::dvec2& c, double half) {
-    return std::vector<glm::dvec2>{ c + glm::dvec2(-half, -half), c + glm::dvec2(half, -half), c + glm::dvec2(half, half),
-      c + glm::dvec2(-half, half) };
-  };
-  for (int y = 0; y < crop.size.y; ++y)
-  {
-    for (int x = 0; x < crop.size.x; ++x)
-    {
-      if (!arrays.read.at(x, y))
-      {
-        continue;
-      }
-      const glm::dvec2 c = toMap(glm::dvec2(crop.lo) + glm::dvec2(x + 0.5, y + 0.5));
-      if (arrays.occluding.at(x, y))
-      {
-        fillPolygon(map, square(c, squareHalf + 1.0), kWhite);
-        fillPolygon(map, square(c, squareHalf), kBlack);
-      }
-      else
-      {
-        fillDisk(map, c, dotRadius + 1.0, kBlack);
-        fillDisk(map, c, dotRadius, kWhite);
-      }
-    }
-  }
+  drawNodesAndKernels(canvas, record, decisions);
+  drawTexelsRead(canvas, arrays, crop);
   if (setting.receiver.uvTexels)
   {
-    drawMarker(map, toMap(*setting.receiver.uvTexels), 3.0);
+    drawMarker(canvas.map, canvas.toMap(*setting.receiver.uvTexels), 3.0);
   }
-  blit(panel, map, mapLeft, mapBottom);
-  strokeRect(panel, mapLeft - 1, mapBottom - 1, drawnWidth + 2, drawnHeight + 2, kDarkGrey, 1);
-
-  // Key: the marks on the first line, the node decisions on the next two.
-  const int keyTop = int(box.bottom + 2 * kKeyLinePx + 2);
-  int x = int(box.left);
-  x = drawKeyEntry(panel, x, keyTop, "kernel", paintBoxSwatch, kWhite);
-  x = drawKeyEntry(panel, x, keyTop, "read", paintDot, kWhite);
-  x = drawKeyEntry(panel, x, keyTop, "occluding", paintFilledSquare, kBlack);
-  drawKeyEntry(panel, x, keyTop, "receiver", paintMarkerSwatch, kProbeMarkerColor);
-  if (decisions.empty())
-  {
-    drawText(panel, format("texels ", crop.lo.x, "..", crop.lo.x + crop.size.x - 1, " x ", crop.lo.y, "..",
-      crop.lo.y + crop.size.y - 1, " of ", depthMap->width), kBodyFontPx, int(box.left), int(box.bottom), kDarkGrey);
-  }
-  // Node decisions, two to a line (cut to fit; the legend and probe.vtm have them in full).
-  const double slotWidth = 0.5 * box.width;
-  for (std::size_t d = 0; d < decisions.size(); ++d)
-  {
-    const int line = int(d / 2);
-    const int slotLeft = int(box.left + (d % 2) * slotWidth);
-    const int slotBottom = int(box.bottom + (1 - line) * kKeyLinePx);
-    if (line == 1 && d % 2 == 1 && decisions.size() > 4)
-    {
-      drawText(panel, format("+", decisions.size() - d, " more decisions"), kBodyFontPx, slotLeft, slotBottom, kDarkGrey);
-      break;
-    }
-    drawKeyEntry(panel, slotLeft, slotBottom, fitText(decisions[d], kBodyFontPx, int(slotWidth) - 24), paintBoxSwatch,
-      ColorMap::categoryColor(long(d)));
-  }
+  const int mapLeft = int(mapBox.left + 0.5 * (mapBox.width - canvas.map.width));
+  const int mapBottom = int(mapBox.bottom + 0.5 * (mapBox.height - canvas.map.height));
+  blit(panel, canvas.map, mapLeft, mapBottom);
+  strokeRect(panel, mapLeft - 1, mapBottom - 1, canvas.map.width + 2, canvas.map.height + 2, kDarkGrey, 1);
+  drawShadowMapKey(panel, box, decisions, crop, depthMap->width);
   return panel;
 }
 
@@ -732,47 +767,99 @@ std::string quantityText(const ProbeQuantity& quantity)
   return quantity.name + " " + value + (quantity.unit.empty() ? "" : " " + quantity.unit);
 }
 
-ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
+// The legend's lines, each with its colour.
+class LegendLines
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::Legend);
-  ImageU8 panel = newPanel(rect, "(e) key numbers");
-  const Box box = contentBox(rect);
-  const ProbeRecord& record = probe.record;
-  const Light& light = *setting.light;
+public:
+  void add(const std::string& text, const RgbColor& color = kBlack) { lines_.emplace_back(text, color); }
+  const std::vector<std::pair<std::string, RgbColor>>& lines() const { return lines_; }
 
-  std::vector<std::pair<std::string, RgbColor>> lines;
-  const auto add = [&](const std::string& text, const RgbColor& color = kBlack) { lines.emplace_back(text, color); };
-  add("technique " + probe.technique);
-  add(format("pixel ", probe.pixel.x, ",", probe.pixel.y, " (row 0 at the bottom)"));
-  add("GPU visibility  " + number(probe.gpuVisibility, 6));
-  add("twin visibility " + number(probe.outcome.visibility, 6) +
+private:
+  std::vector<std::pair<std::string, RgbColor>> lines_;
+};
+
+// What was probed and whether the GPU and the twin agree; the light and the receiver.
+void addProbeSummary(LegendLines& lines, const ProbeResult& probe, const ProbeSetting& setting)
+{
+  const Light& light = *setting.light;
+  lines.add("technique " + probe.technique);
+  lines.add(format("pixel ", probe.pixel.x, ",", probe.pixel.y, " (row 0 at the bottom)"));
+  lines.add("GPU visibility  " + number(probe.gpuVisibility, 6));
+  lines.add("twin visibility " + number(probe.outcome.visibility, 6) +
     (probe.outcome.evaluated ? "" : " (no shadow test)"));
   const bool agrees = probe.agrees();
-  add("|GPU - twin| " + number(probe.difference(), 3) + ", tolerance " + number(probe.outcome.tolerance, 3) + ": " +
-      (agrees ? "agree" : "DIFFER"),
+  lines.add("|GPU - twin| " + number(probe.difference(), 3) + ", tolerance " + number(probe.outcome.tolerance, 3) +
+      ": " + (agrees ? "agree" : "DIFFER"),
     agrees ? RgbColor{ 0.0, 0.35, 0.0 } : RgbColor{ 0.75, 0.0, 0.0 });
   if (!probe.outcome.ambiguity.empty())
   {
-    add("ambiguous: " + probe.outcome.ambiguity, kDarkGrey);
+    lines.add("ambiguous: " + probe.outcome.ambiguity, kDarkGrey);
   }
-  add("twin: " + probe.outcome.twin, kDarkGrey);
+  lines.add("twin: " + probe.outcome.twin, kDarkGrey);
   const char* lightTypes[] = { "area", "point", "directional", "spot" };
-  add(std::string("light ") + lightTypes[static_cast<int>(light.type)] +
+  lines.add(std::string("light ") + lightTypes[static_cast<int>(light.type)] +
     (light.type == LightType::Area ? std::string(light.shape == LightShape::Disk ? " disk" : " square") + ", size " +
           number(light.size)
                                    : ""));
   const glm::dvec3& p = setting.receiver.position;
-  add("receiver (" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")");
-  add("receiver depth " + number(setting.receiver.depthLin, 6) + " (linear)");
+  lines.add("receiver (" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")");
+  lines.add("receiver depth " + number(setting.receiver.depthLin, 6) + " (linear)");
   if (setting.receiver.bias)
   {
-    add("depth bias " + number(*setting.receiver.bias));
+    lines.add("depth bias " + number(*setting.receiver.bias));
   }
   if (setting.receiver.uvTexels)
   {
-    add("shadow-map position (" + number(setting.receiver.uvTexels->x, 6) + ", " +
+    lines.add("shadow-map position (" + number(setting.receiver.uvTexels->x, 6) + ", " +
       number(setting.receiver.uvTexels->y, 6) + ") texels");
   }
+}
+
+// One line for the kernels of a role, with their size range and their labels' counts (vssm records dozens of
+// sub-kernels, yfgl09 one per packet pixel).
+std::string kernelRoleLine(const ProbeRecord& record, const std::string& role)
+{
+  std::size_t count = 0;
+  glm::dvec2 smallest(1e300);
+  glm::dvec2 largest(0.0);
+  std::vector<std::pair<std::string, std::size_t>> labels;
+  for (const ProbeKernel& kernel : record.kernels)
+  {
+    if (kernel.role != role)
+    {
+      continue;
+    }
+    ++count;
+    smallest = glm::min(smallest, kernel.hi - kernel.lo);
+    largest = glm::max(largest, kernel.hi - kernel.lo);
+    if (!kernel.label.empty())
+    {
+      const auto found =
+        std::find_if(labels.begin(), labels.end(), [&](const auto& entry) { return entry.first == kernel.label; });
+      if (found == labels.end())
+      {
+        labels.emplace_back(kernel.label, 1);
+      }
+      else
+      {
+        ++found->second;
+      }
+    }
+  }
+  const auto range = [](double lo, double hi) { return lo == hi ? number(lo) : number(lo) + ".." + number(hi); };
+  std::string labelText;
+  for (const auto& [label, labelCount] : labels)
+  {
+    labelText += (labelText.empty() ? "" : ", ") + (count == 1 ? label : label + " " + std::to_string(labelCount));
+  }
+  return std::string("kernel ") + role + (count > 1 ? format(" x", count) : std::string()) + ": " +
+    range(smallest.x, largest.x) + " x " + range(smallest.y, largest.y) + " texels" +
+    (labelText.empty() ? "" : " (" + labelText + ")");
+}
+
+// The record's counts: texels read, kernels by role, nodes by decision, light polygons, contour edges, samples.
+void addRecordCounts(LegendLines& lines, const ProbeRecord& record)
+{
   std::size_t compared = 0;
   std::size_t occluding = 0;
   for (const ProbeTexel& texel : record.texels)
@@ -782,48 +869,13 @@ ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
   }
   if (!record.texels.empty() || record.droppedTexels > 0)
   {
-    add(format("texels read ", record.texels.size() + record.droppedTexels, " (compared ", compared, ", occluding ",
-      occluding, record.droppedTexels > 0 ? format("; ", record.droppedTexels, " not kept") : std::string(), ")"));
+    lines.add(format("texels read ", record.texels.size() + record.droppedTexels, " (compared ", compared,
+      ", occluding ", occluding, record.droppedTexels > 0 ? format("; ", record.droppedTexels, " not kept") : std::string(),
+      ")"));
   }
-  // Kernels by role: one line each, with the size range and the labels' counts (vssm records dozens of
-  // sub-kernels, yfgl09 one per packet pixel).
   for (const std::string& role : kernelRoleLabels(record))
   {
-    std::size_t count = 0;
-    glm::dvec2 smallest(1e300);
-    glm::dvec2 largest(0.0);
-    std::vector<std::pair<std::string, std::size_t>> labels;
-    for (const ProbeKernel& kernel : record.kernels)
-    {
-      if (kernel.role != role)
-      {
-        continue;
-      }
-      ++count;
-      smallest = glm::min(smallest, kernel.hi - kernel.lo);
-      largest = glm::max(largest, kernel.hi - kernel.lo);
-      if (!kernel.label.empty())
-      {
-        const auto found = std::find_if(labels.begin(), labels.end(), [&](const auto& entry) { return entry.first == kernel.label; });
-        if (found == labels.end())
-        {
-          labels.emplace_back(kernel.label, 1);
-        }
-        else
-        {
-          ++found->second;
-        }
-      }
-    }
-    const auto range = [](double lo, double hi) { return lo == hi ? number(lo) : number(lo) + ".." + number(hi); };
-    std::string labelText;
-    for (const auto& [label, labelCount] : labels)
-    {
-      labelText += (labelText.empty() ? "" : ", ") + (count == 1 ? label : label + " " + std::to_string(labelCount));
-    }
-    add(std::string("kernel ") + role + (count > 1 ? format(" x", count) : std::string()) + ": " +
-      range(smallest.x, largest.x) + " x " + range(smallest.y, largest.y) + " texels" +
-      (labelText.empty() ? "" : " (" + labelText + ")"));
+    lines.add(kernelRoleLine(record, role));
   }
   if (!record.nodes.empty() || record.droppedNodes > 0)
   {
@@ -834,7 +886,7 @@ ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
         [&](const ProbeNode& node) { return node.decision == decision; });
       byDecision += (byDecision.empty() ? "" : ", ") + decision + " " + std::to_string(count);
     }
-    add(format("nodes visited ", record.nodes.size() + record.droppedNodes, " (", byDecision, ")"));
+    lines.add(format("nodes visited ", record.nodes.size() + record.droppedNodes, " (", byDecision, ")"));
   }
   if (!record.lightPolygons.empty() || record.droppedPolygons > 0)
   {
@@ -843,19 +895,24 @@ ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
     {
       sum += polygon.signedArea;
     }
-    add(format("light polygons ", record.lightPolygons.size() + record.droppedPolygons, ", signed area sum ", number(sum)));
+    lines.add(format("light polygons ", record.lightPolygons.size() + record.droppedPolygons, ", signed area sum ",
+      number(sum)));
   }
   if (!record.contourEdges.empty() || record.droppedEdges > 0)
   {
-    add(format("contour edges ", record.contourEdges.size() + record.droppedEdges));
+    lines.add(format("contour edges ", record.contourEdges.size() + record.droppedEdges));
   }
   if (!record.lightSamples.empty())
   {
     const auto blocked = std::count_if(record.lightSamples.begin(), record.lightSamples.end(),
       [](const ProbeLightSample& sample) { return sample.blocked; });
-    add(format("light samples ", record.lightSamples.size(), " (blocked ", blocked, ")"));
+    lines.add(format("light samples ", record.lightSamples.size(), " (blocked ", blocked, ")"));
   }
-  // Then the record's other quantities, in the twin's order, as far as they fit.
+}
+
+// The record's other quantities, in the twin's order (the receiver's already shown are left out).
+void addRecordedQuantities(LegendLines& lines, const ProbeRecord& record)
+{
   static const char* shown[] = { "position", "normal", "receiver_depth", "depth_bias", "shadow_map_position" };
   bool first = true;
   for (const ProbeQuantity& quantity : record.quantities)
@@ -866,15 +923,27 @@ ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
     }
     if (first)
     {
-      add("-- recorded --", kDarkGrey);
+      lines.add("-- recorded --", kDarkGrey);
       first = false;
     }
-    add(quantityText(quantity));
+    lines.add(quantityText(quantity));
   }
+}
 
+ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
+{
+  const FigureRect rect = probeFigurePanel(ProbePanel::Legend);
+  ImageU8 panel = newPanel(rect, "(e) key numbers");
+  const Box box = contentBox(rect);
+  LegendLines lines;
+  addProbeSummary(lines, probe, setting);
+  addRecordCounts(lines, probe.record);
+  addRecordedQuantities(lines, probe.record);
+
+  // Top down, wrapped to the panel, as far as they fit.
   const int lineHeight = measureText("Ag", kBodyFontPx).height + 2;
   int y = int(box.bottom + box.height) - lineHeight;
-  for (const auto& [text, color] : lines)
+  for (const auto& [text, color] : lines.lines())
   {
     for (const std::string& line : wrapText(text, kBodyFontPx, int(box.width)))
     {
