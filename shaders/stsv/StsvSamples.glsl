@@ -33,6 +33,78 @@ layout(location = 1) out float outStsvEmptyHits;
 // rows.
 const int STSV_RECORD = 11;
 
+// One STSV's record, read from wedgeData.
+struct StsvRecord
+{
+  vec4 planes[4];       // the three outer planes and the front cap plane, inside positive
+  vec3 v0;
+  float lightSide;      // the side of the triangle's plane whose light samples are this STSV's
+  vec3 normal;
+  float onPlaneDistance;
+  mat3 triangleFromWorld; // M
+  vec3 textureRow0;       // S
+  vec3 textureRow1;
+};
+
+StsvRecord readStsvRecord(int index)
+{
+  int base = STSV_RECORD * index;
+  StsvRecord record;
+  for (int k = 0; k < 4; ++k)
+  {
+    record.planes[k] = wedgeData[base + k];
+  }
+  record.v0 = wedgeData[base + 4].xyz;
+  record.lightSide = wedgeData[base + 4].w;
+  record.normal = wedgeData[base + 5].xyz;
+  record.onPlaneDistance = wedgeData[base + 5].w;
+  record.triangleFromWorld = mat3(wedgeData[base + 6].xyz, wedgeData[base + 7].xyz, wedgeData[base + 8].xyz);
+  record.textureRow0 = wedgeData[base + 9].xyz;
+  record.textureRow1 = wedgeData[base + 10].xyz;
+  return record;
+}
+
+// §2.3: p inside the three outer planes and the front cap plane.
+bool insideStsv(StsvRecord record, vec3 pWs)
+{
+  bool inside = true;
+  for (int k = 0; k < 4; ++k)
+  {
+    inside = inside && dot(record.planes[k].xyz, pWs) + record.planes[k].w >= 0.0;
+  }
+  return inside;
+}
+
+// The transmittance test of Eq. 1-5 for the 32 light samples of mask word `word`: a bit per sample of this STSV's
+// light piece that the textured triangle hides from p. `planeOffset` is (a, b, e) of Eq. 3.
+uint hiddenSampleBits(StsvRecord record, ivec2 pixel, vec3 pWs, vec3 planeOffset, int word)
+{
+  float e = planeOffset.z;
+  uint bits = 0u;
+  for (int bit = 0; bit < 32 && 32 * word + bit < lightSampleCount; ++bit)
+  {
+    vec3 s = lightSamplePoint(pixel, 32 * word + bit);
+    // Only this STSV's light piece: a sample on the other side is the other STSV's (Forest et al. 2009 §6).
+    if (sign(dot(record.normal, s - record.v0)) != record.lightSide)
+    {
+      continue;
+    }
+    vec3 md = record.triangleFromWorld * (s - pWs);
+    vec3 h = vec3(md.x - (planeOffset.x / e) * md.z, md.y - (planeOffset.y / e) * md.z, md.z / e); // Eq. 1
+    bool inside = h.x >= 0.0 && h.y >= 0.0 && h.z >= h.x + h.y;
+    bool opposite = h.z > 1.0;
+    if (inside && (opposite || stsvOppositeSideCheck == 0))
+    {
+      vec2 uv = vec2(dot(record.textureRow0, h), dot(record.textureRow1, h)) / h.z; // Eq. 4-5
+      if (texture(alphaTexture, uv).r >= 0.5)
+      {
+        bits |= 1u << uint(bit);
+      }
+    }
+  }
+  return bits;
+}
+
 void main()
 {
   outStsvCovering = 0.0;
@@ -44,56 +116,22 @@ void main()
     return;
   }
   vec3 pWs = countedPoint(surface.pWs);
-
-  int base = STSV_RECORD * wedgeIndex;
-  for (int k = 0; k < 4; ++k)
+  StsvRecord record = readStsvRecord(wedgeIndex);
+  if (!insideStsv(record, pWs))
   {
-    vec4 plane = wedgeData[base + k];
-    if (dot(plane.xyz, pWs) + plane.w < 0.0)
-    {
-      return;
-    }
+    return;
   }
   outStsvCovering = 1.0;
-  vec3 v0 = wedgeData[base + 4].xyz;
-  float lightSide = wedgeData[base + 4].w;
-  vec3 normal = wedgeData[base + 5].xyz;
-  float onPlaneDistance = wedgeData[base + 5].w;
-  mat3 triangleFromWorld = mat3(wedgeData[base + 6].xyz, wedgeData[base + 7].xyz, wedgeData[base + 8].xyz);
-  vec3 textureRow0 = wedgeData[base + 9].xyz;
-  vec3 textureRow1 = wedgeData[base + 10].xyz;
 
-  vec3 planeOffset = triangleFromWorld * (v0 - pWs); // (a, b, e), Eq. 3
-  float e = planeOffset.z;
+  vec3 planeOffset = record.triangleFromWorld * (record.v0 - pWs); // (a, b, e), Eq. 3
   bool anyHidden = false;
   int checksum = 0;
   int weightedChecksum = 0;
-  if (abs(e) > onPlaneDistance)
+  if (abs(planeOffset.z) > record.onPlaneDistance)
   {
     for (int word = 0; word < (lightSampleCount + 31) / 32; ++word)
     {
-      uint bits = 0u;
-      for (int bit = 0; bit < 32 && 32 * word + bit < lightSampleCount; ++bit)
-      {
-        vec3 s = lightSamplePoint(pixel, 32 * word + bit);
-        // Only this STSV's light piece: a sample on the other side is the other STSV's (Forest et al. 2009 §6).
-        if (sign(dot(normal, s - v0)) != lightSide)
-        {
-          continue;
-        }
-        vec3 md = triangleFromWorld * (s - pWs);
-        vec3 h = vec3(md.x - (planeOffset.x / e) * md.z, md.y - (planeOffset.y / e) * md.z, md.z / e); // Eq. 1
-        bool inside = h.x >= 0.0 && h.y >= 0.0 && h.z >= h.x + h.y;
-        bool opposite = h.z > 1.0;
-        if (inside && (opposite || stsvOppositeSideCheck == 0))
-        {
-          vec2 uv = vec2(dot(textureRow0, h), dot(textureRow1, h)) / h.z; // Eq. 4-5
-          if (texture(alphaTexture, uv).r >= 0.5)
-          {
-            bits |= 1u << uint(bit);
-          }
-        }
-      }
+      uint bits = hiddenSampleBits(record, pixel, pWs, planeOffset, word);
       if (bits != 0u)
       {
         anyHidden = true;
