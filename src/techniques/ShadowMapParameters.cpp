@@ -1,5 +1,6 @@
 #include "techniques/ShadowMapParameters.h"
 
+#include "core/Error.h"
 #include "lightspace/ShadowMapMath.h"
 #include "lightspace/shadowmap/ShadowMapStructure.h"
 
@@ -15,6 +16,19 @@ std::vector<ParameterSpec> shadowMapParameters()
     { "bias_slope_texels", 1.0, 0, 64, "texel footprints", "slope-scaled depth bias, times tan(angle between normal and light) (survey §5)", {}, false },
     { "bias_max_slope", 10.0, 0, 1000, "", "clamp of tan(angle between normal and light) in the slope bias", {}, false },
   });
+  return parameters;
+}
+
+std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize)
+{
+  std::vector<ParameterSpec> parameters = shadowMapParameters();
+  ParameterSpec* size = nullptr;
+  for (ParameterSpec& spec : parameters)
+  {
+    size = spec.name == "shadow_map_size" ? &spec : size;
+  }
+  SL_CHECK(size && defaultMapSize >= size->minValue && defaultMapSize <= size->maxValue);
+  size->defaultValue = defaultMapSize;
   return parameters;
 }
 

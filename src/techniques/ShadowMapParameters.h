@@ -16,6 +16,8 @@ namespace sl
 {
 
 std::vector<ParameterSpec> shadowMapParameters();
+// The same with shadow_map_size defaulting to `defaultMapSize` (the back-projection methods and reference-sm: 1024).
+std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize);
 std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot, directional
 
 struct BiasSettings;

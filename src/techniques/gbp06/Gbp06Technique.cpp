@@ -26,14 +26,8 @@ TechniqueDescriptor gbp06Technique()
   descriptor.title = "Soft shadow mapping by back-projection of micropatches, with gap filling and a DU07 traversal";
   descriptor.paper = "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1; "
                      "Schwarz & Stamminger 2008 (gap-filling rule)";
-  descriptor.parameters = shadowMapParameters();
-  for (ParameterSpec& spec : descriptor.parameters)
-  {
-    if (spec.name == "shadow_map_size")
-    {
-      spec.defaultValue = 1024; // as gbp07: brute-force kernels grow with the resolution
-    }
-  }
+  // as gbp07: brute-force kernels grow with the resolution
+  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "hsm", 1, 0, 2, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007), mipmap (the HSM of Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level for the ranges, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },

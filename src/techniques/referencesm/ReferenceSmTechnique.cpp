@@ -24,14 +24,8 @@ TechniqueDescriptor referenceSmTechnique()
   descriptor.name = "reference-sm";
   descriptor.title = "Accumulated hard shadow maps from K light samples (GPU reference)";
   descriptor.paper = "the papers' reference, e.g. VSSM (Yang et al. 2010) §7; survey §5 bias per map";
-  descriptor.parameters = shadowMapParameters();
-  for (ParameterSpec& spec : descriptor.parameters)
-  {
-    if (spec.name == "shadow_map_size")
-    {
-      spec.defaultValue = 1024; // K maps per frame
-    }
-  }
+  // K maps per frame
+  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "samples", 256, 1, 4096, "light samples", "K: shadow maps rendered from points spread over the area light (papers: 1024)", {}, true },
     { "seed", 1, 0, 2147483647, "", "rotation of the Hammersley light samples (Cranley-Patterson)", {}, true },

@@ -100,14 +100,8 @@ TechniqueDescriptor ss08Technique()
   descriptor.name = "ss08";
   descriptor.title = "Quality-scalable soft shadow mapping: budget map, smoothed LOQ map, blended levels, microrects";
   descriptor.paper = "Schwarz & Stamminger 2008 (Fig. 3, §4.2, §5.2, §6); Guennebaud et al. 2006 (micropatches)";
-  descriptor.parameters = shadowMapParameters();
-  for (ParameterSpec& spec : descriptor.parameters)
-  {
-    if (spec.name == "shadow_map_size")
-    {
-      spec.defaultValue = 1024; // the paper's runs: YSM 1024^2 / 256^2 (§8)
-    }
-  }
+  // the paper's runs: YSM 1024^2 / 256^2 (§8)
+  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (SS08 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },

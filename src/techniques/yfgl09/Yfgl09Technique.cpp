@@ -100,14 +100,8 @@ TechniqueDescriptor yfgl09Technique()
   descriptor.name = "yfgl09";
   descriptor.title = "Packet-based hierarchical soft shadow mapping (contours, packets, dual-grid MSSM traversal)";
   descriptor.paper = "Yang, Feng, Guennebaud and Liu 2009, §4, Eq. 1-6, Alg. 1-3";
-  descriptor.parameters = shadowMapParameters();
-  for (ParameterSpec& spec : descriptor.parameters)
-  {
-    if (spec.name == "shadow_map_size")
-    {
-      spec.defaultValue = 1024; // the paper's maps; gbp07's default, for like-for-like comparisons
-    }
-  }
+  // the paper's maps; gbp07's default, for like-for-like comparisons
+  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.parameters.insert(descriptor.parameters.end(), {
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min from the MSSM)", {}, true },
