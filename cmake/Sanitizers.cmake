@@ -1,4 +1,4 @@
-# Build options for finding memory errors and undefined behaviour (README.md, "Fuzzing and sanitizers").
+# Build options for finding memory errors and undefined behaviour (docs/testing.md, "Fuzzing and sanitizers").
 #
 # SL_SANITIZE: AddressSanitizer + UndefinedBehaviorSanitizer on every target of this project (the library,
 #   the shadowlab executable, the test suites). Included right after project() so that the flags reach every

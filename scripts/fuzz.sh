@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The libFuzzer targets of tests/fuzz (README.md, "Fuzzing and sanitizers"). Needs clang-14 and
+# The libFuzzer targets of tests/fuzz (docs/testing.md, "Fuzzing and sanitizers"). Needs clang-14 and
 # libclang-rt-14-dev (Debian packages); builds only the fuzz targets and the reader sources they link, with
 # clang, into build-fuzz (BUILD_DIR to change).
 #
@@ -12,7 +12,7 @@
 # A run mutates a working copy of the corpus (build-fuzz/corpus/<target>), never the committed one; crashing
 # inputs go to build-fuzz/crashes/<target>/. `merge` writes the minimised union back to
 # tests/fuzz/corpus/<target>. To keep a crash as a regression, copy it to tests/fuzz/regressions/<target>/
-# (README says how to name it).
+# (docs/testing.md says how to name it).
 set -euo pipefail
 
 usage()

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# AddressSanitizer + UndefinedBehaviorSanitizer run (README.md, "Fuzzing and sanitizers"): configures
+# AddressSanitizer + UndefinedBehaviorSanitizer run (docs/testing.md, "Fuzzing and sanitizers"): configures
 # build-asan with -DSL_SANITIZE=ON (gcc is fine), builds the test suites and the shadowlab executable, and runs
 # the unit and CLI suites, the fuzz-corpus replays and a small GPU subset under the sanitizers. Any report
 # fails the run (UB does not recover; ASan aborts on its first error).

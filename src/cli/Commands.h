@@ -117,7 +117,8 @@ struct ProbeOptions
 // decision), 3 when they differ beyond the tests' tolerance (the probe's files are still written).
 int runProbe(const ProbeOptions& options, std::ostream& log);
 
-// shadowlab view: a desktop window on the offscreen pipeline's frames (cli/ViewerWindow.h, README "Viewer keys").
+// shadowlab view: a desktop window on the offscreen pipeline's frames (cli/ViewerWindow.h,
+// docs/tools.md, "The viewer").
 struct ViewOptions
 {
   std::string sceneFile;

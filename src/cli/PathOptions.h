@@ -1,5 +1,5 @@
 // Every argument of every command that names a file or directory, with what the command does there: the one list
-// the output contract (io/OutputDirectory.h, README "Outputs and exit codes") is checked against, argument by
+// the output contract (io/OutputDirectory.h, docs/outputs.md) is checked against, argument by
 // argument (tests/cli/PathOptionsTest.cpp), and every other argument, so that the test can tell from `--help` that
 // nothing is missing. An argument added to main.cpp is one line here. Header-only: the tests read it too.
 #pragma once

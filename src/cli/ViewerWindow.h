@@ -56,7 +56,7 @@ public:
   void run();
   bool quitRequested() const { return quit_; }
 
-  // The keys, one per line (h prints them; README "Viewer keys").
+  // The keys, one per line (h prints them; docs/tools.md, "The viewer").
   static std::string keyHelp();
 
 private:

@@ -62,7 +62,7 @@ struct Command
 Command addRenderCommand(CLI::App& app, sl::RenderOptions& render)
 {
   CLI::App* renderCommand = app.add_subcommand("render", "Render a scene with one technique into an output directory");
-  renderCommand->add_option("scene", render.sceneFile, "Scene file (JSON, see README 'Scene format')")->required();
+  renderCommand->add_option("scene", render.sceneFile, "Scene file (JSON, see docs/scene-format.md)")->required();
   renderCommand->add_option("--technique,-t", render.technique, "Technique name (see `shadowlab list`)")
     ->capture_default_str();
   renderCommand->add_option("--set,-s", render.settings, "Technique parameter, key=value (repeatable)");
@@ -262,7 +262,7 @@ Command addListCommand(CLI::App& app, bool& listJson)
   return { listCommand, [&listJson] { return sl::runList(listJson, std::cout); } };
 }
 
-// Runs the parsed command, each error kind one line with its exit code (README "Outputs and exit codes").
+// Runs the parsed command, each error kind one line with its exit code (docs/outputs.md, "Outputs and exit codes").
 int runParsedCommand(const std::vector<Command>& commands)
 {
   try
@@ -301,7 +301,7 @@ int main(int argc, char** argv)
                 "Every technique writes its image, visibility and internal buffers (VTK image data for ParaView)." };
   app.require_subcommand(1);
 
-  // Every error is one line on stderr with a nonzero exit (README "Outputs and exit codes").
+  // Every error is one line on stderr with a nonzero exit (docs/outputs.md, "Outputs and exit codes").
   sl::installOutputSignalHandlers();
   sl::installVtkOutputWindow(); // VTK's own messages reach the user only through the error path
 

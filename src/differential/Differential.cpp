@@ -164,8 +164,9 @@ void compare(const FrameResult& frame, const ReferenceResult& reference, bool ce
 
 std::string choiceLabel(const std::string& choice) { return choice; }
 
-// Second-depth shadow maps store the casters' back faces, which an open caster lacks (README "Common to hard and
-// pcf": casters must be closed): the choice does not apply to a scene with an open caster.
+// Second-depth shadow maps store the casters' back faces, which an open caster lacks
+// (src/techniques/hard/README.md, "Common to hard and pcf": casters must be closed): the choice does not apply to a
+// scene with an open caster.
 std::string closedCastersRequirement(const std::string& choice, const Scene& scene)
 {
   if (choice != "caster_faces=back")

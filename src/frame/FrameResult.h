@@ -86,7 +86,7 @@ struct FlaggedPixels
 };
 std::vector<FlaggedPixels> flaggedPixels(const FrameResult& frame);
 
-// The buffers every technique's buffers.vti has, with their documentation (README lists them).
+// The buffers every technique's buffers.vti has, with their documentation (docs/outputs.md lists them).
 const std::vector<BufferSpec>& commonBufferSpecs();
 // The buffers of techniques with sub-lights (TechniqueDescriptor::hasSubLights): sublight_visibility.
 const std::vector<BufferSpec>& subLightBufferSpecs();

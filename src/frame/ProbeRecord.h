@@ -26,7 +26,7 @@ struct ProbeQuantity
   std::vector<double> value;  // 1 (scalar), 2 or 3 components (a texel position, a world point)
   std::string unit;           // "texels", "world units", "linear depth", "window depth", "count", "" for fractions
   std::string source;         // the paper's equation or algorithm line ("Eq. 4, VSSM (Yang et al. 2010)"), or
-                              // "ShadowLab" for a project definition (README section)
+                              // "ShadowLab" for a project definition (docs/tools.md)
   std::string text;           // a categorical value's label ("penumbra"); empty for numbers
 };
 

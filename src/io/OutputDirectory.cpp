@@ -1,4 +1,4 @@
-// The output contract (see OutputDirectory.h and README.md "Outputs and exit codes").
+// The output contract (see OutputDirectory.h and docs/outputs.md).
 #include "io/OutputDirectory.h"
 
 #include "core/Error.h"

@@ -1,6 +1,6 @@
 // The output contract: every directory of results ShadowLab writes (render, reference, compare, bench, and
 // every command added later) goes through writeDirectoryAtomically, which never destroys what ShadowLab did
-// not create. README.md ("Outputs and exit codes") states the same rules for users:
+// not create. docs/outputs.md ("Outputs and exit codes") states the same rules for users:
 //
 //  - Each output directory carries a marker file, `.shadowlab-output` (JSON: tool, command, version, time).
 //  - --out may replace an existing directory only when it is empty or carries that marker. A non-empty

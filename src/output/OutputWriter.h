@@ -3,7 +3,7 @@
 // only when every file was written. A failure leaves no partial output (an existing --out is kept as it was).
 //
 // Files: buffers.vti, light_space.vti (when a light-space structure was built), image.png,
-// visibility.exr, heatmap_<buffer>.png per scalar buffer, stats.json. README.md documents each.
+// visibility.exr, heatmap_<buffer>.png per scalar buffer, stats.json. docs/outputs.md documents each.
 #pragma once
 
 #include "io/OutputDirectory.h"

@@ -1,7 +1,7 @@
 // The opaque part of a perforated quad as an explicit mesh, cut exactly along texel boundaries: the "equivalent
 // mesh" that Forest et al. 2009 sets its two perforated triangles against (Fig. 11, §6: a fence
 // of 2 perforated triangles against its 233,358-triangle mesh, 27x; the 25-35x claim of §1). The scene key
-// `mesh_alpha` (SceneLoader.cpp, README "Scene format") replaces a quad with an alpha texture by this mesh.
+// `mesh_alpha` (SceneLoader.cpp, docs/scene-format.md) replaces a quad with an alpha texture by this mesh.
 //
 // Layout. A quad's uv map (Primitives.h: u along right, v along up, (0,0) at the corner center - right sx/2 -
 // up sy/2) runs over [0,1]^2, and texel (x, y) of a W x H mask covers u in [x, x+1)/W, v in [y, y+1)/H

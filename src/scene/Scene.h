@@ -1,5 +1,5 @@
 // The ShadowLab scene model: what a scene.json describes, after validation and tessellation.
-// The JSON format is documented in README.md ("Scene format"); loadScene() is the only way in.
+// The JSON format is documented in docs/scene-format.md; loadScene() is the only way in.
 //
 // Conventions: world space is right-handed, units are whatever the scene uses (the datasets use metres).
 // All geometry is stored already transformed to world space, as triangles.
@@ -130,7 +130,7 @@ struct Scene
   std::vector<Bounds> objectBounds() const; // each object's, in order
 };
 
-// Limits of the scene format (README.md, "Scene format", "Limits"), each with the reason it exists.
+// Limits of the scene format (docs/scene-format.md, "Limits"), each with the reason it exists.
 // A scene file is read only when it is a regular file (after following symlinks) of at most this size: a FIFO
 // would block forever and /dev/zero never ends.
 constexpr std::uintmax_t kMaxSceneFileBytes = 64u * 1024u * 1024u;
@@ -145,7 +145,7 @@ constexpr double kMaxSceneMagnitude = 1e6;
 // Point, spot and area lights lie at most this many bounding radii of the objects from the centre of the
 // objects' bounding box, and the camera at most kMaxCameraDistanceInSceneRadii. Farther away, float32
 // light-space depths (relative step 6e-8 of the distance) no longer resolve the scene. Measured against the
-// ray tracer at 128x128 (README "Scene format"): pcss on bunny is exact to 4700 radii, loses shadow pixels
+// ray tracer at 128x128 (docs/scene-format.md): pcss on bunny is exact to 4700 radii, loses shadow pixels
 // from 7000 (RMSE 0.047 -> 0.094; 0.149 at 9300); hard on sphere-point is exact to 9300, 20x the error
 // at 23000. 3000 keeps a margin of 2 and still takes a light at y = 1e4 over the datasets (2300 radii).
 constexpr double kMaxLightDistanceInSceneRadii = 3e3;

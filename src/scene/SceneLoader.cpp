@@ -1,4 +1,4 @@
-// scene.json -> Scene. The format is specified in README.md ("Scene format"); this file is its reference
+// scene.json -> Scene. The format is specified in docs/scene-format.md; this file is its reference
 // implementation. Decisions the specification leaves open, made here:
 //  - Only a light's `type` is required. Other light keys default to the Light struct's values; keys of another
 //    light type (`size` on a point light) are errors, as are `view_angle` on an orthographic camera and
@@ -68,8 +68,8 @@ std::string shortNumber(double value)
 }
 
 // Why the magnitude bounds exist, appended to their messages so the user learns it is a limit, not a typo check.
-const std::string kMagnitudeReason = "scene units, the limit float32 positions in the renderers can carry; see README "
-                                     "'Scene format'";
+const std::string kMagnitudeReason = "scene units, the limit float32 positions in the renderers can carry; see "
+                                     "docs/scene-format.md";
 
 // An allowed interval for a number, with its description for messages ("must be > 0, got -1").
 struct Range
@@ -971,7 +971,7 @@ void checkDistances(const Scene& scene, const std::string& label)
     if (distance > radii * radius)
       JsonNode::failAt(label, path, format("lies ", distance, " from the centre of the objects' bounding box, more than ",
         shortNumber(radii), " times their bounding radius ", radius, " (", radii * radius,
-        "); float32 depths cannot resolve the scene from that far (see README 'Scene format')"));
+        "); float32 depths cannot resolve the scene from that far (see docs/scene-format.md)"));
   };
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
     if (scene.lights[i].type != LightType::Directional)

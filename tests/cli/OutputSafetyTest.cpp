@@ -1,4 +1,4 @@
-// The output contract (src/io/OutputDirectory.h, README "Outputs and exit codes"), end to end through the
+// The output contract (src/io/OutputDirectory.h, docs/outputs.md), end to end through the
 // executable: --out never destroys what shadowlab did not create, every write is checked, signals and killed
 // runs leave no temporary directory behind, and every usage error is one line with exit 1. Case ids (D07, K22,
 // ...) are those of the bad-input probe, a review of bad inputs that preceded these tests.

@@ -1,7 +1,7 @@
 // The output contract walked argument by argument from the CLI's own list (src/cli/PathOptions.h): every argument
-// of every command's --help is in that list, and every argument that writes keeps the contract (README "Outputs
-// and exit codes"): (a) an input inside the output is refused, even with --force; (b) the output inside an input
-// directory is refused, even with --force; (c) an existing file or directory the command did not write is not
+// of every command's --help is in that list, and every argument that writes keeps the contract (docs/outputs.md,
+// "Outputs and exit codes"): (a) an input inside the output is refused, even with --force; (b) the output inside an
+// input directory is refused, even with --force; (c) an existing file or directory the command did not write is not
 // replaced without --force, and is replaced with it only where the contract says so. Every run is tiny (16x16,
 // technique hard); refusals leave what they refused byte for byte.
 #include "cli/PathOptions.h"

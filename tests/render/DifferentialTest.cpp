@@ -300,7 +300,7 @@ TEST(Differential, ReferenceSmFlagsItsCoarseMapsNearTheLight)
 }
 
 // VTK 9.1's pass loses or misplaces the shadow over whole frames with a vertical light axis or a non-square image
-// (README "Known limitations of the vtk technique"): such frames are flagged whole, others only at filtered edges
+// (src/techniques/vtk/README.md, "Known limitations"): such frames are flagged whole, others only at filtered edges
 // (seed 3: 1259 of 4096 pixels).
 TEST(Differential, VtkFlagsTheFramesItsDocumentedLimitationsCover)
 {

@@ -413,7 +413,7 @@ TEST(GpuCpuProbe, PcfRecordsEveryComparisonWithItsWeight)
 // the reach rules) from the frame's buffers, which must give the GPU's visibility on every pixel it does not report
 // ambiguous; its context quantity, the hard ray to the light's centre, must agree with VTK's shadow where VTK's
 // filtering is clear-cut. On contact and a square image, as HardCases.VtkPeerShadowsWhereTheRayCasterDoesAwayFromEdges
-// (VTK 9.1's baker loses the receivers under a vertical light axis, README "Known limitations of the vtk technique").
+// (VTK 9.1's baker loses the receivers under a vertical light axis, src/techniques/vtk/README.md).
 TEST(GpuCpuProbe, VtkReplaysTheExtractionFromTheBuffers)
 {
   const Scene scene = test::loadDataset("contact");

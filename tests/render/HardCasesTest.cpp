@@ -335,7 +335,7 @@ TEST(HardCases, VtkPeerShadowsWhereTheRayCasterDoesAwayFromEdges)
   // The `vtk` technique extracts VTK's shadow factor as shadowed / unshadowed radiance; on a square image
   // (where VTK's pass is right) it must find the umbra and the lit area the ray caster finds, away from
   // the penumbra-like band VTK's filtering produces. (Not planar-occluder: VTK 9.1's baker loses every
-  // receiver when the light axis is exactly vertical, see README "Known limitations of the vtk technique".)
+  // receiver when the light axis is exactly vertical, see src/techniques/vtk/README.md.)
   const Scene scene = test::loadDataset("contact");
   const FrameResult frame = test::renderDataset(scene, "vtk", 128, 128);
   const ImageF rayCast = rayCastVisibility(scene, frame);

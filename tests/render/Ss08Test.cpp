@@ -127,7 +127,8 @@ bool ambiguous(const Ss08Sample& cpu)
   return std::any_of(reasons.begin(), reasons.end(), [](bool reason) { return reason; });
 }
 
-// Whether the GPU's class back-projects (the LOQ state derived from it: README's classification codes).
+// Whether the GPU's class back-projects (the LOQ state derived from it: the classification codes of
+// src/techniques/ss08/README.md).
 bool backProjects(int classification, bool growth)
 {
   return classification == code(Ss08Class::Penumbra) || classification == code(Ss08Class::CutShort) ||

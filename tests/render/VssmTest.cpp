@@ -559,7 +559,8 @@ TEST(Vssm, ContactTestReadingsAgainstTheRayTracer)
   // the SAT alone (contact_threshold = 0) and subkernel_mean over uniform 8 x 8 sub-kernels for scale.
   // The readings must differ on the pixels either calls contact (else the parameter does nothing), each must
   // stay within a bound of the ray tracer, on the plate both must beat the SAT alone where they act (what
-  // §6.4 is for), and the default (blocker_average) must be the more accurate of the two, as README says.
+  // §6.4 is for), and the default (blocker_average) must be the more accurate of the two, as
+  // src/techniques/vssm/README.md says.
   struct Case
   {
     std::string label;

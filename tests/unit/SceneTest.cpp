@@ -1204,7 +1204,7 @@ TEST(SceneNesting, DeepDocumentsAreRefusedWhileParsing)
 {
   // The top-level object is level 1, so an unknown key holding 255 nested arrays is exactly at the limit: it
   // parses, and the error is the unknown key. One more level is the nesting error, with where it happened.
-  static_assert(kMaxJsonDepth == 256, "the README documents 256 levels");
+  static_assert(kMaxJsonDepth == 256, "docs/scene-format.md documents 256 levels");
   const std::string prefix = R"({ "lights": [ { "type": "point", "center": [0, 3, 0] } ], "objects": [ { "primitive": "quad" } ], "deep": )";
   expectSceneTextError(prefix + nestedArrays(255) + "}", { "(top level): unknown key 'deep'" });
   expectSceneTextError(prefix + nestedArrays(256) + "}", { "deep[0][0][0]", "nest deeper than 256 levels" });
@@ -1281,11 +1281,11 @@ TEST(SceneOverrides, NonFiniteValuesAreNamedAsSuch)
   expectContains(overrideError(file, { "/lights/0/size=big" }), { "lights[0].size: expected a number, got string" });
 }
 
-// The scale rule (README "Scene format"): magnitudes <= kMaxSceneMagnitude, lights and camera within
+// The scale rule (docs/scene-format.md): magnitudes <= kMaxSceneMagnitude, lights and camera within
 // kMaxLightDistanceInSceneRadii / kMaxCameraDistanceInSceneRadii bounding radii. Each probe case gets a one-line error naming its JSON path.
 TEST(SceneScale, AbsoluteMagnitudesAreBounded)
 {
-  static_assert(kMaxSceneMagnitude == 1e6, "the README documents 1e6");
+  static_assert(kMaxSceneMagnitude == 1e6, "docs/scene-format.md documents 1e6");
   const auto withLight = [](const std::string& light) {
     Json scene = minimalScene();
     scene["lights"][0] = Json::parse(light);

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The full sweep of the randomized differential test (issue 27, item 1): every technique and each of its enumerated
 # parameter choices against the Embree reference on random scenes (scene/RandomScenes.h), held to each technique's
-# accuracy contract (TechniqueDescriptor::accuracy; README "Values cut short or approximate by design"). From the
+# accuracy contract (TechniqueDescriptor::accuracy; docs/accuracy.md). From the
 # repository root:
 #   bash docs/bench/differential/run.sh [FIRST LAST]     (default seeds 1..6)
 # Writes docs/bench/differential/run/ (report.md: the table per technique and every failed configuration with its

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The tables of README's "ss08: quality against budget" from the benches in docs/bench/ss08 (run from the
+"""The tables of README.md here ("ss08: quality against budget") from the benches in docs/bench/ss08 (run from the
 repository root):
     python3 docs/bench/ss08/table.py > docs/bench/ss08/table.md
 1. Table 2 of SS08 (§8) beside ss08 at budgets 5, 9, 12, 16 and unlimited (0) on bunny and near-light.

@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """Which pcss pixels llvmpipe's loop limiter cut short, for the configurations of this bench.
 
-llvmpipe stops a shader invocation's loops once it has run 65535 loop iterations in all (README, "gbp07 and
-llvmpipe's loop cap"). pcss's brute-force grid runs two nested loops: the blocker search over w_i and the PCF
-over w_p, each of at most max_grid_taps^2 taps (the taps themselves plus one outer iteration per row). Its
-buffers blocker_samples and pcf_samples hold the taps each pixel planned, not the taps that ran, so the
-visibility of a pixel whose planned taps pass the cap is silently wrong (PCF taps that never ran count as
-shadowed, and a search cut before its blockers finds none and calls the pixel lit). This script renders
-each pcss configuration of the bench with `shadowlab render`, reads buffers.vti and counts, among the covered
-pixels:
+llvmpipe stops a shader invocation's loops once it has run 65535 loop iterations in all
+(src/techniques/gbp07/README.md, "`gbp07` and llvmpipe's loop cap"). pcss's brute-force grid runs two nested
+loops: the blocker search over w_i and the PCF over w_p, each of at most max_grid_taps^2 taps (the taps themselves
+plus one outer iteration per row). Its buffers blocker_samples and pcf_samples hold the taps each pixel planned,
+not the taps that ran, so the visibility of a pixel whose planned taps pass the cap is silently wrong (PCF taps
+that never ran count as shadowed, and a search cut before its blockers finds none and calls the pixel lit). This
+script renders each pcss configuration of the bench with `shadowlab render`, reads buffers.vti and counts, among
+the covered pixels:
   - over_cap: blocker_samples + pcf_samples >= 65535 (cut short for certain);
   - near_cap: blocker_samples + pcf_samples + rows >= 65535, with rows = 2 * max_grid_taps + 16 as an upper
     bound of the row iterations and the helpers' small loops (may have been cut short).
@@ -26,7 +26,7 @@ import zlib
 
 LOOP_CAP = 65535
 
-# scene, scene overrides, light sizes of the bench (README, "The frame stage by stage, against the paper's 14.8×").
+# scene, scene overrides, light sizes of the bench (README.md here).
 BENCHES = [
     ("datasets/planar-occluder/scene.json", ["/objects/1/size=[1.2,1.2]"], ["0.5", "1", "2", "3", "4"]),
     ("datasets/stacked-occluders/scene.json", [], ["0.5", "1", "2", "3", "4"]),

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The per-stage table behind README's "The frame stage by stage, against the paper's 14.8×", from bench.json.
+"""The per-stage table behind README.md here ("The frame stage by stage, against the paper's 14.8×", from bench.json.
 
 One row per configuration: GPU ms of the frame and of its stages (median of the timed frames, timer
 queries), the frame's wall ms, RMSE against the ray tracer, and the frame and technique-pass ratios of each

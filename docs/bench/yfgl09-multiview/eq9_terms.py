@@ -9,11 +9,11 @@ visited_nodes is exactly the dual cells of each pixel's kernel):
   - pairs: only (pixel, sub-light) pairs that the lit / umbra test leaves non-trivial visit anything, and a
     sub-light w/S wide has a narrower penumbra than the whole light, so fewer than S^2 times the main light's
     non-trivial pixels are searched: factor pairs_S / (S^2 pairs_1);
-  - texels: each sub-light's map is focused for that sub-light (README, "Multi-view shadow maps"): its window is
-    fitted to the receivers seen from its centre and grown by (w/2)/near, so a smaller sub-light gets a smaller
-    window and smaller texels, and the same kernel in world units spans more of them. Eq. 9 with each
-    sub-light's own texels predicts (1 / S^2) sum_k A_1 / A_k for the cells per searched pair times S^2, where
-    A_k is sub-light k's window area at the near plane.
+  - texels: each sub-light's map is focused for that sub-light (src/techniques/gbp07/README.md, "Multi-view shadow
+    maps"): its window is fitted to the receivers seen from its centre and grown by (w/2)/near, so a smaller
+    sub-light gets a smaller window and smaller texels, and the same kernel in world units spans more of them.
+    Eq. 9 with each sub-light's own texels predicts (1 / S^2) sum_k A_1 / A_k for the cells per searched pair
+    times S^2, where A_k is sub-light k's window area at the near plane.
 The script renders each sub-light of each S as the scene's light with the pixel-wise settings (the multi-view
 pass's split, lightspace/LightSamples.cpp splitIntoSubLights; MultiViewTest asserts that such a frame is its
 sub-light's), and reads from stats.json the window (light_view.window), visited_nodes's mean over covered

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""README's multi-view table (Yang et al. 2009 §5, Eq. 9) from the bench directories' bench.json.
+"""The multi-view table of docs/bench/yfgl09/README.md (Yang et al. 2009 §5, Eq. 9) from the bench directories'
+bench.json.
 
 Per scene, packet size and hierarchy: for S = 1, 2, 4 (S x S sub-lights), the summed visited_nodes (the image
 total of the counter, itself summed over sub-lights), the technique pass's and the frame's GPU ms, the shadow

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""README's "Packets, hierarchy and sub-lights" table from the issue-5 benches (run from the repository root):
+"""The "Packets, hierarchy and sub-lights" table of README.md here, from the issue-5 benches (run from the repository
+root):
     python3 docs/bench/yfgl09/table.py > docs/bench/yfgl09/table.md
 Technique-pass GPU ms of gbp07, 3x3 packets with hierarchy=off ("packets only"), 1x1 packets
 ("hierarchy only", docs/bench/yfgl09-pixelwise) and the default ("both"); coherent packets of the default

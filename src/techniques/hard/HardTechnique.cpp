@@ -34,7 +34,8 @@ TechniqueDescriptor hardTechnique()
     // GpuCpuTest: identical on unambiguous pixels (0 or 1).
     return probeOutcome(sample, 0.0, "hardReference (hard/HardTechnique.h), double precision");
   };
-  // Area lights are sampled from their centre (README "Common to hard and pcf"): held to the single ray to the centre.
+  // Area lights are sampled from their centre (README.md here, "Common to hard and pcf"): held to the single ray to
+  // the centre.
   // One depth comparison is exact there except where the texels around the receiver's disagree about it, or the
   // bias hides a caster touching the receiver (survey §5): the map's sampling decides those pixels, not the geometry.
   descriptor.accuracy.reference = ReferenceModel::LightCentre;

@@ -46,7 +46,8 @@ TechniqueDescriptor pcfTechnique()
     const bool hardware = values.choice("filter") == "hardware_bilinear";
     return probeOutcome(sample, hardware ? 1.0 / 128.0 : 1e-5, "pcfReference (pcf/PcfTechnique.h), double precision");
   };
-  // Area lights are sampled from their centre (README "Common to hard and pcf"): held to the single ray to the centre.
+  // Area lights are sampled from their centre (hard/README.md, "Common to hard and pcf"): held to the single ray to
+  // the centre.
   // The filter averages the comparisons over its kernel (survey §6): where they differ the value is a blend, by
   // design, and a caster within twice the bias of the receiver is hidden by it (survey §5).
   descriptor.accuracy.reference = ReferenceModel::LightCentre;

@@ -26,7 +26,7 @@ namespace sl
 ParameterSpec stsvOppositeSideCheckParameter()
 {
   return { "stsv_opposite_side_check", 1, 0, 1, "",
-    "STSVs: also require a sample and the point to lie on opposite sides of the perforated triangle's plane (h.z > 1), the test the paper's Eq. 1 lacks (reading notes C5; inside the volumes it changes nothing, README); off = the paper's test alone",
+    "STSVs: also require a sample and the point to lie on opposite sides of the perforated triangle's plane (h.z > 1), the test the paper's Eq. 1 lacks (reading notes C5; inside the volumes it changes nothing, src/techniques/stsv/README.md); off = the paper's test alone",
     { "off", "on" }, true };
 }
 

@@ -33,13 +33,13 @@ TechniqueDescriptor vtkTechnique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeVtk(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };
-  // VTK's shadow-map pass samples the light from its centre and filters its comparisons (README "Known limitations of
-  // the vtk technique"): held to the centre's ray where its value is 0 or 1.
+  // VTK's shadow-map pass samples the light from its centre and filters its comparisons (README.md here, "Known
+  // limitations of the vtk technique"): held to the centre's ray where its value is 0 or 1.
   descriptor.accuracy.reference = ReferenceModel::LightCentre;
   descriptor.accuracy.tolerance = 1e-3;
-  // VTK 9.1's documented per-frame limitations (README "Known limitations of the vtk technique"): its baker loses the
-  // receivers when the light axis is parallel to its default view-up (y), and misplaces shadows in non-square images.
-  // They hold for the whole frame, so every covered pixel of such a frame is flagged.
+  // VTK 9.1's documented per-frame limitations (README.md here, "Known limitations of the vtk technique"): its baker
+  // loses the receivers when the light axis is parallel to its default view-up (y), and misplaces shadows in
+  // non-square images. They hold for the whole frame, so every covered pixel of such a frame is flagged.
   descriptor.accuracy.approximations = { { "filtered edge", "the value lies strictly between 0 and 1 (by 1e-3)" },
     { "vtk frame limitation", "the light's axis is within 1e-6 of vertical, or the image is not square: VTK 9.1's "
       "baker loses or misplaces the shadow over the whole frame" } };
