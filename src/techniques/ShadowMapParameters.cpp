@@ -1,7 +1,7 @@
 #include "techniques/ShadowMapParameters.h"
 
 #include "lightspace/ShadowMapMath.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 namespace sl
 {

@@ -30,7 +30,7 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "lightspace/LightSampleSet.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "reference/EmbreeScene.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/RayTriangle.h"

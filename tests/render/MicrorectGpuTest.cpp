@@ -14,8 +14,8 @@
 #include "gl/vtkSLEglRenderWindow.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/Microrects.h"
-#include "lightspace/microrect/MicrorectStructure.h"
-#include "lightspace/microrect/vtkSLMicrorectPass.h"
+#include "structures/microrect/MicrorectStructure.h"
+#include "structures/microrect/vtkSLMicrorectPass.h"
 #include "passes/FrameResources.h"
 
 #include "support/RandomMaps.h"

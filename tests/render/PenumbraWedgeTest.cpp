@@ -8,7 +8,7 @@
 #include "frame/FrameResult.h"
 #include "lightspace/LightSampleSet.h"
 #include "lightspace/LightView.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/WeldedMesh.h"

@@ -8,7 +8,7 @@
 #include "core/Parameters.h"
 #include "lightspace/LightSampleSet.h"
 #include "lightspace/LightSamples.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 
 #include <gtest/gtest.h>
 

@@ -4,13 +4,13 @@
 // time are unambiguous, and each structure's typed settings read what its parameters say.
 #include "core/Error.h"
 #include "lightspace/HierarchicalShadowMap.h"
-#include "lightspace/LightSpaceStructure.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/moments/MomentMapStructure.h"
-#include "lightspace/mssm/DualMssmStructure.h"
-#include "lightspace/sat/SatStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/LightSpaceStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/moments/MomentMapStructure.h"
+#include "structures/mssm/DualMssmStructure.h"
+#include "structures/sat/SatStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/Registry.h"
 
 #include <gtest/gtest.h>

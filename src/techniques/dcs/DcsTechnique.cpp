@@ -3,7 +3,7 @@
 #include "techniques/ApproximationRules.h"
 
 #include "lightspace/LightView.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "scene/WeldedMesh.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/dcs/DcsGeometry.h"

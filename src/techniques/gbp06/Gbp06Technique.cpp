@@ -2,8 +2,8 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"

@@ -3,7 +3,7 @@
 #include "techniques/ApproximationRules.h"
 
 #include "lightspace/LightView.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/DcsTechnique.h"

@@ -2,9 +2,9 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/sat/SatStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/sat/SatStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "core/Error.h"
 #include "frame/FrameResult.h"

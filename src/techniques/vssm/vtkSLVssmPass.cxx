@@ -1,6 +1,6 @@
 #include "techniques/vssm/vtkSLVssmPass.h"
 
-#include "lightspace/sat/SatStructure.h"
+#include "structures/sat/SatStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "techniques/SoftShadowSupport.h"

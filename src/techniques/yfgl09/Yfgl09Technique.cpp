@@ -2,8 +2,8 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/mssm/DualMssmStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/mssm/DualMssmStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "core/Error.h"
 #include "techniques/ProbeSupport.h"
