@@ -9,6 +9,8 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp
   src/techniques/MomentTechniquePass.cxx
+  src/techniques/VolumeCountStatus.cpp
+  src/techniques/vtkSLShadowVolumePass.cxx
   src/techniques/hard/HardTechnique.cpp
   src/techniques/hard/vtkSLHardShadowPass.cxx
   src/techniques/pcf/PcfTechnique.cpp
@@ -35,7 +37,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp
   src/techniques/referencesm/vtkSLReferenceShadowMapPass.cxx
-  src/techniques/shadowvolume/ShadowVolumeGeometry.cpp src/techniques/shadowvolume/ShadowVolumeReference.cpp src/techniques/shadowvolume/SilhouetteExport.cpp src/techniques/shadowvolume/ShadowVolumeTechnique.cpp src/techniques/shadowvolume/vtkSLShadowVolumePass.cxx
-  src/techniques/dcs/DcsGeometry.cpp src/techniques/dcs/DcsReference.cpp src/techniques/dcs/DcsWedgeExport.cpp src/techniques/dcs/DcsTechnique.cpp src/techniques/dcs/WedgeDrawer.cpp src/techniques/dcs/vtkSLDcsPass.cxx
-  src/techniques/stsv/StsvGeometry.cpp src/techniques/stsv/StsvDrawer.cpp
+  src/techniques/shadowvolume/ShadowVolumeTechnique.cpp
+  src/techniques/dcs/DcsReference.cpp src/techniques/dcs/DcsTechnique.cpp src/techniques/dcs/vtkSLDcsPass.cxx
   src/techniques/penumbrawedge/PenumbraWedgeGeometry.cpp src/techniques/penumbrawedge/PenumbraWedgeTechnique.cpp src/techniques/penumbrawedge/vtkSLPenumbraWedgePass.cxx)

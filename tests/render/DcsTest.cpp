@@ -35,11 +35,11 @@
 #include "reference/ReferenceRenderer.h"
 #include "scene/RayTriangle.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/DcsTechnique.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
-#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
+#include "objectspace/ShadowVolumeReference.h"
+#include "techniques/VolumeCountStatus.h"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 #include "reference/ReferenceRenderer.h"
 #include "scene/WeldedMesh.h"
 #include "support/TestSupport.h"
-#include "techniques/dcs/DcsReference.h"
+#include "objectspace/DcsGeometry.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 
 #include <gtest/gtest.h>

@@ -8,7 +8,7 @@
 #include "scene/Primitives.h"
 #include "scene/RayTriangle.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 #include "scene/AlphaTexture.h"
 #include "scene/RayTriangle.h"
 #include "scene/Scene.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <gtest/gtest.h>
 

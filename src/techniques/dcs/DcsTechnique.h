@@ -29,8 +29,6 @@ namespace sl
 // The bias of the 8-bit counters (shaders/dcs/DcsSampleCounters.glsl): a counter holds the change relative to the
 // light's centre plus this.
 constexpr int kDcsCounterBias = 128;
-// Corners of a light's outline (DcsGeometry.h lightOutline): the octagon around a disk.
-constexpr int kDcsMaxOutlineCorners = 8;
 
 // counter_status codes.
 enum class DcsCounterStatus

@@ -20,10 +20,10 @@
 // counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside Forest et al. 2009's §5.1 formula.
 #pragma once
 
-#include "techniques/dcs/DcsGeometry.h"
-#include "techniques/dcs/WedgeDrawer.h"
-#include "techniques/stsv/StsvDrawer.h"
-#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+#include "objectspace/DcsGeometry.h"
+#include "objectspace/WedgeDrawer.h"
+#include "objectspace/StsvDrawer.h"
+#include "techniques/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

@@ -29,8 +29,8 @@
 
 #include "frame/ProbeRecord.h"
 #include "scene/Scene.h"
-#include "techniques/dcs/DcsGeometry.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/DcsGeometry.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <glm/glm.hpp>
 

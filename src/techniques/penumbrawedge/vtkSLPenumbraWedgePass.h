@@ -10,11 +10,11 @@
 //  4. resolve: the base class's full-screen shader (PenumbraWedgeResolve.glsl).
 #pragma once
 
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 #include "gl/GlResources.h"
-#include "techniques/dcs/WedgeDrawer.h"
-#include "techniques/stsv/StsvDrawer.h"
-#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+#include "objectspace/WedgeDrawer.h"
+#include "objectspace/StsvDrawer.h"
+#include "techniques/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

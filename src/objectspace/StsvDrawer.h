@@ -7,8 +7,8 @@
 
 #include "core/Parameters.h"
 #include "frame/FrameResult.h"
-#include "techniques/dcs/WedgeDrawer.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/WedgeDrawer.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <vtkSmartPointer.h>
 

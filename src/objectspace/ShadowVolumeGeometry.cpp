@@ -1,4 +1,4 @@
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeGeometry.h"
 
 #include "core/Error.h"
 

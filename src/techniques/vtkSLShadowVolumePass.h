@@ -26,7 +26,7 @@
 
 #include "techniques/vtkSLTechniquePass.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeGeometry.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

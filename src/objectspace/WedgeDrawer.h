@@ -6,7 +6,7 @@
 #pragma once
 
 #include "scene/Scene.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 
 #include <vtkSmartPointer.h>
 

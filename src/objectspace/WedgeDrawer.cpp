@@ -1,4 +1,4 @@
-#include "techniques/dcs/WedgeDrawer.h"
+#include "objectspace/WedgeDrawer.h"
 
 #include "core/Error.h"
 #include "gl/ComputeProgram.h"

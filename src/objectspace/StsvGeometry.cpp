@@ -1,8 +1,8 @@
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/StsvGeometry.h"
 
 #include "core/Error.h"
 #include "scene/AlphaTexture.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 
 #include <algorithm>
 #include <cmath>

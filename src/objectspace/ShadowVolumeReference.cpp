@@ -1,4 +1,4 @@
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "objectspace/ShadowVolumeReference.h"
 
 #include "scene/RayTriangle.h"
 

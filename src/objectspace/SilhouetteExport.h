@@ -7,7 +7,7 @@
 // to its right seen from the light (ShadowVolumeGeometry.h, rule 2).
 #pragma once
 
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeGeometry.h"
 
 #include <vtkSmartPointer.h>
 

@@ -1,10 +1,10 @@
-#include "techniques/stsv/StsvDrawer.h"
+#include "objectspace/StsvDrawer.h"
 
 #include "core/Error.h"
 #include "gl/GlResources.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -44,6 +44,7 @@
 #pragma once
 
 #include "lightspace/CameraView.h"
+#include "lightspace/LightSampleSet.h"
 #include "scene/Scene.h"
 #include "scene/WeldedMesh.h"
 
@@ -87,12 +88,19 @@ struct DcsEdgeSet
   DcsEdgeStatistics statistics;
 };
 
+// Corners of a light's outline (lightOutline): the octagon around a disk.
+constexpr int kDcsMaxOutlineCorners = 8;
+
 // The light's outline: a square's 4 corners, or the 8 corners of the regular octagon around a disk, counter-clockwise
 // seen from the scene. Any other light is a point: its centre alone.
 std::vector<glm::dvec3> lightOutline(const Light& light);
 
 // The wedges of every caster under `light` (an area light; other lights have no penumbra and get none).
 DcsEdgeSet potentialSilhouetteWedges(const std::vector<WeldedMesh>& casters, const Light& light);
+
+// The samples' positions of pixel `pixel` on `light` (world): the set's points on an area light, the centre for
+// a point light.
+std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel);
 
 // orient(a, b, c, d) = det(b - a, c - a, d - a): positive when d lies on the side of plane (a, b, c) that
 // (b - a) x (c - a) points to.

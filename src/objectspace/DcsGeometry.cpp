@@ -1,4 +1,4 @@
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 
 #include "core/Error.h"
 
@@ -75,6 +75,16 @@ std::vector<glm::dvec3> lightOutline(const Light& light)
     corners.push_back(light.center + half * (corner.x * right + corner.y * up));
   }
   return corners;
+}
+
+std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel)
+{
+  std::vector<glm::dvec3> points;
+  for (int index = 0; index < samples.count(); ++index)
+  {
+    points.push_back(light.type == LightType::Area ? samples.point(light, pixel.x, pixel.y, index) : light.center);
+  }
+  return points;
 }
 
 DcsEdgeSet potentialSilhouetteWedges(const std::vector<WeldedMesh>& casters, const Light& light)

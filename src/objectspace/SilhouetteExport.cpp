@@ -1,4 +1,4 @@
-#include "techniques/shadowvolume/SilhouetteExport.h"
+#include "objectspace/SilhouetteExport.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

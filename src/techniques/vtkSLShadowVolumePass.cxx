@@ -1,4 +1,4 @@
-#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+#include "techniques/vtkSLShadowVolumePass.h"
 
 #include "core/Error.h"
 #include "gl/GlResources.h"
@@ -6,9 +6,9 @@
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
-#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
-#include "techniques/shadowvolume/SilhouetteExport.h"
+#include "objectspace/ShadowVolumeReference.h"
+#include "techniques/VolumeCountStatus.h"
+#include "objectspace/SilhouetteExport.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLBufferObject.h>

@@ -1,4 +1,4 @@
-#include "techniques/dcs/DcsWedgeExport.h"
+#include "objectspace/DcsWedgeExport.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -7,7 +7,7 @@
 
 #include "frame/ProbeRecord.h"
 #include "scene/Scene.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeGeometry.h"
 
 #include <glm/glm.hpp>
 
