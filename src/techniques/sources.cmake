@@ -9,6 +9,8 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp
   src/techniques/MomentTechniquePass.cxx
+  src/techniques/ContourBackprojection.cpp
+  src/techniques/ContourReceiver.cpp
   src/techniques/VolumeCountStatus.cpp
   src/techniques/vtkSLShadowVolumePass.cxx
   src/techniques/hard/HardTechnique.cpp
@@ -23,8 +25,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/savsm/vtkSLSavsmPass.cxx
   src/techniques/vssm/VssmTechnique.cpp
   src/techniques/vssm/vtkSLVssmPass.cxx
-  src/techniques/backprojection/ContourBackprojection.cpp
-  src/techniques/backprojection/ContourReceiver.cpp
   src/techniques/gbp06/Gbp06Technique.cpp
   src/techniques/gbp06/vtkSLGbp06Pass.cxx
   src/techniques/gbp07/Gbp07Technique.cpp

@@ -5,7 +5,7 @@
 #include "support/ProbeChecks.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
-#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/ContourBackprojection.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 
 #include <gtest/gtest.h>

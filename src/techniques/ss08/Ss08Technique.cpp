@@ -11,8 +11,8 @@
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
-#include "techniques/backprojection/ContourBackprojection.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourBackprojection.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/ss08/vtkSLSs08Pass.h"
 
 #include <algorithm>

@@ -4,8 +4,6 @@
 #include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
-#include "techniques/esm/EsmTechnique.h"
-
 #include "techniques/MomentReference.h"
 #include "techniques/MomentTechniquePass.h"
 #include "techniques/ProbeSupport.h"

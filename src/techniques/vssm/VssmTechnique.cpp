@@ -12,7 +12,7 @@
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/backprojection/ContourReceiver.h" // probeNodeOf: HSM query nodes as probe nodes
+#include "techniques/ContourReceiver.h" // probeNodeOf: HSM query nodes as probe nodes
 #include "techniques/vssm/vtkSLVssmPass.h"
 
 #include <algorithm>

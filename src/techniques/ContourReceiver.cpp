@@ -1,8 +1,8 @@
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourReceiver.h"
 
 #include "core/Error.h"
 #include "techniques/ProbeSupport.h"
-#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/ContourBackprojection.h"
 #include "techniques/ShadowMapParameters.h"
 
 #include <algorithm>

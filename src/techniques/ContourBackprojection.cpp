@@ -1,4 +1,4 @@
-#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/ContourBackprojection.h"
 
 #include <algorithm>
 #include <cmath>
