@@ -9,6 +9,7 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp
   src/techniques/MomentTechniquePass.cxx
+  src/techniques/PcssReference.cpp
   src/techniques/ContourBackprojection.cpp
   src/techniques/ContourReceiver.cpp
   src/techniques/VolumeCountStatus.cpp

@@ -9,7 +9,7 @@
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/pcss/PcssTechnique.h"
+#include "techniques/PcssReference.h"
 #include "lightspace/SummedAreaTable.h"
 #include "techniques/savsm/vtkSLSavsmPass.h"
 
