@@ -1,6 +1,6 @@
 // Contour-based back-projection (Guennebaud et al. 2007; Yang et al. 2009 §4): marching squares on the dual
 // grid, back-projection onto the light plane, radial integration over a square light around its centre.
-// Conventions and the integration identity: src/techniques/backprojection/ContourBackprojection.h, the
+// Conventions and the integration identity: src/techniques/ContourBackprojection.h, the
 // double-precision mirror of every function here.
 
 // Corner k of a dual cell (counter-clockwise from the lower left) and the midpoint of side k (corners k, k+1).

@@ -1,5 +1,5 @@
 // The per-pixel preamble of the back-projection methods (gbp06, gbp07, yfgl09): the GLSL mirror of
-// sl::prepareContourReceiver (src/techniques/backprojection/ContourReceiver.cpp). The kernel of Eq. 1 (Yang et
+// sl::prepareContourReceiver (src/techniques/ContourReceiver.cpp). The kernel of Eq. 1 (Yang et
 // al. 2009) with the map's near plane, shrunk param_kernel_refinements times to the minimum depth inside it
 // (MSSM kernels, Schwarz and Stamminger 2007), and lit / umbra from the min-max structure's range over the
 // kernel's samples plus one ring (Alg. 1 step 5). Sets the receiver plane (setReceiverPlane) as a side effect.

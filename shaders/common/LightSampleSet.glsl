@@ -1,6 +1,6 @@
 // The named light-sample sets (src/lightspace/LightSampleSet.h; Forest et al. 2009 §4.1): N base points in the
 // unit square and a per-pixel toroidal shift, bound by the structure `light_samples`
-// (src/lightspace/lightsamples/LightSampleSetStructure.cpp). The GLSL twin of LightSampleSet: the shift is the same
+// (src/structures/lightsamples/LightSampleSetStructure.cpp). The GLSL twin of LightSampleSet: the shift is the same
 // uint arithmetic and every coordinate a multiple of 2^-16, so lightSampleUnit equals LightSampleSet::unitSample
 // bit for bit (tests/render/LightSampleSetGpuTest.cpp); lightSampleOffset and lightSamplePoint follow
 // lightPlaneOffset and pointOnAreaLight in float.

@@ -1,5 +1,5 @@
 // Microrects (Schwarz & Stamminger 2008, §5.2): the extent and depth of microrect `index` of `level`,
-// from the two atlases the microrect build leaves (lightspace/microrect/MicrorectStructure.h, bound by the
+// from the two atlases the microrect build leaves (structures/microrect/MicrorectStructure.h, bound by the
 // structure: microrectExtentTexture, microrectDepthTexture, microrectMapSize). Level 0 is the shadow map's
 // micropatches, so the including shader declares `uniform sampler2D shadowMapLinear` first (common/
 // ShadowMapCommon.glsl does). No loops: a technique calls this once per micro-occluder.

@@ -1,5 +1,5 @@
 // The wedges of technique dcs and penumbra-wedge as the wedge pass's fragment shader reads them (the CPU side:
-// src/techniques/dcs/DcsGeometry.h and WedgeDrawer.h): the edge and its triangles' third corners per wedge, the light's
+// src/objectspace/DcsGeometry.h and WedgeDrawer.h): the edge and its triangles' third corners per wedge, the light's
 // frame and outline, and wedgeContains, the test that the point lies in the wedge's region R_e.
 // Per wedge, four vec4: (v0, number of triangles), (v1, 0), (w_0, 0), (w_1, 0).
 layout(std430, binding = 0) readonly buffer DcsWedges

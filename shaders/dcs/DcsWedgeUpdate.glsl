@@ -1,6 +1,6 @@
 // Technique dcs (Forest, Barthe & Paulin 2008 via Forest et al. 2009 §3.2): for a pixel inside a wedge's screen
 // polygon, the wedge's edge e = (v0, v1) changes the depth complexity of every light sample s whose segment from the
-// light's centre c crosses e's projection from the counted point p -- the rule of src/techniques/dcs/DcsGeometry.h,
+// light's centre c crosses e's projection from the counted point p -- the rule of src/objectspace/DcsGeometry.h,
 // in float, relative to v0:
 //   count(s) += sign(g(s)) M_e(p)  when e crosses triangle (p, c, s),
 //   g(x) = orient(v0, v1, p, x),  M_e(p) = sum over e's triangles of sign(orient(v0, v1, p, w_T)).

@@ -1,4 +1,4 @@
-// Technique dcs: one wedge's screen polygon (src/techniques/dcs/DcsGeometry.h, "Where a wedge is drawn"), already in
+// Technique dcs: one wedge's screen polygon (src/objectspace/DcsGeometry.h, "Where a wedge is drawn"), already in
 // normalised device coordinates, fan-triangulated on the CPU; every vertex carries its wedge's index.
 in vec2 wedgeNdcIn;
 in float wedgeIndexIn; // exact: fewer than 2^24 wedges

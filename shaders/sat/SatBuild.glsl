@@ -9,7 +9,7 @@
 //    pass picks b = min(16, 32 - ceil(log2(N^2))) for an N x N map, so every box in the map is exact: the
 //    integer table trades depth resolution (10 bits at 2048^2) for exact sums.
 // Depths are clamped to [near, far] (empty texels, 2 x far, become far: lit for every receiver).
-// CPU mirror: src/lightspace/sat/SummedAreaTable.cpp.
+// CPU mirror: src/lightspace/SummedAreaTable.cpp.
 layout(local_size_x = 64) in;
 
 uniform sampler2D shadowMapLinear;

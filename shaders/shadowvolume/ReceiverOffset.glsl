@@ -1,6 +1,6 @@
 // The point whose crossings shadow volumes (and dcs's light samples) are counted for: the visible point moved
 // receiver_offset toward the camera along its pixel's camera ray N + s R, so its own caster's near cap lies behind
-// it (src/techniques/shadowvolume/vtkSLShadowVolumePass.h says why).
+// it (src/techniques/vtkSLShadowVolumePass.h says why).
 uniform float receiverOffsetS;
 uniform float receiverOffsetPerS;
 

@@ -1,4 +1,4 @@
-// Technique shadow-volume: the CPU-built volume triangles (src/techniques/shadowvolume/ShadowVolumeGeometry.h),
+// Technique shadow-volume: the CPU-built volume triangles (src/objectspace/ShadowVolumeGeometry.h),
 // homogeneous world positions (w = 1 on the casters, w = 0 at infinity) and each triangle's plane.
 in vec4 volumePositionIn;
 in vec4 volumePlaneIn;

@@ -4,7 +4,7 @@
 // (SS08 §3), alpha-blended: V = (1 - a) V(floor l) + a V(ceil l) (§4.2; the band of BLEND_BAND
 // below). Micro-occluders (MICRO_OCCLUDER): micropatches, level-j texels of the min-max pyramid at their
 // minimum depth (SS08 §3, §5.1; gbp06's back-projection and gap filling), or microrects (SS08 §5.2, the
-// extents and depths of lightspace/microrect). A micro-occluder occludes when its depth is in front of the
+// extents and depths of structures/microrect). A micro-occluder occludes when its depth is in front of the
 // receiver's comparison depth at its centre, less (LEVEL_BIAS) how much nearer the receiver's tangent plane comes
 // over the micro-occluder's footprint: min aggregation puts coarse texels in front of tilted receivers.
 // Both levels go through one loop and one back-projection call site (llvmpipe compiles each call site and

@@ -1,4 +1,4 @@
-// Soft textured shadow volumes (Forest et al. 2009 §2, Alg. 1; the CPU twin is src/techniques/stsv/StsvGeometry.h): for a
+// Soft textured shadow volumes (Forest et al. 2009 §2, Alg. 1; the CPU twin is src/objectspace/StsvGeometry.h): for a
 // pixel inside an STSV's screen polygon, whether its point p lies in the volume (the three outer planes and the front
 // cap plane, §2.3), then for every light sample on this STSV's side of the triangle's plane the transmittance test of
 // Eq. 1-5 on the homogeneous barycentrics. The hidden samples are OR-ed into the pixel's light-sample mask (the

@@ -2,9 +2,9 @@
 // light-space structures and the buffers it publishes; --json for tools.
 #include "cli/Commands.h"
 
-#include "lightspace/LightSpaceStructure.h"
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/mssm/DualMssmStructure.h"
+#include "structures/LightSpaceStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/mssm/DualMssmStructure.h"
 #include "techniques/Registry.h"
 
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
 // Named, typed parameters with defaults and ranges (bgfx-style table: default, range, unit, doc), and their values.
 // A technique declares its parameters (frame/TechniqueDescriptor.h), and so does each light-space structure
-// (lightspace/LightSpaceStructure.h); ParameterValues resolves `--set key=value` against such a table.
+// (structures/LightSpaceStructure.h); ParameterValues resolves `--set key=value` against such a table.
 #pragma once
 
 #include <map>

@@ -53,7 +53,7 @@ struct ProbeOutcome
   std::string twin;         // what was replayed, e.g. "pcssReference (PcssTechnique.h), double precision"
 };
 
-struct LightSpaceStructure; // lightspace/LightSpaceStructure.h
+struct LightSpaceStructure; // structures/LightSpaceStructure.h
 
 // How a buffer of a technique with sub-lights (parameter `sublights`, Yang et al. 2009 §5) combines the
 // S x S sub-light frames: visibility and continuous values are averaged, work counters summed, categorical
@@ -194,7 +194,7 @@ struct TechniqueDescriptor
   std::string title;   // "Percentage-closer filtering"
   std::string paper;   // "Reeves et al. 1987; survey (Scherzer et al. 2011) §6"
   std::vector<ParameterSpec> parameters;
-  // The light-space structures its shader reads (each structure's header, e.g. lightspace/sat/SatStructure.h):
+  // The light-space structures its shader reads (each structure's header, e.g. structures/sat/SatStructure.h):
   // the pipeline builds them (and what they are built from) and binds them to the technique's shader.
   std::vector<const LightSpaceStructure*> lightStructures;
   // Whether a frame rendered with `values` needs `structure`, one of lightStructures (e.g. ss08 reads its

@@ -73,14 +73,14 @@ struct FrameResources
   vtkSmartPointer<vtkTextureObject> distinctSamples;     // R32F
   vtkSmartPointer<vtkTextureObject> interpolatedSamples; // R32F
 
-  // The shadow map (lightspace/shadowmap), the structure every other one is built from (only when the technique
+  // The shadow map (structures/shadowmap), the structure every other one is built from (only when the technique
   // needs it).
   bool hasLightView = false;
   LightView lightView;
   vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
-  // The other light-space structures (lightspace/LightSpaceStructure.h), by structure name: what each one's
-  // build left for its binding and export (e.g. lightspace/sat/SatStructure.h's SummedAreaTableData).
+  // The other light-space structures (structures/LightSpaceStructure.h), by structure name: what each one's
+  // build left for its binding and export (e.g. structures/sat/SatStructure.h's SummedAreaTableData).
   std::map<std::string, std::shared_ptr<LightSpaceData>> lightSpaceData;
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F. With sub-lights, the

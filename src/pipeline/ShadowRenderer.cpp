@@ -6,8 +6,8 @@
 
 #include "core/Error.h"
 #include "gl/vtkSLEglRenderWindow.h"
-#include "lightspace/LightSpaceStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/LightSpaceStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLMsaaResolvePass.h"

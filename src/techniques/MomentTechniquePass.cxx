@@ -26,7 +26,7 @@ std::vector<vtkTextureObject*> vtkSLMomentTechniquePass::SetTechniqueUniforms(vt
     const sl::BiasSettings leakBias = sl::defaultBiasSettings();
     sl::setVector(program, "leakBiasTexels", { leakBias.constantTexels, leakBias.slopeTexels, leakBias.maxSlope });
   }
-  return {}; // the moment map itself is bound by its structure (lightspace/moments)
+  return {}; // the moment map itself is bound by its structure (structures/moments)
 }
 
 void vtkSLMomentTechniquePass::PrintSelf(ostream& os, vtkIndent indent)

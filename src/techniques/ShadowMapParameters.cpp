@@ -2,7 +2,7 @@
 
 #include "core/Error.h"
 #include "lightspace/ShadowMapMath.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 namespace sl
 {

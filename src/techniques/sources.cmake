@@ -9,6 +9,11 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/SoftShadowSupport.cpp
   src/techniques/MomentReference.cpp
   src/techniques/MomentTechniquePass.cxx
+  src/techniques/PcssReference.cpp
+  src/techniques/ContourBackprojection.cpp
+  src/techniques/ContourReceiver.cpp
+  src/techniques/VolumeCountStatus.cpp
+  src/techniques/vtkSLShadowVolumePass.cxx
   src/techniques/hard/HardTechnique.cpp
   src/techniques/hard/vtkSLHardShadowPass.cxx
   src/techniques/pcf/PcfTechnique.cpp
@@ -21,8 +26,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/savsm/vtkSLSavsmPass.cxx
   src/techniques/vssm/VssmTechnique.cpp
   src/techniques/vssm/vtkSLVssmPass.cxx
-  src/techniques/backprojection/ContourBackprojection.cpp
-  src/techniques/backprojection/ContourReceiver.cpp
   src/techniques/gbp06/Gbp06Technique.cpp
   src/techniques/gbp06/vtkSLGbp06Pass.cxx
   src/techniques/gbp07/Gbp07Technique.cpp
@@ -35,7 +38,6 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
   src/techniques/referencesm/ReferenceSmTechnique.cpp
   src/techniques/referencesm/vtkSLReferenceShadowMapPass.cxx
-  src/techniques/shadowvolume/ShadowVolumeGeometry.cpp src/techniques/shadowvolume/ShadowVolumeReference.cpp src/techniques/shadowvolume/SilhouetteExport.cpp src/techniques/shadowvolume/ShadowVolumeTechnique.cpp src/techniques/shadowvolume/vtkSLShadowVolumePass.cxx
-  src/techniques/dcs/DcsGeometry.cpp src/techniques/dcs/DcsReference.cpp src/techniques/dcs/DcsWedgeExport.cpp src/techniques/dcs/DcsTechnique.cpp src/techniques/dcs/WedgeDrawer.cpp src/techniques/dcs/vtkSLDcsPass.cxx
-  src/techniques/stsv/StsvGeometry.cpp src/techniques/stsv/StsvDrawer.cpp
+  src/techniques/shadowvolume/ShadowVolumeTechnique.cpp
+  src/techniques/dcs/DcsReference.cpp src/techniques/dcs/DcsTechnique.cpp src/techniques/dcs/vtkSLDcsPass.cxx
   src/techniques/penumbrawedge/PenumbraWedgeGeometry.cpp src/techniques/penumbrawedge/PenumbraWedgeTechnique.cpp src/techniques/penumbrawedge/vtkSLPenumbraWedgePass.cxx)

@@ -1,7 +1,7 @@
 #include "techniques/vtkSLTechniquePass.h"
 
 #include "core/Error.h"
-#include "lightspace/LightSpaceStructure.h"
+#include "structures/LightSpaceStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"

@@ -30,16 +30,16 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "lightspace/LightSampleSet.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "reference/EmbreeScene.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/RayTriangle.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/DcsTechnique.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
-#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
+#include "objectspace/ShadowVolumeReference.h"
+#include "techniques/VolumeCountStatus.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // the gap-filling conventions (left/bottom, SS08 §3, and right/top) swapped by mirroring the scene in light
 // x and y, and the searched texels enough for both; at 1024^2 maps, kernels under llvmpipe's loop cap exact and
 // unflagged, and every pixel whose traversal the cap cuts short flagged (detected, not counted).
-#include "lightspace/hsm/HsmStructure.h"
+#include "structures/hsm/HsmStructure.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "support/ProbeChecks.h"

@@ -1,11 +1,11 @@
 // gbp07 (contour back-projection with radial integration): the GLSL against its double-precision twin on
 // read-back buffers, and against the closed-form overlap of a parallel square occluder, converging as the
 // shadow map's resolution doubles.
-#include "lightspace/hsm/HsmStructure.h"
+#include "structures/hsm/HsmStructure.h"
 #include "support/ProbeChecks.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
-#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/ContourBackprojection.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // The light-sample set's GLSL twin (shaders/common/LightSampleSet.glsl) against the CPU (lightspace/
-// LightSampleSet.h), through the structure's own build pass and binding (lightspace/lightsamples): for every
+// LightSampleSet.h), through the structure's own build pass and binding (structures/lightsamples): for every
 // pattern and N = 16, 64 (and 256 on a smaller image), lightSampleShift and lightSampleUnit equal the CPU bit for
 // bit at every (pixel, sample) of a 64 x 64 image, at the origin and at large pixel coordinates (the hash's high
 // bits), and lightSamplePoint equals LightSampleSet::point within 1e-6 of the light's scale on a square and a
@@ -14,8 +14,8 @@
 #include "gl/ShaderLibrary.h"
 #include "gl/vtkSLEglRenderWindow.h"
 #include "lightspace/LightSampleSet.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
-#include "lightspace/lightsamples/vtkSLLightSamplePass.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/vtkSLLightSamplePass.h"
 #include "passes/FrameResources.h"
 #include "passes/FullScreenQuad.h"
 #include "passes/ScopedRenderTarget.h"

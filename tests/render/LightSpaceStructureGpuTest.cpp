@@ -1,4 +1,4 @@
-// The light-space structures a frame builds (lightspace/LightSpaceStructure.h), on the GPU: exactly the
+// The light-space structures a frame builds (structures/LightSpaceStructure.h), on the GPU: exactly the
 // structures a technique needs (and what they are built from) are built, once each, timed as one stage each,
 // exported to light_space.vti under their own names, and their GPU memory in FrameResult and stats.json is the
 // closed form of the textures each one allocates. Small frames (64 x 48, maps of 64 or 128 texels) on llvmpipe.

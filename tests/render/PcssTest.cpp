@@ -5,7 +5,7 @@
 #include "support/TestSupport.h"
 #include "frame/ProbeRecord.h"
 #include "techniques/Registry.h"
-#include "techniques/pcss/PcssTechnique.h"
+#include "techniques/PcssReference.h"
 
 #include <gtest/gtest.h>
 

@@ -8,12 +8,12 @@
 #include "frame/FrameResult.h"
 #include "lightspace/LightSampleSet.h"
 #include "lightspace/LightView.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "metrics/ErrorMetrics.h"
 #include "reference/ReferenceRenderer.h"
 #include "scene/WeldedMesh.h"
 #include "support/TestSupport.h"
-#include "techniques/dcs/DcsReference.h"
+#include "objectspace/DcsGeometry.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 
 #include <gtest/gtest.h>
@@ -575,7 +575,7 @@ TEST(PenumbraWedgeStsv, FenceHidesTheRayTracersSamples)
 
 TEST(PenumbraWedgeStsv, GpuBitsAreTheTwinsAndTheCheckChangesNothingInsideTheVolumes)
 {
-  // The twin (stsv/StsvGeometry.h) sample for sample; a sample whose segment passes within float rounding of a texel
+  // The twin (objectspace/StsvGeometry.h) sample for sample; a sample whose segment passes within float rounding of a texel
   // edge may go either way. With stsv_opposite_side_check off the GPU gives the same bits: inside an STSV the paper's
   // test alone is right for the STSV's own light piece (StsvGeometry.h, "The gap"), so the check only matters for
   // Eq. 1 evaluated outside the volumes (tests/unit/StsvTest.cpp).

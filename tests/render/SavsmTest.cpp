@@ -6,7 +6,7 @@
 #include "techniques/Registry.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/savsm/SavsmTechnique.h"
-#include "lightspace/sat/SummedAreaTable.h"
+#include "lightspace/SummedAreaTable.h"
 #include "reference/ReferenceRenderer.h"
 
 #include <gtest/gtest.h>

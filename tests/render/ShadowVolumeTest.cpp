@@ -13,9 +13,10 @@
 #include "reference/ReferenceRenderer.h"
 #include "scene/Primitives.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "objectspace/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeReference.h"
 #include "techniques/shadowvolume/ShadowVolumeTechnique.h"
+#include "techniques/VolumeCountStatus.h"
 #include "techniques/Registry.h"
 
 #include <gtest/gtest.h>

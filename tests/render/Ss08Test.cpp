@@ -7,7 +7,7 @@
 #include "io/ImageIO.h"
 #include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/Microrects.h"
-#include "lightspace/hsm/HsmStructure.h"
+#include "structures/hsm/HsmStructure.h"
 #include "support/TempDir.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"

@@ -4,7 +4,7 @@
 #include "techniques/Registry.h"
 #include "support/ProbeChecks.h"
 #include "support/TestSupport.h"
-#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/ContourBackprojection.h"
 #include "techniques/gbp07/Gbp07Technique.h"
 #include "techniques/yfgl09/Yfgl09Technique.h"
 

@@ -6,8 +6,8 @@
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
 #include "scene/Scene.h"
-#include "techniques/backprojection/ContourBackprojection.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourBackprojection.h"
+#include "techniques/ContourReceiver.h"
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Contour back-projection (GBP07) against closed forms: the radial integration of a closed occluder
 // polygon's edges equals its exact overlap with the square light, and marching squares orients every edge
 // with the occluder on its left and agrees with its own inside test.
-#include "techniques/backprojection/ContourBackprojection.h"
+#include "techniques/ContourBackprojection.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Technique dcs's core math on the CPU (src/techniques/dcs/DcsGeometry.h), against direct counts: on random stacks of
+// Technique dcs's core math on the CPU (src/objectspace/DcsGeometry.h), against direct counts: on random stacks of
 // closed, open and non-manifold casters under random square and disk lights, the centre's count plus every wedge's
 // per-sample change equals the number of caster triangles the segment from the point to the sample crosses (Moller-
 // Trumbore in double over every triangle). Also: a wedge that changes a count contains the point (wedgeContains),
@@ -8,7 +8,7 @@
 #include "scene/Primitives.h"
 #include "scene/RayTriangle.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 
 #include <gtest/gtest.h>
 

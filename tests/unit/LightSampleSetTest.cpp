@@ -3,12 +3,12 @@
 // elementary interval of the (0, m, 2)-net), the 2^-16 lattice that makes the GLSL twin exact, the per-pixel and
 // interleaved shifts against the formulas LightSampleSet.h documents (recomputed here), Keller & Heidrich's
 // 4 sqrt(N) grid, the mapping onto square and disk lights, and the names and their errors. The structure's
-// parameters and typed settings (lightspace/lightsamples) are checked here too.
+// parameters and typed settings (structures/lightsamples) are checked here too.
 #include "core/Error.h"
 #include "core/Parameters.h"
 #include "lightspace/LightSampleSet.h"
 #include "lightspace/LightSamples.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 
 #include <gtest/gtest.h>
 

@@ -1,16 +1,16 @@
-// The light-space structure registry (lightspace/LightSpaceStructure.h), without GL: the registry is a build
+// The light-space structure registry (structures/LightSpaceStructure.h), without GL: the registry is a build
 // order (a structure after what it is built from), the build closure a technique gets, every technique declares
 // the parameters of the structures it builds the way the structures declare them, the stage names the builds
 // time are unambiguous, and each structure's typed settings read what its parameters say.
 #include "core/Error.h"
 #include "lightspace/HierarchicalShadowMap.h"
-#include "lightspace/LightSpaceStructure.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/moments/MomentMapStructure.h"
-#include "lightspace/mssm/DualMssmStructure.h"
-#include "lightspace/sat/SatStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/LightSpaceStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/moments/MomentMapStructure.h"
+#include "structures/mssm/DualMssmStructure.h"
+#include "structures/sat/SatStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
@@ -76,7 +76,7 @@ TEST(LightSpaceStructureRegistry, NamesAreUniqueAndEachStructureComesAfterWhatIt
       EXPECT_LT(registryIndex(source), index)
         << structure.name << " is built from " << source->name << ", which is not earlier in the registry";
     }
-    // The light-sample set lives on the light itself (lightspace/lightsamples): no light view, nothing to build from.
+    // The light-sample set lives on the light itself (structures/lightsamples): no light view, nothing to build from.
     if (&structure != &shadowMapStructure() && &structure != &lightSampleSetStructure())
     {
       EXPECT_NE(std::find(structure.builtFrom.begin(), structure.builtFrom.end(), &shadowMapStructure()),

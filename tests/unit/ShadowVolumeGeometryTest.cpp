@@ -5,9 +5,9 @@
 // point and directional lights, extruded to infinity and cut at a finite distance.
 #include "scene/Primitives.h"
 #include "scene/WeldedMesh.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
-#include "techniques/shadowvolume/SilhouetteExport.h"
+#include "objectspace/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeReference.h"
+#include "objectspace/SilhouetteExport.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Soft textured shadow volumes' CPU core (src/techniques/stsv/StsvGeometry.h; Forest et al. 2009 §2.2-2.4, Eq. 1-5), without
+// Soft textured shadow volumes' CPU core (src/objectspace/StsvGeometry.h; Forest et al. 2009 §2.2-2.4, Eq. 1-5), without
 // GL. Eq. 1's homogeneous barycentrics against Moller-Trumbore (scene/RayTriangle.h) over 10^5 random cases, which
 // decides the reconstruction of W (1/e, not the text's 1); the paper's occlusion test with and without ShadowLab's
 // opposite-side check; the volume's conservativeness over 10^6 random points (a sample the triangle hides implies the
@@ -11,7 +11,7 @@
 #include "scene/AlphaTexture.h"
 #include "scene/RayTriangle.h"
 #include "scene/Scene.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #!/bin/bash
 # How the cost of dcs on an "equivalent mesh" against dcs+STSV on the perforated quad scales with the mesh's
-# triangle count (issue 27, src/techniques/stsv/README.md, time ratio). From the repository root:
+# triangle count (issue 27, src/objectspace/Stsv.md, time ratio). From the repository root:
 #   bash docs/bench/stsv-scaling/run.sh [textures] [perforated] [meshed] [table]   (no argument: all)
 # - textures: make_textures.py writes square plates of 8^2..256^2 texels with round holes (and 64^2 with 4, 64
 #   and 256 holes); mesh_alpha meshes each opaque texel as two triangles, so the mesh has 96..98 304 triangles.

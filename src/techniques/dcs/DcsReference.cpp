@@ -1,23 +1,13 @@
 #include "techniques/dcs/DcsReference.h"
 
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "objectspace/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeReference.h"
 
 #include <algorithm>
 #include <string>
 
 namespace sl
 {
-
-std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel)
-{
-  std::vector<glm::dvec3> points;
-  for (int index = 0; index < samples.count(); ++index)
-  {
-    points.push_back(light.type == LightType::Area ? samples.point(light, pixel.x, pixel.y, index) : light.center);
-  }
-  return points;
-}
 
 DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeSet& wedges,
   const LightSampleSet& samples, glm::ivec2 pixel, const glm::dvec3& pWs, const glm::dvec3& nWs,

@@ -6,8 +6,8 @@
 #include "frame/ProbeRecord.h"
 #include "lightspace/LightSampleSet.h"
 #include "scene/Scene.h"
-#include "techniques/dcs/DcsGeometry.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/DcsGeometry.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <glm/glm.hpp>
 
@@ -29,13 +29,9 @@ struct DcsPixelTwin
   double visibility = 0.0;         // fraction of samples not hidden
 };
 
-// The samples' positions of pixel `pixel` on `light` (world): the set's points on an area light, the centre for
-// a point light.
-std::vector<glm::dvec3> dcsSamplePoints(const Light& light, const LightSampleSet& samples, glm::ivec2 pixel);
-
 // One pixel whose visible point is `pWs` with normal `nWs`. `wedges` are the opaque casters' (weldCasters(scene,
 // true)): perforated ones go through STSVs (Forest et al. 2009 §3.2, STSV_DCS), each STSV holding the point adding 1 to
-// the count of every sample its triangle hides (stsv/StsvGeometry.h, under `test`). `recorder` (optional): the
+// the count of every sample its triangle hides (objectspace/StsvGeometry.h, under `test`). `recorder` (optional): the
 // counted point, the centre's crossings, each wedge containing the point with its multiplicity and the samples it
 // changes, the STSVs, every sample.
 DcsPixelTwin dcsPixelTwin(const Scene& scene, const Light& light, const DcsEdgeSet& wedges,

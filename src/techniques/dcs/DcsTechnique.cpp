@@ -3,14 +3,14 @@
 #include "techniques/ApproximationRules.h"
 
 #include "lightspace/LightView.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "scene/WeldedMesh.h"
 #include "techniques/ProbeSupport.h"
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/vtkSLDcsPass.h"
-#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
-#include "techniques/stsv/StsvDrawer.h"
+#include "techniques/VolumeCountStatus.h"
+#include "objectspace/StsvDrawer.h"
 
 #include <string>
 

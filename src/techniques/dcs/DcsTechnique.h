@@ -15,7 +15,7 @@
 // sample_depth_complexity (N components). Statistics: the shadow volumes' and silhouette_edges_centre,
 // potential_silhouette_edges, wedges, wedges_drawn, wedge_fragments, sample_buffer_bytes, paper_sample_buffer_bytes,
 // volumes_gpu_ms, wedges_gpu_ms, resolve_gpu_ms, wedge_build_ms (CPU). Object-space exports: silhouettes.vtp and
-// wedges.vtp. Light-space export: light_samples (the structure lightspace/lightsamples).
+// wedges.vtp. Light-space export: light_samples (the structure structures/lightsamples).
 // Limits: alpha textures are not honoured (perforated casters are STSV's, a later issue).
 #pragma once
 
@@ -29,8 +29,6 @@ namespace sl
 // The bias of the 8-bit counters (shaders/dcs/DcsSampleCounters.glsl): a counter holds the change relative to the
 // light's centre plus this.
 constexpr int kDcsCounterBias = 128;
-// Corners of a light's outline (DcsGeometry.h lightOutline): the octagon around a disk.
-constexpr int kDcsMaxOutlineCorners = 8;
 
 // counter_status codes.
 enum class DcsCounterStatus

@@ -8,7 +8,7 @@
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
 #include "techniques/dcs/DcsTechnique.h"
-#include "techniques/dcs/DcsWedgeExport.h"
+#include "objectspace/DcsWedgeExport.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>

@@ -5,7 +5,7 @@
 //     fragment applies the per-sample update rule to its pixel's light-sample counters with image atomics
 //     (shaders/dcs/DcsWedgeUpdate.glsl);
 //  2b. STSVs: perforated casters (left out of steps 1 and 2, TechniqueDescriptor::perforatedCastersByStsv) through
-//     their soft textured shadow volumes (stsv/StsvDrawer.h): each fragment holding its point adds 1 to the counter of
+//     their soft textured shadow volumes (objectspace/StsvDrawer.h): each fragment holding its point adds 1 to the counter of
 //     every sample Eq. 1-5 hides (Forest et al. 2009 §3.2, shaders/stsv/StsvSamples.glsl with STSV_DCS_COUNTERS);
 //  3. resolve: the base class's full-screen shader (shaders/dcs/DcsResolve.glsl) decodes the counters, checks their
 //     range, and writes visibility and the instrumentation buffers, and the hidden-sample bit mask.
@@ -20,10 +20,10 @@
 // counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside Forest et al. 2009's §5.1 formula.
 #pragma once
 
-#include "techniques/dcs/DcsGeometry.h"
-#include "techniques/dcs/WedgeDrawer.h"
-#include "techniques/stsv/StsvDrawer.h"
-#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+#include "objectspace/DcsGeometry.h"
+#include "objectspace/WedgeDrawer.h"
+#include "objectspace/StsvDrawer.h"
+#include "techniques/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

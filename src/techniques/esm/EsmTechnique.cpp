@@ -1,8 +1,8 @@
 #include "techniques/esm/EsmTechnique.h"
 
 
-#include "lightspace/moments/MomentMapStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/moments/MomentMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/MomentReference.h"
 #include "techniques/MomentTechniquePass.h"

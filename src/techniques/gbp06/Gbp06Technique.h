@@ -4,7 +4,7 @@
 // Per pixel:
 //  1. the kernel of Eq. 1 (Yang 2009) tightened `kernel_refinements` times by the minimum depth inside it, and
 //     lit / umbra from the min-max structure's range over it: the preamble of gbp07
-//     (techniques/backprojection/ContourReceiver), shared unchanged;
+//     (techniques/ContourReceiver), shared unchanged;
 //  2. every texel of the kernel plus one ring (Eq. 1 keeps the texels whose *centres* back-project into the
 //     light; a texel's square reaches half a texel further, so the ring is where the last partial micropatches
 //     lie) whose depth is in front of its comparison depth (tapComparisonDepth) is a micropatch: the texel's
@@ -41,7 +41,7 @@
 #pragma once
 
 #include "lightspace/HierarchicalShadowMap.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 

@@ -13,7 +13,7 @@ std::vector<vtkTextureObject*> vtkSLGbp06Pass::SetTechniqueUniforms(vtkShaderPro
 {
   const sl::FrameResources& frame = *this->Frame;
   sl::setSoftShadowUniforms(program, frame);
-  return {}; // the min-max structure is bound by its structure (lightspace/hsm)
+  return {}; // the min-max structure is bound by its structure (structures/hsm)
 }
 
 void vtkSLGbp06Pass::PrintSelf(ostream& os, vtkIndent indent)

@@ -2,14 +2,14 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/backprojection/ContourBackprojection.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourBackprojection.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/gbp07/vtkSLGbp07Pass.h"
 
 #include <algorithm>

@@ -11,7 +11,7 @@
 #pragma once
 
 #include "lightspace/HierarchicalShadowMap.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 

@@ -13,7 +13,7 @@ std::vector<vtkTextureObject*> vtkSLGbp07Pass::SetTechniqueUniforms(vtkShaderPro
 {
   const sl::FrameResources& frame = *this->Frame;
   sl::setSoftShadowUniforms(program, frame);
-  return {}; // the min-max structure is bound by its structure (lightspace/hsm)
+  return {}; // the min-max structure is bound by its structure (structures/hsm)
 }
 
 void vtkSLGbp07Pass::PrintSelf(ostream& os, vtkIndent indent)

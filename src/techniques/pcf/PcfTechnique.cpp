@@ -2,7 +2,7 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"

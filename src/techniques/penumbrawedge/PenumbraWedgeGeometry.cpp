@@ -1,8 +1,8 @@
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 
 #include "core/Error.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "objectspace/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeReference.h"
 
 #include <algorithm>
 #include <cmath>

@@ -20,7 +20,7 @@
 // below the receiver's tangent plane are not modelled (AAM03 has no receiver term), as the reference hides them.
 // Square area lights only (the far region is clipped from the square's outline).
 // Perforated casters (alpha textures) are not part of that: they go through soft textured shadow volumes (Forest et al. 2009 §3.1
-// §3.1, stsv/StsvGeometry.h). For every STSV holding p, the light samples its triangle hides (Eq. 1-5) are OR-ed
+// §3.1, objectspace/StsvGeometry.h). For every STSV holding p, the light samples its triangle hides (Eq. 1-5) are OR-ed
 // into the pixel's light-sample mask (the LS_buffer), and its popcount's share of the N samples is added to the
 // occlusion -- "we add this v_coef with the one computed during the penumbra-wedge pass" (§3.1), read as adding
 // occlusions: occlusion_raw = AAM03's + popcount / N, so a perforated and an opaque occluder that overlap are both
@@ -29,8 +29,8 @@
 
 #include "frame/ProbeRecord.h"
 #include "scene/Scene.h"
-#include "techniques/dcs/DcsGeometry.h"
-#include "techniques/stsv/StsvGeometry.h"
+#include "objectspace/DcsGeometry.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <glm/glm.hpp>
 

@@ -3,14 +3,13 @@
 #include "techniques/ApproximationRules.h"
 
 #include "lightspace/LightView.h"
-#include "lightspace/lightsamples/LightSampleSetStructure.h"
+#include "structures/lightsamples/LightSampleSetStructure.h"
 #include "techniques/ProbeSupport.h"
-#include "techniques/dcs/DcsReference.h"
-#include "techniques/dcs/DcsTechnique.h"
+#include "objectspace/DcsGeometry.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 #include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
-#include "techniques/shadowvolume/ShadowVolumeTechnique.h"
-#include "techniques/stsv/StsvDrawer.h"
+#include "techniques/VolumeCountStatus.h"
+#include "objectspace/StsvDrawer.h"
 
 #include <algorithm>
 

@@ -6,7 +6,7 @@
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
-#include "techniques/dcs/DcsWedgeExport.h"
+#include "objectspace/DcsWedgeExport.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 
 #include <vtkObjectFactory.h>

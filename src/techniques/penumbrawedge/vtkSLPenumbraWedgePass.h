@@ -3,18 +3,18 @@
 //  2. wedges: one screen polygon per centre-silhouette wedge (DcsGeometry.h, drawn by WedgeDrawer); each fragment
 //     adds the wedge's signed share of the light (shaders/penumbrawedge/PenumbraWedgeArea.glsl) to an R32F occlusion
 //     target and 1 to a covering count, by additive blending;
-//  3. STSVs: for every perforated triangle its one or two soft textured shadow volumes (stsv/StsvGeometry.h, built on
+//  3. STSVs: for every perforated triangle its one or two soft textured shadow volumes (objectspace/StsvGeometry.h, built on
 //     the CPU in double), drawn as the screen polygon of their closed mesh (the whole viewport when the mesh is
 //     truncated); each fragment holding its point in the volume ORs the samples Eq. 1-5 hide into the pixel's mask
 //     (R32UI array, image atomics; shaders/penumbrawedge/StsvSamples.glsl) and counts itself (covering, empty);
 //  4. resolve: the base class's full-screen shader (PenumbraWedgeResolve.glsl).
 #pragma once
 
-#include "techniques/dcs/DcsGeometry.h"
+#include "objectspace/DcsGeometry.h"
 #include "gl/GlResources.h"
-#include "techniques/dcs/WedgeDrawer.h"
-#include "techniques/stsv/StsvDrawer.h"
-#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+#include "objectspace/WedgeDrawer.h"
+#include "objectspace/StsvDrawer.h"
+#include "techniques/vtkSLShadowVolumePass.h"
 
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>

@@ -4,7 +4,7 @@
 #include "lightspace/LightSamples.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 #include "core/Progress.h"
 #include "passes/ScopedRenderTarget.h"
 #include "passes/ShadowMapRendering.h"

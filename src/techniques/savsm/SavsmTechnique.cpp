@@ -2,15 +2,15 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/sat/SatStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/sat/SatStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/MomentReference.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/pcss/PcssTechnique.h"
-#include "lightspace/sat/SummedAreaTable.h"
+#include "techniques/PcssReference.h"
+#include "lightspace/SummedAreaTable.h"
 #include "techniques/savsm/vtkSLSavsmPass.h"
 
 #include <algorithm>

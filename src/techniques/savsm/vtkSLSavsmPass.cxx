@@ -19,7 +19,7 @@ std::vector<vtkTextureObject*> vtkSLSavsmPass::SetTechniqueUniforms(vtkShaderPro
 {
   const sl::FrameResources& frame = *this->Frame;
   sl::setSoftShadowUniforms(program, frame);
-  return {}; // the summed-area table is bound by its structure (lightspace/sat)
+  return {}; // the summed-area table is bound by its structure (structures/sat)
 }
 
 void vtkSLSavsmPass::PrintSelf(ostream& os, vtkIndent indent)

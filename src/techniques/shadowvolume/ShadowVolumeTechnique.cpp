@@ -4,38 +4,16 @@
 
 #include "lightspace/LightView.h"
 #include "techniques/ProbeSupport.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
-#include "techniques/shadowvolume/vtkSLShadowVolumePass.h"
+#include "techniques/VolumeCountStatus.h"
+#include "objectspace/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeReference.h"
+#include "techniques/vtkSLShadowVolumePass.h"
 
 #include <cmath>
 #include <string>
 
 namespace sl
 {
-namespace
-{
-
-const Category<VolumeCountStatus> volumeCountCategories[] = {
-  { VolumeCountStatus::Consistent, "CONSISTENT", "volume count consistent" },
-  { VolumeCountStatus::Inconsistent, "INCONSISTENT",
-    "volume count inconsistent (below 0, or the faces along the ray miss the eye's count): not exact", true },
-};
-
-} // namespace
-
-BufferSpec volumeCountStatusBuffer()
-{
-  BufferSpec spec = categoricalBuffer("volume_count_status",
-    "the shadow volumes' count checked against itself (vtkSLShadowVolumePass.h): inconsistent marks a pixel whose "
-    "depth_complexity_center is below 0, or whose volume faces along the camera ray do not sum to the eye's count",
-    volumeCountCategories);
-  // Decided when the pass reads the count back, not by the resolves: dcs's resolve already writes the 8 outputs
-  // llvmpipe allows.
-  spec.fromPass = true;
-  return spec;
-}
-
 TechniqueDescriptor shadowVolumeTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -98,7 +76,7 @@ ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int
 {
   const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
   ProbeOutcome outcome;
-  outcome.twin = "casterCrossings (shadowvolume/ShadowVolumeReference.h): caster triangles crossed by the segment "
+  outcome.twin = "casterCrossings (objectspace/ShadowVolumeReference.h): caster triangles crossed by the segment "
                  "from the offset point to the light's centre, Moller-Trumbore in double";
   // The count is exact on the GPU (float blending of +-1, exact to 2^24), so visibility is too: ShadowVolumeTest
   // (ProbeRecordsTheCrossedTrianglesAndTheGpuCount) finds no pixel that differs outside the rasterisation margin

@@ -38,19 +38,6 @@ namespace sl
 
 TechniqueDescriptor shadowVolumeTechnique();
 
-// volume_count_status codes (vtkSLShadowVolumePass.h, VolumeCountStatusImage).
-enum class VolumeCountStatus
-{
-  Consistent = 0,
-  Inconsistent = 1
-};
-
-// The categorical buffer volume_count_status: the volume count checked against itself on the GPU (below 0, or the
-// volume faces along the camera ray not summing to the eye's count: a face lost or doubled). Its inconsistent
-// category is a cut-short mark (counted in cut_short_pixels). shadow-volume, dcs and penumbra-wedge, which all take
-// the centre's count from these volumes, publish it.
-BufferSpec volumeCountStatusBuffer();
-
 // The technique's probe (TechniqueDescriptor::probe): the crossing count of the segment from the pixel's point
 // (moved by receiver_offset) to the light's centre (casterCrossings), each crossed caster triangle, the count
 // as depth_complexity_center and stencil_count, and the visibility the resolve derives from it.

@@ -6,13 +6,13 @@
 #include "frame/FrameResult.h"
 #include "io/ImageIO.h"
 #include "lightspace/Microrects.h"
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/microrect/MicrorectStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/microrect/MicrorectStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
-#include "techniques/backprojection/ContourBackprojection.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourBackprojection.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/ss08/vtkSLSs08Pass.h"
 
 #include <algorithm>
@@ -115,7 +115,7 @@ TechniqueDescriptor ss08Technique()
     { "loq_floor", 0, 0, 1, "", "whether smoothing may lower l below the budget's level l_raw: none (the paper's plain smoothing; loq_budget_violation counts the levels lost) or raw (l = max(smoothed, l_raw): the budget holds)", { "none", "raw" }, true },
     { "blend_band", 1.0, 0.0, 1.0, "levels", "alpha blending between floor(l) and ceil(l) (SS08 §4.2): over the last blend_band of each level; 1 = always (the paper's choice), 0.1 = GBP07's band, 0 = off (ceil(l) alone)", {}, false },
     { "growth", 1, 0, 1, "", "grow each depth-range query to the whole support of the level-j micro-occluders it partly covers (SS08 §6, Fig. 7: without it pixels next to the penumbra are classified lit)", { "off", "on" }, true },
-    { "micro_occluder", 1, 0, 1, "", "micropatches (min-aggregated level-j texels, SS08 §3) or microrects (SS08 §5.2: rectangles of level-0 texels merged by depth, lightspace/microrect)", { "micropatch", "microrect" }, true },
+    { "micro_occluder", 1, 0, 1, "", "micropatches (min-aggregated level-j texels, SS08 §3) or microrects (SS08 §5.2: rectangles of level-0 texels merged by depth, structures/microrect)", { "micropatch", "microrect" }, true },
     { "gap_filling", 1, 0, 2, "", "micropatches: extend each back-projection to its occluding left and bottom neighbours (GBP06's rule, SS08 §3), right and top, or off; as gbp06", { "off", "left_bottom", "right_top" }, true },
     { "level_bias", 1, 0, 1, "", "above level 0, add to the depth bias how much nearer the receiver's tangent plane comes over the micro-occluder's footprint than at its centre (min aggregation puts coarse texels in front of tilted receivers; SS08 §9 leaves biasing across levels to future work)", { "off", "on" }, true },
     { "force_level", -1, -1, 13, "level", "experiments: use this level everywhere (no budget, smoothing or blending); -1 = off", {}, true },

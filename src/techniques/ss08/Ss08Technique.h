@@ -26,7 +26,7 @@
 //     `blend_band` < 1 blends only over the last band of each level (0.1 = GBP07's suggestion, §4.2), 0 does
 //     not blend (ceil(l) alone).
 // Micro-occluders (`micro_occluder`): micropatches, level-j texels of the min-max pyramid at their minimum depth
-// (§3, §5.1), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, lightspace/microrect), whose
+// (§3, §5.1), gap-filled as gbp06 (`gap_filling`); or microrects (§5.2, structures/microrect), whose
 // extents may overlap (area accumulation then over-occludes; `accumulation=bitmask` counts each sample once).
 // A micro-occluder occludes when its depth is in front of the receiver's comparison depth at its centre, less
 // (`level_bias`, on by default, levels above 0) how much nearer the receiver's tangent plane comes over the

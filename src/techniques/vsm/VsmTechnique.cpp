@@ -1,10 +1,8 @@
 #include "techniques/vsm/VsmTechnique.h"
 
 
-#include "lightspace/moments/MomentMapStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
-
-#include "techniques/esm/EsmTechnique.h"
+#include "structures/moments/MomentMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/MomentReference.h"
 #include "techniques/MomentTechniquePass.h"

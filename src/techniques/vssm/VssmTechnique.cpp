@@ -2,9 +2,9 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/hsm/HsmStructure.h"
-#include "lightspace/sat/SatStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/hsm/HsmStructure.h"
+#include "structures/sat/SatStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "core/Error.h"
 #include "frame/FrameResult.h"
@@ -12,7 +12,7 @@
 #include "techniques/SamplingPatterns.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/backprojection/ContourReceiver.h" // probeNodeOf: HSM query nodes as probe nodes
+#include "techniques/ContourReceiver.h" // probeNodeOf: HSM query nodes as probe nodes
 #include "techniques/vssm/vtkSLVssmPass.h"
 
 #include <algorithm>

@@ -18,7 +18,7 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
-#include "lightspace/sat/SummedAreaTable.h"
+#include "lightspace/SummedAreaTable.h"
 
 #include <cstdint>
 #include <optional>

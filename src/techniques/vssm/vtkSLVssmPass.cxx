@@ -1,6 +1,6 @@
 #include "techniques/vssm/vtkSLVssmPass.h"
 
-#include "lightspace/sat/SatStructure.h"
+#include "structures/sat/SatStructure.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "techniques/SoftShadowSupport.h"
@@ -25,7 +25,7 @@ std::vector<vtkTextureObject*> vtkSLVssmPass::SetTechniqueUniforms(vtkShaderProg
   const sl::LightView& view = frame.lightView;
   program->SetUniformf("satHalfStep",
     static_cast<float>(sl::vssmSatHalfStep(sl::summedAreaTableData(frame).integer, view.resolution, view.nearDepth, view.farDepth)));
-  return {}; // the summed-area table and the HSM are bound by their structures (lightspace/sat, lightspace/hsm)
+  return {}; // the summed-area table and the HSM are bound by their structures (structures/sat, structures/hsm)
 }
 
 void vtkSLVssmPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -4,8 +4,8 @@
 
 #include "lightspace/LightView.h"
 #include "techniques/ProbeSupport.h"
-#include "techniques/shadowvolume/ShadowVolumeGeometry.h"
-#include "techniques/shadowvolume/ShadowVolumeReference.h"
+#include "objectspace/ShadowVolumeGeometry.h"
+#include "objectspace/ShadowVolumeReference.h"
 #include "techniques/vtk/vtkSLVtkShadowMapPass.h"
 
 #include <algorithm>

@@ -2,15 +2,15 @@
 
 #include "techniques/ApproximationRules.h"
 
-#include "lightspace/mssm/DualMssmStructure.h"
-#include "lightspace/shadowmap/ShadowMapStructure.h"
+#include "structures/mssm/DualMssmStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "core/Error.h"
 #include "techniques/ProbeSupport.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/SoftShadowSupport.h"
-#include "techniques/backprojection/ContourBackprojection.h"
-#include "techniques/backprojection/ContourReceiver.h"
+#include "techniques/ContourBackprojection.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/yfgl09/vtkSLYfgl09Pass.h"
 
 #include <algorithm>

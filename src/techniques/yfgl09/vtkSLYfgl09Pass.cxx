@@ -34,7 +34,7 @@ std::vector<vtkTextureObject*> vtkSLYfgl09Pass::SetTechniqueUniforms(vtkShaderPr
   const int packetSize[2] = { frame.parameters.getInt("packet_width"), frame.parameters.getInt("packet_height") };
   program->SetUniform2i("packetSize", packetSize);
   // The packet size is a uniform, not a define: one program per pass serves every size. The dual-grid MSSM is
-  // bound by its structure (lightspace/mssm).
+  // bound by its structure (structures/mssm).
   return {};
 }
 

@@ -1,0 +1,71 @@
+// Draws the soft textured shadow volumes of a frame's perforated casters (StsvGeometry.h) for an STSV pass: built on
+// the CPU in double, each drawn as the screen polygon of its closed mesh (convexScreenPolygon; the whole viewport for a
+// truncated one) with its record of planes and Eq. 1-5 matrices (read by shaders/stsv/StsvSamples.glsl), one draw
+// per perforated object with its alpha texture bound. Techniques `penumbra-wedge` (the light-sample mask) and `dcs`
+// (the sample counters) use it.
+#pragma once
+
+#include "core/Parameters.h"
+#include "frame/FrameResult.h"
+#include "objectspace/WedgeDrawer.h"
+#include "objectspace/StsvGeometry.h"
+
+#include <vtkSmartPointer.h>
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+class vtkShaderProgram;
+
+namespace sl
+{
+
+struct FrameResources;
+
+// The parameter stsv_opposite_side_check of the techniques with STSVs, and the occlusion test it picks.
+ParameterSpec stsvOppositeSideCheckParameter();
+StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values);
+
+class StsvDrawer
+{
+public:
+  // The STSVs of the frame's perforated casters under its light.
+  void prepare(const FrameResources& frame);
+  // Binds each perforated object's alpha texture (common/AlphaMask.glsl's uniforms) and draws its STSVs with
+  // `program` (bound; the caller sets the target, state and the rest of the uniforms).
+  // (Fragments are counted with an occlusion query around the draws.)
+  void draw(vtkShaderProgram* program, const FrameResources& frame);
+  void releaseGraphicsResources();
+  // perforated_triangles, stsvs, stsvs_truncated, stsv_build_ms (CPU), stsv_fragments.
+  void addStatistics(std::map<std::string, double>& statistics) const;
+
+  std::size_t perforatedTriangles() const { return perforated_.size(); }
+  std::size_t volumes() const { return volumes_; }
+  std::size_t truncatedVolumes() const { return truncated_; }
+  double buildMilliseconds() const { return buildMilliseconds_; }
+  // Each STSV's closed mesh (Fig. 6's strip) with cell data stsv_id, caster_id, light_side, truncated: stsv.vtp.
+  vtkSmartPointer<vtkPolyData> polyData() const;
+  // Appends stsv.vtp to a pass's object-space exports when the frame had STSVs.
+  void addExport(std::vector<NamedPolyData>& exports) const;
+
+private:
+  struct Range
+  {
+    std::size_t object = 0;
+    std::size_t firstVertex = 0;
+    std::size_t vertexCount = 0;
+  };
+  std::vector<StsvTriangle> perforated_;
+  std::vector<std::vector<Stsv>> stsvs_; // per perforated triangle
+  std::vector<Range> ranges_;
+  std::size_t volumes_ = 0;
+  std::size_t truncated_ = 0;
+  double buildMilliseconds_ = 0.0;
+  WedgeDrawer drawer_;
+  unsigned int fragmentQuery_ = 0;
+};
+
+} // namespace sl

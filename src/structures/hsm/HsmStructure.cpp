@@ -1,0 +1,143 @@
+#include "structures/hsm/HsmStructure.h"
+
+#include "gl/GlResources.h"
+#include "structures/hsm/vtkSLHsmPass.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
+#include "passes/PassUtilities.h"
+
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+namespace sl
+{
+
+HierarchicalShadowMapSettings hierarchicalShadowMapSettings(const ParameterValues& values)
+{
+  HierarchicalShadowMapSettings settings;
+  const std::string choice = values.choice("hsm");
+  settings.layout = choice == "nbuffers" ? HsmLayout::NBuffers : choice == "ysm" ? HsmLayout::Ysm : HsmLayout::MipMap;
+  return settings;
+}
+
+HierarchicalShadowMap buildHierarchicalShadowMap(const ImageF& shadowMapLinear, const ParameterValues& values)
+{
+  return HierarchicalShadowMap::build(shadowMapLinear, hierarchicalShadowMapSettings(values).layout);
+}
+
+std::vector<NamedImage> exportMinMaxDepth(const MinMaxDepthData& data, int mapSize)
+{
+  // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level;
+  // dual-grid MSSM: one pair per level, point (i, j) holding cell (i, j) (texel (i + 1, j + 1)); YSM: the atlas,
+  // then one pair per level of the MSSM part, point (i, j) holding the part's texel (i >> b, j >> b), i.e. the
+  // square of level-b nodes starting at the node that holds shadow-map texel (i, j).
+  std::vector<NamedImage> images;
+  const std::vector<ImageF> layers = readFloatTextureLayers(data.texture, 2);
+  for (std::size_t layer = 0; layer < layers.size(); ++layer)
+  {
+    const std::string level = std::to_string(layer + 1);
+    switch (data.layout)
+    {
+      case HsmLayout::MipMap:
+      case HsmLayout::Ysm:
+      {
+        const std::string what = "of each node, mip-map levels 1..L packed in an atlas (level 1 at the origin, the others stacked to its right)";
+        images.push_back({ "hsm_min", layers[layer].channels(0, 1), "world units", "minimum depth " + what });
+        images.push_back({ "hsm_max", layers[layer].channels(1, 1), "world units", "maximum depth " + what });
+        break;
+      }
+      case HsmLayout::NBuffers:
+      {
+        const std::string what = "over the 2^" + level + " square at each texel (N-buffers level " + level + ")";
+        images.push_back({ "hsm_min_" + level, layers[layer].channels(0, 1), "world units", "minimum depth " + what });
+        images.push_back({ "hsm_max_" + level, layers[layer].channels(1, 1), "world units", "maximum depth " + what });
+        break;
+      }
+      case HsmLayout::DualMssm:
+      {
+        const std::string dualLevel = std::to_string(layer);
+        const std::string what = "of the 2^" + dualLevel + " x 2^" + dualLevel +
+          " dual cells (2 x 2 sample blocks) starting at the cell whose first sample is this texel (dual-grid MSSM level " +
+          dualLevel + ", Yang et al. 2009 §4.2; samples outside the map count as 2 x far)";
+        const ImageF cells = layers[layer].crop(1, 1, mapSize, mapSize);
+        images.push_back({ "mssm_dual_min_" + dualLevel, cells.channels(0, 1), "world units", "minimum depth " + what });
+        images.push_back({ "mssm_dual_max_" + dualLevel, cells.channels(1, 1), "world units", "maximum depth " + what });
+        break;
+      }
+    }
+  }
+  if (data.layout == HsmLayout::Ysm)
+  {
+    const std::vector<ImageF> part = readFloatTextureLayers(data.mssmPart, 2);
+    const int b = data.ysmBaseLevel;
+    for (int level = 1; level <= ysmMssmPartLevelCount(mapSize); ++level)
+    {
+      const ImageF& stored = part[static_cast<std::size_t>(level - 1)];
+      ImageF perTexel(mapSize, mapSize, 2);
+      for (int y = 0; y < mapSize; ++y)
+      {
+        for (int x = 0; x < mapSize; ++x)
+        {
+          perTexel.at(x, y, 0) = stored.at(x >> b, y >> b, 0);
+          perTexel.at(x, y, 1) = stored.at(x >> b, y >> b, 1);
+        }
+      }
+      const std::string k = std::to_string(level);
+      const std::string what = "of the 2^" + k + " x 2^" + k + " HSM level-" + std::to_string(b) +
+        " nodes starting at the node over this texel (Y shadow map's MSSM part, level " + k +
+        "; Schwarz & Stamminger 2008 §6)";
+      images.push_back({ "ysm_mssm_min_" + k, perTexel.channels(0, 1), "world units", "minimum depth " + what });
+      images.push_back({ "ysm_mssm_max_" + k, perTexel.channels(1, 1), "world units", "maximum depth " + what });
+    }
+  }
+  return images;
+}
+
+std::size_t minMaxDepthBytes(const MinMaxDepthData& data)
+{
+  // YSM: the atlas plus the MSSM part (SS08 Table 1).
+  return textureBytes(data.texture, 8) + (data.mssmPart ? textureBytes(data.mssmPart, 8) : 0);
+}
+
+std::vector<vtkTextureObject*> bindMinMaxDepth(vtkShaderProgram* program, const MinMaxDepthData& data, int mapSize)
+{
+  setIntIfUsed(program, "hsmMapSize", mapSize);
+  if (data.layout == HsmLayout::Ysm)
+  {
+    setIntIfUsed(program, "ysmBaseLevel", data.ysmBaseLevel);
+    return { bindTexture(program, "hsmTexture", data.texture), bindTexture(program, "ysmMssmTexture", data.mssmPart) };
+  }
+  return { bindTexture(program, "hsmTexture", data.texture) };
+}
+
+const LightSpaceStructure& hierarchicalShadowMapStructure()
+{
+  static const LightSpaceStructure structure = [] {
+    LightSpaceStructure s;
+    s.name = "hierarchical_shadow_map";
+    s.doc = "min-max depth pyramid of the shadow map, mip-map, N-buffers (VSSM §6.1) or Y shadow map (Schwarz & Stamminger 2008 §6)";
+    s.builtFrom = { &shadowMapStructure() };
+    s.parameters = {
+      { "hsm", 0, 0, 2, "", "min-max hierarchical shadow map: mipmap (conservative ranges), nbuffers (exact ranges, L times the memory) or ysm (the mip-map plus N-buffers of its ~256^2 level: ranges exact on that level's blocks, + 4 MiB at 1024^2 and 2048^2; Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
+    };
+    s.createBuildPasses = [] {
+      return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLHsmPass>::New() };
+    };
+    const auto data = [](const FrameResources& frame) -> const MinMaxDepthData& {
+      return frame.structureData<MinMaxDepthData>(hierarchicalShadowMapStructure().name);
+    };
+    s.exportImages = [data](const FrameResources& frame, FrameResult&) {
+      return exportMinMaxDepth(data(frame), frame.lightView.resolution);
+    };
+    s.gpuBytes = [data](const FrameResources& frame) { return minMaxDepthBytes(data(frame)); };
+    s.shaderDefines = [](const FrameResources& frame) {
+      return vtkSLHsmPass::LayoutDefines(hierarchicalShadowMapSettings(frame.parameters).layout);
+    };
+    s.bind = [data](vtkShaderProgram* program, const FrameResources& frame) {
+      return bindMinMaxDepth(program, data(frame), frame.lightView.resolution);
+    };
+    return s;
+  }();
+  return structure;
+}
+
+} // namespace sl

@@ -1,0 +1,90 @@
+#include "structures/moments/vtkSLMomentMapPass.h"
+
+#include "core/Error.h"
+#include "gl/ShaderLibrary.h"
+#include "structures/moments/MomentMapStructure.h"
+#include "passes/FrameResources.h"
+#include "passes/PassUtilities.h"
+#include "passes/ScopedRenderTarget.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLFramebufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+vtkStandardNewMacro(vtkSLMomentMapPass);
+
+vtkSLMomentMapPass::vtkSLMomentMapPass() = default;
+vtkSLMomentMapPass::~vtkSLMomentMapPass() = default;
+
+void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its moments");
+  const sl::MomentMapSettings settings = sl::momentMapSettings(frame.parameters);
+  const int size = frame.lightView.resolution;
+  const double exponent = settings.esmExponent;
+  const bool mipmap = settings.mipmap;
+  const int blurWidth = settings.blurTexels;
+
+  auto moments = sl::makeFloatTarget(window, size, size, 4);
+  {
+    const sl::ScopedRenderTarget target(window, this->Framebuffer, { moments });
+    vtkShaderProgram* program =
+      this->MomentsQuad.ready(window, sl::assembleShader("moments/MomentsFromDepth.glsl"), "moments");
+    vtkTextureObject* bound = sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear);
+    program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));
+    program->SetUniformf("depthFar", static_cast<float>(frame.lightView.farDepth));
+    program->SetUniformf("esmExponent", static_cast<float>(exponent));
+    this->MomentsQuad.render();
+    bound->Deactivate();
+  }
+  if (blurWidth > 1)
+  {
+    // Separable box: x into a temporary, y back into `moments`.
+    auto horizontal = sl::makeFloatTarget(window, size, size, 4);
+    const int directions[2][2] = { { 1, 0 }, { 0, 1 } };
+    vtkTextureObject* sources[2] = { moments, horizontal };
+    vtkTextureObject* targets[2] = { horizontal, moments };
+    auto blurredY = sl::makeFloatTarget(window, size, size, 4);
+    targets[1] = blurredY;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      const sl::ScopedRenderTarget target(window, this->Framebuffer, { targets[pass] });
+      vtkShaderProgram* program = this->BlurQuad.ready(window, sl::assembleShader("moments/BoxBlur.glsl"), "box blur");
+      vtkTextureObject* bound = sl::bindTexture(program, "source", sources[pass]);
+      program->SetUniform2i("direction", directions[pass]);
+      program->SetUniformi("blurWidth", blurWidth);
+      this->BlurQuad.render();
+      bound->Deactivate();
+    }
+    moments = blurredY;
+  }
+  if (mipmap)
+  {
+    glGenerateTextureMipmap(moments->GetHandle());
+    moments->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
+    moments->SetMagnificationFilter(vtkTextureObject::Linear);
+  }
+  auto data = std::make_shared<sl::MomentMapData>();
+  data->moments = moments;
+  data->mipmapped = mipmap;
+  frame.lightSpaceData[sl::momentMapStructure().name] = data;
+}
+
+void vtkSLMomentMapPass::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->MomentsQuad.releaseGraphicsResources(window);
+  this->BlurQuad.releaseGraphicsResources(window);
+  this->Framebuffer->ReleaseGraphicsResources(window);
+}
+
+void vtkSLMomentMapPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}

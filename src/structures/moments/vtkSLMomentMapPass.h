@@ -1,0 +1,34 @@
+// The moment map's build (structures/moments/MomentMapStructure.h; vsm, esm): the shadow map's moments
+// (shaders/moments/MomentsFromDepth.glsl), prefiltered by a separable box blur of prefilter_texels
+// (prefilter = blur) or mip-mapped (prefilter = mipmap). Parameters read: MomentMapSettings.
+#pragma once
+
+#include "passes/FullScreenQuad.h"
+#include "passes/vtkSLStagePass.h"
+
+#include <vtkNew.h>
+
+class vtkOpenGLFramebufferObject;
+
+class vtkSLMomentMapPass : public vtkSLStagePass
+{
+public:
+  static vtkSLMomentMapPass* New();
+  vtkTypeMacro(vtkSLMomentMapPass, vtkSLStagePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  const char* GetStageName() const override { return "moment_map"; }
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkSLMomentMapPass();
+  ~vtkSLMomentMapPass() override;
+  void Execute(const vtkRenderState* state) override;
+
+private:
+  vtkSLMomentMapPass(const vtkSLMomentMapPass&) = delete;
+  void operator=(const vtkSLMomentMapPass&) = delete;
+
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  sl::FullScreenQuad MomentsQuad;
+  sl::FullScreenQuad BlurQuad;
+};

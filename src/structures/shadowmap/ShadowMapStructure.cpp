@@ -1,0 +1,104 @@
+#include "structures/shadowmap/ShadowMapStructure.h"
+
+#include "core/Error.h"
+#include "frame/FrameResult.h"
+#include "gl/GlResources.h"
+#include "structures/shadowmap/vtkSLFocusPass.h"
+#include "structures/shadowmap/vtkSLLightDepthPass.h"
+#include "passes/PassUtilities.h"
+
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+#include <cmath>
+
+namespace sl
+{
+
+ShadowMapSettings shadowMapSettings(const ParameterValues& values)
+{
+  ShadowMapSettings settings;
+  settings.resolution = values.getInt("shadow_map_size");
+  // A filter reaches width/2 texels past a receiver; one more for the bilinear footprint. The moment techniques'
+  // prefilter box reaches as far as pcf's kernel (and clamps at the map's edge without the margin), and the same
+  // width focuses the same map: vsm and pcf over one box read the same texels (the light_leak lesson).
+  const char* filter = values.has("kernel_texels") ? "kernel_texels" : values.has("prefilter_texels") ? "prefilter_texels" : nullptr;
+  settings.marginTexels = filter ? std::ceil(0.5 * values.get(filter)) + 1.0 : 1.0;
+  if (2.0 * settings.marginTexels >= settings.resolution)
+  {
+    throw InputError(format("--set ", filter, "=", values.get(filter), ": the filter reaches ", settings.marginTexels,
+      " texels past the receivers on each side, which leaves none of a ", settings.resolution,
+      "-texel shadow map for them; use a larger shadow_map_size or a narrower filter"));
+  }
+  settings.secondDepth = values.has("caster_faces") && values.choice("caster_faces") == "back";
+  return settings;
+}
+
+namespace
+{
+
+std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult&)
+{
+  // Built in place: an initializer list would copy both maps (16 MiB each at the default size) once more.
+  std::vector<NamedImage> images(2);
+  images[0] = { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
+    "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" };
+  images[1] = { "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
+    "hardware depth buffer of the shadow map, window coordinates in [0, 1]" };
+  return images;
+}
+
+std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const FrameResources& frame)
+{
+  std::vector<vtkTextureObject*> bound;
+  const LightView& view = frame.lightView;
+  if (program->IsUniformUsed("shadowMapLinear"))
+  {
+    bound.push_back(bindTexture(program, "shadowMapLinear", frame.shadowMapLinear));
+  }
+  setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
+  setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
+  setIntIfUsed(program, "shadowMapSize", view.resolution);
+  setIntIfUsed(program, "lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
+  if (program->IsUniformUsed("lightDepthToClip"))
+  {
+    // windowDepth: clip.z = -P22 d + P32, clip.w = -P23 d + P33 for linear depth d (z_view = -d).
+    const glm::dmat4& projection = view.clipFromView;
+    const float depthToClip[4] = { static_cast<float>(projection[2][2]), static_cast<float>(projection[3][2]),
+      static_cast<float>(projection[2][3]), static_cast<float>(projection[3][3]) };
+    program->SetUniform4f("lightDepthToClip", depthToClip);
+  }
+  // texelWorldSize(depthLin) = shadowTexelExtent * depthLin (perspective) or shadowTexelExtent.
+  setFloatIfUsed(program, "shadowTexelExtent",
+    view.projection == LightProjection::Perspective ? view.texelWorldSize(1.0) : view.texelWorldSize(0.0));
+  return bound;
+}
+
+} // namespace
+
+const LightSpaceStructure& shadowMapStructure()
+{
+  static const LightSpaceStructure structure = [] {
+    LightSpaceStructure s;
+    s.name = "shadow_map";
+    s.doc = "linear (R32F) and window (D32F) depth from the light's centre, focused on the visible receivers (survey §4.1)";
+    s.parameters = {
+      { "shadow_map_size", 2048, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1)", {}, true },
+      { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },
+    };
+    s.createBuildPasses = [] {
+      return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFocusPass>::New(),
+        vtkSmartPointer<vtkSLLightDepthPass>::New() };
+    };
+    s.exportImages = exportShadowMap;
+    s.gpuBytes = [](const FrameResources& frame) {
+      return textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
+    };
+    s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
+    s.bind = bindShadowMap;
+    return s;
+  }();
+  return structure;
+}
+
+} // namespace sl

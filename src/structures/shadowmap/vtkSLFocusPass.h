@@ -1,0 +1,31 @@
+// The shadow map's first stage (structures/shadowmap/ShadowMapStructure.h): fits the light frustum to the visible receivers and
+// the casters clipped to it (survey §4.1, see lightspace/LightView.h). The receivers are reduced on the
+// GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
+// own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: ShadowMapSettings.
+#pragma once
+
+#include "passes/GpuReceivers.h"
+#include "passes/vtkSLStagePass.h"
+
+#include <memory>
+
+class vtkSLFocusPass : public vtkSLStagePass
+{
+public:
+  static vtkSLFocusPass* New();
+  vtkTypeMacro(vtkSLFocusPass, vtkSLStagePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  const char* GetStageName() const override { return "focus"; }
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkSLFocusPass();
+  ~vtkSLFocusPass() override;
+  void Execute(const vtkRenderState* state) override;
+
+private:
+  vtkSLFocusPass(const vtkSLFocusPass&) = delete;
+  void operator=(const vtkSLFocusPass&) = delete;
+
+  std::unique_ptr<sl::GpuReceivers> Receivers; // compiled once, reused frame after frame
+};
