@@ -429,10 +429,11 @@ int traverse(ivec2 regionLo, ivec2 regionHi)
   contourEdges = 0;
   packetWork = 0;
 #if HIERARCHY == HIERARCHY_OFF
-  return traverseEveryCell(regionLo, regionHi);
+  int outcome = traverseEveryCell(regionLo, regionHi);
 #else
-  return traverseMssm(regionLo, regionHi);
+  int outcome = traverseMssm(regionLo, regionHi);
 #endif
+  return outcome;
 }
 
 float finalVisibility(int p)
