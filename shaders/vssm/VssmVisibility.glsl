@@ -241,6 +241,110 @@ void writeCounters()
   outPcfSamples = float(pcfSamples);
 }
 
+// Chebyshev's P(x >= t) (Eq. 1) over a step's pooled offset moments (Eq. 5), the variance floored.
+float pooledChebyshev(Accumulation acc, float d)
+{
+  float mean = acc.vsmSum / acc.vsmArea;
+  float variance = max(acc.vsmSumSquares / acc.vsmArea - mean * mean, param_min_variance * d * d);
+  return chebyshevUpperBound(mean, variance, 0.0);
+}
+
+// Alg. 1 L7: the blocker search kernel w_i, the light's extent seen from the receiver at the near plane.
+void initialKernel(ShadowReceiver receiver, out ivec2 lo, out ivec2 hi)
+{
+  vec2 searchHalf = kernelHalfTexels(receiver.depthLin, lightNearDepth);
+  outBlockerKernelTexels = 2.0 * max(searchHalf.x, searchHalf.y);
+  kernelRectangle(receiver.uvTexels, searchHalf, lo, hi);
+}
+
+#if HSM_EARLY_OUT == HSM_EARLY_OUT_ON
+// Alg. 1 L8-10: lit when no texel of w_i can be nearer than its comparison depth, umbra when all are (the
+// HSM's min-max over w_i, §6.1). True when decided, its visibility and class written.
+bool hsmEarlyOut(ivec2 lo, ivec2 hi, float d, float bias)
+{
+  vec2 depthRange = hsmRange(lo, hi);
+  vec2 comparisonRange = comparisonDepthRange(lo, hi, d, bias);
+  if (depthRange.x >= comparisonRange.y)
+  {
+    outVisibility = 1.0;
+    outClassification = CLASSIFICATION_LIT;
+    return true;
+  }
+  if (depthRange.y < comparisonRange.x)
+  {
+    outVisibility = 0.0;
+    outClassification = CLASSIFICATION_UMBRA;
+    return true;
+  }
+  return false;
+}
+#endif
+
+// Alg. 1 L11-15: the average blocker depth over w_i, Eq. 4 with z_unocc = t over the normal sub-kernels,
+// combined with the PCF-sampled blockers of the non-planar ones, weighted by their blocked areas (§5.2).
+// §6.4's test is not applied here: it is "applied for evaluating soft shadow", and the blocker depth "is
+// less sensitive to precision" (§6.2). False when w_i holds no blocker (the pixel is lit).
+bool estimateAverageBlockerDepth(ivec2 lo, ivec2 hi, float d, float bias, out float averageBlockerDepth)
+{
+  Accumulation blockers = subdivide(lo, hi, BLOCKER_SUBDIVISION, int(param_blocker_uniform_m),
+    int(param_blocker_tree_height), false, d, bias);
+  float blockedArea = blockers.pcfBlockedArea;
+  float blockerDepthSum = blockers.pcfBlockerDepthSum;
+  if (blockers.vsmArea > 0.0)
+  {
+    float occludedArea = blockers.vsmArea * (1.0 - pooledChebyshev(blockers, d));
+    // Eq. 4 in offsets from t: z_occ - t = E(z - t) / (1 - P), so the blockers' depth sum is
+    // occludedArea t + vsmArea E(z - t), with t the receiver's own comparison depth.
+    blockedArea += occludedArea;
+    blockerDepthSum += occludedArea * (d - bias - satHalfStep) + blockers.vsmSum;
+  }
+  float kernelArea = float((hi.x - lo.x + 1) * (hi.y - lo.y + 1));
+  averageBlockerDepth = 0.0;
+  if (!(blockedArea > 1e-5 * kernelArea))
+  {
+    return false;
+  }
+  averageBlockerDepth = clamp(blockerDepthSum / blockedArea, lightNearDepth, d);
+  return true;
+}
+
+// Alg. 1 L16: the penumbra kernel w_p, the light's extent seen from the receiver at z_avg (similar
+// triangles). Returns its half extent in texels.
+vec2 penumbraKernel(float d, float averageBlockerDepth)
+{
+  vec2 filterHalf = kernelHalfTexels(d, averageBlockerDepth);
+  outPenumbraKernelTexels = 2.0 * max(filterHalf.x, filterHalf.y);
+  return filterHalf;
+}
+
+#if CONTACT_TEST == CONTACT_TEST_BLOCKER_AVERAGE
+// §6.4 (contact_test = blocker_average): d - z_occ < eps r, once per pixel with Eq. 4's average. Contact
+// shadows are small: PCF over w_p avoids the SAT's precision there.
+bool contactTest(float d, float averageBlockerDepth)
+{
+  return d - averageBlockerDepth < param_contact_threshold * sceneRadius;
+}
+#endif
+
+// Alg. 1 L17-20: the visibility over w_p, L = Chebyshev (Eq. 1) over the pooled normal sub-kernels (Eq. 5),
+// the lit area and the PCF leaves, weighted by their areas (Alg. 2 L29-32).
+float filterPenumbraKernel(vec2 uvTexels, vec2 filterHalf, float d, float bias)
+{
+  ivec2 lo;
+  ivec2 hi;
+  kernelRectangle(uvTexels, filterHalf, lo, hi);
+  Accumulation shadow = subdivide(lo, hi, SHADOW_SUBDIVISION, int(param_shadow_uniform_n),
+    int(param_shadow_tree_height), CONTACT_TEST == CONTACT_TEST_SUBKERNEL_MEAN, d, bias);
+  float chebyshevLit = 0.0;
+  if (shadow.vsmArea > 0.0)
+  {
+    chebyshevLit = pooledChebyshev(shadow, d);
+  }
+  float totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
+  return clamp((chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea, 0.0, 1.0);
+}
+
+// Alg. 1 L7-20 for one pixel (the twin's vssmReference, same step names).
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -259,69 +363,27 @@ void main()
   float bias = receiver.bias;
   contactJitter = pixelRotation(uvec2(pixel));
   setReceiverPlane(receiver.pWs, receiver.nWs);
-
-  // L7: the blocker search kernel w_i.
-  vec2 searchHalf = kernelHalfTexels(d, lightNearDepth);
-  outBlockerKernelTexels = 2.0 * max(searchHalf.x, searchHalf.y);
   ivec2 lo;
   ivec2 hi;
-  kernelRectangle(receiver.uvTexels, searchHalf, lo, hi);
-
-  // L8-10: lit when no texel of w_i can be nearer than its comparison depth, umbra when all are.
+  initialKernel(receiver, lo, hi);
 #if HSM_EARLY_OUT == HSM_EARLY_OUT_ON
-  vec2 depthRange = hsmRange(lo, hi);
-  vec2 comparisonRange = comparisonDepthRange(lo, hi, d, bias);
-  if (depthRange.x >= comparisonRange.y)
+  if (hsmEarlyOut(lo, hi, d, bias))
   {
-    outVisibility = 1.0;
-    outClassification = CLASSIFICATION_LIT;
-    return;
-  }
-  if (depthRange.y < comparisonRange.x)
-  {
-    outVisibility = 0.0;
-    outClassification = CLASSIFICATION_UMBRA;
     return;
   }
 #endif
-
-  // Alg. 1 L11-15: average blocker depth, Eq. 4 with z_unocc = t over the normal sub-kernels, combined with the
-  // PCF-sampled blockers of the non-planar ones, weighted by their blocked areas (§5.2).
-  // §6.4's test is not applied here: it is "applied for evaluating soft shadow", and the blocker depth "is
-  // less sensitive to precision" (§6.2).
-  Accumulation blockers = subdivide(lo, hi, BLOCKER_SUBDIVISION, int(param_blocker_uniform_m),
-    int(param_blocker_tree_height), false, d, bias);
-  float blockedArea = blockers.pcfBlockedArea;
-  float blockerDepthSum = blockers.pcfBlockerDepthSum;
-  if (blockers.vsmArea > 0.0)
-  {
-    float mean = blockers.vsmSum / blockers.vsmArea;
-    float variance = max(blockers.vsmSumSquares / blockers.vsmArea - mean * mean, param_min_variance * d * d);
-    float unoccluded = chebyshevUpperBound(mean, variance, 0.0); // P(x >= t), Eq. 1
-    float occludedArea = blockers.vsmArea * (1.0 - unoccluded);
-    // Eq. 4 in offsets from t: z_occ - t = E(z - t) / (1 - P), so the blockers' depth sum is
-    // occludedArea t + vsmArea E(z - t), with t the receiver's own comparison depth.
-    blockedArea += occludedArea;
-    blockerDepthSum += occludedArea * (d - bias - satHalfStep) + blockers.vsmSum;
-  }
-  float kernelArea = float((hi.x - lo.x + 1) * (hi.y - lo.y + 1));
-  if (!(blockedArea > 1e-5 * kernelArea))
+  float averageBlockerDepth;
+  if (!estimateAverageBlockerDepth(lo, hi, d, bias, averageBlockerDepth))
   {
     outVisibility = 1.0;
     outClassification = CLASSIFICATION_LIT;
     writeCounters();
     return;
   }
-  float averageBlockerDepth = clamp(blockerDepthSum / blockedArea, lightNearDepth, d);
   outAvgBlockerDepth = averageBlockerDepth;
-
-  // Alg. 1 L16: the penumbra kernel w_p.
-  vec2 filterHalf = kernelHalfTexels(d, averageBlockerDepth);
-  outPenumbraKernelTexels = 2.0 * max(filterHalf.x, filterHalf.y);
-
-  // §6.4 (contact_test = blocker_average): contact shadows are small; PCF avoids the SAT's precision there.
+  vec2 filterHalf = penumbraKernel(d, averageBlockerDepth);
 #if CONTACT_TEST == CONTACT_TEST_BLOCKER_AVERAGE
-  if (d - averageBlockerDepth < param_contact_threshold * sceneRadius)
+  if (contactTest(d, averageBlockerDepth))
   {
     outVisibility = contactShadow(receiver.uvTexels, filterHalf, d, bias, contactJitter);
     outClassification = CLASSIFICATION_CONTACT;
@@ -329,20 +391,7 @@ void main()
     return;
   }
 #endif
-
-  // Alg. 1 L17-20: visibility over w_p (Alg. 2 L29-32).
-  kernelRectangle(receiver.uvTexels, filterHalf, lo, hi);
-  Accumulation shadow = subdivide(lo, hi, SHADOW_SUBDIVISION, int(param_shadow_uniform_n),
-    int(param_shadow_tree_height), CONTACT_TEST == CONTACT_TEST_SUBKERNEL_MEAN, d, bias);
-  float chebyshevLit = 0.0;
-  if (shadow.vsmArea > 0.0)
-  {
-    float mean = shadow.vsmSum / shadow.vsmArea;
-    float variance = max(shadow.vsmSumSquares / shadow.vsmArea - mean * mean, param_min_variance * d * d);
-    chebyshevLit = chebyshevUpperBound(mean, variance, 0.0);
-  }
-  float totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
-  outVisibility = clamp((chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea, 0.0, 1.0);
+  outVisibility = filterPenumbraKernel(receiver.uvTexels, filterHalf, d, bias);
   // A pixel with at least one §6.4 contact sub-kernel is classified contact.
   outClassification = contactSubkernels > 0 ? CLASSIFICATION_CONTACT : CLASSIFICATION_PENUMBRA;
   writeCounters();

@@ -327,15 +327,11 @@ const int TRAVERSAL_OVER_BUDGET = 2;
 // none but its returns, and the brute force notes its last cell, so falling out of either is detected exactly.
 const int TRAVERSAL_CUT_SHORT = 3;
 
-// Alg. 2 over the cells [regionLo, regionHi] (at least 2 x 2: a kernel has a texel): every cell (hierarchy
-// off, the MSSM-only brute force) or Alg. 3 through the dual-grid MSSM from the lowest node covering the region
-// with the same first cell, depth first; the path of child indices (2 bits per level) replaces the stack.
-int traverse(ivec2 regionLo, ivec2 regionHi)
-{
-  visitedNodes = 0;
-  contourEdges = 0;
-  packetWork = 0;
 #if HIERARCHY == HIERARCHY_OFF
+// Alg. 2's loop over every 2 x 2 block of the extended kernel [regionLo, regionHi] (hierarchy off, the
+// MSSM-only brute force): a cell no receiver's kernel holds is skipped.
+int traverseEveryCell(ivec2 regionLo, ivec2 regionHi)
+{
   ivec2 extent = regionHi - regionLo + 1;
   bool reachedLastCell = false;
   for (int k = 0; k < extent.x * extent.y; ++k)
@@ -353,7 +349,13 @@ int traverse(ivec2 regionLo, ivec2 regionHi)
     }
   }
   return reachedLastCell ? TRAVERSAL_DONE : TRAVERSAL_CUT_SHORT;
+}
 #else
+// Alg. 3 through the dual-grid MSSM (§4.2): from the lowest node covering [regionLo, regionHi] with the same
+// first cell, depth first, pruning the nodes of Fig. 6 cases 4 and 5; the path of child indices (2 bits per
+// level) replaces the stack.
+int traverseMssm(ivec2 regionLo, ivec2 regionHi)
+{
   ivec2 extent = regionHi - regionLo + 1;
   int rootLevel = 1;
   while ((1 << rootLevel) < max(extent.x, extent.y))
@@ -416,7 +418,22 @@ int traverse(ivec2 regionLo, ivec2 regionHi)
     }
   }
   return TRAVERSAL_CUT_SHORT; // only the loop cap leaves the loop without returning
+}
 #endif
+
+// Alg. 2 over the cells [regionLo, regionHi] (at least 2 x 2: a kernel has a texel), by every cell or by
+// Alg. 3 (the hierarchy parameter). The twin's PacketTraversal::run.
+int traverse(ivec2 regionLo, ivec2 regionHi)
+{
+  visitedNodes = 0;
+  contourEdges = 0;
+  packetWork = 0;
+#if HIERARCHY == HIERARCHY_OFF
+  int outcome = traverseEveryCell(regionLo, regionHi);
+#else
+  int outcome = traverseMssm(regionLo, regionHi);
+#endif
+  return outcome;
 }
 
 float finalVisibility(int p)
@@ -449,15 +466,25 @@ float nodeCost(int width)
   return log2(float(width)) * float(width);
 }
 
-void main()
+// The packet (Alg. 1 step 5): its penumbra pixels with their kernels, the samples those kernels read (plus
+// one ring), and the packet kernel (Alg. 2) with the packet's depth range and Eq. 6's pixel-wise cost.
+ivec2 penumbraPixel[MAX_PIXELS];
+ivec2 kernelLo[MAX_PIXELS];
+ivec2 kernelHi[MAX_PIXELS];
+ivec2 samplesLo;
+ivec2 samplesHi;
+ivec2 packetKernelLo;
+ivec2 packetKernelHi;
+vec2 packetDepth;
+float pixelCost;
+
+// Alg. 1 step 5 for each pixel of the packet whose first pixel is `base`: its kernel and lit / umbra class,
+// stored at once (final unless it is penumbra); the penumbra pixels become the receivers traversed together.
+// Returns the reference pixel of Eq. 2 (k_0: the packet's centre pixel, else its first penumbra pixel).
+int computePixelKernels(ivec2 base)
 {
-  ivec2 base = ivec2(gl_FragCoord.xy) * packetSize;
-  // Alg. 1 step 5 for each pixel; the penumbra ones form the packet.
-  ivec2 penumbraPixel[MAX_PIXELS];
-  ivec2 kernelLo[MAX_PIXELS];
-  ivec2 kernelHi[MAX_PIXELS];
-  ivec2 samplesLo = ivec2(1 << 30);
-  ivec2 samplesHi = ivec2(-1);
+  samplesLo = ivec2(1 << 30);
+  samplesHi = ivec2(-1);
   pixelCount = 0;
   int reference = -1;
   for (int k = 0; k < packetSize.x * packetSize.y; ++k)
@@ -485,89 +512,130 @@ void main()
       addReceiver(contour);
     }
   }
-  outPacket = vec4(PACKET_CLASS_TRIVIAL, 0.0, 0.0, 0.0);
-  if (pixelCount == 0)
-  {
-    return;
-  }
-  reference = reference < 0 ? 0 : reference;
-  // The packet kernel: the bounding box of its pixels' kernels (Alg. 2); the packet's depth range (§4.3).
-  ivec2 lo = kernelLo[0];
-  ivec2 hi = kernelHi[0];
-  vec2 packetDepth = vec2(1e30, -1e30);
-  float pixelCost = 0.0;
+  return reference < 0 ? 0 : reference;
+}
+
+// Alg. 2 "construct an extended kernel for the packet": the bounding box of its pixels' kernels. The same
+// pass gathers the packet's depth range (§4.3: its pixels' comparison depths) and Eq. 6's denominator.
+void constructPacketKernel()
+{
+  packetKernelLo = kernelLo[0];
+  packetKernelHi = kernelHi[0];
+  packetDepth = vec2(1e30, -1e30);
+  pixelCost = 0.0;
   for (int p = 0; p < pixelCount; ++p)
   {
-    lo = min(lo, kernelLo[p]);
-    hi = max(hi, kernelHi[p]);
+    packetKernelLo = min(packetKernelLo, kernelLo[p]);
+    packetKernelHi = max(packetKernelHi, kernelHi[p]);
     float comparisonDepth = pixelDepth[p] - pixelBias[p];
     packetDepth = vec2(min(packetDepth.x, comparisonDepth), max(packetDepth.y, comparisonDepth));
     int w = widthTexels(kernelLo[p], kernelHi[p]);
     pixelCost += nodeCost(w) + (param_edge_cost + param_visibility_cost) * float(w);
   }
+}
 
-  // §4.3: Eq. 2 (reported), Eq. 4-5 and Eq. 6 (deciding), for packets of more than one pixel.
+// Eq. 2: max_i |k_i \ k_0| / |k_i|, reported (the tests below decide).
+float kernelCoherence(int reference)
+{
+  ivec2 referenceLo = kernelLo[reference];
+  ivec2 referenceHi = kernelHi[reference];
   float coherence = 0.0;
-  float divergence = 0.0;
-  float packetClass = PACKET_CLASS_COHERENT;
-  if (pixelCount > 1)
+  for (int p = 0; p < pixelCount; ++p)
   {
-    ivec2 referenceLo = kernelLo[reference];
-    ivec2 referenceHi = kernelHi[reference];
-    for (int p = 0; p < pixelCount; ++p)
-    {
-      ivec2 sharedLo = max(kernelLo[p], referenceLo);
-      ivec2 sharedHi = min(kernelHi[p], referenceHi);
-      float sharedArea = any(lessThan(sharedHi, sharedLo)) ? 0.0 : float((sharedHi.x - sharedLo.x + 1) * (sharedHi.y - sharedLo.y + 1));
-      ivec2 extent = kernelHi[p] - kernelLo[p] + 1;
-      coherence = max(coherence, 1.0 - sharedArea / float(extent.x * extent.y)); // Eq. 2
-    }
-    vec2 kernelRange = mssmSampleRange(samplesLo, samplesHi);
+    ivec2 sharedLo = max(kernelLo[p], referenceLo);
+    ivec2 sharedHi = min(kernelHi[p], referenceHi);
+    float sharedArea = any(lessThan(sharedHi, sharedLo)) ? 0.0 : float((sharedHi.x - sharedLo.x + 1) * (sharedHi.y - sharedLo.y + 1));
+    ivec2 extent = kernelHi[p] - kernelLo[p] + 1;
+    coherence = max(coherence, 1.0 - sharedArea / float(extent.x * extent.y));
+  }
+  return coherence;
+}
+
+// What Alg. 1 step 6 decided for the packet, with the figures its buffers report.
+struct PacketPrediction
+{
+  float coherence;    // Eq. 2
+  float divergence;   // P_d, Eq. 5
+  float packetClass;  // PACKET_CLASS_COHERENT or _NON_COHERENT
+};
+
+// Alg. 1 step 6 (§4.3): a packet of more than one penumbra pixel goes pixel-wise when its contours likely
+// diverge (Eq. 4-5: P_d > T_d) or when Eq. 6 prefers the pixels; a packet of one pixel is coherent.
+PacketPrediction classifyPacket(int reference)
+{
+  PacketPrediction prediction = PacketPrediction(0.0, 0.0, PACKET_CLASS_COHERENT);
+  if (pixelCount <= 1)
+  {
+    return prediction;
+  }
+  prediction.coherence = kernelCoherence(reference);
+  vec2 kernelRange = mssmSampleRange(samplesLo, samplesHi);
 #if COHERENCE_DEPTH == COHERENCE_DEPTH_COMPARISON
-    comparisonRangeOverCells(lo - 1, hi); // the statuses' range (Eq. 3) over the packet kernel
-    packetDepth = nodeComparison;
+  comparisonRangeOverCells(packetKernelLo - 1, packetKernelHi); // the statuses' range (Eq. 3) over the packet kernel
+  packetDepth = nodeComparison;
 #elif COHERENCE_DEPTH == COHERENCE_DEPTH_WINDOW
-    packetDepth = vec2(windowDepth(packetDepth.x), windowDepth(packetDepth.y));
-    kernelRange = vec2(windowDepth(kernelRange.x), windowDepth(kernelRange.y));
+  packetDepth = vec2(windowDepth(packetDepth.x), windowDepth(packetDepth.y));
+  kernelRange = vec2(windowDepth(kernelRange.x), windowDepth(kernelRange.y));
 #endif
-    float overlap = max(min(packetDepth.y, kernelRange.y) - max(packetDepth.x, kernelRange.x), 0.0);
-    float nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
-    int packetWidth = widthTexels(lo, hi);
-    divergence = 1.0 - pow(1.0 - nullProbability, float(packetWidth) * float(packetWidth)); // Eq. 5
+  float overlap = max(min(packetDepth.y, kernelRange.y) - max(packetDepth.x, kernelRange.x), 0.0);
+  float nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
+  int packetWidth = widthTexels(packetKernelLo, packetKernelHi);
+  prediction.divergence = 1.0 - pow(1.0 - nullProbability, float(packetWidth) * float(packetWidth)); // Eq. 5
 #if PACKET_COST == PACKET_COST_PAPER
-    float packetPixels = float(packetSize.x * packetSize.y); // Q_v w h
+  float packetPixels = float(packetSize.x * packetSize.y); // Q_v w h
 #else
-    float packetPixels = float(pixelCount);
+  float packetPixels = float(pixelCount);
 #endif
-    float packetCost = nodeCost(packetWidth) + (param_edge_cost + param_visibility_cost * packetPixels) * float(packetWidth); // Eq. 6
+  float packetCost = nodeCost(packetWidth) + (param_edge_cost + param_visibility_cost * packetPixels) * float(packetWidth); // Eq. 6
 #if COHERENCE_TEST == COHERENCE_TEST_BOTH || COHERENCE_TEST == COHERENCE_TEST_DIVERGENCE
-    packetClass = divergence > param_divergence_threshold ? PACKET_CLASS_NON_COHERENT : packetClass;
+  prediction.packetClass = prediction.divergence > param_divergence_threshold ? PACKET_CLASS_NON_COHERENT : prediction.packetClass;
 #endif
 #if COHERENCE_TEST == COHERENCE_TEST_BOTH || COHERENCE_TEST == COHERENCE_TEST_COST
-    packetClass = packetCost > pixelCost ? PACKET_CLASS_NON_COHERENT : packetClass;
+  prediction.packetClass = packetCost > pixelCost ? PACKET_CLASS_NON_COHERENT : prediction.packetClass;
 #endif
-  }
-  float visitedShare = 0.0;
-  if (packetClass == PACKET_CLASS_COHERENT)
+  return prediction;
+}
+
+// Alg. 1 step 7: the packet's traversal over its extended kernel; its pixels are stored when it completes.
+// A null status (Eq. 3, §4.3: a misclassified packet is "caught during the packet contour extraction"), the
+// packet budget or the loop cap leave them to the pixel pass (step 8). Returns the packet's class.
+float evaluateCoherentPacket(PacketPrediction prediction, out float visitedShare)
+{
+  int outcome = traverse(packetKernelLo - 1, packetKernelHi);
+  visitedShare = float(visitedNodes) / float(pixelCount);
+  if (outcome != TRAVERSAL_DONE)
   {
-    int outcome = traverse(lo - 1, hi);
-    visitedShare = float(visitedNodes) / float(pixelCount);
-    if (outcome == TRAVERSAL_DONE)
-    {
-      for (int p = 0; p < pixelCount; ++p)
-      {
-        storePacketResult(penumbraPixel[p], finalVisibility(p), coherence, PACKET_CLASS_COHERENT, divergence, visitedShare, float(contourEdges));
-      }
-    }
-    else
-    {
-      // Over the budget or cut short by the loop cap: the pixel pass computes the packet's pixels.
-      packetClass = outcome == TRAVERSAL_NULL ? PACKET_CLASS_CAUGHT_NULL : PACKET_CLASS_OVER_BUDGET;
-    }
+    return outcome == TRAVERSAL_NULL ? PACKET_CLASS_CAUGHT_NULL : PACKET_CLASS_OVER_BUDGET;
   }
-  outPacket = vec4(packetClass, coherence, divergence, visitedShare);
+  for (int p = 0; p < pixelCount; ++p)
+  {
+    storePacketResult(penumbraPixel[p], finalVisibility(p), prediction.coherence, PACKET_CLASS_COHERENT,
+      prediction.divergence, visitedShare, float(contourEdges));
+  }
+  return PACKET_CLASS_COHERENT;
+}
+
+// The packet pass: Alg. 1 steps 5-7 (the twin's evaluatePacket, same step names).
+void main()
+{
+  ivec2 base = ivec2(gl_FragCoord.xy) * packetSize;
+  int reference = computePixelKernels(base);
+  outPacket = vec4(PACKET_CLASS_TRIVIAL, 0.0, 0.0, 0.0);
+  if (pixelCount == 0)
+  {
+    return;
+  }
+  constructPacketKernel();
+  PacketPrediction prediction = classifyPacket(reference);
+  float visitedShare = 0.0;
+  if (prediction.packetClass == PACKET_CLASS_COHERENT)
+  {
+    prediction.packetClass = evaluateCoherentPacket(prediction, visitedShare);
+  }
+  outPacket = vec4(prediction.packetClass, prediction.coherence, prediction.divergence, visitedShare);
 }
 #else
+// The pixel pass: Alg. 1 step 8 (the twin's evaluateRemainingPixels), one pixel alone over its own kernel.
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);

@@ -667,7 +667,202 @@ public:
     return mean >= 0.0 ? 1.0 : variance / (variance + mean * mean);
   }
 
+  // Alg. 1 L7: the blocker search kernel w_i, the light's extent seen from the receiver at the near plane (the
+  // shader's initialKernel).
+  TexelRectangle initialKernel(const glm::dvec2& uv)
+  {
+    const glm::dvec2 searchHalf = geometry_.kernelHalfTexels(geometry_.nearDepth);
+    result_.blockerKernelTexels = 2.0 * std::max(searchHalf.x, searchHalf.y);
+    const TexelRectangle search = kernelRectangle(uv, searchHalf, geometry_.mapSize, &result_.kernelEdgeMargin);
+    if (recorder_)
+    {
+      recorder_->beginGroup("blocker search");
+      recorder_->quantity("light_size", geometry_.lightSize, "world units", "scene (area light side)");
+      recorder_->quantity("near_depth", geometry_.nearDepth, "linear depth", "light view (near plane)");
+      recorder_->quantity("search_half_texels", searchHalf, "texels",
+        cite("Alg. 1 L7 (w_i: the light's extent seen from the receiver, at the near plane; PCSS step 1)"));
+      recorder_->quantity("blocker_kernel_texels", result_.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
+      recorder_->quantity("lit_variance_threshold", values_.get("lit_variance_threshold") * inputs_.sceneRadius,
+        "linear depth^2", cite("§6.5 (Threshold = 0.0001 r: a non-planar sub-kernel with less variance is lit)"));
+      recorder_->kernel({ "blocker search", glm::dvec2(search.lo), glm::dvec2(search.hi + 1), "", cite("Alg. 1 L7 (w_i)") });
+    }
+    return search;
+  }
+
+  // Alg. 1 L8-10: lit when no texel of w_i can be nearer than its comparison depth, umbra when all are (the
+  // HSM's min-max over w_i, §6.1); nothing when undecided (the shader's hsmEarlyOut).
+  std::optional<VssmClass> hsmEarlyOut(const TexelRectangle& search)
+  {
+    std::vector<HsmQueryNode> queryNodes; // the nodes the query read, for the probe
+    const glm::dvec2 depthRange = inputs_.hsm.range(search.lo, search.hi, nullptr, recorder_ ? &queryNodes : nullptr);
+    const glm::dvec2 comparisonRange = geometry_.comparisonDepthRange(search.lo, search.hi, bias_);
+    noteDecision(depthRange.x, comparisonRange.y, geometry_.d);
+    noteDecision(depthRange.y, comparisonRange.x, geometry_.d);
+    const bool lit = depthRange.x >= comparisonRange.y;
+    const bool umbra = !lit && depthRange.y < comparisonRange.x;
+    if (recorder_)
+    {
+      recorder_->beginGroup("hsm test");
+      recorder_->quantity("hsm_min_depth", depthRange.x, "linear depth", cite("Alg. 1 L8 (min over w_i from the HSM, §6.1)"));
+      recorder_->quantity("hsm_max_depth", depthRange.y, "linear depth", cite("Alg. 1 L8 (max over w_i from the HSM, §6.1)"));
+      recorder_->quantity("comparison_depth_min", comparisonRange.x, "linear depth",
+        "ShadowLab: the smallest comparison depth over w_i (receiver plane or d, minus the bias)");
+      recorder_->quantity("comparison_depth_max", comparisonRange.y, "linear depth",
+        "ShadowLab: the largest comparison depth over w_i");
+      const std::string decision = lit ? "lit" : umbra ? "umbra" : "undecided";
+      recorder_->quantity("hsm_nodes_read", static_cast<double>(queryNodes.size()), "count",
+        "ShadowLab: nodes the range query read (HierarchicalShadowMap::range; mip-map: at most 2 x 2)");
+      for (const HsmQueryNode& node : queryNodes)
+      {
+        recorder_->node(probeNodeOf(node, decision));
+      }
+      recorder_->category("hsm_decision", decision,
+        cite("Alg. 1 L8-10 (lit: min >= every comparison depth; umbra: max < every one)"));
+    }
+    if (lit)
+    {
+      return VssmClass::Lit;
+    }
+    if (umbra)
+    {
+      return VssmClass::Umbra;
+    }
+    return std::nullopt;
+  }
+
+  // Alg. 1 L11-15: the average blocker depth over w_i, Eq. 4 with z_unocc = t over the planar sub-kernels,
+  // combined with the PCF-sampled blockers of the non-planar ones, weighted by their blocked areas (§5.2).
+  // False when w_i holds no blocker (the pixel is lit). The shader's estimateAverageBlockerDepth.
+  bool estimateAverageBlockerDepth(const TexelRectangle& search)
+  {
+    const double d = geometry_.d;
+    beginStep("blocker");
+    const Accumulation blockers = subdivide(search.lo, search.hi, values_.choice("blocker_subdivision"),
+      values_.getInt("blocker_uniform_m"), values_.getInt("blocker_tree_height"), false);
+    double blockedArea = blockers.pcfBlockedArea;
+    double blockerDepthSum = blockers.pcfBlockerDepthSum;
+    double blockerVariance = 0.0;
+    double blockerUnoccluded = 1.0;
+    if (blockers.vsmArea > 0.0)
+    {
+      blockerUnoccluded = pooledChebyshev(blockers, blockerVariance);
+      const double occludedArea = blockers.vsmArea * (1.0 - blockerUnoccluded);
+      blockedArea += occludedArea;
+      blockerDepthSum += occludedArea * (d - bias_ - inputs_.satHalfStep) + blockers.vsmSum;
+    }
+    const double blockedThreshold = 1e-5 * search.area();
+    noteDecision(blockedArea, blockedThreshold, blockedThreshold);
+    if (recorder_)
+    {
+      recorder_->beginGroup("average blocker depth");
+      recordPooled(blockers, blockerVariance, blockerUnoccluded);
+      recorder_->quantity("blocked_area", blockedArea, "texels",
+        cite("Eq. 3-4 ((1 - P(x >= t)) of the planar area, plus the PCF sub-kernels' blocked area, §5.2)"));
+      recorder_->quantity("blocked_area_threshold", blockedThreshold, "texels",
+        "ShadowLab: 1e-5 of w_i (no blocker: lit)");
+    }
+    if (!(blockedArea > blockedThreshold))
+    {
+      if (recorder_)
+      {
+        recorder_->category("blocker_decision", "no blocker: lit", cite("Alg. 1 L9-10 (no blocker in w_i)"));
+      }
+      return false;
+    }
+    result_.averageBlockerDepth = std::clamp(blockerDepthSum / blockedArea, geometry_.nearDepth, d);
+    if (recorder_)
+    {
+      recorder_->quantity("avg_blocker_depth", result_.averageBlockerDepth, "linear depth",
+        cite("Eq. 4 with z_unocc = t, combined with the PCF sub-kernels' blocker depths (§5.2), clamped to [near, d]"));
+    }
+    return true;
+  }
+
+  // Alg. 1 L16: the penumbra kernel w_p, the light's extent seen from the receiver at z_avg; its half extent
+  // in texels (the shader's penumbraKernel).
+  glm::dvec2 penumbraKernel()
+  {
+    const glm::dvec2 filterHalf = geometry_.kernelHalfTexels(result_.averageBlockerDepth);
+    result_.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
+    if (recorder_)
+    {
+      recorder_->beginGroup("penumbra kernel");
+      recorder_->quantity("penumbra_half_texels", filterHalf, "texels",
+        cite("Alg. 1 L16 (w_p: the light's extent seen from the receiver, at z_avg; PCSS step 2)"));
+      recorder_->quantity("penumbra_kernel_texels", result_.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p)"));
+    }
+    return filterHalf;
+  }
+
+  // §6.4 (contact_test = blocker_average): d - z_occ < eps r, once per pixel with Eq. 4's average (the
+  // shader's contactTest).
+  bool contactTest()
+  {
+    const double d = geometry_.d;
+    const double contactDistance = values_.get("contact_threshold") * inputs_.sceneRadius;
+    noteDecision(d - result_.averageBlockerDepth, contactDistance, d);
+    const bool contact = d - result_.averageBlockerDepth < contactDistance;
+    if (recorder_)
+    {
+      recorder_->beginGroup("contact test");
+      recorder_->quantity("receiver_minus_blocker_depth", d - result_.averageBlockerDepth, "linear depth",
+        cite("§6.4 (d - z_occ)"));
+      recorder_->quantity("contact_distance", contactDistance, "linear depth", cite("§6.4 (eps = 0.01 r)"));
+      recorder_->category("contact_decision", contact ? "contact: PCF over w_p" : "no contact: the SAT",
+        cite("§6.4 (d - z_occ < eps: 3 x 3 jittered bilinear PCF instead of the SAT)"));
+    }
+    return contact;
+  }
+
+  // Alg. 1 L17-20: the visibility over w_p, L = Chebyshev (Eq. 1) over the pooled planar sub-kernels (Eq. 5),
+  // the lit area and the PCF leaves, weighted by their areas (Alg. 2 L29-32), clamped to [0, 1]. The shader's
+  // filterPenumbraKernel.
+  double filterPenumbraKernel(const glm::dvec2& uv, const glm::dvec2& filterHalf, bool contactPerSubkernel)
+  {
+    const TexelRectangle filter = kernelRectangle(uv, filterHalf, geometry_.mapSize, &result_.kernelEdgeMargin);
+    if (recorder_)
+    {
+      recorder_->beginGroup("penumbra kernel");
+      recorder_->kernel({ "penumbra", glm::dvec2(filter.lo), glm::dvec2(filter.hi + 1), "", cite("Alg. 1 L16 (w_p)") });
+    }
+    beginStep("penumbra");
+    const Accumulation shadow = subdivide(filter.lo, filter.hi, values_.choice("shadow_subdivision"),
+      values_.getInt("shadow_uniform_n"), values_.getInt("shadow_tree_height"), contactPerSubkernel);
+    double chebyshevLit = 0.0;
+    double shadowVariance = 0.0;
+    if (shadow.vsmArea > 0.0)
+    {
+      chebyshevLit = pooledChebyshev(shadow, shadowVariance);
+    }
+    const double totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
+    const double visibility =
+      (chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea;
+    if (recorder_)
+    {
+      recorder_->beginGroup("visibility");
+      recordPooled(shadow, shadowVariance, chebyshevLit);
+      recorder_->quantity("unclamped_visibility", visibility, "",
+        cite("Alg. 2 L29-32 ((L VSMArea + LitArea + PCFArea - PCFBArea) / (VSMArea + LitArea + PCFArea))"));
+    }
+    return std::clamp(visibility, 0.0, 1.0);
+  }
+
 private:
+  // The probe's record of a step's pooled moments and Chebyshev bound (Eq. 5, Eq. 1).
+  void recordPooled(const Accumulation& acc, double variance, double unoccluded)
+  {
+    recorder_->quantity("vsm_area", acc.vsmArea, "texels", cite("Alg. 2 L17 (VSMArea: planar sub-kernels)"));
+    recorder_->quantity("lit_area", acc.litArea, "texels", cite("Alg. 2 L12 (LitArea)"));
+    recorder_->quantity("pcf_area", acc.pcfArea, "texels", cite("Alg. 2 L24 (PCFArea: non-planar leaves, contact)"));
+    recorder_->quantity("pcf_blocked_area", acc.pcfBlockedArea, "texels", cite("Alg. 2 L25 (PCFBArea)"));
+    if (acc.vsmArea > 0.0)
+    {
+      recorder_->quantity("pooled_mean_offset", acc.vsmSum / acc.vsmArea, "linear depth", cite("Eq. 5 (mu - t)"));
+      recorder_->quantity("pooled_variance", variance, "linear depth^2",
+        cite("Eq. 5 (sigma^2, floored at min_variance d^2)"));
+      recorder_->quantity("chebyshev_unoccluded", unoccluded, "", cite("Eq. 1 (p_max(t) = P(x >= t) on Eq. 5's moments)"));
+    }
+  }
   const VssmReferenceInputs& inputs_;
   const ParameterValues& values_;
   const SoftShadowGeometry& geometry_;
@@ -681,8 +876,34 @@ private:
   int contactSubkernels_ = 0;
 };
 
+// The buffers' values under their names (the probe sweep compares them with the GPU's at the pixel), those
+// not recorded at their step yet.
+void recordResultBuffers(ProbeRecorder& recorder, const VssmSample& result)
+{
+  recorder.beginGroup("result");
+  const auto once = [&](const std::string& name, double value, const std::string& unit, const std::string& source) {
+    if (!recorder.record().find(name))
+    {
+      recorder.quantity(name, value, unit, source);
+    }
+  };
+  once("blocker_kernel_texels", result.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
+  once("avg_blocker_depth", result.averageBlockerDepth, "linear depth", cite("Eq. 4 (0: not computed)"));
+  once("penumbra_kernel_texels", result.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p; 0: not computed)"));
+  recorder.quantity("subkernels_mean_not_in_front", result.subkernelsMeanNotInFront, "count",
+    cite("§5.1 (sub-kernels with E(x) >= t: lit, refined or point-sampled; both steps)"));
+  recorder.quantity("quadtree_nodes_visited", result.quadtreeNodesVisited, "count",
+    cite("Alg. 2 L4 (linear quad-tree nodes traversed, both steps)"));
+  recorder.quantity("pcf_samples", result.pcfSamples, "count",
+    cite("§5.1 option 2 and §6.4 (point-sampled depth comparisons)"));
+  const int code = static_cast<int>(result.classification);
+  recordCode(recorder, "classification", code, vssmCategories[code].label, cite("Alg. 1 L9-20 (how the pixel was decided)"));
+  recorder.quantity("visibility", result.sample.visibility, "", cite("Alg. 1 L20-21 / Alg. 2 L29-32"));
+}
+
 } // namespace
 
+// Alg. 1 L7-20 for one pixel, in the steps of VssmVisibility.glsl's main(), with the same names.
 VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder)
 {
@@ -690,223 +911,47 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
   const ShadowMapInputs& shadowMap = *inputs.shadowMap;
   const ShadowLookup lookup = prepareShadowLookup(shadowMap, biasSettings(values), x, y, recorder);
   result.sample = lookup.sample;
-  // The buffers' values under their names (the probe sweep compares them with the GPU's at the pixel), those
-  // not recorded at their step yet.
-  const auto recordResult = [&] {
-    if (!recorder)
+  const auto finish = [&](double visibility, VssmClass classification) {
+    result.sample.visibility = visibility;
+    result.classification = classification;
+    if (recorder)
     {
-      return;
+      recordResultBuffers(*recorder, result);
     }
-    recorder->beginGroup("result");
-    const auto once = [&](const std::string& name, double value, const std::string& unit, const std::string& source) {
-      if (!recorder->record().find(name))
-      {
-        recorder->quantity(name, value, unit, source);
-      }
-    };
-    once("blocker_kernel_texels", result.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
-    once("avg_blocker_depth", result.averageBlockerDepth, "linear depth", cite("Eq. 4 (0: not computed)"));
-    once("penumbra_kernel_texels", result.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p; 0: not computed)"));
-    recorder->quantity("subkernels_mean_not_in_front", result.subkernelsMeanNotInFront, "count",
-      cite("§5.1 (sub-kernels with E(x) >= t: lit, refined or point-sampled; both steps)"));
-    recorder->quantity("quadtree_nodes_visited", result.quadtreeNodesVisited, "count",
-      cite("Alg. 2 L4 (linear quad-tree nodes traversed, both steps)"));
-    recorder->quantity("pcf_samples", result.pcfSamples, "count",
-      cite("§5.1 option 2 and §6.4 (point-sampled depth comparisons)"));
-    const int code = static_cast<int>(result.classification);
-    recordCode(*recorder, "classification", code, vssmCategories[code].label, cite("Alg. 1 L9-20 (how the pixel was decided)"));
-    recorder->quantity("visibility", result.sample.visibility, "", cite("Alg. 1 L20-21 / Alg. 2 L29-32"));
+    return result;
   };
   if (!lookup.sample.evaluated)
   {
-    recordResult();
+    if (recorder)
+    {
+      recordResultBuffers(*recorder, result);
+    }
     return result;
   }
   const SoftShadowGeometry geometry =
     softShadowGeometry(shadowMap, lookup, values.choice("receiver_plane_bias") == "on", x, y);
-  const double d = geometry.d;
-  const double bias = lookup.sample.bias;
-  VssmEvaluation evaluation(inputs, values, geometry, bias, pixelRotation(x, y), result, recorder);
+  VssmEvaluation evaluation(inputs, values, geometry, lookup.sample.bias, pixelRotation(x, y), result, recorder);
   const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
   const glm::dvec2 uv = lookup.sm.uvTexels;
-  const auto finish = [&](double visibility, VssmClass classification) {
-    result.sample.visibility = visibility;
-    result.classification = classification;
-    recordResult();
-    return result;
-  };
-  // Pooled moments and Chebyshev (Eq. 5, Eq. 1) of a step's planar sub-kernels, recorded.
-  const auto recordPooled = [&](const Accumulation& acc, double variance, double unoccluded) {
-    recorder->quantity("vsm_area", acc.vsmArea, "texels", cite("Alg. 2 L17 (VSMArea: planar sub-kernels)"));
-    recorder->quantity("lit_area", acc.litArea, "texels", cite("Alg. 2 L12 (LitArea)"));
-    recorder->quantity("pcf_area", acc.pcfArea, "texels", cite("Alg. 2 L24 (PCFArea: non-planar leaves, contact)"));
-    recorder->quantity("pcf_blocked_area", acc.pcfBlockedArea, "texels", cite("Alg. 2 L25 (PCFBArea)"));
-    if (acc.vsmArea > 0.0)
-    {
-      recorder->quantity("pooled_mean_offset", acc.vsmSum / acc.vsmArea, "linear depth", cite("Eq. 5 (mu - t)"));
-      recorder->quantity("pooled_variance", variance, "linear depth^2",
-        cite("Eq. 5 (sigma^2, floored at min_variance d^2)"));
-      recorder->quantity("chebyshev_unoccluded", unoccluded, "", cite("Eq. 1 (p_max(t) = P(x >= t) on Eq. 5's moments)"));
-    }
-  };
-
-  // L7.
-  const glm::dvec2 searchHalf = geometry.kernelHalfTexels(geometry.nearDepth);
-  result.blockerKernelTexels = 2.0 * std::max(searchHalf.x, searchHalf.y);
-  const TexelRectangle search = kernelRectangle(uv, searchHalf, geometry.mapSize, &result.kernelEdgeMargin);
-  if (recorder)
-  {
-    recorder->beginGroup("blocker search");
-    recorder->quantity("light_size", geometry.lightSize, "world units", "scene (area light side)");
-    recorder->quantity("near_depth", geometry.nearDepth, "linear depth", "light view (near plane)");
-    recorder->quantity("search_half_texels", searchHalf, "texels",
-      cite("Alg. 1 L7 (w_i: the light's extent seen from the receiver, at the near plane; PCSS step 1)"));
-    recorder->quantity("blocker_kernel_texels", result.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
-    recorder->quantity("lit_variance_threshold", values.get("lit_variance_threshold") * inputs.sceneRadius,
-      "linear depth^2", cite("§6.5 (Threshold = 0.0001 r: a non-planar sub-kernel with less variance is lit)"));
-    recorder->kernel({ "blocker search", glm::dvec2(search.lo), glm::dvec2(search.hi + 1), "", cite("Alg. 1 L7 (w_i)") });
-  }
-
-  // L8-10.
+  const TexelRectangle search = evaluation.initialKernel(uv);
   if (values.choice("hsm_early_out") == "on")
   {
-    std::vector<HsmQueryNode> queryNodes; // the nodes the query read, for the probe
-    const glm::dvec2 depthRange = inputs.hsm.range(search.lo, search.hi, nullptr, recorder ? &queryNodes : nullptr);
-    const glm::dvec2 comparisonRange = geometry.comparisonDepthRange(search.lo, search.hi, bias);
-    evaluation.noteDecision(depthRange.x, comparisonRange.y, d);
-    evaluation.noteDecision(depthRange.y, comparisonRange.x, d);
-    const bool lit = depthRange.x >= comparisonRange.y;
-    const bool umbra = !lit && depthRange.y < comparisonRange.x;
-    if (recorder)
+    if (const std::optional<VssmClass> decided = evaluation.hsmEarlyOut(search))
     {
-      recorder->beginGroup("hsm test");
-      recorder->quantity("hsm_min_depth", depthRange.x, "linear depth", cite("Alg. 1 L8 (min over w_i from the HSM, §6.1)"));
-      recorder->quantity("hsm_max_depth", depthRange.y, "linear depth", cite("Alg. 1 L8 (max over w_i from the HSM, §6.1)"));
-      recorder->quantity("comparison_depth_min", comparisonRange.x, "linear depth",
-        "ShadowLab: the smallest comparison depth over w_i (receiver plane or d, minus the bias)");
-      recorder->quantity("comparison_depth_max", comparisonRange.y, "linear depth",
-        "ShadowLab: the largest comparison depth over w_i");
-      const std::string decision = lit ? "lit" : umbra ? "umbra" : "undecided";
-      recorder->quantity("hsm_nodes_read", static_cast<double>(queryNodes.size()), "count",
-        "ShadowLab: nodes the range query read (HierarchicalShadowMap::range; mip-map: at most 2 x 2)");
-      for (const HsmQueryNode& node : queryNodes)
-      {
-        recorder->node(probeNodeOf(node, decision));
-      }
-      recorder->category("hsm_decision", decision,
-        cite("Alg. 1 L8-10 (lit: min >= every comparison depth; umbra: max < every one)"));
-    }
-    if (lit)
-    {
-      return finish(1.0, VssmClass::Lit);
-    }
-    if (umbra)
-    {
-      return finish(0.0, VssmClass::Umbra);
+      return finish(*decided == VssmClass::Lit ? 1.0 : 0.0, *decided);
     }
   }
-
-  // Alg. 1 L11-15.
-  evaluation.beginStep("blocker");
-  const Accumulation blockers = evaluation.subdivide(search.lo, search.hi, values.choice("blocker_subdivision"),
-    values.getInt("blocker_uniform_m"), values.getInt("blocker_tree_height"), false);
-  double blockedArea = blockers.pcfBlockedArea;
-  double blockerDepthSum = blockers.pcfBlockerDepthSum;
-  double blockerVariance = 0.0;
-  double blockerUnoccluded = 1.0;
-  if (blockers.vsmArea > 0.0)
+  if (!evaluation.estimateAverageBlockerDepth(search))
   {
-    blockerUnoccluded = evaluation.pooledChebyshev(blockers, blockerVariance);
-    const double occludedArea = blockers.vsmArea * (1.0 - blockerUnoccluded);
-    blockedArea += occludedArea;
-    blockerDepthSum += occludedArea * (d - bias - inputs.satHalfStep) + blockers.vsmSum;
-  }
-  const double blockedThreshold = 1e-5 * search.area();
-  evaluation.noteDecision(blockedArea, blockedThreshold, blockedThreshold);
-  if (recorder)
-  {
-    recorder->beginGroup("average blocker depth");
-    recordPooled(blockers, blockerVariance, blockerUnoccluded);
-    recorder->quantity("blocked_area", blockedArea, "texels",
-      cite("Eq. 3-4 ((1 - P(x >= t)) of the planar area, plus the PCF sub-kernels' blocked area, §5.2)"));
-    recorder->quantity("blocked_area_threshold", blockedThreshold, "texels",
-      "ShadowLab: 1e-5 of w_i (no blocker: lit)");
-  }
-  if (!(blockedArea > blockedThreshold))
-  {
-    if (recorder)
-    {
-      recorder->category("blocker_decision", "no blocker: lit", cite("Alg. 1 L9-10 (no blocker in w_i)"));
-    }
     return finish(1.0, VssmClass::Lit);
   }
-  result.averageBlockerDepth = std::clamp(blockerDepthSum / blockedArea, geometry.nearDepth, d);
-  if (recorder)
+  const glm::dvec2 filterHalf = evaluation.penumbraKernel();
+  if (!contactPerSubkernel && evaluation.contactTest())
   {
-    recorder->quantity("avg_blocker_depth", result.averageBlockerDepth, "linear depth",
-      cite("Eq. 4 with z_unocc = t, combined with the PCF sub-kernels' blocker depths (§5.2), clamped to [near, d]"));
+    return finish(evaluation.contactShadow(uv, filterHalf, pixelRotation(x, y)), VssmClass::Contact);
   }
-
-  // Alg. 1 L16.
-  const glm::dvec2 filterHalf = geometry.kernelHalfTexels(result.averageBlockerDepth);
-  result.penumbraKernelTexels = 2.0 * std::max(filterHalf.x, filterHalf.y);
-  if (recorder)
-  {
-    recorder->beginGroup("penumbra kernel");
-    recorder->quantity("penumbra_half_texels", filterHalf, "texels",
-      cite("Alg. 1 L16 (w_p: the light's extent seen from the receiver, at z_avg; PCSS step 2)"));
-    recorder->quantity("penumbra_kernel_texels", result.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p)"));
-  }
-
-  // §6.4, contact_test = blocker_average.
-  if (!contactPerSubkernel)
-  {
-    const double contactDistance = values.get("contact_threshold") * inputs.sceneRadius;
-    evaluation.noteDecision(d - result.averageBlockerDepth, contactDistance, d);
-    const bool contact = d - result.averageBlockerDepth < contactDistance;
-    if (recorder)
-    {
-      recorder->beginGroup("contact test");
-      recorder->quantity("receiver_minus_blocker_depth", d - result.averageBlockerDepth, "linear depth",
-        cite("§6.4 (d - z_occ)"));
-      recorder->quantity("contact_distance", contactDistance, "linear depth", cite("§6.4 (eps = 0.01 r)"));
-      recorder->category("contact_decision", contact ? "contact: PCF over w_p" : "no contact: the SAT",
-        cite("§6.4 (d - z_occ < eps: 3 x 3 jittered bilinear PCF instead of the SAT)"));
-    }
-    if (contact)
-    {
-      return finish(evaluation.contactShadow(uv, filterHalf, pixelRotation(x, y)), VssmClass::Contact);
-    }
-  }
-
-  // Alg. 1 L17-20.
-  const TexelRectangle filter = kernelRectangle(uv, filterHalf, geometry.mapSize, &result.kernelEdgeMargin);
-  if (recorder)
-  {
-    recorder->beginGroup("penumbra kernel");
-    recorder->kernel({ "penumbra", glm::dvec2(filter.lo), glm::dvec2(filter.hi + 1), "", cite("Alg. 1 L16 (w_p)") });
-  }
-  evaluation.beginStep("penumbra");
-  const Accumulation shadow = evaluation.subdivide(filter.lo, filter.hi, values.choice("shadow_subdivision"),
-    values.getInt("shadow_uniform_n"), values.getInt("shadow_tree_height"), contactPerSubkernel);
-  double chebyshevLit = 0.0;
-  double shadowVariance = 0.0;
-  if (shadow.vsmArea > 0.0)
-  {
-    chebyshevLit = evaluation.pooledChebyshev(shadow, shadowVariance);
-  }
-  const double totalArea = shadow.vsmArea + shadow.litArea + shadow.pcfArea;
-  const double visibility =
-    (chebyshevLit * shadow.vsmArea + shadow.litArea + shadow.pcfArea - shadow.pcfBlockedArea) / totalArea;
-  if (recorder)
-  {
-    recorder->beginGroup("visibility");
-    recordPooled(shadow, shadowVariance, chebyshevLit);
-    recorder->quantity("unclamped_visibility", visibility, "",
-      cite("Alg. 2 L29-32 ((L VSMArea + LitArea + PCFArea - PCFBArea) / (VSMArea + LitArea + PCFArea))"));
-  }
-  return finish(std::clamp(visibility, 0.0, 1.0),
-    evaluation.contactSubkernels() > 0 ? VssmClass::Contact : VssmClass::Penumbra);
+  const double visibility = evaluation.filterPenumbraKernel(uv, filterHalf, contactPerSubkernel);
+  return finish(visibility, evaluation.contactSubkernels() > 0 ? VssmClass::Contact : VssmClass::Penumbra);
 }
 
 } // namespace sl

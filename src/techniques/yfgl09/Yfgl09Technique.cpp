@@ -215,8 +215,29 @@ public:
   {
   }
 
-  // Returns false when a sample's status was null (Eq. 3) or the packet outgrew its budget.
+  // Returns false when a sample's status was null (Eq. 3) or the packet outgrew its budget. By every cell or
+  // by Alg. 3 (the hierarchy parameter), as the shader's traverse.
   bool run(const Cells& region, bool hierarchy)
+  {
+    integrateLightCentres();
+    return hierarchy ? traverseMssm(region) : traverseEveryCell(region);
+  }
+
+  double area(std::size_t p) const { return areas_[p]; }
+  int visitedNodes = 0;
+  int contourEdges = 0;
+  long packetWork = 0; // loop iterations over the packet's pixels, as the GLSL counts them
+  bool caughtNull = false;
+  bool budgetExceeded = false;
+  // For a probe: the cell whose null status stopped the traversal, and the statuses read (1, 0, null).
+  glm::ivec2 nullCell{ 0 };
+  int occluderStatuses = 0;
+  int freeStatuses = 0;
+  int nullStatuses = 0;
+
+private:
+  // GBP07's radial integration starts from f(O) A, the light centre's status (the shader's addReceiver).
+  void integrateLightCentres()
   {
     if (recorder_)
     {
@@ -227,29 +248,37 @@ public:
       const double lightArea = 4.0 * receivers_[p]->lightHalfSize * receivers_[p]->lightHalfSize;
       areas_[p] = receivers_[p]->centreOccluded(inputs_, p == probed_ ? recorder_ : nullptr) ? lightArea : 0.0;
     }
-    if (!hierarchy)
+  }
+
+  // Alg. 2's loop over every 2 x 2 block of the extended kernel (hierarchy off, the MSSM-only brute force): a
+  // cell no receiver's kernel holds is skipped.
+  bool traverseEveryCell(const Cells& region)
+  {
+    for (int j = region.lo.y; j <= region.hi.y; ++j)
     {
-      for (int j = region.lo.y; j <= region.hi.y; ++j)
+      for (int i = region.lo.x; i <= region.hi.x; ++i)
       {
-        for (int i = region.lo.x; i <= region.hi.x; ++i)
+        ++visitedNodes;
+        const bool shared = nodeComparisonRange(0, { i, j });
+        recordNode(0, { i, j }, shared ? "leaf: marching squares" : "pruned: no pixel's kernel holds the cell");
+        if (shared && !leaf({ i, j }))
         {
-          ++visitedNodes;
-          const bool shared = nodeComparisonRange(0, { i, j });
-          recordNode(0, { i, j }, shared ? "leaf: marching squares" : "pruned: no pixel's kernel holds the cell");
-          if (shared && !leaf({ i, j }))
-          {
-            return false;
-          }
-          if (overBudget())
-          {
-            return false;
-          }
+          return false;
+        }
+        if (overBudget())
+        {
+          return false;
         }
       }
-      return true;
     }
-    // Alg. 3: the lowest node covering the region (at least 2 x 2 cells) with the same first cell, then depth
-    // first. The path of child indices (2 bits per level) replaces the stack.
+    return true;
+  }
+
+  // Alg. 3 through the dual-grid MSSM (§4.2): from the lowest node covering the region (at least 2 x 2 cells)
+  // with the same first cell, depth first, pruning the nodes of Fig. 6 cases 4 and 5. The path of child indices
+  // (2 bits per level) replaces the stack.
+  bool traverseMssm(const Cells& region)
+  {
     const glm::ivec2 extent = region.hi - region.lo + 1;
     int rootLevel = 1;
     while ((1 << rootLevel) < std::max(extent.x, extent.y))
@@ -318,19 +347,6 @@ public:
     }
   }
 
-  double area(std::size_t p) const { return areas_[p]; }
-  int visitedNodes = 0;
-  int contourEdges = 0;
-  long packetWork = 0; // loop iterations over the packet's pixels, as the GLSL counts them
-  bool caughtNull = false;
-  bool budgetExceeded = false;
-  // For a probe: the cell whose null status stopped the traversal, and the statuses read (1, 0, null).
-  glm::ivec2 nullCell{ 0 };
-  int occluderStatuses = 0;
-  int freeStatuses = 0;
-  int nullStatuses = 0;
-
-private:
   bool overBudget()
   {
     budgetExceeded = receivers_.size() > 1 && visitedNodes + packetWork > yfgl09PacketBudget;
@@ -606,261 +622,364 @@ void appendPacketRecord(ProbeRecorder& to, const ProbeRecord& from, bool compute
   to.record().droppedEdges += from.droppedEdges;
 }
 
-// Alg. 1 steps 5-8 for the packet whose first pixel is `origin`: every pixel of it, as the frame holds them.
-// `recorder` (optional) records the steps of pixel `probed`, which must lie in the packet.
-std::vector<Yfgl09Pixel> evaluatePacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const ParameterValues& values, const PacketSettings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
-  glm::ivec2 probed)
+// The packet after Alg. 1 step 5: every pixel's receiver and result, the penumbra pixels (traversed together)
+// and the probe's bookkeeping. `penumbra` points into `receivers`, reserved for the whole packet (a move keeps
+// the addresses).
+struct Packet
 {
-  const int width = inputs.position.width;
-  const int height = inputs.position.height;
-  const int px = origin.x;
-  const int py = origin.y;
-  // Alg. 1 step 5 for every pixel of the packet; the penumbra ones form the packet.
   std::vector<ContourReceiver> receivers;
   std::vector<Yfgl09Pixel> results;
   std::vector<ContourReceiver*> penumbra;
   std::vector<std::size_t> penumbraResults; // index in `results` of each penumbra pixel
-  receivers.reserve(static_cast<std::size_t>(settings.packetWidth * settings.packetHeight));
-  ContourReceiver* reference = nullptr;
-  glm::ivec2 referencePixel(0);
+  ContourReceiver* reference = nullptr;     // k_0 of Eq. 2
+  glm::ivec2 referencePixel{ 0 };
   std::size_t probedPenumbra = PacketTraversal::none; // the probed pixel's index in `penumbra`
   std::size_t probedResult = PacketTraversal::none;
-  for (int y = py; y < std::min(py + settings.packetHeight, height); ++y)
+  ProbeRecorder* recorder = nullptr; // the probed pixel's steps (optional)
+  ProbeRecorder* probe = nullptr;    // the packet's steps: `recorder` when the probed pixel is in its penumbra
+};
+
+// Alg. 1 step 5 for every pixel of the packet whose first pixel is `origin`: its kernel and lit / umbra class;
+// the penumbra pixels form the packet, with the reference pixel of Eq. 2 (k_0: the packet's centre pixel, else
+// its first penumbra pixel). The shader's computePixelKernels.
+Packet computePixelKernels(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const ParameterValues& values, const PacketSettings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
+  glm::ivec2 probed)
+{
+  const int px = origin.x;
+  const int py = origin.y;
+  Packet packet;
+  packet.recorder = recorder;
+  packet.receivers.reserve(static_cast<std::size_t>(settings.packetWidth * settings.packetHeight));
+  for (int y = py; y < std::min(py + settings.packetHeight, inputs.position.height); ++y)
   {
-    for (int x = px; x < std::min(px + settings.packetWidth, width); ++x)
+    for (int x = px; x < std::min(px + settings.packetWidth, inputs.position.width); ++x)
     {
       const bool isProbed = recorder != nullptr && glm::ivec2(x, y) == probed;
-      receivers.push_back(prepareContourReceiver(inputs, values, mssm, x, y, isProbed ? recorder : nullptr));
-      ContourReceiver& receiver = receivers.back();
+      packet.receivers.push_back(prepareContourReceiver(inputs, values, mssm, x, y, isProbed ? recorder : nullptr));
+      ContourReceiver& receiver = packet.receivers.back();
       Yfgl09Pixel result;
       result.pixel = { x, y };
       result.kernelTexels = receiver.kernelTexels;
       result.packetClass = receiver.lookup.sample.evaluated ? PacketClass::Trivial : PacketClass::NotTested;
-      probedResult = isProbed ? results.size() : probedResult;
-      results.push_back(result);
+      packet.probedResult = isProbed ? packet.results.size() : packet.probedResult;
+      packet.results.push_back(result);
       if (receiver.classification == BackprojectionClass::Penumbra)
       {
-        probedPenumbra = isProbed ? penumbra.size() : probedPenumbra;
-        penumbra.push_back(&receiver);
-        penumbraResults.push_back(results.size() - 1);
+        packet.probedPenumbra = isProbed ? packet.penumbra.size() : packet.probedPenumbra;
+        packet.penumbra.push_back(&receiver);
+        packet.penumbraResults.push_back(packet.results.size() - 1);
         if (x == px + settings.packetWidth / 2 && y == py + settings.packetHeight / 2)
         {
-          reference = &receiver;
-          referencePixel = { x, y };
+          packet.reference = &receiver;
+          packet.referencePixel = { x, y };
         }
       }
     }
   }
-  SL_CHECK_MSG(recorder == nullptr || probedResult != PacketTraversal::none, "pixel ", probed.x, ",", probed.y,
+  SL_CHECK_MSG(recorder == nullptr || packet.probedResult != PacketTraversal::none, "pixel ", probed.x, ",", probed.y,
     " lies outside the packet at ", px, ",", py);
-  // A probe's traversals record into `probe` (null unless the probed pixel is in the packet's penumbra).
-  ProbeRecorder* const probe = probedPenumbra != PacketTraversal::none ? recorder : nullptr;
-  const auto finish = [&]() {
-    for (std::size_t p = 0; p < receivers.size(); ++p)
-    {
-      results[p].sample = receivers[p].lookup.sample;
-      results[p].kernelEdgeMargin = receivers[p].kernelEdgeMargin;
-      results[p].decisionMargin = receivers[p].decisionMargin;
-    }
-    if (recorder)
-    {
-      const Yfgl09Pixel& result = results[probedResult];
-      recorder->beginGroup("the pixel's buffers");
-      if (probe == nullptr)
-      {
-        recorder->quantity("coherence", result.coherence, "", "Eq. 2, YFGL09: 0, the pixel is in no packet's traversal");
-        recorder->quantity("divergence_probability", result.divergenceProbability, "", "Eq. 5, YFGL09: 0, no prediction");
-      }
-      recorder->category("packet_class", static_cast<int>(result.packetClass), packetClassLabel(result.packetClass),
-        "§4.3, Alg. 1 steps 5-8, YFGL09; ShadowLab: the packet_class buffer's code (PacketClass)");
-      recorder->quantity("visited_nodes", result.visitedNodes, "nodes",
-        "Fig. 8, YFGL09: the pixel's share of its packet's traversal plus its own");
-      recorder->quantity("contour_edges", result.contourEdges, "edges", "Alg. 2, YFGL09: edges of the traversal that computed the pixel");
-      recorder->quantity("visibility", result.sample.visibility, "",
-        probe == nullptr ? decisionSourceOf(receivers[probedResult].classification)
-                         : "GBP07 / YFGL09: V = clamp(1 - (f(O) A + sum of s_e |L beyond e|) / A, 0, 1)");
-    }
-    return results;
-  };
+  packet.probe = packet.probedPenumbra != PacketTraversal::none ? recorder : nullptr;
+  if (!packet.reference && !packet.penumbra.empty())
+  {
+    packet.reference = packet.penumbra.front();
+    packet.referencePixel = packet.results[packet.penumbraResults.front()].pixel;
+  }
   if (recorder)
   {
     recorder->beginGroup("packet (§4.1, Alg. 2)");
     recorder->quantity("packet_origin", glm::dvec2(origin), "pixels", "§4.1, YFGL09: packets of w x h pixels from the image's corner");
     recorder->quantity("packet_size", glm::dvec2(settings.packetWidth, settings.packetHeight), "pixels", "§4.1, YFGL09: w x h");
-    recorder->quantity("packet_penumbra_pixels", static_cast<double>(penumbra.size()), "pixels",
+    recorder->quantity("packet_penumbra_pixels", static_cast<double>(packet.penumbra.size()), "pixels",
       "Alg. 1 step 5, YFGL09: the packet's pixels neither lit nor umbra, traversed together");
-    recorder->category("packet_membership", probe ? "penumbra: computed with the packet" : "lit or umbra: no traversal",
+    recorder->category("packet_membership", packet.probe ? "penumbra: computed with the packet" : "lit or umbra: no traversal",
       "Alg. 1 step 5, YFGL09");
   }
-  if (penumbra.empty())
-  {
-    return finish();
-  }
-  const std::size_t count = penumbra.size();
-  if (!reference)
-  {
-    reference = penumbra.front();
-    referencePixel = results[penumbraResults.front()].pixel;
-  }
+  return packet;
+}
 
-  // The packet kernel: the bounding box of its pixels' kernels (Alg. 2), as texels, samples and cells.
-  TexelRectangle kernel = penumbra.front()->kernel;
-  TexelRectangle samples = penumbra.front()->samples;
-  for (const ContourReceiver* receiver : penumbra)
+// Every pixel of the packet as the frame holds it, and the probed pixel's buffers.
+std::vector<Yfgl09Pixel> finishPacket(Packet& packet)
+{
+  std::vector<Yfgl09Pixel>& results = packet.results;
+  for (std::size_t p = 0; p < packet.receivers.size(); ++p)
+  {
+    results[p].sample = packet.receivers[p].lookup.sample;
+    results[p].kernelEdgeMargin = packet.receivers[p].kernelEdgeMargin;
+    results[p].decisionMargin = packet.receivers[p].decisionMargin;
+  }
+  if (ProbeRecorder* const recorder = packet.recorder)
+  {
+    const Yfgl09Pixel& result = results[packet.probedResult];
+    recorder->beginGroup("the pixel's buffers");
+    if (packet.probe == nullptr)
+    {
+      recorder->quantity("coherence", result.coherence, "", "Eq. 2, YFGL09: 0, the pixel is in no packet's traversal");
+      recorder->quantity("divergence_probability", result.divergenceProbability, "", "Eq. 5, YFGL09: 0, no prediction");
+    }
+    recorder->category("packet_class", static_cast<int>(result.packetClass), packetClassLabel(result.packetClass),
+      "§4.3, Alg. 1 steps 5-8, YFGL09; ShadowLab: the packet_class buffer's code (PacketClass)");
+    recorder->quantity("visited_nodes", result.visitedNodes, "nodes",
+      "Fig. 8, YFGL09: the pixel's share of its packet's traversal plus its own");
+    recorder->quantity("contour_edges", result.contourEdges, "edges", "Alg. 2, YFGL09: edges of the traversal that computed the pixel");
+    recorder->quantity("visibility", result.sample.visibility, "",
+      packet.probe == nullptr ? decisionSourceOf(packet.receivers[packet.probedResult].classification)
+                              : "GBP07 / YFGL09: V = clamp(1 - (f(O) A + sum of s_e |L beyond e|) / A, 0, 1)");
+  }
+  return std::move(results);
+}
+
+// Alg. 2's extended kernel with what §4.3 and Eq. 6 read of the packet.
+struct PacketKernel
+{
+  TexelRectangle kernel;       // the bounding box of the pixels' kernels
+  TexelRectangle samples;      // the samples those kernels read (plus one ring): Eq. 4's kernel range
+  Cells region;                // the dual cells traversed
+  glm::dvec2 comparison{ 0.0 }; // the packet's depth range (§4.3: its pixels' comparison depths)
+  double pixelCost = 0.0;      // Eq. 6's denominator
+};
+
+// Alg. 2 "construct an extended kernel for the packet" (the shader's constructPacketKernel).
+PacketKernel constructPacketKernel(const Packet& packet, const PacketSettings& settings)
+{
+  PacketKernel packetKernel;
+  TexelRectangle kernel = packet.penumbra.front()->kernel;
+  TexelRectangle samples = packet.penumbra.front()->samples;
+  for (const ContourReceiver* receiver : packet.penumbra)
   {
     kernel = { glm::min(kernel.lo, receiver->kernel.lo), glm::max(kernel.hi, receiver->kernel.hi) };
     samples = { glm::min(samples.lo, receiver->samples.lo), glm::max(samples.hi, receiver->samples.hi) };
   }
-  const Cells region{ kernel.lo - 1, kernel.hi };
-  // The packet's depth range (§4.3: its pixels' comparison depths).
+  packetKernel.kernel = kernel;
+  packetKernel.samples = samples;
+  packetKernel.region = { kernel.lo - 1, kernel.hi };
   glm::dvec2 comparison(1e300, -1e300);
   double pixelCost = 0.0;
-  for (const ContourReceiver* receiver : penumbra)
+  for (const ContourReceiver* receiver : packet.penumbra)
   {
     const double own = receiver->geometry.d - receiver->bias;
     comparison = { std::min(comparison.x, own), std::max(comparison.y, own) };
     const int w = widthTexels(receiver->kernel);
     pixelCost += nodeCost(w) + (settings.edgeCost + settings.visibilityCost) * w;
   }
+  packetKernel.comparison = comparison;
+  packetKernel.pixelCost = pixelCost;
+  return packetKernel;
+}
 
-  // §4.3: Eq. 2 (reported), Eq. 4-5 and Eq. 6 (deciding), for packets of more than one pixel.
+// Eq. 2: max_i |k_i \ k_0| / |k_i|, reported (the shader's kernelCoherence).
+double kernelCoherence(const Packet& packet)
+{
   double coherence = 0.0;
-  double divergence = 0.0;
-  PacketClass packetClass = PacketClass::Coherent;
-  if (count > 1)
+  for (const ContourReceiver* receiver : packet.penumbra)
   {
-    for (const ContourReceiver* receiver : penumbra)
-    {
-      coherence = std::max(coherence, outsideFraction(receiver->kernel, reference->kernel));
-    }
-    glm::dvec2 kernelRange = mssm.range(samples.lo, samples.hi);
-    if (settings.coherenceDepth == "comparison")
-    {
-      comparisonRangeOverCells(penumbra, mssm.mapSize, region.lo, region.hi, comparison);
-    }
-    else if (settings.coherenceDepth == "window")
-    {
-      const LightView& view = inputs.lightView;
-      comparison = { view.windowDepth(comparison.x), view.windowDepth(comparison.y) };
-      kernelRange = { view.windowDepth(kernelRange.x), view.windowDepth(kernelRange.y) };
-    }
-    const double overlap = std::max(std::min(comparison.y, kernelRange.y) - std::max(comparison.x, kernelRange.x), 0.0);
-    const double nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
-    const int packetKernelWidth = widthTexels(kernel);
-    divergence = 1.0 - std::pow(1.0 - nullProbability, static_cast<double>(packetKernelWidth) * packetKernelWidth); // Eq. 5
-    const double packetPixels = settings.paperPacketCost ? settings.packetWidth * settings.packetHeight : static_cast<double>(count);
-    const double packetCost = nodeCost(packetKernelWidth) + (settings.edgeCost + settings.visibilityCost * packetPixels) * packetKernelWidth; // Eq. 6
-    const bool divergent = settings.divergenceTest && divergence > settings.divergenceThreshold;
-    const bool costly = settings.costTest && packetCost > pixelCost;
-    if (divergent || costly)
-    {
-      packetClass = PacketClass::NonCoherent;
-    }
+    coherence = std::max(coherence, outsideFraction(receiver->kernel, packet.reference->kernel));
+  }
+  return coherence;
+}
+
+// What Alg. 1 step 6 decided for the packet, with the figures its buffers report.
+struct PacketPrediction
+{
+  double coherence = 0.0;  // Eq. 2
+  double divergence = 0.0; // P_d, Eq. 5
+  PacketClass packetClass = PacketClass::Coherent;
+};
+
+// Alg. 1 step 6 (§4.3): a packet of more than one penumbra pixel goes pixel-wise when its contours likely
+// diverge (Eq. 4-5: P_d > T_d) or when Eq. 6 prefers the pixels; a packet of one pixel is coherent. The
+// shader's classifyPacket.
+PacketPrediction classifyPacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const PacketSettings& settings, const Packet& packet, const PacketKernel& packetKernel)
+{
+  PacketPrediction prediction;
+  ProbeRecorder* const probe = packet.probe;
+  if (packet.penumbra.size() <= 1)
+  {
     if (probe)
     {
-      const std::string depthUnit = settings.coherenceDepth == "window" ? "window depth" : "linear depth";
       probe->beginGroup("coherence prediction (§4.3)");
-      probe->quantity("reference_pixel", glm::dvec2(referencePixel), "pixels", "Eq. 2, YFGL09: k_0, the packet's centre pixel's kernel");
-      probe->quantity("coherence", coherence, "", "Eq. 2, YFGL09: max_i |k_i \\ k_0| / |k_i|");
-      probe->category("coherence_depth", settings.coherenceDepth, "§4.3, YFGL09 (issue 13: which depths Eq. 4 compares)");
-      probe->quantity("packet_depth_range", comparison, depthUnit, "§4.3, YFGL09: [z_pmin, z_pmax] of the packet");
-      probe->quantity("kernel_depth_range", kernelRange, depthUnit, "§4.3, YFGL09: the packet kernel's MSSM range");
-      probe->quantity("null_probability", nullProbability, "", "Eq. 4, YFGL09: P_null, the overlap of the two ranges over the kernel's");
-      probe->quantity("packet_kernel_width", packetKernelWidth, "texels", "Eq. 5, YFGL09: n, the packet kernel's width");
-      probe->quantity("divergence_probability", divergence, "", "Eq. 5, YFGL09: P_d = 1 - (1 - P_null)^(n^2)");
-      probe->quantity("divergence_threshold", settings.divergenceThreshold, "", "§4.3, YFGL09: T_d");
-      probe->quantity("packet_cost", packetCost, "node visits", "Eq. 6, YFGL09: n log2 n + (Q_e + Q_v w h) n, Q_n = 1");
-      probe->quantity("pixel_cost", pixelCost, "node visits", "Eq. 6, YFGL09: the sum over the pixels of n_i log2 n_i + (Q_e + Q_v) n_i");
-      probe->category("prediction", divergent ? "non-coherent: P_d > T_d" : costly ? "non-coherent: Eq. 6 prefers pixels"
-        : "coherent", "§4.3, Eq. 5-6, YFGL09");
+      probe->quantity("coherence", prediction.coherence, "", "Eq. 2, YFGL09: 0, a packet of one penumbra pixel");
+      probe->quantity("divergence_probability", prediction.divergence, "", "Eq. 5, YFGL09: 0, a packet of one penumbra pixel is coherent");
+      probe->category("prediction", "coherent: one penumbra pixel", "§4.3, YFGL09");
     }
+    return prediction;
   }
-  else if (probe)
+  prediction.coherence = kernelCoherence(packet);
+  glm::dvec2 comparison = packetKernel.comparison;
+  glm::dvec2 kernelRange = mssm.range(packetKernel.samples.lo, packetKernel.samples.hi);
+  if (settings.coherenceDepth == "comparison")
   {
-    probe->beginGroup("coherence prediction (§4.3)");
-    probe->quantity("coherence", coherence, "", "Eq. 2, YFGL09: 0, a packet of one penumbra pixel");
-    probe->quantity("divergence_probability", divergence, "", "Eq. 5, YFGL09: 0, a packet of one penumbra pixel is coherent");
-    probe->category("prediction", "coherent: one penumbra pixel", "§4.3, YFGL09");
+    comparisonRangeOverCells(packet.penumbra, mssm.mapSize, packetKernel.region.lo, packetKernel.region.hi, comparison);
+  }
+  else if (settings.coherenceDepth == "window")
+  {
+    const LightView& view = inputs.lightView;
+    comparison = { view.windowDepth(comparison.x), view.windowDepth(comparison.y) };
+    kernelRange = { view.windowDepth(kernelRange.x), view.windowDepth(kernelRange.y) };
+  }
+  const double overlap = std::max(std::min(comparison.y, kernelRange.y) - std::max(comparison.x, kernelRange.x), 0.0);
+  const double nullProbability = kernelRange.y > kernelRange.x ? overlap / (kernelRange.y - kernelRange.x) : 0.0; // Eq. 4
+  const int packetKernelWidth = widthTexels(packetKernel.kernel);
+  prediction.divergence = 1.0 - std::pow(1.0 - nullProbability, static_cast<double>(packetKernelWidth) * packetKernelWidth); // Eq. 5
+  const double packetPixels = settings.paperPacketCost ? settings.packetWidth * settings.packetHeight : static_cast<double>(packet.penumbra.size());
+  const double packetCost = nodeCost(packetKernelWidth) + (settings.edgeCost + settings.visibilityCost * packetPixels) * packetKernelWidth; // Eq. 6
+  const bool divergent = settings.divergenceTest && prediction.divergence > settings.divergenceThreshold;
+  const bool costly = settings.costTest && packetCost > packetKernel.pixelCost;
+  if (divergent || costly)
+  {
+    prediction.packetClass = PacketClass::NonCoherent;
   }
   if (probe)
   {
-    probe->kernel({ "packet", glm::dvec2(kernel.lo), glm::dvec2(kernel.hi + 1), packetClassLabel(packetClass), packetSource });
+    const std::string depthUnit = settings.coherenceDepth == "window" ? "window depth" : "linear depth";
+    probe->beginGroup("coherence prediction (§4.3)");
+    probe->quantity("reference_pixel", glm::dvec2(packet.referencePixel), "pixels", "Eq. 2, YFGL09: k_0, the packet's centre pixel's kernel");
+    probe->quantity("coherence", prediction.coherence, "", "Eq. 2, YFGL09: max_i |k_i \\ k_0| / |k_i|");
+    probe->category("coherence_depth", settings.coherenceDepth, "§4.3, YFGL09 (issue 13: which depths Eq. 4 compares)");
+    probe->quantity("packet_depth_range", comparison, depthUnit, "§4.3, YFGL09: [z_pmin, z_pmax] of the packet");
+    probe->quantity("kernel_depth_range", kernelRange, depthUnit, "§4.3, YFGL09: the packet kernel's MSSM range");
+    probe->quantity("null_probability", nullProbability, "", "Eq. 4, YFGL09: P_null, the overlap of the two ranges over the kernel's");
+    probe->quantity("packet_kernel_width", packetKernelWidth, "texels", "Eq. 5, YFGL09: n, the packet kernel's width");
+    probe->quantity("divergence_probability", prediction.divergence, "", "Eq. 5, YFGL09: P_d = 1 - (1 - P_null)^(n^2)");
+    probe->quantity("divergence_threshold", settings.divergenceThreshold, "", "§4.3, YFGL09: T_d");
+    probe->quantity("packet_cost", packetCost, "node visits", "Eq. 6, YFGL09: n log2 n + (Q_e + Q_v w h) n, Q_n = 1");
+    probe->quantity("pixel_cost", packetKernel.pixelCost, "node visits", "Eq. 6, YFGL09: the sum over the pixels of n_i log2 n_i + (Q_e + Q_v) n_i");
+    probe->category("prediction", divergent ? "non-coherent: P_d > T_d" : costly ? "non-coherent: Eq. 6 prefers pixels"
+      : "coherent", "§4.3, Eq. 5-6, YFGL09");
+  }
+  return prediction;
+}
+
+// A probe's record of the packet kernel and of its pixels' kernels.
+void recordPacketKernels(ProbeRecorder& probe, const Packet& packet, const PacketKernel& packetKernel, PacketClass packetClass)
+{
+  probe.kernel({ "packet", glm::dvec2(packetKernel.kernel.lo), glm::dvec2(packetKernel.kernel.hi + 1), packetClassLabel(packetClass),
+    packetSource });
+  for (std::size_t p = 0; p < packet.penumbra.size(); ++p)
+  {
+    const glm::ivec2 pixel = packet.results[packet.penumbraResults[p]].pixel;
+    probe.kernel({ "packet pixel kernel", glm::dvec2(packet.penumbra[p]->kernel.lo), glm::dvec2(packet.penumbra[p]->kernel.hi + 1),
+      "pixel " + std::to_string(pixel.x) + "," + std::to_string(pixel.y), "Eq. 1, YFGL09" });
+  }
+}
+
+// What Alg. 1 step 7 leaves for step 8: each pixel's share of the packet's visited nodes, and the occluded
+// areas of a completed traversal (empty otherwise).
+struct CoherentPacket
+{
+  PacketClass packetClass = PacketClass::Coherent;
+  double visitedShare = 0.0;
+  std::vector<double> areas;
+};
+
+// Alg. 1 step 7: the packet's traversal over its extended kernel; its pixels' visibilities when it completes.
+// A null status (Eq. 3, §4.3: a misclassified packet is "caught during the packet contour extraction") or the
+// packet budget leave them to step 8. The shader's evaluateCoherentPacket.
+CoherentPacket evaluateCoherentPacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const PacketSettings& settings, Packet& packet, const Cells& region)
+{
+  CoherentPacket outcome;
+  const std::size_t count = packet.penumbra.size();
+  // A probe's view of the packet's traversal goes through a scratch record: its edges belong to the pixel
+  // only if the packet completes.
+  ProbeRecorder scratch;
+  PacketTraversal traversal(inputs, mssm, packet.penumbra, packet.probe ? &scratch : nullptr, packet.probedPenumbra,
+    "packet traversal");
+  const bool completed = traversal.run(region, settings.hierarchy);
+  if (completed)
+  {
     for (std::size_t p = 0; p < count; ++p)
     {
-      const glm::ivec2 pixel = results[penumbraResults[p]].pixel;
-      probe->kernel({ "packet pixel kernel", glm::dvec2(penumbra[p]->kernel.lo), glm::dvec2(penumbra[p]->kernel.hi + 1),
-        "pixel " + std::to_string(pixel.x) + "," + std::to_string(pixel.y), "Eq. 1, YFGL09" });
+      const double lightArea = 4.0 * packet.penumbra[p]->lightHalfSize * packet.penumbra[p]->lightHalfSize;
+      packet.penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(p) / lightArea, 0.0, 1.0);
+      packet.results[packet.penumbraResults[p]].contourEdges = traversal.contourEdges;
+      outcome.areas.push_back(traversal.area(p));
     }
   }
-  double packetVisitedShare = 0.0;
-  std::vector<double> packetAreas;
-  if (packetClass == PacketClass::Coherent)
+  else
   {
-    // A probe's view of the packet's traversal goes through a scratch record: its edges belong to the pixel
-    // only if the packet completes.
-    ProbeRecorder scratch;
-    PacketTraversal traversal(inputs, mssm, penumbra, probe ? &scratch : nullptr, probedPenumbra, "packet traversal");
-    const bool completed = traversal.run(region, settings.hierarchy);
-    if (completed)
-    {
-      for (std::size_t p = 0; p < count; ++p)
-      {
-        const double lightArea = 4.0 * penumbra[p]->lightHalfSize * penumbra[p]->lightHalfSize;
-        penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(p) / lightArea, 0.0, 1.0);
-        results[penumbraResults[p]].contourEdges = traversal.contourEdges;
-        packetAreas.push_back(traversal.area(p));
-      }
-    }
-    else
-    {
-      packetClass = traversal.caughtNull ? PacketClass::CaughtNull : PacketClass::OverBudget;
-    }
-    packetVisitedShare = static_cast<double>(traversal.visitedNodes) / count;
-    if (probe)
-    {
-      appendPacketRecord(*probe, scratch.record(), completed);
-      probe->beginGroup("packet traversal (Alg. 2, Alg. 3)");
-      recordTraversal(*probe, traversal, completed, "packet");
-      probe->quantity("packet_visited_share", packetVisitedShare, "nodes",
-        "Fig. 8, YFGL09: the packet's visited nodes / its penumbra pixels, each pixel's share");
-    }
+    outcome.packetClass = traversal.caughtNull ? PacketClass::CaughtNull : PacketClass::OverBudget;
   }
-  for (std::size_t p = 0; p < count; ++p)
+  outcome.visitedShare = static_cast<double>(traversal.visitedNodes) / count;
+  if (ProbeRecorder* const probe = packet.probe)
   {
-    Yfgl09Pixel& result = results[penumbraResults[p]];
-    const double lightArea = 4.0 * penumbra[p]->lightHalfSize * penumbra[p]->lightHalfSize;
-    double visited = packetVisitedShare;
-    double occludedArea = packetAreas.empty() ? 0.0 : packetAreas[p];
-    if (packetClass != PacketClass::Coherent)
+    appendPacketRecord(*probe, scratch.record(), completed);
+    probe->beginGroup("packet traversal (Alg. 2, Alg. 3)");
+    recordTraversal(*probe, traversal, completed, "packet");
+    probe->quantity("packet_visited_share", outcome.visitedShare, "nodes",
+      "Fig. 8, YFGL09: the packet's visited nodes / its penumbra pixels, each pixel's share");
+  }
+  return outcome;
+}
+
+// Alg. 1 step 8: each pixel of a packet that step 7 did not compute, alone over its own kernel (the shader's
+// pixel pass); every penumbra pixel's buffers.
+void evaluateRemainingPixels(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const PacketSettings& settings, Packet& packet, const PacketPrediction& prediction, const CoherentPacket& coherent)
+{
+  for (std::size_t p = 0; p < packet.penumbra.size(); ++p)
+  {
+    ContourReceiver& receiver = *packet.penumbra[p];
+    Yfgl09Pixel& result = packet.results[packet.penumbraResults[p]];
+    const double lightArea = 4.0 * receiver.lightHalfSize * receiver.lightHalfSize;
+    double visited = coherent.visitedShare;
+    double occludedArea = coherent.areas.empty() ? 0.0 : coherent.areas[p];
+    const bool isProbed = p == packet.probedPenumbra;
+    if (coherent.packetClass != PacketClass::Coherent)
     {
-      // Step 8: the pixel alone, over its own kernel.
-      const bool isProbed = p == probedPenumbra;
-      PacketTraversal traversal(inputs, mssm, { penumbra[p] }, isProbed ? probe : nullptr, 0, "pixel traversal");
-      const bool completed = traversal.run({ penumbra[p]->firstCell(), penumbra[p]->lastCell() }, settings.hierarchy);
-      penumbra[p]->lookup.sample.visibility = std::clamp(1.0 - traversal.area(0) / lightArea, 0.0, 1.0);
+      PacketTraversal traversal(inputs, mssm, { &receiver }, isProbed ? packet.probe : nullptr, 0, "pixel traversal");
+      const bool completed = traversal.run({ receiver.firstCell(), receiver.lastCell() }, settings.hierarchy);
+      receiver.lookup.sample.visibility = std::clamp(1.0 - traversal.area(0) / lightArea, 0.0, 1.0);
       result.contourEdges = traversal.contourEdges;
       visited += traversal.visitedNodes;
       occludedArea = traversal.area(0);
-      if (isProbed && probe)
+      if (isProbed && packet.probe)
       {
-        probe->beginGroup("pixel traversal (Alg. 1 step 8)");
-        recordTraversal(*probe, traversal, completed, "pixel");
+        packet.probe->beginGroup("pixel traversal (Alg. 1 step 8)");
+        recordTraversal(*packet.probe, traversal, completed, "pixel");
       }
     }
     result.visitedNodes = visited;
-    result.packetClass = packetClass;
-    result.coherence = coherence;
-    result.divergenceProbability = divergence;
-    if (p == probedPenumbra && probe)
+    result.packetClass = coherent.packetClass;
+    result.coherence = prediction.coherence;
+    result.divergenceProbability = prediction.divergence;
+    if (isProbed && packet.probe)
     {
-      probe->beginGroup("radial integration");
-      probe->quantity("light_area", lightArea, "world units^2", "GBP07: A, the square light");
-      probe->quantity("occluded_area", occludedArea, "world units^2",
+      packet.probe->beginGroup("radial integration");
+      packet.probe->quantity("light_area", lightArea, "world units^2", "GBP07: A, the square light");
+      packet.probe->quantity("occluded_area", occludedArea, "world units^2",
         "GBP07 radial integration: f(O) A + sum over the pixel's edges of s_e |L beyond e| (light polygon and edges' signed areas)");
     }
   }
-  return finish();
+}
+
+// Alg. 1 steps 5-8 for the packet whose first pixel is `origin`: every pixel of it, as the frame holds them.
+// `recorder` (optional) records the steps of pixel `probed`, which must lie in the packet. The shader runs
+// steps 5-7 in its packet pass's main() and step 8 in its pixel pass, with the same step names.
+std::vector<Yfgl09Pixel> evaluatePacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
+  const ParameterValues& values, const PacketSettings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
+  glm::ivec2 probed)
+{
+  Packet packet = computePixelKernels(inputs, mssm, values, settings, origin, recorder, probed);
+  if (packet.penumbra.empty())
+  {
+    return finishPacket(packet);
+  }
+  const PacketKernel packetKernel = constructPacketKernel(packet, settings);
+  const PacketPrediction prediction = classifyPacket(inputs, mssm, settings, packet, packetKernel);
+  if (packet.probe)
+  {
+    recordPacketKernels(*packet.probe, packet, packetKernel, prediction.packetClass);
+  }
+  CoherentPacket coherent;
+  coherent.packetClass = prediction.packetClass;
+  if (prediction.packetClass == PacketClass::Coherent)
+  {
+    coherent = evaluateCoherentPacket(inputs, mssm, settings, packet, packetKernel.region);
+  }
+  evaluateRemainingPixels(inputs, mssm, settings, packet, prediction, coherent);
+  return finishPacket(packet);
 }
 
 } // namespace
