@@ -179,18 +179,13 @@ std::vector<glm::dvec3> clipOutline(const std::vector<glm::dvec3>& outline, cons
 }
 
 // The STSV of `triangle` for the light piece `piece` (corners, convex) on side `side`, centre `centre`.
-Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piece, const glm::dvec3& centre, int side,
-  bool straddles, const Bounds& sceneBounds)
+// Step 1 (§2.2): the front cap t', the triangle t with its vertices moved towards the light piece's centre c to the
+// closest one's distance (t itself where t' would not be conservative); returns the cap's normal, away from c.
+glm::dvec3 buildFrontCap(Stsv& stsv, const StsvTriangle& triangle, const std::vector<glm::dvec3>& piece,
+  const glm::dvec3& centre, int side)
 {
-  Stsv stsv;
-  stsv.lightSide = side;
-  stsv.lightStraddlesPlane = straddles;
-  stsv.lightPiece = piece;
-  stsv.lightPieceCentre = centre;
   const auto& v = triangle.vertices;
-  stsv.trianglePlane = planeThrough(-double(side) * triangle.normal, v[0]);
-
-  // Step 1 (§2.2): the vertex closest to c stays, the others move towards c to its distance.
+  // The vertex closest to c stays, the others move towards c to its distance.
   std::array<double, 3> distance{};
   for (int i = 0; i < 3; ++i)
   {
@@ -237,10 +232,16 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
     stsv.frontCapVertexOfTriangle[i] = order[i];
     stsv.frontCap[i] = moved[static_cast<std::size_t>(order[i])];
   }
-  const auto& cap = stsv.frontCap;
-  stsv.frontCapPlane = planeThrough(capNormal, cap[0]);
+  stsv.frontCapPlane = planeThrough(capNormal, stsv.frontCap[0]);
 
-  // Step 2 (§2.2): the outer plane of each cap edge (i, i + 1). In the section across the edge, the piece's
+  return capNormal;
+}
+
+// Step 2 (§2.2): the outer plane of each cap edge, tangent to the light piece.
+void buildOuterPlanes(Stsv& stsv, const std::vector<glm::dvec3>& piece)
+{
+  const auto& cap = stsv.frontCap;
+  // The outer plane of each cap edge (i, i + 1). In the section across the edge, the piece's
   // corners are directions from the edge; the outer tangent goes through the corner whose direction is closest to
   // the cap's own direction (towards the opposite vertex o): every other corner is then on one side, o on the other.
   for (std::size_t i = 0; i < 3; ++i)
@@ -289,7 +290,12 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
     stsv.outerPlaneCorner[i] = best;
   }
 
-  // Step 3 (§2.2): vertex i is shared by the planes of edges (i - 1, i) and (i, i + 1); its extrusion runs along
+}
+
+// Step 3 (§2.2): each vertex's extrusion direction, along the intersection of its two outer planes.
+void buildExtrusions(Stsv& stsv, const glm::dvec3& capNormal)
+{
+  // Vertex i is shared by the planes of edges (i - 1, i) and (i, i + 1); its extrusion runs along
   // their intersection, away from the cone's apex: where the third plane's distance grows. m_prev x m_next . m_opp
   // = det(m_0, m_1, m_2) for every i, so one sign serves all three; when the planes share a direction (a prism, det
   // = 0) the cap's normal orients each.
@@ -315,7 +321,13 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
     stsv.extrusion[i] = (orientation < 0.0 ? -1.0 : 1.0) * direction / length;
   }
 
-  // Step 4 (§2.2, §4.2): the back cap at the level of the scene box along the cap's normal, just beyond the
+}
+
+// Step 4 (§2.2, §4.2): the back cap beyond the scene's box.
+void buildBackCap(Stsv& stsv, const glm::dvec3& capNormal, const Bounds& sceneBounds)
+{
+  const auto& cap = stsv.frontCap;
+  // The back cap at the level of the scene box along the cap's normal, just beyond the
   // box's farthest corner, so every scene point inside the outer planes and the front cap is inside the closed
   // volume. Extrusions that would have to run further than kStsvMaxExtrusion are cut and flagged.
   const glm::dvec3 boxMin = sceneBounds.empty() ? glm::dvec3(0.0) : sceneBounds.min;
@@ -362,6 +374,21 @@ Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piec
     stsv.closedVolumeTruncated = true;
   }
   stsv.backCapPlane = planeThrough(backNormal, stsv.backCap[0]);
+}
+
+Stsv buildStsv(const StsvTriangle& triangle, const std::vector<glm::dvec3>& piece, const glm::dvec3& centre, int side,
+  bool straddles, const Bounds& sceneBounds)
+{
+  Stsv stsv;
+  stsv.lightSide = side;
+  stsv.lightStraddlesPlane = straddles;
+  stsv.lightPiece = piece;
+  stsv.lightPieceCentre = centre;
+  stsv.trianglePlane = planeThrough(-double(side) * triangle.normal, triangle.vertices[0]);
+  const glm::dvec3 capNormal = buildFrontCap(stsv, triangle, piece, centre, side);
+  buildOuterPlanes(stsv, piece);
+  buildExtrusions(stsv, capNormal);
+  buildBackCap(stsv, capNormal, sceneBounds);
   return stsv;
 }
 
