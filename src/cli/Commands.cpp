@@ -33,6 +33,21 @@ RenderRequest checkedRenderRequest(const std::string& technique, const std::vect
   return request;
 }
 
+CheckedFrameCommand checkFrameCommand(const FrameCommandOptions& options, const std::string& command)
+{
+  RenderRequest request =
+    checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
+  checkSceneOverrides(options.sceneOverrides);
+  Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
+  std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
+  const std::vector<std::filesystem::path> parameterFiles =
+    fileParameterInputs(findTechnique(options.technique), options.settings);
+  inputs.insert(inputs.end(), parameterFiles.begin(), parameterFiles.end());
+  OutputTarget output{ options.outDir, command, options.force, inputs };
+  checkOutputTarget(output);
+  return { std::move(request), std::move(scene), std::move(output) };
+}
+
 glm::ivec2 parseResolution(const std::string& text)
 {
   static const std::regex pattern(R"((\d{1,6})x(\d{1,6}))");

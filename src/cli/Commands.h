@@ -2,6 +2,10 @@
 // and reported once by main().
 #pragma once
 
+#include "io/OutputDirectory.h"
+#include "pipeline/ShadowRenderer.h"
+#include "scene/Scene.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -14,21 +18,25 @@ namespace sl
 {
 
 struct FrameResult;
-struct RenderRequest;
-struct Scene;
 struct TechniqueDescriptor;
 
-struct RenderOptions
+// What `render` and `probe` both take: one scene, one technique, one frame, one output directory.
+struct FrameCommandOptions
 {
   std::string sceneFile;
   std::vector<std::string> sceneOverrides; // "/json/pointer=value" (--scene-set)
   std::string technique = "pcf";
   std::vector<std::string> settings;
   std::string resolution; // "WxH" or empty
-  std::string outDir = "out";
+  std::string outDir;
   int lightIndex = 0;
   bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
+};
+
+struct RenderOptions : FrameCommandOptions
+{
+  RenderOptions() { outDir = "out"; }
 };
 
 int runRender(const RenderOptions& options, std::ostream& log);
@@ -99,19 +107,11 @@ struct BenchRunOptions
 int runBenchConfiguration(const BenchRunOptions& options);
 
 // shadowlab probe: one pixel replayed on the technique's CPU twin with a recorder (src/probe/Probe.h).
-struct ProbeOptions
+struct ProbeOptions : FrameCommandOptions
 {
-  std::string sceneFile;
-  std::vector<std::string> sceneOverrides;
-  std::string technique = "pcf";
-  std::vector<std::string> settings;
-  std::string resolution;
+  ProbeOptions() { outDir = "out-probe"; }
   std::string pixel;              // "X,Y", image coordinates, row 0 at the bottom
   std::vector<std::string> pick;  // {"world", "x,y,z"}
-  std::string outDir = "out-probe";
-  int lightIndex = 0;
-  bool force = false;
-  bool quiet = false;
 };
 // Exit 0 when the twin agrees with the GPU buffer (or the pixel is ambiguous: within float rounding of a
 // decision), 3 when they differ beyond the tests' tolerance (the probe's files are still written).
@@ -182,6 +182,17 @@ std::size_t reportApproximatePixels(const FrameResult& frame, std::ostream& log)
 // --resolution well formed) before anything touches the GPU or the disk.
 RenderRequest checkedRenderRequest(const std::string& technique, const std::vector<std::string>& settings,
   int lightIndex, const std::string& resolution);
+
+// `render`'s and `probe`'s checks before the GPU or the disk is touched: the request (checkedRenderRequest), the
+// scene with its --scene-set values, and --out against every input (the scene's files, the technique's file
+// parameters) for `command`'s output contract (OutputDirectory.h).
+struct CheckedFrameCommand
+{
+  RenderRequest request;
+  Scene scene;
+  OutputTarget output;
+};
+CheckedFrameCommand checkFrameCommand(const FrameCommandOptions& options, const std::string& command);
 
 // "WxH" -> size, each side 1 .. kMaxImageSide; throws InputError naming --resolution.
 glm::ivec2 parseResolution(const std::string& text);

@@ -81,16 +81,10 @@ int runProbe(const ProbeOptions& options, std::ostream& log)
   {
     throw InputError("--technique " + technique.name + ": this technique has no probe recorder");
   }
-  const RenderRequest request =
-    checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
-  checkSceneOverrides(options.sceneOverrides);
-  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
-  std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
-  const std::vector<std::filesystem::path> parameterFiles =
-    fileParameterInputs(findTechnique(options.technique), options.settings);
-  inputs.insert(inputs.end(), parameterFiles.begin(), parameterFiles.end());
-  const OutputTarget output{ options.outDir, "probe", options.force, inputs };
-  checkOutputTarget(output);
+  const CheckedFrameCommand checked = checkFrameCommand(options, "probe");
+  const RenderRequest& request = checked.request;
+  const Scene& scene = checked.scene;
+  const OutputTarget& output = checked.output;
   reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;
   const FrameResult frame = renderer.render(scene, request);

@@ -17,16 +17,10 @@ namespace sl
 int runRender(const RenderOptions& options, std::ostream& log)
 {
   // Validate everything the user typed before touching the GPU or the disk.
-  const RenderRequest request =
-    checkedRenderRequest(options.technique, options.settings, options.lightIndex, options.resolution);
-  checkSceneOverrides(options.sceneOverrides);
-  const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
-  std::vector<std::filesystem::path> inputs = sceneInputs(scene, options.sceneFile);
-  const std::vector<std::filesystem::path> parameterFiles =
-    fileParameterInputs(findTechnique(options.technique), options.settings);
-  inputs.insert(inputs.end(), parameterFiles.begin(), parameterFiles.end());
-  const OutputTarget output{ options.outDir, "render", options.force, inputs };
-  checkOutputTarget(output);
+  const CheckedFrameCommand checked = checkFrameCommand(options, "render");
+  const RenderRequest& request = checked.request;
+  const Scene& scene = checked.scene;
+  const OutputTarget& output = checked.output;
   const std::size_t dropped = reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;
   // Passes with long CPU-side loops (reference-sm's maps, dcs's wedges) print an estimate and progress when the

@@ -113,23 +113,6 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
 namespace
 {
 
-const char* lightTypeName(LightType type)
-{
-  switch (type)
-  {
-    case LightType::Area: return "area";
-    case LightType::Point: return "point";
-    case LightType::Directional: return "directional";
-    case LightType::Spot: return "spot";
-  }
-  return "unknown";
-}
-
-const char* lightShapeName(LightShape shape)
-{
-  return shape == LightShape::Disk ? "disk" : "square";
-}
-
 // The request's light, or an InputError naming it and, for a light the technique does not support, what the
 // technique takes instead (from the descriptor, so the message stays right when a technique's support changes).
 const Light& requestedLight(const Scene& scene, const RenderRequest& request, const TechniqueDescriptor& technique)

@@ -796,10 +796,8 @@ void addProbeSummary(LegendLines& lines, const ProbeResult& probe, const ProbeSe
     lines.add("ambiguous: " + probe.outcome.ambiguity, kDarkGrey);
   }
   lines.add("twin: " + probe.outcome.twin, kDarkGrey);
-  const char* lightTypes[] = { "area", "point", "directional", "spot" };
-  lines.add(std::string("light ") + lightTypes[static_cast<int>(light.type)] +
-    (light.type == LightType::Area ? std::string(light.shape == LightShape::Disk ? " disk" : " square") + ", size " +
-          number(light.size)
+  lines.add(std::string("light ") + lightTypeName(light.type) +
+    (light.type == LightType::Area ? std::string(" ") + lightShapeName(light.shape) + ", size " + number(light.size)
                                    : ""));
   const glm::dvec3& p = setting.receiver.position;
   lines.add("receiver (" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")");

@@ -49,18 +49,6 @@ constexpr int kProgressReports = 32;
 // lightSampleMask packs this many sample bits into one float component (exact: < 2^24).
 constexpr int kMaskBitsPerComponent = 16;
 
-const char* lightTypeName(LightType type)
-{
-  switch (type)
-  {
-    case LightType::Area: return "area";
-    case LightType::Point: return "point";
-    case LightType::Directional: return "directional";
-    case LightType::Spot: return "spot";
-  }
-  return "unknown";
-}
-
 void validate(const ReferenceSettings& settings, const Light& light)
 {
   if (settings.lightSampleSet)

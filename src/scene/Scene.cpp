@@ -55,4 +55,21 @@ Bounds Scene::casterBounds() const
   return boundsOf(objects, true);
 }
 
+const char* lightTypeName(LightType type)
+{
+  switch (type)
+  {
+    case LightType::Area: return "area";
+    case LightType::Point: return "point";
+    case LightType::Directional: return "directional";
+    case LightType::Spot: return "spot";
+  }
+  return "unknown";
+}
+
+const char* lightShapeName(LightShape shape)
+{
+  return shape == LightShape::Disk ? "disk" : "square";
+}
+
 } // namespace sl

@@ -48,6 +48,10 @@ enum class LightShape
   Disk
 };
 
+// As the scene file spells them ("area", "point", "directional", "spot"; "square", "disk").
+const char* lightTypeName(LightType type);
+const char* lightShapeName(LightShape shape);
+
 struct Light
 {
   LightType type = LightType::Area;
