@@ -56,6 +56,9 @@ protected:
   ~vtkSLDcsPass() override;
   void Execute(const vtkRenderState* state) override;
   std::string GetFragmentShaderPath() const override { return "dcs/DcsResolve.glsl"; }
+  // The counter layers of the frame's sample count (dcsCounterLayerShaderConstants).
+  sl::ShaderDefines GetExtraDefines() const override;
+  std::vector<PassShader> GetPassShaders() const override;
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
   void AfterDraw() override;
 
