@@ -20,7 +20,6 @@
 #include <array>
 #include <chrono>
 #include <tuple>
-#include <utility>
 
 namespace sl
 {
@@ -118,10 +117,11 @@ void StsvDrawer::prepare(const FrameResources& frame)
         record.set(StsvRecord::kTriangleFromWorld + column, triangle.triangleFromWorld[column], 0.0);
       }
       const glm::dmat3& textureFromBarycentric = triangle.textureFromBarycentric;
-      for (const auto& [field, row] : { std::pair{ StsvRecord::kTextureRow0, 0 }, std::pair{ StsvRecord::kTextureRow1, 1 } })
-      {
-        record.set(field, { textureFromBarycentric[0][row], textureFromBarycentric[1][row], textureFromBarycentric[2][row] }, 0.0);
-      }
+      const auto textureRow = [&](int row) {
+        return glm::dvec3(textureFromBarycentric[0][row], textureFromBarycentric[1][row], textureFromBarycentric[2][row]);
+      };
+      record.set(StsvRecord::kTextureRow0, textureRow(0), 0.0);
+      record.set(StsvRecord::kTextureRow1, textureRow(1), 0.0);
       drawer_.addPolygon(polygon, record);
     }
     ranges_.back().vertexCount = drawer_.vertexCount() - ranges_.back().firstVertex;

@@ -34,7 +34,7 @@ StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values);
 // the names stsvRecordShaderConstants() generates into the preamble (STSV_RECORD_VEC4 and STSV_RECORD_<FIELD>).
 struct StsvRecord
 {
-  static constexpr int kPlanes = 0;     // the three outer planes, then the front cap plane: (normal, offset), inside positive
+  static constexpr int kPlanes = 0; // the three outer planes, then the front cap plane: (normal, offset), inside +
   static constexpr int kPlaneCount = 4;
   static constexpr int kV0 = kPlanes + kPlaneCount; // (the triangle's v0, the light side of its plane)
   static constexpr int kNormal = kV0 + 1;           // (unit normal n, on-plane distance)

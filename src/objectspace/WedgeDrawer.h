@@ -45,7 +45,10 @@ struct Vec4Record
 {
   explicit Vec4Record(int vec4Count) : vec4s(static_cast<std::size_t>(vec4Count), glm::vec4(0.0f)) {}
   // The vec4 at offset `field` (xyz, w), rounded to float.
-  void set(int field, const glm::dvec3& xyz, double w) { vec4s.at(static_cast<std::size_t>(field)) = glm::vec4(glm::vec3(xyz), static_cast<float>(w)); }
+  void set(int field, const glm::dvec3& xyz, double w)
+  {
+    vec4s.at(static_cast<std::size_t>(field)) = glm::vec4(glm::vec3(xyz), static_cast<float>(w));
+  }
   std::vector<glm::vec4> vec4s;
 };
 
