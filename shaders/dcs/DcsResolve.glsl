@@ -60,11 +60,11 @@ void main()
     for (int bit = 0; bit < 32 && 32 * layer + bit < lightSampleCount; ++bit)
     {
       int index = 32 * layer + bit;
-      if (index % 4 == 0)
+      if (index % DCS_COUNTERS_PER_LAYER == 0)
       {
-        word = imageLoad(sampleCounters, ivec3(pixel, index / 4)).r; // four counters per word: read once
+        word = imageLoad(sampleCounters, ivec3(pixel, dcsCounterLayer(index))).r; // a word's counters: read once
       }
-      int change = int((word >> uint(8 * (index % 4))) & 0xFFu) - DCS_COUNTER_BIAS;
+      int change = int((word >> dcsCounterShift(index)) & uint(DCS_COUNTER_MASK)) - DCS_COUNTER_BIAS;
       checksum += change;
       weightedChecksum += (index + 1) * change;
       int count = centre + change;

@@ -1,11 +1,18 @@
 // The wedges of technique dcs and penumbra-wedge as the wedge pass's fragment shader reads them (the CPU side:
 // src/objectspace/DcsGeometry.h and WedgeDrawer.h): the edge and its triangles' third corners per wedge, the light's
 // frame and outline, and wedgeContains, the test that the point lies in the wedge's region R_e.
-// Per wedge, four vec4: (v0, number of triangles), (v1, 0), (w_0, 0), (w_1, 0).
+// The records of the drawn polygons: per wedge, WEDGE_RECORD_VEC4 vec4 (WedgeDrawer.h WedgeRecord: (v0, number of
+// triangles), (v1, 0), (w_k, 0) per triangle k); per STSV, STSV_RECORD_VEC4 (StsvDrawer.h StsvRecord).
 layout(std430, binding = 0) readonly buffer DcsWedges
 {
   vec4 wedgeData[];
 };
+
+// The vec4 at offset `field` (WEDGE_RECORD_<FIELD>) of wedge `wedge`'s record.
+vec4 wedgeRecordVec4(int wedge, int field)
+{
+  return wedgeData[WEDGE_RECORD_VEC4 * wedge + field];
+}
 
 uniform vec3 dcsLightCenter;
 uniform vec3 dcsLightRight;

@@ -25,10 +25,9 @@ void main()
   }
   vec3 pWs = countedPoint(surface.pWs);
 
-  int base = 4 * wedgeIndex;
-  vec3 v0 = wedgeData[base].xyz;
-  int triangles = int(wedgeData[base].w);
-  vec3 v1 = wedgeData[base + 1].xyz;
+  vec3 v0 = wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V0).xyz;
+  int triangles = int(wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V0).w);
+  vec3 v1 = wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V1).xyz;
   if (!wedgeContains(pWs, v0, v1))
   {
     return;
@@ -43,7 +42,7 @@ void main()
   int multiplicity = 0;
   for (int k = 0; k < triangles; ++k)
   {
-    multiplicity += int(sign(dot(wedgeData[base + 2 + k].xyz - v0, planeNormal)));
+    multiplicity += int(sign(dot(wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_OPPOSITE + k).xyz - v0, planeNormal)));
   }
   if (multiplicity == 0)
   {
@@ -61,17 +60,17 @@ void main()
 
   int checksum = 0;
   int weightedChecksum = 0;
-  for (int word = 0; word < lightSampleCount / 4; ++word)
+  for (int word = 0; word < DCS_SAMPLE_COUNTER_LAYERS; ++word)
   {
     uint wordChange = 0u;
-    for (int field = 0; field < 4; ++field)
+    for (int field = 0; field < DCS_COUNTERS_PER_LAYER; ++field)
     {
-      int index = 4 * word + field;
+      int index = DCS_COUNTERS_PER_LAYER * word + field;
       vec2 ab = lightSampleOffset(lightSampleUnit(pixel, index));
       float g = gCentre + dot(gSlope, ab);
       bool crosses = g * gCentre < 0.0 && dot(centreSlope, ab) * gCentre > 0.0 && dot(slope0, ab) * dot(slope1, ab) < 0.0;
       int change = crosses ? int(sign(g)) * multiplicity : 0;
-      wordChange += uint(change) << uint(8 * field); // two's complement: a negative change borrows, as it should
+      wordChange += uint(change) << dcsCounterShift(index); // two's complement: a negative change borrows, as it should
       checksum += change;
       weightedChecksum += (index + 1) * change;
     }

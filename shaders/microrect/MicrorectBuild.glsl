@@ -22,10 +22,8 @@ layout(rgba16ui, binding = 0) uniform uimage2D microrectExtentImage; // the exte
 layout(r32f, binding = 1) uniform image2D microrectDepthImage;       // the depth atlas (as microrectDepthTexture)
 layout(r8ui, binding = 2) uniform uimage2D microrectClaimImage;      // pass 1's claims of each level-`level` texel
 
-// What a retained microrect absorbed in pass 1 (Microrects.cpp's kClaimed*).
-const uint CLAIMED_B = 1u;
-const uint CLAIMED_D = 2u;
-const uint CLAIMED_E = 4u;
+// What a retained microrect absorbed in pass 1: the preamble's CLAIMED_B, CLAIMED_D, CLAIMED_E (lightspace/Microrects.h
+// MicrorectClaims).
 
 bool finerExists(ivec2 index)
 {
@@ -88,8 +86,8 @@ void main()
   float depthA = depth;
   uint claims = 0u;
 
-  absorbPartner(a, ivec2(1, 0), CLAIMED_B, depthA, extent, depth, claims); // B, against C
-  absorbPartner(a, ivec2(0, 1), CLAIMED_D, depthA, extent, depth, claims); // D, against G
+  absorbPartner(a, ivec2(1, 0), uint(CLAIMED_B), depthA, extent, depth, claims); // B, against C
+  absorbPartner(a, ivec2(0, 1), uint(CLAIMED_D), depthA, extent, depth, claims); // D, against G
   ivec4 memberExtent;
   float memberDepth;
   ivec2 e = a + ivec2(1, 1);
@@ -100,7 +98,7 @@ void main()
     if (contained || !finerExists(a + ivec2(2, 2)))
     {
       absorb(extent, depth, memberExtent, memberDepth);
-      claims |= CLAIMED_E;
+      claims |= uint(CLAIMED_E);
     }
   }
   ivec2 atlasTexel = mipAtlasOffset(microrectMapSize, level) + texel;
@@ -135,15 +133,15 @@ void main()
   ivec2 p = 2 * texel;
   if (texel.x > 0)
   {
-    absorbUnclaimed(texel - ivec2(1, 0), CLAIMED_B, p - ivec2(1, 0), extent, depth); // F
+    absorbUnclaimed(texel - ivec2(1, 0), uint(CLAIMED_B), p - ivec2(1, 0), extent, depth); // F
   }
   if (texel.y > 0)
   {
-    absorbUnclaimed(texel - ivec2(0, 1), CLAIMED_D, p - ivec2(0, 1), extent, depth); // H
+    absorbUnclaimed(texel - ivec2(0, 1), uint(CLAIMED_D), p - ivec2(0, 1), extent, depth); // H
   }
   if (texel.x > 0 && texel.y > 0)
   {
-    absorbUnclaimed(texel - ivec2(1, 1), CLAIMED_E, p - ivec2(1, 1), extent, depth); // E'
+    absorbUnclaimed(texel - ivec2(1, 1), uint(CLAIMED_E), p - ivec2(1, 1), extent, depth); // E'
   }
   imageStore(microrectExtentImage, atlasTexel, uvec4(extent));
   imageStore(microrectDepthImage, atlasTexel, vec4(depth, 0.0, 0.0, 0.0));

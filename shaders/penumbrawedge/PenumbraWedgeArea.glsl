@@ -68,10 +68,9 @@ void main()
   }
   vec3 pWs = countedPoint(surface.pWs);
 
-  int base = 4 * wedgeIndex;
-  vec3 v0 = wedgeData[base].xyz;
-  int triangles = int(wedgeData[base].w);
-  vec3 v1 = wedgeData[base + 1].xyz;
+  vec3 v0 = wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V0).xyz;
+  int triangles = int(wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V0).w);
+  vec3 v1 = wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V1).xyz;
   if (!wedgeContains(pWs, v0, v1))
   {
     return;
@@ -85,7 +84,7 @@ void main()
   int multiplicity = 0;
   for (int k = 0; k < triangles; ++k)
   {
-    multiplicity += int(sign(dot(wedgeData[base + 2 + k].xyz - v0, planeNormal)));
+    multiplicity += int(sign(dot(wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_OPPOSITE + k).xyz - v0, planeNormal)));
   }
   float gCentre = dot(c, planeNormal);
   if (multiplicity == 0 || gCentre == 0.0)

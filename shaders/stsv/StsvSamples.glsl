@@ -28,15 +28,11 @@ uniform int stsvOppositeSideCheck;
 layout(location = 0) out float outStsvCovering;
 layout(location = 1) out float outStsvEmptyHits;
 
-// Per STSV, STSV_RECORD vec4 in wedgeData (WedgeDrawer's records): the three outer planes and the front cap plane
-// (normal, offset; inside positive), (v0, light side), (unit normal n, on-plane distance), M's three columns, S's two
-// rows.
-const int STSV_RECORD = 11;
-
-// One STSV's record, read from wedgeData.
+// One STSV's record, read from wedgeData (WedgeDrawer's records; the layout: StsvDrawer.h StsvRecord, whose offsets
+// the preamble's STSV_RECORD_* are).
 struct StsvRecord
 {
-  vec4 planes[4];       // the three outer planes and the front cap plane, inside positive
+  vec4 planes[STSV_RECORD_PLANE_COUNT]; // the three outer planes and the front cap plane, inside positive
   vec3 v0;
   float lightSide;      // the side of the triangle's plane whose light samples are this STSV's
   vec3 normal;
@@ -46,21 +42,29 @@ struct StsvRecord
   vec3 textureRow1;
 };
 
+// The vec4 at offset `field` (STSV_RECORD_<FIELD>) of STSV `index`'s record.
+vec4 stsvRecordVec4(int index, int field)
+{
+  return wedgeData[STSV_RECORD_VEC4 * index + field];
+}
+
 StsvRecord readStsvRecord(int index)
 {
-  int base = STSV_RECORD * index;
   StsvRecord record;
-  for (int k = 0; k < 4; ++k)
+  for (int k = 0; k < STSV_RECORD_PLANE_COUNT; ++k)
   {
-    record.planes[k] = wedgeData[base + k];
+    record.planes[k] = stsvRecordVec4(index, STSV_RECORD_PLANES + k);
   }
-  record.v0 = wedgeData[base + 4].xyz;
-  record.lightSide = wedgeData[base + 4].w;
-  record.normal = wedgeData[base + 5].xyz;
-  record.onPlaneDistance = wedgeData[base + 5].w;
-  record.triangleFromWorld = mat3(wedgeData[base + 6].xyz, wedgeData[base + 7].xyz, wedgeData[base + 8].xyz);
-  record.textureRow0 = wedgeData[base + 9].xyz;
-  record.textureRow1 = wedgeData[base + 10].xyz;
+  record.v0 = stsvRecordVec4(index, STSV_RECORD_V0).xyz;
+  record.lightSide = stsvRecordVec4(index, STSV_RECORD_V0).w;
+  record.normal = stsvRecordVec4(index, STSV_RECORD_NORMAL).xyz;
+  record.onPlaneDistance = stsvRecordVec4(index, STSV_RECORD_NORMAL).w;
+  for (int column = 0; column < 3; ++column)
+  {
+    record.triangleFromWorld[column] = stsvRecordVec4(index, STSV_RECORD_TRIANGLE_FROM_WORLD + column).xyz;
+  }
+  record.textureRow0 = stsvRecordVec4(index, STSV_RECORD_TEXTURE_ROW0).xyz;
+  record.textureRow1 = stsvRecordVec4(index, STSV_RECORD_TEXTURE_ROW1).xyz;
   return record;
 }
 
@@ -68,7 +72,7 @@ StsvRecord readStsvRecord(int index)
 bool insideStsv(StsvRecord record, vec3 pWs)
 {
   bool inside = true;
-  for (int k = 0; k < 4; ++k)
+  for (int k = 0; k < STSV_RECORD_PLANE_COUNT; ++k)
   {
     inside = inside && dot(record.planes[k].xyz, pWs) + record.planes[k].w >= 0.0;
   }
@@ -136,13 +140,13 @@ void main()
       {
         anyHidden = true;
 #ifdef STSV_DCS_COUNTERS
-        // One more occluder crossed for each hidden sample: +1 in its 8-bit counter.
+        // One more occluder crossed for each hidden sample: +1 in its counter.
         for (int bit = 0; bit < 32; ++bit)
         {
           if ((bits & (1u << uint(bit))) != 0u)
           {
             int index = 32 * word + bit;
-            imageAtomicAdd(sampleCounters, ivec3(pixel, index / 4), 1u << uint(8 * (index % 4)));
+            imageAtomicAdd(sampleCounters, ivec3(pixel, dcsCounterLayer(index)), 1u << dcsCounterShift(index));
             checksum += 1;
             weightedChecksum += index + 1;
           }

@@ -12,11 +12,6 @@ namespace sl
 namespace
 {
 
-// Pass-1 claims of a retained microrect (MicrorectBuild.glsl's CLAIMED_*): which of B, D, E it absorbed.
-constexpr std::uint8_t kClaimedB = 1;
-constexpr std::uint8_t kClaimedD = 2;
-constexpr std::uint8_t kClaimedE = 4;
-
 std::size_t flatIndex(glm::ivec2 index, glm::ivec2 size)
 {
   return static_cast<std::size_t>(index.x) + static_cast<std::size_t>(index.y) * static_cast<std::size_t>(size.x);
@@ -125,13 +120,13 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
         if (exists(b) && joinsA(b, a + glm::ivec2(2, 0)))
         {
           absorb(b);
-          claims[self] |= kClaimedB;
+          claims[self] |= MicrorectClaims::kB;
         }
         const glm::ivec2 d = a + glm::ivec2(0, 1);
         if (exists(d) && joinsA(d, a + glm::ivec2(0, 2)))
         {
           absorb(d);
-          claims[self] |= kClaimedD;
+          claims[self] |= MicrorectClaims::kD;
         }
         const glm::ivec2 e = a + glm::ivec2(1, 1);
         if (exists(e))
@@ -142,7 +137,7 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
           if (contained || !exists(a + glm::ivec2(2, 2)))
           {
             absorb(e);
-            claims[self] |= kClaimedE;
+            claims[self] |= MicrorectClaims::kE;
           }
         }
         built[self] = merged;
@@ -167,15 +162,15 @@ Microrects Microrects::build(const ImageF& shadowMapLinear, bool trackMembers)
         };
         if (x > 0)
         {
-          absorbUnclaimed({ x - 1, y }, kClaimedB, p - glm::ivec2(1, 0)); // F
+          absorbUnclaimed({ x - 1, y }, MicrorectClaims::kB, p - glm::ivec2(1, 0)); // F
         }
         if (y > 0)
         {
-          absorbUnclaimed({ x, y - 1 }, kClaimedD, p - glm::ivec2(0, 1)); // H
+          absorbUnclaimed({ x, y - 1 }, MicrorectClaims::kD, p - glm::ivec2(0, 1)); // H
         }
         if (x > 0 && y > 0)
         {
-          absorbUnclaimed({ x - 1, y - 1 }, kClaimedE, p - glm::ivec2(1, 1)); // E'
+          absorbUnclaimed({ x - 1, y - 1 }, MicrorectClaims::kE, p - glm::ivec2(1, 1)); // E'
         }
       }
     }

@@ -59,6 +59,15 @@ struct Microrect
   float depth = 0.0f; // linear light depth, the min over the level-0 texels it represents
 };
 
+// Pass-1 claims of a retained microrect (bits of the claim image): which of B, D, E it absorbed. Declared once: the
+// GPU build's preamble defines them as CLAIMED_B, CLAIMED_D, CLAIMED_E (structures/microrect/MicrorectStructure.h).
+struct MicrorectClaims
+{
+  static constexpr std::uint8_t kB = 1;
+  static constexpr std::uint8_t kD = 2;
+  static constexpr std::uint8_t kE = 4;
+};
+
 struct Microrects
 {
   // N for the square maps the GPU builds; the CPU twin also builds W x H maps (the tests' 1-D rows of Fig. 5),

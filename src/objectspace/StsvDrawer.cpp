@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <tuple>
 
 namespace sl
 {
@@ -34,6 +35,35 @@ StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values)
 {
   return values.choice("stsv_opposite_side_check") == "on" ? StsvOcclusionTest::PaperAndOppositeSides
                                                             : StsvOcclusionTest::Paper;
+}
+
+static_assert(StsvRecord::kPlaneCount == std::tuple_size<decltype(Stsv::outerPlanes)>::value + 1,
+  "an STSV record holds the outer planes and the front cap plane");
+
+std::vector<ShaderConstant> stsvRecordShaderConstants()
+{
+  return {
+    { "STSV_RECORD_VEC4", StsvRecord::kVec4Count, "vec4s per STSV record (StsvDrawer.h StsvRecord)" },
+    { "STSV_RECORD_PLANES", StsvRecord::kPlanes, "an STSV record's outer planes and front cap plane" },
+    { "STSV_RECORD_PLANE_COUNT", StsvRecord::kPlaneCount, "planes in an STSV record" },
+    { "STSV_RECORD_V0", StsvRecord::kV0, "an STSV record's (v0, light side)" },
+    { "STSV_RECORD_NORMAL", StsvRecord::kNormal, "an STSV record's (normal, on-plane distance)" },
+    { "STSV_RECORD_TRIANGLE_FROM_WORLD", StsvRecord::kTriangleFromWorld, "an STSV record's first column of M" },
+    { "STSV_RECORD_TEXTURE_ROW0", StsvRecord::kTextureRow0, "an STSV record's first row of S" },
+    { "STSV_RECORD_TEXTURE_ROW1", StsvRecord::kTextureRow1, "an STSV record's second row of S" },
+  };
+}
+
+std::vector<ShaderConstant> wedgePassShaderConstants()
+{
+  std::vector<ShaderConstant> constants = {
+    { "DCS_MAX_OUTLINE_CORNERS", kDcsMaxOutlineCorners, "corners of a light's outline (DcsGeometry.h lightOutline)" },
+  };
+  for (const std::vector<ShaderConstant>& record : { wedgeRecordShaderConstants(), stsvRecordShaderConstants() })
+  {
+    constants.insert(constants.end(), record.begin(), record.end());
+  }
+  return constants;
 }
 
 void StsvDrawer::prepare(const FrameResources& frame)
@@ -72,26 +102,26 @@ void StsvDrawer::prepare(const FrameResources& frame)
       {
         continue;
       }
-      // The record of shaders/stsv/StsvSamples.glsl (STSV_RECORD vec4).
-      std::vector<float> record;
-      const auto push = [&](const glm::dvec3& xyz, double w) {
-        record.insert(record.end(),
-          { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), static_cast<float>(w) });
-      };
-      for (const StsvPlane& plane : stsv.outerPlanes)
+      // The record of shaders/stsv/StsvSamples.glsl.
+      Vec4Record record(StsvRecord::kVec4Count);
+      for (std::size_t k = 0; k < stsv.outerPlanes.size(); ++k)
       {
-        push(plane.normal, plane.offset);
+        record.set(StsvRecord::kPlanes + static_cast<int>(k), stsv.outerPlanes[k].normal, stsv.outerPlanes[k].offset);
       }
-      push(stsv.frontCapPlane.normal, stsv.frontCapPlane.offset);
-      push(triangle.vertices[0], stsv.lightSide);
-      push(triangle.normal, onPlaneDistance);
+      record.set(StsvRecord::kPlanes + static_cast<int>(stsv.outerPlanes.size()), stsv.frontCapPlane.normal,
+        stsv.frontCapPlane.offset);
+      record.set(StsvRecord::kV0, triangle.vertices[0], stsv.lightSide);
+      record.set(StsvRecord::kNormal, triangle.normal, onPlaneDistance);
       for (int column = 0; column < 3; ++column)
       {
-        push(triangle.triangleFromWorld[column], 0.0);
+        record.set(StsvRecord::kTriangleFromWorld + column, triangle.triangleFromWorld[column], 0.0);
       }
       const glm::dmat3& textureFromBarycentric = triangle.textureFromBarycentric;
-      push({ textureFromBarycentric[0][0], textureFromBarycentric[1][0], textureFromBarycentric[2][0] }, 0.0); // row 0
-      push({ textureFromBarycentric[0][1], textureFromBarycentric[1][1], textureFromBarycentric[2][1] }, 0.0); // row 1
+      const auto textureRow = [&](int row) {
+        return glm::dvec3(textureFromBarycentric[0][row], textureFromBarycentric[1][row], textureFromBarycentric[2][row]);
+      };
+      record.set(StsvRecord::kTextureRow0, textureRow(0), 0.0);
+      record.set(StsvRecord::kTextureRow1, textureRow(1), 0.0);
       drawer_.addPolygon(polygon, record);
     }
     ranges_.back().vertexCount = drawer_.vertexCount() - ranges_.back().firstVertex;

@@ -29,6 +29,26 @@ struct FrameResources;
 ParameterSpec stsvOppositeSideCheckParameter();
 StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values);
 
+// One STSV's record in the wedge pass's storage buffer (WedgeDrawer::addPolygon), in vec4s, declared once: the
+// C++ writer (StsvDrawer::prepare) indexes it with these offsets, and shaders/stsv/StsvSamples.glsl reads it through
+// the names stsvRecordShaderConstants() generates into the preamble (STSV_RECORD_VEC4 and STSV_RECORD_<FIELD>).
+struct StsvRecord
+{
+  static constexpr int kPlanes = 0; // the three outer planes, then the front cap plane: (normal, offset), inside +
+  static constexpr int kPlaneCount = 4;
+  static constexpr int kV0 = kPlanes + kPlaneCount; // (the triangle's v0, the light side of its plane)
+  static constexpr int kNormal = kV0 + 1;           // (unit normal n, on-plane distance)
+  static constexpr int kTriangleFromWorld = kNormal + 1; // M's three columns (Eq. 2), (column, 0)
+  static constexpr int kTextureRow0 = kTriangleFromWorld + 3; // S's first row (Eq. 4), (row, 0)
+  static constexpr int kTextureRow1 = kTextureRow0 + 1;        // S's second row
+  static constexpr int kVec4Count = kTextureRow1 + 1;          // the stride
+};
+std::vector<ShaderConstant> stsvRecordShaderConstants();
+
+// What the shaders of a wedge pass share with this area's C++ (shaders/dcs/DcsWedgeCommon.glsl and the shaders
+// that include it): the outline's corner bound and both records' layouts.
+std::vector<ShaderConstant> wedgePassShaderConstants();
+
 class StsvDrawer
 {
 public:

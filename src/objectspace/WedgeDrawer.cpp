@@ -13,9 +13,13 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <tuple>
 
 namespace sl
 {
+
+static_assert(WedgeRecord::kOppositeCount == std::tuple_size<decltype(DcsWedgeEdge::opposite)>::value,
+  "a wedge record holds the third corner of each of the edge's triangles");
 
 WedgeDrawer::WedgeDrawer() = default;
 WedgeDrawer::~WedgeDrawer() = default;
@@ -28,7 +32,7 @@ void WedgeDrawer::clear()
   polygons_ = 0;
 }
 
-void WedgeDrawer::addPolygon(const std::vector<glm::dvec2>& polygon, const std::vector<float>& record)
+void WedgeDrawer::addPolygon(const std::vector<glm::dvec2>& polygon, const Vec4Record& record)
 {
   uploaded_ = false;
   const float index = static_cast<float>(polygons_++); // exact: fewer than 2^24 polygons
@@ -39,12 +43,25 @@ void WedgeDrawer::addPolygon(const std::vector<glm::dvec2>& polygon, const std::
       vertices_.insert(vertices_.end(), { static_cast<float>(corner.x), static_cast<float>(corner.y), index });
     }
   }
-  for (const float value : record)
+  for (const glm::vec4& vec4 : record.vec4s)
   {
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &value, sizeof bits);
-    words_.push_back(bits);
+    for (int component = 0; component < vec4.length(); ++component)
+    {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &vec4[component], sizeof bits);
+      words_.push_back(bits);
+    }
   }
+}
+
+std::vector<ShaderConstant> wedgeRecordShaderConstants()
+{
+  return {
+    { "WEDGE_RECORD_VEC4", WedgeRecord::kVec4Count, "vec4s per wedge record (WedgeDrawer.h WedgeRecord)" },
+    { "WEDGE_RECORD_V0", WedgeRecord::kV0, "a wedge record's (v0, number of triangles)" },
+    { "WEDGE_RECORD_V1", WedgeRecord::kV1, "a wedge record's (v1, 0)" },
+    { "WEDGE_RECORD_OPPOSITE", WedgeRecord::kOpposite, "a wedge record's first (w_k, 0), the third corner of triangle k" },
+  };
 }
 
 std::size_t WedgeDrawer::prepare(const std::vector<DcsWedgeEdge>& wedges, const FrameResources& frame)
@@ -60,14 +77,13 @@ std::size_t WedgeDrawer::prepare(const std::vector<DcsWedgeEdge>& wedges, const 
     {
       continue;
     }
-    std::vector<float> record;
-    const auto pushVec4 = [&](const glm::dvec3& xyz, float w) {
-      record.insert(record.end(), { static_cast<float>(xyz.x), static_cast<float>(xyz.y), static_cast<float>(xyz.z), w });
-    };
-    pushVec4(wedge.v0, static_cast<float>(wedge.oppositeCount));
-    pushVec4(wedge.v1, 0.0f);
-    pushVec4(wedge.opposite[0], 0.0f);
-    pushVec4(wedge.oppositeCount > 1 ? wedge.opposite[1] : wedge.opposite[0], 0.0f);
+    Vec4Record record(WedgeRecord::kVec4Count);
+    record.set(WedgeRecord::kV0, wedge.v0, wedge.oppositeCount);
+    record.set(WedgeRecord::kV1, wedge.v1, 0.0);
+    for (int k = 0; k < WedgeRecord::kOppositeCount; ++k)
+    {
+      record.set(WedgeRecord::kOpposite + k, k < wedge.oppositeCount ? wedge.opposite[k] : wedge.opposite[0], 0.0);
+    }
     addPolygon(polygon, record);
   }
   return polygons_;

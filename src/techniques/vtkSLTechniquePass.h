@@ -55,6 +55,15 @@ protected:
 
   virtual std::string GetFragmentShaderPath() const = 0;
   virtual sl::ShaderDefines GetExtraDefines() const { return {}; }
+  // The other fragment shaders the pass assembles with TechniqueDefines() (e.g. dcs's wedge and STSV passes): the
+  // path and the flags it adds, one program each. tests/unit/ShaderContractTest.cpp checks that they keep no copy
+  // of a generated number either.
+  struct PassShader
+  {
+    std::string path;
+    std::vector<std::string> flags;
+  };
+  virtual std::vector<PassShader> GetPassShaders() const { return {}; }
   // Called with the program bound, after the common uniforms; returns textures to deactivate afterwards.
   virtual std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram*) { return {}; }
   // Called after drawing (restore sampler bindings and the like).

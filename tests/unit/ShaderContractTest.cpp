@@ -6,13 +6,20 @@
 //    0, which is why the preprocessor is run here and not left to the GL);
 //  - keep no copy of a generated number (a `const` or `#define` of a generated name, a category code under
 //    another name, a budget written as a literal).
+//  - read a record shared with C++ (WedgeDrawer.h WedgeRecord, StsvDrawer.h StsvRecord) only through its generated
+//    stride and offsets, and keep no copy of any name the preamble defines (also per-frame ones: dcs's counter
+//    layers).
 // Every technique's fragment shader is assembled as its pass assembles it (sl::assembleShader with the pass's
-// preamble) for every combination of its enumeration parameters and shader flag sets, preprocessed here
-// (#if / #ifdef / #elif / #else / #endif / #define / #undef), and checked. No GL context is needed.
+// preamble) for every combination of its enumeration parameters and shader flag sets, with the pass's other
+// shaders (GetPassShaders: wedges, STSVs), preprocessed here (#if / #ifdef / #elif / #else / #endif / #define /
+// #undef), and checked; so is the microrect build shader with its claim codes. No GL context is needed.
 // A synthetic descriptor and shader, broken one way at a time, show that each check fails when it should.
 #include "gl/ShaderLibrary.h"
+#include "lightspace/Microrects.h"
 #include "passes/FrameResources.h"
+#include "structures/microrect/MicrorectStructure.h"
 #include "techniques/Registry.h"
+#include "techniques/dcs/DcsTechnique.h"
 #include "techniques/vtkSLTechniquePass.h"
 
 #include <gtest/gtest.h>
@@ -43,6 +50,7 @@ namespace
 class PreambleAccess : public vtkSLTechniquePass
 {
 public:
+  using PassShader = vtkSLTechniquePass::PassShader;
   static ShaderDefines defines(const vtkSLTechniquePass& pass) { return (pass.*(&PreambleAccess::TechniqueDefines))(); }
   static std::string declarations(const vtkSLTechniquePass& pass)
   {
@@ -51,6 +59,10 @@ public:
   static std::string fragmentShaderPath(const vtkSLTechniquePass& pass)
   {
     return (pass.*(&PreambleAccess::GetFragmentShaderPath))();
+  }
+  static std::vector<PassShader> passShaders(const vtkSLTechniquePass& pass)
+  {
+    return (pass.*(&PreambleAccess::GetPassShaders))();
   }
 };
 
@@ -605,8 +617,10 @@ struct OutputBinding
   bool image = false;
 };
 
-std::vector<std::string> contractViolations(
-  const TechniqueDescriptor& descriptor, const ShaderDefines& preamble, const std::string& assembledSource)
+// `checkOutputs`: the technique's own fragment shader, which writes the descriptor's outputs (false for the other
+// shaders a pass or a structure's build assembles, which write targets of their own).
+std::vector<std::string> contractViolations(const TechniqueDescriptor& descriptor, const ShaderDefines& preamble,
+  const std::string& assembledSource, bool checkOutputs = true)
 {
   std::vector<std::string> violations;
   const Preprocessed shader = preprocess(assembledSource, preamble);
@@ -641,6 +655,12 @@ std::vector<std::string> contractViolations(
     }
   }
   std::set<std::string> generated(outputs.begin(), outputs.end());
+  // Every name the preamble defines is generated, also those a pass computes per frame (dcs's counter layers from
+  // the sample count, GetExtraDefines) and a structure's (LIGHT_SAMPLE_COUNT): a shader keeps no copy of any.
+  for (const auto& [name, value] : preamble)
+  {
+    generated.insert(name);
+  }
   for (const auto& [name, code] : categoryCodes)
   {
     generated.insert(name);
@@ -737,6 +757,146 @@ std::vector<std::string> contractViolations(
     }
   }
 
+  // Records shared with C++ (a storage buffer of vec4 records: WedgeDrawer.h WedgeRecord, StsvDrawer.h StsvRecord):
+  // a generated stride <RECORD>_VEC4 and field offsets <RECORD>_<FIELD>. A const or #define of the shader's own under
+  // a record's prefix is a copy of its layout; an array indexed with a record's stride anywhere is a record array,
+  // and every subscript of it must name a stride and hold no literal offset; a function reading such an array (an
+  // accessor, `wedgeRecordVec4(wedge, field)`) takes no literal offset either.
+  std::vector<std::string> recordPrefixes;
+  for (const std::string& name : generated)
+  {
+    if (endsWith(name, "_VEC4"))
+    {
+      recordPrefixes.push_back(name.substr(0, name.size() - std::string("_VEC4").size()));
+    }
+  }
+  const auto recordPrefixOf = [&](const std::string& name) -> std::string {
+    for (const std::string& prefix : recordPrefixes)
+    {
+      if (name == prefix || startsWith(name, prefix + "_"))
+      {
+        return prefix;
+      }
+    }
+    return {};
+  };
+  const auto isStride = [&](const std::string& name) {
+    return endsWith(name, "_VEC4") && std::find(recordPrefixes.begin(), recordPrefixes.end(),
+      name.substr(0, name.size() - std::string("_VEC4").size())) != recordPrefixes.end();
+  };
+  std::vector<std::string> ownNames;
+  for (const auto& [name, value] : constants)
+  {
+    ownNames.push_back(name);
+  }
+  ownNames.insert(ownNames.end(), shader.bodyDefinitions.begin(), shader.bodyDefinitions.end());
+  for (const std::string& name : ownNames)
+  {
+    const std::string prefix = recordPrefixOf(name);
+    if (!prefix.empty() && !generated.count(name))
+    {
+      violations.push_back("declares " + name + ", a copy of the layout of record " + prefix +
+        " (use its generated " + prefix + "_VEC4 and " + prefix + "_<FIELD>)");
+    }
+  }
+  // The closing bracket or parenthesis matching the one at `open`.
+  const auto closing = [&](std::size_t open) {
+    const std::string opener = tokens[open].text;
+    const std::string closer = opener == "[" ? "]" : ")";
+    int depth = 0;
+    for (std::size_t k = open; k < tokens.size(); ++k)
+    {
+      depth += tokens[k].text == opener ? 1 : tokens[k].text == closer ? -1 : 0;
+      if (depth == 0)
+      {
+        return k;
+      }
+    }
+    return tokens.size();
+  };
+  std::set<std::string> recordArrays;
+  for (std::size_t i = 0; i + 1 < tokens.size(); ++i)
+  {
+    if (tokens[i].kind == Token::Identifier && tokens[i + 1].text == "[")
+    {
+      const std::size_t end = closing(i + 1);
+      for (std::size_t k = i + 2; k < end; ++k)
+      {
+        if (isStride(tokens[k].text))
+        {
+          recordArrays.insert(tokens[i].text);
+        }
+      }
+    }
+  }
+  // Accessors: functions (`type name(...) {`) whose body subscripts a record array.
+  std::set<std::string> accessors;
+  std::set<std::size_t> accessorDefinitions; // token index of each accessor's name in its definition
+  for (std::size_t i = 0; i + 2 < tokens.size(); ++i)
+  {
+    static const std::set<std::string> notFunctions = { "if", "while", "for", "switch", "return", "else" };
+    if (tokens[i].kind != Token::Identifier || tokens[i + 1].kind != Token::Identifier || tokens[i + 2].text != "(" ||
+      notFunctions.count(tokens[i].text) || notFunctions.count(tokens[i + 1].text))
+    {
+      continue;
+    }
+    const std::size_t parameters = closing(i + 2);
+    if (parameters + 1 >= tokens.size() || tokens[parameters + 1].text != "{")
+    {
+      continue;
+    }
+    int depth = 0;
+    for (std::size_t k = parameters + 1; k < tokens.size(); ++k)
+    {
+      depth += tokens[k].text == "{" ? 1 : tokens[k].text == "}" ? -1 : 0;
+      if (depth == 0)
+      {
+        break;
+      }
+      if (recordArrays.count(tokens[k].text) && k + 1 < tokens.size() && tokens[k + 1].text == "[")
+      {
+        accessors.insert(tokens[i + 1].text);
+        accessorDefinitions.insert(i + 1);
+      }
+    }
+  }
+  for (std::size_t i = 0; i + 1 < tokens.size(); ++i)
+  {
+    const bool subscript = recordArrays.count(tokens[i].text) && tokens[i + 1].text == "[";
+    const bool call = accessors.count(tokens[i].text) && tokens[i + 1].text == "(" && !accessorDefinitions.count(i);
+    if (!subscript && !call)
+    {
+      continue;
+    }
+    const std::size_t end = closing(i + 1);
+    if (subscript && end == i + 2)
+    {
+      continue; // the declaration of a runtime-sized array, `vec4 wedgeData[];`
+    }
+    std::string text;
+    bool namesStride = false;
+    std::string literal;
+    for (std::size_t k = i + 2; k < end; ++k)
+    {
+      text += (text.empty() ? "" : " ") + tokens[k].text;
+      namesStride = namesStride || isStride(tokens[k].text);
+      if (tokens[k].kind == Token::Number && literal.empty())
+      {
+        literal = tokens[k].text;
+      }
+    }
+    const std::string access = tokens[i].text + (subscript ? "[" : "(") + text + (subscript ? "]" : ")");
+    if (!literal.empty())
+    {
+      violations.push_back("reads a record as " + access + " with the literal " + literal +
+        ": a hand-copied stride or offset (use the record's generated names)");
+    }
+    else if (subscript && !namesStride)
+    {
+      violations.push_back("reads a record as " + access + " without its generated stride (<RECORD>_VEC4)");
+    }
+  }
+
   // 2. Names used: outputs and category codes the descriptor declares; every upper-case name defined somewhere.
   std::set<std::string> reported;
   for (const Token& token : tokens)
@@ -771,6 +931,10 @@ std::vector<std::string> contractViolations(
     }
   }
 
+  if (!checkOutputs)
+  {
+    return violations;
+  }
   // 3. Every output bound to a variable, and that variable written (assigned, or image-stored).
   std::map<std::string, OutputBinding> bindings; // OUT_X -> variable
   for (std::size_t i = 0; i < tokens.size(); ++i)
@@ -877,7 +1041,9 @@ TechniqueDescriptor syntheticDescriptor()
     { "classification", "", "a categorical buffer", BufferKind::Categorical, { "not tested", "lit", "over the loop budget" },
       SubLightCombine::First, { "NOT_TESTED", "LIT", "OVER_BUDGET" } },
   };
-  descriptor.shaderConstants = { { "LOOP_BUDGET", 60000, "iterations past which a pixel is flagged" } };
+  descriptor.shaderConstants = { { "LOOP_BUDGET", 60000, "iterations past which a pixel is flagged" },
+    { "SAMPLE_RECORD_VEC4", 3, "vec4s per record (a synthetic record)" },
+    { "SAMPLE_RECORD_CENTRE", 1, "a record's centre" } };
   return descriptor;
 }
 
@@ -885,10 +1051,19 @@ const char* const syntheticShader = R"(
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
 layout(location = OUT_CLASSIFICATION) out float outClassification;
+layout(std430, binding = 0) readonly buffer Records
+{
+  vec4 recordData[];
+};
+vec4 recordVec4(int record, int field)
+{
+  return recordData[SAMPLE_RECORD_VEC4 * record + field];
+}
 void main()
 {
   int iterations = int(gl_FragCoord.x);
   outVisibility = 1.0;
+  outVisibility *= recordVec4(iterations, SAMPLE_RECORD_CENTRE).x;
   outKernelTexels = 0.0;
 #if FILTER == FILTER_TENT
   outKernelTexels = 2.0;
@@ -1020,6 +1195,39 @@ TEST(ShaderContract, HandCopiedNumbersFail)
   }
 }
 
+TEST(ShaderContract, HandCopiedRecordLayoutsFail)
+{
+  // The record read at a literal offset, directly or through its accessor.
+  const std::string direct =
+    replaced(syntheticShader, "recordVec4(iterations, SAMPLE_RECORD_CENTRE)", "recordData[3 * iterations + 1]");
+  for (const std::vector<std::string>& violations : syntheticViolations(direct))
+  {
+    EXPECT_TRUE(mentions(violations, "reads a record as recordData[3 * iterations + 1] with the literal 3")) << joined(violations);
+  }
+  const std::string unnamed = replaced(syntheticShader, "recordVec4(iterations, SAMPLE_RECORD_CENTRE)", "recordData[iterations]");
+  for (const std::vector<std::string>& violations : syntheticViolations(unnamed))
+  {
+    EXPECT_TRUE(mentions(violations, "reads a record as recordData[iterations] without its generated stride")) << joined(violations);
+  }
+  const std::string accessor = replaced(syntheticShader, "recordVec4(iterations, SAMPLE_RECORD_CENTRE)", "recordVec4(iterations, 1)");
+  for (const std::vector<std::string>& violations : syntheticViolations(accessor))
+  {
+    EXPECT_TRUE(mentions(violations, "reads a record as recordVec4(iterations , 1) with the literal 1")) << joined(violations);
+  }
+  // The stride or an offset kept under a name of the shader's own (the old `const int STSV_RECORD = 11;`).
+  const std::string stride = replaced(replaced(syntheticShader, "void main()", "const int SAMPLE_RECORD = 3;\nvoid main()"),
+    "SAMPLE_RECORD_VEC4 * record", "SAMPLE_RECORD * record");
+  for (const std::vector<std::string>& violations : syntheticViolations(stride))
+  {
+    EXPECT_TRUE(mentions(violations, "declares SAMPLE_RECORD, a copy of the layout of record SAMPLE_RECORD")) << joined(violations);
+  }
+  const std::string offset = replaced(syntheticShader, "void main()", "#define SAMPLE_RECORD_RADIUS 2\nvoid main()");
+  for (const std::vector<std::string>& violations : syntheticViolations(offset))
+  {
+    EXPECT_TRUE(mentions(violations, "declares SAMPLE_RECORD_RADIUS, a copy of the layout of record SAMPLE_RECORD")) << joined(violations);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Every registered technique.
 
@@ -1137,6 +1345,24 @@ TEST_P(ShaderContractOf, EveryVariantOfTheTechniqueShaderKeepsItsDescriptorsCont
         ADD_FAILURE() << label << ":" << joined(violations);
       }
     }
+    // The pass's other shaders (wedges, STSVs), with the same preamble and their own flags.
+    for (const PreambleAccess::PassShader& shader : PreambleAccess::passShaders(*pass))
+    {
+      ShaderDefines defines = PreambleAccess::defines(*pass);
+      std::string label = descriptor.name + " " + shader.path;
+      for (const std::string& flag : shader.flags)
+      {
+        defines.push_back({ flag, "" });
+        label += " #define " + flag;
+      }
+      const std::string source = assembleShader(shader.path, defines, PreambleAccess::declarations(*pass));
+      const std::vector<std::string> violations = contractViolations(descriptor, defines, source, false);
+      ++programs;
+      if (!violations.empty() && ++failing <= 3)
+      {
+        ADD_FAILURE() << label << ":" << joined(violations);
+      }
+    }
   }
   EXPECT_EQ(failing, 0) << descriptor.name << ": " << failing << " of " << programs << " programs break the contract";
   std::cout << "[ measured ] " << descriptor.name << ": " << programs << " programs checked\n";
@@ -1158,6 +1384,132 @@ INSTANTIATE_TEST_SUITE_P(EveryTechnique, ShaderContractOf, testing::ValuesIn(reg
     std::replace(name.begin(), name.end(), '-', '_');
     return name;
   });
+
+// ---------------------------------------------------------------------------------------------------------------
+// The records and codes C++ shares with the object-space and structure shaders, each declared once.
+
+// The preamble of dcs's pass for a frame with `samples` light samples, and the pass (it must outlive its frame use).
+struct DcsPreamble
+{
+  TechniqueDescriptor descriptor = findTechnique("dcs");
+  FrameResources frame;
+  vtkSmartPointer<vtkSLTechniquePass> pass = descriptor.createPass();
+  explicit DcsPreamble(int samples)
+  {
+    frame.technique = &descriptor;
+    frame.parameters = descriptor.defaultParameters();
+    frame.parameters.set("samples=" + std::to_string(samples));
+    pass->SetFrame(&frame);
+  }
+  ShaderDefines defines() const { return PreambleAccess::defines(*pass); }
+  std::map<std::string, std::string> values() const
+  {
+    const ShaderDefines all = defines();
+    return { all.begin(), all.end() };
+  }
+  std::string assembled(const std::string& path, const std::vector<std::string>& flags = {}) const
+  {
+    ShaderDefines all = defines();
+    for (const std::string& flag : flags)
+    {
+      all.push_back({ flag, "" });
+    }
+    return assembleShader(path, all, PreambleAccess::declarations(*pass));
+  }
+};
+
+// `text` with `line` inserted after the generated preamble (before the shader file's first line).
+std::string afterPreamble(const std::string& text, const std::string& line)
+{
+  const std::size_t at = text.find("// file ");
+  EXPECT_NE(at, std::string::npos);
+  return text.substr(0, at) + line + "\n" + text.substr(at);
+}
+
+TEST(ShaderContract, DcsCounterLayersComeFromTheFramesSampleCount)
+{
+  for (const int samples : { 16, 64, 256 })
+  {
+    const DcsCounterLayers layers(samples);
+    const std::map<std::string, std::string> defined = DcsPreamble(samples).values();
+    EXPECT_EQ(defined.at("DCS_SAMPLE_COUNTER_LAYERS"), std::to_string(samples / 4)) << samples;
+    EXPECT_EQ(defined.at("DCS_CHECKSUM_LAYER"), std::to_string(layers.checksum())) << samples;
+    EXPECT_EQ(defined.at("DCS_WEIGHTED_CHECKSUM_LAYER"), std::to_string(layers.checksum() + 1)) << samples;
+    EXPECT_EQ(defined.at("DCS_COVERING_LAYER"), std::to_string(layers.checksum() + 2)) << samples;
+    EXPECT_EQ(defined.at("DCS_COUNTER_LAYERS"), std::to_string(samples / 4 + 3)) << samples;
+    EXPECT_EQ(defined.at("DCS_COUNTERS_PER_LAYER"), "4");
+    EXPECT_EQ(defined.at("DCS_COUNTER_BITS"), "8");
+    EXPECT_EQ(DcsCounterLayers::replicated(kDcsCounterBias), 0x80808080u);
+  }
+}
+
+TEST(ShaderContract, RecordLayoutsComeFromTheirCppDeclarations)
+{
+  for (const char* technique : { "dcs", "penumbra-wedge" })
+  {
+    const TechniqueDescriptor& descriptor = findTechnique(technique);
+    std::map<std::string, int> constants;
+    for (const ShaderConstant& constant : descriptor.shaderConstants)
+    {
+      constants[constant.name] = constant.value;
+    }
+    EXPECT_EQ(constants.at("WEDGE_RECORD_VEC4"), 4) << technique;
+    EXPECT_EQ(constants.at("WEDGE_RECORD_OPPOSITE"), 2) << technique;
+    EXPECT_EQ(constants.at("STSV_RECORD_VEC4"), 11) << technique;
+    EXPECT_EQ(constants.at("STSV_RECORD_TEXTURE_ROW1"), 10) << technique;
+  }
+}
+
+TEST(ShaderContract, TheObjectSpaceShadersFailWithTheirOldHandCopies)
+{
+  const DcsPreamble preamble(16);
+  const TechniqueDescriptor& descriptor = preamble.descriptor;
+  const ShaderDefines defines = preamble.defines();
+  const std::string wedges = preamble.assembled("dcs/DcsWedgeUpdate.glsl");
+  ASSERT_TRUE(contractViolations(descriptor, defines, wedges, false).empty())
+    << joined(contractViolations(descriptor, defines, wedges, false));
+  // The counter layers as DcsSampleCounters.glsl defined them.
+  const std::vector<std::string> layer = contractViolations(
+    descriptor, defines, afterPreamble(wedges, "#define DCS_CHECKSUM_LAYER (lightSampleCount / 4)"), false);
+  EXPECT_TRUE(mentions(layer, "#defines DCS_CHECKSUM_LAYER, which the descriptor generates")) << joined(layer);
+  // The wedge record read as the shader read it.
+  const std::vector<std::string> wedge = contractViolations(descriptor, defines,
+    replaced(wedges, "wedgeRecordVec4(wedgeIndex, WEDGE_RECORD_V1)", "wedgeData[4 * wedgeIndex + 1]"), false);
+  EXPECT_TRUE(mentions(wedge, "reads a record as wedgeData[4 * wedgeIndex + 1] with the literal 4")) << joined(wedge);
+  // The STSV record's stride as StsvSamples.glsl kept it.
+  const std::string stsv = preamble.assembled("stsv/StsvSamples.glsl", { "STSV_DCS_COUNTERS" });
+  ASSERT_TRUE(contractViolations(descriptor, defines, stsv, false).empty());
+  const std::vector<std::string> stride = contractViolations(descriptor, defines,
+    replaced(replaced(stsv, "StsvRecord readStsvRecord", "const int STSV_RECORD = 11;\nStsvRecord readStsvRecord"),
+      "wedgeData[STSV_RECORD_VEC4 * index + field]", "wedgeData[STSV_RECORD * index + field]"),
+    false);
+  EXPECT_TRUE(mentions(stride, "declares STSV_RECORD, a copy of the layout of record STSV_RECORD")) << joined(stride);
+  // The counter packing written out.
+  const std::vector<std::string> packing = contractViolations(descriptor, defines,
+    afterPreamble(stsv, "const int DCS_COUNTER_BITS = 8;"), false);
+  EXPECT_TRUE(mentions(packing, "declares const DCS_COUNTER_BITS, which the descriptor generates")) << joined(packing);
+}
+
+TEST(ShaderContract, TheMicrorectBuildUsesTheClaimCodesOfItsCppTwin)
+{
+  EXPECT_EQ(MicrorectClaims::kB | MicrorectClaims::kD | MicrorectClaims::kE, 7); // distinct bits
+  const TechniqueDescriptor none;
+  for (const int pass : { 1, 2 })
+  {
+    const ShaderDefines defines = microrectBuildDefines(pass);
+    const std::map<std::string, std::string> defined(defines.begin(), defines.end());
+    EXPECT_EQ(defined.at("CLAIMED_B"), std::to_string(MicrorectClaims::kB));
+    EXPECT_EQ(defined.at("CLAIMED_D"), std::to_string(MicrorectClaims::kD));
+    EXPECT_EQ(defined.at("CLAIMED_E"), std::to_string(MicrorectClaims::kE));
+    const std::string source = assembleShader("microrect/MicrorectBuild.glsl", defines);
+    const std::vector<std::string> violations = contractViolations(none, defines, source, false);
+    EXPECT_TRUE(violations.empty()) << "pass " << pass << joined(violations);
+    // The codes as the shader kept them.
+    const std::vector<std::string> copied =
+      contractViolations(none, defines, afterPreamble(source, "const uint CLAIMED_B = 1u;"), false);
+    EXPECT_TRUE(mentions(copied, "declares const CLAIMED_B, which the descriptor generates")) << joined(copied);
+  }
+}
 
 } // namespace
 } // namespace sl

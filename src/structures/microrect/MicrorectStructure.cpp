@@ -50,6 +50,25 @@ std::vector<NamedImage> exportMicrorects(const FrameResources& frame)
 
 } // namespace
 
+std::vector<ShaderConstant> microrectBuildShaderConstants()
+{
+  return {
+    { "CLAIMED_B", MicrorectClaims::kB, "pass 1 absorbed B (Microrects.h MicrorectClaims)" },
+    { "CLAIMED_D", MicrorectClaims::kD, "pass 1 absorbed D (Microrects.h MicrorectClaims)" },
+    { "CLAIMED_E", MicrorectClaims::kE, "pass 1 absorbed E (Microrects.h MicrorectClaims)" },
+  };
+}
+
+ShaderDefines microrectBuildDefines(int pass)
+{
+  ShaderDefines defines = { { "MICRORECT_BUILD_PASS", std::to_string(pass) } };
+  for (const ShaderConstant& constant : microrectBuildShaderConstants())
+  {
+    defines.emplace_back(constant.name, std::to_string(constant.value));
+  }
+  return defines;
+}
+
 const LightSpaceStructure& microrectStructure()
 {
   static const LightSpaceStructure structure = [] {

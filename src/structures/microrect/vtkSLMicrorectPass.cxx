@@ -73,9 +73,9 @@ void vtkSLMicrorectPass::Execute(const vtkRenderState* state)
   if (!this->FirstPass)
   {
     this->FirstPass = std::make_unique<sl::ComputeProgram>(
-      sl::assembleShader("microrect/MicrorectBuild.glsl", { { "MICRORECT_BUILD_PASS", "1" } }), "microrects, pass 1");
+      sl::assembleShader("microrect/MicrorectBuild.glsl", sl::microrectBuildDefines(1)), "microrects, pass 1");
     this->SecondPass = std::make_unique<sl::ComputeProgram>(
-      sl::assembleShader("microrect/MicrorectBuild.glsl", { { "MICRORECT_BUILD_PASS", "2" } }), "microrects, pass 2");
+      sl::assembleShader("microrect/MicrorectBuild.glsl", sl::microrectBuildDefines(2)), "microrects, pass 2");
   }
 
   glBindImageTexture(0, this->ExtentTexture->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16UI);

@@ -26,6 +26,28 @@ const Category<DcsCounterStatus> dcsCounterCategories[] = {
 
 } // namespace
 
+std::uint32_t DcsCounterLayers::replicated(int value)
+{
+  std::uint32_t word = 0;
+  for (int counter = 0; counter < kCountersPerLayer; ++counter)
+  {
+    word |= (static_cast<std::uint32_t>(value) & kCounterMask) << (kCounterBits * counter);
+  }
+  return word;
+}
+
+std::vector<ShaderConstant> dcsCounterLayerShaderConstants(int sampleCount)
+{
+  const DcsCounterLayers layers(sampleCount);
+  return {
+    { "DCS_SAMPLE_COUNTER_LAYERS", layers.sampleCounterLayers, "layers of packed sample counters (DcsCounterLayers)" },
+    { "DCS_CHECKSUM_LAYER", layers.checksum(), "the layer of the sum of changes (DcsCounterLayers)" },
+    { "DCS_WEIGHTED_CHECKSUM_LAYER", layers.weightedChecksum(), "the layer of the index-weighted sum (DcsCounterLayers)" },
+    { "DCS_COVERING_LAYER", layers.covering(), "the layer of the wedges containing the point (DcsCounterLayers)" },
+    { "DCS_COUNTER_LAYERS", layers.total(), "all layers of the counters (DcsCounterLayers)" },
+  };
+}
+
 TechniqueDescriptor dcsTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -72,10 +94,13 @@ TechniqueDescriptor dcsTechnique()
   descriptor.buffers.push_back(mask);
   descriptor.buffers.push_back(counts);
   descriptor.supportedLights = { LightType::Area, LightType::Point };
-  descriptor.shaderConstants = {
+  descriptor.shaderConstants = wedgePassShaderConstants();
+  descriptor.shaderConstants.insert(descriptor.shaderConstants.end(), {
     { "DCS_COUNTER_BIAS", kDcsCounterBias, "the 8-bit counters' bias (DcsTechnique.h)" },
-    { "DCS_MAX_OUTLINE_CORNERS", kDcsMaxOutlineCorners, "corners of a light's outline (DcsGeometry.h lightOutline)" },
-  };
+    { "DCS_COUNTERS_PER_LAYER", DcsCounterLayers::kCountersPerLayer, "counters per 32-bit word (DcsCounterLayers)" },
+    { "DCS_COUNTER_BITS", DcsCounterLayers::kCounterBits, "bits per counter (DcsCounterLayers)" },
+    { "DCS_COUNTER_MASK", DcsCounterLayers::kCounterMask, "one counter's bits (DcsCounterLayers)" },
+  });
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLDcsPass>::New()); };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeDcs(*context.frame, *context.scene, context.lightIndex, pixel, recorder);

@@ -23,12 +23,44 @@
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace sl
 {
 
 // The bias of the 8-bit counters (shaders/dcs/DcsSampleCounters.glsl): a counter holds the change relative to the
 // light's centre plus this.
 constexpr int kDcsCounterBias = 128;
+
+// The layers of the per-pixel light-sample counters (an R32UI 2-D array; shaders/dcs/DcsSampleCounters.glsl),
+// declared once: the pass allocates, clears and reads them back with these, and its preamble defines them for the
+// shaders (dcsCounterLayerShaderConstants: DCS_SAMPLE_COUNTER_LAYERS, DCS_CHECKSUM_LAYER, ..., DCS_COUNTER_LAYERS;
+// DCS_COUNTERS_PER_LAYER, DCS_COUNTER_BITS and DCS_COUNTER_MASK are the descriptor's constants). Layers
+// 0 .. sampleCounterLayers - 1 hold kCountersPerLayer counters of kCounterBits each (sample i in layer
+// i / kCountersPerLayer, bits kCounterBits (i % kCountersPerLayer) ..); then the two checksums of the range check
+// and the number of wedges that contain the pixel's point.
+struct DcsCounterLayers
+{
+  static constexpr int kCountersPerLayer = 4;
+  static constexpr int kCounterBits = 8;
+  static constexpr int kCounterMask = (1 << kCounterBits) - 1;
+  explicit DcsCounterLayers(int sampleCount)
+    : sampleCounterLayers(sampleCount / kCountersPerLayer)
+  {
+  }
+  int sampleCounterLayers;
+  int checksum() const { return sampleCounterLayers; }
+  int weightedChecksum() const { return sampleCounterLayers + 1; }
+  int covering() const { return sampleCounterLayers + 2; }
+  int total() const { return covering() + 1; }
+  // A word whose every counter holds `value`.
+  static std::uint32_t replicated(int value);
+};
+static_assert(DcsCounterLayers::kCountersPerLayer * DcsCounterLayers::kCounterBits == 32, "counters fill a 32-bit word");
+
+// The layer indices of a frame with `sampleCount` light samples, for its shaders' preamble.
+std::vector<ShaderConstant> dcsCounterLayerShaderConstants(int sampleCount);
 
 // counter_status codes.
 enum class DcsCounterStatus

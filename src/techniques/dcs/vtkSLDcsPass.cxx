@@ -33,6 +33,31 @@ int vtkSLDcsPass::SampleCount() const
   return std::stoi(this->Frame->parameters.choice("samples"));
 }
 
+namespace
+{
+
+const char* const kWedgeVertexShader = "dcs/DcsWedgeVertex.glsl";
+const char* const kWedgeShader = "dcs/DcsWedgeUpdate.glsl";
+const char* const kStsvShader = "stsv/StsvSamples.glsl";
+const char* const kStsvCountersFlag = "STSV_DCS_COUNTERS";
+
+} // namespace
+
+sl::ShaderDefines vtkSLDcsPass::GetExtraDefines() const
+{
+  sl::ShaderDefines defines;
+  for (const sl::ShaderConstant& constant : sl::dcsCounterLayerShaderConstants(this->SampleCount()))
+  {
+    defines.emplace_back(constant.name, std::to_string(constant.value));
+  }
+  return defines;
+}
+
+std::vector<vtkSLTechniquePass::PassShader> vtkSLDcsPass::GetPassShaders() const
+{
+  return { { kWedgeShader, {} }, { kStsvShader, { kStsvCountersFlag } } };
+}
+
 void vtkSLDcsPass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
@@ -45,14 +70,15 @@ void vtkSLDcsPass::Execute(const vtkRenderState* state)
 
   // Step 2: the wedges, built on the CPU, drawn into the sample counters.
   const int samples = this->SampleCount();
-  this->Counters.allocate(frame.width(), frame.height(), samples / 4 + 3);
+  const sl::DcsCounterLayers layers(samples);
+  this->Counters.allocate(frame.width(), frame.height(), layers.total());
   this->Mask.allocate(frame.width(), frame.height(), (samples + 31) / 32);
-  const GLuint bias = 0x01010101u * static_cast<GLuint>(sl::kDcsCounterBias);
+  const GLuint bias = sl::DcsCounterLayers::replicated(sl::kDcsCounterBias);
   const GLuint zero = 0u;
-  glClearTexSubImage(this->Counters.handle, 0, 0, 0, 0, frame.width(), frame.height(), samples / 4, GL_RED_INTEGER,
-    GL_UNSIGNED_INT, &bias);
-  glClearTexSubImage(this->Counters.handle, 0, 0, 0, samples / 4, frame.width(), frame.height(), 3, GL_RED_INTEGER,
-    GL_UNSIGNED_INT, &zero);
+  glClearTexSubImage(this->Counters.handle, 0, 0, 0, 0, frame.width(), frame.height(), layers.sampleCounterLayers,
+    GL_RED_INTEGER, GL_UNSIGNED_INT, &bias);
+  glClearTexSubImage(this->Counters.handle, 0, 0, 0, layers.sampleCounterLayers, frame.width(), frame.height(),
+    layers.total() - layers.sampleCounterLayers, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   this->DrawWedges(window);
   sl::checkGlErrors("dcs (wedges)");
   this->Steps.mark(2);
@@ -79,8 +105,8 @@ void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
 
   const sl::ShaderDefines defines = this->TechniqueDefines();
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
-    sl::assembleShader("dcs/DcsWedgeUpdate.glsl", defines, this->ParameterDeclarations()), "dcs wedges");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
+    sl::assembleShader(kWedgeShader, defines, this->ParameterDeclarations()), "dcs wedges");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
@@ -135,9 +161,9 @@ void vtkSLDcsPass::DrawStsvs(vtkOpenGLRenderWindow* window)
   const sl::FrameResources& frame = *this->Frame;
   this->Stsvs.prepare(frame);
   sl::ShaderDefines defines = this->TechniqueDefines();
-  defines.emplace_back("STSV_DCS_COUNTERS", "");
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
-    sl::assembleShader("stsv/StsvSamples.glsl", defines, this->ParameterDeclarations()), "dcs STSVs");
+  defines.emplace_back(kStsvCountersFlag, "");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
+    sl::assembleShader(kStsvShader, defines, this->ParameterDeclarations()), "dcs STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);
@@ -223,8 +249,10 @@ std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
     {
       for (int index = 0; index < samples; ++index)
       {
-        const std::uint32_t word = counterWords[static_cast<std::size_t>(index / 4) * pixels + pixel];
-        const int change = static_cast<int>((word >> (8 * (index % 4))) & 0xFFu) - sl::kDcsCounterBias;
+        constexpr int kPerLayer = sl::DcsCounterLayers::kCountersPerLayer;
+        const std::uint32_t word = counterWords[static_cast<std::size_t>(index / kPerLayer) * pixels + pixel];
+        const int field = sl::DcsCounterLayers::kCounterBits * (index % kPerLayer);
+        const int change = static_cast<int>((word >> field) & sl::DcsCounterLayers::kCounterMask) - sl::kDcsCounterBias;
         counts.data[pixel * samples + index] = centre.data[pixel] + static_cast<float>(change);
       }
     }

@@ -10,14 +10,15 @@
 //  3. resolve: the base class's full-screen shader (shaders/dcs/DcsResolve.glsl) decodes the counters, checks their
 //     range, and writes visibility and the instrumentation buffers, and the hidden-sample bit mask.
 //
-// Counters. An R32UI 2-D array of N/4 + 3 layers: four 8-bit counters per word biased by 128 (no 8-bit stencil
-// wrap: a counter holds the change relative to the centre, from -128 to +127), then two checksums and the covering
-// count (shaders/dcs/DcsSampleCounters.glsl). Range check: packed words are summed modulo 2^32 in any order, so a
-// word is exact whenever each of its final counters is in range; a counter out of range carries into its neighbour,
-// which changes the decoded sum of changes by a multiple of 255 and the index-weighted sum differently. The resolve
-// compares both with the sums the wedges added unpacked; a pixel that fails is marked counter_status = range
-// exceeded (a cut-short mark: counted in stats.json, never passed off as exact). Memory: W H (N/4 + 3) 4 bytes of
-// counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside Forest et al. 2009's §5.1 formula.
+// Counters (the layout: DcsTechnique.h DcsCounterLayers). An R32UI 2-D array of N/4 + 3 layers: four 8-bit counters per
+// word biased by 128 (no 8-bit stencil wrap: a counter holds the change relative to the centre, from -128 to +127),
+// then two checksums and the covering count (shaders/dcs/DcsSampleCounters.glsl). Range check: packed words are summed
+// modulo 2^32 in any order, so a word is exact whenever each of its final counters is in range; a counter out of range
+// carries into its neighbour, which changes the decoded sum of changes by a multiple of 255 and the index-weighted sum
+// differently. The resolve compares both with the sums the wedges added unpacked; a pixel that fails is marked
+// counter_status = range exceeded (a cut-short mark: counted in stats.json, never passed off as exact). Memory: W H
+// (N/4 + 3) 4 bytes of counters and W H ceil(N/32) 4 bytes of mask, reported as sample_buffer_bytes beside Forest et
+// al. 2009's §5.1 formula.
 #pragma once
 
 #include "objectspace/DcsGeometry.h"
@@ -56,6 +57,9 @@ protected:
   ~vtkSLDcsPass() override;
   void Execute(const vtkRenderState* state) override;
   std::string GetFragmentShaderPath() const override { return "dcs/DcsResolve.glsl"; }
+  // The counter layers of the frame's sample count (dcsCounterLayerShaderConstants).
+  sl::ShaderDefines GetExtraDefines() const override;
+  std::vector<PassShader> GetPassShaders() const override;
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
   void AfterDraw() override;
 

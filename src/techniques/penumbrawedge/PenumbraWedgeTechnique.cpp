@@ -59,9 +59,7 @@ TechniqueDescriptor penumbraWedgeTechnique()
   descriptor.buffers.push_back(mask);
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
-  descriptor.shaderConstants = {
-    { "DCS_MAX_OUTLINE_CORNERS", kDcsMaxOutlineCorners, "corners of a light's outline (DcsGeometry.h lightOutline)" },
-  };
+  descriptor.shaderConstants = wedgePassShaderConstants();
   descriptor.createPass = [] {
     return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPenumbraWedgePass>::New());
   };

@@ -25,6 +25,15 @@
 
 vtkStandardNewMacro(vtkSLPenumbraWedgePass);
 
+namespace
+{
+
+const char* const kWedgeVertexShader = "dcs/DcsWedgeVertex.glsl";
+const char* const kWedgeShader = "penumbrawedge/PenumbraWedgeArea.glsl";
+const char* const kStsvShader = "stsv/StsvSamples.glsl";
+
+} // namespace
+
 vtkSLPenumbraWedgePass::vtkSLPenumbraWedgePass() = default;
 vtkSLPenumbraWedgePass::~vtkSLPenumbraWedgePass() = default;
 
@@ -65,8 +74,8 @@ void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
   this->OcclusionDelta = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   this->WedgesCovering = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   const sl::ShaderDefines defines = this->TechniqueDefines();
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
-    sl::assembleShader("penumbrawedge/PenumbraWedgeArea.glsl", defines, this->ParameterDeclarations()),
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
+    sl::assembleShader(kWedgeShader, defines, this->ParameterDeclarations()),
     "penumbra-wedge wedges");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
@@ -89,6 +98,11 @@ void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
   }
 }
 
+std::vector<vtkSLTechniquePass::PassShader> vtkSLPenumbraWedgePass::GetPassShaders() const
+{
+  return { { kWedgeShader, {} }, { kStsvShader, {} } };
+}
+
 int vtkSLPenumbraWedgePass::SampleCount() const
 {
   return std::stoi(this->Frame->parameters.choice("samples"));
@@ -107,8 +121,8 @@ void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
   this->Stsvs.prepare(frame);
 
   const sl::ShaderDefines defines = this->TechniqueDefines();
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader("dcs/DcsWedgeVertex.glsl", defines),
-    sl::assembleShader("stsv/StsvSamples.glsl", defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
+    sl::assembleShader(kStsvShader, defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);

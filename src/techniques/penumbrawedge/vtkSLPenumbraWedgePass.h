@@ -46,6 +46,7 @@ protected:
   ~vtkSLPenumbraWedgePass() override;
   void Execute(const vtkRenderState* state) override;
   std::string GetFragmentShaderPath() const override { return "penumbrawedge/PenumbraWedgeResolve.glsl"; }
+  std::vector<PassShader> GetPassShaders() const override;
   std::vector<vtkTextureObject*> SetTechniqueUniforms(vtkShaderProgram* program) override;
   void AfterDraw() override;
 
