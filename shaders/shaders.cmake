@@ -1,4 +1,6 @@
-# Every GLSL file embedded into shadowlab, by path under shaders/ (listed explicitly, no glob).
+# The shared GLSL files embedded into shadowlab, by path under shaders/ (listed explicitly, no glob): the code several
+# techniques or structures use. A technique's own shaders are in its folder, src/techniques/<folder>/shaders/, listed
+# in its technique.cmake (cmake/Techniques.cmake).
 set(SL_SHADER_FILES
   common/AlphaMask.glsl
   common/FullScreenVertex.glsl
@@ -28,30 +30,18 @@ set(SL_SHADER_FILES
   lightspace/FocusReduction.glsl
   moments/MomentsFromDepth.glsl
   moments/BoxBlur.glsl
-  hard/HardVisibility.glsl
-  pcf/PcfVisibility.glsl
-  pcss/PcssVisibility.glsl
-  vsm/VsmVisibility.glsl
-  esm/EsmVisibility.glsl
   sat/SatBuild.glsl
   hsm/HsmBuild.glsl
   hsm/YsmMssmBuild.glsl
   multiview/SubLightAccumulate.glsl
-  savsm/SavsmVisibility.glsl
-  vssm/VssmVisibility.glsl
   common/ContourBackprojection.glsl
-  gbp06/Gbp06Visibility.glsl
-  gbp07/Gbp07Visibility.glsl
-  yfgl09/Yfgl09Visibility.glsl
-  ss08/Ss08Search.glsl
-  ss08/Ss08Loq.glsl
-  ss08/Ss08LoqSmoothing.glsl
-  ss08/Ss08Visibility.glsl
   common/ContourKernel.glsl
   shading/ShadingFragment.glsl
-  vtk/VtkVisibilityRatio.glsl
-  referencesm/ReferenceSmAccumulate.glsl
-  referencesm/ReferenceSmResolve.glsl
-  shadowvolume/ShadowVolumeVertex.glsl shadowvolume/ShadowVolumeCount.glsl shadowvolume/ShadowVolumeResolve.glsl shadowvolume/ReceiverOffset.glsl
-  dcs/DcsWedgeVertex.glsl dcs/DcsWedgeCommon.glsl dcs/DcsWedgeUpdate.glsl dcs/DcsResolve.glsl dcs/DcsSampleCounters.glsl
-  penumbrawedge/PenumbraWedgeArea.glsl penumbrawedge/PenumbraWedgeResolve.glsl stsv/StsvSamples.glsl)
+  shadowvolume/ShadowVolumeVertex.glsl
+  shadowvolume/ShadowVolumeCount.glsl
+  shadowvolume/ShadowVolumeResolve.glsl
+  shadowvolume/ReceiverOffset.glsl
+  dcs/DcsWedgeVertex.glsl
+  dcs/DcsWedgeCommon.glsl
+  dcs/DcsSampleCounters.glsl
+  stsv/StsvSamples.glsl)

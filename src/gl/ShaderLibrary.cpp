@@ -61,7 +61,7 @@ const std::string& embeddedShaderText(const std::string& path)
   const auto found = texts.find(path);
   if (found == texts.end())
   {
-    throw GraphicsError(format("shader '", path, "' is not embedded (add it to shaders/shaders.cmake)"));
+    throw GraphicsError(format("shader '", path, "' is not embedded (list it in shaders/shaders.cmake or in its technique's technique.cmake)"));
   }
   return found->second;
 }

@@ -1,8 +1,8 @@
 // The CPU side of technique `dcs` (depth complexity sampling, Forest, Barthe & Paulin 2008 = FBP08, as used by
 // Forest et al. 2009 §3.2), in double precision: which edges draw a wedge, the per-sample
 // update rule each wedge applies, and the screen polygon each wedge is rasterised as. The GLSL of
-// shaders/dcs/DcsWedgeUpdate.glsl computes the same rule in float; tests/unit/DcsTest.cpp checks the rule against
-// direct crossing counts, tests/render/DcsTest.cpp the GPU against Embree.
+// techniques/dcs/shaders/DcsWedgeUpdate.glsl computes the same rule in float; techniques/dcs/tests/DcsRuleTest.cpp
+// checks the rule against direct crossing counts, techniques/dcs/tests/DcsTest.cpp the GPU against Embree.
 //
 // What is counted. The depth complexity of (p, s) is the number of caster triangles the segment [p, s] crosses
 // (two-sided, as Embree's reference counts surfaces). The reference sample is the light's centre c: its count

@@ -1,5 +1,5 @@
 // PCSS's CPU twin (Fernando 2005; double precision), shared by pcss and by savsm, which builds on its blocker search
-// and penumbra estimate. Its GLSL: shaders/pcss/PcssVisibility.glsl.
+// and penumbra estimate. Its GLSL: pcss/shaders/PcssVisibility.glsl.
 #pragma once
 
 #include "techniques/ShadowMapReference.h"

@@ -1,3 +1,7 @@
+# The techniques area: at its root what several techniques share (the pass base classes, CPU twin support, contour
+# back-projection); each technique's own sources come from its folder's technique.cmake (cmake/Techniques.cmake,
+# which also generates the registry's table).
+include(cmake/Techniques.cmake)
 set(SL_TECHNIQUES_SOURCES
   src/techniques/vtkSLTechniquePass.cxx
   src/techniques/Registry.cpp
@@ -14,30 +18,4 @@ set(SL_TECHNIQUES_SOURCES
   src/techniques/ContourReceiver.cpp
   src/techniques/VolumeCountStatus.cpp
   src/techniques/vtkSLShadowVolumePass.cxx
-  src/techniques/hard/HardTechnique.cpp
-  src/techniques/hard/vtkSLHardShadowPass.cxx
-  src/techniques/pcf/PcfTechnique.cpp
-  src/techniques/pcf/vtkSLPcfPass.cxx
-  src/techniques/pcss/PcssTechnique.cpp
-  src/techniques/pcss/vtkSLPcssPass.cxx
-  src/techniques/vsm/VsmTechnique.cpp
-  src/techniques/esm/EsmTechnique.cpp
-  src/techniques/savsm/SavsmTechnique.cpp
-  src/techniques/savsm/vtkSLSavsmPass.cxx
-  src/techniques/vssm/VssmTechnique.cpp
-  src/techniques/vssm/vtkSLVssmPass.cxx
-  src/techniques/gbp06/Gbp06Technique.cpp
-  src/techniques/gbp06/vtkSLGbp06Pass.cxx
-  src/techniques/gbp07/Gbp07Technique.cpp
-  src/techniques/gbp07/vtkSLGbp07Pass.cxx
-  src/techniques/yfgl09/Yfgl09Technique.cpp
-  src/techniques/yfgl09/vtkSLYfgl09Pass.cxx
-  src/techniques/ss08/Ss08Technique.cpp
-  src/techniques/ss08/vtkSLSs08Pass.cxx
-  src/techniques/vtk/VtkTechnique.cpp
-  src/techniques/vtk/vtkSLVtkShadowMapPass.cxx
-  src/techniques/referencesm/ReferenceSmTechnique.cpp
-  src/techniques/referencesm/vtkSLReferenceShadowMapPass.cxx
-  src/techniques/shadowvolume/ShadowVolumeTechnique.cpp
-  src/techniques/dcs/DcsReference.cpp src/techniques/dcs/DcsTechnique.cpp src/techniques/dcs/vtkSLDcsPass.cxx
-  src/techniques/penumbrawedge/PenumbraWedgeGeometry.cpp src/techniques/penumbrawedge/PenumbraWedgeTechnique.cpp src/techniques/penumbrawedge/vtkSLPenumbraWedgePass.cxx)
+  ${SL_TECHNIQUE_SOURCES})

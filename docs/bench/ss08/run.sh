@@ -89,7 +89,8 @@ PY
     # everywhere, one level, no blend) for the four pairings micropatch / microrect x area / bitmask, on the three
     # scenes of issue 17's Fig. 12 test. The same level is coarser next to the occluders on a smaller map (level 3:
     # 32, 64, 128 micro-occluders per axis at 256^2, 512^2, 1024^2), so both levels 2 and 3 at three map sizes;
-    # tests/render/Ss08QualityTest.cpp gates the claim at 256^2 (128^2 images), this shows where it stops holding.
+    # src/techniques/ss08/tests/Ss08QualityTest.cpp gates the claim at 256^2 (128^2 images), this shows where it
+    # stops holding.
     # Timings are not used (--repeat 1).
     "$SL" bench datasets/bunny/scene.json datasets/stacked-occluders/scene.json datasets/near-light/scene.json -t ss08 \
       --sweep force_level=2,3 --sweep shadow_map_size=256,512,1024 --sweep micro_occluder=micropatch,microrect \

@@ -3,11 +3,11 @@
 //  1. volumes: the reference sample's (the light centre's) count, the shadow-volume pass's z-fail count;
 //  2. wedges: one screen polygon per potential-silhouette record (DcsGeometry.h), built on the CPU in double; each
 //     fragment applies the per-sample update rule to its pixel's light-sample counters with image atomics
-//     (shaders/dcs/DcsWedgeUpdate.glsl);
+//     (dcs/shaders/DcsWedgeUpdate.glsl);
 //  2b. STSVs: perforated casters (left out of steps 1 and 2, TechniqueDescriptor::perforatedCastersByStsv) through
 //     their soft textured shadow volumes (objectspace/StsvDrawer.h): each fragment holding its point adds 1 to the counter of
 //     every sample Eq. 1-5 hides (Forest et al. 2009 §3.2, shaders/stsv/StsvSamples.glsl with STSV_DCS_COUNTERS);
-//  3. resolve: the base class's full-screen shader (shaders/dcs/DcsResolve.glsl) decodes the counters, checks their
+//  3. resolve: the base class's full-screen shader (dcs/shaders/DcsResolve.glsl) decodes the counters, checks their
 //     range, and writes visibility and the instrumentation buffers, and the hidden-sample bit mask.
 //
 // Counters (the layout: DcsTechnique.h DcsCounterLayers). An R32UI 2-D array of N/4 + 3 layers: four 8-bit counters per

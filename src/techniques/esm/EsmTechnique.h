@@ -1,5 +1,5 @@
 // Technique `esm`: exponential shadow maps (Annen et al. 2008), prefiltered like vsm. Math:
-// shaders/esm/EsmVisibility.glsl. Parameters: the shadow-map ones and prefilter, prefilter_texels,
+// esm/shaders/EsmVisibility.glsl. Parameters: the shadow-map ones and prefilter, prefilter_texels,
 // esm_exponent (c). Buffers: light_leak (visibility - pcf, at pcf's default bias, over the same
 // box), kernel_texels, depth_bias, bias_gain (exp(c bias_n); pixels at 2 or more are flagged and warned about).
 #pragma once

@@ -20,7 +20,7 @@
 //     shared texel edge back-projected at the neighbour's depth, if that lies further out; the rectangle is
 //     never shrunk (overlaps stay overlaps). Extending both edges also covers the corner between the three
 //     patches. `right_top` is the mirror convention (right and top neighbours): mirroring the scene in light
-//     x and y swaps the two, which tests/render/Gbp06Test.cpp checks. Neighbours are read directly, also
+//     x and y swaps the two, which gbp06/tests/Gbp06Test.cpp checks. Neighbours are read directly, also
 //     outside the searched texels: a texel beyond the ring shares with its ring neighbour an edge beyond the
 //     kernel, whose back-projection at any depth the kernel allows lies outside the light, so the search
 //     region is the same for both conventions.
@@ -31,7 +31,7 @@
 //     texels; both traversals accumulate the same micropatches. With hsm=nbuffers the quadtree's node
 //     (level k, index n) is the N-buffer texel n 2^k of level k (the same range); hsm=ysm walks its mip-map
 //     levels and takes the kernel's ranges from its MSSM part (HierarchicalShadowMap::node / range).
-// Math: shaders/gbp06/Gbp06Visibility.glsl; CPU mirror below (double precision).
+// Math: gbp06/shaders/Gbp06Visibility.glsl; CPU mirror below (double precision).
 // Parameters: the shadow-map ones, receiver_plane_bias, hsm, kernel_refinements (as gbp07), gap_filling
 // (off / left_bottom / right_top), traversal (kernel / hsm).
 // Buffers: kernel_texels, occluding_texels, visited_nodes, classification (not tested / lit / umbra / penumbra /

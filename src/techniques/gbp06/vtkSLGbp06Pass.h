@@ -1,4 +1,4 @@
-// The `gbp06` technique's pass: shaders/gbp06/Gbp06Visibility.glsl with the PCSS-family kernel uniforms and
+// The `gbp06` technique's pass: gbp06/shaders/Gbp06Visibility.glsl with the PCSS-family kernel uniforms and
 // the min-max structure (passes/vtkSLHsmPass, N-buffers by default), which the hsm traversal walks as a quadtree.
 #pragma once
 

@@ -3,7 +3,7 @@
 // the kernel of Eq. 1 (Yang 2009) tightened by the minimum occluder depth from the min-max structure
 // (Schwarz and Stamminger 2007), lit / umbra from the same structure, then every dual cell of the kernel:
 // marching squares, back-projection and radial integration (techniques/backprojection). Square area lights.
-// Math: shaders/gbp07/Gbp07Visibility.glsl; CPU mirror below.
+// Math: gbp07/shaders/Gbp07Visibility.glsl; CPU mirror below.
 // Parameters: the shadow-map ones, receiver_plane_bias, hsm (nbuffers = the MSSM's exact ranges, default;
 // mipmap = a conservative HSM; ysm = the HSM plus an MSSM of its ~256^2 level, SS08 §6), kernel_refinements.
 // Buffers: kernel_texels, contour_edges, visited_cells, classification (not tested / lit / umbra / penumbra /

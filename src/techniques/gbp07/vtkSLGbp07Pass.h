@@ -1,4 +1,4 @@
-// The `gbp07` technique's pass: shaders/gbp07/Gbp07Visibility.glsl with the PCSS-family kernel uniforms and
+// The `gbp07` technique's pass: gbp07/shaders/Gbp07Visibility.glsl with the PCSS-family kernel uniforms and
 // the min-max structure (passes/vtkSLHsmPass, N-buffers = the MSSM by default).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The `hard` technique's visibility pass: the full-screen shader shaders/hard/HardVisibility.glsl.
+// The `hard` technique's visibility pass: the full-screen shader hard/shaders/HardVisibility.glsl.
 #pragma once
 
 #include "techniques/vtkSLTechniquePass.h"

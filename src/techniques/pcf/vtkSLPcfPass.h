@@ -1,4 +1,4 @@
-// The `pcf` technique's visibility pass: shaders/pcf/PcfVisibility.glsl, plus the Poisson disk and, for
+// The `pcf` technique's visibility pass: pcf/shaders/PcfVisibility.glsl, plus the Poisson disk and, for
 // filter = hardware_bilinear, a comparison sampler (GL_LINEAR, GL_COMPARE_REF_TO_TEXTURE, LEQUAL) bound
 // over the shadow map's hardware depth.
 #pragma once

@@ -1,5 +1,5 @@
 // Technique `pcss`: percentage-closer soft shadows (Fernando 2005), the brute-force baseline the VSSM
-// paper (Yang et al. 2010) compares against. Steps and kernels: shaders/pcss/PcssVisibility.glsl.
+// paper (Yang et al. 2010) compares against. Steps and kernels: pcss/shaders/PcssVisibility.glsl.
 //
 // Parameters: the shadow-map ones (ShadowMapParameters.h) and
 //   blocker_search   grid (every texel of w_i, the default) | poisson

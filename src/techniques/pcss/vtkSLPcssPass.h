@@ -1,4 +1,4 @@
-// The `pcss` technique's pass: shaders/pcss/PcssVisibility.glsl with the light size, the blocker-search
+// The `pcss` technique's pass: pcss/shaders/PcssVisibility.glsl with the light size, the blocker-search
 // plane (the fitted near depth), the texel size in tangent units and the Poisson disk.
 #pragma once
 

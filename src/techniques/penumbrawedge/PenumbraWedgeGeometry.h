@@ -1,6 +1,6 @@
 // The CPU side of technique `penumbra-wedge` (Akenine-Moller & Assarsson 2002, Assarsson & Akenine-Moller 2003 =
 // AAM03, as Forest et al. 2009 §3.1 uses it), in double precision: what one penumbra wedge adds to a point's
-// occlusion, and the twin of a whole pixel. shaders/penumbrawedge/PenumbraWedgeArea.glsl computes the same in float.
+// occlusion, and the twin of a whole pixel. penumbrawedge/shaders/PenumbraWedgeArea.glsl computes the same in float.
 //
 // The radial reading. The light's centre c has a hard-shadow status (the shadow volumes' count, technique
 // `shadow-volume`). A light point s differs from c only if the segment c -> s on the light crosses the projection of

@@ -1,7 +1,7 @@
 // The `penumbra-wedge` technique's pass (PenumbraWedgeTechnique.h), on the object-space seam of `shadow-volume`:
 //  1. volumes: the light centre's count, the shadow-volume pass's z-fail count (the hard shadow from the centre);
 //  2. wedges: one screen polygon per centre-silhouette wedge (DcsGeometry.h, drawn by WedgeDrawer); each fragment
-//     adds the wedge's signed share of the light (shaders/penumbrawedge/PenumbraWedgeArea.glsl) to an R32F occlusion
+//     adds the wedge's signed share of the light (penumbrawedge/shaders/PenumbraWedgeArea.glsl) to an R32F occlusion
 //     target and 1 to a covering count, by additive blending;
 //  3. STSVs: for every perforated triangle its one or two soft textured shadow volumes (objectspace/StsvGeometry.h, built on
 //     the CPU in double), drawn as the screen polygon of their closed mesh (the whole viewport when the mesh is

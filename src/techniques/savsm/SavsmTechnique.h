@@ -1,6 +1,6 @@
 // Technique `savsm`: SAT-based variance soft shadow mapping (Lauritzen 2007, GPU Gems 3 ch. 8), the
 // baseline of the VSSM paper: PCSS's blocker search and penumbra kernel, then the kernel's moments from a
-// summed-area table and the Chebyshev bound. Math: shaders/savsm/SavsmVisibility.glsl.
+// summed-area table and the Chebyshev bound. Math: savsm/shaders/SavsmVisibility.glsl.
 // Parameters: the shadow-map ones (the bias applies to the blocker search; Chebyshev compares the receiver's
 // own depth), the PCSS-family ones (SoftShadowSupport.h),
 // sat_precision (float_centred | int32, survey §6.4), light_bleeding_reduction, min_variance.

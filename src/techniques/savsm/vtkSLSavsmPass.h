@@ -1,4 +1,4 @@
-// The `savsm` technique's pass: shaders/savsm/SavsmVisibility.glsl with the PCSS-family uniforms and the
+// The `savsm` technique's pass: savsm/shaders/SavsmVisibility.glsl with the PCSS-family uniforms and the
 // summed-area table (passes/vtkSLSatPass).
 #pragma once
 

@@ -5,7 +5,7 @@
 // and table as printed in the paper (docs/bibliography.md).
 //
 // Pipeline (Fig. 3), four full-screen passes (vtkSLSs08Pass):
-//  1. search (shaders/ss08/Ss08Search.glsl): per pixel the budget b_mo(x, y) (§4.2; `budget_map`), the
+//  1. search (ss08/shaders/Ss08Search.glsl): per pixel the budget b_mo(x, y) (§4.2; `budget_map`), the
 //     search area of Fig. 2 b refined `kernel_refinements` times (§3) with each depth-range query grown to
 //     the whole support of the level-j micro-occluders it partly covers (§6, Fig. 7; `growth`), lit /
 //     umbra from that range (§3), and the fractional level l, written to the LOQ map. The rule for l is

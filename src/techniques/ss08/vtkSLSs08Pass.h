@@ -1,5 +1,5 @@
 // The `ss08` technique's pass (techniques/ss08/Ss08Technique.h): four full-screen draws, Fig. 3 of Schwarz and
-// Stamminger 2008: the search and raw LOQ map (shaders/ss08/Ss08Loq.glsl), the LOQ map's separable smoothing in
+// Stamminger 2008: the search and raw LOQ map (ss08/shaders/Ss08Loq.glsl), the LOQ map's separable smoothing in
 // x then y (Ss08LoqSmoothing.glsl), and the blended back-projection (Ss08Visibility.glsl), whose first eight
 // outputs are fragment outputs and the rest image stores. Structures (the min-max pyramid, the microrects) are
 // bound by their structures (lightspace/).

@@ -1,5 +1,5 @@
 // Technique `vsm`: variance shadow maps (Donnelly & Lauritzen 2006), prefiltered by a box blur or by
-// mip-mapping, with light-bleeding reduction (Lauritzen 2007). Math: shaders/vsm/VsmVisibility.glsl.
+// mip-mapping, with light-bleeding reduction (Lauritzen 2007). Math: vsm/shaders/VsmVisibility.glsl.
 // Parameters: the shadow-map ones and prefilter (blur|mipmap), prefilter_texels, light_bleeding_reduction,
 // min_variance. Buffers: p_max (Chebyshev bound), light_leak (p_max - pcf, at pcf's default bias, over the same box),
 // kernel_texels, depth_bias.

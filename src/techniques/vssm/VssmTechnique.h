@@ -2,7 +2,7 @@
 // average blocker depth of Eq. 4 (z_unocc = t), kernel subdivision (§5: uniform m x m, adaptive Alg. 2 by
 // stackless linear quad-tree traversal, or none = VSM's lit assumption, Fig. 3a), the §6.4 contact-shadow
 // fallback (per pixel on Eq. 4's blocker depth, or per sub-kernel of w_p on its own mean: contact_test) and the
-// §6.5 lit threshold. Math: shaders/vssm/VssmVisibility.glsl.
+// §6.5 lit threshold. Math: vssm/shaders/VssmVisibility.glsl.
 // Parameters: the shadow-map ones, receiver_plane_bias, sat_precision, hsm (mipmap | nbuffers, §6.1; ysm, SS08 §6),
 // hsm_early_out, blocker_subdivision + blocker_uniform_m + blocker_tree_height, shadow_subdivision +
 // shadow_uniform_n + shadow_tree_height (default: the paper's mixed scheme m = 5, H = 3, §6.3),

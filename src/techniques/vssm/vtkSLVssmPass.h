@@ -1,4 +1,4 @@
-// The `vssm` technique's pass: shaders/vssm/VssmVisibility.glsl with the PCSS-family kernel uniforms, the
+// The `vssm` technique's pass: vssm/shaders/VssmVisibility.glsl with the PCSS-family kernel uniforms, the
 // summed-area table (passes/vtkSLSatPass) and the min-max HSM (passes/vtkSLHsmPass).
 #pragma once
 

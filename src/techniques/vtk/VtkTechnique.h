@@ -1,7 +1,7 @@
 // Technique `vtk`: VTK's own shadow mapping (vtkShadowMapBakerPass + vtkShadowMapPass, VTK 9.1), run on
 // the same scene and camera, so the in-ecosystem peer is measured with the same buffers and metrics.
 //
-// How visibility is obtained: see shaders/vtk/VtkVisibilityRatio.glsl (shadowed / unshadowed radiance
+// How visibility is obtained: see vtk/shaders/VtkVisibilityRatio.glsl (shadowed / unshadowed radiance
 // of a white diffuse material, both rendered by VTK into float targets).
 // What VTK does differently, by design of its passes (kept as is — this is the point of the comparison):
 //  - the shadow map frustum is a spot cone at the light's position (area lights: their centre), fitted to

@@ -9,7 +9,7 @@
 //    that covers the kernel with matching top-left corner; nodes whose range cannot produce an edge for any
 //    pixel of the packet (Fig. 6 cases 4, 5) are pruned.
 // Each is switchable (packet_width = packet_height = 1, hierarchy = off, coherence_test = off).
-// Math: shaders/yfgl09/Yfgl09Visibility.glsl (two passes, see its header); CPU mirror below.
+// Math: yfgl09/shaders/Yfgl09Visibility.glsl (two passes, see its header); CPU mirror below.
 #pragma once
 
 #include "core/Image.h"

@@ -1,4 +1,4 @@
-// The `yfgl09` technique's pass: shaders/yfgl09/Yfgl09Visibility.glsl drawn twice, first one fragment per
+// The `yfgl09` technique's pass: yfgl09/shaders/Yfgl09Visibility.glsl drawn twice, first one fragment per
 // packet (image stores into the technique targets, the packet's class into a packet-sized target), then one
 // fragment per pixel for the packets not computed packet-wise (Alg. 1 steps 5-8). Needs the dual-grid MSSM
 // (passes/vtkSLHsmPass).
