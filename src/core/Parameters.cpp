@@ -139,4 +139,10 @@ void ParameterValues::set(const std::string& assignment)
   set(key, *value);
 }
 
+void unpairedChoice(const ParameterValues& values, const std::string& name)
+{
+  ::sl::checkFailed("choiceOf", __FILE__, __LINE__,
+    format(values.owner(), ": choice '", values.choice(name), "' of '", name, "' has no enumerator in its settings"));
+}
+
 } // namespace sl

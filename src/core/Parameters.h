@@ -3,8 +3,10 @@
 // (structures/LightSpaceStructure.h); ParameterValues resolves `--set key=value` against such a table.
 #pragma once
 
+#include <initializer_list>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sl
@@ -30,6 +32,9 @@ const ParameterSpec* findParameterSpec(const std::vector<ParameterSpec>& specs, 
 
 // Parameter values resolved against a table of specs: every parameter has a value, all within range.
 // `owner` names the table's owner (a technique) in messages; the specs must outlive the values (the registry's).
+class ParameterValues;
+[[noreturn]] void unpairedChoice(const ParameterValues& values, const std::string& name); // choiceOf's failure
+
 class ParameterValues
 {
 public:
@@ -55,5 +60,28 @@ private:
   std::map<std::string, double> values_;
   std::map<std::string, std::string> files_;
 };
+
+// Typed settings, parsed once (as pbrt-v4's Create() does): each technique and structure turns its ParameterValues
+// into a struct of its own (e.g. PcfSettings::from) in one function, which is the only place its parameters are
+// read by name; its passes, twin, probe and approximation rules read the struct. Defaults and ranges stay in the
+// ParameterSpec table alone (the structs' fields are value-initialised, not given defaults of their own). An
+// enumeration parameter becomes an enum through choiceOf.
+
+// The enumerator paired with `name`'s chosen choice in `choices` ({choice name, enumerator} for every choice the
+// spec lists); SL_CHECKs that the chosen name is paired, so a renamed choice fails at once instead of mapping wrong.
+template <class Enum>
+Enum choiceOf(const ParameterValues& values, const std::string& name,
+  std::initializer_list<std::pair<const char*, Enum>> choices)
+{
+  const std::string& chosen = values.choice(name);
+  for (const auto& [choiceName, value] : choices)
+  {
+    if (chosen == choiceName)
+    {
+      return value;
+    }
+  }
+  unpairedChoice(values, name);
+}
 
 } // namespace sl

@@ -140,6 +140,20 @@ BufferSpec categoricalBuffer(std::string name, std::string doc, const Category<E
 // which a sample whose view depth d_s is within `depthTolerance` (relative: |d_s - s_z| <= tau s_z) of the pixel's
 // s_z takes the pixel's visibility and any other the visibility of the pixel or 4-neighbour whose s_z is closest
 // (passes/vtkSLMsaaResolvePass.h).
+// What a technique's typed settings ask of the light-space structures it needs beyond the structures' own
+// parameters, so a structure never reads a technique's parameter by name (structures/LightSpaceStructure.h).
+struct LightSpaceRequest
+{
+  // The width of the filter it applies to the shadow map (pcf's kernel, the moment techniques' prefilter box): the
+  // focus leaves ceil(width / 2) + 1 texels of margin for it (structures/shadowmap/ShadowMapStructure.h).
+  // `filterParameter` names the setting in the error when that margin leaves no texel for the receivers; empty:
+  // no filter (one texel of margin).
+  std::string filterParameter;
+  double filterTexels = 0.0;
+  // c of the moment map's exp(c z_n) channel (esm_exponent, Annen et al. 2008); 0: the channel holds 1.
+  double momentExponent = 0.0;
+};
+
 struct MultisampleSettings
 {
   int samples = 1; // 1 (off) or 4
@@ -237,11 +251,20 @@ struct TechniqueDescriptor
   // structures each); buffers combine per BufferSpec::subLightCombine and `sublight_visibility` holds the S^2
   // sub-light visibilities. See subLightsParameter() (techniques/SoftShadowSupport.h).
   bool hasSubLights() const { return findParameter("sublights") != nullptr; }
+  // S, the sub-lights per side a frame with `values` renders (1 without `sublights`): the one place it is read.
+  int subLightsPerSide(const ParameterValues& values) const { return hasSubLights() ? values.getInt("sublights") : 1; }
   // The multisampling a frame rendered with the given values asks for; unset: none (samples = 1).
   std::function<MultisampleSettings(const ParameterValues& values)> multisample;
   MultisampleSettings multisampleFor(const ParameterValues& values) const
   {
     return multisample ? multisample(values) : MultisampleSettings{};
+  }
+
+  // What a frame with the given values asks of its light-space structures, from its typed settings; unset: nothing.
+  std::function<LightSpaceRequest(const ParameterValues& values)> lightSpaceRequest;
+  LightSpaceRequest lightSpaceRequestFor(const ParameterValues& values) const
+  {
+    return lightSpaceRequest ? lightSpaceRequest(values) : LightSpaceRequest{};
   }
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;

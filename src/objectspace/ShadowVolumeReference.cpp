@@ -80,4 +80,9 @@ glm::dvec3 shadowVolumeReceiverPoint(const Scene& scene, double receiverOffset, 
   return pWs + receiverOffset * towardCamera;
 }
 
+double receiverOffsetOf(const ParameterValues& values)
+{
+  return values.get("receiver_offset");
+}
+
 } // namespace sl

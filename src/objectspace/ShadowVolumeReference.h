@@ -5,6 +5,7 @@
 //    (the definition of `depth_complexity_center`), counted directly.
 #pragma once
 
+#include "core/Parameters.h"
 #include "frame/ProbeRecord.h"
 #include "scene/Scene.h"
 #include "objectspace/ShadowVolumeGeometry.h"
@@ -35,5 +36,8 @@ int casterCrossings(const Scene& scene, const VolumeLight& light, const glm::dve
 // moved `receiverOffset` of its distance to the eye toward the camera (orthographic cameras: of the scene's
 // radius), so its own caster's near cap lies behind it.
 glm::dvec3 shadowVolumeReceiverPoint(const Scene& scene, double receiverOffset, const glm::dvec3& pWs);
+// The parameter receiver_offset, typed: part of the settings of every technique that counts volumes at the point
+// (shadow-volume, dcs, penumbra-wedge; each declares its own default), and what their shared pass reads.
+double receiverOffsetOf(const ParameterValues& values);
 
 } // namespace sl

@@ -43,7 +43,8 @@ void vtkSLMultiViewPass::Render(const vtkRenderState* state)
   SL_CHECK_MSG(this->Frame, "the multi-view pass has no frame resources");
   sl::FrameResources& frame = *this->Frame;
   this->NumberOfRenderedProps = 0;
-  const int perSide = frame.parameters.getInt("sublights");
+  SL_CHECK(frame.technique != nullptr);
+  const int perSide = frame.technique->subLightsPerSide(frame.parameters);
   frame.subLightVisibility.clear();
   if (perSide == 1)
   {

@@ -155,9 +155,9 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   {
     frame.parameters.set(assignment);
   }
-  if (frame.parameters.has("shadow_map_size"))
+  if (technique.needs(shadowMapStructure()))
   {
-    shadowMapSettings(frame.parameters); // its InputError before any GL, rather than inside the focus pass
+    shadowMapSettings(frame); // its InputError before any GL, rather than inside the focus pass
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
   if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)

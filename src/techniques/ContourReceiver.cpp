@@ -81,11 +81,31 @@ TexelRectangle ringed(const TexelRectangle& kernel, int mapSize)
   return { glm::max(kernel.lo - 1, glm::ivec2(0)), glm::min(kernel.hi + 1, glm::ivec2(mapSize - 1)) };
 }
 
-ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
+GapFilling gapFillingOf(const ParameterValues& values)
+{
+  return choiceOf<GapFilling>(values, "gap_filling",
+    { { "off", GapFilling::Off }, { "left_bottom", GapFilling::LeftBottom }, { "right_top", GapFilling::RightTop } });
+}
+
+const char* gapFillingName(GapFilling gapFilling)
+{
+  return gapFilling == GapFilling::LeftBottom ? "left_bottom" : gapFilling == GapFilling::RightTop ? "right_top" : "off";
+}
+
+ContourReceiverSettings ContourReceiverSettings::from(const ParameterValues& values)
+{
+  ContourReceiverSettings settings;
+  settings.bias = biasSettings(values);
+  settings.receiverPlaneBias = receiverPlaneBiasOf(values);
+  settings.kernelRefinements = values.getInt("kernel_refinements");
+  return settings;
+}
+
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ContourReceiverSettings& settings,
   const DepthRangeQuery& range, int x, int y, ProbeRecorder* recorder)
 {
   ContourReceiver receiver;
-  receiver.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  receiver.lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   if (!receiver.lookup.sample.evaluated)
   {
     return receiver;
@@ -127,7 +147,7 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Para
     }
     queryNodes.clear();
   };
-  receiver.geometry = softShadowGeometry(inputs, receiver.lookup, values.choice("receiver_plane_bias") == "on", x, y);
+  receiver.geometry = softShadowGeometry(inputs, receiver.lookup, settings.receiverPlaneBias, x, y);
   receiver.bias = receiver.lookup.sample.bias;
   const SoftShadowGeometry& geometry = receiver.geometry;
   const double d = geometry.d;
@@ -140,7 +160,7 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Para
   receiver.samples = ringed(receiver.kernel, size); // the samples whose dual cells can hold edges
   recordKernel(planeDepth, half);
   glm::dvec2 depthRange = range(receiver.samples.lo, receiver.samples.hi, nodes);
-  for (int refinement = 0; refinement < values.getInt("kernel_refinements"); ++refinement)
+  for (int refinement = 0; refinement < settings.kernelRefinements; ++refinement)
   {
     recordQuery(depthRange, "query: z_occ_min for refinement " + std::to_string(refinement + 1));
     ++iteration;
@@ -200,12 +220,18 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Para
   return receiver;
 }
 
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ContourReceiverSettings& settings,
+  const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder)
+{
+  return prepareContourReceiver(inputs, settings,
+    [&](glm::ivec2 lo, glm::ivec2 hi, std::vector<HsmQueryNode>* nodes) { return structure.range(lo, hi, nullptr, nodes); },
+    x, y, recorder);
+}
+
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
   const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder)
 {
-  return prepareContourReceiver(inputs, values,
-    [&](glm::ivec2 lo, glm::ivec2 hi, std::vector<HsmQueryNode>* nodes) { return structure.range(lo, hi, nullptr, nodes); },
-    x, y, recorder);
+  return prepareContourReceiver(inputs, ContourReceiverSettings::from(values), structure, x, y, recorder);
 }
 
 void recordReceiver(const ContourReceiver& receiver, BackprojectionClass classification, BackprojectionPixel& pixel)

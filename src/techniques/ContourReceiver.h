@@ -84,12 +84,35 @@ struct ContourReceiver
 // A kernel's texels plus one ring, clamped to the map (ContourKernel.glsl's ringed).
 TexelRectangle ringed(const TexelRectangle& kernel, int mapSize);
 
+// The `gap_filling` choices of the micropatch back-projections (gbp06, ss08).
+enum class GapFilling
+{
+  Off,
+  LeftBottom, // GBP06's rule as SS08 §3 gives it
+  RightTop    // the mirror convention
+};
+GapFilling gapFillingOf(const ParameterValues& values);
+const char* gapFillingName(GapFilling gapFilling); // the choice's name
+
+// The back-projection techniques' receiver parameters, typed (parsed once, by from()): part of gbp06's, gbp07's and
+// yfgl09's settings.
+struct ContourReceiverSettings
+{
+  BiasSettings bias;
+  bool receiverPlaneBias{};
+  int kernelRefinements{}; // times Eq. 1's kernel is shrunk to the minimum occluder depth inside it
+
+  static ContourReceiverSettings from(const ParameterValues& values);
+};
+
 // `recorder` (optional, `shadowlab probe`): the receiver (group "receiver"), each kernel of Eq. 1 with its
 // search depth (ProbeKernel "blocker search"), the range queries' nodes (ProbeNode, decision "query: ..."), the
 // final kernel and its ring, and the lit / umbra / penumbra decision with its depth ranges and margins.
-ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ContourReceiverSettings& settings,
   const DepthRangeQuery& range, int x, int y, ProbeRecorder* recorder = nullptr);
 // The same with the ranges of a min-max structure built from inputs.shadowMapLinear.
+ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ContourReceiverSettings& settings,
+  const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder = nullptr);
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
   const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder = nullptr);
 

@@ -106,9 +106,18 @@ void recordLightLeak(ProbeRecorder& recorder, double value, double pcf, const Pc
   }
 }
 
-void requireBlurPrefilter(const ParameterValues& values)
+MomentPrefilterSettings MomentPrefilterSettings::from(const ParameterValues& values)
 {
-  if (values.has("prefilter") && values.choice("prefilter") == "mipmap")
+  MomentPrefilterSettings settings;
+  settings.prefilter =
+    choiceOf<MomentPrefilter>(values, "prefilter", { { "blur", MomentPrefilter::Blur }, { "mipmap", MomentPrefilter::Mipmap } });
+  settings.texels = values.getInt("prefilter_texels");
+  return settings;
+}
+
+void requireBlurPrefilter(const MomentPrefilterSettings& settings)
+{
+  if (settings.prefilter == MomentPrefilter::Mipmap)
   {
     throw InputError("--set prefilter=mipmap: probe replays the box blur only (the trilinear mip-map lookup has no "
                      "CPU twin); use prefilter=blur");

@@ -40,10 +40,25 @@ PcfRange boxPcfRange(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, 
 // buffer's name) when no comparison ties, else as light_leak_range (lowest, highest): the GPU's buffer lies there.
 void recordLightLeak(ProbeRecorder& recorder, double value, double pcf, const PcfRange& range, const std::string& source);
 
+enum class MomentPrefilter
+{
+  Blur,
+  Mipmap
+};
+
+// The moment map's prefilter as the moment techniques (vsm, esm) read it: part of their typed settings.
+struct MomentPrefilterSettings
+{
+  MomentPrefilter prefilter{};
+  int texels{}; // prefilter_texels: the box width (blur), or 2^lod (mipmap)
+
+  static MomentPrefilterSettings from(const ParameterValues& values);
+};
+
 // What the moment techniques' probes (vsm, esm) share.
 // Throws InputError for prefilter = mipmap: the twins mirror the box blur only (a trilinear lookup between mip
 // levels has no twin).
-void requireBlurPrefilter(const ParameterValues& values);
+void requireBlurPrefilter(const MomentPrefilterSettings& settings);
 // Group "moments": kernel_texels (the buffer's name: the box width), its world size at the receiver, and the box
 // as a ProbeKernel (the texels boxMoments averages, before clamping to the map's edge).
 void recordMomentBox(ProbeRecorder& recorder, const ShadowMapInputs& inputs, const ShadowLookup& lookup, int width);

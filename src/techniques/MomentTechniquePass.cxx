@@ -1,4 +1,5 @@
 #include "techniques/MomentTechniquePass.h"
+#include "techniques/MomentReference.h"
 
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
@@ -16,7 +17,7 @@ vtkStandardNewMacro(vtkSLMomentTechniquePass);
 std::vector<vtkTextureObject*> vtkSLMomentTechniquePass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   const sl::FrameResources& frame = *this->Frame;
-  const int width = frame.parameters.getInt("prefilter_texels");
+  const int width = sl::MomentPrefilterSettings::from(frame.parameters).texels;
   program->SetUniformi("kernelWidth", width);
   sl::setFloatIfUsed(program, "momentLod", std::log2(static_cast<double>(width)));
   sl::setFloatIfUsed(program, "depthNear", frame.lightView.nearDepth);

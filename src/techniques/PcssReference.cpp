@@ -58,14 +58,14 @@ Kernel kernelGrid(const glm::dvec2& uv, const glm::dvec2& halfTexels, int maxTap
 class PcssTaps
 {
 public:
-  PcssTaps(const ShadowMapInputs& inputs, const ParameterValues& values, const ShadowLookup& lookup,
+  PcssTaps(const ShadowMapInputs& inputs, const SoftShadowSettings& settings, const ShadowLookup& lookup,
     const SoftShadowGeometry& geometry, glm::ivec2 pixel, PcssSample& result)
     : map_(inputs.shadowMapLinear)
     , geometry_(geometry)
     , bias_(lookup.sample.bias)
     , uv_(lookup.sm.uvTexels)
-    , maxTaps_(values.getInt("max_grid_taps"))
-    , poissonSamples_(values.getInt("poisson_samples"))
+    , maxTaps_(settings.maxGridTaps)
+    , poissonSamples_(settings.poissonSamples)
     , rotation_(pixelRotation(pixel.x, pixel.y))
     , result_(result)
   {
@@ -262,19 +262,34 @@ double filterPenumbra(const PcssTaps& taps, bool grid, const glm::dvec2& filterH
 
 } // namespace
 
+PcssSettings PcssSettings::from(const ParameterValues& values)
+{
+  PcssSettings settings;
+  settings.bias = biasSettings(values);
+  settings.soft = SoftShadowSettings::from(values);
+  settings.filter = values.has("filter") ? tapPatternOf(values, "filter") : TapPattern::Grid;
+  return settings;
+}
+
 PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder, bool recordFilter)
 {
+  return pcssReference(inputs, PcssSettings::from(values), x, y, recorder, recordFilter);
+}
+
+PcssSample pcssReference(const ShadowMapInputs& inputs, const PcssSettings& settings, int x, int y,
+  ProbeRecorder* recorder, bool recordFilter)
+{
   PcssSample result;
-  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   result.sample = lookup.sample;
   if (!lookup.sample.evaluated)
   {
     return result;
   }
-  const bool receiverPlane = values.choice("receiver_plane_bias") == "on";
+  const bool receiverPlane = settings.soft.receiverPlaneBias;
   const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, receiverPlane, x, y);
-  const PcssTaps taps(inputs, values, lookup, geometry, { x, y }, result);
+  const PcssTaps taps(inputs, settings.soft, lookup, geometry, { x, y }, result);
   const double d = lookup.sm.depthLin;
   result.uvTexels = lookup.sm.uvTexels;
   if (recorder)
@@ -284,7 +299,7 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   }
 
   const BlockerSearch search =
-    searchBlockers(taps, geometry, d, values.choice("blocker_search") == "grid", result, recorder);
+    searchBlockers(taps, geometry, d, settings.soft.blockerSearch == TapPattern::Grid, result, recorder);
   if (search.blockers == 0)
   {
     result.sample.visibility = 1.0;
@@ -297,7 +312,7 @@ PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& v
   }
   result.foundBlockers = true;
   estimatePenumbra(taps, geometry, d, search, result, recorder);
-  const bool gridFilter = !values.has("filter") || values.choice("filter") == "grid";
+  const bool gridFilter = settings.filter == TapPattern::Grid;
   result.sample.visibility = filterPenumbra(taps, gridFilter, result.filterHalfTexels, recordFilter ? recorder : nullptr);
   return result;
 }

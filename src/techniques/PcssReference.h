@@ -3,6 +3,7 @@
 #pragma once
 
 #include "techniques/ShadowMapReference.h"
+#include "techniques/SoftShadowSupport.h"
 #include "frame/TechniqueDescriptor.h"
 
 namespace sl
@@ -23,6 +24,16 @@ struct PcssSample
   double kernelEdgeMargin = 1e300;
 };
 
+// pcss's parameters, typed (parsed once, by from()); savsm's blocker search and penumbra estimate read the same.
+struct PcssSettings
+{
+  BiasSettings bias;
+  SoftShadowSettings soft;
+  TapPattern filter{}; // the PCF step; a technique without `filter` (savsm): the grid
+
+  static PcssSettings from(const ParameterValues& values);
+};
+
 // CPU reference (double precision) of PcssVisibility.glsl at pixel (x, y). Techniques built on PCSS's first
 // two steps (savsm) call it too; without a `filter` parameter the PCF step uses the grid.
 // `recorder` (optional, `shadowlab probe`): the receiver; the blocker search (its kernel w_i in texels and world
@@ -30,6 +41,8 @@ struct PcssSample
 // (avg_blocker_depth, penumbra_width, penumbra_kernel_texels, the kernel w_p); and, when `recordFilter`, the PCF
 // step's taps (weight 1 / taps each) and visibility. savsm records the first two steps only (its filter is
 // Chebyshev's), while the PCF step still runs so the sample's margins stay those of the whole twin.
+PcssSample pcssReference(const ShadowMapInputs& inputs, const PcssSettings& settings, int x, int y,
+  ProbeRecorder* recorder = nullptr, bool recordFilter = true);
 PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder = nullptr, bool recordFilter = true);
 

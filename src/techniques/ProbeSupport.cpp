@@ -87,9 +87,10 @@ bool litWithoutShadowTest(const FrameResult& frame, glm::ivec2 pixel, ProbeRecor
 
 void requireSingleSubLight(const FrameResult& frame)
 {
-  if (frame.descriptor != nullptr && frame.descriptor->hasSubLights() && frame.parameters.getInt("sublights") > 1)
+  const int perSide = frame.descriptor != nullptr ? frame.descriptor->subLightsPerSide(frame.parameters) : 1;
+  if (perSide > 1)
   {
-    throw InputError("--set sublights=" + std::to_string(frame.parameters.getInt("sublights")) +
+    throw InputError("--set sublights=" + std::to_string(perSide) +
       ": probe replays one shadow map; a frame keeps only the first sub-light's (use sublights=1)");
   }
 }

@@ -37,6 +37,26 @@ ParameterSpec subLightsParameter()
   return { "sublights", 1, 1, 4, "per side", "multi-view shadow maps (Yang et al. 2009 §5): the light split into S x S sub-lights, each with its own focused shadow map and MSSM, visibilities averaged", {}, true };
 }
 
+TapPattern tapPatternOf(const ParameterValues& values, const std::string& name)
+{
+  return choiceOf<TapPattern>(values, name, { { "grid", TapPattern::Grid }, { "poisson", TapPattern::Poisson } });
+}
+
+bool receiverPlaneBiasOf(const ParameterValues& values)
+{
+  return values.choice("receiver_plane_bias") == "on";
+}
+
+SoftShadowSettings SoftShadowSettings::from(const ParameterValues& values)
+{
+  SoftShadowSettings settings;
+  settings.blockerSearch = tapPatternOf(values, "blocker_search");
+  settings.maxGridTaps = values.getInt("max_grid_taps");
+  settings.poissonSamples = values.getInt("poisson_samples");
+  settings.receiverPlaneBias = receiverPlaneBiasOf(values);
+  return settings;
+}
+
 glm::dvec2 SoftShadowGeometry::kernelHalfTexels(double planeDepthValue) const
 {
   const double halfTangent = 0.5 * lightSize * (d - planeDepthValue) / (planeDepthValue * d);

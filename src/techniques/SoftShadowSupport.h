@@ -35,6 +35,27 @@ std::vector<ParameterSpec> softShadowParameters();
 ParameterSpec receiverPlaneBiasParameter();
 // `sublights` (TechniqueDescriptor::hasSubLights): multi-view shadow maps, Yang et al. 2009 §5.
 ParameterSpec subLightsParameter();
+
+enum class TapPattern
+{
+  Grid,   // every texel of the kernel (sub-sampled beyond max_grid_taps per axis)
+  Poisson // rotated Poisson taps
+};
+
+// softShadowParameters(), typed (parsed once, by from()): part of the soft-shadow techniques' settings.
+struct SoftShadowSettings
+{
+  TapPattern blockerSearch{};
+  int maxGridTaps{};
+  int poissonSamples{};
+  bool receiverPlaneBias{};
+
+  static SoftShadowSettings from(const ParameterValues& values);
+};
+// receiverPlaneBiasParameter(), typed, for the techniques that declare it alone (subLightsParameter():
+// TechniqueDescriptor::subLightsPerSide).
+bool receiverPlaneBiasOf(const ParameterValues& values);
+TapPattern tapPatternOf(const ParameterValues& values, const std::string& name); // a {grid, poisson} choice
 // lightSizeWorld, lightNearDepth, shadowTexelTangent, shadowWindowMin, poissonDisk.
 void setSoftShadowUniforms(vtkShaderProgram* program, const FrameResources& frame);
 

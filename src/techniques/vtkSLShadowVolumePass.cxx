@@ -208,7 +208,7 @@ void vtkSLShadowVolumePass::SetReceiverOffsetUniforms(vtkShaderProgram* program)
   // receiver_offset as a fraction of the distance to the eye: the eye lies at s = -near / (far - near) on
   // every perspective ray N + s R, so the distance is (near / (far - near) + s) |R|. Orthographic: of the
   // scene's bounding radius, |R| = far - near.
-  const double offset = frame.parameters.get("receiver_offset");
+  const double offset = sl::receiverOffsetOf(frame.parameters);
   const double range = camera.farDepth - camera.nearDepth;
   const bool perspective = frame.scene->camera.projection == sl::Projection::Perspective;
   program->SetUniformf("receiverOffsetS",

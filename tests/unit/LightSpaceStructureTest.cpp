@@ -237,13 +237,13 @@ TEST(LightSpaceStructureRegistry, EachTechniquesBuildStagesHaveDistinctNames)
 TEST(LightSpaceStructureSettings, ReadTheStructuresOwnParametersAtTheirDefaults)
 {
   const ParameterValues shadowMap("shadow_map", shadowMapStructure().parameters);
-  const ShadowMapSettings mapSettings = shadowMapSettings(shadowMap);
+  const ShadowMapSettings mapSettings = ShadowMapSettings::from(shadowMap);
   EXPECT_EQ(mapSettings.resolution, static_cast<int>(findParameterSpec(shadowMapStructure().parameters, "shadow_map_size")->defaultValue));
   EXPECT_EQ(mapSettings.marginTexels, 1.0);
   EXPECT_FALSE(mapSettings.secondDepth);
 
   const ParameterValues moments("moment_map", momentMapStructure().parameters);
-  const MomentMapSettings momentSettings = momentMapSettings(moments);
+  const MomentMapSettings momentSettings = MomentMapSettings::from(moments);
   EXPECT_FALSE(momentSettings.mipmap);
   EXPECT_EQ(momentSettings.blurTexels, moments.getInt("prefilter_texels"));
   EXPECT_EQ(momentSettings.esmExponent, 0.0);
@@ -263,19 +263,19 @@ TEST(LightSpaceStructureSettings, ShadowMapSettingsFollowTheParameters)
   for (const int kernel : { 1, 2, 3, 8, 9 })
   {
     pcf.set("kernel_texels", kernel);
-    const ShadowMapSettings settings = shadowMapSettings(pcf);
+    const ShadowMapSettings settings = shadowMapSettings(findTechnique("pcf"), pcf);
     EXPECT_EQ(settings.resolution, 300);
     // A kernel of k texels reaches k / 2 texels past the receiver, plus one for the bilinear footprint.
     EXPECT_EQ(settings.marginTexels, std::ceil(kernel / 2.0) + 1.0) << "kernel_texels=" << kernel;
   }
-  EXPECT_FALSE(shadowMapSettings(pcf).secondDepth);
+  EXPECT_FALSE(shadowMapSettings(findTechnique("pcf"), pcf).secondDepth);
   pcf.set("caster_faces=back");
-  EXPECT_TRUE(shadowMapSettings(pcf).secondDepth);
+  EXPECT_TRUE(shadowMapSettings(findTechnique("pcf"), pcf).secondDepth);
 
   // hard has no filter kernel: one texel of margin.
   ParameterValues hard = findTechnique("hard").defaultParameters();
   ASSERT_FALSE(hard.has("kernel_texels"));
-  EXPECT_EQ(shadowMapSettings(hard).marginTexels, 1.0);
+  EXPECT_EQ(shadowMapSettings(findTechnique("hard"), hard).marginTexels, 1.0);
 
   // The moment techniques' prefilter box reaches as far as a pcf kernel of its width: the same margin, so vsm and
   // pcf over one box focus the same map.
@@ -286,7 +286,7 @@ TEST(LightSpaceStructureSettings, ShadowMapSettingsFollowTheParameters)
     {
       moments.set("prefilter_texels", width);
       pcf.set("kernel_texels", width);
-      EXPECT_EQ(shadowMapSettings(moments).marginTexels, shadowMapSettings(pcf).marginTexels)
+      EXPECT_EQ(shadowMapSettings(findTechnique(technique), moments).marginTexels, shadowMapSettings(findTechnique("pcf"), pcf).marginTexels)
         << technique << " prefilter_texels=" << width;
     }
   }
@@ -294,9 +294,18 @@ TEST(LightSpaceStructureSettings, ShadowMapSettingsFollowTheParameters)
   // A margin that leaves no texel for the receivers is an input error naming the filter.
   pcf.set("shadow_map_size=16");
   pcf.set("kernel_texels", 13);
-  EXPECT_THROW(shadowMapSettings(pcf), InputError) << "2 x 8 texels of margin on a 16-texel map";
+  EXPECT_THROW(shadowMapSettings(findTechnique("pcf"), pcf), InputError) << "2 x 8 texels of margin on a 16-texel map";
+  try
+  {
+    shadowMapSettings(findTechnique("pcf"), pcf);
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_EQ(std::string(error.what()).rfind("--set kernel_texels=13: the filter reaches 8 texels past the receivers", 0), 0u)
+      << error.what();
+  }
   pcf.set("kernel_texels", 11);
-  EXPECT_EQ(shadowMapSettings(pcf).marginTexels, 7.0);
+  EXPECT_EQ(shadowMapSettings(findTechnique("pcf"), pcf).marginTexels, 7.0);
 }
 
 TEST(LightSpaceStructureSettings, MomentMapSettingsFollowThePrefilter)
@@ -304,20 +313,20 @@ TEST(LightSpaceStructureSettings, MomentMapSettingsFollowThePrefilter)
   ParameterValues vsm = findTechnique("vsm").defaultParameters();
   vsm.set("prefilter=blur");
   vsm.set("prefilter_texels=7");
-  MomentMapSettings settings = momentMapSettings(vsm);
+  MomentMapSettings settings = momentMapSettings(findTechnique("vsm"), vsm);
   EXPECT_FALSE(settings.mipmap);
   EXPECT_EQ(settings.blurTexels, 7);
   EXPECT_EQ(settings.esmExponent, 0.0) << "vsm has no esm_exponent: the third moment is unused";
   // The mip chain does the filtering: no blur, whatever prefilter_texels says.
   vsm.set("prefilter=mipmap");
-  settings = momentMapSettings(vsm);
+  settings = momentMapSettings(findTechnique("vsm"), vsm);
   EXPECT_TRUE(settings.mipmap);
   EXPECT_EQ(settings.blurTexels, 1);
 
   ParameterValues esm = findTechnique("esm").defaultParameters();
   esm.set("esm_exponent=12.5");
   esm.set("prefilter_texels=3");
-  settings = momentMapSettings(esm);
+  settings = momentMapSettings(findTechnique("esm"), esm);
   EXPECT_EQ(settings.esmExponent, 12.5);
   EXPECT_EQ(settings.blurTexels, esm.choice("prefilter") == "mipmap" ? 1 : 3);
 }

@@ -136,6 +136,64 @@ TEST(ParameterValues, BadAssignmentsNameTheKeyAndValue)
   EXPECT_EQ(values.choice("pattern"), "grid");
 }
 
+// Typed settings (core/Parameters.h): each choice maps to its enumerator by name, not by its position in the spec,
+// and a choice the settings leave unpaired stops at once rather than reading as another enumerator.
+TEST(TypedSettings, ChoicesMapToTheirEnumeratorsByName)
+{
+  enum class Shape
+  {
+    Disk,
+    Square,
+    Hexagon
+  };
+  const std::vector<ParameterSpec> specs = {
+    { "shape", 1, 0, 2, "", "a test enumeration", { "square", "disk", "hexagon" }, true },
+  };
+  ParameterValues values("test", specs);
+  const auto shape = [&values] {
+    return choiceOf<Shape>(
+      values, "shape", { { "disk", Shape::Disk }, { "square", Shape::Square }, { "hexagon", Shape::Hexagon } });
+  };
+  EXPECT_EQ(shape(), Shape::Disk) << "the default: choice 1 of the spec, disk";
+  values.set("shape=square");
+  EXPECT_EQ(shape(), Shape::Square);
+  values.set("shape=hexagon");
+  EXPECT_EQ(shape(), Shape::Hexagon);
+  EXPECT_DEATH(choiceOf<Shape>(values, "shape", { { "disk", Shape::Disk }, { "square", Shape::Square } }),
+    "choice 'hexagon' of 'shape'");
+}
+
+// pcf's typed settings hold what `--set` assigned, and its light-space request hands the shadow map the kernel width
+// (the focus margin), not the name of a parameter.
+TEST(TypedSettings, PcfSettingsFollowTheParameters)
+{
+  const TechniqueDescriptor& pcf = findTechnique("pcf");
+  ParameterValues values = pcf.defaultParameters();
+  PcfSettings settings = PcfSettings::from(values);
+  EXPECT_EQ(settings.kernelTexels, 3);
+  EXPECT_EQ(settings.pattern, PcfPattern::Grid);
+  EXPECT_EQ(settings.poissonSamples, 16);
+  EXPECT_EQ(settings.filter, PcfFilter::Nearest);
+  EXPECT_DOUBLE_EQ(settings.bias.constantTexels, 0.5);
+  values.set("kernel_texels=9");
+  values.set("pattern=poisson");
+  values.set("poisson_samples=24");
+  values.set("filter=hardware_bilinear");
+  values.set("bias_slope_texels=2.5");
+  settings = PcfSettings::from(values);
+  EXPECT_EQ(settings.kernelTexels, 9);
+  EXPECT_EQ(settings.pattern, PcfPattern::Poisson);
+  EXPECT_EQ(settings.poissonSamples, 24);
+  EXPECT_EQ(settings.filter, PcfFilter::HardwareBilinear);
+  EXPECT_DOUBLE_EQ(settings.bias.slopeTexels, 2.5);
+  const LightSpaceRequest request = pcf.lightSpaceRequestFor(values);
+  EXPECT_EQ(request.filterParameter, "kernel_texels");
+  EXPECT_EQ(request.filterTexels, 9.0);
+  EXPECT_EQ(request.momentExponent, 0.0);
+  EXPECT_EQ(findTechnique("hard").lightSpaceRequestFor(findTechnique("hard").defaultParameters()).filterParameter, "")
+    << "hard filters nothing";
+}
+
 TEST(PoissonDisk, PointsAreInTheUnitDiskAndWellSeparated)
 {
   const auto& disk = poissonDisk();

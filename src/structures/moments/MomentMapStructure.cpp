@@ -1,5 +1,6 @@
 #include "structures/moments/MomentMapStructure.h"
 
+#include "core/Error.h"
 #include "frame/FrameResult.h"
 #include "gl/GlResources.h"
 #include "structures/moments/vtkSLMomentMapPass.h"
@@ -11,13 +12,24 @@
 namespace sl
 {
 
-MomentMapSettings momentMapSettings(const ParameterValues& values)
+MomentMapSettings MomentMapSettings::from(const ParameterValues& values, const LightSpaceRequest& request)
 {
   MomentMapSettings settings;
-  settings.esmExponent = values.has("esm_exponent") ? values.get("esm_exponent") : 0.0;
+  settings.esmExponent = request.momentExponent;
   settings.mipmap = values.has("prefilter") && values.choice("prefilter") == "mipmap";
   settings.blurTexels = values.has("prefilter_texels") && !settings.mipmap ? values.getInt("prefilter_texels") : 1;
   return settings;
+}
+
+MomentMapSettings momentMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values)
+{
+  return MomentMapSettings::from(values, technique.lightSpaceRequestFor(values));
+}
+
+MomentMapSettings momentMapSettings(const FrameResources& frame)
+{
+  SL_CHECK(frame.technique != nullptr);
+  return momentMapSettings(*frame.technique, frame.parameters);
 }
 
 namespace

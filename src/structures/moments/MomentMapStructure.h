@@ -12,11 +12,15 @@ const LightSpaceStructure& momentMapStructure();
 // The parameters its build reads, typed.
 struct MomentMapSettings
 {
-  double esmExponent = 0.0; // the technique's esm_exponent when declared (esm), else 0 (the third moment unused)
+  double esmExponent = 0.0; // the technique's LightSpaceRequest::momentExponent (esm), else 0 (the third moment unused)
   bool mipmap = false;      // prefilter = mipmap
   int blurTexels = 1;       // prefilter_texels for prefilter = blur; 1 = no blur
+
+  static MomentMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
 };
-MomentMapSettings momentMapSettings(const ParameterValues& values);
+// The settings of a frame of `technique` with `values`: the exponent from the technique's LightSpaceRequest.
+MomentMapSettings momentMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
+MomentMapSettings momentMapSettings(const FrameResources& frame);
 
 // What the build leaves in the frame (FrameResources::structureData<MomentMapData>("moment_map")).
 struct MomentMapData : LightSpaceData

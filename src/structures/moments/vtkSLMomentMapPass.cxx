@@ -26,7 +26,7 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
   SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its moments");
-  const sl::MomentMapSettings settings = sl::momentMapSettings(frame.parameters);
+  const sl::MomentMapSettings settings = sl::momentMapSettings(frame);
   const int size = frame.lightView.resolution;
   const double exponent = settings.esmExponent;
   const bool mipmap = settings.mipmap;

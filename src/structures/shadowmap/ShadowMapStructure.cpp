@@ -15,23 +15,34 @@
 namespace sl
 {
 
-ShadowMapSettings shadowMapSettings(const ParameterValues& values)
+ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const LightSpaceRequest& request)
 {
   ShadowMapSettings settings;
   settings.resolution = values.getInt("shadow_map_size");
   // A filter reaches width/2 texels past a receiver; one more for the bilinear footprint. The moment techniques'
   // prefilter box reaches as far as pcf's kernel (and clamps at the map's edge without the margin), and the same
   // width focuses the same map: vsm and pcf over one box read the same texels (the light_leak lesson).
-  const char* filter = values.has("kernel_texels") ? "kernel_texels" : values.has("prefilter_texels") ? "prefilter_texels" : nullptr;
-  settings.marginTexels = filter ? std::ceil(0.5 * values.get(filter)) + 1.0 : 1.0;
+  const bool filtered = !request.filterParameter.empty();
+  settings.marginTexels = filtered ? std::ceil(0.5 * request.filterTexels) + 1.0 : 1.0;
   if (2.0 * settings.marginTexels >= settings.resolution)
   {
-    throw InputError(format("--set ", filter, "=", values.get(filter), ": the filter reaches ", settings.marginTexels,
-      " texels past the receivers on each side, which leaves none of a ", settings.resolution,
-      "-texel shadow map for them; use a larger shadow_map_size or a narrower filter"));
+    throw InputError(format("--set ", request.filterParameter, "=", request.filterTexels,
+      ": the filter reaches ", settings.marginTexels, " texels past the receivers on each side, which leaves none of a ",
+      settings.resolution, "-texel shadow map for them; use a larger shadow_map_size or a narrower filter"));
   }
   settings.secondDepth = values.has("caster_faces") && values.choice("caster_faces") == "back";
   return settings;
+}
+
+ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values)
+{
+  return ShadowMapSettings::from(values, technique.lightSpaceRequestFor(values));
+}
+
+ShadowMapSettings shadowMapSettings(const FrameResources& frame)
+{
+  SL_CHECK(frame.technique != nullptr);
+  return shadowMapSettings(*frame.technique, frame.parameters);
 }
 
 namespace

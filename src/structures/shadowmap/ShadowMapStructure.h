@@ -15,10 +15,14 @@ const LightSpaceStructure& shadowMapStructure();
 struct ShadowMapSettings
 {
   int resolution = 2048;     // shadow_map_size
-  double marginTexels = 1.0; // its filter's width w (kernel_texels, else prefilter_texels): ceil(w / 2) + 1, else 1
+  double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
+
+  // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
+  static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
 };
-// Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
-ShadowMapSettings shadowMapSettings(const ParameterValues& values);
+// The settings of a frame of `technique` with `values`: its filter from the technique's LightSpaceRequest.
+ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
+ShadowMapSettings shadowMapSettings(const FrameResources& frame);
 
 } // namespace sl

@@ -18,7 +18,7 @@ void vtkSLFocusPass::Execute(const vtkRenderState*)
     this->Receivers = std::make_unique<sl::GpuReceivers>();
   }
   this->Receivers->setGBuffer(frame.gbufferPosition, frame.gbufferNormal);
-  const sl::ShadowMapSettings settings = sl::shadowMapSettings(frame.parameters);
+  const sl::ShadowMapSettings settings = sl::shadowMapSettings(frame);
   sl::FocusSettings focus;
   focus.resolution = settings.resolution;
   focus.marginTexels = settings.marginTexels;

@@ -39,7 +39,7 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
   }
   frame.shadowMapLinear = this->LinearTarget;
   frame.shadowMapDepth = this->DepthTarget;
-  const bool secondDepth = sl::shadowMapSettings(frame.parameters).secondDepth;
+  const bool secondDepth = sl::shadowMapSettings(frame).secondDepth;
   sl::renderShadowMap(window, this->Framebuffer, this->Drawer, *frame.gpuScene, view, secondDepth,
     frame.shadowMapLinear, frame.shadowMapDepth);
 }

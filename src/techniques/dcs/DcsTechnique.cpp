@@ -10,6 +10,7 @@
 #include "techniques/dcs/DcsReference.h"
 #include "techniques/dcs/vtkSLDcsPass.h"
 #include "techniques/VolumeCountStatus.h"
+#include "objectspace/ShadowVolumeReference.h"
 #include "objectspace/StsvDrawer.h"
 
 #include <string>
@@ -46,6 +47,16 @@ std::vector<ShaderConstant> dcsCounterLayerShaderConstants(int sampleCount)
     { "DCS_COVERING_LAYER", layers.covering(), "the layer of the wedges containing the point (DcsCounterLayers)" },
     { "DCS_COUNTER_LAYERS", layers.total(), "all layers of the counters (DcsCounterLayers)" },
   };
+}
+
+DcsSettings DcsSettings::from(const ParameterValues& values)
+{
+  DcsSettings settings;
+  settings.receiverOffset = receiverOffsetOf(values);
+  settings.lightSamples = lightSampleSetSettings(values);
+  settings.exportSampleCounts = values.getInt("export_sample_counts") != 0;
+  settings.stsvTest = stsvOcclusionTestOf(values);
+  return settings;
 }
 
 TechniqueDescriptor dcsTechnique()
@@ -109,7 +120,7 @@ TechniqueDescriptor dcsTechnique()
   // (the differential test adds it to the tolerance).
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.05;
-  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return std::stoi(values.choice("samples")); };
+  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return DcsSettings::from(values).lightSamples.count; };
   return descriptor;
 }
 
@@ -127,7 +138,8 @@ ProbeOutcome probeDcs(const FrameResult& frame, const Scene& scene, int lightInd
   }
   const glm::dvec3 pWs = bufferVector(frame, "position", pixel);
   const glm::dvec3 nWs = bufferVector(frame, "normal", pixel);
-  const LightSampleSet samples(lightSampleSetSettings(frame.parameters));
+  const DcsSettings settings = DcsSettings::from(frame.parameters);
+  const LightSampleSet samples(settings.lightSamples);
   const DcsEdgeSet wedges = potentialSilhouetteWedges(weldCasters(scene, true), light);
   recorder.beginGroup("receiver");
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
@@ -135,7 +147,7 @@ ProbeOutcome probeDcs(const FrameResult& frame, const Scene& scene, int lightInd
   recorder.quantity("light_samples", samples.count(), "samples",
     "Forest et al. 2009 §4.1: " + lightSamplePatternName(samples.settings()) + ", toroidally shifted per pixel");
   const DcsPixelTwin twin = dcsPixelTwin(scene, light, wedges, samples, pixel, pWs, nWs,
-    frame.parameters.get("receiver_offset"), &recorder, stsvOcclusionTestOf(frame.parameters));
+    settings.receiverOffset, &recorder, settings.stsvTest);
   recorder.beginGroup("counts");
   recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");
   recorder.quantity("depth_complexity_center", twin.centreCount, "surfaces",

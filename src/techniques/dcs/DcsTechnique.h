@@ -22,6 +22,8 @@
 #include "frame/FrameResult.h"
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
+#include "lightspace/LightSampleSet.h"
+#include "objectspace/StsvGeometry.h"
 
 #include <cstdint>
 #include <vector>
@@ -70,6 +72,17 @@ enum class DcsCounterStatus
 };
 
 TechniqueDescriptor dcsTechnique();
+
+// dcs's parameters, typed (parsed once, by from()).
+struct DcsSettings
+{
+  double receiverOffset{};             // of the eye distance
+  LightSampleSetSettings lightSamples; // light_samples, samples (N), sample_seed: the light-sample set's own
+  bool exportSampleCounts{};           // publish sample_depth_complexity
+  StsvOcclusionTest stsvTest{};        // stsv_opposite_side_check
+
+  static DcsSettings from(const ParameterValues& values);
+};
 
 // The technique's probe: the centre's crossings, every wedge containing the pixel's point with its multiplicity and
 // changes, each sample's count, and the resolve's visibility (DcsReference.h).

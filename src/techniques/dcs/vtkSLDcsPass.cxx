@@ -30,7 +30,7 @@ vtkSLDcsPass::~vtkSLDcsPass() = default;
 
 int vtkSLDcsPass::SampleCount() const
 {
-  return std::stoi(this->Frame->parameters.choice("samples"));
+  return sl::DcsSettings::from(this->Frame->parameters).lightSamples.count;
 }
 
 namespace
@@ -166,7 +166,8 @@ void vtkSLDcsPass::DrawStsvs(vtkOpenGLRenderWindow* window)
     sl::assembleShader(kStsvShader, defines, this->ParameterDeclarations()), "dcs STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
-  sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);
+  sl::setIntIfUsed(program, "stsvOppositeSideCheck",
+    sl::DcsSettings::from(frame.parameters).stsvTest == sl::StsvOcclusionTest::PaperAndOppositeSides ? 1 : 0);
   glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
   // As for the wedges: the counters are written through the image.
   const sl::ScopedRenderTarget target(window, this->WedgeFramebuffer, { this->VolumeCount });
@@ -240,7 +241,7 @@ std::vector<sl::NamedImage> vtkSLDcsPass::CollectPassBuffers()
   buffers.push_back({ "light_sample_mask", this->Mask.readSampleMask(samples), "", "" });
   buffers.push_back(this->VolumeCountStatusImage());
 
-  if (frame.parameters.getInt("export_sample_counts") != 0)
+  if (sl::DcsSettings::from(frame.parameters).exportSampleCounts)
   {
     const std::vector<std::uint32_t> counterWords = this->Counters.read();
     const sl::ImageF centre = sl::readFloatTexture(this->VolumeCount, 1);

@@ -32,6 +32,15 @@ BufferSpec esmBiasGainBuffer()
   return spec;
 }
 
+EsmSettings EsmSettings::from(const ParameterValues& values)
+{
+  EsmSettings settings;
+  settings.bias = biasSettings(values);
+  settings.prefilter = MomentPrefilterSettings::from(values);
+  settings.exponent = values.get("esm_exponent");
+  return settings;
+}
+
 TechniqueDescriptor esmTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -51,6 +60,10 @@ TechniqueDescriptor esmTechnique()
     { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
     esmBiasGainBuffer(),
   };
+  descriptor.lightSpaceRequest = [](const ParameterValues& values) {
+    const EsmSettings settings = EsmSettings::from(values);
+    return LightSpaceRequest{ "prefilter_texels", static_cast<double>(settings.prefilter.texels), settings.exponent };
+  };
   descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] {
     auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
@@ -58,14 +71,15 @@ TechniqueDescriptor esmTechnique()
     return vtkSmartPointer<vtkSLTechniquePass>(pass);
   };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    requireBlurPrefilter(context.frame->parameters);
+    const EsmSettings settings = EsmSettings::from(context.frame->parameters);
+    requireBlurPrefilter(settings.prefilter);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const ReferenceSample sample = esmReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
     // MomentTest: <= 1e-4 (the sums of exp(c z_n) are well conditioned in float).
     ProbeOutcome outcome = probeOutcome(sample, 1e-4, "esmReference (esm/EsmTechnique.h), double precision, prefilter = blur");
     if (sample.evaluated)
     {
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, pixel.x, pixel.y);
       noteMomentTexelEdge(outcome.ambiguity, lookup.sm.uvTexels);
     }
     return outcome;
@@ -77,13 +91,14 @@ TechniqueDescriptor esmTechnique()
 ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder)
 {
-  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  const EsmSettings settings = EsmSettings::from(values);
+  ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   if (!lookup.sample.evaluated)
   {
     return lookup.sample;
   }
-  const double exponent = values.get("esm_exponent");
-  const int width = values.getInt("prefilter_texels");
+  const double exponent = settings.exponent;
+  const int width = settings.prefilter.texels;
   if (recorder)
   {
     recordMomentBox(*recorder, inputs, lookup, width);

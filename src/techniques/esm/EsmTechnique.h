@@ -4,6 +4,7 @@
 // box), kernel_texels, depth_bias, bias_gain (exp(c bias_n); pixels at 2 or more are flagged and warned about).
 #pragma once
 
+#include "techniques/MomentReference.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 
@@ -17,6 +18,16 @@ BufferSpec esmBiasGainBuffer();
 // CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur. `recorder` (optional, `shadowlab
 // probe`): the receiver, the moment box (kernel_texels, its texels), E[exp(c z_n)], the exponential test, and the
 // light leak against the true PCF over the same box (its comparisons).
+// esm's parameters, typed (parsed once, by from()).
+struct EsmSettings
+{
+  BiasSettings bias;
+  MomentPrefilterSettings prefilter;
+  double exponent{}; // esm_exponent: c in exp(c (z_n - t_n))
+
+  static EsmSettings from(const ParameterValues& values);
+};
+
 ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder = nullptr);
 

@@ -19,6 +19,16 @@
 namespace sl
 {
 
+Gbp06Settings Gbp06Settings::from(const ParameterValues& values)
+{
+  Gbp06Settings settings;
+  settings.receiver = ContourReceiverSettings::from(values);
+  settings.gapFilling = gapFillingOf(values);
+  settings.traversal =
+    choiceOf<Gbp06Traversal>(values, "traversal", { { "kernel", Gbp06Traversal::Kernel }, { "hsm", Gbp06Traversal::Hsm } });
+  return settings;
+}
+
 TechniqueDescriptor gbp06Technique()
 {
   TechniqueDescriptor descriptor;
@@ -80,20 +90,6 @@ namespace
 glm::dvec2 quadtreeNode(const HierarchicalShadowMap& hsm, int level, glm::ivec2 index)
 {
   return hsm.node(level, index);
-}
-
-// The `gap_filling` choices.
-enum class GapFilling
-{
-  Off,
-  LeftBottom, // GBP06's rule as SS08 §3 gives it
-  RightTop    // the mirror convention
-};
-
-GapFilling gapFillingOf(const ParameterValues& values)
-{
-  const std::string choice = values.choice("gap_filling");
-  return choice == "left_bottom" ? GapFilling::LeftBottom : choice == "right_top" ? GapFilling::RightTop : GapFilling::Off;
 }
 
 struct MicropatchAccumulator
@@ -220,7 +216,9 @@ struct MicropatchAccumulator
 Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
   const ParameterValues& values, int x, int y, ProbeRecorder* recorder)
 {
-  ContourReceiver receiver = prepareContourReceiver(inputs, values, hsm, x, y, recorder);
+  const Gbp06Settings settings = Gbp06Settings::from(values);
+  const bool kernelTraversal = settings.traversal == Gbp06Traversal::Kernel;
+  ContourReceiver receiver = prepareContourReceiver(inputs, settings.receiver, hsm, x, y, recorder);
   Gbp06Sample result;
   const auto finish = [&](BackprojectionClass classification) {
     recordReceiver(receiver, classification, result);
@@ -228,7 +226,7 @@ Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShad
     {
       recorder->beginGroup("visibility");
       recorder->quantity("occluding_texels", result.occludingTexels, "texels", "GBP06: micropatches accumulated");
-      recorder->quantity("visited_nodes", result.visitedNodes, "nodes", values.choice("traversal") == "kernel"
+      recorder->quantity("visited_nodes", result.visitedNodes, "nodes", kernelTraversal
         ? "GBP06: texels examined (every texel of the kernel plus one ring)"
         : "DU07 (Dmitriev & Uralsky 2007): quadtree nodes examined, leaves included");
       recordClassification(*recorder, classification);
@@ -243,20 +241,20 @@ Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShad
   {
     return finish(receiver.classification);
   }
-  MicropatchAccumulator accumulator{ inputs, receiver, gapFillingOf(values), recorder };
+  MicropatchAccumulator accumulator{ inputs, receiver, settings.gapFilling, recorder };
   // The kernel's texels plus one ring, clamped to the map (see the header).
   const glm::ivec2 lo = receiver.samples.lo;
   const glm::ivec2 hi = receiver.samples.hi;
   const double d = receiver.geometry.d;
   if (recorder)
   {
-    recorder->beginGroup(values.choice("traversal") == "kernel" ? "micropatches (every texel of the kernel + ring)"
+    recorder->beginGroup(kernelTraversal ? "micropatches (every texel of the kernel + ring)"
                                                                  : "micropatches (DU07 quadtree walk)");
-    recorder->category("gap_filling", values.choice("gap_filling"),
+    recorder->category("gap_filling", gapFillingName(settings.gapFilling),
       "Schwarz & Stamminger 2008 (SS08 §3): GBP06 extends a micropatch to its left and bottom neighbours "
       "(right_top: the mirror convention)");
   }
-  if (values.choice("traversal") == "kernel")
+  if (kernelTraversal)
   {
     for (int j = lo.y; j <= hi.y; ++j)
     {

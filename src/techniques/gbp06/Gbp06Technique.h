@@ -59,6 +59,23 @@ TechniqueDescriptor gbp06Technique();
 // from the twin's near the budget; tests compare the twin's class only where it is under the budget.
 constexpr int gbp06LoopBudget = 60000;
 
+// The `traversal` choices.
+enum class Gbp06Traversal
+{
+  Kernel, // every texel of the kernel plus one ring
+  Hsm     // a depth-first walk of the min-max quadtree (Dmitriev & Uralsky 2007)
+};
+
+// gbp06's parameters, typed (parsed once, by from()); the min-max structure's own are HierarchicalShadowMapSettings.
+struct Gbp06Settings
+{
+  ContourReceiverSettings receiver;
+  GapFilling gapFilling{};
+  Gbp06Traversal traversal{};
+
+  static Gbp06Settings from(const ParameterValues& values);
+};
+
 struct Gbp06Sample : BackprojectionPixel
 {
   int occludingTexels = 0;  // micropatches accumulated

@@ -69,10 +69,18 @@ TechniqueDescriptor gbp07Technique()
   return descriptor;
 }
 
+Gbp07Settings Gbp07Settings::from(const ParameterValues& values)
+{
+  Gbp07Settings settings;
+  settings.receiver = ContourReceiverSettings::from(values);
+  return settings;
+}
+
 Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
   const ParameterValues& values, int x, int y, ProbeRecorder* recorder)
 {
-  ContourReceiver receiver = prepareContourReceiver(inputs, values, hsm, x, y, recorder);
+  const Gbp07Settings settings = Gbp07Settings::from(values);
+  ContourReceiver receiver = prepareContourReceiver(inputs, settings.receiver, hsm, x, y, recorder);
   Gbp07Sample result;
   const auto finish = [&](BackprojectionClass classification) {
     recordReceiver(receiver, classification, result);

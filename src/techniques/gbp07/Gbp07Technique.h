@@ -25,6 +25,15 @@ TechniqueDescriptor gbp07Technique();
 // cut itself (its last cell not reached), so a GL without a cap flags nothing.
 constexpr int gbp07LoopBudgetCells = 60000;
 
+// gbp07's parameters, typed (parsed once, by from()); the min-max structure's own are HierarchicalShadowMapSettings,
+// the sub-lights TechniqueDescriptor::subLightsPerSide.
+struct Gbp07Settings
+{
+  ContourReceiverSettings receiver;
+
+  static Gbp07Settings from(const ParameterValues& values);
+};
+
 struct Gbp07Sample : BackprojectionPixel
 {
   int contourEdges = 0;

@@ -11,6 +11,13 @@
 namespace sl
 {
 
+HardSettings HardSettings::from(const ParameterValues& values)
+{
+  HardSettings settings;
+  settings.bias = biasSettings(values);
+  return settings;
+}
+
 TechniqueDescriptor hardTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -30,7 +37,7 @@ TechniqueDescriptor hardTechnique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const ReferenceSample sample =
-      hardReference(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y, &recorder);
+      hardReference(inputs, HardSettings::from(context.frame->parameters).bias, pixel.x, pixel.y, &recorder);
     // GpuCpuTest: identical on unambiguous pixels (0 or 1).
     return probeOutcome(sample, 0.0, "hardReference (hard/HardTechnique.h), double precision");
   };

@@ -16,6 +16,14 @@ namespace sl
 TechniqueDescriptor hardTechnique();
 
 // CPU reference (double precision) of HardVisibility.glsl at pixel (x, y).
+// hard's parameters, typed (parsed once, by from()): the shadow map's own are ShadowMapSettings.
+struct HardSettings
+{
+  BiasSettings bias;
+
+  static HardSettings from(const ParameterValues& values);
+};
+
 ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings& bias, int x, int y,
   ProbeRecorder* recorder = nullptr);
 

@@ -15,6 +15,18 @@
 namespace sl
 {
 
+PcfSettings PcfSettings::from(const ParameterValues& values)
+{
+  PcfSettings settings;
+  settings.bias = biasSettings(values);
+  settings.kernelTexels = values.getInt("kernel_texels");
+  settings.pattern = choiceOf<PcfPattern>(values, "pattern", { { "grid", PcfPattern::Grid }, { "poisson", PcfPattern::Poisson } });
+  settings.poissonSamples = values.getInt("poisson_samples");
+  settings.filter = choiceOf<PcfFilter>(values, "filter",
+    { { "nearest", PcfFilter::Nearest }, { "hardware_bilinear", PcfFilter::HardwareBilinear } });
+  return settings;
+}
+
 TechniqueDescriptor pcfTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -35,6 +47,9 @@ TechniqueDescriptor pcfTechnique()
     { "texel_ratio", "pixels/texel", "aliasing error m (survey Eq. 2): screen pixels spanned by one shadow-map texel along its most stretched direction; > 1 means undersampling" },
     { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
   };
+  descriptor.lightSpaceRequest = [](const ParameterValues& values) {
+    return LightSpaceRequest{ "kernel_texels", static_cast<double>(PcfSettings::from(values).kernelTexels) };
+  };
   descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPcfPass>::New()); };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
@@ -43,7 +58,7 @@ TechniqueDescriptor pcfTechnique()
     const ReferenceSample sample = pcfReference(inputs, values, pixel.x, pixel.y, &recorder);
     // GpuCpuTest's tolerances on unambiguous pixels: nearest taps are a sum of 0/1 divided by the count (1e-5);
     // the hardware's bilinear weights have the texture unit's sub-texel precision (8 bits on llvmpipe: 2^-7).
-    const bool hardware = values.choice("filter") == "hardware_bilinear";
+    const bool hardware = PcfSettings::from(values).filter == PcfFilter::HardwareBilinear;
     return probeOutcome(sample, hardware ? 1.0 / 128.0 : 1e-5, "pcfReference (pcf/PcfTechnique.h), double precision");
   };
   // Area lights are sampled from their centre (hard/README.md, "Common to hard and pcf"): held to the single ray to
@@ -103,16 +118,17 @@ double bilinearCompare(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels
 ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder)
 {
-  ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  const PcfSettings settings = PcfSettings::from(values);
+  ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   ReferenceSample& sample = lookup.sample;
   if (!sample.evaluated)
   {
     return sample;
   }
-  const bool hardware = values.choice("filter") == "hardware_bilinear";
-  const bool grid = values.choice("pattern") == "grid";
-  const int kernelTexels = values.getInt("kernel_texels");
-  const int tapCount = grid ? kernelTexels * kernelTexels : values.getInt("poisson_samples");
+  const bool hardware = settings.filter == PcfFilter::HardwareBilinear;
+  const bool grid = settings.pattern == PcfPattern::Grid;
+  const int kernelTexels = settings.kernelTexels;
+  const int tapCount = grid ? kernelTexels * kernelTexels : settings.poissonSamples;
   const double referenceWindowDepth = inputs.lightView.windowDepth(lookup.comparisonDepth);
   if (recorder)
   {

@@ -25,6 +25,30 @@ namespace sl
 
 TechniqueDescriptor pcfTechnique();
 
+enum class PcfPattern
+{
+  Grid,
+  Poisson
+};
+
+enum class PcfFilter
+{
+  Nearest,
+  HardwareBilinear
+};
+
+// pcf's parameters, typed (parsed once, by from()).
+struct PcfSettings
+{
+  BiasSettings bias;
+  int kernelTexels{};
+  PcfPattern pattern{};
+  int poissonSamples{};
+  PcfFilter filter{};
+
+  static PcfSettings from(const ParameterValues& values);
+};
+
 // CPU reference (double precision) of PcfVisibility.glsl at pixel (x, y). `recorder` (optional, `shadowlab
 // probe`): the receiver, the kernel (texels and world units, as a ProbeKernel), every texel compared with its
 // weight in the result (nearest: 1 / taps per tap; hardware_bilinear: the 2x2 texels of each tap with their

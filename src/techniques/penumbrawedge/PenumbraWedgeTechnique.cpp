@@ -9,12 +9,22 @@
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
 #include "techniques/penumbrawedge/vtkSLPenumbraWedgePass.h"
 #include "techniques/VolumeCountStatus.h"
+#include "objectspace/ShadowVolumeReference.h"
 #include "objectspace/StsvDrawer.h"
 
 #include <algorithm>
 
 namespace sl
 {
+
+PenumbraWedgeSettings PenumbraWedgeSettings::from(const ParameterValues& values)
+{
+  PenumbraWedgeSettings settings;
+  settings.receiverOffset = receiverOffsetOf(values);
+  settings.lightSamples = lightSampleSetSettings(values);
+  settings.stsvTest = stsvOcclusionTestOf(values);
+  return settings;
+}
 
 TechniqueDescriptor penumbraWedgeTechnique()
 {
@@ -101,9 +111,10 @@ ProbeOutcome probePenumbraWedge(const FrameResult& frame, const Scene& scene, in
   recorder.beginGroup("receiver");
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");
   recorder.quantity("normal", nWs, "", "G-buffer (nWs)");
-  const LightSampleSet samples(lightSampleSetSettings(frame.parameters));
+  const PenumbraWedgeSettings settings = PenumbraWedgeSettings::from(frame.parameters);
+  const LightSampleSet samples(settings.lightSamples);
   const PenumbraWedgePixel twin = penumbraWedgePixel(penumbraWedgeScene(scene, light), scene, light, pWs,
-    frame.parameters.get("receiver_offset"), dcsSamplePoints(light, samples, pixel), stsvOcclusionTestOf(frame.parameters),
+    settings.receiverOffset, dcsSamplePoints(light, samples, pixel), settings.stsvTest,
     &recorder);
   recorder.beginGroup("result");
   recorder.quantity("counted_point", twin.countedPoint, "world units", "ShadowLab: pWs + receiver_offset (eye - pWs)");

@@ -19,11 +19,23 @@
 #include "frame/FrameResult.h"
 #include "frame/ProbeRecord.h"
 #include "frame/TechniqueDescriptor.h"
+#include "lightspace/LightSampleSet.h"
+#include "objectspace/StsvGeometry.h"
 
 namespace sl
 {
 
 TechniqueDescriptor penumbraWedgeTechnique();
+
+// penumbra-wedge's parameters, typed (parsed once, by from()).
+struct PenumbraWedgeSettings
+{
+  double receiverOffset{};             // of the eye distance
+  LightSampleSetSettings lightSamples; // the perforated casters' LS_buffer samples (the light-sample set's own)
+  StsvOcclusionTest stsvTest{};        // stsv_opposite_side_check
+
+  static PenumbraWedgeSettings from(const ParameterValues& values);
+};
 
 // The technique's probe: the centre's crossings, each covering wedge's far region and share, and the resolve
 // (PenumbraWedgeGeometry.h penumbraWedgePixel).

@@ -8,6 +8,7 @@
 #include "passes/ScopedRenderTarget.h"
 #include "objectspace/DcsWedgeExport.h"
 #include "techniques/penumbrawedge/PenumbraWedgeGeometry.h"
+#include "techniques/penumbrawedge/PenumbraWedgeTechnique.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>
@@ -105,7 +106,7 @@ std::vector<vtkSLTechniquePass::PassShader> vtkSLPenumbraWedgePass::GetPassShade
 
 int vtkSLPenumbraWedgePass::SampleCount() const
 {
-  return std::stoi(this->Frame->parameters.choice("samples"));
+  return sl::PenumbraWedgeSettings::from(this->Frame->parameters).lightSamples.count;
 }
 
 void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
@@ -125,7 +126,8 @@ void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
     sl::assembleShader(kStsvShader, defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
-  sl::setIntIfUsed(program, "stsvOppositeSideCheck", frame.parameters.choice("stsv_opposite_side_check") == "on" ? 1 : 0);
+  sl::setIntIfUsed(program, "stsvOppositeSideCheck",
+    sl::PenumbraWedgeSettings::from(frame.parameters).stsvTest == sl::StsvOcclusionTest::PaperAndOppositeSides ? 1 : 0);
   glBindImageTexture(1, this->Mask.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
 
   const sl::ScopedRenderTarget target(window, this->StsvFramebuffer, { this->StsvCovering, this->StsvEmptyHits });

@@ -18,6 +18,16 @@
 namespace sl
 {
 
+ReferenceSmSettings ReferenceSmSettings::from(const ParameterValues& values)
+{
+  ReferenceSmSettings settings;
+  settings.shadowMap = ShadowMapSettings::from(values);
+  settings.bias = biasSettings(values);
+  settings.samples = values.getInt("samples");
+  settings.seed = static_cast<std::uint64_t>(values.getInt("seed"));
+  return settings;
+}
+
 TechniqueDescriptor referenceSmTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -48,7 +58,7 @@ TechniqueDescriptor referenceSmTechnique()
   // visibility_stderr publishes (the differential test adds it to the tolerance).
   descriptor.accuracy.reference = ReferenceModel::AreaLight;
   descriptor.accuracy.tolerance = 0.02;
-  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return values.getInt("samples"); };
+  descriptor.accuracy.lightSampleCount = [](const ParameterValues& values) { return ReferenceSmSettings::from(values).samples; };
   // Each of the K maps samples an alpha-textured caster at its texel centres, as every shadow map does: flagged where
   // the segment to one of the K samples crosses such a caster.
   // A caster just below the light makes each sample's map span a huge angle (its focus fits the receivers on that
@@ -86,8 +96,8 @@ TechniqueDescriptor referenceSmTechnique()
       markEdges();
       return;
     }
-    markSampleRaysThroughPerforatedCaster(context,
-      lightSamplePoints(light, values.getInt("samples"), static_cast<std::uint64_t>(values.getInt("seed"))), codes, 1.0f);
+    const ReferenceSmSettings settings = ReferenceSmSettings::from(values);
+    markSampleRaysThroughPerforatedCaster(context, lightSamplePoints(light, settings.samples, settings.seed), codes, 1.0f);
     // The K views as the replay fits them (the pass's own are internal); the margin is ShadowMapFootprint's.
     const ReferenceSmReplay replay(*context.frame, *context.scene, context.lightIndex);
     const ImageF& position = context.frame->find("position")->image;
@@ -123,9 +133,9 @@ TechniqueDescriptor referenceSmTechnique()
 
 ReferenceSmReplay::ReferenceSmReplay(const FrameResult& frame, const Scene& scene, int lightIndex)
   : light_(scene.lights.at(static_cast<std::size_t>(lightIndex)))
-  , bias_(biasSettings(frame.parameters))
+  , bias_(ReferenceSmSettings::from(frame.parameters).bias)
 {
-  const ParameterValues& values = frame.parameters;
+  const ReferenceSmSettings settings = ReferenceSmSettings::from(frame.parameters);
   inputs_.camera = frame.camera;
   inputs_.position = frame.find("position")->image;
   inputs_.normal = frame.find("normal")->image;
@@ -153,13 +163,12 @@ ReferenceSmReplay::ReferenceSmReplay(const FrameResult& frame, const Scene& scen
   ImageReceivers receivers(positionRgba, normalRgba);
   // As vtkSLReferenceShadowMapPass::Execute: the samples, a point light of the area light's orientation at each,
   // its map focused with a one-texel margin.
-  const std::vector<glm::dvec3> samples =
-    lightSamplePoints(light_, values.getInt("samples"), static_cast<std::uint64_t>(values.getInt("seed")));
+  const std::vector<glm::dvec3> samples = lightSamplePoints(light_, settings.samples, settings.seed);
   const bool directional = light_.type == LightType::Directional;
   const std::size_t sampleCount = directional ? 1 : samples.size();
   FocusSettings focus;
-  focus.resolution = values.getInt("shadow_map_size");
-  focus.marginTexels = 1.0;
+  focus.resolution = settings.shadowMap.resolution;
+  focus.marginTexels = settings.shadowMap.marginTexels;
   lights_.reserve(sampleCount);
   for (std::size_t k = 0; k < sampleCount; ++k)
   {
@@ -173,7 +182,7 @@ ReferenceSmReplay::ReferenceSmReplay(const FrameResult& frame, const Scene& scen
     worldFromClip_.push_back(glm::inverse(views_.back().clipFromWorld));
   }
 
-  backFaces_ = values.choice("caster_faces") == "back";
+  backFaces_ = settings.shadowMap.secondDepth;
   for (const SceneObject& object : scene.objects)
   {
     if (!object.castShadows)

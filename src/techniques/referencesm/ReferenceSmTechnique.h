@@ -15,16 +15,29 @@
 #include "frame/TechniqueDescriptor.h"
 #include "lightspace/LightView.h"
 #include "scene/Scene.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/ShadowMapReference.h"
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace sl
 {
 
 TechniqueDescriptor referenceSmTechnique();
+
+// reference-sm's parameters, typed (parsed once, by from()).
+struct ReferenceSmSettings
+{
+  ShadowMapSettings shadowMap; // resolution and caster faces of each of the K maps; a one-texel margin (no filter)
+  BiasSettings bias;
+  int samples{};               // K
+  std::uint64_t seed{};        // rotation of the Hammersley light samples
+
+  static ReferenceSmSettings from(const ParameterValues& values);
+};
 
 // The probe's twin of the pass (no whole-image twin exists: the K maps stay on the GPU). For a pixel it replays
 // the K hard shadow tests exactly as the pass makes them, one shadow-map texel each:

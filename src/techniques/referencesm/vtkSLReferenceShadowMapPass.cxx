@@ -1,4 +1,5 @@
 #include "techniques/referencesm/vtkSLReferenceShadowMapPass.h"
+#include "techniques/referencesm/ReferenceSmTechnique.h"
 
 #include "core/Error.h"
 #include "lightspace/LightSamples.h"
@@ -28,12 +29,11 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
-  const sl::ParameterValues& parameters = frame.parameters;
+  const sl::ReferenceSmSettings settings = sl::ReferenceSmSettings::from(frame.parameters);
   const sl::Light& light = *frame.light;
 
   // Directional lights have no position to sample: one orthographic map, as `hard`.
-  std::vector<glm::dvec3> samples = sl::lightSamplePoints(
-    light, parameters.getInt("samples"), static_cast<std::uint64_t>(parameters.getInt("seed")));
+  std::vector<glm::dvec3> samples = sl::lightSamplePoints(light, settings.samples, settings.seed);
   const bool directional = light.type == sl::LightType::Directional;
   const int sampleCount = directional ? 1 : static_cast<int>(samples.size());
   this->SampleCount = sampleCount;
@@ -44,9 +44,9 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
   }
   this->Receivers->setGBuffer(frame.gbufferPosition, frame.gbufferNormal);
   sl::FocusSettings focus;
-  focus.resolution = parameters.getInt("shadow_map_size");
-  focus.marginTexels = 1.0;
-  const bool secondDepth = parameters.choice("caster_faces") == "back";
+  focus.resolution = settings.shadowMap.resolution;
+  focus.marginTexels = settings.shadowMap.marginTexels;
+  const bool secondDepth = settings.shadowMap.secondDepth;
   const auto linearDepth = sl::makeFloatTarget(window, focus.resolution, focus.resolution, 1);
   const auto hardwareDepth = sl::makeDepthTarget(window, focus.resolution, focus.resolution);
   this->Accumulated = sl::makeFloatTarget(window, frame.width(), frame.height(), 2); // visibility, edge

@@ -19,6 +19,16 @@
 namespace sl
 {
 
+SavsmSettings SavsmSettings::from(const ParameterValues& values)
+{
+  SavsmSettings settings;
+  settings.pcss = PcssSettings::from(values);
+  settings.sat = summedAreaTableSettings(values);
+  settings.lightBleedingReduction = values.get("light_bleeding_reduction");
+  settings.minVariance = values.get("min_variance");
+  return settings;
+}
+
 TechniqueDescriptor savsmTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -62,11 +72,12 @@ TechniqueDescriptor savsmTechnique()
         probeTexelEdgeAmbiguity);
       if (sample.foundBlockers)
       {
-        const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), pixel.x, pixel.y);
+        const SavsmSettings settings = SavsmSettings::from(values);
+        const ShadowLookup lookup = prepareShadowLookup(inputs, settings.pcss.bias, pixel.x, pixel.y);
         const double d = lookup.sm.depthLin;
         noteAmbiguity(outcome.ambiguity, "variance / d^2 (float cancellation in E[z^2] - E[z]^2)",
           sample.variance / (d * d), 1e-3);
-        if (values.choice("sat_precision") == "float_centred")
+        if (!settings.sat.integer)
         {
           // The twin sums exactly; the GPU's float table rounds each corner sum (sums over up to N^2 texels, so
           // the error grows with the map). SavsmTest compares visibility at int32 only; measured once at 512^2
@@ -105,11 +116,11 @@ namespace
 // texel up to max_grid_taps per axis, a regular sub-grid beyond, each tap compared as PCSS's filter step compares
 // it (the bias and, with receiver_plane_bias, the receiver's tangent plane). With `recorder`, the taps and the
 // light leak (recordLightLeak).
-double lightLeakPcf(const ShadowMapInputs& inputs, const ParameterValues& values, const SoftShadowGeometry& geometry,
+double lightLeakPcf(const ShadowMapInputs& inputs, const SoftShadowSettings& soft, const SoftShadowGeometry& geometry,
   double bias, glm::ivec2 lo, glm::ivec2 hi, double pMax, ProbeRecorder* recorder)
 {
   const int size = inputs.shadowMapLinear.width;
-  const int maxTaps = values.getInt("max_grid_taps");
+  const int maxTaps = soft.maxGridTaps;
   glm::dvec2 origin(0.0);
   glm::dvec2 step(1.0);
   glm::ivec2 count(0);
@@ -165,7 +176,8 @@ SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues&
   ProbeRecorder* recorder)
 {
   // Blocker search and w_p are PCSS's; its PCF step runs (the margins are the whole twin's) but is not recorded.
-  const PcssSample pcss = pcssReference(inputs, values, x, y, recorder, false);
+  const SavsmSettings settings = SavsmSettings::from(values);
+  const PcssSample pcss = pcssReference(inputs, settings.pcss, x, y, recorder, false);
   SavsmSample result;
   result.sample = pcss.sample;
   result.kernelEdgeMargin = pcss.kernelEdgeMargin;
@@ -178,15 +190,15 @@ SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues&
   result.lo = rectangle.lo;
   result.hi = rectangle.hi;
   const LightView& view = inputs.lightView;
-  const bool integer = values.choice("sat_precision") == "int32";
+  const bool integer = settings.sat.integer;
   const BoxMoments moments =
     exactBoxMoments(inputs.shadowMapLinear, result.lo, result.hi, view.nearDepth, view.farDepth, integer);
-  const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y);
+  const ShadowLookup lookup = prepareShadowLookup(inputs, settings.pcss.bias, x, y);
   const double d = lookup.sm.depthLin;
   const double t = d;
-  result.variance = std::max(moments.variance, values.get("min_variance") * d * d);
+  result.variance = std::max(moments.variance, settings.minVariance * d * d);
   result.pMax = t <= moments.mean ? 1.0 : result.variance / (result.variance + (t - moments.mean) * (t - moments.mean));
-  const double amount = values.get("light_bleeding_reduction");
+  const double amount = settings.lightBleedingReduction;
   result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
   if (recorder)
   {
@@ -209,9 +221,9 @@ SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues&
     recorder->beginGroup("light leak");
   }
   const SoftShadowGeometry geometry =
-    softShadowGeometry(inputs, lookup, values.choice("receiver_plane_bias") == "on", x, y);
+    softShadowGeometry(inputs, lookup, settings.pcss.soft.receiverPlaneBias, x, y);
   result.lightLeak = result.pMax -
-    lightLeakPcf(inputs, values, geometry, lookup.sample.bias, result.lo, result.hi, result.pMax, recorder);
+    lightLeakPcf(inputs, settings.pcss.soft, geometry, lookup.sample.bias, result.lo, result.hi, result.pMax, recorder);
   return result;
 }
 

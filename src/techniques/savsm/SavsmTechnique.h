@@ -9,6 +9,8 @@
 // avg_blocker_depth, penumbra_kernel_texels, depth_bias.
 #pragma once
 
+#include "structures/sat/SatStructure.h"
+#include "techniques/PcssReference.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 
@@ -16,6 +18,17 @@ namespace sl
 {
 
 TechniqueDescriptor savsmTechnique();
+
+// savsm's parameters, typed (parsed once, by from()).
+struct SavsmSettings
+{
+  PcssSettings pcss;           // the blocker search and penumbra estimate (and the bias)
+  SummedAreaTableSettings sat; // sat_precision
+  double lightBleedingReduction{};
+  double minVariance{};        // relative to d^2
+
+  static SavsmSettings from(const ParameterValues& values);
+};
 
 struct SavsmSample
 {

@@ -14,6 +14,13 @@
 
 namespace sl
 {
+ShadowVolumeSettings ShadowVolumeSettings::from(const ParameterValues& values)
+{
+  ShadowVolumeSettings settings;
+  settings.receiverOffset = receiverOffsetOf(values);
+  return settings;
+}
+
 TechniqueDescriptor shadowVolumeTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -88,7 +95,7 @@ ProbeOutcome probeShadowVolume(const FrameResult& frame, const Scene& scene, int
   }
   const glm::dvec3 pWs = bufferVector(frame, "position", pixel);
   const glm::dvec3 nWs = bufferVector(frame, "normal", pixel);
-  const double receiverOffset = frame.parameters.get("receiver_offset");
+  const double receiverOffset = ShadowVolumeSettings::from(frame.parameters).receiverOffset;
   const glm::dvec3 point = shadowVolumeReceiverPoint(scene, receiverOffset, pWs);
   recorder.beginGroup("receiver");
   recorder.quantity("position", pWs, "world units", "G-buffer (pWs)");

@@ -38,6 +38,14 @@ namespace sl
 
 TechniqueDescriptor shadowVolumeTechnique();
 
+// shadow-volume's parameters, typed (parsed once, by from()).
+struct ShadowVolumeSettings
+{
+  double receiverOffset{}; // of the eye distance
+
+  static ShadowVolumeSettings from(const ParameterValues& values);
+};
+
 // The technique's probe (TechniqueDescriptor::probe): the crossing count of the segment from the pixel's point
 // (moved by receiver_offset) to the light's centre (casterCrossings), each crossed caster triangle, the count
 // as depth_complexity_center and stencil_count, and the visibility the resolve derives from it.

@@ -35,9 +35,9 @@ const Category<Ss08Class> ss08Categories[] = {
   { Ss08Class::CutShort, "CUT_SHORT", "penumbra cut short by the loop cap", true },
 };
 
-bool microrectsOn(const ParameterValues& values)
+const char* budgetMapName(Ss08BudgetMap map)
 {
-  return values.choice("micro_occluder") == "microrect";
+  return map == Ss08BudgetMap::RampX ? "ramp_x" : map == Ss08BudgetMap::Image ? "image" : "uniform";
 }
 
 // Where in SS08 (section, figure or table as printed) a probe quantity comes from, as its source.
@@ -62,7 +62,7 @@ const char* const loqStateLabels[] = { "none (no back-projection: a stop for the
 // the pixel's own samples (up to ~0.4 pixel from the centre), which that one value does not show.
 void markSteepAcrossMultisampledPixels(const FrameResult& frame, ImageF& codes, float code, double tolerance)
 {
-  if (frame.parameters.choice("msaa") != "4")
+  if (Ss08Settings::from(frame.parameters).multisample.samples != 4)
   {
     return;
   }
@@ -94,6 +94,30 @@ void markSteepAcrossMultisampledPixels(const FrameResult& frame, ImageF& codes, 
 
 } // namespace
 
+Ss08Settings Ss08Settings::from(const ParameterValues& values)
+{
+  Ss08Settings settings;
+  settings.receiver = ContourReceiverSettings::from(values);
+  settings.budget = values.getInt("budget");
+  settings.maxBudget = static_cast<int>(findParameterSpec(values.specs(), "budget")->maxValue);
+  settings.budgetMap = choiceOf<Ss08BudgetMap>(values, "budget_map",
+    { { "uniform", Ss08BudgetMap::Uniform }, { "ramp_x", Ss08BudgetMap::RampX }, { "image", Ss08BudgetMap::Image } });
+  settings.budgetImage = values.file("budget_image");
+  settings.budgetBorder = values.getInt("budget_border");
+  settings.loqSmoothing = values.choice("loq_smoothing") == "on";
+  settings.smoothingDepthThreshold = values.get("smoothing_depth_threshold");
+  settings.loqFloorRaw = values.choice("loq_floor") == "raw";
+  settings.blendBand = values.get("blend_band");
+  settings.growth = values.choice("growth") == "on";
+  settings.microrects = values.choice("micro_occluder") == "microrect";
+  settings.gapFilling = gapFillingOf(values);
+  settings.levelBias = values.choice("level_bias") == "on";
+  settings.forceLevel = values.getInt("force_level");
+  settings.bitmaskAccumulation = values.choice("accumulation") == "bitmask";
+  settings.multisample = MultisampleSettings{ values.choice("msaa") == "4" ? 4 : 1, values.get("msaa_depth_tolerance") };
+  return settings;
+}
+
 TechniqueDescriptor ss08Technique()
 {
   TechniqueDescriptor descriptor;
@@ -124,11 +148,11 @@ TechniqueDescriptor ss08Technique()
     { "msaa_depth_tolerance", 0.001, 0.0, 1e30, "relative depth", "msaa=4: tau, the largest |d - s_z| / s_z at which a sample takes its pixel's visibility; others take the 4-neighbour's whose s_z is closest (SS08 §7, which gives tau no value). 0 = per sample (every sample off the first's depth interpolates), >= 1e30 = per pixel", {}, false },
   });
   descriptor.multisample = [](const ParameterValues& values) {
-    return MultisampleSettings{ values.choice("msaa") == "4" ? 4 : 1, values.get("msaa_depth_tolerance") };
+    return Ss08Settings::from(values).multisample;
   };
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure(), &microrectStructure() };
   descriptor.structureNeeded = [](const LightSpaceStructure& structure, const ParameterValues& values) {
-    return &structure != &microrectStructure() || microrectsOn(values);
+    return &structure != &microrectStructure() || Ss08Settings::from(values).microrects;
   };
   descriptor.buffers = {
     // Fragment outputs (at most eight).
@@ -170,7 +194,7 @@ TechniqueDescriptor ss08Technique()
     // Ss08Test does; the twin's own smoothing of its raw levels over the 11 x 11 neighbourhood is recorded after.
     const double level = bufferValue(frame, "loq", pixel);
     const Ss08Sample sample = ss08Reference(
-      twin.inputs, twin.structures(), frame.parameters, pixel.x, pixel.y, level, twin.budgets(), false, &recorder);
+      twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), pixel.x, pixel.y, level, twin.budgets(), false, &recorder);
     // Ss08MatchesTheTwin: |GPU - twin| <= 1e-4 (area accumulated in float over up to ~1300 micro-occluders) on
     // pixels none of whose decisions lies within float rounding of its boundary: the receiver's (ambiguityOf), a
     // kernel edge within 1e-4 texel of a texel centre, a lit / umbra / growth test or a micro-occluder's depth
@@ -198,7 +222,7 @@ TechniqueDescriptor ss08Technique()
       }
       recorder.beginGroup("smoothing (twin)");
       recorder.quantity("loq_twin_smoothed",
-        ss08SmoothedLevelAt(twin, frame.parameters, frame.find("depth")->image, pixel.x, pixel.y), "levels",
+        ss08SmoothedLevelAt(twin, Ss08Settings::from(frame.parameters), frame.find("depth")->image, pixel.x, pixel.y), "levels",
         cite("§4.2, §8 (the twin's 11 x 11 depth-aware box over its own raw levels; beside loq, the GPU's)"));
     }
     return outcome;
@@ -229,15 +253,15 @@ TechniqueDescriptor ss08Technique()
   return descriptor;
 }
 
-ImageF ss08BudgetImage(const ParameterValues& values, int width, int height)
+ImageF ss08BudgetImage(const Ss08Settings& settings, int width, int height)
 {
-  const std::string& path = values.file("budget_image");
+  const std::string& path = settings.budgetImage;
   if (path.empty())
   {
     throw InputError("--set budget_map=image: needs --set budget_image=FILE.png (grey value = budget, 0 = unlimited)");
   }
   const PngImage png = readPngImage(path);
-  const int maxBudget = static_cast<int>(findParameterSpec(values.specs(), "budget")->maxValue);
+  const int maxBudget = settings.maxBudget;
   const double scale = png.bitDepth == 16 ? 255.0 / 65535.0 : 1.0; // 16-bit grey as 8-bit budgets
   ImageF budgets(width, height, 1);
   for (int y = 0; y < height; ++y)
@@ -258,21 +282,21 @@ ImageF ss08BudgetImage(const ParameterValues& values, int width, int height)
   return budgets;
 }
 
-int ss08PixelBudget(const ParameterValues& values, int x, int y, int imageWidth, const ImageF* budgetImage)
+int ss08PixelBudget(const Ss08Settings& settings, int x, int y, int imageWidth, const ImageF* budgetImage)
 {
-  const std::string map = values.choice("budget_map");
-  if (map == "image")
+  const Ss08BudgetMap map = settings.budgetMap;
+  if (map == Ss08BudgetMap::Image)
   {
     SL_CHECK_MSG(budgetImage, "budget_map=image needs the budget image");
     return static_cast<int>(std::floor(budgetImage->at(x, y) + 0.5f));
   }
-  const int centre = values.getInt("budget");
-  if (map == "uniform" || centre == 0)
+  const int centre = settings.budget;
+  if (map == Ss08BudgetMap::Uniform || centre == 0)
   {
     return centre;
   }
   // Fig. 1 d, in integers as Ss08Search.glsl's pixelBudget.
-  const int border = values.getInt("budget_border");
+  const int border = settings.budgetBorder;
   const int fromEdge = imageWidth - std::abs(2 * x + 1 - imageWidth);
   const int numerator = (centre - border) * fromEdge;
   const int step = numerator >= 0 ? (numerator + imageWidth / 2) / imageWidth : -((-numerator + imageWidth / 2) / imageWidth);
@@ -294,9 +318,9 @@ int levelSize(int mapSize, int level)
 
 // EXTRA_SLOT / ceilLevel / fractionalLevel of Ss08Search.glsl: microrects may take one slot more per axis on
 // the high side (ss08SlotRange), so b of them hold span - 1 <= (b - 2) 2^j where micropatches hold span <= (b - 1) 2^j.
-int extraSlot(const ParameterValues& values)
+int extraSlot(const Ss08Settings& settings)
 {
-  return microrectsOn(values) ? 1 : 0;
+  return settings.microrects ? 1 : 0;
 }
 
 int ceilLevel(int span, int budget, int extra, int top)
@@ -319,19 +343,19 @@ int ceilLevel(int span, int budget, int extra, int top)
 }
 
 // `fromLog2`: whether l came from log2 (else it is an integer the float computation gives exactly).
-double fractionalLevel(const ParameterValues& values, int span, int budget, int top, int& levelCeil, bool* fromLog2 = nullptr)
+double fractionalLevel(const Ss08Settings& settings, int span, int budget, int top, int& levelCeil, bool* fromLog2 = nullptr)
 {
   if (fromLog2)
   {
     *fromLog2 = false;
   }
-  const int forced = values.getInt("force_level");
+  const int forced = settings.forceLevel;
   if (forced >= 0)
   {
     levelCeil = std::min(forced, top);
     return levelCeil;
   }
-  const int extra = extraSlot(values);
+  const int extra = extraSlot(settings);
   const int reach = budget - 1 - extra;
   levelCeil = ceilLevel(span, budget, extra, top);
   if (levelCeil == 0 || reach <= 0 || span - extra == reach << levelCeil)
@@ -345,12 +369,12 @@ double fractionalLevel(const ParameterValues& values, int span, int budget, int 
   return std::clamp(std::log2(static_cast<double>(span - extra) / reach), levelCeil - 1.0, static_cast<double>(levelCeil));
 }
 
-TexelRectangle grownArea(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area)
+TexelRectangle grownArea(const Ss08Settings& settings, int mapSize, int level, const TexelRectangle& area)
 {
-  const TexelRectangle slots = ss08SlotRange(values, mapSize, level, area);
+  const TexelRectangle slots = ss08SlotRange(settings, mapSize, level, area);
   const int side = 1 << level;
   TexelRectangle grown;
-  if (microrectsOn(values))
+  if (settings.microrects)
   {
     grown.lo = slots.lo * side - (side - 1);
     grown.hi = slots.hi * side + (side - 1);
@@ -372,11 +396,11 @@ int areaSpan(const TexelRectangle& area)
 
 } // namespace
 
-TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area)
+TexelRectangle ss08SlotRange(const Ss08Settings& settings, int mapSize, int level, const TexelRectangle& area)
 {
   TexelRectangle slots;
   slots.lo = area.lo >> level;
-  if (microrectsOn(values))
+  if (settings.microrects)
   {
     slots.hi = glm::min((area.hi + (1 << level) - 1) >> level, glm::ivec2(levelSize(mapSize, level) - 1));
   }
@@ -420,15 +444,15 @@ private:
 
 // searchRange() of Ss08Search.glsl: the depth range of the area grown for its level (growth=on, §6) or of the area
 // itself; `query` is the rectangle queried.
-glm::dvec2 searchRange(const ParameterValues& values, const Ss08Search& search, Ss08RangeQueries& queries,
+glm::dvec2 searchRange(const Ss08Settings& settings, const Ss08Search& search, Ss08RangeQueries& queries,
   const TexelRectangle& area, TexelRectangle& query)
 {
   query = area;
-  if (values.choice("growth") == "on")
+  if (settings.growth)
   {
     int levelCeil = 0;
-    fractionalLevel(values, areaSpan(area), search.budget, topLevel(search.geometry.mapSize), levelCeil);
-    query = grownArea(values, search.geometry.mapSize, levelCeil, area);
+    fractionalLevel(settings, areaSpan(area), search.budget, topLevel(search.geometry.mapSize), levelCeil);
+    query = grownArea(settings, search.geometry.mapSize, levelCeil, area);
   }
   return queries.range(query);
 }
@@ -465,7 +489,7 @@ struct SearchArea
   glm::dvec2 half{ 0.0 };
   TexelRectangle kernel;
 };
-SearchArea refineSearchArea(const ParameterValues& values, Ss08Search& search, Ss08RangeQueries& queries,
+SearchArea refineSearchArea(const Ss08Settings& settings, Ss08Search& search, Ss08RangeQueries& queries,
   ProbeRecorder* recorder)
 {
   const SoftShadowGeometry& geometry = search.geometry;
@@ -474,22 +498,22 @@ SearchArea refineSearchArea(const ParameterValues& values, Ss08Search& search, S
   result.half = geometry.kernelHalfTexels(geometry.nearDepth);
   result.kernel = kernelRectangle(uv, result.half, geometry.mapSize, &search.kernelEdgeMargin);
   search.area = ringed(result.kernel, geometry.mapSize);
-  result.depthRange = searchRange(values, search, queries, search.area, search.query);
-  const int refinements = values.getInt("kernel_refinements");
+  result.depthRange = searchRange(settings, search, queries, search.area, search.query);
+  const int refinements = settings.receiver.kernelRefinements;
   for (int refinement = 0; refinement < refinements; ++refinement)
   {
     recordSearchArea(recorder, queries, search, refinement, result.half, result.depthRange, "refine at its minimum depth");
     result.half = geometry.kernelHalfTexels(std::clamp(result.depthRange.x, geometry.nearDepth, geometry.d));
     result.kernel = kernelRectangle(uv, result.half, geometry.mapSize, &search.kernelEdgeMargin);
     search.area = ringed(result.kernel, geometry.mapSize);
-    result.depthRange = searchRange(values, search, queries, search.area, search.query);
+    result.depthRange = searchRange(settings, search, queries, search.area, search.query);
   }
   return result;
 }
 
 // Lit / umbra / penumbra from the final query's depth range against the comparison depths over it (§3); an umbra
 // needs the whole ring inside the map.
-void decideFromDepthRange(const ParameterValues& values, Ss08Search& search, Ss08RangeQueries& queries,
+void decideFromDepthRange(const Ss08Settings& settings, Ss08Search& search, Ss08RangeQueries& queries,
   const SearchArea& area, ProbeRecorder* recorder)
 {
   const double d = search.geometry.d;
@@ -510,7 +534,7 @@ void decideFromDepthRange(const ParameterValues& values, Ss08Search& search, Ss0
     search.classification = Ss08Class::Penumbra;
   }
   const Ss08Class rangeClass = search.classification;
-  recordSearchArea(recorder, queries, search, values.getInt("kernel_refinements"), area.half, area.depthRange,
+  recordSearchArea(recorder, queries, search, settings.receiver.kernelRefinements, area.half, area.depthRange,
     rangeClass == Ss08Class::Lit ? "lit" : rangeClass == Ss08Class::Umbra ? "umbra" : "penumbra");
   if (recorder)
   {
@@ -529,10 +553,10 @@ void decideFromDepthRange(const ParameterValues& values, Ss08Search& search, Ss0
 
 // The over-precision class (§6, Fig. 7): penumbra only because the query grew (growth=on: back-projected), or lit
 // only because it did not (growth=off: left lit, the class shows where growth would back-project).
-void classifyOverPrecision(const ParameterValues& values, Ss08Search& search, Ss08RangeQueries& queries,
+void classifyOverPrecision(const Ss08Settings& settings, Ss08Search& search, Ss08RangeQueries& queries,
   ProbeRecorder* recorder)
 {
-  const bool growth = values.choice("growth") == "on";
+  const bool growth = settings.growth;
   const double d = search.geometry.d;
   const auto litFor = [&](const TexelRectangle& area) {
     const glm::dvec2 otherRange = queries.range(area);
@@ -555,23 +579,23 @@ void classifyOverPrecision(const ParameterValues& values, Ss08Search& search, Ss
     search.classification = Ss08Class::GrowthPenumbra;
   }
   else if (!growth && search.classification == Ss08Class::Lit &&
-    !litFor(grownArea(values, search.geometry.mapSize, search.levelCeil, search.area)))
+    !litFor(grownArea(settings, search.geometry.mapSize, search.levelCeil, search.area)))
   {
     search.classification = Ss08Class::GrowthPenumbra;
   }
   search.backProjects = search.classification == Ss08Class::Penumbra ||
     (growth && search.classification == Ss08Class::GrowthPenumbra);
   search.state = !search.backProjects ? LoqState::None
-    : search.budget == 0 || values.getInt("force_level") >= 0 ? LoqState::Fixed : LoqState::Smoothed;
+    : search.budget == 0 || settings.forceLevel >= 0 ? LoqState::Fixed : LoqState::Smoothed;
 }
 
-void recordClassAndLevel(const ParameterValues& values, const Ss08Search& search, bool fromLog2,
+void recordClassAndLevel(const Ss08Settings& settings, const Ss08Search& search, bool fromLog2,
   ProbeRecorder& recorder)
 {
   recorder.beginGroup("class");
   if (search.classification == Ss08Class::GrowthPenumbra)
   {
-    recorder.category("growth_class", values.choice("growth") == "on"
+    recorder.category("growth_class", settings.growth
         ? "penumbra only by the grown query (the area's own range says lit): back-projected"
         : "lit by the area's own range, penumbra by the grown one: left lit (the over-precision artifact)",
       cite("§6, Fig. 7 (over-precision)"));
@@ -580,13 +604,13 @@ void recordClassAndLevel(const ParameterValues& values, const Ss08Search& search
   recorder.beginGroup("level of quality");
   recorder.quantity("span", search.span, "texels", "ShadowLab: the search area's larger side minus one, level-0 texels");
   recorder.quantity("search_area_texels", search.span + 1, "texels", cite("Fig. 2 b (the search area's larger side)"));
-  const int extra = values.getInt("force_level") >= 0 ? 0 : extraSlot(values);
+  const int extra = settings.forceLevel >= 0 ? 0 : extraSlot(settings);
   recorder.quantity("extra_slot", extra, "slots",
     "ShadowLab: microrects may take one slot more on the high side (ss08SlotRange)");
   recorder.quantity("level_ceil_raw", search.levelCeil, "level",
     "ShadowLab: the least level j with span - extra <= (b - 1 - extra) 2^j (at most b slots per axis at ceil(l))");
   recorder.quantity("loq_raw", search.levelRaw, "levels",
-    values.getInt("force_level") >= 0 ? std::string("ShadowLab: force_level")
+    settings.forceLevel >= 0 ? std::string("ShadowLab: force_level")
       : fromLog2 ? cite("§4.2, §8 (l = log2((span - extra) / (b - 1 - extra)), the project's rule)")
                  : cite("§4.2, §8 (an integer level: level 0 when span <= b - 1, the top level when b - 1 - extra <= 0)"));
   recorder.category("loq_state", loqStateLabels[static_cast<int>(search.state)],
@@ -598,46 +622,46 @@ void recordClassAndLevel(const ParameterValues& values, const Ss08Search& search
 // Fig. 3 step 1, in Ss08Search.glsl's steps: the pixel's budget (§4.2), the refined search area (Fig. 2 b, §3),
 // the fractional level of quality (§4.2, §8), lit / umbra / penumbra from the depth range (§3) and the
 // over-precision class (§6, Fig. 7).
-Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const Ss08Settings& settings,
   int x, int y, const ImageF* budgetImage, ProbeRecorder* recorder)
 {
   SL_CHECK(structures.hsm);
   Ss08Search search;
-  search.lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  search.lookup = prepareShadowLookup(inputs, settings.receiver.bias, x, y, recorder);
   if (!search.lookup.sample.evaluated)
   {
     return search;
   }
-  search.geometry = softShadowGeometry(inputs, search.lookup, values.choice("receiver_plane_bias") == "on", x, y);
+  search.geometry = softShadowGeometry(inputs, search.lookup, settings.receiver.receiverPlaneBias, x, y);
   search.bias = search.lookup.sample.bias;
-  search.budget = ss08PixelBudget(values, x, y, inputs.camera.resolution.x, budgetImage);
+  search.budget = ss08PixelBudget(settings, x, y, inputs.camera.resolution.x, budgetImage);
   if (recorder)
   {
     recorder->beginGroup("budget");
-    recorder->category("budget_map", values.choice("budget_map"), cite("§4.2 (the budget map b_mo(x, y))"));
+    recorder->category("budget_map", budgetMapName(settings.budgetMap), cite("§4.2 (the budget map b_mo(x, y))"));
     recorder->quantity("budget", search.budget, "micro-occluders per axis",
       cite("§4.2 (b_mo at the pixel; 0 = unlimited, Table 2)"));
   }
   Ss08RangeQueries queries(*structures.hsm, recorder);
-  const SearchArea area = refineSearchArea(values, search, queries, recorder);
+  const SearchArea area = refineSearchArea(settings, search, queries, recorder);
 
   search.span = areaSpan(search.area);
   bool fromLog2 = false;
   search.levelRaw =
-    fractionalLevel(values, search.span, search.budget, topLevel(search.geometry.mapSize), search.levelCeil, &fromLog2);
+    fractionalLevel(settings, search.span, search.budget, topLevel(search.geometry.mapSize), search.levelCeil, &fromLog2);
   // Only a level from log2 may round across an integer; the integer levels are exact in float too.
   search.levelMargin = fromLog2 ? std::abs(search.levelRaw - std::round(search.levelRaw)) : 1e300;
 
-  decideFromDepthRange(values, search, queries, area, recorder);
-  classifyOverPrecision(values, search, queries, recorder);
+  decideFromDepthRange(settings, search, queries, area, recorder);
+  classifyOverPrecision(settings, search, queries, recorder);
   if (recorder)
   {
-    recordClassAndLevel(values, search, fromLog2, *recorder);
+    recordClassAndLevel(settings, search, fromLog2, *recorder);
   }
   return search;
 }
 
-ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, const ParameterValues& values)
+ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, const Ss08Settings& settings)
 {
   const int width = loqRawAndState.width;
   const int height = loqRawAndState.height;
@@ -646,11 +670,11 @@ ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, co
   {
     current.data[i] = loqRawAndState.data[i];
   }
-  if (values.choice("loq_smoothing") == "off")
+  if (!settings.loqSmoothing)
   {
     return current;
   }
-  const double threshold = values.get("smoothing_depth_threshold");
+  const double threshold = settings.smoothingDepthThreshold;
   const auto smoothed = [](int state) { return state == static_cast<int>(LoqState::Smoothed); };
   for (int pass = 0; pass < 2; ++pass)
   {
@@ -689,7 +713,7 @@ ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, co
           }
         }
         double level = sum / count;
-        if (pass == 1 && values.choice("loq_floor") == "raw")
+        if (pass == 1 && settings.loqFloorRaw)
         {
           level = std::max(level, static_cast<double>(loqRawAndState.at(x, y, 0)));
         }
@@ -714,7 +738,7 @@ struct MicroOccluder
 // microOccluder / microOccluderArea of Ss08Visibility.glsl.
 struct Ss08Accumulator
 {
-  const ParameterValues& values;
+  const Ss08Settings& settings;
   const Ss08Structures& structures;
   Ss08Search& search;
   Ss08Sample& result;
@@ -722,7 +746,7 @@ struct Ss08Accumulator
   double halfSize = 0.0;
   bool microrects = false;
   bool levelBias = true;
-  std::string gapFilling;
+  GapFilling gapFilling = GapFilling::LeftBottom;
   ProbeRecorder* recorder = nullptr;
 
   MicroOccluder at(int level, glm::ivec2 slot) const
@@ -816,7 +840,7 @@ struct Ss08Accumulator
     if (!microrects)
     {
       double neighbourDepth = 0.0;
-      if (gapFilling == "left_bottom")
+      if (gapFilling == GapFilling::LeftBottom)
       {
         if (neighbourOccludes(level, slot - glm::ivec2(1, 0), neighbourDepth))
         {
@@ -827,7 +851,7 @@ struct Ss08Accumulator
           lo.y = std::min(lo.y, backProject(tangentLo, neighbourDepth, receiverXy, d).y);
         }
       }
-      else if (gapFilling == "right_top")
+      else if (gapFilling == GapFilling::RightTop)
       {
         if (neighbourOccludes(level, slot + glm::ivec2(1, 0), neighbourDepth))
         {
@@ -941,12 +965,12 @@ struct Ss08Levels
   int levels[2] = { 0, 0 };
   double weights[2] = { 1.0, 0.0 };
 };
-Ss08Levels selectLevels(const ParameterValues& values, double level, Ss08Sample& result, ProbeRecorder* recorder)
+Ss08Levels selectLevels(const Ss08Settings& settings, double level, Ss08Sample& result, ProbeRecorder* recorder)
 {
   result.level = level;
   result.levelFloor = static_cast<int>(std::floor(level));
   const int levelCeil = static_cast<int>(std::ceil(level));
-  result.blendAlpha = blendWeight(level - result.levelFloor, values.get("blend_band"));
+  result.blendAlpha = blendWeight(level - result.levelFloor, settings.blendBand);
   result.budgetViolation = std::max(result.search.levelCeil - levelCeil, 0);
   Ss08Levels selected{ { result.levelFloor, levelCeil }, { 1.0 - result.blendAlpha, result.blendAlpha } };
   if (levelCeil == result.levelFloor)
@@ -959,7 +983,7 @@ Ss08Levels selectLevels(const ParameterValues& values, double level, Ss08Sample&
     recorder->beginGroup("blend");
     recorder->quantity("loq", level, "levels", cite("Fig. 3 step 2, §4.2 (the smoothed LOQ map at the pixel)"));
     recorder->quantity("level_ceil", levelCeil, "level", cite("§4.2 (ceil(l))"));
-    recorder->quantity("blend_band", values.get("blend_band"), "levels", cite("§4.2 (1: always; GBP07: 0.1)"));
+    recorder->quantity("blend_band", settings.blendBand, "levels", cite("§4.2 (1: always; GBP07: 0.1)"));
     recorder->quantity("weight_floor", selected.weights[0], "", cite("§4.2 (1 - a)"));
     recorder->quantity("weight_ceil", selected.weights[1], "", cite("§4.2 (a)"));
   }
@@ -973,9 +997,9 @@ double accumulateLevel(Ss08Accumulator& accumulator, const Ss08Levels& selected,
 {
   const Ss08Search& search = result.search;
   const int level = selected.levels[k];
-  const TexelRectangle slots = ss08SlotRange(accumulator.values, search.geometry.mapSize, level, search.area);
+  const TexelRectangle slots = ss08SlotRange(accumulator.settings, search.geometry.mapSize, level, search.area);
   const double lightArea = 4.0 * accumulator.halfSize * accumulator.halfSize;
-  const bool bitmask = accumulator.values.choice("accumulation") == "bitmask";
+  const bool bitmask = accumulator.settings.bitmaskAccumulation;
   if (recorder)
   {
     recorder->beginGroup("level " + std::to_string(level) + (k == 0 ? " (floor)" : " (ceil)"));
@@ -1032,22 +1056,22 @@ double accumulateLevel(Ss08Accumulator& accumulator, const Ss08Levels& selected,
 }
 
 // accumulateMicroOccluders() of Ss08Visibility.glsl: both levels' micro-occluders, blended (§4.2).
-double accumulateMicroOccluders(const ParameterValues& values, const Ss08Structures& structures,
+double accumulateMicroOccluders(const Ss08Settings& settings, const Ss08Structures& structures,
   const Ss08Levels& selected, Ss08Sample& result, ProbeRecorder* recorder)
 {
   Ss08Search& search = result.search;
-  Ss08Accumulator accumulator{ values, structures, search, result };
+  Ss08Accumulator accumulator{ settings, structures, search, result };
   accumulator.receiverXy =
     (search.geometry.windowMin + search.lookup.sm.uvTexels * search.geometry.texelTangent) * search.geometry.d;
   accumulator.halfSize = 0.5 * search.geometry.lightSize;
-  accumulator.microrects = microrectsOn(values);
-  accumulator.levelBias = values.choice("level_bias") == "on";
-  accumulator.gapFilling = values.choice("gap_filling");
+  accumulator.microrects = settings.microrects;
+  accumulator.levelBias = settings.levelBias;
+  accumulator.gapFilling = settings.gapFilling;
   accumulator.recorder = recorder;
   double visibility = 0.0;
   for (int k = 0; k < 2; ++k)
   {
-    const TexelRectangle slots = ss08SlotRange(values, search.geometry.mapSize, selected.levels[k], search.area);
+    const TexelRectangle slots = ss08SlotRange(settings, search.geometry.mapSize, selected.levels[k], search.area);
     result.slotsPerAxis[k] = glm::max(slots.hi - slots.lo + 1, glm::ivec2(0));
     if (selected.weights[k] > 0.0)
     {
@@ -1061,11 +1085,11 @@ double accumulateMicroOccluders(const ParameterValues& values, const Ss08Structu
 
 // Fig. 3, in Ss08Visibility.glsl's steps: the search (step 1, ss08Search), the levels the smoothed LOQ selects
 // (step 2, §4.2), and the micro-occluders of both levels back-projected and accumulated (step 3, §3, §8).
-Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const Ss08Settings& settings,
   int x, int y, double level, const ImageF* budgetImage, bool evaluateLit, ProbeRecorder* recorder)
 {
   Ss08Sample result;
-  result.search = ss08Search(inputs, structures, values, x, y, budgetImage, recorder);
+  result.search = ss08Search(inputs, structures, settings, x, y, budgetImage, recorder);
   Ss08Search& search = result.search;
   result.sample = search.lookup.sample;
   if (!search.lookup.sample.evaluated)
@@ -1087,9 +1111,9 @@ Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& st
     recordSs08Result(result, recorder);
     return result;
   }
-  SL_CHECK_MSG(!microrectsOn(values) || structures.microrects, "micro_occluder=microrect needs the microrects");
-  const Ss08Levels selected = selectLevels(values, level, result, recorder);
-  result.sample.visibility = accumulateMicroOccluders(values, structures, selected, result, recorder);
+  SL_CHECK_MSG(!settings.microrects || structures.microrects, "micro_occluder=microrect needs the microrects");
+  const Ss08Levels selected = selectLevels(settings, level, result, recorder);
+  result.sample.visibility = accumulateMicroOccluders(settings, structures, selected, result, recorder);
   if (result.microOccluders > ss08LoopCap)
   {
     search.classification = Ss08Class::CutShort;
@@ -1118,18 +1142,19 @@ Ss08Twin ss08TwinOf(const FrameResult& frame, const Scene& scene, int lightIndex
   Ss08Twin twin;
   twin.inputs = shadowMapInputsOf(frame, scene, lightIndex);
   twin.hsm = buildHierarchicalShadowMap(twin.inputs.shadowMapLinear, frame.parameters);
-  if (microrectsOn(frame.parameters))
+  const Ss08Settings settings = Ss08Settings::from(frame.parameters);
+  if (settings.microrects)
   {
     twin.microrects = Microrects::build(twin.inputs.shadowMapLinear);
   }
-  if (frame.parameters.choice("budget_map") == "image")
+  if (settings.budgetMap == Ss08BudgetMap::Image)
   {
-    twin.budgetImage = ss08BudgetImage(frame.parameters, frame.resolution.x, frame.resolution.y);
+    twin.budgetImage = ss08BudgetImage(settings, frame.resolution.x, frame.resolution.y);
   }
   return twin;
 }
 
-double ss08SmoothedLevelAt(const Ss08Twin& twin, const ParameterValues& values, const ImageF& cameraDepth, int x, int y)
+double ss08SmoothedLevelAt(const Ss08Twin& twin, const Ss08Settings& settings, const ImageF& cameraDepth, int x, int y)
 {
   const glm::ivec2 lo = glm::max(glm::ivec2(x, y) - ss08SmoothingRadius, glm::ivec2(0));
   const glm::ivec2 hi = glm::min(glm::ivec2(x, y) + ss08SmoothingRadius, glm::ivec2(cameraDepth.width, cameraDepth.height) - 1);
@@ -1140,13 +1165,13 @@ double ss08SmoothedLevelAt(const Ss08Twin& twin, const ParameterValues& values, 
   {
     for (int i = 0; i < extent.x; ++i)
     {
-      const Ss08Search search = ss08Search(twin.inputs, twin.structures(), values, lo.x + i, lo.y + j, twin.budgets());
+      const Ss08Search search = ss08Search(twin.inputs, twin.structures(), settings, lo.x + i, lo.y + j, twin.budgets());
       rawAndState.at(i, j, 0) = static_cast<float>(search.levelRaw);
       rawAndState.at(i, j, 1) = static_cast<float>(search.state);
       depth.at(i, j) = cameraDepth.at(lo.x + i, lo.y + j);
     }
   }
-  return ss08SmoothLoq(rawAndState, depth, values).at(x - lo.x, y - lo.y, 0);
+  return ss08SmoothLoq(rawAndState, depth, settings).at(x - lo.x, y - lo.y, 0);
 }
 
 } // namespace sl

@@ -51,6 +51,7 @@
 #include "lightspace/HierarchicalShadowMap.h"
 #include "lightspace/LightSampleSet.h"
 #include "lightspace/Microrects.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
 
@@ -66,6 +67,38 @@ namespace sl
 struct FrameResult; // frame/FrameResult.h
 
 TechniqueDescriptor ss08Technique();
+
+// The `budget_map` choices (§4.2, Fig. 1 d, Fig. 11).
+enum class Ss08BudgetMap
+{
+  Uniform, // `budget` everywhere
+  RampX,   // `budget` at the centre column falling linearly to `budget_border` at the left and right borders
+  Image    // the grey values of `budget_image`
+};
+
+// ss08's parameters, typed (parsed once, by from()); the min-max structure's own are HierarchicalShadowMapSettings.
+struct Ss08Settings
+{
+  ContourReceiverSettings receiver; // the bias, receiver_plane_bias, kernel_refinements
+  int budget{};                     // b_mo, micro-occluders per light axis (0 = unlimited)
+  int maxBudget{};                  // the top of `budget`'s range: budget_image's grey values must not pass it
+  Ss08BudgetMap budgetMap{};
+  std::string budgetImage;          // budget_image's path ("" when unset)
+  int budgetBorder{};
+  bool loqSmoothing{};
+  double smoothingDepthThreshold{};
+  bool loqFloorRaw{};               // loq_floor = raw
+  double blendBand{};
+  bool growth{};
+  bool microrects{};                // micro_occluder = microrect
+  GapFilling gapFilling{};
+  bool levelBias{};
+  int forceLevel{};                 // -1 = off
+  bool bitmaskAccumulation{};       // accumulation = bitmask
+  MultisampleSettings multisample;  // msaa, msaa_depth_tolerance (§7)
+
+  static Ss08Settings from(const ParameterValues& values);
+};
 
 // The `classification` codes (shader CLASSIFICATION_*).
 enum class Ss08Class
@@ -129,23 +162,23 @@ struct Ss08Search
 
 // b_mo at pixel (x, y) of a width-W frame for budget_map = uniform / ramp_x (exact integers); image maps are
 // read by the caller.
-int ss08PixelBudget(const ParameterValues& values, int x, int y, int imageWidth, const ImageF* budgetImage);
+int ss08PixelBudget(const Ss08Settings& settings, int x, int y, int imageWidth, const ImageF* budgetImage);
 
 // budget_map=image: the grey values (channel 0) of the PNG `budget_image`, nearest-resampled to width x height
 // (0 = unlimited). Throws InputError naming the parameter or the file when it is missing, unreadable, or holds
 // a value above the `budget` range.
-ImageF ss08BudgetImage(const ParameterValues& values, int width, int height);
+ImageF ss08BudgetImage(const Ss08Settings& settings, int width, int height);
 
 // `recorder` (optional, `shadowlab probe`): the budget, each refinement's search area and depth-range query
 // (Fig. 2 b, Fig. 7), the lit / umbra / penumbra decision and its class, the span and the level rule's l_raw.
-Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+Ss08Search ss08Search(const ShadowMapInputs& inputs, const Ss08Structures& structures, const Ss08Settings& settings,
   int x, int y, const ImageF* budgetImage = nullptr, ProbeRecorder* recorder = nullptr);
 
 // The slots (level-j texels) examined at `level` for the search area [lo, hi], inclusive per axis.
-TexelRectangle ss08SlotRange(const ParameterValues& values, int mapSize, int level, const TexelRectangle& area);
+TexelRectangle ss08SlotRange(const Ss08Settings& settings, int mapSize, int level, const TexelRectangle& area);
 
 // Passes 2-3: the smoothed LOQ map from the LOQ pass's output (x = l_raw, y = LoqState) and the camera depth.
-ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, const ParameterValues& values);
+ImageF ss08SmoothLoq(const ImageF& loqRawAndState, const ImageF& cameraDepth, const Ss08Settings& settings);
 
 // Pass 4 at one pixel, given the search and the (smoothed) level `level` the GPU read.
 struct Ss08Sample
@@ -175,7 +208,7 @@ struct Ss08Sample
 // level, extent in level-0 texels, depth, whether it occludes) and each occluding one's back-projection onto the
 // light (a ProbeLightPolygon in light coordinates, role "level <j> micro-occluder", signedArea = its area clipped
 // to the light), the level's occluded area and visibility, and the buffers' values under their names.
-Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const ParameterValues& values,
+Ss08Sample ss08Reference(const ShadowMapInputs& inputs, const Ss08Structures& structures, const Ss08Settings& settings,
   int x, int y, double level, const ImageF* budgetImage = nullptr, bool evaluateLit = false,
   ProbeRecorder* recorder = nullptr);
 
@@ -198,7 +231,7 @@ Ss08Twin ss08TwinOf(const FrameResult& frame, const Scene& scene, int lightIndex
 // The twin's own passes 2-3 at pixel (x, y): ss08SmoothLoq over the pixel's 11 x 11 neighbourhood of ss08Search's
 // raw levels and LOQ states, with the frame's camera depth `cameraDepth`. It equals the whole-image smoothing at
 // (x, y): each separable run reaches at most ss08SmoothingRadius pixels along its axis.
-double ss08SmoothedLevelAt(const Ss08Twin& twin, const ParameterValues& values, const ImageF& cameraDepth, int x, int y);
+double ss08SmoothedLevelAt(const Ss08Twin& twin, const Ss08Settings& settings, const ImageF& cameraDepth, int x, int y);
 
 // llvmpipe's cap on the loop iterations of one invocation (the twin's CutShort rule: more slots than this). The
 // slot loop costs one iteration a slot (its helpers have no loops and no early returns: with them llvmpipe cut

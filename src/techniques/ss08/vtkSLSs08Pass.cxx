@@ -104,15 +104,16 @@ void vtkSLSs08Pass::Execute(const vtkRenderState* state)
   this->EnsureTargets(window, width, height);
   // A forced level above the map's top would be clamped by the shader while stats.json kept the requested one.
   const int topLevel = sl::hsmLevelCount(frame.lightView.resolution);
-  if (const int forced = frame.parameters.getInt("force_level"); forced > topLevel)
+  const sl::Ss08Settings settings = sl::Ss08Settings::from(frame.parameters);
+  if (const int forced = settings.forceLevel; forced > topLevel)
   {
     throw sl::InputError(sl::format("ss08: --set force_level=", forced, ": a ", frame.lightView.resolution, "^2 shadow map has levels 0 to ",
       topLevel, " (level ", topLevel, " is one texel for the whole map)"));
   }
   this->BudgetMapTexture = nullptr;
-  if (frame.parameters.choice("budget_map") == "image")
+  if (settings.budgetMap == sl::Ss08BudgetMap::Image)
   {
-    const sl::ImageF budgets = sl::ss08BudgetImage(frame.parameters, width, height);
+    const sl::ImageF budgets = sl::ss08BudgetImage(settings, width, height);
     auto texture = vtkSmartPointer<vtkTextureObject>::New();
     texture->SetContext(window);
     texture->SetMinificationFilter(vtkTextureObject::Nearest);
@@ -142,7 +143,7 @@ void vtkSLSs08Pass::Execute(const vtkRenderState* state)
 
   // 2-3. Smoothing, x then y (none with loq_smoothing=off: the raw map is read).
   vtkTextureObject* loqMap = this->LoqRawTarget;
-  if (frame.parameters.choice("loq_smoothing") == "on")
+  if (settings.loqSmoothing)
   {
     const vtkTextureObject* inputs[2] = { this->LoqRawTarget, this->LoqSmoothedXTarget };
     vtkTextureObject* outputs[2] = { this->LoqSmoothedXTarget, this->LoqSmoothedTarget };
@@ -155,7 +156,7 @@ void vtkSLSs08Pass::Execute(const vtkRenderState* state)
       bound.push_back(sl::bindTexture(program, "loqInput", const_cast<vtkTextureObject*>(inputs[pass])));
       bound.push_back(sl::bindTexture(program, "loqRaw", this->LoqRawTarget));
       bound.push_back(sl::bindTexture(program, "gbufferAlbedoDepth", frame.gbufferAlbedoDepth));
-      sl::setFloatIfUsed(program, "param_smoothing_depth_threshold", frame.parameters.get("smoothing_depth_threshold"));
+      sl::setFloatIfUsed(program, "param_smoothing_depth_threshold", settings.smoothingDepthThreshold);
       const int step[2] = { pass == 0 ? 1 : 0, pass == 0 ? 0 : 1 };
       program->SetUniform2i("smoothingStep", step);
       sl::setIntIfUsed(program, "finalPass", pass);

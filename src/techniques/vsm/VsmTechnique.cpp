@@ -14,6 +14,16 @@
 namespace sl
 {
 
+VsmSettings VsmSettings::from(const ParameterValues& values)
+{
+  VsmSettings settings;
+  settings.bias = biasSettings(values);
+  settings.prefilter = MomentPrefilterSettings::from(values);
+  settings.lightBleedingReduction = values.get("light_bleeding_reduction");
+  settings.minVariance = values.get("min_variance");
+  return settings;
+}
+
 TechniqueDescriptor vsmTechnique()
 {
   TechniqueDescriptor descriptor;
@@ -43,6 +53,9 @@ TechniqueDescriptor vsmTechnique()
     { "kernel_texels", "texels", "width of the prefilter box" },
     { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
   };
+  descriptor.lightSpaceRequest = [](const ParameterValues& values) {
+    return LightSpaceRequest{ "prefilter_texels", static_cast<double>(VsmSettings::from(values).prefilter.texels) };
+  };
   descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] {
     auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
@@ -50,7 +63,8 @@ TechniqueDescriptor vsmTechnique()
     return vtkSmartPointer<vtkSLTechniquePass>(pass);
   };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    requireBlurPrefilter(context.frame->parameters);
+    const VsmSettings settings = VsmSettings::from(context.frame->parameters);
+    requireBlurPrefilter(settings.prefilter);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const VsmSample sample = vsmReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
     // MomentTest: <= 2e-3 where the variance is at least 1e-3 d^2; below it E[z^2] - E[z]^2 cancels in float
@@ -58,7 +72,7 @@ TechniqueDescriptor vsmTechnique()
     ProbeOutcome outcome = probeOutcome(sample.sample, 2e-3, "vsmReference (vsm/VsmTechnique.h), double precision, prefilter = blur");
     if (sample.sample.evaluated)
     {
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(context.frame->parameters), pixel.x, pixel.y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, pixel.x, pixel.y);
       const double d = lookup.sm.depthLin;
       noteAmbiguity(outcome.ambiguity, "variance / d^2 (float cancellation in E[z^2] - E[z]^2)", sample.variance / (d * d), 1e-3);
       noteMomentTexelEdge(outcome.ambiguity, lookup.sm.uvTexels);
@@ -72,24 +86,25 @@ TechniqueDescriptor vsmTechnique()
 VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder)
 {
+  const VsmSettings settings = VsmSettings::from(values);
   VsmSample result;
-  const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(values), x, y, recorder);
+  const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   result.sample = lookup.sample;
   if (!lookup.sample.evaluated)
   {
     return result;
   }
-  const int width = values.getInt("prefilter_texels");
+  const int width = settings.prefilter.texels;
   if (recorder)
   {
     recordMomentBox(*recorder, inputs, lookup, width);
   }
   const FilteredMoments moments = boxMoments(inputs, lookup.sm.uvTexels, width, 0.0, recorder);
   const double d = lookup.sm.depthLin;
-  result.variance = std::max(moments.second - moments.mean * moments.mean, values.get("min_variance") * d * d);
+  result.variance = std::max(moments.second - moments.mean * moments.mean, settings.minVariance * d * d);
   const double t = lookup.comparisonDepth;
   result.pMax = t <= moments.mean ? 1.0 : result.variance / (result.variance + (t - moments.mean) * (t - moments.mean));
-  const double amount = values.get("light_bleeding_reduction");
+  const double amount = settings.lightBleedingReduction;
   result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
   if (recorder)
   {

@@ -5,6 +5,7 @@
 // kernel_texels, depth_bias.
 #pragma once
 
+#include "techniques/MomentReference.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 
@@ -12,6 +13,17 @@ namespace sl
 {
 
 TechniqueDescriptor vsmTechnique();
+
+// vsm's parameters, typed (parsed once, by from()).
+struct VsmSettings
+{
+  BiasSettings bias;
+  MomentPrefilterSettings prefilter;
+  double lightBleedingReduction{};
+  double minVariance{}; // relative to d^2
+
+  static VsmSettings from(const ParameterValues& values);
+};
 
 struct VsmSample
 {

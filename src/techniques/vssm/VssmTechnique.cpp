@@ -150,10 +150,10 @@ void markFilterEstimates(const ApproximationContext& context, ImageF& codes, flo
     return;
   }
   const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex, false);
-  const ParameterValues& values = frame.parameters;
-  const BiasSettings bias = biasSettings(values);
-  const bool receiverPlaneBias = values.choice("receiver_plane_bias") == "on";
-  const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
+  const VssmSettings settings = VssmSettings::from(frame.parameters);
+  const BiasSettings bias = settings.bias;
+  const bool receiverPlaneBias = settings.receiverPlaneBias;
+  const bool contactPerSubkernel = settings.contactTest == VssmContactTest::SubkernelMean;
   for (int y = 0; y < codes.height; ++y)
   {
     for (int x = 0; x < codes.width; ++x)
@@ -200,6 +200,32 @@ void markFilterEstimates(const ApproximationContext& context, ImageF& codes, flo
 }
 
 } // namespace
+
+VssmSettings VssmSettings::from(const ParameterValues& values)
+{
+  const auto subdivision = [&](const char* scheme, const char* cells, const char* height) {
+    VssmSubdivisionSettings settings;
+    settings.scheme = choiceOf<VssmSubdivision>(values, scheme,
+      { { "none", VssmSubdivision::None }, { "uniform", VssmSubdivision::Uniform }, { "adaptive", VssmSubdivision::Adaptive } });
+    settings.uniformCells = values.getInt(cells);
+    settings.treeHeight = values.getInt(height);
+    return settings;
+  };
+  VssmSettings settings;
+  settings.bias = biasSettings(values);
+  settings.receiverPlaneBias = receiverPlaneBiasOf(values);
+  settings.sat = summedAreaTableSettings(values);
+  settings.hsmEarlyOut = values.choice("hsm_early_out") == "on";
+  settings.blockerSubdivision = subdivision("blocker_subdivision", "blocker_uniform_m", "blocker_tree_height");
+  settings.shadowSubdivision = subdivision("shadow_subdivision", "shadow_uniform_n", "shadow_tree_height");
+  settings.nonplanarPcfTaps = values.getInt("nonplanar_pcf_taps");
+  settings.litVarianceThreshold = values.get("lit_variance_threshold");
+  settings.contactThreshold = values.get("contact_threshold");
+  settings.contactTest = choiceOf<VssmContactTest>(values, "contact_test",
+    { { "blocker_average", VssmContactTest::BlockerAverage }, { "subkernel_mean", VssmContactTest::SubkernelMean } });
+  settings.minVariance = values.get("min_variance");
+  return settings;
+}
 
 TechniqueDescriptor vssmTechnique()
 {
@@ -381,7 +407,7 @@ VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const 
   VssmReferenceInputs inputs;
   inputs.shadowMap = &shadowMap;
   inputs.hsm = buildHierarchicalShadowMap(shadowMap.shadowMapLinear, values);
-  const bool integer = values.choice("sat_precision") == "int32";
+  const bool integer = VssmSettings::from(values).sat.integer;
   if (integer)
   {
     inputs.integerTable = integerTable;
@@ -411,9 +437,9 @@ struct Accumulation
 class VssmEvaluation
 {
 public:
-  VssmEvaluation(const VssmReferenceInputs& inputs, const ParameterValues& values, const SoftShadowGeometry& geometry,
+  VssmEvaluation(const VssmReferenceInputs& inputs, const VssmSettings& settings, const SoftShadowGeometry& geometry,
     double bias, const glm::dmat2& contactJitter, VssmSample& result, ProbeRecorder* recorder)
-    : inputs_(inputs), values_(values), geometry_(geometry), bias_(bias), contactJitter_(contactJitter), result_(result),
+    : inputs_(inputs), settings_(settings), geometry_(geometry), bias_(bias), contactJitter_(contactJitter), result_(result),
       recorder_(recorder)
   {
   }
@@ -450,7 +476,7 @@ public:
 
   void pcfLeaf(glm::ivec2 lo, glm::ivec2 hi, double area, Accumulation& acc)
   {
-    const int taps = values_.getInt("nonplanar_pcf_taps");
+    const int taps = settings_.nonplanarPcfTaps;
     const glm::dvec2 spacing = glm::dvec2(hi - lo + 1) / static_cast<double>(taps);
     int blocked = 0;
     double blockerDepthSum = 0.0;
@@ -524,7 +550,7 @@ public:
     {
       if (detectContact)
       {
-        const double contactDistance = values_.get("contact_threshold") * inputs_.sceneRadius;
+        const double contactDistance = settings_.contactThreshold * inputs_.sceneRadius;
         noteDecision(-meanOffset, contactDistance, geometry_.d);
         if (-meanOffset < contactDistance)
         {
@@ -541,7 +567,7 @@ public:
       {
         // Eq. 1 on this sub-kernel's own moments, for reading: the visibility pools the planar sub-kernels'
         // moments first (Eq. 5) and applies Eq. 1 once.
-        const double variance = std::max(moments.variance, values_.get("min_variance") * geometry_.d * geometry_.d);
+        const double variance = std::max(moments.variance, settings_.minVariance * geometry_.d * geometry_.d);
         recorder_->quantity("chebyshev_bound", variance / (variance + meanOffset * meanOffset), "",
           cite("Eq. 1 on this sub-kernel alone (the visibility pools them first, Eq. 5)"));
       }
@@ -551,7 +577,7 @@ public:
       return false;
     }
     ++result_.subkernelsMeanNotInFront;
-    const double threshold = values_.get("lit_variance_threshold") * inputs_.sceneRadius;
+    const double threshold = settings_.litVarianceThreshold * inputs_.sceneRadius;
     if (!nonPlanarIsLit)
     {
       noteDecision(moments.variance, threshold, std::max(threshold, 1e-3 * geometry_.d * geometry_.d));
@@ -574,15 +600,17 @@ public:
     return false;
   }
 
-  Accumulation subdivide(glm::ivec2 lo, glm::ivec2 hi, const std::string& scheme, int cells, int height, bool detectContact)
+  Accumulation subdivide(glm::ivec2 lo, glm::ivec2 hi, const VssmSubdivisionSettings& subdivision, bool detectContact)
   {
     Accumulation acc;
     const glm::ivec2 extent = hi - lo + 1;
-    if (scheme == "none")
+    const int cells = subdivision.uniformCells;
+    const int height = subdivision.treeHeight;
+    if (subdivision.scheme == VssmSubdivision::None)
     {
       visitSubKernel(lo, hi, true, true, detectContact, acc);
     }
-    else if (scheme == "uniform")
+    else if (subdivision.scheme == VssmSubdivision::Uniform)
     {
       for (int j = 0; j < cells; ++j)
       {
@@ -663,7 +691,7 @@ public:
   {
     const double mean = acc.vsmSum / acc.vsmArea;
     const double d = geometry_.d;
-    variance = std::max(acc.vsmSumSquares / acc.vsmArea - mean * mean, values_.get("min_variance") * d * d);
+    variance = std::max(acc.vsmSumSquares / acc.vsmArea - mean * mean, settings_.minVariance * d * d);
     return mean >= 0.0 ? 1.0 : variance / (variance + mean * mean);
   }
 
@@ -682,7 +710,7 @@ public:
       recorder_->quantity("search_half_texels", searchHalf, "texels",
         cite("Alg. 1 L7 (w_i: the light's extent seen from the receiver, at the near plane; PCSS step 1)"));
       recorder_->quantity("blocker_kernel_texels", result_.blockerKernelTexels, "texels", cite("Alg. 1 L7 (w_i)"));
-      recorder_->quantity("lit_variance_threshold", values_.get("lit_variance_threshold") * inputs_.sceneRadius,
+      recorder_->quantity("lit_variance_threshold", settings_.litVarianceThreshold * inputs_.sceneRadius,
         "linear depth^2", cite("§6.5 (Threshold = 0.0001 r: a non-planar sub-kernel with less variance is lit)"));
       recorder_->kernel({ "blocker search", glm::dvec2(search.lo), glm::dvec2(search.hi + 1), "", cite("Alg. 1 L7 (w_i)") });
     }
@@ -737,8 +765,7 @@ public:
   {
     const double d = geometry_.d;
     beginStep("blocker");
-    const Accumulation blockers = subdivide(search.lo, search.hi, values_.choice("blocker_subdivision"),
-      values_.getInt("blocker_uniform_m"), values_.getInt("blocker_tree_height"), false);
+    const Accumulation blockers = subdivide(search.lo, search.hi, settings_.blockerSubdivision, false);
     double blockedArea = blockers.pcfBlockedArea;
     double blockerDepthSum = blockers.pcfBlockerDepthSum;
     double blockerVariance = 0.0;
@@ -799,7 +826,7 @@ public:
   bool contactTest()
   {
     const double d = geometry_.d;
-    const double contactDistance = values_.get("contact_threshold") * inputs_.sceneRadius;
+    const double contactDistance = settings_.contactThreshold * inputs_.sceneRadius;
     noteDecision(d - result_.averageBlockerDepth, contactDistance, d);
     const bool contact = d - result_.averageBlockerDepth < contactDistance;
     if (recorder_)
@@ -826,8 +853,7 @@ public:
       recorder_->kernel({ "penumbra", glm::dvec2(filter.lo), glm::dvec2(filter.hi + 1), "", cite("Alg. 1 L16 (w_p)") });
     }
     beginStep("penumbra");
-    const Accumulation shadow = subdivide(filter.lo, filter.hi, values_.choice("shadow_subdivision"),
-      values_.getInt("shadow_uniform_n"), values_.getInt("shadow_tree_height"), contactPerSubkernel);
+    const Accumulation shadow = subdivide(filter.lo, filter.hi, settings_.shadowSubdivision, contactPerSubkernel);
     double chebyshevLit = 0.0;
     double shadowVariance = 0.0;
     if (shadow.vsmArea > 0.0)
@@ -864,7 +890,7 @@ private:
     }
   }
   const VssmReferenceInputs& inputs_;
-  const ParameterValues& values_;
+  const VssmSettings& settings_;
   const SoftShadowGeometry& geometry_;
   double bias_;
   glm::dmat2 contactJitter_;
@@ -907,9 +933,10 @@ void recordResultBuffers(ProbeRecorder& recorder, const VssmSample& result)
 VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y,
   ProbeRecorder* recorder)
 {
+  const VssmSettings settings = VssmSettings::from(values);
   VssmSample result;
   const ShadowMapInputs& shadowMap = *inputs.shadowMap;
-  const ShadowLookup lookup = prepareShadowLookup(shadowMap, biasSettings(values), x, y, recorder);
+  const ShadowLookup lookup = prepareShadowLookup(shadowMap, settings.bias, x, y, recorder);
   result.sample = lookup.sample;
   const auto finish = [&](double visibility, VssmClass classification) {
     result.sample.visibility = visibility;
@@ -929,12 +956,12 @@ VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValue
     return result;
   }
   const SoftShadowGeometry geometry =
-    softShadowGeometry(shadowMap, lookup, values.choice("receiver_plane_bias") == "on", x, y);
-  VssmEvaluation evaluation(inputs, values, geometry, lookup.sample.bias, pixelRotation(x, y), result, recorder);
-  const bool contactPerSubkernel = values.choice("contact_test") == "subkernel_mean";
+    softShadowGeometry(shadowMap, lookup, settings.receiverPlaneBias, x, y);
+  VssmEvaluation evaluation(inputs, settings, geometry, lookup.sample.bias, pixelRotation(x, y), result, recorder);
+  const bool contactPerSubkernel = settings.contactTest == VssmContactTest::SubkernelMean;
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const TexelRectangle search = evaluation.initialKernel(uv);
-  if (values.choice("hsm_early_out") == "on")
+  if (settings.hsmEarlyOut)
   {
     if (const std::optional<VssmClass> decided = evaluation.hsmEarlyOut(search))
     {

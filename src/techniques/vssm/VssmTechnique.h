@@ -16,6 +16,7 @@
 
 #include "frame/ProbeRecord.h"
 #include "lightspace/HierarchicalShadowMap.h"
+#include "structures/sat/SatStructure.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 #include "lightspace/SummedAreaTable.h"
@@ -58,6 +59,47 @@ std::optional<glm::ivec3> quadTreeNext(glm::ivec3 node);
 
 // What the CPU reference reads: the G-buffer and shadow map, the HSM (rebuilt from the shadow map) and the
 // summed-area table the GPU built (read back: its precision is an input, like the shadow map).
+// The sub-kernel schemes of blocker_subdivision and shadow_subdivision (§5; the shaders' SCHEME_* codes).
+enum class VssmSubdivision
+{
+  None,    // VSM's lit assumption
+  Uniform, // n x n sub-kernels
+  Adaptive // Alg. 2's quad-tree
+};
+
+// The `contact_test` choices (§6.4).
+enum class VssmContactTest
+{
+  BlockerAverage, // d - z_occ of Eq. 4 < eps, once per pixel
+  SubkernelMean   // t_c - E(x) < eps for each normal sub-kernel of w_p
+};
+
+// One step's subdivision: its scheme, the uniform scheme's cells per axis, the adaptive scheme's tree height.
+struct VssmSubdivisionSettings
+{
+  VssmSubdivision scheme{};
+  int uniformCells{};
+  int treeHeight{};
+};
+
+// vssm's parameters, typed (parsed once, by from()); the HSM's own are HierarchicalShadowMapSettings.
+struct VssmSettings
+{
+  BiasSettings bias;
+  bool receiverPlaneBias{};
+  SummedAreaTableSettings sat;
+  bool hsmEarlyOut{};
+  VssmSubdivisionSettings blockerSubdivision;
+  VssmSubdivisionSettings shadowSubdivision;
+  int nonplanarPcfTaps{};        // per axis
+  double litVarianceThreshold{}; // times r, the scene's bounding radius
+  double contactThreshold{};     // times r
+  VssmContactTest contactTest{};
+  double minVariance{};          // relative to d^2
+
+  static VssmSettings from(const ParameterValues& values);
+};
+
 struct VssmReferenceInputs
 {
   const ShadowMapInputs* shadowMap = nullptr;

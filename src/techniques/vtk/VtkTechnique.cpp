@@ -14,6 +14,13 @@
 namespace sl
 {
 
+VtkSettings VtkSettings::from(const ParameterValues& values)
+{
+  VtkSettings settings;
+  settings.shadowMapSize = values.getInt("shadow_map_size");
+  return settings;
+}
+
 TechniqueDescriptor vtkTechnique()
 {
   TechniqueDescriptor descriptor;

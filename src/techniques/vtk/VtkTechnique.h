@@ -20,6 +20,14 @@ namespace sl
 
 TechniqueDescriptor vtkTechnique();
 
+// vtk's parameters, typed (parsed once, by from()).
+struct VtkSettings
+{
+  int shadowMapSize{}; // vtkShadowMapBakerPass::SetResolution
+
+  static VtkSettings from(const ParameterValues& values);
+};
+
 // The technique's probe (TechniqueDescriptor::probe). VTK's passes keep their shadow map to themselves, so there
 // is no twin of the map: the probe replays the extraction (visibility = vtk_shadowed / vtk_unshadowed under the
 // project's reach rules, VtkVisibilityRatio.glsl) from the frame's buffers, and records, for context, the hard

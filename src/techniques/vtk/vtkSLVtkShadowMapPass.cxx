@@ -5,6 +5,7 @@
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
+#include "techniques/vtk/VtkTechnique.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -182,7 +183,7 @@ void vtkSLVtkShadowMapPass::Execute(const vtkRenderState* state)
   // VTK's documented shadow pipeline: camera -> [baker, shadow map pass(lights + opaque)].
   vtkNew<vtkShadowMapPass> shadows;
   shadows->GetShadowMapBakerPass()->SetResolution(
-    static_cast<unsigned int>(this->Frame->parameters.getInt("shadow_map_size")));
+    static_cast<unsigned int>(sl::VtkSettings::from(this->Frame->parameters).shadowMapSize));
   vtkNew<vtkRenderPassCollection> shadowPasses;
   shadowPasses->AddItem(shadows->GetShadowMapBakerPass());
   shadowPasses->AddItem(shadows);

@@ -94,6 +94,25 @@ std::string yfgl09Ambiguity(const Yfgl09Pixel& result, const std::vector<Yfgl09P
 
 } // namespace
 
+Yfgl09Settings Yfgl09Settings::from(const ParameterValues& values)
+{
+  Yfgl09Settings settings;
+  settings.receiver = ContourReceiverSettings::from(values);
+  settings.packetWidth = values.getInt("packet_width");
+  settings.packetHeight = values.getInt("packet_height");
+  settings.hierarchy = values.choice("hierarchy") == "on";
+  const std::string& test = values.choice("coherence_test");
+  settings.divergenceTest = test == "both" || test == "divergence";
+  settings.costTest = test == "both" || test == "cost";
+  settings.divergenceThreshold = values.get("divergence_threshold");
+  settings.edgeCost = values.get("edge_cost");
+  settings.visibilityCost = values.get("visibility_cost");
+  settings.paperPacketCost = values.choice("packet_cost") == "paper";
+  settings.coherenceDepth = choiceOf<CoherenceDepth>(values, "coherence_depth",
+    { { "linear", CoherenceDepth::Linear }, { "comparison", CoherenceDepth::Comparison }, { "window", CoherenceDepth::Window } });
+  return settings;
+}
+
 TechniqueDescriptor yfgl09Technique()
 {
   TechniqueDescriptor descriptor;
@@ -538,34 +557,10 @@ double nodeCost(int width)
   return std::log2(static_cast<double>(width)) * width;
 }
 
-// The settings the packets read (§4.1-4.3).
-struct PacketSettings
+const char* coherenceDepthName(CoherenceDepth depth)
 {
-  explicit PacketSettings(const ParameterValues& values)
-    : packetWidth(values.getInt("packet_width"))
-    , packetHeight(values.getInt("packet_height"))
-    , hierarchy(values.choice("hierarchy") == "on")
-    , divergenceTest(values.choice("coherence_test") == "both" || values.choice("coherence_test") == "divergence")
-    , costTest(values.choice("coherence_test") == "both" || values.choice("coherence_test") == "cost")
-    , divergenceThreshold(values.get("divergence_threshold"))
-    , edgeCost(values.get("edge_cost"))
-    , visibilityCost(values.get("visibility_cost"))
-    , paperPacketCost(values.choice("packet_cost") == "paper")
-    , coherenceDepth(values.choice("coherence_depth"))
-  {
-  }
-
-  int packetWidth;
-  int packetHeight;
-  bool hierarchy;
-  bool divergenceTest;
-  bool costTest;
-  double divergenceThreshold;
-  double edgeCost;
-  double visibilityCost;
-  bool paperPacketCost;
-  std::string coherenceDepth;
-};
+  return depth == CoherenceDepth::Comparison ? "comparison" : depth == CoherenceDepth::Window ? "window" : "linear";
+}
 
 const char* const packetSource = "§4.1, Alg. 2, YFGL09 (Yang et al. 2009)";
 
@@ -643,7 +638,7 @@ struct Packet
 // the penumbra pixels form the packet, with the reference pixel of Eq. 2 (k_0: the packet's centre pixel, else
 // its first penumbra pixel). The shader's computePixelKernels.
 Packet computePixelKernels(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const ParameterValues& values, const PacketSettings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
+  const Yfgl09Settings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
   glm::ivec2 probed)
 {
   const int px = origin.x;
@@ -656,7 +651,7 @@ Packet computePixelKernels(const ShadowMapInputs& inputs, const HierarchicalShad
     for (int x = px; x < std::min(px + settings.packetWidth, inputs.position.width); ++x)
     {
       const bool isProbed = recorder != nullptr && glm::ivec2(x, y) == probed;
-      packet.receivers.push_back(prepareContourReceiver(inputs, values, mssm, x, y, isProbed ? recorder : nullptr));
+      packet.receivers.push_back(prepareContourReceiver(inputs, settings.receiver, mssm, x, y, isProbed ? recorder : nullptr));
       ContourReceiver& receiver = packet.receivers.back();
       Yfgl09Pixel result;
       result.pixel = { x, y };
@@ -740,7 +735,7 @@ struct PacketKernel
 };
 
 // Alg. 2 "construct an extended kernel for the packet" (the shader's constructPacketKernel).
-PacketKernel constructPacketKernel(const Packet& packet, const PacketSettings& settings)
+PacketKernel constructPacketKernel(const Packet& packet, const Yfgl09Settings& settings)
 {
   PacketKernel packetKernel;
   TexelRectangle kernel = packet.penumbra.front()->kernel;
@@ -790,7 +785,7 @@ struct PacketPrediction
 // diverge (Eq. 4-5: P_d > T_d) or when Eq. 6 prefers the pixels; a packet of one pixel is coherent. The
 // shader's classifyPacket.
 PacketPrediction classifyPacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const PacketSettings& settings, const Packet& packet, const PacketKernel& packetKernel)
+  const Yfgl09Settings& settings, const Packet& packet, const PacketKernel& packetKernel)
 {
   PacketPrediction prediction;
   ProbeRecorder* const probe = packet.probe;
@@ -808,11 +803,11 @@ PacketPrediction classifyPacket(const ShadowMapInputs& inputs, const Hierarchica
   prediction.coherence = kernelCoherence(packet);
   glm::dvec2 comparison = packetKernel.comparison;
   glm::dvec2 kernelRange = mssm.range(packetKernel.samples.lo, packetKernel.samples.hi);
-  if (settings.coherenceDepth == "comparison")
+  if (settings.coherenceDepth == CoherenceDepth::Comparison)
   {
     comparisonRangeOverCells(packet.penumbra, mssm.mapSize, packetKernel.region.lo, packetKernel.region.hi, comparison);
   }
-  else if (settings.coherenceDepth == "window")
+  else if (settings.coherenceDepth == CoherenceDepth::Window)
   {
     const LightView& view = inputs.lightView;
     comparison = { view.windowDepth(comparison.x), view.windowDepth(comparison.y) };
@@ -832,11 +827,11 @@ PacketPrediction classifyPacket(const ShadowMapInputs& inputs, const Hierarchica
   }
   if (probe)
   {
-    const std::string depthUnit = settings.coherenceDepth == "window" ? "window depth" : "linear depth";
+    const std::string depthUnit = settings.coherenceDepth == CoherenceDepth::Window ? "window depth" : "linear depth";
     probe->beginGroup("coherence prediction (§4.3)");
     probe->quantity("reference_pixel", glm::dvec2(packet.referencePixel), "pixels", "Eq. 2, YFGL09: k_0, the packet's centre pixel's kernel");
     probe->quantity("coherence", prediction.coherence, "", "Eq. 2, YFGL09: max_i |k_i \\ k_0| / |k_i|");
-    probe->category("coherence_depth", settings.coherenceDepth, "§4.3, YFGL09 (issue 13: which depths Eq. 4 compares)");
+    probe->category("coherence_depth", coherenceDepthName(settings.coherenceDepth), "§4.3, YFGL09 (issue 13: which depths Eq. 4 compares)");
     probe->quantity("packet_depth_range", comparison, depthUnit, "§4.3, YFGL09: [z_pmin, z_pmax] of the packet");
     probe->quantity("kernel_depth_range", kernelRange, depthUnit, "§4.3, YFGL09: the packet kernel's MSSM range");
     probe->quantity("null_probability", nullProbability, "", "Eq. 4, YFGL09: P_null, the overlap of the two ranges over the kernel's");
@@ -877,7 +872,7 @@ struct CoherentPacket
 // A null status (Eq. 3, §4.3: a misclassified packet is "caught during the packet contour extraction") or the
 // packet budget leave them to step 8. The shader's evaluateCoherentPacket.
 CoherentPacket evaluateCoherentPacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const PacketSettings& settings, Packet& packet, const Cells& region)
+  const Yfgl09Settings& settings, Packet& packet, const Cells& region)
 {
   CoherentPacket outcome;
   const std::size_t count = packet.penumbra.size();
@@ -916,7 +911,7 @@ CoherentPacket evaluateCoherentPacket(const ShadowMapInputs& inputs, const Hiera
 // Alg. 1 step 8: each pixel of a packet that step 7 did not compute, alone over its own kernel (the shader's
 // pixel pass); every penumbra pixel's buffers.
 void evaluateRemainingPixels(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const PacketSettings& settings, Packet& packet, const PacketPrediction& prediction, const CoherentPacket& coherent)
+  const Yfgl09Settings& settings, Packet& packet, const PacketPrediction& prediction, const CoherentPacket& coherent)
 {
   for (std::size_t p = 0; p < packet.penumbra.size(); ++p)
   {
@@ -958,10 +953,10 @@ void evaluateRemainingPixels(const ShadowMapInputs& inputs, const HierarchicalSh
 // `recorder` (optional) records the steps of pixel `probed`, which must lie in the packet. The shader runs
 // steps 5-7 in its packet pass's main() and step 8 in its pixel pass, with the same step names.
 std::vector<Yfgl09Pixel> evaluatePacket(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const ParameterValues& values, const PacketSettings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
+  const Yfgl09Settings& settings, glm::ivec2 origin, ProbeRecorder* recorder,
   glm::ivec2 probed)
 {
-  Packet packet = computePixelKernels(inputs, mssm, values, settings, origin, recorder, probed);
+  Packet packet = computePixelKernels(inputs, mssm, settings, origin, recorder, probed);
   if (packet.penumbra.empty())
   {
     return finishPacket(packet);
@@ -1005,12 +1000,12 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
   frame.samples.resize(static_cast<std::size_t>(width) * height);
   frame.kernelEdgeMargin.assign(frame.samples.size(), 1e300);
   frame.decisionMargin.assign(frame.samples.size(), 1e300);
-  const PacketSettings settings(values);
+  const Yfgl09Settings settings = Yfgl09Settings::from(values);
   for (int py = 0; py < height; py += settings.packetHeight)
   {
     for (int px = 0; px < width; px += settings.packetWidth)
     {
-      for (const Yfgl09Pixel& result : evaluatePacket(inputs, mssm, values, settings, { px, py }, nullptr, {}))
+      for (const Yfgl09Pixel& result : evaluatePacket(inputs, mssm, settings, { px, py }, nullptr, {}))
       {
         const int x = result.pixel.x;
         const int y = result.pixel.y;
@@ -1037,10 +1032,10 @@ Yfgl09Pixel yfgl09ReferencePixel(const ShadowMapInputs& inputs, const Hierarchic
   SL_CHECK(mssm.layout == HsmLayout::DualMssm);
   SL_CHECK_MSG(x >= 0 && y >= 0 && x < inputs.position.width && y < inputs.position.height, "pixel ", x, ",", y,
     " outside the image");
-  const PacketSettings settings(values);
+  const Yfgl09Settings settings = Yfgl09Settings::from(values);
   // The frame's packets start at the image's corner (yfgl09Reference).
   const glm::ivec2 origin(x - x % settings.packetWidth, y - y % settings.packetHeight);
-  std::vector<Yfgl09Pixel> results = evaluatePacket(inputs, mssm, values, settings, origin, recorder, { x, y });
+  std::vector<Yfgl09Pixel> results = evaluatePacket(inputs, mssm, settings, origin, recorder, { x, y });
   const auto it = std::find_if(results.begin(), results.end(), [&](const Yfgl09Pixel& r) { return r.pixel == glm::ivec2(x, y); });
   SL_CHECK(it != results.end());
   const Yfgl09Pixel pixel = *it;

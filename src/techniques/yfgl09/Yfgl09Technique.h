@@ -15,6 +15,7 @@
 #include "core/Image.h"
 #include "frame/ProbeRecord.h"
 #include "lightspace/HierarchicalShadowMap.h"
+#include "techniques/ContourReceiver.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
 
@@ -24,6 +25,33 @@ namespace sl
 {
 
 TechniqueDescriptor yfgl09Technique();
+
+// The depths Eq. 4's P_null compares (§4.3; issue 13).
+enum class CoherenceDepth
+{
+  Linear,     // the packet's pixel depths minus bias against the kernel samples' linear light depths
+  Comparison, // the receiver-plane comparison depths over the packet kernel
+  Window      // the linear reading in the map's window depth
+};
+
+// yfgl09's parameters, typed (parsed once, by from()): what the packets read (§4.1-4.3) and the receivers' own; the
+// sub-lights are TechniqueDescriptor::subLightsPerSide.
+struct Yfgl09Settings
+{
+  ContourReceiverSettings receiver;
+  int packetWidth{};
+  int packetHeight{};
+  bool hierarchy{};       // contour extraction through the dual-grid MSSM (§4.2, Alg. 3)
+  bool divergenceTest{};  // coherence_test: both or divergence (Eq. 5 > T_d)
+  bool costTest{};        // coherence_test: both or cost (Eq. 6 > 1)
+  double divergenceThreshold{};
+  double edgeCost{};
+  double visibilityCost{};
+  bool paperPacketCost{}; // packet_cost = paper (Q_v w h)
+  CoherenceDepth coherenceDepth{};
+
+  static Yfgl09Settings from(const ParameterValues& values);
+};
 
 // How a pixel was computed: the `packet_class` buffer's categories (code = the enumerator's value, shader
 // identifier = its name in upper case: PACKET_CLASS_COHERENT, ...), generated into the shader from here.

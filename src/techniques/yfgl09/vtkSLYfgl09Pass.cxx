@@ -31,7 +31,8 @@ std::vector<vtkTextureObject*> vtkSLYfgl09Pass::SetTechniqueUniforms(vtkShaderPr
   vtkTextureObject* visibility = frame.techniqueTargets.at("visibility");
   const int size[2] = { static_cast<int>(visibility->GetWidth()), static_cast<int>(visibility->GetHeight()) };
   program->SetUniform2i("imageSize", size);
-  const int packetSize[2] = { frame.parameters.getInt("packet_width"), frame.parameters.getInt("packet_height") };
+  const sl::Yfgl09Settings settings = sl::Yfgl09Settings::from(frame.parameters);
+  const int packetSize[2] = { settings.packetWidth, settings.packetHeight };
   program->SetUniform2i("packetSize", packetSize);
   // The packet size is a uniform, not a define: one program per pass serves every size. The dual-grid MSSM is
   // bound by its structure (structures/mssm).
@@ -67,8 +68,9 @@ void vtkSLYfgl09Pass::Execute(const vtkRenderState* state)
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   sl::FrameResources& frame = *this->Frame;
   const std::vector<vtkTextureObject*> targets = this->TechniqueTargets();
-  const int packetWidth = frame.parameters.getInt("packet_width");
-  const int packetHeight = frame.parameters.getInt("packet_height");
+  const sl::Yfgl09Settings settings = sl::Yfgl09Settings::from(frame.parameters);
+  const int packetWidth = settings.packetWidth;
+  const int packetHeight = settings.packetHeight;
   const int packetColumns = (static_cast<int>(targets[0]->GetWidth()) + packetWidth - 1) / packetWidth;
   const int packetRows = (static_cast<int>(targets[0]->GetHeight()) + packetHeight - 1) / packetHeight;
   if (!this->PacketTarget || static_cast<int>(this->PacketTarget->GetWidth()) != packetColumns ||

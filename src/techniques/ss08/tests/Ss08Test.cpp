@@ -160,7 +160,7 @@ SmoothingCheck checkSmoothing(const FrameResult& frame)
     rawAndState.data[2 * i] = raw.data[i];
     rawAndState.data[2 * i + 1] = static_cast<float>(state);
   }
-  const ImageF smoothed = ss08SmoothLoq(rawAndState, buffer(frame, "depth"), frame.parameters);
+  const ImageF smoothed = ss08SmoothLoq(rawAndState, buffer(frame, "depth"), Ss08Settings::from(frame.parameters));
   SmoothingCheck check;
   for (std::size_t i = 0; i < raw.pixelCount(); ++i)
   {
@@ -240,7 +240,7 @@ TwinAgreement compareWithTwin(const FrameResult& frame, const Ss08Twin& twin)
   {
     for (int x = 0; x < frame.resolution.x; ++x)
     {
-      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y, loq.at(x, y), twin.budgets());
+      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, loq.at(x, y), twin.budgets());
       if (!cpu.sample.evaluated)
       {
         check("classification", x, y, code(Ss08Class::NotTested), 0.0);
@@ -476,7 +476,7 @@ BudgetCount countBudget(const FrameResult& frame, const Ss08Twin& twin, int budg
         continue; // examines nothing
       }
       ++count.backProjecting;
-      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y, loq.at(x, y), twin.budgets());
+      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, loq.at(x, y), twin.budgets());
       const glm::ivec2 floorSlots = cpu.slotsPerAxis[0];
       const glm::ivec2 ceilSlots = cpu.slotsPerAxis[1];
       count.maxCeilAxis = std::max({ count.maxCeilAxis, ceilSlots.x, ceilSlots.y });
@@ -589,8 +589,8 @@ TEST(Ss08, GrowthLeavesNoLitPixelThatItsMicroOccludersShadow)
           {
             continue;
           }
-          const Ss08Search search = ss08Search(twin.inputs, twin.structures(), frame.parameters, x, y, twin.budgets());
-          const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y, search.levelRaw,
+          const Ss08Search search = ss08Search(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, twin.budgets());
+          const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, search.levelRaw,
             twin.budgets(), true);
           if (code(cpu.search.classification) != gpuClass || ambiguous(cpu))
           {
@@ -695,13 +695,13 @@ TEST(Ss08, PixelsOverTheLoopCapAreFlaggedAndTheOthersExact)
       {
         const bool cut = buffer(frame, "classification").at(x, y) == static_cast<float>(code(Ss08Class::CutShort));
         flagged += cut ? 1 : 0;
-        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), frame.parameters, x, y);
+        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y);
         if (!search.backProjects)
         {
           EXPECT_FALSE(cut) << label << " pixel " << x << "," << y;
           continue;
         }
-        const TexelRectangle slots = ss08SlotRange(frame.parameters, size, 0, search.area);
+        const TexelRectangle slots = ss08SlotRange(Ss08Settings::from(frame.parameters), size, 0, search.area);
         const double count = static_cast<double>(slots.hi.x - slots.lo.x + 1) * (slots.hi.y - slots.lo.y + 1);
         maxSlots = std::max(maxSlots, count);
         if (cut)
@@ -730,7 +730,7 @@ TEST(Ss08, PixelsOverTheLoopCapAreFlaggedAndTheOthersExact)
         {
           continue;
         }
-        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y, 0.0);
+        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, 0.0);
         if (ambiguous(cpu))
         {
           continue;
@@ -894,7 +894,7 @@ TEST(Ss08, BudgetMapsArePerPixel)
         {
           continue;
         }
-        const int expected = image ? (x < width / 2 ? 0 : 6) : ss08PixelBudget(frame.parameters, x, y, width, nullptr);
+        const int expected = image ? (x < width / 2 ? 0 : 6) : ss08PixelBudget(Ss08Settings::from(frame.parameters), x, y, width, nullptr);
         ++pixelsByBudget[expected];
         wrong += budgets.at(x, y) != static_cast<float>(expected) ? 1 : 0;
       }
@@ -939,7 +939,7 @@ TEST(Ss08, KernelsClampedByTheMapBorderMatchTheTwin)
     {
       for (int x = 0; x < 64; ++x)
       {
-        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), frame.parameters, x, y);
+        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y);
         const bool atBorder = search.area.lo.x == 0 || search.area.lo.y == 0 || search.area.hi.x == 127 || search.area.hi.y == 127;
         clamped += search.backProjects && atBorder ? 1 : 0;
       }
@@ -1153,7 +1153,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
         {
           continue;
         }
-        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y,
+        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y,
           buffer(frame, "loq").at(x, y), twin.budgets());
         const bool blended = cpu.blendAlpha > 0.05 && cpu.blendAlpha < 0.95 && cpu.levelFloor >= 1 &&
           cpu.sample.visibility > 0.1 && cpu.sample.visibility < 0.9;
@@ -1319,7 +1319,7 @@ TEST(Ss08Bitmask, MatchesTheTwinSampleForSample)
       for (int x = 0; x < 64; ++x)
       {
         const Ss08Sample cpu =
-          ss08Reference(twin.inputs, twin.structures(), frame.parameters, x, y, loq.at(x, y), twin.budgets());
+          ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, loq.at(x, y), twin.budgets());
         if (!cpu.sample.evaluated)
         {
           continue;
