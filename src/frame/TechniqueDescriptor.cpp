@@ -1,9 +1,20 @@
 #include "frame/TechniqueDescriptor.h"
 
+#include <utility>
+
 #include <algorithm>
 
 namespace sl
 {
+
+TechniqueDescriptor describeTechnique(std::string name, std::string title, std::string paper)
+{
+  TechniqueDescriptor descriptor;
+  descriptor.name = std::move(name);
+  descriptor.title = std::move(title);
+  descriptor.paper = std::move(paper);
+  return descriptor;
+}
 
 const ParameterSpec* TechniqueDescriptor::findParameter(const std::string& parameterName) const
 {

@@ -268,6 +268,8 @@ struct TechniqueDescriptor
   }
 
   const ParameterSpec* findParameter(const std::string& parameterName) const;
+  // Appends parameters declared elsewhere (a structure's, a shared set) after those listed so far.
+  void addParameters(const std::vector<ParameterSpec>& specs) { parameters.insert(parameters.end(), specs.begin(), specs.end()); }
   // Every parameter at its default.
   ParameterValues defaultParameters() const { return ParameterValues(name, parameters); }
   bool needs(const LightSpaceStructure& structure) const;
@@ -279,5 +281,15 @@ struct TechniqueDescriptor
   bool supports(const Light& light) const;
 };
 
+// A descriptor with its identity set, the rest at the defaults above: every technique's descriptor starts here.
+TechniqueDescriptor describeTechnique(std::string name, std::string title, std::string paper);
+
+// createPass for a pass class: `descriptor.createPass = newTechniquePass<vtkSLPcfPass>;` (instantiated where the
+// pass's header is included).
+template <class Pass>
+vtkSmartPointer<vtkSLTechniquePass> newTechniquePass()
+{
+  return vtkSmartPointer<Pass>::New();
+}
 
 } // namespace sl

@@ -8,11 +8,9 @@ namespace sl
 
 Lesson acneAndBiasLesson()
 {
-  Lesson lesson;
-  lesson.name = "acne-and-bias";
-  lesson.title = "Acne and bias: depth_margin with the bias off, on, and too large";
-  lesson.question = "Why does a lit surface shadow itself in speckles (acne) when a shadow map is compared without a "
-                    "bias, and what does too much bias do instead?";
+  Lesson lesson{ "acne-and-bias", "Acne and bias: depth_margin with the bias off, on, and too large",
+    "Why does a lit surface shadow itself in speckles (acne) when a shadow map is compared without a "
+    "bias, and what does too much bias do instead?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "`grazing`: a small box on the ground under a light about 80 degrees from the ground's normal, the case where "

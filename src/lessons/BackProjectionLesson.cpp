@@ -11,11 +11,9 @@ namespace sl
 
 Lesson backProjectionLesson()
 {
-  Lesson lesson;
-  lesson.name = "backprojection-multiview";
-  lesson.title = "Back-projection: overlap and multi-view";
-  lesson.question = "Back-projection measures how much of the light the shadow map's occluders cover; where does it "
-                    "count an occluder twice, where does it miss one, and what do sub-lights fix?";
+  Lesson lesson{ "backprojection-multiview", "Back-projection: overlap and multi-view",
+    "Back-projection measures how much of the light the shadow map's occluders cover; where does it "
+    "count an occluder twice, where does it miss one, and what do sub-lights fix?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "`bunny`: the Stanford bunny under a 0.6-wide square light. Its ears and body shadow each other: seen from the "

@@ -10,11 +10,9 @@ namespace sl
 
 Lesson depthComplexityLesson()
 {
-  Lesson lesson;
-  lesson.name = "depth-complexity";
-  lesson.title = "Depth complexity sampling: counting occluders per light sample";
-  lesson.question = "How does `dcs` count the occluders between a point and each light sample, and how much of its "
-                    "error is left to the sampling pattern?";
+  Lesson lesson{ "depth-complexity", "Depth complexity sampling: counting occluders per light sample",
+    "How does `dcs` count the occluders between a point and each light sample, and how much of its "
+    "error is left to the sampling pattern?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "`stacked-occluders` puts two squares at different heights between a square light and the ground, so a point "

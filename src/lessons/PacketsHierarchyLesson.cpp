@@ -9,11 +9,9 @@ namespace sl
 
 Lesson packetsHierarchyLesson()
 {
-  Lesson lesson;
-  lesson.name = "packets-coherence-hierarchy";
-  lesson.title = "Packets, coherence and hierarchy: visited nodes";
-  lesson.question = "Contour back-projection visits every cell of a kernel that can reach hundreds of texels; how much "
-                    "of that work do a hierarchy and pixel packets save, without changing the answer?";
+  Lesson lesson{ "packets-coherence-hierarchy", "Packets, coherence and hierarchy: visited nodes",
+    "Contour back-projection visits every cell of a kernel that can reach hundreds of texels; how much "
+    "of that work do a hierarchy and pixel packets save, without changing the answer?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "`stacked-occluders`: two squares under a 1.2-wide light, whose penumbrae need wide kernels. `yfgl09` finds the "

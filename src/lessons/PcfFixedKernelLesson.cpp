@@ -11,11 +11,9 @@ namespace sl
 
 Lesson pcfFixedKernelLesson()
 {
-  Lesson lesson;
-  lesson.name = "pcf-fixed-kernel";
-  lesson.title = "PCF's fixed kernel against a true penumbra";
-  lesson.question = "A real penumbra is sharp where the caster touches the receiver and widens with distance; what "
-                    "does a filter of one fixed width get wrong, and where?";
+  Lesson lesson{ "pcf-fixed-kernel", "PCF's fixed kernel against a true penumbra",
+    "A real penumbra is sharp where the caster touches the receiver and widens with distance; what "
+    "does a filter of one fixed width get wrong, and where?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "`contact`: a 0.5 x 1 x 0.5 box standing on the ground under a 0.8 x 0.8 area light off to the side. The "

@@ -9,11 +9,9 @@ namespace sl
 
 Lesson pcssBlockerSearchLesson()
 {
-  Lesson lesson;
-  lesson.name = "pcss-blocker-search";
-  lesson.title = "PCSS's blocker search and its planar assumption";
-  lesson.question = "PCSS estimates a penumbra from the average depth of the blockers it finds; when is that average "
-                    "the right blocker, and what happens when two occluders at different heights overlap?";
+  Lesson lesson{ "pcss-blocker-search", "PCSS's blocker search and its planar assumption",
+    "PCSS estimates a penumbra from the average depth of the blockers it finds; when is that average "
+    "the right blocker, and what happens when two occluders at different heights overlap?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "PCSS in three steps: search the shadow map over a kernel w_i (sized from the light and the receiver's depth) "

@@ -8,11 +8,9 @@ namespace sl
 
 Lesson perspectiveAliasingLesson()
 {
-  Lesson lesson;
-  lesson.name = "perspective-aliasing";
-  lesson.title = "Perspective and projection aliasing: texel_ratio on a grazing receiver";
-  lesson.question = "Why do hard shadow edges turn into stair steps where the light grazes the receiver, and "
-                    "what does a larger shadow map buy there?";
+  Lesson lesson{ "perspective-aliasing", "Perspective and projection aliasing: texel_ratio on a grazing receiver",
+    "Why do hard shadow edges turn into stair steps where the light grazes the receiver, and "
+    "what does a larger shadow map buy there?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "A shadow map samples the scene on a regular grid in the light's view; the camera sees that grid stretched. "

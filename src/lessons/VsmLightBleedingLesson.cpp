@@ -17,11 +17,9 @@ constexpr int boxTexels = 21;
 
 Lesson vsmLightBleedingLesson()
 {
-  Lesson lesson;
-  lesson.name = "vsm-light-bleeding";
-  lesson.title = "VSM light bleeding: light_leak and its reduction";
-  lesson.question = "Why does a variance shadow map let light into a shadow where two occluders overlap, and what does "
-                    "light-bleeding reduction cost?";
+  Lesson lesson{ "vsm-light-bleeding", "VSM light bleeding: light_leak and its reduction",
+    "Why does a variance shadow map let light into a shadow where two occluders overlap, and what does "
+    "light-bleeding reduction cost?" };
   lesson.build = [](LessonBuilder& lesson) {
     // A box wide enough that the halo where the shadows overlap spans several pixels of the page's figures (at 5
     // texels it is one or two); tests/cli/LessonClaimsTest.cpp asserts its size.

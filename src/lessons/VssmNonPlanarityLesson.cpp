@@ -8,12 +8,10 @@ namespace sl
 
 Lesson vssmNonPlanarityLesson()
 {
-  Lesson lesson;
-  lesson.name = "vssm-non-planarity";
-  lesson.title = "VSSM's non-planarity: sub-kernels where one plane is not enough";
-  lesson.question = "VSSM estimates blockers and visibility from the mean and variance of a kernel, which assumes the "
-                    "blockers form one plane; how does it find the kernels where they do not, and what does splitting "
-                    "them buy?";
+  Lesson lesson{ "vssm-non-planarity", "VSSM's non-planarity: sub-kernels where one plane is not enough",
+    "VSSM estimates blockers and visibility from the mean and variance of a kernel, which assumes the "
+    "blockers form one plane; how does it find the kernels where they do not, and what does splitting "
+    "them buy?" };
   lesson.build = [](LessonBuilder& lesson) {
     lesson.sceneNote(
       "VSSM (Yang et al. 2010) takes the average blocker depth from a summed-area table of moments instead of PCSS's "

@@ -85,4 +85,11 @@ double receiverOffsetOf(const ParameterValues& values)
   return values.get("receiver_offset");
 }
 
+ParameterSpec receiverOffsetParameter(double defaultValue, const std::string& why)
+{
+  return { "receiver_offset", defaultValue, 0.0, 1e-2, "of the eye distance",
+    "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the "
+    "scene's radius)" + why };
+}
+
 } // namespace sl

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <vector>
 
 namespace sl
@@ -39,5 +40,7 @@ glm::dvec3 shadowVolumeReceiverPoint(const Scene& scene, double receiverOffset, 
 // The parameter receiver_offset, typed: part of the settings of every technique that counts volumes at the point
 // (shadow-volume, dcs, penumbra-wedge; each declares its own default), and what their shared pass reads.
 double receiverOffsetOf(const ParameterValues& values);
+// Its declaration, with the technique's default and its reason (`why`, appended as is to what the offset does).
+ParameterSpec receiverOffsetParameter(double defaultValue, const std::string& why);
 
 } // namespace sl

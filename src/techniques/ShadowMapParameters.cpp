@@ -4,6 +4,8 @@
 #include "lightspace/ShadowMapMath.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
+#include <utility>
+
 namespace sl
 {
 
@@ -35,6 +37,35 @@ std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize)
 std::vector<LightType> shadowMapLights()
 {
   return { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
+}
+
+TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper)
+{
+  TechniqueDescriptor descriptor = describeTechnique(std::move(name), std::move(title), std::move(paper));
+  descriptor.parameters = shadowMapParameters();
+  descriptor.lightStructures = { &shadowMapStructure() };
+  descriptor.supportedLights = shadowMapLights();
+  return descriptor;
+}
+
+TechniqueDescriptor describeShadowMapTechnique(
+  std::string name, std::string title, std::string paper, int defaultMapSize)
+{
+  TechniqueDescriptor descriptor = describeShadowMapTechnique(std::move(name), std::move(title), std::move(paper));
+  descriptor.parameters = shadowMapParameters(defaultMapSize);
+  return descriptor;
+}
+
+BufferSpec texelRatioBuffer()
+{
+  return { "texel_ratio", "pixels/texel",
+    "aliasing error m (survey Eq. 2): screen pixels spanned by one shadow-map texel along its most stretched "
+    "direction; > 1 means undersampling" };
+}
+
+BufferSpec depthBiasBuffer()
+{
+  return { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" };
 }
 
 BiasSettings biasSettings(const ParameterValues& values)

@@ -10,6 +10,7 @@
 
 #include "frame/TechniqueDescriptor.h"
 
+#include <string>
 #include <vector>
 
 namespace sl
@@ -19,6 +20,16 @@ std::vector<ParameterSpec> shadowMapParameters();
 // The same with shadow_map_size defaulting to `defaultMapSize` (the back-projection methods and reference-sm: 1024).
 std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize);
 std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot, directional
+
+// A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
+// (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.
+TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper);
+TechniqueDescriptor describeShadowMapTechnique(
+  std::string name, std::string title, std::string paper, int defaultMapSize);
+
+// Buffers every technique that compares against one shadow map can publish, declared once.
+BufferSpec texelRatioBuffer(); // survey Eq. 2's aliasing error m
+BufferSpec depthBiasBuffer();  // the bias applied at the pixel (survey §5)
 
 struct BiasSettings;
 BiasSettings biasSettings(const ParameterValues& values);

@@ -61,20 +61,18 @@ DcsSettings DcsSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor dcsTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "dcs";
-  descriptor.title = "Depth complexity sampling (per-sample occluder counts from silhouette wedges)";
-  descriptor.paper = "Forest, Barthe & Paulin 2008 (DCS); Forest et al. 2009 §3.2, §4.1";
+  TechniqueDescriptor descriptor = describeTechnique("dcs",
+    "Depth complexity sampling (per-sample occluder counts from silhouette wedges)",
+    "Forest, Barthe & Paulin 2008 (DCS); Forest et al. 2009 §3.2, §4.1");
   descriptor.parameters = {
     // 1e-4, ten times shadow-volume's: at 1e-5, segments to samples that graze a faceted surface re-enter it next to
     // the point, and every pattern's bunny penumbra RMSE against the reference (whose rays start 1e-4 of the scene's
     // radius along the normal) stopped at 0.064-0.066 at N = 256, 0.023-0.027 at 1e-4 (docs/bench/dcs).
-    { "receiver_offset", 1e-4, 0.0, 1e-2, "of the eye distance",
-      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before its samples are counted, as shadow-volume does" },
+    receiverOffsetParameter(1e-4, " before its samples are counted, as shadow-volume does"),
   };
   // The light-sample set's own parameters (light_samples, samples, sample_seed), declared as the structure does.
   const LightSpaceStructure& samples = lightSampleSetStructure();
-  descriptor.parameters.insert(descriptor.parameters.end(), samples.parameters.begin(), samples.parameters.end());
+  descriptor.addParameters(samples.parameters);
   ParameterSpec exportCounts{ "export_sample_counts", 0.0, 0.0, 1.0, "",
     "1: also publish sample_depth_complexity, every sample's count (N floats per pixel; for tests and probes)" };
   exportCounts.integer = true;
@@ -112,7 +110,7 @@ TechniqueDescriptor dcsTechnique()
     { "DCS_COUNTER_BITS", DcsCounterLayers::kCounterBits, "bits per counter (DcsCounterLayers)" },
     { "DCS_COUNTER_MASK", DcsCounterLayers::kCounterMask, "one counter's bits (DcsCounterLayers)" },
   });
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLDcsPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLDcsPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeDcs(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };

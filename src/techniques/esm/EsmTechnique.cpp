@@ -43,28 +43,24 @@ EsmSettings EsmSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor esmTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "esm";
-  descriptor.title = "Exponential shadow maps";
-  descriptor.paper = "Annen, Mertens, Seidel, Flerackers & Kautz 2008; survey §6";
-  descriptor.parameters = shadowMapParameters();
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("esm", "Exponential shadow maps",
+    "Annen, Mertens, Seidel, Flerackers & Kautz 2008; survey §6");
   const std::vector<ParameterSpec>& prefilter = momentMapStructure().parameters;
-  descriptor.parameters.insert(descriptor.parameters.end(), prefilter.begin(), prefilter.end());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters(prefilter);
+  descriptor.addParameters({
     { "esm_exponent", 40, 1, 80, "", "c in exp(c (z_n - t_n)), depths normalised to the light's range: sharper with larger c", {}, false },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
     { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias)", BufferKind::Signed },
     { "kernel_texels", "texels", "width of the prefilter box" },
-    { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
+    depthBiasBuffer(),
     esmBiasGainBuffer(),
   };
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
     const EsmSettings settings = EsmSettings::from(values);
     return LightSpaceRequest{ "prefilter_texels", static_cast<double>(settings.prefilter.texels), settings.exponent };
   };
-  descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] {
     auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
     pass->SetFragmentShaderPath("esm/EsmVisibility.glsl");

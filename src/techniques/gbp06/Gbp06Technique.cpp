@@ -31,15 +31,13 @@ Gbp06Settings Gbp06Settings::from(const ParameterValues& values)
 
 TechniqueDescriptor gbp06Technique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "gbp06";
-  descriptor.title = "Soft shadow mapping by back-projection of micropatches, with gap filling and a DU07 traversal";
-  descriptor.paper = "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1; "
-                     "Schwarz & Stamminger 2008 (gap-filling rule)";
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("gbp06",
+    "Soft shadow mapping by back-projection of micropatches, with gap filling and a DU07 traversal",
+    "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1; "
+    "Schwarz & Stamminger 2008 (gap-filling rule)", 1024);
   // as gbp07: brute-force kernels grow with the resolution
-  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters({
     { "hsm", 1, 0, 2, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007), mipmap (the HSM of Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level for the ranges, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     { "gap_filling", 1, 0, 2, "", "extend each occluding micropatch's back-projection to the shared edges of its occluding neighbours, closing the gaps between micropatches of different depths: left_bottom, to its left and bottom neighbours in texture space, GBP06's rule as Schwarz & Stamminger 2008 describe it (SS08 §3); right_top, to its right and top ones (the mirror convention); off", { "off", "left_bottom", "right_top" }, true },
@@ -62,7 +60,7 @@ TechniqueDescriptor gbp06Technique()
   descriptor.coversLightArea = true;
   // As gbp07: the registry-wide sweeps use 128^2 maps to bound the brute-force kernels on llvmpipe.
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLGbp06Pass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLGbp06Pass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);

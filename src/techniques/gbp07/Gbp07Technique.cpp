@@ -21,14 +21,12 @@ namespace sl
 
 TechniqueDescriptor gbp07Technique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "gbp07";
-  descriptor.title = "Contour-based soft shadow mapping (back-projection, radial integration)";
-  descriptor.paper = "Guennebaud et al. 2007; Yang et al. 2009 §4, Eq. 1; Schwarz & Stamminger 2007 (MSSM kernels)";
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("gbp07",
+    "Contour-based soft shadow mapping (back-projection, radial integration)",
+    "Guennebaud et al. 2007; Yang et al. 2009 §4, Eq. 1; Schwarz & Stamminger 2007 (MSSM kernels)", 1024);
   // Yang et al. 2009's comparisons; brute-force kernels grow with the resolution
-  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters({
     { "hsm", 1, 0, 2, "", "min-max structure for kernels and lit/umbra: nbuffers (the MSSM's exact ranges, Schwarz & Stamminger 2007), mipmap (a conservative HSM, Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     subLightsParameter(),
@@ -50,7 +48,7 @@ TechniqueDescriptor gbp07Technique()
   // Brute-force kernels grow with the map resolution squared: the test sweeps use 128^2 (near-light: 130 s a
   // case at 256^2 on llvmpipe).
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLGbp07Pass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLGbp07Pass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     requireSingleSubLight(*context.frame);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);

@@ -20,20 +20,15 @@ HardSettings HardSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor hardTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "hard";
-  descriptor.title = "Hard shadow mapping with depth biasing";
-  descriptor.paper = "Williams 1978; survey (Scherzer et al. 2011) §5";
-  descriptor.parameters = shadowMapParameters();
-  descriptor.lightStructures = { &shadowMapStructure() };
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("hard", "Hard shadow mapping with depth biasing",
+    "Williams 1978; survey (Scherzer et al. 2011) §5");
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
-    { "texel_ratio", "pixels/texel", "aliasing error m (survey Eq. 2): screen pixels spanned by one shadow-map texel along its most stretched direction; > 1 means undersampling" },
-    { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
+    texelRatioBuffer(),
+    depthBiasBuffer(),
     { "depth_margin", "world units", "receiver depth - bias - stored caster depth: > 0 shadowed, <= 0 lit; values near 0 are where acne or leaks start", BufferKind::Signed },
   };
-  descriptor.supportedLights = shadowMapLights();
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLHardShadowPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLHardShadowPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const ReferenceSample sample =

@@ -29,29 +29,24 @@ PcfSettings PcfSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor pcfTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "pcf";
-  descriptor.title = "Percentage-closer filtering";
-  descriptor.paper = "Reeves, Salesin & Cook 1987; survey (Scherzer et al. 2011) §6";
-  descriptor.parameters = shadowMapParameters();
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("pcf", "Percentage-closer filtering",
+    "Reeves, Salesin & Cook 1987; survey (Scherzer et al. 2011) §6");
+  descriptor.addParameters({
     { "kernel_texels", 3, 1, 64, "texels", "filter width: grid side, or Poisson disk diameter", {}, true },
     { "pattern", 0, 0, 1, "", "tap layout: grid (every texel of the kernel) or poisson (rotated Poisson disk)", { "grid", "poisson" }, true },
     { "poisson_samples", 16, 1, maxPoissonSamples, "taps", "taps of the Poisson disk (pattern = poisson)", {}, true },
     { "filter", 0, 0, 1, "", "nearest: one comparison per tap; hardware_bilinear: the hardware's 2x2 bilinear comparison per tap (survey Fig. 23)", { "nearest", "hardware_bilinear" }, true },
   });
-  descriptor.lightStructures = { &shadowMapStructure() };
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels" },
     { "taps", "comparisons", "depth comparisons made for the pixel" },
-    { "texel_ratio", "pixels/texel", "aliasing error m (survey Eq. 2): screen pixels spanned by one shadow-map texel along its most stretched direction; > 1 means undersampling" },
-    { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
+    texelRatioBuffer(),
+    depthBiasBuffer(),
   };
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
     return LightSpaceRequest{ "kernel_texels", static_cast<double>(PcfSettings::from(values).kernelTexels) };
   };
-  descriptor.supportedLights = shadowMapLights();
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPcfPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLPcfPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const ParameterValues& values = context.frame->parameters;

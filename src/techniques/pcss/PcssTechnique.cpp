@@ -15,16 +15,12 @@ namespace sl
 
 TechniqueDescriptor pcssTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "pcss";
-  descriptor.title = "Percentage-closer soft shadows";
-  descriptor.paper = "Fernando 2005; as in VSSM (Yang et al. 2010) §1 and Alg. 1 L7/L16";
-  descriptor.parameters = shadowMapParameters();
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("pcss", "Percentage-closer soft shadows",
+    "Fernando 2005; as in VSSM (Yang et al. 2010) §1 and Alg. 1 L7/L16");
   const std::vector<ParameterSpec> soft = softShadowParameters();
-  descriptor.parameters.insert(descriptor.parameters.end(), soft.begin(), soft.end());
+  descriptor.addParameters(soft);
   descriptor.parameters.push_back(
     { "filter", 0, 0, 1, "", "grid: every texel of the penumbra kernel w_p (brute force); poisson: rotated Poisson taps", { "grid", "poisson" }, true });
-  descriptor.lightStructures = { &shadowMapStructure() };
   descriptor.buffers = {
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
     { "blocker_samples", "taps", "depth samples read in the blocker search" },
@@ -32,11 +28,11 @@ TechniqueDescriptor pcssTechnique()
     { "penumbra_width", "world units", "estimated penumbra width at the receiver, w_light (d - z_avg) / z_avg" },
     { "penumbra_kernel_texels", "texels", "width of the PCF kernel w_p (Alg. 1 L16)" },
     { "pcf_samples", "taps", "depth comparisons in the PCF step" },
-    { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
+    depthBiasBuffer(),
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPcssPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLPcssPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const PcssSample sample = pcssReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);

@@ -28,13 +28,11 @@ PenumbraWedgeSettings PenumbraWedgeSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor penumbraWedgeTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "penumbra-wedge";
-  descriptor.title = "Penumbra wedges (hard shadow from the centre plus each centre silhouette's share of the light)";
-  descriptor.paper = "Akenine-Moller & Assarsson 2002; Assarsson & Akenine-Moller 2003; Forest et al. 2009 §3.1";
+  TechniqueDescriptor descriptor = describeTechnique("penumbra-wedge",
+    "Penumbra wedges (hard shadow from the centre plus each centre silhouette's share of the light)",
+    "Akenine-Moller & Assarsson 2002; Assarsson & Akenine-Moller 2003; Forest et al. 2009 §3.1");
   descriptor.parameters = {
-    { "receiver_offset", 1e-4, 0.0, 1e-2, "of the eye distance",
-      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius) before the centre's volumes, the wedges and the STSVs are evaluated, as dcs does" },
+    receiverOffsetParameter(1e-4, " before the centre's volumes, the wedges and the STSVs are evaluated, as dcs does"),
     stsvOppositeSideCheckParameter(),
   };
   // The light samples of the perforated casters' LS_buffer (Forest et al. 2009 §3.1): the shared set, 64 by default (the
@@ -70,9 +68,7 @@ TechniqueDescriptor penumbraWedgeTechnique()
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };
   descriptor.shaderConstants = wedgePassShaderConstants();
-  descriptor.createPass = [] {
-    return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLPenumbraWedgePass>::New());
-  };
+  descriptor.createPass = newTechniquePass<vtkSLPenumbraWedgePass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probePenumbraWedge(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };

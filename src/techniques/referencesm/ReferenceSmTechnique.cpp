@@ -30,13 +30,11 @@ ReferenceSmSettings ReferenceSmSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor referenceSmTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "reference-sm";
-  descriptor.title = "Accumulated hard shadow maps from K light samples (GPU reference)";
-  descriptor.paper = "the papers' reference, e.g. VSSM (Yang et al. 2010) §7; survey §5 bias per map";
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("reference-sm",
+    "Accumulated hard shadow maps from K light samples (GPU reference)",
+    "the papers' reference, e.g. VSSM (Yang et al. 2010) §7; survey §5 bias per map", 1024);
   // K maps per frame
-  descriptor.parameters = shadowMapParameters(1024);
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters({
     { "samples", 256, 1, 4096, "light samples", "K: shadow maps rendered from points spread over the area light (papers: 1024)", {}, true },
     { "seed", 1, 0, 2147483647, "", "rotation of the Hammersley light samples (Cranley-Patterson)", {}, true },
   });
@@ -47,10 +45,7 @@ TechniqueDescriptor referenceSmTechnique()
     { "edge_samples", "light samples", "light samples whose hard test a texel next to the receiver's, in that "
       "sample's map, decides otherwise: a caster's edge within a texel, which each map places only to within one" },
   };
-  descriptor.supportedLights = shadowMapLights();
-  descriptor.createPass = [] {
-    return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLReferenceShadowMapPass>::New());
-  };
+  descriptor.createPass = newTechniquePass<vtkSLReferenceShadowMapPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeReferenceSm(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };

@@ -31,16 +31,13 @@ SavsmSettings SavsmSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor savsmTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "savsm";
-  descriptor.title = "SAT-based variance soft shadow mapping";
-  descriptor.paper = "Lauritzen 2007 (GPU Gems 3 ch. 8); VSSM (Yang et al. 2010) §2.3 baseline; survey §6.4";
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("savsm", "SAT-based variance soft shadow mapping",
+    "Lauritzen 2007 (GPU Gems 3 ch. 8); VSSM (Yang et al. 2010) §2.3 baseline; survey §6.4");
   // The bias applies to the blocker search (the receiver must not find itself); Chebyshev compares the
   // receiver's own depth, where it is exact for two depths (see vsm).
-  descriptor.parameters = shadowMapParameters();
   const std::vector<ParameterSpec> soft = softShadowParameters();
-  descriptor.parameters.insert(descriptor.parameters.end(), soft.begin(), soft.end());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters(soft);
+  descriptor.addParameters({
     { "sat_precision", 1, 0, 1, "", "float_centred: float SAT of z - (near + far) / 2; int32: 16-bit fixed point, exact box sums (survey §6.4)", { "float_centred", "int32" }, true },
     { "light_bleeding_reduction", 0.0, 0, 0.99, "", "p_max below this amount becomes 0 and [amount, 1] maps to [0, 1] (Lauritzen 2007)", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the variance, relative to the squared receiver depth", {}, false },
@@ -53,11 +50,11 @@ TechniqueDescriptor savsmTechnique()
     { "blocker_samples", "taps", "depth samples read in the blocker search" },
     { "avg_blocker_depth", "world units", "average depth of the blockers found (0: none, lit)" },
     { "penumbra_kernel_texels", "texels", "width of the penumbra kernel w_p (Alg. 1 L16)" },
-    { "depth_bias", "world units", "depth bias applied at the pixel" },
+    depthBiasBuffer(),
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLSavsmPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLSavsmPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ParameterValues& values = context.frame->parameters;
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);

@@ -23,13 +23,12 @@ ShadowVolumeSettings ShadowVolumeSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor shadowVolumeTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "shadow-volume";
-  descriptor.title = "Z-fail stencil shadow volumes (exact hard shadows)";
-  descriptor.paper = "Crow 1977; Everitt & Kilgard 2002 (z-fail, infinite volumes); Stich et al. 2007 (non-closed meshes)";
+  TechniqueDescriptor descriptor = describeTechnique("shadow-volume",
+    "Z-fail stencil shadow volumes (exact hard shadows)",
+    "Crow 1977; Everitt & Kilgard 2002 (z-fail, infinite volumes); Stich et al. 2007 (non-closed meshes)");
   descriptor.parameters = {
-    { "receiver_offset", 1e-5, 0.0, 1e-2, "of the eye distance",
-      "the visible point is taken this fraction of its distance to the eye toward the camera (orthographic: of the scene's radius): a volume face closer behind it than float rounding (its own caster's near cap) counts as behind" },
+    receiverOffsetParameter(1e-5,
+      ": a volume face closer behind it than float rounding (its own caster's near cap) counts as behind"),
   };
   descriptor.lightStructures = {}; // object space: no shadow map
   descriptor.drawsSceneGeometry = true; // welded casters and the G-buffer's depth-stencil
@@ -40,7 +39,7 @@ TechniqueDescriptor shadowVolumeTechnique()
     volumeCountStatusBuffer(),
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLShadowVolumePass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLShadowVolumePass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeShadowVolume(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };

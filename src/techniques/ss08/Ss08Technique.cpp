@@ -120,14 +120,12 @@ Ss08Settings Ss08Settings::from(const ParameterValues& values)
 
 TechniqueDescriptor ss08Technique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "ss08";
-  descriptor.title = "Quality-scalable soft shadow mapping: budget map, smoothed LOQ map, blended levels, microrects";
-  descriptor.paper = "Schwarz & Stamminger 2008 (Fig. 3, §4.2, §5.2, §6); Guennebaud et al. 2006 (micropatches)";
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("ss08",
+    "Quality-scalable soft shadow mapping: budget map, smoothed LOQ map, blended levels, microrects",
+    "Schwarz & Stamminger 2008 (Fig. 3, §4.2, §5.2, §6); Guennebaud et al. 2006 (micropatches)", 1024);
   // the paper's runs: YSM 1024^2 / 256^2 (§8)
-  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters({
     { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (SS08 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },
     { "kernel_refinements", 2, 0, 4, "iterations", "times the search area is shrunk to the minimum depth inside it (SS08 Fig. 2 b)", {}, true },
     { "budget", 12, 0, 64, "micro-occluders per axis", "b_mo: micro-occluders per light axis at level ceil(l) (SS08 §4.2); 0 = unlimited (level 0, no smoothing or blending); with budget_map=ramp_x the value at the centre column", {}, true },
@@ -186,7 +184,7 @@ TechniqueDescriptor ss08Technique()
   descriptor.coversLightArea = true;
   // As gbp06: the registry-wide sweeps use 128^2 maps to bound the unlimited-budget kernels on llvmpipe.
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLSs08Pass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLSs08Pass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const FrameResult& frame = *context.frame;
     const Ss08Twin twin = ss08TwinOf(frame, *context.scene, context.lightIndex);

@@ -26,11 +26,8 @@ VsmSettings VsmSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor vsmTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "vsm";
-  descriptor.title = "Variance shadow maps";
-  descriptor.paper = "Donnelly & Lauritzen 2006; Lauritzen 2007 (light bleeding); survey §6; VSSM §4.1";
-  descriptor.parameters = shadowMapParameters();
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("vsm", "Variance shadow maps",
+    "Donnelly & Lauritzen 2006; Lauritzen 2007 (light bleeding); survey §6; VSSM §4.1");
   for (ParameterSpec& spec : descriptor.parameters)
   {
     // VSM compares the receiver's own depth: the variance (and its floor) absorbs the depth slope within the
@@ -41,8 +38,8 @@ TechniqueDescriptor vsmTechnique()
     }
   }
   const std::vector<ParameterSpec>& prefilter = momentMapStructure().parameters;
-  descriptor.parameters.insert(descriptor.parameters.end(), prefilter.begin(), prefilter.end());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters(prefilter);
+  descriptor.addParameters({
     { "light_bleeding_reduction", 0.2, 0, 0.99, "", "p_max below this amount becomes 0 and [amount, 1] maps to [0, 1] (Lauritzen 2007)", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the variance, relative to the squared receiver depth (float cancellation in E[z^2] - E[z]^2)", {}, false },
   });
@@ -51,12 +48,11 @@ TechniqueDescriptor vsmTechnique()
     { "p_max", "", "Chebyshev upper bound on the lit fraction, before light-bleeding reduction" },
     { "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where VSM bleeds light", BufferKind::Signed },
     { "kernel_texels", "texels", "width of the prefilter box" },
-    { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" },
+    depthBiasBuffer(),
   };
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
     return LightSpaceRequest{ "prefilter_texels", static_cast<double>(VsmSettings::from(values).prefilter.texels) };
   };
-  descriptor.supportedLights = shadowMapLights();
   descriptor.createPass = [] {
     auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
     pass->SetFragmentShaderPath("vsm/VsmVisibility.glsl");

@@ -229,14 +229,11 @@ VssmSettings VssmSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor vssmTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "vssm";
-  descriptor.title = "Variance soft shadow mapping";
-  descriptor.paper = "Yang et al. 2010 (VSSM), Alg. 1 and 2, Eq. 1-5, §5-6";
-  descriptor.parameters = shadowMapParameters();
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("vssm", "Variance soft shadow mapping",
+    "Yang et al. 2010 (VSSM), Alg. 1 and 2, Eq. 1-5, §5-6");
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   const std::vector<std::string> schemes = { "none", "uniform", "adaptive" };
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters({
     { "sat_precision", 1, 0, 1, "", "float_centred: float SAT of z - (near + far) / 2; int32: fixed point, exact box sums (§6.4)", { "float_centred", "int32" }, true },
     { "hsm", 0, 0, 2, "", "min-max hierarchical shadow map: mipmap (conservative ranges, the paper's choice), nbuffers (exact ranges, L times the memory) (§6.1) or ysm (the mip-map plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
     { "hsm_early_out", 1, 0, 1, "", "on: lit / umbra pixels decided from the HSM over w_i (Alg. 1 L8-10)", { "off", "on" }, true },
@@ -277,7 +274,7 @@ TechniqueDescriptor vssmTechnique()
   }
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot };
   descriptor.coversLightArea = true;
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLVssmPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLVssmPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const FrameResult& frame = *context.frame;
     const ShadowMapInputs shadowMap = shadowMapInputsOf(frame, *context.scene, context.lightIndex);

@@ -23,10 +23,8 @@ VtkSettings VtkSettings::from(const ParameterValues& values)
 
 TechniqueDescriptor vtkTechnique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "vtk";
-  descriptor.title = "VTK's vtkShadowMapPass (the in-ecosystem peer)";
-  descriptor.paper = "VTK 9.1 vtkShadowMapBakerPass / vtkShadowMapPass";
+  TechniqueDescriptor descriptor = describeTechnique("vtk", "VTK's vtkShadowMapPass (the in-ecosystem peer)",
+    "VTK 9.1 vtkShadowMapBakerPass / vtkShadowMapPass");
   descriptor.parameters = {
     { "shadow_map_size", 1024, 16, 8192, "texels", "resolution of VTK's shadow map (vtkShadowMapBakerPass::SetResolution)", {}, true },
   };
@@ -36,7 +34,7 @@ TechniqueDescriptor vtkTechnique()
     { "vtk_unshadowed", "", "VTK's radiance without shadows (same material and light)" },
   };
   descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLVtkShadowMapPass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLVtkShadowMapPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeVtk(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };

@@ -115,14 +115,12 @@ Yfgl09Settings Yfgl09Settings::from(const ParameterValues& values)
 
 TechniqueDescriptor yfgl09Technique()
 {
-  TechniqueDescriptor descriptor;
-  descriptor.name = "yfgl09";
-  descriptor.title = "Packet-based hierarchical soft shadow mapping (contours, packets, dual-grid MSSM traversal)";
-  descriptor.paper = "Yang, Feng, Guennebaud and Liu 2009, §4, Eq. 1-6, Alg. 1-3";
+  TechniqueDescriptor descriptor = describeShadowMapTechnique("yfgl09",
+    "Packet-based hierarchical soft shadow mapping (contours, packets, dual-grid MSSM traversal)",
+    "Yang, Feng, Guennebaud and Liu 2009, §4, Eq. 1-6, Alg. 1-3", 1024);
   // the paper's maps; gbp07's default, for like-for-like comparisons
-  descriptor.parameters = shadowMapParameters(1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
-  descriptor.parameters.insert(descriptor.parameters.end(), {
+  descriptor.addParameters({
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min from the MSSM)", {}, true },
     { "packet_width", 3, 1, 4, "pixels", "packet width w (§4.1; 1 x 1 = pixel-wise, the packet optimisation off)", {}, true },
     { "packet_height", 3, 1, 4, "pixels", "packet height h (§4.1)", {}, true },
@@ -157,7 +155,7 @@ TechniqueDescriptor yfgl09Technique()
   descriptor.shaderFlagSets = { {}, { yfgl09PacketPassFlag } };
   // Like gbp07: the registry-wide sweeps use small maps (brute-force kernels grow with the resolution squared).
   descriptor.sweepTestSettings = { "shadow_map_size=128" };
-  descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLYfgl09Pass>::New()); };
+  descriptor.createPass = newTechniquePass<vtkSLYfgl09Pass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const FrameResult& frame = *context.frame;
     requireSingleSubLight(frame);
