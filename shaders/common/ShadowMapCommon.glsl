@@ -11,6 +11,7 @@ uniform int shadowMapSize;
 uniform int lightIsPerspective;
 uniform vec4 lightDepthToClip;  // clip.z = -x d + y, clip.w = -z d + w for linear depth d
 uniform float shadowTexelExtent; // texel size in window units (tangent for perspective, world for ortho)
+uniform int lightWarped;         // 1: lightClipFromWorld holds a perspective warp (survey §4.2)
 
 // xy = uvTexels, z = depthLin
 vec3 projectToShadowMap(vec3 pWs)
@@ -36,6 +37,40 @@ float texelWorldSize(float depthLin)
 float depthBias(float tanTheta, float depthLin)
 {
   return texelWorldSize(depthLin) *
+    (param_bias_constant_texels + param_bias_slope_texels * min(tanTheta, param_bias_max_slope));
+}
+
+// The world size of one texel at the receiver, the warped texel's footprint under a warp (receiverTexelWorldSize,
+// ShadowMapMath.cpp): J = d(texel u, v) / d(light x, y), the larger column of J^-1.
+float receiverTexelWorldSize(vec3 pWs, float depthLin)
+{
+  if (lightWarped == 0)
+  {
+    return texelWorldSize(depthLin);
+  }
+  mat4 m = lightClipFromWorld;
+  vec4 clip = m * vec4(pWs, 1.0);
+  vec2 ndc = clip.xy / clip.w;
+  vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]);
+  vec3 rowY = vec3(m[0][1], m[1][1], m[2][1]);
+  vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
+  float scale = 0.5 * float(shadowMapSize) / clip.w;
+  vec3 gradU = scale * (rowX - ndc.x * rowW);
+  vec3 gradV = scale * (rowY - ndc.y * rowW);
+  vec3 lightX = vec3(lightViewFromWorld[0][0], lightViewFromWorld[1][0], lightViewFromWorld[2][0]);
+  vec3 lightY = vec3(lightViewFromWorld[0][1], lightViewFromWorld[1][1], lightViewFromWorld[2][1]);
+  float j00 = dot(gradU, lightX);
+  float j01 = dot(gradU, lightY);
+  float j10 = dot(gradV, lightX);
+  float j11 = dot(gradV, lightY);
+  float determinant = max(abs(j00 * j11 - j01 * j10), 1e-30);
+  return max(sqrt(j11 * j11 + j10 * j10), sqrt(j01 * j01 + j00 * j00)) / determinant;
+}
+
+// depthBias with receiverTexelWorldSize (depthBiasAt, ShadowMapMath.cpp).
+float depthBiasAt(float tanTheta, vec3 pWs, float depthLin)
+{
+  return receiverTexelWorldSize(pWs, depthLin) *
     (param_bias_constant_texels + param_bias_slope_texels * min(tanTheta, param_bias_max_slope));
 }
 

@@ -44,7 +44,7 @@ ShadowReceiver prepareShadowReceiver(ivec2 pixel)
   receiver.needsShadowTest = true;
   receiver.uvTexels = sm.xy;
   receiver.depthLin = sm.z;
-  receiver.bias = depthBias(tanAngleToLight(surface.nWs, directionToLight(surface.pWs)), sm.z);
+  receiver.bias = depthBiasAt(tanAngleToLight(surface.nWs, directionToLight(surface.pWs)), surface.pWs, sm.z);
   receiver.comparisonDepth = sm.z - receiver.bias;
   return receiver;
 }

@@ -5,8 +5,15 @@
 // as an adaptive bias of the caster's thickness; needs closed casters).
 #include "common/AlphaMask.glsl"
 
+// WARPED_DEPTH (a perspective warp, survey §4.2): clip z / w of the warped matrix mixes depth with the warp's w,
+// so the depth buffer gets the unwarped orthographic window depth instead, linear along every light ray (which
+// the warp keeps a texel column): the nearest caster wins as before and LightView::windowDepth stays exact.
 in vec2 uv;
 in float depthLin;
+#if WARPED_DEPTH
+uniform float lightNearDepth;
+uniform float lightFarDepth;
+#endif
 
 layout(location = 0) out float outDepthLin;
 
@@ -23,4 +30,7 @@ void main()
   }
 #endif
   outDepthLin = depthLin;
+#if WARPED_DEPTH
+  gl_FragDepth = (depthLin - lightNearDepth) / (lightFarDepth - lightNearDepth);
+#endif
 }

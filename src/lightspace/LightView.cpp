@@ -1,6 +1,7 @@
 #include "lightspace/LightView.h"
 
 #include "core/Error.h"
+#include "lightspace/CameraView.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -376,6 +377,98 @@ void setWindowAndProjection(LightView& view, const glm::dvec4& window, double ne
   view.clipFromWorld = view.clipFromView * view.viewFromWorld;
 }
 
+glm::dmat4 matrixFromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2, const glm::dvec4& r3)
+{
+  return glm::transpose(glm::dmat4(r0, r1, r2, r3));
+}
+
+glm::dvec4 matrixRow(const glm::dmat4& m, int row)
+{
+  return { m[0][row], m[1][row], m[2][row], m[3][row] };
+}
+
+// Survey §4.2: the focused orthographic view warped by P (PerspectiveWarp.h). Three more receiver reductions: their
+// eye depth range (z_n, z_f), their range along P's axis (B's length L) and their extent in the warped map.
+void applyPerspectiveWarp(const Light& light, ReceiverSource& receivers, const FocusSettings& settings, LightView& view)
+{
+  const WarpKind kind = settings.warp.kind;
+  if (light.type != LightType::Directional)
+  {
+    throw InputError(format("--set warp=", warpName(kind), ": a perspective warp needs a directional light (LiSPSM in ",
+      "a point, spot or area light's post-perspective space is not implemented); use warp=none"));
+  }
+  SL_CHECK_MSG(settings.camera != nullptr, "a warp needs the camera");
+  const CameraView& camera = *settings.camera;
+  PerspectiveWarp& warp = view.warp;
+  warp.kind = kind;
+
+  // γ: the angle between the view and light directions; P's axis is the view direction on the light's image plane.
+  const glm::dmat4 worldFromCamera = glm::inverse(camera.viewFromWorld);
+  const glm::dvec3 eyeWs(worldFromCamera[3]);
+  const glm::dvec3 viewLs = glm::dmat3(view.viewFromWorld) * -glm::normalize(glm::dvec3(worldFromCamera[2]));
+  const double sinGamma = std::min(1.0, glm::length(glm::dvec2(viewLs)));
+  warp.gammaDeg = glm::degrees(std::acos(std::clamp(-viewLs.z, -1.0, 1.0)));
+  const glm::dvec2 axis = sinGamma > 1e-9 ? glm::dvec2(viewLs) / glm::length(glm::dvec2(viewLs)) : glm::dvec2(0.0, 1.0);
+  const glm::dvec2 lateral(axis.y, -axis.x);
+  const glm::dmat4 axisFromLight = matrixFromRows({ lateral, 0.0, 0.0 }, { axis, 0.0, 0.0 }, { 0.0, 0.0, 1.0, 0.0 },
+    { 0.0, 0.0, 0.0, 1.0 });
+
+  LightView probe = view;
+  probe.projection = LightProjection::Orthographic;
+  probe.viewFromWorld = camera.viewFromWorld; // depthLin = eye depth
+  const ReceiverExtent eyeDepths = receivers.extent(light, probe, glm::dvec3(0.0, 0.0, -1.0));
+  probe.viewFromWorld = axisFromLight * view.viewFromWorld; // y = the coordinate along P's axis
+  const ReceiverExtent alongAxis = receivers.extent(light, probe, glm::dvec3(0.0, 0.0, -1.0));
+  warp.zNear = eyeDepths.inFront > 0 ? std::max(eyeDepths.minDepth, camera.nearDepth) : camera.nearDepth;
+  warp.zFar = std::max(eyeDepths.inFront > 0 ? eyeDepths.maxDepth : camera.farDepth, warp.zNear * (1.0 + 1e-9));
+  const double axisNear = alongAxis.inFront > 0 ? alongAxis.minXY.y : 0.0;
+  const double axisFar = alongAxis.inFront > 0 ? alongAxis.maxXY.y : 1.0;
+  const double bodyLength = std::max(axisFar - axisNear, 1e-9 * std::max({ 1.0, std::abs(axisNear), std::abs(axisFar) }));
+  const double eyeLateral = (axisFromLight * view.viewFromWorld * glm::dvec4(eyeWs, 1.0)).x;
+
+  warp.nOpt = warpParameter(WarpKind::Lispsm, warp.zNear, warp.zFar, bodyLength, sinGamma);
+  warp.n = settings.warp.n > 0.0 ? settings.warp.n : warpParameter(kind, warp.zNear, warp.zFar, bodyLength, sinGamma);
+  warp.nearDistance = warp.n;
+  warp.farDistance = warp.n + bodyLength;
+  const WarpRows rows = warpRows(warp.n, bodyLength);
+  // (p, u, 1) from light view coordinates: p lateral from the eye, u past B's near side along the axis.
+  const glm::dvec4 pRow(lateral, 0.0, -eyeLateral);
+  const glm::dvec4 uRow(axis, 0.0, -axisNear);
+  const glm::dvec4 oneRow(0.0, 0.0, 0.0, 1.0);
+  const auto combine = [&](const glm::dvec3& r) { return r.x * pRow + r.y * uRow + r.z * oneRow; };
+  const glm::dvec4 xRow = combine(rows.x);
+  const glm::dvec4 tRow = combine(rows.t);
+  const glm::dvec4 wRow = combine(rows.w);
+
+  // The receivers' extent in the warped map (x = X / W, y = T / W, depth = W), then the focus's texel margin.
+  probe.projection = LightProjection::Perspective;
+  probe.viewFromWorld = matrixFromRows(xRow, tRow, -wRow, oneRow) * view.viewFromWorld;
+  const ReceiverExtent warped = receivers.extent(light, probe, glm::dvec3(0.0, 0.0, -1.0));
+  glm::dvec4 window = warped.inFront > 0 ? glm::dvec4(warped.minXY.x, warped.maxXY.x, warped.minXY.y, warped.maxXY.y)
+                                         : glm::dvec4(-1.0, 1.0, 0.0, 1.0);
+  const double grow = settings.resolution / (settings.resolution - 2.0 * settings.marginTexels);
+  for (int axisIndex = 0; axisIndex < 2; ++axisIndex)
+  {
+    const double lo = window[2 * axisIndex];
+    const double hi = window[2 * axisIndex + 1];
+    const double half = 0.5 * std::max(hi - lo, 1e-9 * std::max({ 1.0, std::abs(lo), std::abs(hi) })) * grow;
+    window[2 * axisIndex] = 0.5 * (lo + hi) - half;
+    window[2 * axisIndex + 1] = 0.5 * (lo + hi) + half;
+  }
+
+  // Clip z: the unwarped orthographic z scaled by W at the map's near edge, so |z / w| <= 1 holds for every depth in
+  // [near, far] over the whole map (W grows along the axis). The depth buffer itself holds the orthographic window
+  // depth (the light depth pass writes it), which orders every light ray's casters as before.
+  const double strength = rows.w.y;
+  const double nearEdgeU = window.z / (rows.t.y - window.z * strength);
+  const double nearEdgeW = 1.0 + strength * nearEdgeU;
+  SL_CHECK_MSG(nearEdgeW > 0.0 && std::isfinite(nearEdgeW), "the warp's projection centre lies inside the map");
+  const glm::dvec4 clipX = (2.0 * xRow - (window.x + window.y) * wRow) / (window.y - window.x);
+  const glm::dvec4 clipY = (2.0 * tRow - (window.z + window.w) * wRow) / (window.w - window.z);
+  const glm::dvec4 clipZ = nearEdgeW * matrixRow(view.clipFromView, 2);
+  view.clipFromWorld = matrixFromRows(clipX, clipY, clipZ, wRow) * view.viewFromWorld;
+}
+
 } // namespace
 
 // Focusing (survey §4.3): the light's frame, the receivers' window in it, the casters' near plane within that
@@ -411,6 +504,10 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
     nearDepth = nearestDepthIn(scene, view, window, receiverRange, depthEpsilon);
   }
   setWindowAndProjection(view, window, nearDepth, receiverRange.farDepth, depthEpsilon, settings);
+  if (settings.warp.kind != WarpKind::None)
+  {
+    applyPerspectiveWarp(light, receivers, settings, view);
+  }
   return view;
 }
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "core/Image.h"
+#include "lightspace/PerspectiveWarp.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -41,6 +42,9 @@ struct LightView
   double farDepth = 10.0;
   int resolution = 1024;
   int receiverSampleCount = 0; // visible receiver points the frustum was fitted to
+  // A perspective warp (survey §4.2, PerspectiveWarp.h) is part of clipFromWorld; clipFromView stays the unwarped
+  // orthographic projection, whose window depth the warped map's depth buffer still holds (windowDepth is valid).
+  PerspectiveWarp warp;
 
   // World-space size of one shadow-map texel at linear depth `depthLin` (the larger of its two sides).
   double texelWorldSize(double depthLin) const;
@@ -50,6 +54,8 @@ struct LightView
   double windowDepth(double depthLin) const;
 };
 
+struct CameraView;
+
 struct FocusSettings
 {
   int resolution = 1024;
@@ -57,6 +63,9 @@ struct FocusSettings
   // Soft-shadow techniques: width (world units) of the area light whose occluders the map must also hold.
   // A perspective window then grows by (width / 2) / near on each side (see fitLightView). 0: hard shadows.
   double lightFootprintWidth = 0.0;
+  // A perspective warp of the focused map (survey §4.2): needs the camera and a directional light.
+  WarpSettings warp;
+  const CameraView* camera = nullptr;
 };
 
 // Can the light illuminate a point at all, ignoring occluders? False behind an area light's plane,
@@ -113,7 +122,8 @@ private:
 };
 
 // Fits the light view. Throws InputError when one shadow map cannot cover the receivers (a point light
-// surrounded by them: some lie more than 80 degrees off its axis).
+// surrounded by them: some lie more than 80 degrees off its axis), or when a warp is asked of a light that is not
+// directional.
 LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings);
 // Convenience: the CPU reference on G-buffer images.
 LightView fitLightView(const Light& light, const Scene& scene, const ImageF& gbufferPosition,

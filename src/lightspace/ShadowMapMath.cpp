@@ -25,6 +25,39 @@ double depthBias(const LightView& view, const BiasSettings& bias, double tanThet
   return view.texelWorldSize(depthLin) * (bias.constantTexels + bias.slopeTexels * std::min(tanTheta, bias.maxSlope));
 }
 
+double receiverTexelWorldSize(const LightView& view, const glm::dvec3& pWs, double depthLin)
+{
+  if (!view.warp.active())
+  {
+    return view.texelWorldSize(depthLin);
+  }
+  // J = d(texel u, v) / d(light x, y) at pWs; the texel's sides in world units are J^-1's columns.
+  const glm::dmat4& m = view.clipFromWorld;
+  const glm::dvec4 clip = m * glm::dvec4(pWs, 1.0);
+  const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+  const glm::dvec3 rowX(m[0][0], m[1][0], m[2][0]);
+  const glm::dvec3 rowY(m[0][1], m[1][1], m[2][1]);
+  const glm::dvec3 rowW(m[0][3], m[1][3], m[2][3]);
+  const double scale = 0.5 * view.resolution / clip.w;
+  const glm::dvec3 gradU = scale * (rowX - ndc.x * rowW);
+  const glm::dvec3 gradV = scale * (rowY - ndc.y * rowW);
+  const glm::dvec3 lightX(view.viewFromWorld[0][0], view.viewFromWorld[1][0], view.viewFromWorld[2][0]);
+  const glm::dvec3 lightY(view.viewFromWorld[0][1], view.viewFromWorld[1][1], view.viewFromWorld[2][1]);
+  const double j00 = glm::dot(gradU, lightX);
+  const double j01 = glm::dot(gradU, lightY);
+  const double j10 = glm::dot(gradV, lightX);
+  const double j11 = glm::dot(gradV, lightY);
+  const double determinant = std::max(std::abs(j00 * j11 - j01 * j10), 1e-300);
+  return std::max(std::sqrt(j11 * j11 + j10 * j10), std::sqrt(j01 * j01 + j00 * j00)) / determinant;
+}
+
+double depthBiasAt(const LightView& view, const BiasSettings& bias, double tanTheta, const glm::dvec3& pWs,
+  double depthLin)
+{
+  return receiverTexelWorldSize(view, pWs, depthLin) *
+    (bias.constantTexels + bias.slopeTexels * std::min(tanTheta, bias.maxSlope));
+}
+
 double texelRatio(const CameraView& camera, const LightView& light, double pixelX, double pixelY,
   const glm::dvec3& pWs, const glm::dvec3& nWs)
 {

@@ -34,6 +34,14 @@ struct BiasSettings
 };
 
 double depthBias(const LightView& view, const BiasSettings& bias, double tanTheta, double depthLin);
+// The world size of one texel at the receiver pWs: texelWorldSize(depthLin) for an unwarped map; under a perspective
+// warp (survey §4.2) the larger side of the warped texel's footprint on the plane through pWs facing the light,
+// from the local Jacobian of texel coordinates over the light's x and y (LiSPSM keeps normal slope-scale biasing,
+// survey §5, once the bias follows the texel it compares against).
+double receiverTexelWorldSize(const LightView& view, const glm::dvec3& pWs, double depthLin);
+// depthBias with receiverTexelWorldSize: what every shadow-map lookup applies (equal to depthBias unwarped).
+double depthBiasAt(const LightView& view, const BiasSettings& bias, double tanTheta, const glm::dvec3& pWs,
+  double depthLin);
 double tanAngleToLight(const glm::dvec3& nWs, const glm::dvec3& toLight);
 
 // The survey's aliasing error m (Eq. 2), evaluated exactly for the pixel: the Jacobian J of

@@ -6,6 +6,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/LightSamples.cpp
   src/lightspace/LightSampleSet.cpp
   src/lightspace/ShadowMapMath.cpp
+  src/lightspace/PerspectiveWarp.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
   src/lightspace/SummedAreaTable.cpp)

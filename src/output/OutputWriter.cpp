@@ -159,6 +159,15 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
       { "receiver_samples", view.receiverSampleCount },
     };
+    if (view.warp.active())
+    {
+      // Survey §4.2: P's free parameter and the angle that sets LiSPSM's falloff (n null: degraded to uniform).
+      const PerspectiveWarp& warp = view.warp;
+      const auto finiteOr = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
+      stats["light_view"]["warp"] = { { "kind", warpName(warp.kind) }, { "n", finiteOr(warp.n) },
+        { "n_opt", finiteOr(warp.nOpt) }, { "gamma_deg", warp.gammaDeg }, { "z_near", warp.zNear },
+        { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
+    }
   }
   stats["buffers"] = bufferSummaries(frame.buffers);
   nlohmann::json lightSpace = nlohmann::json::object();

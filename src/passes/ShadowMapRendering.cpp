@@ -23,10 +23,16 @@ void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* 
   defines.push_back({ "CASTER_FACES_FRONT", "0" });
   defines.push_back({ "CASTER_FACES_BACK", "1" });
   defines.push_back({ "CASTER_FACES", secondDepth ? "1" : "0" });
+  defines.push_back({ "WARPED_DEPTH", view.warp.active() ? "1" : "0" });
   vtkShaderProgram* program = readyProgram(window, assembleShader("lightspace/LightDepthVertex.glsl", defines),
     assembleShader("lightspace/LightDepthFragment.glsl", defines), "light depth");
   setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
   setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
+  if (view.warp.active())
+  {
+    program->SetUniformf("lightNearDepth", static_cast<float>(view.nearDepth));
+    program->SetUniformf("lightFarDepth", static_cast<float>(view.farDepth));
+  }
   drawer.draw(program, scene, [](const SceneObject& object) { return object.castShadows; });
 }
 

@@ -71,7 +71,8 @@ std::optional<ShadowMapFootprint::Receiver> ShadowMapFootprint::receiver(int x, 
   }
   // The receiver's own surface, sampled up to a texel away on a slope (the default bias's rule, ShadowMapMath.h).
   const double tanTheta = tanAngleToLight(nWs, directionToLight(*inputs_.light, pWs));
-  receiver.margin = inputs_.lightView.texelWorldSize(receiver.sample.depthLin) * (1.0 + 2.0 * std::min(tanTheta, 10.0));
+  receiver.margin =
+    receiverTexelWorldSize(inputs_.lightView, pWs, receiver.sample.depthLin) * (1.0 + 2.0 * std::min(tanTheta, 10.0));
   return receiver;
 }
 

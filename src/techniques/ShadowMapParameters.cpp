@@ -39,6 +39,14 @@ std::vector<LightType> shadowMapLights()
   return { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
 }
 
+std::vector<ParameterSpec> shadowMapWarpParameters()
+{
+  return {
+    { "warp", 0, 0, 3, "", "perspective warp of the map (survey §4.2): none, psm (n = z_n), lispsm (n_opt = z_n + sqrt(z_n z_f), over sin gamma) or tsm (80 % rule); directional lights", { "none", "psm", "lispsm", "tsm" }, true },
+    { "warp_n", 0, 0, 1e9, "world units", "the warp's free parameter n (survey Fig. 9), its projection centre's distance to the focused body; 0: the rule of `warp`", {}, false },
+  };
+}
+
 TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper)
 {
   TechniqueDescriptor descriptor = describeTechnique(std::move(name), std::move(title), std::move(paper));

@@ -20,6 +20,11 @@ std::vector<ParameterSpec> shadowMapParameters();
 // The same with shadow_map_size defaulting to `defaultMapSize` (the back-projection methods and reference-sm: 1024).
 std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize);
 std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot, directional
+// The perspective warp of the shadow map (survey §4.2), for the techniques whose lookups stay valid under it (a
+// texel's footprint from the warped matrix, linear depth unchanged): hard and pcf list them with addParameters.
+//   warp    none | psm | lispsm | tsm (lightspace/PerspectiveWarp.h)
+//   warp_n  the warp's n in world units; 0: the rule of `warp` (LiSPSM: n_opt / sin γ)
+std::vector<ParameterSpec> shadowMapWarpParameters();
 
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
 // (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.

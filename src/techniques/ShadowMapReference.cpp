@@ -41,8 +41,7 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
     return lookup;
   }
   lookup.sm = projectToShadowMap(inputs.lightView, pWs);
-  sample.bias = depthBias(inputs.lightView, bias, tanAngleToLight(nWs, toLight),
-    lookup.sm.depthLin);
+  sample.bias = depthBiasAt(inputs.lightView, bias, tanAngleToLight(nWs, toLight), pWs, lookup.sm.depthLin);
   lookup.comparisonDepth = lookup.sm.depthLin - sample.bias;
   sample.texelRatio = texelRatio(inputs.camera, inputs.lightView, x + 0.5, y + 0.5, pWs, nWs);
   sample.evaluated = true;
@@ -51,7 +50,7 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
     recorder->quantity("shadow_map_position", lookup.sm.uvTexels, "texels", "survey §2 (light-space projection)");
     recorder->quantity("receiver_depth", lookup.sm.depthLin, "linear depth", "survey §2 (d, distance along the light axis)");
     recorder->quantity("tan_angle_to_light", tanAngleToLight(nWs, toLight), "", "survey §5 (tan theta)");
-    recorder->quantity("texel_world_size", inputs.lightView.texelWorldSize(lookup.sm.depthLin), "world units",
+    recorder->quantity("texel_world_size", receiverTexelWorldSize(inputs.lightView, pWs, lookup.sm.depthLin), "world units",
       "survey §2 (one texel at the receiver's depth)");
     recorder->quantity("depth_bias", sample.bias, "linear depth", "survey §5 (constant + slope-scaled bias)");
     recorder->quantity("comparison_depth", lookup.comparisonDepth, "linear depth", "survey §5 (d - bias)");

@@ -31,6 +31,12 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
       settings.resolution, "-texel shadow map for them; use a larger shadow_map_size or a narrower filter"));
   }
   settings.secondDepth = values.has("caster_faces") && values.choice("caster_faces") == "back";
+  if (values.has("warp"))
+  {
+    settings.warp.kind = choiceOf<WarpKind>(values, "warp",
+      { { "none", WarpKind::None }, { "psm", WarpKind::Psm }, { "lispsm", WarpKind::Lispsm }, { "tsm", WarpKind::Tsm } });
+    settings.warp.n = values.get("warp_n");
+  }
   return settings;
 }
 
@@ -71,6 +77,7 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
   setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
   setIntIfUsed(program, "shadowMapSize", view.resolution);
   setIntIfUsed(program, "lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
+  setIntIfUsed(program, "lightWarped", view.warp.active() ? 1 : 0);
   if (program->IsUniformUsed("lightDepthToClip"))
   {
     // windowDepth: clip.z = -P22 d + P32, clip.w = -P23 d + P33 for linear depth d (z_view = -d).

@@ -4,6 +4,7 @@
 // shadowMapDepth (the root of the light-space stage, read by every shadow-map technique's shader).
 #pragma once
 
+#include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
 namespace sl
@@ -17,6 +18,7 @@ struct ShadowMapSettings
   int resolution = 2048;     // shadow_map_size
   double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
+  WarpSettings warp;         // warp, warp_n (survey §4.2), read only from techniques that list them
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
   static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});

@@ -22,6 +22,8 @@ void vtkSLFocusPass::Execute(const vtkRenderState*)
   sl::FocusSettings focus;
   focus.resolution = settings.resolution;
   focus.marginTexels = settings.marginTexels;
+  focus.warp = settings.warp;
+  focus.camera = &frame.camera;
   if (frame.technique->coversLightArea && frame.light->type == sl::LightType::Area)
   {
     focus.lightFootprintWidth = frame.light->size;

@@ -22,6 +22,7 @@ TechniqueDescriptor hardTechnique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("hard", "Hard shadow mapping with depth biasing",
     "Williams 1978; survey (Scherzer et al. 2011) §5");
+  descriptor.addParameters(shadowMapWarpParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),

@@ -37,6 +37,7 @@ TechniqueDescriptor pcfTechnique()
     { "poisson_samples", 16, 1, maxPoissonSamples, "taps", "taps of the Poisson disk (pattern = poisson)", {}, true },
     { "filter", 0, 0, 1, "", "nearest: one comparison per tap; hardware_bilinear: the hardware's 2x2 bilinear comparison per tap (survey Fig. 23)", { "nearest", "hardware_bilinear" }, true },
   });
+  descriptor.addParameters(shadowMapWarpParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels" },
     { "taps", "comparisons", "depth comparisons made for the pixel" },
