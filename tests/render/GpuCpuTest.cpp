@@ -264,6 +264,38 @@ INSTANTIATE_TEST_SUITE_P(LightTypes, GpuCpuLights,
       std::string(R"({ "type": "spot", "center": [0.4, 3.2, 0.3], "normal": [-0.1, -1, -0.05], "cone_angle_deg": 40 })"))),
   [](const ::testing::TestParamInfo<std::pair<std::string, std::string>>& info) { return info.param.first; });
 
+// The perspective warps (survey §4.2) on the directional variant (γ = 51°): the twins read the warped matrix, and
+// the bias follows the warped texel's footprint (receiverTexelWorldSize), so depth_bias is checked too.
+class GpuCpuWarp : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(GpuCpuWarp, HardAndPcfMatch)
+{
+  const Scene scene = test::stackedOccludersUnder(R"({ "type": "directional", "direction": [0.3, -1, 0.2] })");
+  const std::string warp = "warp=" + GetParam();
+  {
+    const FrameResult frame = test::renderDataset(scene, "hard", 128, 112, { "shadow_map_size=512", warp });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    EXPECT_TRUE(inputs.lightView.warp.active());
+    const BiasSettings bias = biasSettings(frame.parameters);
+    const Agreement agreement = compare(
+      frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return hardReference(in, bias, x, y); }, 0.0);
+    expectAgreement(agreement, 128 * 112, warp + " hard", false);
+  }
+  {
+    const FrameResult frame =
+      test::renderDataset(scene, "pcf", 128, 112, { "shadow_map_size=512", "kernel_texels=4", warp });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const Agreement agreement = compare(
+      frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); },
+      1e-5);
+    expectAgreement(agreement, 128 * 112, warp + " pcf", true);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Warps, GpuCpuWarp, ::testing::Values("psm", "lispsm", "tsm"));
+
 // Focusing: the light view fitted from the GPU reduction (FocusReduction.glsl) equals the CPU reference
 // fitted from the read-back G-buffer, up to float rounding of the reduced coordinates.
 TEST(GpuCpuFocus, GpuReductionFitsTheSameLightViewAsTheCpu)

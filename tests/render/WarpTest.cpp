@@ -1,0 +1,212 @@
+// The perspective warp (survey §4.2) end to end on a small deep view built here: a ground 151 long, posts, the eye
+// at height 1 looking along it (visible depth from about 2.2 to 147), a directional light from above and to the side
+// (view ⟂ light, γ = 90°), and a caster above the view frustum whose shadow falls on visible ground.
+//   - Eq. 1's perspective factor (1/z) dz/ds of the rendered map at the nearest and farthest visible ground: equal
+//     for LiSPSM (n_opt equalises the ends, Fig. 12), z_f / z_n apart for the uniform map.
+//   - the GPU's texel_ratio (Eq. 2) near and far, for the record.
+//   - the caster outside the view still shadows the ground under every warp.
+#include "support/TestSupport.h"
+#include "lightspace/ShadowMapMath.h"
+#include "scene/Scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+Scene deepView()
+{
+  const std::string text = R"({
+    "camera": { "position": [0, 1, 0], "focal_point": [0, 1, -10], "view_angle": 50 },
+    "lights": [ { "type": "directional", "direction": [0.3, -1, 0] } ],
+    "objects": [
+      { "primitive": "quad", "center": [0, 0, -74.5], "size": [30, 151], "normal": [0, 1, 0], "up": [0, 0, -1] },
+      { "primitive": "box", "center": [-1.5, 1, -8], "size": [0.3, 2, 0.3] },
+      { "primitive": "box", "center": [2, 1, -20], "size": [0.4, 2, 0.4] },
+      { "primitive": "box", "center": [-3, 1.5, -45], "size": [0.6, 3, 0.6] },
+      { "primitive": "box", "center": [4, 2, -100], "size": [1, 4, 1] },
+      { "primitive": "quad", "center": [-2.4, 8, -5], "size": [2, 2], "normal": [0, 1, 0], "up": [0, 0, -1] }
+    ] })";
+  return parseScene(text, "deep view (warp test)", test::sourceDir());
+}
+
+// Eq. 1's perspective factor at a ground point: the eye depth moved by one texel step on the ground along the map
+// axis that follows the view (a warp's t; either axis of the uniform map), over the eye depth: (1/z) dz/ds, in
+// texels. A step along the other axis keeps the eye depth (both run along world x here).
+double perspectiveFactor(const CameraView& camera, const LightView& light, const glm::dvec3& pWs)
+{
+  const glm::dmat4& m = light.clipFromWorld;
+  const glm::dvec4 clip = m * glm::dvec4(pWs, 1.0);
+  const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+  const double scale = 0.5 * light.resolution / clip.w;
+  const glm::dvec3 gradU = scale * (glm::dvec3(m[0][0], m[1][0], m[2][0]) - ndc.x * glm::dvec3(m[0][3], m[1][3], m[2][3]));
+  const glm::dvec3 gradV = scale * (glm::dvec3(m[0][1], m[1][1], m[2][1]) - ndc.y * glm::dvec3(m[0][3], m[1][3], m[2][3]));
+  // (u, v) over the ground's (x, z); one step of v is the second column of its inverse.
+  const double j00 = gradU.x, j01 = gradU.z, j10 = gradV.x, j11 = gradV.z;
+  const double determinant = j00 * j11 - j01 * j10;
+  const glm::dvec3 stepU(j11 / determinant, 0.0, -j10 / determinant);
+  const glm::dvec3 stepV(-j01 / determinant, 0.0, j00 / determinant);
+  const glm::dmat3 cameraFromWorld(camera.viewFromWorld);
+  const double z = -(camera.viewFromWorld * glm::dvec4(pWs, 1.0)).z;
+  return std::max(std::abs((cameraFromWorld * stepU).z), std::abs((cameraFromWorld * stepV).z)) / z;
+}
+
+struct DepthEnds
+{
+  double nearFactor = 0.0, farFactor = 0.0;           // perspective factor, median over the end bins
+  double nearTexelRatio = 0.0, farTexelRatio = 0.0;   // the GPU's texel_ratio, median over the same bins
+  double zNear = 0.0, zFar = 0.0;
+};
+
+double median(std::vector<double> values)
+{
+  SL_CHECK(!values.empty());
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The visible ground's nearest and farthest pixel rows: pixels within 2 % of the extreme eye depths.
+DepthEnds depthEnds(const FrameResult& frame, const ShadowMapInputs& inputs)
+{
+  const ImageF& texelRatio = frame.find("texel_ratio")->image;
+  struct Sample
+  {
+    double z, factor, ratio;
+  };
+  std::vector<Sample> samples;
+  for (int y = 0; y < inputs.position.height; ++y)
+  {
+    for (int x = 0; x < inputs.position.width; ++x)
+    {
+      const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+      if (inputs.coverage.at(x, y) < 0.5f || std::abs(pWs.y) > 1e-4 || inputs.normal.at(x, y, 1) < 0.99f)
+      {
+        continue;
+      }
+      const double z = -(inputs.camera.viewFromWorld * glm::dvec4(pWs, 1.0)).z;
+      samples.push_back({ z, perspectiveFactor(inputs.camera, inputs.lightView, pWs), texelRatio.at(x, y) });
+    }
+  }
+  SL_CHECK(samples.size() > 1000);
+  DepthEnds ends;
+  ends.zNear = 1e300;
+  ends.zFar = 0.0;
+  for (const Sample& s : samples)
+  {
+    ends.zNear = std::min(ends.zNear, s.z);
+    ends.zFar = std::max(ends.zFar, s.z);
+  }
+  std::vector<double> nearFactors, farFactors, nearRatios, farRatios;
+  for (const Sample& s : samples)
+  {
+    if (s.z <= 1.02 * ends.zNear)
+    {
+      nearFactors.push_back(s.factor);
+      nearRatios.push_back(s.ratio);
+    }
+    if (s.z >= ends.zFar / 1.02)
+    {
+      farFactors.push_back(s.factor);
+      farRatios.push_back(s.ratio);
+    }
+  }
+  ends.nearFactor = median(nearFactors);
+  ends.farFactor = median(farFactors);
+  ends.nearTexelRatio = median(nearRatios);
+  ends.farTexelRatio = median(farRatios);
+  return ends;
+}
+
+TEST(Warp, LispsmEqualisesThePerspectiveFactorOverADeepView)
+{
+  const Scene scene = deepView();
+  for (const std::string warp : { "none", "psm", "lispsm", "tsm" })
+  {
+    const FrameResult frame = test::renderDataset(scene, "hard", 128, 64, { "shadow_map_size=256", "warp=" + warp });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const DepthEnds ends = depthEnds(frame, inputs);
+    const double factorRatio = std::max(ends.nearFactor, ends.farFactor) / std::min(ends.nearFactor, ends.farFactor);
+    std::cout << "[ measured ] warp=" << warp << ": eye depth " << ends.zNear << " .. " << ends.zFar << " (n "
+              << inputs.lightView.warp.n << ", n_opt " << inputs.lightView.warp.nOpt << "), perspective factor near "
+              << ends.nearFactor << " far " << ends.farFactor << " (ratio " << factorRatio << "), texel_ratio near "
+              << ends.nearTexelRatio << " far " << ends.farTexelRatio << "\n";
+    EXPECT_GT(ends.zFar / ends.zNear, 50.0);
+    if (warp == "lispsm")
+    {
+      EXPECT_LT(factorRatio, 1.10) << "Fig. 12: n_opt equalises the ends";
+      EXPECT_NEAR(inputs.lightView.warp.gammaDeg, 90.0, 1e-6);
+    }
+    if (warp == "none")
+    {
+      EXPECT_GT(factorRatio, 10.0);
+      EXPECT_GT(ends.nearTexelRatio / ends.farTexelRatio, 10.0);
+    }
+    if (warp == "psm")
+    {
+      // PSM (n = z_n) turns the uniform map's error around: fine near, coarse far (Fig. 12).
+      EXPECT_GT(ends.farFactor / ends.nearFactor, 10.0);
+    }
+  }
+}
+
+TEST(Warp, CasterOutsideTheViewStillShadowsTheGround)
+{
+  // The quad at height 8 over x in [-3.4, -1.4], z in [-6, -4] is above the view frustum; the light (0.3, -1, 0)
+  // throws it onto the ground at x in [-1, 1], z in [-6, -4]. Every ground pixel well inside is shadowed, every
+  // one nearer than z = -3.5 (before it and the posts' shadows) is lit.
+  const Scene scene = deepView();
+  for (const std::string technique : { "hard", "pcf" })
+  {
+    for (const std::string warp : { "none", "psm", "lispsm", "tsm" })
+    {
+      const FrameResult frame = test::renderDataset(scene, technique, 128, 64, { "shadow_map_size=256", "warp=" + warp });
+      const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+      const ImageF& visibility = frame.find("visibility")->image;
+      int inside = 0, insideShadowed = 0, outside = 0, outsideLit = 0;
+      for (int y = 0; y < visibility.height; ++y)
+      {
+        for (int x = 0; x < visibility.width; ++x)
+        {
+          const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+          if (inputs.coverage.at(x, y) < 0.5f || std::abs(pWs.y) > 1e-4)
+          {
+            continue;
+          }
+          if (std::abs(pWs.x) < 0.8 && pWs.z < -4.2 && pWs.z > -5.8)
+          {
+            ++inside;
+            insideShadowed += visibility.at(x, y) == 0.0f ? 1 : 0;
+          }
+          else if (pWs.z > -3.5)
+          {
+            // Nearer than the quad's shadow and every post's.
+            ++outside;
+            outsideLit += visibility.at(x, y) == 1.0f ? 1 : 0;
+          }
+        }
+      }
+      std::cout << "[ measured ] " << technique << " warp=" << warp << ": quad's shadow " << insideShadowed << " / "
+                << inside << " shadowed, near ground " << outsideLit << " / " << outside << " lit\n";
+      EXPECT_GT(inside, 40) << technique << " " << warp;
+      EXPECT_GT(outside, 100) << technique << " " << warp;
+      // pcf's 3-texel kernel on the uniform map spans 1.8 world units along the view here, about the shadow's length:
+      // there it blurs by design; every warp packs enough texels near the eye to keep both regions exact.
+      if (technique == "hard" || warp != "none")
+      {
+        EXPECT_EQ(insideShadowed, inside) << technique << " " << warp;
+        EXPECT_EQ(outsideLit, outside) << technique << " " << warp;
+      }
+      test::expectFiniteBuffersAndVisibilityInRange(frame, technique + " warp=" + warp);
+    }
+  }
+}
+
+} // namespace
+} // namespace sl
