@@ -292,6 +292,16 @@ TEST_P(GpuCpuWarp, HardAndPcfMatch)
       1e-5);
     expectAgreement(agreement, 128 * 112, warp + " pcf", true);
   }
+  {
+    // The hardware comparison reads the depth buffer, which holds the unwarped window depth under a warp.
+    const FrameResult frame = test::renderDataset(
+      scene, "pcf", 128, 112, { "shadow_map_size=512", "kernel_texels=3", "filter=hardware_bilinear", warp });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const Agreement agreement = compare(
+      frame, inputs, [&](const ShadowMapInputs& in, int x, int y) { return pcfReference(in, frame.parameters, x, y); },
+      1.0 / 128.0);
+    expectAgreement(agreement, 128 * 112, warp + " pcf hardware", true);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Warps, GpuCpuWarp, ::testing::Values("psm", "lispsm", "tsm"));

@@ -7,6 +7,8 @@
 #include "lightspace/PerspectiveWarp.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
+#include "techniques/Registry.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -274,6 +276,32 @@ TEST(PerspectiveWarp, TsmPutsTheBodysMiddleOnThe80PercentLine)
   EXPECT_NEAR(closedFormWarpT(kZNear + 0.5 * length, kZNear, kZFar, n), 0.8, 1e-12);
   const LightView view = fitFig12(fig12Setup(), WarpKind::Tsm);
   EXPECT_NEAR(sampleAxis(view, kZNear + 0.5 * length).t, 0.8, 1e-6);
+}
+
+TEST(PerspectiveWarp, OnlyTechniquesWhoseLookupsHoldUnderAWarpListIt)
+{
+  // hard and pcf read the map through the warped matrix and the footprint bias; the others (filtered moments, the
+  // back-projections, the soft-shadow searches) assume the unwarped window: they must not list it, and their
+  // shadow-map settings never carry a warp.
+  int listing = 0;
+  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  {
+    const bool lists = technique.findParameter("warp") != nullptr;
+    EXPECT_EQ(lists, technique.findParameter("warp_n") != nullptr) << technique.name;
+    EXPECT_EQ(lists, technique.name == "hard" || technique.name == "pcf") << technique.name;
+    listing += lists ? 1 : 0;
+    if (technique.needs(shadowMapStructure()))
+    {
+      EXPECT_EQ(shadowMapSettings(technique, technique.defaultParameters()).warp.kind, WarpKind::None) << technique.name;
+    }
+  }
+  EXPECT_EQ(listing, 2);
+  ParameterValues values = findTechnique("pcf").defaultParameters();
+  values.set("warp=lispsm");
+  values.set("warp_n=7.5");
+  const ShadowMapSettings settings = shadowMapSettings(findTechnique("pcf"), values);
+  EXPECT_EQ(settings.warp.kind, WarpKind::Lispsm);
+  EXPECT_EQ(settings.warp.n, 7.5);
 }
 
 } // namespace
