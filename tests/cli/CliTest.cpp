@@ -434,6 +434,38 @@ TEST(CliRenderErrors, UnknownParameter)
     { "nope", "pcf" });
 }
 
+TEST(CliRenderErrors, AWarpNeedsADirectionalLight)
+{
+  // planar-occluder's light is an area light: the warp (survey §4.2) is refused in one line, before any GL.
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--technique", "hard", "--set", "warp=lispsm" },
+    { "warp=lispsm", "directional" });
+}
+
+TEST(CliRender, WarpStatsUnderADirectionalLight)
+{
+  // stacked-occluders under a directional light (γ = 51°): stats.json's light_view.warp carries LiSPSM's n, which is
+  // n_opt / sin γ = (z_n + sqrt(z_n z_f)) / sin γ of the reported eye depths.
+  TempDir temp;
+  const fs::path outDir = temp.path() / "out";
+  const RunResult run = runShadowlab({ "render", datasetScene("stacked-occluders").string(), "-t", "pcf", "-r", "64x48",
+                                       "-s", "warp=lispsm", "-s", "shadow_map_size=256", "--scene-set",
+                                       R"(/lights/0={"type": "directional", "direction": [0.3, -1, 0.2]})", "--out",
+                                       outDir.string() },
+    temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const Json warp = Json::parse(readFile(outDir / "stats.json")).at("light_view").at("warp");
+  EXPECT_EQ(warp.at("kind"), "lispsm");
+  const double zNear = warp.at("z_near").get<double>();
+  const double zFar = warp.at("z_far").get<double>();
+  const double gamma = warp.at("gamma_deg").get<double>() * 3.14159265358979323846 / 180.0;
+  EXPECT_GT(zFar, zNear);
+  EXPECT_NEAR(warp.at("gamma_deg").get<double>(), 51.17, 0.05);
+  EXPECT_NEAR(warp.at("n").get<double>(), (zNear + std::sqrt(zNear * zFar)) / std::sin(gamma), 1e-9);
+  EXPECT_EQ(warp.at("n"), warp.at("n_opt"));
+  EXPECT_EQ(warp.at("near"), warp.at("n"));
+  EXPECT_GT(warp.at("far").get<double>(), warp.at("near").get<double>());
+}
+
 TEST(CliRenderErrors, OutOfRangeParameters)
 {
   expectCleanFailure(
