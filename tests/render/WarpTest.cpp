@@ -9,6 +9,8 @@
 #include "support/TestSupport.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 
@@ -205,6 +207,60 @@ TEST(Warp, CasterOutsideTheViewStillShadowsTheGround)
         EXPECT_EQ(outsideLit, outside) << technique << " " << warp;
       }
       test::expectFiniteBuffersAndVisibilityInRange(frame, technique + " warp=" + warp);
+    }
+  }
+}
+
+TEST(Warp, GpuReductionFitsTheSameWarpAsTheCpu)
+{
+  // The warp's three receiver reductions (eye depths, range along P's axis, warped extent) on the GPU
+  // (GpuReceivers, float) against ImageReceivers on the read-back G-buffer (double): the same map to 0.01 texel.
+  const Scene stacked = test::stackedOccludersUnder(R"({ "type": "directional", "direction": [0.3, -1, 0.2] })");
+  const Scene deep = deepView();
+  for (const Scene* scene : { &stacked, &deep })
+  {
+    for (const std::string warp : { "psm", "lispsm", "tsm" })
+    {
+      const FrameResult frame = test::renderDataset(*scene, "hard", 128, 64, { "shadow_map_size=256", "warp=" + warp });
+      const ShadowMapInputs inputs = test::shadowMapInputs(frame, *scene);
+      ImageF positionRgba(inputs.position.width, inputs.position.height, 4);
+      ImageF normalRgba(inputs.position.width, inputs.position.height, 4);
+      for (int y = 0; y < inputs.position.height; ++y)
+      {
+        for (int x = 0; x < inputs.position.width; ++x)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            positionRgba.at(x, y, c) = inputs.position.at(x, y, c);
+            normalRgba.at(x, y, c) = inputs.normal.at(x, y, c);
+          }
+          positionRgba.at(x, y, 3) = inputs.coverage.at(x, y);
+          normalRgba.at(x, y, 3) = inputs.receives.at(x, y);
+        }
+      }
+      FocusSettings focus;
+      focus.resolution = 256;
+      focus.warp = shadowMapSettings(findTechnique("hard"), frame.parameters).warp;
+      focus.camera = &inputs.camera;
+      const LightView cpu = fitLightView(scene->lights[0], *scene, positionRgba, normalRgba, focus);
+      const LightView& gpu = inputs.lightView;
+      EXPECT_NEAR(gpu.warp.n / cpu.warp.n, 1.0, 1e-5) << warp;
+      EXPECT_NEAR(gpu.warp.gammaDeg, cpu.warp.gammaDeg, 1e-6) << warp;
+      double maxTexels = 0.0;
+      for (int y = 0; y < inputs.position.height; ++y)
+      {
+        for (int x = 0; x < inputs.position.width; ++x)
+        {
+          if (inputs.coverage.at(x, y) > 0.5f)
+          {
+            const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+            maxTexels = std::max(maxTexels,
+              glm::length(projectToShadowMap(gpu, pWs).uvTexels - projectToShadowMap(cpu, pWs).uvTexels));
+          }
+        }
+      }
+      std::cout << "[ measured ] warp=" << warp << ": GPU and CPU fits differ by at most " << maxTexels << " texels\n";
+      EXPECT_LT(maxTexels, 0.01) << warp;
     }
   }
 }
