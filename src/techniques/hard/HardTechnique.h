@@ -2,7 +2,8 @@
 // depth biasing (Scherzer et al. 2011, §5): constant + slope-scaled bias, or second-depth shadow maps.
 //
 // Parameters (see ShadowMapParameters.h): shadow_map_size [texels], caster_faces (front|back),
-// bias_constant_texels, bias_slope_texels [texel footprints], bias_max_slope.
+// bias_constant_texels, bias_slope_texels [texel footprints], bias_max_slope; warp (none|psm|lispsm|tsm), warp_n
+// [world] (survey §4.2, lightspace/PerspectiveWarp.h; directional lights).
 // Buffers: kernel_texels (1: one texel), texel_ratio (survey Eq. 2, screen pixels per texel),
 // depth_bias [world], depth_margin [world] = receiver depth - bias - stored depth (> 0: shadowed).
 #pragma once
