@@ -82,6 +82,21 @@ double inverseColumnLength(double a00, double a01, double a10, double a11, int c
   return std::min(kMaxSamplingError, length / std::abs(determinant));
 }
 
+// 1 / sigma_min of J = [j00 j01; j10 j11], the most stretched direction of J^-1, as sigma_max / |det| (stable when J
+// is nearly singular), clamped as every sampling error is.
+double largestStretch(double j00, double j01, double j10, double j11)
+{
+  const double frobenius2 = j00 * j00 + j01 * j01 + j10 * j10 + j11 * j11;
+  const double determinant = j00 * j11 - j01 * j10;
+  const double sigmaMax =
+    std::sqrt(0.5 * (frobenius2 + std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * determinant * determinant))));
+  if (std::abs(determinant) * kMaxSamplingError <= sigmaMax)
+  {
+    return kMaxSamplingError;
+  }
+  return std::min(kMaxSamplingError, sigmaMax / std::abs(determinant));
+}
+
 // Two unit vectors spanning the plane normal to unit `normal`.
 void planeBasis(const glm::dvec3& normal, glm::dvec3& e1, glm::dvec3& e2)
 {
@@ -101,20 +116,8 @@ double texelRatio(const CameraView& camera, const LightView& light, double pixel
     return 0.0;
   }
   const TexelGradients gradient = texelGradients(light, pWs);
-  const double j00 = glm::dot(gradient.u, dpdx);
-  const double j01 = glm::dot(gradient.u, dpdy);
-  const double j10 = glm::dot(gradient.v, dpdx);
-  const double j11 = glm::dot(gradient.v, dpdy);
-  // 1 / sigma_min = sigma_max / |det| for a 2x2 matrix (stable when J is nearly singular).
-  const double frobenius2 = j00 * j00 + j01 * j01 + j10 * j10 + j11 * j11;
-  const double determinant = j00 * j11 - j01 * j10;
-  const double sigmaMax =
-    std::sqrt(0.5 * (frobenius2 + std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * determinant * determinant))));
-  if (std::abs(determinant) * kMaxSamplingError <= sigmaMax)
-  {
-    return kMaxSamplingError;
-  }
-  return std::min(kMaxSamplingError, sigmaMax / std::abs(determinant));
+  return largestStretch(glm::dot(gradient.u, dpdx), glm::dot(gradient.u, dpdy), glm::dot(gradient.v, dpdx),
+    glm::dot(gradient.v, dpdy));
 }
 
 glm::dvec3 directionToLightView(const LightView& light, const glm::dvec3& pWs)
@@ -147,7 +150,7 @@ SamplingError samplingError(const CameraView& camera, const LightView& light, do
   const double j01 = glm::dot(gradient.u, dpdy);
   const double j10 = glm::dot(gradient.v, dpdx);
   const double j11 = glm::dot(gradient.v, dpdy);
-  error.texelRatio = texelRatio(camera, light, pixelX, pixelY, pWs, nWs);
+  error.texelRatio = largestStretch(j00, j01, j10, j11);
   error.texelRatioS = inverseColumnLength(j00, j01, j10, j11, 0);
   error.texelRatioT = inverseColumnLength(j00, j01, j10, j11, 1);
 
