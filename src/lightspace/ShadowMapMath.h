@@ -51,4 +51,26 @@ double tanAngleToLight(const glm::dvec3& nWs, const glm::dvec3& toLight);
 double texelRatio(const CameraView& camera, const LightView& light, double pixelX, double pixelY,
   const glm::dvec3& pWs, const glm::dvec3& nWs);
 
+// The sampling error of the map at a visible receiver (survey §3), in screen pixels per shadow-map texel, for any
+// light matrix (a warp or a cascade included: it reads light.clipFromWorld). Per axis, as Eq. 2 is stated: one
+// texel step along the map's s (or t) axis, followed on the surface's tangent plane, moves the pixel by
+// texelRatioS (texelRatioT) pixels; texelRatio, the most stretched direction, is never below either. Eq. 1 splits
+// the t axis's error into perspectiveFactor, (1/z)(dz/ds): one t-texel's width across the light ray, in pixels
+// across the eye ray at the receiver's distance, and projectionFactor, cos(alpha)/cos(beta): the surface's cosines
+// to the eye and to the light. Their product is texelRatioT where the t axis, the normal, the light and the eye ray
+// lie in one plane (the survey's Fig. 3). All 0 where the eye or the light grazes the surface; clamped to 1e6.
+struct SamplingError
+{
+  double texelRatio = 0.0;
+  double texelRatioS = 0.0;
+  double texelRatioT = 0.0;
+  double perspectiveFactor = 0.0;
+  double projectionFactor = 0.0;
+};
+SamplingError samplingError(const CameraView& camera, const LightView& light, double pixelX, double pixelY,
+  const glm::dvec3& pWs, const glm::dvec3& nWs);
+// Unit direction from pWs toward the light view's centre of projection (perspective) or along its axis
+// (orthographic): the direction its texels are cast along.
+glm::dvec3 directionToLightView(const LightView& light, const glm::dvec3& pWs);
+
 } // namespace sl

@@ -3,6 +3,7 @@
 set(SL_STRUCTURES_SOURCES
   src/structures/LightSpaceStructureRegistry.cpp
   src/structures/shadowmap/ShadowMapStructure.cpp
+  src/structures/shadowmap/SamplingErrorBuffers.cpp
   src/structures/shadowmap/vtkSLFocusPass.cxx
   src/structures/shadowmap/vtkSLLightDepthPass.cxx
   src/structures/moments/MomentMapStructure.cpp

@@ -14,6 +14,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -265,7 +266,8 @@ void addDegenerateTriangles(std::vector<glm::vec3>& vertices, std::vector<std::a
 // ---- datasets -------------------------------------------------------------------------------------------
 
 const std::vector<std::string> kExpectedDatasets = { "bunny", "planar-occluder", "near-light", "contact",
-  "stacked-occluders", "grazing", "fence", "fence-meshed", "sphere-point" };
+  "stacked-occluders", "grazing", "fence", "fence-meshed", "sphere-point", "deep-view", "deep-view-behind",
+  "wall-ring" };
 
 TEST(SceneDatasets, AllExpectedDatasetsExistAndLoad)
 {
@@ -313,8 +315,8 @@ TEST(SceneDatasets, ObjectsVisibleAndLightsFaceTheScene)
       return clip.w > 0.0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
     };
 
-    // objects[0] is the 6 x 6 ground in every dataset: larger than the view, so only its center must show,
-    // and the camera must be on its front (+y) side.
+    // objects[0] is the ground in every dataset (6 x 6; deep-view's 60 x 300, wall-ring's disk): larger than the
+    // view, so only its center must show, and the camera must be on its front (+y) side.
     ASSERT_GE(scene.objects.size(), 2u);
     EXPECT_GT(camera.position.y, 0.0);
     EXPECT_TRUE(inView(meshBounds(scene.objects[0].mesh).center()));
@@ -345,6 +347,60 @@ TEST(SceneDatasets, ObjectsVisibleAndLightsFaceTheScene)
         EXPECT_NEAR(glm::dot(light.up, light.normal), 0.0, 1e-12);
       }
     }
+  }
+}
+
+// The generated sampling-error datasets (datasets/generator) are the configurations their SOURCE.md names: the deep
+// view's light perpendicular to the (horizontal) view, as in the survey's Fig. 12; the variant's light behind the
+// viewer, 15 degrees off the view direction (Fig. 14-15); wall-ring's point light enclosed by its walls.
+TEST(SceneDatasets, SamplingDatasetsHaveTheirLightConfigurations)
+{
+  const Scene deep = loadScene(kDatasets / "deep-view" / "scene.json");
+  const Scene behind = loadScene(kDatasets / "deep-view-behind" / "scene.json");
+  for (const Scene* scene : { &deep, &behind })
+  {
+    ASSERT_EQ(scene->lights.size(), 1u);
+    ASSERT_EQ(scene->lights[0].type, LightType::Directional);
+    EXPECT_EQ(scene->camera.position, glm::dvec3(0.0, 1.7, 0.0)); // eye height
+    EXPECT_EQ(scene->camera.focalPoint.y, scene->camera.position.y);
+  }
+  const glm::dvec3 view = glm::normalize(deep.camera.focalPoint - deep.camera.position);
+  const glm::dvec3 overhead = glm::normalize(deep.lights[0].direction);
+  EXPECT_NEAR(glm::dot(view, overhead), 0.0, 1e-15);
+  EXPECT_GT(-overhead.y, std::cos(glm::radians(35.0))) << "the light should come from within 35 degrees of overhead";
+  const double behindDeg = glm::degrees(std::acos(glm::dot(view, glm::normalize(behind.lights[0].direction))));
+  EXPECT_NEAR(behindDeg, 15.07, 0.01);
+  // The same geometry under both lights.
+  ASSERT_EQ(deep.objects.size(), behind.objects.size());
+  for (std::size_t i = 0; i < deep.objects.size(); ++i)
+  {
+    EXPECT_EQ(meshBounds(deep.objects[i].mesh).min, meshBounds(behind.objects[i].mesh).min) << i;
+    EXPECT_EQ(meshBounds(deep.objects[i].mesh).max, meshBounds(behind.objects[i].mesh).max) << i;
+  }
+
+  // wall-ring: the ten walls turn all the way around the light (every azimuth hits a wall or one of its ten gaps,
+  // each gap narrower than a wall), and they stand taller than the light, so receivers lie in every direction.
+  const Scene ring = loadScene(kDatasets / "wall-ring" / "scene.json");
+  ASSERT_EQ(ring.lights[0].type, LightType::Point);
+  const glm::dvec3 light = ring.lights[0].center;
+  std::vector<double> azimuths;
+  for (const SceneObject& object : ring.objects)
+  {
+    const Bounds bounds = meshBounds(object.mesh);
+    const glm::dvec3 center = bounds.center();
+    const double distance = glm::length(glm::dvec2(center.x - light.x, center.z - light.z));
+    if (distance > 3.5 && distance < 4.5)
+    {
+      EXPECT_GT(bounds.max.y, light.y + 0.4);
+      azimuths.push_back(glm::degrees(std::atan2(center.z - light.z, center.x - light.x)));
+    }
+  }
+  ASSERT_EQ(azimuths.size(), 10u);
+  std::sort(azimuths.begin(), azimuths.end());
+  for (std::size_t i = 0; i < azimuths.size(); ++i)
+  {
+    const double next = i + 1 < azimuths.size() ? azimuths[i + 1] : azimuths[0] + 360.0;
+    EXPECT_NEAR(next - azimuths[i], 36.0, 0.01); // positions rounded to 1e-4 in the file
   }
 }
 

@@ -112,7 +112,7 @@ TEST(TexelRatio, TiltedLightStretchesTexelsByOneOverCosine)
   }
 }
 
-TEST(TexelRatio, PerspectiveMatchesFiniteDifferences)
+TEST(TexelRatio, PerspectiveMatchesFiniteDifferencesAlsoPerAxis)
 {
   // General case: perspective camera and perspective light over a tilted plane. The reference
   // differentiates "pixel -> ray/plane hit -> texel" numerically (central differences).
@@ -154,6 +154,18 @@ TEST(TexelRatio, PerspectiveMatchesFiniteDifferences)
     const glm::dvec3 pWs = nearPoint + (-glm::dot(normal, nearPoint) / glm::dot(normal, ray)) * ray;
     EXPECT_NEAR(texelRatio(cameraView, light, pixel.x, pixel.y, pWs, normal), expected, 1e-6 * expected)
       << "pixel " << pixel.x << "," << pixel.y;
+
+    // Per axis (samplingError): the inverse Jacobian's columns are one s and one t texel step, in pixels; Eq. 1's
+    // projection factor is the surface's cosine to the eye over its cosine to the light's centre.
+    const glm::dmat2 pixelFromTexel = glm::inverse(glm::dmat2(du, dv));
+    const double expectedS = glm::length(pixelFromTexel[0]);
+    const double expectedT = glm::length(pixelFromTexel[1]);
+    const SamplingError error = samplingError(cameraView, light, pixel.x, pixel.y, pWs, normal);
+    EXPECT_NEAR(error.texelRatioS, expectedS, 1e-6 * expectedS) << "pixel " << pixel.x << "," << pixel.y;
+    EXPECT_NEAR(error.texelRatioT, expectedT, 1e-6 * expectedT) << "pixel " << pixel.x << "," << pixel.y;
+    const double cosToEye = std::abs(glm::dot(normal, glm::normalize(camera.position - pWs)));
+    const double cosToLight = std::abs(glm::dot(normal, glm::normalize(light.eyeWs - pWs)));
+    EXPECT_NEAR(error.projectionFactor, cosToEye / cosToLight, 1e-9);
   }
 }
 

@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "frame/FrameResult.h"
 #include "gl/GlResources.h"
+#include "structures/shadowmap/SamplingErrorBuffers.h"
 #include "structures/shadowmap/vtkSLFocusPass.h"
 #include "structures/shadowmap/vtkSLLightDepthPass.h"
 #include "passes/PassUtilities.h"
@@ -11,6 +12,7 @@
 #include <vtkTextureObject.h>
 
 #include <cmath>
+#include <iterator>
 
 namespace sl
 {
@@ -61,8 +63,12 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
 namespace
 {
 
-std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult&)
+std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult& result)
 {
+  // The map's sampling error at the visible receivers is per pixel: it joins the frame's buffers.
+  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
+  result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
+    std::make_move_iterator(samplingError.end()));
   // Built in place: an initializer list would copy both maps (16 MiB each at the default size) once more.
   std::vector<NamedImage> images(2);
   images[0] = { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
@@ -106,7 +112,8 @@ const LightSpaceStructure& shadowMapStructure()
   static const LightSpaceStructure structure = [] {
     LightSpaceStructure s;
     s.name = "shadow_map";
-    s.doc = "linear (R32F) and window (D32F) depth from the light's centre, focused on the visible receivers (survey §4.1)";
+    s.doc = "linear (R32F) and window (D32F) depth from the light's centre, focused on the visible receivers (survey §4.1); "
+            "publishes its sampling error per pixel (texel_ratio_s/_t, perspective_factor, projection_factor: survey §3)";
     s.parameters = {
       { "shadow_map_size", 2048, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1)", {}, true },
       { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },

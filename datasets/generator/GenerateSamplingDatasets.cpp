@@ -1,0 +1,247 @@
+// Writes the scene.json of the sampling-error datasets (issue 29): `deep-view`, `deep-view-behind` and
+// `wall-ring`. The committed files are this program's output; the test Datasets.GeneratedScenesAreCommitted
+// regenerates them into a scratch folder and compares byte for byte. After changing a number here:
+//   build/tests/generate_sampling_datasets datasets
+// Plain C++17 with no library of the project, so the files do not depend on how the scene loader reads them.
+//
+// deep-view: a long ground seen from eye height (the survey's §3 perspective aliasing: dp/ds ~ 1/z under a uniform
+// map), posts and small buildings at geometrically growing distances (d_k = 5 * 1.5^k), so every depth range has
+// shadow edges. The camera looks horizontally, so an overhead light in the x-y plane is exactly perpendicular to
+// the view (the setting of the survey's Fig. 12). deep-view-behind: the same geometry with the light behind the
+// viewer, 15 degrees off the view direction (Fig. 14-15: warping cannot help, partitioning must). wall-ring: a
+// point light inside a ring of walls, its visible receivers all around it (§2: one map cannot cover them).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+
+// A JSON value written in the datasets' layout: objects and arrays of objects one entry per line, two spaces of
+// indentation; numbers, strings and arrays of numbers on one line.
+struct Json
+{
+  std::string scalar;                              // a number, string or number array, already written
+  std::vector<std::pair<std::string, Json>> fields; // an object, in writing order
+  std::vector<Json> items;                         // an array of objects
+  bool isObject = false;
+  bool isArray = false;
+
+  static Json object(std::vector<std::pair<std::string, Json>> fields)
+  {
+    Json json;
+    json.isObject = true;
+    json.fields = std::move(fields);
+    return json;
+  }
+  static Json array(std::vector<Json> items)
+  {
+    Json json;
+    json.isArray = true;
+    json.items = std::move(items);
+    return json;
+  }
+};
+
+// Rounded to 1e-4 and written without trailing zeros, so that a last-bit difference in a platform's sin or cos
+// never changes the file (and "-0" never appears).
+std::string number(double value)
+{
+  double rounded = std::round(value * 1e4) / 1e4;
+  if (rounded == 0.0)
+  {
+    rounded = 0.0;
+  }
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.4f", rounded);
+  std::string written = text;
+  while (written.back() == '0')
+  {
+    written.pop_back();
+  }
+  if (written.back() == '.')
+  {
+    written.pop_back();
+  }
+  return written;
+}
+
+Json scalar(const std::string& text)
+{
+  Json json;
+  json.scalar = text;
+  return json;
+}
+
+Json num(double value)
+{
+  return scalar(number(value));
+}
+
+Json str(const std::string& text)
+{
+  return scalar("\"" + text + "\"");
+}
+
+Json vec(std::vector<double> values)
+{
+  std::string text = "[";
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    text += (i ? ", " : "") + number(values[i]);
+  }
+  return scalar(text + "]");
+}
+
+void write(const Json& json, int depth, std::string& out)
+{
+  const std::string inner(2 * (depth + 1), ' ');
+  const std::string outer(2 * depth, ' ');
+  if (json.isObject)
+  {
+    out += "{\n";
+    for (std::size_t i = 0; i < json.fields.size(); ++i)
+    {
+      out += inner + "\"" + json.fields[i].first + "\": ";
+      write(json.fields[i].second, depth + 1, out);
+      out += i + 1 < json.fields.size() ? ",\n" : "\n";
+    }
+    out += outer + "}";
+  }
+  else if (json.isArray)
+  {
+    out += "[\n";
+    for (std::size_t i = 0; i < json.items.size(); ++i)
+    {
+      out += inner;
+      write(json.items[i], depth + 1, out);
+      out += i + 1 < json.items.size() ? ",\n" : "\n";
+    }
+    out += outer + "]";
+  }
+  else
+  {
+    out += json.scalar;
+  }
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+Json camera(std::vector<double> position, std::vector<double> focalPoint, double viewAngleDeg)
+{
+  return Json::object({ { "projection", str("perspective") }, { "position", vec(std::move(position)) },
+    { "focal_point", vec(std::move(focalPoint)) }, { "view_up", vec({ 0, 1, 0 }) },
+    { "view_angle", num(viewAngleDeg) }, { "resolution", vec({ 512, 512 }) } });
+}
+
+Json box(std::vector<double> center, std::vector<double> size)
+{
+  return Json::object(
+    { { "primitive", str("box") }, { "center", vec(std::move(center)) }, { "size", vec(std::move(size)) } });
+}
+
+Json ground(std::vector<std::pair<std::string, Json>> shape)
+{
+  shape.push_back({ "normal", vec({ 0, 1, 0 }) });
+  shape.push_back({ "up", vec({ 0, 0, -1 }) });
+  shape.push_back({ "material", Json::object({ { "albedo", vec({ 0.8, 0.8, 0.8 }) } }) });
+  return Json::object(std::move(shape));
+}
+
+// The deep view under a directional light travelling along `direction`. Eye at height 1.7 looking along -z,
+// horizontally, with a 70-degree vertical field: its lowest ray meets the ground 2.43 ahead, and the ground
+// (60 x 300, from 2 to 302 ahead) ends 124 times farther; the camera's near plane (0.99 times the scene box's
+// nearest depth, 2) and far plane (1.01 times its farthest, 302) are 154 apart (src/lightspace/CameraView.cpp).
+Json deepView(std::vector<double> direction)
+{
+  std::vector<Json> objects;
+  objects.push_back(ground({ { "primitive", str("quad") }, { "center", vec({ 0, 0, -152 }) },
+    { "size", vec({ 60, 300 }) } }));
+  // Left of the view axis, posts of one size: their shadows thin out to below a pixel with distance. Right of it,
+  // buildings that grow with distance (side 0.1 d, height 0.15 d), so that every depth keeps a shadow edge a few
+  // pixels long on the screen.
+  for (int k = 0; k < 10; ++k)
+  {
+    const double distance = 5.0 * std::pow(1.5, k);
+    objects.push_back(box({ -2, 1.25, -distance }, { 0.2, 2.5, 0.2 }));
+    const double side = 0.1 * distance;
+    const double height = 0.15 * distance;
+    objects.push_back(box({ 2.5 + 0.5 * side, 0.5 * height, -distance }, { side, height, side }));
+  }
+  return Json::object({ { "camera", camera({ 0, 1.7, 0 }, { 0, 1.7, -10 }, 70) },
+    { "lights",
+      Json::array({ Json::object(
+        { { "type", str("directional") }, { "direction", vec(std::move(direction)) }, { "intensity", num(1) } }) }) },
+    { "objects", Json::array(std::move(objects)) } });
+}
+
+// A point light at height 1 inside ten walls (radius 4, 1.5 high, covering 75 % of the circle), with three casters
+// around it on a ground disk: receivers in every direction from the light, inside the ring (ground, the walls'
+// inner faces) and outside it (the ground lit through the gaps).
+Json wallRing()
+{
+  std::vector<Json> objects;
+  objects.push_back(ground({ { "primitive", str("disk") }, { "center", vec({ 0, 0, 0 }) }, { "size", num(7) } }));
+  const int wallCount = 10;
+  const double radius = 4.0;
+  const double wallLength = 2.0 * radius * std::sin(0.75 * kPi / wallCount);
+  for (int i = 0; i < wallCount; ++i)
+  {
+    // The box's x (its thickness) turns to the radial direction (cos a, 0, -sin a) under rotate_deg [0, a, 0].
+    const double angleDeg = 360.0 * (i + 0.5) / wallCount;
+    const double angle = angleDeg * kPi / 180.0;
+    Json wall = box({ 0, 0.75, 0 }, { 0.25, 1.5, wallLength });
+    wall.fields.push_back({ "transform",
+      Json::object({ { "translate", vec({ radius * std::cos(angle), 0, -radius * std::sin(angle) }) },
+        { "rotate_deg", vec({ 0, angleDeg, 0 }) } }) });
+    objects.push_back(wall);
+  }
+  objects.push_back(Json::object(
+    { { "primitive", str("sphere") }, { "center", vec({ 1.3, 0.45, 0.7 }) }, { "size", num(0.45) } }));
+  objects.push_back(box({ -1.2, 0.35, -0.9 }, { 0.7, 0.7, 0.7 }));
+  objects.push_back(box({ 0.3, 0.9, -1.7 }, { 0.2, 1.8, 0.2 }));
+  return Json::object({ { "camera", camera({ 0, 10, 9 }, { 0, 0, 0 }, 50) },
+    { "lights",
+      Json::array({ Json::object(
+        { { "type", str("point") }, { "center", vec({ 0, 1, 0 }) }, { "intensity", num(1) } }) }) },
+    { "objects", Json::array(std::move(objects)) } });
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc != 2)
+  {
+    std::cerr << "usage: generate_sampling_datasets DATASETS_DIR (writes <dir>/<dataset>/scene.json)\n";
+    return 2;
+  }
+  const std::filesystem::path root = argv[1];
+  // Overhead, 31 degrees toward -x: perpendicular to the horizontal view, shadows across the ground.
+  // Behind the viewer: 15.1 degrees from the view direction, 13.6 degrees above the horizon.
+  const std::vector<std::pair<std::string, Json>> datasets = { { "deep-view", deepView({ -0.6, -1, 0 }) },
+    { "deep-view-behind", deepView({ 0.1, -0.25, -1 }) }, { "wall-ring", wallRing() } };
+  for (const auto& [name, scene] : datasets)
+  {
+    const std::filesystem::path file = root / name / "scene.json";
+    std::error_code error;
+    std::filesystem::create_directories(file.parent_path(), error);
+    std::string text;
+    write(scene, 0, text);
+    std::ofstream stream(file, std::ios::binary);
+    stream << text << "\n";
+    stream.close();
+    if (error || !stream)
+    {
+      std::cerr << "generate_sampling_datasets: cannot write " << file.string() << "\n";
+      return 1;
+    }
+    std::cout << file.string() << "\n";
+  }
+  return 0;
+}
