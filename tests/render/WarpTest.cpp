@@ -211,6 +211,75 @@ TEST(Warp, CasterOutsideTheViewStillShadowsTheGround)
   }
 }
 
+// datasets/deep-view (light (-0.6, -1, 0), view ⟂ light): the per-axis buffers (texel_ratio_t, perspective_factor,
+// projection_factor; survey Eq. 1-2) medians over the nearest and farthest 5 % of the ground pixels. The bins hold
+// depths 2.47 .. 2.55 and 22 .. 155 at 64 rows, not the ends n_opt equalises, and on a ground plane texel_ratio_t also
+// carries the projection factor (10x between the bins): PSM, uniform in the eye's post-perspective space, equalises
+// texel_ratio_t there; LiSPSM narrows the perspective factor's spread.
+TEST(Warp, DeepViewDatasetEndBins)
+{
+  const Scene scene = test::loadDataset("deep-view");
+  double uniformPerspectiveSpread = 0.0;
+  for (const std::string warp : { "none", "psm", "lispsm", "tsm" })
+  {
+    const FrameResult frame = test::renderDataset(scene, "hard", 128, 64, { "shadow_map_size=256", "warp=" + warp });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    struct Sample
+    {
+      double z, ratioT, perspective, projection, ratio;
+    };
+    std::vector<Sample> ground;
+    for (int y = 0; y < inputs.position.height; ++y)
+    {
+      for (int x = 0; x < inputs.position.width; ++x)
+      {
+        const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+        if (inputs.coverage.at(x, y) < 0.5f || std::abs(pWs.y) > 1e-4)
+        {
+          continue;
+        }
+        ground.push_back({ -(inputs.camera.viewFromWorld * glm::dvec4(pWs, 1.0)).z,
+          frame.find("texel_ratio_t")->image.at(x, y), frame.find("perspective_factor")->image.at(x, y),
+          frame.find("projection_factor")->image.at(x, y), frame.find("texel_ratio")->image.at(x, y) });
+      }
+    }
+    std::sort(ground.begin(), ground.end(), [](const Sample& a, const Sample& b) { return a.z < b.z; });
+    const std::size_t bin = ground.size() / 20;
+    const auto medianOf = [&](bool nearEnd, double Sample::*field) {
+      std::vector<double> values;
+      for (std::size_t i = 0; i < bin; ++i)
+      {
+        values.push_back(ground[nearEnd ? i : ground.size() - 1 - i].*field);
+      }
+      return median(values);
+    };
+    std::cout << "[ measured ] deep-view hard 128x64 256^2 warp=" << warp << " (n " << inputs.lightView.warp.n
+              << "): depth " << ground.front().z << " .. " << ground.back().z << ", bins .. " << ground[bin - 1].z << " and "
+              << ground[ground.size() - bin].z << " ..; near/far 5 % medians: texel_ratio_t "
+              << medianOf(true, &Sample::ratioT) << " / " << medianOf(false, &Sample::ratioT) << ", perspective_factor "
+              << medianOf(true, &Sample::perspective) << " / " << medianOf(false, &Sample::perspective)
+              << ", projection_factor " << medianOf(true, &Sample::projection) << " / "
+              << medianOf(false, &Sample::projection) << ", texel_ratio " << medianOf(true, &Sample::ratio) << " / "
+              << medianOf(false, &Sample::ratio) << "\n";
+    const double ratioTSpread = medianOf(true, &Sample::ratioT) / medianOf(false, &Sample::ratioT);
+    const double perspectiveSpread = std::max(medianOf(true, &Sample::perspective), medianOf(false, &Sample::perspective)) /
+      std::min(medianOf(true, &Sample::perspective), medianOf(false, &Sample::perspective));
+    if (warp == "none")
+    {
+      EXPECT_GT(ratioTSpread, 10.0);
+      uniformPerspectiveSpread = perspectiveSpread;
+    }
+    if (warp == "psm")
+    {
+      EXPECT_NEAR(ratioTSpread, 1.0, 0.01);
+    }
+    if (warp == "lispsm")
+    {
+      EXPECT_LT(perspectiveSpread, uniformPerspectiveSpread / 4.0);
+    }
+  }
+}
+
 TEST(Warp, GpuReductionFitsTheSameWarpAsTheCpu)
 {
   // The warp's three receiver reductions (eye depths, range along P's axis, warped extent) on the GPU
