@@ -143,6 +143,23 @@ std::vector<glm::dvec3> lightOutline(const Light& light, int diskSegments)
 glm::dvec3 worldFromTexel(const LightView& view, const glm::dvec2& uvTexels, double depthLin)
 {
   const glm::dvec2 ndc = uvTexels / static_cast<double>(view.resolution) * 2.0 - 1.0;
+  if (view.warp.active())
+  {
+    // A warped map (survey §4.2, directional lights): the light-view point (x, y, -depthLin) whose clip.xy equals
+    // ndc clip.w, two linear equations in x and y.
+    const glm::dmat4 clipFromLight = view.clipFromWorld * glm::inverse(view.viewFromWorld);
+    const auto row = [&](int r) {
+      return glm::dvec4(clipFromLight[0][r], clipFromLight[1][r], clipFromLight[2][r], clipFromLight[3][r]);
+    };
+    const glm::dvec4 rowU = row(0) - ndc.x * row(3);
+    const glm::dvec4 rowV = row(1) - ndc.y * row(3);
+    const double rhsU = rowU.z * depthLin - rowU.w;
+    const double rhsV = rowV.z * depthLin - rowV.w;
+    const double determinant = rowU.x * rowV.y - rowU.y * rowV.x;
+    const glm::dvec4 pLs((rhsU * rowV.y - rhsV * rowU.y) / determinant, (rowU.x * rhsV - rowV.x * rhsU) / determinant,
+      -depthLin, 1.0);
+    return glm::dvec3(glm::inverse(view.viewFromWorld) * pLs);
+  }
   glm::dvec4 pLs = glm::inverse(view.clipFromView) * glm::dvec4(ndc, 0.0, 1.0);
   pLs /= pLs.w;
   if (view.projection == LightProjection::Perspective)

@@ -6,6 +6,7 @@
 #include "lightspace/LightView.h"
 #include "lightspace/PerspectiveWarp.h"
 #include "lightspace/ShadowMapMath.h"
+#include "probe/ProbeGeometry.h"
 #include "scene/Scene.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/Registry.h"
@@ -247,6 +248,25 @@ TEST(PerspectiveWarp, BiasFollowsTheWarpedTexelFootprint)
   const double nearSize = receiverTexelWorldSize(view, { 0.0, 0.0, -kZNear }, 0.0);
   const double farSize = receiverTexelWorldSize(view, { 0.0, 0.0, -kZFar }, 0.0);
   EXPECT_GT(farSize / nearSize, 50.0);
+}
+
+TEST(PerspectiveWarp, ProbeGeometryInvertsTheWarpedMap)
+{
+  // The probe draws texels in the world (worldFromTexel): under a warp it inverts the warped matrix.
+  const Fig12Setup setup = fig12Setup(glm::normalize(glm::dvec3(0.3, -0.4, -1.0)));
+  for (const WarpKind kind : { WarpKind::None, WarpKind::Psm, WarpKind::Lispsm, WarpKind::Tsm })
+  {
+    const LightView view = fitFig12(setup, kind);
+    for (const glm::dvec2 uv : { glm::dvec2(0.5, 0.5), glm::dvec2(512.25, 17.0), glm::dvec2(1000.0, 1020.5) })
+    {
+      for (const double depth : { view.nearDepth, 0.5 * (view.nearDepth + view.farDepth), view.farDepth })
+      {
+        const ShadowMapSample back = projectToShadowMap(view, worldFromTexel(view, uv, depth));
+        EXPECT_NEAR(glm::length(back.uvTexels - uv), 0.0, 1e-7) << warpName(kind);
+        EXPECT_NEAR(back.depthLin, depth, 1e-9 * depth) << warpName(kind);
+      }
+    }
+  }
 }
 
 TEST(PerspectiveWarp, NonDirectionalLightIsAnInputError)

@@ -133,8 +133,10 @@ ReferenceSample pcfReference(const ShadowMapInputs& inputs, const ParameterValue
     const double footprint = kernelTexels + (hardware ? 1.0 : 0.0);
     recorder->beginGroup("kernel");
     recorder->quantity("kernel_texels", footprint, "texels", "Reeves et al. 1987 §3 (filter region); survey §6, Fig. 23");
-    recorder->quantity("kernel_world_size", footprint * inputs.lightView.texelWorldSize(lookup.sm.depthLin),
-      "world units", "ShadowLab: kernel_texels x one texel at the receiver's depth");
+    const glm::dvec3 pWs(inputs.position.at(x, y, 0), inputs.position.at(x, y, 1), inputs.position.at(x, y, 2));
+    recorder->quantity("kernel_world_size",
+      footprint * receiverTexelWorldSize(inputs.lightView, pWs, lookup.sm.depthLin), "world units",
+      "ShadowLab: kernel_texels x one texel at the receiver (the warped texel's footprint under a warp)");
     recorder->quantity("taps", static_cast<double>(hardware ? 4 * tapCount : tapCount), "count",
       "Reeves et al. 1987 §3 (one depth comparison per sample; bilinear: 2x2 per tap)");
     recorder->category("pattern", grid ? "grid" : "rotated poisson disk", "ShadowLab (pattern); survey §6");
