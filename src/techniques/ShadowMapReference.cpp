@@ -54,7 +54,7 @@ ShadowLookup prepareShadowLookup(const ShadowMapInputs& inputs, const BiasSettin
       "survey §2 (one texel at the receiver's depth)");
     recorder->quantity("depth_bias", sample.bias, "linear depth", "survey §5 (constant + slope-scaled bias)");
     recorder->quantity("comparison_depth", lookup.comparisonDepth, "linear depth", "survey §5 (d - bias)");
-    recorder->quantity("texel_ratio", sample.texelRatio, "texels per pixel", "survey Eq. 2 (aliasing error m)");
+    recorder->quantity("texel_ratio", sample.texelRatio, "pixels per texel", "survey Eq. 2 (aliasing error m)");
   }
   return lookup;
 }
