@@ -315,7 +315,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
         });
         const bool interesting = want.refined
           ? pcfInPenumbra && cpu.sample.visibility > 0.1 && cpu.sample.visibility < 0.9 &&
-            (frame.parameters.choice("shadow_subdivision") != "adaptive" || cpu.quadtreeNodesVisited > 5)
+            (vssmSettings.shadowSubdivision.scheme != VssmSubdivision::Adaptive || cpu.quadtreeNodesVisited > 5)
           : hsmDecision && hsmDecision->text != "undecided";
         if (cpu.sample.evaluated && !ambiguous(cpu) && cpu.classification == want.classification && interesting)
         {
