@@ -228,12 +228,6 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Cont
     x, y, recorder);
 }
 
-ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
-  const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder)
-{
-  return prepareContourReceiver(inputs, ContourReceiverSettings::from(values), structure, x, y, recorder);
-}
-
 void recordReceiver(const ContourReceiver& receiver, BackprojectionClass classification, BackprojectionPixel& pixel)
 {
   pixel.sample = receiver.lookup.sample;

@@ -113,8 +113,6 @@ ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const Cont
 // The same with the ranges of a min-max structure built from inputs.shadowMapLinear.
 ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ContourReceiverSettings& settings,
   const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder = nullptr);
-ContourReceiver prepareContourReceiver(const ShadowMapInputs& inputs, const ParameterValues& values,
-  const HierarchicalShadowMap& structure, int x, int y, ProbeRecorder* recorder = nullptr);
 
 // The `structure` a probe names an HSM / MSSM node with: "hsm" for the mip-map (and the YSM's mip-map levels),
 // "mssm" for N-buffers, the YSM's MSSM part and the dual-grid MSSM.

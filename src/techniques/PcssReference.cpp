@@ -276,12 +276,6 @@ PcssSettings PcssSettings::from(const ParameterValues& values)
   return settings;
 }
 
-PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
-  ProbeRecorder* recorder, bool recordFilter)
-{
-  return pcssReference(inputs, PcssSettings::from(values), x, y, recorder, recordFilter);
-}
-
 PcssSample pcssReference(const ShadowMapInputs& inputs, const PcssSettings& settings, int x, int y,
   ProbeRecorder* recorder, bool recordFilter)
 {

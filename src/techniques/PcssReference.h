@@ -43,7 +43,5 @@ struct PcssSettings
 // Chebyshev's), while the PCF step still runs so the sample's margins stay those of the whole twin.
 PcssSample pcssReference(const ShadowMapInputs& inputs, const PcssSettings& settings, int x, int y,
   ProbeRecorder* recorder = nullptr, bool recordFilter = true);
-PcssSample pcssReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
-  ProbeRecorder* recorder = nullptr, bool recordFilter = true);
 
 } // namespace sl

@@ -33,6 +33,8 @@ TEST(MomentTechniques, MatchTheCpuImplementations)
       test::renderDataset(scene, "esm", 96, 80, { "shadow_map_size=256", "prefilter_texels=7", "esm_exponent=30" });
     const ShadowMapInputs vsmInputs = test::shadowMapInputs(vsm, scene);
     const ShadowMapInputs esmInputs = test::shadowMapInputs(esm, scene);
+    const VsmSettings vsmSettings = VsmSettings::from(vsm.parameters);
+    const EsmSettings esmSettings = EsmSettings::from(esm.parameters);
     int compared = 0;
     int illConditioned = 0;
     int partial = 0;
@@ -42,14 +44,14 @@ TEST(MomentTechniques, MatchTheCpuImplementations)
     {
       for (int x = 0; x < 96; ++x)
       {
-        const VsmSample cpu = vsmReference(vsmInputs, vsm.parameters, x, y);
+        const VsmSample cpu = vsmReference(vsmInputs, vsmSettings, x, y);
         const double gpu = vsm.find("visibility")->image.at(x, y);
         if (!cpu.sample.evaluated)
         {
           EXPECT_EQ(gpu, cpu.sample.visibility) << dataset << " " << x << "," << y;
           continue;
         }
-        const ShadowLookup lookup = prepareShadowLookup(vsmInputs, biasSettings(vsm.parameters), x, y);
+        const ShadowLookup lookup = prepareShadowLookup(vsmInputs, vsmSettings.bias, x, y);
         const double d = lookup.sm.depthLin;
         if (cpu.variance < 1e-3 * d * d || cpu.sample.reachMargin < 1e-5)
         {
@@ -62,7 +64,7 @@ TEST(MomentTechniques, MatchTheCpuImplementations)
           maxVsm = std::max(maxVsm, std::abs(gpu - cpu.sample.visibility));
           EXPECT_NEAR(gpu, cpu.sample.visibility, 2e-3) << dataset << " vsm pixel " << x << "," << y;
         }
-        const ReferenceSample esmCpu = esmReference(esmInputs, esm.parameters, x, y);
+        const ReferenceSample esmCpu = esmReference(esmInputs, esmSettings, x, y);
         const double esmGpu = esm.find("visibility")->image.at(x, y);
         if (esmCpu.evaluated && esmCpu.reachMargin >= 1e-5)
         {

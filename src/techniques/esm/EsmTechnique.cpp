@@ -70,7 +70,7 @@ TechniqueDescriptor esmTechnique()
     const EsmSettings settings = EsmSettings::from(context.frame->parameters);
     requireBlurPrefilter(settings.prefilter);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const ReferenceSample sample = esmReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    const ReferenceSample sample = esmReference(inputs, settings, pixel.x, pixel.y, &recorder);
     // MomentTest: <= 1e-4 (the sums of exp(c z_n) are well conditioned in float).
     ProbeOutcome outcome = probeOutcome(sample, 1e-4, "esmReference (esm/EsmTechnique.h), double precision, prefilter = blur");
     if (sample.evaluated)
@@ -84,10 +84,9 @@ TechniqueDescriptor esmTechnique()
   return descriptor;
 }
 
-ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+ReferenceSample esmReference(const ShadowMapInputs& inputs, const EsmSettings& settings, int x, int y,
   ProbeRecorder* recorder)
 {
-  const EsmSettings settings = EsmSettings::from(values);
   ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   if (!lookup.sample.evaluated)
   {

@@ -15,9 +15,6 @@ TechniqueDescriptor esmTechnique();
 // The bias_gain buffer: exp(c bias_n) per pixel, flagged (BufferSpec::flagAtOrAbove) at 2.
 BufferSpec esmBiasGainBuffer();
 
-// CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur. `recorder` (optional, `shadowlab
-// probe`): the receiver, the moment box (kernel_texels, its texels), E[exp(c z_n)], the exponential test, and the
-// light leak against the true PCF over the same box (its comparisons).
 // esm's parameters, typed (parsed once, by from()).
 struct EsmSettings
 {
@@ -28,7 +25,10 @@ struct EsmSettings
   static EsmSettings from(const ParameterValues& values);
 };
 
-ReferenceSample esmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+// CPU reference (double precision) of EsmVisibility.glsl for prefilter = blur. `recorder` (optional, `shadowlab
+// probe`): the receiver, the moment box (kernel_texels, its texels), E[exp(c z_n)], the exponential test, and the
+// light leak against the true PCF over the same box (its comparisons).
+ReferenceSample esmReference(const ShadowMapInputs& inputs, const EsmSettings& settings, int x, int y,
   ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

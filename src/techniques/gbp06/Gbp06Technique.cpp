@@ -64,7 +64,7 @@ TechniqueDescriptor gbp06Technique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);
-    const Gbp06Sample sample = gbp06Reference(inputs, hsm, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    const Gbp06Sample sample = gbp06Reference(inputs, hsm, Gbp06Settings::from(context.frame->parameters), pixel.x, pixel.y, &recorder);
     // Gbp06Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping, ~1e-7 of the light per
     // micropatch), on pixels without a decision near its boundary; visited_nodes where no pruning test is.
     ProbeOutcome outcome = probeOutcome(sample.sample, 1e-3, "gbp06Reference (gbp06/Gbp06Technique.h), double precision");
@@ -212,9 +212,8 @@ struct MicropatchAccumulator
 } // namespace
 
 Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y, ProbeRecorder* recorder)
+  const Gbp06Settings& settings, int x, int y, ProbeRecorder* recorder)
 {
-  const Gbp06Settings settings = Gbp06Settings::from(values);
   const bool kernelTraversal = settings.traversal == Gbp06Traversal::Kernel;
   ContourReceiver receiver = prepareContourReceiver(inputs, settings.receiver, hsm, x, y, recorder);
   Gbp06Sample result;

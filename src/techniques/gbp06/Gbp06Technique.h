@@ -92,6 +92,6 @@ struct Gbp06Sample : BackprojectionPixel
 // the light, as a ProbeLightPolygon whose signed area is what it adds; the neighbours gap filling read; the
 // occluded area and the visibility.
 Gbp06Sample gbp06Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y, ProbeRecorder* recorder = nullptr);
+  const Gbp06Settings& settings, int x, int y, ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

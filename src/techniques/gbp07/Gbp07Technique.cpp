@@ -53,7 +53,7 @@ TechniqueDescriptor gbp07Technique()
     requireSingleSubLight(*context.frame);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);
-    const Gbp07Sample sample = gbp07Reference(inputs, hsm, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    const Gbp07Sample sample = gbp07Reference(inputs, hsm, Gbp07Settings::from(context.frame->parameters), pixel.x, pixel.y, &recorder);
     // Gbp07Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping over up to a few hundred
     // edges), on pixels without a decision near its boundary.
     ProbeOutcome outcome = probeOutcome(sample.sample, 1e-3, "gbp07Reference (gbp07/Gbp07Technique.h), double precision");
@@ -75,9 +75,8 @@ Gbp07Settings Gbp07Settings::from(const ParameterValues& values)
 }
 
 Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y, ProbeRecorder* recorder)
+  const Gbp07Settings& settings, int x, int y, ProbeRecorder* recorder)
 {
-  const Gbp07Settings settings = Gbp07Settings::from(values);
   ContourReceiver receiver = prepareContourReceiver(inputs, settings.receiver, hsm, x, y, recorder);
   Gbp07Sample result;
   const auto finish = [&](BackprojectionClass classification) {

@@ -45,6 +45,6 @@ struct Gbp07Sample : BackprojectionPixel
 // probe`): the contour receiver's steps, the light centre's status, the kernel's samples (role "contour
 // sample"), every contour edge with its back-projection and signed area, and the visibility.
 Gbp07Sample gbp07Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& hsm,
-  const ParameterValues& values, int x, int y, ProbeRecorder* recorder = nullptr);
+  const Gbp07Settings& settings, int x, int y, ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -35,7 +35,7 @@ TechniqueDescriptor pcssTechnique()
   descriptor.createPass = newTechniquePass<vtkSLPcssPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const PcssSample sample = pcssReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    const PcssSample sample = pcssReference(inputs, PcssSettings::from(context.frame->parameters), pixel.x, pixel.y, &recorder);
     // PcssTest: <= 1e-5 on unambiguous pixels (a sum of 0/1 taps divided by the count); a grid kernel's edge
     // within 1e-4 texel of a texel centre may gain or lose a row of taps in float.
     ProbeOutcome outcome =

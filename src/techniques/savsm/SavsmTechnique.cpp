@@ -56,9 +56,9 @@ TechniqueDescriptor savsmTechnique()
   descriptor.coversLightArea = true;
   descriptor.createPass = newTechniquePass<vtkSLSavsmPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    const ParameterValues& values = context.frame->parameters;
+    const SavsmSettings settings = SavsmSettings::from(context.frame->parameters);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const SavsmSample sample = savsmReference(inputs, values, pixel.x, pixel.y, &recorder);
+    const SavsmSample sample = savsmReference(inputs, settings, pixel.x, pixel.y, &recorder);
     // SavsmTest (sat_precision = int32): <= 2e-3 on pixels without a kernel edge within 1e-4 texel of a texel
     // centre, a comparison within float rounding, or a variance under 1e-3 d^2 (float cancellation).
     ProbeOutcome outcome =
@@ -69,7 +69,6 @@ TechniqueDescriptor savsmTechnique()
         probeTexelEdgeAmbiguity);
       if (sample.foundBlockers)
       {
-        const SavsmSettings settings = SavsmSettings::from(values);
         const ShadowLookup lookup = prepareShadowLookup(inputs, settings.pcss.bias, pixel.x, pixel.y);
         const double d = lookup.sm.depthLin;
         noteAmbiguity(outcome.ambiguity, "variance / d^2 (float cancellation in E[z^2] - E[z]^2)",
@@ -169,11 +168,10 @@ double lightLeakPcf(const ShadowMapInputs& inputs, const SoftShadowSettings& sof
 
 } // namespace
 
-SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+SavsmSample savsmReference(const ShadowMapInputs& inputs, const SavsmSettings& settings, int x, int y,
   ProbeRecorder* recorder)
 {
   // Blocker search and w_p are PCSS's; its PCF step runs (the margins are the whole twin's) but is not recorded.
-  const SavsmSettings settings = SavsmSettings::from(values);
   const PcssSample pcss = pcssReference(inputs, settings.pcss, x, y, recorder, false);
   SavsmSample result;
   result.sample = pcss.sample;

@@ -47,7 +47,7 @@ struct SavsmSample
 // box (w_p's texel rectangle) with its moments, p_max and the light-bleeding reduction, and the light leak against
 // the PCF over the same rectangle, each tap compared as pcss's filter compares it (as the shader's light_leak
 // buffer computes it).
-SavsmSample savsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+SavsmSample savsmReference(const ShadowMapInputs& inputs, const SavsmSettings& settings, int x, int y,
   ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -62,7 +62,7 @@ TechniqueDescriptor vsmTechnique()
     const VsmSettings settings = VsmSettings::from(context.frame->parameters);
     requireBlurPrefilter(settings.prefilter);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const VsmSample sample = vsmReference(inputs, context.frame->parameters, pixel.x, pixel.y, &recorder);
+    const VsmSample sample = vsmReference(inputs, settings, pixel.x, pixel.y, &recorder);
     // MomentTest: <= 2e-3 where the variance is at least 1e-3 d^2; below it E[z^2] - E[z]^2 cancels in float
     // (~1e-5 d^2 after the blur) and the pixel is not compared.
     ProbeOutcome outcome = probeOutcome(sample.sample, 2e-3, "vsmReference (vsm/VsmTechnique.h), double precision, prefilter = blur");
@@ -79,10 +79,9 @@ TechniqueDescriptor vsmTechnique()
   return descriptor;
 }
 
-VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+VsmSample vsmReference(const ShadowMapInputs& inputs, const VsmSettings& settings, int x, int y,
   ProbeRecorder* recorder)
 {
-  const VsmSettings settings = VsmSettings::from(values);
   VsmSample result;
   const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
   result.sample = lookup.sample;

@@ -36,7 +36,7 @@ struct VsmSample
 // CPU reference (double precision) of VsmVisibility.glsl for prefilter = blur. `recorder` (optional, `shadowlab
 // probe`): the receiver, the moment box (kernel_texels, its texels), the moments, p_max and the light-bleeding
 // reduction, and the light leak against the true PCF over the same box (its comparisons).
-VsmSample vsmReference(const ShadowMapInputs& inputs, const ParameterValues& values, int x, int y,
+VsmSample vsmReference(const ShadowMapInputs& inputs, const VsmSettings& settings, int x, int y,
   ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -279,7 +279,7 @@ TechniqueDescriptor vssmTechnique()
     const FrameResult& frame = *context.frame;
     const ShadowMapInputs shadowMap = shadowMapInputsOf(frame, *context.scene, context.lightIndex);
     const VssmReferenceInputs inputs = vssmReferenceInputsOf(frame, *context.scene, shadowMap);
-    const VssmSample sample = vssmReference(inputs, frame.parameters, pixel.x, pixel.y, &recorder);
+    const VssmSample sample = vssmReference(inputs, VssmSettings::from(frame.parameters), pixel.x, pixel.y, &recorder);
     // Vssm.MatchesTheCpuImplementation: |GPU - twin| <= 2e-3 on pixels none of whose decisions lies within float
     // rounding of its boundary: the receiver's (ambiguityOf), a kernel edge within 1e-4 texel of a texel centre,
     // a continuous decision (E(x) >= t, the variance and blocked-area thresholds, the contact test, the HSM
@@ -927,10 +927,9 @@ void recordResultBuffers(ProbeRecorder& recorder, const VssmSample& result)
 } // namespace
 
 // Alg. 1 L7-20 for one pixel, in the steps of VssmVisibility.glsl's main(), with the same names.
-VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y,
+VssmSample vssmReference(const VssmReferenceInputs& inputs, const VssmSettings& settings, int x, int y,
   ProbeRecorder* recorder)
 {
-  const VssmSettings settings = VssmSettings::from(values);
   VssmSample result;
   const ShadowMapInputs& shadowMap = *inputs.shadowMap;
   const ShadowLookup lookup = prepareShadowLookup(shadowMap, settings.bias, x, y, recorder);

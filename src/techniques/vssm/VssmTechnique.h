@@ -144,7 +144,7 @@ struct VssmSample
 // nodes visited), the average blocker depth (Eq. 4-5), the penumbra kernel w_p (L16), the §6.4 contact test,
 // w_p's sub-kernels (L17-20), the PCF taps, the visibility (Alg. 2 L29-32), and the buffers' values under their
 // names (group "result").
-VssmSample vssmReference(const VssmReferenceInputs& inputs, const ParameterValues& values, int x, int y,
+VssmSample vssmReference(const VssmReferenceInputs& inputs, const VssmSettings& settings, int x, int y,
   ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -163,7 +163,7 @@ TechniqueDescriptor yfgl09Technique()
     const HierarchicalShadowMap mssm =
       HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth));
     std::vector<Yfgl09Pixel> packet;
-    const Yfgl09Pixel result = yfgl09ReferencePixel(inputs, mssm, frame.parameters, pixel.x, pixel.y, &recorder, &packet);
+    const Yfgl09Pixel result = yfgl09ReferencePixel(inputs, mssm, Yfgl09Settings::from(frame.parameters), pixel.x, pixel.y, &recorder, &packet);
     // Yfgl09Test.MatchesTheCpuImplementation: visibility within 1e-3 on pixels without a decision near its
     // boundary (float back-projection and clipping, as gbp07's).
     ProbeOutcome outcome = probeOutcome(result.sample, 1e-3, "yfgl09ReferencePixel (yfgl09/Yfgl09Technique.h): the pixel's packet, double precision");
@@ -984,7 +984,7 @@ std::string packetClassLabel(PacketClass packetClass)
   return packetCategories[code].label;
 }
 
-Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const ParameterValues& values)
+Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const Yfgl09Settings& settings)
 {
   SL_CHECK(mssm.layout == HsmLayout::DualMssm);
   const int width = inputs.position.width;
@@ -998,7 +998,6 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
   frame.samples.resize(static_cast<std::size_t>(width) * height);
   frame.kernelEdgeMargin.assign(frame.samples.size(), 1e300);
   frame.decisionMargin.assign(frame.samples.size(), 1e300);
-  const Yfgl09Settings settings = Yfgl09Settings::from(values);
   for (int py = 0; py < height; py += settings.packetHeight)
   {
     for (int px = 0; px < width; px += settings.packetWidth)
@@ -1025,12 +1024,11 @@ Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalSha
 }
 
 Yfgl09Pixel yfgl09ReferencePixel(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const ParameterValues& values, int x, int y, ProbeRecorder* recorder, std::vector<Yfgl09Pixel>* packet)
+  const Yfgl09Settings& settings, int x, int y, ProbeRecorder* recorder, std::vector<Yfgl09Pixel>* packet)
 {
   SL_CHECK(mssm.layout == HsmLayout::DualMssm);
   SL_CHECK_MSG(x >= 0 && y >= 0 && x < inputs.position.width && y < inputs.position.height, "pixel ", x, ",", y,
     " outside the image");
-  const Yfgl09Settings settings = Yfgl09Settings::from(values);
   // The frame's packets start at the image's corner (yfgl09Reference).
   const glm::ivec2 origin(x - x % settings.packetWidth, y - y % settings.packetHeight);
   std::vector<Yfgl09Pixel> results = evaluatePacket(inputs, mssm, settings, origin, recorder, { x, y });

@@ -93,7 +93,7 @@ struct Yfgl09Frame
 
 // CPU reference (double precision) of both passes over the whole image; `mssm` is the dual-grid MSSM of
 // inputs.shadowMapLinear (HierarchicalShadowMap::buildDual with 2 x far outside).
-Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const ParameterValues& values);
+Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const Yfgl09Settings& settings);
 
 // What the twin computes for one pixel: Yfgl09Frame's values at it.
 struct Yfgl09Pixel
@@ -120,7 +120,7 @@ struct Yfgl09Pixel
 // this pixel's kernel); the packet class and the visibility. `packet` (optional) receives every pixel of the
 // packet (the probe's ambiguity: one pixel near a boundary can change the packet's decisions).
 Yfgl09Pixel yfgl09ReferencePixel(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm,
-  const ParameterValues& values, int x, int y, ProbeRecorder* recorder = nullptr, std::vector<Yfgl09Pixel>* packet = nullptr);
+  const Yfgl09Settings& settings, int x, int y, ProbeRecorder* recorder = nullptr, std::vector<Yfgl09Pixel>* packet = nullptr);
 
 // The label of a PacketClass, as the packet_class buffer's categories.
 std::string packetClassLabel(PacketClass packetClass);

@@ -67,6 +67,7 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap hsm = structureOf(frame, inputs);
+    const Gbp06Settings gbp06Settings = Gbp06Settings::from(frame.parameters);
     const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
@@ -77,7 +78,7 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     {
       for (int x = 0; x < kWidth; ++x)
       {
-        const Gbp06Sample cpu = gbp06Reference(inputs, hsm, frame.parameters, x, y);
+        const Gbp06Sample cpu = gbp06Reference(inputs, hsm, gbp06Settings, x, y);
         if (!cpu.sample.evaluated)
         {
           continue;
@@ -128,6 +129,8 @@ TEST(Gbp06, HsmTraversalGivesTheKernelsVisibilityVisitingFewerNodes)
     const FrameResult hsmFrame = test::renderDataset(scene, "gbp06", kWidth, kHeight, hsmSettings);
     const ShadowMapInputs inputs = test::shadowMapInputs(kernelFrame, scene);
     const HierarchicalShadowMap hsm = structureOf(kernelFrame, inputs);
+    const Gbp06Settings kernelTraversal = Gbp06Settings::from(kernelFrame.parameters);
+    const Gbp06Settings hsmTraversal = Gbp06Settings::from(hsmFrame.parameters);
     const ImageF& kernelVisibility = kernelFrame.find("visibility")->image;
     const ImageF& hsmVisibility = hsmFrame.find("visibility")->image;
     const ImageF& kernelClass = kernelFrame.find("classification")->image;
@@ -143,8 +146,8 @@ TEST(Gbp06, HsmTraversalGivesTheKernelsVisibilityVisitingFewerNodes)
     {
       for (int x = 0; x < kWidth; ++x)
       {
-        const Gbp06Sample cpuKernel = gbp06Reference(inputs, hsm, kernelFrame.parameters, x, y);
-        const Gbp06Sample cpuHsm = gbp06Reference(inputs, hsm, hsmFrame.parameters, x, y);
+        const Gbp06Sample cpuKernel = gbp06Reference(inputs, hsm, kernelTraversal, x, y);
+        const Gbp06Sample cpuHsm = gbp06Reference(inputs, hsm, hsmTraversal, x, y);
         ASSERT_EQ(cpuKernel.classification == BackprojectionClass::Penumbra, cpuHsm.classification == BackprojectionClass::Penumbra);
         maxCpuDifference = std::max(maxCpuDifference, std::abs(cpuKernel.sample.visibility - cpuHsm.sample.visibility));
         EXPECT_EQ(cpuKernel.occludingTexels, cpuHsm.occludingTexels) << dataset << " pixel " << x << "," << y;
@@ -368,6 +371,8 @@ TEST(Gbp06, MirroringTheSceneInLightXAndYSwapsTheGapFillingConventions)
   {
     const FrameResult& a = frameOf(false, pair.traversal, pair.onScene);
     const FrameResult& b = frameOf(true, pair.traversal, pair.onMirrored);
+    const Gbp06Settings settingsA = Gbp06Settings::from(a.parameters);
+    const Gbp06Settings settingsB = Gbp06Settings::from(b.parameters);
     const std::string label = "traversal=" + pair.traversal + ", S gap_filling=" + pair.onScene + " / M gap_filling=" + pair.onMirrored;
     const ImageF& visibilityA = a.find("visibility")->image;
     const ImageF& visibilityB = b.find("visibility")->image;
@@ -388,8 +393,8 @@ TEST(Gbp06, MirroringTheSceneInLightXAndYSwapsTheGapFillingConventions)
         penumbra += classA == static_cast<float>(BackprojectionClass::Penumbra) ? 1 : 0;
         classMismatches += classA != b.find("classification")->image.at(x, y) ? 1 : 0;
         countMismatches += a.find("occluding_texels")->image.at(x, y) != b.find("occluding_texels")->image.at(x, y) ? 1 : 0;
-        const Gbp06Sample cpuA = gbp06Reference(sceneInputs, sceneHsm, a.parameters, x, y);
-        const Gbp06Sample cpuB = gbp06Reference(mirroredInputs, mirroredHsm, b.parameters, x, y);
+        const Gbp06Sample cpuA = gbp06Reference(sceneInputs, sceneHsm, settingsA, x, y);
+        const Gbp06Sample cpuB = gbp06Reference(mirroredInputs, mirroredHsm, settingsB, x, y);
         maxCpu = std::max(maxCpu, std::abs(cpuA.sample.visibility - cpuB.sample.visibility));
         if (pair.mirrorPair)
         {
@@ -436,6 +441,8 @@ TEST(Gbp06, RefinedKernelsMissNoGapFilledMicropatch)
     ParameterValues unrefined = refined;
     unrefined.set("kernel_refinements=0");
     ASSERT_GT(refined.getInt("kernel_refinements"), 0);
+    const Gbp06Settings refinedSettings = Gbp06Settings::from(refined);
+    const Gbp06Settings unrefinedSettings = Gbp06Settings::from(unrefined);
     int compared = 0;
     long refinedTexels = 0;
     long unrefinedTexels = 0;
@@ -445,12 +452,12 @@ TEST(Gbp06, RefinedKernelsMissNoGapFilledMicropatch)
     {
       for (int x = 0; x < kWidth; ++x)
       {
-        const Gbp06Sample narrow = gbp06Reference(inputs, hsm, refined, x, y);
+        const Gbp06Sample narrow = gbp06Reference(inputs, hsm, refinedSettings, x, y);
         if (!narrow.sample.evaluated || narrow.classification == BackprojectionClass::Umbra)
         {
           continue;
         }
-        const Gbp06Sample wide = gbp06Reference(inputs, hsm, unrefined, x, y);
+        const Gbp06Sample wide = gbp06Reference(inputs, hsm, unrefinedSettings, x, y);
         const double difference = std::abs(narrow.sample.visibility - wide.sample.visibility);
         maxDifference = std::max(maxDifference, difference);
         EXPECT_LT(difference, 1e-12) << gapFilling << " pixel " << x << "," << y;
@@ -494,12 +501,13 @@ CutShortReport cutShortAgainstTheTwin(const Scene& scene, const std::vector<std:
   const FrameResult frame = test::renderDataset(scene, "gbp06", width, height, settings);
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const HierarchicalShadowMap hsm = structureOf(frame, inputs);
+  const Gbp06Settings gbp06Settings = Gbp06Settings::from(frame.parameters);
   CutShortReport report;
   for (int y = 0; y < height; ++y)
   {
     for (int x = 0; x < width; ++x)
     {
-      const Gbp06Sample cpu = gbp06Reference(inputs, hsm, frame.parameters, x, y);
+      const Gbp06Sample cpu = gbp06Reference(inputs, hsm, gbp06Settings, x, y);
       const bool cut = frame.find("classification")->image.at(x, y) == static_cast<float>(BackprojectionClass::OverLoopBudget);
       report.flagged += cut ? 1 : 0;
       const bool integrated = cpu.classification == BackprojectionClass::Penumbra || cpu.classification == BackprojectionClass::OverLoopBudget;
@@ -664,6 +672,10 @@ TEST(Gbp06, ProbeRecordsTheMicropatchesAndNodesTheGpuCountedAndTheAreaTheyCover)
       { "shadow_map_size=256", "traversal=" + traversal, "gap_filling=left_bottom" });
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap hsm = structureOf(frame, inputs);
+    const Gbp06Settings gbp06Settings = Gbp06Settings::from(frame.parameters);
+    ParameterValues withoutGapFilling = frame.parameters;
+    withoutGapFilling.set("gap_filling=off");
+    const Gbp06Settings unfilledSettings = Gbp06Settings::from(withoutGapFilling);
     const ImageF& classes = frame.find("classification")->image;
     int partial = 0;
     // Lit, umbra and penumbra (partial visibility) pixels from all over the frame.
@@ -676,7 +688,7 @@ TEST(Gbp06, ProbeRecordsTheMicropatchesAndNodesTheGpuCountedAndTheAreaTheyCover)
         const auto count = [&](auto&& items, auto&& predicate) {
           return static_cast<double>(std::count_if(items.begin(), items.end(), predicate));
         };
-        const Gbp06Sample twin = gbp06Reference(inputs, hsm, frame.parameters, x, y);
+        const Gbp06Sample twin = gbp06Reference(inputs, hsm, gbp06Settings, x, y);
         EXPECT_EQ(outcome.visibility, twin.sample.visibility) << label;
         EXPECT_NEAR(outcome.visibility, frame.find("visibility")->image.at(x, y), outcome.tolerance) << label;
         EXPECT_EQ(value("classification"), classes.at(x, y)) << label;
@@ -729,10 +741,8 @@ TEST(Gbp06, ProbeRecordsTheMicropatchesAndNodesTheGpuCountedAndTheAreaTheyCover)
 
         EXPECT_GE(value("gap_filling_area"), -1e-12 * lightArea) << label << ": gap filling only grows micropatches";
         // What the extensions added is the difference to the same pixel replayed without gap filling.
-        ParameterValues withoutGapFilling = frame.parameters;
-        withoutGapFilling.set("gap_filling=off");
         ProbeRecorder unfilled;
-        gbp06Reference(inputs, hsm, withoutGapFilling, x, y, &unfilled);
+        gbp06Reference(inputs, hsm, unfilledSettings, x, y, &unfilled);
         ASSERT_NE(unfilled.record().find("occluded_area"), nullptr) << label;
         EXPECT_NEAR(value("occluded_area") - unfilled.record().find("occluded_area")->value[0], value("gap_filling_area"),
           1e-12 * lightArea) << label;

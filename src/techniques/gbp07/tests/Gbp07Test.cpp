@@ -64,6 +64,7 @@ TEST(Gbp07, MatchesTheCpuImplementation)
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult frame = test::renderDataset(scene, "gbp07", 96, 80, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const Gbp07Settings gbp07Settings = Gbp07Settings::from(frame.parameters);
     const HsmLayout layout = hierarchicalShadowMapSettings(frame.parameters).layout;
     const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear, layout);
     // For the YSM: the twin with the mip-map HSM alone, to count the pixels whose decision the MSSM part changes.
@@ -79,7 +80,7 @@ TEST(Gbp07, MatchesTheCpuImplementation)
     {
       for (int x = 0; x < 96; ++x)
       {
-        const Gbp07Sample cpu = gbp07Reference(inputs, hsm, frame.parameters, x, y);
+        const Gbp07Sample cpu = gbp07Reference(inputs, hsm, gbp07Settings, x, y);
         if (!cpu.sample.evaluated)
         {
           continue;
@@ -102,7 +103,7 @@ TEST(Gbp07, MatchesTheCpuImplementation)
         EXPECT_NEAR(frame.find("kernel_texels")->image.at(x, y), cpu.kernelTexels, 1e-4 * (1.0 + cpu.kernelTexels)) << label;
         if (layout == HsmLayout::Ysm)
         {
-          const Gbp07Sample mip = gbp07Reference(inputs, mipOnly, frame.parameters, x, y);
+          const Gbp07Sample mip = gbp07Reference(inputs, mipOnly, gbp07Settings, x, y);
           changedByYsm += mip.kernelTexels != cpu.kernelTexels || mip.classification != cpu.classification ? 1 : 0;
         }
       }
@@ -131,6 +132,7 @@ TEST(Gbp07, KernelsTheLoopCapCutsShortAreFlaggedExactly)
   const Scene scene = loadScene(test::datasetPath("stacked-occluders"), test::wideKernelOverrides());
   const FrameResult frame = test::renderDataset(scene, "gbp07", 16, 12, {});
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const Gbp07Settings gbp07Settings = Gbp07Settings::from(frame.parameters);
   const HierarchicalShadowMap hsm = HierarchicalShadowMap::build(inputs.shadowMapLinear, HsmLayout::NBuffers);
   int flagged = 0;
   int differing = 0;
@@ -141,7 +143,7 @@ TEST(Gbp07, KernelsTheLoopCapCutsShortAreFlaggedExactly)
   {
     for (int x = 0; x < 16; ++x)
     {
-      const Gbp07Sample cpu = gbp07Reference(inputs, hsm, frame.parameters, x, y);
+      const Gbp07Sample cpu = gbp07Reference(inputs, hsm, gbp07Settings, x, y);
       const bool cut = frame.find("classification")->image.at(x, y) == static_cast<float>(BackprojectionClass::OverLoopBudget);
       flagged += cut ? 1 : 0;
       widest = std::max(widest, cpu.kernelTexels);
@@ -179,6 +181,7 @@ TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
   const Scene scene = test::loadDataset("stacked-occluders");
   const FrameResult frame = test::renderDataset(scene, "gbp07", 64, 48, { "shadow_map_size=256" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const Gbp07Settings gbp07Settings = Gbp07Settings::from(frame.parameters);
   const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, frame.parameters);
   const TechniqueDescriptor& technique = findTechnique("gbp07");
   ASSERT_TRUE(static_cast<bool>(technique.probe));
@@ -192,7 +195,7 @@ TEST(Gbp07, ProbeRecordsTheContourEdgesTheGpuCountedAndTheAreaTheyCover)
       const std::string label = "pixel " + std::to_string(x) + "," + std::to_string(y);
       const auto value = [&](const std::string& name) { return test::recordedValue(record, name, label); };
       // The replay is the twin's default run, and the GPU's.
-      const Gbp07Sample twin = gbp07Reference(inputs, hsm, frame.parameters, x, y);
+      const Gbp07Sample twin = gbp07Reference(inputs, hsm, gbp07Settings, x, y);
       EXPECT_EQ(outcome.visibility, twin.sample.visibility) << label;
       EXPECT_NEAR(outcome.visibility, frame.find("visibility")->image.at(x, y), outcome.tolerance) << label;
       EXPECT_EQ(value("classification"), classes.at(x, y)) << label;

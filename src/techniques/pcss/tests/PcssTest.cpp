@@ -34,6 +34,7 @@ struct Agreement
 Agreement compareWithCpu(const Scene& scene, const FrameResult& frame)
 {
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const PcssSettings settings = PcssSettings::from(frame.parameters);
   const ImageF& visibility = frame.find("visibility")->image;
   const ImageF& blocker = frame.find("avg_blocker_depth")->image;
   const ImageF& penumbra = frame.find("penumbra_kernel_texels")->image;
@@ -42,7 +43,7 @@ Agreement compareWithCpu(const Scene& scene, const FrameResult& frame)
   {
     for (int x = 0; x < visibility.width; ++x)
     {
-      const PcssSample cpu = pcssReference(inputs, frame.parameters, x, y);
+      const PcssSample cpu = pcssReference(inputs, settings, x, y);
       if (!cpu.sample.evaluated)
       {
         EXPECT_EQ(visibility.at(x, y), cpu.sample.visibility) << x << "," << y;
@@ -114,12 +115,13 @@ TEST(Pcss, ProbeRecordsTheKernelsAndTapsTheGpuUsed)
   const Scene scene = test::loadDataset("stacked-occluders");
   const FrameResult frame = test::renderDataset(scene, "pcss", 96, 80, { "shadow_map_size=512" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const PcssSettings settings = PcssSettings::from(frame.parameters);
   std::vector<glm::ivec2> pixels(3, glm::ivec2(-1)); // lit without blockers, penumbra, umbra
   for (int y = 0; y < 80; ++y)
   {
     for (int x = 0; x < 96; ++x)
     {
-      const PcssSample cpu = pcssReference(inputs, frame.parameters, x, y);
+      const PcssSample cpu = pcssReference(inputs, settings, x, y);
       if (!cpu.sample.evaluated || cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 ||
         cpu.sample.reachMargin < 1e-5 || cpu.sample.texelEdgeMargin < 1e-4)
       {
@@ -145,7 +147,7 @@ TEST(Pcss, ProbeRecordsTheKernelsAndTapsTheGpuUsed)
     const ProbeRecord& record = recorder.record();
     ASSERT_TRUE(outcome.evaluated) << label;
     EXPECT_TRUE(outcome.ambiguity.empty()) << label << ": " << outcome.ambiguity;
-    EXPECT_EQ(outcome.visibility, pcssReference(inputs, frame.parameters, pixel.x, pixel.y).sample.visibility) << label;
+    EXPECT_EQ(outcome.visibility, pcssReference(inputs, settings, pixel.x, pixel.y).sample.visibility) << label;
     EXPECT_LE(std::abs(outcome.visibility - gpu("visibility", pixel)), outcome.tolerance) << label;
     const auto quantity = [&](const char* name) {
       const ProbeQuantity* found = record.find(name);

@@ -74,6 +74,7 @@ TEST(Savsm, MatchesTheCpuImplementation)
     const Scene scene = test::loadDataset(dataset);
     const FrameResult frame = test::renderDataset(scene, "savsm", 96, 80, { "shadow_map_size=512", "sat_precision=int32" });
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const SavsmSettings savsmSettings = SavsmSettings::from(frame.parameters);
     const ImageF& visibility = frame.find("visibility")->image;
     int compared = 0;
     int skipped = 0;
@@ -83,12 +84,12 @@ TEST(Savsm, MatchesTheCpuImplementation)
     {
       for (int x = 0; x < 96; ++x)
       {
-        const SavsmSample cpu = savsmReference(inputs, frame.parameters, x, y);
+        const SavsmSample cpu = savsmReference(inputs, savsmSettings, x, y);
         if (!cpu.sample.evaluated)
         {
           continue;
         }
-        const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(frame.parameters), x, y);
+        const ShadowLookup lookup = prepareShadowLookup(inputs, savsmSettings.pcss.bias, x, y);
         const double d = lookup.sm.depthLin;
         // Float on the GPU: kernel edges at texel centres, tests at their boundary, small variances (see
         // PcssTest and MomentTest) are counted, not compared.
@@ -119,13 +120,14 @@ TEST(Savsm, ProbeRecordsThePenumbraBoxAndTheGpuBuffers)
   const Scene scene = test::loadDataset("stacked-occluders");
   const FrameResult frame = test::renderDataset(scene, "savsm", 96, 80, { "shadow_map_size=512", "sat_precision=int32" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const SavsmSettings savsmSettings = SavsmSettings::from(frame.parameters);
   std::vector<glm::ivec2> pixels(3, glm::ivec2(-1)); // lit without blockers, penumbra, umbra (the twin's, unambiguous)
   for (int y = 0; y < 80; ++y)
   {
     for (int x = 0; x < 96; ++x)
     {
-      const SavsmSample cpu = savsmReference(inputs, frame.parameters, x, y);
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(frame.parameters), x, y);
+      const SavsmSample cpu = savsmReference(inputs, savsmSettings, x, y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, savsmSettings.pcss.bias, x, y);
       const double d = lookup.sm.depthLin;
       if (!cpu.sample.evaluated || cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 ||
         cpu.sample.texelEdgeMargin < 1e-4 || cpu.sample.reachMargin < 1e-5 || (cpu.foundBlockers && cpu.variance < 1e-3 * d * d))
@@ -154,7 +156,7 @@ TEST(Savsm, ProbeRecordsThePenumbraBoxAndTheGpuBuffers)
       return found != nullptr ? found->value.at(0) : -1.0;
     };
     ASSERT_TRUE(outcome.evaluated) << label;
-    EXPECT_EQ(outcome.visibility, savsmReference(inputs, frame.parameters, pixel.x, pixel.y).sample.visibility) << label;
+    EXPECT_EQ(outcome.visibility, savsmReference(inputs, savsmSettings, pixel.x, pixel.y).sample.visibility) << label;
     std::cout << "[ measured ] savsm " << label << ": GPU " << gpu("visibility") << ", probe " << outcome.visibility
               << (outcome.ambiguity.empty() ? "" : ", ambiguous: " + outcome.ambiguity) << "\n";
     if (outcome.ambiguity.empty())
@@ -231,6 +233,7 @@ TEST(Savsm, LightLeakComparesAsPcssFilters)
   const Scene scene = test::loadDataset("contact");
   const FrameResult frame = test::renderDataset(scene, "savsm", 64, 64, { "shadow_map_size=512", "sat_precision=int32" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const SavsmSettings savsmSettings = SavsmSettings::from(frame.parameters);
   ReferenceSettings settings;
   settings.samples = 256;
   const ImageF truth = renderReference(test::referenceInputs(frame, scene), settings).visibility;
@@ -246,13 +249,13 @@ TEST(Savsm, LightLeakComparesAsPcssFilters)
   {
     for (int x = 0; x < 64; ++x)
     {
-      const SavsmSample cpu = savsmReference(inputs, frame.parameters, x, y);
+      const SavsmSample cpu = savsmReference(inputs, savsmSettings, x, y);
       if (!cpu.sample.evaluated || !cpu.foundBlockers)
       {
         EXPECT_EQ(leak.at(x, y), 0.0f) << "pixel " << x << "," << y << ": no blockers, no leak";
         continue;
       }
-      const ShadowLookup lookup = prepareShadowLookup(inputs, biasSettings(frame.parameters), x, y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, savsmSettings.pcss.bias, x, y);
       const double d = lookup.sm.depthLin;
       if (cpu.kernelEdgeMargin < 1e-4 || cpu.sample.depthMargin < 2e-6 || cpu.sample.texelEdgeMargin < 1e-4 ||
         cpu.sample.reachMargin < 1e-5 || cpu.variance < 1e-3 * d * d)

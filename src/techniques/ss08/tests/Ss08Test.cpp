@@ -218,6 +218,7 @@ struct TwinAgreement
 TwinAgreement compareWithTwin(const FrameResult& frame, const Ss08Twin& twin)
 {
   TwinAgreement agreement;
+  const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
   const ImageF& loq = buffer(frame, "loq");
   // msaa=4: the twin evaluates the first sample, as the GPU did before the resolve (SS08 §7).
   const std::string visibilityName = frame.find("msaa_pixel_visibility") ? "msaa_pixel_visibility" : "visibility";
@@ -240,7 +241,7 @@ TwinAgreement compareWithTwin(const FrameResult& frame, const Ss08Twin& twin)
   {
     for (int x = 0; x < frame.resolution.x; ++x)
     {
-      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, loq.at(x, y), twin.budgets());
+      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), ss08Settings, x, y, loq.at(x, y), twin.budgets());
       if (!cpu.sample.evaluated)
       {
         check("classification", x, y, code(Ss08Class::NotTested), 0.0);
@@ -462,6 +463,7 @@ struct BudgetCount
 BudgetCount countBudget(const FrameResult& frame, const Ss08Twin& twin, int budget)
 {
   BudgetCount count;
+  const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
   const ImageF& loq = buffer(frame, "loq");
   for (int y = 0; y < frame.resolution.y; ++y)
   {
@@ -476,7 +478,7 @@ BudgetCount countBudget(const FrameResult& frame, const Ss08Twin& twin, int budg
         continue; // examines nothing
       }
       ++count.backProjecting;
-      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, loq.at(x, y), twin.budgets());
+      const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), ss08Settings, x, y, loq.at(x, y), twin.budgets());
       const glm::ivec2 floorSlots = cpu.slotsPerAxis[0];
       const glm::ivec2 ceilSlots = cpu.slotsPerAxis[1];
       count.maxCeilAxis = std::max({ count.maxCeilAxis, ceilSlots.x, ceilSlots.y });
@@ -576,6 +578,7 @@ TEST(Ss08, GrowthLeavesNoLitPixelThatItsMicroOccludersShadow)
         on ? "growth=on" : "growth=off" };
       const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
       const Ss08Twin twin = twinOf(frame, scene);
+      const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
       const ImageF& classes = buffer(frame, "classification");
       for (int y = 0; y < 64; ++y)
       {
@@ -589,8 +592,8 @@ TEST(Ss08, GrowthLeavesNoLitPixelThatItsMicroOccludersShadow)
           {
             continue;
           }
-          const Ss08Search search = ss08Search(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, twin.budgets());
-          const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, search.levelRaw,
+          const Ss08Search search = ss08Search(twin.inputs, twin.structures(), ss08Settings, x, y, twin.budgets());
+          const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), ss08Settings, x, y, search.levelRaw,
             twin.budgets(), true);
           if (code(cpu.search.classification) != gpuClass || ambiguous(cpu))
           {
@@ -678,6 +681,7 @@ TEST(Ss08, PixelsOverTheLoopCapAreFlaggedAndTheOthersExact)
     const std::string label = test::caseLabel("near-light", settings);
     const FrameResult frame = test::renderSs08(scene, 64, 48, settings);
     const Ss08Twin twin = twinOf(frame, scene);
+    const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
     const bool llvmpipe = frame.glRenderer.find("llvmpipe") != std::string::npos;
     int flagged = 0;
     int overCap = 0;        // the twin's slot count over ss08LoopCap
@@ -695,13 +699,13 @@ TEST(Ss08, PixelsOverTheLoopCapAreFlaggedAndTheOthersExact)
       {
         const bool cut = buffer(frame, "classification").at(x, y) == static_cast<float>(code(Ss08Class::CutShort));
         flagged += cut ? 1 : 0;
-        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y);
+        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), ss08Settings, x, y);
         if (!search.backProjects)
         {
           EXPECT_FALSE(cut) << label << " pixel " << x << "," << y;
           continue;
         }
-        const TexelRectangle slots = ss08SlotRange(Ss08Settings::from(frame.parameters), size, 0, search.area);
+        const TexelRectangle slots = ss08SlotRange(ss08Settings, size, 0, search.area);
         const double count = static_cast<double>(slots.hi.x - slots.lo.x + 1) * (slots.hi.y - slots.lo.y + 1);
         maxSlots = std::max(maxSlots, count);
         if (cut)
@@ -730,7 +734,7 @@ TEST(Ss08, PixelsOverTheLoopCapAreFlaggedAndTheOthersExact)
         {
           continue;
         }
-        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, 0.0);
+        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), ss08Settings, x, y, 0.0);
         if (ambiguous(cpu))
         {
           continue;
@@ -882,6 +886,7 @@ TEST(Ss08, BudgetMapsArePerPixel)
     const bool image = settings[1] == "budget_map=image";
     const std::string label = image ? "stacked-occluders budget_map=image (0 | 6)" : test::caseLabel("stacked-occluders", settings);
     const FrameResult frame = test::renderSs08(scene, width, height, settings);
+    const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
     const ImageF& budgets = buffer(frame, "budget");
     const ImageF& classes = buffer(frame, "classification");
     std::map<int, int> pixelsByBudget;
@@ -894,7 +899,7 @@ TEST(Ss08, BudgetMapsArePerPixel)
         {
           continue;
         }
-        const int expected = image ? (x < width / 2 ? 0 : 6) : ss08PixelBudget(Ss08Settings::from(frame.parameters), x, y, width, nullptr);
+        const int expected = image ? (x < width / 2 ? 0 : 6) : ss08PixelBudget(ss08Settings, x, y, width, nullptr);
         ++pixelsByBudget[expected];
         wrong += budgets.at(x, y) != static_cast<float>(expected) ? 1 : 0;
       }
@@ -934,12 +939,13 @@ TEST(Ss08, KernelsClampedByTheMapBorderMatchTheTwin)
     const std::string label = test::caseLabel("near-light + border caster", settings);
     const FrameResult frame = test::renderSs08(scene, 64, 48, settings);
     const Ss08Twin twin = twinOf(frame, scene);
+    const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
     int clamped = 0;
     for (int y = 0; y < 48; ++y)
     {
       for (int x = 0; x < 64; ++x)
       {
-        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y);
+        const Ss08Search search = ss08Search(twin.inputs, twin.structures(), ss08Settings, x, y);
         const bool atBorder = search.area.lo.x == 0 || search.area.lo.y == 0 || search.area.hi.x == 127 || search.area.hi.y == 127;
         clamped += search.backProjects && atBorder ? 1 : 0;
       }
@@ -1141,6 +1147,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
       "micro_occluder=" + want.microOccluder };
     const FrameResult frame = test::renderSs08(scene, 64, 64, settings);
     const Ss08Twin twin = twinOf(frame, scene);
+    const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
     const bool penumbra = want.classification == Ss08Class::Penumbra;
     // The first unambiguous pixel of the wanted class; for a penumbra, the blended one whose visibility is nearest 0.5.
     std::optional<glm::ivec2> pixel;
@@ -1153,7 +1160,7 @@ TEST(Ss08, ProbeRecordsTheMicroOccludersTheGpuCounted)
         {
           continue;
         }
-        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y,
+        const Ss08Sample cpu = ss08Reference(twin.inputs, twin.structures(), ss08Settings, x, y,
           buffer(frame, "loq").at(x, y), twin.budgets());
         const bool blended = cpu.blendAlpha > 0.05 && cpu.blendAlpha < 0.95 && cpu.levelFloor >= 1 &&
           cpu.sample.visibility > 0.1 && cpu.sample.visibility < 0.9;
@@ -1303,6 +1310,7 @@ TEST(Ss08Bitmask, MatchesTheTwinSampleForSample)
     const std::string label = test::caseLabel(c.dataset, c.settings);
     const FrameResult frame = test::renderSs08(scene, 64, 64, c.settings);
     const Ss08Twin twin = twinOf(frame, scene);
+    const Ss08Settings ss08Settings = Ss08Settings::from(frame.parameters);
     const ImageF& loq = buffer(frame, "loq");
     const bool oneLevel = frame.parameters.get("blend_band") <= 0.0;
     int evaluated = 0;
@@ -1319,7 +1327,7 @@ TEST(Ss08Bitmask, MatchesTheTwinSampleForSample)
       for (int x = 0; x < 64; ++x)
       {
         const Ss08Sample cpu =
-          ss08Reference(twin.inputs, twin.structures(), Ss08Settings::from(frame.parameters), x, y, loq.at(x, y), twin.budgets());
+          ss08Reference(twin.inputs, twin.structures(), ss08Settings, x, y, loq.at(x, y), twin.budgets());
         if (!cpu.sample.evaluated)
         {
           continue;

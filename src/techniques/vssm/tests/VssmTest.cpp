@@ -154,6 +154,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
     const FrameResult frame = test::renderDataset(scene, "vssm", 96, 80, settings);
     const ShadowMapInputs shadowMap = test::shadowMapInputs(frame, scene);
     const VssmReferenceInputs inputs = referenceInputsOf(frame, scene, shadowMap);
+    const VssmSettings vssmSettings = VssmSettings::from(frame.parameters);
     const std::string label = test::caseLabel(c.dataset, c.settings);
     int compared = 0;
     int skipped = 0;
@@ -163,7 +164,7 @@ TEST(Vssm, MatchesTheCpuImplementation)
     {
       for (int x = 0; x < 96; ++x)
       {
-        const VssmSample cpu = vssmReference(inputs, frame.parameters, x, y);
+        const VssmSample cpu = vssmReference(inputs, vssmSettings, x, y);
         if (!cpu.sample.evaluated)
         {
           continue;
@@ -293,6 +294,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
     const FrameResult frame = test::renderDataset(scene, "vssm", 96, 80, settings);
     const ShadowMapInputs shadowMap = test::shadowMapInputs(frame, scene);
     const VssmReferenceInputs inputs = referenceInputsOf(frame, scene, shadowMap);
+    const VssmSettings vssmSettings = VssmSettings::from(frame.parameters);
     const ImageF& classes = frame.find("classification")->image;
     // The first unambiguous pixel of the wanted class (row by row from the bottom).
     std::optional<glm::ivec2> pixel;
@@ -305,7 +307,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
           continue;
         }
         ProbeRecorder steps;
-        const VssmSample cpu = vssmReference(inputs, frame.parameters, x, y, &steps);
+        const VssmSample cpu = vssmReference(inputs, vssmSettings, x, y, &steps);
         const ProbeQuantity* hsmDecision = findIn(steps.record(), "hsm test", "hsm_decision");
         const auto& kernels = steps.record().kernels;
         const bool pcfInPenumbra = std::any_of(kernels.begin(), kernels.end(), [](const ProbeKernel& kernel) {
@@ -313,7 +315,7 @@ TEST(Vssm, ProbeRecordsTheStepsTheGpuTook)
         });
         const bool interesting = want.refined
           ? pcfInPenumbra && cpu.sample.visibility > 0.1 && cpu.sample.visibility < 0.9 &&
-            (frame.parameters.choice("shadow_subdivision") != "adaptive" || cpu.quadtreeNodesVisited > 5)
+            (vssmSettings.shadowSubdivision.scheme != VssmSubdivision::Adaptive || cpu.quadtreeNodesVisited > 5)
           : hsmDecision && hsmDecision->text != "undecided";
         if (cpu.sample.evaluated && !ambiguous(cpu) && cpu.classification == want.classification && interesting)
         {

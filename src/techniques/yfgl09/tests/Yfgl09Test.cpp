@@ -97,7 +97,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult frame = test::renderDataset(scene, "yfgl09", width, height, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), frame.parameters);
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
     const std::string label = test::caseLabel(c.dataset, c.settings);
     double maxDifference = 0.0;
     int compared = 0;
@@ -170,7 +170,7 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
     const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap mssm = dualMssm(inputs);
-    const Yfgl09Frame cpu = yfgl09Reference(inputs, mssm, frame.parameters);
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, mssm, Yfgl09Settings::from(frame.parameters));
     const ImageF& classes = frame.find("packet_class")->image;
     // The candidates of each kind (trivial lit, trivial umbra, each traversing class with partial visibility), taken
     // evenly spaced in scan order so that the pixels probed come from all over the frame.
@@ -430,10 +430,10 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
     const Scene scene = loadScene(test::datasetPath(c.dataset), c.sceneOverrides);
     const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const ParameterValues gbp07Values = [&] {
+    const Gbp07Settings gbp07Settings = [&] {
       ParameterValues values = findTechnique("gbp07").defaultParameters();
       values.set(c.settings.front());
-      return values;
+      return Gbp07Settings::from(values);
     }();
     const HierarchicalShadowMap nbuffers = HierarchicalShadowMap::build(inputs.shadowMapLinear, HsmLayout::NBuffers);
     double maxDifference = 0.0;
@@ -446,7 +446,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
       {
         const double gpu = frame.find("visibility")->image.at(x, y);
         ASSERT_TRUE(std::isfinite(gpu)) << c.what;
-        const Gbp07Sample exact = gbp07Reference(inputs, nbuffers, gbp07Values, x, y);
+        const Gbp07Sample exact = gbp07Reference(inputs, nbuffers, gbp07Settings, x, y);
         if (!exact.sample.evaluated || exact.kernelEdgeMargin < 1e-4 || exact.sample.depthMargin < 2e-6 ||
           exact.sample.reachMargin < 1e-5 || exact.decisionMargin < 1e-5)
         {
@@ -454,7 +454,7 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
         }
         ++compared;
         maxKernel = std::max(maxKernel, exact.kernelTexels);
-        const ContourReceiver receiver = prepareContourReceiver(inputs, gbp07Values, nbuffers, x, y);
+        const ContourReceiver receiver = prepareContourReceiver(inputs, gbp07Settings.receiver, nbuffers, x, y);
         const int last = inputs.lightView.resolution - 1;
         const bool leavesMap = receiver.kernel.lo.x <= 0 || receiver.kernel.lo.y <= 0 || receiver.kernel.hi.x >= last ||
           receiver.kernel.hi.y >= last;
@@ -548,7 +548,7 @@ TEST(Yfgl09, KernelsWiderThan256TexelsAtTheDefaultMapStayExact)
     const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, {});
     ASSERT_EQ(frame.parameters.getInt("shadow_map_size"), 1024) << "the default map size";
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), frame.parameters);
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
     const TwinComparison result = compareWithTwin(frame, cpu, c.what);
     const ClassCounts classes = classHistogram(frame);
     std::cout << "[ measured ] yfgl09 at 1024^2, " << c.what << ": widest kernel " << result.maxKernel << " texels, "
@@ -571,7 +571,7 @@ TEST(Yfgl09, PixelsCutShortByTheLoopCapAreFlaggedAndCounted)
     stackedRectangles({ { -0.8, 1.0, 0.0, 1.2, 0.8 }, { 0.4, 2.0, 0.3, 1.0, 1.4 }, { 0.2, 3.0, -0.4, 0.8, 0.6 } }, 4.0, 2.0));
   const FrameResult frame = test::renderDataset(scene, "yfgl09", 24, 18, { "hierarchy=off" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-  const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), frame.parameters);
+  const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
   const TwinComparison result = compareWithTwin(frame, cpu, "hierarchy off");
   std::cout << "[ measured ] yfgl09 brute force at 1024^2 on " << frame.glRenderer << ": " << result.cutShort << " of 432 pixels cut short, "
             << result.differing << " differing from the twin by > 1e-3 (" << result.differingFlagged << " of them flagged), max |gpu - cpu| "
