@@ -410,5 +410,72 @@ TEST(Warp, FewerMisclassifiedPixelsThanTheUniformMapAndNoAcne)
   }
 }
 
+// Two square tiles on the view axis (3.5 degrees below it near, above it far, so neither hides the other), at eye depth
+// 2 and 120, each turned halfway between the eye and the overhead light: cos(alpha) = cos(beta), so Eq. 1's
+// projection factor is 1 on both and texel_ratio_t is the perspective part alone, the survey's Fig. 12 quantity
+// (on a ground plane cos(alpha) falls with the distance and no warp can change that; see LispsmEqualises... above).
+Scene tilesFacingEyeAndLight()
+{
+  std::string objects;
+  const double offset = std::tan(3.5 * 3.14159265358979323846 / 180.0);
+  for (const double depth : { 2.0, 120.0 })
+  {
+    const glm::dvec3 centre(0.0, depth == 2.0 ? -offset * depth : offset * depth, -depth);
+    const glm::dvec3 normal = glm::normalize(glm::dvec3(0.0, 1.0, 0.0) + glm::normalize(-centre));
+    const double size = 0.05 * depth;
+    objects += std::string(objects.empty() ? "" : ",") + R"({ "primitive": "quad", "center": [)" +
+      std::to_string(centre.x) + "," + std::to_string(centre.y) + "," + std::to_string(centre.z) + R"(], "size": [)" +
+      std::to_string(size) + "," + std::to_string(size) + R"(], "normal": [)" + std::to_string(normal.x) + "," +
+      std::to_string(normal.y) + "," + std::to_string(normal.z) + R"(], "up": [1, 0, 0] })";
+  }
+  const std::string text = R"({
+    "camera": { "position": [0, 0, 0], "focal_point": [0, 0, -10], "view_angle": 40 },
+    "lights": [ { "type": "directional", "direction": [0, -1, 0] } ],
+    "objects": [ )" + objects + " ] }";
+  return parseScene(text, "tiles facing the eye and the light (warp test)", test::sourceDir());
+}
+
+TEST(Warp, LispsmTexelRatioTIsEqualAtTheNearestAndFarthestDepths)
+{
+  // The issue's claim, on receivers whose projection factor is 1: LiSPSM's texel_ratio_t at eye depth 2 and 120
+  // within 10 %, the uniform map's more than 10x apart.
+  const Scene scene = tilesFacingEyeAndLight();
+  for (const std::string warp : { "none", "lispsm" })
+  {
+    const FrameResult frame = test::renderDataset(scene, "hard", 160, 120, { "shadow_map_size=256", "warp=" + warp });
+    const ImageF& ratioT = frame.find("texel_ratio_t")->image;
+    const ImageF& projection = frame.find("projection_factor")->image;
+    const ImageF& position = frame.find("position")->image;
+    const ImageF& coverage = frame.find("coverage")->image;
+    std::vector<double> nearRatios, farRatios;
+    for (int y = 0; y < ratioT.height; ++y)
+    {
+      for (int x = 0; x < ratioT.width; ++x)
+      {
+        if (coverage.at(x, y) < 0.5f || ratioT.at(x, y) <= 0.0f)
+        {
+          continue;
+        }
+        EXPECT_NEAR(projection.at(x, y), 1.0, 0.03) << warp << " pixel " << x << "," << y;
+        (-position.at(x, y, 2) < 10.0 ? nearRatios : farRatios).push_back(ratioT.at(x, y));
+      }
+    }
+    ASSERT_GT(nearRatios.size(), 30u) << warp;
+    ASSERT_GT(farRatios.size(), 30u) << warp;
+    const double nearRatio = median(nearRatios);
+    const double farRatio = median(farRatios);
+    std::cout << "[ measured ] tiles, warp=" << warp << ": texel_ratio_t median at depth 2 " << nearRatio
+              << ", at depth 120 " << farRatio << " (near / far " << nearRatio / farRatio << ")\n";
+    if (warp == "lispsm")
+    {
+      EXPECT_NEAR(nearRatio / farRatio, 1.0, 0.10);
+    }
+    else
+    {
+      EXPECT_GT(nearRatio / farRatio, 10.0);
+    }
+  }
+}
+
 } // namespace
 } // namespace sl
