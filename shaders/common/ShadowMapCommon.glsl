@@ -40,6 +40,21 @@ float depthBias(float tanTheta, float depthLin)
     (param_bias_constant_texels + param_bias_slope_texels * min(tanTheta, param_bias_max_slope));
 }
 
+// d(texel u, v) / d(world position) at pWs for u = N (ndc.xy / 2 + 1/2), ndc = (M p).xy / (M p).w:
+// N/2 (M_i - ndc_i M_w) / w (texelGradients, ShadowMapMath.cpp). Any light matrix, a warped one included.
+void texelGradients(vec3 pWs, out vec3 gradU, out vec3 gradV)
+{
+  mat4 m = lightClipFromWorld;
+  vec4 clip = m * vec4(pWs, 1.0);
+  vec2 ndc = clip.xy / clip.w;
+  vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]);
+  vec3 rowY = vec3(m[0][1], m[1][1], m[2][1]);
+  vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
+  float scale = 0.5 * float(shadowMapSize) / clip.w;
+  gradU = scale * (rowX - ndc.x * rowW);
+  gradV = scale * (rowY - ndc.y * rowW);
+}
+
 // The world size of one texel at the receiver, the warped texel's footprint under a warp (receiverTexelWorldSize,
 // ShadowMapMath.cpp): J = d(texel u, v) / d(light x, y), the larger column of J^-1.
 float receiverTexelWorldSize(vec3 pWs, float depthLin)
@@ -48,15 +63,9 @@ float receiverTexelWorldSize(vec3 pWs, float depthLin)
   {
     return texelWorldSize(depthLin);
   }
-  mat4 m = lightClipFromWorld;
-  vec4 clip = m * vec4(pWs, 1.0);
-  vec2 ndc = clip.xy / clip.w;
-  vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]);
-  vec3 rowY = vec3(m[0][1], m[1][1], m[2][1]);
-  vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
-  float scale = 0.5 * float(shadowMapSize) / clip.w;
-  vec3 gradU = scale * (rowX - ndc.x * rowW);
-  vec3 gradV = scale * (rowY - ndc.y * rowW);
+  vec3 gradU;
+  vec3 gradV;
+  texelGradients(pWs, gradU, gradV);
   vec3 lightX = vec3(lightViewFromWorld[0][0], lightViewFromWorld[1][0], lightViewFromWorld[2][0]);
   vec3 lightY = vec3(lightViewFromWorld[0][1], lightViewFromWorld[1][1], lightViewFromWorld[2][1]);
   float j00 = dot(gradU, lightX);

@@ -2,6 +2,7 @@
 // along its most stretched direction, 1 / sigma_min of d(texel)/d(pixel) on the surface's tangent plane.
 // Mirrors sl::texelRatio (src/lightspace/ShadowMapMath.cpp), which documents the derivation.
 #include "common/CameraRay.glsl"
+#include "common/ShadowMapCommon.glsl"
 
 float texelRatio(vec2 pixel, vec3 pWs, vec3 nWs)
 {
@@ -18,15 +19,9 @@ float texelRatio(vec2 pixel, vec3 pWs, vec3 nWs)
   vec3 dpdx = stepX - ray * (dot(nWs, stepX) / normalDotRay);
   vec3 dpdy = stepY - ray * (dot(nWs, stepY) / normalDotRay);
 
-  mat4 m = lightClipFromWorld;
-  vec4 clip = m * vec4(pWs, 1.0);
-  vec2 ndc = clip.xy / clip.w;
-  vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]);
-  vec3 rowY = vec3(m[0][1], m[1][1], m[2][1]);
-  vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
-  float scale = 0.5 * float(shadowMapSize) / clip.w;
-  vec3 gradU = scale * (rowX - ndc.x * rowW);
-  vec3 gradV = scale * (rowY - ndc.y * rowW);
+  vec3 gradU;
+  vec3 gradV;
+  texelGradients(pWs, gradU, gradV);
   float j00 = dot(gradU, dpdx);
   float j01 = dot(gradU, dpdy);
   float j10 = dot(gradV, dpdx);

@@ -25,6 +25,30 @@ double depthBias(const LightView& view, const BiasSettings& bias, double tanThet
   return view.texelWorldSize(depthLin) * (bias.constantTexels + bias.slopeTexels * std::min(tanTheta, bias.maxSlope));
 }
 
+namespace
+{
+
+// Texel coordinates u = N_sm (ndc.xy / 2 + 1/2), ndc = (M p).xy / (M p).w: du/dp = N_sm/2 (M_i - ndc_i M_w) / w.
+struct TexelGradients
+{
+  glm::dvec3 u;
+  glm::dvec3 v;
+};
+
+TexelGradients texelGradients(const LightView& light, const glm::dvec3& pWs)
+{
+  const glm::dmat4& m = light.clipFromWorld;
+  const glm::dvec4 clip = m * glm::dvec4(pWs, 1.0);
+  const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+  const glm::dvec3 rowX(m[0][0], m[1][0], m[2][0]);
+  const glm::dvec3 rowY(m[0][1], m[1][1], m[2][1]);
+  const glm::dvec3 rowW(m[0][3], m[1][3], m[2][3]);
+  const double scale = 0.5 * light.resolution / clip.w;
+  return { scale * (rowX - ndc.x * rowW), scale * (rowY - ndc.y * rowW) };
+}
+
+} // namespace
+
 double receiverTexelWorldSize(const LightView& view, const glm::dvec3& pWs, double depthLin)
 {
   if (!view.warp.active())
@@ -32,15 +56,9 @@ double receiverTexelWorldSize(const LightView& view, const glm::dvec3& pWs, doub
     return view.texelWorldSize(depthLin);
   }
   // J = d(texel u, v) / d(light x, y) at pWs; the texel's sides in world units are J^-1's columns.
-  const glm::dmat4& m = view.clipFromWorld;
-  const glm::dvec4 clip = m * glm::dvec4(pWs, 1.0);
-  const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-  const glm::dvec3 rowX(m[0][0], m[1][0], m[2][0]);
-  const glm::dvec3 rowY(m[0][1], m[1][1], m[2][1]);
-  const glm::dvec3 rowW(m[0][3], m[1][3], m[2][3]);
-  const double scale = 0.5 * view.resolution / clip.w;
-  const glm::dvec3 gradU = scale * (rowX - ndc.x * rowW);
-  const glm::dvec3 gradV = scale * (rowY - ndc.y * rowW);
+  const TexelGradients gradient = texelGradients(view, pWs);
+  const glm::dvec3& gradU = gradient.u;
+  const glm::dvec3& gradV = gradient.v;
   const glm::dvec3 lightX(view.viewFromWorld[0][0], view.viewFromWorld[1][0], view.viewFromWorld[2][0]);
   const glm::dvec3 lightY(view.viewFromWorld[0][1], view.viewFromWorld[1][1], view.viewFromWorld[2][1]);
   const double j00 = glm::dot(gradU, lightX);
@@ -62,25 +80,6 @@ namespace
 {
 
 constexpr double kMaxSamplingError = 1e6;
-
-// Texel coordinates u = N_sm (ndc.xy / 2 + 1/2), ndc = (M p).xy / (M p).w: du/dp = N_sm/2 (M_i - ndc_i M_w) / w.
-struct TexelGradients
-{
-  glm::dvec3 u;
-  glm::dvec3 v;
-};
-
-TexelGradients texelGradients(const LightView& light, const glm::dvec3& pWs)
-{
-  const glm::dmat4& m = light.clipFromWorld;
-  const glm::dvec4 clip = m * glm::dvec4(pWs, 1.0);
-  const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-  const glm::dvec3 rowX(m[0][0], m[1][0], m[2][0]);
-  const glm::dvec3 rowY(m[0][1], m[1][1], m[2][1]);
-  const glm::dvec3 rowW(m[0][3], m[1][3], m[2][3]);
-  const double scale = 0.5 * light.resolution / clip.w;
-  return { scale * (rowX - ndc.x * rowW), scale * (rowY - ndc.y * rowW) };
-}
 
 // The world steps on the plane through pWs with normal `planeNormal` that one pixel step in x and in y moves the
 // camera ray's hit point by: dp = v - R (n.v)/(n.R), v = dN + s dR. False where the ray grazes the plane.
