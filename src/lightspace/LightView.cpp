@@ -392,11 +392,7 @@ glm::dvec4 matrixRow(const glm::dmat4& m, int row)
 void applyPerspectiveWarp(const Light& light, ReceiverSource& receivers, const FocusSettings& settings, LightView& view)
 {
   const WarpKind kind = settings.warp.kind;
-  if (light.type != LightType::Directional)
-  {
-    throw InputError(format("--set warp=", warpName(kind), ": a perspective warp needs a directional light (LiSPSM in ",
-      "a point, spot or area light's post-perspective space is not implemented); use warp=none"));
-  }
+  requireWarpableLight(kind, light.type);
   SL_CHECK_MSG(settings.camera != nullptr, "a warp needs the camera");
   const CameraView& camera = *settings.camera;
   PerspectiveWarp& warp = view.warp;

@@ -24,6 +24,15 @@ const char* warpName(WarpKind kind)
   return "none";
 }
 
+void requireWarpableLight(WarpKind kind, LightType lightType)
+{
+  if (kind != WarpKind::None && lightType != LightType::Directional)
+  {
+    throw InputError(format("--set warp=", warpName(kind), ": a perspective warp needs a directional light (LiSPSM in ",
+      "a point, spot or area light's post-perspective space is not implemented); use warp=none"));
+  }
+}
+
 double lispsmOptimalN(double zNear, double zFar)
 {
   return zNear + std::sqrt(zNear * zFar);

@@ -20,6 +20,8 @@
 // space) are refused.
 #pragma once
 
+#include "scene/Scene.h"
+
 #include <glm/glm.hpp>
 
 #include <string>
@@ -36,6 +38,10 @@ enum class WarpKind
 };
 
 const char* warpName(WarpKind kind);
+
+// Throws InputError naming `--set warp=...` unless `kind` is None or the light is directional (LiSPSM in a point,
+// spot or area light's post-perspective space is not implemented). The renderer asks before any GL; the focus again.
+void requireWarpableLight(WarpKind kind, LightType lightType);
 
 struct WarpSettings
 {

@@ -81,24 +81,35 @@ namespace
 
 constexpr double kMaxSamplingError = 1e6;
 
-// The world steps on the plane through pWs with normal `planeNormal` that one pixel step in x and in y moves the
-// camera ray's hit point by: dp = v - R (n.v)/(n.R), v = dN + s dR. False where the ray grazes the plane.
-bool pixelStepsOnPlane(const CameraView& camera, double pixelX, double pixelY, const glm::dvec3& pWs,
-  const glm::dvec3& planeNormal, glm::dvec3& dpdx, glm::dvec3& dpdy)
+// The camera ray through a pixel at the receiver: N + s R (affine in the pixel position, see CameraView), with s the
+// receiver's parameter along it. Formed once per pixel; every plane's pixel steps below read it.
+struct RayAtReceiver
 {
-  // Camera ray through the pixel: N + s R (affine in the pixel position, see CameraView).
+  glm::dvec3 ray;
+  double s;
+};
+
+RayAtReceiver rayAtReceiver(const CameraView& camera, double pixelX, double pixelY, const glm::dvec3& pWs)
+{
   const glm::dvec3 nearPoint = camera.nearOrigin + pixelX * camera.nearStepX + pixelY * camera.nearStepY;
   const glm::dvec3 ray = camera.rayOrigin + pixelX * camera.rayStepX + pixelY * camera.rayStepY;
-  const double normalDotRay = glm::dot(planeNormal, ray);
-  if (std::abs(normalDotRay) < 1e-12 * glm::length(ray) * glm::length(planeNormal))
+  return { ray, glm::dot(pWs - nearPoint, ray) / glm::dot(ray, ray) };
+}
+
+// The world steps on the plane through the receiver with normal `planeNormal` that one pixel step in x and in y moves
+// the camera ray's hit point by: dp = v - R (n.v)/(n.R), v = dN + s dR. False where the ray grazes the plane.
+bool pixelStepsOnPlane(const CameraView& camera, const RayAtReceiver& at, const glm::dvec3& planeNormal,
+  glm::dvec3& dpdx, glm::dvec3& dpdy)
+{
+  const double normalDotRay = glm::dot(planeNormal, at.ray);
+  if (std::abs(normalDotRay) < 1e-12 * glm::length(at.ray) * glm::length(planeNormal))
   {
     return false; // the view ray grazes the plane: one pixel covers unboundedly many texels
   }
-  const double s = glm::dot(pWs - nearPoint, ray) / glm::dot(ray, ray);
-  const glm::dvec3 stepX = camera.nearStepX + s * camera.rayStepX;
-  const glm::dvec3 stepY = camera.nearStepY + s * camera.rayStepY;
-  dpdx = stepX - ray * (glm::dot(planeNormal, stepX) / normalDotRay);
-  dpdy = stepY - ray * (glm::dot(planeNormal, stepY) / normalDotRay);
+  const glm::dvec3 stepX = camera.nearStepX + at.s * camera.rayStepX;
+  const glm::dvec3 stepY = camera.nearStepY + at.s * camera.rayStepY;
+  dpdx = stepX - at.ray * (glm::dot(planeNormal, stepX) / normalDotRay);
+  dpdy = stepY - at.ray * (glm::dot(planeNormal, stepY) / normalDotRay);
   return true;
 }
 
@@ -143,7 +154,7 @@ double texelRatio(const CameraView& camera, const LightView& light, double pixel
   const glm::dvec3& pWs, const glm::dvec3& nWs)
 {
   glm::dvec3 dpdx, dpdy;
-  if (!pixelStepsOnPlane(camera, pixelX, pixelY, pWs, nWs, dpdx, dpdy))
+  if (!pixelStepsOnPlane(camera, rayAtReceiver(camera, pixelX, pixelY, pWs), nWs, dpdx, dpdy))
   {
     return 0.0;
   }
@@ -168,11 +179,11 @@ SamplingError samplingError(const CameraView& camera, const LightView& light, do
 {
   SamplingError error;
   const glm::dvec3 toLight = directionToLightView(light, pWs);
-  const glm::dvec3 ray = camera.rayOrigin + pixelX * camera.rayStepX + pixelY * camera.rayStepY;
-  const glm::dvec3 toEye = -glm::normalize(ray);
+  const RayAtReceiver at = rayAtReceiver(camera, pixelX, pixelY, pWs);
+  const glm::dvec3 toEye = -glm::normalize(at.ray);
   const double cosToLight = std::abs(glm::dot(nWs, toLight));
   glm::dvec3 dpdx, dpdy;
-  if (cosToLight < 1e-12 || !pixelStepsOnPlane(camera, pixelX, pixelY, pWs, nWs, dpdx, dpdy))
+  if (cosToLight < 1e-12 || !pixelStepsOnPlane(camera, at, nWs, dpdx, dpdy))
   {
     return error;
   }
@@ -193,7 +204,7 @@ SamplingError samplingError(const CameraView& camera, const LightView& light, do
     glm::dot(gradient.v, acrossLight1), glm::dot(gradient.v, acrossLight2), 1);
   // 1/z: the pixel's footprint on the plane across the eye ray at the receiver (z times the pixel's angle).
   glm::dvec3 eyeStepX, eyeStepY;
-  pixelStepsOnPlane(camera, pixelX, pixelY, pWs, toEye, eyeStepX, eyeStepY);
+  pixelStepsOnPlane(camera, at, toEye, eyeStepX, eyeStepY);
   const double pixelWidth = std::sqrt(glm::length(glm::cross(eyeStepX, eyeStepY)));
   error.perspectiveFactor = std::min(kMaxSamplingError, texelWidthT / pixelWidth);
   error.projectionFactor = std::min(kMaxSamplingError, std::abs(glm::dot(nWs, toEye)) / cosToLight);

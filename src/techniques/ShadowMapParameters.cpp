@@ -47,21 +47,30 @@ std::vector<ParameterSpec> shadowMapWarpParameters()
   };
 }
 
-TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper)
+namespace
+{
+
+TechniqueDescriptor shadowMapDescriptor(
+  std::string name, std::string title, std::string paper, std::vector<ParameterSpec> parameters)
 {
   TechniqueDescriptor descriptor = describeTechnique(std::move(name), std::move(title), std::move(paper));
-  descriptor.parameters = shadowMapParameters();
+  descriptor.parameters = std::move(parameters);
   descriptor.lightStructures = { &shadowMapStructure() };
   descriptor.supportedLights = shadowMapLights();
   return descriptor;
 }
 
+} // namespace
+
+TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper)
+{
+  return shadowMapDescriptor(std::move(name), std::move(title), std::move(paper), shadowMapParameters());
+}
+
 TechniqueDescriptor describeShadowMapTechnique(
   std::string name, std::string title, std::string paper, int defaultMapSize)
 {
-  TechniqueDescriptor descriptor = describeShadowMapTechnique(std::move(name), std::move(title), std::move(paper));
-  descriptor.parameters = shadowMapParameters(defaultMapSize);
-  return descriptor;
+  return shadowMapDescriptor(std::move(name), std::move(title), std::move(paper), shadowMapParameters(defaultMapSize));
 }
 
 BufferSpec texelRatioBuffer()

@@ -51,11 +51,10 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
 {
   SL_CHECK(frame.technique != nullptr);
   const ShadowMapSettings settings = shadowMapSettings(*frame.technique, frame.parameters);
-  if (settings.warp.kind != WarpKind::None && frame.light && frame.light->type != LightType::Directional)
+  if (frame.light)
   {
     // The renderer asks before any GL (ShadowRenderer's setFrameInputs); fitLightView refuses the same.
-    throw InputError(format("--set warp=", warpName(settings.warp.kind), ": a perspective warp needs a directional ",
-      "light (LiSPSM in a point, spot or area light's post-perspective space is not implemented); use warp=none"));
+    requireWarpableLight(settings.warp.kind, frame.light->type);
   }
   return settings;
 }
