@@ -2,7 +2,7 @@
 // `wall-ring`. The committed files are this program's output; the test Datasets.GeneratedScenesAreCommitted
 // regenerates them into a scratch folder and compares byte for byte. After changing a number here:
 //   build/tests/generate_sampling_datasets datasets
-// Plain C++17 with no library of the project, so the files do not depend on how the scene loader reads them.
+// C++17 and nlohmann-json, no library of the project, so the files do not depend on how the scene loader reads them.
 //
 // deep-view: a long ground seen from eye height (the survey's §3 perspective aliasing: dp/ds ~ 1/z under a uniform
 // map), posts and small buildings at geometrically growing distances (d_k = 5 * 1.5^k), so every depth range has
@@ -10,8 +10,10 @@
 // the view (the setting of the survey's Fig. 12). deep-view-behind: the same geometry with the light behind the
 // viewer, 15 degrees off the view direction (Fig. 14-15: warping cannot help, partitioning must). wall-ring: a
 // point light inside a ring of walls, its visible receivers all around it (§2: one map cannot cover them).
+#include <nlohmann/json.hpp>
+
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -22,112 +24,62 @@
 namespace
 {
 
-// A JSON value written in the datasets' layout: objects and arrays of objects one entry per line, two spaces of
-// indentation; numbers, strings and arrays of numbers on one line.
-struct Json
-{
-  std::string scalar;                              // a number, string or number array, already written
-  std::vector<std::pair<std::string, Json>> fields; // an object, in writing order
-  std::vector<Json> items;                         // an array of objects
-  bool isObject = false;
-  bool isArray = false;
+using Json = nlohmann::ordered_json;
 
-  static Json object(std::vector<std::pair<std::string, Json>> fields)
-  {
-    Json json;
-    json.isObject = true;
-    json.fields = std::move(fields);
-    return json;
-  }
-  static Json array(std::vector<Json> items)
-  {
-    Json json;
-    json.isArray = true;
-    json.items = std::move(items);
-    return json;
-  }
-};
-
-// Rounded to 1e-4 and written without trailing zeros, so that a last-bit difference in a platform's sin or cos
-// never changes the file (and "-0" never appears).
-std::string number(double value)
-{
-  double rounded = std::round(value * 1e4) / 1e4;
-  if (rounded == 0.0)
-  {
-    rounded = 0.0;
-  }
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.4f", rounded);
-  std::string written = text;
-  while (written.back() == '0')
-  {
-    written.pop_back();
-  }
-  if (written.back() == '.')
-  {
-    written.pop_back();
-  }
-  return written;
-}
-
-Json scalar(const std::string& text)
-{
-  Json json;
-  json.scalar = text;
-  return json;
-}
-
+// Rounded to 1e-4, so that a last-bit difference in a platform's sin or cos never changes the file; whole numbers
+// as integers ("0", never "0.0" or "-0").
 Json num(double value)
 {
-  return scalar(number(value));
+  const double rounded = std::round(value * 1e4) / 1e4;
+  if (rounded == std::round(rounded))
+  {
+    return Json(static_cast<std::int64_t>(rounded));
+  }
+  return Json(rounded);
 }
 
 Json str(const std::string& text)
 {
-  return scalar("\"" + text + "\"");
+  return Json(text);
 }
 
 Json vec(std::vector<double> values)
 {
-  std::string text = "[";
-  for (std::size_t i = 0; i < values.size(); ++i)
+  Json array = Json::array();
+  for (const double value : values)
   {
-    text += (i ? ", " : "") + number(values[i]);
+    array.push_back(num(value));
   }
-  return scalar(text + "]");
+  return array;
 }
 
-void write(const Json& json, int depth, std::string& out)
+// nlohmann's two-space layout with every array of numbers on one line, as the hand-written datasets are.
+std::string layout(const Json& scene)
 {
-  const std::string inner(2 * (depth + 1), ' ');
-  const std::string outer(2 * depth, ' ');
-  if (json.isObject)
+  const std::string dumped = scene.dump(2);
+  std::string out;
+  std::size_t i = 0;
+  while (i < dumped.size())
   {
-    out += "{\n";
-    for (std::size_t i = 0; i < json.fields.size(); ++i)
+    const std::size_t close = dumped[i] == '[' ? dumped.find(']', i) : std::string::npos;
+    const std::string inside = close == std::string::npos ? "" : dumped.substr(i + 1, close - i - 1);
+    if (close != std::string::npos && inside.find_first_of("{[\"") == std::string::npos)
     {
-      out += inner + "\"" + json.fields[i].first + "\": ";
-      write(json.fields[i].second, depth + 1, out);
-      out += i + 1 < json.fields.size() ? ",\n" : "\n";
+      std::string joined;
+      for (const char c : inside)
+      {
+        if (c != '\n' && c != ' ')
+        {
+          joined += c == ',' ? std::string(", ") : std::string(1, c);
+        }
+      }
+      out += "[" + joined + "]";
+      i = close + 1;
+      continue;
     }
-    out += outer + "}";
+    out += dumped[i++];
   }
-  else if (json.isArray)
-  {
-    out += "[\n";
-    for (std::size_t i = 0; i < json.items.size(); ++i)
-    {
-      out += inner;
-      write(json.items[i], depth + 1, out);
-      out += i + 1 < json.items.size() ? ",\n" : "\n";
-    }
-    out += outer + "]";
-  }
-  else
-  {
-    out += json.scalar;
-  }
+  return out;
 }
 
 constexpr double kPi = 3.14159265358979323846;
@@ -145,12 +97,12 @@ Json box(std::vector<double> center, std::vector<double> size)
     { { "primitive", str("box") }, { "center", vec(std::move(center)) }, { "size", vec(std::move(size)) } });
 }
 
-Json ground(std::vector<std::pair<std::string, Json>> shape)
+Json ground(Json shape)
 {
-  shape.push_back({ "normal", vec({ 0, 1, 0 }) });
-  shape.push_back({ "up", vec({ 0, 0, -1 }) });
-  shape.push_back({ "material", Json::object({ { "albedo", vec({ 0.8, 0.8, 0.8 }) } }) });
-  return Json::object(std::move(shape));
+  shape["normal"] = vec({ 0, 1, 0 });
+  shape["up"] = vec({ 0, 0, -1 });
+  shape["material"] = Json::object({ { "albedo", vec({ 0.8, 0.8, 0.8 }) } });
+  return shape;
 }
 
 // The deep view under a directional light travelling along `direction`. Eye at height 1.7 looking along -z,
@@ -159,9 +111,9 @@ Json ground(std::vector<std::pair<std::string, Json>> shape)
 // nearest depth, 2) and far plane (1.01 times its farthest, 302) are 154 apart (src/lightspace/CameraView.cpp).
 Json deepView(std::vector<double> direction)
 {
-  std::vector<Json> objects;
-  objects.push_back(ground({ { "primitive", str("quad") }, { "center", vec({ 0, 0, -152 }) },
-    { "size", vec({ 60, 300 }) } }));
+  Json objects = Json::array();
+  objects.push_back(ground(Json::object({ { "primitive", str("quad") }, { "center", vec({ 0, 0, -152 }) },
+    { "size", vec({ 60, 300 }) } })));
   // Left of the view axis, posts of one size: their shadows thin out to below a pixel with distance. Right of it,
   // buildings that grow with distance (side 0.1 d, height 0.15 d), so that every depth keeps a shadow edge a few
   // pixels long on the screen.
@@ -177,7 +129,7 @@ Json deepView(std::vector<double> direction)
     { "lights",
       Json::array({ Json::object(
         { { "type", str("directional") }, { "direction", vec(std::move(direction)) }, { "intensity", num(1) } }) }) },
-    { "objects", Json::array(std::move(objects)) } });
+    { "objects", std::move(objects) } });
 }
 
 // A point light at height 1 inside ten walls (radius 4, 1.5 high, covering 75 % of the circle), with three casters
@@ -185,8 +137,8 @@ Json deepView(std::vector<double> direction)
 // inner faces) and outside it (the ground lit through the gaps).
 Json wallRing()
 {
-  std::vector<Json> objects;
-  objects.push_back(ground({ { "primitive", str("disk") }, { "center", vec({ 0, 0, 0 }) }, { "size", num(7) } }));
+  Json objects = Json::array();
+  objects.push_back(ground(Json::object({ { "primitive", str("disk") }, { "center", vec({ 0, 0, 0 }) }, { "size", num(7) } })));
   const int wallCount = 10;
   const double radius = 4.0;
   const double wallLength = 2.0 * radius * std::sin(0.75 * kPi / wallCount);
@@ -196,9 +148,8 @@ Json wallRing()
     const double angleDeg = 360.0 * (i + 0.5) / wallCount;
     const double angle = angleDeg * kPi / 180.0;
     Json wall = box({ 0, 0.75, 0 }, { 0.25, 1.5, wallLength });
-    wall.fields.push_back({ "transform",
-      Json::object({ { "translate", vec({ radius * std::cos(angle), 0, -radius * std::sin(angle) }) },
-        { "rotate_deg", vec({ 0, angleDeg, 0 }) } }) });
+    wall["transform"] = Json::object({ { "translate", vec({ radius * std::cos(angle), 0, -radius * std::sin(angle) }) },
+      { "rotate_deg", vec({ 0, angleDeg, 0 }) } });
     objects.push_back(wall);
   }
   objects.push_back(Json::object(
@@ -209,7 +160,7 @@ Json wallRing()
     { "lights",
       Json::array({ Json::object(
         { { "type", str("point") }, { "center", vec({ 0, 1, 0 }) }, { "intensity", num(1) } }) }) },
-    { "objects", Json::array(std::move(objects)) } });
+    { "objects", std::move(objects) } });
 }
 
 } // namespace
@@ -231,8 +182,7 @@ int main(int argc, char** argv)
     const std::filesystem::path file = root / name / "scene.json";
     std::error_code error;
     std::filesystem::create_directories(file.parent_path(), error);
-    std::string text;
-    write(scene, 0, text);
+    const std::string text = layout(scene);
     std::ofstream stream(file, std::ios::binary);
     stream << text << "\n";
     stream.close();
