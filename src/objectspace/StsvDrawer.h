@@ -25,6 +25,10 @@ namespace sl
 
 struct FrameResources;
 
+// The fragment shader that tests a pixel's light samples against the STSVs (Forest et al. 2009 §2.3): dcs and
+// penumbra-wedge draw their STSVs with it.
+inline constexpr const char* kStsvSamplesShaderPath = "stsv/StsvSamples.glsl";
+
 // The parameter stsv_opposite_side_check of the techniques with STSVs, and the occlusion test it picks.
 ParameterSpec stsvOppositeSideCheckParameter();
 StsvOcclusionTest stsvOcclusionTestOf(const ParameterValues& values);

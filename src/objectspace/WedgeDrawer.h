@@ -30,6 +30,9 @@ class StorageBuffer;
 // A record of the wedge pass's storage buffer (binding 0, `wedgeData`), in vec4s, declared once: the C++ writer
 // (WedgeDrawer::prepare) indexes it with these offsets, and the shaders read it through the names
 // wedgeRecordShaderConstants() generates into their preamble (WEDGE_RECORD_VEC4 and WEDGE_RECORD_<FIELD>).
+// The vertex shader every wedge pass draws its wedges' screen polygons with (dcs, penumbra-wedge).
+inline constexpr const char* kWedgeVertexShaderPath = "dcs/DcsWedgeVertex.glsl";
+
 struct WedgeRecord
 {
   static constexpr int kV0 = 0;       // (v0, number of triangles)

@@ -139,7 +139,7 @@ nlohmann::json vec(const glm::ivec2& v)
 }
 
 // NaN is not JSON: a missing value is null.
-nlohmann::json number(double value)
+nlohmann::json jsonNumber(double value)
 {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
 }
@@ -165,14 +165,14 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
     }
     else if (quantity.value.size() == 1)
     {
-      item["value"] = number(quantity.value[0]);
+      item["value"] = jsonNumber(quantity.value[0]);
     }
     else
     {
       nlohmann::json components = nlohmann::json::array();
       for (const double component : quantity.value)
       {
-        components.push_back(number(component));
+        components.push_back(jsonNumber(component));
       }
       item["value"] = components;
     }
@@ -181,14 +181,14 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
   nlohmann::json texels = nlohmann::json::array();
   for (const ProbeTexel& texel : record.texels)
   {
-    texels.push_back({ { "texel", vec(texel.texel) }, { "role", texel.role }, { "stored_depth", number(texel.storedDepth) },
-      { "compared_depth", number(texel.comparedDepth) }, { "occluding", texel.occluding }, { "weight", number(texel.weight) } });
+    texels.push_back({ { "texel", vec(texel.texel) }, { "role", texel.role }, { "stored_depth", jsonNumber(texel.storedDepth) },
+      { "compared_depth", jsonNumber(texel.comparedDepth) }, { "occluding", texel.occluding }, { "weight", jsonNumber(texel.weight) } });
   }
   nlohmann::json nodes = nlohmann::json::array();
   for (const ProbeNode& node : record.nodes)
   {
     nodes.push_back({ { "structure", node.structure }, { "level", node.level }, { "lo", vec(node.lo) }, { "hi", vec(node.hi) },
-      { "min_depth", number(node.minDepth) }, { "max_depth", number(node.maxDepth) }, { "decision", node.decision } });
+      { "min_depth", jsonNumber(node.minDepth) }, { "max_depth", jsonNumber(node.maxDepth) }, { "decision", node.decision } });
   }
   nlohmann::json kernels = nlohmann::json::array();
   for (const ProbeKernel& kernel : record.kernels)
@@ -204,13 +204,13 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
     {
       points.push_back(vec(point));
     }
-    polygons.push_back({ { "role", polygon.role }, { "points", points }, { "signed_area", number(polygon.signedArea) } });
+    polygons.push_back({ { "role", polygon.role }, { "points", points }, { "signed_area", jsonNumber(polygon.signedArea) } });
   }
   nlohmann::json edges = nlohmann::json::array();
   for (const ProbeContourEdge& edge : record.contourEdges)
   {
     edges.push_back({ { "a", vec(edge.a) }, { "b", vec(edge.b) }, { "light_a", vec(edge.lightA) },
-      { "light_b", vec(edge.lightB) }, { "signed_area", number(edge.signedArea) } });
+      { "light_b", vec(edge.lightB) }, { "signed_area", jsonNumber(edge.signedArea) } });
   }
   nlohmann::json samples = nlohmann::json::array();
   for (const ProbeLightSample& sample : record.lightSamples)
@@ -226,9 +226,9 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
     { "pixel", vec(probe.pixel) },
     { "pixel_convention", "image coordinates, row 0 at the bottom (as buffers.vti)" },
     { "gpu_visibility", probe.gpuVisibility },
-    { "twin_visibility", number(probe.outcome.visibility) },
+    { "twin_visibility", jsonNumber(probe.outcome.visibility) },
     { "twin_evaluated", probe.outcome.evaluated },
-    { "difference", number(probe.difference()) },
+    { "difference", jsonNumber(probe.difference()) },
     { "tolerance", probe.outcome.tolerance },
     { "ambiguity", probe.outcome.ambiguity },
     { "agrees", probe.agrees() },

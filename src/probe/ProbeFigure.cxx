@@ -54,7 +54,7 @@ Box contentBox(const FigureRect& panel)
     double(panel.height - 2 * kInsetPx - kTitleBandPx) };
 }
 
-std::string number(double value, int digits = 4)
+std::string numberText(double value, int digits = 4)
 {
   if (!std::isfinite(value))
   {
@@ -598,7 +598,7 @@ ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting)
   std::string summary = format(record.lightPolygons.size(), " polygons");
   if (!record.lightPolygons.empty())
   {
-    summary += ", sum " + number(areaSum) + (light.type == LightType::Area ? " (light's area " + number(light.area()) + ")" : "");
+    summary += ", sum " + numberText(areaSum) + (light.type == LightType::Area ? " (light's area " + numberText(light.area()) + ")" : "");
   }
   if (!record.contourEdges.empty())
   {
@@ -734,7 +734,7 @@ ImageU8 sectionPanel(const FrameResult& frame, const Scene& scene, const ProbeSe
   drawLine(canvas, barStart, barEnd, kBlack, 2.0);
   drawLine(canvas, barStart - glm::dvec2(0, 4), barStart + glm::dvec2(0, 4), kBlack, 2.0);
   drawLine(canvas, barEnd - glm::dvec2(0, 4), barEnd + glm::dvec2(0, 4), kBlack, 2.0);
-  const std::string barLabel = number(barLength) + " world units";
+  const std::string barLabel = numberText(barLength) + " world units";
   drawText(canvas, barLabel, kBodyFontPx, int(barEnd.x) - textWidth(barLabel, kBodyFontPx), int(barEnd.y) + 6, kBlack);
   blit(panel, canvas, int(sectionBox.left), int(sectionBox.bottom));
 
@@ -756,7 +756,7 @@ std::string vectorText(const std::vector<double>& value)
   std::string text;
   for (std::size_t i = 0; i < value.size(); ++i)
   {
-    text += (i == 0 ? "" : ", ") + number(value[i]);
+    text += (i == 0 ? "" : ", ") + numberText(value[i]);
   }
   return value.size() == 1 ? text : "(" + text + ")";
 }
@@ -784,11 +784,11 @@ void addProbeSummary(LegendLines& lines, const ProbeResult& probe, const ProbeSe
   const Light& light = *setting.light;
   lines.add("technique " + probe.technique);
   lines.add(format("pixel ", probe.pixel.x, ",", probe.pixel.y, " (row 0 at the bottom)"));
-  lines.add("GPU visibility  " + number(probe.gpuVisibility, 6));
-  lines.add("twin visibility " + number(probe.outcome.visibility, 6) +
+  lines.add("GPU visibility  " + numberText(probe.gpuVisibility, 6));
+  lines.add("twin visibility " + numberText(probe.outcome.visibility, 6) +
     (probe.outcome.evaluated ? "" : " (no shadow test)"));
   const bool agrees = probe.agrees();
-  lines.add("|GPU - twin| " + number(probe.difference(), 3) + ", tolerance " + number(probe.outcome.tolerance, 3) +
+  lines.add("|GPU - twin| " + numberText(probe.difference(), 3) + ", tolerance " + numberText(probe.outcome.tolerance, 3) +
       ": " + (agrees ? "agree" : "DIFFER"),
     agrees ? RgbColor{ 0.0, 0.35, 0.0 } : RgbColor{ 0.75, 0.0, 0.0 });
   if (!probe.outcome.ambiguity.empty())
@@ -797,19 +797,19 @@ void addProbeSummary(LegendLines& lines, const ProbeResult& probe, const ProbeSe
   }
   lines.add("twin: " + probe.outcome.twin, kDarkGrey);
   lines.add(std::string("light ") + lightTypeName(light.type) +
-    (light.type == LightType::Area ? std::string(" ") + lightShapeName(light.shape) + ", size " + number(light.size)
+    (light.type == LightType::Area ? std::string(" ") + lightShapeName(light.shape) + ", size " + numberText(light.size)
                                    : ""));
   const glm::dvec3& p = setting.receiver.position;
-  lines.add("receiver (" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")");
-  lines.add("receiver depth " + number(setting.receiver.depthLin, 6) + " (linear)");
+  lines.add("receiver (" + numberText(p.x) + ", " + numberText(p.y) + ", " + numberText(p.z) + ")");
+  lines.add("receiver depth " + numberText(setting.receiver.depthLin, 6) + " (linear)");
   if (setting.receiver.bias)
   {
-    lines.add("depth bias " + number(*setting.receiver.bias));
+    lines.add("depth bias " + numberText(*setting.receiver.bias));
   }
   if (setting.receiver.uvTexels)
   {
-    lines.add("shadow-map position (" + number(setting.receiver.uvTexels->x, 6) + ", " +
-      number(setting.receiver.uvTexels->y, 6) + ") texels");
+    lines.add("shadow-map position (" + numberText(setting.receiver.uvTexels->x, 6) + ", " +
+      numberText(setting.receiver.uvTexels->y, 6) + ") texels");
   }
 }
 
@@ -844,7 +844,7 @@ std::string kernelRoleLine(const ProbeRecord& record, const std::string& role)
       }
     }
   }
-  const auto range = [](double lo, double hi) { return lo == hi ? number(lo) : number(lo) + ".." + number(hi); };
+  const auto range = [](double lo, double hi) { return lo == hi ? numberText(lo) : numberText(lo) + ".." + numberText(hi); };
   std::string labelText;
   for (const auto& [label, labelCount] : labels)
   {
@@ -894,7 +894,7 @@ void addRecordCounts(LegendLines& lines, const ProbeRecord& record)
       sum += polygon.signedArea;
     }
     lines.add(format("light polygons ", record.lightPolygons.size() + record.droppedPolygons, ", signed area sum ",
-      number(sum)));
+      numberText(sum)));
   }
   if (!record.contourEdges.empty() || record.droppedEdges > 0)
   {

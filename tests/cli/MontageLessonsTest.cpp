@@ -41,10 +41,7 @@ using Json = nlohmann::json;
 using test::RunResult;
 using test::TempDir;
 
-Json readJson(const fs::path& file)
-{
-  return Json::parse(test::readFile(file));
-}
+using test::readJson;
 
 // ---- montage --------------------------------------------------------------------------------------------------
 

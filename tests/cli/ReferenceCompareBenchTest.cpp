@@ -24,21 +24,9 @@ namespace
 
 using test::RunResult;
 
-const NamedImage& arrayNamed(const std::vector<NamedImage>& images, const std::string& name)
-{
-  const NamedImage* named = findNamed(images, name);
-  if (!named)
-  {
-    throw std::runtime_error("no array " + name);
-  }
-  return *named;
-}
+using test::arrayNamed;
 
-nlohmann::json readJson(const std::filesystem::path& path)
-{
-  std::ifstream file(path);
-  return nlohmann::json::parse(file);
-}
+using test::readJson;
 
 TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 {

@@ -63,21 +63,9 @@ std::vector<NamedImage> readArraysWithVtk(const std::filesystem::path& file)
   return images;
 }
 
-const ImageF& arrayNamed(const std::vector<NamedImage>& images, const std::string& name)
-{
-  const NamedImage* named = findNamed(images, name);
-  if (!named)
-  {
-    throw std::runtime_error("no array " + name);
-  }
-  return named->image;
-}
+using test::arrayNamed;
 
-nlohmann::json readJson(const std::filesystem::path& path)
-{
-  std::ifstream file(path);
-  return nlohmann::json::parse(file);
-}
+using test::readJson;
 
 int popcount(std::uint32_t bits)
 {
@@ -94,11 +82,11 @@ int popcount(std::uint32_t bits)
 void expectConsistentArrays(const std::filesystem::path& out, int sampleCount, const std::string& label)
 {
   const std::vector<NamedImage> buffers = readArraysWithVtk(out / "buffers.vti");
-  const ImageF& crossings = arrayNamed(buffers, "sample_crossings");
-  const ImageF& mask = arrayNamed(buffers, "light_sample_mask");
-  const ImageF& visibility = arrayNamed(buffers, "visibility");
-  const ImageF& coverage = arrayNamed(buffers, "coverage");
-  const ImageF& receives = arrayNamed(buffers, "receives_shadows");
+  const ImageF& crossings = arrayNamed(buffers, "sample_crossings").image;
+  const ImageF& mask = arrayNamed(buffers, "light_sample_mask").image;
+  const ImageF& visibility = arrayNamed(buffers, "visibility").image;
+  const ImageF& coverage = arrayNamed(buffers, "coverage").image;
+  const ImageF& receives = arrayNamed(buffers, "receives_shadows").image;
   ASSERT_EQ(crossings.components, sampleCount) << label;
   ASSERT_EQ(mask.components, sampleCount / 16) << label;
   ASSERT_EQ(crossings.width, 32) << label;

@@ -24,16 +24,7 @@ namespace
 
 namespace fs = std::filesystem;
 
-const NamedImage& arrayNamed(const std::vector<NamedImage>& arrays, const std::string& name)
-{
-  const auto found =
-    std::find_if(arrays.begin(), arrays.end(), [&](const NamedImage& array) { return array.name == name; });
-  if (found == arrays.end())
-  {
-    throw std::runtime_error("buffers.vti has no array " + name);
-  }
-  return *found;
-}
+using test::arrayNamed;
 
 // `shadowlab render <dataset> -t <technique> -r 128x64 -q` in `temp`; the buffers it wrote. (A shadow-map technique
 // still notes its approximate pixels on stderr under -q.)

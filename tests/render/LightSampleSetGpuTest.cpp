@@ -164,16 +164,16 @@ Light squareLight()
   return light;
 }
 
-struct Comparison
+struct SampleSetComparison
 {
   int unitMismatches = 0;
   int shiftMismatches = 0;
   double maxPointError = 0.0; // |gpu - cpu| / (|centre| + size)
 };
 
-Comparison compare(const GpuSamples& gpu, const LightSampleSet& cpu, const Light& light, int side, glm::ivec2 origin)
+SampleSetComparison compare(const GpuSamples& gpu, const LightSampleSet& cpu, const Light& light, int side, glm::ivec2 origin)
 {
-  Comparison result;
+  SampleSetComparison result;
   const int count = cpu.count();
   const double scale = glm::length(light.center) + light.size;
   for (int y = 0; y < side; ++y)
@@ -226,7 +226,7 @@ TEST(LightSampleSetGpu, TheGlslTwinEqualsTheCpuBitForBitForEveryPattern)
         for (const glm::ivec2 origin : { glm::ivec2(0, 0), glm::ivec2(1913, 4090) })
         {
           const GpuSamples gpu = probe().run(pattern, count, seed, light, side, origin);
-          const Comparison comparison = compare(gpu, cpu, light, side, origin);
+          const SampleSetComparison comparison = compare(gpu, cpu, light, side, origin);
           const std::string label = pattern + " N=" + std::to_string(count) + (onDisk ? " disk" : " square") +
             " origin " + std::to_string(origin.x) + "," + std::to_string(origin.y);
           EXPECT_EQ(comparison.unitMismatches, 0) << label;

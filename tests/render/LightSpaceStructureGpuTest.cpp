@@ -30,8 +30,8 @@ using Bytes = std::map<std::string, std::size_t>;
 using Names = std::vector<std::string>;
 
 const char* const kDataset = "planar-occluder"; // a square area light: every shadow-map technique supports it
-constexpr int kWidth = 64;
-constexpr int kHeight = 48;
+constexpr int kStructureFrameWidth = 64;
+constexpr int kStructureFrameHeight = 48;
 
 // GPU bytes of each structure's textures, from the formats its pass allocates (N = shadow_map_size):
 std::size_t shadowMapBytes(std::size_t n)
@@ -208,7 +208,7 @@ TEST_P(LightSpaceStructureFrame, BuildsTimesExportsAndCountsExactlyItsStructures
 {
   const StructureCase& expected = GetParam();
   const Scene scene = test::loadDataset(kDataset);
-  const FrameResult frame = test::renderDataset(scene, expected.technique, kWidth, kHeight, expected.settings);
+  const FrameResult frame = test::renderDataset(scene, expected.technique, kStructureFrameWidth, kStructureFrameHeight, expected.settings);
 
   // Memory: every built structure (the listed ones and what they are built from), none other, in closed form.
   EXPECT_EQ(frame.lightStructureGpuBytes, expected.gpuBytes);
@@ -326,9 +326,9 @@ TEST(LightSpaceStructureGpu, ReusedTexturesKeepNothingOfThePreviousFrame)
          Names{ "shadow_map_size=128", "hsm=ysm" } })
   {
     const std::string label = test::caseLabel(kDataset, settings);
-    const FrameResult first = test::renderDataset(planar, "vssm", kWidth, kHeight, settings);
-    const FrameResult other = test::renderDataset(stacked, "vssm", kWidth, kHeight, settings);
-    const FrameResult again = test::renderDataset(planar, "vssm", kWidth, kHeight, settings);
+    const FrameResult first = test::renderDataset(planar, "vssm", kStructureFrameWidth, kStructureFrameHeight, settings);
+    const FrameResult other = test::renderDataset(stacked, "vssm", kStructureFrameWidth, kStructureFrameHeight, settings);
+    const FrameResult again = test::renderDataset(planar, "vssm", kStructureFrameWidth, kStructureFrameHeight, settings);
     ASSERT_NE(test::lightSpaceArray(first, "shadow_map_depth").data, test::lightSpaceArray(other, "shadow_map_depth").data)
       << "the frame in between must fill the reused textures with something else";
     ASSERT_EQ(first.lightSpace.size(), again.lightSpace.size()) << label;

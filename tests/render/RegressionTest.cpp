@@ -50,8 +50,8 @@ namespace
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-constexpr int kWidth = 128;
-constexpr int kHeight = 128;
+constexpr int kBaselineWidth = 128;
+constexpr int kBaselineHeight = 128;
 const char* const kBlessCommand = "SHADOWLAB_BLESS=1 ctest --test-dir build -R Regression";
 
 fs::path baselineRoot()
@@ -253,11 +253,11 @@ TEST_P(RegressionTest, Matches)
   const RegressionCase& param = GetParam();
   const Scene scene = test::loadDataset(param.dataset);
   const FrameResult frame =
-    test::renderDataset(scene, param.technique, kWidth, kHeight, findTechnique(param.technique).sweepTestSettings);
+    test::renderDataset(scene, param.technique, kBaselineWidth, kBaselineHeight, findTechnique(param.technique).sweepTestSettings);
   const NamedImage* visibility = frame.find("visibility");
   ASSERT_NE(visibility, nullptr) << param.dataset << "/" << param.technique << ": no visibility buffer";
-  ASSERT_EQ(frame.image.width, kWidth);
-  ASSERT_EQ(frame.image.height, kHeight);
+  ASSERT_EQ(frame.image.width, kBaselineWidth);
+  ASSERT_EQ(frame.image.height, kBaselineHeight);
   ASSERT_EQ(frame.image.components, 3);
   // The NaN/inf sweep's check on the defaults (HardCasesTest.cpp checks the variants).
   test::expectFiniteBuffersAndVisibilityInRange(frame, param.dataset + " " + param.technique);
@@ -289,15 +289,15 @@ ImageF referenceVisibility(const std::string& dataset, const std::string& techni
   {
     return readExr(path);
   }
-  const FrameResult frame = test::renderDataset(test::loadDataset(dataset), technique, kWidth, kHeight);
+  const FrameResult frame = test::renderDataset(test::loadDataset(dataset), technique, kBaselineWidth, kBaselineHeight);
   return frame.find("visibility")->image;
 }
 
 TEST(RegressionComparator, FlagsAnInvertedBlockAndAcceptsChangesWithinTolerance)
 {
   const ImageF baseline = referenceVisibility("planar-occluder", "pcf");
-  ASSERT_EQ(baseline.width, kWidth);
-  ASSERT_EQ(baseline.height, kHeight);
+  ASSERT_EQ(baseline.width, kBaselineWidth);
+  ASSERT_EQ(baseline.height, kBaselineHeight);
   const RegressionTolerance tolerance = toleranceFor("planar-occluder", "pcf").visibility;
   ASSERT_GT(tolerance.maxAbsDiff, 0.0);
   const std::size_t allowedPixels =
@@ -368,7 +368,7 @@ TEST(RegressionComparator, FlagsAnInvertedBlockAndAcceptsChangesWithinTolerance)
   ImageF withNan = baseline;
   withNan.data[0] = std::nanf("");
   EXPECT_EQ(compareWithTolerance(withNan, baseline, tolerance).failingPixels, 1u);
-  const ImageF smaller(kWidth - 1, kHeight, 1, 1.0f);
+  const ImageF smaller(kBaselineWidth - 1, kBaselineHeight, 1, 1.0f);
   EXPECT_FALSE(compareWithTolerance(smaller, baseline, tolerance).passes(tolerance));
 
   // The RGB comparator counts a pixel once, by its worst channel.
@@ -460,8 +460,8 @@ TEST(RegressionComparator, TellsHardFromPcfOnEveryDataset)
       continue;
     }
     const Scene scene = test::loadDataset(dataset);
-    const FrameResult hard = test::renderDataset(scene, "hard", kWidth, kHeight);
-    const FrameResult pcf = test::renderDataset(scene, "pcf", kWidth, kHeight);
+    const FrameResult hard = test::renderDataset(scene, "hard", kBaselineWidth, kBaselineHeight);
+    const FrameResult pcf = test::renderDataset(scene, "pcf", kBaselineWidth, kBaselineHeight);
     const CaseTolerance tolerance = toleranceFor(dataset, "pcf");
     const RegressionComparison image = compareWithTolerance(hard.image, pcf.image, tolerance.image);
     const RegressionComparison visibility =

@@ -19,6 +19,31 @@
 
 namespace sl::test
 {
+
+const ImageF& bufferOf(const FrameResult& frame, const std::string& name)
+{
+  const NamedImage* image = frame.find(name);
+  if (image == nullptr)
+  {
+    throw std::runtime_error("frame has no buffer '" + name + "'");
+  }
+  return image->image;
+}
+
+const NamedImage& arrayNamed(const std::vector<NamedImage>& arrays, const std::string& name)
+{
+  const NamedImage* named = findNamed(arrays, name);
+  if (named == nullptr)
+  {
+    throw std::runtime_error("no array " + name);
+  }
+  return *named;
+}
+
+nlohmann::json readJson(const std::filesystem::path& path)
+{
+  return nlohmann::json::parse(readFile(path));
+}
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer()
 {
@@ -219,6 +244,19 @@ std::vector<DatasetTechnique> datasetTechniquePairs()
     return list;
   }();
   return pairs;
+}
+
+std::vector<std::string> datasetsRenderedBy(const std::string& technique)
+{
+  std::vector<std::string> datasets;
+  for (const DatasetTechnique& pair : datasetTechniquePairs())
+  {
+    if (pair.technique == technique)
+    {
+      datasets.push_back(pair.dataset);
+    }
+  }
+  return datasets;
 }
 
 std::string datasetTechniqueName(const testing::TestParamInfo<DatasetTechnique>& info)

@@ -9,6 +9,7 @@
 #include "techniques/ShadowMapReference.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json_fwd.hpp>
 
 #include <array>
 #include <filesystem>
@@ -20,6 +21,19 @@
 
 namespace sl::test
 {
+
+inline constexpr double kPi = 3.14159265358979323846;
+// A uniform draw in [low, high).
+inline double uniform(std::mt19937_64& random, double low, double high)
+{
+  return std::uniform_real_distribution<double>(low, high)(random);
+}
+// The buffer `name` of a rendered frame; throws when the frame has none.
+const ImageF& bufferOf(const FrameResult& frame, const std::string& name);
+// The array `name` among a written file's arrays (readVti); throws when there is none.
+const NamedImage& arrayNamed(const std::vector<NamedImage>& arrays, const std::string& name);
+// A JSON file (stats.json, probe.json), parsed.
+nlohmann::json readJson(const std::filesystem::path& path);
 
 std::filesystem::path sourceDir();           // the repository root
 std::filesystem::path testOutputDir();        // <build>/test-output, created on demand
@@ -76,6 +90,9 @@ void PrintTo(const DatasetTechnique& pair, std::ostream* os);
 // newly registered technique or dataset gets its cases without a change here. A dataset that does not load is
 // kept for every technique, so its cases fail with the loader's message.
 std::vector<DatasetTechnique> datasetTechniquePairs();
+// The datasets of datasetTechniquePairs() that `technique` renders, in its order (cheap: no mesh is loaded, so it
+// can pick a parameterised suite's cases at registration).
+std::vector<std::string> datasetsRenderedBy(const std::string& technique);
 // The gtest name of a case: "<dataset>_<technique>" with every character that is not a letter or digit turned
 // into '_' (planar-occluder/pcf -> planar_occluder_pcf).
 std::string datasetTechniqueName(const testing::TestParamInfo<DatasetTechnique>& info);

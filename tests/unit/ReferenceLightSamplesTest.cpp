@@ -214,10 +214,7 @@ private:
   double margin_ = kAmbiguity;
 };
 
-double uniform(std::mt19937_64& random, double low, double high)
-{
-  return std::uniform_real_distribution<double>(low, high)(random);
-}
+using test::uniform;
 
 // A stack of k parallel quads, each a different size but all covering |x|, |z| < 1: a segment from below all of
 // them to above all of them crosses k, one ending between quads i and i+1 crosses i + 1.

@@ -28,7 +28,7 @@ namespace sl
 namespace
 {
 
-constexpr double kPi = glm::pi<double>();
+using test::kPi;
 
 // The standard set-up, y up: an area light of size kLightSize centred kLightHeight above the origin,
 // facing down; an occluder parallel to it at kOccluderHeight, centred at kOccluderCenter (off-axis, so

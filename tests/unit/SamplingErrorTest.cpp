@@ -18,7 +18,7 @@ namespace sl
 namespace
 {
 
-constexpr double pi = 3.14159265358979323846;
+using test::kPi;
 
 Bounds groundBounds()
 {
@@ -67,7 +67,7 @@ TEST(SamplingError, TiltedLightStretchesOnlyTheAxisInItsPlane)
   const CameraView view = makeCameraView(camera, groundBounds(), { 100, 100 });
   for (const double thetaDeg : { 0.0, 30.0, 60.0, 75.0 })
   {
-    const double theta = thetaDeg * pi / 180.0;
+    const double theta = thetaDeg * kPi / 180.0;
     const glm::dvec3 towardLight(0.0, std::cos(theta), std::sin(theta));
     const LightView light = orthographicLight(towardLight, { 0.0, 0.0, -1.0 }, 1.0, 100);
     const SamplingError error = samplingError(view, light, 50.5, 50.5, { 0.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 });
@@ -87,7 +87,7 @@ TEST(SamplingError, SurveyFigure3ViewerOverAGroundUnderAnOverheadLight)
   // 2 tan(fov / 2) / H times the distance z, cos beta = 1 (overhead), cos alpha the ground's cosine to the eye.
   Camera camera;
   camera.position = { 0.0, 1.7, 0.0 };
-  const double tilt = 10.0 * pi / 180.0; // looking down 10 degrees
+  const double tilt = 10.0 * kPi / 180.0; // looking down 10 degrees
   camera.focalPoint = { 0.0, 1.7 - std::sin(tilt), -std::cos(tilt) };
   camera.viewAngleDeg = 40.0;
   const int width = 160;
@@ -99,7 +99,7 @@ TEST(SamplingError, SurveyFigure3ViewerOverAGroundUnderAnOverheadLight)
   const glm::dvec3 up(0.0, 1.0, 0.0);
   const glm::dvec3 pWs = hitOnPlane(view, 0.5 * width, 0.5 * height, up);
   const double z = glm::length(pWs - camera.position);
-  const double pixelAngle = 2.0 * std::tan(0.5 * camera.viewAngleDeg * pi / 180.0) / height;
+  const double pixelAngle = 2.0 * std::tan(0.5 * camera.viewAngleDeg * kPi / 180.0) / height;
   const double texelWidth = 2.0 * halfWidth / resolution;
   const double cosAlpha = std::sin(tilt);
 
@@ -161,7 +161,7 @@ TEST(SamplingError, TheMostStretchedDirectionBoundsBothAxesForRandomViews)
     EXPECT_TRUE(std::isfinite(error.perspectiveFactor) && error.perspectiveFactor > 0.0) << trial;
 
     LightView turned = light;
-    turned.viewFromWorld = glm::rotate(glm::dmat4(1.0), pi / 2.0, glm::dvec3(0.0, 0.0, 1.0)) * light.viewFromWorld;
+    turned.viewFromWorld = glm::rotate(glm::dmat4(1.0), kPi / 2.0, glm::dvec3(0.0, 0.0, 1.0)) * light.viewFromWorld;
     turned.clipFromWorld = turned.clipFromView * turned.viewFromWorld;
     const SamplingError turnedError = samplingError(view, turned, pixel.x, pixel.y, pWs, normal);
     EXPECT_NEAR(turnedError.texelRatioS, error.texelRatioT, 1e-9 * error.texelRatioT) << trial;

@@ -16,7 +16,7 @@ namespace sl
 namespace
 {
 
-constexpr double pi = 3.14159265358979323846;
+using test::kPi;
 
 Camera orthographicCameraLookingDown(double parallelScale)
 {
@@ -104,7 +104,7 @@ TEST(TexelRatio, TiltedLightStretchesTexelsByOneOverCosine)
   const CameraView camera = makeCameraView(orthographicCameraLookingDown(2.0), unitBounds(), { 100, 100 });
   for (const double thetaDeg : { 30.0, 60.0, 75.0 })
   {
-    const double theta = thetaDeg * pi / 180.0;
+    const double theta = thetaDeg * kPi / 180.0;
     const LightView light = orthographicLight({ 0.0, std::cos(theta), std::sin(theta) }, 100);
     const double expected = 0.02 / std::cos(theta) / 0.04;
     EXPECT_NEAR(texelRatio(camera, light, 50.5, 50.5, { 0.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }), expected, 1e-9)

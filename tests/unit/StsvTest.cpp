@@ -34,10 +34,7 @@ namespace
 
 using Random = std::mt19937_64;
 
-double uniform(Random& random, double low, double high)
-{
-  return std::uniform_real_distribution<double>(low, high)(random);
-}
+using test::uniform;
 
 glm::dvec3 uniformIn(Random& random, const glm::dvec3& low, const glm::dvec3& high)
 {

@@ -36,9 +36,7 @@ int vtkSLDcsPass::SampleCount() const
 namespace
 {
 
-const char* const kWedgeVertexShader = "dcs/DcsWedgeVertex.glsl";
-const char* const kWedgeShader = "dcs/DcsWedgeUpdate.glsl";
-const char* const kStsvShader = "stsv/StsvSamples.glsl";
+const char* const kDcsWedgeUpdateShader = "dcs/DcsWedgeUpdate.glsl";
 const char* const kStsvCountersFlag = "STSV_DCS_COUNTERS";
 
 } // namespace
@@ -55,7 +53,7 @@ sl::ShaderDefines vtkSLDcsPass::GetExtraDefines() const
 
 std::vector<vtkSLTechniquePass::PassShader> vtkSLDcsPass::GetPassShaders() const
 {
-  return { { kWedgeShader, {} }, { kStsvShader, { kStsvCountersFlag } } };
+  return { { kDcsWedgeUpdateShader, {} }, { sl::kStsvSamplesShaderPath, { kStsvCountersFlag } } };
 }
 
 void vtkSLDcsPass::Execute(const vtkRenderState* state)
@@ -105,8 +103,8 @@ void vtkSLDcsPass::DrawWedges(vtkOpenGLRenderWindow* window)
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count();
 
   const sl::ShaderDefines defines = this->TechniqueDefines();
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
-    sl::assembleShader(kWedgeShader, defines, this->ParameterDeclarations()), "dcs wedges");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(sl::kWedgeVertexShaderPath, defines),
+    sl::assembleShader(kDcsWedgeUpdateShader, defines, this->ParameterDeclarations()), "dcs wedges");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   glBindImageTexture(0, this->Counters.handle, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
@@ -162,8 +160,8 @@ void vtkSLDcsPass::DrawStsvs(vtkOpenGLRenderWindow* window)
   this->Stsvs.prepare(frame);
   sl::ShaderDefines defines = this->TechniqueDefines();
   defines.emplace_back(kStsvCountersFlag, "");
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
-    sl::assembleShader(kStsvShader, defines, this->ParameterDeclarations()), "dcs STSVs");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(sl::kWedgeVertexShaderPath, defines),
+    sl::assembleShader(sl::kStsvSamplesShaderPath, defines, this->ParameterDeclarations()), "dcs STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   sl::setIntIfUsed(program, "stsvOppositeSideCheck",

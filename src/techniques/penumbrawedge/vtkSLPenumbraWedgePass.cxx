@@ -29,9 +29,7 @@ vtkStandardNewMacro(vtkSLPenumbraWedgePass);
 namespace
 {
 
-const char* const kWedgeVertexShader = "dcs/DcsWedgeVertex.glsl";
-const char* const kWedgeShader = "penumbrawedge/PenumbraWedgeArea.glsl";
-const char* const kStsvShader = "stsv/StsvSamples.glsl";
+const char* const kPenumbraWedgeAreaShader = "penumbrawedge/PenumbraWedgeArea.glsl";
 
 } // namespace
 
@@ -75,8 +73,8 @@ void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
   this->OcclusionDelta = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   this->WedgesCovering = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   const sl::ShaderDefines defines = this->TechniqueDefines();
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
-    sl::assembleShader(kWedgeShader, defines, this->ParameterDeclarations()),
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(sl::kWedgeVertexShaderPath, defines),
+    sl::assembleShader(kPenumbraWedgeAreaShader, defines, this->ParameterDeclarations()),
     "penumbra-wedge wedges");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
@@ -101,7 +99,7 @@ void vtkSLPenumbraWedgePass::DrawWedges(vtkOpenGLRenderWindow* window)
 
 std::vector<vtkSLTechniquePass::PassShader> vtkSLPenumbraWedgePass::GetPassShaders() const
 {
-  return { { kWedgeShader, {} }, { kStsvShader, {} } };
+  return { { kPenumbraWedgeAreaShader, {} }, { sl::kStsvSamplesShaderPath, {} } };
 }
 
 int vtkSLPenumbraWedgePass::SampleCount() const
@@ -122,8 +120,8 @@ void vtkSLPenumbraWedgePass::DrawStsvs(vtkOpenGLRenderWindow* window)
   this->Stsvs.prepare(frame);
 
   const sl::ShaderDefines defines = this->TechniqueDefines();
-  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(kWedgeVertexShader, defines),
-    sl::assembleShader(kStsvShader, defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
+  vtkShaderProgram* program = sl::readyProgram(window, sl::assembleShader(sl::kWedgeVertexShaderPath, defines),
+    sl::assembleShader(sl::kStsvSamplesShaderPath, defines, this->ParameterDeclarations()), "penumbra-wedge STSVs");
   std::vector<vtkTextureObject*> bound = this->SetCommonUniforms(program);
   this->SetReceiverOffsetUniforms(program);
   sl::setIntIfUsed(program, "stsvOppositeSideCheck",

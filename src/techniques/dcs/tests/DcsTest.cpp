@@ -130,11 +130,11 @@ SceneObject orientedBox(const std::string& name, const glm::dvec3& base, const g
 // The per-sample and visibility checks compare with a reference whose rays start 1e-6 of the scene's radius off the
 // receiver, so the counted point is kept as close: receiver_offset 1e-5 (shadow-volume's default) unless a test sets
 // its own. dcs's default, 1e-4, is checked against the reference's default ray origin (DcsDatasets).
-constexpr const char* kCloseReceiverOffset = "receiver_offset=1e-5";
+constexpr const char* kDcsCloseReceiverOffset = "receiver_offset=1e-5";
 
 FrameResult renderDcs(const Scene& scene, int size, std::vector<std::string> settings = {})
 {
-  settings.insert(settings.begin(), kCloseReceiverOffset);
+  settings.insert(settings.begin(), kDcsCloseReceiverOffset);
   settings.push_back("export_sample_counts=1");
   return test::renderDataset(scene, "dcs", size, size, settings);
 }

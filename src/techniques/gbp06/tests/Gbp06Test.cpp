@@ -25,8 +25,8 @@ namespace sl
 namespace
 {
 
-constexpr int kWidth = 64;
-constexpr int kHeight = 48;
+constexpr int kGbp06FrameWidth = 64;
+constexpr int kGbp06FrameHeight = 48;
 
 HierarchicalShadowMap structureOf(const FrameResult& frame, const ShadowMapInputs& inputs)
 {
@@ -64,7 +64,7 @@ TEST(Gbp06, MatchesTheCpuImplementation)
   for (const Case& c : cases)
   {
     const Scene scene = test::loadDataset(c.dataset);
-    const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight, c.settings);
+    const FrameResult frame = test::renderDataset(scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap hsm = structureOf(frame, inputs);
     const Gbp06Settings gbp06Settings = Gbp06Settings::from(frame.parameters);
@@ -74,9 +74,9 @@ TEST(Gbp06, MatchesTheCpuImplementation)
     std::map<BackprojectionClass, int> classes; // pixels compared, by the CPU twin's class
     double maxDifference = 0.0;
     long occluding = 0;
-    for (int y = 0; y < kHeight; ++y)
+    for (int y = 0; y < kGbp06FrameHeight; ++y)
     {
-      for (int x = 0; x < kWidth; ++x)
+      for (int x = 0; x < kGbp06FrameWidth; ++x)
       {
         const Gbp06Sample cpu = gbp06Reference(inputs, hsm, gbp06Settings, x, y);
         if (!cpu.sample.evaluated)
@@ -125,8 +125,8 @@ TEST(Gbp06, HsmTraversalGivesTheKernelsVisibilityVisitingFewerNodes)
     const Scene scene = test::loadDataset(dataset);
     const std::vector<std::string> kernelSettings = { "shadow_map_size=256", "traversal=kernel" };
     const std::vector<std::string> hsmSettings = { "shadow_map_size=256", "traversal=hsm" };
-    const FrameResult kernelFrame = test::renderDataset(scene, "gbp06", kWidth, kHeight, kernelSettings);
-    const FrameResult hsmFrame = test::renderDataset(scene, "gbp06", kWidth, kHeight, hsmSettings);
+    const FrameResult kernelFrame = test::renderDataset(scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight, kernelSettings);
+    const FrameResult hsmFrame = test::renderDataset(scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight, hsmSettings);
     const ShadowMapInputs inputs = test::shadowMapInputs(kernelFrame, scene);
     const HierarchicalShadowMap hsm = structureOf(kernelFrame, inputs);
     const Gbp06Settings kernelTraversal = Gbp06Settings::from(kernelFrame.parameters);
@@ -142,9 +142,9 @@ TEST(Gbp06, HsmTraversalGivesTheKernelsVisibilityVisitingFewerNodes)
     double maxCpuDifference = 0.0;
     int penumbra = 0;
     int skipped = 0;
-    for (int y = 0; y < kHeight; ++y)
+    for (int y = 0; y < kGbp06FrameHeight; ++y)
     {
-      for (int x = 0; x < kWidth; ++x)
+      for (int x = 0; x < kGbp06FrameWidth; ++x)
       {
         const Gbp06Sample cpuKernel = gbp06Reference(inputs, hsm, kernelTraversal, x, y);
         const Gbp06Sample cpuHsm = gbp06Reference(inputs, hsm, hsmTraversal, x, y);
@@ -204,7 +204,7 @@ TEST(Gbp06, GapFillingOnlyAddsOcclusionAndClosesGaps)
     ImageF reference;
     for (int on = 0; on < 2; ++on)
     {
-      const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight,
+      const FrameResult frame = test::renderDataset(scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight,
         { "shadow_map_size=256", on ? "gap_filling=left_bottom" : "gap_filling=off" });
       const ReferenceInputs inputs = test::referenceInputs(frame, scene);
       if (on == 0)
@@ -334,7 +334,7 @@ TEST(Gbp06, MirroringTheSceneInLightXAndYSwapsTheGapFillingConventions)
     const std::string key = std::string(onMirrored ? "M " : "S ") + traversal + " " + gapFilling;
     if (frames.count(key) == 0)
     {
-      frames.emplace(key, test::renderDataset(onMirrored ? mirrored : scene, "gbp06", kWidth, kHeight,
+      frames.emplace(key, test::renderDataset(onMirrored ? mirrored : scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight,
         { "shadow_map_size=" + std::to_string(size), "traversal=" + traversal, "gap_filling=" + gapFilling }));
     }
     return frames.at(key);
@@ -382,9 +382,9 @@ TEST(Gbp06, MirroringTheSceneInLightXAndYSwapsTheGapFillingConventions)
     int differing = 0; // penumbra pixels more than 1e-4 apart
     int classMismatches = 0;
     int countMismatches = 0;
-    for (int y = 0; y < kHeight; ++y)
+    for (int y = 0; y < kGbp06FrameHeight; ++y)
     {
-      for (int x = 0; x < kWidth; ++x)
+      for (int x = 0; x < kGbp06FrameWidth; ++x)
       {
         const double difference = std::abs(visibilityA.at(x, y) - visibilityB.at(x, y));
         maxGpu = std::max(maxGpu, difference);
@@ -431,7 +431,7 @@ TEST(Gbp06, RefinedKernelsMissNoGapFilledMicropatch)
   // conventions. Lit and umbra are decisions over the searched texels, so a pixel decided umbra is skipped and
   // one decided lit must have visibility 1.
   const Scene scene = asymmetricOccluders();
-  const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight, { "shadow_map_size=256" });
+  const FrameResult frame = test::renderDataset(scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight, { "shadow_map_size=256" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const HierarchicalShadowMap hsm = structureOf(frame, inputs);
   for (const std::string gapFilling : { "left_bottom", "right_top" })
@@ -448,9 +448,9 @@ TEST(Gbp06, RefinedKernelsMissNoGapFilledMicropatch)
     long unrefinedTexels = 0;
     long occludersOutside = 0; // occluding texels only the unrefined kernels examine
     double maxDifference = 0.0;
-    for (int y = 0; y < kHeight; ++y)
+    for (int y = 0; y < kGbp06FrameHeight; ++y)
     {
-      for (int x = 0; x < kWidth; ++x)
+      for (int x = 0; x < kGbp06FrameWidth; ++x)
       {
         const Gbp06Sample narrow = gbp06Reference(inputs, hsm, refinedSettings, x, y);
         if (!narrow.sample.evaluated || narrow.classification == BackprojectionClass::Umbra)
@@ -668,7 +668,7 @@ TEST(Gbp06, ProbeRecordsTheMicropatchesAndNodesTheGpuCountedAndTheAreaTheyCover)
   int gapFilledPixels = 0;
   for (const std::string traversal : { "hsm", "kernel" })
   {
-    const FrameResult frame = test::renderDataset(scene, "gbp06", kWidth, kHeight,
+    const FrameResult frame = test::renderDataset(scene, "gbp06", kGbp06FrameWidth, kGbp06FrameHeight,
       { "shadow_map_size=256", "traversal=" + traversal, "gap_filling=left_bottom" });
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const HierarchicalShadowMap hsm = structureOf(frame, inputs);

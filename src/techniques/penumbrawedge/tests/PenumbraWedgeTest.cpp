@@ -285,19 +285,11 @@ TEST(PenumbraWedge, WedgesOutsideTheLightChangeNothing)
 // ---------------------------------------------------------------------------------------------------------------
 // The GPU technique.
 
-constexpr int kFrameSize = 96;
+constexpr int kWedgeFrameSize = 96;
 // The counted point is moved receiver_offset toward the camera; close to the receiver for the closed forms.
-constexpr const char* kCloseReceiverOffset = "receiver_offset=1e-6";
+constexpr const char* kWedgeCloseReceiverOffset = "receiver_offset=1e-6";
 
-const ImageF& bufferOf(const FrameResult& frame, const std::string& name)
-{
-  const NamedImage* image = frame.find(name);
-  if (image == nullptr)
-  {
-    throw std::runtime_error("frame has no buffer '" + name + "'");
-  }
-  return image->image;
-}
+using test::bufferOf;
 
 glm::dvec3 pointAt(const FrameResult& frame, int x, int y)
 {
@@ -320,7 +312,7 @@ TEST_P(PenumbraWedgeGpu, MatchesTheTwinPixelByPixel)
 {
   const GpuTwinCase& c = GetParam();
   const Scene scene = loadScene(test::datasetPath(c.dataset), c.overrides);
-  const FrameResult frame = test::renderDataset(scene, "penumbra-wedge", kFrameSize, kFrameSize);
+  const FrameResult frame = test::renderDataset(scene, "penumbra-wedge", kWedgeFrameSize, kWedgeFrameSize);
   const Light& light = scene.lights.front();
   const PenumbraWedgeScene prepared = penumbraWedgeScene(scene, light);
   const double receiverOffset = frame.parameters.get("receiver_offset");
@@ -331,9 +323,9 @@ TEST_P(PenumbraWedgeGpu, MatchesTheTwinPixelByPixel)
   int beyondOneTenThousandth = 0;
   double worstRaw = 0.0;
   double worstVisibility = 0.0;
-  for (int y = 0; y < kFrameSize; ++y)
+  for (int y = 0; y < kWedgeFrameSize; ++y)
   {
-    for (int x = 0; x < kFrameSize; ++x)
+    for (int x = 0; x < kWedgeFrameSize; ++x)
     {
       if (bufferOf(frame, "coverage").at(x, y) <= 0.5f || bufferOf(frame, "receives_shadows").at(x, y) <= 0.5f)
       {
@@ -395,7 +387,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PenumbraWedgeGpu, testing::ValuesIn(gpuTwinCase
 TEST(PenumbraWedgeGpuClosedForm, PlanarOccluderWithinOneTenThousandth)
 {
   const Scene scene = test::loadDataset("planar-occluder");
-  const FrameResult frame = test::renderDataset(scene, "penumbra-wedge", 128, 128, { kCloseReceiverOffset });
+  const FrameResult frame = test::renderDataset(scene, "penumbra-wedge", 128, 128, { kWedgeCloseReceiverOffset });
   const test::GroundError error = test::groundErrorAgainst(
     frame, [](double x, double z) { return test::parallelSquaresVisibility(1.0, 3.0, 1.0, 1.0, x, z); });
   std::cout << "[ measured ] penumbra-wedge, planar-occluder against the closed form: max " << error.maxError << ", RMSE "
@@ -410,7 +402,7 @@ TEST(PenumbraWedgeGpuClosedForm, StackedOccludersOverShadowWhereTheyOverlap)
   // under two occluders (the single hard-shadow count); darker where the two shadows overlap in the penumbra, by the
   // double count; pw_occlusion_raw > 1 somewhere.
   const Scene scene = test::loadDataset("stacked-occluders");
-  const FrameResult frame = test::renderDataset(scene, "penumbra-wedge", kFrameSize, kFrameSize, { kCloseReceiverOffset });
+  const FrameResult frame = test::renderDataset(scene, "penumbra-wedge", kWedgeFrameSize, kWedgeFrameSize, { kWedgeCloseReceiverOffset });
   ReferenceSettings settings;
   settings.samples = 2048;
   const ReferenceResult reference = renderReference(test::referenceInputs(frame, scene), settings);
@@ -419,9 +411,9 @@ TEST(PenumbraWedgeGpuClosedForm, StackedOccludersOverShadowWhereTheyOverlap)
   int darker = 0;
   int overOne = 0;
   double worstDarker = 0.0;
-  for (int y = 0; y < kFrameSize; ++y)
+  for (int y = 0; y < kWedgeFrameSize; ++y)
   {
-    for (int x = 0; x < kFrameSize; ++x)
+    for (int x = 0; x < kWedgeFrameSize; ++x)
     {
       if (bufferOf(frame, "coverage").at(x, y) <= 0.5f)
       {
@@ -456,8 +448,8 @@ TEST(PenumbraWedgeGpuClosedForm, BunnyErrorsAboveDcsWherePotentialSilhouettesOut
   // pixels where dcs (potential silhouettes) finds more wedges than penumbra-wedge (centre silhouettes) hold its
   // excess error.
   const Scene scene = test::loadDataset("bunny");
-  const FrameResult wedges = test::renderDataset(scene, "penumbra-wedge", kFrameSize, kFrameSize);
-  const FrameResult dcs = test::renderDataset(scene, "dcs", kFrameSize, kFrameSize, { "samples=256" });
+  const FrameResult wedges = test::renderDataset(scene, "penumbra-wedge", kWedgeFrameSize, kWedgeFrameSize);
+  const FrameResult dcs = test::renderDataset(scene, "dcs", kWedgeFrameSize, kWedgeFrameSize, { "samples=256" });
   ReferenceSettings settings;
   settings.samples = 2048;
   const ReferenceResult reference = renderReference(test::referenceInputs(wedges, scene), settings);
@@ -468,9 +460,9 @@ TEST(PenumbraWedgeGpuClosedForm, BunnyErrorsAboveDcsWherePotentialSilhouettesOut
   double elsewhereSquared = 0.0;
   int more = 0;
   int elsewhere = 0;
-  for (int y = 0; y < kFrameSize; ++y)
+  for (int y = 0; y < kWedgeFrameSize; ++y)
   {
-    for (int x = 0; x < kFrameSize; ++x)
+    for (int x = 0; x < kWedgeFrameSize; ++x)
     {
       if (coverage.at(x, y) <= 0.5f)
       {

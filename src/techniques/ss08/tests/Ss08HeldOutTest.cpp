@@ -70,12 +70,6 @@ double parallelRectanglesVisibility(double lightSize, double lightHeight, const 
   return 1.0 - covered / (lightSize * lightSize);
 }
 
-std::vector<std::string> plus(std::vector<std::string> settings, const std::vector<std::string>& more)
-{
-  settings.insert(settings.end(), more.begin(), more.end());
-  return settings;
-}
-
 // stacked-occluders with its two occluders replaced by `rectangles` (unused slots moved far below the ground, where
 // they neither cast nor show), the light at `lightHeight` with side `lightSize`, seen from above the light so the
 // ground under the occluders fills most of the frame.

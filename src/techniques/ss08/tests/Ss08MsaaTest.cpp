@@ -28,25 +28,17 @@ namespace sl
 namespace
 {
 
-constexpr int kFrameSize = 128;
+constexpr int kMsaaFrameSize = 128;
 constexpr int kSamples = 4;
 constexpr double kPerPixel = 1e30; // tau at which every sample takes its pixel's visibility
 
-const ImageF& bufferOf(const FrameResult& frame, const std::string& name)
-{
-  const NamedImage* image = frame.find(name);
-  if (image == nullptr)
-  {
-    throw std::runtime_error("frame has no buffer '" + name + "'");
-  }
-  return image->image;
-}
+using test::bufferOf;
 
 FrameResult renderSs08(const Scene& scene, const std::vector<std::string>& settings)
 {
   std::vector<std::string> all = { "shadow_map_size=512" };
   all.insert(all.end(), settings.begin(), settings.end());
-  return test::renderDataset(scene, "ss08", kFrameSize, kFrameSize, all);
+  return test::renderDataset(scene, "ss08", kMsaaFrameSize, kMsaaFrameSize, all);
 }
 
 FrameResult renderMultisampled(const Scene& scene, double tolerance)
@@ -133,9 +125,9 @@ TEST_P(Ss08MsaaResolve, MatchesItsTwinBitForBitAndReducesAtTheExtremes)
   const ImageF& interpolated = bufferOf(frame, "msaa_interpolated_samples");
   int interpolatedTotal = 0;
   int pixelsWithDistinct = 0;
-  for (int y = 0; y < kFrameSize; ++y)
+  for (int y = 0; y < kMsaaFrameSize; ++y)
   {
-    for (int x = 0; x < kFrameSize; ++x)
+    for (int x = 0; x < kMsaaFrameSize; ++x)
     {
       interpolatedTotal += static_cast<int>(interpolated.at(x, y));
       pixelsWithDistinct += distinct.at(x, y) > 0.0f ? 1 : 0;
@@ -186,9 +178,9 @@ TEST_P(Ss08MsaaScene, AgreeingPixelsEqualTheSingleSampledRender)
   int close = 0;
   int exact = 0;
   double squaredSum = 0.0;
-  for (int y = 0; y < kFrameSize; ++y)
+  for (int y = 0; y < kMsaaFrameSize; ++y)
   {
-    for (int x = 0; x < kFrameSize; ++x)
+    for (int x = 0; x < kMsaaFrameSize; ++x)
     {
       bool allCovered = firstCovered(multi, x, y) && firstCovered(single, x, y);
       for (int s = 0; s < kSamples; ++s)
@@ -210,7 +202,7 @@ TEST_P(Ss08MsaaScene, AgreeingPixelsEqualTheSingleSampledRender)
       exact += difference == 0.0 ? 1 : 0;
     }
   }
-  ASSERT_GT(agreeing, kFrameSize * kFrameSize / 4);
+  ASSERT_GT(agreeing, kMsaaFrameSize * kMsaaFrameSize / 4);
   const double rmse = std::sqrt(squaredSum / agreeing);
   std::cout << "[ measured ] ss08 msaa=4 " << GetParam() << ": " << agreeing << " pixels whose samples agree; against the "
             << "single-sampled render " << exact << " equal, " << close << " within 0.02, RMSE " << rmse << "\n";
@@ -224,7 +216,7 @@ TEST_P(Ss08MsaaScene, NeighbourRuleLowersTheSilhouetteErrorAgainstTheMultisample
   const FrameResult perPixel = renderMultisampled(scene, kPerPixel);
   const FrameResult neighbours = renderSs08(scene, { "msaa=4" });
   std::vector<ReferenceInputs> inputs;
-  for (const FrameResult& sample : test::renderSampleGBuffers(scene, kFrameSize, kFrameSize, kSamples))
+  for (const FrameResult& sample : test::renderSampleGBuffers(scene, kMsaaFrameSize, kMsaaFrameSize, kSamples))
   {
     inputs.push_back(test::referenceInputs(sample, scene));
   }
@@ -238,9 +230,9 @@ TEST_P(Ss08MsaaScene, NeighbourRuleLowersTheSilhouetteErrorAgainstTheMultisample
   double allNeighbour = 0.0;
   int silhouettes = 0;
   int covered = 0;
-  for (int y = 0; y < kFrameSize; ++y)
+  for (int y = 0; y < kMsaaFrameSize; ++y)
   {
-    for (int x = 0; x < kFrameSize; ++x)
+    for (int x = 0; x < kMsaaFrameSize; ++x)
     {
       if (!firstCovered(neighbours, x, y))
       {
@@ -288,9 +280,9 @@ TEST(Ss08Msaa, ProbeReplaysTheFirstSampleAndRecordsTheResolve)
   const Scene scene = test::loadDataset("bunny");
   const FrameResult frame = renderSs08(scene, { "msaa=4" });
   int probed = 0;
-  for (int y = 0; y < kFrameSize && probed < 3; ++y)
+  for (int y = 0; y < kMsaaFrameSize && probed < 3; ++y)
   {
-    for (int x = 0; x < kFrameSize && probed < 3; ++x)
+    for (int x = 0; x < kMsaaFrameSize && probed < 3; ++x)
     {
       if (!isSilhouette(frame, x, y) || bufferOf(frame, "msaa_interpolated_samples").at(x, y) == 0.0f ||
         bufferOf(frame, "visibility").at(x, y) == bufferOf(frame, "msaa_pixel_visibility").at(x, y))

@@ -32,18 +32,10 @@ namespace
 {
 
 
-constexpr int kFrameSize = 128;
+constexpr int kQualityFrameSize = 128;
 const char* const kMapSetting = "shadow_map_size=512";
 
-const ImageF& bufferOf(const FrameResult& frame, const std::string& name)
-{
-  const NamedImage* image = frame.find(name);
-  if (image == nullptr)
-  {
-    throw std::runtime_error("ss08 frame has no buffer '" + name + "'");
-  }
-  return image->image;
-}
+using test::bufferOf;
 
 double statistic(const FrameResult& frame, const std::string& name)
 {
@@ -330,7 +322,7 @@ TEST(Ss08Quality, LoqMapIsContinuousOnEachSurfaceAfterSmoothing)
       for (const std::string floor : { "none", "raw" })
       {
         const std::vector<std::string> settings = { kMapSetting, "budget=" + std::to_string(budget), "loq_floor=" + floor };
-        const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize, settings);
+        const FrameResult frame = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize, settings);
         const Continuity continuity = continuityOf(frame);
         const std::string label = test::caseLabel(dataset, settings);
         const bool gated = budget == gatedBudget && floor == "none"; // the default floor; raw restores the raw steps
@@ -368,7 +360,7 @@ TEST_P(Ss08Seams, BlendingWeakensTheSeamsWhereTheLevelChanges)
     SeamRatio ratios[2];
     for (int blend = 0; blend < 2; ++blend)
     {
-      const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize,
+      const FrameResult frame = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize,
         { kMapSetting, "budget=" + std::to_string(budget), "blend_band=" + std::to_string(blend) });
       ratios[blend] = seamRatioOf(frame);
       pooled[blend] += ratios[blend];
@@ -411,7 +403,7 @@ TEST(Ss08Quality, MicrorectsShowWeakerSeamsThanMicropatchesWithoutBlending)
       SeamRatio ratios[2];
       for (int k = 0; k < 2; ++k)
       {
-        const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize,
+        const FrameResult frame = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize,
           { kMapSetting, "budget=" + std::to_string(budget), "blend_band=0", std::string("micro_occluder=") + kinds[k] });
         ratios[k] = seamRatioOf(frame);
         pooled[k] += ratios[k];
@@ -460,7 +452,7 @@ TEST_P(Ss08Scaling, QualityAndCostScaleWithTheBudget)
   std::optional<Reference> reference; // the camera, hence the G-buffer points, are the same at every budget
   for (const int budget : budgets)
   {
-    const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize,
+    const FrameResult frame = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize,
       { kMapSetting, "budget=" + std::to_string(budget) });
     if (!reference)
     {
@@ -478,7 +470,7 @@ TEST_P(Ss08Scaling, QualityAndCostScaleWithTheBudget)
     row.cutShort = statistic(frame, "cut_short_pixels");
     rows.push_back(row);
   }
-  std::cout << "[ measured ] ss08 quality by budget on " << dataset << " (" << kFrameSize << "^2, " << kMapSetting
+  std::cout << "[ measured ] ss08 quality by budget on " << dataset << " (" << kQualityFrameSize << "^2, " << kMapSetting
             << "; Embree " << describe(*reference) << ")\n"
             << "[ measured ]   budget | RMSE | penumbra RMSE | % back-projecting | micro-occluders mean | stdev | floor(l) alone | blend overhead | mean l | cut short\n";
   for (const Row& row : rows)
@@ -527,9 +519,9 @@ INSTANTIATE_TEST_SUITE_P(Datasets, Ss08Scaling, ::testing::Values("bunny", "stac
 TEST(Ss08Quality, BudgetMapLowersTheCostAtTheBorders)
 {
   const Scene scene = test::loadDataset("bunny");
-  const FrameResult ramp = test::renderSs08(scene, kFrameSize, kFrameSize,
+  const FrameResult ramp = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize,
     { kMapSetting, "budget_map=ramp_x", "budget=12", "budget_border=5" });
-  const FrameResult uniform = test::renderSs08(scene, kFrameSize, kFrameSize, { kMapSetting, "budget=12" });
+  const FrameResult uniform = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize, { kMapSetting, "budget=12" });
   const ImageF& budget = bufferOf(ramp, "budget");
   const ImageF& classes = bufferOf(ramp, "classification");
   const int width = budget.width;
@@ -592,7 +584,7 @@ TEST(Ss08Quality, BudgetMapLowersTheCostAtTheBorders)
   double uniformCentre = 0.0;
   outerAndCentre(ramp, rampOuterPixels, rampCentrePixels, rampOuter, rampCentre);
   outerAndCentre(uniform, uniformOuterPixels, uniformCentrePixels, uniformOuter, uniformCentre);
-  std::cout << "[ measured ] ss08 budget map ramp_x 12 -> 5 on bunny (" << kFrameSize << "^2, " << kMapSetting
+  std::cout << "[ measured ] ss08 budget map ramp_x 12 -> 5 on bunny (" << kQualityFrameSize << "^2, " << kMapSetting
             << "): budget buffer 5 at the border columns, 12 at the centre (" << checkedBorder << " / " << checkedCentre
             << " pixels); mean micro-occluders outer fifths " << rampOuter << " (" << rampOuterPixels
             << " back-projecting pixels), central fifth " << rampCentre << " (" << rampCentrePixels << "); uniform 12: outer "
@@ -670,7 +662,7 @@ TEST_P(Ss08Fig12, MicrorectsBeatMicropatchesAtCoarseLevelsWithBitmasks)
     {
       const std::vector<std::string> settings = { kFig12MapSetting, "force_level=" + std::to_string(level),
         std::string("micro_occluder=") + kinds[k], std::string("accumulation=") + accumulations[a] };
-      const FrameResult frame = test::renderSs08(scene, kFrameSize, kFrameSize, settings);
+      const FrameResult frame = test::renderSs08(scene, kQualityFrameSize, kQualityFrameSize, settings);
       if (!reference)
       {
         reference = referenceOf(frame, scene);
@@ -700,7 +692,7 @@ TEST_P(Ss08Fig12, MicrorectsBeatMicropatchesAtCoarseLevelsWithBitmasks)
   const auto mse = [&](int k, int a) { return error[k][a].covered.rmse * error[k][a].covered.rmse; };
   const double rectVsPatchNoise = mseDifferenceNoise(*reference, visibility[0][1], visibility[1][1]);
   const double bitmaskVsAreaNoise = mseDifferenceNoise(*reference, visibility[1][0], visibility[1][1]);
-  std::cout << "[ measured ] ss08 Fig. 12 on " << dataset << ", force_level=" << level << " (" << kFrameSize << "^2, "
+  std::cout << "[ measured ] ss08 Fig. 12 on " << dataset << ", force_level=" << level << " (" << kQualityFrameSize << "^2, "
             << kFig12MapSetting << "; Embree " << describe(*reference) << "): RMSE micropatch+area "
             << error[0][0].covered.rmse << ", micropatch+bitmask " << error[0][1].covered.rmse << ", microrect+area "
             << error[1][0].covered.rmse << ", microrect+bitmask " << error[1][1].covered.rmse << " over "

@@ -73,17 +73,7 @@ ClassCounts classHistogram(const FrameResult& frame)
 // The datasets whose shadow-casting light ss08 supports (square area lights).
 const std::vector<std::string>& squareLightDatasets()
 {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> found;
-    for (const std::string& name : test::datasetNames())
-    {
-      if (findTechnique("ss08").supports(test::loadDataset(name).lights.front()))
-      {
-        found.push_back(name);
-      }
-    }
-    return found;
-  }();
+  static const std::vector<std::string> names = test::datasetsRenderedBy("ss08");
   return names;
 }
 

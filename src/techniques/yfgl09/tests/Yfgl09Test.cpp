@@ -28,33 +28,33 @@ HierarchicalShadowMap dualMssm(const ShadowMapInputs& inputs)
 }
 
 // Pixels per packet class, indexed by the PacketClass code (the one declaration the shader's codes come from).
-constexpr std::size_t classCount = static_cast<std::size_t>(PacketClass::CutShort) + 1;
-using ClassCounts = std::array<int, classCount>;
+constexpr std::size_t packetClassCount = static_cast<std::size_t>(PacketClass::CutShort) + 1;
+using PacketClassCounts = std::array<int, packetClassCount>;
 
 std::size_t code(PacketClass packetClass)
 {
   return static_cast<std::size_t>(packetClass);
 }
 
-const char* const classNames[classCount] = { "not tested", "trivial", "coherent", "non-coherent", "caught null", "over budget",
+const char* const packetClassNames[packetClassCount] = { "not tested", "trivial", "coherent", "non-coherent", "caught null", "over budget",
   "cut short" };
 
-std::string histogram(const ClassCounts& counts)
+std::string packetHistogramText(const PacketClassCounts& counts)
 {
   std::string text;
-  for (std::size_t c = 0; c < classCount; ++c)
+  for (std::size_t c = 0; c < packetClassCount; ++c)
   {
-    text += std::string(c ? ", " : "") + classNames[c] + " " + std::to_string(counts[static_cast<std::size_t>(c)]);
+    text += std::string(c ? ", " : "") + packetClassNames[c] + " " + std::to_string(counts[static_cast<std::size_t>(c)]);
   }
   return text;
 }
 
-ClassCounts classHistogram(const FrameResult& frame)
+PacketClassCounts packetClassHistogram(const FrameResult& frame)
 {
-  ClassCounts counts{};
+  PacketClassCounts counts{};
   for (const float value : frame.find("packet_class")->image.data)
   {
-    ++counts[static_cast<std::size_t>(std::clamp(static_cast<int>(value), 0, static_cast<int>(classCount) - 1))];
+    ++counts[static_cast<std::size_t>(std::clamp(static_cast<int>(value), 0, static_cast<int>(packetClassCount) - 1))];
   }
   return counts;
 }
@@ -91,7 +91,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
   };
   const int width = 64;
   const int height = 48;
-  ClassCounts allClasses{};
+  PacketClassCounts allClasses{};
   for (const Case& c : cases)
   {
     const Scene scene = test::loadDataset(c.dataset);
@@ -103,7 +103,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
     int compared = 0;
     int skipped = 0;
     int decisionMismatches = 0;
-    ClassCounts classes{};
+    PacketClassCounts classes{};
     for (int y = 0; y < height; ++y)
     {
       for (int x = 0; x < width; ++x)
@@ -135,7 +135,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
         }
       }
     }
-    std::cout << "[ measured ] yfgl09 " << label << ": " << histogram(classes) << "; compared " << compared << ", skipped "
+    std::cout << "[ measured ] yfgl09 " << label << ": " << packetHistogramText(classes) << "; compared " << compared << ", skipped "
               << skipped << ", decisions differing " << decisionMismatches << ", max |gpu - cpu| " << maxDifference << "\n";
     EXPECT_GT(compared, width * height / 2) << label;
     EXPECT_LT(skipped, width * height / 20) << label;
@@ -160,7 +160,7 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
   const Scene scene = test::loadDataset("stacked-occluders");
   const TechniqueDescriptor& technique = findTechnique("yfgl09");
   ASSERT_TRUE(static_cast<bool>(technique.probe));
-  ClassCounts probed{};
+  PacketClassCounts probed{};
   int lit = 0;
   int umbra = 0;
   int partial = 0;
@@ -206,7 +206,7 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
         const double gpuVisibility = frame.find("visibility")->image.at(x, y);
         ProbeRecorder recorder;
         const ProbeOutcome outcome = technique.probe({ &frame, &scene, 0 }, { x, y }, recorder);
-        const std::string label = "pixel " + std::to_string(x) + "," + std::to_string(y) + " class " + classNames[code(gpuClass)];
+        const std::string label = "pixel " + std::to_string(x) + "," + std::to_string(y) + " class " + packetClassNames[code(gpuClass)];
         // Replayed exactly as in the frame, ambiguous or not.
         const auto recorded = [&](const std::string& name) {
           const ProbeQuantity* quantity = recorder.record().find(name);
@@ -264,7 +264,7 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
       }
     }
   }
-  std::cout << "[ measured ] yfgl09 probe on stacked-occluders, default and coherence_test=off: " << histogram(probed) << " (" << lit << " lit, " << umbra << " umbra, "
+  std::cout << "[ measured ] yfgl09 probe on stacked-occluders, default and coherence_test=off: " << packetHistogramText(probed) << " (" << lit << " lit, " << umbra << " umbra, "
             << partial << " partial) replayed unambiguous and consistent\n";
   EXPECT_EQ(lit, 4);
   EXPECT_EQ(umbra, 4);
@@ -276,31 +276,17 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
 }
 
 // The scenes whose light gbp07 and yfgl09 support (square area lights).
-std::vector<std::string> squareLightDatasets()
-{
-  std::vector<std::string> names;
-  for (const std::string& name : test::datasetNames())
-  {
-    const Scene scene = test::loadDataset(name);
-    if (findTechnique("gbp07").supports(scene.lights.front()))
-    {
-      names.push_back(name);
-    }
-  }
-  return names;
-}
-
 TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
 {
   // The paper's claim (§4: "exactly the same contours as the original method"): packets and hierarchy change
   // the cost, not the result. Every packet size 1 x 1 .. 4 x 4 with every packet that can be coherent taken
   // packet-wise (coherence_test off), and the default 3 x 3 with the §4.3 predictions, against gbp07 with the
   // same (exact) MSSM kernels. Only the order of float sums differs.
-  const std::vector<std::string> datasets = squareLightDatasets();
+  const std::vector<std::string> datasets = test::datasetsRenderedBy("gbp07");
   ASSERT_GE(datasets.size(), 6u);
   const int width = 64;
   const int height = 48;
-  ClassCounts allClasses{};
+  PacketClassCounts allClasses{};
   for (const std::string& dataset : datasets)
   {
     const Scene scene = test::loadDataset(dataset);
@@ -337,8 +323,8 @@ TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
           worstPixel = static_cast<int>(i);
         }
       }
-      const ClassCounts classes = classHistogram(frame);
-      for (std::size_t c = 0; c < classCount; ++c)
+      const PacketClassCounts classes = packetClassHistogram(frame);
+      for (std::size_t c = 0; c < packetClassCount; ++c)
       {
         allClasses[c] += classes[c];
       }
@@ -351,7 +337,7 @@ TEST(Yfgl09, SameVisibilityAsGbp07OnEveryDatasetAndPacketSize)
     std::cout << "[ measured ] yfgl09 vs gbp07 on " << dataset << ", " << variants.size() << " packet settings: max |difference| "
               << worst << "\n";
   }
-  std::cout << "[ measured ] yfgl09 pixel classes over all runs: " << histogram(allClasses) << "\n";
+  std::cout << "[ measured ] yfgl09 pixel classes over all runs: " << packetHistogramText(allClasses) << "\n";
   EXPECT_GT(allClasses[code(PacketClass::Coherent)], 1000) << "coherent packets must have been exercised";
   EXPECT_GT(allClasses[code(PacketClass::CaughtNull)], 100) << "caught-null packets must have been exercised";
 }
@@ -398,9 +384,9 @@ TEST(Yfgl09, HierarchyVisitsFewerNodesThanTheBruteForceOnEveryPixelClass)
     ASSERT_GE(visited.size(), 2u) << label << ": at least two traversing classes";
     for (const auto& [pixelClass, sums] : visited)
     {
-      std::cout << "[ measured ] yfgl09 " << label << ", " << classNames[pixelClass] << ": visited nodes " << sums.first
+      std::cout << "[ measured ] yfgl09 " << label << ", " << packetClassNames[pixelClass] << ": visited nodes " << sums.first
                 << " (hierarchy) vs " << sums.second << " (every cell), ratio " << sums.second / std::max(1.0, sums.first) << "\n";
-      EXPECT_LT(sums.first, sums.second) << label << " class " << classNames[pixelClass];
+      EXPECT_LT(sums.first, sums.second) << label << " class " << packetClassNames[pixelClass];
     }
   }
 }
@@ -463,9 +449,9 @@ TEST(Yfgl09, HardCasesFinishAndStayExact)
         EXPECT_NEAR(gpu, exact.sample.visibility, 1e-3) << c.what << " pixel " << x << "," << y;
       }
     }
-    const ClassCounts classes = classHistogram(frame);
+    const PacketClassCounts classes = packetClassHistogram(frame);
     std::cout << "[ measured ] yfgl09, " << c.what << ": widest kernel " << maxKernel << " texels, " << edgePixels
-              << " penumbra pixels whose kernel reaches the map's border, " << histogram(classes) << ", max |gpu - exact| " << maxDifference
+              << " penumbra pixels whose kernel reaches the map's border, " << packetHistogramText(classes) << ", max |gpu - exact| " << maxDifference
               << " over " << compared << " pixels\n";
     EXPECT_GT(compared, 1000) << c.what;
     if (c.what == "kernels leaving the map")
@@ -550,9 +536,9 @@ TEST(Yfgl09, KernelsWiderThan256TexelsAtTheDefaultMapStayExact)
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
     const TwinComparison result = compareWithTwin(frame, cpu, c.what);
-    const ClassCounts classes = classHistogram(frame);
+    const PacketClassCounts classes = packetClassHistogram(frame);
     std::cout << "[ measured ] yfgl09 at 1024^2, " << c.what << ": widest kernel " << result.maxKernel << " texels, "
-              << histogram(classes) << ", max |gpu - cpu| " << result.maxDifference << " over " << result.compared << " pixels\n";
+              << packetHistogramText(classes) << ", max |gpu - cpu| " << result.maxDifference << " over " << result.compared << " pixels\n";
     EXPECT_GT(result.maxKernel, 256.0) << c.what << ": the case must reach kernels wider than 256 texels";
     EXPECT_EQ(result.cutShort, 0) << c.what;
     EXPECT_EQ(frame.techniqueStatistics.at("cut_short_pixels"), 0.0) << c.what;
