@@ -20,35 +20,43 @@ ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context)
   const Light& light = *inputs_.light;
   lightSize_ = light.type == LightType::Area ? light.size : 0.0;
   // Level 0 is the map itself (read through minLevel/maxLevel): no copy of a map that is 16 MiB at the default size.
-  while (minLevel(levelCount() - 1).width > 1 && minLevel(levelCount() - 1).height > 1)
-  {
-    const ImageF& fineMin = minLevel(levelCount() - 1);
-    const ImageF& fineMax = maxLevel(levelCount() - 1);
-    ImageF coarseMin((fineMin.width + 1) / 2, (fineMin.height + 1) / 2, 1, 0.0f);
-    ImageF coarseMax = coarseMin;
-    for (int y = 0; y < coarseMin.height; ++y)
+  // The min-max pyramid is built by the first question that reads it (casterRange, hiddenByMargin): hard's and pcf's
+  // rules ask only depthTestMixed, which reads the map itself (at the default 2048^2 map the pyramid is ~0.1 s).
+}
+
+void ShadowMapFootprint::buildPyramid() const
+{
+  std::call_once(pyramidBuilt_, [this] {
+    while (minLevel(levelCount() - 1).width > 1 && minLevel(levelCount() - 1).height > 1)
     {
-      for (int x = 0; x < coarseMin.width; ++x)
+      const ImageF& fineMin = minLevel(levelCount() - 1);
+      const ImageF& fineMax = maxLevel(levelCount() - 1);
+      ImageF coarseMin((fineMin.width + 1) / 2, (fineMin.height + 1) / 2, 1, 0.0f);
+      ImageF coarseMax = coarseMin;
+      for (int y = 0; y < coarseMin.height; ++y)
       {
-        float lo = 1e30f;
-        float hi = -1e30f;
-        for (int dy = 0; dy < 2; ++dy)
+        for (int x = 0; x < coarseMin.width; ++x)
         {
-          for (int dx = 0; dx < 2; ++dx)
+          float lo = 1e30f;
+          float hi = -1e30f;
+          for (int dy = 0; dy < 2; ++dy)
           {
-            const int fx = std::min(2 * x + dx, fineMin.width - 1);
-            const int fy = std::min(2 * y + dy, fineMin.height - 1);
-            lo = std::min(lo, fineMin.at(fx, fy));
-            hi = std::max(hi, fineMax.at(fx, fy));
+            for (int dx = 0; dx < 2; ++dx)
+            {
+              const int fx = std::min(2 * x + dx, fineMin.width - 1);
+              const int fy = std::min(2 * y + dy, fineMin.height - 1);
+              lo = std::min(lo, fineMin.at(fx, fy));
+              hi = std::max(hi, fineMax.at(fx, fy));
+            }
           }
+          coarseMin.at(x, y) = lo;
+          coarseMax.at(x, y) = hi;
         }
-        coarseMin.at(x, y) = lo;
-        coarseMax.at(x, y) = hi;
       }
+      coarseMinLevels_.push_back(std::move(coarseMin));
+      coarseMaxLevels_.push_back(std::move(coarseMax));
     }
-    coarseMinLevels_.push_back(std::move(coarseMin));
-    coarseMaxLevels_.push_back(std::move(coarseMax));
-  }
+  });
 }
 
 std::optional<ShadowMapFootprint::Receiver> ShadowMapFootprint::receiver(int x, int y) const
@@ -78,6 +86,7 @@ std::optional<ShadowMapFootprint::Receiver> ShadowMapFootprint::receiver(int x, 
 
 ShadowMapFootprint::CasterRange ShadowMapFootprint::casterRange(int x, int y) const
 {
+  buildPyramid();
   CasterRange range;
   const std::optional<Receiver> point = receiver(x, y);
   if (!point)
@@ -190,6 +199,7 @@ bool ShadowMapFootprint::depthTestMixed(int x, int y, double radius, double bias
 
 double ShadowMapFootprint::hiddenByMargin(int x, int y, double limit) const
 {
+  buildPyramid();
   const std::optional<Receiver> point = receiver(x, y);
   const LightView& view = inputs_.lightView;
   if (!point || !(lightSize_ > 0.0) || view.projection != LightProjection::Perspective)

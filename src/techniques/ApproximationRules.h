@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,8 +80,10 @@ private:
     return level == 0 ? inputs_.shadowMapLinear : coarseMaxLevels_[static_cast<std::size_t>(level - 1)];
   }
   int levelCount() const { return 1 + static_cast<int>(coarseMinLevels_.size()); }
-  std::vector<ImageF> coarseMinLevels_;
-  std::vector<ImageF> coarseMaxLevels_;
+  void buildPyramid() const; // levels 1.., once, on the first question that reads them
+  mutable std::once_flag pyramidBuilt_;
+  mutable std::vector<ImageF> coarseMinLevels_;
+  mutable std::vector<ImageF> coarseMaxLevels_;
 };
 
 // How much an average blocker depth can misjudge a penumbra: blockers at depths [minDepth, maxDepth] above a receiver
