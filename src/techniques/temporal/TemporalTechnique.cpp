@@ -23,6 +23,7 @@ TemporalSettings TemporalSettings::from(const ParameterValues& values)
   settings.disocclusionThreshold = values.get("disocclusion_threshold");
   settings.exportFrames = values.getInt("export_frames") == 1;
   settings.resolveByThreshold = values.getInt("resolve") == 1;
+  settings.cameraStep = values.get("camera_step");
   settings.bias = biasSettings(values);
   return settings;
 }
@@ -67,6 +68,16 @@ LightView jitteredLightView(const LightView& base, const glm::dvec2& offsetTexel
   LightView jittered = base;
   jittered.clipFromWorld = shift * base.clipFromWorld;
   return jittered;
+}
+
+CameraView temporalFrameCamera(const Scene& scene, glm::ivec2 resolution, double step, int frame, int frames)
+{
+  Camera camera = scene.camera;
+  const glm::dvec3 right = glm::normalize(glm::cross(camera.focalPoint - camera.position, camera.viewUp));
+  const glm::dvec3 shift = (static_cast<double>(frame) - static_cast<double>(frames - 1)) * step * right;
+  camera.position += shift;
+  camera.focalPoint += shift;
+  return makeCameraView(camera, scene.bounds(), resolution, scene.objectBounds());
 }
 
 double shadowTestConfidence(const glm::dvec2& uvTexels)
@@ -154,6 +165,11 @@ ProbeOutcome probeTemporal(const ProbeContext& context, glm::ivec2 pixel, ProbeR
   const TemporalSettings settings = TemporalSettings::from(frame.parameters);
   const NamedImage* visibilities = frame.find("sample_visibility_frames");
   const NamedImage* confidences = frame.find("sample_confidence_frames");
+  if (settings.cameraStep != 0.0)
+  {
+    throw InputError(format("temporal: camera_step=", settings.cameraStep,
+      ": the probe replays a static camera's history only; render with camera_step=0"));
+  }
   if (!visibilities || !confidences)
   {
     throw InputError("temporal: the probe replays the history from every frame's samples; render with --set "
@@ -218,6 +234,8 @@ TechniqueDescriptor temporalTechnique()
     { "resolve", 0, 0, 1, "",
       "mean: visibility is the history's confidence-weighted mean; threshold: that mean rounded to 0 or 1 at 1/2 (a hard shadow)",
       { "mean", "threshold" }, true },
+    { "camera_step", 0, 0, 1, "world units",
+      "moves the camera sideways by this much per frame, the last frame at the scene's camera: exercises the reprojection and the disocclusion test (0: static)" },
     { "export_frames", 0, 0, 1, "",
       "on: also publish every frame's sample (sample_visibility_frames, sample_confidence_frames), for the probe",
       { "off", "on" }, true },

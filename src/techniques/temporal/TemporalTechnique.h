@@ -6,8 +6,8 @@
 // the reprojected depth differs from the current one (disocclusion). Page: README.md here.
 //
 // Parameters (besides the shadow map's and the bias, ShadowMapParameters.h): temporal_frames (K), confidence_exponent
-// (m), confidence_threshold, disocclusion_threshold (relative view depth), resolve (mean|threshold), export_frames
-// (off|on).
+// (m), confidence_threshold, disocclusion_threshold (relative view depth), resolve (mean|threshold), camera_step
+// (world units per frame; 0: the static camera), export_frames (off|on).
 // Buffers: history_visibility, confidence, history_frames, history_weight, history_depth, sample_visibility, sample_confidence,
 // unconverged (flagged), depth_bias; with export_frames=on also sample_visibility_frames and
 // sample_confidence_frames (K components, one per frame).
@@ -33,6 +33,7 @@ struct TemporalSettings
   double disocclusionThreshold = 0.01; // disocclusion_threshold: |history depth - reprojected depth| / depth
   bool exportFrames = false;           // export_frames
   bool resolveByThreshold = false;     // resolve = threshold: visibility is the history's mean rounded to 0 or 1
+  double cameraStep = 0.0;             // camera_step: world units the camera moves sideways per frame
   BiasSettings bias;
 
   static TemporalSettings from(const ParameterValues& values);
@@ -44,6 +45,10 @@ glm::dvec2 temporalJitterOffset(int frame);
 // `base` with its window shifted so that every world point's shadow-map position moves by `offsetTexels` (a
 // translation of clip x, y by 2 offset / N, applied after any warp).
 LightView jitteredLightView(const LightView& base, const glm::dvec2& offsetTexels);
+
+// The camera of frame k of `frames` when it moves `step` world units per frame along its right vector: frame K - 1 is
+// `camera` itself (so the frame's buffers are the scene camera's), frame k lies (K - 1 - k) steps to its left.
+CameraView temporalFrameCamera(const Scene& scene, glm::ivec2 resolution, double step, int frame, int frames);
 
 // Survey §4.6: the confidence of a shadow-map lookup at `uvTexels` (texels, texel (i, j) spans [i, i+1) x [j, j+1)):
 // 1 at the texel's centre, 0 on its border.

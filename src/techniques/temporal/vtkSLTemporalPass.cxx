@@ -5,6 +5,7 @@
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
 #include "passes/ShadowMapRendering.h"
+#include "passes/vtkSLGBufferPass.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/temporal/TemporalTechnique.h"
 
@@ -52,7 +53,7 @@ void vtkSLTemporalPass::RenderJitteredShadowMap(vtkOpenGLRenderWindow* window)
   frame.shadowMapDepth = this->MapDepth;
 }
 
-void vtkSLTemporalPass::RunFrame(vtkOpenGLRenderWindow* window, int frameIndex)
+void vtkSLTemporalPass::RunFrame(vtkOpenGLRenderWindow* window, int frameIndex, const sl::CameraView& historyCamera)
 {
   sl::FrameResources& frame = *this->Frame;
   const int written = frameIndex % 2;
@@ -69,9 +70,9 @@ void vtkSLTemporalPass::RunFrame(vtkOpenGLRenderWindow* window, int frameIndex)
   bound.push_back(sl::bindTexture(program, "historySampleTarget", this->Samples[read]));
   program->SetUniformi("temporalFrameIndex", frameIndex);
   // A static camera: the history's camera is the frame's (reprojection is the identity, and the disocclusion test
-  // compares the same depths); the shader is written for any previous camera.
-  sl::setMatrix(program, "historyClipFromWorld", frame.camera.clipFromWorld);
-  sl::setMatrix(program, "historyViewFromWorld", frame.camera.viewFromWorld);
+  // compares the same depths).
+  sl::setMatrix(program, "historyClipFromWorld", historyCamera.clipFromWorld);
+  sl::setMatrix(program, "historyViewFromWorld", historyCamera.viewFromWorld);
   sl::setMatrix(program, "currentViewFromWorld", frame.camera.viewFromWorld);
   this->Quad.render();
   for (vtkTextureObject* texture : bound)
@@ -93,6 +94,12 @@ void vtkSLTemporalPass::Execute(const vtkRenderState* state)
     this->FrameVisibility = sl::ImageF(frame.width(), frame.height(), settings.frames);
     this->FrameConfidence = sl::ImageF(frame.width(), frame.height(), settings.frames);
   }
+  const bool movingCamera = settings.cameraStep != 0.0 && settings.frames > 1;
+  if (movingCamera && !this->MovingCameraGBuffer)
+  {
+    this->MovingCameraGBuffer = vtkSmartPointer<vtkSLGBufferPass>::New();
+  }
+  sl::CameraView historyCamera = frame.camera;
   for (int k = 0; k < settings.frames; ++k)
   {
     if (k > 0)
@@ -100,7 +107,15 @@ void vtkSLTemporalPass::Execute(const vtkRenderState* state)
       frame.lightView = sl::jitteredLightView(base, sl::temporalJitterOffset(k));
       this->RenderJitteredShadowMap(window);
     }
-    this->RunFrame(window, k);
+    if (movingCamera)
+    {
+      // The light view stays the one focused on the scene camera's receivers (the last frame's).
+      frame.camera = sl::temporalFrameCamera(*frame.scene, frame.camera.resolution, settings.cameraStep, k, settings.frames);
+      this->MovingCameraGBuffer->SetFrame(&frame);
+      this->MovingCameraGBuffer->Render(state);
+    }
+    this->RunFrame(window, k, historyCamera);
+    historyCamera = frame.camera;
     if (settings.exportFrames)
     {
       const sl::ImageF samples = sl::readFloatTexture(this->Samples[k % 2], 4);
@@ -110,6 +125,10 @@ void vtkSLTemporalPass::Execute(const vtkRenderState* state)
         this->FrameConfidence.data[i * settings.frames + k] = samples.data[i * 4 + 2];
       }
     }
+  }
+  if (movingCamera)
+  {
+    this->MovingCameraGBuffer->SetFrame(nullptr);
   }
   this->FramesRendered = settings.frames;
   this->LastSet = (settings.frames - 1) % 2;
@@ -162,6 +181,11 @@ void vtkSLTemporalPass::ReleaseGraphicsResources(vtkWindow* window)
   this->TargetFramebuffer->ReleaseGraphicsResources(window);
   this->MapFramebuffer->ReleaseGraphicsResources(window);
   this->Drawer.releaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(window));
+  if (this->MovingCameraGBuffer)
+  {
+    this->MovingCameraGBuffer->ReleaseGraphicsResources(window);
+    this->MovingCameraGBuffer = nullptr;
+  }
   this->MapLinear = nullptr;
   this->MapDepth = nullptr;
   for (int set = 0; set < 2; ++set)

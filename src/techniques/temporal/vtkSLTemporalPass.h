@@ -4,10 +4,12 @@
 // which reads the previous frame's history targets and writes this frame's. The history is two RGBA32F targets of
 // this pass, in two sets that alternate; the pipeline's targets (visibility, depth_bias) hold the last frame's. The
 // frame's light view and shadow map end as the last frame's, so the exported map and light view are the ones the
-// last frame's lookups used. The technique stage's times therefore include K - 1 shadow-map renders.
+// last frame's lookups used. The technique stage's times therefore include K - 1 shadow-map renders. With camera_step
+// > 0 each frame also renders its own G-buffer from its camera (temporalFrameCamera), the last one the scene's.
 #pragma once
 
 #include "gl/GlResources.h"
+#include "lightspace/CameraView.h"
 #include "passes/FullScreenQuad.h"
 #include "techniques/vtkSLTechniquePass.h"
 
@@ -19,6 +21,7 @@
 #include <vector>
 
 class vtkOpenGLFramebufferObject;
+class vtkSLGBufferPass;
 class vtkTextureObject;
 
 class vtkSLTemporalPass : public vtkSLTechniquePass
@@ -46,12 +49,14 @@ private:
   // Renders the shadow map of the frame's (jittered) light view into this pass's own map targets.
   void RenderJitteredShadowMap(vtkOpenGLRenderWindow* window);
   // One frame of the history update: reads set (frameIndex + 1) % 2, writes set frameIndex % 2.
-  void RunFrame(vtkOpenGLRenderWindow* window, int frameIndex);
+  void RunFrame(vtkOpenGLRenderWindow* window, int frameIndex, const sl::CameraView& historyCamera);
 
   vtkNew<vtkOpenGLFramebufferObject> TargetFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> MapFramebuffer;
   sl::FullScreenQuad Quad;
   sl::MeshDrawer Drawer;
+  // camera_step > 0: renders each frame's G-buffer from that frame's camera.
+  vtkSmartPointer<vtkSLGBufferPass> MovingCameraGBuffer;
   vtkSmartPointer<vtkTextureObject> MapLinear;
   vtkSmartPointer<vtkTextureObject> MapDepth;
   // RGBA32F: history_visibility, history_weight, history_frames, confidence; and history_depth, sample_visibility,
