@@ -44,6 +44,13 @@ nlohmann::json readJson(const std::filesystem::path& path)
 {
   return nlohmann::json::parse(readFile(path));
 }
+
+Scene sceneFromJson(const std::string& camera, const std::string& light, const std::string& objects)
+{
+  const std::string text =
+    R"({ "camera": )" + camera + R"(, "lights": [ )" + light + R"( ], "objects": [ )" + objects + " ] }";
+  return parseScene(text, "test scene", sourceDir());
+}
 // One EGL context + VTK window per test process (creating them is the slow part on llvmpipe).
 ShadowRenderer& sharedRenderer()
 {

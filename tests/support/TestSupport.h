@@ -34,6 +34,16 @@ const ImageF& bufferOf(const FrameResult& frame, const std::string& name);
 const NamedImage& arrayNamed(const std::vector<NamedImage>& arrays, const std::string& name);
 // A JSON file (stats.json, probe.json), parsed.
 nlohmann::json readJson(const std::filesystem::path& path);
+// A scene from the JSON texts of its camera, its one light and its objects (a comma-separated list).
+Scene sceneFromJson(const std::string& camera, const std::string& light, const std::string& objects);
+// A 6 x 6 ground quad at y = 0 facing up, as a scene object's JSON.
+inline constexpr const char* kGroundQuadJson =
+  R"({ "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] })";
+// The pixel (x, y) of a three-component buffer (position, normal).
+inline glm::dvec3 vec3At(const ImageF& image, int x, int y)
+{
+  return { image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2) };
+}
 
 std::filesystem::path sourceDir();           // the repository root
 std::filesystem::path testOutputDir();        // <build>/test-output, created on demand

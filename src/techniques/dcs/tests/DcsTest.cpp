@@ -73,19 +73,13 @@ constexpr double kAmbiguityRadii = 1e-6;
 
 // ---- scenes built in code -------------------------------------------------------------------------------------
 
-Scene sceneFromJson(const std::string& camera, const std::string& light, const std::string& objects)
-{
-  const std::string text =
-    R"({ "camera": )" + camera + R"(, "lights": [ )" + light + R"( ], "objects": [ )" + objects + " ] }";
-  return parseScene(text, "dcs test scene", test::sourceDir());
-}
+using test::sceneFromJson;
 
-const char* const kGround = R"({ "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] })";
 
 // Two tetrahedra sharing the horizontal edge from `base` to `base` + (0.5, 0, 0), one above it and one below: that
 // edge has four triangles (non-manifold), and a near-vertical segment passing beside the edge crosses both
 // tetrahedra, four faces.
-SceneObject twoTetrahedra(const glm::dvec3& base)
+SceneObject tetrahedraSharingAnEdge(const glm::dvec3& base)
 {
   const glm::dvec3 a = base, b = base + glm::dvec3(0.5, 0.0, 0.0);
   std::vector<glm::dvec3> corners;
@@ -139,10 +133,7 @@ FrameResult renderDcs(const Scene& scene, int size, std::vector<std::string> set
   return test::renderDataset(scene, "dcs", size, size, settings);
 }
 
-glm::dvec3 vec3At(const ImageF& image, int x, int y)
-{
-  return { image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2) };
-}
+using test::vec3At;
 
 bool maskBit(const ImageF& mask, int x, int y, int index)
 {
@@ -810,9 +801,9 @@ TEST(Dcs, OpenQuadAndNonManifoldTetrahedraCountWhatTheySpan)
   // A tilted open quad and two tetrahedra sharing an edge, under an overhead square light.
   Scene scene = sceneFromJson(R"({ "position": [2.4, 3.2, 2.8], "focal_point": [0.1, 0.3, 0], "view_angle": 40 })",
     R"({ "type": "area", "shape": "square", "center": [0.3, 3.0, 0.2], "normal": [-0.1, -1, -0.05], "size": 0.9 })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "quad", "center": [-0.6, 1.1, -0.3], "size": [0.7, 0.5], "normal": [0.3, 1, 0.2], "up": [0, 0, -1] })");
-  scene.objects.push_back(twoTetrahedra(glm::dvec3(0.1, 0.9, 0.3)));
+  scene.objects.push_back(tetrahedraSharingAnEdge(glm::dvec3(0.1, 0.9, 0.3)));
   const std::vector<WeldedMesh> casters = weldCasters(scene);
   ASSERT_EQ(casters.size(), 3u);
   EXPECT_EQ(casters[1].boundaryEdgeCount(), 4u);
@@ -868,7 +859,7 @@ TEST(Dcs, EdgesPointingAtTheLightCentre)
   const glm::dvec3 centre(0.2, 3.0, -0.1);
   Scene scene = sceneFromJson(R"({ "position": [2.5, 2.6, 3.0], "focal_point": [0, 0.5, 0], "view_angle": 40 })",
     R"({ "type": "area", "shape": "square", "center": [0.2, 3.0, -0.1], "normal": [0, -1, 0], "size": 0.8 })",
-    kGround);
+    test::kGroundQuadJson);
   const glm::dvec3 base(-0.3, 0.4, 0.3);
   scene.objects.push_back(orientedBox("box toward the light", base, centre - base, 1.2, 0.12));
   const glm::dvec3 q0(0.55, 0.7, -0.45);
@@ -885,7 +876,7 @@ TEST(Dcs, ReceiversTouchingCastersUnderADiskLight)
   // A rotated box and a sphere resting on the ground (contact along a face and at a point), under a disk light.
   const Scene scene = sceneFromJson(R"({ "position": [2.4, 2.0, 2.6], "focal_point": [0, 0.25, 0], "view_angle": 35 })",
     R"({ "type": "area", "shape": "disk", "center": [-0.8, 2.8, -0.4], "normal": [0.8, -2.8, 0.4], "size": 0.9 })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "box", "center": [-0.2, 0.25, 0.1], "size": [0.5, 0.5, 0.4], "transform": { "rotate_deg": [0, 30, 0] } },
       { "primitive": "sphere", "center": [0.6, 0.3, -0.2], "size": 0.3 })");
   ASSERT_EQ(scene.lights[0].shape, LightShape::Disk);
@@ -901,7 +892,7 @@ TEST(Dcs, CameraInsideAShadowVolume)
   // samples' counts build on it.
   const Scene scene = sceneFromJson(R"({ "position": [0.27, 0.35, 0.08], "focal_point": [2.0, 0.0, 1.5], "view_angle": 60 })",
     R"({ "type": "area", "shape": "square", "center": [0.35, 3.0, 0.1], "normal": [0, -1, 0], "size": 0.7 })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "quad", "center": [0.35, 1.5, 0.1], "size": [1.6, 1.6], "normal": [0, 1, 0], "up": [0, 0, -1] },
       { "primitive": "box", "center": [0.3, 0.8, 0.05], "size": [0.5, 0.1, 0.5] },
       { "primitive": "sphere", "center": [1.4, 0.3, 1.0], "size": 0.3 })");
@@ -919,7 +910,7 @@ TEST(Dcs, LightStraddlingCasterPlanesAtN64)
   // it), and a leaning quad whose plane cuts the light off its centre; 64 samples.
   const Scene scene = sceneFromJson(R"({ "position": [2.6, 3.0, 3.2], "focal_point": [0, 0.6, 0], "view_angle": 40 })",
     R"({ "type": "area", "shape": "square", "center": [0, 3, 0], "normal": [0, -1, 0], "up": [0, 0, -1], "size": 1.2 })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "quad", "center": [0, 1.6, 0.2], "size": [0.8, 1.0], "normal": [1, 0, 0], "up": [0, 1, 0] },
       { "primitive": "quad", "center": [-0.6, 1.8, 0], "size": [0.7, 0.8], "normal": [0, -0.25, 1], "up": [0, 1, 0.25] })");
   const FrameResult frame = renderDcs(scene, kHardCaseSize, { "samples=64" });
@@ -935,7 +926,7 @@ TEST(Dcs, TangentPlaneCutsTheLightAtN256)
   // a box between wall and light casts onto it. 256 samples on a small image.
   const Scene scene = sceneFromJson(R"({ "position": [2.8, 1.8, 2.2], "focal_point": [0, 0.9, 0], "view_angle": 45 })",
     R"({ "type": "area", "shape": "square", "center": [0.3, 2.5, 0], "normal": [0, -1, 0], "up": [0, 0, -1], "size": 1.5 })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "quad", "center": [0, 1.0, 0], "size": [2, 2], "normal": [1, 0, 0], "up": [0, 1, 0], "cast_shadows": false },
       { "primitive": "box", "center": [0.5, 1.6, 0.2], "size": [0.3, 0.3, 0.3] })");
   const FrameResult frame = renderDcs(scene, 80, { "samples=256" });
@@ -953,7 +944,7 @@ TEST(Dcs, ChangesPastTheEightBitCountersAreMarkedRangeExceeded)
   // the change relative to the centre leaves the biased counter's [-128, 127].
   constexpr int layers = 140;
   std::ostringstream objects;
-  objects << kGround;
+  objects << test::kGroundQuadJson;
   for (int layer = 0; layer < layers; ++layer)
   {
     objects << R"(, { "primitive": "quad", "center": [0.5, )" << 1.5 + 0.004 * layer

@@ -56,13 +56,8 @@ SceneObject twoTetrahedra(const glm::dvec3& base)
   return test::flatObject("two tetrahedra", corners);
 }
 
-Scene sceneFromJson(const std::string& camera, const std::string& light, const std::string& objects)
-{
-  const std::string text = R"({ "camera": )" + camera + R"(, "lights": [ )" + light + R"( ], "objects": [ )" + objects + " ] }";
-  return parseScene(text, "shadow-volume test scene", test::sourceDir());
-}
+using test::sceneFromJson;
 
-const char* kGround = R"({ "primitive": "quad", "size": [6, 6], "normal": [0, 1, 0], "up": [0, 0, -1] })";
 
 // ---- checks ---------------------------------------------------------------------------------------------
 
@@ -267,7 +262,7 @@ TEST(ShadowVolume, CameraInsideAShadowVolume)
   // across the ground: z-pass would be off by the volumes around the eye; z-fail is not.
   const Scene scene = sceneFromJson(R"({ "position": [0.3, 0.35, 0.05], "focal_point": [2.0, 0.0, 1.5], "view_angle": 60 })",
     R"({ "type": "point", "center": [0.35, 3.0, 0.1] })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "quad", "center": [0.35, 1.5, 0.1], "size": [1.6, 1.6], "normal": [0, 1, 0], "up": [0, 0, -1] },
       { "primitive": "box", "center": [0.3, 0.8, 0.05], "size": [0.5, 0.1, 0.5] },
       { "primitive": "sphere", "center": [1.4, 0.3, 1.0], "size": 0.3 })");
@@ -283,7 +278,7 @@ TEST(ShadowVolume, OpenQuadAndNonManifoldMeshCountWhatTheySpan)
   // behind them the segment to the light crosses four faces, two of each.
   Scene scene = sceneFromJson(R"({ "position": [2.2, 2.4, -2.4], "focal_point": [-0.3, 0.8, -0.8], "view_angle": 50 })",
     R"({ "type": "point", "center": [2.92, 0.8, 2.4] })",
-    std::string(kGround) + R"(,
+    std::string(test::kGroundQuadJson) + R"(,
       { "primitive": "quad", "center": [-0.56, 1.1, -1.06], "size": [3, 2.2], "normal": [1, 0, 1], "up": [0, 1, 0] },
       { "primitive": "quad", "center": [1.95, 1.08, 0.94], "size": [0.4, 0.3], "normal": [2.78, -0.8, 4.16], "up": [0, 1, 0] })");
   scene.objects.push_back(twoTetrahedra(glm::dvec3(0.7, 0.6, 0.2)));
@@ -309,7 +304,7 @@ TEST(ShadowVolume, SceneWithoutAnyClosedMeshRenders)
          R"({ "type": "spot", "center": [0.4, 3.2, 0.3], "normal": [-0.1, -1, -0.05], "cone_angle_deg": 40 })" })
   {
     const Scene scene = sceneFromJson(R"({ "position": [0, 4.5, 3.5], "focal_point": [0, 0, 0], "view_angle": 35 })", light,
-      std::string(kGround) + R"(,
+      std::string(test::kGroundQuadJson) + R"(,
         { "primitive": "quad", "center": [-0.35, 0.6, 0], "size": [0.8, 0.8], "normal": [0, 1, 0], "up": [0, 0, -1] },
         { "primitive": "disk", "center": [0.35, 1.5, 0.1], "size": 0.5, "normal": [0.2, -1, 0] })");
     for (const WeldedMesh& caster : weldCasters(scene))
@@ -333,7 +328,7 @@ TEST(ShadowVolume, OrthographicCameraCutsTheVolumesBeyondTheScene)
   {
     const Scene scene = sceneFromJson(
       R"({ "projection": "orthographic", "position": [0.013, 5, 0.007], "focal_point": [0.013, 0, 0.007], "view_up": [0, 0, -1], "parallel_scale": 1.6 })",
-      light, std::string(kGround) + R"(,
+      light, std::string(test::kGroundQuadJson) + R"(,
         { "primitive": "box", "center": [-0.4, 0.5, 0.2], "size": [0.5, 0.4, 0.6], "transform": { "rotate_deg": [0, 23, 0] } },
         { "primitive": "sphere", "center": [0.5, 0.8, -0.3], "size": 0.35 })");
     const FrameResult frame = renderShadowVolume(scene, kSize, kSize);
@@ -348,7 +343,7 @@ TEST(ShadowVolume, RandomOccluderStacksAndLights)
   for (int configuration = 0; configuration < 4; ++configuration)
   {
     std::ostringstream objects;
-    objects << kGround;
+    objects << test::kGroundQuadJson;
     const int occluders = 3 + configuration % 3;
     for (int occluder = 0; occluder < occluders; ++occluder)
     {
@@ -500,7 +495,7 @@ TEST(ShadowVolume, ExactCountBeyondTheEightBitStencil)
   // 256 stacked quads: below them the stencil wraps back to 0, the exact count says 256, and the point is
   // in shadow.
   std::ostringstream objects;
-  objects << kGround;
+  objects << test::kGroundQuadJson;
   for (int layer = 0; layer < 256; ++layer)
   {
     objects << R"(, { "primitive": "quad", "center": [0, )" << 0.5 + 0.004 * layer << R"(, 0], "size": [0.8, 0.8], "normal": [0, 1, 0] })";
@@ -539,7 +534,7 @@ Scene randomPlateScene(std::mt19937& generator, const std::string& mask)
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto signedUnit = [&] { return 2.0 * unit(generator) - 1.0; };
   std::ostringstream objects;
-  objects << kGround;
+  objects << test::kGroundQuadJson;
   objects << R"(, { "primitive": "quad", "center": [)" << 0.5 * signedUnit() << ", " << 0.5 + unit(generator) << ", "
           << 0.5 * signedUnit() << R"(], "size": [)" << 1.0 + unit(generator) << ", " << 0.8 + unit(generator)
           << R"(], "normal": [)" << 0.4 * signedUnit() << ", 1, " << 0.4 * signedUnit() << R"(], "alpha_texture": ")" << mask
@@ -572,10 +567,7 @@ Scene randomPlateScene(std::mt19937& generator, const std::string& mask)
   return sceneFromJson(camera.str(), light.str(), objects.str());
 }
 
-glm::dvec3 vec3At(const ImageF& image, int x, int y)
-{
-  return { image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2) };
-}
+using test::vec3At;
 
 struct CrackCount
 {
