@@ -1087,10 +1087,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   const std::vector<SceneVariant> variants = loadSceneVariants(options);
   const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);
   const std::vector<SettingSweep> sweeps = parseSettingSweeps(options.sweeps);
-  if (!options.depthProfile.empty())
-  {
-    depthProfileSettings(options.depthProfile, options.depthBins, options.depthRange); // its errors, before any run
-  }
+  depthProfileSettings(options.depthProfile, options.depthBins, options.depthRange); // its errors, before any run
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
