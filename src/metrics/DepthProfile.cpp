@@ -84,6 +84,7 @@ DepthProfile depthProfile(const FrameResult& frame, const DepthProfileSettings& 
   {
     throw InputError(format("--depth-range ", settings.nearDepth, ",", settings.farDepth, ": expected 0 < near < far"));
   }
+  SL_CHECK_MSG(frame.find("depth") && frame.find("coverage"), "a frame of ", frame.technique, " without depth or coverage");
   const ImageF& depth = frame.find("depth")->image;
   const ImageF& coverage = frame.find("coverage")->image;
   struct Sample
