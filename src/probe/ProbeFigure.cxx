@@ -445,7 +445,12 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
   const std::vector<std::string> decisions = nodeDecisionLabels(record);
   drawNodesAndKernels(canvas, record, decisions);
   drawTexelsRead(canvas, arrays, crop);
-  // The pixel's footprint in the map (a warp's included), in the probed pixel's magenta.
+  if (setting.receiver.uvTexels)
+  {
+    drawMarker(canvas.map, canvas.toMap(*setting.receiver.uvTexels), 3.0);
+  }
+  // The pixel's footprint in the map (a warp's included), in the probed pixel's magenta, over the receiver's
+  // marker: an undersampled pixel's is smaller than a texel and would hide under it.
   for (const ProbeMapPolygon& polygon : record.mapPolygons)
   {
     std::vector<glm::dvec2> points;
@@ -455,10 +460,6 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
     }
     strokePolygon(canvas.map, points, kBlack, 4.0);
     strokePolygon(canvas.map, points, kProbeMarkerColor, 2.0);
-  }
-  if (setting.receiver.uvTexels)
-  {
-    drawMarker(canvas.map, canvas.toMap(*setting.receiver.uvTexels), 3.0);
   }
   const int mapLeft = int(mapBox.left + 0.5 * (mapBox.width - canvas.map.width));
   const int mapBottom = int(mapBox.bottom + 0.5 * (mapBox.height - canvas.map.height));
