@@ -1,5 +1,5 @@
-// Writes the scene.json of the sampling-error datasets (issue 29): `deep-view`, `deep-view-behind` and
-// `wall-ring`. The committed files are this program's output; the test Datasets.GeneratedScenesAreCommitted
+// Writes the scene.json of the sampling-error datasets (issue 29): `deep-view`, `deep-view-behind`, `facing-tiles`
+// and `wall-ring`. The committed files are this program's output; the test Datasets.GeneratedScenesAreCommitted
 // regenerates them into a scratch folder and compares byte for byte. After changing a number here:
 //   build/tests/generate_sampling_datasets datasets
 // C++17 and nlohmann-json, no library of the project, so the files do not depend on how the scene loader reads them.
@@ -10,6 +10,9 @@
 // the view (the setting of the survey's Fig. 12). deep-view-behind: the same geometry with the light behind the
 // viewer, 15 degrees off the view direction (Fig. 14-15: warping cannot help, partitioning must). wall-ring: a
 // point light inside a ring of walls, its visible receivers all around it (§2: one map cannot cover them).
+// facing-tiles: the survey's Fig. 12 as a scene, tiles from eye depth 1 to 100 each turned halfway between the eye
+// and the overhead light, so that Eq. 1's projection factor is 1 and a map's error along its t axis is the
+// perspective part alone.
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -163,6 +166,52 @@ Json wallRing()
     { "objects", std::move(objects) } });
 }
 
+// Fig. 12's configuration (survey §4.2): eye at the origin looking horizontally along -z, a directional light
+// straight down (view ⟂ light), and kTiles square tiles from eye depth 1 to 100: one in each of kTiles bins of equal
+// depth ratio over [1, 100] (`bench --depth-bins 20 --depth-range 1,100`), at the bin's geometric centre, except the
+// nearest tile, whose nearest corner is at depth 1, and the farthest, whose farthest corner is at 100, so that the
+// focus's z_n and z_f are the figure's (each tile's depth extent, under 1 %, stays in its bin). Each sits on the horizon
+// line at its own azimuth (no tile hides or shadows another), spans the same angle seen from the eye, and faces the
+// bisector of the directions to the eye and to the light: cos(alpha) = cos(beta) (Eq. 1), on the view axis's
+// plane. The vertical field, 2 atan(1/16), makes one pixel span 1/(8 H) at unit distance: with a map of 8 H + 2
+// texels (a margin of one on each side) a texel_ratio_t equals the survey's dp/ds, which assumes equal screen and
+// map resolutions and a unit near plane.
+Json facingTiles()
+{
+  constexpr int kTiles = 20;
+  constexpr double kMaxAzimuthDeg = 12.0; // the 4:1 image spans +-14 degrees horizontally
+  constexpr double kTileAngle = 0.9 * kPi / 180.0;
+  Json objects = Json::array();
+  const auto azimuthOf = [&](int i) { return (-kMaxAzimuthDeg + 2.0 * kMaxAzimuthDeg * i / (kTiles - 1)) * kPi / 180.0; };
+  // A tile of side kTileAngle * distance reaches kappa * z_c nearer and farther than its centre's depth z_c.
+  const auto kappaOf = [&](double azimuth) {
+    return 0.5 * kTileAngle / std::cos(azimuth) * (std::cos(azimuth) / std::sqrt(2.0) + std::abs(std::sin(azimuth)));
+  };
+  const double firstDepth = 1.0 / (1.0 - kappaOf(azimuthOf(0)));
+  const double lastDepth = 100.0 / (1.0 + kappaOf(azimuthOf(kTiles - 1)));
+  for (int i = 0; i < kTiles; ++i)
+  {
+    const double azimuth = azimuthOf(i);
+    const double depth = i == 0 ? firstDepth
+      : i == kTiles - 1         ? lastDepth
+                                : std::pow(100.0, (i + 0.5) / kTiles);
+    const double distance = depth / std::cos(azimuth);
+    const double s = std::sin(azimuth), c = std::cos(azimuth);
+    const double r = 1.0 / std::sqrt(2.0);
+    objects.push_back(Json::object({ { "primitive", str("quad") }, { "center", vec({ distance * s, 0, -distance * c }) },
+      { "size", vec({ kTileAngle * distance, kTileAngle * distance }) }, { "normal", vec({ -s * r, r, c * r }) },
+      { "up", vec({ s * r, r, -c * r }) },
+      { "material", Json::object({ { "albedo", vec({ 0.8, 0.8, 0.8 }) } }) } }));
+  }
+  Json view = camera({ 0, 0, 0 }, { 0, 0, -10 }, 2.0 * std::atan(1.0 / 16.0) * 180.0 / kPi);
+  view["resolution"] = vec({ 1024, 256 });
+  return Json::object({ { "camera", std::move(view) },
+    { "lights",
+      Json::array({ Json::object(
+        { { "type", str("directional") }, { "direction", vec({ 0, -1, 0 }) }, { "intensity", num(1) } }) }) },
+    { "objects", std::move(objects) } });
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -176,7 +225,7 @@ int main(int argc, char** argv)
   // Overhead, 31 degrees toward -x: perpendicular to the horizontal view, shadows across the ground.
   // Behind the viewer: 15.1 degrees from the view direction, 13.6 degrees above the horizon.
   const std::vector<std::pair<std::string, Json>> datasets = { { "deep-view", deepView({ -0.6, -1, 0 }) },
-    { "deep-view-behind", deepView({ 0.1, -0.25, -1 }) }, { "wall-ring", wallRing() } };
+    { "deep-view-behind", deepView({ 0.1, -0.25, -1 }) }, { "facing-tiles", facingTiles() }, { "wall-ring", wallRing() } };
   for (const auto& [name, scene] : datasets)
   {
     const std::filesystem::path file = root / name / "scene.json";

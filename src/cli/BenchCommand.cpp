@@ -16,9 +16,11 @@
 #include "io/ImageIO.h"
 #include "output/OutputWriter.h"
 #include "metrics/Comparison.h"
+#include "metrics/DepthProfile.h"
 #include "scene/Scene.h"
 #include "techniques/Registry.h"
 #include "vis/SpeedErrorChart.h"
+#include "vis/DepthProfileChart.h"
 #include "vis/SweepChart.h"
 
 #include <nlohmann/json.hpp>
@@ -30,6 +32,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -288,12 +291,29 @@ struct SceneVariant
   std::string name;
 };
 
-// A technique parameter swept over values (--sweep key=v1,v2,...).
+// A technique parameter swept over values (--sweep key=v1,v2,...), or several parameters that take their values
+// together (--sweep k1+k2=a1+a2,b1+b2,...: one configuration per tuple, e.g. warp+warp_n=psm+0,lispsm+1e6).
 struct SettingSweep
 {
-  std::string key;
-  std::vector<std::string> values;
+  std::vector<std::string> keys;
+  std::vector<std::vector<std::string>> values; // one tuple per configuration, a value per key
+  std::string text;                             // as typed, for messages
 };
+
+std::vector<std::string> splitPlus(const std::string& text)
+{
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;)
+  {
+    const std::size_t plus = text.find('+', start);
+    parts.push_back(text.substr(start, plus == std::string::npos ? std::string::npos : plus - start));
+    if (plus == std::string::npos)
+    {
+      return parts;
+    }
+    start = plus + 1;
+  }
+}
 
 // Per-stage GPU times in bench.csv: the common stages in pipeline order, then every other stage some row ran
 // (structures such as microrects, the MSAA resolve), by name; a configuration without the stage leaves its cell empty.
@@ -404,7 +424,21 @@ std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& swe
     {
       throw InputError("--sweep '" + sweep + "': expected key=v1,v2,...");
     }
-    sweeps.push_back({ sweep.substr(0, equals), splitList(sweep.substr(equals + 1), "--sweep " + sweep) });
+    SettingSweep parsed;
+    parsed.text = sweep;
+    parsed.keys = splitPlus(sweep.substr(0, equals));
+    for (const std::string& tuple : splitList(sweep.substr(equals + 1), "--sweep " + sweep))
+    {
+      // A value may itself hold '+' ("1e+6") only when one key is swept.
+      parsed.values.push_back(parsed.keys.size() == 1 ? std::vector<std::string>{ tuple } : splitPlus(tuple));
+      if (parsed.values.back().size() != parsed.keys.size() ||
+        std::any_of(parsed.keys.begin(), parsed.keys.end(), [](const std::string& key) { return key.empty(); }))
+      {
+        throw InputError("--sweep '" + sweep + "': '" + tuple + "' does not give one value to each of the " +
+          std::to_string(parsed.keys.size()) + " keys joined by '+'");
+      }
+    }
+    sweeps.push_back(std::move(parsed));
   }
   return sweeps;
 }
@@ -436,9 +470,12 @@ void checkSettingKeys(const std::vector<std::string>& settings, const std::vecto
   {
     if (sweep.values.empty())
     {
-      throw InputError("--sweep " + sweep.key + ": no values");
+      throw InputError("--sweep " + sweep.text + ": no values");
     }
-    checkKey("--sweep", sweep.key, sweep.key);
+    for (const std::string& key : sweep.keys)
+    {
+      checkKey("--sweep", sweep.text, key);
+    }
   }
 }
 
@@ -459,17 +496,24 @@ std::vector<std::vector<std::string>> settingCombinations(const TechniqueDescrip
   std::vector<std::vector<std::string>> combinations{ base };
   for (const SettingSweep& sweep : sweeps)
   {
-    if (!technique.findParameter(sweep.key))
+    if (std::none_of(sweep.keys.begin(), sweep.keys.end(),
+          [&](const std::string& key) { return technique.findParameter(key) != nullptr; }))
     {
       continue;
     }
     std::vector<std::vector<std::string>> extended;
     for (const auto& combination : combinations)
     {
-      for (const std::string& value : sweep.values)
+      for (const std::vector<std::string>& tuple : sweep.values)
       {
         auto next = combination;
-        next.push_back(sweep.key + "=" + value);
+        for (std::size_t k = 0; k < sweep.keys.size(); ++k)
+        {
+          if (technique.findParameter(sweep.keys[k]))
+          {
+            next.push_back(sweep.keys[k] + "=" + tuple[k]);
+          }
+        }
         extended.push_back(next);
       }
     }
@@ -653,6 +697,15 @@ std::vector<std::string> benchRunArguments(const BenchOptions& options, const Sc
   for (const std::string& override : variant.overrides)
   {
     arguments.insert(arguments.end(), { "--scene-set", override });
+  }
+  if (!options.depthProfile.empty())
+  {
+    arguments.insert(arguments.end(),
+      { "--depth-profile", options.depthProfile, "--depth-bins", std::to_string(options.depthBins) });
+    if (!options.depthRange.empty())
+    {
+      arguments.insert(arguments.end(), { "--depth-range", options.depthRange });
+    }
   }
   return arguments;
 }
@@ -917,6 +970,97 @@ void writeSceneSweepCharts(const nlohmann::json& rows, const std::vector<Configu
   }
 }
 
+// --depth-profile: depth_profile.csv, a row per configuration and bin (with the closed form where the frame has one,
+// metrics/DepthProfile.h), and depth_profile_<scene>.png, the medians and closed forms against the eye's depth plus
+// logarithmic warping's closed form (§4.2.1) for the first configuration that has a closed form.
+void writeDepthProfiles(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
+{
+  if (options.depthProfile.empty())
+  {
+    return;
+  }
+  std::ostringstream csv;
+  csv << "scene,scene_overrides,technique,settings,buffer,bin,near_depth,far_depth,pixels,depth_median,lower_quartile,"
+         "median,upper_quartile,closed_form,median_over_closed_form,n,z_near,z_far,logarithmic_closed_form\n";
+  std::map<std::size_t, std::vector<DepthProfileSeries>> charts;
+  std::map<std::size_t, nlohmann::json> logarithmic;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const nlohmann::json& row = rows[c];
+    if (row["status"] != "ok" || !row["result"].contains("depth_profile"))
+    {
+      continue;
+    }
+    const nlohmann::json& profile = row["result"]["depth_profile"];
+    const nlohmann::json form = profile.value("closed_form", nlohmann::json());
+    const auto formText = [&](const char* key) {
+      return form.is_object() && form[key].is_number() ? numberText(form[key]) : std::string();
+    };
+    DepthProfileSeries series;
+    series.name = row["technique"].get<std::string>() +
+      (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>());
+    for (std::size_t b = 0; b < profile["bins"].size(); ++b)
+    {
+      const nlohmann::json& bin = profile["bins"][b];
+      csv << csvField(row["scene"]) << "," << csvField(row["scene_overrides"]) << "," << row["technique"].get<std::string>()
+          << "," << csvField(row["settings"]) << "," << profile["buffer"].get<std::string>() << "," << b << ","
+          << numberText(bin["near_depth"]) << "," << numberText(bin["far_depth"]) << "," << bin["pixels"].get<std::size_t>();
+      for (const char* key : { "depth_median", "lower_quartile", "median", "upper_quartile" })
+      {
+        csv << "," << (bin["pixels"].get<std::size_t>() > 0 ? numberText(bin[key]) : std::string());
+      }
+      for (const char* key : { "closed_form", "median_over_closed_form" })
+      {
+        csv << "," << (bin.contains(key) ? numberText(bin[key]) : std::string());
+      }
+      csv << "," << formText("n") << "," << formText("z_near") << "," << formText("z_far") << ","
+          << formText("logarithmic") << "\n";
+      if (bin["pixels"].get<std::size_t>() > 0)
+      {
+        series.depths.push_back(bin["depth_median"].get<double>());
+        series.medians.push_back(bin["median"].get<double>());
+      }
+    }
+    if (form.is_object())
+    {
+      // The closed form over [z_n, z_f], 200 steps; n null is the uniform limit.
+      Fig12ClosedForm closed;
+      closed.zNear = form["z_near"].get<double>();
+      closed.zFar = form["z_far"].get<double>();
+      closed.n = form["n"].is_number() ? form["n"].get<double>() : std::numeric_limits<double>::infinity();
+      closed.pixelsPerUnit = form["pixels_per_unit"].get<double>();
+      closed.texelsAcrossBody = form["texels_across_body"].get<double>();
+      for (int i = 0; i <= 200; ++i)
+      {
+        const double z = closed.zNear + (closed.zFar - closed.zNear) * i / 200.0;
+        series.curveDepths.push_back(z);
+        series.curveValues.push_back(closed.at(z));
+      }
+      logarithmic.emplace(configurations[c].sceneIndex, form);
+    }
+    charts[configurations[c].sceneIndex].push_back(series);
+  }
+  writeFileChecked(dir / "depth_profile.csv", csv.str());
+  for (auto& [sceneIndex, series] : charts)
+  {
+    if (logarithmic.count(sceneIndex))
+    {
+      const nlohmann::json& form = logarithmic.at(sceneIndex);
+      DepthProfileSeries line;
+      line.name = "logarithmic warping (closed form, §4.2.1)";
+      line.curveDepths = { form["z_near"].get<double>(), form["z_far"].get<double>() };
+      line.curveValues = { form["logarithmic"].get<double>(), form["logarithmic"].get<double>() };
+      series.push_back(line);
+    }
+    const SceneVariant& variant = variants[sceneIndex];
+    std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
+    stem = stem.empty() ? std::to_string(sceneIndex) : stem;
+    writeDepthProfileChart(series, options.depthProfile + " median per depth bin: " + variant.name + " (" +
+        options.resolution + ")", options.depthProfile, dir / ("depth_profile_" + stem + ".png"));
+  }
+}
+
 // bench.json, bench.csv, summary.md and the charts.
 void writeBenchResults(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
   const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
@@ -929,6 +1073,7 @@ void writeBenchResults(const nlohmann::json& rows, const std::vector<Configurati
   writeFileChecked(dir / "summary.md", summaryMarkdown(rows, statisticNames));
   writeSpeedErrorCharts(rows, configurations, variants, options.resolution, dir);
   writeSceneSweepCharts(rows, configurations, variants, options, dir);
+  writeDepthProfiles(rows, configurations, variants, options, dir);
 }
 
 } // namespace
@@ -942,6 +1087,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
   const std::vector<SceneVariant> variants = loadSceneVariants(options);
   const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);
   const std::vector<SettingSweep> sweeps = parseSettingSweeps(options.sweeps);
+  depthProfileSettings(options.depthProfile, options.depthBins, options.depthRange); // its errors, before any run
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);

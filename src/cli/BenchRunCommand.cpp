@@ -5,6 +5,7 @@
 #include "io/ImageIO.h"
 #include "output/OutputWriter.h"
 #include "metrics/Comparison.h"
+#include "metrics/DepthProfile.h"
 #include "metrics/ErrorMetrics.h"
 #include "pipeline/ShadowRenderer.h"
 #include "scene/Scene.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 namespace sl
 {
@@ -67,6 +69,9 @@ int runBenchConfiguration(const BenchRunOptions& options)
   {
     throw InputError("--repeat " + std::to_string(options.repeat) + ": must be >= 1");
   }
+  const std::optional<DepthProfileSettings> profileSettings = options.depthProfile.empty()
+    ? std::nullopt
+    : std::optional(depthProfileSettings(options.depthProfile, options.depthBins, options.depthRange));
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   RenderRequest request;
   request.technique = options.technique;
@@ -128,6 +133,10 @@ int runBenchConfiguration(const BenchRunOptions& options)
       requireArray(reference, "visibility", options.referenceFile), last.find("coverage")->image,
       requireArray(reference, "coverage", options.referenceFile));
     result["error"] = metricsJson(metrics);
+  }
+  if (profileSettings)
+  {
+    result["depth_profile"] = depthProfileJson(depthProfile(last, *profileSettings));
   }
   writeJson(result, options.resultFile);
   return 0;

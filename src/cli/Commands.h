@@ -88,6 +88,11 @@ struct BenchOptions
   std::string outDir = "out-bench";
   bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
+  // --depth-profile BUFFER: each configuration's BUFFER binned over the eye's depth (metrics/DepthProfile.h) into
+  // depth_profile.csv and depth_profile_<scene>.png; --depth-bins, --depth-range "near,far" ("" = the pixels' own).
+  std::string depthProfile;
+  int depthBins = 16;
+  std::string depthRange;
 };
 int runBench(const BenchOptions& options, std::ostream& log);
 
@@ -103,6 +108,9 @@ struct BenchRunOptions
   int repeat = 5;
   std::string referenceFile; // buffers.vti of the reference; empty: no error metrics
   std::string resultFile;
+  std::string depthProfile;  // as BenchOptions: the result gains "depth_profile" (metrics/DepthProfile.h)
+  int depthBins = 16;
+  std::string depthRange;
 };
 int runBenchConfiguration(const BenchRunOptions& options);
 

@@ -144,6 +144,12 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench)
     ->capture_default_str();
   benchCommand->add_option("--cache", bench.cacheDir, "Cache of ray-traced references")->capture_default_str();
   benchCommand->add_option("--out,-o", bench.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
+  benchCommand->add_option("--depth-profile", bench.depthProfile,
+    "A buffer (e.g. texel_ratio_t) binned over the eye's depth: depth_profile.csv and depth_profile_<scene>.png");
+  benchCommand->add_option("--depth-bins", bench.depthBins, "Bins of --depth-profile, equal depth ratios")
+    ->capture_default_str();
+  benchCommand->add_option("--depth-range", bench.depthRange,
+    "near,far eye depths of --depth-profile's bins (default: the binned pixels' range)");
   addForceFlag(benchCommand, bench.force);
   benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
   return { benchCommand, [&bench] { return sl::runBench(bench, std::cerr); } };
@@ -161,6 +167,9 @@ Command addBenchRunCommand(CLI::App& app, sl::BenchRunOptions& benchRun)
   benchRunCommand->add_option("--repeat", benchRun.repeat);
   benchRunCommand->add_option("--reference", benchRun.referenceFile);
   benchRunCommand->add_option("--result", benchRun.resultFile)->required();
+  benchRunCommand->add_option("--depth-profile", benchRun.depthProfile);
+  benchRunCommand->add_option("--depth-bins", benchRun.depthBins);
+  benchRunCommand->add_option("--depth-range", benchRun.depthRange);
   return { benchRunCommand, [&benchRun] { return sl::runBenchConfiguration(benchRun); } };
 }
 

@@ -75,6 +75,11 @@ void ProbeRecorder::kernel(ProbeKernel kernel)
   record_.kernels.push_back(std::move(kernel));
 }
 
+void ProbeRecorder::mapPolygon(ProbeMapPolygon polygon)
+{
+  record_.mapPolygons.push_back(std::move(polygon));
+}
+
 void ProbeRecorder::lightPolygon(ProbeLightPolygon polygon)
 {
   if (record_.lightPolygons.size() >= kMaxPolygons)

@@ -83,6 +83,15 @@ struct ProbeContourEdge
   double signedArea = 0.0;
 };
 
+// A polygon in shadow-map texel coordinates: the probed pixel's footprint (its square on the receiver's tangent
+// plane, each corner projected into the map through the light matrix, a warp included).
+struct ProbeMapPolygon
+{
+  std::string role;            // "pixel footprint"
+  std::vector<glm::dvec2> points;
+  std::string source;
+};
+
 // A light sample (light coordinates) and what the twin decided for it.
 struct ProbeLightSample
 {
@@ -100,6 +109,7 @@ struct ProbeRecord
   std::vector<ProbeLightPolygon> lightPolygons;
   std::vector<ProbeContourEdge> contourEdges;
   std::vector<ProbeLightSample> lightSamples;
+  std::vector<ProbeMapPolygon> mapPolygons;
   // Items over ProbeRecorder's caps are counted, not kept (a 500-texel kernel reads 250 000 texels).
   std::size_t droppedTexels = 0;
   std::size_t droppedNodes = 0;
@@ -136,6 +146,7 @@ public:
   void lightPolygon(ProbeLightPolygon polygon);
   void contourEdge(const ProbeContourEdge& edge);
   void lightSample(const ProbeLightSample& sample);
+  void mapPolygon(ProbeMapPolygon polygon);
 
   const ProbeRecord& record() const { return record_; }
   ProbeRecord& record() { return record_; }

@@ -6,6 +6,7 @@
 #include "lessons/Lesson.h"
 #include "lessons/LessonRegistry.h"
 #include "lessons/RunMontage.h"
+#include "metrics/DepthProfile.h"
 #include "metrics/ErrorMetrics.h"
 #include "output/OutputWriter.h"
 #include "probe/Probe.h"
@@ -166,6 +167,13 @@ void LessonBuilder::render(const LessonRunSpec& spec)
       findNamed(truth.buffers, "coverage")->image, names);
     result->stats["error"] = metricsJson(metrics);
     result->stats["compared_with"] = spec.comparedWith;
+  }
+  for (const std::string& buffer : spec.depthProfiles)
+  {
+    DepthProfileSettings profile;
+    profile.buffer = buffer;
+    profile.bins = spec.depthBins;
+    result->stats["depth_profile"][buffer] = depthProfileJson(depthProfile(frame, profile));
   }
   result->buffers = frame.buffers;
   result->frame = std::move(frame);

@@ -7,7 +7,8 @@
 //   <out>/<lesson>/runs/<run>/stats.json each run's stats.json: `shadowlab render`'s (output/OutputWriter.h) or
 //                                        `shadowlab reference`'s, plus "scene_overrides", "settings" and, for a run
 //                                        compared against another, "error" (metrics/ErrorMetrics.h metricsJson) and
-//                                        "compared_with" (the other run's name)
+//                                        "compared_with" (the other run's name); "depth_profile" where the run
+//                                        asked for one (LessonRunSpec::depthProfiles)
 //   <out>/<lesson>/lesson.json           name, title, resolution, the command, seconds it took
 //
 //
@@ -57,6 +58,10 @@ struct LessonRunSpec
   std::vector<std::string> settings;       // "key=value", as --set
   std::vector<std::string> sceneOverrides; // "/json/pointer=value", as --scene-set
   std::string comparedWith;                // an earlier run whose visibility is the truth here ("" = none)
+  // Buffers binned over the eye's depth (metrics/DepthProfile.h, depthBins bins of equal depth ratio over the
+  // binned pixels' range) into stats.json at /depth_profile/<buffer>: bins/<i>/median, ..., closed_form.
+  std::vector<std::string> depthProfiles;
+  int depthBins = 8;
 };
 
 // Which pixel a probe figure looks at, chosen from a run's buffers when the page is generated (never typed in):

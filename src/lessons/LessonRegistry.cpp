@@ -8,6 +8,7 @@ namespace sl
 
 // Defined in src/lessons/<Name>Lesson.cpp, one file each.
 Lesson perspectiveAliasingLesson();
+Lesson perspectiveWarpingLesson();
 Lesson acneAndBiasLesson();
 Lesson pcfFixedKernelLesson();
 Lesson pcssBlockerSearchLesson();
@@ -21,6 +22,7 @@ const std::vector<Lesson>& lessonRegistry()
 {
   static const std::vector<Lesson> registry = {
     perspectiveAliasingLesson(),
+    perspectiveWarpingLesson(),
     acneAndBiasLesson(),
     pcfFixedKernelLesson(),
     pcssBlockerSearchLesson(),

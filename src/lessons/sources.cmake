@@ -5,6 +5,7 @@ set(SL_LESSONS_SOURCES
   src/lessons/LessonRegistry.cpp
   src/lessons/RunMontage.cpp
   src/lessons/PerspectiveAliasingLesson.cpp
+  src/lessons/PerspectiveWarpingLesson.cpp
   src/lessons/AcneAndBiasLesson.cpp
   src/lessons/PcfFixedKernelLesson.cpp
   src/lessons/PcssBlockerSearchLesson.cpp

@@ -1,6 +1,7 @@
 #include "probe/Probe.h"
 
 #include "core/Error.h"
+#include "lightspace/ShadowMapMath.h"
 #include "output/OutputWriter.h"
 
 #include <cmath>
@@ -18,6 +19,64 @@ bool ProbeResult::agrees() const
 {
   return difference() <= outcome.tolerance + 1e-6 || !outcome.ambiguity.empty();
 }
+
+namespace
+{
+
+// The map's sampling error at the pixel (survey §3, Eq. 1-2 per axis, as the frame's texel_ratio_s/_t buffers) and
+// the pixel's footprint in the map: the pixel's corners' camera rays met on the receiver's tangent plane and
+// projected through the light matrix, so a warped map (§4.2) shows the footprint its warp gives. Frames with one
+// light view that publish the sampling-error buffers only (a technique with sub-lights has one view each).
+void recordSamplingError(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
+  ProbeRecorder& recorder)
+{
+  if (!frame.lightView || frame.find("texel_ratio_t") == nullptr)
+  {
+    return;
+  }
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& normal = frame.find("normal")->image;
+  const ImageF& receives = frame.find("receives_shadows")->image;
+  const glm::dvec3 pWs(position.at(pixel.x, pixel.y, 0), position.at(pixel.x, pixel.y, 1), position.at(pixel.x, pixel.y, 2));
+  const glm::dvec3 nWs(normal.at(pixel.x, pixel.y, 0), normal.at(pixel.x, pixel.y, 1), normal.at(pixel.x, pixel.y, 2));
+  const Light& light = scene.lights.at(static_cast<std::size_t>(lightIndex));
+  if (receives.at(pixel.x, pixel.y) <= 0.5f || !lightCanReach(light, pWs, nWs))
+  {
+    return;
+  }
+  const CameraView& camera = frame.camera;
+  const LightView& view = *frame.lightView;
+  const SamplingError error = samplingError(camera, view, pixel.x + 0.5, pixel.y + 0.5, pWs, nWs);
+  recorder.beginGroup("sampling error");
+  recorder.quantity("texel_ratio_s", error.texelRatioS, "pixels per texel", "survey Eq. 2, along the map's s axis");
+  recorder.quantity("texel_ratio_t", error.texelRatioT, "pixels per texel",
+    "survey Eq. 2, along the map's t axis (the axis a warp acts on)");
+  recorder.quantity("perspective_factor", error.perspectiveFactor, "pixels per texel", "survey Eq. 1, (1/z)(dz/ds)");
+  recorder.quantity("projection_factor", error.projectionFactor, "", "survey Eq. 1, cos(alpha)/cos(beta)");
+  if (view.warp.active())
+  {
+    recorder.quantity("warp_n", view.warp.n, "world units", "survey §4.2 (P's free parameter n)");
+  }
+  ProbeMapPolygon footprint{ "pixel footprint", {}, "survey Eq. 2 (the pixel on the receiver's plane, in the map)" };
+  for (const glm::dvec2& corner : { glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1) })
+  {
+    const double x = pixel.x + corner.x;
+    const double y = pixel.y + corner.y;
+    const glm::dvec3 origin = camera.nearOrigin + x * camera.nearStepX + y * camera.nearStepY;
+    const glm::dvec3 ray = camera.rayOrigin + x * camera.rayStepX + y * camera.rayStepY;
+    const double along = glm::dot(ray, nWs);
+    const double distance = std::abs(along) < 1e-12 * glm::length(ray) ? -1.0 : glm::dot(pWs - origin, nWs) / along;
+    if (distance <= 0.0)
+    {
+      return; // the corner's ray runs along the plane or meets it behind the eye: no bounded footprint
+    }
+    const glm::dvec3 onPlane = origin + distance * ray;
+    footprint.points.push_back(projectToShadowMap(view, onPlane).uvTexels);
+  }
+  recorder.mapPolygon(std::move(footprint));
+}
+
+} // namespace
 
 ProbeResult probePixel(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel)
 {
@@ -71,6 +130,7 @@ ProbeResult probePixel(const FrameResult& frame, const Scene& scene, int lightIn
     recorder.quantity("resolved visibility", frame.find("visibility")->image.at(pixel.x, pixel.y), "",
       "the mean of the covered samples' visibilities");
   }
+  recordSamplingError(frame, scene, lightIndex, pixel, recorder);
   result.record = std::move(recorder.record());
   return result;
 }
@@ -212,6 +272,16 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
     edges.push_back({ { "a", vec(edge.a) }, { "b", vec(edge.b) }, { "light_a", vec(edge.lightA) },
       { "light_b", vec(edge.lightB) }, { "signed_area", jsonNumber(edge.signedArea) } });
   }
+  nlohmann::json mapPolygons = nlohmann::json::array();
+  for (const ProbeMapPolygon& polygon : record.mapPolygons)
+  {
+    nlohmann::json points = nlohmann::json::array();
+    for (const glm::dvec2& point : polygon.points)
+    {
+      points.push_back(vec(point));
+    }
+    mapPolygons.push_back({ { "role", polygon.role }, { "points", points }, { "source", polygon.source } });
+  }
   nlohmann::json samples = nlohmann::json::array();
   for (const ProbeLightSample& sample : record.lightSamples)
   {
@@ -241,6 +311,7 @@ nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, con
     { "texels", texels },
     { "nodes", nodes },
     { "kernels", kernels },
+    { "map_polygons", mapPolygons },
     { "light_polygons", polygons },
     { "contour_edges", edges },
     { "light_samples", samples },

@@ -1,6 +1,7 @@
 // probe.vtm (probe/Probe.h): what a probe recorded as VTK data for ParaView, in three blocks of named pieces.
 //   world        light, receiver, rays_to_light, rays_to_samples, kernel_frustum   (world space)
-//   shadow_map   crop (vtkImageData, one cell per texel, texel units), visited_nodes, kernels, receiver
+//   shadow_map   crop (vtkImageData, one cell per texel, texel units), visited_nodes, kernels, receiver,
+//                pixel_footprint
 //                (shadow-map texel coordinates: texel i spans [i, i + 1], z = 0)
 //   light_plane  light_outline, polygons, contour_edges, light_samples            (world space, on the light plane)
 // Every piece is present, possibly empty, so the block layout is the same for every technique.
@@ -386,6 +387,24 @@ vtkSmartPointer<vtkPolyData> kernelsPiece(const Context& context)
   return data;
 }
 
+// The pixel's footprint in the map (Probe.cpp recordSamplingError), a closed polygon in texel units.
+vtkSmartPointer<vtkPolyData> pixelFootprintPiece(const Context& context)
+{
+  PolyBuilder builder;
+  auto* role = builder.cellArray<vtkStringArray>("role");
+  for (const ProbeMapPolygon& polygon : context.probe.record.mapPolygons)
+  {
+    std::vector<vtkIdType> ids;
+    for (const glm::dvec2& point : polygon.points)
+    {
+      ids.push_back(builder.point({ point.x, point.y, 0.0 }));
+    }
+    builder.polygon(ids);
+    role->InsertNextValue(polygon.role);
+  }
+  return builder.data();
+}
+
 vtkSmartPointer<vtkPolyData> receiverTexelPiece(const Context& context)
 {
   PolyBuilder builder;
@@ -403,6 +422,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> shadowMapBlock(const Context& context)
   setBlock(block, "visited_nodes", visitedNodesPiece(context));
   setBlock(block, "kernels", kernelsPiece(context));
   setBlock(block, "receiver", receiverTexelPiece(context));
+  setBlock(block, "pixel_footprint", pixelFootprintPiece(context));
   return block;
 }
 

@@ -378,7 +378,8 @@ void drawShadowMapKey(ImageU8& panel, const Box& box, const std::vector<std::str
   x = drawKeyEntry(panel, x, keyTop, "kernel", paintBoxSwatch, kWhite);
   x = drawKeyEntry(panel, x, keyTop, "read", paintDot, kWhite);
   x = drawKeyEntry(panel, x, keyTop, "occluding", paintFilledSquare, kBlack);
-  drawKeyEntry(panel, x, keyTop, "receiver", paintMarkerSwatch, kProbeMarkerColor);
+  x = drawKeyEntry(panel, x, keyTop, "receiver", paintMarkerSwatch, kProbeMarkerColor);
+  drawKeyEntry(panel, x, keyTop, "pixel", paintBoxSwatch, kProbeMarkerColor);
   if (decisions.empty())
   {
     drawText(panel, format("texels ", crop.lo.x, "..", crop.lo.x + crop.size.x - 1, " x ", crop.lo.y, "..",
@@ -447,6 +448,18 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
   if (setting.receiver.uvTexels)
   {
     drawMarker(canvas.map, canvas.toMap(*setting.receiver.uvTexels), 3.0);
+  }
+  // The pixel's footprint in the map (a warp's included), in the probed pixel's magenta, over the receiver's
+  // marker: an undersampled pixel's is smaller than a texel and would hide under it.
+  for (const ProbeMapPolygon& polygon : record.mapPolygons)
+  {
+    std::vector<glm::dvec2> points;
+    for (const glm::dvec2& point : polygon.points)
+    {
+      points.push_back(canvas.toMap(point));
+    }
+    strokePolygon(canvas.map, points, kBlack, 4.0);
+    strokePolygon(canvas.map, points, kProbeMarkerColor, 2.0);
   }
   const int mapLeft = int(mapBox.left + 0.5 * (mapBox.width - canvas.map.width));
   const int mapBottom = int(mapBox.bottom + 0.5 * (mapBox.height - canvas.map.height));

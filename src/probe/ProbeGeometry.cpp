@@ -266,6 +266,17 @@ TexelRect probeShadowMapCrop(const ProbeRecord& record, const std::optional<glm:
   {
     const glm::ivec2 texel(texelOf(receiverTexel->x), texelOf(receiverTexel->y));
     include(texel, texel);
+    // The pixel's footprint, up to 32 texels around the receiver (an oversampled pixel's covers many; past that
+    // the crop would shrink the texel it reads out of sight, and the polygon is clipped instead).
+    for (const ProbeMapPolygon& polygon : record.mapPolygons)
+    {
+      for (const glm::dvec2& point : polygon.points)
+      {
+        const glm::dvec2 near = glm::clamp(point, *receiverTexel - 32.0, *receiverTexel + 32.0);
+        const glm::ivec2 corner(texelOf(near.x), texelOf(near.y));
+        include(corner, corner);
+      }
+    }
   }
   if (lo.x > hi.x || mapSize <= 0)
   {

@@ -358,6 +358,63 @@ TEST(LessonClaims, PerspectiveAliasing)
   EXPECT_LE(depth.at(largestX, largestY), nearDepth);
 }
 
+// ---- perspective-warping --------------------------------------------------------------------------------------
+
+TEST(LessonClaims, PerspectiveWarping)
+{
+  const LessonRuns lesson("perspective-warping");
+  const std::string nearest = "/depth_profile/texel_ratio_t/bins/0/median";
+  const std::string farthest = "/depth_profile/texel_ratio_t/bins/5/median";
+  const std::string nearestPerspective = "/depth_profile/perspective_factor/bins/0/median";
+  const std::string farthestPerspective = "/depth_profile/perspective_factor/bins/5/median";
+  const auto spread = [&](const char* run, const std::string& nearPointer, const std::string& farPointer) {
+    return lesson.value(run, nearPointer) / lesson.value(run, farPointer);
+  };
+  const auto wrong = [&](const char* run) { return lesson.value(run, "/error/covered/fraction_above_0.05"); };
+  for (const char* run : { "uniform", "psm", "lispsm" })
+  {
+    std::cout << "[ measured ] perspective-warping " << run << " at " << kResolution << ": texel_ratio_t nearest "
+              << lesson.value(run, nearest) << " farthest " << lesson.value(run, farthest) << ", perspective_factor "
+              << lesson.value(run, nearestPerspective) << " / " << lesson.value(run, farthestPerspective)
+              << ", wrong " << wrong(run) << "\n";
+  }
+  // "more than ten times larger on the nearest ground than on the farthest" (about 50x at 64x64).
+  EXPECT_GT(spread("uniform", nearest, farthest), 10.0);
+  // "Both warps make the nearest ground's texels smaller on the screen".
+  EXPECT_LT(lesson.value("lispsm", nearest), lesson.value("uniform", nearest) / 2.0);
+  EXPECT_LT(lesson.value("psm", nearest), lesson.value("uniform", nearest) / 2.0);
+  // "LiSPSM narrows the spread of Eq. 1's perspective factor ... to less than a quarter of the uniform map's".
+  EXPECT_LT(spread("lispsm", nearestPerspective, farthestPerspective),
+    spread("uniform", nearestPerspective, farthestPerspective) / 4.0);
+  // "On the ground PSM's texel_ratio_t is the same at the nearest and farthest depths, LiSPSM's still falls".
+  EXPECT_NEAR(spread("psm", nearest, farthest), 1.0, 0.1);
+  EXPECT_GT(spread("lispsm", nearest, farthest), 2.0);
+  // "Both warps misclassify fewer pixels than the uniform map of the same size".
+  EXPECT_LT(wrong("lispsm"), wrong("uniform"));
+  EXPECT_LT(wrong("psm"), wrong("uniform"));
+
+  // Pixel by pixel: PSM's texel_ratio_t is one value over the whole visible ground (a uniform map in the eye's
+  // post-perspective space, where the ground is one plane), not only at the two ends the table shows.
+  const Buffers psm = lesson.render("psm", "deep-view", { "-t", "hard", "--set", "shadow_map_size=512", "--set", "warp=psm" });
+  ASSERT_FALSE(psm.empty());
+  const ImageF& ratioT = buffer(psm, "texel_ratio_t");
+  const ImageF& position = buffer(psm, "position");
+  double lowest = 1e30, highest = 0.0;
+  int ground = 0;
+  forEachCovered(psm, [&](int x, int y) {
+    if (std::abs(position.at(x, y, 1)) < 1e-4 && ratioT.at(x, y) > 0.0f)
+    {
+      ++ground;
+      lowest = std::min(lowest, double(ratioT.at(x, y)));
+      highest = std::max(highest, double(ratioT.at(x, y)));
+    }
+  });
+  std::cout << "[ measured ] psm texel_ratio_t over " << ground << " ground pixels in [" << lowest << ", " << highest
+            << "]\n";
+  EXPECT_GT(ground, 500);
+  EXPECT_LT(highest / lowest, 1.001);
+}
+
 // ---- acne-and-bias --------------------------------------------------------------------------------------------
 
 TEST(LessonClaims, AcneAndBias)

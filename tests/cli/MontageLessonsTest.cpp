@@ -487,10 +487,16 @@ void checkCommandLine(const std::string& line, const std::string& where)
       std::vector<std::string> settings = optionValues(words, { "--set", "-s" });
       for (const std::string& sweep : optionValues(words, { "--sweep" }))
       {
-        const std::string key = sweep.substr(0, sweep.find('='));
-        for (const std::string& value : splitOn(sweep.substr(sweep.find('=') + 1), ","))
+        // key=v1,v2 or keys taking their values together, k1+k2=a1+a2,b1+b2.
+        const std::vector<std::string> keys = splitOn(sweep.substr(0, sweep.find('=')), "+");
+        for (const std::string& tuple : splitOn(sweep.substr(sweep.find('=') + 1), ","))
         {
-          settings.push_back(key + "=" + value);
+          const std::vector<std::string> values = keys.size() == 1 ? std::vector<std::string>{ tuple } : splitOn(tuple, "+");
+          ASSERT_EQ(values.size(), keys.size()) << where << ": " << sweep << " in " << command;
+          for (std::size_t k = 0; k < keys.size(); ++k)
+          {
+            settings.push_back(keys[k] + "=" + values[k]);
+          }
         }
       }
       for (const std::string& setting : settings)

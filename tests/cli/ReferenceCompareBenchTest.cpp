@@ -307,11 +307,50 @@ TEST(SceneOverrides, BadPointersAndValuesAreOneLineErrors)
   }
 }
 
+TEST(BenchCommand, DepthProfileAndJointSweepWriteOneRowPerConfigurationAndBin)
+{
+  // Two configurations from one joint sweep (warp and warp_n together), texel_ratio_t profiled over 20 bins on
+  // facing-tiles: depth_profile.csv has 2 x 20 rows, each bin one tile's pixels, and the Fig. 12 closed form beside
+  // the median within the 3 % WarpFig12 holds them to; the chart is written.
+  const std::filesystem::path out = test::freshOutputDir("bench-profile-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-profile-cache");
+  const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("facing-tiles").string(), "-t", "hard",
+    "-s", "shadow_map_size=256", "--sweep", "warp+warp_n=lispsm+1e6,lispsm+0", "--depth-profile", "texel_ratio_t",
+    "--depth-bins", "20", "--depth-range", "1,100", "--repeat", "1", "-r", "128x32", "--samples", "1", "--quiet",
+    "--cache", cache.string(), "--out", out.string() });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  std::vector<std::string> lines;
+  std::ifstream csv(out / "depth_profile.csv");
+  for (std::string line; std::getline(csv, line);)
+  {
+    lines.push_back(line);
+  }
+  ASSERT_EQ(lines.size(), 41u);
+  EXPECT_EQ(lines[0].rfind("scene,scene_overrides,technique,settings,buffer,bin,", 0), 0u) << lines[0];
+  EXPECT_NE(lines[1].find("warp=lispsm warp_n=1e6"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[21].find("warp=lispsm warp_n=0"), std::string::npos) << lines[21];
+  for (std::size_t i = 1; i < lines.size(); ++i)
+  {
+    std::vector<std::string> cells;
+    std::stringstream row(lines[i]);
+    for (std::string cell; std::getline(row, cell, ',');)
+    {
+      cells.push_back(cell);
+    }
+    ASSERT_EQ(cells.size(), 19u) << lines[i];
+    EXPECT_GT(std::stoi(cells[8]), 0) << "every bin holds a tile: " << lines[i];
+    EXPECT_NEAR(std::stod(cells[14]), 1.0, 0.03) << "median over the closed form: " << lines[i];
+  }
+  EXPECT_TRUE(std::filesystem::is_regular_file(out / "depth_profile_facing-tiles.png"));
+}
+
 TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
 {
   const std::filesystem::path out = test::freshOutputDir("bench-bad");
   for (const auto& [option, value] : { std::pair<std::string, std::string>("-t", "hard,nope"),
-         { "--sweep", "kernel_texels" }, { "--sweep", "kernel_texels=0,3" }, { "--repeat", "0" } })
+         { "--sweep", "kernel_texels" }, { "--sweep", "kernel_texels=0,3" }, { "--repeat", "0" },
+         { "--sweep", "kernel_texels+nope=3+1" }, { "--sweep", "kernel_texels+bias_slope_texels=3+1,5" },
+         { "--depth-bins", "0" }, { "--depth-range", "10,1" } })
   {
     const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("planar-occluder").string(), option, value, "-r",
       "32x32", "--out", out.string() });

@@ -9,6 +9,10 @@
 #include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkPolyData.h>
 
 #include <algorithm>
 #include <cmath>
@@ -217,6 +221,101 @@ TEST_P(ProbeAgreement, TwinVisibilityEqualsTheGpuBufferOnLitPenumbraAndUmbraPixe
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryTechnique, ProbeAgreement, testing::ValuesIn(probeCases()), test::datasetTechniqueName);
+
+// The pixel's footprint in a warped map (survey §4.2): hard with warp=lispsm on deep-view, the nearest ground pixel
+// of the middle column and the middle one of its ground pixels (the farthest touches the horizon: its upper corners'
+// rays never meet the ground, and the probe draws no footprint; next to it one pixel spans depths so far apart that
+// its footprint is no longer the linear one Eq. 2 measures). The footprint's corners are the pixel's corners projected through the warp,
+// so its sides are the map's texels per pixel step (the Jacobian J that Eq. 2 inverts): one over the inverse's
+// columns is texel_ratio_s and _t, the buffers' values at the pixel, to the curvature of the warp across one pixel.
+// The texel the pixel reads lies inside it. Near the eye the warp spends more texels on the pixel than the
+// uniform map of the same size.
+TEST(Probe, WarpedMapShowsThePixelFootprintInTheWarpedSpace)
+{
+  const Scene scene = test::loadDataset("deep-view");
+  double uniformNearArea = 0.0;
+  for (const std::string warp : { "none", "lispsm" })
+  {
+    const FrameResult frame = test::renderDataset(scene, "hard", 64, 64, { "shadow_map_size=512", "warp=" + warp });
+    const ImageF& position = frame.find("position")->image;
+    const ImageF& coverage = frame.find("coverage")->image;
+    std::vector<glm::ivec2> pixels;
+    const int x = 32;
+    for (int y = 0; y < 64; ++y)
+    {
+      if (coverage.at(x, y) > 0.5f && std::abs(position.at(x, y, 1)) < 1e-4)
+      {
+        pixels.push_back({ x, y });
+      }
+    }
+    ASSERT_GE(pixels.size(), 10u) << warp;
+    EXPECT_TRUE(probePixel(frame, scene, 0, pixels.back()).record.mapPolygons.empty()) << warp;
+    for (const glm::ivec2 pixel : { pixels.front(), pixels[pixels.size() / 2] })
+    {
+      const ProbeResult probe = probePixel(frame, scene, 0, pixel);
+      ASSERT_EQ(probe.record.mapPolygons.size(), 1u) << warp;
+      const std::vector<glm::dvec2>& corners = probe.record.mapPolygons.front().points;
+      ASSERT_EQ(corners.size(), 4u);
+      // Columns of J: one pixel step along x and along y, in texels; its inverse's columns are one s and one t
+      // texel step, in pixels.
+      const glm::dvec2 stepX = 0.5 * ((corners[1] - corners[0]) + (corners[2] - corners[3]));
+      const glm::dvec2 stepY = 0.5 * ((corners[3] - corners[0]) + (corners[2] - corners[1]));
+      const double determinant = stepX.x * stepY.y - stepY.x * stepX.y;
+      const double ratioS = glm::length(glm::dvec2(stepY.y, -stepX.y)) / std::abs(determinant);
+      const double ratioT = glm::length(glm::dvec2(-stepY.x, stepX.x)) / std::abs(determinant);
+      const double bufferS = frame.find("texel_ratio_s")->image.at(pixel.x, pixel.y);
+      const double bufferT = frame.find("texel_ratio_t")->image.at(pixel.x, pixel.y);
+      const ProbeQuantity* recordedT = probe.record.find("texel_ratio_t");
+      ASSERT_NE(recordedT, nullptr);
+      std::cout << "[ measured ] warp=" << warp << " pixel " << pixel.x << "," << pixel.y << ": footprint "
+                << std::abs(determinant) << " texels, texel_ratio_s/_t from it " << ratioS << " / " << ratioT
+                << ", buffers " << bufferS << " / " << bufferT << "\n";
+      EXPECT_NEAR(recordedT->value[0], bufferT, 1e-4 * bufferT) << warp;
+      EXPECT_NEAR(ratioS / bufferS, 1.0, 0.01) << warp;
+      EXPECT_NEAR(ratioT / bufferT, 1.0, 0.01) << warp;
+      // The pixel centre's texel (the probe's shadow_map_position) inside the quadrilateral: same side of each edge.
+      const ProbeQuantity* centre = probe.record.find("shadow_map_position");
+      ASSERT_NE(centre, nullptr);
+      const glm::dvec2 c(centre->value[0], centre->value[1]);
+      int positive = 0;
+      for (int i = 0; i < 4; ++i)
+      {
+        const glm::dvec2 edge = corners[(i + 1) % 4] - corners[i];
+        const glm::dvec2 toCentre = c - corners[i];
+        positive += edge.x * toCentre.y - edge.y * toCentre.x > 0.0 ? 1 : 0;
+      }
+      EXPECT_TRUE(positive == 0 || positive == 4) << warp << ": the pixel's centre lies outside its footprint";
+      if (pixel == pixels.front())
+      {
+        if (warp == "none")
+        {
+          uniformNearArea = std::abs(determinant);
+        }
+        else
+        {
+          EXPECT_GT(std::abs(determinant), 2.0 * uniformNearArea) << "LiSPSM spends more texels on the near pixel";
+        }
+      }
+      // probe.json lists it; probe.vtm has it in the shadow_map block.
+      const nlohmann::json json = probeJson(probe, frame, scene);
+      ASSERT_EQ(json["map_polygons"].size(), 1u);
+      EXPECT_EQ(json["map_polygons"][0]["points"].size(), 4u);
+      const vtkSmartPointer<vtkMultiBlockDataSet> data = probeDataSet(probe, frame, scene);
+      auto* shadowMap = vtkMultiBlockDataSet::SafeDownCast(data->GetBlock(1));
+      ASSERT_NE(shadowMap, nullptr);
+      vtkPolyData* footprint = nullptr;
+      for (unsigned int b = 0; b < shadowMap->GetNumberOfBlocks(); ++b)
+      {
+        if (std::string(shadowMap->GetMetaData(b)->Get(vtkCompositeDataSet::NAME())) == "pixel_footprint")
+        {
+          footprint = vtkPolyData::SafeDownCast(shadowMap->GetBlock(b));
+        }
+      }
+      ASSERT_NE(footprint, nullptr);
+      EXPECT_EQ(footprint->GetNumberOfPolys(), 1);
+    }
+  }
+}
 
 } // namespace
 } // namespace sl

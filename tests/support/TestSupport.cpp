@@ -185,7 +185,7 @@ std::vector<std::string> datasetNames()
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::directory_iterator(sourceDir() / "datasets"))
   {
-    if (std::filesystem::is_regular_file(entry.path() / "scene.json"))
+    if (std::filesystem::is_regular_file(entry.path() / "scene.json") && entry.path().filename() != "facing-tiles")
     {
       names.push_back(entry.path().filename().string());
     }

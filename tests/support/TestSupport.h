@@ -78,7 +78,9 @@ Scene loadDataset(const std::string& name);
 SceneObject flatObject(const std::string& name, const std::vector<glm::dvec3>& corners);
 // Appends the four faces of the tetrahedron `vertices` to `corners`, each wound outward (for flatObject).
 void appendTetrahedron(std::vector<glm::dvec3>& corners, const std::array<glm::dvec3, 4>& vertices);
-std::vector<std::string> datasetNames();      // every datasets/*/scene.json
+// Every datasets/*/scene.json with shadows to compare: all but facing-tiles, the survey's Fig. 12 as a scene, whose
+// tiles shadow nothing (every technique's image is the same there; tests/render/WarpFig12Test.cpp measures it).
+std::vector<std::string> datasetNames();
 // The techniques that render `wall-ring`: its point light has visible receivers all around it, which one shadow map
 // cannot cover, so every other technique that takes point lights refuses it by design until cube maps exist (issue 29
 // item 5). tests/cli/SamplingDatasetsCliTest.cpp checks that each of those refuses it, so this list cannot go stale.

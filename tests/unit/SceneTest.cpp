@@ -284,7 +284,9 @@ TEST(SceneDatasets, AllExpectedDatasetsExistAndLoad)
     EXPECT_EQ(scene.file, sceneFile);
     EXPECT_FALSE(scene.lights.empty());
     EXPECT_FALSE(scene.objects.empty());
-    EXPECT_EQ(scene.camera.resolution, glm::ivec2(512, 512));
+    // facing-tiles lays its tiles along the horizon (Fig. 12's closed forms are stated on the view axis): 4:1.
+    EXPECT_EQ(scene.camera.resolution,
+      entry.path().filename() == "facing-tiles" ? glm::ivec2(1024, 256) : glm::ivec2(512, 512));
     EXPECT_TRUE(fs::exists(entry.path() / "SOURCE.md"));
     for (const SceneObject& object : scene.objects)
     {
@@ -353,6 +355,42 @@ TEST(SceneDatasets, ObjectsVisibleAndLightsFaceTheScene)
 // The generated sampling-error datasets (datasets/generator) are the configurations their SOURCE.md names: the deep
 // view's light perpendicular to the (horizontal) view, as in the survey's Fig. 12; the variant's light behind the
 // viewer, 15 degrees off the view direction (Fig. 14-15); wall-ring's point light enclosed by its walls.
+// facing-tiles (the survey's Fig. 12): a horizontal view, the light straight down (view ⟂ light), every tile inside
+// the 4:1 view, facing the bisector of the directions to the eye and to the light (Eq. 1's cos(alpha) = cos(beta)),
+// and the nearest and farthest tile corners at eye depth 1 and 100.
+TEST(SceneDatasets, FacingTilesIsFig12sConfiguration)
+{
+  const Scene scene = loadScene(kDatasets / "facing-tiles" / "scene.json");
+  const Camera& camera = scene.camera;
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+  EXPECT_NEAR(glm::dot(glm::normalize(scene.lights[0].direction), glm::dvec3(0, -1, 0)), 1.0, 1e-12);
+  EXPECT_NEAR(camera.focalPoint.y - camera.position.y, 0.0, 1e-12);
+  const glm::dmat4 viewFromWorld = glm::lookAt(camera.position, camera.focalPoint, camera.viewUp);
+  const glm::dmat4 clipFromWorld = glm::perspective(glm::radians(camera.viewAngleDeg),
+    static_cast<double>(camera.resolution.x) / camera.resolution.y, 0.01, 1000.0) * viewFromWorld;
+  ASSERT_EQ(scene.objects.size(), 20u);
+  double nearest = 1e30, farthest = 0.0;
+  for (const SceneObject& object : scene.objects)
+  {
+    const TriangleMesh& mesh = object.mesh;
+    const glm::dvec3 centre = meshBounds(mesh).center();
+    const glm::dvec3 toEye = glm::normalize(camera.position - centre);
+    const glm::dvec3 normal = glm::normalize(glm::dvec3(mesh.normals.front()));
+    EXPECT_NEAR(glm::dot(normal, toEye), glm::dot(normal, glm::dvec3(0, 1, 0)), 2e-3) << object.name;
+    for (const glm::vec3& p : mesh.positions)
+    {
+      const glm::dvec4 clip = clipFromWorld * glm::dvec4(glm::dvec3(p), 1.0);
+      EXPECT_TRUE(clip.w > 0.0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w) << object.name;
+      const double depth = -(viewFromWorld * glm::dvec4(glm::dvec3(p), 1.0)).z;
+      nearest = std::min(nearest, depth);
+      farthest = std::max(farthest, depth);
+    }
+  }
+  EXPECT_NEAR(nearest, 1.0, 2e-3);
+  EXPECT_NEAR(farthest, 100.0, 0.05);
+}
+
 TEST(SceneDatasets, SamplingDatasetsHaveTheirLightConfigurations)
 {
   const Scene deep = loadScene(kDatasets / "deep-view" / "scene.json");
