@@ -2,7 +2,8 @@
 // Writes (primary cascade, secondary cascade, primary's weight, 0) per pixel; uncovered pixels (0, 0, 1, 0).
 // The CPU twin is sl::selectCascade (src/lightspace/Cascades.cpp): depth selection by the eye depth's slice, blended
 // over the last cascadeBlend of it into the next; containment: the first map that holds the point marginTexels inside
-// its edge and within its depth range, blended over the outer cascadeBlend of its half-width into the next holder.
+// its edge and within its depth range (its own slice's map holds it by construction), blended over the outer
+// cascadeBlend of its half-width into the next holder.
 // Driver: vtkSLFocusPass (src/structures/shadowmap/vtkSLFocusPass.cxx).
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -72,10 +73,11 @@ void main()
     }
     else
     {
-      for (int j = 0; j < cascadeCount; ++j)
+      // The pixel's own slice's map holds it by construction: only the finer maps are tested.
+      for (int j = 0; j <= slice; ++j)
       {
         float edge;
-        if (!mapHolds(j, surface.pWs, edge))
+        if (!mapHolds(j, surface.pWs, edge) && j != slice)
         {
           continue;
         }
@@ -85,7 +87,7 @@ void main()
           for (int next = j + 1; next < cascadeCount; ++next)
           {
             float nextEdge;
-            if (mapHolds(next, surface.pWs, nextEdge))
+            if (mapHolds(next, surface.pWs, nextEdge) || next == slice)
             {
               result = vec4(float(j), float(next), edge / cascadeBlend, 0.0);
               break;

@@ -139,11 +139,17 @@ ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera
     }
     return selection;
   }
-  // Containment: the finest map that holds the point; blended toward the next one that holds it near its edge.
-  for (int j = 0; j < count; ++j)
+  // Containment: the finest map that holds the point, blended toward the next one that holds it near its edge. The
+  // point's own slice's map holds it by construction (its focus owns it), so only the finer maps are tested: a
+  // receiver at its own map's edge is not a decision within rounding.
+  const auto holds = [&](int j, double& edge) {
+    const bool held = mapHolds(cascades.views[static_cast<std::size_t>(j)], cascades.marginTexels, pWs, edge);
+    return held || j == slice;
+  };
+  for (int j = 0; j <= slice; ++j)
   {
     double edge = 0.0;
-    if (!mapHolds(cascades.views[static_cast<std::size_t>(j)], cascades.marginTexels, pWs, edge))
+    if (!holds(j, edge))
     {
       continue;
     }
@@ -153,7 +159,7 @@ ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera
       for (int next = j + 1; next < count; ++next)
       {
         double nextEdge = 0.0;
-        if (mapHolds(cascades.views[static_cast<std::size_t>(next)], cascades.marginTexels, pWs, nextEdge))
+        if (holds(next, nextEdge))
         {
           selection.secondary = next;
           selection.primaryWeight = edge / settings.blend;
@@ -161,21 +167,24 @@ ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera
         }
       }
     }
-    return selection;
+    break;
   }
-  return selection; // held by no map (a point the light cannot reach): its own slice
+  return selection;
 }
 
 glm::dvec4 snappedWindow(const glm::dvec4& receiverWindow, int resolution, double marginTexels)
 {
   const double margin = std::ceil(marginTexels);
+  // A slice seen edge-on (one pixel row of ground: one eye depth) has receivers on a line; its texels along the line's
+  // normal are kept at 1e-3 of the other axis's extent, so the grid stays representable and as stable as that axis.
+  const double widest = std::max({ receiverWindow.y - receiverWindow.x, receiverWindow.w - receiverWindow.z, 1e-300 });
   glm::dvec4 window;
   for (int axis = 0; axis < 2; ++axis)
   {
     const double lo = receiverWindow[2 * axis];
     const double hi = receiverWindow[2 * axis + 1];
     // Two texels to spare: the floor of the low edge gives up to one.
-    const double fitted = std::max(hi - lo, 1e-300) / (resolution - 2.0 * margin - 2.0);
+    const double fitted = std::max(hi - lo, 1e-3 * widest) / (resolution - 2.0 * margin - 2.0);
     const double texel = std::exp2(std::ceil(4.0 * std::log2(fitted)) / 4.0);
     window[2 * axis] = (std::floor(lo / texel) - margin) * texel;
     window[2 * axis + 1] = window[2 * axis] + resolution * texel;

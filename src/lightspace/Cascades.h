@@ -10,8 +10,9 @@
 //
 // Selection, per visible receiver, of the cascade whose map it reads:
 //   depth        the slice holding its eye depth d: C_k <= d < C_{k+1}
-//   containment  the first (finest) cascade whose map holds it with the filter's margin and within its depth range:
-//                the survey's remark that a point may be better served by a nearer partition's map (light ∥ view)
+//   containment  the first (finest) cascade whose map holds it with the filter's margin and within its depth range
+//                (its own slice's holds it by construction): the survey's remark that a point may be better served
+//                by a nearer partition's map (light ∥ view)
 // Blending (cascade_blend = b, a fraction of a slice): depth selection blends slice k into k + 1 over the last
 // b (C_{k+1} - C_k) of slice k, weight (C_{k+1} - d) / (b (C_{k+1} - C_k)) for k; containment blends over the outer
 // b of a map's half-width into the next cascade that holds the point. b = 0: a hard switch.

@@ -147,7 +147,11 @@ TEST(Cascades, ContainmentPicksTheFinestMapThatHoldsThePointWithItsMargin)
   EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, 0.0, -6.0)).primary, 0);  // eye depth 6: slice 1
   EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, 0.0, -7.6)).primary, 1);  // within the margin of map 0
   EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, 0.0, -7.4)).primary, 0);
-  EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, -6.0, -2.0)).primary, 1); // below map 0's depth range
+  EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, -6.0, -6.0)).primary, 1); // below map 0's depth range
+  // The own slice's map holds its receivers by construction (its focus owns them): slice 0 reads map 0 even where
+  // the test would fail.
+  EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, 0.0, -3.0)).primary, 0);
+  EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(7.9, -6.0, -3.0)).primary, 0);
   double edge = 0.0;
   ASSERT_TRUE(mapHolds(cascades.views[0], 2.0, glm::dvec3(3.75, 0.0, 0.0), edge));
   EXPECT_NEAR(edge, 0.5, 1e-12); // the inner window's half-width is 7.5
