@@ -6,7 +6,7 @@
 // Split schemes (i = 0..m):
 //   uniform    C_i = z_n + (z_f - z_n) i / m
 //   log        C_i = z_n (z_f / z_n)^(i / m)                          (survey §4.3.1, after LTYM06: the optimal warp)
-//   practical  C_i = λ log_i + (1 - λ) uniform_i                      (PSSM, Zhang et al. 2006 as the survey cites it)
+//   practical  C_i = λ log_i + (1 - λ) uniform_i                      (PSSM, ZSXL06 as the survey cites it)
 //
 // Selection, per visible receiver, of the cascade whose map it reads:
 //   depth        the slice holding its eye depth d: C_k <= d < C_{k+1}
@@ -57,7 +57,7 @@ const char* cascadeSelectionName(CascadeSelection selection);
 struct CascadeSettings
 {
   int count = 1; // cascades: 1 = one map (no partition)
-  SplitScheme scheme = SplitScheme::Practical;
+  SplitScheme scheme = SplitScheme::Log;
   double lambda = 0.5; // split_lambda: practical's weight of the log split
   CascadeSelection selection = CascadeSelection::Depth;
   double blend = 0.0; // cascade_blend: band width, fraction of a slice (depth) or of a map's half-width (containment)

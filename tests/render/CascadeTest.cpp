@@ -388,7 +388,7 @@ TEST(CascadeGpu, FewerMisclassifiedPixelsThanOneMapOfTheSameTexels)
     { "one (2N)^2 map, lispsm", { "warp=lispsm" }, false },
     { "4 N^2 cascades, log, depth", { "cascades=4", "split_scheme=log" }, true },
     { "4 N^2 cascades, log, containment", { "cascades=4", "split_scheme=log", "cascade_selection=containment" }, true },
-    { "4 N^2 cascades, practical 0.5, depth", { "cascades=4" }, true },
+    { "4 N^2 cascades, practical 0.5, depth", { "cascades=4", "split_scheme=practical" }, true },
   };
   for (const std::string dataset : { "deep-view", "deep-view-behind" })
   {

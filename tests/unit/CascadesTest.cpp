@@ -215,13 +215,13 @@ TEST(Cascades, OnlyHardAndPcfListTheCascadeParameters)
   EXPECT_EQ(listing, 2);
   ParameterValues values = findTechnique("hard").defaultParameters();
   values.set("cascades=4");
-  values.set("split_scheme=log");
+  values.set("split_scheme=uniform");
   values.set("cascade_selection=containment");
   values.set("cascade_blend=0.2");
   values.set("cascade_snap=off");
   const CascadeSettings settings = shadowMapSettings(findTechnique("hard"), values).cascades;
   EXPECT_EQ(settings.count, 4);
-  EXPECT_EQ(settings.scheme, SplitScheme::Log);
+  EXPECT_EQ(settings.scheme, SplitScheme::Uniform);
   EXPECT_EQ(settings.selection, CascadeSelection::Containment);
   EXPECT_EQ(settings.blend, 0.2);
   EXPECT_FALSE(settings.snap);
