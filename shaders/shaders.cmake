@@ -28,12 +28,14 @@ set(SL_SHADER_FILES
   lightspace/LightDepthVertex.glsl
   lightspace/LightDepthFragment.glsl
   lightspace/FocusReduction.glsl
+  lightspace/CascadeSelection.glsl
   moments/MomentsFromDepth.glsl
   moments/BoxBlur.glsl
   sat/SatBuild.glsl
   hsm/HsmBuild.glsl
   hsm/YsmMssmBuild.glsl
   multiview/SubLightAccumulate.glsl
+  multiview/PartitionAccumulate.glsl
   common/ContourBackprojection.glsl
   common/ContourKernel.glsl
   shading/ShadingFragment.glsl

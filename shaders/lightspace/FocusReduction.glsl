@@ -20,6 +20,10 @@ uniform mat4 lightViewFromWorld;
 uniform int lightIsPerspective;
 uniform vec3 lightEyeWs;
 uniform vec3 lightAxisWs;
+// The receivers this view owns (a cascade's eye-depth slice, lightspace/Cascades.h): inside every plane.
+#define MAX_OWNER_PLANES 4
+uniform int ownerPlaneCount;
+uniform vec4 ownerPlanes[MAX_OWNER_PLANES];
 
 #if FOCUS_PASS == 0
 #define SLOT_COUNT 7
@@ -52,6 +56,13 @@ void accumulate(ivec2 pixel, inout float values[SLOT_COUNT])
   if (!surface.covered || !surface.receivesShadows || !lightCanReach(surface.pWs, surface.nWs))
   {
     return;
+  }
+  for (int plane = 0; plane < ownerPlaneCount; ++plane)
+  {
+    if (dot(ownerPlanes[plane], vec4(surface.pWs, 1.0)) < 0.0)
+    {
+      return;
+    }
   }
 #if FOCUS_PASS == 0
   for (int axis = 0; axis < 3; ++axis)

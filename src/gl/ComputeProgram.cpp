@@ -64,6 +64,26 @@ void ComputeProgram::setVector(const char* name, const glm::dvec3& value) const
   glProgramUniform3fv(program_, glGetUniformLocation(program_, name), 1, glm::value_ptr(single));
 }
 
+void ComputeProgram::setVectors(const char* name, const std::vector<glm::dvec4>& values) const
+{
+  std::vector<glm::vec4> single(values.begin(), values.end());
+  if (!single.empty())
+  {
+    glProgramUniform4fv(program_, glGetUniformLocation(program_, name), static_cast<GLsizei>(single.size()),
+      glm::value_ptr(single.front()));
+  }
+}
+
+void ComputeProgram::setMatrices(const char* name, const std::vector<glm::dmat4>& values) const
+{
+  std::vector<glm::mat4> single(values.begin(), values.end());
+  if (!single.empty())
+  {
+    glProgramUniformMatrix4fv(program_, glGetUniformLocation(program_, name), static_cast<GLsizei>(single.size()),
+      GL_FALSE, glm::value_ptr(single.front()));
+  }
+}
+
 void ComputeProgram::setMatrix(const char* name, const glm::dmat4& value) const
 {
   const glm::mat4 single(value);

@@ -2,6 +2,7 @@
 
 #include "core/Error.h"
 #include "lightspace/CameraView.h"
+#include "lightspace/Cascades.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -117,6 +118,18 @@ bool lightCanReach(const Light& light, const glm::dvec3& pWs, const glm::dvec3& 
   return true;
 }
 
+bool ReceiverSource::owns(const glm::dvec3& pWs) const
+{
+  for (const glm::dvec4& plane : ownerPlanes_)
+  {
+    if (glm::dot(plane, glm::dvec4(pWs, 1.0)) < 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 ImageReceivers::ImageReceivers(const ImageF& gbufferPosition, const ImageF& gbufferNormal)
 {
   SL_CHECK(gbufferPosition.components == 4 && gbufferNormal.components == 4);
@@ -138,7 +151,7 @@ ReceiverSummary ImageReceivers::summary(const Light& light)
   ReceiverSummary result;
   for (std::size_t i = 0; i < receivers_.size(); i += 2)
   {
-    if (lightCanReach(light, receivers_[i], receivers_[i + 1]))
+    if (owns(receivers_[i]) && lightCanReach(light, receivers_[i], receivers_[i + 1]))
     {
       ++result.count;
       result.worldBounds.extend(receivers_[i]);
@@ -157,7 +170,7 @@ ReceiverExtent ImageReceivers::extent(const Light& light, const LightView& view,
   for (std::size_t i = 0; i < receivers_.size(); i += 2)
   {
     const glm::dvec3& pWs = receivers_[i];
-    if (!lightCanReach(light, pWs, receivers_[i + 1]))
+    if (!owns(pWs) || !lightCanReach(light, pWs, receivers_[i + 1]))
     {
       continue;
     }
@@ -350,12 +363,19 @@ double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec
 void setWindowAndProjection(LightView& view, const glm::dvec4& window, double nearDepth, double receiverFar,
   double depthEpsilon, const FocusSettings& settings)
 {
-  const double grow = settings.resolution / (settings.resolution - 2.0 * settings.marginTexels);
-  const double xCenter = 0.5 * (window.x + window.y);
-  const double yCenter = 0.5 * (window.z + window.w);
-  const double xHalf = 0.5 * (window.y - window.x) * grow;
-  const double yHalf = 0.5 * (window.w - window.z) * grow;
-  view.window = { xCenter - xHalf, xCenter + xHalf, yCenter - yHalf, yCenter + yHalf };
+  if (settings.snapToTexels && view.projection == LightProjection::Orthographic)
+  {
+    view.window = snappedWindow(window, settings.resolution, settings.marginTexels);
+  }
+  else
+  {
+    const double grow = settings.resolution / (settings.resolution - 2.0 * settings.marginTexels);
+    const double xCenter = 0.5 * (window.x + window.y);
+    const double yCenter = 0.5 * (window.z + window.w);
+    const double xHalf = 0.5 * (window.y - window.x) * grow;
+    const double yHalf = 0.5 * (window.w - window.z) * grow;
+    view.window = { xCenter - xHalf, xCenter + xHalf, yCenter - yHalf, yCenter + yHalf };
+  }
 
   view.nearDepth = std::max(depthEpsilon, nearDepth * (1.0 - 1e-3));
   view.farDepth = receiverFar * (1.0 + 1e-3) + depthEpsilon;
@@ -472,6 +492,13 @@ void applyPerspectiveWarp(const Light& light, ReceiverSource& receivers, const F
 LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings)
 {
   SL_CHECK(settings.resolution > 2.0 * settings.marginTexels);
+  // Only the receivers this view owns (a cascade's slice); lifted however the fit ends.
+  struct OwnerScope
+  {
+    ReceiverSource& source;
+    ~OwnerScope() { source.setOwnerPlanes({}); }
+  } ownerScope{ receivers };
+  receivers.setOwnerPlanes(settings.ownerPlanes);
   const ReceiverSummary summary = light.type == LightType::Point ? receivers.summary(light) : ReceiverSummary();
 
   LightView view;

@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include <utility>
 #include <vector>
 
 namespace sl
@@ -66,6 +67,11 @@ struct FocusSettings
   // A perspective warp of the focused map (survey §4.2): needs the camera and a directional light.
   WarpSettings warp;
   const CameraView* camera = nullptr;
+  // A view that owns only part of the visible receivers (a cascade's slice, Cascades.h): world-space half-spaces,
+  // dot(plane, (pWs, 1)) >= 0 inside; the fit sees only the receivers inside all of them. Empty: every receiver.
+  std::vector<glm::dvec4> ownerPlanes;
+  // Texel snapping (Cascades.h snappedWindow) of an orthographic window: whole texels of the light's fixed frame.
+  bool snapToTexels = false;
 };
 
 // Can the light illuminate a point at all, ignoring occluders? False behind an area light's plane,
@@ -103,9 +109,18 @@ class ReceiverSource
 {
 public:
   virtual ~ReceiverSource() = default;
+  // Restricts the next questions to the receivers inside every plane (FocusSettings::ownerPlanes); {} lifts it.
+  void setOwnerPlanes(std::vector<glm::dvec4> planes) { ownerPlanes_ = std::move(planes); }
+  const std::vector<glm::dvec4>& ownerPlanes() const { return ownerPlanes_; }
   // Only asked for point lights (their axis aims at the receivers' bounding box).
   virtual ReceiverSummary summary(const Light& light) = 0;
   virtual ReceiverExtent extent(const Light& light, const LightView& view, const glm::dvec3& axis) = 0;
+
+protected:
+  bool owns(const glm::dvec3& pWs) const;
+
+private:
+  std::vector<glm::dvec4> ownerPlanes_;
 };
 
 // The CPU reference: gbufferPosition RGBA (xyz = pWs, w = coverage), gbufferNormal RGBA (xyz = nWs,

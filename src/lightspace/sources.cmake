@@ -7,6 +7,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/LightSampleSet.cpp
   src/lightspace/ShadowMapMath.cpp
   src/lightspace/PerspectiveWarp.cpp
+  src/lightspace/Cascades.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
   src/lightspace/SummedAreaTable.cpp)

@@ -169,6 +169,32 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
         { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
     }
   }
+  if (frame.cascades)
+  {
+    // Survey §4.3.1: the split depths (eye depth) and each cascade's map; the top-level light_view is cascade 0's.
+    const CascadeSet& cascades = *frame.cascades;
+    nlohmann::json list = nlohmann::json::array();
+    for (std::size_t k = 0; k < cascades.views.size(); ++k)
+    {
+      const LightView& view = cascades.views[k];
+      nlohmann::json entry = { { "near", cascades.splits[k] }, { "far", cascades.splits[k + 1] },
+        { "resolution", view.resolution }, { "texel_world_size", view.texelWorldSize(0.0) },
+        { "light_near_depth", view.nearDepth }, { "light_far_depth", view.farDepth },
+        { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
+        { "receiver_samples", view.receiverSampleCount } };
+      if (view.warp.active())
+      {
+        entry["warp_n"] = std::isfinite(view.warp.n) ? nlohmann::json(view.warp.n) : nlohmann::json();
+      }
+      list.push_back(entry);
+    }
+    stats["light_view"]["cascades"] = list;
+    stats["light_view"]["split_scheme"] = splitSchemeName(cascades.settings.scheme);
+    stats["light_view"]["split_lambda"] = cascades.settings.lambda;
+    stats["light_view"]["cascade_selection"] = cascadeSelectionName(cascades.settings.selection);
+    stats["light_view"]["cascade_blend"] = cascades.settings.blend;
+    stats["light_view"]["cascade_snap"] = cascades.settings.snap;
+  }
   stats["buffers"] = bufferSummaries(frame.buffers);
   nlohmann::json lightSpace = nlohmann::json::object();
   for (const NamedImage& named : frame.lightSpace)

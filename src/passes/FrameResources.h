@@ -10,6 +10,7 @@
 #include "core/Error.h"
 #include "gl/GlResources.h"
 #include "lightspace/CameraView.h"
+#include "lightspace/Cascades.h"
 #include "lightspace/LightView.h"
 #include "scene/WeldedMesh.h"
 #include "scene/Scene.h"
@@ -19,6 +20,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,6 +81,15 @@ struct FrameResources
   LightView lightView;
   vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
+  // Views that partition the pixels (cascades, survey §4.3.1; vtkSLMultiViewPass): how many, the one the inner stages
+  // run for now, every view's fit (the focus fits all at view 0), each view's maps (the light depth pass keeps them
+  // for the export), and the per-pixel selection (RGBA32F: primary view, secondary view, primary's weight, 0).
+  int partitionViews = 1;
+  int viewIndex = 0;
+  std::optional<CascadeSet> cascades;
+  std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapLinear;
+  std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapDepth;
+  vtkSmartPointer<vtkTextureObject> viewSelection;
   // The other light-space structures (structures/LightSpaceStructure.h), by structure name: what each one's
   // build left for its binding and export (e.g. structures/sat/SatStructure.h's SummedAreaTableData).
   std::map<std::string, std::shared_ptr<LightSpaceData>> lightSpaceData;

@@ -64,6 +64,9 @@ std::vector<std::uint32_t> GpuReceivers::run(const ComputeProgram& program, cons
   program.setVector("lightNormalWs", light.normal);
   program.setVector("lightDirectionWs", light.direction);
   program.setFloat("lightCosCone", std::cos(glm::radians(light.coneAngleDeg)));
+  SL_CHECK_MSG(ownerPlanes().size() <= 4, "at most 4 owner planes (FocusReduction.glsl MAX_OWNER_PLANES)");
+  program.setInt("ownerPlaneCount", static_cast<int>(ownerPlanes().size()));
+  program.setVectors("ownerPlanes", ownerPlanes());
   result_.bind(0);
   const glm::ivec2 size(static_cast<int>(position_->GetWidth()), static_cast<int>(position_->GetHeight()));
   // 8 x 8 invocations per group, each reducing an 8 x 8 pixel tile (FocusReduction.glsl).

@@ -11,4 +11,5 @@ set(SL_PASSES_SOURCES
   src/passes/vtkSLShadingPass.cxx
   src/passes/vtkSLMsaaResolvePass.cxx
   src/passes/vtkSLSubLightAccumulatePass.cxx
+  src/passes/vtkSLPartitionAccumulatePass.cxx
   src/passes/vtkSLMultiViewPass.cxx)

@@ -25,6 +25,35 @@ void vtkSLMultiViewPass::SetStages(std::vector<vtkSLStagePass*> inner, vtkSLSubL
   this->Accumulate = accumulate;
 }
 
+void vtkSLMultiViewPass::SetPartitionStages(std::vector<vtkSLStagePass*> inner, vtkSLPartitionAccumulatePass* accumulate)
+{
+  this->Inner.assign(inner.begin(), inner.end());
+  this->PartitionAccumulate = accumulate;
+}
+
+void vtkSLMultiViewPass::RenderPartition(const vtkRenderState* state)
+{
+  sl::FrameResources& frame = *this->Frame;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  std::map<std::string, vtkSmartPointer<vtkTextureObject>> combined;
+  for (const std::string& output : frame.technique->outputNames())
+  {
+    combined[output] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+  }
+  for (int view = 0; view < frame.partitionViews; ++view)
+  {
+    frame.viewIndex = view;
+    for (vtkSLStagePass* stage : this->Inner)
+    {
+      stage->Render(state);
+    }
+    this->PartitionAccumulate->SetView(view, &combined);
+    this->PartitionAccumulate->Render(state);
+  }
+  frame.viewIndex = 0;
+  frame.techniqueTargets = combined;
+}
+
 namespace
 {
 
@@ -44,6 +73,11 @@ void vtkSLMultiViewPass::Render(const vtkRenderState* state)
   sl::FrameResources& frame = *this->Frame;
   this->NumberOfRenderedProps = 0;
   SL_CHECK(frame.technique != nullptr);
+  if (this->PartitionAccumulate)
+  {
+    this->RenderPartition(state);
+    return;
+  }
   const int perSide = frame.technique->subLightsPerSide(frame.parameters);
   frame.subLightVisibility.clear();
   if (perSide == 1)

@@ -5,10 +5,16 @@
 // combined ones and FrameResources::subLightVisibility holds each sub-light's visibility. With S = 1 the inner
 // stages run once, as without this pass.
 //
-// Not a timed stage itself: its inner stages report their times, summed over the sub-lights.
+// Views that partition the pixels (cascades, survey §4.3.1; FrameResources::partitionViews > 1): the same inner stages
+// run once per view with FrameResources::viewIndex set (the focus fits every view at view 0 and writes the per-pixel
+// selection), each followed by vtkSLPartitionAccumulatePass, which blends the technique's targets by the selection
+// instead of averaging them. Cube-map faces are views of the same kind (partitioned by direction).
+//
+// Not a timed stage itself: its inner stages report their times, summed over the sub-lights or views.
 #pragma once
 
 #include "passes/vtkSLStagePass.h"
+#include "passes/vtkSLPartitionAccumulatePass.h"
 #include "passes/vtkSLSubLightAccumulatePass.h"
 
 #include <vtkRenderPass.h>
@@ -28,6 +34,8 @@ public:
   void SetFrame(sl::FrameResources* frame) { this->Frame = frame; }
   // The per-sub-light stages, in order, and the accumulation stage run after each.
   void SetStages(std::vector<vtkSLStagePass*> inner, vtkSLSubLightAccumulatePass* accumulate);
+  // The per-view stages and the selection-weighted accumulation, for views that partition the pixels.
+  void SetPartitionStages(std::vector<vtkSLStagePass*> inner, vtkSLPartitionAccumulatePass* accumulate);
 
 protected:
   vtkSLMultiViewPass();
@@ -40,4 +48,7 @@ private:
   sl::FrameResources* Frame = nullptr;
   std::vector<vtkSmartPointer<vtkSLStagePass>> Inner;
   vtkSmartPointer<vtkSLSubLightAccumulatePass> Accumulate;
+  vtkSmartPointer<vtkSLPartitionAccumulatePass> PartitionAccumulate;
+
+  void RenderPartition(const vtkRenderState* state);
 };

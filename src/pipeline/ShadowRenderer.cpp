@@ -62,6 +62,10 @@ std::string ShadowRenderer::stageKey(const FrameResources& frame)
   {
     key += "|msaa"; // the resolve stage
   }
+  if (frame.partitionViews > 1)
+  {
+    key += "|views"; // the multi-view loop over views that partition the pixels
+  }
   return key;
 }
 
@@ -91,7 +95,18 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
       }
     }
     stages.push_back(technique.createPass());
-    if (technique.hasSubLights())
+    if (frame.partitionViews > 1)
+    {
+      // Views that partition the pixels (cascades, survey §4.3.1): everything between the G-buffer and the shading
+      // runs per view, blended by the focus's per-pixel selection.
+      SL_CHECK_MSG(!technique.hasSubLights(), "cascades with sub-lights are not supported");
+      auto accumulate = vtkSmartPointer<vtkSLPartitionAccumulatePass>::New();
+      auto multiView = vtkSmartPointer<vtkSLMultiViewPass>::New();
+      multiView->SetPartitionStages(std::vector<vtkSLStagePass*>(stages.begin() + 1, stages.end()), accumulate);
+      multiViewByTechnique_[key] = multiView;
+      stages.push_back(accumulate);
+    }
+    else if (technique.hasSubLights())
     {
       // Multi-view (Yang et al. 2009 §5): everything between the G-buffer and the shading runs per sub-light.
       auto accumulate = vtkSmartPointer<vtkSLSubLightAccumulatePass>::New();
@@ -102,7 +117,8 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
     }
     if (frame.multisample.samples > 1)
     {
-      SL_CHECK_MSG(!technique.hasSubLights(), "multisampling with sub-lights is not supported");
+      SL_CHECK_MSG(!technique.hasSubLights() && frame.partitionViews == 1,
+        "multisampling with sub-lights or cascades is not supported");
       stages.push_back(vtkSmartPointer<vtkSLMsaaResolvePass>::New());
     }
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
@@ -157,7 +173,8 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   }
   if (technique.needs(shadowMapStructure()))
   {
-    shadowMapSettings(frame); // its InputError before any GL, rather than inside the focus pass
+    // Its InputError before any GL, rather than inside the focus pass.
+    frame.partitionViews = shadowMapSettings(frame).cascades.count;
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
   if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)
@@ -362,7 +379,8 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
   result.camera = frame.camera;
   if (frame.hasLightView)
   {
-    result.lightView = frame.lightView;
+    result.lightView = frame.cascades ? frame.cascades->views.front() : frame.lightView;
+    result.cascades = frame.cascades;
   }
   result.glRenderer = window_->GetRendererString();
   result.glVersion = window_->GetVersionString();

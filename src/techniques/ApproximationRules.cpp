@@ -13,8 +13,8 @@
 namespace sl
 {
 
-ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context)
-  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex, false))
+ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context, int cascade)
+  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex, false, cascade))
 {
   SL_CHECK_MSG(!inputs_.shadowMapLinear.data.empty(), context.frame->technique, ": no shadow_map_depth export");
   const Light& light = *inputs_.light;
@@ -335,6 +335,46 @@ void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResul
       {
         codes.at(x, y) = code;
       }
+    }
+  }
+}
+
+void markShadowMapSampling(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels)
+{
+  const FrameResult& frame = *context.frame;
+  if (!frame.cascades)
+  {
+    markShadowMapSampling(ShadowMapFootprint(context), frame, codes, code, kernelTexels);
+    return;
+  }
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  std::vector<ViewSelection> selections(codes.pixelCount());
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      selections[static_cast<std::size_t>(y) * codes.width + x] =
+        coverage.at(x, y) > 0.5f ? selectCascade(*frame.cascades, frame.camera, pWs) : ViewSelection{};
+    }
+  }
+  constexpr float notRead = -1.0f; // markShadowMapSampling marks only pixels whose code is 0
+  for (int k = 0; k < static_cast<int>(frame.cascades->views.size()); ++k)
+  {
+    ImageF cascadeCodes(codes.width, codes.height, 1, notRead);
+    for (std::size_t i = 0; i < codes.pixelCount(); ++i)
+    {
+      const ViewSelection& s = selections[i];
+      if (s.primary == k || (s.primaryWeight < 1.0 && s.secondary == k))
+      {
+        cascadeCodes.data[i] = codes.data[i];
+      }
+    }
+    markShadowMapSampling(ShadowMapFootprint(context, k), frame, cascadeCodes, code, kernelTexels);
+    for (std::size_t i = 0; i < codes.pixelCount(); ++i)
+    {
+      codes.data[i] = cascadeCodes.data[i] == code ? code : codes.data[i];
     }
   }
 }

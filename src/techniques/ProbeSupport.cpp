@@ -7,29 +7,80 @@
 namespace sl
 {
 
-ShadowMapInputs shadowMapInputsOf(const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth)
+ShadowMapInputs shadowMapInputsOf(
+  const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth, int cascade)
 {
   SL_CHECK_MSG(frame.lightView.has_value(), "technique ", frame.technique, " rendered no shadow map");
+  SL_CHECK_MSG(frame.cascades.has_value() == (cascade >= 0), "technique ", frame.technique,
+    ": a cascaded frame's inputs name their cascade, and only such a frame's");
+  const std::string suffix = cascade >= 0 ? "_c" + std::to_string(cascade) : "";
   ShadowMapInputs inputs;
   inputs.light = &scene.lights.at(static_cast<std::size_t>(lightIndex));
   inputs.camera = frame.camera;
-  inputs.lightView = *frame.lightView;
+  inputs.lightView = cascade >= 0 ? frame.cascades->views.at(static_cast<std::size_t>(cascade)) : *frame.lightView;
   inputs.position = frame.find("position")->image;
   inputs.normal = frame.find("normal")->image;
   inputs.coverage = frame.find("coverage")->image;
   inputs.receives = frame.find("receives_shadows")->image;
   for (const NamedImage& named : frame.lightSpace)
   {
-    if (named.name == "shadow_map_depth")
+    if (named.name == "shadow_map_depth" + suffix)
     {
       inputs.shadowMapLinear = named.image;
     }
-    else if (withWindowDepth && named.name == "shadow_map_window_depth")
+    else if (withWindowDepth && named.name == "shadow_map_window_depth" + suffix)
     {
       inputs.shadowMapWindow = named.image;
     }
   }
   return inputs;
+}
+
+std::vector<ShadowMapInputs> cascadeInputsOf(
+  const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth)
+{
+  std::vector<ShadowMapInputs> inputs;
+  if (!frame.cascades)
+  {
+    inputs.push_back(shadowMapInputsOf(frame, scene, lightIndex, withWindowDepth));
+    return inputs;
+  }
+  for (std::size_t k = 0; k < frame.cascades->views.size(); ++k)
+  {
+    inputs.push_back(shadowMapInputsOf(frame, scene, lightIndex, withWindowDepth, static_cast<int>(k)));
+  }
+  return inputs;
+}
+
+ReferenceSample cascadedReference(const FrameResult& frame, const std::vector<ShadowMapInputs>& inputs, int x, int y,
+  const ShadowMapTwin& twin, ProbeRecorder* recorder)
+{
+  if (!frame.cascades)
+  {
+    return twin(inputs.front(), x, y, recorder);
+  }
+  const ShadowMapInputs& any = inputs.front();
+  const glm::dvec3 pWs(any.position.at(x, y, 0), any.position.at(x, y, 1), any.position.at(x, y, 2));
+  const ViewSelection selection = selectCascade(*frame.cascades, frame.camera, pWs);
+  if (recorder)
+  {
+    recorder->beginGroup("cascade");
+    recorder->quantity("cascade", selection.primary, "", "survey §4.3.1: the map the pixel reads (selectCascade)");
+    if (selection.primaryWeight < 1.0)
+    {
+      recorder->quantity("blended cascade", selection.secondary, "", "cascade_blend: the next cascade");
+      recorder->quantity("primary weight", selection.primaryWeight, "", "");
+    }
+  }
+  ReferenceSample sample = twin(inputs.at(static_cast<std::size_t>(selection.primary)), x, y, recorder);
+  if (selection.primaryWeight < 1.0 && sample.evaluated)
+  {
+    const ReferenceSample other = twin(inputs.at(static_cast<std::size_t>(selection.secondary)), x, y, nullptr);
+    sample.visibility = selection.primaryWeight * sample.visibility + (1.0 - selection.primaryWeight) * other.visibility;
+    sample.depthMargin = std::min(sample.depthMargin, other.depthMargin);
+    sample.texelEdgeMargin = std::min(sample.texelEdgeMargin, other.texelEdgeMargin);
+  }
+  return sample;
 }
 
 void noteAmbiguity(std::string& ambiguity, const char* what, double margin, double threshold)

@@ -47,6 +47,18 @@ std::vector<ParameterSpec> shadowMapWarpParameters()
   };
 }
 
+std::vector<ParameterSpec> shadowMapCascadeParameters()
+{
+  return {
+    { "cascades", 1, 1, 8, "maps", "z-partitioning (survey §4.3.1, PSSM/CSM): equal-size maps, one per slice of the visible receivers' eye depth range, each focused on its slice; 1: one map; directional lights", {}, true },
+    { "split_scheme", 1, 0, 2, "", "split depths over the visible receivers' eye depths [z_n, z_f]: uniform C_i = z_n + (z_f - z_n) i/m, log C_i = z_n (z_f/z_n)^(i/m), practical = split_lambda log + (1 - split_lambda) uniform (PSSM)", { "uniform", "log", "practical" }, true },
+    { "split_lambda", 0.5, 0, 1, "", "practical split's weight of the log split (0: uniform, 1: log)", {}, false },
+    { "cascade_selection", 0, 0, 1, "", "which map a pixel reads: depth (the slice of its eye depth) or containment (the finest map that holds it, survey §4.3.1)", { "depth", "containment" }, true },
+    { "cascade_blend", 0, 0, 1, "", "band blended into the next cascade: fraction of a slice (depth) or of a map's half-width (containment); 0: hard switch", {}, false },
+    { "cascade_snap", 1, 0, 1, "", "texel snapping: each cascade's texel size rounded to 2^(k/4) and its window to whole texels, so shadow edges stay put as the camera moves (unwarped cascades)", { "off", "on" }, true },
+  };
+}
+
 namespace
 {
 

@@ -25,6 +25,14 @@ std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot
 //   warp    none | psm | lispsm | tsm (lightspace/PerspectiveWarp.h)
 //   warp_n  the warp's n in world units; 0: the rule of `warp` (LiSPSM: n_opt / sin γ)
 std::vector<ParameterSpec> shadowMapWarpParameters();
+// Z-partitioning of the shadow map (survey §4.3.1, lightspace/Cascades.h), for the same techniques (their lookups are
+// per pixel against one map, which the cascade loop picks per pixel): hard and pcf list them with addParameters.
+//   cascades           1-8 maps (1: one map, as without the parameters)
+//   split_scheme       uniform | log | practical, with split_lambda (practical's weight of log)
+//   cascade_selection  depth | containment
+//   cascade_blend      the band blended into the next cascade (fraction of a slice; 0: hard switch)
+//   cascade_snap       off | on: whole-texel windows (stable under camera motion)
+std::vector<ParameterSpec> shadowMapCascadeParameters();
 
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
 // (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.

@@ -466,6 +466,44 @@ TEST(CliRender, WarpStatsUnderADirectionalLight)
   EXPECT_GT(warp.at("far").get<double>(), warp.at("near").get<double>());
 }
 
+TEST(CliRenderErrors, CascadesNeedADirectionalLight)
+{
+  // planar-occluder's light is an area light: cascades (survey §4.3.1) are refused in one line, before any GL.
+  expectCleanFailure({ "render", datasetScene("planar-occluder").string(), "--technique", "pcf", "--set", "cascades=3" },
+    { "cascades=3", "directional" });
+}
+
+TEST(CliRender, CascadeSplitsAndMapsInStats)
+{
+  // deep-view with 3 log cascades: stats.json's light_view.cascades holds the split depths C_i = z_n (z_f/z_n)^(i/3),
+  // each slice's far the next one's near, and light_space lists every cascade's two maps.
+  TempDir temp;
+  const fs::path outDir = temp.path() / "out";
+  const RunResult run = runShadowlab({ "render", datasetScene("deep-view").string(), "-t", "hard", "-r", "64x48", "-s",
+                                       "shadow_map_size=128", "-s", "cascades=3", "-s", "split_scheme=log", "--out",
+                                       outDir.string() },
+    temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const Json stats = Json::parse(readFile(outDir / "stats.json"));
+  const Json& cascades = stats.at("light_view").at("cascades");
+  ASSERT_EQ(cascades.size(), 3u);
+  const double zNear = cascades.at(0).at("near").get<double>();
+  const double zFar = cascades.at(2).at("far").get<double>();
+  EXPECT_GT(zFar / zNear, 20.0);
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(cascades.at(k).at("near").get<double>(), zNear * std::pow(zFar / zNear, k / 3.0), 1e-9 * zFar) << k;
+    EXPECT_NEAR(cascades.at(k).at("far").get<double>(), zNear * std::pow(zFar / zNear, (k + 1) / 3.0), 1e-9 * zFar) << k;
+    EXPECT_EQ(cascades.at(k).at("resolution"), 128) << k;
+    EXPECT_GT(cascades.at(k).at("texel_world_size").get<double>(), 0.0) << k;
+    EXPECT_TRUE(stats.at("light_space").contains("shadow_map_depth_c" + std::to_string(k))) << k;
+    EXPECT_TRUE(stats.at("light_space").contains("shadow_map_window_depth_c" + std::to_string(k))) << k;
+  }
+  EXPECT_EQ(stats.at("light_view").at("split_scheme"), "log");
+  EXPECT_FALSE(stats.at("light_space").contains("shadow_map_depth"));
+  EXPECT_TRUE(stats.at("buffers").contains("cascade"));
+}
+
 TEST(CliRenderErrors, OutOfRangeParameters)
 {
   expectCleanFailure(

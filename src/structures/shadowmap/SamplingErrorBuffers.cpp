@@ -1,5 +1,6 @@
 #include "structures/shadowmap/SamplingErrorBuffers.h"
 
+#include "core/Error.h"
 #include "frame/FrameResult.h"
 #include "lightspace/ShadowMapMath.h"
 #include "passes/FrameResources.h"
@@ -38,6 +39,9 @@ std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const 
   {
     return {};
   }
+  // Cascades (survey §4.3.1): each pixel's error is its own cascade's map's (the `cascade` buffer, added first).
+  const NamedImage* cascade = frame.cascades ? result.find("cascade") : nullptr;
+  SL_CHECK_MSG(!frame.cascades || cascade, "the cascade buffer must precede the sampling error");
   const int width = position->image.width;
   const int height = position->image.height;
   std::vector<ImageF> images(4, ImageF(width, height, 1));
@@ -53,7 +57,10 @@ std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const 
         {
           continue;
         }
-        const SamplingError error = samplingError(frame.camera, frame.lightView, x + 0.5, y + 0.5, pWs, nWs);
+        const LightView& view = cascade
+          ? frame.cascades->views.at(static_cast<std::size_t>(cascade->image.at(x, y, 0)))
+          : frame.lightView;
+        const SamplingError error = samplingError(frame.camera, view, x + 0.5, y + 0.5, pWs, nWs);
         images[0].at(x, y, 0) = static_cast<float>(error.texelRatioS);
         images[1].at(x, y, 0) = static_cast<float>(error.texelRatioT);
         images[2].at(x, y, 0) = static_cast<float>(error.perspectiveFactor);

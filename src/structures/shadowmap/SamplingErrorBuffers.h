@@ -21,7 +21,8 @@ const std::vector<BufferSpec>& samplingErrorBufferSpecs();
 
 // The four buffers for the frame's light view, from result's position, normal, coverage and receives_shadows
 // buffers; 0 at pixels the map does not test (uncovered, not receiving, out of the light's reach, or grazing).
-// Empty for a frame with sub-lights (one light view each: their errors differ).
+// Empty for a frame with sub-lights (one light view each: their errors differ). With cascades, each pixel's error is
+// that of the cascade its `cascade` buffer names (result must hold it).
 std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const FrameResult& result);
 
 } // namespace sl

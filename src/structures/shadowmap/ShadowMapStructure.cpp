@@ -39,6 +39,18 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
       { { "none", WarpKind::None }, { "psm", WarpKind::Psm }, { "lispsm", WarpKind::Lispsm }, { "tsm", WarpKind::Tsm } });
     settings.warp.n = values.get("warp_n");
   }
+  if (values.has("cascades"))
+  {
+    CascadeSettings& cascades = settings.cascades;
+    cascades.count = values.getInt("cascades");
+    cascades.scheme = choiceOf<SplitScheme>(values, "split_scheme",
+      { { "uniform", SplitScheme::Uniform }, { "log", SplitScheme::Log }, { "practical", SplitScheme::Practical } });
+    cascades.lambda = values.get("split_lambda");
+    cascades.selection = choiceOf<CascadeSelection>(values, "cascade_selection",
+      { { "depth", CascadeSelection::Depth }, { "containment", CascadeSelection::Containment } });
+    cascades.blend = values.get("cascade_blend");
+    cascades.snap = values.choice("cascade_snap") == "on";
+  }
   return settings;
 }
 
@@ -55,6 +67,7 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
   {
     // The renderer asks before any GL (ShadowRenderer's setFrameInputs); fitLightView refuses the same.
     requireWarpableLight(settings.warp.kind, frame.light->type);
+    requireCascadableLight(settings.cascades, frame.light->type);
   }
   return settings;
 }
@@ -62,8 +75,33 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
 namespace
 {
 
+// Cascades (survey §4.3.1): the per-pixel `cascade` buffer, then each cascade's two maps, suffixed _c<k>.
+std::vector<NamedImage> exportCascades(const FrameResources& frame, FrameResult& result)
+{
+  const BufferSpec& spec = cascadeBufferSpec();
+  result.buffers.push_back({ spec.name, readFloatTexture(frame.viewSelection, 4).channels(0, 1), spec.unit, spec.doc,
+    spec.kind, cascadeLabels(frame.cascades->settings.count) });
+  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
+  result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
+    std::make_move_iterator(samplingError.end()));
+  std::vector<NamedImage> images;
+  for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)
+  {
+    const std::string suffix = "_c" + std::to_string(k);
+    images.push_back({ "shadow_map_depth" + suffix, readFloatTexture(frame.viewShadowMapLinear[k], 1), "world units",
+      format("cascade ", k, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
+    images.push_back({ "shadow_map_window_depth" + suffix, readDepthTexture(frame.viewShadowMapDepth[k]), "",
+      format("cascade ", k, "'s hardware depth buffer, window coordinates in [0, 1]") });
+  }
+  return images;
+}
+
 std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult& result)
 {
+  if (frame.cascades)
+  {
+    return exportCascades(frame, result);
+  }
   // The map's sampling error at the visible receivers is per pixel: it joins the frame's buffers.
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
@@ -106,6 +144,25 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
 
 } // namespace
 
+const BufferSpec& cascadeBufferSpec()
+{
+  static const BufferSpec spec{ "cascade", "",
+    "the cascade whose map the pixel read (survey §4.3.1, Fig. 15's colour coding); with cascade_blend, the first of "
+    "the two it blends",
+    BufferKind::Categorical };
+  return spec;
+}
+
+std::vector<std::string> cascadeLabels(int count)
+{
+  std::vector<std::string> labels;
+  for (int k = 0; k < count; ++k)
+  {
+    labels.push_back("cascade " + std::to_string(k));
+  }
+  return labels;
+}
+
 const LightSpaceStructure& shadowMapStructure()
 {
   static const LightSpaceStructure structure = [] {
@@ -123,6 +180,15 @@ const LightSpaceStructure& shadowMapStructure()
     };
     s.exportImages = exportShadowMap;
     s.gpuBytes = [](const FrameResources& frame) {
+      if (frame.cascades)
+      {
+        std::size_t bytes = textureBytes(frame.viewSelection, 16);
+        for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)
+        {
+          bytes += textureBytes(frame.viewShadowMapLinear[k], 4) + textureBytes(frame.viewShadowMapDepth[k], 4);
+        }
+        return bytes;
+      }
       return textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
     };
     s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };

@@ -4,6 +4,7 @@
 // shadowMapDepth (the root of the light-space stage, read by every shadow-map technique's shader).
 #pragma once
 
+#include "lightspace/Cascades.h"
 #include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
@@ -19,6 +20,8 @@ struct ShadowMapSettings
   double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
   WarpSettings warp;         // warp, warp_n (survey §4.2), read only from techniques that list them
+  CascadeSettings cascades;  // cascades, split_scheme, split_lambda, cascade_selection, cascade_blend, cascade_snap
+                             // (survey §4.3.1), read only from techniques that list them
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
   static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
@@ -26,5 +29,10 @@ struct ShadowMapSettings
 // The settings of a frame of `technique` with `values`: its filter from the technique's LightSpaceRequest.
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
 ShadowMapSettings shadowMapSettings(const FrameResources& frame);
+
+// Cascades (survey §4.3.1): the categorical buffer `cascade` the structure adds to a frame with cascades > 1, and its
+// labels ("cascade 0" ..).
+const BufferSpec& cascadeBufferSpec();
+std::vector<std::string> cascadeLabels(int count);
 
 } // namespace sl

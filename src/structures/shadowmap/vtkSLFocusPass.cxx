@@ -3,14 +3,23 @@
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "passes/FrameResources.h"
 
+#include "core/Error.h"
+#include "gl/GlResources.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/PassUtilities.h"
+
 #include <vtkObjectFactory.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtk_glew.h>
 #include <vtkTextureObject.h>
 
 #include <cmath>
 
 vtkStandardNewMacro(vtkSLFocusPass);
 
-void vtkSLFocusPass::Execute(const vtkRenderState*)
+void vtkSLFocusPass::Execute(const vtkRenderState* state)
 {
   sl::FrameResources& frame = *this->Frame;
   if (!this->Receivers)
@@ -28,8 +37,74 @@ void vtkSLFocusPass::Execute(const vtkRenderState*)
   {
     focus.lightFootprintWidth = frame.light->size;
   }
-  frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
+  if (settings.cascades.active())
+  {
+    // Survey §4.3.1: every cascade is fitted at view 0, with the per-pixel selection the accumulation blends by.
+    if (frame.viewIndex == 0)
+    {
+      frame.cascades = sl::fitCascades(*frame.light, *frame.scene, *this->Receivers, focus, settings.cascades);
+      this->WriteSelection(state);
+    }
+    SL_CHECK(frame.cascades && frame.viewIndex < static_cast<int>(frame.cascades->views.size()));
+    frame.lightView = frame.cascades->views[static_cast<std::size_t>(frame.viewIndex)];
+  }
+  else
+  {
+    frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
+  }
   frame.hasLightView = true;
+}
+
+void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
+{
+  sl::FrameResources& frame = *this->Frame;
+  const sl::CascadeSet& cascades = *frame.cascades;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  if (!this->Selection)
+  {
+    this->Selection = std::make_unique<sl::ComputeProgram>(
+      sl::assembleShader("lightspace/CascadeSelection.glsl", sl::commonDefines()), "cascade selection");
+  }
+  if (!frame.viewSelection)
+  {
+    frame.viewSelection = sl::makeFloatTarget(window, frame.width(), frame.height(), 4);
+  }
+  const sl::ComputeProgram& program = *this->Selection;
+  program.use();
+  frame.gbufferPosition->Activate();
+  frame.gbufferNormal->Activate();
+  program.setInt("gbufferPosition", frame.gbufferPosition->GetTextureUnit());
+  program.setInt("gbufferNormal", frame.gbufferNormal->GetTextureUnit());
+  program.setInt("cascadeCount", static_cast<int>(cascades.views.size()));
+  program.setInt("selectByContainment", cascades.settings.selection == sl::CascadeSelection::Containment ? 1 : 0);
+  program.setFloat("cascadeBlend", cascades.settings.blend);
+  program.setFloat("marginTexels", cascades.marginTexels);
+  program.setInt("shadowMapSize", cascades.views.front().resolution);
+  const glm::dmat4& camera = frame.camera.viewFromWorld;
+  program.setVectors("eyeDepthRow", { -glm::dvec4(camera[0][2], camera[1][2], camera[2][2], camera[3][2]) });
+  std::vector<glm::dvec4> splits; // a float array set four at a time is awkward: one uniform per split
+  std::vector<glm::dmat4> clipFromWorld, viewFromWorld;
+  for (std::size_t k = 0; k < cascades.views.size(); ++k)
+  {
+    const sl::LightView& view = cascades.views[k];
+    clipFromWorld.push_back(view.clipFromWorld);
+    viewFromWorld.push_back(view.viewFromWorld);
+    program.setFloat(sl::format("cascadeNearDepth[", k, "]").c_str(), view.nearDepth);
+    program.setFloat(sl::format("cascadeFarDepth[", k, "]").c_str(), view.farDepth);
+  }
+  for (std::size_t i = 0; i < cascades.splits.size(); ++i)
+  {
+    program.setFloat(sl::format("splitDepths[", i, "]").c_str(), cascades.splits[i]);
+  }
+  program.setMatrices("cascadeClipFromWorld", clipFromWorld);
+  program.setMatrices("cascadeViewFromWorld", viewFromWorld);
+  glBindImageTexture(0, frame.viewSelection->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  program.dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  frame.gbufferPosition->Deactivate();
+  frame.gbufferNormal->Deactivate();
+  sl::checkGlErrors("cascade selection");
 }
 
 vtkSLFocusPass::vtkSLFocusPass() = default;
@@ -38,6 +113,7 @@ vtkSLFocusPass::~vtkSLFocusPass() = default;
 void vtkSLFocusPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->Receivers.reset();
+  this->Selection.reset();
 }
 
 void vtkSLFocusPass::PrintSelf(ostream& os, vtkIndent indent)

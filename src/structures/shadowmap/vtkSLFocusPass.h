@@ -2,8 +2,11 @@
 // the casters clipped to it (survey §4.1, see lightspace/LightView.h). The receivers are reduced on the
 // GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
 // own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: ShadowMapSettings.
+// With cascades (survey §4.3.1) it fits every cascade at view 0 (lightspace/Cascades.h fitCascades), writes the
+// per-pixel selection, and hands each view its cascade's fit.
 #pragma once
 
+#include "gl/ComputeProgram.h"
 #include "passes/GpuReceivers.h"
 #include "passes/vtkSLStagePass.h"
 
@@ -27,5 +30,9 @@ private:
   vtkSLFocusPass(const vtkSLFocusPass&) = delete;
   void operator=(const vtkSLFocusPass&) = delete;
 
+  // Cascades: the per-pixel selection (shaders/lightspace/CascadeSelection.glsl) into FrameResources::viewSelection.
+  void WriteSelection(const vtkRenderState* state);
+
   std::unique_ptr<sl::GpuReceivers> Receivers; // compiled once, reused frame after frame
+  std::unique_ptr<sl::ComputeProgram> Selection;
 };

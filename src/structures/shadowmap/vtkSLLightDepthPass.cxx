@@ -31,14 +31,29 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
 
   // The previous frame's (or sub-light's) targets are reused when they have the map's size: the render
   // clears both, and fresh 2048^2 targets (2 x 16 MB) cost llvmpipe more wall time than drawing the casters.
+  // Views that partition the pixels (cascades) keep one pair each, for the export.
   const unsigned size = static_cast<unsigned>(view.resolution);
-  if (!this->LinearTarget || this->LinearTarget->GetContext() != window || this->LinearTarget->GetWidth() != size)
+  const std::size_t index = frame.partitionViews > 1 ? static_cast<std::size_t>(frame.viewIndex) : 0;
+  if (this->LinearTargets.size() <= index)
   {
-    this->LinearTarget = sl::makeFloatTarget(window, view.resolution, view.resolution, 1);
-    this->DepthTarget = sl::makeDepthTarget(window, view.resolution, view.resolution);
+    this->LinearTargets.resize(index + 1);
+    this->DepthTargets.resize(index + 1);
   }
-  frame.shadowMapLinear = this->LinearTarget;
-  frame.shadowMapDepth = this->DepthTarget;
+  vtkSmartPointer<vtkTextureObject>& linear = this->LinearTargets[index];
+  if (!linear || linear->GetContext() != window || linear->GetWidth() != size)
+  {
+    linear = sl::makeFloatTarget(window, view.resolution, view.resolution, 1);
+    this->DepthTargets[index] = sl::makeDepthTarget(window, view.resolution, view.resolution);
+  }
+  frame.shadowMapLinear = linear;
+  frame.shadowMapDepth = this->DepthTargets[index];
+  if (frame.partitionViews > 1)
+  {
+    frame.viewShadowMapLinear.resize(static_cast<std::size_t>(frame.partitionViews));
+    frame.viewShadowMapDepth.resize(static_cast<std::size_t>(frame.partitionViews));
+    frame.viewShadowMapLinear[index] = frame.shadowMapLinear;
+    frame.viewShadowMapDepth[index] = frame.shadowMapDepth;
+  }
   const bool secondDepth = sl::shadowMapSettings(frame).secondDepth;
   sl::renderShadowMap(window, this->Framebuffer, this->Drawer, *frame.gpuScene, view, secondDepth,
     frame.shadowMapLinear, frame.shadowMapDepth);
@@ -48,8 +63,8 @@ void vtkSLLightDepthPass::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Drawer.releaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(window));
   this->Framebuffer->ReleaseGraphicsResources(window);
-  this->LinearTarget = nullptr;
-  this->DepthTarget = nullptr;
+  this->LinearTargets.clear();
+  this->DepthTargets.clear();
 }
 
 void vtkSLLightDepthPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -8,6 +8,8 @@
 #include <vtkSmartPointer.h>
 #include <vtkTextureObject.h>
 
+#include <vector>
+
 class vtkOpenGLFramebufferObject;
 
 class vtkSLLightDepthPass : public vtkSLStagePass
@@ -30,7 +32,8 @@ private:
 
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   sl::MeshDrawer Drawer;
-  // The last targets rendered, reused by the next frame (or sub-light) when the map size fits.
-  vtkSmartPointer<vtkTextureObject> LinearTarget;
-  vtkSmartPointer<vtkTextureObject> DepthTarget;
+  // The last targets rendered, reused by the next frame (or sub-light) when the map size fits; one pair per view for
+  // views that partition the pixels (cascades).
+  std::vector<vtkSmartPointer<vtkTextureObject>> LinearTargets;
+  std::vector<vtkSmartPointer<vtkTextureObject>> DepthTargets;
 };

@@ -23,6 +23,7 @@ TechniqueDescriptor hardTechnique()
   TechniqueDescriptor descriptor = describeShadowMapTechnique("hard", "Hard shadow mapping with depth biasing",
     "Williams 1978; survey (Scherzer et al. 2011) §5");
   descriptor.addParameters(shadowMapWarpParameters());
+  descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),
@@ -31,9 +32,11 @@ TechniqueDescriptor hardTechnique()
   };
   descriptor.createPass = newTechniquePass<vtkSLHardShadowPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const ReferenceSample sample =
-      hardReference(inputs, HardSettings::from(context.frame->parameters).bias, pixel.x, pixel.y, &recorder);
+    const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const BiasSettings bias = HardSettings::from(context.frame->parameters).bias;
+    const ReferenceSample sample = cascadedReference(*context.frame, inputs, pixel.x, pixel.y,
+      [&](const ShadowMapInputs& cascade, int x, int y, ProbeRecorder* r) { return hardReference(cascade, bias, x, y, r); },
+      &recorder);
     // GpuCpuTest: identical on unambiguous pixels (0 or 1).
     return probeOutcome(sample, 0.0, "hardReference (hard/HardTechnique.h), double precision");
   };
@@ -47,7 +50,7 @@ TechniqueDescriptor hardTechnique()
     "the texels within one of the receiver's hold occluding and non-occluding depths after the pixel's depth_bias, "
     "or a caster lies within twice the bias of the receiver" } };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
-    markShadowMapSampling(ShadowMapFootprint(context), *context.frame, codes, 1.0f, nullptr);
+    markShadowMapSampling(context, codes, 1.0f, nullptr);
   };
   return descriptor;
 }

@@ -38,6 +38,7 @@ TechniqueDescriptor pcfTechnique()
     { "filter", 0, 0, 1, "", "nearest: one comparison per tap; hardware_bilinear: the hardware's 2x2 bilinear comparison per tap (survey Fig. 23)", { "nearest", "hardware_bilinear" }, true },
   });
   descriptor.addParameters(shadowMapWarpParameters());
+  descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels" },
     { "taps", "comparisons", "depth comparisons made for the pixel" },
@@ -49,9 +50,11 @@ TechniqueDescriptor pcfTechnique()
   };
   descriptor.createPass = newTechniquePass<vtkSLPcfPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(*context.frame, *context.scene, context.lightIndex);
     const ParameterValues& values = context.frame->parameters;
-    const ReferenceSample sample = pcfReference(inputs, values, pixel.x, pixel.y, &recorder);
+    const ReferenceSample sample = cascadedReference(*context.frame, inputs, pixel.x, pixel.y,
+      [&](const ShadowMapInputs& cascade, int x, int y, ProbeRecorder* r) { return pcfReference(cascade, values, x, y, r); },
+      &recorder);
     // GpuCpuTest's tolerances on unambiguous pixels: nearest taps are a sum of 0/1 divided by the count (1e-5);
     // the hardware's bilinear weights have the texture unit's sub-texel precision (8 bits on llvmpipe: 2^-7).
     const bool hardware = PcfSettings::from(values).filter == PcfFilter::HardwareBilinear;
@@ -68,7 +71,7 @@ TechniqueDescriptor pcfTechnique()
     "filtered edge), or a caster lies within twice the bias of the receiver" } };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
     const ImageF& kernel = context.frame->find("kernel_texels")->image;
-    markShadowMapSampling(ShadowMapFootprint(context), *context.frame, codes, 1.0f, &kernel);
+    markShadowMapSampling(context, codes, 1.0f, &kernel);
   };
   return descriptor;
 }
