@@ -36,7 +36,7 @@ std::vector<std::string> techniqueNames()
   return names;
 }
 
-std::string caseName(const testing::TestParamInfo<std::string>& info)
+std::string differentialCaseName(const testing::TestParamInfo<std::string>& info)
 {
   std::string name = info.param;
   for (char& c : name)
@@ -90,7 +90,7 @@ TEST_P(DifferentialSlice, EveryChoiceMeetsItsAccuracyContractOnRandomScenes)
   EXPECT_GT(tally.pixels, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Techniques, DifferentialSlice, testing::ValuesIn(techniqueNames()), caseName);
+INSTANTIATE_TEST_SUITE_P(Techniques, DifferentialSlice, testing::ValuesIn(techniqueNames()), differentialCaseName);
 
 // The contract has teeth: a technique held to the wrong reference fails. hard (the light's centre) compared with
 // the whole light's integral misses on every penumbra pixel its flags do not cover.

@@ -175,7 +175,7 @@ void PrintTo(const StructureCase& expected, std::ostream* os)
 }
 
 // "vssm_shadow_map_size_64_hsm_nbuffers"
-std::string caseName(const testing::TestParamInfo<StructureCase>& info)
+std::string structureCaseName(const testing::TestParamInfo<StructureCase>& info)
 {
   std::string name = info.param.technique;
   for (const std::string& setting : info.param.settings)
@@ -241,7 +241,7 @@ TEST_P(LightSpaceStructureFrame, BuildsTimesExportsAndCountsExactlyItsStructures
     std::multiset<std::string>(expected.lightSpace.begin(), expected.lightSpace.end()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, LightSpaceStructureFrame, testing::ValuesIn(structureCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Cases, LightSpaceStructureFrame, testing::ValuesIn(structureCases()), structureCaseName);
 
 // SS08 Table 1: the YSM costs the HSM plus 4 MiB at 1024^2 (a 256^2 MSSM part of 8 levels, RG32F). The
 // project's HSM is the N x N atlas (level 0 stays in the shadow map), so its bytes are 8 N^2 and the YSM's
