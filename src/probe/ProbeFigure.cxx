@@ -439,7 +439,8 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
 
   // Layout: the map on the left, its colour bar on the right, three key lines below.
   const double keyBand = 3.0 * kKeyLinePx + 4.0;
-  const Box mapBox{ box.left, box.bottom + keyBand, box.width - key.width() - 6.0, box.height - keyBand };
+  const double labelBand = map.label.empty() ? 0.0 : kKeyLinePx + 2.0; // the view's label above the map
+  const Box mapBox{ box.left, box.bottom + keyBand, box.width - key.width() - 6.0, box.height - keyBand - labelBand };
   const double scale = std::min(mapBox.width / crop.size.x, mapBox.height / crop.size.y);
   key.draw(panel, int(mapBox.left + mapBox.width + 6.0), int(mapBox.bottom),
     std::max(key.minHeight(), int(mapBox.height)));
