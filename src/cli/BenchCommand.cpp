@@ -707,6 +707,10 @@ std::vector<std::string> benchRunArguments(const BenchOptions& options, const Sc
       arguments.insert(arguments.end(), { "--depth-range", options.depthRange });
     }
   }
+  if (!options.viewStats.empty())
+  {
+    arguments.insert(arguments.end(), { "--view-stats", options.viewStats });
+  }
   return arguments;
 }
 
@@ -720,6 +724,18 @@ nlohmann::json statisticsOf(const nlohmann::json& result)
   for (const auto& [name, sum] : sums.items())
   {
     statistics[name + "_sum"] = sum;
+  }
+  // --view-stats: <buffer>_max, _p99, _mean (a buffer no pixel tested has none).
+  const nlohmann::json view = result.value("view_stats", nlohmann::json::object());
+  for (const auto& [name, values] : view.items())
+  {
+    for (const char* key : { "max", "p99", "mean" })
+    {
+      if (values.contains(key))
+      {
+        statistics[name + "_" + key] = values[key];
+      }
+    }
   }
   return statistics;
 }
@@ -1061,9 +1077,94 @@ void writeDepthProfiles(const nlohmann::json& rows, const std::vector<Configurat
   }
 }
 
+// The number a configuration's settings give `key`, if it sets it to one.
+std::optional<double> settingNumber(const std::vector<std::string>& settings, const std::string& key)
+{
+  for (const std::string& setting : settings)
+  {
+    if (setting.rfind(key + "=", 0) == 0)
+    {
+      return parseNumber(setting.substr(key.size() + 1));
+    }
+  }
+  return std::nullopt;
+}
+
+// --view-stats with a --sweep: against the first swept key's value (e.g. cascades, swept jointly with a matching
+// shadow_map_size so that every point has the same total texels), per scene variant, view_<buffer>_<scene>.png
+// (each series' largest and mean value over the view) and sweep_above_0.05_<scene>.png (the share of covered pixels
+// wrong by more than 0.05: for hard shadows against a one-sample reference of a point or directional light, the
+// misclassified pixels). A series is a technique and its settings other than the first sweep's keys.
+void writeViewStatisticCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::vector<SettingSweep>& sweeps,
+  const std::filesystem::path& dir)
+{
+  if (options.viewStats.empty() || sweeps.empty())
+  {
+    return;
+  }
+  const std::vector<std::string>& axisKeys = sweeps.front().keys;
+  const std::string& axis = axisKeys.front();
+  const std::vector<std::string> buffers = splitList(options.viewStats, "--view-stats " + options.viewStats);
+  std::map<std::size_t, std::map<std::string, std::vector<SweepPoint>>> charts; // scene variant -> chart -> points
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const nlohmann::json& row = rows[c];
+    const std::optional<double> x = settingNumber(configurations[c].settings, axis);
+    if (row["status"] != "ok" || !x)
+    {
+      continue;
+    }
+    std::string series = row["technique"].get<std::string>();
+    for (const std::string& setting : configurations[c].settings)
+    {
+      const std::string key = setting.substr(0, setting.find('='));
+      series += std::find(axisKeys.begin(), axisKeys.end(), key) == axisKeys.end() ? " " + setting : "";
+    }
+    const nlohmann::json& result = row["result"];
+    auto& sceneCharts = charts[configurations[c].sceneIndex];
+    for (const std::string& buffer : buffers)
+    {
+      const nlohmann::json values = result.value("view_stats", nlohmann::json::object()).value(buffer, nlohmann::json::object());
+      if (values.contains("max"))
+      {
+        sceneCharts[buffer].push_back({ series + " max", *x, values["max"].get<double>() });
+        sceneCharts[buffer].push_back({ series + " mean", *x, values["mean"].get<double>() });
+      }
+    }
+    if (result.contains("error"))
+    {
+      sceneCharts[""].push_back({ series, *x, result["error"]["covered"]["fraction_above_0.05"].get<double>() });
+    }
+  }
+  for (const auto& [sceneIndex, sceneCharts] : charts)
+  {
+    const SceneVariant& variant = variants[sceneIndex];
+    std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
+    stem = stem.empty() ? std::to_string(sceneIndex) : stem;
+    for (const auto& [buffer, points] : sceneCharts)
+    {
+      const bool positiveX = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.parameter > 0.0; });
+      const bool positiveY = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.value > 0.0; });
+      if (buffer.empty())
+      {
+        writeSweepChart(points, "pixels wrong by more than 0.05 against " + axis + ": " + variant.name + " (" +
+            options.resolution + ")",
+          { axis, "share of covered pixels wrong by more than 0.05", positiveX, positiveY },
+          dir / ("sweep_above_0.05_" + stem + ".png"));
+        continue;
+      }
+      writeSweepChart(points, buffer + " over the view (max, mean) against " + axis + ": " + variant.name + " (" +
+          options.resolution + ")",
+        { axis, buffer + " over the view", positiveX, positiveY }, dir / ("view_" + buffer + "_" + stem + ".png"));
+    }
+  }
+}
+
 // bench.json, bench.csv, summary.md and the charts.
 void writeBenchResults(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::vector<SettingSweep>& sweeps,
+  const std::filesystem::path& dir)
 {
   writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
               { "reference_samples", options.referenceSamples }, { "configurations", rows } },
@@ -1074,6 +1175,7 @@ void writeBenchResults(const nlohmann::json& rows, const std::vector<Configurati
   writeSpeedErrorCharts(rows, configurations, variants, options.resolution, dir);
   writeSceneSweepCharts(rows, configurations, variants, options, dir);
   writeDepthProfiles(rows, configurations, variants, options, dir);
+  writeViewStatisticCharts(rows, configurations, variants, options, sweeps, dir);
 }
 
 } // namespace
@@ -1088,6 +1190,10 @@ int runBench(const BenchOptions& options, std::ostream& log)
   const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);
   const std::vector<SettingSweep> sweeps = parseSettingSweeps(options.sweeps);
   depthProfileSettings(options.depthProfile, options.depthBins, options.depthRange); // its errors, before any run
+  if (!options.viewStats.empty())
+  {
+    splitList(options.viewStats, "--view-stats " + options.viewStats); // an empty item, before any run
+  }
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
@@ -1105,7 +1211,7 @@ int runBench(const BenchOptions& options, std::ostream& log)
     const nlohmann::json rows = runConfigurations(options, variants, configurations, referenceFiles, dir, log);
     failures = countFailed(rows);
     removeIfEmptyDirectory(dir / "logs");
-    writeBenchResults(rows, configurations, variants, options, dir);
+    writeBenchResults(rows, configurations, variants, options, sweeps, dir);
   });
   if (!options.quiet)
   {

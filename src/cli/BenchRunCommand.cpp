@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -61,6 +63,69 @@ nlohmann::json workCounterSums(const FrameResult& frame)
   return sums;
 }
 
+// The comma-separated buffer names of --view-stats; an empty item is refused.
+std::vector<std::string> viewStatisticBuffers(const std::string& list)
+{
+  std::vector<std::string> names;
+  for (std::size_t start = 0; !list.empty();)
+  {
+    const std::size_t comma = list.find(',', start);
+    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (names.back().empty())
+    {
+      throw InputError("--view-stats " + list + ": an empty item in the comma-separated list");
+    }
+    if (comma == std::string::npos)
+    {
+      break;
+    }
+    start = comma + 1;
+  }
+  return names;
+}
+
+// A buffer's distribution over the view (--view-stats): its largest value, 99th percentile (nearest rank) and mean
+// over the covered pixels whose value is finite and not 0 (the sampling-error buffers' 0 marks a pixel the map does
+// not test, as in metrics/DepthProfile.h), and the eye depths (`depth`) those pixels span. The largest is the
+// survey's storage-factor reading of Fig. 18 (the worst undersampling in the view); the 99th percentile says
+// whether it is one pixel's.
+nlohmann::json viewStatistics(const FrameResult& frame, const std::string& name)
+{
+  const NamedImage* named = frame.find(name);
+  if (named == nullptr || named->image.components != 1)
+  {
+    throw InputError("--view-stats " + name + ": technique " + frame.technique + " (with these settings) has no "
+      "one-component buffer of that name");
+  }
+  const ImageF& image = named->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& depth = frame.find("depth")->image;
+  std::vector<double> values;
+  double sum = 0.0;
+  double depthMin = std::numeric_limits<double>::infinity();
+  double depthMax = 0.0;
+  for (std::size_t i = 0; i < image.pixelCount(); ++i)
+  {
+    const double value = image.data[i];
+    if (coverage.data[i] <= 0.5f || !std::isfinite(value) || value == 0.0)
+    {
+      continue;
+    }
+    values.push_back(value);
+    sum += value;
+    depthMin = std::min(depthMin, static_cast<double>(depth.data[i]));
+    depthMax = std::max(depthMax, static_cast<double>(depth.data[i]));
+  }
+  if (values.empty())
+  {
+    return { { "pixels", 0 } };
+  }
+  std::sort(values.begin(), values.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(values.size())));
+  return { { "pixels", values.size() }, { "max", values.back() }, { "p99", values[std::max<std::size_t>(rank, 1) - 1] },
+    { "mean", sum / static_cast<double>(values.size()) }, { "depth_min", depthMin }, { "depth_max", depthMax } };
+}
+
 } // namespace
 
 int runBenchConfiguration(const BenchRunOptions& options)
@@ -72,6 +137,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
   const std::optional<DepthProfileSettings> profileSettings = options.depthProfile.empty()
     ? std::nullopt
     : std::optional(depthProfileSettings(options.depthProfile, options.depthBins, options.depthRange));
+  const std::vector<std::string> viewStatisticNames = viewStatisticBuffers(options.viewStats);
   const Scene scene = loadScene(options.sceneFile, options.sceneOverrides);
   RenderRequest request;
   request.technique = options.technique;
@@ -137,6 +203,15 @@ int runBenchConfiguration(const BenchRunOptions& options)
   if (profileSettings)
   {
     result["depth_profile"] = depthProfileJson(depthProfile(last, *profileSettings));
+  }
+  if (!viewStatisticNames.empty())
+  {
+    nlohmann::json statistics = nlohmann::json::object();
+    for (const std::string& name : viewStatisticNames)
+    {
+      statistics[name] = viewStatistics(last, name);
+    }
+    result["view_stats"] = statistics;
   }
   writeJson(result, options.resultFile);
   return 0;

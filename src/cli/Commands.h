@@ -93,6 +93,10 @@ struct BenchOptions
   std::string depthProfile;
   int depthBins = 16;
   std::string depthRange;
+  // --view-stats B1,B2,...: each configuration's largest, 99th-percentile and mean value of each one-component buffer
+  // over the view (bench-run's view_stats) as bench.csv columns <B>_max, <B>_p99, <B>_mean, and, against the first
+  // --sweep key, the charts view_<B>_<scene>.png and sweep_above_0.05_<scene>.png.
+  std::string viewStats;
 };
 int runBench(const BenchOptions& options, std::ostream& log);
 
@@ -111,6 +115,7 @@ struct BenchRunOptions
   std::string depthProfile;  // as BenchOptions: the result gains "depth_profile" (metrics/DepthProfile.h)
   int depthBins = 16;
   std::string depthRange;
+  std::string viewStats;     // as BenchOptions: the result gains "view_stats"
 };
 int runBenchConfiguration(const BenchRunOptions& options);
 

@@ -150,6 +150,9 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench)
     ->capture_default_str();
   benchCommand->add_option("--depth-range", bench.depthRange,
     "near,far eye depths of --depth-profile's bins (default: the binned pixels' range)");
+  benchCommand->add_option("--view-stats", bench.viewStats,
+    "Buffers (e.g. texel_ratio,perspective_factor) whose max, 99th percentile and mean over the view become bench.csv "
+    "columns and charts against the first --sweep key");
   addForceFlag(benchCommand, bench.force);
   benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
   return { benchCommand, [&bench] { return sl::runBench(bench, std::cerr); } };
@@ -170,6 +173,7 @@ Command addBenchRunCommand(CLI::App& app, sl::BenchRunOptions& benchRun)
   benchRunCommand->add_option("--depth-profile", benchRun.depthProfile);
   benchRunCommand->add_option("--depth-bins", benchRun.depthBins);
   benchRunCommand->add_option("--depth-range", benchRun.depthRange);
+  benchRunCommand->add_option("--view-stats", benchRun.viewStats);
   return { benchRunCommand, [&benchRun] { return sl::runBenchConfiguration(benchRun); } };
 }
 

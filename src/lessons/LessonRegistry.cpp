@@ -9,6 +9,7 @@ namespace sl
 // Defined in src/lessons/<Name>Lesson.cpp, one file each.
 Lesson perspectiveAliasingLesson();
 Lesson perspectiveWarpingLesson();
+Lesson cascadedShadowMapsLesson();
 Lesson acneAndBiasLesson();
 Lesson pcfFixedKernelLesson();
 Lesson pcssBlockerSearchLesson();
@@ -23,6 +24,7 @@ const std::vector<Lesson>& lessonRegistry()
   static const std::vector<Lesson> registry = {
     perspectiveAliasingLesson(),
     perspectiveWarpingLesson(),
+    cascadedShadowMapsLesson(),
     acneAndBiasLesson(),
     pcfFixedKernelLesson(),
     pcssBlockerSearchLesson(),

@@ -6,6 +6,7 @@ set(SL_LESSONS_SOURCES
   src/lessons/RunMontage.cpp
   src/lessons/PerspectiveAliasingLesson.cpp
   src/lessons/PerspectiveWarpingLesson.cpp
+  src/lessons/CascadedShadowMapsLesson.cpp
   src/lessons/AcneAndBiasLesson.cpp
   src/lessons/PcfFixedKernelLesson.cpp
   src/lessons/PcssBlockerSearchLesson.cpp

@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "lightspace/ShadowMapMath.h"
 #include "output/OutputWriter.h"
+#include "probe/ProbeGeometry.h"
 
 #include <cmath>
 #include <limits>
@@ -25,12 +26,15 @@ namespace
 
 // The map's sampling error at the pixel (survey §3, Eq. 1-2 per axis, as the frame's texel_ratio_s/_t buffers) and
 // the pixel's footprint in the map: the pixel's corners' camera rays met on the receiver's tangent plane and
-// projected through the light matrix, so a warped map (§4.2) shows the footprint its warp gives. Frames with one
-// light view that publish the sampling-error buffers only (a technique with sub-lights has one view each).
+// projected through the light matrix, so a warped map (§4.2) shows the footprint its warp gives. The map is the one
+// the pixel's test reads: with views that partition the pixels (cascades, §4.3.1) the pixel's own view, named with
+// the pixels it serves. Frames whose views publish the sampling-error buffers only (a technique with sub-lights has
+// one view each).
 void recordSamplingError(const FrameResult& frame, const Scene& scene, int lightIndex, glm::ivec2 pixel,
   ProbeRecorder& recorder)
 {
-  if (!frame.lightView || frame.find("texel_ratio_t") == nullptr)
+  const std::vector<PartitionView> views = partitionViewsOf(frame);
+  if (views.empty() || frame.find("texel_ratio_t") == nullptr)
   {
     return;
   }
@@ -45,9 +49,18 @@ void recordSamplingError(const FrameResult& frame, const Scene& scene, int light
     return;
   }
   const CameraView& camera = frame.camera;
-  const LightView& view = *frame.lightView;
-  const SamplingError error = samplingError(camera, view, pixel.x + 0.5, pixel.y + 0.5, pWs, nWs);
+  const int viewIndex = partitionSelectionAt(frame, pixel).primary;
+  const PartitionView& partition = views.at(static_cast<std::size_t>(viewIndex));
+  const LightView& view = *partition.view;
   recorder.beginGroup("sampling error");
+  if (views.size() > 1)
+  {
+    recorder.category("shadow_map", viewIndex, "shadow_map_depth" + partition.exportSuffix,
+      "the map the pixel's test reads: " + partition.label + " (survey §4.3.1)");
+    recorder.quantity("view_eye_depth_range", partition.eyeDepthRange, "world units",
+      "survey §4.3.1, the split depths C_k, C_k+1 of the pixel's slice");
+  }
+  const SamplingError error = samplingError(camera, view, pixel.x + 0.5, pixel.y + 0.5, pWs, nWs);
   recorder.quantity("texel_ratio_s", error.texelRatioS, "pixels per texel", "survey Eq. 2, along the map's s axis");
   recorder.quantity("texel_ratio_t", error.texelRatioT, "pixels per texel",
     "survey Eq. 2, along the map's t axis (the axis a warp acts on)");

@@ -119,6 +119,7 @@ struct Context
   const FrameResult& frame;
   const Scene& scene;
   const Light& light;
+  ProbeMap map; // the map the pixel's test read (its own view's, with views that partition the pixels)
   ProbeLightFrame lightFrame;
   ProbeReceiver receiver;
 };
@@ -246,11 +247,11 @@ vtkSmartPointer<vtkPolyData> kernelFrustumPiece(const Context& context)
   auto* index = builder.cellArray<vtkIntArray>("kernel_index");
   auto* roleId = builder.cellArray<vtkIntArray>("role_id");
   auto* role = builder.cellArray<vtkStringArray>("role");
-  if (!context.frame.lightView)
+  if (context.map.view == nullptr)
   {
     return builder.data();
   }
-  const LightView& view = *context.frame.lightView;
+  const LightView& view = *context.map.view;
   const std::vector<std::string> roles = kernelRoleLabels(context.probe.record);
   const double nearDepth = view.nearDepth;
   const double farDepth = context.receiver.depthLin;
@@ -307,8 +308,8 @@ void addCellImageArray(vtkImageData* image, const char* name, const Image<T>& va
 vtkSmartPointer<vtkImageData> cropPiece(const Context& context)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
-  const ImageF* depth = shadowMapDepthOf(context.frame);
-  if (depth == nullptr || !context.frame.lightView)
+  const ImageF* depth = context.map.depth;
+  if (depth == nullptr || context.map.view == nullptr)
   {
     return image;
   }
@@ -331,7 +332,12 @@ vtkSmartPointer<vtkImageData> cropPiece(const Context& context)
   addCellImageArray<vtkIntArray>(image, "visited_level", arrays.visitedLevel);
   image->GetCellData()->SetActiveScalars("depth");
   addFieldNumber(image, "shadow_map_size", depth->width);
-  addFieldNumber(image, "far_depth", context.frame.lightView->farDepth);
+  addFieldNumber(image, "far_depth", context.map.view->farDepth);
+  addFieldString(image, "map", { context.map.exportName });
+  if (!context.map.label.empty())
+  {
+    addFieldString(image, "view", { context.map.label });
+  }
   return image;
 }
 
@@ -526,7 +532,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> lightPlaneBlock(const Context& context)
 vtkSmartPointer<vtkMultiBlockDataSet> probeDataSet(const ProbeResult& probe, const FrameResult& frame, const Scene& scene)
 {
   const ProbeSetting setting = probeSetting(probe, frame, scene);
-  const Context context{ probe, frame, scene, *setting.light, setting.lightFrame, setting.receiver };
+  const Context context{ probe, frame, scene, *setting.light, setting.map, setting.lightFrame, setting.receiver };
   auto root = vtkSmartPointer<vtkMultiBlockDataSet>::New();
   setBlock(root, "world", worldBlock(context));
   setBlock(root, "shadow_map", shadowMapBlock(context));

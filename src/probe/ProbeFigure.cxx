@@ -404,15 +404,18 @@ void drawShadowMapKey(ImageU8& panel, const Box& box, const std::vector<std::str
 ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const ProbeSetting& setting)
 {
   const FigureRect rect = probeFigurePanel(ProbePanel::ShadowMap);
-  ImageU8 panel = newPanel(rect, "(b) shadow map: linear depth [world units]");
+  // With views that partition the pixels (cascades) the map is the pixel's own view's, named in the title.
+  const ProbeMap& map = setting.map;
+  ImageU8 panel = newPanel(rect, map.label.empty() ? std::string("(b) shadow map: linear depth [world units]")
+      : "(b) " + map.exportName + ", linear depth");
   const Box box = contentBox(rect);
-  const ImageF* depthMap = shadowMapDepthOf(frame);
-  if (depthMap == nullptr || !frame.lightView)
+  const ImageF* depthMap = map.depth;
+  if (depthMap == nullptr || map.view == nullptr)
   {
     drawCentredNote(panel, box, "no shadow map in this frame");
     return panel;
   }
-  const LightView& view = *frame.lightView;
+  const LightView& view = *map.view;
   const ProbeRecord& record = probe.record;
   const TexelRect crop = probeShadowMapCrop(record, setting.receiver.uvTexels, depthMap->width);
   if (crop.empty())
@@ -436,7 +439,8 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
 
   // Layout: the map on the left, its colour bar on the right, three key lines below.
   const double keyBand = 3.0 * kKeyLinePx + 4.0;
-  const Box mapBox{ box.left, box.bottom + keyBand, box.width - key.width() - 6.0, box.height - keyBand };
+  const double labelBand = map.label.empty() ? 0.0 : kKeyLinePx + 2.0; // the view's label above the map
+  const Box mapBox{ box.left, box.bottom + keyBand, box.width - key.width() - 6.0, box.height - keyBand - labelBand };
   const double scale = std::min(mapBox.width / crop.size.x, mapBox.height / crop.size.y);
   key.draw(panel, int(mapBox.left + mapBox.width + 6.0), int(mapBox.bottom),
     std::max(key.minHeight(), int(mapBox.height)));
@@ -466,6 +470,12 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
   blit(panel, canvas.map, mapLeft, mapBottom);
   strokeRect(panel, mapLeft - 1, mapBottom - 1, canvas.map.width + 2, canvas.map.height + 2, kDarkGrey, 1);
   drawShadowMapKey(panel, box, decisions, crop, depthMap->width);
+  if (!map.label.empty())
+  {
+    // Which view of the partition, and the pixels it serves (its split depths), over the map's top edge.
+    drawText(panel, fitText(map.label, kBodyFontPx, int(box.width)), kBodyFontPx, int(box.left),
+      int(box.bottom + box.height) - measureText("Ag", kBodyFontPx).height, kDarkGrey);
+  }
   return panel;
 }
 
@@ -700,11 +710,11 @@ ImageU8 sectionPanel(const FrameResult& frame, const Scene& scene, const ProbeSe
   const auto toPx = [&](const glm::dvec2& p) { return view.toPx(p) - canvasOrigin; };
 
   // The shadow map's stored depths along the section: a step per texel, risers along the texel edges' rays.
-  const ImageF* depthMap = shadowMapDepthOf(frame);
-  if (depthMap != nullptr && frame.lightView)
+  const ImageF* depthMap = setting.map.depth;
+  if (depthMap != nullptr && setting.map.view != nullptr)
   {
     const std::vector<SectionTexelColumn> columns =
-      sectionShadowMapColumns(*frame.lightView, *depthMap, section, receiver.position);
+      sectionShadowMapColumns(*setting.map.view, *depthMap, section, receiver.position);
     for (std::size_t i = 0; i < columns.size(); ++i)
     {
       if (columns[i].joinsPrevious && i > 0)

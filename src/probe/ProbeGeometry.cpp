@@ -70,14 +70,64 @@ glm::dvec2 ProbeLightFrame::lightFromWorld(const glm::dvec3& pWs) const
   return glm::dvec2(viewFromWorld * glm::dvec4(pWs, 1.0));
 }
 
-ProbeLightFrame probeLightFrame(const FrameResult& frame, const Scene& scene, const Light& light,
+std::vector<PartitionView> partitionViewsOf(const FrameResult& frame)
+{
+  std::vector<PartitionView> views;
+  if (frame.cascades)
+  {
+    const CascadeSet& cascades = *frame.cascades;
+    for (std::size_t k = 0; k < cascades.views.size(); ++k)
+    {
+      const glm::dvec2 range(cascades.splits.at(k), cascades.splits.at(k + 1));
+      views.push_back({ &cascades.views[k], "_c" + std::to_string(k),
+        format("cascade ", k, " of ", cascades.views.size(), ", eye depth ", range.x, " .. ", range.y), range });
+    }
+  }
+  else if (frame.lightView)
+  {
+    views.push_back({ &*frame.lightView, "", "", glm::dvec2(0.0) });
+  }
+  return views;
+}
+
+ViewSelection partitionSelectionAt(const FrameResult& frame, glm::ivec2 pixel)
+{
+  const NamedImage* position = frame.find("position");
+  if (!frame.cascades || position == nullptr)
+  {
+    return {};
+  }
+  const ImageF& p = position->image;
+  return selectCascade(
+    *frame.cascades, frame.camera, glm::dvec3(p.at(pixel.x, pixel.y, 0), p.at(pixel.x, pixel.y, 1), p.at(pixel.x, pixel.y, 2)));
+}
+
+ProbeMap probeMapOf(const FrameResult& frame, glm::ivec2 pixel)
+{
+  const std::vector<PartitionView> views = partitionViewsOf(frame);
+  if (views.empty())
+  {
+    return {};
+  }
+  const PartitionView& partition =
+    views.size() == 1 ? views.front() : views.at(static_cast<std::size_t>(partitionSelectionAt(frame, pixel).primary));
+  ProbeMap map;
+  map.view = partition.view;
+  map.exportName = "shadow_map_depth" + partition.exportSuffix;
+  map.label = partition.label;
+  const NamedImage* named = findNamed(frame.lightSpace, map.exportName);
+  map.depth = named != nullptr && !named->image.empty() ? &named->image : nullptr;
+  return map;
+}
+
+ProbeLightFrame probeLightFrame(const LightView* view, const Scene& scene, const Light& light,
   const glm::dvec3& receiverWs)
 {
   ProbeLightFrame result;
-  if (frame.lightView)
+  if (view != nullptr)
   {
-    result.viewFromWorld = frame.lightView->viewFromWorld;
-    result.orthographic = frame.lightView->projection == LightProjection::Orthographic;
+    result.viewFromWorld = view->viewFromWorld;
+    result.orthographic = view->projection == LightProjection::Orthographic;
   }
   else
   {
@@ -187,7 +237,8 @@ const ProbeQuantity* findQuantity(const ProbeRecord& record, const std::string& 
   return nullptr;
 }
 
-ProbeReceiver probeReceiver(const ProbeResult& probe, const FrameResult& frame, const ProbeLightFrame& lightFrame)
+ProbeReceiver probeReceiver(const ProbeResult& probe, const FrameResult& frame, const ProbeMap& map,
+  const ProbeLightFrame& lightFrame)
 {
   const ProbeRecord& record = probe.record;
   ProbeReceiver receiver;
@@ -205,9 +256,9 @@ ProbeReceiver probeReceiver(const ProbeResult& probe, const FrameResult& frame, 
   {
     receiver.uvTexels = glm::dvec2(uv->value[0], uv->value[1]);
   }
-  else if (frame.lightView)
+  else if (map.view != nullptr)
   {
-    receiver.uvTexels = projectToShadowMap(*frame.lightView, receiver.position).uvTexels;
+    receiver.uvTexels = projectToShadowMap(*map.view, receiver.position).uvTexels;
   }
   if (const ProbeQuantity* bias = findQuantity(record, "receiver", "depth_bias"); bias && bias->value.size() == 1)
   {
@@ -223,15 +274,10 @@ ProbeSetting probeSetting(const ProbeResult& probe, const FrameResult& frame, co
   // The receiver's position does not depend on the light frame; a light without a view needs it for its frame.
   const glm::dvec3 position = vectorOf(findQuantity(probe.record, "receiver", "position"),
     gbufferVector(frame, "position", probe.pixel, glm::dvec3(0.0)));
-  setting.lightFrame = probeLightFrame(frame, scene, *setting.light, position);
-  setting.receiver = probeReceiver(probe, frame, setting.lightFrame);
+  setting.map = probeMapOf(frame, probe.pixel);
+  setting.lightFrame = probeLightFrame(setting.map.view, scene, *setting.light, position);
+  setting.receiver = probeReceiver(probe, frame, setting.map, setting.lightFrame);
   return setting;
-}
-
-const ImageF* shadowMapDepthOf(const FrameResult& frame)
-{
-  const NamedImage* named = findNamed(frame.lightSpace, "shadow_map_depth");
-  return named != nullptr && !named->image.empty() ? &named->image : nullptr;
 }
 
 bool isEmptyShadowMapTexel(const LightView& view, double storedDepth)

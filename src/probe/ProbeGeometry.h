@@ -19,8 +19,35 @@
 namespace sl
 {
 
-// The light's view frame, in which the record's light coordinates are given (ProbeLightPolygon): the frame's
-// light view when it rendered a shadow map, else the frame fitLightView would give the light (eye at its centre
+// The light views of a frame whose views partition its pixels (survey §4.3: cascades, FrameResult::cascades), each
+// with the suffix of its light-space exports (shadow_map_depth<suffix>) and a label naming it and the pixels it
+// serves; one view, suffix "", for a frame with one shadow map; none without one. The probe draws and measures the
+// map of the pixel's own view through these two functions, whatever kind of partition the frame has.
+struct PartitionView
+{
+  const LightView* view = nullptr;
+  std::string exportSuffix;        // "" or "_c<k>"
+  std::string label;               // "" or "cascade 2 of 4, eye depth 8.1 .. 21.4"
+  glm::dvec2 eyeDepthRange{ 0.0 }; // the slice [C_k, C_k+1] a cascade serves; 0, 0 for a single view
+};
+std::vector<PartitionView> partitionViewsOf(const FrameResult& frame);
+// The view a covered pixel's shadow test reads (the CPU twin of the GPU's selection, selectCascade: primary and,
+// where it blends, secondary); {0, 0, 1} for a frame with one view.
+ViewSelection partitionSelectionAt(const FrameResult& frame, glm::ivec2 pixel);
+
+// The shadow map the probed pixel's test read (partitionViewsOf): the frame's one map or,
+// where its light views partition the pixels (cascades), the map of the pixel's own view; none without a map.
+struct ProbeMap
+{
+  const LightView* view = nullptr;
+  const ImageF* depth = nullptr; // its linear-depth export (empty texels 2 x far), or nullptr
+  std::string exportName;        // "shadow_map_depth", "shadow_map_depth_c2"
+  std::string label;             // which view and the pixels it serves; "" for a frame with one view
+};
+ProbeMap probeMapOf(const FrameResult& frame, glm::ivec2 pixel);
+
+// The light's view frame, in which the record's light coordinates are given (ProbeLightPolygon): the view of the
+// map the pixel read when the frame rendered a shadow map (`view`), else the frame fitLightView would give the light (eye at its centre
 // looking along its normal, `up` in its plane; a point light looks at the receiver, a directional light's eye is
 // behind the receiver).
 struct ProbeLightFrame
@@ -35,7 +62,7 @@ struct ProbeLightFrame
   glm::dvec3 worldFromLight(const glm::dvec2& lightXY) const;
   glm::dvec2 lightFromWorld(const glm::dvec3& pWs) const;
 };
-ProbeLightFrame probeLightFrame(const FrameResult& frame, const Scene& scene, const Light& light,
+ProbeLightFrame probeLightFrame(const LightView* view, const Scene& scene, const Light& light,
   const glm::dvec3& receiverWs);
 
 // An area light's outline in world space: a square's 4 corners or a disk as `diskSegments` points, in order
@@ -47,7 +74,7 @@ std::vector<glm::dvec3> lightOutline(const Light& light, int diskSegments = 64);
 glm::dvec3 worldFromTexel(const LightView& view, const glm::dvec2& uvTexels, double depthLin);
 
 // The probed receiver: what the twin recorded in its "receiver" group (position, normal, shadow_map_position,
-// receiver_depth, depth_bias), completed from the frame's G-buffer and light view where the record has none.
+// receiver_depth, depth_bias), completed from the frame's G-buffer and the map's view where the record has none.
 struct ProbeReceiver
 {
   glm::dvec3 position{ 0.0 };
@@ -56,12 +83,14 @@ struct ProbeReceiver
   double depthLin = 0.0;              // along the light's axis
   std::optional<double> bias;
 };
-ProbeReceiver probeReceiver(const ProbeResult& probe, const FrameResult& frame, const ProbeLightFrame& lightFrame);
+ProbeReceiver probeReceiver(const ProbeResult& probe, const FrameResult& frame, const ProbeMap& map,
+  const ProbeLightFrame& lightFrame);
 
-// The light, its view frame and the receiver of a probe, as probe.vtm and probe.png use them.
+// The light, the map the pixel read, its view frame and the receiver of a probe, as probe.vtm and probe.png use them.
 struct ProbeSetting
 {
   const Light* light = nullptr; // scene.lights[probe.lightIndex]
+  ProbeMap map;
   ProbeLightFrame lightFrame;
   ProbeReceiver receiver;
 };
@@ -70,8 +99,6 @@ ProbeSetting probeSetting(const ProbeResult& probe, const FrameResult& frame, co
 // The first quantity `name` of group `group`, or nullptr.
 const ProbeQuantity* findQuantity(const ProbeRecord& record, const std::string& group, const std::string& name);
 
-// The frame's `shadow_map_depth` light-space export (linear depth, empty texels 2 x far), or nullptr.
-const ImageF* shadowMapDepthOf(const FrameResult& frame);
 // Empty texels hold 2 x far (ShadowMapStructure.cpp): anything beyond 1.5 x far is "no caster".
 bool isEmptyShadowMapTexel(const LightView& view, double storedDepth);
 

@@ -415,6 +415,85 @@ TEST(LessonClaims, PerspectiveWarping)
   EXPECT_LT(highest / lowest, 1.001);
 }
 
+// ---- cascaded-shadow-maps ------------------------------------------------------------------------------------
+
+TEST(LessonClaims, CascadedShadowMaps)
+{
+  const LessonRuns lesson("cascaded-shadow-maps");
+  const std::string nearest = "/depth_profile/texel_ratio/bins/0/median";
+  const std::string farthest = "/depth_profile/texel_ratio/bins/5/median";
+  const auto wrong = [&](const char* run) { return lesson.value(run, "/error/covered/fraction_above_0.05"); };
+  for (const char* run : { "uniform", "lispsm", "cascades", "uniform-behind", "lispsm-behind", "cascades-behind" })
+  {
+    std::cout << "[ measured ] cascaded-shadow-maps " << run << " at " << kResolution << ": texel_ratio nearest "
+              << lesson.value(run, nearest) << " farthest " << lesson.value(run, farthest) << ", wrong " << wrong(run)
+              << "\n";
+  }
+  // "on the nearest ground the cascades' texels span less than half the screen pixels the uniform map's do: the
+  // first cascade's texels cover only the first slice, a few metres of ground" (about 4.7x and 4.5 m at 64x64).
+  EXPECT_LT(lesson.value("cascades", nearest), 0.5 * lesson.value("uniform", nearest));
+  const double firstSlice =
+    lesson.value("cascades", "/light_view/cascades/0/far") - lesson.value("cascades", "/light_view/cascades/0/near");
+  EXPECT_GT(firstSlice, 1.0);
+  EXPECT_LT(firstSlice, 10.0);
+  // "the far ground's texel_ratio is larger under the cascades than under the uniform map, which spent more texels
+  // there than the screen could show" (below one pixel per texel).
+  EXPECT_GT(lesson.value("cascades", farthest), lesson.value("uniform", farthest));
+  EXPECT_LT(lesson.value("uniform", farthest), 1.0);
+  // "both the warp and the cascades misclassify fewer pixels than the uniform map of the same texels".
+  EXPECT_LT(wrong("cascades"), wrong("uniform"));
+  EXPECT_LT(wrong("lispsm"), wrong("uniform"));
+  // "LiSPSM's n grows ... with the light behind the viewer" (more than twofold; about 3.8x).
+  EXPECT_GT(lesson.value("lispsm-behind", "/light_view/warp/n"), 2.0 * lesson.value("lispsm", "/light_view/warp/n"));
+  // "Light behind: the cascades still halve the nearest ground's texel_ratio against LiSPSM and misclassify fewer
+  // pixels than it".
+  EXPECT_LT(lesson.value("cascades-behind", nearest), 0.5 * lesson.value("lispsm-behind", nearest));
+  EXPECT_LT(wrong("cascades-behind"), wrong("lispsm-behind"));
+
+  // The `cascade` figure, pixel by pixel: each covered pixel reads the slice holding its eye depth, C_k <= d < C_k+1,
+  // with the split depths of the run's stats.json (depth selection, no blend).
+  const Buffers cascades =
+    lesson.render("cascades", "deep-view", { "-t", "hard", "--set", "shadow_map_size=128", "--set", "cascades=4" });
+  ASSERT_FALSE(cascades.empty());
+  std::vector<double> splits;
+  for (int k = 0; k < 4; ++k)
+  {
+    splits.push_back(lesson.renderedValue("cascades", "/light_view/cascades/" + std::to_string(k) + "/near"));
+  }
+  splits.push_back(lesson.renderedValue("cascades", "/light_view/cascades/3/far"));
+  const ImageF& cascade = buffer(cascades, "cascade");
+  const ImageF& depth = buffer(cascades, "depth");
+  std::vector<int> perCascade(4, 0);
+  int outside = 0;
+  forEachCovered(cascades, [&](int x, int y) {
+    const int k = static_cast<int>(cascade.at(x, y));
+    ASSERT_GE(k, 0);
+    ASSERT_LT(k, 4);
+    ++perCascade[static_cast<std::size_t>(k)];
+    const double d = depth.at(x, y);
+    const double slack = 1e-5 * d;
+    outside += d < splits[static_cast<std::size_t>(k)] - slack || d > splits[static_cast<std::size_t>(k) + 1] + slack ? 1 : 0;
+  });
+  std::cout << "[ measured ] cascades per cascade " << perCascade[0] << " " << perCascade[1] << " " << perCascade[2]
+            << " " << perCascade[3] << ", outside their slice " << outside << "\n";
+  EXPECT_EQ(outside, 0);
+  for (const int count : perCascade)
+  {
+    EXPECT_GT(count, 5); // every slice holds ground (the farthest the rows next to the horizon: 18 at 64x64)
+  }
+
+  // The error figure against the ray tracer's exact single ray (the page compares with shadow volumes): the cascades
+  // misclassify fewer pixels than the uniform map of the same texels.
+  const Buffers uniform = lesson.render("uniform", "deep-view", { "-t", "hard", "--set", "shadow_map_size=256" });
+  const Buffers exact = lesson.reference("exact-ray", "deep-view", { "-n", "1" });
+  ASSERT_FALSE(uniform.empty());
+  ASSERT_FALSE(exact.empty());
+  const VisibilityDifference uniformWrong = compareVisibility(uniform, exact, 0.5);
+  const VisibilityDifference cascadesWrong = compareVisibility(cascades, exact, 0.5);
+  std::cout << "[ measured ] against the exact ray: uniform " << uniformWrong << "; cascades " << cascadesWrong << "\n";
+  EXPECT_LT(cascadesWrong.darker + cascadesWrong.brighter, uniformWrong.darker + uniformWrong.brighter);
+}
+
 // ---- acne-and-bias --------------------------------------------------------------------------------------------
 
 TEST(LessonClaims, AcneAndBias)

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -262,6 +263,65 @@ TEST(BenchCommand, WorkCounterColumnsAreTheImageTotalsOfTheCounterBuffers)
   EXPECT_NE(header.find(",contour_edges_sum,"), std::string::npos) << header;
 }
 
+TEST(BenchCommand, ViewStatsAreTheBuffersDistributionOverTheViewAgainstTheFirstSweptKey)
+{
+  // --view-stats (docs/bench/fig18): each configuration's largest, 99th-percentile and mean texel_ratio over the
+  // covered pixels the map tests must be those of the buffer `shadowlab render` writes for the same configuration;
+  // with a joint sweep of cascades and shadow_map_size (equal total texels) the charts are drawn against cascades.
+  const std::filesystem::path out = test::freshOutputDir("bench-view-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-view-cache");
+  const std::string scene = test::datasetPath("deep-view").string();
+  const RunResult run = test::runShadowlabInTempDir({ "bench", scene, "-t", "hard", "--sweep",
+    "cascades+shadow_map_size=1+128,4+64", "--view-stats", "texel_ratio,texel_ratio_t", "-r", "48x32", "--repeat", "1",
+    "--samples", "1", "--quiet", "--cache", cache.string(), "--out", out.string() });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
+  ASSERT_EQ(rows.size(), 2u);
+  const std::filesystem::path rendered = test::freshOutputDir("bench-view-render");
+  const RunResult renderRun = test::runShadowlabInTempDir({ "render", scene, "-t", "hard", "-s", "cascades=4", "-s",
+    "shadow_map_size=64", "-r", "48x32", "-q", "--out", rendered.string() });
+  ASSERT_EQ(renderRun.exitCode, 0) << renderRun.err;
+  const std::vector<NamedImage> buffers = readVti(rendered / "buffers.vti");
+  const ImageF& coverage = arrayNamed(buffers, "coverage").image;
+  const ImageF& ratio = arrayNamed(buffers, "texel_ratio").image;
+  std::vector<double> tested;
+  for (std::size_t i = 0; i < ratio.pixelCount(); ++i)
+  {
+    if (coverage.data[i] > 0.5f && ratio.data[i] > 0.0f)
+    {
+      tested.push_back(ratio.data[i]);
+    }
+  }
+  ASSERT_GT(tested.size(), 300u);
+  std::sort(tested.begin(), tested.end());
+  double sum = 0.0;
+  for (const double value : tested)
+  {
+    sum += value;
+  }
+  const nlohmann::json& stats = rows[1].at("result").at("view_stats").at("texel_ratio");
+  ASSERT_NE(rows[1].at("settings").get<std::string>().find("cascades=4"), std::string::npos) << rows[1].dump();
+  EXPECT_EQ(stats.at("pixels").get<std::size_t>(), tested.size());
+  EXPECT_NEAR(stats.at("max").get<double>(), tested.back(), 1e-6 * tested.back());
+  EXPECT_NEAR(stats.at("mean").get<double>(), sum / tested.size(), 1e-6 * tested.back());
+  const double p99 = tested[static_cast<std::size_t>(std::ceil(0.99 * tested.size())) - 1];
+  EXPECT_NEAR(stats.at("p99").get<double>(), p99, 1e-6 * p99);
+  EXPECT_LE(rows[1].at("result").at("view_stats").at("texel_ratio_t").at("max").get<double>(), tested.back());
+
+  std::ifstream csv(out / "bench.csv");
+  std::string header;
+  std::getline(csv, header);
+  for (const char* column : { ",texel_ratio_max,", ",texel_ratio_p99,", ",texel_ratio_mean," })
+  {
+    EXPECT_NE(header.find(column), std::string::npos) << header;
+  }
+  for (const char* chart : { "view_texel_ratio_deep-view.png", "view_texel_ratio_t_deep-view.png",
+         "sweep_above_0.05_deep-view.png" })
+  {
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / chart)) << chart;
+  }
+}
+
 TEST(BenchCommand, CutShortPixelsAreAColumnAndAWarningEvenWhenQuiet)
 {
   // yfgl09's brute force over ~400-texel kernels at the default map outruns llvmpipe's loop cap (issue 13):
@@ -350,7 +410,7 @@ TEST(BenchCommand, BadArgumentsFailBeforeRunningAnything)
   for (const auto& [option, value] : { std::pair<std::string, std::string>("-t", "hard,nope"),
          { "--sweep", "kernel_texels" }, { "--sweep", "kernel_texels=0,3" }, { "--repeat", "0" },
          { "--sweep", "kernel_texels+nope=3+1" }, { "--sweep", "kernel_texels+bias_slope_texels=3+1,5" },
-         { "--depth-bins", "0" }, { "--depth-range", "10,1" } })
+         { "--depth-bins", "0" }, { "--depth-range", "10,1" }, { "--view-stats", "texel_ratio,,texel_ratio_t" } })
   {
     const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("planar-occluder").string(), option, value, "-r",
       "32x32", "--out", out.string() });

@@ -4,7 +4,9 @@
 // float rounding of its boundary, which those tests exclude too). A recorded quantity that carries the name of one
 // of the technique's buffers must equal that buffer at the pixel: the record shows what the GPU computed.
 #include "lightspace/LightView.h"
+#include "lightspace/ShadowMapMath.h"
 #include "probe/Probe.h"
+#include "probe/ProbeGeometry.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
 
@@ -315,6 +317,93 @@ TEST(Probe, WarpedMapShowsThePixelFootprintInTheWarpedSpace)
       EXPECT_EQ(footprint->GetNumberOfPolys(), 1);
     }
   }
+}
+
+// The pixel's footprint in its own cascade's map (survey §4.3.1): hard with 4 log-split cascades on deep-view, one
+// ground pixel in each cascade (the middle column's ground pixels, the nearest of each cascade's: farther up a pixel
+// spans depths so far apart that its footprint is no longer the linear one Eq. 2 measures). The probe
+// reads the view the pixel selected (`cascade` buffer), draws that view's map (shadow_map_depth_c<k>) and names it
+// with its split depths; the footprint's corners are in that map's texels, so one over its inverse Jacobian's columns
+// gives back the buffers' texel_ratio_s and _t at the pixel, which are that cascade's (CascadeGpu.
+// SamplingErrorBuffersUseEachPixelsCascade). Through cascade 0's view (what the probe read before) the farthest
+// cascade's pixel would show a several times smaller ratio.
+TEST(Probe, CascadedMapShowsThePixelFootprintInItsOwnCascade)
+{
+  const Scene scene = test::loadDataset("deep-view");
+  const FrameResult frame = test::renderDataset(scene, "hard", 64, 256, { "shadow_map_size=256", "cascades=4" });
+  ASSERT_TRUE(frame.cascades.has_value());
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& cascade = frame.find("cascade")->image;
+  std::vector<std::vector<glm::ivec2>> perCascade(4);
+  const int x = 32;
+  for (int y = 0; y < 256; ++y)
+  {
+    if (coverage.at(x, y) > 0.5f && std::abs(position.at(x, y, 1)) < 1e-4)
+    {
+      perCascade.at(static_cast<std::size_t>(cascade.at(x, y))).push_back({ x, y });
+    }
+  }
+  double cascade0RatioFar = 0.0, ownRatioFar = 0.0;
+  for (std::size_t k = 0; k < perCascade.size(); ++k)
+  {
+    ASSERT_GE(perCascade[k].size(), 2u) << "cascade " << k;
+    const glm::ivec2 pixel = perCascade[k].front();
+    const ProbeResult probe = probePixel(frame, scene, 0, pixel);
+    const ProbeQuantity* map = findQuantity(probe.record, "sampling error", "shadow_map");
+    ASSERT_NE(map, nullptr);
+    EXPECT_EQ(map->value.at(0), static_cast<double>(k));
+    EXPECT_EQ(map->text, "shadow_map_depth_c" + std::to_string(k));
+    const ProbeQuantity* range = findQuantity(probe.record, "sampling error", "view_eye_depth_range");
+    ASSERT_NE(range, nullptr);
+    EXPECT_DOUBLE_EQ(range->value.at(0), frame.cascades->splits[k]);
+    EXPECT_DOUBLE_EQ(range->value.at(1), frame.cascades->splits[k + 1]);
+    // What the figure and probe.vtm draw: that cascade's map, named with its split depths.
+    const ProbeMap drawn = probeMapOf(frame, pixel);
+    EXPECT_EQ(drawn.view, &frame.cascades->views[k]);
+    EXPECT_EQ(drawn.depth, &test::lightSpaceArray(frame, "shadow_map_depth_c" + std::to_string(k)));
+    EXPECT_NE(drawn.label.find(format("cascade ", k, " of 4")), std::string::npos) << drawn.label;
+    ASSERT_EQ(probe.record.mapPolygons.size(), 1u) << "cascade " << k;
+    const std::vector<glm::dvec2>& corners = probe.record.mapPolygons.front().points;
+    const glm::dvec2 stepX = 0.5 * ((corners[1] - corners[0]) + (corners[2] - corners[3]));
+    const glm::dvec2 stepY = 0.5 * ((corners[3] - corners[0]) + (corners[2] - corners[1]));
+    const double determinant = stepX.x * stepY.y - stepY.x * stepX.y;
+    const double ratioS = glm::length(glm::dvec2(stepY.y, -stepX.y)) / std::abs(determinant);
+    const double ratioT = glm::length(glm::dvec2(-stepY.x, stepX.x)) / std::abs(determinant);
+    const double bufferS = frame.find("texel_ratio_s")->image.at(pixel.x, pixel.y);
+    const double bufferT = frame.find("texel_ratio_t")->image.at(pixel.x, pixel.y);
+    std::cout << "[ measured ] cascade " << k << " pixel " << pixel.x << "," << pixel.y << " (" << drawn.label
+              << "): footprint " << std::abs(determinant) << " texels, texel_ratio_s/_t from it " << ratioS << " / "
+              << ratioT << ", buffers " << bufferS << " / " << bufferT << "\n";
+    // To the curvature across one pixel: 1.2 % on the farthest cascade's nearest ground pixel (68 texels).
+    EXPECT_NEAR(ratioS / bufferS, 1.0, 0.02) << "cascade " << k;
+    EXPECT_NEAR(ratioT / bufferT, 1.0, 0.02) << "cascade " << k;
+    // The receiver's texel (the twin's shadow_map_position, in the cascade's map) inside the footprint and the map.
+    const ProbeQuantity* centre = probe.record.find("shadow_map_position");
+    ASSERT_NE(centre, nullptr);
+    const glm::dvec2 c(centre->value[0], centre->value[1]);
+    EXPECT_TRUE(c.x > 0.0 && c.y > 0.0 && c.x < 256.0 && c.y < 256.0) << "cascade " << k;
+    int positive = 0;
+    for (int i = 0; i < 4; ++i)
+    {
+      const glm::dvec2 edge = corners[(i + 1) % 4] - corners[i];
+      const glm::dvec2 toCentre = c - corners[i];
+      positive += edge.x * toCentre.y - edge.y * toCentre.x > 0.0 ? 1 : 0;
+    }
+    EXPECT_TRUE(positive == 0 || positive == 4) << "cascade " << k << ": the pixel's centre lies outside its footprint";
+    if (k == 3)
+    {
+      ownRatioFar = std::max(bufferS, bufferT);
+      const ImageF& normal = frame.find("normal")->image;
+      const SamplingError other = samplingError(frame.camera, frame.cascades->views[0], pixel.x + 0.5, pixel.y + 0.5,
+        glm::dvec3(position.at(pixel.x, pixel.y, 0), position.at(pixel.x, pixel.y, 1), position.at(pixel.x, pixel.y, 2)),
+        glm::dvec3(normal.at(pixel.x, pixel.y, 0), normal.at(pixel.x, pixel.y, 1), normal.at(pixel.x, pixel.y, 2)));
+      cascade0RatioFar = std::max(other.texelRatioS, other.texelRatioT);
+    }
+  }
+  // The farthest cascade's texels are larger than the first's: through cascade 0's view the far pixel's footprint
+  // would span several times more texels (the figure would show the wrong map's sampling).
+  EXPECT_LT(3.0 * cascade0RatioFar, ownRatioFar);
 }
 
 } // namespace
