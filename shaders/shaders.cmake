@@ -29,6 +29,7 @@ set(SL_SHADER_FILES
   lightspace/LightDepthFragment.glsl
   lightspace/FocusReduction.glsl
   lightspace/CascadeSelection.glsl
+  lightspace/FvsmSelection.glsl
   moments/MomentsFromDepth.glsl
   moments/BoxBlur.glsl
   sat/SatBuild.glsl

@@ -2,6 +2,7 @@
 
 #include "core/Error.h"
 #include "lightspace/CameraView.h"
+#include "lightspace/FittedVirtualShadowMap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -119,6 +120,11 @@ bool mapHolds(const LightView& view, double marginTexels, const glm::dvec3& pWs,
 
 ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera, const glm::dvec3& pWs)
 {
+  if (cascades.fvsm)
+  {
+    const int tile = std::max(0, cascades.fvsm->quadtree.tileAt(lightXYOf(cascades.fvsm->rootView, pWs)));
+    return { tile, tile, 1.0 };
+  }
   const int count = static_cast<int>(cascades.views.size());
   const CascadeSettings& settings = cascades.settings;
   const double depth = eyeDepthOf(camera, pWs);

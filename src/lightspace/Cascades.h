@@ -30,6 +30,7 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@ namespace sl
 {
 
 struct CameraView;
+struct FittedVirtualShadowMap;
 
 enum class SplitScheme
 {
@@ -86,6 +88,9 @@ struct CascadeSet
   std::vector<LightView> views;
   // The focus's margin: a map holds a point "with its filter" when it lies this many texels inside the map's edge.
   double marginTexels = 1.0;
+  // Adaptive partitioning (survey §4.3.3, FittedVirtualShadowMap.h): the views are its quadtree's tiles (splits
+  // empty), each pixel reading the tile whose rectangle holds it; null for cascades.
+  std::shared_ptr<const FittedVirtualShadowMap> fvsm;
 };
 
 // One pixel's selection: the technique's buffers are primaryWeight x the primary view's + (1 - primaryWeight) x the
@@ -99,7 +104,7 @@ struct ViewSelection
 
 // The eye depth the selection uses: -z of the camera's view space (GLSL twin: shaders/lightspace/CascadeSelection.glsl).
 double eyeDepthOf(const CameraView& camera, const glm::dvec3& pWs);
-// The CPU twin (double) of the GPU's selection at a covered pixel's point.
+// The CPU twin (double) of the GPU's selection at a covered pixel's point (fvsm: the tile holding it, 0 where none).
 ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera, const glm::dvec3& pWs);
 // Containment's test: the map's window position of pWs (NDC) and its linear depth lie inside view's inner window
 // (marginTexels in from its edge) and depth range; `edgeFraction` receives the distance to the inner window's nearest

@@ -1,6 +1,7 @@
 #include "output/OutputWriter.h"
 
 #include "core/Error.h"
+#include "lightspace/FittedVirtualShadowMap.h"
 #include "io/ImageIO.h"
 #include "vis/BufferHeatMap.h"
 
@@ -169,7 +170,39 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
         { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
     }
   }
-  if (frame.cascades)
+  if (frame.cascades && frame.cascades->fvsm)
+  {
+    // Survey §4.3.3: the quadtree's tiles (rectangles in light x/y, the units of `window`), the pre-pass's samples and
+    // how many pixels' required resolution was not met; the top-level light_view is tile 0's.
+    const FittedVirtualShadowMap& fvsm = *frame.cascades->fvsm;
+    const FvsmQuadtree& tree = fvsm.quadtree;
+    nlohmann::json tiles = nlohmann::json::array();
+    for (std::size_t k = 0; k < tree.tiles.size(); ++k)
+    {
+      const FvsmTile& tile = tree.tiles[k];
+      const LightView& view = frame.cascades->views[k];
+      tiles.push_back({ { "level", tile.level }, { "cell", { tile.cell.x, tile.cell.y } },
+        { "rect", { tile.rect.x, tile.rect.y, tile.rect.z, tile.rect.w } },
+        { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
+        { "required_resolution", tile.requiredResolution }, { "effective_resolution", tile.effectiveResolution },
+        { "met", tile.met() }, { "receiver_samples", tile.samples } });
+    }
+    const NamedImage* unmet = findNamed(frame.buffers, "fvsm_unmet");
+    int unmetPixels = 0;
+    for (std::size_t i = 0; unmet && i < unmet->image.data.size(); ++i)
+    {
+      unmetPixels += unmet->image.data[i] > 0.5f ? 1 : 0;
+    }
+    const int tileSize = tree.settings.tileSize;
+    stats["light_view"]["fvsm"] = { { "tile_size", tileSize }, { "max_level", tree.settings.maxLevel },
+      { "max_tiles", tree.settings.maxTiles }, { "grid_size", tree.gridSize },
+      { "root_rect", { tree.rootRect.x, tree.rootRect.y, tree.rootRect.z, tree.rootRect.w } },
+      { "tile_count", tree.tiles.size() },
+      { "total_texels", static_cast<double>(tree.tiles.size()) * tileSize * tileSize },
+      { "budget_reached", tree.budgetReached }, { "level_reached", tree.levelReached },
+      { "prepass_samples", fvsm.prepass.samples }, { "unmet_pixels", unmetPixels }, { "tiles", tiles } };
+  }
+  else if (frame.cascades)
   {
     // Survey §4.3.1: the split depths (eye depth) and each cascade's map; the top-level light_view is cascade 0's.
     const CascadeSet& cascades = *frame.cascades;

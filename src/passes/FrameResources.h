@@ -86,6 +86,9 @@ struct FrameResources
   // for the export), and the per-pixel selection (RGBA32F: primary view, secondary view, primary's weight, 0).
   int partitionViews = 1;
   int viewIndex = 0;
+  // How many views the loop runs: the fitted set's once the focus at view 0 has fitted it (fvsm's tile count is known
+  // only then; partitionViews > 1 marks such a frame before), else partitionViews.
+  int partitionViewCount() const { return cascades ? static_cast<int>(cascades->views.size()) : partitionViews; }
   std::optional<CascadeSet> cascades;
   std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapLinear;
   std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapDepth;

@@ -40,7 +40,7 @@ void vtkSLMultiViewPass::RenderPartition(const vtkRenderState* state)
   {
     combined[output] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
   }
-  for (int view = 0; view < frame.partitionViews; ++view)
+  for (int view = 0; view < frame.partitionViewCount(); ++view)
   {
     frame.viewIndex = view;
     for (vtkSLStagePass* stage : this->Inner)

@@ -174,7 +174,9 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   if (technique.needs(shadowMapStructure()))
   {
     // Its InputError before any GL, rather than inside the focus pass.
-    frame.partitionViews = shadowMapSettings(frame).cascades.count;
+    // fvsm (survey §4.3.3): its tile count is known once the focus has fitted it; 2 marks a multi-view frame.
+    const ShadowMapSettings settings = shadowMapSettings(frame);
+    frame.partitionViews = settings.fvsm.active() ? 2 : settings.cascades.count;
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
   if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)

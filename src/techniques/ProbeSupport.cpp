@@ -13,7 +13,9 @@ ShadowMapInputs shadowMapInputsOf(
   SL_CHECK_MSG(frame.lightView.has_value(), "technique ", frame.technique, " rendered no shadow map");
   SL_CHECK_MSG(frame.cascades.has_value() == (cascade >= 0), "technique ", frame.technique,
     ": a cascaded frame's inputs name their cascade, and only such a frame's");
-  const std::string suffix = cascade >= 0 ? "_c" + std::to_string(cascade) : "";
+  // A cascade's maps are suffixed _c<k>, an fvsm tile's _t<k> (ShadowMapStructure.cpp's export).
+  const std::string suffix =
+    cascade >= 0 ? (frame.cascades->fvsm ? "_t" : "_c") + std::to_string(cascade) : "";
   ShadowMapInputs inputs;
   inputs.light = &scene.lights.at(static_cast<std::size_t>(lightIndex));
   inputs.camera = frame.camera;

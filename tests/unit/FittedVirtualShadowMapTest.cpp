@@ -8,6 +8,8 @@
 #include "lightspace/FittedVirtualShadowMap.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
+#include "techniques/Registry.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -340,6 +342,50 @@ TEST(FittedVirtualShadowMap, RequiredResolutionIsOneTexelPerPixelAndALeafsViewMe
         1e-6) << thetaDeg;
     }
     EXPECT_EQ(tree.levelReached, thetaDeg > 60.0);
+  }
+}
+
+TEST(FittedVirtualShadowMap, OnlyHardAndPcfListTheParametersAndTheSettingsReadThem)
+{
+  // As cascades: the tile loop picks one map per pixel; techniques reading a structure built from one map must not
+  // list fvsm.
+  int listing = 0;
+  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  {
+    const bool lists = technique.findParameter("fvsm") != nullptr;
+    for (const char* name : { "fvsm_tile_size", "fvsm_max_level", "fvsm_max_tiles" })
+    {
+      EXPECT_EQ(lists, technique.findParameter(name) != nullptr) << technique.name << " " << name;
+    }
+    EXPECT_EQ(lists, technique.name == "hard" || technique.name == "pcf") << technique.name;
+    listing += lists ? 1 : 0;
+    if (technique.needs(shadowMapStructure()))
+    {
+      EXPECT_FALSE(shadowMapSettings(technique, technique.defaultParameters()).fvsm.active()) << technique.name;
+    }
+  }
+  EXPECT_EQ(listing, 2);
+  ParameterValues values = findTechnique("pcf").defaultParameters();
+  values.set("fvsm=on");
+  values.set("fvsm_tile_size=128");
+  values.set("fvsm_max_level=4");
+  values.set("fvsm_max_tiles=20");
+  const FvsmSettings settings = shadowMapSettings(findTechnique("pcf"), values).fvsm;
+  EXPECT_TRUE(settings.active());
+  EXPECT_EQ(settings.tileSize, 128);
+  EXPECT_EQ(settings.maxLevel, 4);
+  EXPECT_EQ(settings.maxTiles, 20);
+  // pcf's widest kernel leaves no texel of a 16-texel tile: one line naming the key.
+  values.set("fvsm_tile_size=16");
+  values.set("kernel_texels=31");
+  try
+  {
+    shadowMapSettings(findTechnique("pcf"), values);
+    FAIL() << "a tile narrower than the filter's margins was accepted";
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("--set fvsm_tile_size=16"), std::string::npos) << error.what();
   }
 }
 

@@ -40,7 +40,8 @@ std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const 
     return {};
   }
   // Cascades (survey §4.3.1): each pixel's error is its own cascade's map's (the `cascade` buffer, added first).
-  const NamedImage* cascade = frame.cascades ? result.find("cascade") : nullptr;
+  const NamedImage* cascade =
+    frame.cascades ? result.find(frame.cascades->fvsm ? "fvsm_tile" : "cascade") : nullptr;
   SL_CHECK_MSG(!frame.cascades || cascade, "the cascade buffer must precede the sampling error");
   const int width = position->image.width;
   const int height = position->image.height;

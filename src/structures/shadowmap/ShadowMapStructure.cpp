@@ -51,6 +51,20 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
     cascades.blend = values.get("cascade_blend");
     cascades.snap = values.choice("cascade_snap") == "on";
   }
+  if (values.has("fvsm"))
+  {
+    FvsmSettings& fvsm = settings.fvsm;
+    fvsm.enabled = values.choice("fvsm") == "on";
+    fvsm.tileSize = values.getInt("fvsm_tile_size");
+    fvsm.maxLevel = values.getInt("fvsm_max_level");
+    fvsm.maxTiles = values.getInt("fvsm_max_tiles");
+    requireFvsmCombination(fvsm, settings.cascades.count, settings.warp.kind != WarpKind::None);
+    if (fvsm.enabled && 2.0 * settings.marginTexels >= fvsm.tileSize)
+    {
+      throw InputError(format("--set fvsm_tile_size=", fvsm.tileSize, ": the filter reaches ", settings.marginTexels,
+        " texels past the receivers on each side, which leaves none of the tile for them; use a larger fvsm_tile_size"));
+    }
+  }
   return settings;
 }
 
@@ -75,23 +89,79 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
 namespace
 {
 
-// Cascades (survey §4.3.1): the per-pixel `cascade` buffer, then each cascade's two maps, suffixed _c<k>.
+// fvsm (survey §4.3.3): per pixel its tile's level, the pre-pass's required resolution and whether the tile meets it
+// (on the GPU's selection, `tile`); in light space the pre-pass's grid and the quadtree's level per cell, resampled
+// (nearest) to the tile maps' size.
+void exportFvsm(const FrameResources& frame, const ImageF& tile, FrameResult& result, std::vector<NamedImage>& lightSpace)
+{
+  const FittedVirtualShadowMap& fvsm = *frame.cascades->fvsm;
+  const FvsmQuadtree& tree = fvsm.quadtree;
+  ImageF level(tile.width, tile.height, 1), required(tile.width, tile.height, 1), unmet(tile.width, tile.height, 1);
+  for (int y = 0; y < tile.height; ++y)
+  {
+    for (int x = 0; x < tile.width; ++x)
+    {
+      const double need = fvsm.prepass.requiredResolution[static_cast<std::size_t>(y) * tile.width + x];
+      if (need < 0.0 || tree.tiles.empty())
+      {
+        continue;
+      }
+      const FvsmTile& own = tree.tiles.at(static_cast<std::size_t>(tile.at(x, y)));
+      level.at(x, y) = static_cast<float>(own.level);
+      required.at(x, y) = static_cast<float>(need);
+      unmet.at(x, y) = resolutionMet(own.effectiveResolution, need) ? 0.0f : 1.0f;
+    }
+  }
+  for (const BufferSpec& spec : fvsmBufferSpecs())
+  {
+    ImageF& image = spec.name == "fvsm_level" ? level : spec.name == "fvsm_required_resolution" ? required : unmet;
+    result.buffers.push_back({ spec.name, std::move(image), spec.unit, spec.doc, spec.kind, {} });
+  }
+  const int size = frame.cascades->views.front().resolution;
+  ImageF requiredGrid(size, size, 1), levelGrid(size, size, 1);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const std::size_t cell =
+        static_cast<std::size_t>(y * tree.gridSize / size) * tree.gridSize + static_cast<std::size_t>(x * tree.gridSize / size);
+      requiredGrid.at(x, y) = static_cast<float>(tree.requiredGrid[cell]);
+      const int leaf = tree.tileOfCell[cell];
+      levelGrid.at(x, y) = leaf < 0 ? -1.0f : static_cast<float>(tree.tiles[static_cast<std::size_t>(leaf)].level);
+    }
+  }
+  lightSpace.push_back({ "fvsm_required_resolution_grid", std::move(requiredGrid), "texels",
+    format("fvsm pre-pass (survey §4.3.3): the largest required resolution (texels across the focused window) of the "
+           "receivers in each cell of the ", tree.gridSize, " x ", tree.gridSize, " grid over it; 0: no receiver") });
+  lightSpace.push_back({ "fvsm_level_grid", std::move(levelGrid), "",
+    "fvsm quadtree level of the tile holding each grid cell (tile side = window / 2^level); -1: no tile (no receiver)" });
+}
+
+// Cascades (survey §4.3.1): the per-pixel `cascade` buffer, then each cascade's two maps, suffixed _c<k>. fvsm tiles
+// (survey §4.3.3): the `fvsm_tile` buffer and its own, then each tile's two maps, suffixed _t<k>.
 std::vector<NamedImage> exportCascades(const FrameResources& frame, FrameResult& result)
 {
-  const BufferSpec& spec = cascadeBufferSpec();
-  result.buffers.push_back({ spec.name, readFloatTexture(frame.viewSelection, 4).channels(0, 1), spec.unit, spec.doc,
-    spec.kind, cascadeLabels(frame.cascades->settings.count) });
+  const bool tiles = frame.cascades->fvsm != nullptr;
+  const BufferSpec& spec = tiles ? fvsmTileBufferSpec() : cascadeBufferSpec();
+  ImageF selection = readFloatTexture(frame.viewSelection, 4).channels(0, 1);
+  std::vector<NamedImage> images;
+  if (tiles)
+  {
+    exportFvsm(frame, selection, result, images);
+  }
+  result.buffers.push_back({ spec.name, std::move(selection), spec.unit, spec.doc, spec.kind,
+    tiles ? fvsmTileLabels(frame.cascades->fvsm->quadtree) : cascadeLabels(frame.cascades->settings.count) });
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
-  std::vector<NamedImage> images;
   for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)
   {
-    const std::string suffix = "_c" + std::to_string(k);
+    const std::string suffix = (tiles ? "_t" : "_c") + std::to_string(k);
     images.push_back({ "shadow_map_depth" + suffix, readFloatTexture(frame.viewShadowMapLinear[k], 1), "world units",
-      format("cascade ", k, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
+      format(tiles ? "fvsm tile " : "cascade ", k,
+        "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
     images.push_back({ "shadow_map_window_depth" + suffix, readDepthTexture(frame.viewShadowMapDepth[k]), "",
-      format("cascade ", k, "'s hardware depth buffer, window coordinates in [0, 1]") });
+      format(tiles ? "fvsm tile " : "cascade ", k, "'s hardware depth buffer, window coordinates in [0, 1]") });
   }
   return images;
 }
@@ -151,6 +221,42 @@ const BufferSpec& cascadeBufferSpec()
     "the two it blends",
     BufferKind::Categorical };
   return spec;
+}
+
+const BufferSpec& fvsmTileBufferSpec()
+{
+  static const BufferSpec spec{ "fvsm_tile", "",
+    "the fvsm quadtree tile whose map the pixel read (survey §4.3.3; stats.json light_view.fvsm.tiles lists their "
+    "rectangles and levels)",
+    BufferKind::Categorical };
+  return spec;
+}
+
+const std::vector<BufferSpec>& fvsmBufferSpecs()
+{
+  static const std::vector<BufferSpec> specs = {
+    { "fvsm_level", "", "quadtree level of the pixel's fvsm tile (its side is the focused window's / 2^level); 0 where "
+      "the map is not queried" },
+    { "fvsm_required_resolution", "texels", "the fvsm pre-pass's required resolution: texels across the focused window "
+      "for one texel per pixel (survey Eq. 2 per axis); 0 where the map is not queried" },
+    { "fvsm_unmet", "", "1 where the pixel's fvsm tile is coarser than its required resolution (fvsm_max_level or "
+      "fvsm_max_tiles reached), else 0" },
+  };
+  return specs;
+}
+
+std::vector<std::string> fvsmTileLabels(const FvsmQuadtree& tree)
+{
+  std::vector<std::string> labels;
+  for (std::size_t k = 0; k < tree.tiles.size(); ++k)
+  {
+    labels.push_back(format("tile ", k, " (level ", tree.tiles[k].level, ")"));
+  }
+  if (labels.empty())
+  {
+    labels.push_back("root (no receiver)");
+  }
+  return labels;
 }
 
 std::vector<std::string> cascadeLabels(int count)

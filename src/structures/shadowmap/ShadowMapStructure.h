@@ -5,6 +5,7 @@
 #pragma once
 
 #include "lightspace/Cascades.h"
+#include "lightspace/FittedVirtualShadowMap.h"
 #include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
@@ -22,6 +23,7 @@ struct ShadowMapSettings
   WarpSettings warp;         // warp, warp_n (survey §4.2), read only from techniques that list them
   CascadeSettings cascades;  // cascades, split_scheme, split_lambda, cascade_selection, cascade_blend, cascade_snap
                              // (survey §4.3.1), read only from techniques that list them
+  FvsmSettings fvsm;         // fvsm, fvsm_tile_size, fvsm_max_level, fvsm_max_tiles (survey §4.3.3), likewise
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
   static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
@@ -34,5 +36,10 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame);
 // labels ("cascade 0" ..).
 const BufferSpec& cascadeBufferSpec();
 std::vector<std::string> cascadeLabels(int count);
+// fvsm (survey §4.3.3): the categorical buffer `fvsm_tile` (labels "tile k (level L)"), and fvsm_level,
+// fvsm_required_resolution and fvsm_unmet beside it.
+const BufferSpec& fvsmTileBufferSpec();
+const std::vector<BufferSpec>& fvsmBufferSpecs();
+std::vector<std::string> fvsmTileLabels(const FvsmQuadtree& tree);
 
 } // namespace sl

@@ -7,6 +7,7 @@
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/PassUtilities.h"
+#include "lightspace/FittedVirtualShadowMap.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -37,7 +38,29 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
   {
     focus.lightFootprintWidth = frame.light->size;
   }
-  if (settings.cascades.active())
+  if (settings.fvsm.active())
+  {
+    // Survey §4.3.3: the pre-pass (the G-buffer read back: each receiver's query location and required resolution),
+    // the quadtree and every tile's view, at view 0.
+    if (frame.viewIndex == 0)
+    {
+      const sl::ImageF position = sl::readFloatTexture(frame.gbufferPosition, 4);
+      const sl::ImageF normal = sl::readFloatTexture(frame.gbufferNormal, 4);
+      auto fvsm = std::make_shared<sl::FittedVirtualShadowMap>(sl::fitFvsm(*frame.light, *frame.scene,
+        *this->Receivers, focus, settings.fvsm, frame.camera, position, normal));
+      sl::CascadeSet tiles;
+      tiles.settings.count = static_cast<int>(fvsm->views.size());
+      tiles.settings.snap = false;
+      tiles.views = fvsm->views;
+      tiles.marginTexels = focus.marginTexels;
+      tiles.fvsm = fvsm;
+      frame.cascades = std::move(tiles);
+      this->WriteTileSelection(state);
+    }
+    SL_CHECK(frame.cascades && frame.viewIndex < static_cast<int>(frame.cascades->views.size()));
+    frame.lightView = frame.cascades->views[static_cast<std::size_t>(frame.viewIndex)];
+  }
+  else if (settings.cascades.active())
   {
     // Survey §4.3.1: every cascade is fitted at view 0, with the per-pixel selection the accumulation blends by.
     if (frame.viewIndex == 0)
@@ -107,6 +130,52 @@ void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
   sl::checkGlErrors("cascade selection");
 }
 
+void vtkSLFocusPass::WriteTileSelection(const vtkRenderState* state)
+{
+  sl::FrameResources& frame = *this->Frame;
+  const sl::FittedVirtualShadowMap& fvsm = *frame.cascades->fvsm;
+  const sl::FvsmQuadtree& tree = fvsm.quadtree;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  if (!this->TileSelection)
+  {
+    this->TileSelection = std::make_unique<sl::ComputeProgram>(
+      sl::assembleShader("lightspace/FvsmSelection.glsl", sl::commonDefines()), "fvsm tile selection");
+  }
+  if (!frame.viewSelection)
+  {
+    frame.viewSelection = sl::makeFloatTarget(window, frame.width(), frame.height(), 4);
+  }
+  std::vector<float> tileOfCell(tree.tileOfCell.begin(), tree.tileOfCell.end());
+  auto cells = vtkSmartPointer<vtkTextureObject>::New();
+  cells->SetContext(window);
+  cells->SetMinificationFilter(vtkTextureObject::Nearest);
+  cells->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (!cells->Create2DFromRaw(tree.gridSize, tree.gridSize, 1, VTK_FLOAT, tileOfCell.data()))
+  {
+    throw sl::GraphicsError("fvsm: cannot upload the tile-of-cell grid");
+  }
+  const sl::ComputeProgram& program = *this->TileSelection;
+  program.use();
+  frame.gbufferPosition->Activate();
+  frame.gbufferNormal->Activate();
+  cells->Activate();
+  program.setInt("gbufferPosition", frame.gbufferPosition->GetTextureUnit());
+  program.setInt("gbufferNormal", frame.gbufferNormal->GetTextureUnit());
+  program.setInt("tileOfCell", cells->GetTextureUnit());
+  program.setInt("gridSize", tree.gridSize);
+  program.setMatrix("rootViewFromWorld", fvsm.rootView.viewFromWorld);
+  program.setInt("lightIsPerspective", fvsm.rootView.projection == sl::LightProjection::Perspective ? 1 : 0);
+  program.setVectors("rootRect", { tree.rootRect });
+  glBindImageTexture(0, frame.viewSelection->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  program.dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  cells->Deactivate();
+  frame.gbufferPosition->Deactivate();
+  frame.gbufferNormal->Deactivate();
+  sl::checkGlErrors("fvsm tile selection");
+}
+
 vtkSLFocusPass::vtkSLFocusPass() = default;
 vtkSLFocusPass::~vtkSLFocusPass() = default;
 
@@ -114,6 +183,7 @@ void vtkSLFocusPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->Receivers.reset();
   this->Selection.reset();
+  this->TileSelection.reset();
 }
 
 void vtkSLFocusPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -3,7 +3,9 @@
 // GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
 // own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: ShadowMapSettings.
 // With cascades (survey §4.3.1) it fits every cascade at view 0 (lightspace/Cascades.h fitCascades), writes the
-// per-pixel selection, and hands each view its cascade's fit.
+// per-pixel selection, and hands each view its cascade's fit. With fvsm (survey §4.3.3) it reads the G-buffer back
+// at view 0 (the pre-pass), fits the quadtree's tiles (lightspace/FittedVirtualShadowMap.h fitFvsm) and writes the
+// per-pixel tile selection.
 #pragma once
 
 #include "gl/ComputeProgram.h"
@@ -32,7 +34,10 @@ private:
 
   // Cascades: the per-pixel selection (shaders/lightspace/CascadeSelection.glsl) into FrameResources::viewSelection.
   void WriteSelection(const vtkRenderState* state);
+  // fvsm: the tile selection (shaders/lightspace/FvsmSelection.glsl) into FrameResources::viewSelection.
+  void WriteTileSelection(const vtkRenderState* state);
 
   std::unique_ptr<sl::GpuReceivers> Receivers; // compiled once, reused frame after frame
   std::unique_ptr<sl::ComputeProgram> Selection;
+  std::unique_ptr<sl::ComputeProgram> TileSelection;
 };

@@ -49,8 +49,8 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
   frame.shadowMapDepth = this->DepthTargets[index];
   if (frame.partitionViews > 1)
   {
-    frame.viewShadowMapLinear.resize(static_cast<std::size_t>(frame.partitionViews));
-    frame.viewShadowMapDepth.resize(static_cast<std::size_t>(frame.partitionViews));
+    frame.viewShadowMapLinear.resize(static_cast<std::size_t>(frame.partitionViewCount()));
+    frame.viewShadowMapDepth.resize(static_cast<std::size_t>(frame.partitionViewCount()));
     frame.viewShadowMapLinear[index] = frame.shadowMapLinear;
     frame.viewShadowMapDepth[index] = frame.shadowMapDepth;
   }
