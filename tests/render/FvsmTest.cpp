@@ -4,6 +4,7 @@
 //     in `fvsm_unmet` (level or tile budget reached), and a uniform map of one tile's size is far above that;
 //   - on deep-view, fewer pixels misclassified against the exact single ray than one uniform map of the same total
 //     texels;
+//   - hard and pcf visibility against their CPU twins run on each pixel's tile's map;
 //   - the export (tile buffers, light-space grids, per-tile maps) and the one-line refusal of fvsm with cascades.
 #include "support/RayCaster.h"
 #include "support/TestSupport.h"
@@ -11,6 +12,9 @@
 #include "lightspace/Cascades.h"
 #include "lightspace/FittedVirtualShadowMap.h"
 #include "scene/Scene.h"
+#include "techniques/ProbeSupport.h"
+#include "techniques/hard/HardTechnique.h"
+#include "techniques/pcf/PcfTechnique.h"
 
 #include <gtest/gtest.h>
 
@@ -181,6 +185,57 @@ TEST(FvsmGpu, EveryPixelGetsOneTexelPerPixelUnlessFlagged)
     }
     std::cout << "[ measured ] " << dataset << " one 64^2 map: " << overOne << " pixels above one pixel per texel\n";
     EXPECT_GT(overOne, 1000) << dataset;
+  }
+}
+
+TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
+{
+  // hard and pcf read one map per pixel, the tile's: their CPU twins (hardReference, pcfReference) run on the map of
+  // the tile the CPU twin selects give the GPU's visibility on every pixel whose decision is not within rounding.
+  const Scene scene = test::loadDataset("deep-view-behind");
+  for (const std::string technique : { "hard", "pcf" })
+  {
+    const FrameResult frame = test::renderDataset(scene, technique, 80, 64,
+      { "fvsm=on", "fvsm_tile_size=48", "fvsm_max_level=4", "fvsm_max_tiles=24" });
+    ASSERT_TRUE(frame.cascades && frame.cascades->fvsm);
+    const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(frame, scene);
+    const ImageF& visibility = frame.find("visibility")->image;
+    int evaluated = 0, ambiguous = 0, mismatched = 0;
+    double maxDifference = 0.0;
+    std::string firstMismatch;
+    for (int y = 0; y < visibility.height; ++y)
+    {
+      for (int x = 0; x < visibility.width; ++x)
+      {
+        const ReferenceSample cpu = cascadedReference(frame, inputs, x, y,
+          [&](const ShadowMapInputs& in, int px, int py, ProbeRecorder*) {
+            return technique == "hard" ? hardReference(in, HardSettings::from(frame.parameters).bias, px, py)
+                                       : pcfReference(in, frame.parameters, px, py);
+          });
+        if (!cpu.evaluated)
+        {
+          continue;
+        }
+        ++evaluated;
+        if (!ambiguityOf(cpu).empty() || cellAmbiguous(*frame.cascades->fvsm, fvsmPointAt(inputs.front().position, x, y)))
+        {
+          ++ambiguous;
+          continue;
+        }
+        const double difference = std::abs(visibility.at(x, y) - cpu.visibility);
+        maxDifference = std::max(maxDifference, difference);
+        if (difference > (technique == "hard" ? 0.0 : 1e-5) && mismatched++ == 0)
+        {
+          firstMismatch = format("pixel ", x, ",", y, " gpu ", visibility.at(x, y), " cpu ", cpu.visibility);
+        }
+      }
+    }
+    std::cout << "[ measured ] deep-view-behind " << technique << " fvsm, " << frame.cascades->views.size()
+              << " tiles: " << evaluated << " evaluated, " << ambiguous << " ambiguous, " << mismatched
+              << " mismatched (max |GPU - CPU| " << maxDifference << ")\n";
+    EXPECT_GT(evaluated, 2000) << technique;
+    EXPECT_EQ(mismatched, 0) << technique << ": " << firstMismatch;
+    EXPECT_LE(ambiguous, evaluated / 50) << technique;
   }
 }
 
