@@ -169,10 +169,10 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
         { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
     }
   }
-  if (frame.cascades)
+  if (frame.partitions && frame.partitions->kind == PartitionKind::Cascades)
   {
     // Survey §4.3.1: the split depths (eye depth) and each cascade's map; the top-level light_view is cascade 0's.
-    const CascadeSet& cascades = *frame.cascades;
+    const PartitionSet& cascades = *frame.partitions;
     nlohmann::json list = nlohmann::json::array();
     for (std::size_t k = 0; k < cascades.views.size(); ++k)
     {
@@ -189,11 +189,12 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       list.push_back(entry);
     }
     stats["light_view"]["cascades"] = list;
-    stats["light_view"]["split_scheme"] = splitSchemeName(cascades.settings.scheme);
-    stats["light_view"]["split_lambda"] = cascades.settings.lambda;
-    stats["light_view"]["cascade_selection"] = cascadeSelectionName(cascades.settings.selection);
-    stats["light_view"]["cascade_blend"] = cascades.settings.blend;
-    stats["light_view"]["cascade_snap"] = cascades.settings.snap;
+    const CascadeSettings& settings = cascades.cascadeSettings;
+    stats["light_view"]["split_scheme"] = splitSchemeName(settings.scheme);
+    stats["light_view"]["split_lambda"] = settings.lambda;
+    stats["light_view"]["cascade_selection"] = cascadeSelectionName(settings.selection);
+    stats["light_view"]["cascade_blend"] = settings.blend;
+    stats["light_view"]["cascade_snap"] = settings.snap;
   }
   stats["buffers"] = bufferSummaries(frame.buffers);
   nlohmann::json lightSpace = nlohmann::json::object();

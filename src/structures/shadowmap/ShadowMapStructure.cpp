@@ -75,32 +75,43 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
 namespace
 {
 
-// Cascades (survey §4.3.1): the per-pixel `cascade` buffer, then each cascade's two maps, suffixed _c<k>.
-std::vector<NamedImage> exportCascades(const FrameResources& frame, FrameResult& result)
+// Views that partition the pixels (survey §4.3, PartitionViews.h): the per-pixel categorical buffer of the kind
+// (`cascade`), the sampling error of each pixel's view, then each view's two maps, suffixed as partitionViewSuffix
+// names them (_c<k>).
+std::vector<NamedImage> exportPartitions(const FrameResources& frame, FrameResult& result)
 {
-  const BufferSpec& spec = cascadeBufferSpec();
-  result.buffers.push_back({ spec.name, readFloatTexture(frame.viewSelection, 4).channels(0, 1), spec.unit, spec.doc,
-    spec.kind, cascadeLabels(frame.cascades->settings.count) });
-  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
+  const PartitionSet& partitions = *frame.partitions;
+  const ImageF selection = readFloatTexture(frame.viewSelection, 4);
+  const ImageF primaryView = selection.channels(0, 1);
+  const BufferSpec& spec = partitionBufferSpec(partitions.kind);
+  std::vector<std::string> labels;
+  for (int k = 0; k < partitions.viewCount(); ++k)
+  {
+    labels.push_back(partitionViewLabel(partitions, k));
+  }
+  result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
+  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result, &primaryView);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
   std::vector<NamedImage> images;
   for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)
   {
-    const std::string suffix = "_c" + std::to_string(k);
+    const int view = static_cast<int>(k);
+    const std::string suffix = partitionViewSuffix(partitions, view);
+    const std::string label = partitionViewLabel(partitions, view);
     images.push_back({ "shadow_map_depth" + suffix, readFloatTexture(frame.viewShadowMapLinear[k], 1), "world units",
-      format("cascade ", k, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
+      format(label, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
     images.push_back({ "shadow_map_window_depth" + suffix, readDepthTexture(frame.viewShadowMapDepth[k]), "",
-      format("cascade ", k, "'s hardware depth buffer, window coordinates in [0, 1]") });
+      format(label, "'s hardware depth buffer, window coordinates in [0, 1]") });
   }
   return images;
 }
 
 std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult& result)
 {
-  if (frame.cascades)
+  if (frame.partitions)
   {
-    return exportCascades(frame, result);
+    return exportPartitions(frame, result);
   }
   // The map's sampling error at the visible receivers is per pixel: it joins the frame's buffers.
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
@@ -144,23 +155,21 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
 
 } // namespace
 
-const BufferSpec& cascadeBufferSpec()
+const BufferSpec& partitionBufferSpec(PartitionKind kind)
 {
-  static const BufferSpec spec{ "cascade", "",
+  static const BufferSpec cascade{ "cascade", "",
     "the cascade whose map the pixel read (survey §4.3.1, Fig. 15's colour coding); with cascade_blend, the first of "
     "the two it blends",
     BufferKind::Categorical };
-  return spec;
-}
-
-std::vector<std::string> cascadeLabels(int count)
-{
-  std::vector<std::string> labels;
-  for (int k = 0; k < count; ++k)
+  switch (kind)
   {
-    labels.push_back("cascade " + std::to_string(k));
+    case PartitionKind::Cascades:
+      return cascade;
+    case PartitionKind::CubeFaces:
+      break;
   }
-  return labels;
+  SL_CHECK_MSG(false, "no buffer for partition kind ", partitionKindName(kind));
+  return cascade;
 }
 
 const LightSpaceStructure& shadowMapStructure()
@@ -180,7 +189,7 @@ const LightSpaceStructure& shadowMapStructure()
     };
     s.exportImages = exportShadowMap;
     s.gpuBytes = [](const FrameResources& frame) {
-      if (frame.cascades)
+      if (frame.partitions)
       {
         std::size_t bytes = textureBytes(frame.viewSelection, 16);
         for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "lightspace/Cascades.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
@@ -30,9 +31,8 @@ struct ShadowMapSettings
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
 ShadowMapSettings shadowMapSettings(const FrameResources& frame);
 
-// Cascades (survey §4.3.1): the categorical buffer `cascade` the structure adds to a frame with cascades > 1, and its
-// labels ("cascade 0" ..).
-const BufferSpec& cascadeBufferSpec();
-std::vector<std::string> cascadeLabels(int count);
+// Views that partition the pixels (survey §4.3, PartitionViews.h): the categorical buffer the structure adds to a
+// partitioned frame, per kind: `cascade` (cascades > 1, survey §4.3.1); its labels are partitionViewLabel's.
+const BufferSpec& partitionBufferSpec(PartitionKind kind);
 
 } // namespace sl
