@@ -62,8 +62,8 @@ TEST(FvsmGpu, TileSelectionMatchesTheCpuTwinPixelByPixel)
     const Scene scene = test::loadDataset(dataset);
     const std::vector<std::string> settings = { "fvsm=on", "fvsm_tile_size=64", "fvsm_max_level=5", "fvsm_max_tiles=48" };
     const FrameResult frame = test::renderDataset(scene, "hard", 96, 64, settings);
-    ASSERT_TRUE(frame.cascades.has_value() && frame.cascades->fvsm);
-    const FittedVirtualShadowMap& fvsm = *frame.cascades->fvsm;
+    ASSERT_TRUE(frame.partitions.has_value() && frame.partitions->fvsm);
+    const FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
     const ImageF& tile = frame.find("fvsm_tile")->image;
     const ImageF& position = frame.find("position")->image;
     const ImageF& coverage = frame.find("coverage")->image;
@@ -82,7 +82,7 @@ TEST(FvsmGpu, TileSelectionMatchesTheCpuTwinPixelByPixel)
         ++covered;
         const glm::dvec3 pWs = fvsmPointAt(position, x, y);
         const int gpu = static_cast<int>(tile.at(x, y));
-        const int cpu = selectCascade(*frame.cascades, frame.camera, pWs).primary;
+        const int cpu = selectView(*frame.partitions, frame.camera, pWs).primary;
         if (fvsm.tileOfPixel(x, y) >= 0)
         {
           ++perTile.at(static_cast<std::size_t>(gpu));
@@ -126,8 +126,8 @@ TEST(FvsmGpu, EveryPixelGetsOneTexelPerPixelUnlessFlagged)
            { "fvsm=on", "fvsm_tile_size=64", "fvsm_max_level=3", "fvsm_max_tiles=12" } })
     {
       const FrameResult frame = test::renderDataset(scene, "hard", 96, 64, settings);
-      ASSERT_TRUE(frame.cascades && frame.cascades->fvsm);
-      const FittedVirtualShadowMap& fvsm = *frame.cascades->fvsm;
+      ASSERT_TRUE(frame.partitions && frame.partitions->fvsm);
+      const FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
       const ImageF& ratioS = frame.find("texel_ratio_s")->image;
       const ImageF& ratioT = frame.find("texel_ratio_t")->image;
       const ImageF& unmet = frame.find("fvsm_unmet")->image;
@@ -197,8 +197,8 @@ TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
   {
     const FrameResult frame = test::renderDataset(scene, technique, 80, 64,
       { "fvsm=on", "fvsm_tile_size=48", "fvsm_max_level=4", "fvsm_max_tiles=24" });
-    ASSERT_TRUE(frame.cascades && frame.cascades->fvsm);
-    const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(frame, scene);
+    ASSERT_TRUE(frame.partitions && frame.partitions->fvsm);
+    const std::vector<ShadowMapInputs> inputs = viewInputsOf(frame, scene);
     const ImageF& visibility = frame.find("visibility")->image;
     int evaluated = 0, ambiguous = 0, mismatched = 0;
     double maxDifference = 0.0;
@@ -207,7 +207,7 @@ TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
     {
       for (int x = 0; x < visibility.width; ++x)
       {
-        const ReferenceSample cpu = cascadedReference(frame, inputs, x, y,
+        const ReferenceSample cpu = partitionedReference(frame, inputs, x, y,
           [&](const ShadowMapInputs& in, int px, int py, ProbeRecorder*) {
             return technique == "hard" ? hardReference(in, HardSettings::from(frame.parameters).bias, px, py)
                                        : pcfReference(in, frame.parameters, px, py);
@@ -217,7 +217,7 @@ TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
           continue;
         }
         ++evaluated;
-        if (!ambiguityOf(cpu).empty() || cellAmbiguous(*frame.cascades->fvsm, fvsmPointAt(inputs.front().position, x, y)))
+        if (!ambiguityOf(cpu).empty() || cellAmbiguous(*frame.partitions->fvsm, fvsmPointAt(inputs.front().position, x, y)))
         {
           ++ambiguous;
           continue;
@@ -230,7 +230,7 @@ TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
         }
       }
     }
-    std::cout << "[ measured ] deep-view-behind " << technique << " fvsm, " << frame.cascades->views.size()
+    std::cout << "[ measured ] deep-view-behind " << technique << " fvsm, " << frame.partitions->views.size()
               << " tiles: " << evaluated << " evaluated, " << ambiguous << " ambiguous, " << mismatched
               << " mismatched (max |GPU - CPU| " << maxDifference << ")\n";
     EXPECT_GT(evaluated, 2000) << technique;
@@ -293,8 +293,8 @@ TEST(FvsmGpu, FewerMisclassifiedPixelsThanOneUniformMapOfTheSameTexels)
       const std::vector<std::string> settings = { "fvsm=on", "fvsm_tile_size=64", "fvsm_max_level=5",
         "fvsm_max_tiles=32" };
       const FrameResult fvsm = test::renderDataset(scene, "hard", size.x, size.y, settings);
-      ASSERT_TRUE(fvsm.cascades && fvsm.cascades->fvsm);
-      const double totalTexels = static_cast<double>(fvsm.cascades->views.size()) * 64.0 * 64.0;
+      ASSERT_TRUE(fvsm.partitions && fvsm.partitions->fvsm);
+      const double totalTexels = static_cast<double>(fvsm.partitions->views.size()) * 64.0 * 64.0;
       const int side = static_cast<int>(std::floor(std::sqrt(totalTexels)));
       const int cascadeSide = static_cast<int>(std::floor(std::sqrt(totalTexels / 4.0)));
       const FrameResult uniform =
@@ -307,7 +307,7 @@ TEST(FvsmGpu, FewerMisclassifiedPixelsThanOneUniformMapOfTheSameTexels)
       const int uniformCount = fvsmMisclassified(uniform, scene, rays, exact, evaluated);
       const int cascadeCount = fvsmMisclassified(cascaded, scene, rays, exact, evaluated);
       std::cout << "[ measured ] " << dataset << " hard " << size.x << "x" << size.y << ": fvsm "
-                << fvsm.cascades->views.size() << " tiles of 64^2 (" << totalTexels << " texels) " << fvsmCount
+                << fvsm.partitions->views.size() << " tiles of 64^2 (" << totalTexels << " texels) " << fvsmCount
                 << " / " << evaluated << " misclassified; one " << side << "^2 map " << uniformCount << "; 4 "
                 << cascadeSide << "^2 cascades (log, containment) " << cascadeCount << "\n";
       fvsmSum += fvsmCount;
@@ -327,8 +327,8 @@ TEST(FvsmGpu, ExportsTheTileMapAndRefusesCascadesInOneLine)
   const Scene scene = test::loadDataset("deep-view");
   const FrameResult frame = test::renderDataset(scene, "pcf", 96, 64,
     { "fvsm=on", "fvsm_tile_size=48", "fvsm_max_level=4", "fvsm_max_tiles=16" });
-  ASSERT_TRUE(frame.cascades && frame.cascades->fvsm);
-  const std::size_t tiles = frame.cascades->views.size();
+  ASSERT_TRUE(frame.partitions && frame.partitions->fvsm);
+  const std::size_t tiles = frame.partitions->views.size();
   EXPECT_EQ(frame.find("fvsm_tile")->kind, BufferKind::Categorical);
   EXPECT_EQ(frame.find("fvsm_tile")->categoryLabels.size(), tiles);
   EXPECT_EQ(frame.find("cascade"), nullptr);
@@ -354,7 +354,7 @@ TEST(FvsmGpu, ExportsTheTileMapAndRefusesCascadesInOneLine)
     }
   }
   std::vector<int> expected(5, 0);
-  for (const FvsmTile& tile : frame.cascades->fvsm->quadtree.tiles)
+  for (const FvsmTile& tile : frame.partitions->fvsm->quadtree.tiles)
   {
     expected.at(static_cast<std::size_t>(tile.level)) += (48 >> tile.level) * (48 >> tile.level);
   }

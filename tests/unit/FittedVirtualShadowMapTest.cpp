@@ -6,6 +6,7 @@
 #include "core/Error.h"
 #include "lightspace/CameraView.h"
 #include "lightspace/FittedVirtualShadowMap.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
@@ -387,6 +388,38 @@ TEST(FittedVirtualShadowMap, OnlyHardAndPcfListTheParametersAndTheSettingsReadTh
   {
     EXPECT_NE(std::string(error.what()).find("--set fvsm_tile_size=16"), std::string::npos) << error.what();
   }
+}
+
+TEST(FittedVirtualShadowMap, ATileSetIsAPartitionKindSelectedByTheTileHoldingThePoint)
+{
+  // The hand-computed tree (QuadtreeOnAHandComputedCase) under an orthographic light straight down (light x/y = world
+  // x, -z): selectView picks the tile holding the point, 0 where no tile does; views are named _t<k> and by level.
+  auto fvsm = std::make_shared<FittedVirtualShadowMap>();
+  fvsm->rootView.projection = LightProjection::Orthographic;
+  fvsm->rootView.viewFromWorld =
+    glm::lookAt(glm::dvec3(0.0, 10.0, 0.0), glm::dvec3(0.0, 0.0, 0.0), glm::dvec3(0.0, 0.0, -1.0));
+  fvsm->quadtree = buildFvsmQuadtree(
+    prepassOf({ { 0.5, 0.5 }, { 7.5, 7.5 } }, { 64.0, 10.0 }), { 0.0, 8.0, 0.0, 8.0 }, fvsmSettings(18, 3, 16), 1.0);
+  PartitionSet tiles;
+  tiles.kind = PartitionKind::FvsmTiles;
+  tiles.fvsm = fvsm;
+  for (const FvsmTile& tile : fvsm->quadtree.tiles)
+  {
+    tiles.views.push_back(tileView(fvsm->rootView, tile.rect, 18, 1.0));
+    tiles.ownerPlanes.push_back(tileOwnerPlanes(fvsm->rootView, tile.rect));
+  }
+  const CameraView camera;
+  EXPECT_EQ(lightXYOf(fvsm->rootView, { 0.5, 0.0, -0.5 }), glm::dvec2(0.5, 0.5));
+  EXPECT_EQ(selectView(tiles, camera, { 0.5, 0.0, -0.5 }).primary, 1);
+  EXPECT_EQ(selectView(tiles, camera, { 7.5, 3.0, -7.5 }).primary, 0);
+  EXPECT_EQ(selectView(tiles, camera, { 3.0, 0.0, -3.0 }).primary, 0) << "no tile: view 0";
+  EXPECT_TRUE(ownerRegionHolds(tiles.ownerPlanes[1], { 0.5, 0.0, -0.5 }));
+  EXPECT_FALSE(ownerRegionHolds(tiles.ownerPlanes[0], { 0.5, 0.0, -0.5 }));
+  EXPECT_EQ(std::string(partitionKindName(tiles.kind)), "fvsm_tiles");
+  EXPECT_EQ(partitionViewSuffix(tiles, 1), "_t1");
+  EXPECT_EQ(partitionViewLabel(tiles, 1), "tile 1 (level 2)");
+  // A tile's view covers its rectangle plus one texel of margin each side: 16 of its 18 texels.
+  EXPECT_NEAR(tiles.views[1].window.y - tiles.views[1].window.x, 2.0 * 18.0 / 16.0, 1e-12);
 }
 
 TEST(FittedVirtualShadowMap, RefusesCascadesAndWarps)

@@ -94,7 +94,7 @@ namespace
 // (nearest) to the tile maps' size.
 void exportFvsm(const FrameResources& frame, const ImageF& tile, FrameResult& result, std::vector<NamedImage>& lightSpace)
 {
-  const FittedVirtualShadowMap& fvsm = *frame.cascades->fvsm;
+  const FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
   const FvsmQuadtree& tree = fvsm.quadtree;
   ImageF level(tile.width, tile.height, 1), required(tile.width, tile.height, 1), unmet(tile.width, tile.height, 1);
   for (int y = 0; y < tile.height; ++y)
@@ -117,7 +117,7 @@ void exportFvsm(const FrameResources& frame, const ImageF& tile, FrameResult& re
     ImageF& image = spec.name == "fvsm_level" ? level : spec.name == "fvsm_required_resolution" ? required : unmet;
     result.buffers.push_back({ spec.name, std::move(image), spec.unit, spec.doc, spec.kind, {} });
   }
-  const int size = frame.cascades->views.front().resolution;
+  const int size = frame.partitions->views.front().resolution;
   ImageF requiredGrid(size, size, 1), levelGrid(size, size, 1);
   for (int y = 0; y < size; ++y)
   {
@@ -137,40 +137,47 @@ void exportFvsm(const FrameResources& frame, const ImageF& tile, FrameResult& re
     "fvsm quadtree level of the tile holding each grid cell (tile side = window / 2^level); -1: no tile (no receiver)" });
 }
 
-// Cascades (survey §4.3.1): the per-pixel `cascade` buffer, then each cascade's two maps, suffixed _c<k>. fvsm tiles
-// (survey §4.3.3): the `fvsm_tile` buffer and its own, then each tile's two maps, suffixed _t<k>.
-std::vector<NamedImage> exportCascades(const FrameResources& frame, FrameResult& result)
+// Views that partition the pixels (survey §4.3, PartitionViews.h): the per-pixel categorical buffer of the kind
+// (`cascade`, `fvsm_tile` with fvsm's own buffers), the sampling error of each pixel's view, then each view's two
+// maps, suffixed as partitionViewSuffix names them (_c<k>, _t<k>).
+std::vector<NamedImage> exportPartitions(const FrameResources& frame, FrameResult& result)
 {
-  const bool tiles = frame.cascades->fvsm != nullptr;
-  const BufferSpec& spec = tiles ? fvsmTileBufferSpec() : cascadeBufferSpec();
-  ImageF selection = readFloatTexture(frame.viewSelection, 4).channels(0, 1);
-  std::vector<NamedImage> images;
-  if (tiles)
+  const PartitionSet& partitions = *frame.partitions;
+  const ImageF selection = readFloatTexture(frame.viewSelection, 4);
+  const ImageF primaryView = selection.channels(0, 1);
+  const BufferSpec& spec = partitionBufferSpec(partitions.kind);
+  std::vector<std::string> labels;
+  for (int k = 0; k < partitions.viewCount(); ++k)
   {
-    exportFvsm(frame, selection, result, images);
+    labels.push_back(partitionViewLabel(partitions, k));
   }
-  result.buffers.push_back({ spec.name, std::move(selection), spec.unit, spec.doc, spec.kind,
-    tiles ? fvsmTileLabels(frame.cascades->fvsm->quadtree) : cascadeLabels(frame.cascades->settings.count) });
-  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
+  std::vector<NamedImage> images;
+  if (partitions.kind == PartitionKind::FvsmTiles)
+  {
+    exportFvsm(frame, primaryView, result, images);
+  }
+  result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
+  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result, &primaryView);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
   for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)
   {
-    const std::string suffix = (tiles ? "_t" : "_c") + std::to_string(k);
+    const int view = static_cast<int>(k);
+    const std::string suffix = partitionViewSuffix(partitions, view);
+    const std::string label = partitionViewLabel(partitions, view);
     images.push_back({ "shadow_map_depth" + suffix, readFloatTexture(frame.viewShadowMapLinear[k], 1), "world units",
-      format(tiles ? "fvsm tile " : "cascade ", k,
-        "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
+      format(label, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
     images.push_back({ "shadow_map_window_depth" + suffix, readDepthTexture(frame.viewShadowMapDepth[k]), "",
-      format(tiles ? "fvsm tile " : "cascade ", k, "'s hardware depth buffer, window coordinates in [0, 1]") });
+      format(label, "'s hardware depth buffer, window coordinates in [0, 1]") });
   }
   return images;
 }
 
 std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult& result)
 {
-  if (frame.cascades)
+  if (frame.partitions)
   {
-    return exportCascades(frame, result);
+    return exportPartitions(frame, result);
   }
   // The map's sampling error at the visible receivers is per pixel: it joins the frame's buffers.
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
@@ -214,22 +221,27 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
 
 } // namespace
 
-const BufferSpec& cascadeBufferSpec()
+const BufferSpec& partitionBufferSpec(PartitionKind kind)
 {
-  static const BufferSpec spec{ "cascade", "",
+  static const BufferSpec cascade{ "cascade", "",
     "the cascade whose map the pixel read (survey §4.3.1, Fig. 15's colour coding); with cascade_blend, the first of "
     "the two it blends",
     BufferKind::Categorical };
-  return spec;
-}
-
-const BufferSpec& fvsmTileBufferSpec()
-{
-  static const BufferSpec spec{ "fvsm_tile", "",
+  static const BufferSpec fvsmTile{ "fvsm_tile", "",
     "the fvsm quadtree tile whose map the pixel read (survey §4.3.3; stats.json light_view.fvsm.tiles lists their "
     "rectangles and levels)",
     BufferKind::Categorical };
-  return spec;
+  switch (kind)
+  {
+    case PartitionKind::Cascades:
+      return cascade;
+    case PartitionKind::FvsmTiles:
+      return fvsmTile;
+    case PartitionKind::CubeFaces:
+      break;
+  }
+  SL_CHECK_MSG(false, "no buffer for partition kind ", partitionKindName(kind));
+  return cascade;
 }
 
 const std::vector<BufferSpec>& fvsmBufferSpecs()
@@ -243,30 +255,6 @@ const std::vector<BufferSpec>& fvsmBufferSpecs()
       "fvsm_max_tiles reached), else 0" },
   };
   return specs;
-}
-
-std::vector<std::string> fvsmTileLabels(const FvsmQuadtree& tree)
-{
-  std::vector<std::string> labels;
-  for (std::size_t k = 0; k < tree.tiles.size(); ++k)
-  {
-    labels.push_back(format("tile ", k, " (level ", tree.tiles[k].level, ")"));
-  }
-  if (labels.empty())
-  {
-    labels.push_back("root (no receiver)");
-  }
-  return labels;
-}
-
-std::vector<std::string> cascadeLabels(int count)
-{
-  std::vector<std::string> labels;
-  for (int k = 0; k < count; ++k)
-  {
-    labels.push_back("cascade " + std::to_string(k));
-  }
-  return labels;
 }
 
 const LightSpaceStructure& shadowMapStructure()
@@ -286,7 +274,7 @@ const LightSpaceStructure& shadowMapStructure()
     };
     s.exportImages = exportShadowMap;
     s.gpuBytes = [](const FrameResources& frame) {
-      if (frame.cascades)
+      if (frame.partitions)
       {
         std::size_t bytes = textureBytes(frame.viewSelection, 16);
         for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)

@@ -6,6 +6,7 @@
 
 #include "lightspace/Cascades.h"
 #include "lightspace/FittedVirtualShadowMap.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
@@ -32,14 +33,11 @@ struct ShadowMapSettings
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
 ShadowMapSettings shadowMapSettings(const FrameResources& frame);
 
-// Cascades (survey §4.3.1): the categorical buffer `cascade` the structure adds to a frame with cascades > 1, and its
-// labels ("cascade 0" ..).
-const BufferSpec& cascadeBufferSpec();
-std::vector<std::string> cascadeLabels(int count);
-// fvsm (survey §4.3.3): the categorical buffer `fvsm_tile` (labels "tile k (level L)"), and fvsm_level,
-// fvsm_required_resolution and fvsm_unmet beside it.
-const BufferSpec& fvsmTileBufferSpec();
+// Views that partition the pixels (survey §4.3, PartitionViews.h): the categorical buffer the structure adds to a
+// partitioned frame, per kind: `cascade` (cascades > 1, survey §4.3.1), `fvsm_tile` (fvsm, survey §4.3.3); its labels
+// are partitionViewLabel's.
+const BufferSpec& partitionBufferSpec(PartitionKind kind);
+// fvsm (survey §4.3.3): fvsm_level, fvsm_required_resolution and fvsm_unmet beside `fvsm_tile`.
 const std::vector<BufferSpec>& fvsmBufferSpecs();
-std::vector<std::string> fvsmTileLabels(const FvsmQuadtree& tree);
 
 } // namespace sl
