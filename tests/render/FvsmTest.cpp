@@ -57,11 +57,17 @@ bool cellAmbiguous(const FittedVirtualShadowMap& fvsm, const glm::dvec3& pWs)
 
 TEST(FvsmGpu, TileSelectionMatchesTheCpuTwinPixelByPixel)
 {
-  for (const std::string dataset : { "deep-view", "deep-view-behind" })
+  // The two deep views (directional lights: tiles in world units) and a spot light over stacked occluders (a
+  // perspective light: tiles in tangents, light x/y = x / depth).
+  for (const std::string dataset : { "deep-view", "deep-view-behind", "spot" })
   {
-    const Scene scene = test::loadDataset(dataset);
+    const Scene scene = dataset == "spot"
+      ? test::stackedOccludersUnder(R"({ "type": "spot", "center": [0, 4, 0], "normal": [0, -1, 0], "cone_angle_deg": 50 })")
+      : test::loadDataset(dataset);
     const std::vector<std::string> settings = { "fvsm=on", "fvsm_tile_size=64", "fvsm_max_level=5", "fvsm_max_tiles=48" };
     const FrameResult frame = test::renderDataset(scene, "hard", 96, 64, settings);
+    EXPECT_EQ(frame.partitions->views.front().projection,
+      dataset == "spot" ? LightProjection::Perspective : LightProjection::Orthographic);
     ASSERT_TRUE(frame.partitions.has_value() && frame.partitions->fvsm);
     const FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
     const ImageF& tile = frame.find("fvsm_tile")->image;
@@ -104,7 +110,7 @@ TEST(FvsmGpu, TileSelectionMatchesTheCpuTwinPixelByPixel)
     EXPECT_GT(covered, 3000) << dataset;
     EXPECT_EQ(mismatched, 0) << dataset << ": " << firstMismatch;
     EXPECT_LT(ambiguous, covered / 100 + 1) << dataset;
-    EXPECT_GT(fvsm.quadtree.tiles.size(), 4u) << dataset << ": the deep view refines";
+    EXPECT_GT(fvsm.quadtree.tiles.size(), 1u) << dataset << ": the view refines";
     // The pre-pass's samples fall in the tiles the GPU selects for them (up to the ambiguous pixels).
     for (std::size_t k = 0; k < perTile.size(); ++k)
     {
