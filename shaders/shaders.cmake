@@ -28,7 +28,8 @@ set(SL_SHADER_FILES
   lightspace/LightDepthVertex.glsl
   lightspace/LightDepthFragment.glsl
   lightspace/FocusReduction.glsl
-  lightspace/CascadeSelection.glsl
+  lightspace/PartitionSelection.glsl
+  lightspace/FvsmSelection.glsl
   moments/MomentsFromDepth.glsl
   moments/BoxBlur.glsl
   sat/SatBuild.glsl

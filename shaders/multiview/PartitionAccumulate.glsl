@@ -1,6 +1,6 @@
-// Views that partition the pixels (cascades, survey §4.3.1): after the technique ran with view k's map, adds its
-// buffer into the frame's combined one with the pixel's weight for view k, from the selection (primary, secondary,
-// primary's weight): w = weight (k primary) + (1 - weight) (k secondary). A pixel that reads one view takes its value
+// Views that partition the pixels (survey §4.3, lightspace/PartitionViews.h): after the technique ran with view k's
+// map, adds its buffer into the frame's combined one with the pixel's weight for view k, from the selection (primary,
+// secondary, primary's weight): w = weight (k primary) + (1 - weight) (k secondary). A pixel that reads one view takes its value
 // exactly (the other views' weight 0 adds nothing); categorical buffers take the primary view's value. View 0
 // initialises every pixel, so the combined targets need no clearing.
 // Driver: src/passes/vtkSLPartitionAccumulatePass.cxx.

@@ -7,7 +7,7 @@
 #include "core/NamedImage.h"
 #include "frame/TechniqueDescriptor.h"
 #include "lightspace/CameraView.h"
-#include "lightspace/Cascades.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/LightView.h"
 
 #include <vtkPolyData.h>
@@ -45,8 +45,9 @@ struct FrameResult
   ParameterValues parameters;
   glm::ivec2 resolution{ 0 };
   CameraView camera;
-  std::optional<LightView> lightView; // with cascades, cascade 0's
-  std::optional<CascadeSet> cascades; // cascades > 1 (survey §4.3.1): the splits and every cascade's view
+  std::optional<LightView> lightView; // with views that partition the pixels, view 0's
+  // Views that partition the pixels (survey §4.3, PartitionViews.h): cascades > 1 (§4.3.1), with their split depths.
+  std::optional<PartitionSet> partitions;
   std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's
   std::vector<NamedImage> lightSpace; // per shadow-map texel, for the structures that were built
   std::vector<NamedPolyData> objectSpace; // geometry an object-space technique exports (vtkSLTechniquePass)

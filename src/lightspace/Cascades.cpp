@@ -2,6 +2,7 @@
 
 #include "core/Error.h"
 #include "lightspace/CameraView.h"
+#include "lightspace/PartitionViews.h"
 
 #include <algorithm>
 #include <cmath>
@@ -98,29 +99,11 @@ std::vector<glm::dvec4> cascadeOwnerPlanes(
   return planes;
 }
 
-bool mapHolds(const LightView& view, double marginTexels, const glm::dvec3& pWs, double& edgeFraction)
-{
-  const glm::dvec4 clip = view.clipFromWorld * glm::dvec4(pWs, 1.0);
-  const double depthLin = -(view.viewFromWorld * glm::dvec4(pWs, 1.0)).z;
-  edgeFraction = 0.0;
-  if (!(clip.w > 0.0) || depthLin < view.nearDepth || depthLin > view.farDepth)
-  {
-    return false;
-  }
-  const double inner = 1.0 - 2.0 * marginTexels / view.resolution; // NDC half-width inside the margin
-  const double distance = inner - std::max(std::abs(clip.x / clip.w), std::abs(clip.y / clip.w));
-  if (distance < 0.0)
-  {
-    return false;
-  }
-  edgeFraction = distance / inner;
-  return true;
-}
-
-ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera, const glm::dvec3& pWs)
+ViewSelection selectCascade(const PartitionSet& cascades, const CameraView& camera, const glm::dvec3& pWs)
 {
   const int count = static_cast<int>(cascades.views.size());
-  const CascadeSettings& settings = cascades.settings;
+  SL_CHECK(cascades.kind == PartitionKind::Cascades);
+  const CascadeSettings& settings = cascades.cascadeSettings;
   const double depth = eyeDepthOf(camera, pWs);
   int slice = 0;
   while (slice < count - 1 && depth >= cascades.splits[static_cast<std::size_t>(slice) + 1])
@@ -192,14 +175,15 @@ glm::dvec4 snappedWindow(const glm::dvec4& receiverWindow, int resolution, doubl
   return window;
 }
 
-CascadeSet fitCascades(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus,
+PartitionSet fitCascades(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus,
   const CascadeSettings& settings)
 {
   requireCascadableLight(settings, light.type);
   SL_CHECK_MSG(focus.camera != nullptr, "cascades need the camera");
   const CameraView& camera = *focus.camera;
-  CascadeSet cascades;
-  cascades.settings = settings;
+  PartitionSet cascades;
+  cascades.kind = PartitionKind::Cascades;
+  cascades.cascadeSettings = settings;
   cascades.marginTexels = focus.marginTexels;
 
   // The visible receivers' eye depth range, the eye frustum after focusing (as the warp's z_n, z_f).
@@ -218,6 +202,7 @@ CascadeSet fitCascades(const Light& light, const Scene& scene, ReceiverSource& r
     slice.ownerPlanes = cascadeOwnerPlanes(camera, cascades.splits, k, settings);
     slice.snapToTexels = settings.snap;
     cascades.views.push_back(fitLightView(light, scene, receivers, slice));
+    cascades.ownerPlanes.push_back(slice.ownerPlanes);
   }
   return cascades;
 }

@@ -21,9 +21,9 @@
 // the window's edges to whole texels of the light's fixed frame, so a small camera move keeps every texel boundary in
 // place in world space (no crawling shadow edges; ZZB09 as the survey cites it).
 //
-// Views that partition the pixels: a cascade is one of m light views, each focused on the receivers it owns
-// (world-space half-spaces), with a per-pixel selection (primary view, secondary view, primary's weight) that the
-// multi-view loop (passes/vtkSLMultiViewPass.h) blends the technique's buffers by. Cube-map faces fit the same shape.
+// Views that partition the pixels (PartitionViews.h): a cascade is one of m light views, each focused on the receivers
+// it owns (world-space half-spaces), with a per-pixel selection (primary view, secondary view, primary's weight) that
+// the multi-view loop (passes/vtkSLMultiViewPass.h) blends the technique's buffers by.
 #pragma once
 
 #include "lightspace/LightView.h"
@@ -37,6 +37,8 @@ namespace sl
 {
 
 struct CameraView;
+struct PartitionSet;
+struct ViewSelection;
 
 enum class SplitScheme
 {
@@ -78,37 +80,16 @@ std::vector<double> splitDepths(SplitScheme scheme, double lambda, double zNear,
 std::vector<glm::dvec4> cascadeOwnerPlanes(
   const CameraView& camera, const std::vector<double>& splits, int index, const CascadeSettings& settings);
 
-// A fitted set of cascades: the split depths, the views, and the settings that chose them.
-struct CascadeSet
-{
-  CascadeSettings settings;
-  std::vector<double> splits; // m + 1 eye depths
-  std::vector<LightView> views;
-  // The focus's margin: a map holds a point "with its filter" when it lies this many texels inside the map's edge.
-  double marginTexels = 1.0;
-};
-
-// One pixel's selection: the technique's buffers are primaryWeight x the primary view's + (1 - primaryWeight) x the
-// secondary's (secondary = primary when there is nothing to blend).
-struct ViewSelection
-{
-  int primary = 0;
-  int secondary = 0;
-  double primaryWeight = 1.0;
-};
-
-// The eye depth the selection uses: -z of the camera's view space (GLSL twin: shaders/lightspace/CascadeSelection.glsl).
+// The eye depth the selection uses: -z of the camera's view space (GLSL twin in
+// shaders/lightspace/PartitionSelection.glsl).
 double eyeDepthOf(const CameraView& camera, const glm::dvec3& pWs);
-// The CPU twin (double) of the GPU's selection at a covered pixel's point.
-ViewSelection selectCascade(const CascadeSet& cascades, const CameraView& camera, const glm::dvec3& pWs);
-// Containment's test: the map's window position of pWs (NDC) and its linear depth lie inside view's inner window
-// (marginTexels in from its edge) and depth range; `edgeFraction` receives the distance to the inner window's nearest
-// edge as a fraction of its half-width (0 at the edge, 1 at the centre).
-bool mapHolds(const LightView& view, double marginTexels, const glm::dvec3& pWs, double& edgeFraction);
+// The CPU twin (double) of the GPU's cascade selection at a covered pixel's point (PartitionViews.h selectView for a
+// set of kind Cascades).
+ViewSelection selectCascade(const PartitionSet& cascades, const CameraView& camera, const glm::dvec3& pWs);
 
 // Fits the m cascades: the receivers' eye depth range (one reduction), the splits, then one fitLightView per slice
-// with its owner planes (and the texel snapping of `settings`).
-CascadeSet fitCascades(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus,
+// with its owner planes (and the texel snapping of `settings`). A PartitionSet of kind Cascades.
+PartitionSet fitCascades(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus,
   const CascadeSettings& settings);
 
 // Texel snapping, per axis: the texel size rounded up to 2^(k/4) world units and the window's edges to whole texels,

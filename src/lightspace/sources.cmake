@@ -8,6 +8,8 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/ShadowMapMath.cpp
   src/lightspace/PerspectiveWarp.cpp
   src/lightspace/Cascades.cpp
+  src/lightspace/PartitionViews.cpp
+  src/lightspace/FittedVirtualShadowMap.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
   src/lightspace/SummedAreaTable.cpp)

@@ -1,6 +1,7 @@
 #include "output/OutputWriter.h"
 
 #include "core/Error.h"
+#include "lightspace/FittedVirtualShadowMap.h"
 #include "io/ImageIO.h"
 #include "vis/BufferHeatMap.h"
 
@@ -169,10 +170,42 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
         { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
     }
   }
-  if (frame.cascades)
+  if (frame.partitions && frame.partitions->kind == PartitionKind::FvsmTiles)
+  {
+    // Survey §4.3.3: the quadtree's tiles (rectangles in light x/y, the units of `window`), the pre-pass's samples and
+    // how many pixels' required resolution was not met; the top-level light_view is tile 0's.
+    const FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
+    const FvsmQuadtree& tree = fvsm.quadtree;
+    nlohmann::json tiles = nlohmann::json::array();
+    for (std::size_t k = 0; k < tree.tiles.size(); ++k)
+    {
+      const FvsmTile& tile = tree.tiles[k];
+      const LightView& view = frame.partitions->views[k];
+      tiles.push_back({ { "level", tile.level }, { "cell", { tile.cell.x, tile.cell.y } },
+        { "rect", { tile.rect.x, tile.rect.y, tile.rect.z, tile.rect.w } },
+        { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
+        { "required_resolution", tile.requiredResolution }, { "effective_resolution", tile.effectiveResolution },
+        { "met", tile.met() }, { "receiver_samples", tile.samples } });
+    }
+    const NamedImage* unmet = findNamed(frame.buffers, "fvsm_unmet");
+    int unmetPixels = 0;
+    for (std::size_t i = 0; unmet && i < unmet->image.data.size(); ++i)
+    {
+      unmetPixels += unmet->image.data[i] > 0.5f ? 1 : 0;
+    }
+    const int tileSize = tree.settings.tileSize;
+    stats["light_view"]["fvsm"] = { { "tile_size", tileSize }, { "max_level", tree.settings.maxLevel },
+      { "max_tiles", tree.settings.maxTiles }, { "grid_size", tree.gridSize },
+      { "root_rect", { tree.rootRect.x, tree.rootRect.y, tree.rootRect.z, tree.rootRect.w } },
+      { "tile_count", tree.tiles.size() },
+      { "total_texels", static_cast<double>(frame.partitions->viewCount()) * tileSize * tileSize },
+      { "budget_reached", tree.budgetReached }, { "level_reached", tree.levelReached },
+      { "prepass_samples", fvsm.prepass.samples }, { "unmet_pixels", unmetPixels }, { "tiles", tiles } };
+  }
+  if (frame.partitions && frame.partitions->kind == PartitionKind::Cascades)
   {
     // Survey §4.3.1: the split depths (eye depth) and each cascade's map; the top-level light_view is cascade 0's.
-    const CascadeSet& cascades = *frame.cascades;
+    const PartitionSet& cascades = *frame.partitions;
     nlohmann::json list = nlohmann::json::array();
     for (std::size_t k = 0; k < cascades.views.size(); ++k)
     {
@@ -189,11 +222,12 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       list.push_back(entry);
     }
     stats["light_view"]["cascades"] = list;
-    stats["light_view"]["split_scheme"] = splitSchemeName(cascades.settings.scheme);
-    stats["light_view"]["split_lambda"] = cascades.settings.lambda;
-    stats["light_view"]["cascade_selection"] = cascadeSelectionName(cascades.settings.selection);
-    stats["light_view"]["cascade_blend"] = cascades.settings.blend;
-    stats["light_view"]["cascade_snap"] = cascades.settings.snap;
+    const CascadeSettings& settings = cascades.cascadeSettings;
+    stats["light_view"]["split_scheme"] = splitSchemeName(settings.scheme);
+    stats["light_view"]["split_lambda"] = settings.lambda;
+    stats["light_view"]["cascade_selection"] = cascadeSelectionName(settings.selection);
+    stats["light_view"]["cascade_blend"] = settings.blend;
+    stats["light_view"]["cascade_snap"] = settings.snap;
   }
   stats["buffers"] = bufferSummaries(frame.buffers);
   nlohmann::json lightSpace = nlohmann::json::object();

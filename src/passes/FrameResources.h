@@ -10,7 +10,7 @@
 #include "core/Error.h"
 #include "gl/GlResources.h"
 #include "lightspace/CameraView.h"
-#include "lightspace/Cascades.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/LightView.h"
 #include "scene/WeldedMesh.h"
 #include "scene/Scene.h"
@@ -81,12 +81,14 @@ struct FrameResources
   LightView lightView;
   vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
-  // Views that partition the pixels (cascades, survey §4.3.1; vtkSLMultiViewPass): how many, the one the inner stages
-  // run for now, every view's fit (the focus fits all at view 0), each view's maps (the light depth pass keeps them
-  // for the export), and the per-pixel selection (RGBA32F: primary view, secondary view, primary's weight, 0).
-  int partitionViews = 1;
+  // Views that partition the pixels (survey §4.3, lightspace/PartitionViews.h; vtkSLMultiViewPass): whether the stages
+  // run in that loop (decided before GL, from the parameters and the light), the view the inner stages run for now,
+  // every view's fit (the focus fits all at view 0; none when it finds one map enough), each view's maps (the light
+  // depth pass keeps them for the export), and the per-pixel selection (RGBA32F: primary view, secondary view,
+  // primary's weight, 0).
+  bool partitioned = false;
   int viewIndex = 0;
-  std::optional<CascadeSet> cascades;
+  std::optional<PartitionSet> partitions;
   std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapLinear;
   std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapDepth;
   vtkSmartPointer<vtkTextureObject> viewSelection;

@@ -36,16 +36,25 @@ void vtkSLMultiViewPass::RenderPartition(const vtkRenderState* state)
   sl::FrameResources& frame = *this->Frame;
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   std::map<std::string, vtkSmartPointer<vtkTextureObject>> combined;
-  for (const std::string& output : frame.technique->outputNames())
-  {
-    combined[output] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
-  }
-  for (int view = 0; view < frame.partitionViews; ++view)
+  // The focus fits every view at view 0: the count is known after it.
+  for (int view = 0; view == 0 || (frame.partitions && view < frame.partitions->viewCount()); ++view)
   {
     frame.viewIndex = view;
     for (vtkSLStagePass* stage : this->Inner)
     {
       stage->Render(state);
+    }
+    if (!frame.partitions)
+    {
+      // The focus found one map enough (a light that only may need partitions): its targets are the frame's.
+      return;
+    }
+    if (view == 0)
+    {
+      for (const std::string& output : frame.technique->outputNames())
+      {
+        combined[output] = sl::makeFloatTarget(window, frame.width(), frame.height(), 1);
+      }
     }
     this->PartitionAccumulate->SetView(view, &combined);
     this->PartitionAccumulate->Render(state);

@@ -5,10 +5,11 @@
 // combined ones and FrameResources::subLightVisibility holds each sub-light's visibility. With S = 1 the inner
 // stages run once, as without this pass.
 //
-// Views that partition the pixels (cascades, survey §4.3.1; FrameResources::partitionViews > 1): the same inner stages
-// run once per view with FrameResources::viewIndex set (the focus fits every view at view 0 and writes the per-pixel
-// selection), each followed by vtkSLPartitionAccumulatePass, which blends the technique's targets by the selection
-// instead of averaging them. Cube-map faces are views of the same kind (partitioned by direction).
+// Views that partition the pixels (survey §4.3, lightspace/PartitionViews.h: cascades; FrameResources::partitioned):
+// the same inner stages run once per view with FrameResources::viewIndex set (the focus fits every view at view 0 and
+// writes the per-pixel selection), each followed by vtkSLPartitionAccumulatePass, which blends the technique's targets
+// by the selection instead of averaging them. When the focus fits no partition (one map is enough), view 0's run is
+// the frame's, as without this pass.
 //
 // Not a timed stage itself: its inner stages report their times, summed over the sub-lights or views.
 #pragma once

@@ -1,6 +1,6 @@
-// Stage "partition_accumulate": for views that partition the pixels (cascades, survey §4.3.1), run after the
-// technique for each view: adds the view's technique targets into the frame's combined ones, weighted per pixel by
-// FrameResources::viewSelection (shaders/multiview/PartitionAccumulate.glsl, one compute dispatch per buffer).
+// Stage "partition_accumulate": for views that partition the pixels (survey §4.3, lightspace/PartitionViews.h), run
+// after the technique for each view: adds the view's technique targets into the frame's combined ones, weighted per
+// pixel by FrameResources::viewSelection (shaders/multiview/PartitionAccumulate.glsl, one compute dispatch per buffer).
 // Driven by vtkSLMultiViewPass, which sets the view index and the combined targets.
 #pragma once
 

@@ -62,7 +62,7 @@ std::string ShadowRenderer::stageKey(const FrameResources& frame)
   {
     key += "|msaa"; // the resolve stage
   }
-  if (frame.partitionViews > 1)
+  if (frame.partitioned)
   {
     key += "|views"; // the multi-view loop over views that partition the pixels
   }
@@ -95,11 +95,11 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
       }
     }
     stages.push_back(technique.createPass());
-    if (frame.partitionViews > 1)
+    if (frame.partitioned)
     {
-      // Views that partition the pixels (cascades, survey §4.3.1): everything between the G-buffer and the shading
-      // runs per view, blended by the focus's per-pixel selection.
-      SL_CHECK_MSG(!technique.hasSubLights(), "cascades with sub-lights are not supported");
+      // Views that partition the pixels (survey §4.3, PartitionViews.h): everything between the G-buffer and the
+      // shading runs per view, blended by the focus's per-pixel selection.
+      SL_CHECK_MSG(!technique.hasSubLights(), "partitioned shadow maps with sub-lights are not supported");
       auto accumulate = vtkSmartPointer<vtkSLPartitionAccumulatePass>::New();
       auto multiView = vtkSmartPointer<vtkSLMultiViewPass>::New();
       multiView->SetPartitionStages(std::vector<vtkSLStagePass*>(stages.begin() + 1, stages.end()), accumulate);
@@ -117,8 +117,8 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
     }
     if (frame.multisample.samples > 1)
     {
-      SL_CHECK_MSG(!technique.hasSubLights() && frame.partitionViews == 1,
-        "multisampling with sub-lights or cascades is not supported");
+      SL_CHECK_MSG(!technique.hasSubLights() && !frame.partitioned,
+        "multisampling with sub-lights or partitioned shadow maps is not supported");
       stages.push_back(vtkSmartPointer<vtkSLMsaaResolvePass>::New());
     }
     stages.push_back(vtkSmartPointer<vtkSLShadingPass>::New());
@@ -174,7 +174,9 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   if (technique.needs(shadowMapStructure()))
   {
     // Its InputError before any GL, rather than inside the focus pass.
-    frame.partitionViews = shadowMapSettings(frame).cascades.count;
+    // fvsm (survey §4.3.3) partitions too; its tile count is known once the focus has fitted it.
+    const ShadowMapSettings settings = shadowMapSettings(frame);
+    frame.partitioned = settings.cascades.active() || settings.fvsm.active();
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
   if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)
@@ -379,8 +381,8 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
   result.camera = frame.camera;
   if (frame.hasLightView)
   {
-    result.lightView = frame.cascades ? frame.cascades->views.front() : frame.lightView;
-    result.cascades = frame.cascades;
+    result.lightView = frame.partitions ? frame.partitions->views.front() : frame.lightView;
+    result.partitions = frame.partitions;
   }
   result.glRenderer = window_->GetRendererString();
   result.glVersion = window_->GetVersionString();

@@ -13,8 +13,8 @@
 namespace sl
 {
 
-ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context, int cascade)
-  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex, false, cascade))
+ShadowMapFootprint::ShadowMapFootprint(const ApproximationContext& context, int view)
+  : inputs_(shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex, false, view))
 {
   SL_CHECK_MSG(!inputs_.shadowMapLinear.data.empty(), context.frame->technique, ": no shadow_map_depth export");
   const Light& light = *inputs_.light;
@@ -342,7 +342,7 @@ void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResul
 void markShadowMapSampling(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels)
 {
   const FrameResult& frame = *context.frame;
-  if (!frame.cascades)
+  if (!frame.partitions)
   {
     markShadowMapSampling(ShadowMapFootprint(context), frame, codes, code, kernelTexels);
     return;
@@ -356,25 +356,25 @@ void markShadowMapSampling(const ApproximationContext& context, ImageF& codes, f
     {
       const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
       selections[static_cast<std::size_t>(y) * codes.width + x] =
-        coverage.at(x, y) > 0.5f ? selectCascade(*frame.cascades, frame.camera, pWs) : ViewSelection{};
+        coverage.at(x, y) > 0.5f ? selectView(*frame.partitions, frame.camera, pWs) : ViewSelection{};
     }
   }
   constexpr float notRead = -1.0f; // markShadowMapSampling marks only pixels whose code is 0
-  for (int k = 0; k < static_cast<int>(frame.cascades->views.size()); ++k)
+  for (int k = 0; k < frame.partitions->viewCount(); ++k)
   {
-    ImageF cascadeCodes(codes.width, codes.height, 1, notRead);
+    ImageF viewCodes(codes.width, codes.height, 1, notRead);
     for (std::size_t i = 0; i < codes.pixelCount(); ++i)
     {
       const ViewSelection& s = selections[i];
       if (s.primary == k || (s.primaryWeight < 1.0 && s.secondary == k))
       {
-        cascadeCodes.data[i] = codes.data[i];
+        viewCodes.data[i] = codes.data[i];
       }
     }
-    markShadowMapSampling(ShadowMapFootprint(context, k), frame, cascadeCodes, code, kernelTexels);
+    markShadowMapSampling(ShadowMapFootprint(context, k), frame, viewCodes, code, kernelTexels);
     for (std::size_t i = 0; i < codes.pixelCount(); ++i)
     {
-      codes.data[i] = cascadeCodes.data[i] == code ? code : codes.data[i];
+      codes.data[i] = viewCodes.data[i] == code ? code : codes.data[i];
     }
   }
 }

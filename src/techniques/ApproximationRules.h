@@ -23,8 +23,9 @@ namespace sl
 class ShadowMapFootprint
 {
 public:
-  // Throws when the frame has no shadow map; `cascade` names a cascaded frame's map (survey §4.3.1), -1 otherwise.
-  explicit ShadowMapFootprint(const ApproximationContext& context, int cascade = -1);
+  // Throws when the frame has no shadow map; `view` names a partitioned frame's map (survey §4.3, PartitionViews.h),
+  // -1 otherwise.
+  explicit ShadowMapFootprint(const ApproximationContext& context, int view = -1);
   const ShadowMapInputs& inputs() const { return inputs_; }
 
   // The pixel's receiver point projected into the map, or nullopt where no shadow test happens (uncovered, not
@@ -102,8 +103,8 @@ void markMultipleBlockerDepths(const ShadowMapFootprint& footprint, ImageF& code
 // and radius 1 texel, or kernel_texels / 2 + 1 with `kernelTexels` (a filter's footprint): shadow-map sampling.
 void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResult& frame, ImageF& codes, float code,
   const ImageF* kernelTexels);
-// The same on the frame's own map, or with cascades (survey §4.3.1) on each cascade's map for the pixels that read it
-// (the primary and, where they blend, the secondary of selectCascade).
+// The same on the frame's own map, or with views that partition the pixels (survey §4.3) on each view's map for the
+// pixels that read it (the primary and, where they blend, the secondary of selectView).
 void markShadowMapSampling(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels);
 
 // Marks with `code` every pixel whose segment to the light's centre crosses a caster with an alpha texture (double

@@ -8,16 +8,16 @@ namespace sl
 {
 
 ShadowMapInputs shadowMapInputsOf(
-  const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth, int cascade)
+  const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth, int view)
 {
   SL_CHECK_MSG(frame.lightView.has_value(), "technique ", frame.technique, " rendered no shadow map");
-  SL_CHECK_MSG(frame.cascades.has_value() == (cascade >= 0), "technique ", frame.technique,
-    ": a cascaded frame's inputs name their cascade, and only such a frame's");
-  const std::string suffix = cascade >= 0 ? "_c" + std::to_string(cascade) : "";
+  SL_CHECK_MSG(frame.partitions.has_value() == (view >= 0), "technique ", frame.technique,
+    ": a partitioned frame's inputs name their view, and only such a frame's");
+  const std::string suffix = view >= 0 ? partitionViewSuffix(*frame.partitions, view) : "";
   ShadowMapInputs inputs;
   inputs.light = &scene.lights.at(static_cast<std::size_t>(lightIndex));
   inputs.camera = frame.camera;
-  inputs.lightView = cascade >= 0 ? frame.cascades->views.at(static_cast<std::size_t>(cascade)) : *frame.lightView;
+  inputs.lightView = view >= 0 ? frame.partitions->views.at(static_cast<std::size_t>(view)) : *frame.lightView;
   inputs.position = frame.find("position")->image;
   inputs.normal = frame.find("normal")->image;
   inputs.coverage = frame.find("coverage")->image;
@@ -36,33 +36,34 @@ ShadowMapInputs shadowMapInputsOf(
   return inputs;
 }
 
-std::vector<ShadowMapInputs> cascadeInputsOf(
+std::vector<ShadowMapInputs> viewInputsOf(
   const FrameResult& frame, const Scene& scene, int lightIndex, bool withWindowDepth)
 {
   std::vector<ShadowMapInputs> inputs;
-  if (!frame.cascades)
+  if (!frame.partitions)
   {
     inputs.push_back(shadowMapInputsOf(frame, scene, lightIndex, withWindowDepth));
     return inputs;
   }
-  for (std::size_t k = 0; k < frame.cascades->views.size(); ++k)
+  for (int k = 0; k < frame.partitions->viewCount(); ++k)
   {
-    inputs.push_back(shadowMapInputsOf(frame, scene, lightIndex, withWindowDepth, static_cast<int>(k)));
+    inputs.push_back(shadowMapInputsOf(frame, scene, lightIndex, withWindowDepth, k));
   }
   return inputs;
 }
 
-ReferenceSample cascadedReference(const FrameResult& frame, const std::vector<ShadowMapInputs>& inputs, int x, int y,
-  const ShadowMapTwin& twin, ProbeRecorder* recorder)
+ReferenceSample partitionedReference(const FrameResult& frame, const std::vector<ShadowMapInputs>& inputs, int x,
+  int y, const ShadowMapTwin& twin, ProbeRecorder* recorder)
 {
-  if (!frame.cascades)
+  if (!frame.partitions)
   {
     return twin(inputs.front(), x, y, recorder);
   }
   const ShadowMapInputs& any = inputs.front();
   const glm::dvec3 pWs(any.position.at(x, y, 0), any.position.at(x, y, 1), any.position.at(x, y, 2));
-  const ViewSelection selection = selectCascade(*frame.cascades, frame.camera, pWs);
-  if (recorder)
+  const PartitionSet& partitions = *frame.partitions;
+  const ViewSelection selection = selectView(partitions, frame.camera, pWs);
+  if (recorder && partitions.kind == PartitionKind::Cascades)
   {
     recorder->beginGroup("cascade");
     recorder->quantity("cascade", selection.primary, "", "survey §4.3.1: the map the pixel reads (selectCascade)");

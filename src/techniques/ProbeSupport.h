@@ -18,19 +18,20 @@ namespace sl
 // when the frame has no shadow map.
 // `withWindowDepth` false leaves shadowMapWindow empty: one map-sized copy fewer for callers that only read the
 // linear depths (the approximation rules run on every frame).
-// With cascades (FrameResult::cascades), `cascade` names the map: its view and shadow_map_depth_c<cascade>.
+// With views that partition the pixels (FrameResult::partitions: cascades), `view` names the map: its light view and
+// shadow_map_depth<suffix> (partitionViewSuffix: _c<k> for cascade k).
 ShadowMapInputs shadowMapInputsOf(
-  const FrameResult& frame, const Scene& scene, int lightIndex = 0, bool withWindowDepth = true, int cascade = -1);
-// Every cascade's inputs (one element for a frame without cascades).
-std::vector<ShadowMapInputs> cascadeInputsOf(
+  const FrameResult& frame, const Scene& scene, int lightIndex = 0, bool withWindowDepth = true, int view = -1);
+// Every view's inputs (one element for a frame without partitions).
+std::vector<ShadowMapInputs> viewInputsOf(
   const FrameResult& frame, const Scene& scene, int lightIndex = 0, bool withWindowDepth = true);
-// A shadow-map twin evaluated as the cascade loop does (survey §4.3.1): the pixel's selection (selectCascade, the
-// CPU twin of the GPU's), `twin` on the primary cascade's inputs (with `recorder`) and, where the pixel blends, on the
-// secondary's; visibility blended by the primary's weight, margins the smaller of the two. Without cascades, `twin` on
-// the only inputs.
+// A shadow-map twin evaluated as the multi-view loop does (survey §4.3): the pixel's selection (selectView, the CPU
+// twin of the GPU's), `twin` on the primary view's inputs (with `recorder`) and, where the pixel blends, on the
+// secondary's; visibility blended by the primary's weight, margins the smaller of the two. Without partitions, `twin`
+// on the only inputs.
 using ShadowMapTwin = std::function<ReferenceSample(const ShadowMapInputs&, int x, int y, ProbeRecorder*)>;
-ReferenceSample cascadedReference(const FrameResult& frame, const std::vector<ShadowMapInputs>& inputs, int x, int y,
-  const ShadowMapTwin& twin, ProbeRecorder* recorder = nullptr);
+ReferenceSample partitionedReference(const FrameResult& frame, const std::vector<ShadowMapInputs>& inputs, int x,
+  int y, const ShadowMapTwin& twin, ProbeRecorder* recorder = nullptr);
 
 // The tests' float-rounding thresholds (GpuCpuTest.cpp): a depth comparison within 2e-6 (relative), a tap within
 // 1e-4 texel of a texel edge, a light-reach cosine under 1e-5.

@@ -59,6 +59,16 @@ std::vector<ParameterSpec> shadowMapCascadeParameters()
   };
 }
 
+std::vector<ParameterSpec> shadowMapFvsmParameters()
+{
+  return {
+    { "fvsm", 0, 0, 1, "", "fitted virtual shadow maps (survey §4.3.3): a quadtree of fixed-size tile maps over the focused window, refined where a receiver needs more than one texel per pixel (read-back pre-pass); directional and spot/area lights; not with cascades or a warp", { "off", "on" }, true },
+    { "fvsm_tile_size", 256, 16, 4096, "texels", "texels per side of each fvsm tile's map", {}, true },
+    { "fvsm_max_level", 5, 0, 8, "", "deepest fvsm quadtree level: at most 2^level x 2^level tiles over the focused window (5: 32 x 32, the survey's Fig. 16)", {}, true },
+    { "fvsm_max_tiles", 64, 1, 256, "maps", "the most fvsm tiles (maps) one frame may use; pixels left coarser than they need are flagged (fvsm_unmet)", {}, true },
+  };
+}
+
 namespace
 {
 

@@ -33,6 +33,13 @@ std::vector<ParameterSpec> shadowMapWarpParameters();
 //   cascade_blend      the band blended into the next cascade (fraction of a slice; 0: hard switch)
 //   cascade_snap       off | on: whole-texel windows (stable under camera motion)
 std::vector<ParameterSpec> shadowMapCascadeParameters();
+// Adaptive partitioning of the shadow map (survey §4.3.3, fitted virtual shadow maps, lightspace/FittedVirtualShadowMap.h),
+// for the same techniques (per-pixel lookups against the one tile map the pixel's quadtree leaf owns):
+//   fvsm            off | on (not with cascades > 1 nor a warp)
+//   fvsm_tile_size  texels per side of each tile's map
+//   fvsm_max_level  deepest quadtree level: 2^level tiles per side of the focused window (5: 32 x 32, Fig. 16)
+//   fvsm_max_tiles  the most tiles (maps) a frame may use
+std::vector<ParameterSpec> shadowMapFvsmParameters();
 
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
 // (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.

@@ -504,6 +504,66 @@ TEST(CliRender, CascadeSplitsAndMapsInStats)
   EXPECT_TRUE(stats.at("buffers").contains("cascade"));
 }
 
+TEST(CliRender, FvsmTilesAndGridsInStats)
+{
+  // deep-view with fitted virtual shadow maps (survey §4.3.3): stats.json's light_view.fvsm lists tiles whose
+  // rectangles are the root rectangle's quadtree cells (side / 2^level, on the 2^max_level grid) and do not overlap,
+  // their effective resolution (tile - 2 margin) 2^level; unmet_pixels counts fvsm_unmet; light_space holds the grids
+  // and every tile's maps.
+  TempDir temp;
+  const fs::path outDir = temp.path() / "out";
+  const RunResult run = runShadowlab({ "render", datasetScene("deep-view").string(), "-t", "hard", "-r", "64x48", "-s",
+                                       "fvsm=on", "-s", "fvsm_tile_size=34", "-s", "fvsm_max_level=4", "-s",
+                                       "fvsm_max_tiles=10", "--out", outDir.string() },
+    temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const Json stats = Json::parse(readFile(outDir / "stats.json"));
+  const Json& fvsm = stats.at("light_view").at("fvsm");
+  const Json& tiles = fvsm.at("tiles");
+  ASSERT_GE(tiles.size(), 2u);
+  ASSERT_LE(tiles.size(), 10u);
+  EXPECT_EQ(fvsm.at("tile_count"), tiles.size());
+  EXPECT_EQ(fvsm.at("grid_size"), 16);
+  const std::vector<double> root = fvsm.at("root_rect").get<std::vector<double>>();
+  std::vector<std::vector<double>> rects;
+  for (const Json& tile : tiles)
+  {
+    const int level = tile.at("level").get<int>();
+    const std::vector<double> rect = tile.at("rect").get<std::vector<double>>();
+    const std::vector<int> cell = tile.at("cell").get<std::vector<int>>();
+    const double width = (root[1] - root[0]) / (1 << level);
+    const double height = (root[3] - root[2]) / (1 << level);
+    EXPECT_NEAR(rect[0], root[0] + cell[0] * width, 1e-9 * (root[1] - root[0]));
+    EXPECT_NEAR(rect[1] - rect[0], width, 1e-9 * (root[1] - root[0]));
+    EXPECT_NEAR(rect[2], root[2] + cell[1] * height, 1e-9 * (root[3] - root[2]));
+    EXPECT_NEAR(rect[3] - rect[2], height, 1e-9 * (root[3] - root[2]));
+    EXPECT_EQ(tile.at("effective_resolution").get<double>(), 32.0 * (1 << level));
+    EXPECT_EQ(tile.at("met").get<bool>(),
+      tile.at("required_resolution").get<double>() <= tile.at("effective_resolution").get<double>() * (1.0 + 1e-9));
+    for (const std::vector<double>& other : rects)
+    {
+      EXPECT_FALSE(rect[0] < other[1] && other[0] < rect[1] && rect[2] < other[3] && other[2] < rect[3]);
+    }
+    rects.push_back(rect);
+  }
+  EXPECT_TRUE(fvsm.at("budget_reached").get<bool>() || fvsm.at("level_reached").get<bool>() ||
+    fvsm.at("unmet_pixels").get<int>() == 0);
+  EXPECT_GT(fvsm.at("prepass_samples").get<int>(), 500);
+  for (std::size_t k = 0; k < tiles.size(); ++k)
+  {
+    EXPECT_TRUE(stats.at("light_space").contains("shadow_map_depth_t" + std::to_string(k))) << k;
+  }
+  EXPECT_TRUE(stats.at("light_space").contains("fvsm_required_resolution_grid"));
+  EXPECT_TRUE(stats.at("light_space").contains("fvsm_level_grid"));
+  for (const char* buffer : { "fvsm_tile", "fvsm_level", "fvsm_required_resolution", "fvsm_unmet" })
+  {
+    EXPECT_TRUE(stats.at("buffers").contains(buffer)) << buffer;
+  }
+  // Cascades and fvsm in one line: refused, naming both.
+  expectCleanFailure({ "render", datasetScene("deep-view").string(), "-t", "hard", "-s", "fvsm=on", "-s", "cascades=2" },
+    { "cascades=2", "fvsm" });
+}
+
 TEST(CliRenderErrors, OutOfRangeParameters)
 {
   expectCleanFailure(

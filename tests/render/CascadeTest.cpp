@@ -1,7 +1,7 @@
 // Z-partitioning (survey §4.3.1: cascaded / parallel-split shadow maps) end to end on llvmpipe:
 //   - the GPU's per-pixel cascade (buffer `cascade`) against the CPU twin selectCascade, pixel by pixel, depth and
 //     containment selection;
-//   - hard and pcf visibility against their CPU twins run on each pixel's cascade (cascadedReference), blended
+//   - hard and pcf visibility against their CPU twins run on each pixel's cascade (partitionedReference), blended
 //     borders included, on a random configuration;
 //   - casters outside the view, between the light and a slice's receivers, still cast in that slice's map;
 //   - the must-hold: on deep-view, 4 cascades misclassify fewer pixels against the exact ray than one map of
@@ -12,6 +12,7 @@
 #include "support/TestSupport.h"
 #include "core/Error.h"
 #include "lightspace/Cascades.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
@@ -42,7 +43,7 @@ glm::dvec3 pointAt(const ImageF& position, int x, int y)
 // Whether a float evaluation of the selection may legitimately differ from the double twin's at pWs: the eye depth
 // within 1e-5 (relative) of an interior split, or (containment) the edge or depth range of a map finer than the
 // point's own slice's within 1e-5 of the point (its own map holds it by construction).
-bool selectionAmbiguous(const CascadeSet& cascades, const CameraView& camera, const glm::dvec3& pWs)
+bool selectionAmbiguous(const PartitionSet& cascades, const CameraView& camera, const glm::dvec3& pWs)
 {
   const double depth = eyeDepthOf(camera, pWs);
   int slice = 0;
@@ -54,7 +55,7 @@ bool selectionAmbiguous(const CascadeSet& cascades, const CameraView& camera, co
     }
     slice += depth >= cascades.splits[i] ? 1 : 0;
   }
-  if (cascades.settings.selection == CascadeSelection::Depth)
+  if (cascades.cascadeSettings.selection == CascadeSelection::Depth)
   {
     return false;
   }
@@ -88,7 +89,7 @@ SelectionAgreement compareSelection(const FrameResult& frame)
   const ImageF& position = frame.find("position")->image;
   const ImageF& coverage = frame.find("coverage")->image;
   SelectionAgreement agreement;
-  agreement.perCascade.assign(frame.cascades->views.size(), 0);
+  agreement.perCascade.assign(frame.partitions->views.size(), 0);
   for (int y = 0; y < cascade.height; ++y)
   {
     for (int x = 0; x < cascade.width; ++x)
@@ -100,10 +101,10 @@ SelectionAgreement compareSelection(const FrameResult& frame)
       }
       ++agreement.covered;
       const glm::dvec3 pWs = pointAt(position, x, y);
-      const int cpu = selectCascade(*frame.cascades, frame.camera, pWs).primary;
+      const int cpu = selectCascade(*frame.partitions, frame.camera, pWs).primary;
       const int gpu = static_cast<int>(cascade.at(x, y));
       ++agreement.perCascade.at(static_cast<std::size_t>(gpu));
-      if (selectionAmbiguous(*frame.cascades, frame.camera, pWs))
+      if (selectionAmbiguous(*frame.partitions, frame.camera, pWs))
       {
         ++agreement.ambiguous;
         continue;
@@ -134,7 +135,7 @@ TEST(CascadeGpu, SelectionMatchesTheCpuTwinPixelByPixel)
   {
     settings.push_back("shadow_map_size=128");
     const FrameResult frame = test::renderDataset(scene, "hard", 96, 64, settings);
-    ASSERT_TRUE(frame.cascades.has_value());
+    ASSERT_TRUE(frame.partitions.has_value());
     const SelectionAgreement agreement = compareSelection(frame);
     std::string counts;
     for (const int count : agreement.perCascade)
@@ -198,23 +199,23 @@ struct VisibilityAgreement
 VisibilityAgreement compareVisibility(const FrameResult& frame, const Scene& scene, const ShadowMapTwin& twin,
   double tolerance)
 {
-  const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(frame, scene);
+  const std::vector<ShadowMapInputs> inputs = viewInputsOf(frame, scene);
   const ImageF& visibility = frame.find("visibility")->image;
   VisibilityAgreement agreement;
   for (int y = 0; y < visibility.height; ++y)
   {
     for (int x = 0; x < visibility.width; ++x)
     {
-      const ReferenceSample cpu = cascadedReference(frame, inputs, x, y, twin);
+      const ReferenceSample cpu = partitionedReference(frame, inputs, x, y, twin);
       if (!cpu.evaluated)
       {
         continue;
       }
       ++agreement.evaluated;
       const glm::dvec3 pWs = pointAt(inputs.front().position, x, y);
-      const ViewSelection selection = selectCascade(*frame.cascades, frame.camera, pWs);
+      const ViewSelection selection = selectCascade(*frame.partitions, frame.camera, pWs);
       agreement.blended += selection.primaryWeight < 1.0 ? 1 : 0;
-      if (!ambiguityOf(cpu).empty() || selectionAmbiguous(*frame.cascades, frame.camera, pWs))
+      if (!ambiguityOf(cpu).empty() || selectionAmbiguous(*frame.partitions, frame.camera, pWs))
       {
         ++agreement.ambiguous;
         continue;
@@ -243,7 +244,7 @@ TEST(CascadeGpu, VisibilityMatchesTheCpuTwinOnRandomConfigurations)
     for (const std::string technique : { "hard", "pcf" })
     {
       const FrameResult frame = test::renderDataset(random.scene, technique, 80, 64, random.settings);
-      ASSERT_TRUE(frame.cascades.has_value());
+      ASSERT_TRUE(frame.partitions.has_value());
       const VisibilityAgreement agreement = technique == "hard"
         ? compareVisibility(frame, random.scene,
             [&](const ShadowMapInputs& in, int x, int y, ProbeRecorder*) {
@@ -335,7 +336,7 @@ TEST(CascadeGpu, CastersOutsideTheViewStillCast)
     const ImageF exact = exactVisibility(frame, castersOnly, casters);
     const ImageF& visibility = frame.find("visibility")->image;
     const ImageF& cascade = frame.find("cascade")->image;
-    std::vector<int> shadowedByOutside(frame.cascades->views.size(), 0), castByMap(frame.cascades->views.size(), 0);
+    std::vector<int> shadowedByOutside(frame.partitions->views.size(), 0), castByMap(frame.partitions->views.size(), 0);
     for (int y = 1; y + 1 < visibility.height; ++y)
     {
       for (int x = 1; x + 1 < visibility.width; ++x)
@@ -449,7 +450,7 @@ TEST(CascadeGpu, TexelSnappingKeepsEveryTexelBoundaryUnderASubTexelCameraStep)
   {
     const std::vector<std::string> settings = { "shadow_map_size=256", "cascades=4", "cascade_snap=" + snap };
     const FrameResult before = test::renderDataset(scene, "hard", 96, 64, settings);
-    const LightView& finest = before.cascades->views.front();
+    const LightView& finest = before.partitions->views.front();
     const double step = 0.3 * std::min(finest.window.y - finest.window.x, finest.window.w - finest.window.z) /
       finest.resolution;
     // Forward: every slice's receivers move along the ground (sideways its edges would pin the windows).
@@ -458,10 +459,10 @@ TEST(CascadeGpu, TexelSnappingKeepsEveryTexelBoundaryUnderASubTexelCameraStep)
     moved.camera.focalPoint.z -= step;
     const FrameResult after = test::renderDataset(moved, "hard", 96, 64, settings);
     double worstFraction = 0.0;
-    for (std::size_t k = 0; k < before.cascades->views.size(); ++k)
+    for (std::size_t k = 0; k < before.partitions->views.size(); ++k)
     {
-      const LightView& a = before.cascades->views[k];
-      const LightView& b = after.cascades->views[k];
+      const LightView& a = before.partitions->views[k];
+      const LightView& b = after.partitions->views[k];
       const double texelX = (a.window.y - a.window.x) / a.resolution;
       const double texelY = (a.window.w - a.window.z) / a.resolution;
       const double shiftX = (b.window.x - a.window.x) / texelX;
@@ -501,8 +502,8 @@ TEST(CascadeGpu, SamplingErrorBuffersUseEachPixelsCascade)
   const ImageF& ratioS = cascaded.find("texel_ratio_s")->image;
   int checked = 0;
   std::vector<double> nearOne, nearCascaded, farOne, farCascaded;
-  const double zNear = cascaded.cascades->splits.front();
-  const double zFar = cascaded.cascades->splits.back();
+  const double zNear = cascaded.partitions->splits.front();
+  const double zFar = cascaded.partitions->splits.back();
   for (int y = 0; y < ratioT.height; ++y)
   {
     for (int x = 0; x < ratioT.width; ++x)
@@ -512,7 +513,7 @@ TEST(CascadeGpu, SamplingErrorBuffersUseEachPixelsCascade)
         continue;
       }
       const glm::dvec3 pWs = pointAt(position, x, y);
-      const LightView& view = cascaded.cascades->views.at(static_cast<std::size_t>(cascade.at(x, y)));
+      const LightView& view = cascaded.partitions->views.at(static_cast<std::size_t>(cascade.at(x, y)));
       const SamplingError error = samplingError(cascaded.camera, view, x + 0.5, y + 0.5, pWs, pointAt(normal, x, y));
       EXPECT_NEAR(ratioT.at(x, y), error.texelRatioT, 1e-5 * error.texelRatioT) << x << "," << y;
       EXPECT_NEAR(ratioS.at(x, y), error.texelRatioS, 1e-5 * error.texelRatioS) << x << "," << y;
@@ -574,16 +575,16 @@ TEST(CascadeGpu, CascadesCombineWithTheWarpAndExportEveryMap)
   const Scene scene = test::loadDataset("deep-view");
   const FrameResult frame =
     test::renderDataset(scene, "pcf", 96, 64, { "shadow_map_size=128", "cascades=3", "warp=lispsm" });
-  ASSERT_TRUE(frame.cascades.has_value());
-  ASSERT_EQ(frame.cascades->views.size(), 3u);
+  ASSERT_TRUE(frame.partitions.has_value());
+  ASSERT_EQ(frame.partitions->views.size(), 3u);
   double previousN = 0.0;
   for (std::size_t k = 0; k < 3; ++k)
   {
-    const LightView& view = frame.cascades->views[k];
+    const LightView& view = frame.partitions->views[k];
     EXPECT_TRUE(view.warp.active()) << k;
     // The warp's eye depth range is its slice's receivers' (a slice's nearest receiver row may lie past C_k).
-    EXPECT_GE(view.warp.zNear, frame.cascades->splits[k] * (1.0 - 1e-5)) << k;
-    EXPECT_LE(view.warp.zFar, frame.cascades->splits[k + 1] * (1.0 + 1e-5)) << k;
+    EXPECT_GE(view.warp.zNear, frame.partitions->splits[k] * (1.0 - 1e-5)) << k;
+    EXPECT_LE(view.warp.zFar, frame.partitions->splits[k + 1] * (1.0 + 1e-5)) << k;
     EXPECT_LT(view.warp.zNear, view.warp.zFar) << k;
     EXPECT_GT(view.warp.n, previousN) << k;
     previousN = view.warp.n;

@@ -4,6 +4,7 @@
 #include "core/Error.h"
 #include "lightspace/CameraView.h"
 #include "lightspace/Cascades.h"
+#include "lightspace/PartitionViews.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/Registry.h"
 
@@ -66,10 +67,10 @@ CameraView lookingDownMinusZ()
 TEST(Cascades, DepthSelectionBlendsTheLastBandOfASliceIntoTheNext)
 {
   const CameraView camera = lookingDownMinusZ();
-  CascadeSet cascades;
-  cascades.settings.count = 3;
-  cascades.settings.selection = CascadeSelection::Depth;
-  cascades.settings.blend = 0.25;
+  PartitionSet cascades;
+  cascades.cascadeSettings.count = 3;
+  cascades.cascadeSettings.selection = CascadeSelection::Depth;
+  cascades.cascadeSettings.blend = 0.25;
   cascades.splits = { 1.0, 5.0, 21.0, 101.0 };
   cascades.views.resize(3);
   const auto at = [&](double depth) { return selectCascade(cascades, camera, glm::dvec3(0.3, 0.0, -depth)); };
@@ -91,13 +92,13 @@ TEST(Cascades, DepthSelectionBlendsTheLastBandOfASliceIntoTheNext)
   EXPECT_EQ(at(500.0).primary, 2);
   EXPECT_EQ(at(0.1).primary, 0);
   // Blend 0: a hard switch.
-  cascades.settings.blend = 0.0;
+  cascades.cascadeSettings.blend = 0.0;
   EXPECT_EQ(at(4.99).primaryWeight, 1.0);
   EXPECT_EQ(at(4.99).primary, 0);
 
   // The owner planes: slice 1 extended toward the eye by slice 0's band (its pixels read map 1 too), up to C_2.
-  cascades.settings.blend = 0.25;
-  const std::vector<glm::dvec4> planes = cascadeOwnerPlanes(camera, cascades.splits, 1, cascades.settings);
+  cascades.cascadeSettings.blend = 0.25;
+  const std::vector<glm::dvec4> planes = cascadeOwnerPlanes(camera, cascades.splits, 1, cascades.cascadeSettings);
   ASSERT_EQ(planes.size(), 2u);
   const auto inside = [&](double depth) {
     for (const glm::dvec4& plane : planes)
@@ -113,8 +114,8 @@ TEST(Cascades, DepthSelectionBlendsTheLastBandOfASliceIntoTheNext)
   EXPECT_TRUE(inside(4.1));
   EXPECT_TRUE(inside(20.9));
   EXPECT_FALSE(inside(21.1));
-  EXPECT_EQ(cascadeOwnerPlanes(camera, cascades.splits, 0, cascades.settings).size(), 1u); // no near side
-  EXPECT_EQ(cascadeOwnerPlanes(camera, cascades.splits, 2, cascades.settings).size(), 1u); // no far side
+  EXPECT_EQ(cascadeOwnerPlanes(camera, cascades.splits, 0, cascades.cascadeSettings).size(), 1u); // no near side
+  EXPECT_EQ(cascadeOwnerPlanes(camera, cascades.splits, 2, cascades.cascadeSettings).size(), 1u); // no far side
 }
 
 // An orthographic light at height 5 looking down -y with window `window` (world x/z) and depth range [0, farDepth].
@@ -136,9 +137,9 @@ TEST(Cascades, ContainmentPicksTheFinestMapThatHoldsThePointWithItsMargin)
 {
   // Light ∥ view (survey §4.3.1): cascade 0's map also covers points of slice 1; containment reads it there.
   const CameraView camera = lookingDownMinusZ();
-  CascadeSet cascades;
-  cascades.settings.count = 2;
-  cascades.settings.selection = CascadeSelection::Containment;
+  PartitionSet cascades;
+  cascades.cascadeSettings.count = 2;
+  cascades.cascadeSettings.selection = CascadeSelection::Containment;
   cascades.splits = { 1.0, 4.0, 50.0 };
   cascades.marginTexels = 2.0;
   // Light view x = world x, y = world -z (looking down with up = -z). Map 0 covers |x|, |z| < 8 with 64 texels
@@ -156,7 +157,7 @@ TEST(Cascades, ContainmentPicksTheFinestMapThatHoldsThePointWithItsMargin)
   ASSERT_TRUE(mapHolds(cascades.views[0], 2.0, glm::dvec3(3.75, 0.0, 0.0), edge));
   EXPECT_NEAR(edge, 0.5, 1e-12); // the inner window's half-width is 7.5
   // A band of 0.25 of the half-width blends toward map 1: at 3/4 of the way to the edge, weight 1/4 / 1/4 = 1 ...
-  cascades.settings.blend = 0.25;
+  cascades.cascadeSettings.blend = 0.25;
   EXPECT_EQ(selectCascade(cascades, camera, glm::dvec3(0.0, 0.0, -5.625)).primaryWeight, 1.0);
   // ... and at 7/8 of the way, 1/8 / 1/4 = 0.5.
   const ViewSelection blended = selectCascade(cascades, camera, glm::dvec3(0.0, 0.0, -6.5625));

@@ -28,7 +28,8 @@ const std::vector<BufferSpec>& samplingErrorBufferSpecs()
   return specs;
 }
 
-std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const FrameResult& result)
+std::vector<NamedImage> samplingErrorBuffers(
+  const FrameResources& frame, const FrameResult& result, const ImageF* viewIndex)
 {
   const NamedImage* position = result.find("position");
   const NamedImage* normal = result.find("normal");
@@ -39,9 +40,8 @@ std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const 
   {
     return {};
   }
-  // Cascades (survey §4.3.1): each pixel's error is its own cascade's map's (the `cascade` buffer, added first).
-  const NamedImage* cascade = frame.cascades ? result.find("cascade") : nullptr;
-  SL_CHECK_MSG(!frame.cascades || cascade, "the cascade buffer must precede the sampling error");
+  // Views that partition the pixels (survey §4.3): each pixel's error is its own view's map's.
+  SL_CHECK_MSG(frame.partitions.has_value() == (viewIndex != nullptr), "a partitioned frame names each pixel's view");
   const int width = position->image.width;
   const int height = position->image.height;
   std::vector<ImageF> images(4, ImageF(width, height, 1));
@@ -57,8 +57,8 @@ std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const 
         {
           continue;
         }
-        const LightView& view = cascade
-          ? frame.cascades->views.at(static_cast<std::size_t>(cascade->image.at(x, y, 0)))
+        const LightView& view = viewIndex
+          ? frame.partitions->views.at(static_cast<std::size_t>(viewIndex->at(x, y, 0)))
           : frame.lightView;
         const SamplingError error = samplingError(frame.camera, view, x + 0.5, y + 0.5, pWs, nWs);
         images[0].at(x, y, 0) = static_cast<float>(error.texelRatioS);

@@ -21,8 +21,10 @@ const std::vector<BufferSpec>& samplingErrorBufferSpecs();
 
 // The four buffers for the frame's light view, from result's position, normal, coverage and receives_shadows
 // buffers; 0 at pixels the map does not test (uncovered, not receiving, out of the light's reach, or grazing).
-// Empty for a frame with sub-lights (one light view each: their errors differ). With cascades, each pixel's error is
-// that of the cascade its `cascade` buffer names (result must hold it).
-std::vector<NamedImage> samplingErrorBuffers(const FrameResources& frame, const FrameResult& result);
+// Empty for a frame with sub-lights (one light view each: their errors differ). With views that partition the pixels
+// (FrameResources::partitions), each pixel's error is that of the view `viewIndex` names (its primary view); null
+// otherwise.
+std::vector<NamedImage> samplingErrorBuffers(
+  const FrameResources& frame, const FrameResult& result, const ImageF* viewIndex = nullptr);
 
 } // namespace sl

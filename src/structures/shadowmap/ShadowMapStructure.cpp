@@ -51,6 +51,20 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
     cascades.blend = values.get("cascade_blend");
     cascades.snap = values.choice("cascade_snap") == "on";
   }
+  if (values.has("fvsm"))
+  {
+    FvsmSettings& fvsm = settings.fvsm;
+    fvsm.enabled = values.choice("fvsm") == "on";
+    fvsm.tileSize = values.getInt("fvsm_tile_size");
+    fvsm.maxLevel = values.getInt("fvsm_max_level");
+    fvsm.maxTiles = values.getInt("fvsm_max_tiles");
+    requireFvsmCombination(fvsm, settings.cascades.count, settings.warp.kind != WarpKind::None);
+    if (fvsm.enabled && 2.0 * settings.marginTexels >= fvsm.tileSize)
+    {
+      throw InputError(format("--set fvsm_tile_size=", fvsm.tileSize, ": the filter reaches ", settings.marginTexels,
+        " texels past the receivers on each side, which leaves none of the tile for them; use a larger fvsm_tile_size"));
+    }
+  }
   return settings;
 }
 
@@ -75,32 +89,95 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
 namespace
 {
 
-// Cascades (survey §4.3.1): the per-pixel `cascade` buffer, then each cascade's two maps, suffixed _c<k>.
-std::vector<NamedImage> exportCascades(const FrameResources& frame, FrameResult& result)
+// fvsm (survey §4.3.3): per pixel its tile's level, the pre-pass's required resolution and whether the tile meets it
+// (on the GPU's selection, `tile`); in light space the pre-pass's grid and the quadtree's level per cell, resampled
+// (nearest) to the tile maps' size.
+void exportFvsm(const FrameResources& frame, const ImageF& tile, FrameResult& result, std::vector<NamedImage>& lightSpace)
 {
-  const BufferSpec& spec = cascadeBufferSpec();
-  result.buffers.push_back({ spec.name, readFloatTexture(frame.viewSelection, 4).channels(0, 1), spec.unit, spec.doc,
-    spec.kind, cascadeLabels(frame.cascades->settings.count) });
-  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
+  const FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
+  const FvsmQuadtree& tree = fvsm.quadtree;
+  ImageF level(tile.width, tile.height, 1), required(tile.width, tile.height, 1), unmet(tile.width, tile.height, 1);
+  for (int y = 0; y < tile.height; ++y)
+  {
+    for (int x = 0; x < tile.width; ++x)
+    {
+      const double need = fvsm.prepass.requiredResolution[static_cast<std::size_t>(y) * tile.width + x];
+      if (need < 0.0 || tree.tiles.empty())
+      {
+        continue;
+      }
+      const FvsmTile& own = tree.tiles.at(static_cast<std::size_t>(tile.at(x, y)));
+      level.at(x, y) = static_cast<float>(own.level);
+      required.at(x, y) = static_cast<float>(need);
+      unmet.at(x, y) = resolutionMet(own.effectiveResolution, need) ? 0.0f : 1.0f;
+    }
+  }
+  for (const BufferSpec& spec : fvsmBufferSpecs())
+  {
+    ImageF& image = spec.name == "fvsm_level" ? level : spec.name == "fvsm_required_resolution" ? required : unmet;
+    result.buffers.push_back({ spec.name, std::move(image), spec.unit, spec.doc, spec.kind, {} });
+  }
+  const int size = frame.partitions->views.front().resolution;
+  ImageF requiredGrid(size, size, 1), levelGrid(size, size, 1);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const std::size_t cell =
+        static_cast<std::size_t>(y * tree.gridSize / size) * tree.gridSize + static_cast<std::size_t>(x * tree.gridSize / size);
+      requiredGrid.at(x, y) = static_cast<float>(tree.requiredGrid[cell]);
+      const int leaf = tree.tileOfCell[cell];
+      levelGrid.at(x, y) = leaf < 0 ? -1.0f : static_cast<float>(tree.tiles[static_cast<std::size_t>(leaf)].level);
+    }
+  }
+  lightSpace.push_back({ "fvsm_required_resolution_grid", std::move(requiredGrid), "texels",
+    format("fvsm pre-pass (survey §4.3.3): the largest required resolution (texels across the focused window) of the "
+           "receivers in each cell of the ", tree.gridSize, " x ", tree.gridSize, " grid over it; 0: no receiver") });
+  lightSpace.push_back({ "fvsm_level_grid", std::move(levelGrid), "",
+    "fvsm quadtree level of the tile holding each grid cell (tile side = window / 2^level); -1: no tile (no receiver)" });
+}
+
+// Views that partition the pixels (survey §4.3, PartitionViews.h): the per-pixel categorical buffer of the kind
+// (`cascade`, `fvsm_tile` with fvsm's own buffers), the sampling error of each pixel's view, then each view's two
+// maps, suffixed as partitionViewSuffix names them (_c<k>, _t<k>).
+std::vector<NamedImage> exportPartitions(const FrameResources& frame, FrameResult& result)
+{
+  const PartitionSet& partitions = *frame.partitions;
+  const ImageF selection = readFloatTexture(frame.viewSelection, 4);
+  const ImageF primaryView = selection.channels(0, 1);
+  const BufferSpec& spec = partitionBufferSpec(partitions.kind);
+  std::vector<std::string> labels;
+  for (int k = 0; k < partitions.viewCount(); ++k)
+  {
+    labels.push_back(partitionViewLabel(partitions, k));
+  }
+  std::vector<NamedImage> images;
+  if (partitions.kind == PartitionKind::FvsmTiles)
+  {
+    exportFvsm(frame, primaryView, result, images);
+  }
+  result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
+  std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result, &primaryView);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
-  std::vector<NamedImage> images;
   for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)
   {
-    const std::string suffix = "_c" + std::to_string(k);
+    const int view = static_cast<int>(k);
+    const std::string suffix = partitionViewSuffix(partitions, view);
+    const std::string label = partitionViewLabel(partitions, view);
     images.push_back({ "shadow_map_depth" + suffix, readFloatTexture(frame.viewShadowMapLinear[k], 1), "world units",
-      format("cascade ", k, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
+      format(label, "'s map: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)") });
     images.push_back({ "shadow_map_window_depth" + suffix, readDepthTexture(frame.viewShadowMapDepth[k]), "",
-      format("cascade ", k, "'s hardware depth buffer, window coordinates in [0, 1]") });
+      format(label, "'s hardware depth buffer, window coordinates in [0, 1]") });
   }
   return images;
 }
 
 std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult& result)
 {
-  if (frame.cascades)
+  if (frame.partitions)
   {
-    return exportCascades(frame, result);
+    return exportPartitions(frame, result);
   }
   // The map's sampling error at the visible receivers is per pixel: it joins the frame's buffers.
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result);
@@ -144,23 +221,40 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
 
 } // namespace
 
-const BufferSpec& cascadeBufferSpec()
+const BufferSpec& partitionBufferSpec(PartitionKind kind)
 {
-  static const BufferSpec spec{ "cascade", "",
+  static const BufferSpec cascade{ "cascade", "",
     "the cascade whose map the pixel read (survey §4.3.1, Fig. 15's colour coding); with cascade_blend, the first of "
     "the two it blends",
     BufferKind::Categorical };
-  return spec;
+  static const BufferSpec fvsmTile{ "fvsm_tile", "",
+    "the fvsm quadtree tile whose map the pixel read (survey §4.3.3; stats.json light_view.fvsm.tiles lists their "
+    "rectangles and levels)",
+    BufferKind::Categorical };
+  switch (kind)
+  {
+    case PartitionKind::Cascades:
+      return cascade;
+    case PartitionKind::FvsmTiles:
+      return fvsmTile;
+    case PartitionKind::CubeFaces:
+      break;
+  }
+  SL_CHECK_MSG(false, "no buffer for partition kind ", partitionKindName(kind));
+  return cascade;
 }
 
-std::vector<std::string> cascadeLabels(int count)
+const std::vector<BufferSpec>& fvsmBufferSpecs()
 {
-  std::vector<std::string> labels;
-  for (int k = 0; k < count; ++k)
-  {
-    labels.push_back("cascade " + std::to_string(k));
-  }
-  return labels;
+  static const std::vector<BufferSpec> specs = {
+    { "fvsm_level", "", "quadtree level of the pixel's fvsm tile (its side is the focused window's / 2^level); 0 where "
+      "the map is not queried" },
+    { "fvsm_required_resolution", "texels", "the fvsm pre-pass's required resolution: texels across the focused window "
+      "for one texel per pixel (survey Eq. 2 per axis); 0 where the map is not queried" },
+    { "fvsm_unmet", "", "1 where the pixel's fvsm tile is coarser than its required resolution (fvsm_max_level or "
+      "fvsm_max_tiles reached), else 0" },
+  };
+  return specs;
 }
 
 const LightSpaceStructure& shadowMapStructure()
@@ -180,7 +274,7 @@ const LightSpaceStructure& shadowMapStructure()
     };
     s.exportImages = exportShadowMap;
     s.gpuBytes = [](const FrameResources& frame) {
-      if (frame.cascades)
+      if (frame.partitions)
       {
         std::size_t bytes = textureBytes(frame.viewSelection, 16);
         for (std::size_t k = 0; k < frame.viewShadowMapLinear.size(); ++k)

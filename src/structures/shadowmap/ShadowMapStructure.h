@@ -5,6 +5,8 @@
 #pragma once
 
 #include "lightspace/Cascades.h"
+#include "lightspace/FittedVirtualShadowMap.h"
+#include "lightspace/PartitionViews.h"
 #include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
@@ -22,6 +24,7 @@ struct ShadowMapSettings
   WarpSettings warp;         // warp, warp_n (survey §4.2), read only from techniques that list them
   CascadeSettings cascades;  // cascades, split_scheme, split_lambda, cascade_selection, cascade_blend, cascade_snap
                              // (survey §4.3.1), read only from techniques that list them
+  FvsmSettings fvsm;         // fvsm, fvsm_tile_size, fvsm_max_level, fvsm_max_tiles (survey §4.3.3), likewise
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
   static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
@@ -30,9 +33,11 @@ struct ShadowMapSettings
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
 ShadowMapSettings shadowMapSettings(const FrameResources& frame);
 
-// Cascades (survey §4.3.1): the categorical buffer `cascade` the structure adds to a frame with cascades > 1, and its
-// labels ("cascade 0" ..).
-const BufferSpec& cascadeBufferSpec();
-std::vector<std::string> cascadeLabels(int count);
+// Views that partition the pixels (survey §4.3, PartitionViews.h): the categorical buffer the structure adds to a
+// partitioned frame, per kind: `cascade` (cascades > 1, survey §4.3.1), `fvsm_tile` (fvsm, survey §4.3.3); its labels
+// are partitionViewLabel's.
+const BufferSpec& partitionBufferSpec(PartitionKind kind);
+// fvsm (survey §4.3.3): fvsm_level, fvsm_required_resolution and fvsm_unmet beside `fvsm_tile`.
+const std::vector<BufferSpec>& fvsmBufferSpecs();
 
 } // namespace sl

@@ -7,6 +7,7 @@
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/PassUtilities.h"
+#include "lightspace/FittedVirtualShadowMap.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -37,16 +38,43 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
   {
     focus.lightFootprintWidth = frame.light->size;
   }
-  if (settings.cascades.active())
+  if (settings.fvsm.active())
   {
-    // Survey §4.3.1: every cascade is fitted at view 0, with the per-pixel selection the accumulation blends by.
+    // Survey §4.3.3: the pre-pass (the G-buffer read back: each receiver's query location and required resolution),
+    // the quadtree and every tile's view, at view 0.
     if (frame.viewIndex == 0)
     {
-      frame.cascades = sl::fitCascades(*frame.light, *frame.scene, *this->Receivers, focus, settings.cascades);
+      const sl::ImageF position = sl::readFloatTexture(frame.gbufferPosition, 4);
+      const sl::ImageF normal = sl::readFloatTexture(frame.gbufferNormal, 4);
+      auto fvsm = std::make_shared<sl::FittedVirtualShadowMap>(sl::fitFvsm(*frame.light, *frame.scene,
+        *this->Receivers, focus, settings.fvsm, frame.camera, position, normal));
+      sl::PartitionSet tiles;
+      tiles.kind = sl::PartitionKind::FvsmTiles;
+      tiles.views = fvsm->views;
+      for (const sl::FvsmTile& tile : fvsm->quadtree.tiles)
+      {
+        tiles.ownerPlanes.push_back(sl::tileOwnerPlanes(fvsm->rootView, tile.rect));
+      }
+      tiles.ownerPlanes.resize(tiles.views.size()); // the root alone (no receiver) owns everything
+      tiles.marginTexels = focus.marginTexels;
+      tiles.fvsm = fvsm;
+      frame.partitions = std::move(tiles);
+      this->WriteTileSelection(state);
+    }
+    SL_CHECK(frame.partitions && frame.viewIndex < frame.partitions->viewCount());
+    frame.lightView = frame.partitions->views[static_cast<std::size_t>(frame.viewIndex)];
+  }
+  else if (settings.cascades.active())
+  {
+    // Views that partition the pixels (survey §4.3): every view is fitted at view 0, with the per-pixel selection the
+    // accumulation blends by.
+    if (frame.viewIndex == 0)
+    {
+      frame.partitions = sl::fitCascades(*frame.light, *frame.scene, *this->Receivers, focus, settings.cascades);
       this->WriteSelection(state);
     }
-    SL_CHECK(frame.cascades && frame.viewIndex < static_cast<int>(frame.cascades->views.size()));
-    frame.lightView = frame.cascades->views[static_cast<std::size_t>(frame.viewIndex)];
+    SL_CHECK(frame.partitions && frame.viewIndex < frame.partitions->viewCount());
+    frame.lightView = frame.partitions->views[static_cast<std::size_t>(frame.viewIndex)];
   }
   else
   {
@@ -58,12 +86,16 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
 void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
 {
   sl::FrameResources& frame = *this->Frame;
-  const sl::CascadeSet& cascades = *frame.cascades;
+  const sl::PartitionSet& partitions = *frame.partitions;
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
   if (!this->Selection)
   {
+    // The kinds' codes from the enum, so the GLSL cannot drift from it.
+    sl::ShaderDefines defines = sl::commonDefines();
+    defines.push_back({ "PARTITION_CASCADES", std::to_string(static_cast<int>(sl::PartitionKind::Cascades)) });
+    defines.push_back({ "PARTITION_CUBE_FACES", std::to_string(static_cast<int>(sl::PartitionKind::CubeFaces)) });
     this->Selection = std::make_unique<sl::ComputeProgram>(
-      sl::assembleShader("lightspace/CascadeSelection.glsl", sl::commonDefines()), "cascade selection");
+      sl::assembleShader("lightspace/PartitionSelection.glsl", defines), "partition selection");
   }
   if (!frame.viewSelection)
   {
@@ -75,14 +107,33 @@ void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
   frame.gbufferNormal->Activate();
   program.setInt("gbufferPosition", frame.gbufferPosition->GetTextureUnit());
   program.setInt("gbufferNormal", frame.gbufferNormal->GetTextureUnit());
-  program.setInt("cascadeCount", static_cast<int>(cascades.views.size()));
-  program.setInt("selectByContainment", cascades.settings.selection == sl::CascadeSelection::Containment ? 1 : 0);
-  program.setFloat("cascadeBlend", cascades.settings.blend);
-  program.setFloat("marginTexels", cascades.marginTexels);
-  program.setInt("shadowMapSize", cascades.views.front().resolution);
+  program.setInt("partitionKind", static_cast<int>(partitions.kind));
+  program.setFloat("marginTexels", partitions.marginTexels);
+  program.setInt("shadowMapSize", partitions.views.front().resolution);
+  if (partitions.kind == sl::PartitionKind::Cascades)
+  {
+    this->SetCascadeUniforms();
+  }
+  glBindImageTexture(0, frame.viewSelection->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  program.dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  frame.gbufferPosition->Deactivate();
+  frame.gbufferNormal->Deactivate();
+  sl::checkGlErrors("partition selection");
+}
+
+void vtkSLFocusPass::SetCascadeUniforms()
+{
+  const sl::FrameResources& frame = *this->Frame;
+  const sl::PartitionSet& cascades = *frame.partitions;
+  const sl::ComputeProgram& program = *this->Selection;
+  program.setInt("cascadeCount", cascades.viewCount());
+  const bool containment = cascades.cascadeSettings.selection == sl::CascadeSelection::Containment;
+  program.setInt("selectByContainment", containment ? 1 : 0);
+  program.setFloat("cascadeBlend", cascades.cascadeSettings.blend);
   const glm::dmat4& camera = frame.camera.viewFromWorld;
   program.setVectors("eyeDepthRow", { -glm::dvec4(camera[0][2], camera[1][2], camera[2][2], camera[3][2]) });
-  std::vector<glm::dvec4> splits; // a float array set four at a time is awkward: one uniform per split
   std::vector<glm::dmat4> clipFromWorld, viewFromWorld;
   for (std::size_t k = 0; k < cascades.views.size(); ++k)
   {
@@ -94,17 +145,57 @@ void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
   }
   for (std::size_t i = 0; i < cascades.splits.size(); ++i)
   {
+    // One uniform per split: a float array set four at a time is awkward.
     program.setFloat(sl::format("splitDepths[", i, "]").c_str(), cascades.splits[i]);
   }
   program.setMatrices("cascadeClipFromWorld", clipFromWorld);
   program.setMatrices("cascadeViewFromWorld", viewFromWorld);
+}
+
+void vtkSLFocusPass::WriteTileSelection(const vtkRenderState* state)
+{
+  sl::FrameResources& frame = *this->Frame;
+  const sl::FittedVirtualShadowMap& fvsm = *frame.partitions->fvsm;
+  const sl::FvsmQuadtree& tree = fvsm.quadtree;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  if (!this->TileSelection)
+  {
+    this->TileSelection = std::make_unique<sl::ComputeProgram>(
+      sl::assembleShader("lightspace/FvsmSelection.glsl", sl::commonDefines()), "fvsm tile selection");
+  }
+  if (!frame.viewSelection)
+  {
+    frame.viewSelection = sl::makeFloatTarget(window, frame.width(), frame.height(), 4);
+  }
+  std::vector<float> tileOfCell(tree.tileOfCell.begin(), tree.tileOfCell.end());
+  auto cells = vtkSmartPointer<vtkTextureObject>::New();
+  cells->SetContext(window);
+  cells->SetMinificationFilter(vtkTextureObject::Nearest);
+  cells->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (!cells->Create2DFromRaw(tree.gridSize, tree.gridSize, 1, VTK_FLOAT, tileOfCell.data()))
+  {
+    throw sl::GraphicsError("fvsm: cannot upload the tile-of-cell grid");
+  }
+  const sl::ComputeProgram& program = *this->TileSelection;
+  program.use();
+  frame.gbufferPosition->Activate();
+  frame.gbufferNormal->Activate();
+  cells->Activate();
+  program.setInt("gbufferPosition", frame.gbufferPosition->GetTextureUnit());
+  program.setInt("gbufferNormal", frame.gbufferNormal->GetTextureUnit());
+  program.setInt("tileOfCell", cells->GetTextureUnit());
+  program.setInt("gridSize", tree.gridSize);
+  program.setMatrix("rootViewFromWorld", fvsm.rootView.viewFromWorld);
+  program.setInt("lightIsPerspective", fvsm.rootView.projection == sl::LightProjection::Perspective ? 1 : 0);
+  program.setVectors("rootRect", { tree.rootRect });
   glBindImageTexture(0, frame.viewSelection->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   program.dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  cells->Deactivate();
   frame.gbufferPosition->Deactivate();
   frame.gbufferNormal->Deactivate();
-  sl::checkGlErrors("cascade selection");
+  sl::checkGlErrors("fvsm tile selection");
 }
 
 vtkSLFocusPass::vtkSLFocusPass() = default;
@@ -114,6 +205,7 @@ void vtkSLFocusPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->Receivers.reset();
   this->Selection.reset();
+  this->TileSelection.reset();
 }
 
 void vtkSLFocusPass::PrintSelf(ostream& os, vtkIndent indent)

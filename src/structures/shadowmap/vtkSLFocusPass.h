@@ -2,8 +2,10 @@
 // the casters clipped to it (survey §4.1, see lightspace/LightView.h). The receivers are reduced on the
 // GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
 // own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: ShadowMapSettings.
-// With cascades (survey §4.3.1) it fits every cascade at view 0 (lightspace/Cascades.h fitCascades), writes the
-// per-pixel selection, and hands each view its cascade's fit.
+// With views that partition the pixels (lightspace/PartitionViews.h: cascades, survey §4.3.1) it fits every view at
+// view 0 (lightspace/Cascades.h fitCascades), writes the per-pixel selection, and hands each view its fit. With fvsm
+// (survey §4.3.3) it reads the G-buffer back at view 0 (the pre-pass), fits the quadtree's tiles
+// (lightspace/FittedVirtualShadowMap.h fitFvsm) and writes the per-pixel tile selection.
 #pragma once
 
 #include "gl/ComputeProgram.h"
@@ -30,9 +32,14 @@ private:
   vtkSLFocusPass(const vtkSLFocusPass&) = delete;
   void operator=(const vtkSLFocusPass&) = delete;
 
-  // Cascades: the per-pixel selection (shaders/lightspace/CascadeSelection.glsl) into FrameResources::viewSelection.
+  // Views that partition the pixels: the per-pixel selection (shaders/lightspace/PartitionSelection.glsl) into
+  // FrameResources::viewSelection, with the uniforms of the set's kind.
   void WriteSelection(const vtkRenderState* state);
+  void SetCascadeUniforms();
+  // fvsm: the tile selection (shaders/lightspace/FvsmSelection.glsl) into FrameResources::viewSelection.
+  void WriteTileSelection(const vtkRenderState* state);
 
   std::unique_ptr<sl::GpuReceivers> Receivers; // compiled once, reused frame after frame
   std::unique_ptr<sl::ComputeProgram> Selection;
+  std::unique_ptr<sl::ComputeProgram> TileSelection;
 };

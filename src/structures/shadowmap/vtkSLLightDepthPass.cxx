@@ -31,9 +31,9 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
 
   // The previous frame's (or sub-light's) targets are reused when they have the map's size: the render
   // clears both, and fresh 2048^2 targets (2 x 16 MB) cost llvmpipe more wall time than drawing the casters.
-  // Views that partition the pixels (cascades) keep one pair each, for the export.
+  // Views that partition the pixels (PartitionViews.h) keep one pair each, for the export.
   const unsigned size = static_cast<unsigned>(view.resolution);
-  const std::size_t index = frame.partitionViews > 1 ? static_cast<std::size_t>(frame.viewIndex) : 0;
+  const std::size_t index = frame.partitions ? static_cast<std::size_t>(frame.viewIndex) : 0;
   if (this->LinearTargets.size() <= index)
   {
     this->LinearTargets.resize(index + 1);
@@ -47,10 +47,10 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
   }
   frame.shadowMapLinear = linear;
   frame.shadowMapDepth = this->DepthTargets[index];
-  if (frame.partitionViews > 1)
+  if (frame.partitions)
   {
-    frame.viewShadowMapLinear.resize(static_cast<std::size_t>(frame.partitionViews));
-    frame.viewShadowMapDepth.resize(static_cast<std::size_t>(frame.partitionViews));
+    frame.viewShadowMapLinear.resize(static_cast<std::size_t>(frame.partitions->viewCount()));
+    frame.viewShadowMapDepth.resize(static_cast<std::size_t>(frame.partitions->viewCount()));
     frame.viewShadowMapLinear[index] = frame.shadowMapLinear;
     frame.viewShadowMapDepth[index] = frame.shadowMapDepth;
   }

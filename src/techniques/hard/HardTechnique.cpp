@@ -24,6 +24,7 @@ TechniqueDescriptor hardTechnique()
     "Williams 1978; survey (Scherzer et al. 2011) §5");
   descriptor.addParameters(shadowMapWarpParameters());
   descriptor.addParameters(shadowMapCascadeParameters());
+  descriptor.addParameters(shadowMapFvsmParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),
@@ -32,10 +33,10 @@ TechniqueDescriptor hardTechnique()
   };
   descriptor.createPass = newTechniquePass<vtkSLHardShadowPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const std::vector<ShadowMapInputs> inputs = viewInputsOf(*context.frame, *context.scene, context.lightIndex);
     const BiasSettings bias = HardSettings::from(context.frame->parameters).bias;
-    const ReferenceSample sample = cascadedReference(*context.frame, inputs, pixel.x, pixel.y,
-      [&](const ShadowMapInputs& cascade, int x, int y, ProbeRecorder* r) { return hardReference(cascade, bias, x, y, r); },
+    const ReferenceSample sample = partitionedReference(*context.frame, inputs, pixel.x, pixel.y,
+      [&](const ShadowMapInputs& view, int x, int y, ProbeRecorder* r) { return hardReference(view, bias, x, y, r); },
       &recorder);
     // GpuCpuTest: identical on unambiguous pixels (0 or 1).
     return probeOutcome(sample, 0.0, "hardReference (hard/HardTechnique.h), double precision");

@@ -39,6 +39,7 @@ TechniqueDescriptor pcfTechnique()
   });
   descriptor.addParameters(shadowMapWarpParameters());
   descriptor.addParameters(shadowMapCascadeParameters());
+  descriptor.addParameters(shadowMapFvsmParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels" },
     { "taps", "comparisons", "depth comparisons made for the pixel" },
@@ -50,10 +51,10 @@ TechniqueDescriptor pcfTechnique()
   };
   descriptor.createPass = newTechniquePass<vtkSLPcfPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    const std::vector<ShadowMapInputs> inputs = cascadeInputsOf(*context.frame, *context.scene, context.lightIndex);
+    const std::vector<ShadowMapInputs> inputs = viewInputsOf(*context.frame, *context.scene, context.lightIndex);
     const ParameterValues& values = context.frame->parameters;
-    const ReferenceSample sample = cascadedReference(*context.frame, inputs, pixel.x, pixel.y,
-      [&](const ShadowMapInputs& cascade, int x, int y, ProbeRecorder* r) { return pcfReference(cascade, values, x, y, r); },
+    const ReferenceSample sample = partitionedReference(*context.frame, inputs, pixel.x, pixel.y,
+      [&](const ShadowMapInputs& view, int x, int y, ProbeRecorder* r) { return pcfReference(view, values, x, y, r); },
       &recorder);
     // GpuCpuTest's tolerances on unambiguous pixels: nearest taps are a sum of 0/1 divided by the count (1e-5);
     // the hardware's bilinear weights have the texture unit's sub-texel precision (8 bits on llvmpipe: 2^-7).
