@@ -56,9 +56,12 @@ void recordSamplingError(const FrameResult& frame, const Scene& scene, int light
   if (views.size() > 1)
   {
     recorder.category("shadow_map", viewIndex, "shadow_map_depth" + partition.exportSuffix,
-      "the map the pixel's test reads: " + partition.label + " (survey §4.3.1)");
-    recorder.quantity("view_eye_depth_range", partition.eyeDepthRange, "world units",
-      "survey §4.3.1, the split depths C_k, C_k+1 of the pixel's slice");
+      "the map the pixel's test reads: " + partition.label + " (survey §4.3)");
+    if (partition.eyeDepthRange.y > 0.0) // a cascade's slice; FVSM tiles and cube faces own parts of the light's view instead
+    {
+      recorder.quantity("view_eye_depth_range", partition.eyeDepthRange, "world units",
+        "survey §4.3.1, the split depths C_k, C_k+1 of the pixel's slice");
+    }
   }
   const SamplingError error = samplingError(camera, view, pixel.x + 0.5, pixel.y + 0.5, pWs, nWs);
   recorder.quantity("texel_ratio_s", error.texelRatioS, "pixels per texel", "survey Eq. 2, along the map's s axis");

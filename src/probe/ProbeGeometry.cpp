@@ -73,14 +73,24 @@ glm::dvec2 ProbeLightFrame::lightFromWorld(const glm::dvec3& pWs) const
 std::vector<PartitionView> partitionViewsOf(const FrameResult& frame)
 {
   std::vector<PartitionView> views;
-  if (frame.cascades)
+  if (frame.partitions)
   {
-    const CascadeSet& cascades = *frame.cascades;
-    for (std::size_t k = 0; k < cascades.views.size(); ++k)
+    const PartitionSet& partitions = *frame.partitions;
+    for (int k = 0; k < partitions.viewCount(); ++k)
     {
-      const glm::dvec2 range(cascades.splits.at(k), cascades.splits.at(k + 1));
-      views.push_back({ &cascades.views[k], "_c" + std::to_string(k),
-        format("cascade ", k, " of ", cascades.views.size(), ", eye depth ", range.x, " .. ", range.y), range });
+      const std::string label = partitionViewLabel(partitions, k);
+      if (partitions.kind == PartitionKind::Cascades)
+      {
+        const glm::dvec2 range(partitions.splits.at(static_cast<std::size_t>(k)),
+          partitions.splits.at(static_cast<std::size_t>(k) + 1));
+        views.push_back({ &partitions.views[static_cast<std::size_t>(k)], partitionViewSuffix(partitions, k),
+          format(label, " of ", partitions.viewCount(), ", eye depth ", range.x, " .. ", range.y), range });
+      }
+      else
+      {
+        views.push_back({ &partitions.views[static_cast<std::size_t>(k)], partitionViewSuffix(partitions, k),
+          format(label, " of ", partitions.viewCount()), glm::dvec2(0.0) });
+      }
     }
   }
   else if (frame.lightView)
@@ -93,13 +103,13 @@ std::vector<PartitionView> partitionViewsOf(const FrameResult& frame)
 ViewSelection partitionSelectionAt(const FrameResult& frame, glm::ivec2 pixel)
 {
   const NamedImage* position = frame.find("position");
-  if (!frame.cascades || position == nullptr)
+  if (!frame.partitions || position == nullptr)
   {
     return {};
   }
   const ImageF& p = position->image;
-  return selectCascade(
-    *frame.cascades, frame.camera, glm::dvec3(p.at(pixel.x, pixel.y, 0), p.at(pixel.x, pixel.y, 1), p.at(pixel.x, pixel.y, 2)));
+  return selectView(
+    *frame.partitions, frame.camera, glm::dvec3(p.at(pixel.x, pixel.y, 0), p.at(pixel.x, pixel.y, 1), p.at(pixel.x, pixel.y, 2)));
 }
 
 ProbeMap probeMapOf(const FrameResult& frame, glm::ivec2 pixel)

@@ -31,7 +31,7 @@ struct PartitionView
   glm::dvec2 eyeDepthRange{ 0.0 }; // the slice [C_k, C_k+1] a cascade serves; 0, 0 for a single view
 };
 std::vector<PartitionView> partitionViewsOf(const FrameResult& frame);
-// The view a covered pixel's shadow test reads (the CPU twin of the GPU's selection, selectCascade: primary and,
+// The view a covered pixel's shadow test reads (the CPU twin of the GPU's selection, selectView: primary and,
 // where it blends, secondary); {0, 0, 1} for a frame with one view.
 ViewSelection partitionSelectionAt(const FrameResult& frame, glm::ivec2 pixel);
 

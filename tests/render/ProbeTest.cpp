@@ -331,7 +331,7 @@ TEST(Probe, CascadedMapShowsThePixelFootprintInItsOwnCascade)
 {
   const Scene scene = test::loadDataset("deep-view");
   const FrameResult frame = test::renderDataset(scene, "hard", 64, 256, { "shadow_map_size=256", "cascades=4" });
-  ASSERT_TRUE(frame.cascades.has_value());
+  ASSERT_TRUE(frame.partitions.has_value());
   const ImageF& position = frame.find("position")->image;
   const ImageF& coverage = frame.find("coverage")->image;
   const ImageF& cascade = frame.find("cascade")->image;
@@ -356,11 +356,11 @@ TEST(Probe, CascadedMapShowsThePixelFootprintInItsOwnCascade)
     EXPECT_EQ(map->text, "shadow_map_depth_c" + std::to_string(k));
     const ProbeQuantity* range = findQuantity(probe.record, "sampling error", "view_eye_depth_range");
     ASSERT_NE(range, nullptr);
-    EXPECT_DOUBLE_EQ(range->value.at(0), frame.cascades->splits[k]);
-    EXPECT_DOUBLE_EQ(range->value.at(1), frame.cascades->splits[k + 1]);
+    EXPECT_DOUBLE_EQ(range->value.at(0), frame.partitions->splits[k]);
+    EXPECT_DOUBLE_EQ(range->value.at(1), frame.partitions->splits[k + 1]);
     // What the figure and probe.vtm draw: that cascade's map, named with its split depths.
     const ProbeMap drawn = probeMapOf(frame, pixel);
-    EXPECT_EQ(drawn.view, &frame.cascades->views[k]);
+    EXPECT_EQ(drawn.view, &frame.partitions->views[k]);
     EXPECT_EQ(drawn.depth, &test::lightSpaceArray(frame, "shadow_map_depth_c" + std::to_string(k)));
     EXPECT_NE(drawn.label.find(format("cascade ", k, " of 4")), std::string::npos) << drawn.label;
     ASSERT_EQ(probe.record.mapPolygons.size(), 1u) << "cascade " << k;
@@ -395,7 +395,7 @@ TEST(Probe, CascadedMapShowsThePixelFootprintInItsOwnCascade)
     {
       ownRatioFar = std::max(bufferS, bufferT);
       const ImageF& normal = frame.find("normal")->image;
-      const SamplingError other = samplingError(frame.camera, frame.cascades->views[0], pixel.x + 0.5, pixel.y + 0.5,
+      const SamplingError other = samplingError(frame.camera, frame.partitions->views[0], pixel.x + 0.5, pixel.y + 0.5,
         glm::dvec3(position.at(pixel.x, pixel.y, 0), position.at(pixel.x, pixel.y, 1), position.at(pixel.x, pixel.y, 2)),
         glm::dvec3(normal.at(pixel.x, pixel.y, 0), normal.at(pixel.x, pixel.y, 1), normal.at(pixel.x, pixel.y, 2)));
       cascade0RatioFar = std::max(other.texelRatioS, other.texelRatioT);
