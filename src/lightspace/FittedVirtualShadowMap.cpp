@@ -314,17 +314,7 @@ LightView tileView(const LightView& rootView, const glm::dvec4& rect, int tileSi
   const double xHalf = 0.5 * (rect.y - rect.x) * grow;
   const double yHalf = 0.5 * (rect.w - rect.z) * grow;
   view.window = { xCenter - xHalf, xCenter + xHalf, yCenter - yHalf, yCenter + yHalf };
-  if (view.projection == LightProjection::Perspective)
-  {
-    view.clipFromView = glm::frustum(view.window.x * view.nearDepth, view.window.y * view.nearDepth,
-      view.window.z * view.nearDepth, view.window.w * view.nearDepth, view.nearDepth, view.farDepth);
-  }
-  else
-  {
-    view.clipFromView =
-      glm::ortho(view.window.x, view.window.y, view.window.z, view.window.w, view.nearDepth, view.farDepth);
-  }
-  view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+  view.setProjectionFromWindow();
   return view;
 }
 

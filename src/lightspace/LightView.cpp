@@ -66,6 +66,20 @@ std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& polygon, cons
 
 } // namespace
 
+void LightView::setProjectionFromWindow()
+{
+  if (projection == LightProjection::Perspective)
+  {
+    clipFromView = glm::frustum(window.x * nearDepth, window.y * nearDepth, window.z * nearDepth,
+      window.w * nearDepth, nearDepth, farDepth);
+  }
+  else
+  {
+    clipFromView = glm::ortho(window.x, window.y, window.z, window.w, nearDepth, farDepth);
+  }
+  clipFromWorld = clipFromView * viewFromWorld;
+}
+
 double LightView::windowDepth(double depthLin) const
 {
   // A depth at or behind a perspective light's centre (w <= 0: a receiver's depth less a bias larger than it) wraps
@@ -384,17 +398,7 @@ void setWindowAndProjection(LightView& view, const glm::dvec4& window, double ne
     view.nearDepth = nearDepth - 1e-3 * (receiverFar - nearDepth) - depthEpsilon;
   }
 
-  if (view.projection == LightProjection::Perspective)
-  {
-    view.clipFromView = glm::frustum(view.window.x * view.nearDepth, view.window.y * view.nearDepth,
-      view.window.z * view.nearDepth, view.window.w * view.nearDepth, view.nearDepth, view.farDepth);
-  }
-  else
-  {
-    view.clipFromView =
-      glm::ortho(view.window.x, view.window.y, view.window.z, view.window.w, view.nearDepth, view.farDepth);
-  }
-  view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+  view.setProjectionFromWindow();
 }
 
 glm::dmat4 matrixFromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2, const glm::dvec4& r3)

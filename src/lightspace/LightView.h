@@ -47,6 +47,9 @@ struct LightView
   // orthographic projection, whose window depth the warped map's depth buffer still holds (windowDepth is valid).
   PerspectiveWarp warp;
 
+  // Sets clipFromView from projection, window and [nearDepth, farDepth], and clipFromWorld from it and viewFromWorld
+  // (unwarped: a warp is applied after, applyPerspectiveWarp).
+  void setProjectionFromWindow();
   // World-space size of one shadow-map texel at linear depth `depthLin` (the larger of its two sides).
   double texelWorldSize(double depthLin) const;
   // The depth the map's depth buffer stores for linear depth `depthLin`: window z in [0, 1] (hyperbolic for a
