@@ -46,7 +46,7 @@ ViewSelection selectView(const PartitionSet& partitions, const CameraView& camer
     case PartitionKind::Cascades:
       return selectCascade(partitions, camera, pWs);
     case PartitionKind::CubeFaces:
-      break;
+      return selectCubeFace(partitions, pWs);
   }
   SL_CHECK_MSG(false, "no selection for partition kind ", partitionKindName(partitions.kind));
   return {};
@@ -55,12 +55,20 @@ ViewSelection selectView(const PartitionSet& partitions, const CameraView& camer
 std::string partitionViewSuffix(const PartitionSet& partitions, int view)
 {
   SL_CHECK(view >= 0 && view < partitions.viewCount());
+  if (partitions.kind == PartitionKind::CubeFaces)
+  {
+    return std::string("_") + cubeFaceTag(partitions.viewFaces.at(static_cast<std::size_t>(view)));
+  }
   return "_c" + std::to_string(view);
 }
 
 std::string partitionViewLabel(const PartitionSet& partitions, int view)
 {
   SL_CHECK(view >= 0 && view < partitions.viewCount());
+  if (partitions.kind == PartitionKind::CubeFaces)
+  {
+    return std::string("cube face ") + cubeFaceName(partitions.viewFaces.at(static_cast<std::size_t>(view)));
+  }
   return "cascade " + std::to_string(view);
 }
 

@@ -7,10 +7,12 @@
 // the receivers inside all of them. The kinds differ in how the regions are cut and how a pixel picks its view:
 //   cascades    eye-depth slices (survey §4.3.1, Cascades.h); by the slice of the eye depth, or by containment in the
 //               finer maps, blended across the borders
-//   cube faces  the six 90-degree pyramids around a point light (survey §2); by the dominant axis of p - light centre
+//   cube faces  the six 90-degree pyramids around a point light (survey §2, CubeFaces.h); by the dominant axis of
+//               p - light centre
 #pragma once
 
 #include "lightspace/Cascades.h"
+#include "lightspace/CubeFaces.h"
 #include "lightspace/LightView.h"
 
 #include <glm/glm.hpp>
@@ -51,6 +53,9 @@ struct PartitionSet
   // Cascades: the settings that chose them and the m + 1 split depths (eye depth).
   CascadeSettings cascadeSettings;
   std::vector<double> splits;
+  // Cube faces: the light's centre and each view's face (0 +x .. 5 -z; faces without receivers have no view).
+  glm::dvec3 lightCenterWs{ 0.0 };
+  std::vector<int> viewFaces;
 
   int viewCount() const { return static_cast<int>(views.size()); }
 };
@@ -67,8 +72,8 @@ ViewSelection selectView(const PartitionSet& partitions, const CameraView& camer
 // edge as a fraction of its half-width (0 at the edge, 1 at the centre).
 bool mapHolds(const LightView& view, double marginTexels, const glm::dvec3& pWs, double& edgeFraction);
 
-// Names of view k: the suffix of its maps in light_space.vti ("_c0" for cascade 0) and its label in the categorical
-// buffer and the probe ("cascade 0").
+// Names of view k: the suffix of its maps in light_space.vti ("_c0" for cascade 0, "_px" for cube face +x) and its
+// label ("cascade 0", "cube face +x").
 std::string partitionViewSuffix(const PartitionSet& partitions, int view);
 std::string partitionViewLabel(const PartitionSet& partitions, int view);
 

@@ -9,6 +9,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/PerspectiveWarp.cpp
   src/lightspace/Cascades.cpp
   src/lightspace/PartitionViews.cpp
+  src/lightspace/CubeFaces.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
   src/lightspace/SummedAreaTable.cpp)

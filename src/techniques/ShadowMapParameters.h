@@ -33,6 +33,10 @@ std::vector<ParameterSpec> shadowMapWarpParameters();
 //   cascade_blend      the band blended into the next cascade (fraction of a slice; 0: hard switch)
 //   cascade_snap       off | on: whole-texel windows (stable under camera motion)
 std::vector<ParameterSpec> shadowMapCascadeParameters();
+// Cube shadow maps for point lights (survey §2, lightspace/CubeFaces.h), for the same techniques (one map per pixel,
+// picked by the face loop): hard and pcf list it.
+//   cube_map  off | auto | on: six face maps, where one map cannot cover the receivers (auto) or always (on)
+std::vector<ParameterSpec> shadowMapCubeParameters();
 
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
 // (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.

@@ -51,7 +51,31 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
     cascades.blend = values.get("cascade_blend");
     cascades.snap = values.choice("cascade_snap") == "on";
   }
+  if (values.has("cube_map"))
+  {
+    settings.cubeMap = choiceOf<CubeMapMode>(
+      values, "cube_map", { { "off", CubeMapMode::Off }, { "auto", CubeMapMode::Auto }, { "on", CubeMapMode::On } });
+  }
   return settings;
+}
+
+void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus)
+{
+  if (frame.parameters.has("cube_map") && frame.parameters.choice("cube_map") == "off")
+  {
+    focus.beyondOneMapPrefix = "--set cube_map=off: ";
+    focus.beyondOneMapAdvice = ": use cube_map=auto or on (survey §2: cube shadow maps)";
+  }
+  else if (!frame.cubeMapTechniques.empty())
+  {
+    focus.beyondOneMapAdvice =
+      ": render it with cube shadow maps (techniques " + frame.cubeMapTechniques + ") or use a spot or area light";
+  }
+}
+
+bool ShadowMapSettings::mayPartition(const Light& light) const
+{
+  return cascades.active() || (light.type == LightType::Point && cubeMap && *cubeMap != CubeMapMode::Off);
 }
 
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values)
@@ -68,6 +92,7 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     // The renderer asks before any GL (ShadowRenderer's setFrameInputs); fitLightView refuses the same.
     requireWarpableLight(settings.warp.kind, frame.light->type);
     requireCascadableLight(settings.cascades, frame.light->type);
+    requireCubeMapLight(settings.cubeMap.value_or(CubeMapMode::Off), frame.light->type);
   }
   return settings;
 }
@@ -85,11 +110,23 @@ std::vector<NamedImage> exportPartitions(const FrameResources& frame, FrameResul
   const ImageF primaryView = selection.channels(0, 1);
   const BufferSpec& spec = partitionBufferSpec(partitions.kind);
   std::vector<std::string> labels;
-  for (int k = 0; k < partitions.viewCount(); ++k)
+  if (partitions.kind == PartitionKind::CubeFaces)
   {
-    labels.push_back(partitionViewLabel(partitions, k));
+    // By face, not by view (the selection's fourth channel): a face without a map keeps its code.
+    for (int face = 0; face < kCubeFaceCount; ++face)
+    {
+      labels.push_back(cubeFaceName(face));
+    }
+    result.buffers.push_back({ spec.name, selection.channels(3, 1), spec.unit, spec.doc, spec.kind, labels });
   }
-  result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
+  else
+  {
+    for (int k = 0; k < partitions.viewCount(); ++k)
+    {
+      labels.push_back(partitionViewLabel(partitions, k));
+    }
+    result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
+  }
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result, &primaryView);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
@@ -161,12 +198,16 @@ const BufferSpec& partitionBufferSpec(PartitionKind kind)
     "the cascade whose map the pixel read (survey §4.3.1, Fig. 15's colour coding); with cascade_blend, the first of "
     "the two it blends",
     BufferKind::Categorical };
+  static const BufferSpec cubeFace{ "cube_face", "",
+    "the cube face whose map the pixel read (survey §2): 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z, the dominant axis of "
+    "p - light centre; -1 where uncovered or where the face has no map (the light reaches none of its receivers)",
+    BufferKind::Categorical };
   switch (kind)
   {
     case PartitionKind::Cascades:
       return cascade;
     case PartitionKind::CubeFaces:
-      break;
+      return cubeFace;
   }
   SL_CHECK_MSG(false, "no buffer for partition kind ", partitionKindName(kind));
   return cascade;

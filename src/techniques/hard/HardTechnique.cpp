@@ -24,6 +24,7 @@ TechniqueDescriptor hardTechnique()
     "Williams 1978; survey (Scherzer et al. 2011) §5");
   descriptor.addParameters(shadowMapWarpParameters());
   descriptor.addParameters(shadowMapCascadeParameters());
+  descriptor.addParameters(shadowMapCubeParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),
