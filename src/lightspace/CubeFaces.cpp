@@ -99,7 +99,8 @@ int cubeFaceOf(const PartitionSet& faces, const glm::dvec3& pWs)
   return viewOfFace(faces, face) >= 0 ? face : -1;
 }
 
-PartitionSet fitCubeFaces(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus)
+PartitionSet fitCubeFaces(
+  const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus)
 {
   SL_CHECK_MSG(light.type == LightType::Point, "cube faces need a point light");
   PartitionSet faces;

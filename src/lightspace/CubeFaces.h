@@ -56,6 +56,7 @@ int cubeFaceOf(const PartitionSet& faces, const glm::dvec3& pWs);
 // Fits the faces of a point light: six fitLightView with the face's axis and owner planes; the faces without
 // receivers are dropped (face +x's tiny view is kept when none has any, so every stage still runs). A PartitionSet of
 // kind CubeFaces.
-PartitionSet fitCubeFaces(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus);
+PartitionSet fitCubeFaces(
+  const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& focus);
 
 } // namespace sl

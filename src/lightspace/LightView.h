@@ -75,8 +75,8 @@ struct FocusSettings
   bool snapToTexels = false;
   // A point light's axis, fixed (a cube face's, CubeFaces.h); zero: aimed at the receivers' bounding box.
   glm::dvec3 perspectiveAxis{ 0.0 };
-  // The refusal of a point light whose receivers one map cannot cover (fitLightView) reads
-  // "<beyondOneMapPrefix><file>: lights[i]: point light at (...) sees ...; one shadow map cannot cover them<beyondOneMapAdvice>":
+  // The refusal of a point light whose receivers one map cannot cover (fitLightView) is beyondOneMapPrefix, then
+  // "<file>: lights[i]: point light at (...) sees ...; one shadow map cannot cover them", then beyondOneMapAdvice:
   // the renderer names the techniques that can (cube maps) or the setting that turned them off.
   std::string beyondOneMapPrefix;
   std::string beyondOneMapAdvice = ": use a spot or area light";

@@ -184,7 +184,8 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       list.push_back({ { "face", cubeFaceName(face) }, { "map", "shadow_map_depth" + partitionViewSuffix(faces, k) },
         { "axis", { axis.x, axis.y, axis.z } }, { "resolution", view.resolution },
         { "texel_world_size_at_unit_depth", view.texelWorldSize(1.0) }, { "light_near_depth", view.nearDepth },
-        { "light_far_depth", view.farDepth }, { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
+        { "light_far_depth", view.farDepth },
+        { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
         { "receiver_samples", view.receiverSampleCount } });
     }
     stats["light_view"]["cube_faces"] = list;

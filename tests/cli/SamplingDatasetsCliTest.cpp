@@ -99,8 +99,9 @@ TEST(SamplingDatasetsCli, WallRingRendersWithTheTechniquesThatCoverIt)
     }
     // Six face maps of 512^2 rather than of the default 2048^2 (the test's budget).
     const bool mapped = findTechnique(technique).findParameter("shadow_map_size") != nullptr;
-    const std::vector<NamedImage> buffers =
-      renderQuietly(temp, "wall-ring", technique, mapped ? std::vector<std::string>{ "shadow_map_size=512" } : std::vector<std::string>{});
+    const std::vector<std::string> settings =
+      mapped ? std::vector<std::string>{ "shadow_map_size=512" } : std::vector<std::string>{};
+    const std::vector<NamedImage> buffers = renderQuietly(temp, "wall-ring", technique, settings);
     ASSERT_FALSE(buffers.empty()) << technique;
     const ImageF& coverage = arrayNamed(buffers, "coverage").image;
     const ImageF& visibility = arrayNamed(buffers, "visibility").image;

@@ -138,8 +138,8 @@ struct CubeVisibilityAgreement
 };
 
 // GPU visibility against the twin on each pixel's face map, at the pixels `include` accepts.
-CubeVisibilityAgreement compareCubeVisibility(const FrameResult& frame, const Scene& scene, const std::string& technique,
-  const std::function<bool(int, int)>& include = {})
+CubeVisibilityAgreement compareCubeVisibility(const FrameResult& frame, const Scene& scene,
+  const std::string& technique, const std::function<bool(int, int)>& include = {})
 {
   const std::vector<ShadowMapInputs> inputs = viewInputsOf(frame, scene);
   const ImageF& visibility = frame.find("visibility")->image;
@@ -250,8 +250,8 @@ TEST(CubeMapGpu, HardAndPcfOnWallRingMatchTheTwinAndTheExactRay)
       }
     }
     std::cout << "[ measured ] wall-ring " << technique << " 96x96, 6 faces of 512^2: twin " << twin.evaluated
-              << " evaluated, " << twin.ambiguous << " ambiguous, " << twin.mismatched << " mismatched (max |GPU - CPU| "
-              << twin.maxDifference << "); exact ray: " << lit << " lit, " << shadowed << " shadowed, " << misclassified
+              << " evaluated, " << twin.ambiguous << " ambiguous, " << twin.mismatched
+              << " mismatched (max |GPU - CPU| " << twin.maxDifference << "); exact ray: " << lit << " lit, " << shadowed << " shadowed, " << misclassified
               << " misclassified, " << awayFromEdges << " of them 2+ pixels from an edge\n";
     EXPECT_EQ(twin.mismatched, 0) << technique << ": " << twin.firstMismatch;
     EXPECT_LE(twin.ambiguous, twin.evaluated / 50) << technique;
@@ -266,8 +266,9 @@ TEST(CubeMapGpu, NoAcneLeakOrJumpAcrossFaceSeams)
 {
   // A point light 2 above a 16 x 16 ground: the ground crosses the seams between -y and the side faces on the lines
   // |x| = 2 and |z| = 2. A bar at height 1 (x from -1 to 4, z from 0.2 to 1.6) casts a shadow from x = -2 to 8, z =
-  // 0.4 to 3.2, across the seam x = 2 and the diagonal one between +x and +z; a box floating 0.4 above the ground (no contact, whose PCF darkening is not a seam's)
-  // shadows z = -2 to -6, across the seam z = -2. Pixels next to a seam (a 3 x 3 neighbourhood
+  // 0.4 to 3.2, across the seam x = 2 and the diagonal one between +x and +z; a box floating 0.4 above the ground
+  // (no contact, whose PCF darkening is not a seam's) shadows z = -2 to -6, across the seam z = -2. Pixels next to a
+  // seam (a 3 x 3 neighbourhood
   // with two faces) read two different maps on either side: there the GPU equals the twin, the lit ground is lit (no
   // acne), the shadow is dark (no leak): the exact ray's answer holds a filter's reach (2 pixels for hard, 4 for pcf's
   // 3-texel kernel) from its edges.
@@ -333,7 +334,8 @@ TEST(CubeMapGpu, NoAcneLeakOrJumpAcrossFaceSeams)
     }
     std::cout << "[ measured ] cube seams " << technique << " 128x96, faces of 256^2: " << twin.evaluated
               << " pixels next to a seam, twin " << twin.mismatched << " mismatched (max |GPU - CPU| "
-              << twin.maxDifference << ", " << twin.ambiguous << " ambiguous); a filter's reach from a shadow edge: " << litSeam
+              << twin.maxDifference << ", " << twin.ambiguous << " ambiguous); a filter's reach from a shadow edge: "
+              << litSeam
               << " lit (" << acne << " with acne), " << shadowSeam << " shadowed (" << leaks << " leaking); "
               << misclassifiedSeam << " misclassified next to a seam\n";
     EXPECT_EQ(twin.mismatched, 0) << technique << ": " << twin.firstMismatch;
@@ -384,8 +386,8 @@ TEST(CubeMapGpu, RandomConfigurationsMatchTheCpuTwin)
       std::cout << "[ measured ] seed " << seed << " " << technique << " " << test::caseLabel("", used) << ", light "
                 << light.center.x << "," << light.center.y << "," << light.center.z << ": " << facesRead
                 << " faces read, " << faces.mismatched << " face mismatches; twin " << twin.evaluated
-                << " evaluated, " << twin.ambiguous << " ambiguous, " << twin.mismatched << " mismatched (max |GPU - CPU| "
-                << twin.maxDifference << ")\n";
+                << " evaluated, " << twin.ambiguous << " ambiguous, " << twin.mismatched
+                << " mismatched (max |GPU - CPU| " << twin.maxDifference << ")\n";
       EXPECT_EQ(faces.mismatched, 0) << random.summary << ": " << faces.firstMismatch;
       EXPECT_GE(facesRead, 2) << random.summary;
       EXPECT_GT(twin.evaluated, 500) << random.summary;

@@ -108,8 +108,9 @@ void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
     for (int face = 0; face < sl::kCubeFaceCount; ++face)
     {
       const auto found = std::find(partitions.viewFaces.begin(), partitions.viewFaces.end(), face);
-      const int view = found == partitions.viewFaces.end() ? -1 : static_cast<int>(found - partitions.viewFaces.begin());
-      program.setInt(sl::format("faceView[", face, "]").c_str(), view);
+      const bool mapped = found != partitions.viewFaces.end();
+      program.setInt(sl::format("faceView[", face, "]").c_str(),
+        mapped ? static_cast<int>(found - partitions.viewFaces.begin()) : -1);
     }
   }
   glBindImageTexture(0, frame.viewSelection->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
