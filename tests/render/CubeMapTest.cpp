@@ -1,6 +1,6 @@
 // Cube-map shadows for point lights (survey §2, lightspace/CubeFaces.h) end to end on llvmpipe:
 //   - the GPU's per-pixel face (buffer `cube_face`) against the CPU twin cubeFaceOf, pixel by pixel, on wall-ring (a
-//     point light inside a ring of walls) and on random configurations;
+//     point light inside a ring of walls) and on random configurations; the sampling error of each pixel's face;
 //   - hard and pcf visibility against their CPU twins run on each pixel's face map (partitionedReference), and hard
 //     against the exact ray: misclassified pixels only along shadow edges;
 //   - the face seams: a lit ground crossing them shows no acne, a shadow crossing them neither leaks nor jumps (the
@@ -11,6 +11,7 @@
 #include "core/Error.h"
 #include "lightspace/CubeFaces.h"
 #include "lightspace/PartitionViews.h"
+#include "lightspace/ShadowMapMath.h"
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
 #include "techniques/ProbeSupport.h"
@@ -122,6 +123,29 @@ TEST(CubeMapGpu, FaceSelectionMatchesTheCpuTwinPixelByPixel)
   {
     EXPECT_GT(agreement.perFace[static_cast<std::size_t>(face)], 50) << cubeFaceName(face);
   }
+  // The sampling-error buffers are each pixel's own face's (survey Eq. 2 with that face's matrix).
+  const ImageF& ratioT = frame.find("texel_ratio_t")->image;
+  const ImageF& ratioS = frame.find("texel_ratio_s")->image;
+  int checked = 0;
+  for (int y = 0; y < ratioT.height; ++y)
+  {
+    for (int x = 0; x < ratioT.width; ++x)
+    {
+      if (ratioT.at(x, y) <= 0.0f)
+      {
+        continue;
+      }
+      const glm::dvec3 pWs = cubePixelPoint(frame.find("position")->image, x, y);
+      const LightView& view =
+        frame.partitions->views[static_cast<std::size_t>(selectView(*frame.partitions, frame.camera, pWs).primary)];
+      const SamplingError error = samplingError(
+        frame.camera, view, x + 0.5, y + 0.5, pWs, cubePixelPoint(frame.find("normal")->image, x, y));
+      EXPECT_NEAR(ratioT.at(x, y), error.texelRatioT, 1e-5 * error.texelRatioT) << x << "," << y;
+      EXPECT_NEAR(ratioS.at(x, y), error.texelRatioS, 1e-5 * error.texelRatioS) << x << "," << y;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 5000);
   for (int k = 0; k < frame.partitions->viewCount(); ++k)
   {
     EXPECT_GT(frame.partitions->views[static_cast<std::size_t>(k)].receiverSampleCount, 0) << k;
