@@ -5,6 +5,8 @@
 // slice, blended over the last cascadeBlend of it into the next; containment: the first map that holds the point
 // marginTexels inside its edge and within its depth range (its own slice's map holds it by construction), blended over
 // the outer cascadeBlend of its half-width into the next holder.
+// Cube faces (survey §2, sl::selectCubeFace in src/lightspace/CubeFaces.cpp): the face of the dominant axis of
+// p - light centre (ties to x, then y), unblended; the fourth channel holds the face (-1 uncovered or no map).
 // Driver: vtkSLFocusPass (src/structures/shadowmap/vtkSLFocusPass.cxx).
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -24,6 +26,8 @@ uniform mat4 cascadeClipFromWorld[MAX_CASCADES];
 uniform mat4 cascadeViewFromWorld[MAX_CASCADES];
 uniform float cascadeNearDepth[MAX_CASCADES];
 uniform float cascadeFarDepth[MAX_CASCADES];
+uniform vec3 lightCenterWs;
+uniform int faceView[6]; // each face's view (+x, -x, +y, -y, +z, -z); -1: the face has no map
 
 // Containment's test (sl::mapHolds); edgeFraction: distance to the inner window's edge over its half-width.
 bool mapHolds(int cascade, vec3 pWs, out float edgeFraction)
@@ -93,6 +97,28 @@ vec4 selectCascade(vec3 pWs)
   return result;
 }
 
+// sl::dominantCubeFace
+int dominantCubeFace(vec3 direction)
+{
+  vec3 size = abs(direction);
+  if (size.x >= size.y && size.x >= size.z)
+  {
+    return direction.x >= 0.0 ? 0 : 1;
+  }
+  if (size.y >= size.z)
+  {
+    return direction.y >= 0.0 ? 2 : 3;
+  }
+  return direction.z >= 0.0 ? 4 : 5;
+}
+
+vec4 selectCubeFace(vec3 pWs)
+{
+  int face = dominantCubeFace(pWs - lightCenterWs);
+  int view = faceView[face];
+  return view >= 0 ? vec4(float(view), float(view), 1.0, float(face)) : vec4(0.0, 0.0, 1.0, -1.0);
+}
+
 void main()
 {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -102,10 +128,14 @@ void main()
     return;
   }
   Surface surface = readSurface(pixel);
-  vec4 result = vec4(0.0, 0.0, 1.0, 0.0);
+  vec4 result = vec4(0.0, 0.0, 1.0, partitionKind == PARTITION_CUBE_FACES ? -1.0 : 0.0);
   if (surface.covered && partitionKind == PARTITION_CASCADES)
   {
     result = selectCascade(surface.pWs);
+  }
+  else if (surface.covered && partitionKind == PARTITION_CUBE_FACES)
+  {
+    result = selectCubeFace(surface.pWs);
   }
   imageStore(selection, pixel, result);
 }

@@ -219,8 +219,8 @@ namespace
 
 // The light's frame: its eye, axis and projection (perspective from an area, spot or point light; orthographic
 // for a directional light, its eye outside the scene's bounds).
-void orientLightView(const Light& light, const Scene& scene, const ReceiverSummary& summary, LightView& view,
-  glm::dvec3& forward)
+void orientLightView(const Light& light, const Scene& scene, const ReceiverSummary& summary,
+  const glm::dvec3& fixedAxis, LightView& view, glm::dvec3& forward)
 {
   const Bounds sceneBounds = scene.bounds();
   glm::dvec3 up;
@@ -247,6 +247,10 @@ void orientLightView(const Light& light, const Scene& scene, const ReceiverSumma
       const glm::dvec3 towardReceivers =
         summary.count > 0 ? summary.worldBounds.center() - light.center : sceneBounds.center() - light.center;
       forward = glm::length(towardReceivers) > 1e-9 ? glm::normalize(towardReceivers) : glm::dvec3(0.0, -1.0, 0.0);
+      if (fixedAxis != glm::dvec3(0.0))
+      {
+        forward = glm::normalize(fixedAxis); // a cube face's
+      }
       up = anyPerpendicular(forward);
       break;
     }
@@ -261,10 +265,16 @@ void orientLightView(const Light& light, const Scene& scene, const ReceiverSumma
 }
 
 // One perspective map covers less than a hemisphere: a point light whose visible receivers spread wider (some even
-// behind it) would need a cube map.
-void refusePointLightBeyondOneMap(const Light& light, const Scene& scene, const ReceiverExtent& extent)
+// behind it) needs a cube map.
+bool beyondOneMap(const Light& light, const ReceiverExtent& extent)
 {
-  if (light.type != LightType::Point || extent.reachable == 0 || extent.minCosToAxis >= std::cos(glm::radians(80.0)))
+  return light.type == LightType::Point && extent.reachable > 0 && extent.minCosToAxis < std::cos(glm::radians(80.0));
+}
+
+void refusePointLightBeyondOneMap(
+  const Light& light, const Scene& scene, const ReceiverExtent& extent, const FocusSettings& settings)
+{
+  if (!beyondOneMap(light, extent))
   {
     return;
   }
@@ -278,9 +288,9 @@ void refusePointLightBeyondOneMap(const Light& light, const Scene& scene, const 
       where = format(scene.file.empty() ? "" : scene.file.string() + ": ", "lights[", i, "]: ");
     }
   }
-  throw InputError(format(where, "point light at (", light.center.x, ", ", light.center.y, ", ", light.center.z,
-    ") sees visible receivers more than 80 degrees off its axis; one shadow map cannot cover them "
-    "(cube shadow maps are not supported): use a spot or area light"));
+  throw InputError(format(settings.beyondOneMapPrefix, where, "point light at (", light.center.x, ", ",
+    light.center.y, ", ", light.center.z, ") sees visible receivers more than 80 degrees off its axis; one shadow map "
+    "cannot cover them", settings.beyondOneMapAdvice));
 }
 
 // The receivers' window in light x/y ({xMin, xMax, yMin, yMax}) and their depth range, never empty.
@@ -491,6 +501,19 @@ void applyPerspectiveWarp(const Light& light, ReceiverSource& receivers, const F
 
 } // namespace
 
+bool oneMapCovers(const Light& light, const Scene& scene, ReceiverSource& receivers)
+{
+  if (light.type != LightType::Point)
+  {
+    return true;
+  }
+  receivers.setOwnerPlanes({});
+  LightView view;
+  glm::dvec3 forward;
+  orientLightView(light, scene, receivers.summary(light), glm::dvec3(0.0), view, forward);
+  return !beyondOneMap(light, receivers.extent(light, view, forward));
+}
+
 // Focusing (survey §4.3): the light's frame, the receivers' window in it, the casters' near plane within that
 // window (grown by the light's footprint for soft shadows), then a margin and the projection.
 LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings)
@@ -503,16 +526,18 @@ LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& r
     ~OwnerScope() { source.setOwnerPlanes({}); }
   } ownerScope{ receivers };
   receivers.setOwnerPlanes(settings.ownerPlanes);
-  const ReceiverSummary summary = light.type == LightType::Point ? receivers.summary(light) : ReceiverSummary();
+  // A fixed axis needs no bounding box to aim at.
+  const bool aimed = light.type == LightType::Point && settings.perspectiveAxis == glm::dvec3(0.0);
+  const ReceiverSummary summary = aimed ? receivers.summary(light) : ReceiverSummary();
 
   LightView view;
   view.resolution = settings.resolution;
   glm::dvec3 forward;
-  orientLightView(light, scene, summary, view, forward);
+  orientLightView(light, scene, summary, settings.perspectiveAxis, view, forward);
 
   const ReceiverExtent extent = receivers.extent(light, view, forward);
   view.receiverSampleCount = extent.reachable;
-  refusePointLightBeyondOneMap(light, scene, extent);
+  refusePointLightBeyondOneMap(light, scene, extent, settings);
   const ReceiverWindow receiverRange = receiverWindow(extent);
   glm::dvec4 window = receiverRange.window;
 

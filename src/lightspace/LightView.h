@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -75,6 +76,13 @@ struct FocusSettings
   std::vector<glm::dvec4> ownerPlanes;
   // Texel snapping (Cascades.h snappedWindow) of an orthographic window: whole texels of the light's fixed frame.
   bool snapToTexels = false;
+  // A point light's axis, fixed (a cube face's, CubeFaces.h); zero: aimed at the receivers' bounding box.
+  glm::dvec3 perspectiveAxis{ 0.0 };
+  // The refusal of a point light whose receivers one map cannot cover (fitLightView) is beyondOneMapPrefix, then
+  // "<file>: lights[i]: point light at (...) sees ...; one shadow map cannot cover them", then beyondOneMapAdvice:
+  // the renderer names the techniques that can (cube maps) or the setting that turned them off.
+  std::string beyondOneMapPrefix;
+  std::string beyondOneMapAdvice = ": use a spot or area light";
 };
 
 // Can the light illuminate a point at all, ignoring occluders? False behind an area light's plane,
@@ -139,8 +147,13 @@ private:
   std::vector<glm::dvec3> receivers_;
 };
 
-// Fits the light view. Throws InputError when one shadow map cannot cover the receivers (a point light
-// surrounded by them: some lie more than 80 degrees off its axis), or when a warp is asked of a light that is not
+// Whether one shadow map covers the light's visible receivers: false only for a point light that sees some more than
+// 80 degrees off the axis fitLightView would give it (surrounded by them: cube faces can, CubeFaces.h). Two receiver
+// reductions.
+bool oneMapCovers(const Light& light, const Scene& scene, ReceiverSource& receivers);
+
+// Fits the light view. Throws InputError when one shadow map cannot cover the receivers (oneMapCovers; its message
+// as FocusSettings::beyondOneMapPrefix/Advice complete it), or when a warp is asked of a light that is not
 // directional.
 LightView fitLightView(const Light& light, const Scene& scene, ReceiverSource& receivers, const FocusSettings& settings);
 // Convenience: the CPU reference on G-buffer images.

@@ -63,7 +63,7 @@ ViewSelection selectView(const PartitionSet& partitions, const CameraView& camer
       return { tile, tile, 1.0 };
     }
     case PartitionKind::CubeFaces:
-      break;
+      return selectCubeFace(partitions, pWs);
   }
   SL_CHECK_MSG(false, "no selection for partition kind ", partitionKindName(partitions.kind));
   return {};
@@ -72,6 +72,10 @@ ViewSelection selectView(const PartitionSet& partitions, const CameraView& camer
 std::string partitionViewSuffix(const PartitionSet& partitions, int view)
 {
   SL_CHECK(view >= 0 && view < partitions.viewCount());
+  if (partitions.kind == PartitionKind::CubeFaces)
+  {
+    return std::string("_") + cubeFaceTag(partitions.viewFaces.at(static_cast<std::size_t>(view)));
+  }
   return (partitions.kind == PartitionKind::FvsmTiles ? "_t" : "_c") + std::to_string(view);
 }
 
@@ -83,6 +87,10 @@ std::string partitionViewLabel(const PartitionSet& partitions, int view)
     const bool tiled = partitions.fvsm && view < static_cast<int>(partitions.fvsm->quadtree.tiles.size());
     return tiled ? format("tile ", view, " (level ", partitions.fvsm->quadtree.tiles[static_cast<std::size_t>(view)].level, ")")
                  : std::string("root (no receiver)");
+  }
+  if (partitions.kind == PartitionKind::CubeFaces)
+  {
+    return std::string("cube face ") + cubeFaceName(partitions.viewFaces.at(static_cast<std::size_t>(view)));
   }
   return "cascade " + std::to_string(view);
 }

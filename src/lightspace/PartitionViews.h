@@ -7,13 +7,15 @@
 // the receivers inside all of them. The kinds differ in how the regions are cut and how a pixel picks its view:
 //   cascades    eye-depth slices (survey §4.3.1, Cascades.h); by the slice of the eye depth, or by containment in the
 //               finer maps, blended across the borders
-//   cube faces  the six 90-degree pyramids around a point light (survey §2); by the dominant axis of p - light centre
+//   cube faces  the six 90-degree pyramids around a point light (survey §2, CubeFaces.h); by the dominant axis of
+//               p - light centre
 //   fvsm tiles  the leaves of a quadtree over the focused window (survey §4.3.3, FittedVirtualShadowMap.h): four
 //               half-spaces per tile (parallel to a directional light, through a perspective light's centre); by the
 //               tile whose rectangle holds the point's light x/y
 #pragma once
 
 #include "lightspace/Cascades.h"
+#include "lightspace/CubeFaces.h"
 #include "lightspace/LightView.h"
 
 #include <glm/glm.hpp>
@@ -59,6 +61,9 @@ struct PartitionSet
   std::vector<double> splits;
   // fvsm tiles: the pre-pass, the quadtree and its root view (views[k] is tile k's).
   std::shared_ptr<const FittedVirtualShadowMap> fvsm;
+  // Cube faces: the light's centre and each view's face (0 +x .. 5 -z; faces without receivers have no view).
+  glm::dvec3 lightCenterWs{ 0.0 };
+  std::vector<int> viewFaces;
 
   int viewCount() const { return static_cast<int>(views.size()); }
 };
@@ -75,8 +80,8 @@ ViewSelection selectView(const PartitionSet& partitions, const CameraView& camer
 // edge as a fraction of its half-width (0 at the edge, 1 at the centre).
 bool mapHolds(const LightView& view, double marginTexels, const glm::dvec3& pWs, double& edgeFraction);
 
-// Names of view k: the suffix of its maps in light_space.vti ("_c0" for cascade 0, "_t0" for fvsm tile 0) and its
-// label in the categorical buffer and the probe ("cascade 0", "tile 0 (level 2)").
+// Names of view k: the suffix of its maps in light_space.vti ("_c0" for cascade 0, "_px" for cube face +x, "_t0" for
+// fvsm tile 0) and its label in the categorical buffer and the probe ("cascade 0", "cube face +x", "tile 0 (level 2)").
 std::string partitionViewSuffix(const PartitionSet& partitions, int view);
 std::string partitionViewLabel(const PartitionSet& partitions, int view);
 

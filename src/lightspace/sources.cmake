@@ -10,6 +10,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/Cascades.cpp
   src/lightspace/PartitionViews.cpp
   src/lightspace/FittedVirtualShadowMap.cpp
+  src/lightspace/CubeFaces.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
   src/lightspace/SummedAreaTable.cpp)

@@ -202,6 +202,27 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       { "budget_reached", tree.budgetReached }, { "level_reached", tree.levelReached },
       { "prepass_samples", fvsm.prepass.samples }, { "unmet_pixels", unmetPixels }, { "tiles", tiles } };
   }
+  if (frame.partitions && frame.partitions->kind == PartitionKind::CubeFaces)
+  {
+    // Survey §2: the faces that own visible receivers, each with its map (window in tangents of the face's axis: a
+    // face's map reaches past +-1, its 90-degree pyramid, only by the focus's margin); the top-level light_view is the
+    // first face's.
+    const PartitionSet& faces = *frame.partitions;
+    nlohmann::json list = nlohmann::json::array();
+    for (int k = 0; k < faces.viewCount(); ++k)
+    {
+      const LightView& view = faces.views[static_cast<std::size_t>(k)];
+      const int face = faces.viewFaces[static_cast<std::size_t>(k)];
+      const glm::dvec3 axis = cubeFaceAxis(face);
+      list.push_back({ { "face", cubeFaceName(face) }, { "map", "shadow_map_depth" + partitionViewSuffix(faces, k) },
+        { "axis", { axis.x, axis.y, axis.z } }, { "resolution", view.resolution },
+        { "texel_world_size_at_unit_depth", view.texelWorldSize(1.0) }, { "light_near_depth", view.nearDepth },
+        { "light_far_depth", view.farDepth },
+        { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
+        { "receiver_samples", view.receiverSampleCount } });
+    }
+    stats["light_view"]["cube_faces"] = list;
+  }
   if (frame.partitions && frame.partitions->kind == PartitionKind::Cascades)
   {
     // Survey §4.3.1: the split depths (eye depth) and each cascade's map; the top-level light_view is cascade 0's.

@@ -87,6 +87,9 @@ struct FrameResources
   // depth pass keeps them for the export), and the per-pixel selection (RGBA32F: primary view, secondary view,
   // primary's weight, 0).
   bool partitioned = false;
+  // The techniques with cube shadow maps (survey §2: those that list cube_map), for the refusal of a point light one
+  // map cannot cover ("hard, pcf").
+  std::string cubeMapTechniques;
   int viewIndex = 0;
   std::optional<PartitionSet> partitions;
   std::vector<vtkSmartPointer<vtkTextureObject>> viewShadowMapLinear;

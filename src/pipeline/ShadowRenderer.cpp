@@ -17,6 +17,7 @@
 #include "techniques/vtkSLTechniquePass.h"
 
 #include <vtkNew.h>
+#include <vtkOpenGLShaderCache.h>
 #include <vtkRenderPassCollection.h>
 #include <vtkRenderer.h>
 #include <vtkSequencePass.h>
@@ -174,9 +175,14 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   if (technique.needs(shadowMapStructure()))
   {
     // Its InputError before any GL, rather than inside the focus pass.
-    // fvsm (survey §4.3.3) partitions too; its tile count is known once the focus has fitted it.
-    const ShadowMapSettings settings = shadowMapSettings(frame);
-    frame.partitioned = settings.cascades.active() || settings.fvsm.active();
+    frame.partitioned = shadowMapSettings(frame).mayPartition(*frame.light);
+  }
+  for (const TechniqueDescriptor& other : techniqueRegistry())
+  {
+    if (other.findParameter("cube_map"))
+    {
+      frame.cubeMapTechniques += (frame.cubeMapTechniques.empty() ? "" : ", ") + other.name;
+    }
   }
   const glm::ivec2 resolution = request.resolution.value_or(scene.camera.resolution);
   if (resolution.x <= 0 || resolution.y <= 0 || resolution.x > kMaxImageSide || resolution.y > kMaxImageSide)
@@ -448,6 +454,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
     // test, issue 27: the next render crashed). VTK's window also still believes it is rendering (its InRender flag,
     // which makes every later Render() return at once, so the next frame's G-buffer was never drawn).
     window_->ClearInRenderStatus();
+    // A refusal inside a stage that ran a compute program (the focus's receiver reduction: a point light one map
+    // cannot cover) leaves that program bound behind VTK's shader cache, which still believes its last program is:
+    // the next frame's G-buffer draw would skip binding it (GL_INVALID_OPERATION).
+    window_->GetShaderCache()->ReleaseCurrentShader();
     releaseFrame(frame, request.gbufferOnly);
     throw;
   }

@@ -73,6 +73,12 @@ ReferenceSample partitionedReference(const FrameResult& frame, const std::vector
       recorder->quantity("primary weight", selection.primaryWeight, "", "");
     }
   }
+  if (recorder && partitions.kind == PartitionKind::CubeFaces)
+  {
+    recorder->beginGroup("cube face");
+    recorder->quantity("cube face", cubeFaceOf(partitions, pWs), "",
+      "survey §2: 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z, the dominant axis of p - light centre (selectCubeFace)");
+  }
   ReferenceSample sample = twin(inputs.at(static_cast<std::size_t>(selection.primary)), x, y, recorder);
   if (selection.primaryWeight < 1.0 && sample.evaluated)
   {

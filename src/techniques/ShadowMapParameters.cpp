@@ -69,6 +69,13 @@ std::vector<ParameterSpec> shadowMapFvsmParameters()
   };
 }
 
+std::vector<ParameterSpec> shadowMapCubeParameters()
+{
+  return {
+    { "cube_map", 1, 0, 2, "", "point lights (survey §2): six 90-degree face maps, each focused on the receivers its face owns and read by the dominant axis of p - light centre; auto: only where one map cannot cover the visible receivers (some more than 80 degrees off its axis), on: always, off: one map (refused there)", { "off", "auto", "on" }, true },
+  };
+}
+
 namespace
 {
 

@@ -40,6 +40,10 @@ std::vector<ParameterSpec> shadowMapCascadeParameters();
 //   fvsm_max_level  deepest quadtree level: 2^level tiles per side of the focused window (5: 32 x 32, Fig. 16)
 //   fvsm_max_tiles  the most tiles (maps) a frame may use
 std::vector<ParameterSpec> shadowMapFvsmParameters();
+// Cube shadow maps for point lights (survey §2, lightspace/CubeFaces.h), for the same techniques (one map per pixel,
+// picked by the face loop): hard and pcf list it.
+//   cube_map  off | auto | on: six face maps, where one map cannot cover the receivers (auto) or always (on)
+std::vector<ParameterSpec> shadowMapCubeParameters();
 
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
 // (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.

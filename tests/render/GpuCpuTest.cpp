@@ -17,6 +17,7 @@
 #include "support/TestSupport.h"
 #include "frame/ProbeRecord.h"
 #include "lightspace/LightView.h"
+#include "lightspace/PartitionViews.h"
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
 #include "techniques/Registry.h"
@@ -338,23 +339,37 @@ TEST(GpuCpuFocus, GpuReductionFitsTheSameLightViewAsTheCpu)
     FocusSettings focus;
     focus.resolution = 512;
     focus.marginTexels = std::ceil(0.5 * frame.parameters.get("kernel_texels")) + 1.0;
-    const LightView cpu = fitLightView(scene.lights[0], scene, positionRgba, normalRgba, focus);
-    const LightView& gpu = *frame.lightView;
-    EXPECT_EQ(gpu.receiverSampleCount, cpu.receiverSampleCount) << dataset;
-    const double extent = std::max(cpu.window.y - cpu.window.x, cpu.window.w - cpu.window.z);
-    for (int i = 0; i < 4; ++i)
-    {
-      EXPECT_NEAR(gpu.window[i], cpu.window[i], 1e-5 * extent) << dataset << " window[" << i << "]";
-    }
-    EXPECT_NEAR(gpu.nearDepth, cpu.nearDepth, 1e-5 * cpu.farDepth) << dataset;
-    EXPECT_NEAR(gpu.farDepth, cpu.farDepth, 1e-5 * cpu.farDepth) << dataset;
-    for (int column = 0; column < 4; ++column)
-    {
-      for (int row = 0; row < 4; ++row)
+    const auto expectSameView = [&](const LightView& gpu, const LightView& cpu, const std::string& label) {
+      EXPECT_EQ(gpu.receiverSampleCount, cpu.receiverSampleCount) << label;
+      const double extent = std::max(cpu.window.y - cpu.window.x, cpu.window.w - cpu.window.z);
+      for (int i = 0; i < 4; ++i)
       {
-        EXPECT_NEAR(gpu.viewFromWorld[column][row], cpu.viewFromWorld[column][row], 1e-6) << dataset;
+        EXPECT_NEAR(gpu.window[i], cpu.window[i], 1e-5 * extent) << label << " window[" << i << "]";
       }
+      EXPECT_NEAR(gpu.nearDepth, cpu.nearDepth, 1e-5 * cpu.farDepth) << label;
+      EXPECT_NEAR(gpu.farDepth, cpu.farDepth, 1e-5 * cpu.farDepth) << label;
+      for (int column = 0; column < 4; ++column)
+      {
+        for (int row = 0; row < 4; ++row)
+        {
+          EXPECT_NEAR(gpu.viewFromWorld[column][row], cpu.viewFromWorld[column][row], 1e-6) << label;
+        }
+      }
+    };
+    if (frame.partitions)
+    {
+      // A point light one map cannot cover (wall-ring): each cube face's fit (survey §2), by owner planes.
+      ImageReceivers receivers(positionRgba, normalRgba);
+      const PartitionSet cpu = fitCubeFaces(scene.lights[0], scene, receivers, focus);
+      ASSERT_EQ(frame.partitions->viewFaces, cpu.viewFaces) << dataset;
+      for (int k = 0; k < cpu.viewCount(); ++k)
+      {
+        expectSameView(frame.partitions->views[static_cast<std::size_t>(k)], cpu.views[static_cast<std::size_t>(k)],
+          dataset + " " + partitionViewLabel(cpu, k));
+      }
+      continue;
     }
+    expectSameView(*frame.lightView, fitLightView(scene.lights[0], scene, positionRgba, normalRgba, focus), dataset);
   }
 }
 

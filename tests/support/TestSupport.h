@@ -82,8 +82,9 @@ void appendTetrahedron(std::vector<glm::dvec3>& corners, const std::array<glm::d
 // tiles shadow nothing (every technique's image is the same there; tests/render/WarpFig12Test.cpp measures it).
 std::vector<std::string> datasetNames();
 // The techniques that render `wall-ring`: its point light has visible receivers all around it, which one shadow map
-// cannot cover, so every other technique that takes point lights refuses it by design until cube maps exist (issue 29
-// item 5). tests/cli/SamplingDatasetsCliTest.cpp checks that each of those refuses it, so this list cannot go stale.
+// cannot cover: the object-space ones and those with cube shadow maps (cube_map, survey §2); every other technique
+// that takes point lights refuses it by design. tests/cli/SamplingDatasetsCliTest.cpp checks that each of those
+// refuses it, so this list cannot go stale.
 const std::vector<std::string>& wallRingTechniques();
 // Whether `technique` renders `dataset` (every pair but wall-ring with a technique outside wallRingTechniques()):
 // the sweeps over every dataset (datasetTechniquePairs, the focus and comparator checks) leave the refusals out.

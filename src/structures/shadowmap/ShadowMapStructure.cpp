@@ -65,7 +65,37 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
         " texels past the receivers on each side, which leaves none of the tile for them; use a larger fvsm_tile_size"));
     }
   }
+  if (values.has("cube_map"))
+  {
+    settings.cubeMap = choiceOf<CubeMapMode>(
+      values, "cube_map", { { "off", CubeMapMode::Off }, { "auto", CubeMapMode::Auto }, { "on", CubeMapMode::On } });
+  }
   return settings;
+}
+
+void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus)
+{
+  if (frame.parameters.has("fvsm") && frame.parameters.choice("fvsm") == "on")
+  {
+    // FVSM's quadtree subdivides one focused map's window (survey §4.3.3); it does not partition by cube face.
+    focus.beyondOneMapPrefix = "--set fvsm=on: ";
+    focus.beyondOneMapAdvice = ": fvsm tiles one map's window; use fvsm=off (cube shadow maps, survey §2)";
+  }
+  else if (frame.parameters.has("cube_map") && frame.parameters.choice("cube_map") == "off")
+  {
+    focus.beyondOneMapPrefix = "--set cube_map=off: ";
+    focus.beyondOneMapAdvice = ": use cube_map=auto or on (survey §2: cube shadow maps)";
+  }
+  else if (!frame.cubeMapTechniques.empty())
+  {
+    focus.beyondOneMapAdvice =
+      ": render it with cube shadow maps (techniques " + frame.cubeMapTechniques + ") or use a spot or area light";
+  }
+}
+
+bool ShadowMapSettings::mayPartition(const Light& light) const
+{
+  return cascades.active() || fvsm.active() || (light.type == LightType::Point && cubeMap && *cubeMap != CubeMapMode::Off);
 }
 
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values)
@@ -82,6 +112,7 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     // The renderer asks before any GL (ShadowRenderer's setFrameInputs); fitLightView refuses the same.
     requireWarpableLight(settings.warp.kind, frame.light->type);
     requireCascadableLight(settings.cascades, frame.light->type);
+    requireCubeMapLight(settings.cubeMap.value_or(CubeMapMode::Off), frame.light->type);
   }
   return settings;
 }
@@ -147,16 +178,28 @@ std::vector<NamedImage> exportPartitions(const FrameResources& frame, FrameResul
   const ImageF primaryView = selection.channels(0, 1);
   const BufferSpec& spec = partitionBufferSpec(partitions.kind);
   std::vector<std::string> labels;
-  for (int k = 0; k < partitions.viewCount(); ++k)
+  if (partitions.kind == PartitionKind::CubeFaces)
   {
-    labels.push_back(partitionViewLabel(partitions, k));
+    // By face, not by view (the selection's fourth channel): a face without a map keeps its code.
+    for (int face = 0; face < kCubeFaceCount; ++face)
+    {
+      labels.push_back(cubeFaceName(face));
+    }
+    result.buffers.push_back({ spec.name, selection.channels(3, 1), spec.unit, spec.doc, spec.kind, labels });
+  }
+  else
+  {
+    for (int k = 0; k < partitions.viewCount(); ++k)
+    {
+      labels.push_back(partitionViewLabel(partitions, k));
+    }
+    result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
   }
   std::vector<NamedImage> images;
   if (partitions.kind == PartitionKind::FvsmTiles)
   {
     exportFvsm(frame, primaryView, result, images);
   }
-  result.buffers.push_back({ spec.name, primaryView, spec.unit, spec.doc, spec.kind, labels });
   std::vector<NamedImage> samplingError = samplingErrorBuffers(frame, result, &primaryView);
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
@@ -231,6 +274,10 @@ const BufferSpec& partitionBufferSpec(PartitionKind kind)
     "the fvsm quadtree tile whose map the pixel read (survey §4.3.3; stats.json light_view.fvsm.tiles lists their "
     "rectangles and levels)",
     BufferKind::Categorical };
+  static const BufferSpec cubeFace{ "cube_face", "",
+    "the cube face whose map the pixel read (survey §2): 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z, the dominant axis of "
+    "p - light centre; -1 where uncovered or where the face has no map (the light reaches none of its receivers)",
+    BufferKind::Categorical };
   switch (kind)
   {
     case PartitionKind::Cascades:
@@ -238,7 +285,7 @@ const BufferSpec& partitionBufferSpec(PartitionKind kind)
     case PartitionKind::FvsmTiles:
       return fvsmTile;
     case PartitionKind::CubeFaces:
-      break;
+      return cubeFace;
   }
   SL_CHECK_MSG(false, "no buffer for partition kind ", partitionKindName(kind));
   return cascade;

@@ -10,6 +10,8 @@
 #include "lightspace/PerspectiveWarp.h"
 #include "structures/LightSpaceStructure.h"
 
+#include <optional>
+
 namespace sl
 {
 
@@ -25,6 +27,12 @@ struct ShadowMapSettings
   CascadeSettings cascades;  // cascades, split_scheme, split_lambda, cascade_selection, cascade_blend, cascade_snap
                              // (survey §4.3.1), read only from techniques that list them
   FvsmSettings fvsm;         // fvsm, fvsm_tile_size, fvsm_max_level, fvsm_max_tiles (survey §4.3.3), likewise
+  // cube_map (survey §2, CubeFaces.h); none for a technique that does not list it (no cube maps)
+  std::optional<CubeMapMode> cubeMap;
+
+  // Whether a frame with `light` may run as views that partition the pixels (the renderer's stage pipeline, before
+  // GL): cascades > 1, fvsm, or a point light whose technique may use cube faces.
+  bool mayPartition(const Light& light) const;
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
   static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
@@ -33,9 +41,14 @@ struct ShadowMapSettings
 ShadowMapSettings shadowMapSettings(const TechniqueDescriptor& technique, const ParameterValues& values);
 ShadowMapSettings shadowMapSettings(const FrameResources& frame);
 
+// A point light one map cannot cover (fitLightView's refusal): the message names the way out, the techniques with cube
+// shadow maps (FrameResources::cubeMapTechniques) or, for one of them, its setting cube_map=off.
+void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus);
+
 // Views that partition the pixels (survey §4.3, PartitionViews.h): the categorical buffer the structure adds to a
-// partitioned frame, per kind: `cascade` (cascades > 1, survey §4.3.1), `fvsm_tile` (fvsm, survey §4.3.3); its labels
-// are partitionViewLabel's.
+// partitioned frame, per kind: `cascade` (cascades > 1, survey §4.3.1; labels partitionViewLabel's), `fvsm_tile`
+// (fvsm, survey §4.3.3; likewise) or `cube_face` (survey §2; labels cubeFaceName's, -1 where the pixel is uncovered or
+// its face has no map).
 const BufferSpec& partitionBufferSpec(PartitionKind kind);
 // fvsm (survey §4.3.3): fvsm_level, fvsm_required_resolution and fvsm_unmet beside `fvsm_tile`.
 const std::vector<BufferSpec>& fvsmBufferSpecs();

@@ -16,6 +16,7 @@
 #include <vtk_glew.h>
 #include <vtkTextureObject.h>
 
+#include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkSLFocusPass);
@@ -38,16 +39,21 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
   {
     focus.lightFootprintWidth = frame.light->size;
   }
-  if (settings.fvsm.active())
+  sl::adviseBeyondOneMap(frame, focus);
+  if (frame.partitioned && frame.viewIndex == 0)
   {
-    // Survey §4.3.3: the pre-pass (the G-buffer read back: each receiver's query location and required resolution),
-    // the quadtree and every tile's view, at view 0.
-    if (frame.viewIndex == 0)
+    // Views that partition the pixels (survey §4.3): every view is fitted at view 0, with the per-pixel selection the
+    // accumulation blends by. Cube faces (survey §2) with cube_map=auto only where one map cannot cover the
+    // receivers (the refusal's condition; two reductions to tell).
+    const sl::Light& light = *frame.light;
+    if (settings.fvsm.active())
     {
+      // Survey §4.3.3: the pre-pass (the G-buffer read back: each receiver's query location and required
+      // resolution), the quadtree and every tile's view.
       const sl::ImageF position = sl::readFloatTexture(frame.gbufferPosition, 4);
       const sl::ImageF normal = sl::readFloatTexture(frame.gbufferNormal, 4);
-      auto fvsm = std::make_shared<sl::FittedVirtualShadowMap>(sl::fitFvsm(*frame.light, *frame.scene,
-        *this->Receivers, focus, settings.fvsm, frame.camera, position, normal));
+      auto fvsm = std::make_shared<sl::FittedVirtualShadowMap>(sl::fitFvsm(
+        light, *frame.scene, *this->Receivers, focus, settings.fvsm, frame.camera, position, normal));
       sl::PartitionSet tiles;
       tiles.kind = sl::PartitionKind::FvsmTiles;
       tiles.views = fvsm->views;
@@ -61,19 +67,23 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
       frame.partitions = std::move(tiles);
       this->WriteTileSelection(state);
     }
-    SL_CHECK(frame.partitions && frame.viewIndex < frame.partitions->viewCount());
-    frame.lightView = frame.partitions->views[static_cast<std::size_t>(frame.viewIndex)];
-  }
-  else if (settings.cascades.active())
-  {
-    // Views that partition the pixels (survey §4.3): every view is fitted at view 0, with the per-pixel selection the
-    // accumulation blends by.
-    if (frame.viewIndex == 0)
+    else if (settings.cascades.active())
     {
-      frame.partitions = sl::fitCascades(*frame.light, *frame.scene, *this->Receivers, focus, settings.cascades);
+      frame.partitions = sl::fitCascades(light, *frame.scene, *this->Receivers, focus, settings.cascades);
+    }
+    else if (settings.cubeMap == sl::CubeMapMode::On ||
+      (settings.cubeMap == sl::CubeMapMode::Auto && !sl::oneMapCovers(light, *frame.scene, *this->Receivers)))
+    {
+      frame.partitions = sl::fitCubeFaces(light, *frame.scene, *this->Receivers, focus);
+    }
+    if (frame.partitions && frame.partitions->kind != sl::PartitionKind::FvsmTiles)
+    {
       this->WriteSelection(state);
     }
-    SL_CHECK(frame.partitions && frame.viewIndex < frame.partitions->viewCount());
+  }
+  if (frame.partitions)
+  {
+    SL_CHECK(frame.viewIndex < frame.partitions->viewCount());
     frame.lightView = frame.partitions->views[static_cast<std::size_t>(frame.viewIndex)];
   }
   else
@@ -113,6 +123,17 @@ void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)
   if (partitions.kind == sl::PartitionKind::Cascades)
   {
     this->SetCascadeUniforms();
+  }
+  else
+  {
+    program.setVector("lightCenterWs", partitions.lightCenterWs);
+    for (int face = 0; face < sl::kCubeFaceCount; ++face)
+    {
+      const auto found = std::find(partitions.viewFaces.begin(), partitions.viewFaces.end(), face);
+      const bool mapped = found != partitions.viewFaces.end();
+      program.setInt(sl::format("faceView[", face, "]").c_str(),
+        mapped ? static_cast<int>(found - partitions.viewFaces.begin()) : -1);
+    }
   }
   glBindImageTexture(0, frame.viewSelection->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   program.dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });

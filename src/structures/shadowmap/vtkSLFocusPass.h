@@ -2,9 +2,9 @@
 // the casters clipped to it (survey §4.1, see lightspace/LightView.h). The receivers are reduced on the
 // GPU (GpuReceivers: a compute shader, nine words read back); the casters are clipped on the CPU. Its
 // own stage, so that stats.json separates this cost from rendering the map. Parameters it reads: ShadowMapSettings.
-// With views that partition the pixels (lightspace/PartitionViews.h: cascades, survey §4.3.1) it fits every view at
-// view 0 (lightspace/Cascades.h fitCascades), writes the per-pixel selection, and hands each view its fit. With fvsm
-// (survey §4.3.3) it reads the G-buffer back at view 0 (the pre-pass), fits the quadtree's tiles
+// With views that partition the pixels (lightspace/PartitionViews.h: cascades, survey §4.3.1; cube faces, survey §2)
+// it fits every view at view 0 (fitCascades, fitCubeFaces), writes the per-pixel selection, and hands each view its
+// fit. With fvsm (survey §4.3.3) it reads the G-buffer back at view 0 (the pre-pass), fits the quadtree's tiles
 // (lightspace/FittedVirtualShadowMap.h fitFvsm) and writes the per-pixel tile selection.
 #pragma once
 

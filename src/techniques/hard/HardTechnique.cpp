@@ -25,6 +25,7 @@ TechniqueDescriptor hardTechnique()
   descriptor.addParameters(shadowMapWarpParameters());
   descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.addParameters(shadowMapFvsmParameters());
+  descriptor.addParameters(shadowMapCubeParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),

@@ -4,7 +4,8 @@
 // Parameters (see ShadowMapParameters.h): shadow_map_size [texels], caster_faces (front|back),
 // bias_constant_texels, bias_slope_texels [texel footprints], bias_max_slope; warp (none|psm|lispsm|tsm), warp_n
 // [world] (survey §4.2, lightspace/PerspectiveWarp.h; directional lights); cascades, split_scheme, split_lambda,
-// cascade_selection, cascade_blend, cascade_snap (survey §4.3.1, lightspace/Cascades.h; directional lights).
+// cascade_selection, cascade_blend, cascade_snap (survey §4.3.1, lightspace/Cascades.h; directional lights);
+// cube_map (off|auto|on; survey §2, lightspace/CubeFaces.h; point lights).
 // Buffers: kernel_texels (1: one texel), texel_ratio (survey Eq. 2, screen pixels per texel),
 // depth_bias [world], depth_margin [world] = receiver depth - bias - stored depth (> 0: shadowed).
 #pragma once

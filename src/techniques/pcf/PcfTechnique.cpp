@@ -40,6 +40,7 @@ TechniqueDescriptor pcfTechnique()
   descriptor.addParameters(shadowMapWarpParameters());
   descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.addParameters(shadowMapFvsmParameters());
+  descriptor.addParameters(shadowMapCubeParameters());
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels" },
     { "taps", "comparisons", "depth comparisons made for the pixel" },

@@ -1,7 +1,7 @@
 // Technique `pcf`: percentage-closer filtering (Reeves, Salesin & Cook 1987; survey §6, Fig. 23).
 //
-// Parameters: the shadow-map ones, its warp, warp_n (ShadowMapParameters.h; survey §4.2), its cascades (survey §4.3.1)
-// and
+// Parameters: the shadow-map ones, its warp, warp_n (ShadowMapParameters.h; survey §4.2), its cascades (survey
+// §4.3.1), cube_map (survey §2) and
 //   kernel_texels    [texels]  grid: kernel_texels x kernel_texels taps one texel apart, centred on the
 //                              receiver's exact shadow-map position; poisson: disk diameter
 //   pattern          grid | poisson (rotated per pixel by common/SamplingPatterns.glsl)

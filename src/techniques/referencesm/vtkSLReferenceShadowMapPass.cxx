@@ -46,6 +46,7 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
   sl::FocusSettings focus;
   focus.resolution = settings.shadowMap.resolution;
   focus.marginTexels = settings.shadowMap.marginTexels;
+  sl::adviseBeyondOneMap(frame, focus);
   const bool secondDepth = settings.shadowMap.secondDepth;
   const auto linearDepth = sl::makeFloatTarget(window, focus.resolution, focus.resolution, 1);
   const auto hardwareDepth = sl::makeDepthTarget(window, focus.resolution, focus.resolution);
