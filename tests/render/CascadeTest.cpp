@@ -35,11 +35,6 @@ namespace sl
 namespace
 {
 
-glm::dvec3 pointAt(const ImageF& position, int x, int y)
-{
-  return { position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2) };
-}
-
 // Whether a float evaluation of the selection may legitimately differ from the double twin's at pWs: the eye depth
 // within 1e-5 (relative) of an interior split, or (containment) the edge or depth range of a map finer than the
 // point's own slice's within 1e-5 of the point (its own map holds it by construction).
@@ -100,7 +95,7 @@ SelectionAgreement compareSelection(const FrameResult& frame)
         continue;
       }
       ++agreement.covered;
-      const glm::dvec3 pWs = pointAt(position, x, y);
+      const glm::dvec3 pWs = test::vec3At(position, x, y);
       const int cpu = selectCascade(*frame.partitions, frame.camera, pWs).primary;
       const int gpu = static_cast<int>(cascade.at(x, y));
       ++agreement.perCascade.at(static_cast<std::size_t>(gpu));
@@ -212,7 +207,7 @@ VisibilityAgreement compareVisibility(const FrameResult& frame, const Scene& sce
         continue;
       }
       ++agreement.evaluated;
-      const glm::dvec3 pWs = pointAt(inputs.front().position, x, y);
+      const glm::dvec3 pWs = test::vec3At(inputs.front().position, x, y);
       const ViewSelection selection = selectCascade(*frame.partitions, frame.camera, pWs);
       agreement.blended += selection.primaryWeight < 1.0 ? 1 : 0;
       if (!ambiguityOf(cpu).empty() || selectionAmbiguous(*frame.partitions, frame.camera, pWs))
@@ -267,30 +262,6 @@ TEST(CascadeGpu, VisibilityMatchesTheCpuTwinOnRandomConfigurations)
   }
 }
 
-// The exact single ray (test ray caster) at every pixel the light reaches; -1 elsewhere.
-ImageF exactVisibility(const FrameResult& frame, const Scene& scene, const test::RayCaster& rays)
-{
-  const ImageF& position = frame.find("position")->image;
-  const ImageF& normal = frame.find("normal")->image;
-  const ImageF& coverage = frame.find("coverage")->image;
-  const ImageF& receives = frame.find("receives_shadows")->image;
-  const Light& light = scene.lights.front();
-  ImageF exact(position.width, position.height, 1, -1.0f);
-  for (int y = 0; y < position.height; ++y)
-  {
-    for (int x = 0; x < position.width; ++x)
-    {
-      const glm::dvec3 pWs = pointAt(position, x, y);
-      const glm::dvec3 nWs = pointAt(normal, x, y);
-      if (coverage.at(x, y) > 0.5f && receives.at(x, y) > 0.5f && lightCanReach(light, pWs, nWs))
-      {
-        exact.at(x, y) = static_cast<float>(rays.pointVisibility(light, pWs, nWs, 1e-4));
-      }
-    }
-  }
-  return exact;
-}
-
 int misclassified(const FrameResult& frame, const ImageF& exact, int* evaluated = nullptr)
 {
   const ImageF& visibility = frame.find("visibility")->image;
@@ -333,7 +304,7 @@ TEST(CascadeGpu, CastersOutsideTheViewStillCast)
   {
     const FrameResult frame = test::renderDataset(scene, "hard", 96, 64,
       { "shadow_map_size=128", "cascades=4", "split_scheme=log", "cascade_selection=" + selection });
-    const ImageF exact = exactVisibility(frame, castersOnly, casters);
+    const ImageF exact = test::exactPointVisibility(frame, castersOnly, casters);
     const ImageF& visibility = frame.find("visibility")->image;
     const ImageF& cascade = frame.find("cascade")->image;
     std::vector<int> shadowedByOutside(frame.partitions->views.size(), 0), castByMap(frame.partitions->views.size(), 0);
@@ -410,7 +381,7 @@ TEST(CascadeGpu, FewerMisclassifiedPixelsThanOneMapOfTheSameTexels)
           int evaluated = 0;
           if (exact.data.empty())
           {
-            exact = exactVisibility(frame, scene, rays);
+            exact = test::exactPointVisibility(frame, scene, rays);
           }
           const int count = misclassified(frame, exact, &evaluated);
           sums[v] += count;
@@ -512,9 +483,9 @@ TEST(CascadeGpu, SamplingErrorBuffersUseEachPixelsCascade)
       {
         continue;
       }
-      const glm::dvec3 pWs = pointAt(position, x, y);
+      const glm::dvec3 pWs = test::vec3At(position, x, y);
       const LightView& view = cascaded.partitions->views.at(static_cast<std::size_t>(cascade.at(x, y)));
-      const SamplingError error = samplingError(cascaded.camera, view, x + 0.5, y + 0.5, pWs, pointAt(normal, x, y));
+      const SamplingError error = samplingError(cascaded.camera, view, x + 0.5, y + 0.5, pWs, test::vec3At(normal, x, y));
       EXPECT_NEAR(ratioT.at(x, y), error.texelRatioT, 1e-5 * error.texelRatioT) << x << "," << y;
       EXPECT_NEAR(ratioS.at(x, y), error.texelRatioS, 1e-5 * error.texelRatioS) << x << "," << y;
       ++checked;

@@ -32,11 +32,6 @@ namespace sl
 namespace
 {
 
-glm::dvec3 cubePixelPoint(const ImageF& image, int x, int y)
-{
-  return { image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2) };
-}
-
 // A float evaluation of the dominant axis may differ from the double twin's where the two largest |d| components
 // are within 1e-5 (relative) of each other: on a seam.
 bool onCubeSeam(const PartitionSet& faces, const glm::dvec3& pWs)
@@ -71,7 +66,7 @@ FaceAgreement compareFaces(const FrameResult& frame)
         continue;
       }
       ++agreement.covered;
-      const glm::dvec3 pWs = cubePixelPoint(position, x, y);
+      const glm::dvec3 pWs = test::vec3At(position, x, y);
       const int cpu = cubeFaceOf(faces, pWs);
       if (gpu >= 0)
       {
@@ -135,11 +130,11 @@ TEST(CubeMapGpu, FaceSelectionMatchesTheCpuTwinPixelByPixel)
       {
         continue;
       }
-      const glm::dvec3 pWs = cubePixelPoint(frame.find("position")->image, x, y);
+      const glm::dvec3 pWs = test::vec3At(frame.find("position")->image, x, y);
       const LightView& view =
         frame.partitions->views[static_cast<std::size_t>(selectView(*frame.partitions, frame.camera, pWs).primary)];
       const SamplingError error = samplingError(
-        frame.camera, view, x + 0.5, y + 0.5, pWs, cubePixelPoint(frame.find("normal")->image, x, y));
+        frame.camera, view, x + 0.5, y + 0.5, pWs, test::vec3At(frame.find("normal")->image, x, y));
       EXPECT_NEAR(ratioT.at(x, y), error.texelRatioT, 1e-5 * error.texelRatioT) << x << "," << y;
       EXPECT_NEAR(ratioS.at(x, y), error.texelRatioS, 1e-5 * error.texelRatioS) << x << "," << y;
       ++checked;
@@ -187,7 +182,7 @@ CubeVisibilityAgreement compareCubeVisibility(const FrameResult& frame, const Sc
         continue;
       }
       ++agreement.evaluated;
-      if (!ambiguityOf(cpu).empty() || onCubeSeam(*frame.partitions, cubePixelPoint(inputs.front().position, x, y)))
+      if (!ambiguityOf(cpu).empty() || onCubeSeam(*frame.partitions, test::vec3At(inputs.front().position, x, y)))
       {
         ++agreement.ambiguous;
         continue;
@@ -201,30 +196,6 @@ CubeVisibilityAgreement compareCubeVisibility(const FrameResult& frame, const Sc
     }
   }
   return agreement;
-}
-
-// The exact single ray at every pixel the light reaches; -1 elsewhere.
-ImageF exactCubeVisibility(const FrameResult& frame, const Scene& scene, const test::RayCaster& rays)
-{
-  const ImageF& position = frame.find("position")->image;
-  const ImageF& normal = frame.find("normal")->image;
-  const ImageF& coverage = frame.find("coverage")->image;
-  const ImageF& receives = frame.find("receives_shadows")->image;
-  const Light& light = scene.lights.front();
-  ImageF exact(position.width, position.height, 1, -1.0f);
-  for (int y = 0; y < position.height; ++y)
-  {
-    for (int x = 0; x < position.width; ++x)
-    {
-      const glm::dvec3 pWs = cubePixelPoint(position, x, y);
-      const glm::dvec3 nWs = cubePixelPoint(normal, x, y);
-      if (coverage.at(x, y) > 0.5f && receives.at(x, y) > 0.5f && lightCanReach(light, pWs, nWs))
-      {
-        exact.at(x, y) = static_cast<float>(rays.pointVisibility(light, pWs, nWs, 1e-4));
-      }
-    }
-  }
-  return exact;
 }
 
 // Whether every evaluated pixel within `radius` of (x, y) has the exact value `value`.
@@ -253,7 +224,7 @@ TEST(CubeMapGpu, HardAndPcfOnWallRingMatchTheTwinAndTheExactRay)
     const FrameResult frame = test::renderDataset(scene, technique, 96, 96, { "shadow_map_size=512" });
     ASSERT_TRUE(frame.partitions.has_value()) << technique;
     const CubeVisibilityAgreement twin = compareCubeVisibility(frame, scene, technique);
-    const ImageF exact = exactCubeVisibility(frame, scene, rays);
+    const ImageF exact = test::exactPointVisibility(frame, scene, rays);
     const ImageF& visibility = frame.find("visibility")->image;
     int evaluated = 0, lit = 0, shadowed = 0, misclassified = 0, awayFromEdges = 0;
     for (int y = 0; y < exact.height; ++y)
@@ -327,7 +298,7 @@ TEST(CubeMapGpu, NoAcneLeakOrJumpAcrossFaceSeams)
       return false;
     };
     const CubeVisibilityAgreement twin = compareCubeVisibility(frame, scene, technique, nearSeam);
-    const ImageF exact = exactCubeVisibility(frame, scene, rays);
+    const ImageF exact = test::exactPointVisibility(frame, scene, rays);
     const ImageF& visibility = frame.find("visibility")->image;
     int litSeam = 0, acne = 0, shadowSeam = 0, leaks = 0, misclassifiedSeam = 0;
     for (int y = 0; y < exact.height; ++y)

@@ -28,11 +28,6 @@ namespace sl
 namespace
 {
 
-glm::dvec3 fvsmPointAt(const ImageF& position, int x, int y)
-{
-  return { position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2) };
-}
-
 // Whether a float evaluation of the pixel's grid cell may differ from the double twin's: its light xy within 1e-5 of
 // the root rectangle's extent from an interior cell edge.
 bool cellAmbiguous(const FittedVirtualShadowMap& fvsm, const glm::dvec3& pWs)
@@ -86,7 +81,7 @@ TEST(FvsmGpu, TileSelectionMatchesTheCpuTwinPixelByPixel)
           continue;
         }
         ++covered;
-        const glm::dvec3 pWs = fvsmPointAt(position, x, y);
+        const glm::dvec3 pWs = test::vec3At(position, x, y);
         const int gpu = static_cast<int>(tile.at(x, y));
         const int cpu = selectView(*frame.partitions, frame.camera, pWs).primary;
         if (fvsm.tileOfPixel(x, y) >= 0)
@@ -223,7 +218,7 @@ TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
           continue;
         }
         ++evaluated;
-        if (!ambiguityOf(cpu).empty() || cellAmbiguous(*frame.partitions->fvsm, fvsmPointAt(inputs.front().position, x, y)))
+        if (!ambiguityOf(cpu).empty() || cellAmbiguous(*frame.partitions->fvsm, test::vec3At(inputs.front().position, x, y)))
         {
           ++ambiguous;
           continue;
@@ -248,27 +243,10 @@ TEST(FvsmGpu, VisibilityMatchesTheCpuTwinsOnEachPixelsTile)
 int fvsmMisclassified(const FrameResult& frame, const Scene& scene, const test::RayCaster& rays, ImageF& exact,
   int& evaluated)
 {
-  const ImageF& position = frame.find("position")->image;
-  const ImageF& normal = frame.find("normal")->image;
-  const ImageF& coverage = frame.find("coverage")->image;
-  const ImageF& receives = frame.find("receives_shadows")->image;
   const ImageF& visibility = frame.find("visibility")->image;
-  const Light& light = scene.lights.front();
   if (exact.data.empty())
   {
-    exact = ImageF(position.width, position.height, 1, -1.0f);
-    for (int y = 0; y < position.height; ++y)
-    {
-      for (int x = 0; x < position.width; ++x)
-      {
-        const glm::dvec3 pWs = fvsmPointAt(position, x, y);
-        const glm::dvec3 nWs = fvsmPointAt(normal, x, y);
-        if (coverage.at(x, y) > 0.5f && receives.at(x, y) > 0.5f && lightCanReach(light, pWs, nWs))
-        {
-          exact.at(x, y) = static_cast<float>(rays.pointVisibility(light, pWs, nWs, 1e-4));
-        }
-      }
-    }
+    exact = test::exactPointVisibility(frame, scene, rays);
   }
   int count = 0;
   evaluated = 0;

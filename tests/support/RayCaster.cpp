@@ -77,4 +77,27 @@ double RayCaster::pointVisibility(const Light& light, const glm::dvec3& pWs, con
   return occluded(origin, toLight / distance, 0.0, distance) ? 0.0 : 1.0;
 }
 
+ImageF exactPointVisibility(const FrameResult& frame, const Scene& scene, const RayCaster& rays)
+{
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& normal = frame.find("normal")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& receives = frame.find("receives_shadows")->image;
+  const Light& light = scene.lights.front();
+  ImageF exact(position.width, position.height, 1, -1.0f);
+  for (int y = 0; y < position.height; ++y)
+  {
+    for (int x = 0; x < position.width; ++x)
+    {
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+      if (coverage.at(x, y) > 0.5f && receives.at(x, y) > 0.5f && lightCanReach(light, pWs, nWs))
+      {
+        exact.at(x, y) = static_cast<float>(rays.pointVisibility(light, pWs, nWs, 1e-4));
+      }
+    }
+  }
+  return exact;
+}
+
 } // namespace sl::test

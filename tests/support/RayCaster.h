@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/Image.h"
+#include "frame/FrameResult.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -32,5 +33,9 @@ private:
   };
   std::vector<Triangle> triangles_;
 };
+
+// The exact single ray (pointVisibility, offset 1e-4) at every covered pixel of `frame` that receives shadows and
+// that the scene's first light can reach; -1 at every other pixel.
+ImageF exactPointVisibility(const FrameResult& frame, const Scene& scene, const RayCaster& rays);
 
 } // namespace sl::test
