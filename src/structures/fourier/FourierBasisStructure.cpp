@@ -1,0 +1,111 @@
+#include "structures/fourier/FourierBasisStructure.h"
+
+#include "core/Error.h"
+#include "frame/FrameResult.h"
+#include "gl/GlResources.h"
+#include "passes/PassUtilities.h"
+#include "structures/fourier/vtkSLFourierBasisPass.h"
+#include "structures/moments/MomentMapStructure.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
+
+#include <vtkTextureObject.h>
+
+#include <string>
+
+namespace sl
+{
+
+FourierBasisSettings FourierBasisSettings::from(const ParameterValues& values)
+{
+  FourierBasisSettings settings;
+  settings.terms = values.getInt("terms");
+  if (settings.terms % fourierTermsPerTexture != 0)
+  {
+    throw InputError(format("--set terms=", settings.terms, ": the Fourier terms are stored four per RGBA texture; use 4, 8, 12 or 16"));
+  }
+  settings.mipmap = values.choice("prefilter") == "mipmap";
+  settings.blurTexels = settings.mipmap ? 1 : values.getInt("prefilter_texels");
+  return settings;
+}
+
+namespace
+{
+
+const FourierBasisData& fourierBasisData(const FrameResources& frame)
+{
+  return frame.structureData<FourierBasisData>(fourierBasisStructure().name);
+}
+
+std::vector<NamedImage> exportFourierBasis(const FrameResources& frame, FrameResult&)
+{
+  const FourierBasisData& data = fourierBasisData(frame);
+  std::vector<NamedImage> images;
+  const auto exportSet = [&](const std::vector<vtkSmartPointer<vtkTextureObject>>& textures, const char* function) {
+    for (std::size_t texture = 0; texture < textures.size(); ++texture)
+    {
+      const ImageF basis = readFloatTexture(textures[texture], 4);
+      for (int channel = 0; channel < fourierTermsPerTexture; ++channel)
+      {
+        const int k = static_cast<int>(texture) * fourierTermsPerTexture + channel + 1;
+        images.push_back({ format("fourier_", function, "_", k), basis.channels(channel, 1), "",
+          format("prefiltered ", function, "(c_k z_n), c_k = pi (2k - 1), k = ", k, " (Annen et al. 2007)") });
+      }
+    }
+  };
+  exportSet(data.sine, "sin");
+  exportSet(data.cosine, "cos");
+  return images;
+}
+
+} // namespace
+
+const LightSpaceStructure& fourierBasisStructure()
+{
+  static const LightSpaceStructure structure = [] {
+    LightSpaceStructure s;
+    s.name = "fourier_basis";
+    s.doc = "sin(c_k z_n), cos(c_k z_n) of the shadow map, k = 1..terms, box-blurred or mip-mapped (Annen et al. 2007; survey §6)";
+    s.builtFrom = { &shadowMapStructure() };
+    s.parameters = {
+      { "terms", 16, 4, 16, "", "M, the Fourier terms of the shadow test kept (Annen et al. 2007: 16); a multiple of 4", {}, true },
+    };
+    // The prefilter is the moment map's (box blur or mip-map), with the same parameters.
+    for (const ParameterSpec& spec : momentMapStructure().parameters)
+    {
+      s.parameters.push_back(spec);
+    }
+    s.createBuildPasses = [] {
+      return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFourierBasisPass>::New() };
+    };
+    s.exportImages = exportFourierBasis;
+    s.gpuBytes = [](const FrameResources& frame) {
+      const FourierBasisData& data = fourierBasisData(frame);
+      std::size_t bytes = 0;
+      for (const auto* textures : { &data.sine, &data.cosine })
+      {
+        for (const vtkSmartPointer<vtkTextureObject>& texture : *textures)
+        {
+          bytes += textureBytes(texture, 16, data.mipmapped);
+        }
+      }
+      return bytes;
+    };
+    s.shaderDefines = [](const FrameResources& frame) {
+      return ShaderDefines{ { "FOURIER_TERMS", std::to_string(FourierBasisSettings::from(frame.parameters).terms) } };
+    };
+    s.bind = [](vtkShaderProgram* program, const FrameResources& frame) {
+      const FourierBasisData& data = fourierBasisData(frame);
+      std::vector<vtkTextureObject*> bound;
+      for (std::size_t texture = 0; texture < data.sine.size(); ++texture)
+      {
+        bound.push_back(bindTexture(program, format("fourierSin", texture).c_str(), data.sine[texture]));
+        bound.push_back(bindTexture(program, format("fourierCos", texture).c_str(), data.cosine[texture]));
+      }
+      return bound;
+    };
+    return s;
+  }();
+  return structure;
+}
+
+} // namespace sl

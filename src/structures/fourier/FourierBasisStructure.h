@@ -1,0 +1,40 @@
+// The Fourier basis images of convolution shadow maps (Annen et al. 2007, survey §6): per shadow-map texel,
+// sin(c_k z_n) and cos(c_k z_n) for k = 1..terms, c_k = pi (2k - 1), z_n the linear depth normalised to the light's
+// [near, far] (clamped to [0, 1]); four terms per RGBA32F texture (sine textures, then cosine textures), each
+// prefiltered like the moment map: a separable box blur of prefilter_texels, or mip-mapped. Built by
+// vtkSLFourierBasisPass (stage fourier_basis).
+#pragma once
+
+#include "structures/LightSpaceStructure.h"
+
+#include <vector>
+
+namespace sl
+{
+
+const LightSpaceStructure& fourierBasisStructure();
+
+// The basis terms of one texture (RGBA): terms 4 i + 1 .. 4 i + 4 of texture i.
+inline constexpr int fourierTermsPerTexture = 4;
+
+// The parameters its build reads, typed.
+struct FourierBasisSettings
+{
+  int terms = 16;     // M, a multiple of 4 in [4, 16]
+  bool mipmap = false; // prefilter = mipmap
+  int blurTexels = 1; // prefilter_texels for prefilter = blur; 1 = no blur
+
+  // Throws InputError naming `terms` when it is not a multiple of 4.
+  static FourierBasisSettings from(const ParameterValues& values);
+};
+
+// What the build leaves in the frame (FrameResources::structureData<FourierBasisData>("fourier_basis")).
+struct FourierBasisData : LightSpaceData
+{
+  std::vector<vtkSmartPointer<vtkTextureObject>> sine;   // terms / 4 RGBA32F textures: prefiltered sin(c_k z_n)
+  std::vector<vtkSmartPointer<vtkTextureObject>> cosine; // the same for cos(c_k z_n)
+  int terms = 0;
+  bool mipmapped = false;
+};
+
+} // namespace sl

@@ -1,0 +1,105 @@
+// Convolution shadow maps (Annen et al. 2007; survey §6). The shadow test H(z_n - d_n), both depths normalised to
+// the light's [near, far], is expanded in the M-term Fourier series of the step on [-1, 1] (M = terms):
+//   H(z - d) ~ 1/2 + 2 sum_k sigma_k / c_k sin(c_k (z - d)),   c_k = pi (2k - 1)
+//            = 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d) sin(c_k z) - sin(c_k d) cos(c_k z)],
+// separable in d and z, so prefiltering the basis images sin(c_k z), cos(c_k z) (structures/fourier) filters the
+// shadow test itself. sigma_k = exp(-alpha (k / M)^2) damps the high terms against ringing (ringing_alpha; 0: the
+// plain truncated series). The reconstruction overshoots [0, 1] (Gibbs) and reads 1/2 at d = z; visibility is it
+// clamped to [0, 1]. CPU mirror: src/techniques/convsm/ConvsmTechnique.cpp.
+#include "common/GBufferInputs.glsl"
+#include "common/LightModel.glsl"
+#include "common/ShadowMapCommon.glsl"
+#include "common/ShadowReceiver.glsl"
+#include "common/MomentLookup.glsl"
+
+uniform int kernelWidth; // prefilter_texels
+uniform float depthNear;
+uniform float depthFar;
+
+uniform sampler2D fourierSin0;
+uniform sampler2D fourierCos0;
+#if FOURIER_TERMS > 4
+uniform sampler2D fourierSin1;
+uniform sampler2D fourierCos1;
+#endif
+#if FOURIER_TERMS > 8
+uniform sampler2D fourierSin2;
+uniform sampler2D fourierCos2;
+#endif
+#if FOURIER_TERMS > 12
+uniform sampler2D fourierSin3;
+uniform sampler2D fourierCos3;
+#endif
+
+layout(location = OUT_VISIBILITY) out float outVisibility;
+layout(location = OUT_RECONSTRUCTION) out float outReconstruction;
+layout(location = OUT_OVERSHOOT) out float outOvershoot;
+layout(location = OUT_LIGHT_LEAK) out float outLightLeak;
+layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
+layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
+
+vec4 filteredBasis(sampler2D basis, vec2 uvTexels)
+{
+#if PREFILTER == PREFILTER_MIPMAP
+  return textureLod(basis, uvTexels / float(shadowMapSize), momentLod);
+#else
+  // blur: the texel containing the receiver holds the average over the box centred on it
+  return texelFetch(basis, shadowMapTexel(uvTexels), 0);
+#endif
+}
+
+// The prefiltered sin (cosine = false) or cos of terms 4 group + 1 .. 4 group + 4.
+vec4 filteredTerms(int group, bool cosine, vec2 uvTexels)
+{
+#if FOURIER_TERMS > 4
+  if (group == 1)
+  {
+    return cosine ? filteredBasis(fourierCos1, uvTexels) : filteredBasis(fourierSin1, uvTexels);
+  }
+#endif
+#if FOURIER_TERMS > 8
+  if (group == 2)
+  {
+    return cosine ? filteredBasis(fourierCos2, uvTexels) : filteredBasis(fourierSin2, uvTexels);
+  }
+#endif
+#if FOURIER_TERMS > 12
+  if (group == 3)
+  {
+    return cosine ? filteredBasis(fourierCos3, uvTexels) : filteredBasis(fourierSin3, uvTexels);
+  }
+#endif
+  return cosine ? filteredBasis(fourierCos0, uvTexels) : filteredBasis(fourierSin0, uvTexels);
+}
+
+void main()
+{
+  ShadowReceiver receiver = prepareShadowReceiver(ivec2(gl_FragCoord.xy));
+  outVisibility = receiver.visibility;
+  outReconstruction = receiver.visibility;
+  outOvershoot = 0.0;
+  outLightLeak = 0.0;
+  outKernelTexels = 0.0;
+  outDepthBias = receiver.bias;
+  if (!receiver.needsShadowTest)
+  {
+    return;
+  }
+  float dNormalized = clamp((receiver.comparisonDepth - depthNear) / (depthFar - depthNear), 0.0, 1.0);
+  float reconstruction = 0.5;
+  for (int group = 0; group < FOURIER_TERMS / 4; ++group)
+  {
+    vec4 k = vec4(4 * group + 1, 4 * group + 2, 4 * group + 3, 4 * group + 4);
+    vec4 ck = 3.14159265358979 * (2.0 * k - 1.0);
+    vec4 kOverM = k / float(FOURIER_TERMS);
+    vec4 weight = 2.0 * exp(-param_ringing_alpha * kOverM * kOverM) / ck;
+    vec4 filteredSin = filteredTerms(group, false, receiver.uvTexels);
+    vec4 filteredCos = filteredTerms(group, true, receiver.uvTexels);
+    reconstruction += dot(weight, cos(ck * dNormalized) * filteredSin - sin(ck * dNormalized) * filteredCos);
+  }
+  outVisibility = clamp(reconstruction, 0.0, 1.0);
+  outReconstruction = reconstruction;
+  outOvershoot = reconstruction - outVisibility;
+  outLightLeak = outVisibility - boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
+  outKernelTexels = float(kernelWidth);
+}

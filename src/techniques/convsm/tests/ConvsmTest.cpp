@@ -1,0 +1,400 @@
+// convsm (Annen et al. 2007): the twin against closed forms of the truncated Fourier series of the step, the GLSL
+// against the twin pixel by pixel (datasets, M = 4, 8, 16, random scenes), the ringing at contact and the error
+// against PCF away from contact as M grows, the probe, and the bad-input message of `terms`.
+#include "support/TestSupport.h"
+#include "core/Error.h"
+#include "frame/ProbeRecord.h"
+#include "scene/RandomScenes.h"
+#include "scene/Scene.h"
+#include "techniques/ProbeSupport.h"
+#include "techniques/Registry.h"
+#include "techniques/ShadowMapParameters.h"
+#include "techniques/convsm/ConvsmTechnique.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace sl
+{
+namespace
+{
+
+// The basis of one depth (every texel of a box at z_n): the coefficients a box of it averages to.
+FourierCoefficients convsmTestBasisOf(double zNormalized, int terms)
+{
+  FourierCoefficients basis;
+  for (int k = 1; k <= terms; ++k)
+  {
+    basis.sine.push_back(std::sin(M_PI * (2 * k - 1) * zNormalized));
+    basis.cosine.push_back(std::cos(M_PI * (2 * k - 1) * zNormalized));
+  }
+  return basis;
+}
+
+// The twin's series at z_n - d_n = 1/2, 0, -1/2 and 1/4 against their closed forms: sin(c_k / 2) = (-1)^(k+1), so
+// S_M(1/2) = 1/2 + (2/pi) (1 - 1/3 + 1/5 - ...), the Leibniz partial sums (exact rationals below); S_M(0) = 1/2;
+// S_M(-t) = 1 - S_M(t); sin(c_k / 4) = +-sqrt(2)/2 in the pattern + + - -.
+TEST(Convsm, TwinSeriesEqualsClosedForms)
+{
+  const struct
+  {
+    int terms;
+    double leibniz;
+  } partialSums[] = { { 4, 76.0 / 105.0 }, { 8, 33976.0 / 45045.0 }, { 16, 3473755390832.0 / 4512611027925.0 } };
+  for (const auto& row : partialSums)
+  {
+    const int M = row.terms;
+    const double half = 0.5 + 2.0 / M_PI * row.leibniz;
+    // The series depends on z - d only: the same difference at several depths.
+    for (const double d : { 0.1, 0.25, 0.4 })
+    {
+      EXPECT_NEAR(convsmStepSeries(d, d + 0.5, M, 0.0), half, 1e-13) << "M " << M << " d " << d;
+      EXPECT_NEAR(convsmStepSeries(d + 0.5, d, M, 0.0), 1.0 - half, 1e-13) << "M " << M << " d " << d;
+      EXPECT_NEAR(convsmStepSeries(d, d, M, 0.0), 0.5, 1e-15) << "M " << M << " d " << d;
+    }
+    double quarter = 0.0;
+    for (int k = 1; k <= M; ++k)
+    {
+      quarter += ((k - 1) % 4 < 2 ? 1.0 : -1.0) / (2 * k - 1);
+    }
+    EXPECT_NEAR(convsmStepSeries(0.3, 0.55, M, 0.0), 0.5 + std::sqrt(2.0) / M_PI * quarter, 1e-13) << "M " << M;
+    std::cout << "[ measured ] S_" << M << "(1/2) = " << half << ", S_" << M << "(1/4) = " << convsmStepSeries(0.3, 0.55, M, 0.0) << "\n";
+  }
+  // Damping at M = 4, alpha = 1: sigma_k = exp(-(k/4)^2) on each Leibniz term.
+  const double damped = 0.5 + 2.0 / M_PI * (std::exp(-1.0 / 16.0) - std::exp(-4.0 / 16.0) / 3.0 + std::exp(-9.0 / 16.0) / 5.0 - std::exp(-1.0) / 7.0);
+  EXPECT_NEAR(convsmStepSeries(0.2, 0.7, 4, 1.0), damped, 1e-13);
+  // Away from the step the truncated series converges to H: the worst error over |z - d| in [1/4, 3/4] halves
+  // roughly with each doubling of M.
+  double previous = 1.0;
+  for (const int M : { 4, 8, 16 })
+  {
+    double worst = 0.0;
+    for (int i = 0; i <= 200; ++i)
+    {
+      const double t = 0.25 + 0.5 * i / 200.0;
+      worst = std::max({ worst, std::abs(convsmStepSeries(0.0, t, M, 0.0) - 1.0), std::abs(convsmStepSeries(t, 0.0, M, 0.0)) });
+    }
+    std::cout << "[ measured ] M " << M << ": max |S_M(t) - H(t)| over |t| in [1/4, 3/4] = " << worst << "\n";
+    EXPECT_LT(worst, 0.75 * previous) << "M " << M;
+    previous = worst;
+  }
+}
+
+// Reconstruction from prefiltered coefficients is linear in the box: a box holding two depths in fractions f and
+// 1 - f reconstructs f S(d, z1) + (1 - f) S(d, z2), the filtered step (the paper's point). This pins the signs of
+// cos(c_k d) E[sin] - sin(c_k d) E[cos].
+TEST(Convsm, TwinReconstructionIsTheFilteredSeries)
+{
+  for (const int M : { 4, 8, 16 })
+  {
+    for (const double alpha : { 0.0, 2.0 })
+    {
+      const double z1 = 0.31;
+      const double z2 = 0.77;
+      const double f = 9.0 / 25.0;
+      const FourierCoefficients a = convsmTestBasisOf(z1, M);
+      const FourierCoefficients b = convsmTestBasisOf(z2, M);
+      FourierCoefficients mixed;
+      for (int k = 0; k < M; ++k)
+      {
+        mixed.sine.push_back(f * a.sine[k] + (1.0 - f) * b.sine[k]);
+        mixed.cosine.push_back(f * a.cosine[k] + (1.0 - f) * b.cosine[k]);
+      }
+      for (const double d : { 0.05, 0.3, 0.5, 0.76, 0.95 })
+      {
+        EXPECT_NEAR(convsmReconstruct(d, mixed, M, alpha), f * convsmStepSeries(d, z1, M, alpha) + (1.0 - f) * convsmStepSeries(d, z2, M, alpha), 1e-13)
+          << "M " << M << " alpha " << alpha << " d " << d;
+      }
+    }
+  }
+}
+
+TEST(Convsm, TermsNotAMultipleOfFourIsRefusedNamingIt)
+{
+  ParameterValues values("convsm", findTechnique("convsm").parameters);
+  values.set("terms=6");
+  try
+  {
+    ConvsmSettings::from(values);
+    FAIL() << "terms=6 accepted";
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("terms=6"), std::string::npos) << error.what();
+  }
+}
+
+struct ConvsmAgreement
+{
+  int compared = 0;
+  int skipped = 0;
+  int partial = 0;
+  int overshooting = 0;
+  double maxDifference = 0.0;
+};
+
+// The GPU's reconstruction, visibility, overshoot and light_leak against the twin at every pixel; pixels within
+// float rounding of a texel edge or a light-reach test are counted, not compared (a neighbouring texel's box),
+// and light_leak only where no PCF comparison ties.
+ConvsmAgreement convsmCompare(const FrameResult& frame, const Scene& scene, const std::string& label, double tolerance)
+{
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const ConvsmSettings settings = ConvsmSettings::from(frame.parameters);
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& reconstruction = frame.find("reconstruction")->image;
+  const ImageF& overshoot = frame.find("overshoot")->image;
+  const ImageF& lightLeak = frame.find("light_leak")->image;
+  ConvsmAgreement agreement;
+  for (int y = 0; y < visibility.height; ++y)
+  {
+    for (int x = 0; x < visibility.width; ++x)
+    {
+      const ConvsmSample cpu = convsmReference(inputs, settings, x, y);
+      if (!cpu.sample.evaluated)
+      {
+        EXPECT_EQ(visibility.at(x, y), cpu.sample.visibility) << label << " pixel " << x << "," << y;
+        continue;
+      }
+      const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+      std::string ambiguity;
+      noteMomentTexelEdge(ambiguity, lookup.sm.uvTexels);
+      if (!ambiguity.empty() || cpu.sample.reachMargin < probeReachAmbiguity)
+      {
+        ++agreement.skipped;
+        continue;
+      }
+      ++agreement.compared;
+      agreement.partial += (cpu.sample.visibility > 0.0 && cpu.sample.visibility < 1.0) ? 1 : 0;
+      agreement.overshooting += cpu.reconstruction < 0.0 || cpu.reconstruction > 1.0 ? 1 : 0;
+      const double difference = std::abs(reconstruction.at(x, y) - cpu.reconstruction);
+      agreement.maxDifference = std::max(agreement.maxDifference, difference);
+      EXPECT_LE(difference, tolerance) << label << " reconstruction at " << x << "," << y << ": GPU " << reconstruction.at(x, y)
+                                       << " twin " << cpu.reconstruction;
+      EXPECT_NEAR(visibility.at(x, y), cpu.sample.visibility, tolerance) << label << " visibility at " << x << "," << y;
+      EXPECT_NEAR(overshoot.at(x, y), cpu.reconstruction - cpu.sample.visibility, tolerance) << label << " overshoot at " << x << "," << y;
+      const double leakDepth = prepareShadowLookup(inputs, defaultBiasSettings(), x, y).comparisonDepth;
+      const PcfRange range = boxPcfRange(inputs, lookup.sm.uvTexels, leakDepth, settings.prefilter.texels, probeDepthAmbiguity);
+      if (range.ties == 0)
+      {
+        EXPECT_NEAR(lightLeak.at(x, y), cpu.lightLeak, tolerance) << label << " light_leak at " << x << "," << y;
+      }
+    }
+  }
+  return agreement;
+}
+
+// Tolerance 2e-4: the GPU evaluates sin(c_k z_n) in float with c_k up to 31 pi, averages the box in float and sums
+// M terms of weight 2 / c_k; the twin does all of it in double.
+TEST(Convsm, GpuMatchesTheTwinOnDatasets)
+{
+  for (const std::string dataset : { "stacked-occluders", "bunny", "contact" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    for (const std::string terms : { "4", "8", "16" })
+    {
+      const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=5", "terms=" + terms };
+      const FrameResult frame = test::renderDataset(scene, "convsm", 96, 80, settings);
+      const std::string label = test::caseLabel(dataset, settings);
+      const ConvsmAgreement agreement = convsmCompare(frame, scene, label, 2e-4);
+      std::cout << "[ measured ] " << label << ": compared " << agreement.compared << " (partial " << agreement.partial
+                << ", overshooting " << agreement.overshooting << "), skipped " << agreement.skipped << ", max |gpu - twin| "
+                << agreement.maxDifference << "\n";
+      EXPECT_GT(agreement.compared, 300) << label;
+      EXPECT_GT(agreement.partial, 20) << label << ": the series must soften the shadow edges";
+    }
+  }
+  // The damping and a wider box.
+  const Scene scene = test::loadDataset("contact");
+  const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=7", "terms=8", "ringing_alpha=3" };
+  const ConvsmAgreement agreement = convsmCompare(test::renderDataset(scene, "convsm", 96, 80, settings), scene, test::caseLabel("contact", settings), 2e-4);
+  std::cout << "[ measured ] contact, ringing_alpha=3: compared " << agreement.compared << ", max |gpu - twin| " << agreement.maxDifference << "\n";
+  EXPECT_GT(agreement.compared, 300);
+}
+
+// Random generated configurations (scene/RandomScenes.h) against the twin, M drawn from the seed.
+TEST(Convsm, GpuMatchesTheTwinOnRandomScenes)
+{
+  const char* termChoices[] = { "4", "8", "16" };
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed)
+  {
+    const RandomScene random = randomScene(seed, 64);
+    const Scene scene = parseScene(random.json, "convsm seed " + std::to_string(seed), ".");
+    const std::vector<std::string> settings{ "shadow_map_size=128", "prefilter_texels=" + std::to_string(1 + 2 * (seed % 3)),
+      std::string("terms=") + termChoices[seed % 3] };
+    const FrameResult frame = test::renderDataset(scene, "convsm", 64, 64, settings);
+    const std::string label = "seed " + std::to_string(seed) + " (" + random.summary + ") " + test::caseLabel("", settings);
+    const ConvsmAgreement agreement = convsmCompare(frame, scene, label, 2e-4);
+    std::cout << "[ measured ] " << label << ": compared " << agreement.compared << ", max |gpu - twin| " << agreement.maxDifference << "\n";
+    compared += agreement.compared;
+  }
+  EXPECT_GT(compared, 1000);
+}
+
+struct ConvsmLeakFigures
+{
+  int contactPixels = 0;
+  double contactMaxLeak = 0.0;   // most light leaked (visibility - pcf > 0) near contact
+  double contactMeanLeak = 0.0;
+  int awayPixels = 0;
+  double awayMeanError = 0.0;    // mean |visibility - pcf| away from contact
+  double awayMaxError = 0.0;
+  double maxOvershoot = 0.0;     // max |reconstruction - clamp|
+};
+
+// Classifies each shadowed pixel (box PCF < 1) of a frame by the gap, in normalised depth, between the receiver
+// and the nearest occluding texel of its box: "near contact" below 1/32 of the light's depth range, "away" when
+// every texel of its box (the receiver's own surface included) is at least 1/4 from the receiver's depth.
+ConvsmLeakFigures convsmLeakFigures(const FrameResult& frame, const Scene& scene)
+{
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const ConvsmSettings settings = ConvsmSettings::from(frame.parameters);
+  const int width = settings.prefilter.texels;
+  const int size = inputs.shadowMapLinear.width;
+  ConvsmLeakFigures figures;
+  for (int y = 0; y < frame.find("visibility")->image.height; ++y)
+  {
+    for (int x = 0; x < frame.find("visibility")->image.width; ++x)
+    {
+      const ConvsmSample cpu = convsmReference(inputs, settings, x, y);
+      const double overshoot = frame.find("overshoot")->image.at(x, y);
+      figures.maxOvershoot = std::max(figures.maxOvershoot, std::abs(overshoot));
+      if (!cpu.sample.evaluated || cpu.boxPcf >= 1.0)
+      {
+        continue;
+      }
+      const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+      const int cx = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.x)), 0, size - 1);
+      const int cy = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.y)), 0, size - 1);
+      double nearestOccluderGap = 1e300;
+      double nearestGap = 1e300;
+      for (int j = -(width - 1) / 2; j <= width / 2; ++j)
+      {
+        for (int i = -(width - 1) / 2; i <= width / 2; ++i)
+        {
+          const double z = inputs.shadowMapLinear.at(std::clamp(cx + i, 0, size - 1), std::clamp(cy + j, 0, size - 1));
+          const double gap = cpu.dNormalized - convsmNormalizedDepth(inputs, z);
+          nearestGap = std::min(nearestGap, std::abs(gap));
+          if (gap > 0.0)
+          {
+            nearestOccluderGap = std::min(nearestOccluderGap, gap);
+          }
+        }
+      }
+      const double leak = frame.find("light_leak")->image.at(x, y);
+      if (nearestOccluderGap < 1.0 / 32.0)
+      {
+        ++figures.contactPixels;
+        figures.contactMaxLeak = std::max(figures.contactMaxLeak, leak);
+        figures.contactMeanLeak += leak;
+      }
+      else if (nearestGap >= 0.25)
+      {
+        ++figures.awayPixels;
+        figures.awayMeanError += std::abs(leak);
+        figures.awayMaxError = std::max(figures.awayMaxError, std::abs(leak));
+      }
+    }
+  }
+  figures.contactMeanLeak /= std::max(figures.contactPixels, 1);
+  figures.awayMeanError /= std::max(figures.awayPixels, 1);
+  return figures;
+}
+
+// Ringing at contact: where an occluder meets its receiver the step's transition (about 1/M of the depth range
+// wide) straddles both, the series reads near 1/2 over what PCF finds shadowed, and it leaks light; away from
+// contact the error is the series' tail, which shrinks as M grows.
+TEST(Convsm, RingingAtContactAndErrorAwayFromContact)
+{
+  const Scene scene = test::loadDataset("contact");
+  double previousAway = 1.0;
+  for (const std::string terms : { "4", "8", "16" })
+  {
+    const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=5", "terms=" + terms };
+    const FrameResult frame = test::renderDataset(scene, "convsm", 128, 128, settings);
+    const ConvsmLeakFigures figures = convsmLeakFigures(frame, scene);
+    std::cout << "[ measured ] contact terms=" << terms << ": near contact " << figures.contactPixels << " px, light_leak max "
+              << figures.contactMaxLeak << " mean " << figures.contactMeanLeak << "; away " << figures.awayPixels
+              << " px, |visibility - pcf| mean " << figures.awayMeanError << " max " << figures.awayMaxError
+              << "; max |overshoot| " << figures.maxOvershoot << "\n";
+    ASSERT_GT(figures.contactPixels, 20) << terms;
+    ASSERT_GT(figures.awayPixels, 20) << terms;
+    EXPECT_GT(figures.contactMaxLeak, 0.25) << terms << ": the series must leak light at contact";
+    EXPECT_GT(figures.contactMeanLeak, figures.awayMeanError) << terms << ": contact must be the worst";
+    EXPECT_LT(figures.awayMeanError, previousAway) << terms << ": more terms, less error away from contact";
+    previousAway = figures.awayMeanError;
+  }
+}
+
+// The probe records the box the blur averaged, each term's coefficients and the reconstructed step; its replay
+// agrees with the GPU's buffers on a lit, a penumbra and an umbra pixel.
+TEST(Convsm, ProbeRecordsTheCoefficientsAndTheReconstructedStep)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = test::renderDataset(scene, "convsm", 96, 80, { "shadow_map_size=256", "prefilter_texels=5", "terms=8" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  int probed[3] = { 0, 0, 0 };
+  for (int y = 0; y < 80; y += 3)
+  {
+    for (int x = 0; x < 96; x += 3)
+    {
+      ProbeRecorder recorder;
+      const ProbeOutcome outcome = findTechnique("convsm").probe({ &frame, &scene, 0 }, { x, y }, recorder);
+      if (!outcome.evaluated || !outcome.ambiguity.empty())
+      {
+        continue;
+      }
+      const int kind = outcome.visibility >= 0.45 ? 0 : outcome.visibility <= 0.02 ? 2 : 1;
+      if (probed[kind] >= 2)
+      {
+        continue;
+      }
+      ++probed[kind];
+      const ProbeRecord& record = recorder.record();
+      const std::string label = format("pixel ", x, ",", y);
+      const auto quantity = [&](const std::string& name) {
+        const ProbeQuantity* found = record.find(name);
+        EXPECT_NE(found, nullptr) << label << ": " << name << " not recorded";
+        return found != nullptr ? found->value.at(0) : -99.0;
+      };
+      const auto gpu = [&](const char* buffer) { return static_cast<double>(frame.find(buffer)->image.at(x, y)); };
+      EXPECT_NEAR(quantity("reconstruction"), gpu("reconstruction"), outcome.tolerance) << label;
+      EXPECT_NEAR(outcome.visibility, gpu("visibility"), outcome.tolerance) << label;
+      // The recorded coefficients are the box's mean basis.
+      double meanSin1 = 0.0;
+      double meanCos8 = 0.0;
+      int boxTexels = 0;
+      for (const ProbeTexel& texel : record.texels)
+      {
+        if (texel.role == "fourier box")
+        {
+          const double zn = convsmNormalizedDepth(inputs, texel.storedDepth);
+          meanSin1 += texel.weight * std::sin(M_PI * zn);
+          meanCos8 += texel.weight * std::cos(15.0 * M_PI * zn);
+          ++boxTexels;
+        }
+      }
+      EXPECT_EQ(boxTexels, 25) << label;
+      EXPECT_NEAR(quantity("filtered_sin_1"), meanSin1, 1e-12) << label;
+      EXPECT_NEAR(quantity("filtered_cos_8"), meanCos8, 1e-12) << label;
+      // The reconstructed step's middle sample is the reconstruction at the receiver's own depth.
+      const ProbeQuantity* middle = record.find("reconstructed_step_4");
+      ASSERT_NE(middle, nullptr) << label;
+      EXPECT_EQ(middle->value.at(0), quantity("d_normalized")) << label;
+      EXPECT_NEAR(middle->value.at(1), quantity("reconstruction"), 1e-15) << label;
+      if (const ProbeQuantity* leak = record.find("light_leak"))
+      {
+        EXPECT_NEAR(leak->value.at(0), gpu("light_leak"), outcome.tolerance) << label;
+      }
+    }
+  }
+  EXPECT_EQ(probed[0], 2) << "lit-ish pixels probed";
+  EXPECT_EQ(probed[1], 2) << "penumbra pixels probed";
+  EXPECT_EQ(probed[2], 2) << "umbra pixels probed";
+}
+
+} // namespace
+} // namespace sl
