@@ -131,7 +131,9 @@ struct ConvsmAgreement
 {
   int compared = 0;
   int skipped = 0;
-  int partial = 0;
+  int halfLit = 0;      // visibility >= 0.45: lit receivers, where the series reads about 1/2 (d = z)
+  int umbra = 0;        // visibility < 0.02
+  int transition = 0;   // in between
   int overshooting = 0;
   double maxDifference = 0.0;
 };
@@ -167,7 +169,8 @@ ConvsmAgreement convsmCompare(const FrameResult& frame, const Scene& scene, cons
         continue;
       }
       ++agreement.compared;
-      agreement.partial += (cpu.sample.visibility > 0.0 && cpu.sample.visibility < 1.0) ? 1 : 0;
+      const double v = cpu.sample.visibility;
+      (v >= 0.45 ? agreement.halfLit : v < 0.02 ? agreement.umbra : agreement.transition) += 1;
       agreement.overshooting += cpu.reconstruction < 0.0 || cpu.reconstruction > 1.0 ? 1 : 0;
       const double difference = std::abs(reconstruction.at(x, y) - cpu.reconstruction);
       agreement.maxDifference = std::max(agreement.maxDifference, difference);
@@ -186,8 +189,8 @@ ConvsmAgreement convsmCompare(const FrameResult& frame, const Scene& scene, cons
   return agreement;
 }
 
-// Tolerance 2e-4: the GPU evaluates sin(c_k z_n) in float with c_k up to 31 pi, averages the box in float and sums
-// M terms of weight 2 / c_k; the twin does all of it in double.
+// Tolerance 5e-5: the GPU evaluates sin(c_k z_n) in float with c_k up to 31 pi, averages the box in float and sums
+// M terms of weight 2 / c_k; the twin does all of it in double (measured at most 6e-6).
 TEST(Convsm, GpuMatchesTheTwinOnDatasets)
 {
   for (const std::string dataset : { "stacked-occluders", "bunny", "contact" })
@@ -198,18 +201,20 @@ TEST(Convsm, GpuMatchesTheTwinOnDatasets)
       const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=5", "terms=" + terms };
       const FrameResult frame = test::renderDataset(scene, "convsm", 96, 80, settings);
       const std::string label = test::caseLabel(dataset, settings);
-      const ConvsmAgreement agreement = convsmCompare(frame, scene, label, 2e-4);
-      std::cout << "[ measured ] " << label << ": compared " << agreement.compared << " (partial " << agreement.partial
-                << ", overshooting " << agreement.overshooting << "), skipped " << agreement.skipped << ", max |gpu - twin| "
+      const ConvsmAgreement agreement = convsmCompare(frame, scene, label, 5e-5);
+      std::cout << "[ measured ] " << label << ": compared " << agreement.compared << " (lit " << agreement.halfLit << ", umbra "
+                << agreement.umbra << ", transition " << agreement.transition << ", overshooting " << agreement.overshooting << "), skipped " << agreement.skipped << ", max |gpu - twin| "
                 << agreement.maxDifference << "\n";
       EXPECT_GT(agreement.compared, 300) << label;
-      EXPECT_GT(agreement.partial, 20) << label << ": the series must soften the shadow edges";
+      EXPECT_GT(agreement.halfLit, 20) << label;
+      EXPECT_GT(agreement.umbra, 20) << label;
+      EXPECT_GT(agreement.transition, 20) << label << ": the series must soften the shadow edges";
     }
   }
   // The damping and a wider box.
   const Scene scene = test::loadDataset("contact");
   const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=7", "terms=8", "ringing_alpha=3" };
-  const ConvsmAgreement agreement = convsmCompare(test::renderDataset(scene, "convsm", 96, 80, settings), scene, test::caseLabel("contact", settings), 2e-4);
+  const ConvsmAgreement agreement = convsmCompare(test::renderDataset(scene, "convsm", 96, 80, settings), scene, test::caseLabel("contact", settings), 5e-5);
   std::cout << "[ measured ] contact, ringing_alpha=3: compared " << agreement.compared << ", max |gpu - twin| " << agreement.maxDifference << "\n";
   EXPECT_GT(agreement.compared, 300);
 }
@@ -227,7 +232,7 @@ TEST(Convsm, GpuMatchesTheTwinOnRandomScenes)
       std::string("terms=") + termChoices[seed % 3] };
     const FrameResult frame = test::renderDataset(scene, "convsm", 64, 64, settings);
     const std::string label = "seed " + std::to_string(seed) + " (" + random.summary + ") " + test::caseLabel("", settings);
-    const ConvsmAgreement agreement = convsmCompare(frame, scene, label, 2e-4);
+    const ConvsmAgreement agreement = convsmCompare(frame, scene, label, 5e-5);
     std::cout << "[ measured ] " << label << ": compared " << agreement.compared << ", max |gpu - twin| " << agreement.maxDifference << "\n";
     compared += agreement.compared;
   }
@@ -237,36 +242,40 @@ TEST(Convsm, GpuMatchesTheTwinOnRandomScenes)
 struct ConvsmLeakFigures
 {
   int contactPixels = 0;
-  double contactMaxLeak = 0.0;   // most light leaked (visibility - pcf > 0) near contact
+  double contactMaxLeak = -1.0;  // most light leaked (visibility - pcf) near contact
+  double contactMinLeak = 1.0;   // most darkening there
   double contactMeanLeak = 0.0;
   int awayPixels = 0;
   double awayMeanError = 0.0;    // mean |visibility - pcf| away from contact
   double awayMaxError = 0.0;
-  double maxOvershoot = 0.0;     // max |reconstruction - clamp|
+  double maxOvershoot = 0.0;     // max |reconstruction - clamp| over the frame
 };
 
-// Classifies each shadowed pixel (box PCF < 1) of a frame by the gap, in normalised depth, between the receiver
-// and the nearest occluding texel of its box: "near contact" below 1/32 of the light's depth range, "away" when
-// every texel of its box (the receiver's own surface included) is at least 1/4 from the receiver's depth.
+// Classifies each pixel with an occluding texel in its box (the box PCF's failing comparisons, pcf's default
+// bias) by the gap, in normalised depth, between the receiver and its nearest occluding texel: "near contact"
+// below 1/32 of the light's depth range (inside the step's transition for every M <= 16), "away" when every
+// texel of the box, occluding or not, is at least 1/4 from the receiver's depth (where the series converges).
 ConvsmLeakFigures convsmLeakFigures(const FrameResult& frame, const Scene& scene)
 {
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const ConvsmSettings settings = ConvsmSettings::from(frame.parameters);
   const int width = settings.prefilter.texels;
   const int size = inputs.shadowMapLinear.width;
+  const ImageF& overshoot = frame.find("overshoot")->image;
+  const ImageF& lightLeak = frame.find("light_leak")->image;
   ConvsmLeakFigures figures;
-  for (int y = 0; y < frame.find("visibility")->image.height; ++y)
+  for (int y = 0; y < overshoot.height; ++y)
   {
-    for (int x = 0; x < frame.find("visibility")->image.width; ++x)
+    for (int x = 0; x < overshoot.width; ++x)
     {
+      figures.maxOvershoot = std::max(figures.maxOvershoot, std::abs(static_cast<double>(overshoot.at(x, y))));
       const ConvsmSample cpu = convsmReference(inputs, settings, x, y);
-      const double overshoot = frame.find("overshoot")->image.at(x, y);
-      figures.maxOvershoot = std::max(figures.maxOvershoot, std::abs(overshoot));
       if (!cpu.sample.evaluated || cpu.boxPcf >= 1.0)
       {
         continue;
       }
       const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+      const double leakDepth = prepareShadowLookup(inputs, defaultBiasSettings(), x, y).comparisonDepth;
       const int cx = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.x)), 0, size - 1);
       const int cy = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.y)), 0, size - 1);
       double nearestOccluderGap = 1e300;
@@ -278,17 +287,18 @@ ConvsmLeakFigures convsmLeakFigures(const FrameResult& frame, const Scene& scene
           const double z = inputs.shadowMapLinear.at(std::clamp(cx + i, 0, size - 1), std::clamp(cy + j, 0, size - 1));
           const double gap = cpu.dNormalized - convsmNormalizedDepth(inputs, z);
           nearestGap = std::min(nearestGap, std::abs(gap));
-          if (gap > 0.0)
+          if (!(leakDepth <= z))
           {
             nearestOccluderGap = std::min(nearestOccluderGap, gap);
           }
         }
       }
-      const double leak = frame.find("light_leak")->image.at(x, y);
+      const double leak = lightLeak.at(x, y);
       if (nearestOccluderGap < 1.0 / 32.0)
       {
         ++figures.contactPixels;
         figures.contactMaxLeak = std::max(figures.contactMaxLeak, leak);
+        figures.contactMinLeak = std::min(figures.contactMinLeak, leak);
         figures.contactMeanLeak += leak;
       }
       else if (nearestGap >= 0.25)
@@ -304,9 +314,9 @@ ConvsmLeakFigures convsmLeakFigures(const FrameResult& frame, const Scene& scene
   return figures;
 }
 
-// Ringing at contact: where an occluder meets its receiver the step's transition (about 1/M of the depth range
-// wide) straddles both, the series reads near 1/2 over what PCF finds shadowed, and it leaks light; away from
-// contact the error is the series' tail, which shrinks as M grows.
+// Ringing at contact: where an occluder nearly touches its receiver the step's transition (about 1/M of the depth
+// range wide) straddles both, and the series reads neither 0 nor 1 over what PCF finds shadowed; away from
+// contact the error is the series' tail, whose worst value halves with each doubling of M.
 TEST(Convsm, RingingAtContactAndErrorAwayFromContact)
 {
   const Scene scene = test::loadDataset("contact");
@@ -317,15 +327,14 @@ TEST(Convsm, RingingAtContactAndErrorAwayFromContact)
     const FrameResult frame = test::renderDataset(scene, "convsm", 128, 128, settings);
     const ConvsmLeakFigures figures = convsmLeakFigures(frame, scene);
     std::cout << "[ measured ] contact terms=" << terms << ": near contact " << figures.contactPixels << " px, light_leak max "
-              << figures.contactMaxLeak << " mean " << figures.contactMeanLeak << "; away " << figures.awayPixels
-              << " px, |visibility - pcf| mean " << figures.awayMeanError << " max " << figures.awayMaxError
+              << figures.contactMaxLeak << " min " << figures.contactMinLeak << " mean " << figures.contactMeanLeak << "; away "
+              << figures.awayPixels << " px, |visibility - pcf| mean " << figures.awayMeanError << " max " << figures.awayMaxError
               << "; max |overshoot| " << figures.maxOvershoot << "\n";
     ASSERT_GT(figures.contactPixels, 20) << terms;
     ASSERT_GT(figures.awayPixels, 20) << terms;
-    EXPECT_GT(figures.contactMaxLeak, 0.25) << terms << ": the series must leak light at contact";
-    EXPECT_GT(figures.contactMeanLeak, figures.awayMeanError) << terms << ": contact must be the worst";
-    EXPECT_LT(figures.awayMeanError, previousAway) << terms << ": more terms, less error away from contact";
-    previousAway = figures.awayMeanError;
+    EXPECT_GT(std::max(figures.contactMaxLeak, -figures.contactMinLeak), 4.0 * figures.awayMaxError) << terms << ": contact must be the worst";
+    EXPECT_LT(figures.awayMaxError, 0.8 * previousAway) << terms << ": more terms, less error away from contact";
+    previousAway = figures.awayMaxError;
   }
 }
 
