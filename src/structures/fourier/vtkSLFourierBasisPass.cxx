@@ -44,7 +44,7 @@ void vtkSLFourierBasisPass::Execute(const vtkRenderState* state)
   {
     const sl::ScopedRenderTarget target(window, this->Framebuffer, targets);
     vtkShaderProgram* program = this->BasisQuad.ready(window,
-      sl::assembleShader("convsm/FourierBasis.glsl", { { "FOURIER_TERMS", std::to_string(settings.terms) } }),
+      sl::assembleShader("fourier/FourierBasis.glsl", { { "FOURIER_TERMS", std::to_string(settings.terms) } }),
       "fourier basis");
     vtkTextureObject* bound = sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear);
     program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));

@@ -3,5 +3,5 @@ sl_technique(
   ORDER 45
   DESCRIPTOR convsmTechnique ConvsmTechnique.h
   SOURCES ConvsmTechnique.cpp
-  SHADERS shaders/ConvsmVisibility.glsl shaders/FourierBasis.glsl
+  SHADERS shaders/ConvsmVisibility.glsl
   GPU_TESTS tests/ConvsmTest.cpp)
