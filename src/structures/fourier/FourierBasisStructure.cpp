@@ -5,7 +5,6 @@
 #include "gl/GlResources.h"
 #include "passes/PassUtilities.h"
 #include "structures/fourier/vtkSLFourierBasisPass.h"
-#include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
 #include <vtkTextureObject.h>
@@ -23,6 +22,10 @@ FourierBasisSettings FourierBasisSettings::from(const ParameterValues& values)
   {
     throw InputError(format("--set terms=", settings.terms, ": the Fourier terms are stored four per RGBA texture; use 4, 8, 12 or 16"));
   }
+  // The prefilter is the moment map's, read from its parameters (declared once, by momentMapStructure(); a
+  // technique listing this structure declares them too).
+  SL_CHECK_MSG(values.has("prefilter") && values.has("prefilter_texels"),
+    "a technique listing fourier_basis must declare the moment map's prefilter parameters");
   settings.mipmap = values.choice("prefilter") == "mipmap";
   settings.blurTexels = settings.mipmap ? 1 : values.getInt("prefilter_texels");
   return settings;
@@ -69,11 +72,6 @@ const LightSpaceStructure& fourierBasisStructure()
     s.parameters = {
       { "terms", 16, 4, 16, "", "M, the Fourier terms of the shadow test kept (Annen et al. 2007: 16); a multiple of 4", {}, true },
     };
-    // The prefilter is the moment map's (box blur or mip-map), with the same parameters.
-    for (const ParameterSpec& spec : momentMapStructure().parameters)
-    {
-      s.parameters.push_back(spec);
-    }
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFourierBasisPass>::New() };
     };

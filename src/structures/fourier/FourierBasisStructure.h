@@ -1,8 +1,9 @@
 // The Fourier basis images of convolution shadow maps (Annen et al. 2007, survey §6): per shadow-map texel,
 // sin(c_k z_n) and cos(c_k z_n) for k = 1..terms, c_k = pi (2k - 1), z_n the linear depth normalised to the light's
 // [near, far] (clamped to [0, 1]); four terms per RGBA32F texture (sine textures, then cosine textures), each
-// prefiltered like the moment map: a separable box blur of prefilter_texels, or mip-mapped. Built by
-// vtkSLFourierBasisPass (stage fourier_basis).
+// prefiltered like the moment map: a separable box blur of prefilter_texels, or mip-mapped. Its own parameter is
+// `terms`; the prefilter's (prefilter, prefilter_texels) are the moment map's, declared once by momentMapStructure()
+// and by each technique listing this structure. Built by vtkSLFourierBasisPass (stage fourier_basis).
 #pragma once
 
 #include "structures/LightSpaceStructure.h"

@@ -1,6 +1,7 @@
 #include "techniques/convsm/ConvsmTechnique.h"
 
 #include "structures/fourier/FourierBasisStructure.h"
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/MomentReference.h"
@@ -112,6 +113,8 @@ TechniqueDescriptor convsmTechnique()
     }
   }
   descriptor.addParameters(fourierBasisStructure().parameters);
+  // The basis images are prefiltered as the moment map is, with its parameters (structures/fourier).
+  descriptor.addParameters(momentMapStructure().parameters);
   descriptor.addParameters({
     { "ringing_alpha", 0, 0, 20, "",
       "alpha of the damping sigma_k = exp(-alpha (k / M)^2) of term k against ringing (Annen et al. 2007); 0: the plain truncated series", {}, false },

@@ -338,6 +338,55 @@ TEST(Convsm, RingingAtContactAndErrorAwayFromContact)
   }
 }
 
+// The series represents H(z - d) on (-1, 1) only: it is the square wave of period 2, which jumps back at z - d = -1
+// and 1 and reads 1/2 there (sin(c_k) = 0 for every k). With depths normalised to the light's whole range an
+// occluder near the light (z_n ~ 0) over a receiver at the far end (d_n ~ 1) sits on that jump: on
+// planar-occluder the umbra reads about 1/2, i.e. as bright as the lit floor, which also reads 1/2 (d = z). Both
+// are flagged per pixel by light_leak (|light_leak| > 1e-3: "light bleeding").
+TEST(Convsm, UmbraReadsOneHalfWhereOccluderAndReceiverSpanTheDepthRange)
+{
+  for (const int M : { 4, 8, 16 })
+  {
+    EXPECT_NEAR(convsmStepSeries(1.0, 0.0, M, 0.0), 0.5, 1e-13) << "M " << M;
+    EXPECT_NEAR(convsmStepSeries(0.0, 1.0, M, 0.0), 0.5, 1e-13) << "M " << M;
+  }
+  const Scene scene = test::loadDataset("planar-occluder");
+  const FrameResult frame = test::renderDataset(scene, "convsm", 96, 80, { "shadow_map_size=256", "prefilter_texels=5", "terms=16" });
+  const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+  const ConvsmSettings settings = ConvsmSettings::from(frame.parameters);
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& lightLeak = frame.find("light_leak")->image;
+  int umbra = 0;
+  int flagged = 0;
+  double meanVisibility = 0.0;
+  double meanGap = 0.0;
+  for (int y = 0; y < visibility.height; ++y)
+  {
+    for (int x = 0; x < visibility.width; ++x)
+    {
+      const ConvsmSample cpu = convsmReference(inputs, settings, x, y);
+      if (!cpu.sample.evaluated || cpu.boxPcf > 0.0)
+      {
+        continue;
+      }
+      ++umbra;
+      meanVisibility += visibility.at(x, y);
+      flagged += std::abs(lightLeak.at(x, y)) > 1e-3f ? 1 : 0;
+      const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(lookup.sm.uvTexels)), glm::ivec2(0), glm::ivec2(inputs.shadowMapLinear.width - 1));
+      meanGap += cpu.dNormalized - convsmNormalizedDepth(inputs, inputs.shadowMapLinear.at(texel.x, texel.y));
+    }
+  }
+  ASSERT_GT(umbra, 100);
+  meanVisibility /= umbra;
+  meanGap /= umbra;
+  std::cout << "[ measured ] planar-occluder terms=16: " << umbra << " umbra px (box PCF 0), d_n - z_n mean " << meanGap
+            << ", visibility mean " << meanVisibility << ", flagged by light_leak " << flagged << "\n";
+  EXPECT_GT(meanGap, 0.8) << "the occluder must lie near the light and the receiver near the far end";
+  EXPECT_GT(meanVisibility, 0.3) << "the series' jump at z - d = -1 reads about 1/2";
+  EXPECT_EQ(flagged, umbra) << "every such pixel must be flagged";
+}
+
 // The probe records the box the blur averaged, each term's coefficients and the reconstructed step; its replay
 // agrees with the GPU's buffers on a lit, a penumbra and an umbra pixel.
 TEST(Convsm, ProbeRecordsTheCoefficientsAndTheReconstructedStep)
