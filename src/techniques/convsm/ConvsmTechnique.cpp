@@ -117,7 +117,7 @@ TechniqueDescriptor convsmTechnique()
   descriptor.addParameters(momentMapStructure().parameters);
   descriptor.addParameters({
     { "ringing_alpha", 0, 0, 20, "",
-      "alpha of the damping sigma_k = exp(-alpha (k / M)^2) of term k against ringing (Annen et al. 2007); 0: the plain truncated series", {}, false },
+      "alpha of the damping sigma_k = exp(-alpha (k / M)^2) of term k against ringing (CSM's ringing suppression; this form is not verified against the paper, see the page); 0: the plain truncated series", {}, false },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &fourierBasisStructure() };
   descriptor.buffers = {
@@ -181,12 +181,12 @@ ConvsmSample convsmReference(const ShadowMapInputs& inputs, const ConvsmSettings
     recorder->quantity("depth_near", inputs.lightView.nearDepth, "linear depth", "ShadowLab: the light's depth range, normalising z and d to [0, 1]");
     recorder->quantity("depth_far", inputs.lightView.farDepth, "linear depth", "ShadowLab: the light's depth range, normalising z and d to [0, 1]");
     recorder->quantity("d_normalized", result.dNormalized, "", "Annen et al. 2007: d, the receiver's depth (minus the bias) in [0, 1]");
-    recorder->quantity("ringing_alpha", alpha, "", "Annen et al. 2007: alpha of sigma_k = exp(-alpha (k / M)^2)");
+    recorder->quantity("ringing_alpha", alpha, "", "ShadowLab: alpha of sigma_k = exp(-alpha (k / M)^2), CSM's ringing damping in a form not verified against the paper");
     for (int k = 1; k <= terms; ++k)
     {
       const std::string suffix = format("_", k);
       recorder->quantity("c" + suffix, convsmFrequency(k), "", "Annen et al. 2007: c_k = pi (2k - 1)");
-      recorder->quantity("sigma" + suffix, convsmDamping(k, terms, alpha), "", "Annen et al. 2007: sigma_k = exp(-alpha (k / M)^2)");
+      recorder->quantity("sigma" + suffix, convsmDamping(k, terms, alpha), "", "ShadowLab: sigma_k = exp(-alpha (k / M)^2) (form not verified against the paper)");
       recorder->quantity("filtered_sin" + suffix, result.coefficients.sine[k - 1], "",
         "Annen et al. 2007: [w * sin(c_k z)], the prefiltered sine basis image at the receiver");
       recorder->quantity("filtered_cos" + suffix, result.coefficients.cosine[k - 1], "",
@@ -196,9 +196,10 @@ ConvsmSample convsmReference(const ShadowMapInputs& inputs, const ConvsmSettings
     // crosses 1/2 and how far it rings.
     for (int j = -4; j <= 4; ++j)
     {
-      const double dSample = result.dNormalized + j / (2.0 * terms);
+      // d' stays in [0, 1], the depths' domain; beyond it the series repeats (period 2).
+      const double dSample = std::clamp(result.dNormalized + j / (2.0 * terms), 0.0, 1.0);
       recorder->quantity(format("reconstructed_step_", j + 4), glm::dvec2(dSample, convsmReconstruct(dSample, result.coefficients, terms, alpha)), "",
-        "Annen et al. 2007: (d', 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d') E[sin(c_k z)] - sin(c_k d') E[cos(c_k z)]]), d' = d + j / 2M");
+        "Annen et al. 2007: (d', 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d') E[sin(c_k z)] - sin(c_k d') E[cos(c_k z)]]), d' = d + j / 2M clamped to [0, 1]");
     }
     recorder->quantity("reconstruction", result.reconstruction, "",
       "Annen et al. 2007: 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d) E[sin(c_k z)] - sin(c_k d) E[cos(c_k z)]]");

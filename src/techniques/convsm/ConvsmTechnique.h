@@ -1,6 +1,7 @@
 // Technique `convsm`: convolution shadow maps (Annen, Mertens, Bekaert, Seidel & Kautz 2007; survey §6). The shadow
 // test H(z_n - d_n) expanded in an M-term Fourier series whose basis images sin(c_k z_n), cos(c_k z_n) are
-// prefiltered (structures/fourier), with the per-term damping sigma_k = exp(-alpha (k / M)^2) against ringing.
+// prefiltered (structures/fourier), with the per-term damping sigma_k = exp(-alpha (k / M)^2) against ringing (its
+// form not verified against the paper; README.md).
 // Math: convsm/shaders/ConvsmVisibility.glsl. Parameters: the shadow-map ones, terms, prefilter, prefilter_texels,
 // ringing_alpha. Buffers: reconstruction (before clamping), overshoot (its part outside [0, 1]), light_leak
 // (visibility - pcf over the same box, pcf's default bias), kernel_texels, depth_bias.

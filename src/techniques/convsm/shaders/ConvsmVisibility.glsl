@@ -4,7 +4,7 @@
 //            = 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d) sin(c_k z) - sin(c_k d) cos(c_k z)],
 // separable in d and z, so prefiltering the basis images sin(c_k z), cos(c_k z) (structures/fourier) filters the
 // shadow test itself. sigma_k = exp(-alpha (k / M)^2) damps the high terms against ringing (ringing_alpha; 0: the
-// plain truncated series). The reconstruction overshoots [0, 1] (Gibbs) and reads 1/2 at d = z; visibility is it
+// plain truncated series; the form of CSM's damping is not verified against the paper, see the technique's page). The reconstruction overshoots [0, 1] (Gibbs) and reads 1/2 at d = z; visibility is it
 // clamped to [0, 1]. CPU mirror: src/techniques/convsm/ConvsmTechnique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"

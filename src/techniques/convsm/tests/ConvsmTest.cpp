@@ -443,6 +443,23 @@ TEST(Convsm, ProbeRecordsTheCoefficientsAndTheReconstructedStep)
       ASSERT_NE(middle, nullptr) << label;
       EXPECT_EQ(middle->value.at(0), quantity("d_normalized")) << label;
       EXPECT_NEAR(middle->value.at(1), quantity("reconstruction"), 1e-15) << label;
+      // Nine samples of d' in [0, 1], in order, each the reconstruction from the recorded coefficients.
+      FourierCoefficients recorded;
+      for (int k = 1; k <= 8; ++k)
+      {
+        recorded.sine.push_back(quantity(format("filtered_sin_", k)));
+        recorded.cosine.push_back(quantity(format("filtered_cos_", k)));
+      }
+      double previousD = 0.0;
+      for (int j = 0; j < 9; ++j)
+      {
+        const ProbeQuantity* step = record.find(format("reconstructed_step_", j));
+        ASSERT_NE(step, nullptr) << label << " step " << j;
+        EXPECT_GE(step->value.at(0), previousD) << label << " step " << j;
+        EXPECT_LE(step->value.at(0), 1.0) << label << " step " << j;
+        EXPECT_NEAR(step->value.at(1), convsmReconstruct(step->value.at(0), recorded, 8, 0.0), 1e-12) << label << " step " << j;
+        previousD = step->value.at(0);
+      }
       if (const ProbeQuantity* leak = record.find("light_leak"))
       {
         EXPECT_NEAR(leak->value.at(0), gpu("light_leak"), outcome.tolerance) << label;
