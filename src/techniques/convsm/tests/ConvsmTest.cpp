@@ -249,6 +249,8 @@ struct ConvsmLeakFigures
   double awayMeanError = 0.0;    // mean |visibility - pcf| away from contact
   double awayMaxError = 0.0;
   double maxOvershoot = 0.0;     // max |reconstruction - clamp| over the frame
+  int litPixels = 0;             // box PCF 1
+  double litMeanLeak = 0.0;
 };
 
 // Classifies each pixel with an occluding texel in its box (the box PCF's failing comparisons, pcf's default
@@ -270,6 +272,11 @@ ConvsmLeakFigures convsmLeakFigures(const FrameResult& frame, const Scene& scene
     {
       figures.maxOvershoot = std::max(figures.maxOvershoot, std::abs(static_cast<double>(overshoot.at(x, y))));
       const ConvsmSample cpu = convsmReference(inputs, settings, x, y);
+      if (cpu.sample.evaluated && cpu.boxPcf >= 1.0)
+      {
+        ++figures.litPixels;
+        figures.litMeanLeak += lightLeak.at(x, y);
+      }
       if (!cpu.sample.evaluated || cpu.boxPcf >= 1.0)
       {
         continue;
@@ -311,6 +318,7 @@ ConvsmLeakFigures convsmLeakFigures(const FrameResult& frame, const Scene& scene
   }
   figures.contactMeanLeak /= std::max(figures.contactPixels, 1);
   figures.awayMeanError /= std::max(figures.awayPixels, 1);
+  figures.litMeanLeak /= std::max(figures.litPixels, 1);
   return figures;
 }
 
@@ -329,10 +337,14 @@ TEST(Convsm, RingingAtContactAndErrorAwayFromContact)
     std::cout << "[ measured ] contact terms=" << terms << ": near contact " << figures.contactPixels << " px, light_leak max "
               << figures.contactMaxLeak << " min " << figures.contactMinLeak << " mean " << figures.contactMeanLeak << "; away "
               << figures.awayPixels << " px, |visibility - pcf| mean " << figures.awayMeanError << " max " << figures.awayMaxError
-              << "; max |overshoot| " << figures.maxOvershoot << "\n";
+              << "; max |overshoot| " << figures.maxOvershoot << "; lit (box PCF 1) " << figures.litPixels
+              << " px, light_leak mean " << figures.litMeanLeak << "\n";
     ASSERT_GT(figures.contactPixels, 20) << terms;
     ASSERT_GT(figures.awayPixels, 20) << terms;
     EXPECT_GT(std::max(figures.contactMaxLeak, -figures.contactMinLeak), 4.0 * figures.awayMaxError) << terms << ": contact must be the worst";
+    // Lit receivers compare with their own texels, d = z: the series' 1/2 (its box averages the texels on both
+    // sides of the receiver's depth), so light_leak is about -1/2 there.
+    EXPECT_NEAR(figures.litMeanLeak, -0.5, 0.1) << terms;
     EXPECT_LT(figures.awayMaxError, 0.8 * previousAway) << terms << ": more terms, less error away from contact";
     previousAway = figures.awayMaxError;
   }
