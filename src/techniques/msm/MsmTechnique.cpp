@@ -14,12 +14,31 @@
 namespace sl
 {
 
+namespace
+{
+
+constexpr double msmPivotFloor = 1e-12; // as MsmVisibility.glsl
+
+BufferSpec msmRoundingSensitivityBuffer()
+{
+  BufferSpec spec{ "rounding_sensitivity", "",
+    "sum over b1..b4 and z_f of the largest change of the shadow intensity when one moves by 1e-6 (float rounding): at "
+    "1e-3 or more the Hankel matrix is near singular and the value follows the rounding (0 where not tested)" };
+  spec.flagAtOrAbove = msmSensitivityLimit;
+  spec.flagWarning = "the biased Hankel matrix is near singular there, so float rounding of the moments moves the "
+                     "result by 1e-3 or more; a larger moment_bias or power_moment_depth_margin conditions it";
+  return spec;
+}
+
+} // namespace
+
 MsmSettings MsmSettings::from(const ParameterValues& values)
 {
   MsmSettings settings;
   settings.bias = biasSettings(values);
   settings.prefilter = MomentPrefilterSettings::from(values);
   settings.momentBias = values.get("moment_bias");
+  settings.depthMargin = PowerMomentMapSettings::from(values).depthMargin;
   return settings;
 }
 
@@ -38,11 +57,12 @@ TechniqueDescriptor msmTechnique()
   descriptor.lightStructures = { &shadowMapStructure(), &powerMomentMapStructure() };
   descriptor.buffers = {
     { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias): > 0 where MSM leaks light", BufferKind::Signed },
-    { "support_depth_near", "normalised depth",
-      "z_2, the nearer of the two support points Hamburger 4MSM adds to the receiver's z_f (depth in [0, 1] of the light's range)", BufferKind::Signed },
-    { "support_depth_far", "normalised depth", "z_3, the farther one", BufferKind::Signed },
+    { "support_depth_near", "moment depth",
+      "z_2, the nearer of the two support points Hamburger 4MSM adds to the receiver's z_f (moment depth: the light's range mapped into [0, 1], structures/powermoments)", BufferKind::Signed },
+    { "support_depth_far", "moment depth", "z_3, the farther one", BufferKind::Signed },
     { "hankel_pivot", "", "D33, the last pivot of the LDL^T of the biased Hankel matrix (det(B) / D22): near 0 the float "
       "reconstruction is dominated by rounding, held off by the moment bias" },
+    msmRoundingSensitivityBuffer(),
     { "kernel_texels", "texels", "width of the prefilter box" },
     depthBiasBuffer(),
   };
@@ -59,13 +79,18 @@ TechniqueDescriptor msmTechnique()
     requireBlurPrefilter(settings.prefilter);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const MsmSample sample = msmReference(inputs, settings, pixel.x, pixel.y, &recorder);
-    // MsmTest: <= 2e-3 where D33 >= msmIllConditionedPivot; below it the float moments' rounding dominates.
+    // MsmTest: <= 2e-3 where the rounding sensitivity is at most msmSensitivityLimit; above it the float moments'
+    // rounding decides the support points (a near-singular Hankel matrix).
     ProbeOutcome outcome = probeOutcome(sample.sample, 2e-3, "msmReference (msm/MsmTechnique.h), double precision, prefilter = blur");
     if (sample.sample.evaluated)
     {
       const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, pixel.x, pixel.y);
-      noteAmbiguity(outcome.ambiguity, "Hankel pivot D33 (float rounding of the moments dominates)",
-        sample.reconstruction.pivot3, msmIllConditionedPivot);
+      const double sensitivity = msmRoundingSensitivity(sample.moments, settings.momentBias, sample.fragmentDepth);
+      recorder.beginGroup("conditioning");
+      recorder.quantity("rounding_sensitivity", sensitivity, "",
+        "ShadowLab: sum of |G change| when b1..b4 and z_f move by 1e-6 (float rounding); ill-conditioned above 1e-3");
+      noteAmbiguity(outcome.ambiguity, "headroom against float rounding (1e-3 / rounding sensitivity)",
+        msmSensitivityLimit / std::max(sensitivity, 1e-300), 1.0);
       noteMomentTexelEdge(outcome.ambiguity, lookup.sm.uvTexels);
     }
     return outcome;
@@ -85,7 +110,8 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   const double d22 = b.y - b.x * b.x;
   const double l32d22 = b.z - b.x * b.y;
   const double l32 = l32d22 / d22;
-  const double d33 = (b.w - b.y * b.y) - l32d22 * l32;
+  // B is positive definite for alpha > 0, so D33 > 0; only float rounding makes it 0 or less (MsmVisibility.glsl).
+  const double d33 = std::max((b.w - b.y * b.y) - l32d22 * l32, msmPivotFloor);
   result.pivot2 = d22;
   result.pivot3 = d33;
   glm::dvec3 c(1.0, zf, zf * zf);
@@ -96,12 +122,14 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   c.y -= l32 * c.z;
   c.x -= c.y * b.x + c.z * b.y;
   result.polynomial = c;
-  // Step 3: the two other support points (as the shader, the discriminant is kept >= 0 against rounding).
-  const double p = c.y / c.z;
-  const double q = c.x / c.z;
-  const double r = std::sqrt(std::max(p * p * 0.25 - q, 0.0));
-  const double z2 = -0.5 * p - r;
-  const double z3 = -0.5 * p + r;
+  // Step 3: the two other support points, the roots of c1 + c2 z + c3 z^2, by the stable form MsmVisibility.glsl
+  // uses (equal to Alg. 3's -p/2 -+ sqrt(p^2/4 - q) in exact arithmetic), clamped to +-1e6 as there.
+  const double root = std::sqrt(std::max(c.y * c.y - 4.0 * c.x * c.z, 0.0));
+  const double large = -0.5 * (c.y + (c.y < 0.0 ? -root : root));
+  const double rootA = std::clamp(large / c.z, -1e6, 1e6);
+  const double rootB = std::clamp(c.x / large, -1e6, 1e6);
+  const double z2 = std::min(rootA, rootB);
+  const double z3 = std::max(rootA, rootB);
   result.supportNear = z2;
   result.supportFar = z3;
   // The weights of the three-point distribution on (z_f, z_2, z_3) with moments 1, b1', b2' (Lagrange: the weight
@@ -128,7 +156,27 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   return result;
 }
 
-glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, ProbeRecorder* recorder)
+double msmRoundingSensitivity(const glm::dvec4& moments, double momentBias, double fragmentDepth)
+{
+  const double intensity = msmHamburger4(moments, momentBias, fragmentDepth).shadowIntensity;
+  double sensitivity = 0.0;
+  for (int k = 0; k < 5; ++k)
+  {
+    double largest = 0.0;
+    for (const double sign : { -1.0, 1.0 })
+    {
+      glm::dvec4 moved = moments;
+      double depth = fragmentDepth;
+      (k < 4 ? moved[k] : depth) += sign * msmMomentRounding;
+      largest = std::max(largest, std::abs(msmHamburger4(moved, momentBias, depth).shadowIntensity - intensity));
+    }
+    sensitivity += largest;
+  }
+  return sensitivity;
+}
+
+glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double margin,
+  ProbeRecorder* recorder)
 {
   const int size = inputs.shadowMapLinear.width;
   const double nearDepth = inputs.lightView.nearDepth;
@@ -144,8 +192,7 @@ glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& u
     {
       const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
       const double depth = inputs.shadowMapLinear.at(texel.x, texel.y);
-      // PowerMomentsFromDepth.glsl: normalised to the light's range, clamped to [0, 1].
-      const double z = std::clamp((depth - nearDepth) / (farDepth - nearDepth), 0.0, 1.0);
+      const double z = PowerMomentMapSettings::mapDepth(depth, nearDepth, farDepth, margin);
       sum += glm::dvec4(z, z * z, z * z * z, z * z * z * z);
       if (recorder)
       {
@@ -170,29 +217,31 @@ MsmSample msmReference(const ShadowMapInputs& inputs, const MsmSettings& setting
   {
     recordMomentBox(*recorder, inputs, lookup, width);
   }
-  result.moments = msmBoxPowerMoments(inputs, lookup.sm.uvTexels, width, recorder);
+  result.moments = msmBoxPowerMoments(inputs, lookup.sm.uvTexels, width, settings.depthMargin, recorder);
   const LightView& view = inputs.lightView;
-  result.fragmentDepth = (lookup.comparisonDepth - view.nearDepth) / (view.farDepth - view.nearDepth);
+  const double margin = settings.depthMargin;
+  result.fragmentDepth =
+    margin + (1.0 - 2.0 * margin) * (lookup.comparisonDepth - view.nearDepth) / (view.farDepth - view.nearDepth);
   result.reconstruction = msmHamburger4(result.moments, settings.momentBias, result.fragmentDepth);
   const MsmReconstruction& msm = result.reconstruction;
   result.sample.visibility = 1.0 - msm.shadowIntensity;
   if (recorder)
   {
     recorder->quantity("power_moments", glm::dvec3(result.moments.x, result.moments.y, result.moments.z), "",
-      "Peters & Klein 2015 §3: E[z], E[z^2], E[z^3] over the box, z = (d - near) / (far - near)");
-    recorder->quantity("power_moment_4", result.moments.w, "", "Peters & Klein 2015 §3: E[z^4]");
+      "Peters & Klein 2015: E[z], E[z^2], E[z^3] over the box, z = m + (1 - 2 m) (d - near) / (far - near)");
+    recorder->quantity("power_moment_4", result.moments.w, "", "Peters & Klein 2015: E[z^4]");
     recorder->beginGroup("hamburger 4msm");
     recorder->quantity("moment_bias", settings.momentBias, "", "MSM Alg. 3 step 1: alpha");
     recorder->quantity("biased_moments", glm::dvec3(msm.biasedMoments.x, msm.biasedMoments.y, msm.biasedMoments.z), "",
       "MSM Alg. 3 step 1: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), components 1-3");
     recorder->quantity("biased_moment_4", msm.biasedMoments.w, "", "MSM Alg. 3 step 1: b4'");
-    recorder->quantity("fragment_depth", result.fragmentDepth, "normalised depth",
-      "MSM Alg. 3: z_f, the receiver's depth minus the bias, normalised to the light's range");
+    recorder->quantity("fragment_depth", result.fragmentDepth, "moment depth",
+      "MSM Alg. 3: z_f, the receiver's depth minus the bias, mapped as the moments' depths");
     recorder->quantity("pivot_d22", msm.pivot2, "", "MSM Alg. 3 step 2: D22 = b2' - b1'^2 (Cholesky of the Hankel matrix)");
     recorder->quantity("hankel_pivot", msm.pivot3, "", "MSM Alg. 3 step 2: D33 = det(B) / D22, the last pivot");
     recorder->quantity("polynomial", msm.polynomial, "", "MSM Alg. 3 step 2: c solving B c = (1, z_f, z_f^2)");
-    recorder->quantity("support_depth_near", msm.supportNear, "normalised depth", "MSM Alg. 3 step 3: z_2, smaller root of c1 + c2 z + c3 z^2");
-    recorder->quantity("support_depth_far", msm.supportFar, "normalised depth", "MSM Alg. 3 step 3: z_3, larger root");
+    recorder->quantity("support_depth_near", msm.supportNear, "moment depth", "MSM Alg. 3 step 3: z_2, smaller root of c1 + c2 z + c3 z^2");
+    recorder->quantity("support_depth_far", msm.supportFar, "moment depth", "MSM Alg. 3 step 3: z_3, larger root");
     recorder->quantity("support_weights", msm.weights, "",
       "ShadowLab (Lagrange): weights of z_f, z_2, z_3 in the distribution matching 1, b1', b2'");
     recorder->quantity("shadow_intensity", msm.shadowIntensity, "",
@@ -208,7 +257,7 @@ MsmSample msmReference(const ShadowMapInputs& inputs, const MsmSettings& setting
   {
     recordLightLeak(*recorder, result.sample.visibility, pcf,
       boxPcfRange(inputs, lookup.sm.uvTexels, leakDepth, width, probeDepthAmbiguity),
-      "ShadowLab: visibility - PCF over the same box (Peters & Klein 2015 §7 compare MSM's leaking with VSM's)");
+      "ShadowLab: visibility - PCF over the same box");
   }
   return result;
 }

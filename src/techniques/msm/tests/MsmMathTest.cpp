@@ -1,7 +1,7 @@
 // msm's reconstruction (msmHamburger4, the CPU twin of MsmVisibility.glsl) against closed forms: the three-point
 // distribution it returns reproduces all four biased moments; with two depths in the filter region it is exact
 // (the true fraction in front, up to the bias); and on random depth distributions it is a lower bound on the
-// shadow intensity (Peters & Klein 2015, §4: the sharpest lower bound four moments allow).
+// shadow intensity (Peters & Klein 2015, abstract: "the sharpest possible lower bound").
 #include "techniques/msm/MsmTechnique.h"
 
 #include <gtest/gtest.h>
