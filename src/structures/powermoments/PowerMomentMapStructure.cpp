@@ -19,13 +19,12 @@ PowerMomentMapSettings PowerMomentMapSettings::from(const ParameterValues& value
   PowerMomentMapSettings settings;
   settings.mipmap = values.has("prefilter") && values.choice("prefilter") == "mipmap";
   settings.blurTexels = values.has("prefilter_texels") && !settings.mipmap ? values.getInt("prefilter_texels") : 1;
-  settings.depthMargin = values.has("power_moment_depth_margin") ? values.get("power_moment_depth_margin") : 0.0;
   return settings;
 }
 
-double PowerMomentMapSettings::mapDepth(double depth, double nearDepth, double farDepth, double margin)
+double PowerMomentMapSettings::normalisedDepth(double depth, double nearDepth, double farDepth)
 {
-  return margin + (1.0 - 2.0 * margin) * std::clamp((depth - nearDepth) / (farDepth - nearDepth), 0.0, 1.0);
+  return std::clamp((depth - nearDepth) / (farDepth - nearDepth), 0.0, 1.0);
 }
 
 namespace
@@ -40,7 +39,7 @@ std::vector<NamedImage> exportPowerMoments(const FrameResources& frame, FrameRes
 {
   const ImageF moments = readFloatTexture(powerMomentData(frame).moments, 4);
   const char* names[4] = { "power_moment_1", "power_moment_2", "power_moment_3", "power_moment_4" };
-  const char* docs[4] = { "prefiltered E[z] (z = the depth mapped into [0, 1])", "prefiltered E[z^2]",
+  const char* docs[4] = { "prefiltered E[z] (z = (d - near) / (far - near) in [0, 1])", "prefiltered E[z^2]",
     "prefiltered E[z^3]", "prefiltered E[z^4]" };
   std::vector<NamedImage> images;
   for (int c = 0; c < 4; ++c)
@@ -62,9 +61,6 @@ const LightSpaceStructure& powerMomentMapStructure()
     s.parameters = {
       { "prefilter", 0, 0, 1, "", "blur: separable box blur of the moments; mipmap: trilinear mip-map lookup at log2(width)", { "blur", "mipmap" }, true },
       { "prefilter_texels", 5, 1, 63, "texels", "width of the box the moments are averaged over (odd widths are centred)", {}, true },
-      { "power_moment_depth_margin", 0.1, 0, 0.4, "",
-        "the light's [near, far] maps to [m, 1 - m] of the moments' [0, 1]: keeps casters and receivers off 0 and 1, "
-        "where the moment bias puts its mass (0: the plain normalised depth)", {}, false },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLPowerMomentMapPass>::New() };

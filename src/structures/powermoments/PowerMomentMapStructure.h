@@ -1,6 +1,5 @@
 // The power-moment map of moment shadow mapping (Peters & Klein 2015): per shadow-map texel the four power
-// moments b = (z, z^2, z^3, z^4) of the depth mapped into [0, 1], z = m + (1 - 2 m) (d - near) / (far - near) with m =
-// power_moment_depth_margin (RGBA32F; PowerMomentsFromDepth.glsl says why the margin),
+// moments b = (z, z^2, z^3, z^4) of the normalised depth z = (d - near) / (far - near) in [0, 1] (RGBA32F),
 // prefiltered like the moment map of vsm and esm (separable box blur or mip-map). Built by
 // vtkSLPowerMomentMapPass (stage power_moment_map).
 #pragma once
@@ -17,10 +16,9 @@ struct PowerMomentMapSettings
 {
   bool mipmap = false; // prefilter = mipmap
   int blurTexels = 1;  // prefilter_texels for prefilter = blur; 1 = no blur
-  double depthMargin = 0.0; // power_moment_depth_margin
 
   // The depth in the moments' [0, 1] of a linear depth (clamped to the light's range), as the build maps it.
-  static double mapDepth(double depth, double nearDepth, double farDepth, double margin);
+  static double normalisedDepth(double depth, double nearDepth, double farDepth);
 
   static PowerMomentMapSettings from(const ParameterValues& values);
 };

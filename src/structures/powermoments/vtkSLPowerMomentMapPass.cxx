@@ -37,7 +37,6 @@ void vtkSLPowerMomentMapPass::Execute(const vtkRenderState* state)
     vtkTextureObject* bound = sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear);
     program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));
     program->SetUniformf("depthFar", static_cast<float>(frame.lightView.farDepth));
-    program->SetUniformf("depthMargin", static_cast<float>(settings.depthMargin));
     this->MomentsQuad.render();
     bound->Deactivate();
   }

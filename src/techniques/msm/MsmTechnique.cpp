@@ -26,7 +26,7 @@ BufferSpec msmRoundingSensitivityBuffer()
     "1e-3 or more the Hankel matrix is near singular and the value follows the rounding (0 where not tested)" };
   spec.flagAtOrAbove = msmSensitivityLimit;
   spec.flagWarning = "the biased Hankel matrix is near singular there, so float rounding of the moments moves the "
-                     "result by 1e-3 or more; a larger moment_bias or power_moment_depth_margin conditions it";
+                     "result by 1e-3 or more; a larger moment_bias conditions it";
   return spec;
 }
 
@@ -38,7 +38,6 @@ MsmSettings MsmSettings::from(const ParameterValues& values)
   settings.bias = biasSettings(values);
   settings.prefilter = MomentPrefilterSettings::from(values);
   settings.momentBias = values.get("moment_bias");
-  settings.depthMargin = PowerMomentMapSettings::from(values).depthMargin;
   return settings;
 }
 
@@ -58,7 +57,7 @@ TechniqueDescriptor msmTechnique()
   descriptor.buffers = {
     { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias): > 0 where MSM leaks light", BufferKind::Signed },
     { "support_depth_near", "moment depth",
-      "z_2, the nearer of the two support points Hamburger 4MSM adds to the receiver's z_f (moment depth: the light's range mapped into [0, 1], structures/powermoments)", BufferKind::Signed },
+      "z_2, the nearer of the two support points Hamburger 4MSM adds to the receiver's z_f (moment depth: (d - near) / (far - near) of the light's range)", BufferKind::Signed },
     { "support_depth_far", "moment depth", "z_3, the farther one", BufferKind::Signed },
     { "hankel_pivot", "", "D33, the last pivot of the LDL^T of the biased Hankel matrix (det(B) / D22): near 0 the float "
       "reconstruction is dominated by rounding, held off by the moment bias" },
@@ -175,8 +174,7 @@ double msmRoundingSensitivity(const glm::dvec4& moments, double momentBias, doub
   return sensitivity;
 }
 
-glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double margin,
-  ProbeRecorder* recorder)
+glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, ProbeRecorder* recorder)
 {
   const int size = inputs.shadowMapLinear.width;
   const double nearDepth = inputs.lightView.nearDepth;
@@ -192,7 +190,7 @@ glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& u
     {
       const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
       const double depth = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double z = PowerMomentMapSettings::mapDepth(depth, nearDepth, farDepth, margin);
+      const double z = PowerMomentMapSettings::normalisedDepth(depth, nearDepth, farDepth);
       sum += glm::dvec4(z, z * z, z * z * z, z * z * z * z);
       if (recorder)
       {
@@ -217,18 +215,16 @@ MsmSample msmReference(const ShadowMapInputs& inputs, const MsmSettings& setting
   {
     recordMomentBox(*recorder, inputs, lookup, width);
   }
-  result.moments = msmBoxPowerMoments(inputs, lookup.sm.uvTexels, width, settings.depthMargin, recorder);
+  result.moments = msmBoxPowerMoments(inputs, lookup.sm.uvTexels, width, recorder);
   const LightView& view = inputs.lightView;
-  const double margin = settings.depthMargin;
-  result.fragmentDepth =
-    margin + (1.0 - 2.0 * margin) * (lookup.comparisonDepth - view.nearDepth) / (view.farDepth - view.nearDepth);
+  result.fragmentDepth = (lookup.comparisonDepth - view.nearDepth) / (view.farDepth - view.nearDepth);
   result.reconstruction = msmHamburger4(result.moments, settings.momentBias, result.fragmentDepth);
   const MsmReconstruction& msm = result.reconstruction;
   result.sample.visibility = 1.0 - msm.shadowIntensity;
   if (recorder)
   {
     recorder->quantity("power_moments", glm::dvec3(result.moments.x, result.moments.y, result.moments.z), "",
-      "Peters & Klein 2015: E[z], E[z^2], E[z^3] over the box, z = m + (1 - 2 m) (d - near) / (far - near)");
+      "Peters & Klein 2015: E[z], E[z^2], E[z^3] over the box, z = (d - near) / (far - near)");
     recorder->quantity("power_moment_4", result.moments.w, "", "Peters & Klein 2015: E[z^4]");
     recorder->beginGroup("hamburger 4msm");
     recorder->quantity("moment_bias", settings.momentBias, "", "MSM Alg. 3 step 1: alpha");
@@ -236,7 +232,7 @@ MsmSample msmReference(const ShadowMapInputs& inputs, const MsmSettings& setting
       "MSM Alg. 3 step 1: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), components 1-3");
     recorder->quantity("biased_moment_4", msm.biasedMoments.w, "", "MSM Alg. 3 step 1: b4'");
     recorder->quantity("fragment_depth", result.fragmentDepth, "moment depth",
-      "MSM Alg. 3: z_f, the receiver's depth minus the bias, mapped as the moments' depths");
+      "MSM Alg. 3: z_f, the receiver's depth minus the bias, normalised as the moments' depths");
     recorder->quantity("pivot_d22", msm.pivot2, "", "MSM Alg. 3 step 2: D22 = b2' - b1'^2 (Cholesky of the Hankel matrix)");
     recorder->quantity("hankel_pivot", msm.pivot3, "", "MSM Alg. 3 step 2: D33 = det(B) / D22, the last pivot");
     recorder->quantity("polynomial", msm.polynomial, "", "MSM Alg. 3 step 2: c solving B c = (1, z_f, z_f^2)");

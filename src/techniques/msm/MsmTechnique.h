@@ -1,4 +1,4 @@
-// Technique `msm`: moment shadow mapping (Peters & Klein 2015), four power moments of the depth mapped into [0, 1]
+// Technique `msm`: moment shadow mapping (Peters & Klein 2015), four power moments of the normalised depth
 // (structures/powermoments), prefiltered by a box blur or by mip-mapping, reconstructed by Hamburger 4MSM (their
 // Algorithm 3) with the moment bias alpha. Math: msm/shaders/MsmVisibility.glsl.
 // Parameters: the shadow-map ones and prefilter (blur|mipmap), prefilter_texels, moment_bias. Buffers: light_leak
@@ -23,8 +23,7 @@ struct MsmSettings
 {
   BiasSettings bias;
   MomentPrefilterSettings prefilter;
-  double momentBias{};  // alpha of MSM Alg. 3
-  double depthMargin{}; // power_moment_depth_margin (structures/powermoments)
+  double momentBias{}; // alpha of MSM Alg. 3
 
   static MsmSettings from(const ParameterValues& values);
 };
@@ -43,10 +42,9 @@ struct MsmReconstruction
 };
 MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, double fragmentDepth);
 
-// The four power moments of the depth mapped into [0, 1] (margin: power_moment_depth_margin) over the box of
-// `width` texels around the texel containing uvTexels (clamp to edge), as the blur averages them. `recorder`
-// (optional): the box's texels (role "moment box").
-glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, double margin,
+// The four power moments of the normalised depth over the box of `width` texels around the texel containing
+// uvTexels (clamp to edge), as the blur averages them. `recorder` (optional): the box's texels (role "moment box").
+glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width,
   ProbeRecorder* recorder = nullptr);
 
 struct MsmSample
@@ -54,7 +52,7 @@ struct MsmSample
   ReferenceSample sample;
   MsmReconstruction reconstruction;
   glm::dvec4 moments{ 0.0 };  // unbiased, box-filtered
-  double fragmentDepth = 0.0; // z_f, mapped as the moments' depths
+  double fragmentDepth = 0.0; // z_f, normalised as the moments' depths
   double lightLeak = 0.0;
 };
 

@@ -1,6 +1,6 @@
 // Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3). From the prefiltered power
-// moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths mapped into [0, 1], structures/powermoments) and
-// the receiver's depth z_f (its depth minus the bias, mapped alike):
+// moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
+// and the receiver's depth z_f (its depth minus the bias, normalised alike):
 //   1. b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5)        (moment bias: keeps the Hankel matrix definite
 //                                                              against rounding in the float moments)
 //   2. solve B c = (1, z_f, z_f^2) with B = [[1, b1', b2'], [b1', b2', b3'], [b2', b3', b4']] (Cholesky, LDL^T)
@@ -141,9 +141,8 @@ void main()
     return;
   }
   vec4 moments = filteredPowerMoments(receiver.uvTexels);
-  // z_f mapped into [0, 1] as the moments' depths (PowerMomentsFromDepth.glsl), not clamped.
-  float margin = param_power_moment_depth_margin;
-  float zf = margin + (1.0 - 2.0 * margin) * (receiver.comparisonDepth - depthNear) / (depthFar - depthNear);
+  // z_f normalised as the moments' depths (PowerMomentsFromDepth.glsl), not clamped.
+  float zf = (receiver.comparisonDepth - depthNear) / (depthFar - depthNear);
   MsmReconstruction msm = hamburger4Msm(moments, zf);
   float intensity = clamp(msm.intensity, 0.0, 1.0);
   float visibility = 1.0 - intensity;

@@ -39,6 +39,8 @@ struct MsmTwinAgreement
   int ambiguous = 0;
   int partial = 0;
   int mismatched = 0;
+  int gpuFlagged = 0;            // the GPU's rounding_sensitivity at or above msmSensitivityLimit
+  int unflaggedDisagreements = 0; // |gpu - cpu| > msmTwinTolerance at a pixel the GPU did not flag
   double maxVisibility = 0.0;
   double maxLeak = 0.0;
   double maxSupport = 0.0;
@@ -54,6 +56,7 @@ MsmTwinAgreement compareMsmWithTwin(const FrameResult& frame, const Scene& scene
   const ImageF& leak = frame.find("light_leak")->image;
   const ImageF& supportNear = frame.find("support_depth_near")->image;
   const ImageF& supportFar = frame.find("support_depth_far")->image;
+  const ImageF& sensitivity = frame.find("rounding_sensitivity")->image;
   MsmTwinAgreement agreement;
   for (int y = 0; y < visibility.height; ++y)
   {
@@ -74,6 +77,8 @@ MsmTwinAgreement compareMsmWithTwin(const FrameResult& frame, const Scene& scene
       const double pivot = cpu.reconstruction.pivot3;
       const int decade = std::clamp(static_cast<int>(std::floor(-std::log10(std::max(pivot, 1e-30)))) - 2, 0, 5);
       agreement.maxByPivotDecade[decade] = std::max(agreement.maxByPivotDecade[decade], difference);
+      const bool flagged = sensitivity.at(x, y) >= msmSensitivityLimit;
+      agreement.gpuFlagged += flagged ? 1 : 0;
       const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
       std::string ambiguity;
       noteMomentTexelEdge(ambiguity, lookup.sm.uvTexels);
@@ -82,6 +87,8 @@ MsmTwinAgreement compareMsmWithTwin(const FrameResult& frame, const Scene& scene
         ++agreement.ambiguous;
         continue;
       }
+      // Right or flagged: where the GPU differs from the twin, its own sensitivity buffer says so.
+      agreement.unflaggedDisagreements += difference > msmTwinTolerance && !flagged ? 1 : 0;
       if (msmRoundingSensitivity(cpu.moments, settings.momentBias, cpu.fragmentDepth) > msmSensitivityLimit)
       {
         ++agreement.illConditioned;
@@ -113,7 +120,7 @@ void printMsmAgreement(const std::string& label, const MsmTwinAgreement& agreeme
 {
   std::cout << "[ measured ] " << label << ": evaluated " << agreement.evaluated << ", compared " << agreement.compared
             << " (partial " << agreement.partial << "), ill-conditioned (rounding sensitivity > " << msmSensitivityLimit
-            << ") " << agreement.illConditioned
+            << ") " << agreement.illConditioned << ", flagged by the GPU's rounding_sensitivity " << agreement.gpuFlagged
             << ", texel-edge/reach ambiguous " << agreement.ambiguous << "; max |gpu - cpu| visibility " << agreement.maxVisibility
             << ", light_leak " << agreement.maxLeak << ", support depths (shadowed) " << agreement.maxSupport
             << "; max |gpu - cpu| by D33 decade [1e-3,1e-2) .. [1e-8,1e-7):";
@@ -135,6 +142,7 @@ TEST(MsmTechnique, MatchesTheCpuTwinOnThreeDatasets)
     const MsmTwinAgreement agreement = compareMsmWithTwin(frame, scene);
     printMsmAgreement(test::caseLabel(dataset, settings), agreement);
     EXPECT_EQ(agreement.mismatched, 0) << dataset << ": first " << agreement.firstMismatch;
+    EXPECT_EQ(agreement.unflaggedDisagreements, 0) << dataset;
     EXPECT_GT(agreement.compared, 300) << dataset;
     EXPECT_GT(agreement.partial, 20) << dataset << ": prefiltering must soften the shadow edges";
   }
@@ -155,6 +163,7 @@ TEST(MsmTechnique, MatchesTheCpuTwinOnRandomConfigurations)
     const MsmTwinAgreement agreement = compareMsmWithTwin(frame, scene);
     printMsmAgreement(format("seed ", seed, " (", random.summary, ") ", test::caseLabel("", settings)), agreement);
     EXPECT_EQ(agreement.mismatched, 0) << "seed " << seed << " " << random.summary << ": first " << agreement.firstMismatch;
+    EXPECT_EQ(agreement.unflaggedDisagreements, 0) << "seed " << seed;
     compared += agreement.compared;
   }
   EXPECT_GT(compared, 1000) << "the random configurations must leave pixels to compare";
