@@ -4,6 +4,7 @@
 #include "frame/FrameResult.h"
 #include "gl/GlResources.h"
 #include "passes/PassUtilities.h"
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/powermoments/vtkSLPowerMomentMapPass.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
@@ -58,10 +59,8 @@ const LightSpaceStructure& powerMomentMapStructure()
     s.name = "power_moment_map";
     s.doc = "(z, z^2, z^3, z^4) of the normalised shadow-map depth, box-blurred or mip-mapped (Peters & Klein 2015)";
     s.builtFrom = { &shadowMapStructure() };
-    s.parameters = {
-      { "prefilter", 0, 0, 1, "", "blur: separable box blur of the moments; mipmap: trilinear mip-map lookup at log2(width)", { "blur", "mipmap" }, true },
-      { "prefilter_texels", 5, 1, 63, "texels", "width of the box the moments are averaged over (odd widths are centred)", {}, true },
-    };
+    // The moment map's prefilter parameters, the same specs: msm filters its moments over the same texels as vsm.
+    s.parameters = momentMapStructure().parameters;
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLPowerMomentMapPass>::New() };
     };
