@@ -156,8 +156,9 @@ TEST(MsmTechnique, MatchesTheCpuTwinOnRandomConfigurations)
     const RandomScene random = randomScene(seed, 96);
     const Scene scene = parseScene(random.json, "msm seed " + std::to_string(seed), ".");
     const int texels = 3 + 2 * static_cast<int>(seed % 4); // 3, 5, 7, 9
+    const char* momentBiases[6] = { "3e-5", "3e-4", "3e-7", "3e-3", "3e-6", "3e-5" };
     const std::vector<std::string> settings{ "shadow_map_size=" + std::to_string(256 >> random.mapSizeHalvings),
-      "prefilter_texels=" + std::to_string(texels) };
+      "prefilter_texels=" + std::to_string(texels), std::string("moment_bias=") + momentBiases[seed - 1] };
     const FrameResult frame = test::renderDataset(scene, "msm", scene.camera.resolution.x, scene.camera.resolution.y, settings);
     test::expectFiniteBuffersAndVisibilityInRange(frame, random.summary);
     const MsmTwinAgreement agreement = compareMsmWithTwin(frame, scene);
