@@ -227,21 +227,21 @@ MsmSample msmReference(const ShadowMapInputs& inputs, const MsmSettings& setting
       "Peters & Klein 2015: E[z], E[z^2], E[z^3] over the box, z = (d - near) / (far - near)");
     recorder->quantity("power_moment_4", result.moments.w, "", "Peters & Klein 2015: E[z^4]");
     recorder->beginGroup("hamburger 4msm");
-    recorder->quantity("moment_bias", settings.momentBias, "", "MSM Alg. 3 step 1: alpha");
+    recorder->quantity("moment_bias", settings.momentBias, "", "MSM Alg. 3, moment bias: alpha");
     recorder->quantity("biased_moments", glm::dvec3(msm.biasedMoments.x, msm.biasedMoments.y, msm.biasedMoments.z), "",
-      "MSM Alg. 3 step 1: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), components 1-3");
-    recorder->quantity("biased_moment_4", msm.biasedMoments.w, "", "MSM Alg. 3 step 1: b4'");
+      "MSM Alg. 3, moment bias: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), components 1-3");
+    recorder->quantity("biased_moment_4", msm.biasedMoments.w, "", "MSM Alg. 3, moment bias: b4'");
     recorder->quantity("fragment_depth", result.fragmentDepth, "moment depth",
       "MSM Alg. 3: z_f, the receiver's depth minus the bias, normalised as the moments' depths");
-    recorder->quantity("pivot_d22", msm.pivot2, "", "MSM Alg. 3 step 2: D22 = b2' - b1'^2 (Cholesky of the Hankel matrix)");
-    recorder->quantity("hankel_pivot", msm.pivot3, "", "MSM Alg. 3 step 2: D33 = det(B) / D22, the last pivot");
-    recorder->quantity("polynomial", msm.polynomial, "", "MSM Alg. 3 step 2: c solving B c = (1, z_f, z_f^2)");
-    recorder->quantity("support_depth_near", msm.supportNear, "moment depth", "MSM Alg. 3 step 3: z_2, smaller root of c1 + c2 z + c3 z^2");
-    recorder->quantity("support_depth_far", msm.supportFar, "moment depth", "MSM Alg. 3 step 3: z_3, larger root");
+    recorder->quantity("pivot_d22", msm.pivot2, "", "MSM Alg. 3, Cholesky solve: D22 = b2' - b1'^2 (Cholesky of the Hankel matrix)");
+    recorder->quantity("hankel_pivot", msm.pivot3, "", "MSM Alg. 3, Cholesky solve: D33 = det(B) / D22, the last pivot");
+    recorder->quantity("polynomial", msm.polynomial, "", "MSM Alg. 3, Cholesky solve: c solving B c = (1, z_f, z_f^2)");
+    recorder->quantity("support_depth_near", msm.supportNear, "moment depth", "MSM Alg. 3, quadratic: z_2, smaller root of c1 + c2 z + c3 z^2");
+    recorder->quantity("support_depth_far", msm.supportFar, "moment depth", "MSM Alg. 3, quadratic: z_3, larger root");
     recorder->quantity("support_weights", msm.weights, "",
       "ShadowLab (Lagrange): weights of z_f, z_2, z_3 in the distribution matching 1, b1', b2'");
     recorder->quantity("shadow_intensity", msm.shadowIntensity, "",
-      "MSM Alg. 3 step 4: the weights of the support points in front of z_f, clamped to [0, 1]");
+      "MSM Alg. 3, weights: the weights of the support points in front of z_f, clamped to [0, 1]");
     recorder->quantity("visibility", result.sample.visibility, "", "ShadowLab: 1 - shadow intensity");
     recorder->beginGroup("light leak");
   }
