@@ -1,6 +1,7 @@
 // Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3). From the prefiltered power
 // moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
-// and the receiver's depth z_f (its depth minus the bias, normalised alike):
+// and the receiver's depth z_f (its depth minus the bias, normalised alike), in four steps (our grouping, not the
+// printed lines):
 //   1. b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5)        (moment bias: keeps the Hankel matrix definite
 //                                                              against rounding in the float moments)
 //   2. solve B c = (1, z_f, z_f^2) with B = [[1, b1', b2'], [b1', b2', b3'], [b2', b3', b4']] (Cholesky, LDL^T)
