@@ -47,8 +47,8 @@ TechniqueDescriptor msmTechnique()
     "Peters & Klein 2015 (Hamburger 4MSM, Algorithm 3)");
   descriptor.addParameters(powerMomentMapStructure().parameters);
   descriptor.addParameters({
-    // 3e-5: the value of the authors' demo code for 16-bit storage in their optimised basis (README.md says
-    // what was and was not found); here the moments are RGBA32F, where a smaller alpha would do.
+    // 3e-5: the value public ports of the authors' code use for 16-bit storage in their optimised basis (README.md
+    // says what was and was not found); here the moments are RGBA32F.
     { "moment_bias", 3e-5, 1e-8, 0.1, "",
       "alpha of MSM Alg. 3: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), keeps the Hankel matrix definite "
       "against rounding; larger leaks more light", {}, false },
