@@ -1,0 +1,35 @@
+// The power-moment map's build (structures/powermoments/PowerMomentMapStructure.h; msm): the four power moments of
+// the normalised shadow-map depth (PowerMomentsFromDepth.glsl), prefiltered by the moment map's separable box blur
+// (moments/BoxBlur.glsl) of prefilter_texels (prefilter = blur) or mip-mapped (prefilter = mipmap). Parameters read:
+// PowerMomentMapSettings.
+#pragma once
+
+#include "passes/FullScreenQuad.h"
+#include "passes/vtkSLStagePass.h"
+
+#include <vtkNew.h>
+
+class vtkOpenGLFramebufferObject;
+
+class vtkSLPowerMomentMapPass : public vtkSLStagePass
+{
+public:
+  static vtkSLPowerMomentMapPass* New();
+  vtkTypeMacro(vtkSLPowerMomentMapPass, vtkSLStagePass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  const char* GetStageName() const override { return "power_moment_map"; }
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkSLPowerMomentMapPass();
+  ~vtkSLPowerMomentMapPass() override;
+  void Execute(const vtkRenderState* state) override;
+
+private:
+  vtkSLPowerMomentMapPass(const vtkSLPowerMomentMapPass&) = delete;
+  void operator=(const vtkSLPowerMomentMapPass&) = delete;
+
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  sl::FullScreenQuad MomentsQuad;
+  sl::FullScreenQuad BlurQuad;
+};
