@@ -1,0 +1,109 @@
+// The irregular z-buffer's light-space grid and per-sample test in float: the GPU copy of izb/IzbTwin.cpp
+// (IzbGrid::place, placementErrorTexels, izbSampleTest), which the tests compare it with pixel by pixel.
+// Needs IZB_FLAG_* and IZB_COVERAGE_MARGIN_INVERSE from the C++ preamble (IzbTechnique.cpp).
+uniform int izbDirectional;        // 1: one orthographic face; 0: six cube faces around izbLightPosition
+uniform int izbGridSize;           // texels per side of a face
+uniform vec3 izbLightPosition;
+uniform vec3 izbLightDirection;    // directional: the direction light travels
+uniform vec3 izbAxisU;
+uniform vec3 izbAxisV;
+uniform vec4 izbWindow;           // directional: xy the window's corner (u, v), zw texels per world unit
+uniform float izbRoundoff;         // float's unit roundoff, 2^-24 (izbFloatRoundoff)
+
+struct IzbPlace
+{
+  uint texel;
+  float errorTexels; // bound on the float placement's error
+};
+
+IzbPlace izbPlace(vec3 q)
+{
+  IzbPlace place;
+  vec2 texels;
+  uint face = 0u;
+  if (izbDirectional == 1)
+  {
+    texels = (vec2(dot(q, izbAxisU), dot(q, izbAxisV)) - izbWindow.xy) * izbWindow.zw;
+    place.errorTexels = 8.0 * izbRoundoff * (length(q) + length(izbWindow.xy)) * max(izbWindow.z, izbWindow.w);
+  }
+  else
+  {
+    vec3 d = q - izbLightPosition;
+    vec3 m = abs(d);
+    // The major axis, ties to the lower axis; the face's two other axes follow it cyclically.
+    int major = (m.x >= m.y && m.x >= m.z) ? 0 : (m.y >= m.z ? 1 : 2);
+    face = uint(2 * major + (d[major] < 0.0 ? 1 : 0));
+    float extent = m[major];
+    vec2 st = extent > 0.0 ? vec2(d[(major + 1) % 3], d[(major + 2) % 3]) / extent : vec2(0.0);
+    texels = (st + 1.0) * (0.5 * float(izbGridSize));
+    float error = 8.0 * izbRoundoff * (length(q) + length(izbLightPosition));
+    place.errorTexels = extent > 0.0 ? 2.0 * error / extent * float(izbGridSize) : 1e30;
+  }
+  texels = clamp(texels, vec2(0.0), vec2(float(izbGridSize)));
+  ivec2 texel = min(ivec2(texels), ivec2(izbGridSize - 1));
+  place.texel = face * uint(izbGridSize * izbGridSize) + uint(texel.y * izbGridSize + texel.x);
+  return place;
+}
+
+float izbDet(vec3 x, vec3 y, vec3 z)
+{
+  return dot(cross(x, y), z);
+}
+
+// The rounding bound of det(x, y, z) from operands with absolute errors ex, ey, ez (README.md, "Ambiguity").
+float izbDetBound(vec3 x, float ex, vec3 y, float ey, vec3 z, float ez)
+{
+  float lx = length(x), ly = length(y), lz = length(z);
+  return 2.0 * (ex * ly * lz + lx * ey * lz + lx * ly * ez + 8.0 * izbRoundoff * lx * ly * lz);
+}
+
+int izbCertainSign(float value, float bound)
+{
+  return value > bound ? 1 : (value < -bound ? -1 : 0);
+}
+
+// Johnson et al. 2005 §3 / Aila & Laine 2004 §3: does triangle abc cover q in light space (the edge functions share
+// a sign) and lie between q and the light (its plane separates them)? IZB_FLAG_SHADOW for the decision,
+// IZB_FLAG_DEFINITE when no quantity it rests on lies within its rounding bound, IZB_FLAG_UNCERTAIN when one could
+// flip it.
+uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q)
+{
+  float u = izbRoundoff;
+  float eq = 4.0 * u * length(q);
+  vec3 qa = a - q, qb = b - q, qc = c - q;
+  float ea = eq + u * length(qa), eb = eq + u * length(qb), ec = eq + u * length(qc);
+  bool directional = izbDirectional == 1;
+  vec3 d = directional ? izbLightDirection : q - izbLightPosition;
+  float ed = directional ? 2.0 * u : eq + u * length(izbLightPosition) + u * length(d);
+  float e0 = izbDet(qa, qb, d), e1 = izbDet(qb, qc, d), e2 = izbDet(qc, qa, d);
+  int s0 = izbCertainSign(e0, izbDetBound(qa, ea, qb, eb, d, ed));
+  int s1 = izbCertainSign(e1, izbDetBound(qb, eb, qc, ec, d, ed));
+  int s2 = izbCertainSign(e2, izbDetBound(qc, ec, qa, ea, d, ed));
+  vec3 edge1 = b - a, edge2 = c - a, aq = q - a;
+  float fq = izbDet(edge1, edge2, aq);
+  int planeAtQ = izbCertainSign(fq, izbDetBound(edge1, u * length(edge1), edge2, u * length(edge2), aq, eq + u * length(aq)));
+  vec3 al = directional ? d : izbLightPosition - a;
+  float fl = izbDet(edge1, edge2, al);
+  int planeAtLight = izbCertainSign(fl, izbDetBound(edge1, u * length(edge1), edge2, u * length(edge2), al,
+    directional ? ed : u * length(izbLightPosition) + u * length(al)));
+
+  bool inside = (e0 > 0.0 && e1 > 0.0 && e2 > 0.0) || (e0 < 0.0 && e1 < 0.0 && e2 < 0.0);
+  bool between = directional ? ((fq > 0.0 && fl > 0.0) || (fq < 0.0 && fl < 0.0))
+                             : ((fq > 0.0 && fl < 0.0) || (fq < 0.0 && fl > 0.0));
+  int positive = (s0 > 0 ? 1 : 0) + (s1 > 0 ? 1 : 0) + (s2 > 0 ? 1 : 0);
+  int negative = (s0 < 0 ? 1 : 0) + (s1 < 0 ? 1 : 0) + (s2 < 0 ? 1 : 0);
+  int wanted = directional ? 1 : -1;
+  bool definite = (positive == 3 || negative == 3) && planeAtQ * planeAtLight == wanted;
+  bool possible = (positive == 0 || negative == 0) && planeAtQ * planeAtLight != -wanted;
+  uint flags = 0u;
+  flags |= (inside && between) ? uint(IZB_FLAG_SHADOW) : 0u;
+  flags |= definite ? uint(IZB_FLAG_DEFINITE) : 0u;
+  flags |= (possible && !definite) ? uint(IZB_FLAG_UNCERTAIN) : 0u;
+  return flags;
+}
+
+// The per-pixel state the passes share: x flags, y triangles tested, z the sample's texel, w unused.
+layout(std430, binding = 3) buffer IzbPixels
+{
+  uvec4 izbPixels[];
+};
