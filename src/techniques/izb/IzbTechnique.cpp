@@ -62,8 +62,8 @@ TechniqueDescriptor izbTechnique()
       "caster triangles tested against the pixel's sample (those whose conservative cover holds its texel)",
       BufferKind::Continuous, {}, SubLightCombine::Sum },
     { "izb_ambiguous", "",
-      "1 where the decision lies within float rounding of a triangle edge or plane (or of the light-reach test): "
-      "either visibility is right there" },
+      "1 where the decision lies within float rounding of a triangle edge or plane (or the sample's texel "
+      "placement does): either visibility is right there" },
     categoricalBuffer("izb_status", "whether the pixel's sample was tested, or cut short by a budget",
       izbStatusCategories, SubLightCombine::First),
   };
@@ -73,10 +73,8 @@ TechniqueDescriptor izbTechnique()
     { "IZB_FLAG_DEFINITE", static_cast<int>(IzbFlagDefinite), "pixel state bit" },
     { "IZB_FLAG_UNCERTAIN", static_cast<int>(IzbFlagUncertain), "pixel state bit" },
     { "IZB_FLAG_CUT_SHORT", static_cast<int>(IzbFlagCutShort), "pixel state bit" },
-    { "IZB_FLAG_AMBIGUOUS_INPUT", static_cast<int>(IzbFlagAmbiguousInput), "pixel state bit" },
+    { "IZB_FLAG_AMBIGUOUS_PLACEMENT", static_cast<int>(IzbFlagAmbiguousPlacement), "pixel state bit" },
     { "IZB_COVERAGE_MARGIN_INVERSE", izbCoverageMarginInverse, "1 / the cover's margin in texels (IzbTwin.h)" },
-    { "IZB_REACH_AMBIGUITY_INVERSE", static_cast<int>(std::lround(1.0 / izbReachAmbiguity)),
-      "1 / the reach test's ambiguity threshold (IzbTwin.h izbReachAmbiguity)" },
   };
   descriptor.createPass = newTechniquePass<vtkSLIzbPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
@@ -89,7 +87,7 @@ TechniqueDescriptor izbTechnique()
   descriptor.accuracy.tolerance = 1e-3;
   descriptor.accuracy.approximations = {
     { "perforated caster as solid", "the segment to the light crosses a caster with an alpha texture" },
-    { "float rounding", "izb_ambiguous: a triangle edge or plane (or the reach test) within float rounding" },
+    { "float rounding", "izb_ambiguous: a triangle edge or plane (or the texel placement) within float rounding" },
     { "cut short", "izb_status cut short: the sample was not listed (list_budget or node_budget full)" },
   };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
@@ -169,7 +167,8 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
       continue;
     }
     ++tests;
-    const IzbSampleTest test = izbSampleTest(triangles[t], triangles[t + 1], triangles[t + 2], q, izbLight);
+    const IzbSampleTest test = izbSampleTest(
+      triangles[t], triangles[t + 1], triangles[t + 2], q, izbLight, static_cast<float>(settings.offsetWorld(scene)));
     if (test.shadows || test.uncertain)
     {
       recorder.quantity("triangle_" + std::to_string(t / 3) + (test.uncertain ? " (within rounding)" : " (covers)"),

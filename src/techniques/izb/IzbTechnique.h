@@ -7,8 +7,8 @@
 // texel's list may hold), normal_offset (of the scene's bounding radius: the receiver point leaves its surface along
 // its normal, as the ray tracer's origin does).
 // Buffers: izb_list_length (samples in the pixel's light texel), izb_triangle_tests (triangles tested against the
-// pixel's sample), izb_ambiguous (1: the decision lies within float rounding of a triangle edge or plane, or of the
-// light-reach test), izb_status (no test / tested / cut short by a budget, a cut-short mark).
+// pixel's sample), izb_ambiguous (1: the decision lies within float rounding of a triangle edge or plane, or the
+// sample's texel placement does), izb_status (no test / tested / cut short by a budget, a cut-short mark).
 // Statistics (stats.json technique_statistics): izb_ambiguous_pixels, izb_cut_short_pixels, izb_samples,
 // izb_nodes, izb_pairs, izb_triangles, izb_occupied_texels, izb_max_list_length, izb_cover_ms.
 // Lights: point, spot, directional; an area light is refused (its shadows are soft, and this is a hard-shadow oracle).
@@ -44,7 +44,7 @@ enum IzbFlag : unsigned
   IzbFlagDefinite = 4u,        // ... beyond rounding
   IzbFlagUncertain = 8u,       // some triangle's decision within rounding
   IzbFlagCutShort = 16u,       // not listed: list or node budget exceeded
-  IzbFlagAmbiguousInput = 32u, // the reach test or the texel placement within rounding
+  IzbFlagAmbiguousPlacement = 32u, // the texel placement within rounding (IzbGrid::placementErrorTexels)
 };
 
 // izb_status codes.

@@ -82,12 +82,20 @@ double izbDet(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z)
   return glm::dot(glm::cross(x, y), z);
 }
 
-// The bound on the float evaluation of det(x, y, z) from operands carrying absolute errors ex, ey, ez: first-order
-// propagation plus the rounding of the cross and dot products, times 2 for safety (README.md, "Ambiguity").
-double izbDetBound(const glm::dvec3& x, double ex, const glm::dvec3& y, double ey, const glm::dvec3& z, double ez)
+// The bound on the float evaluation of det(x, y, z) = cross(x, y) . z from operands carrying componentwise absolute
+// errors ex, ey, ez: first-order propagation (ex . |y x z| + ey . |z x x| + ez . |x y|) plus the rounding of the cross
+// product (2u per component of |x_j y_k| + |x_k y_j|) and of the dot product (3u), times 2 for safety (README.md,
+// "Ambiguity"). Componentwise, so a triangle in an axis plane keeps the exact zeros float keeps too.
+glm::dvec3 izbAbsCross(const glm::dvec3& x, const glm::dvec3& y)
 {
-  const double lx = glm::length(x), ly = glm::length(y), lz = glm::length(z);
-  return 2.0 * (ex * ly * lz + lx * ey * lz + lx * ly * ez + 8.0 * izbFloatRoundoff * lx * ly * lz);
+  return glm::abs(glm::dvec3(x.y * y.z, x.z * y.x, x.x * y.y)) + glm::abs(glm::dvec3(x.z * y.y, x.x * y.z, x.y * y.x));
+}
+
+double izbDetBound(const glm::dvec3& x, const glm::dvec3& ex, const glm::dvec3& y, const glm::dvec3& ey,
+  const glm::dvec3& z, const glm::dvec3& ez)
+{
+  return 2.0 * (glm::dot(ex, glm::abs(glm::cross(y, z))) + glm::dot(ey, glm::abs(glm::cross(z, x))) +
+    glm::dot(ez, glm::abs(glm::cross(x, y))) + 5.0 * izbFloatRoundoff * glm::dot(izbAbsCross(x, y), glm::abs(z)));
 }
 
 // -1 / +1 when the value's sign is certain beyond its bound, 0 when float rounding may flip it.
@@ -246,17 +254,19 @@ bool IzbGrid::texelMeetsPolygon(int x, int y, const std::vector<glm::dvec2>& pol
   return true;
 }
 
-IzbSampleTest izbSampleTest(
-  const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q, const IzbLight& light)
+IzbSampleTest izbSampleTest(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q,
+  const IzbLight& light, double offsetWorld)
 {
   const double u = izbFloatRoundoff;
-  // The float sample q = p + offset n carries about 4u|q| (README.md, "Ambiguity"); the vertices are exact floats.
-  const double eq = 4.0 * u * glm::length(q);
+  // Componentwise error bounds of the float operands (README.md, "Ambiguity"): q = p + offset n rounds by
+  // u (|q| + offset) at most (p and n are exact floats, |n_i| <= 1); the vertices are exact floats; each difference
+  // rounds by u of its own magnitude; the light's position is a float uniform.
+  const glm::dvec3 eq = 2.0 * u * (glm::abs(q) + offsetWorld);
   const glm::dvec3 qa = a - q, qb = b - q, qc = c - q;
-  const double ea = eq + u * glm::length(qa), eb = eq + u * glm::length(qb), ec = eq + u * glm::length(qc);
+  const glm::dvec3 ea = eq + u * glm::abs(qa), eb = eq + u * glm::abs(qb), ec = eq + u * glm::abs(qc);
   const glm::dvec3 d = light.directional ? light.direction : q - light.position;
-  const double ed =
-    light.directional ? 2.0 * u : eq + u * glm::length(light.position) + u * glm::length(d);
+  const glm::dvec3 ed = light.directional ? 2.0 * u * glm::abs(d)
+                                          : eq + u * glm::abs(light.position) + u * glm::abs(d);
 
   // Johnson et al. 2005 §3: q is inside the triangle in light space when the edge functions share a sign.
   const double edges[3] = { izbDet(qa, qb, d), izbDet(qb, qc, d), izbDet(qc, qa, d) };
@@ -264,13 +274,13 @@ IzbSampleTest izbSampleTest(
     izbDetBound(qc, ec, qa, ea, d, ed) };
   // The plane test: f(x) = det(b - a, c - a, x - a), at q and at the light (directional: the slope along d).
   const glm::dvec3 e1 = b - a, e2 = c - a, aq = q - a;
+  const glm::dvec3 ee1 = u * glm::abs(e1), ee2 = u * glm::abs(e2);
   const double fq = izbDet(e1, e2, aq);
-  const double fqBound =
-    izbDetBound(e1, u * glm::length(e1), e2, u * glm::length(e2), aq, eq + u * glm::length(aq));
+  const double fqBound = izbDetBound(e1, ee1, e2, ee2, aq, eq + u * glm::abs(aq));
   const glm::dvec3 al = light.directional ? d : light.position - a;
   const double fl = izbDet(e1, e2, al);
-  const double flBound = izbDetBound(e1, u * glm::length(e1), e2, u * glm::length(e2), al,
-    light.directional ? ed : u * glm::length(light.position) + u * glm::length(al));
+  const double flBound = izbDetBound(e1, ee1, e2, ee2, al,
+    light.directional ? ed : u * glm::abs(light.position) + u * glm::abs(al));
 
   IzbSampleTest result;
   const bool inside = (edges[0] > 0.0 && edges[1] > 0.0 && edges[2] > 0.0) ||
@@ -351,7 +361,7 @@ IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& 
         pixel.visibility = 1.0;
         continue;
       }
-      pixel.ambiguous = izbReachMargin(light, pWs, nWs) < izbReachAmbiguity;
+      pixel.reachAmbiguous = izbReachMargin(light, pWs, nWs) < izbReachAmbiguity;
       if (!lightCanReach(light, pWs, nWs))
       {
         continue;
@@ -402,7 +412,8 @@ IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& 
       for (int k = start[texel]; k < start[texel + 1]; ++k)
       {
         const std::size_t index = static_cast<std::size_t>(listed[static_cast<std::size_t>(k)]);
-        const IzbSampleTest test = izbSampleTest(triangles[t], triangles[t + 1], triangles[t + 2], samples[index], izbLight);
+        const IzbSampleTest test =
+          izbSampleTest(triangles[t], triangles[t + 1], triangles[t + 2], samples[index], izbLight, offset);
         ++twin.pixels[index].triangleTests;
         shadowed[index] |= test.shadows ? 1 : 0;
         definite[index] |= test.definite ? 1 : 0;

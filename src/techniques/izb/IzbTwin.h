@@ -91,8 +91,9 @@ struct IzbSampleTest
   bool definite = false;  // shadows, and no quantity it rests on lies within its rounding bound
   bool uncertain = false; // within rounding of an edge or of the plane: float may decide either way
 };
-IzbSampleTest izbSampleTest(
-  const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q, const IzbLight& light);
+// `offsetWorld`: the normal offset q was moved by (its rounding enters the bounds).
+IzbSampleTest izbSampleTest(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q,
+  const IzbLight& light, double offsetWorld);
 
 // The receiver point a pixel tests: pWs + offset nWs (the ray tracer's origin, test::RayCaster::pointVisibility).
 inline glm::dvec3 izbSamplePoint(const glm::dvec3& pWs, const glm::dvec3& nWs, double offsetWorld)
@@ -100,8 +101,9 @@ inline glm::dvec3 izbSamplePoint(const glm::dvec3& pWs, const glm::dvec3& nWs, d
   return pWs + offsetWorld * nWs;
 }
 
-// Below this, lightCanReach's decisions (facing, spot cone) are within float rounding: the pixel is flagged (the
-// project's threshold, ProbeSupport.h probeReachAmbiguity).
+// Below this, lightCanReach's decisions (facing, spot cone) are within float rounding (the project's threshold,
+// ProbeSupport.h probeReachAmbiguity). The shared reach rule is every technique's, not the IZB's: the pass does not
+// flag it (izb_ambiguous), the probe notes it and the tests leave such pixels out as GpuCpuTest does.
 inline constexpr double izbReachAmbiguity = 1e-5;
 double izbReachMargin(const Light& light, const glm::dvec3& pWs, const glm::dvec3& nWs);
 
@@ -114,7 +116,8 @@ struct IzbTwinPixel
 {
   bool tested = false;      // covered, receives shadows, light can reach
   double visibility = 0.0;  // as the pass resolves it
-  bool ambiguous = false;   // some test uncertain and none definite, or the reach decision within rounding
+  bool ambiguous = false;   // some test uncertain and none definite, or the placement within rounding
+  bool reachAmbiguous = false; // izbReachMargin below izbReachAmbiguity
   int triangleTests = 0;    // triangles whose cover holds the sample's texel
   int texel = -1;
   double texelMargin = 0.0; // distance (texels) from the sample's position to its texel's border

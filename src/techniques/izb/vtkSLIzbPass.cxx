@@ -200,6 +200,7 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
     test.setInt("pairCount", static_cast<int>(pairCount));
     test.setInt("groupsX", groupsX);
     test.setInt("listBudget", settings.listBudget);
+    test.setFloat("normalOffset", settings.offsetWorld(*frame.scene));
     this->Heads->bind(0);
     this->Nodes->bind(2);
     this->Pixels->bind(3);
@@ -254,7 +255,7 @@ std::map<std::string, double> vtkSLIzbPass::CollectStatistics()
     samples += (flags & sl::IzbFlagTested) ? 1.0 : 0.0;
     cutShort += (flags & sl::IzbFlagCutShort) ? 1.0 : 0.0;
     const bool uncertain = (flags & sl::IzbFlagUncertain) && !(flags & sl::IzbFlagDefinite);
-    ambiguous += ((flags & sl::IzbFlagAmbiguousInput) || uncertain) ? 1.0 : 0.0;
+    ambiguous += ((flags & sl::IzbFlagAmbiguousPlacement) || uncertain) ? 1.0 : 0.0;
   }
   statistics["izb_samples"] = samples;
   statistics["izb_ambiguous_pixels"] = ambiguous;

@@ -8,17 +8,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "common/LightModel.glsl"
 #include "izb/IzbCommon.glsl"
 
-// Below IZB_REACH_AMBIGUITY_INVERSE^-1, lightCanReach's decisions lie within float rounding (izbReachMargin).
-bool izbReachUncertain(vec3 pWs, vec3 nWs)
-{
-  float threshold = 1.0 / float(IZB_REACH_AMBIGUITY_INVERSE);
-  if (abs(dot(nWs, directionToLight(pWs))) < threshold)
-  {
-    return true;
-  }
-  return lightType == SL_LIGHT_SPOT && abs(dot(lightNormalWs, normalize(pWs - lightCenterWs)) - lightCosCone) < threshold;
-}
-
 uniform int imageWidth;
 uniform int imageHeight;
 uniform float normalOffset; // world units
@@ -63,14 +52,13 @@ void main()
   uint texel = 0u;
   if (surface.covered && surface.receivesShadows)
   {
-    flags |= izbReachUncertain(surface.pWs, surface.nWs) ? uint(IZB_FLAG_AMBIGUOUS_INPUT) : 0u;
     if (lightCanReach(surface.pWs, surface.nWs))
     {
       flags |= uint(IZB_FLAG_TESTED);
       vec3 q = surface.pWs + normalOffset * surface.nWs;
       IzbPlace place = izbPlace(q);
       texel = place.texel;
-      flags |= place.errorTexels > 0.5 / float(IZB_COVERAGE_MARGIN_INVERSE) ? uint(IZB_FLAG_AMBIGUOUS_INPUT) : 0u;
+      flags |= place.errorTexels > 0.5 / float(IZB_COVERAGE_MARGIN_INVERSE) ? uint(IZB_FLAG_AMBIGUOUS_PLACEMENT) : 0u;
       uint slot = atomicAdd(counts[texel], 1u);
       uint node = slot < uint(listBudget) ? atomicAdd(nodeCounter, 1u) : uint(nodeBudget);
       if (node < uint(nodeBudget))

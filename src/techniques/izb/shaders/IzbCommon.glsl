@@ -50,11 +50,17 @@ float izbDet(vec3 x, vec3 y, vec3 z)
   return dot(cross(x, y), z);
 }
 
-// The rounding bound of det(x, y, z) from operands with absolute errors ex, ey, ez (README.md, "Ambiguity").
-float izbDetBound(vec3 x, float ex, vec3 y, float ey, vec3 z, float ez)
+// The rounding bound of det(x, y, z) from operands with componentwise absolute errors ex, ey, ez (izbDetBound in
+// IzbTwin.cpp; README.md, "Ambiguity").
+vec3 izbAbsCross(vec3 x, vec3 y)
 {
-  float lx = length(x), ly = length(y), lz = length(z);
-  return 2.0 * (ex * ly * lz + lx * ey * lz + lx * ly * ez + 8.0 * izbRoundoff * lx * ly * lz);
+  return abs(x.yzx * y.zxy) + abs(x.zxy * y.yzx);
+}
+
+float izbDetBound(vec3 x, vec3 ex, vec3 y, vec3 ey, vec3 z, vec3 ez)
+{
+  return 2.0 * (dot(ex, abs(cross(y, z))) + dot(ey, abs(cross(z, x))) + dot(ez, abs(cross(x, y))) +
+    5.0 * izbRoundoff * dot(izbAbsCross(x, y), abs(z)));
 }
 
 int izbCertainSign(float value, float bound)
@@ -66,26 +72,27 @@ int izbCertainSign(float value, float bound)
 // a sign) and lie between q and the light (its plane separates them)? IZB_FLAG_SHADOW for the decision,
 // IZB_FLAG_DEFINITE when no quantity it rests on lies within its rounding bound, IZB_FLAG_UNCERTAIN when one could
 // flip it.
-uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q)
+uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q, float offset)
 {
   float u = izbRoundoff;
-  float eq = 4.0 * u * length(q);
+  vec3 eq = 2.0 * u * (abs(q) + offset);
   vec3 qa = a - q, qb = b - q, qc = c - q;
-  float ea = eq + u * length(qa), eb = eq + u * length(qb), ec = eq + u * length(qc);
+  vec3 ea = eq + u * abs(qa), eb = eq + u * abs(qb), ec = eq + u * abs(qc);
   bool directional = izbDirectional == 1;
   vec3 d = directional ? izbLightDirection : q - izbLightPosition;
-  float ed = directional ? 2.0 * u : eq + u * length(izbLightPosition) + u * length(d);
+  vec3 ed = directional ? 2.0 * u * abs(d) : eq + u * abs(izbLightPosition) + u * abs(d);
   float e0 = izbDet(qa, qb, d), e1 = izbDet(qb, qc, d), e2 = izbDet(qc, qa, d);
   int s0 = izbCertainSign(e0, izbDetBound(qa, ea, qb, eb, d, ed));
   int s1 = izbCertainSign(e1, izbDetBound(qb, eb, qc, ec, d, ed));
   int s2 = izbCertainSign(e2, izbDetBound(qc, ec, qa, ea, d, ed));
   vec3 edge1 = b - a, edge2 = c - a, aq = q - a;
+  vec3 ee1 = u * abs(edge1), ee2 = u * abs(edge2);
   float fq = izbDet(edge1, edge2, aq);
-  int planeAtQ = izbCertainSign(fq, izbDetBound(edge1, u * length(edge1), edge2, u * length(edge2), aq, eq + u * length(aq)));
+  int planeAtQ = izbCertainSign(fq, izbDetBound(edge1, ee1, edge2, ee2, aq, eq + u * abs(aq)));
   vec3 al = directional ? d : izbLightPosition - a;
   float fl = izbDet(edge1, edge2, al);
-  int planeAtLight = izbCertainSign(fl, izbDetBound(edge1, u * length(edge1), edge2, u * length(edge2), al,
-    directional ? ed : u * length(izbLightPosition) + u * length(al)));
+  int planeAtLight = izbCertainSign(fl, izbDetBound(edge1, ee1, edge2, ee2, al,
+    directional ? ed : u * abs(izbLightPosition) + u * abs(al)));
 
   bool inside = (e0 > 0.0 && e1 > 0.0 && e2 > 0.0) || (e0 < 0.0 && e1 < 0.0 && e2 < 0.0);
   bool between = directional ? ((fq > 0.0 && fl > 0.0) || (fq < 0.0 && fl < 0.0))

@@ -35,8 +35,8 @@ void main()
   }
   uvec4 state = izbPixels[pixel.y * imageWidth + pixel.x];
   uint flags = state.x;
-  // Ambiguous: the reach or placement within rounding, or some triangle's test within rounding and none certain.
-  bool ambiguous = (flags & uint(IZB_FLAG_AMBIGUOUS_INPUT)) != 0u ||
+  // Ambiguous: the texel placement within rounding, or some triangle's test within rounding and none certain.
+  bool ambiguous = (flags & uint(IZB_FLAG_AMBIGUOUS_PLACEMENT)) != 0u ||
     ((flags & uint(IZB_FLAG_UNCERTAIN)) != 0u && (flags & uint(IZB_FLAG_DEFINITE)) == 0u);
   outAmbiguous = ambiguous ? 1.0 : 0.0;
   if ((flags & uint(IZB_FLAG_TESTED)) == 0u)

@@ -10,6 +10,7 @@ layout(local_size_x = 64) in;
 uniform int pairCount;
 uniform int groupsX;
 uniform int listBudget;
+uniform float normalOffset; // world units: its rounding enters the bounds
 
 layout(std430, binding = 0) readonly buffer IzbHeads
 {
@@ -52,7 +53,7 @@ void main()
   {
     uint node = link - 1u;
     uint pixel = nodes[node].pixel;
-    uint bits = izbSampleTest(a, b, c, nodes[node].point.xyz);
+    uint bits = izbSampleTest(a, b, c, nodes[node].point.xyz, normalOffset);
     atomicAdd(izbPixels[pixel].y, 1u);
     if (bits != 0u)
     {

@@ -123,7 +123,7 @@ TEST(IzbTwin, SampleTestAgreesWithMollerTrumboreOutsideItsRoundingBand)
     light.position = izbRandomPoint(random, 4.0);
     const glm::dvec3 a = izbRandomPoint(random, 2.0), b = izbRandomPoint(random, 2.0), c = izbRandomPoint(random, 2.0);
     const glm::dvec3 q = izbRandomPoint(random, 2.0);
-    const IzbSampleTest test = izbSampleTest(a, b, c, q, light);
+    const IzbSampleTest test = izbSampleTest(a, b, c, q, light, 0.0);
     const glm::dvec3 toLight = light.directional ? -light.direction : light.position - q;
     const double tMax = light.directional ? 1e30 : 1.0;
     const auto hit = intersectRayTriangle(q, toLight, a, b - a, c - a, 1e-15);
@@ -151,13 +151,13 @@ TEST(IzbTwin, SampleOnAnEdgeOrInThePlaneIsUncertain)
   light.directional = true;
   light.direction = glm::dvec3(0.0, -1.0, 0.0);
   const glm::dvec3 a(0.0, 1.0, 0.0), b(1.0, 1.0, 0.0), c(0.0, 1.0, 1.0);
-  const IzbSampleTest onEdge = izbSampleTest(a, b, c, glm::dvec3(0.5, 0.0, 0.0), light);
+  const IzbSampleTest onEdge = izbSampleTest(a, b, c, glm::dvec3(0.5, 0.0, 0.0), light, 0.0);
   EXPECT_TRUE(onEdge.uncertain);
-  const IzbSampleTest inPlane = izbSampleTest(a, b, c, glm::dvec3(0.2, 1.0, 0.2), light);
+  const IzbSampleTest inPlane = izbSampleTest(a, b, c, glm::dvec3(0.2, 1.0, 0.2), light, 0.0);
   EXPECT_TRUE(inPlane.uncertain);
-  const IzbSampleTest below = izbSampleTest(a, b, c, glm::dvec3(0.2, 0.0, 0.2), light);
+  const IzbSampleTest below = izbSampleTest(a, b, c, glm::dvec3(0.2, 0.0, 0.2), light, 0.0);
   EXPECT_TRUE(below.definite);
-  const IzbSampleTest above = izbSampleTest(a, b, c, glm::dvec3(0.2, 2.0, 0.2), light);
+  const IzbSampleTest above = izbSampleTest(a, b, c, glm::dvec3(0.2, 2.0, 0.2), light, 0.0);
   EXPECT_FALSE(above.shadows);
   EXPECT_FALSE(above.uncertain);
 }
