@@ -37,21 +37,14 @@ inline std::string izbNormalOffsetSetting(const Scene& scene, double offsetWorld
 }
 
 // Renders `izb` for `scene` at width x height (the same camera, hence the same G-buffer, as any other technique's
-// frame of that size) with the tested point `offsetWorld` off the surface. An area light is replaced by a point light
-// at its centre (the single ray to the centre, ReferenceModel::LightCentre, which `hard` and `pcf` are held to), and
-// pixels behind its one-sided plane, which it cannot reach, are -1.
+// frame of that size) with the tested point `offsetWorld` off the surface. An area light is taken from its centre
+// (the single ray to the centre, ReferenceModel::LightCentre, which `hard` and `pcf` are held to).
 inline IzbOracleImage izbOracle(const Scene& scene, int width, int height, double offsetWorld,
   const std::vector<std::string>& settings = {})
 {
-  Scene pointLit = scene;
-  Light& light = pointLit.lights.front();
-  if (light.type == LightType::Area)
-  {
-    light.type = LightType::Point;
-  }
   std::vector<std::string> all = settings;
   all.push_back(izbNormalOffsetSetting(scene, offsetWorld));
-  const FrameResult frame = renderDataset(pointLit, "izb", width, height, all);
+  const FrameResult frame = renderDataset(scene, "izb", width, height, all);
   const ImageF& position = frame.find("position")->image;
   const ImageF& normal = frame.find("normal")->image;
   const ImageF& coverage = frame.find("coverage")->image;

@@ -54,7 +54,9 @@ TechniqueDescriptor izbTechnique()
       "(test::RayCaster::pointVisibility)" },
   };
   descriptor.lightStructures = {}; // its own light-space grid, no shadow map
-  descriptor.supportedLights = { LightType::Point, LightType::Spot, LightType::Directional };
+  // An area light is tested from its centre, as hard and pcf sample it (ReferenceModel::LightCentre), with its
+  // one-sided reach (lightCanReach).
+  descriptor.supportedLights = { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
   descriptor.buffers = {
     { "izb_list_length", "samples", "visible samples listed in (projecting to) the pixel's light-space texel",
       BufferKind::Continuous, {}, SubLightCombine::Sum },
@@ -80,7 +82,7 @@ TechniqueDescriptor izbTechnique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     return probeIzb(*context.frame, *context.scene, context.lightIndex, pixel, recorder);
   };
-  // Exact hard shadows of the light (a point); alpha textures are not sampled, so a perforated caster shadows as if
+  // Exact hard shadows of the light's centre; alpha textures are not sampled, so a perforated caster shadows as if
   // solid. Pixels within float rounding of a decision are published (izb_ambiguous), and so are those a budget cut
   // short (izb_status).
   descriptor.accuracy.reference = ReferenceModel::LightCentre;

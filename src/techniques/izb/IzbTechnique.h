@@ -11,7 +11,8 @@
 // sample's texel placement does), izb_status (no test / tested / cut short by a budget, a cut-short mark).
 // Statistics (stats.json technique_statistics): izb_ambiguous_pixels, izb_cut_short_pixels, izb_samples,
 // izb_nodes, izb_pairs, izb_triangles, izb_occupied_texels, izb_max_list_length, izb_cover_ms.
-// Lights: point, spot, directional; an area light is refused (its shadows are soft, and this is a hard-shadow oracle).
+// Lights: point, spot, directional, and an area light from its centre (as hard and pcf take it; the single ray to the
+// centre is the reference, ReferenceModel::LightCentre).
 #pragma once
 
 #include "frame/FrameResult.h"

@@ -1,6 +1,6 @@
 // The irregular z-buffer (technique izb) on llvmpipe: against the exact single ray on every dataset with a point,
 // spot or directional light and on random configurations, against its CPU twin (izb/IzbTwin.h) on read-back buffers,
-// its budgets right-or-flagged, its result independent of the grid, and area lights refused.
+// its budgets right-or-flagged, its result independent of the grid, and area lights taken from their centre.
 #include "io/ImageIO.h"
 #include "lightspace/LightView.h"
 #include "scene/RandomScenes.h"
@@ -278,21 +278,27 @@ TEST(Izb, GridSizeChangesTheCostNotTheResult)
   EXPECT_GT(coarseTests, 3.0 * fineTests);
 }
 
-// izb is a hard-shadow technique from a point: an area light is refused with one line naming it.
-TEST(Izb, RefusesAnAreaLightNamingIt)
+// An area light is tested from its centre (as hard and pcf take it): the same exactness against the ray to the centre
+// (exactPointVisibility), one-sided reach included, on the area-light datasets small enough for the brute-force ray
+// caster at this size (bunny's and fence-meshed's tens of thousands of triangles are left to the regression suite).
+TEST(Izb, MisclassifiesNoUnambiguousPixelFromAnAreaLightsCentre)
 {
-  const Scene scene = test::loadDataset("stacked-occluders");
-  try
+  for (const std::string name : { "stacked-occluders", "planar-occluder", "contact", "grazing", "near-light", "fence" })
   {
-    test::renderDataset(scene, "izb", 64, 64);
-    FAIL() << "izb rendered an area light";
-  }
-  catch (const InputError& error)
-  {
-    const std::string message = error.what();
-    EXPECT_NE(message.find("lights[0]"), std::string::npos) << message;
-    EXPECT_NE(message.find("area light"), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    Scene scene = test::loadDataset(name);
+    ASSERT_EQ(scene.lights.front().type, LightType::Area) << name;
+    // izb does not sample alpha textures (its declared approximation, perforated caster as solid): fence's holes
+    // closed, for the G-buffer and the ray caster alike.
+    for (SceneObject& object : scene.objects)
+    {
+      object.hasAlphaTexture = false;
+    }
+    const FrameResult frame = izbRender(scene, 112, 112);
+    const IzbRayComparison result = izbCompareWithRays(frame, scene);
+    std::cout << name << ": " << result << "\n";
+    EXPECT_EQ(result.mismatches, 0) << name << ": " << result;
+    EXPECT_LE(result.ambiguous, result.compared / 100) << name << ": " << result;
+    EXPECT_GT(result.shadowed, 100) << name;
   }
 }
 
