@@ -41,7 +41,7 @@ TechniqueDescriptor izbTechnique()
   descriptor.parameters = {
     { "grid_size", 256, 16, 2048, "texels",
       "texels per side of the light-space grid the samples are listed in (one face for a directional light, six cube "
-      "faces for a point or spot light); changes the cost, never the result (Johnson et al. 2005 §3)",
+      "faces for a point or spot light); changes the cost, never the result (Johnson et al. 2005)",
       {}, true },
     { "node_budget", 4194304, 64, 16777216, "nodes",
       "list nodes available (one per listed sample); samples beyond it are flagged cut short", {}, true },
@@ -145,8 +145,8 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
   const IzbGrid grid = IzbGrid::fit(light, scene.bounds(), settings.gridSize);
   const IzbGrid::Place place = grid.place(q);
   recorder.beginGroup("light-space grid");
-  recorder.quantity("face", place.face, "", "Johnson et al. 2005 §3: the sample's light-space texel (cube face)");
-  recorder.quantity("texel", place.texels, "texels", "Johnson et al. 2005 §3: position in the face");
+  recorder.quantity("face", place.face, "", "Johnson et al. 2005: the sample's light-space texel (cube face)");
+  recorder.quantity("texel", place.texels, "texels", "Johnson et al. 2005: position in the face");
   if (grid.placementErrorTexels(q) > 0.5 / izbCoverageMarginInverse)
   {
     outcome.ambiguity += (outcome.ambiguity.empty() ? "" : ", ") + std::string("texel placement within rounding");
@@ -174,7 +174,7 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
     if (test.shadows || test.uncertain)
     {
       recorder.quantity("triangle_" + std::to_string(t / 3) + (test.uncertain ? " (within rounding)" : " (covers)"),
-        triangles[t], "world units (first vertex)", "Aila & Laine 2004 §3: covers the sample, between it and the light");
+        triangles[t], "world units (first vertex)", "Aila & Laine 2004: covers the sample, between it and the light");
     }
     shadowed = shadowed || test.shadows;
     definite = definite || test.definite;

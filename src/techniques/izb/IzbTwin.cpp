@@ -268,7 +268,7 @@ IzbSampleTest izbSampleTest(const glm::dvec3& a, const glm::dvec3& b, const glm:
   const glm::dvec3 ed = light.directional ? 2.0 * u * glm::abs(d)
                                           : eq + u * glm::abs(light.position) + u * glm::abs(d);
 
-  // Johnson et al. 2005 §3: q is inside the triangle in light space when the edge functions share a sign.
+  // Johnson et al. 2005: q is inside the triangle in light space when the edge functions share a sign.
   const double edges[3] = { izbDet(qa, qb, d), izbDet(qb, qc, d), izbDet(qc, qa, d) };
   const double edgeBounds[3] = { izbDetBound(qa, ea, qb, eb, d, ed), izbDetBound(qb, eb, qc, ec, d, ed),
     izbDetBound(qc, ec, qa, ea, d, ed) };

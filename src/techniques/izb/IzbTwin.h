@@ -80,7 +80,7 @@ struct IzbLight
 };
 
 // One triangle against one sample point q (the receiver moved off its surface by the normal offset), Johnson et al.
-// 2005 §3 / Aila & Laine 2004 §3: is q inside the triangle in light space (the line from the light through q crosses
+// 2005; Aila & Laine 2004: is q inside the triangle in light space (the line from the light through q crosses
 // it: the three edge functions e_ab = det(a - q, b - q, D), D = q - light or the light's direction, share a sign), and
 // does the triangle's plane separate q from the light (the crossing lies between them)? Each quantity carries the
 // bound of its float rounding on the GPU (README.md, "Ambiguity"); a decision any of them could flip within its bound

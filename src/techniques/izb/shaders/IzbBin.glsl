@@ -1,4 +1,4 @@
-// Irregular z-buffer, step 1 (Johnson et al. 2005 §3): every visible sample, moved off its surface by the normal
+// Irregular z-buffer, step 1 (Johnson et al. 2005): every visible sample, moved off its surface by the normal
 // offset, is listed in the light-space texel it projects to: a head pointer per texel, a node per sample from one
 // atomic counter (vtkSLIzbPass.h says why lists rather than counting + prefix sum). A sample beyond the list budget
 // of its texel or beyond the node budget is not listed and is flagged IZB_FLAG_CUT_SHORT.

@@ -68,7 +68,7 @@ int izbCertainSign(float value, float bound)
   return value > bound ? 1 : (value < -bound ? -1 : 0);
 }
 
-// Johnson et al. 2005 §3 / Aila & Laine 2004 §3: does triangle abc cover q in light space (the edge functions share
+// Johnson et al. 2005; Aila & Laine 2004: does triangle abc cover q in light space (the edge functions share
 // a sign) and lie between q and the light (its plane separates them)? IZB_FLAG_SHADOW for the decision,
 // IZB_FLAG_DEFINITE when no quantity it rests on lies within its rounding bound, IZB_FLAG_UNCERTAIN when one could
 // flip it.

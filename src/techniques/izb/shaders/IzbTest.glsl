@@ -1,4 +1,4 @@
-// Irregular z-buffer, step 2 (Johnson et al. 2005 §3; Sintorn et al. 2008 §4): one invocation per (caster triangle,
+// Irregular z-buffer, step 2 (Johnson et al. 2005; Sintorn et al. 2008): one invocation per (caster triangle,
 // texel it overlaps) pair, the texels from the conservative cover (IzbGrid::triangleTexels); it walks the texel's
 // list and tests every sample against the triangle exactly (izbSampleTest), setting the sample's bits with atomicOr
 // and counting the test. A list holds at most listBudget samples (step 1 flags the rest), so the walk stays under

@@ -251,7 +251,7 @@ TEST(Izb, BudgetsCutShortAndFlagNeverMisclassify)
   }
 }
 
-// The grid sets the cost, never the result (Johnson et al. 2005 §3): 16^2 and 1024^2 texels decide every pixel that
+// The grid sets the cost, never the result (Johnson et al. 2005): 16^2 and 1024^2 texels decide every pixel that
 // neither flags alike, while a coarse grid tests each sample against far more triangles.
 TEST(Izb, GridSizeChangesTheCostNotTheResult)
 {
