@@ -141,7 +141,8 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
     return outcome;
   }
   const glm::dvec3 q = izbSamplePoint(pWs, nWs, static_cast<float>(settings.offsetWorld(scene)));
-  recorder.quantity("sample_point", q, "world units", "ShadowLab: pWs + normal_offset radius nWs (the ray tracer's origin)");
+  recorder.quantity("sample_point", q, "world units",
+    "ShadowLab: pWs + normal_offset radius nWs (the ray tracer's origin)");
   const IzbGrid grid = IzbGrid::fit(light, scene.bounds(), settings.gridSize);
   const IzbGrid::Place place = grid.place(q);
   recorder.beginGroup("light-space grid");
@@ -194,7 +195,8 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
   }
   outcome.evaluated = true;
   outcome.visibility = shadowed ? 0.0 : 1.0;
-  recorder.quantity("visibility", outcome.visibility, "", "Johnson et al. 2005: lit unless a triangle covers the sample");
+  recorder.quantity(
+    "visibility", outcome.visibility, "", "Johnson et al. 2005: lit unless a triangle covers the sample");
   return outcome;
 }
 

@@ -30,7 +30,8 @@ IzbGrid IzbGrid::fit(const Light& light, const Bounds& sceneBounds, int size)
   {
     return grid;
   }
-  const glm::dvec3 helper = std::abs(grid.lightDirection.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(1.0, 0.0, 0.0);
+  const glm::dvec3 helper =
+    std::abs(grid.lightDirection.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(1.0, 0.0, 0.0);
   grid.axisU = glm::normalize(glm::cross(helper, grid.lightDirection));
   grid.axisV = glm::cross(grid.lightDirection, grid.axisU);
   // The window: the scene's bounding box seen along the light, so every sample and caster projects into it (a
@@ -438,8 +439,8 @@ double izbReachMargin(const Light& light, const glm::dvec3& pWs, const glm::dvec
   double margin = lightReachMargin(light, nWs, directionToLight(light, pWs));
   if (light.type == LightType::Spot)
   {
-    margin = std::min(margin,
-      std::abs(glm::dot(light.normal, glm::normalize(pWs - light.center)) - std::cos(glm::radians(light.coneAngleDeg))));
+    const double coneCosine = glm::dot(light.normal, glm::normalize(pWs - light.center));
+    margin = std::min(margin, std::abs(coneCosine - std::cos(glm::radians(light.coneAngleDeg))));
   }
   return margin;
 }

@@ -129,7 +129,8 @@ struct IzbTwinFrame
   std::vector<int> listLength; // per texel: samples listed
 };
 // `offsetWorld`: the normal offset in world units (IzbSettings::offsetWorld).
-IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& light, int gridSize, double offsetWorld);
+IzbTwinFrame izbTwin(
+  const FrameResult& frame, const Scene& scene, const Light& light, int gridSize, double offsetWorld);
 
 // --- template definition -----------------------------------------------------------------------------------------
 

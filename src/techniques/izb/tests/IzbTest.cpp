@@ -184,7 +184,8 @@ TEST(Izb, GpuEqualsTheCpuTwinOnReadBackBuffers)
     const Scene scene = test::loadDataset(name);
     const FrameResult frame = izbRender(scene, 112, 112);
     const IzbSettings settings = IzbSettings::from(frame.parameters);
-    const IzbTwinFrame twin = izbTwin(frame, scene, scene.lights.front(), settings.gridSize, settings.offsetWorld(scene));
+    const IzbTwinFrame twin =
+      izbTwin(frame, scene, scene.lights.front(), settings.gridSize, settings.offsetWorld(scene));
     const ImageF& visibility = frame.find("visibility")->image;
     const ImageF& ambiguous = frame.find("izb_ambiguous")->image;
     const ImageF& tests = frame.find("izb_triangle_tests")->image;
