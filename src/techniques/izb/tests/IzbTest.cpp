@@ -136,6 +136,24 @@ TEST(Izb, MisclassifiesNoUnambiguousPixelOnAnyDataset)
   }
 }
 
+// A spot light (no dataset has one): the cone's edge is the reach rule's, the rest as for a point light; one spot
+// straight down and one tilted with a wider cone.
+TEST(Izb, MisclassifiesNoUnambiguousPixelUnderASpotLight)
+{
+  for (const std::string light :
+    { std::string(R"({ "type": "spot", "center": [0, 4, 0], "normal": [0, -1, 0], "cone_angle_deg": 50 })"),
+      std::string(R"({ "type": "spot", "center": [1.5, 2.5, 1], "normal": [-0.5, -0.8, -0.33], "cone_angle_deg": 70 })") })
+  {
+    const Scene scene = test::stackedOccludersUnder(light);
+    const FrameResult frame = izbRender(scene, 112, 112);
+    const IzbRayComparison result = izbCompareWithRays(frame, scene);
+    std::cout << light << ": " << result << "\n";
+    EXPECT_EQ(result.mismatches, 0) << light << ": " << result;
+    EXPECT_LE(result.ambiguous, result.compared / 100) << light << ": " << result;
+    EXPECT_GT(result.shadowed, 100) << light;
+  }
+}
+
 // The random configurations of the differential test (scene/RandomScenes.h), their area light made a point light at
 // its centre (odd seeds) or a directional light along its axis, tilted (even seeds); perforated casters made solid
 // (izb does not sample alpha textures, the declared approximation "perforated caster as solid").
