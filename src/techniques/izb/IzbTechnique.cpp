@@ -41,7 +41,7 @@ TechniqueDescriptor izbTechnique()
   descriptor.parameters = {
     { "grid_size", 256, 16, 2048, "texels",
       "texels per side of the light-space grid the samples are listed in (one face for a directional light, six cube "
-      "faces for a point or spot light); changes the cost, never the result (Johnson et al. 2005)",
+      "faces around a point or spot light or an area light's centre); sets the cost, never the result",
       {}, true },
     { "node_budget", 4194304, 64, 16777216, "nodes",
       "list nodes available (one per listed sample); samples beyond it are flagged cut short", {}, true },
@@ -182,6 +182,10 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
     uncertain = uncertain || test.uncertain;
   }
   recorder.quantity("izb_triangle_tests", tests, "triangles", "the triangles whose conservative cover holds the texel");
+  recorder.quantity("gpu_izb_triangle_tests", bufferValue(frame, "izb_triangle_tests", pixel), "triangles",
+    "the pass's count at the pixel (equal unless the float placement picked a neighbouring texel)");
+  recorder.quantity("gpu_izb_list_length", bufferValue(frame, "izb_list_length", pixel), "samples",
+    "Johnson et al. 2005: the samples listed in the pixel's texel");
   if (uncertain && !definite)
   {
     outcome.ambiguity += (outcome.ambiguity.empty() ? "" : ", ") +
