@@ -77,6 +77,7 @@ TechniqueDescriptor izbTechnique()
     { "IZB_FLAG_CUT_SHORT", static_cast<int>(IzbFlagCutShort), "pixel state bit" },
     { "IZB_FLAG_AMBIGUOUS_PLACEMENT", static_cast<int>(IzbFlagAmbiguousPlacement), "pixel state bit" },
     { "IZB_COVERAGE_MARGIN_INVERSE", izbCoverageMarginInverse, "1 / the cover's margin in texels (IzbTwin.h)" },
+    { "IZB_EDGE_TOP_BIT_SHIFT", izbEdgeTopBitShift, "the flag bit of a lone-edge event's words (IzbTwin.h izbEdgeEvent)" },
   };
   descriptor.createPass = newTechniquePass<vtkSLIzbPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {

@@ -292,12 +292,13 @@ IzbSampleTest izbSampleTest(const glm::dvec3& a, const glm::dvec3& b, const glm:
                                          : ((fq > 0.0 && fl < 0.0) || (fq < 0.0 && fl > 0.0));
   result.shadows = inside && between;
 
-  int positive = 0, negative = 0;
+  int positive = 0, negative = 0, unsure = -1;
   for (int i = 0; i < 3; ++i)
   {
     const int sign = izbCertainSign(edges[i], edgeBounds[i]);
     positive += sign > 0 ? 1 : 0;
     negative += sign < 0 ? 1 : 0;
+    unsure = sign == 0 ? i : unsure;
   }
   const int planeAtQ = izbCertainSign(fq, fqBound);
   const int planeAtLight = izbCertainSign(fl, flBound);
@@ -308,7 +309,28 @@ IzbSampleTest izbSampleTest(const glm::dvec3& a, const glm::dvec3& b, const glm:
   const bool betweenPossible = planeAtQ * planeAtLight != -wanted;
   result.definite = insideCertain && betweenCertain;
   result.uncertain = insidePossible && betweenPossible && !result.definite;
+  // Uncertain through one edge alone (README.md, "Shared edges"): the other two edges and the plane are certain.
+  if (result.uncertain && betweenCertain && (positive == 2 || negative == 2))
+  {
+    result.loneEdge = unsure;
+    result.orientation = positive == 2 ? 1 : -1;
+  }
   return result;
+}
+
+IzbEdgeEvent izbEdgeEvent(std::uint32_t fromVertex, std::uint32_t toVertex, int orientation)
+{
+  const std::uint32_t low = std::min(fromVertex, toVertex);
+  const std::uint32_t high = std::max(fromVertex, toVertex);
+  const std::uint32_t reversed = fromVertex > toVertex ? izbEdgeTopBit : 0u;
+  return { low | reversed, high | (orientation > 0 ? izbEdgeTopBit : 0u) };
+}
+
+bool izbEdgePairCovers(std::uint32_t events, std::uint32_t xorFirst, std::uint32_t xorSecond)
+{
+  // Two events only: their words XOR to these values exactly when they name the same edge with the same
+  // orientation, listed in opposite directions (never by hashing: the words are the vertex ids themselves).
+  return events == 2 && xorFirst == izbEdgeTopBit && xorSecond == 0u;
 }
 
 std::vector<glm::dvec3> izbCasterTriangles(const Scene& scene)
@@ -326,6 +348,26 @@ std::vector<glm::dvec3> izbCasterTriangles(const Scene& scene)
     }
   }
   return vertices;
+}
+
+std::vector<std::uint32_t> izbCasterVertexIds(const Scene& scene)
+{
+  std::vector<std::uint32_t> ids;
+  std::uint32_t offset = 0;
+  for (const SceneObject& object : scene.objects)
+  {
+    if (!object.castShadows)
+    {
+      continue;
+    }
+    for (const std::uint32_t index : object.mesh.indices)
+    {
+      ids.push_back(offset + index);
+    }
+    offset += static_cast<std::uint32_t>(object.mesh.positions.size());
+  }
+  SL_CHECK_MSG(offset < izbEdgeTopBit, "izb: more than 2^31 caster vertices");
+  return ids;
 }
 
 IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& light, int gridSize, double offsetWorld)
@@ -346,6 +388,8 @@ IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& 
   twin.listLength.assign(grid.texelCount(), 0);
   std::vector<glm::dvec3> samples(twin.pixels.size());
   std::vector<int> definite(twin.pixels.size(), 0), uncertain(twin.pixels.size(), 0), shadowed(twin.pixels.size(), 0);
+  std::vector<std::uint32_t> edgeEvents(twin.pixels.size(), 0), xorFirst(twin.pixels.size(), 0),
+    xorSecond(twin.pixels.size(), 0);
   for (int y = 0; y < twin.height; ++y)
   {
     for (int x = 0; x < twin.width; ++x)
@@ -402,6 +446,7 @@ IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& 
     }
   }
   const std::vector<glm::dvec3> triangles = izbCasterTriangles(scene);
+  const std::vector<std::uint32_t> vertexIds = izbCasterVertexIds(scene);
   std::vector<std::uint32_t> texels;
   for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
   {
@@ -419,6 +464,14 @@ IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& 
         shadowed[index] |= test.shadows ? 1 : 0;
         definite[index] |= test.definite ? 1 : 0;
         uncertain[index] |= test.uncertain ? 1 : 0;
+        if (test.loneEdge >= 0)
+        {
+          const IzbEdgeEvent event = izbEdgeEvent(vertexIds[t + static_cast<std::size_t>(test.loneEdge)],
+            vertexIds[t + static_cast<std::size_t>((test.loneEdge + 1) % 3)], test.orientation);
+          ++edgeEvents[index];
+          xorFirst[index] ^= event.first;
+          xorSecond[index] ^= event.second;
+        }
       }
     }
   }
@@ -427,8 +480,9 @@ IzbTwinFrame izbTwin(const FrameResult& frame, const Scene& scene, const Light& 
     IzbTwinPixel& pixel = twin.pixels[index];
     if (pixel.tested)
     {
-      pixel.visibility = shadowed[index] ? 0.0 : 1.0;
-      pixel.ambiguous = pixel.ambiguous || (uncertain[index] && !definite[index]);
+      const bool paired = izbEdgePairCovers(edgeEvents[index], xorFirst[index], xorSecond[index]);
+      pixel.visibility = (shadowed[index] || paired) ? 0.0 : 1.0;
+      pixel.ambiguous = pixel.ambiguous || (uncertain[index] && !definite[index] && !paired);
     }
   }
   return twin;

@@ -90,7 +90,27 @@ struct IzbSampleTest
   bool shadows = false;   // the decision from the quantities' signs
   bool definite = false;  // shadows, and no quantity it rests on lies within its rounding bound
   bool uncertain = false; // within rounding of an edge or of the plane: float may decide either way
+  // Uncertain through one edge alone (the other two edges and the plane certain): that edge (0: ab, 1: bc, 2: ca)
+  // and the sign the certain edges share; -1 / 0 otherwise. Its neighbour across that edge, listed the other way
+  // round with the same orientation, then covers the other side exactly (README.md, "Shared edges").
+  int loneEdge = -1;
+  int orientation = 0;
 };
+
+// One lone-edge test of a sample, as the pass accumulates it per pixel (a count and the XOR of each word): the edge's
+// lower vertex id with the top bit set when listed from the higher, and its higher id with the top bit set for a
+// positive orientation. Vertex ids are global over the casters (izbCasterVertexIds).
+inline constexpr int izbEdgeTopBitShift = 31;
+inline constexpr std::uint32_t izbEdgeTopBit = 1u << izbEdgeTopBitShift;
+struct IzbEdgeEvent
+{
+  std::uint32_t first = 0, second = 0;
+};
+IzbEdgeEvent izbEdgeEvent(std::uint32_t fromVertex, std::uint32_t toVertex, int orientation);
+// Whether a pixel's lone-edge events are exactly two triangles sharing one edge in opposite directions with the
+// same orientation: together they cover the sample whichever side of the edge it lies on (the pass then counts the
+// sample shadowed and definite).
+bool izbEdgePairCovers(std::uint32_t events, std::uint32_t xorFirst, std::uint32_t xorSecond);
 // `offsetWorld`: the normal offset q was moved by (its rounding enters the bounds).
 IzbSampleTest izbSampleTest(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q,
   const IzbLight& light, double offsetWorld);
@@ -109,6 +129,10 @@ double izbReachMargin(const Light& light, const glm::dvec3& pWs, const glm::dvec
 
 // The caster triangles the pass tests, in scene order (objects that cast shadows), as three world points each.
 std::vector<glm::dvec3> izbCasterTriangles(const Scene& scene);
+
+// Per caster triangle (as izbCasterTriangles), its three vertices' ids: the object's index plus the vertex counts of
+// the casters before it.
+std::vector<std::uint32_t> izbCasterVertexIds(const Scene& scene);
 
 // The whole frame replayed on the CPU from its read-back G-buffer (position, normal, coverage, receives_shadows):
 // per pixel the grid texel, every caster triangle whose conservative cover holds that texel, tested in double.

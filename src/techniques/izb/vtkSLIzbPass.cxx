@@ -123,7 +123,7 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
   sl::izbEnsureBuffer(this->Heads, grid.texelCount() * 4);
   sl::izbEnsureBuffer(this->Counts, grid.texelCount() * 4);
   sl::izbEnsureBuffer(this->Nodes, nodeCount * nodeBytes);
-  sl::izbEnsureBuffer(this->Pixels, pixelCount * 16);
+  sl::izbEnsureBuffer(this->Pixels, pixelCount * 32); // two uvec4 per pixel (IzbCommon.glsl)
   sl::izbEnsureBuffer(this->Counter, 4);
   this->Heads->clear();
   this->Counts->clear();
@@ -189,6 +189,9 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
     }
     sl::izbEnsureBuffer(this->Triangles, vertices.size() * sizeof(glm::vec4));
     this->Triangles->upload(vertices.data(), vertices.size() * sizeof(glm::vec4));
+    const std::vector<std::uint32_t> vertexIds = sl::izbCasterVertexIds(*frame.scene);
+    sl::izbEnsureBuffer(this->VertexIds, vertexIds.size() * sizeof(std::uint32_t));
+    this->VertexIds->upload(vertexIds.data(), vertexIds.size() * sizeof(std::uint32_t));
     sl::izbEnsureBuffer(this->Pairs, pairs.size() * sizeof(std::uint32_t));
     this->Pairs->upload(pairs.data(), pairs.size() * sizeof(std::uint32_t));
     const sl::ComputeProgram& test = this->Program("izb/IzbTest.glsl");
@@ -206,6 +209,7 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
     this->Pixels->bind(3);
     this->Triangles->bind(5);
     this->Pairs->bind(6);
+    this->VertexIds->bind(7);
     test.dispatch({ groupsX, groupsY });
     sl::checkGlErrors("izb (triangle tests)");
   }
@@ -247,19 +251,23 @@ std::map<std::string, double> vtkSLIzbPass::CollectStatistics()
     return statistics;
   }
   const std::size_t pixelCount = static_cast<std::size_t>(this->Frame->width()) * this->Frame->height();
-  const std::vector<std::uint32_t> state = this->Pixels->download(4 * pixelCount);
-  double samples = 0.0, ambiguous = 0.0, cutShort = 0.0;
+  const std::vector<std::uint32_t> state = this->Pixels->download(8 * pixelCount);
+  double samples = 0.0, ambiguous = 0.0, cutShort = 0.0, paired = 0.0;
   for (std::size_t pixel = 0; pixel < pixelCount; ++pixel)
   {
-    const std::uint32_t flags = state[4 * pixel];
+    const std::uint32_t* words = &state[8 * pixel];
+    const std::uint32_t flags = words[0];
     samples += (flags & sl::IzbFlagTested) ? 1.0 : 0.0;
     cutShort += (flags & sl::IzbFlagCutShort) ? 1.0 : 0.0;
-    const bool uncertain = (flags & sl::IzbFlagUncertain) && !(flags & sl::IzbFlagDefinite);
+    const bool pairCovers = sl::izbEdgePairCovers(words[3], words[4], words[5]);
+    const bool uncertain = (flags & sl::IzbFlagUncertain) && !(flags & sl::IzbFlagDefinite) && !pairCovers;
+    paired += (pairCovers && !(flags & sl::IzbFlagDefinite)) ? 1.0 : 0.0;
     ambiguous += ((flags & sl::IzbFlagAmbiguousPlacement) || uncertain) ? 1.0 : 0.0;
   }
   statistics["izb_samples"] = samples;
   statistics["izb_ambiguous_pixels"] = ambiguous;
   statistics["izb_cut_short_pixels"] = cutShort;
+  statistics["izb_shared_edge_pixels"] = paired;
   statistics["izb_nodes"] = std::min<double>(this->Counter->download(1)[0], this->Nodes->bytes() / 32);
   return statistics;
 }
@@ -274,6 +282,7 @@ void vtkSLIzbPass::ReleaseGraphicsResources(vtkWindow* window)
   this->Counter.reset();
   this->Triangles.reset();
   this->Pairs.reset();
+  this->VertexIds.reset();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

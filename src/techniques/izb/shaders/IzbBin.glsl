@@ -73,5 +73,6 @@ void main()
       }
     }
   }
-  izbPixels[index] = uvec4(flags, 0u, texel, 0u);
+  izbPixels[2u * index] = uvec4(flags, 0u, texel, 0u);
+  izbPixels[2u * index + 1u] = uvec4(0u);
 }

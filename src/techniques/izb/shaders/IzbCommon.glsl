@@ -72,7 +72,7 @@ int izbCertainSign(float value, float bound)
 // a sign) and lie between q and the light (its plane separates them)? IZB_FLAG_SHADOW for the decision,
 // IZB_FLAG_DEFINITE when no quantity it rests on lies within its rounding bound, IZB_FLAG_UNCERTAIN when one could
 // flip it.
-uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q, float offset)
+uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q, float offset, out int loneEdge, out int orientation)
 {
   float u = izbRoundoff;
   vec3 eq = 2.0 * u * (abs(q) + offset);
@@ -100,8 +100,17 @@ uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q, float offset)
   int positive = (s0 > 0 ? 1 : 0) + (s1 > 0 ? 1 : 0) + (s2 > 0 ? 1 : 0);
   int negative = (s0 < 0 ? 1 : 0) + (s1 < 0 ? 1 : 0) + (s2 < 0 ? 1 : 0);
   int wanted = directional ? 1 : -1;
-  bool definite = (positive == 3 || negative == 3) && planeAtQ * planeAtLight == wanted;
+  bool betweenCertain = planeAtQ * planeAtLight == wanted;
+  bool definite = (positive == 3 || negative == 3) && betweenCertain;
   bool possible = (positive == 0 || negative == 0) && planeAtQ * planeAtLight != -wanted;
+  // Uncertain through one edge alone (IzbSampleTest::loneEdge): which edge, and the certain edges' sign.
+  loneEdge = -1;
+  orientation = 0;
+  if (possible && !definite && betweenCertain && (positive == 2 || negative == 2))
+  {
+    loneEdge = s0 == 0 ? 0 : (s1 == 0 ? 1 : 2);
+    orientation = positive == 2 ? 1 : -1;
+  }
   uint flags = 0u;
   flags |= (inside && between) ? uint(IZB_FLAG_SHADOW) : 0u;
   flags |= definite ? uint(IZB_FLAG_DEFINITE) : 0u;
@@ -109,8 +118,15 @@ uint izbSampleTest(vec3 a, vec3 b, vec3 c, vec3 q, float offset)
   return flags;
 }
 
-// The per-pixel state the passes share: x flags, y triangles tested, z the sample's texel, w unused.
+// The per-pixel state the passes share, two entries per pixel: [2 i] x flags, y triangles tested, z the sample's
+// texel, w lone-edge events; [2 i + 1] x, y the XOR of the events' words (izbEdgeEvent), z, w unused.
 layout(std430, binding = 3) buffer IzbPixels
 {
   uvec4 izbPixels[];
 };
+
+// Whether a pixel's lone-edge events are one shared edge covered from both sides (izbEdgePairCovers).
+bool izbEdgePairCovers(uint events, uint xorFirst, uint xorSecond)
+{
+  return events == 2u && xorFirst == (1u << IZB_EDGE_TOP_BIT_SHIFT) && xorSecond == 0u;
+}

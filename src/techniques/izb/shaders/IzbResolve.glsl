@@ -33,11 +33,15 @@ void main()
     outVisibility = 1.0;
     return;
   }
-  uvec4 state = izbPixels[pixel.y * imageWidth + pixel.x];
+  uint index = uint(pixel.y * imageWidth + pixel.x);
+  uvec4 state = izbPixels[2u * index];
+  uvec4 edges = izbPixels[2u * index + 1u];
   uint flags = state.x;
+  // Two triangles sharing the one edge their tests were unsure of cover the sample from both sides of it.
+  bool paired = izbEdgePairCovers(state.w, edges.x, edges.y);
   // Ambiguous: the texel placement within rounding, or some triangle's test within rounding and none certain.
   bool ambiguous = (flags & uint(IZB_FLAG_AMBIGUOUS_PLACEMENT)) != 0u ||
-    ((flags & uint(IZB_FLAG_UNCERTAIN)) != 0u && (flags & uint(IZB_FLAG_DEFINITE)) == 0u);
+    ((flags & uint(IZB_FLAG_UNCERTAIN)) != 0u && (flags & uint(IZB_FLAG_DEFINITE)) == 0u && !paired);
   outAmbiguous = ambiguous ? 1.0 : 0.0;
   if ((flags & uint(IZB_FLAG_TESTED)) == 0u)
   {
@@ -45,6 +49,6 @@ void main()
   }
   outListLength = float(counts[state.z]);
   outTriangleTests = float(state.y);
-  outVisibility = (flags & uint(IZB_FLAG_SHADOW)) != 0u ? 0.0 : 1.0;
+  outVisibility = ((flags & uint(IZB_FLAG_SHADOW)) != 0u || paired) ? 0.0 : 1.0;
   outStatus = (flags & uint(IZB_FLAG_CUT_SHORT)) != 0u ? float(IZB_STATUS_CUT_SHORT) : float(IZB_STATUS_TESTED);
 }

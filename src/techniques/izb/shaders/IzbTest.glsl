@@ -36,6 +36,10 @@ layout(std430, binding = 6) readonly buffer IzbPairs
 {
   uvec2 pairs[]; // x: triangle, y: texel
 };
+layout(std430, binding = 7) readonly buffer IzbVertexIds
+{
+  uint triangleVertexIds[]; // 3 per triangle, global over the casters (izbCasterVertexIds)
+};
 
 void main()
 {
@@ -53,11 +57,24 @@ void main()
   {
     uint node = link - 1u;
     uint pixel = nodes[node].pixel;
-    uint bits = izbSampleTest(a, b, c, nodes[node].point.xyz, normalOffset);
-    atomicAdd(izbPixels[pixel].y, 1u);
+    int loneEdge;
+    int orientation;
+    uint bits = izbSampleTest(a, b, c, nodes[node].point.xyz, normalOffset, loneEdge, orientation);
+    atomicAdd(izbPixels[2u * pixel].y, 1u);
     if (bits != 0u)
     {
-      atomicOr(izbPixels[pixel].x, bits);
+      atomicOr(izbPixels[2u * pixel].x, bits);
+    }
+    if (loneEdge >= 0)
+    {
+      // izbEdgeEvent: the edge's lower id (top bit: listed from the higher), its higher id (top bit: orientation).
+      uint from = triangleVertexIds[3u * pair.x + uint(loneEdge)];
+      uint to = triangleVertexIds[3u * pair.x + uint((loneEdge + 1) % 3)];
+      uint first = min(from, to) | (from > to ? (1u << IZB_EDGE_TOP_BIT_SHIFT) : 0u);
+      uint second = max(from, to) | (orientation > 0 ? (1u << IZB_EDGE_TOP_BIT_SHIFT) : 0u);
+      atomicAdd(izbPixels[2u * pixel].w, 1u);
+      atomicXor(izbPixels[2u * pixel + 1u].x, first);
+      atomicXor(izbPixels[2u * pixel + 1u].y, second);
     }
     link = nodes[node].next;
   }

@@ -247,6 +247,43 @@ TEST(Izb, GpuEqualsTheCpuTwinOnReadBackBuffers)
   }
 }
 
+// A meshed caster (fence-meshed: a plate with 16 holes, 63k triangles): samples whose line to the light passes within
+// rounding of an edge two triangles share are decided by the pair (izb_shared_edge_pixels), not flagged, and still
+// match the ray and the twin.
+TEST(Izb, SharedMeshEdgesAreDecidedExactly)
+{
+  const Scene scene = test::loadDataset("fence-meshed");
+  const FrameResult frame = izbRender(scene, 128, 128);
+  const IzbRayComparison result = izbCompareWithRays(frame, scene);
+  const double shared = frame.techniqueStatistics.at("izb_shared_edge_pixels");
+  std::cout << "fence-meshed: " << result << ", decided by a shared edge " << shared << "\n";
+  EXPECT_EQ(result.mismatches, 0) << result;
+  EXPECT_GT(shared, 0.0) << "the case must exercise the shared-edge rule";
+  EXPECT_LE(result.ambiguous, result.compared / 100) << result;
+  const IzbSettings settings = IzbSettings::from(frame.parameters);
+  const IzbTwinFrame twin =
+    izbTwin(frame, scene, scene.lights.front(), settings.gridSize, settings.offsetWorld(scene));
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& ambiguous = frame.find("izb_ambiguous")->image;
+  int differ = 0, twinAmbiguous = 0, gpuAmbiguous = 0;
+  for (int y = 0; y < twin.height; ++y)
+  {
+    for (int x = 0; x < twin.width; ++x)
+    {
+      const IzbTwinPixel& pixel = twin.pixels[static_cast<std::size_t>(y) * twin.width + x];
+      twinAmbiguous += pixel.ambiguous ? 1 : 0;
+      gpuAmbiguous += ambiguous.at(x, y) > 0.5f ? 1 : 0;
+      if (pixel.tested && !pixel.reachAmbiguous && ambiguous.at(x, y) <= 0.5f)
+      {
+        differ += visibility.at(x, y) != static_cast<float>(pixel.visibility) ? 1 : 0;
+      }
+    }
+  }
+  std::cout << "  against the twin: " << differ << " differ; ambiguous GPU " << gpuAmbiguous << ", twin "
+            << twinAmbiguous << "\n";
+  EXPECT_EQ(differ, 0);
+}
+
 // Right or flagged: with a list budget of 2 samples per texel (and, separately, 64 nodes) the samples not listed are
 // cut short (izb_status, counted in cut_short_pixels) and every other pixel is still exact.
 TEST(Izb, BudgetsCutShortAndFlagNeverMisclassify)

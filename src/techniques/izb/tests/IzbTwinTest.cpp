@@ -163,5 +163,36 @@ TEST(IzbTwin, SampleOnAnEdgeOrInThePlaneIsUncertain)
   EXPECT_FALSE(above.uncertain);
 }
 
+// A sample under the shared diagonal of a quad split in two: each triangle alone is uncertain through that edge, the
+// pair covers it (README.md, "Shared edges"); a triangle listed twice, or the edge met with opposite orientations
+// (a fold seen edge-on), does not pair.
+TEST(IzbTwin, TwoTrianglesSharingTheUncertainEdgeCoverTheSample)
+{
+  IzbLight light;
+  light.directional = true;
+  light.direction = glm::dvec3(0.0, -1.0, 0.0);
+  const glm::dvec3 a(0.0, 1.0, 0.0), b(1.0, 1.0, 0.0), c(0.0, 1.0, 1.0), d(1.0, 1.0, 1.0);
+  const std::uint32_t ib = 1, ic = 2; // vertex ids of b and c (a 0, d 3)
+  const glm::dvec3 q(0.5, 0.0, 0.5);
+  const IzbSampleTest first = izbSampleTest(a, b, c, q, light, 0.0);  // edges ab, bc, ca
+  const IzbSampleTest second = izbSampleTest(b, d, c, q, light, 0.0); // edges bd, dc, cb
+  ASSERT_TRUE(first.uncertain);
+  ASSERT_TRUE(second.uncertain);
+  ASSERT_EQ(first.loneEdge, 1);
+  ASSERT_EQ(second.loneEdge, 2);
+  EXPECT_EQ(first.orientation, second.orientation);
+  const IzbEdgeEvent e1 = izbEdgeEvent(ib, ic, first.orientation);
+  const IzbEdgeEvent e2 = izbEdgeEvent(ic, ib, second.orientation);
+  EXPECT_TRUE(izbEdgePairCovers(2, e1.first ^ e2.first, e1.second ^ e2.second));
+  EXPECT_FALSE(izbEdgePairCovers(2, e1.first ^ e1.first, e1.second ^ e1.second)) << "the same triangle twice";
+  const IzbEdgeEvent flipped = izbEdgeEvent(ic, ib, -second.orientation);
+  EXPECT_FALSE(izbEdgePairCovers(2, e1.first ^ flipped.first, e1.second ^ flipped.second)) << "a fold";
+  EXPECT_FALSE(izbEdgePairCovers(3, e1.first ^ e2.first ^ e1.first, e1.second ^ e2.second ^ e1.second));
+  // Off the diagonal the triangle holding the sample decides alone, definitely.
+  const IzbSampleTest inside = izbSampleTest(a, b, c, glm::dvec3(0.3, 0.0, 0.3), light, 0.0);
+  EXPECT_TRUE(inside.definite);
+  EXPECT_EQ(inside.loneEdge, -1);
+}
+
 } // namespace
 } // namespace sl
