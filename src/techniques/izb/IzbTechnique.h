@@ -9,7 +9,8 @@
 // Buffers: izb_list_length (samples in the pixel's light texel), izb_triangle_tests (triangles tested against the
 // pixel's sample), izb_ambiguous (1: the decision lies within float rounding of a triangle edge or plane, or the
 // sample's texel placement does), izb_status (no test / tested / cut short by a budget, a cut-short mark).
-// Statistics (stats.json technique_statistics): izb_ambiguous_pixels, izb_cut_short_pixels, izb_samples,
+// Statistics (stats.json technique_statistics): izb_ambiguous_pixels, izb_cut_short_pixels, izb_shared_edge_pixels
+// (decided by two triangles sharing the edge the sample lies within rounding of), izb_samples,
 // izb_nodes, izb_pairs, izb_triangles, izb_occupied_texels, izb_max_list_length, izb_cover_ms.
 // Lights: point, spot, directional, and an area light from its centre (as hard and pcf take it; the single ray to the
 // centre is the reference, ReferenceModel::LightCentre).
