@@ -156,7 +156,9 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
 
   recorder.beginGroup("triangles over the texel");
   const std::vector<glm::dvec3> triangles = izbCasterTriangles(scene);
+  const std::vector<std::uint32_t> vertexIds = izbCasterVertexIds(scene);
   const IzbLight izbLight = IzbLight::from(light);
+  std::uint32_t edgeEvents = 0, xorFirst = 0, xorSecond = 0;
   const std::uint32_t texel = static_cast<std::uint32_t>(place.texel);
   std::vector<std::uint32_t> texels;
   int tests = 0;
@@ -181,13 +183,28 @@ ProbeOutcome probeIzb(const FrameResult& frame, const Scene& scene, int lightInd
     shadowed = shadowed || test.shadows;
     definite = definite || test.definite;
     uncertain = uncertain || test.uncertain;
+    if (test.loneEdge >= 0)
+    {
+      const IzbEdgeEvent event = izbEdgeEvent(vertexIds[t + static_cast<std::size_t>(test.loneEdge)],
+        vertexIds[t + static_cast<std::size_t>((test.loneEdge + 1) % 3)], test.orientation);
+      ++edgeEvents;
+      xorFirst ^= event.first;
+      xorSecond ^= event.second;
+    }
   }
+  const bool paired = izbEdgePairCovers(edgeEvents, xorFirst, xorSecond);
+  if (paired)
+  {
+    recorder.quantity("shared_edge_pair", 1.0, "",
+      "ShadowLab (README.md, Shared edges): two triangles sharing the edge the sample lies within rounding of");
+  }
+  shadowed = shadowed || paired;
   recorder.quantity("izb_triangle_tests", tests, "triangles", "the triangles whose conservative cover holds the texel");
   recorder.quantity("gpu_izb_triangle_tests", bufferValue(frame, "izb_triangle_tests", pixel), "triangles",
     "the pass's count at the pixel (equal unless the float placement picked a neighbouring texel)");
   recorder.quantity("gpu_izb_list_length", bufferValue(frame, "izb_list_length", pixel), "samples",
     "Johnson et al. 2005: the samples listed in the pixel's texel");
-  if (uncertain && !definite)
+  if (uncertain && !definite && !paired)
   {
     outcome.ambiguity += (outcome.ambiguity.empty() ? "" : ", ") +
       std::string("a triangle edge or plane within float rounding of the sample");
