@@ -14,7 +14,9 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 namespace sl
 {
@@ -207,6 +209,51 @@ std::string reproduceCommand(std::uint64_t seed, const std::string& technique, c
     " --max-side " + std::to_string(maxSide);
 }
 
+namespace
+{
+
+// DifferentialOptions::seedsPerChoice: which (seed index, technique, choice) run besides the defaults. Whether a
+// configuration can run is known before any GL (the technique takes the scene's light, the choice applies to its
+// casters), so a choice is given a seed where it compares nothing only when no seed would do.
+std::set<std::tuple<std::size_t, std::string, std::string>> rotatedChoiceSeeds(const DifferentialOptions& options,
+  const std::vector<const TechniqueDescriptor*>& techniques)
+{
+  std::vector<Scene> scenes;
+  for (const std::uint64_t seed : options.seeds)
+  {
+    scenes.push_back(parseScene(randomScene(seed, options.maxSide).json, "differential seed " + std::to_string(seed),
+      std::filesystem::current_path()));
+  }
+  std::set<std::tuple<std::size_t, std::string, std::string>> selected;
+  for (const TechniqueDescriptor* technique : techniques)
+  {
+    const std::vector<std::string> choices =
+      options.choice.empty() ? enumeratedChoices(*technique) : std::vector<std::string>{ options.choice };
+    for (std::size_t choiceIndex = 0; choiceIndex < choices.size(); ++choiceIndex)
+    {
+      int taken = 0;
+      for (std::size_t step = 0; step < scenes.size() && taken < options.seedsPerChoice; ++step)
+      {
+        const std::size_t seedIndex = (choiceIndex + step) % scenes.size();
+        const Scene& scene = scenes[seedIndex];
+        if (technique->supports(scene.lights.front()) && closedCastersRequirement(choices[choiceIndex], scene).empty())
+        {
+          selected.insert({ seedIndex, technique->name, choices[choiceIndex] });
+          ++taken;
+        }
+      }
+      if (taken == 0 && !scenes.empty())
+      {
+        // No seed it applies to: its own seed, whose outcome then says why (unsupported light, open casters).
+        selected.insert({ choiceIndex % scenes.size(), technique->name, choices[choiceIndex] });
+      }
+    }
+  }
+  return selected;
+}
+
+} // namespace
+
 std::vector<ConfigurationOutcome> runDifferential(ShadowRenderer& renderer, const DifferentialOptions& options,
   const std::function<void(const ConfigurationOutcome&)>& report)
 {
@@ -235,9 +282,17 @@ std::vector<ConfigurationOutcome> runDifferential(ShadowRenderer& renderer, cons
     }
   }
 
-  std::vector<ConfigurationOutcome> outcomes;
-  for (const std::uint64_t seed : options.seeds)
+  if (options.seedsPerChoice < 0)
   {
+    throw InputError("seeds per choice " + std::to_string(options.seedsPerChoice) + ": must be >= 0 (0 = every seed)");
+  }
+  const std::set<std::tuple<std::size_t, std::string, std::string>> selected =
+    options.seedsPerChoice > 0 ? rotatedChoiceSeeds(options, techniques) : std::set<std::tuple<std::size_t, std::string, std::string>>{};
+
+  std::vector<ConfigurationOutcome> outcomes;
+  for (std::size_t seedIndex = 0; seedIndex < options.seeds.size(); ++seedIndex)
+  {
+    const std::uint64_t seed = options.seeds[seedIndex];
     const RandomScene random = randomScene(seed, options.maxSide);
     const std::string label = "differential seed " + std::to_string(seed);
     if (!options.sceneDir.empty())
@@ -272,6 +327,10 @@ std::vector<ConfigurationOutcome> runDifferential(ShadowRenderer& renderer, cons
         options.choice.empty() ? enumeratedChoices(*technique) : std::vector<std::string>{ options.choice };
       for (const std::string& choice : choices)
       {
+        if (options.seedsPerChoice > 0 && choice != "default" && !selected.count({ seedIndex, technique->name, choice }))
+        {
+          continue;
+        }
         ConfigurationOutcome outcome;
         outcome.seed = seed;
         outcome.technique = technique->name;

@@ -34,6 +34,10 @@ struct DifferentialOptions
   std::vector<std::uint64_t> seeds;
   std::vector<std::string> techniques; // empty: every registered one
   std::string choice;                  // empty: every choice; else only "default" or "key=value"
+  // 0: every choice on every seed. n > 0: the default on every seed, each other choice on n seeds only, the first n
+  // that the technique supports and the choice applies to, taken in rotation from the choice's own place in the seed
+  // list, so that the choices spread over the scenes (the test's slice: the product costs too much per case).
+  int seedsPerChoice = 0;
   int maxSide = 128;                   // RandomScenes.h
   int referenceSamples = 256;          // stratified, per pixel, for the area-light reference
   double noiseSigmas = 3.0;            // k
