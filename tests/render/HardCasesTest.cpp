@@ -1,6 +1,7 @@
 // Numerically hard cases, checked against an independent brute-force CPU ray caster (RayCaster.h):
 // acne on a grazing receiver, the contact shadow, non-square images, and no NaN/inf anywhere.
 #include "io/ImageIO.h"
+#include "support/IzbOracle.h"
 #include "support/RayCaster.h"
 #include "support/TestSupport.h"
 #include "lightspace/LightView.h"
@@ -133,6 +134,20 @@ TEST(HardCases, NoAcneOnTheGrazingReceiverWithDefaultBias)
   EXPECT_GT(withBias.rayShadowed, 100) << "the box must cast a shadow";
   EXPECT_EQ(withBias.wrongShadow, 0) << "acne pixels with the default bias";
   EXPECT_EQ(withBias.wrongLight, 0) << "light-leak pixels with the default bias";
+  // A second oracle, on the GPU: the irregular z-buffer at the same G-buffer and offset (support/IzbOracle.h). It
+  // decides the pixels the ray caster does (its undecided ones, within float rounding, left out) and finds the same.
+  const test::IzbOracleImage izb = test::izbOracle(scene, 160, 160, 1e-4 * scene.bounds().radius());
+  const Disagreement againstIzb = disagreement(frame, izb.visibility, 2);
+  EXPECT_EQ(againstIzb.wrongShadow + againstIzb.wrongLight, 0) << "hard against the irregular z-buffer";
+  int oraclesDiffer = 0;
+  for (std::size_t i = 0; i < rayCast.data.size(); ++i)
+  {
+    const bool bothDecide = izb.visibility.data[i] >= 0.0f && rayCast.data[i] >= 0.0f;
+    oraclesDiffer += (bothDecide && izb.visibility.data[i] != rayCast.data[i]) ? 1 : 0;
+  }
+  EXPECT_EQ(oraclesDiffer, 0) << "the two oracles disagree (" << izb.undecidedPixels << " izb pixels undecided)";
+  EXPECT_GT(izb.decided, 160 * 160 / 2);
+  EXPECT_LE(izb.undecidedPixels, izb.decided / 100);
 
   // The test has teeth: without bias the same receiver is covered in acne.
   const FrameResult unbiased =

@@ -201,7 +201,7 @@ void PrintTo(const DatasetTechnique& pair, std::ostream* os)
 
 const std::vector<std::string>& wallRingTechniques()
 {
-  static const std::vector<std::string> names = { "shadow-volume", "dcs", "vtk", "hard", "pcf" };
+  static const std::vector<std::string> names = { "shadow-volume", "dcs", "vtk", "hard", "pcf", "izb" };
   return names;
 }
 
