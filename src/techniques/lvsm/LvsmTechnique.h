@@ -1,0 +1,65 @@
+// Technique `lvsm`: layered variance shadow maps (Lauritzen & McCool 2008; survey §6). The light's depth range is
+// split into `layers` equal, disjoint layers, each a variance shadow map of the depths warped into it
+// (structures/layeredmoments); a receiver reads the layer holding its depth and applies Chebyshev's bound to that
+// layer's moments at its warped depth. Math: lvsm/shaders/LvsmVisibility.glsl.
+// Parameters: the shadow-map ones, layers, prefilter_texels, light_bleeding_reduction, min_variance.
+// Buffers: p_max, light_leak (p_max - pcf over the same box, pcf's default bias, as vsm), layer, warped_depth,
+// vsm_p_max (the unlayered bound over the same box) and leak_above_vsm (flags where layering bled more than vsm),
+// depth_bias (eight outputs, the GL's draw buffers: the box width is prefilter_texels, no buffer).
+#pragma once
+
+#include "techniques/MomentReference.h"
+#include "techniques/ShadowMapReference.h"
+#include "frame/TechniqueDescriptor.h"
+
+namespace sl
+{
+
+TechniqueDescriptor lvsmTechnique();
+
+// The issue's claim (issue 30): layering leaks less than vsm wherever vsm leaks by more than this against the PCF
+// over the same texels. leak_above_vsm flags the pixels where it does not hold (the shader's
+// LVSM_VSM_LEAK_THRESHOLD).
+inline constexpr double lvsmVsmLeakThreshold = 0.05;
+
+// lvsm's parameters, typed (parsed once, by from()).
+struct LvsmSettings
+{
+  BiasSettings bias;
+  int layers{};
+  int prefilterTexels{};
+  double lightBleedingReduction{};
+  double minVariance{}; // relative to d^2, in linear depth (rescaled into each layer's warped units)
+
+  static LvsmSettings from(const ParameterValues& values);
+};
+
+struct LvsmSample
+{
+  ReferenceSample sample;
+  int layer = -1;
+  double layerNear = 0.0; // p_i
+  double layerFar = 0.0;  // q_i
+  double warpedDepth = 0.0;     // phi_i(t)
+  double mean = 0.0;            // E[phi_i(z)] over the box
+  double second = 0.0;          // E[phi_i(z)^2]
+  double varianceFloor = 0.0;   // min_variance d^2 / (q_i - p_i)^2
+  double variance = 0.0;        // floored
+  double pMax = 0.0;
+  double pcf = 0.0;             // the light-leak PCF (pcf's default bias) over the same box
+  double lightLeak = 0.0;       // pMax - pcf
+  double vsmPMax = 0.0;         // Chebyshev's bound on the unwarped depths of the same box (vsm's p_max)
+};
+
+// The moments (E[phi], E[phi^2]) of the box of `width` texels around uvTexels's texel (clamp to edge), each depth
+// warped into `layer` (structures/layeredmoments/LayeredMoments.h): the CPU mirror of the layered moment map.
+FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, int layer,
+  int layers, ProbeRecorder* recorder = nullptr);
+
+// CPU reference (double precision) of LvsmVisibility.glsl. `recorder` (optional, `shadowlab probe`): the receiver,
+// its layer and warped depth, the box and the layer's moments, the bound and the light-bleeding reduction, and the
+// light leak against the true PCF over the same box.
+LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& settings, int x, int y,
+  ProbeRecorder* recorder = nullptr);
+
+} // namespace sl

@@ -1,0 +1,85 @@
+// Layered variance shadow maps (Lauritzen & McCool 2008; survey §6). The receiver at depth t reads the layer i
+// whose interval [p_i, q_i] holds t, and applies the one-tailed Chebyshev bound of VSM to that layer's prefiltered
+// moments of the warped depths phi_i(z) at its own warped depth phi_i(t):
+//   p_max = sigma^2 / (sigma^2 + (phi_i(t) - mu)^2)  for phi_i(t) > mu (1 otherwise).
+// phi_i is affine inside the layer, so vsm's variance floor min_variance d^2 (linear depth^2) is rescaled by
+// 1 / (q_i - p_i)^2 into warped units; with one layer the bound is vsm's (Chebyshev's bound is invariant under an
+// affine map of the depths). Light bleeding is reduced as vsm does (Lauritzen 2007).
+// Also written, to check the issue's claim per pixel: vsm's bound on the unwarped depths of the same box, and a flag
+// where the layered bound leaks at least as much as vsm's while vsm leaks more than LVSM_VSM_LEAK_THRESHOLD.
+// CPU mirror: src/techniques/lvsm/LvsmTechnique.cpp.
+#include "common/GBufferInputs.glsl"
+#include "common/LightModel.glsl"
+#include "common/ShadowMapCommon.glsl"
+#include "common/ShadowReceiver.glsl"
+#include "common/MomentLookup.glsl"
+#include "common/Chebyshev.glsl"
+#include "layeredmoments/LayeredMomentsLayout.glsl"
+
+uniform sampler3D layeredMoments; // slice i: (E[phi_i(z)], E[phi_i(z)^2]) over the box
+uniform int kernelWidth;          // prefilter_texels
+
+layout(location = OUT_VISIBILITY) out float outVisibility;
+layout(location = OUT_P_MAX) out float outPMax;
+layout(location = OUT_LIGHT_LEAK) out float outLightLeak;
+layout(location = OUT_LAYER) out float outLayer;
+layout(location = OUT_WARPED_DEPTH) out float outWarpedDepth;
+layout(location = OUT_VSM_P_MAX) out float outVsmPMax;
+layout(location = OUT_LEAK_ABOVE_VSM) out float outLeakAboveVsm;
+layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
+
+// vsm's bound over the same box, from the shadow map's depths (vsm's moment map is not built for lvsm).
+float unlayeredBound(vec2 uvTexels, float t, float d)
+{
+  ivec2 center = shadowMapTexel(uvTexels);
+  int first = -(kernelWidth - 1) / 2;
+  vec2 sum = vec2(0.0);
+  for (int j = 0; j < kernelWidth; ++j)
+  {
+    for (int i = 0; i < kernelWidth; ++i)
+    {
+      ivec2 texel = clamp(center + ivec2(first + i, first + j), ivec2(0), ivec2(shadowMapSize - 1));
+      float z = texelFetch(shadowMapLinear, texel, 0).r;
+      sum += vec2(z, z * z);
+    }
+  }
+  vec2 moments = sum / float(kernelWidth * kernelWidth);
+  float variance = max(moments.y - moments.x * moments.x, param_min_variance * d * d);
+  return chebyshevUpperBound(moments.x, variance, t);
+}
+
+void main()
+{
+  ShadowReceiver receiver = prepareShadowReceiver(ivec2(gl_FragCoord.xy));
+  outVisibility = receiver.visibility;
+  outPMax = 0.0;
+  outLightLeak = 0.0;
+  outLayer = -1.0;
+  outWarpedDepth = 0.0;
+  outVsmPMax = 0.0;
+  outLeakAboveVsm = 0.0;
+  outDepthBias = receiver.bias;
+  if (!receiver.needsShadowTest)
+  {
+    return;
+  }
+  float t = receiver.comparisonDepth;
+  int layer = depthLayerIndex(t);
+  vec2 interval = depthLayer(layer);
+  float warpedT = warpIntoLayer(t, interval);
+  vec2 moments = texelFetch(layeredMoments, ivec3(shadowMapTexel(receiver.uvTexels), layer), 0).xy;
+  float d = receiver.depthLin;
+  float layerScale = 1.0 / (interval.y - interval.x);
+  float variance = max(moments.y - moments.x * moments.x, param_min_variance * d * d * layerScale * layerScale);
+  float pMax = chebyshevUpperBound(moments.x, variance, warpedT);
+  outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
+  outPMax = pMax;
+  float pcf = boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
+  outLightLeak = pMax - pcf;
+  outLayer = float(layer);
+  outWarpedDepth = warpedT;
+  float vsmPMax = unlayeredBound(receiver.uvTexels, t, d);
+  outVsmPMax = vsmPMax;
+  float vsmLeak = vsmPMax - pcf;
+  outLeakAboveVsm = vsmLeak > LVSM_VSM_LEAK_THRESHOLD && pMax - pcf >= vsmLeak ? 1.0 : 0.0;
+}

@@ -1,0 +1,311 @@
+// lvsm (layered variance shadow maps, Lauritzen & McCool 2008): the GLSL against its CPU twin, one layer against
+// vsm, the exact two-depth case, and the claim that layering leaks less than vsm wherever vsm leaks by more
+// than 0.05 against the PCF over the same texels.
+#include "support/TestSupport.h"
+#include "scene/RandomScenes.h"
+#include "scene/Scene.h"
+#include "structures/layeredmoments/LayeredMoments.h"
+#include "techniques/lvsm/LvsmTechnique.h"
+#include "techniques/vsm/VsmTechnique.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+namespace sl
+{
+namespace
+{
+
+// Receivers whose depth lies within float rounding of a layer boundary may read either layer on the GPU.
+bool lvsmNearLayerBoundary(const ShadowMapInputs& inputs, const LvsmSettings& settings, double depth)
+{
+  const double position = (depth - inputs.lightView.nearDepth) /
+    (inputs.lightView.farDepth - inputs.lightView.nearDepth) * settings.layers;
+  return std::abs(position - std::round(position)) < 1e-5 * settings.layers;
+}
+
+const ImageF& lvsmBuffer(const FrameResult& frame, const char* name)
+{
+  const auto* found = frame.find(name);
+  if (found == nullptr)
+  {
+    throw std::runtime_error(std::string("no buffer ") + name);
+  }
+  return found->image;
+}
+
+// Tolerances (as vsm's MomentTest): the GPU averages the warped moments in float, and E[phi^2] - E[phi]^2 cancels
+// when the warped variance is small; pixels whose warped variance is below 1e-3 are counted, not compared.
+TEST(Lvsm, MatchesTheCpuTwin)
+{
+  for (const std::string dataset : { "stacked-occluders", "bunny", "contact", "planar-occluder" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=7", "light_bleeding_reduction=0" };
+    const FrameResult frame = test::renderDataset(scene, "lvsm", 96, 80, settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const LvsmSettings lvsmSettings = LvsmSettings::from(frame.parameters);
+    int compared = 0;
+    int illConditioned = 0;
+    int nearBoundary = 0;
+    int partial = 0;
+    int layersSeen[16] = {};
+    double maxVisibility = 0.0;
+    double maxWarped = 0.0;
+    double maxLeak = 0.0;
+    for (int y = 0; y < 80; ++y)
+    {
+      for (int x = 0; x < 96; ++x)
+      {
+        const LvsmSample cpu = lvsmReference(inputs, lvsmSettings, x, y);
+        const double gpu = lvsmBuffer(frame, "visibility").at(x, y);
+        if (!cpu.sample.evaluated)
+        {
+          EXPECT_EQ(gpu, cpu.sample.visibility) << dataset << " " << x << "," << y;
+          EXPECT_EQ(lvsmBuffer(frame, "layer").at(x, y), -1.0f) << dataset << " " << x << "," << y;
+          continue;
+        }
+        const ShadowLookup lookup = prepareShadowLookup(inputs, lvsmSettings.bias, x, y);
+        if (lvsmNearLayerBoundary(inputs, lvsmSettings, lookup.comparisonDepth))
+        {
+          ++nearBoundary;
+          continue;
+        }
+        EXPECT_EQ(lvsmBuffer(frame, "layer").at(x, y), static_cast<float>(cpu.layer)) << dataset << " " << x << "," << y;
+        ++layersSeen[cpu.layer];
+        const double warped = lvsmBuffer(frame, "warped_depth").at(x, y);
+        maxWarped = std::max(maxWarped, std::abs(warped - cpu.warpedDepth));
+        EXPECT_NEAR(warped, cpu.warpedDepth, 1e-4) << dataset << " " << x << "," << y;
+        if (cpu.variance < 1e-3 || cpu.sample.reachMargin < 1e-5)
+        {
+          ++illConditioned;
+          continue;
+        }
+        ++compared;
+        partial += (cpu.sample.visibility > 0.0 && cpu.sample.visibility < 1.0) ? 1 : 0;
+        maxVisibility = std::max(maxVisibility, std::abs(gpu - cpu.sample.visibility));
+        EXPECT_NEAR(gpu, cpu.sample.visibility, 2e-3) << dataset << " pixel " << x << "," << y;
+        EXPECT_NEAR(lvsmBuffer(frame, "p_max").at(x, y), cpu.pMax, 2e-3) << dataset << " pixel " << x << "," << y;
+        // The leak's PCF may differ by a tie (a comparison within float rounding of its boundary): 1 / 49.
+        const double leakError = std::abs(lvsmBuffer(frame, "light_leak").at(x, y) - cpu.lightLeak);
+        maxLeak = std::max(maxLeak, leakError);
+        EXPECT_LT(leakError, 2e-3 + 1.0 / 49.0 + 1e-6) << dataset << " pixel " << x << "," << y;
+      }
+    }
+    int distinctLayers = 0;
+    for (int count : layersSeen)
+    {
+      distinctLayers += count > 0 ? 1 : 0;
+    }
+    std::cout << "[ measured ] lvsm " << dataset << ": compared " << compared << " (partial " << partial
+              << "), warped variance < 1e-3 " << illConditioned << ", at a layer boundary " << nearBoundary
+              << ", layers read " << distinctLayers << "; max |gpu - cpu| visibility " << maxVisibility << ", warped depth "
+              << maxWarped << ", light_leak " << maxLeak << "\n";
+    EXPECT_GT(compared, 200) << dataset;
+  }
+}
+
+
+// One layer spans the light's whole depth range and phi_0 is affine, so Chebyshev's bound (invariant under an affine
+// map of the depths, with the variance floor rescaled alike) is vsm's. Texels beyond the range (the shadow map's
+// empty texels hold 2 x far) clamp to far in the layer and keep their depth in vsm: boxes holding one are counted,
+// not compared.
+TEST(Lvsm, OneLayerEqualsVsm)
+{
+  for (const std::string dataset : { "stacked-occluders", "bunny", "contact" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=7" };
+    std::vector<std::string> oneLayer = settings;
+    oneLayer.push_back("layers=1");
+    const FrameResult lvsm = test::renderDataset(scene, "lvsm", 96, 80, oneLayer);
+    const FrameResult vsm = test::renderDataset(scene, "vsm", 96, 80, settings);
+    const ShadowMapInputs inputs = test::shadowMapInputs(vsm, scene);
+    const VsmSettings vsmSettings = VsmSettings::from(vsm.parameters);
+    int compared = 0;
+    int illConditioned = 0;
+    int beyondRange = 0;
+    double maxVisibility = 0.0;
+    double maxPMax = 0.0;
+    double maxLeak = 0.0;
+    for (int y = 0; y < 80; ++y)
+    {
+      for (int x = 0; x < 96; ++x)
+      {
+        const VsmSample cpu = vsmReference(inputs, vsmSettings, x, y);
+        const double lvsmVisibility = lvsmBuffer(lvsm, "visibility").at(x, y);
+        const double vsmVisibility = lvsmBuffer(vsm, "visibility").at(x, y);
+        if (!cpu.sample.evaluated)
+        {
+          EXPECT_EQ(lvsmVisibility, vsmVisibility) << dataset << " " << x << "," << y;
+          continue;
+        }
+        EXPECT_EQ(lvsmBuffer(lvsm, "layer").at(x, y), 0.0f);
+        const ShadowLookup lookup = prepareShadowLookup(inputs, vsmSettings.bias, x, y);
+        const FilteredMoments layered = layeredBoxMoments(inputs, lookup.sm.uvTexels, 7, 0, 1);
+        const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, 7, 0.0);
+        const double range = inputs.lightView.farDepth - inputs.lightView.nearDepth;
+        if (std::abs(layered.mean * range + inputs.lightView.nearDepth - plain.mean) > 1e-9 * plain.mean)
+        {
+          ++beyondRange;
+          continue;
+        }
+        const double d = lookup.sm.depthLin;
+        if (cpu.variance < 1e-3 * d * d || cpu.sample.reachMargin < 1e-5)
+        {
+          ++illConditioned;
+          continue;
+        }
+        ++compared;
+        maxVisibility = std::max(maxVisibility, std::abs(lvsmVisibility - vsmVisibility));
+        maxPMax = std::max(maxPMax, static_cast<double>(std::abs(lvsmBuffer(lvsm, "p_max").at(x, y) - lvsmBuffer(vsm, "p_max").at(x, y))));
+        maxLeak = std::max(maxLeak,
+          static_cast<double>(std::abs(lvsmBuffer(lvsm, "light_leak").at(x, y) - lvsmBuffer(vsm, "light_leak").at(x, y))));
+        EXPECT_NEAR(lvsmVisibility, vsmVisibility, 4e-3) << dataset << " pixel " << x << "," << y;
+        EXPECT_NEAR(lvsmBuffer(lvsm, "p_max").at(x, y), lvsmBuffer(vsm, "p_max").at(x, y), 4e-3) << dataset << " pixel " << x << "," << y;
+        // The same comparisons on the same texels: the leak's PCF is the same, bit for bit.
+        EXPECT_NEAR(lvsmBuffer(lvsm, "light_leak").at(x, y), lvsmBuffer(vsm, "light_leak").at(x, y), 4e-3)
+          << dataset << " pixel " << x << "," << y;
+        // And in double: the twin with one layer is vsm's twin.
+        const LvsmSample layeredCpu = lvsmReference(inputs, LvsmSettings::from(lvsm.parameters), x, y);
+        EXPECT_NEAR(layeredCpu.pMax, cpu.pMax, 1e-9) << dataset << " pixel " << x << "," << y;
+      }
+    }
+    std::cout << "[ measured ] lvsm layers=1 vs vsm, " << dataset << ": compared " << compared << ", ill-conditioned "
+              << illConditioned << ", box beyond the depth range " << beyondRange << "; max |lvsm - vsm| visibility "
+              << maxVisibility << ", p_max " << maxPMax << ", light_leak " << maxLeak << "\n";
+    EXPECT_GT(compared, 300) << dataset;
+  }
+}
+
+// A planar occluder over a planar receiver facing the light: every box holds two depths, the occluder's z1 (a
+// fraction f of it) and the receiver's t. Warped into t's layer they are two values, phi(z1) < phi(t), and
+// Chebyshev's bound is exact there: mu = f phi(z1) + (1 - f) phi(t), sigma^2 = f (1 - f) (phi(t) - phi(z1))^2,
+// p_max = sigma^2 / (sigma^2 + f^2 (phi(t) - phi(z1))^2) = 1 - f, the PCF over the box. So p_max equals the
+// box's lit fraction on the ground, for every layer count.
+TEST(Lvsm, TwoDepthsGiveTheExactLitFraction)
+{
+  const Scene scene = test::loadDataset("planar-occluder");
+  for (const std::string layers : { "1", "2", "4", "8" })
+  {
+    const FrameResult frame =
+      test::renderDataset(scene, "lvsm", 128, 128, { "shadow_map_size=256", "prefilter_texels=9", "layers=" + layers });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const LvsmSettings settings = LvsmSettings::from(frame.parameters);
+    int ground = 0;
+    int penumbra = 0;
+    double maxError = 0.0;
+    for (int y = 0; y < 128; ++y)
+    {
+      for (int x = 0; x < 128; ++x)
+      {
+        if (lvsmBuffer(frame, "coverage").at(x, y) < 0.5f || std::abs(lvsmBuffer(frame, "position").at(x, y, 1)) > 1e-4)
+        {
+          continue;
+        }
+        const LvsmSample cpu = lvsmReference(inputs, settings, x, y);
+        if (!cpu.sample.evaluated)
+        {
+          continue;
+        }
+        // The closed form: the box's fraction of receiver texels (depth at or beyond t).
+        const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+        const double litFraction = boxPcf(inputs, lookup.sm.uvTexels, lookup.comparisonDepth * (1.0 - 1e-6), 9);
+        ++ground;
+        penumbra += litFraction > 0.0 && litFraction < 1.0 ? 1 : 0;
+        const double gpu = lvsmBuffer(frame, "p_max").at(x, y);
+        maxError = std::max(maxError, std::abs(gpu - litFraction));
+        EXPECT_NEAR(cpu.pMax, litFraction, 1e-9) << "layers=" << layers << " pixel " << x << "," << y;
+        EXPECT_NEAR(gpu, litFraction, 2e-3) << "layers=" << layers << " pixel " << x << "," << y;
+      }
+    }
+    std::cout << "[ measured ] lvsm planar-occluder layers=" << layers << ": ground " << ground << " (penumbra " << penumbra
+              << "), max |p_max - lit fraction of the box| " << maxError << "\n";
+    EXPECT_GT(ground, 3000);
+    EXPECT_GT(penumbra, 100);
+  }
+}
+
+struct LvsmLeakCounts
+{
+  int vsmLeaking = 0;  // vsm's light_leak > 0.05
+  int violations = 0;  // of those, lvsm's light_leak >= vsm's
+  int flagged = 0;     // lvsm's leak_above_vsm buffer
+  int flagMismatch = 0;
+  double worstExcess = -1.0;
+};
+
+// Pixel by pixel, both at their defaults: where vsm's light_leak exceeds 0.05, lvsm's must be smaller. The GPU
+// buffers of both techniques compare, and lvsm's leak_above_vsm must mark exactly the pixels where it is not.
+LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, int width, int height)
+{
+  const FrameResult lvsm = test::renderDataset(scene, "lvsm", width, height);
+  const FrameResult vsm = test::renderDataset(scene, "vsm", width, height);
+  const ShadowMapInputs inputs = test::shadowMapInputs(lvsm, scene);
+  const LvsmSettings settings = LvsmSettings::from(lvsm.parameters);
+  LvsmLeakCounts counts;
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const double vsmLeak = lvsmBuffer(vsm, "light_leak").at(x, y);
+      const double lvsmLeak = lvsmBuffer(lvsm, "light_leak").at(x, y);
+      const bool flagged = lvsmBuffer(lvsm, "leak_above_vsm").at(x, y) > 0.5f;
+      counts.flagged += flagged ? 1 : 0;
+      if (vsmLeak <= lvsmVsmLeakThreshold)
+      {
+        continue;
+      }
+      ++counts.vsmLeaking;
+      const bool violated = lvsmLeak >= vsmLeak;
+      counts.flagMismatch += violated != flagged ? 1 : 0;
+      if (!violated)
+      {
+        continue;
+      }
+      ++counts.violations;
+      counts.worstExcess = std::max(counts.worstExcess, lvsmLeak - vsmLeak);
+      const LvsmSample cpu = lvsmReference(inputs, settings, x, y);
+      const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+      const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, settings.prefilterTexels, 0.0);
+      std::cout << "[ violation ] " << label << " pixel " << x << "," << y << ": vsm leak " << vsmLeak << " lvsm leak "
+                << lvsmLeak << " | t " << lookup.comparisonDepth << " layer " << cpu.layer << " [" << cpu.layerNear << ", "
+                << cpu.layerFar << "] phi(t) " << cpu.warpedDepth << " moments (" << cpu.mean << ", " << cpu.second
+                << ") variance " << cpu.variance << " floor " << cpu.varianceFloor << " p_max " << cpu.pMax << " vsm p_max "
+                << cpu.vsmPMax << " (mean " << plain.mean << ", variance " << plain.second - plain.mean * plain.mean
+                << ") pcf " << cpu.pcf << " light_bleeding_reduction " << settings.lightBleedingReduction << "\n";
+    }
+  }
+  std::cout << "[ measured ] " << label << ": vsm leaks > 0.05 at " << counts.vsmLeaking << " pixels; lvsm leaks at least as much at "
+            << counts.violations << " (worst excess " << counts.worstExcess << "); leak_above_vsm marks " << counts.flagged
+            << "\n";
+  return counts;
+}
+
+TEST(Lvsm, LeaksLessThanVsmWhereVsmLeaks)
+{
+  LvsmLeakCounts total;
+  const auto add = [&](const LvsmLeakCounts& counts) {
+    total.vsmLeaking += counts.vsmLeaking;
+    total.violations += counts.violations;
+    total.flagged += counts.flagged;
+    total.flagMismatch += counts.flagMismatch;
+    EXPECT_EQ(counts.flagMismatch, 0) << "leak_above_vsm must mark exactly the violations";
+  };
+  add(lvsmCompareLeaks(test::loadDataset("stacked-occluders"), "stacked-occluders", 128, 128));
+  for (std::uint64_t seed = 1; seed <= 12; ++seed)
+  {
+    const RandomScene random = randomScene(seed, 64);
+    const Scene scene = parseScene(random.json, format("random seed ", seed), ".");
+    add(lvsmCompareLeaks(scene, format("random seed ", seed, " (", random.summary, ")"), 64, 48));
+  }
+  std::cout << "[ measured ] all: vsm leaks > 0.05 at " << total.vsmLeaking << " pixels; lvsm leaks at least as much at "
+            << total.violations << "\n";
+  EXPECT_GT(total.vsmLeaking, 50) << "the scenes must make vsm leak";
+  EXPECT_EQ(total.violations, 0);
+}
+
+} // namespace
+} // namespace sl
