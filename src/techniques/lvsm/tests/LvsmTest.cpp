@@ -36,8 +36,10 @@ const ImageF& lvsmBuffer(const FrameResult& frame, const char* name)
   return found->image;
 }
 
-// Tolerances (as vsm's MomentTest): the GPU averages the warped moments in float, and E[phi^2] - E[phi]^2 cancels
-// when the warped variance is small; pixels whose warped variance is below 1e-3 are counted, not compared.
+// Every pixel is compared (2e-3, as vsm's MomentTest) but those whose receiver lies within float rounding of a layer
+// boundary or of a texel edge (the GPU may read the other layer or the neighbouring box) or grazes the light. Unlike
+// vsm's moments, the warped ones need no exclusion for small variance: phi lies in [0, 1] and a layer's flat regions
+// have E[phi^2] - E[phi]^2 = 0 exactly (measured: no pixel of warped variance below 1e-3 differs by more than 2e-3).
 TEST(Lvsm, MatchesTheCpuTwin)
 {
   for (const std::string dataset : { "stacked-occluders", "bunny", "contact", "planar-occluder" })
@@ -48,8 +50,9 @@ TEST(Lvsm, MatchesTheCpuTwin)
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const LvsmSettings lvsmSettings = LvsmSettings::from(frame.parameters);
     int compared = 0;
-    int illConditioned = 0;
+    int grazing = 0;
     int nearBoundary = 0;
+    int nearTexelEdge = 0;
     int partial = 0;
     int layersSeen[16] = {};
     double maxVisibility = 0.0;
@@ -78,9 +81,20 @@ TEST(Lvsm, MatchesTheCpuTwin)
         const double warped = lvsmBuffer(frame, "warped_depth").at(x, y);
         maxWarped = std::max(maxWarped, std::abs(warped - cpu.warpedDepth));
         EXPECT_NEAR(warped, cpu.warpedDepth, 1e-4) << dataset << " " << x << "," << y;
-        if (cpu.variance < 1e-3 || cpu.sample.reachMargin < 1e-5)
+        if (cpu.sample.reachMargin < 1e-5)
         {
-          ++illConditioned;
+          ++grazing;
+          continue;
+        }
+        const TexelWithEdges cell = texelWithEdges(lookup.sm.uvTexels);
+        double edge = 1e300;
+        for (const TexelEdge& texelEdge : cell.edges)
+        {
+          edge = std::min(edge, texelEdge.distance);
+        }
+        if (edge < 1e-4)
+        {
+          ++nearTexelEdge; // the GPU may fetch the neighbouring texel's box
           continue;
         }
         ++compared;
@@ -100,18 +114,18 @@ TEST(Lvsm, MatchesTheCpuTwin)
       distinctLayers += count > 0 ? 1 : 0;
     }
     std::cout << "[ measured ] lvsm " << dataset << ": compared " << compared << " (partial " << partial
-              << "), warped variance < 1e-3 " << illConditioned << ", at a layer boundary " << nearBoundary
+              << "), grazing " << grazing << ", at a layer boundary " << nearBoundary << ", at a texel edge " << nearTexelEdge
               << ", layers read " << distinctLayers << "; max |gpu - cpu| visibility " << maxVisibility << ", warped depth "
               << maxWarped << ", light_leak " << maxLeak << "\n";
-    EXPECT_GT(compared, 200) << dataset;
+    EXPECT_GT(compared, 4000) << dataset;
   }
 }
 
 
 // One layer spans the light's whole depth range and phi_0 is affine, so Chebyshev's bound (invariant under an affine
-// map of the depths, with the variance floor rescaled alike) is vsm's. Texels beyond the range (the shadow map's
-// empty texels hold 2 x far) clamp to far in the layer and keep their depth in vsm: boxes holding one are counted,
-// not compared.
+// map of the depths, with the variance floor rescaled alike) is vsm's: every pixel agrees within 4e-3 (float
+// rounding of the two moment maps). Texels beyond the range (the shadow map's empty texels hold 2 x far) clamp to far
+// in the layer and keep their depth in vsm: there the layered bound may only be lower (measured: it is never higher).
 TEST(Lvsm, OneLayerEqualsVsm)
 {
   for (const std::string dataset : { "stacked-occluders", "bunny", "contact" })
@@ -125,8 +139,9 @@ TEST(Lvsm, OneLayerEqualsVsm)
     const ShadowMapInputs inputs = test::shadowMapInputs(vsm, scene);
     const VsmSettings vsmSettings = VsmSettings::from(vsm.parameters);
     int compared = 0;
-    int illConditioned = 0;
+    int grazing = 0;
     int beyondRange = 0;
+    double maxBeyond = -1.0;
     double maxVisibility = 0.0;
     double maxPMax = 0.0;
     double maxLeak = 0.0;
@@ -150,12 +165,12 @@ TEST(Lvsm, OneLayerEqualsVsm)
         if (std::abs(layered.mean * range + inputs.lightView.nearDepth - plain.mean) > 1e-9 * plain.mean)
         {
           ++beyondRange;
+          maxBeyond = std::max(maxBeyond, static_cast<double>(lvsmBuffer(lvsm, "p_max").at(x, y) - lvsmBuffer(vsm, "p_max").at(x, y)));
           continue;
         }
-        const double d = lookup.sm.depthLin;
-        if (cpu.variance < 1e-3 * d * d || cpu.sample.reachMargin < 1e-5)
+        if (cpu.sample.reachMargin < 1e-5)
         {
-          ++illConditioned;
+          ++grazing;
           continue;
         }
         ++compared;
@@ -173,10 +188,11 @@ TEST(Lvsm, OneLayerEqualsVsm)
         EXPECT_NEAR(layeredCpu.pMax, cpu.pMax, 1e-9) << dataset << " pixel " << x << "," << y;
       }
     }
-    std::cout << "[ measured ] lvsm layers=1 vs vsm, " << dataset << ": compared " << compared << ", ill-conditioned "
-              << illConditioned << ", box beyond the depth range " << beyondRange << "; max |lvsm - vsm| visibility "
+    std::cout << "[ measured ] lvsm layers=1 vs vsm, " << dataset << ": compared " << compared << ", grazing "
+              << grazing << ", box beyond the depth range " << beyondRange << " (max p_max lvsm - vsm there " << maxBeyond << "); max |lvsm - vsm| visibility "
               << maxVisibility << ", p_max " << maxPMax << ", light_leak " << maxLeak << "\n";
-    EXPECT_GT(compared, 300) << dataset;
+    EXPECT_GT(compared, 4000) << dataset;
+    EXPECT_LE(maxBeyond, 4e-3) << dataset << ": clamping the empty texels to far may only lower the bound";
   }
 }
 
@@ -191,7 +207,7 @@ TEST(Lvsm, TwoDepthsGiveTheExactLitFraction)
   for (const std::string layers : { "1", "2", "4", "8" })
   {
     const FrameResult frame =
-      test::renderDataset(scene, "lvsm", 128, 128, { "shadow_map_size=256", "prefilter_texels=9", "layers=" + layers });
+      test::renderDataset(scene, "lvsm", 128, 128, { "shadow_map_size=256", "prefilter_texels=9", "min_variance=0", "layers=" + layers });
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
     const LvsmSettings settings = LvsmSettings::from(frame.parameters);
     int ground = 0;
