@@ -51,16 +51,19 @@ TechniqueDescriptor lvsmTechnique()
     { "layer", "", "the depth layer the receiver read (0 nearest the light; -1 no shadow test)" },
     { "warped_depth", "", "the receiver's depth warped into its layer, phi_i(t) in [0, 1]" },
     { "vsm_p_max", "", "vsm's bound on the unwarped depths of the same box (the comparison of leak_above_vsm)" },
-    { "leak_above_vsm", "", "1 where vsm leaks more than 0.05 against the same PCF and the layered bound leaks at least as much" },
+    categoricalBuffer("vsm_comparison",
+      "where vsm leaks more than 0.05 against the same PCF: whether lvsm leaks less, and if not why (README.md)",
+      lvsmVsmComparisonCategories),
     depthBiasBuffer(),
   };
   for (BufferSpec& buffer : descriptor.buffers)
   {
-    if (buffer.name == "leak_above_vsm")
+    if (buffer.name == "vsm_comparison")
     {
-      buffer.flagAtOrAbove = 1.0;
-      buffer.flagWarning = "the layered bound leaks at least as much as vsm's where vsm leaks more than 0.05: occluders "
-                           "in front of the receiver's layer collapse onto its near end (src/techniques/lvsm/README.md)";
+      buffer.flagAtOrAbove = static_cast<double>(LvsmVsmComparison::SameLayer);
+      buffer.flagWarning = "where vsm leaks more than 0.05, the layered bound leaks as much or more: the box lies in one "
+                           "layer, both bounds are 1, or depths in front of the layer were clamped toward the receiver "
+                           "(src/techniques/lvsm/README.md, \"Where layering cannot help\")";
     }
   }
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
@@ -119,6 +122,28 @@ FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec
   return moments;
 }
 
+LvsmVsmComparison lvsmVsmComparison(const LvsmSample& sample)
+{
+  const double vsmLeak = sample.vsmPMax - sample.pcf;
+  if (!sample.sample.evaluated || !(vsmLeak > lvsmVsmLeakThreshold))
+  {
+    return LvsmVsmComparison::VsmBelowThreshold;
+  }
+  if (sample.texelsInFront + sample.texelsBehind == 0)
+  {
+    return LvsmVsmComparison::SameLayer;
+  }
+  if (sample.pMax >= 1.0 && sample.vsmPMax >= 1.0)
+  {
+    return LvsmVsmComparison::Saturated;
+  }
+  if (sample.lightLeak < vsmLeak)
+  {
+    return LvsmVsmComparison::LeaksLess;
+  }
+  return sample.texelsInFront > 0 ? LvsmVsmComparison::ClampedInFront : LvsmVsmComparison::Unexplained;
+}
+
 LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& settings, int x, int y,
   ProbeRecorder* recorder)
 {
@@ -155,11 +180,26 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
     : result.variance / (result.variance + (warpedT - moments.mean) * (warpedT - moments.mean));
   const double amount = settings.lightBleedingReduction;
   result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
-  // vsm's bound over the same box (the comparison of leak_above_vsm).
+  // vsm's bound over the same box (the comparison of vsm_comparison).
   {
     const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, width, 0.0);
     const double variance = std::max(plain.second - plain.mean * plain.mean, settings.minVariance * d * d);
     result.vsmPMax = t <= plain.mean ? 1.0 : variance / (variance + (t - plain.mean) * (t - plain.mean));
+    // The box's depths outside the layer (clamped by phi_i).
+    const int size = inputs.shadowMapLinear.width;
+    const int centerX = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.x)), 0, size - 1);
+    const int centerY = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.y)), 0, size - 1);
+    const int first = -(width - 1) / 2;
+    for (int j = 0; j < width; ++j)
+    {
+      for (int i = 0; i < width; ++i)
+      {
+        const double z = inputs.shadowMapLinear.at(
+          std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
+        result.texelsInFront += z < interval.nearEnd ? 1 : 0;
+        result.texelsBehind += z > interval.farEnd ? 1 : 0;
+      }
+    }
   }
   if (recorder)
   {
@@ -189,14 +229,18 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
   const double leakDepth = prepareShadowLookup(inputs, defaultBiasSettings(), x, y).comparisonDepth;
   result.pcf = boxPcf(inputs, lookup.sm.uvTexels, leakDepth, width, recorder);
   result.lightLeak = result.pMax - result.pcf;
+  result.comparison = lvsmVsmComparison(result);
   if (recorder)
   {
     recordLightLeak(*recorder, result.pMax, result.pcf,
       boxPcfRange(inputs, lookup.sm.uvTexels, leakDepth, width, probeDepthAmbiguity),
       "Lauritzen 2007 (light bleeding): p_max - PCF over the same box");
-    const double vsmLeak = result.vsmPMax - result.pcf;
-    recorder->quantity("leak_above_vsm", vsmLeak > lvsmVsmLeakThreshold && result.lightLeak >= vsmLeak ? 1.0 : 0.0, "",
-      "issue 30: vsm leaks more than 0.05 and the layered bound at least as much");
+    recorder->beginGroup("vsm comparison");
+    recorder->quantity("vsm_light_leak", result.vsmPMax - result.pcf, "", "vsm's p_max - PCF over the same box");
+    recorder->quantity("texels_in_front_of_layer", result.texelsInFront, "count", "Lauritzen & McCool 2008: z < p_i, clamped to phi = 0");
+    recorder->quantity("texels_behind_layer", result.texelsBehind, "count", "Lauritzen & McCool 2008: z > q_i, clamped to phi = 1");
+    recorder->quantity("vsm_comparison", static_cast<double>(result.comparison), "code",
+      lvsmVsmComparisonCategories[static_cast<int>(result.comparison)].label);
   }
   return result;
 }

@@ -5,8 +5,9 @@
 // phi_i is affine inside the layer, so vsm's variance floor min_variance d^2 (linear depth^2) is rescaled by
 // 1 / (q_i - p_i)^2 into warped units; with one layer the bound is vsm's (Chebyshev's bound is invariant under an
 // affine map of the depths). Light bleeding is reduced as vsm does (Lauritzen 2007).
-// Also written, to check the issue's claim per pixel: vsm's bound on the unwarped depths of the same box, and a flag
-// where the layered bound leaks at least as much as vsm's while vsm leaks more than LVSM_VSM_LEAK_THRESHOLD.
+// Also written, to check the issue's claim per pixel: vsm's bound on the unwarped depths of the same box, and where
+// vsm leaks more than LVSM_VSM_LEAK_THRESHOLD, whether the layered bound leaks less and if not why
+// (vsm_comparison, in the order of sl::lvsmVsmComparison).
 // CPU mirror: src/techniques/lvsm/LvsmTechnique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
@@ -25,12 +26,15 @@ layout(location = OUT_LIGHT_LEAK) out float outLightLeak;
 layout(location = OUT_LAYER) out float outLayer;
 layout(location = OUT_WARPED_DEPTH) out float outWarpedDepth;
 layout(location = OUT_VSM_P_MAX) out float outVsmPMax;
-layout(location = OUT_LEAK_ABOVE_VSM) out float outLeakAboveVsm;
+layout(location = OUT_VSM_COMPARISON) out float outVsmComparison;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
 
-// vsm's bound over the same box, from the shadow map's depths (vsm's moment map is not built for lvsm).
-float unlayeredBound(vec2 uvTexels, float t, float d)
+// vsm's bound over the same box, from the shadow map's depths (vsm's moment map is not built for lvsm), and the
+// number of the box's depths in front of and behind the layer `interval`.
+float unlayeredBound(vec2 uvTexels, float t, float d, vec2 interval, out int inFront, out int behind)
 {
+  inFront = 0;
+  behind = 0;
   ivec2 center = shadowMapTexel(uvTexels);
   int first = -(kernelWidth - 1) / 2;
   vec2 sum = vec2(0.0);
@@ -41,6 +45,8 @@ float unlayeredBound(vec2 uvTexels, float t, float d)
       ivec2 texel = clamp(center + ivec2(first + i, first + j), ivec2(0), ivec2(shadowMapSize - 1));
       float z = texelFetch(shadowMapLinear, texel, 0).r;
       sum += vec2(z, z * z);
+      inFront += z < interval.x ? 1 : 0;
+      behind += z > interval.y ? 1 : 0;
     }
   }
   vec2 moments = sum / float(kernelWidth * kernelWidth);
@@ -57,7 +63,7 @@ void main()
   outLayer = -1.0;
   outWarpedDepth = 0.0;
   outVsmPMax = 0.0;
-  outLeakAboveVsm = 0.0;
+  outVsmComparison = float(VSM_COMPARISON_VSM_BELOW_THRESHOLD);
   outDepthBias = receiver.bias;
   if (!receiver.needsShadowTest)
   {
@@ -78,8 +84,19 @@ void main()
   outLightLeak = pMax - pcf;
   outLayer = float(layer);
   outWarpedDepth = warpedT;
-  float vsmPMax = unlayeredBound(receiver.uvTexels, t, d);
+  int inFront;
+  int behind;
+  float vsmPMax = unlayeredBound(receiver.uvTexels, t, d, interval, inFront, behind);
   outVsmPMax = vsmPMax;
   float vsmLeak = vsmPMax - pcf;
-  outLeakAboveVsm = vsmLeak > LVSM_VSM_LEAK_THRESHOLD && pMax - pcf >= vsmLeak ? 1.0 : 0.0;
+  int comparison = VSM_COMPARISON_VSM_BELOW_THRESHOLD;
+  if (vsmLeak > LVSM_VSM_LEAK_THRESHOLD)
+  {
+    comparison = inFront + behind == 0                 ? VSM_COMPARISON_SAME_LAYER
+      : pMax >= 1.0 && vsmPMax >= 1.0                   ? VSM_COMPARISON_SATURATED
+      : pMax - pcf < vsmLeak                            ? VSM_COMPARISON_LEAKS_LESS
+      : inFront > 0                                     ? VSM_COMPARISON_CLAMPED_IN_FRONT
+                                                        : VSM_COMPARISON_UNEXPLAINED;
+  }
+  outVsmComparison = float(comparison);
 }
