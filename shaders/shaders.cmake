@@ -32,8 +32,6 @@ set(SL_SHADER_FILES
   lightspace/FvsmSelection.glsl
   moments/MomentsFromDepth.glsl
   moments/BoxBlur.glsl
-  layeredmoments/LayeredMomentsLayout.glsl
-  layeredmoments/LayeredMomentsBuild.glsl
   sat/SatBuild.glsl
   hsm/HsmBuild.glsl
   hsm/YsmMssmBuild.glsl

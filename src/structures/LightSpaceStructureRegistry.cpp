@@ -4,7 +4,6 @@
 
 #include "core/Error.h"
 #include "structures/hsm/HsmStructure.h"
-#include "structures/layeredmoments/LayeredMomentsStructure.h"
 #include "structures/lightsamples/LightSampleSetStructure.h"
 #include "structures/microrect/MicrorectStructure.h"
 #include "structures/moments/MomentMapStructure.h"
@@ -24,7 +23,6 @@ const std::vector<const LightSpaceStructure*>& lightSpaceStructureRegistry()
   static const std::vector<const LightSpaceStructure*> registry = {
     &shadowMapStructure(),
     &momentMapStructure(),
-    &layeredMomentsStructure(),
     &summedAreaTableStructure(),
     &hierarchicalShadowMapStructure(),
     &dualMssmStructure(),

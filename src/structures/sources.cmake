@@ -8,9 +8,6 @@ set(SL_STRUCTURES_SOURCES
   src/structures/shadowmap/vtkSLLightDepthPass.cxx
   src/structures/moments/MomentMapStructure.cpp
   src/structures/moments/vtkSLMomentMapPass.cxx
-  src/structures/layeredmoments/LayeredMoments.cpp
-  src/structures/layeredmoments/LayeredMomentsStructure.cpp
-  src/structures/layeredmoments/vtkSLLayeredMomentsPass.cxx
   src/structures/sat/SatStructure.cpp
   src/structures/sat/vtkSLSatPass.cxx
   src/structures/hsm/HsmStructure.cpp
