@@ -1,6 +1,6 @@
 # The shared GLSL files embedded into shadowlab, by path under shaders/ (listed explicitly, no glob): the code several
-# techniques or structures use. A technique's own shaders are in its folder, src/techniques/<folder>/shaders/, listed
-# in its technique.cmake (cmake/Techniques.cmake).
+# techniques or structures use. A technique's own shaders are in its folder (src/techniques/<folder>/shaders/, listed
+# in its technique.cmake), a light-space structure's in its (src/structures/<folder>/shaders/, in its structure.cmake).
 set(SL_SHADER_FILES
   common/AlphaMask.glsl
   common/FullScreenVertex.glsl
@@ -20,7 +20,6 @@ set(SL_SHADER_FILES
   common/MipAtlasLayout.glsl
   common/MicrorectLookup.glsl
   common/LightSampleSet.glsl
-  microrect/MicrorectBuild.glsl
   gbuffer/GBufferVertex.glsl
   gbuffer/GBufferFragment.glsl
   gbuffer/GBufferFirstSample.glsl
@@ -30,11 +29,6 @@ set(SL_SHADER_FILES
   lightspace/FocusReduction.glsl
   lightspace/PartitionSelection.glsl
   lightspace/FvsmSelection.glsl
-  moments/MomentsFromDepth.glsl
-  moments/BoxBlur.glsl
-  sat/SatBuild.glsl
-  hsm/HsmBuild.glsl
-  hsm/YsmMssmBuild.glsl
   multiview/SubLightAccumulate.glsl
   multiview/PartitionAccumulate.glsl
   common/ContourBackprojection.glsl

@@ -1,5 +1,5 @@
 // The min-max hierarchical shadow map (HSM) of VSSM (Yang et al. 2010, Alg. 1 L4 and §6.1), in double
-// precision: the CPU mirror of shaders/hsm/HsmBuild.glsl and of the range query in
+// precision: the CPU mirror of structures/hsm/shaders/HsmBuild.glsl and of the range query in
 // shaders/common/HsmLookup.glsl. Two layouts (§6.1):
 //  - mip-map: level k has ceil(N / 2^k) texels per side, texel (x, y) holds the (min, max) depth of the
 //    shadow-map texels [x 2^k, (x + 1) 2^k) x [y 2^k, (y + 1) 2^k) (clipped to the map). A query covers a

@@ -1,6 +1,6 @@
 // Microrects (Schwarz & Stamminger 2008, "Quality Scalability of Soft Shadow Mapping", SS08 §5.2,
 // Figs. 4-6): micro-occluders of shadow-map level i whose extent is any rectangle of level-0 texels
-// instead of the 2^i x 2^i block of a micropatch. The CPU twin of shaders/microrect/MicrorectBuild.glsl and of
+// instead of the 2^i x 2^i block of a micropatch. The CPU twin of structures/microrect/shaders/MicrorectBuild.glsl and of
 // the lookup shaders/common/MicrorectLookup.glsl; the GPU build must equal it bit for bit.
 //
 // Definition (the paper's text, made exact; the choices the paper leaves open are marked "project choice"):

@@ -1,4 +1,4 @@
-// CPU mirror of the summed-area table (shaders/sat/SatBuild.glsl) and its box lookups
+// CPU mirror of the summed-area table (structures/sat/shaders/SatBuild.glsl) and its box lookups
 // (shaders/common/SatLookup.glsl), in double precision, plus the exact box moments they approximate.
 #pragma once
 

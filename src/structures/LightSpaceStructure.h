@@ -1,7 +1,7 @@
 // A light-space structure, described in one place: the shadow map, the moment map, the summed-area table, the
-// min-max hierarchical shadow map (mip-map or N-buffers) and the dual-grid MSSM. Each lives in its own folder
-// under src/lightspace/ (build pass, CPU mirror, typed settings, export, binding) and is listed once in
-// LightSpaceStructureRegistry.cpp.
+// min-max hierarchical shadow map (mip-map or N-buffers), the dual-grid MSSM, microrects and light sample sets. Each
+// lives in its own folder under src/structures/ (build pass, typed settings, export, binding, build shaders), which
+// its structure.cmake registers (cmake/Structures.cmake generates the registry in build order; src/structures/README.md).
 //
 // A technique lists the structures it needs (TechniqueDescriptor::lightStructures); the pipeline builds each of
 // them, and what they are built from, once per frame (once per sub-light for multi-view), exports them in
@@ -55,7 +55,7 @@ struct LightSpaceStructure
   std::function<std::vector<vtkTextureObject*>(vtkShaderProgram* program, const FrameResources& frame)> bind;
 };
 
-// Every structure, in build order (a structure after those it is built from).
+// Every structure, in build order (a structure after those it is built from): its folder's structure.cmake ORDER.
 const std::vector<const LightSpaceStructure*>& lightSpaceStructureRegistry();
 
 // `needed` and every structure they are built from, each once, in registry (build) order.

@@ -1,4 +1,4 @@
-// The microrects' GPU build (structures/microrect: vtkSLMicrorectPass, shaders/microrect/MicrorectBuild.glsl)
+// The microrects' GPU build (structures/microrect: vtkSLMicrorectPass, structures/microrect/shaders/MicrorectBuild.glsl)
 // against its CPU twin (lightspace/Microrects.h), bit for bit: extents (integers) and depths (min of float
 // depths) on random maps with ties, on every map size up to 40 (the loop-free atlas offsets of
 // common/MipAtlasLayout.glsl against hsmAtlasOffset), at a size that is not a power of two, and on the shadow map

@@ -1,7 +1,7 @@
 // The min-max hierarchical shadow map's build (structures/hsm/HsmStructure.h; vssm, gbp06, gbp07) or, with
 // SetDualGrid(true), the dual-grid MSSM's (structures/mssm/DualMssmStructure.h; yfgl09): one compute dispatch per
-// level (shaders/hsm/HsmBuild.glsl; VSSM Alg. 1 L4, §6.1; Yang et al. 2009 §4.2), and for hsm=ysm the Y shadow
-// map's MSSM part after the mip-map levels, one more dispatch per level (shaders/hsm/YsmMssmBuild.glsl; SS08
+// level (structures/hsm/shaders/HsmBuild.glsl; VSSM Alg. 1 L4, §6.1; Yang et al. 2009 §4.2), and for hsm=ysm the Y shadow
+// map's MSSM part after the mip-map levels, one more dispatch per level (structures/hsm/shaders/YsmMssmBuild.glsl; SS08
 // §6), timed in the same stage. Parameters read:
 // HierarchicalShadowMapSettings (not for the dual grid). Layouts: src/lightspace/HierarchicalShadowMap.h.
 #pragma once

@@ -17,7 +17,7 @@ namespace sl
 
 const LightSpaceStructure& microrectStructure();
 
-// What the build shader (shaders/microrect/MicrorectBuild.glsl) shares with the CPU twin: the claim codes
+// What the build shader (structures/microrect/shaders/MicrorectBuild.glsl) shares with the CPU twin: the claim codes
 // (lightspace/Microrects.h MicrorectClaims) as CLAIMED_B, CLAIMED_D, CLAIMED_E.
 std::vector<ShaderConstant> microrectBuildShaderConstants();
 // The build shader's preamble for pass 1 or 2: MICRORECT_BUILD_PASS and the constants above.

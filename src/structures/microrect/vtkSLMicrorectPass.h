@@ -1,5 +1,5 @@
 // The microrects' build (structures/microrect/MicrorectStructure.h; Schwarz & Stamminger 2008 §5.2): for each
-// level 1..L two compute dispatches, pass 1 and pass 2 of shaders/microrect/MicrorectBuild.glsl, with memory
+// level 1..L two compute dispatches, pass 1 and pass 2 of structures/microrect/shaders/MicrorectBuild.glsl, with memory
 // barriers between them; one timed stage, "microrects". No parameters. Definition and CPU twin:
 // src/lightspace/Microrects.h.
 #pragma once

@@ -1,5 +1,5 @@
 // The moment map's build (structures/moments/MomentMapStructure.h; vsm, esm): the shadow map's moments
-// (shaders/moments/MomentsFromDepth.glsl), prefiltered by a separable box blur of prefilter_texels
+// (structures/moments/shaders/MomentsFromDepth.glsl), prefiltered by a separable box blur of prefilter_texels
 // (prefilter = blur) or mip-mapped (prefilter = mipmap). Parameters read: MomentMapSettings.
 #pragma once
 

@@ -1,6 +1,6 @@
 // The summed-area table of the shadow map's (z, z^2) (Crow 1984; survey §6.4; SAVSM, VSSM): RG32F of the
 // centred depth, or RG32UI of 16-bit fixed-point z_n, z_n^2 whose wrapping sums give exact box sums
-// (shaders/sat/SatBuild.glsl). Built by vtkSLSatPass (stage summed_area_table); CPU mirror: SummedAreaTable.h.
+// (structures/sat/shaders/SatBuild.glsl). Built by vtkSLSatPass (stage summed_area_table); CPU mirror: SummedAreaTable.h.
 #pragma once
 
 #include "structures/LightSpaceStructure.h"

@@ -1,5 +1,5 @@
 // The summed-area table's build (structures/sat/SatStructure.h; savsm, vssm): the summed-area table of the
-// shadow map's (z, z^2), two compute passes (shaders/sat/SatBuild.glsl). Parameter read: sat_precision
+// shadow map's (z, z^2), two compute passes (structures/sat/shaders/SatBuild.glsl). Parameter read: sat_precision
 // (float_centred | int32).
 #pragma once
 

@@ -1,15 +1,9 @@
-// The light-space structure registry: one line per structure, in build order. Adding a structure means adding
-// its folder under src/lightspace/, one line here, and its tests.
+// What every light-space structure shares: the closure of build dependencies in registry order and texture bytes.
+// The registry itself, lightSpaceStructureRegistry(), is generated from the folders' structure.cmake
+// (cmake/Structures.cmake).
 #include "structures/LightSpaceStructure.h"
 
 #include "core/Error.h"
-#include "structures/hsm/HsmStructure.h"
-#include "structures/lightsamples/LightSampleSetStructure.h"
-#include "structures/microrect/MicrorectStructure.h"
-#include "structures/moments/MomentMapStructure.h"
-#include "structures/mssm/DualMssmStructure.h"
-#include "structures/sat/SatStructure.h"
-#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include <vtkTextureObject.h>
 
@@ -17,20 +11,6 @@
 
 namespace sl
 {
-
-const std::vector<const LightSpaceStructure*>& lightSpaceStructureRegistry()
-{
-  static const std::vector<const LightSpaceStructure*> registry = {
-    &shadowMapStructure(),
-    &momentMapStructure(),
-    &summedAreaTableStructure(),
-    &hierarchicalShadowMapStructure(),
-    &dualMssmStructure(),
-    &microrectStructure(),
-    &lightSampleSetStructure(),
-  };
-  return registry;
-}
 
 std::vector<const LightSpaceStructure*> withBuildDependencies(const std::vector<const LightSpaceStructure*>& needed)
 {

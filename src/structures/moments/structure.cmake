@@ -1,0 +1,6 @@
+# `moments`: what the build takes from this folder (cmake/Structures.cmake reads every structure.cmake).
+sl_structure(
+  ORDER 20
+  STRUCTURE momentMapStructure MomentMapStructure.h
+  SOURCES MomentMapStructure.cpp vtkSLMomentMapPass.cxx
+  SHADERS shaders/MomentsFromDepth.glsl shaders/BoxBlur.glsl)

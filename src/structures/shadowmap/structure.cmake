@@ -1,0 +1,5 @@
+# `shadowmap`: what the build takes from this folder (cmake/Structures.cmake reads every structure.cmake).
+sl_structure(
+  ORDER 10
+  STRUCTURE shadowMapStructure ShadowMapStructure.h
+  SOURCES ShadowMapStructure.cpp SamplingErrorBuffers.cpp vtkSLFocusPass.cxx vtkSLLightDepthPass.cxx)
