@@ -50,7 +50,7 @@ TechniqueDescriptor lvsmTechnique()
     { "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where LVSM bleeds light", BufferKind::Signed },
     { "layer", "", "the depth layer the receiver read (0 nearest the light; -1 no shadow test)" },
     { "warped_depth", "", "the receiver's depth warped into its layer, phi_i(t) in [0, 1]" },
-    { "vsm_p_max", "", "vsm's bound on the unwarped depths of the same box (the comparison of leak_above_vsm)" },
+    { "clamped_above_vsm", "", "1 where the box holds depths in front of the receiver's layer (clamped onto its near end) and the layered bound exceeds vsm's by more than 0.05" },
     categoricalBuffer("vsm_comparison",
       "where vsm leaks more than 0.05 against the same PCF: whether lvsm leaks less, and if not why (README.md)",
       lvsmVsmComparisonCategories),
@@ -58,6 +58,13 @@ TechniqueDescriptor lvsmTechnique()
   };
   for (BufferSpec& buffer : descriptor.buffers)
   {
+    if (buffer.name == "clamped_above_vsm")
+    {
+      buffer.flagAtOrAbove = 1.0;
+      buffer.flagWarning = "the layered bound exceeds vsm's by more than 0.05 where depths in front of the receiver's "
+                           "layer are clamped onto its near end, toward the receiver "
+                           "(src/techniques/lvsm/README.md, \"Where layering cannot help\")";
+    }
     if (buffer.name == "vsm_comparison")
     {
       buffer.flagAtOrAbove = static_cast<double>(LvsmVsmComparison::SameLayer);
@@ -230,6 +237,7 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
   result.pcf = boxPcf(inputs, lookup.sm.uvTexels, leakDepth, width, recorder);
   result.lightLeak = result.pMax - result.pcf;
   result.comparison = lvsmVsmComparison(result);
+  result.clampedAboveVsm = result.texelsInFront > 0 && result.pMax > result.vsmPMax + lvsmVsmLeakThreshold;
   if (recorder)
   {
     recordLightLeak(*recorder, result.pMax, result.pcf,
@@ -239,6 +247,8 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
     recorder->quantity("vsm_light_leak", result.vsmPMax - result.pcf, "", "vsm's p_max - PCF over the same box");
     recorder->quantity("texels_in_front_of_layer", result.texelsInFront, "count", "Lauritzen & McCool 2008: z < p_i, clamped to phi = 0");
     recorder->quantity("texels_behind_layer", result.texelsBehind, "count", "Lauritzen & McCool 2008: z > q_i, clamped to phi = 1");
+    recorder->quantity("clamped_above_vsm", result.clampedAboveVsm ? 1.0 : 0.0, "",
+      "ShadowLab: depths in front of the layer clamped onto its near end and p_max above vsm's by more than 0.05");
     recorder->quantity("vsm_comparison", static_cast<double>(result.comparison), "code",
       lvsmVsmComparisonCategories[static_cast<int>(result.comparison)].label);
   }

@@ -4,7 +4,8 @@
 // layer's moments at its warped depth. Math: lvsm/shaders/LvsmVisibility.glsl.
 // Parameters: the shadow-map ones, layers, prefilter_texels, light_bleeding_reduction, min_variance.
 // Buffers: p_max, light_leak (p_max - pcf over the same box, pcf's default bias, as vsm), layer, warped_depth,
-// vsm_p_max (the unlayered bound over the same box) and vsm_comparison (where vsm leaks, whether layering leaks less),
+// clamped_above_vsm (clamping nearer depths lifted the bound above vsm's) and vsm_comparison (where vsm leaks,
+// whether layering leaks less),
 // depth_bias (eight outputs, the GL's draw buffers: the box width is prefilter_texels, no buffer).
 #pragma once
 
@@ -72,6 +73,9 @@ struct LvsmSample
   double vsmPMax = 0.0;         // Chebyshev's bound on the unwarped depths of the same box (vsm's p_max)
   int texelsInFront = 0;        // box texels in front of the layer (z < p_i), clamped to phi = 0
   int texelsBehind = 0;         // box texels behind it (z > q_i), clamped to phi = 1
+  // Depths in front of the layer were clamped onto its near end and p_max exceeds vsm's by more than
+  // lvsmVsmLeakThreshold (buffer clamped_above_vsm).
+  bool clampedAboveVsm = false;
   LvsmVsmComparison comparison = LvsmVsmComparison::VsmBelowThreshold;
 };
 

@@ -3,9 +3,13 @@
 // moments of the warped depths phi_i(z) at its own warped depth phi_i(t):
 //   p_max = sigma^2 / (sigma^2 + (phi_i(t) - mu)^2)  for phi_i(t) > mu (1 otherwise).
 // phi_i is affine inside the layer, so vsm's variance floor min_variance d^2 (linear depth^2) is rescaled by
-// 1 / (q_i - p_i)^2 into warped units; with one layer the bound is vsm's (Chebyshev's bound is invariant under an
-// affine map of the depths). Light bleeding is reduced as vsm does (Lauritzen 2007).
-// Also written, to check the issue's claim per pixel: vsm's bound on the unwarped depths of the same box, and where
+// 1 / (q_i - p_i)^2 into warped units: a box whose depths all lie in the layer gets vsm's bound exactly (Chebyshev's
+// bound is invariant under an affine map of the depths), and one layer is vsm. Depths of nearer layers all clamp to
+// phi = 0, toward the receiver: where that lifts the bound more than 0.05 above vsm's, clamped_above_vsm flags the
+// pixel (README.md, "Where layering cannot help"; e.g. a receiver just behind its layer's near end, whose nearer
+// occluders the variance floor then cannot tell from contact).
+// Light bleeding is reduced as vsm does (Lauritzen 2007).
+// Also written, to check the issue's claim per pixel, from vsm's bound on the unwarped depths of the same box: where
 // vsm leaks more than LVSM_VSM_LEAK_THRESHOLD, whether the layered bound leaks less and if not why
 // (vsm_comparison, in the order of sl::lvsmVsmComparison).
 // CPU mirror: src/techniques/lvsm/LvsmTechnique.cpp.
@@ -25,7 +29,7 @@ layout(location = OUT_P_MAX) out float outPMax;
 layout(location = OUT_LIGHT_LEAK) out float outLightLeak;
 layout(location = OUT_LAYER) out float outLayer;
 layout(location = OUT_WARPED_DEPTH) out float outWarpedDepth;
-layout(location = OUT_VSM_P_MAX) out float outVsmPMax;
+layout(location = OUT_CLAMPED_ABOVE_VSM) out float outClampedAboveVsm;
 layout(location = OUT_VSM_COMPARISON) out float outVsmComparison;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
 
@@ -62,7 +66,7 @@ void main()
   outLightLeak = 0.0;
   outLayer = -1.0;
   outWarpedDepth = 0.0;
-  outVsmPMax = 0.0;
+  outClampedAboveVsm = 0.0;
   outVsmComparison = float(VSM_COMPARISON_VSM_BELOW_THRESHOLD);
   outDepthBias = receiver.bias;
   if (!receiver.needsShadowTest)
@@ -76,7 +80,8 @@ void main()
   vec2 moments = texelFetch(layeredMoments, ivec3(shadowMapTexel(receiver.uvTexels), layer), 0).xy;
   float d = receiver.depthLin;
   float layerScale = 1.0 / (interval.y - interval.x);
-  float variance = max(moments.y - moments.x * moments.x, param_min_variance * d * d * layerScale * layerScale);
+  float varianceFloor = param_min_variance * d * d * layerScale * layerScale;
+  float variance = max(moments.y - moments.x * moments.x, varianceFloor);
   float pMax = chebyshevUpperBound(moments.x, variance, warpedT);
   outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
   outPMax = pMax;
@@ -87,7 +92,7 @@ void main()
   int inFront;
   int behind;
   float vsmPMax = unlayeredBound(receiver.uvTexels, t, d, interval, inFront, behind);
-  outVsmPMax = vsmPMax;
+  outClampedAboveVsm = inFront > 0 && pMax > vsmPMax + LVSM_VSM_LEAK_THRESHOLD ? 1.0 : 0.0;
   float vsmLeak = vsmPMax - pcf;
   int comparison = VSM_COMPARISON_VSM_BELOW_THRESHOLD;
   if (vsmLeak > LVSM_VSM_LEAK_THRESHOLD)
