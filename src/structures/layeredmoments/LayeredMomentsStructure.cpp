@@ -66,7 +66,6 @@ const LightSpaceStructure& layeredMomentsStructure()
     s.builtFrom = { &shadowMapStructure() };
     s.parameters = {
       { "layers", 4, 1, 16, "", "depth layers: equal, disjoint intervals of the light's depth range (Lauritzen & McCool 2008)", {}, true },
-      { "prefilter_texels", 5, 1, 63, "texels", "width of the box each layer's moments are averaged over (odd widths are centred)", {}, true },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLLayeredMomentsPass>::New() };

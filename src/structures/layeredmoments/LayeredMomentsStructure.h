@@ -13,7 +13,9 @@ namespace sl
 
 const LightSpaceStructure& layeredMomentsStructure();
 
-// The parameters its build reads, typed.
+// The parameters its build reads, typed: `layers`, which it declares, and `prefilter_texels`, the box width the moment
+// map (structures/moments) declares with the same meaning (a parameter name belongs to one structure), which a
+// technique reading the layered moments declares with it.
 struct LayeredMomentsSettings
 {
   int layers = 1;     // layers

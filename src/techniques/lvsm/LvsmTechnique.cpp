@@ -2,6 +2,7 @@
 
 #include "structures/layeredmoments/LayeredMoments.h"
 #include "structures/layeredmoments/LayeredMomentsStructure.h"
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
 #include "techniques/MomentReference.h"
@@ -40,6 +41,14 @@ TechniqueDescriptor lvsmTechnique()
     }
   }
   descriptor.addParameters(layeredMomentsStructure().parameters);
+  // The box the layers are blurred over: the moment map's prefilter_texels (LayeredMomentsSettings).
+  for (const ParameterSpec& spec : momentMapStructure().parameters)
+  {
+    if (spec.name == "prefilter_texels")
+    {
+      descriptor.addParameters({ spec });
+    }
+  }
   descriptor.addParameters({
     { "light_bleeding_reduction", 0.2, 0, 0.99, "", "p_max below this amount becomes 0 and [amount, 1] maps to [0, 1] (Lauritzen 2007), as vsm", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the variance, relative to the squared receiver depth in linear depth; rescaled by 1 / (q_i - p_i)^2 into the layer's warped units", {}, false },
