@@ -4,9 +4,9 @@
 // layer's moments at its warped depth. Math: lvsm/shaders/LvsmVisibility.glsl.
 // Parameters: the shadow-map ones, layers, prefilter_texels, light_bleeding_reduction, min_variance.
 // Buffers: p_max, light_leak (p_max - pcf over the same box, pcf's default bias, as vsm), layer, warped_depth,
-// clamped_above_vsm (clamping nearer depths lifted the bound above vsm's) and vsm_comparison (where vsm leaks,
-// whether layering leaks less),
-// depth_bias (eight outputs, the GL's draw buffers: the box width is prefilter_texels, no buffer).
+// clamped_above_vsm (clamping nearer depths lifted the bound above vsm's), vsm_comparison (where vsm leaks, whether
+// layering leaks less) and depth_bias: eight outputs, the GL's draw buffers, so the box width (prefilter_texels) is
+// no buffer.
 #pragma once
 
 #include "techniques/MomentReference.h"
@@ -24,7 +24,8 @@ inline constexpr double lvsmVsmLeakThreshold = 0.05;
 
 // The buffer vsm_comparison: where vsm leaks more than lvsmVsmLeakThreshold, whether lvsm leaks less, and if not,
 // which of LM08's own limits holds the bound up (src/techniques/lvsm/README.md, "Where layering cannot help").
-// Decided in this order; codes 2 and above are the pixels where the claim fails (stats.json
+// Decided in the order same layer, saturated (both exact ties with vsm's leak, whatever float rounding says), leaks
+// less, clamped in front, unexplained; codes 2 and above are the pixels where the claim fails (stats.json
 // vsm_comparison_flagged_pixels).
 enum class LvsmVsmComparison
 {
