@@ -1,0 +1,6 @@
+# `layeredmoments`: what the build takes from this folder (cmake/Structures.cmake reads every structure.cmake).
+sl_structure(
+  ORDER 82
+  STRUCTURE layeredMomentsStructure LayeredMomentsStructure.h
+  SOURCES LayeredMoments.cpp LayeredMomentsStructure.cpp vtkSLLayeredMomentsPass.cxx
+  SHADERS shaders/LayeredMomentsBuild.glsl shaders/LayeredMomentsLayout.glsl)

@@ -1,0 +1,107 @@
+#include "structures/layeredmoments/vtkSLLayeredMomentsPass.h"
+
+#include "core/Error.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/FrameResources.h"
+#include "structures/layeredmoments/LayeredMomentsStructure.h"
+
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkRenderState.h>
+#include <vtkRenderer.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+vtkStandardNewMacro(vtkSLLayeredMomentsPass);
+
+vtkSLLayeredMomentsPass::vtkSLLayeredMomentsPass() = default;
+vtkSLLayeredMomentsPass::~vtkSLLayeredMomentsPass() = default;
+
+namespace
+{
+
+vtkSmartPointer<vtkTextureObject> makeLayeredMomentTexture(vtkOpenGLRenderWindow* window, int size, int layers)
+{
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  texture->SetInternalFormat(GL_RG32F);
+  texture->SetFormat(GL_RG);
+  texture->SetDataType(GL_FLOAT);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  if (!texture->Allocate3D(size, size, layers, 2, VTK_FLOAT))
+  {
+    throw sl::GraphicsError(sl::format("cannot allocate the layered moment map (", size, "^2 x ", layers, " layers)"));
+  }
+  return texture;
+}
+
+} // namespace
+
+void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(state->GetRenderer()->GetRenderWindow());
+  sl::FrameResources& frame = *this->Frame;
+  SL_CHECK_MSG(frame.hasLightView && frame.shadowMapLinear, "the shadow map must be built before its layered moments");
+  const sl::LayeredMomentsSettings settings = sl::LayeredMomentsSettings::from(frame.parameters);
+  const int size = frame.lightView.resolution;
+  GLint max3dSize = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3dSize);
+  if (size > max3dSize)
+  {
+    throw sl::InputError(sl::format("lvsm: a ", size, "^2 shadow map needs a ", size, "x", size, "x", settings.layers,
+      " 3D texture and this GL allows ", max3dSize, " per side; use shadow_map_size <= ", max3dSize));
+  }
+  // x pass into `horizontal` (warping each tap into the layer), y pass into `moments`.
+  vtkSmartPointer<vtkTextureObject> horizontal = makeLayeredMomentTexture(window, size, settings.layers);
+  vtkSmartPointer<vtkTextureObject> moments = makeLayeredMomentTexture(window, size, settings.layers);
+  vtkTextureObject* targets[2] = { horizontal, moments };
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    auto& program = this->BlurPrograms[pass];
+    if (!program)
+    {
+      program = std::make_unique<sl::ComputeProgram>(
+        sl::assembleShader("layeredmoments/LayeredMomentsBuild.glsl", { { "LAYERED_BLUR_PASS", std::to_string(pass) } }),
+        pass == 0 ? "layered moments (x)" : "layered moments (y)");
+    }
+    vtkTextureObject* source = pass == 0 ? frame.shadowMapLinear.Get() : horizontal.Get();
+    source->Activate();
+    program->use();
+    program->setInt(pass == 0 ? "shadowMapLinear" : "horizontal", source->GetTextureUnit());
+    program->setInt("blurWidth", settings.blurTexels);
+    program->setInt("mapSize", size);
+    program->setInt("layeredLayers", settings.layers);
+    program->setFloat("layeredDepthNear", frame.lightView.nearDepth);
+    program->setFloat("layeredDepthFar", frame.lightView.farDepth);
+    glBindImageTexture(0, targets[pass]->GetHandle(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
+    for (int layer = 0; layer < settings.layers; ++layer)
+    {
+      program->setInt("layer", layer);
+      program->dispatch({ (size + 7) / 8, (size + 7) / 8 });
+    }
+    // The y pass and the technique read these image writes through samplers.
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    source->Deactivate();
+  }
+  auto data = std::make_shared<sl::LayeredMomentsData>();
+  data->moments = moments;
+  data->layers = settings.layers;
+  frame.lightSpaceData[sl::layeredMomentsStructure().name] = data;
+}
+
+void vtkSLLayeredMomentsPass::ReleaseGraphicsResources(vtkWindow*)
+{
+  this->BlurPrograms[0].reset();
+  this->BlurPrograms[1].reset();
+}
+
+void vtkSLLayeredMomentsPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "BlurPrograms built: " << (this->BlurPrograms[0] != nullptr) << (this->BlurPrograms[1] != nullptr) << "\n";
+}
