@@ -14,6 +14,7 @@ Lesson acneAndBiasLesson();
 Lesson pcfFixedKernelLesson();
 Lesson pcssBlockerSearchLesson();
 Lesson vsmLightBleedingLesson();
+Lesson filterableShadowMapsLesson();
 Lesson vssmNonPlanarityLesson();
 Lesson backProjectionLesson();
 Lesson packetsHierarchyLesson();
@@ -29,6 +30,7 @@ const std::vector<Lesson>& lessonRegistry()
     pcfFixedKernelLesson(),
     pcssBlockerSearchLesson(),
     vsmLightBleedingLesson(),
+    filterableShadowMapsLesson(),
     vssmNonPlanarityLesson(),
     backProjectionLesson(),
     packetsHierarchyLesson(),

@@ -11,6 +11,7 @@ set(SL_LESSONS_SOURCES
   src/lessons/PcfFixedKernelLesson.cpp
   src/lessons/PcssBlockerSearchLesson.cpp
   src/lessons/VsmLightBleedingLesson.cpp
+  src/lessons/FilterableShadowMapsLesson.cpp
   src/lessons/VssmNonPlanarityLesson.cpp
   src/lessons/BackProjectionLesson.cpp
   src/lessons/PacketsHierarchyLesson.cpp
