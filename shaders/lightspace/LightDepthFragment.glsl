@@ -15,6 +15,13 @@ uniform float lightNearDepth;
 uniform float lightFarDepth;
 #endif
 
+#if DEPTH_PEEL
+// The layer before (depth peeling, survey §5's midpoint and dual maps): a fragment at or before its depth is peeled
+// off, so the depth test keeps the nearest surface strictly behind it. The same surface rasterizes to the same depth
+// at the same texel, so it never counts as its own second layer.
+uniform sampler2D firstLayerLinear;
+#endif
+
 layout(location = 0) out float outDepthLin;
 
 void main()
@@ -25,6 +32,12 @@ void main()
   }
 #if CASTER_FACES == CASTER_FACES_BACK
   if (gl_FrontFacing)
+  {
+    discard;
+  }
+#endif
+#if DEPTH_PEEL
+  if (depthLin <= texelFetch(firstLayerLinear, ivec2(gl_FragCoord.xy), 0).r)
   {
     discard;
   }

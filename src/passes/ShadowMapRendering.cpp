@@ -6,13 +6,17 @@
 
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
 
 namespace sl
 {
 
-void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
-  const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* linearDepth,
-  vtkTextureObject* hardwareDepth)
+namespace
+{
+
+void renderCasterDepth(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* peelBehind,
+  vtkTextureObject* linearDepth, vtkTextureObject* hardwareDepth)
 {
   const ScopedRenderTarget target(window, framebuffer, { linearDepth }, hardwareDepth);
   // Texels no caster covers hold a depth beyond every receiver: they never shadow anything.
@@ -24,6 +28,7 @@ void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* 
   defines.push_back({ "CASTER_FACES_BACK", "1" });
   defines.push_back({ "CASTER_FACES", secondDepth ? "1" : "0" });
   defines.push_back({ "WARPED_DEPTH", view.warp.active() ? "1" : "0" });
+  defines.push_back({ "DEPTH_PEEL", peelBehind ? "1" : "0" });
   vtkShaderProgram* program = readyProgram(window, assembleShader("lightspace/LightDepthVertex.glsl", defines),
     assembleShader("lightspace/LightDepthFragment.glsl", defines), "light depth");
   setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
@@ -33,7 +38,28 @@ void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* 
     program->SetUniformf("lightNearDepth", static_cast<float>(view.nearDepth));
     program->SetUniformf("lightFarDepth", static_cast<float>(view.farDepth));
   }
+  vtkTextureObject* bound = peelBehind ? bindTexture(program, "firstLayerLinear", peelBehind) : nullptr;
   drawer.draw(program, scene, [](const SceneObject& object) { return object.castShadows; });
+  if (bound)
+  {
+    bound->Deactivate();
+  }
+}
+
+} // namespace
+
+void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* linearDepth,
+  vtkTextureObject* hardwareDepth)
+{
+  renderCasterDepth(window, framebuffer, drawer, scene, view, secondDepth, nullptr, linearDepth, hardwareDepth);
+}
+
+void renderPeeledShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, vtkTextureObject* firstLayer, vtkTextureObject* linearDepth,
+  vtkTextureObject* hardwareDepth)
+{
+  renderCasterDepth(window, framebuffer, drawer, scene, view, false, firstLayer, linearDepth, hardwareDepth);
 }
 
 } // namespace sl

@@ -17,5 +17,10 @@ namespace sl
 void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
   const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* linearDepth,
   vtkTextureObject* hardwareDepth);
+// Depth peeling (Everitt 2001), the second layer of midpoint and dual shadow maps (survey §5): the same casters, all
+// faces, keeping at each texel the nearest depth strictly behind `firstLayer`'s (a map renderShadowMap rendered).
+void renderPeeledShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, vtkTextureObject* firstLayer, vtkTextureObject* linearDepth,
+  vtkTextureObject* hardwareDepth);
 
 } // namespace sl

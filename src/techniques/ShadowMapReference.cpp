@@ -98,4 +98,36 @@ double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexel
   return result;
 }
 
+double layerComparisonDepth(
+  DepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels)
+{
+  const double midpoint = 0.5 * (first + second);
+  switch (layer)
+  {
+    case DepthLayer::First:
+      return first;
+    case DepthLayer::Midpoint:
+      return midpoint;
+    case DepthLayer::Dual:
+      return std::min(midpoint, first + dualMaxOffsetTexels * texelWorldSizeAtFirst);
+  }
+  return first;
+}
+
+ImageF layerComparisonMap(DepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
+  double dualMaxOffsetTexels)
+{
+  ImageF compared(first.width, first.height, 1);
+  for (int y = 0; y < first.height; ++y)
+  {
+    for (int x = 0; x < first.width; ++x)
+    {
+      const double z1 = first.at(x, y);
+      compared.at(x, y) = static_cast<float>(
+        layerComparisonDepth(layer, z1, second.at(x, y), view.texelWorldSize(z1), dualMaxOffsetTexels));
+    }
+  }
+  return compared;
+}
+
 } // namespace sl
