@@ -8,6 +8,7 @@
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/hard/HardTechnique.h"
+#include "techniques/pcf/PcfTechnique.h"
 
 #include <gtest/gtest.h>
 
@@ -288,6 +289,52 @@ TEST(DepthLayers, DualLimitsLeaksUnderAThickGap)
   }
   EXPECT_GT(errors[1].leaks, 10) << "the midpoint map should leak under the thick gap";
   EXPECT_LE(errors[2].leaks, errors[1].leaks / 4) << "dual should limit the leaks";
+}
+
+// pcf over a midpoint map (both of its depth textures hold the combined depth): its grid kernel and the hardware 2x2
+// comparison match pcfReference on the read-back map, and a 7-texel kernel on grazing ground without any bias keeps
+// (next to) no acne, where over the nearest-depth map it shadows the lit ground.
+TEST(DepthLayers, PcfKernelOverTheMidpointMap)
+{
+  const Scene scene = test::loadDataset("grazing");
+  for (const char* filter : { "nearest", "hardware_bilinear" })
+  {
+    const std::vector<std::string> common =
+      withSettings({ "shadow_map_size=512", "kernel_texels=7", std::string("filter=") + filter }, kNoBias);
+    const FrameResult nearestFrame = test::renderDataset(scene, "pcf", 128, 112, common);
+    const FrameResult midpointFrame =
+      test::renderDataset(scene, "pcf", 128, 112, withSettings(common, { "depth_layer=midpoint" }));
+    const ShadowMapInputs inputs = test::shadowMapInputs(midpointFrame, scene);
+    const ImageF& visibility = midpointFrame.find("visibility")->image;
+    const double tolerance = std::string(filter) == "nearest" ? 1e-5 : 1.0 / 128.0;
+    int compared = 0;
+    int differ = 0;
+    for (int y = 0; y < visibility.height; ++y)
+    {
+      for (int x = 0; x < visibility.width; ++x)
+      {
+        const ReferenceSample sample = pcfReference(inputs, midpointFrame.parameters, x, y);
+        if (sample.evaluated && (sample.depthMargin < 1e-5 || sample.texelEdgeMargin < 1e-3))
+        {
+          continue;
+        }
+        ++compared;
+        differ += std::abs(sample.visibility - visibility.at(x, y)) > tolerance ? 1 : 0;
+      }
+    }
+    // Acne here: lit by the exact ray, away from its boundaries, and darker than 0.5 after the kernel.
+    const RayErrors nearest = rayErrors(nearestFrame, scene, 5, 0.1);
+    const RayErrors midpoint = rayErrors(midpointFrame, scene, 5, 0.1);
+    std::cout << "[ measured ] grazing pcf kernel 7 " << filter << ", map 512, no bias: twin differs on " << differ
+              << " of " << compared << " pixels; acne nearest " << nearest.acne << ", midpoint " << midpoint.acne
+              << " (of " << nearest.rayLit << " lit); leaks " << nearest.leaks << " / " << midpoint.leaks << " (of "
+              << nearest.rayShadowed << " shadowed)\n";
+    EXPECT_EQ(differ, 0) << filter;
+    EXPECT_GT(compared, 128 * 112 / 2) << filter;
+    EXPECT_GT(nearest.acne, nearest.rayLit / 20) << filter;
+    EXPECT_LE(midpoint.acne, nearest.rayLit / 200) << filter;
+    EXPECT_LE(midpoint.leaks, nearest.leaks + 2) << filter;
+  }
 }
 
 // caster_faces = back with a layered depth is refused, naming the key.
