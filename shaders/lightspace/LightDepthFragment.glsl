@@ -23,6 +23,12 @@ uniform sampler2D firstLayerLinear;
 #endif
 
 layout(location = 0) out float outDepthLin;
+#if POLYGON_ID
+// Polygon-id shadow maps (Hourcade & Nicolas 1985, survey §5): the nearest triangle's id, unique in the scene
+// (MeshDrawer's meshTriangleBase + gl_PrimitiveID + 1; 0 = no caster), 32 bits (the survey: 8 bits are insufficient).
+uniform int meshTriangleBase;
+layout(location = 1) out uint outPolygonId;
+#endif
 
 void main()
 {
@@ -43,6 +49,9 @@ void main()
   }
 #endif
   outDepthLin = depthLin;
+#if POLYGON_ID
+  outPolygonId = uint(meshTriangleBase + gl_PrimitiveID + 1);
+#endif
 #if WARPED_DEPTH
   gl_FragDepth = (depthLin - lightNearDepth) / (lightFarDepth - lightNearDepth);
 #endif

@@ -7,6 +7,7 @@
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
+#include <vtk_glew.h>
 
 namespace sl
 {
@@ -16,9 +17,16 @@ namespace
 
 void renderCasterDepth(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
   const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* peelBehind,
-  vtkTextureObject* linearDepth, vtkTextureObject* hardwareDepth)
+  vtkTextureObject* linearDepth, vtkTextureObject* hardwareDepth, vtkTextureObject* polygonIds = nullptr)
 {
-  const ScopedRenderTarget target(window, framebuffer, { linearDepth }, hardwareDepth);
+  if (polygonIds)
+  {
+    const GLuint none = 0;
+    glClearTexImage(polygonIds->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+  }
+  const ScopedRenderTarget target(window, framebuffer,
+    polygonIds ? std::vector<vtkTextureObject*>{ linearDepth, polygonIds } : std::vector<vtkTextureObject*>{ linearDepth },
+    hardwareDepth);
   // Texels no caster covers hold a depth beyond every receiver: they never shadow anything.
   target.clearColor(0, static_cast<float>(2.0 * view.farDepth));
   target.clearDepth();
@@ -29,6 +37,7 @@ void renderCasterDepth(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject
   defines.push_back({ "CASTER_FACES", secondDepth ? "1" : "0" });
   defines.push_back({ "WARPED_DEPTH", view.warp.active() ? "1" : "0" });
   defines.push_back({ "DEPTH_PEEL", peelBehind ? "1" : "0" });
+  defines.push_back({ "POLYGON_ID", polygonIds ? "1" : "0" });
   vtkShaderProgram* program = readyProgram(window, assembleShader("lightspace/LightDepthVertex.glsl", defines),
     assembleShader("lightspace/LightDepthFragment.glsl", defines), "light depth");
   setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
@@ -53,6 +62,13 @@ void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* 
   vtkTextureObject* hardwareDepth)
 {
   renderCasterDepth(window, framebuffer, drawer, scene, view, secondDepth, nullptr, linearDepth, hardwareDepth);
+}
+
+void renderPolygonIdShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, vtkTextureObject* linearDepth, vtkTextureObject* hardwareDepth,
+  vtkTextureObject* polygonIds)
+{
+  renderCasterDepth(window, framebuffer, drawer, scene, view, false, nullptr, linearDepth, hardwareDepth, polygonIds);
 }
 
 void renderPeeledShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,

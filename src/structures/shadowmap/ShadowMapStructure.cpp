@@ -36,7 +36,8 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
   if (values.has("depth_layer"))
   {
     settings.depthLayer = choiceOf<DepthLayer>(values, "depth_layer",
-      { { "first", DepthLayer::First }, { "midpoint", DepthLayer::Midpoint }, { "dual", DepthLayer::Dual } });
+      { { "first", DepthLayer::First }, { "midpoint", DepthLayer::Midpoint }, { "dual", DepthLayer::Dual },
+        { "polygon_id", DepthLayer::PolygonId } });
     settings.dualMaxOffsetTexels = values.get("dual_max_offset_texels");
     if (settings.secondDepth && settings.depthLayer != DepthLayer::First)
     {
@@ -83,6 +84,10 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
     settings.cubeMap = choiceOf<CubeMapMode>(
       values, "cube_map", { { "off", CubeMapMode::Off }, { "auto", CubeMapMode::Auto }, { "on", CubeMapMode::On } });
   }
+  if (settings.depthLayer == DepthLayer::PolygonId && (settings.cascades.active() || settings.fvsm.active()))
+  {
+    throw InputError("--set depth_layer=polygon_id: one map only; use cascades=1 and fvsm=off");
+  }
   return settings;
 }
 
@@ -96,8 +101,20 @@ const char* depthLayerName(DepthLayer layer)
       return "midpoint";
     case DepthLayer::Dual:
       return "dual";
+    case DepthLayer::PolygonId:
+      return "polygon_id";
   }
   return "first";
+}
+
+ParameterSpec depthLayerWithPolygonId()
+{
+  ParameterSpec spec = *findParameterSpec(shadowMapStructure().parameters, "depth_layer");
+  spec.choices.push_back("polygon_id");
+  spec.maxValue = static_cast<double>(spec.choices.size() - 1);
+  spec.doc += "; polygon_id = the nearest triangle's id (32 bits), lit iff it is the receiver's own (Hourcade & "
+              "Nicolas 1985; flagged where the receiver's texel neighbourhood holds several ids)";
+  return spec;
 }
 
 void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus)
@@ -140,6 +157,7 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     requireWarpableLight(settings.warp.kind, frame.light->type);
     requireCascadableLight(settings.cascades, frame.light->type);
     requireCubeMapLight(settings.cubeMap.value_or(CubeMapMode::Off), frame.light->type);
+
   }
   return settings;
 }
@@ -205,6 +223,21 @@ void exportDepthLayers(const FrameResources& frame, std::vector<NamedImage>& ima
     return;
   }
   const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*found->second);
+  if (layers.polygonIds)
+  {
+    // Ids are below 2^24 (the build checks), so float holds them exactly.
+    const auto asFloat = [](const Image<std::uint32_t>& ids) {
+      ImageF image(ids.width, ids.height, 1);
+      for (std::size_t i = 0; i < ids.data.size(); ++i)
+      {
+        image.data[i] = static_cast<float>(ids.data[i]);
+      }
+      return image;
+    };
+    images.push_back({ "shadow_map_polygon_id", asFloat(readUnsignedTextureExact(layers.polygonIds, 1)), "",
+      "depth_layer = polygon_id (Hourcade & Nicolas 1985): id of the nearest caster triangle per texel (scene triangle "
+      "index + 1; 0: none)" });
+  }
   for (std::size_t k = 0; k < layers.first.size(); ++k)
   {
     if (!layers.first[k])
@@ -279,10 +312,27 @@ std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
   // Built in place: an initializer list would copy both maps (16 MiB each at the default size) once more.
+  const auto layersFound = frame.lightSpaceData.find(shadowMapStructure().name);
+  if (layersFound != frame.lightSpaceData.end())
+  {
+    const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*layersFound->second);
+    if (layers.receiverPolygonIds)
+    {
+      const Image<std::uint32_t> ids = readUnsignedTextureExact(layers.receiverPolygonIds, 1);
+      ImageF image(ids.width, ids.height, 1);
+      for (std::size_t i = 0; i < ids.data.size(); ++i)
+      {
+        image.data[i] = static_cast<float>(ids.data[i]);
+      }
+      result.buffers.push_back({ "polygon_id", std::move(image), "",
+        "depth_layer = polygon_id (Hourcade & Nicolas 1985): id of the triangle the pixel sees (scene triangle index + 1; "
+        "0: background), compared with the shadow map's shadow_map_polygon_id", BufferKind::Categorical, {} });
+    }
+  }
   std::vector<NamedImage> images(2);
   const DepthLayer layer = shadowMapSettings(frame).depthLayer;
   images[0] = { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
-    layer == DepthLayer::First
+    layer == DepthLayer::First || layer == DepthLayer::PolygonId
       ? "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)"
       : format("the depth the receivers are compared with (depth_layer = ", depthLayerName(layer),
           ", survey §5): combined from shadow_map_first_depth and shadow_map_second_depth") };
@@ -303,6 +353,14 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
   setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
   setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
   setIntIfUsed(program, "shadowMapSize", view.resolution);
+  const auto layersFound = frame.lightSpaceData.find(shadowMapStructure().name);
+  if (layersFound != frame.lightSpaceData.end() && program->IsUniformUsed("shadowMapPolygonId"))
+  {
+    const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*layersFound->second);
+    SL_CHECK_MSG(layers.polygonIds && layers.receiverPolygonIds, "depth_layer = polygon_id built no id maps");
+    bound.push_back(bindTexture(program, "shadowMapPolygonId", layers.polygonIds));
+    bound.push_back(bindTexture(program, "receiverPolygonId", layers.receiverPolygonIds));
+  }
   setIntIfUsed(program, "lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
   setIntIfUsed(program, "lightWarped", view.warp.active() ? 1 : 0);
   if (program->IsUniformUsed("lightDepthToClip"))
@@ -407,10 +465,14 @@ const LightSpaceStructure& shadowMapStructure()
         {
           layerBytes += textureBytes(layers.first[k], 4) + textureBytes(layers.second[k], 4);
         }
+        layerBytes += textureBytes(layers.polygonIds, 4) + textureBytes(layers.receiverPolygonIds, 4);
       }
       return layerBytes + textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
     };
-    s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
+    s.shaderDefines = [](const FrameResources& frame) {
+      const bool ids = frame.technique && shadowMapSettings(frame).depthLayer == DepthLayer::PolygonId;
+      return ShaderDefines{ { "SHADOW_MAP_POLYGON_ID", ids ? "1" : "0" } };
+    };
     s.bind = bindShadowMap;
     return s;
   }();

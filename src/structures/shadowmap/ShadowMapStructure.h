@@ -27,6 +27,7 @@ enum class DepthLayer
   First,    // the nearest caster (Williams 1978); with caster_faces = back, the nearest back face (Wang & Molnar 1994)
   Midpoint, // (z1 + z2) / 2 (Woo 1992)
   Dual,     // the midpoint with the offset past z1 limited to dual_max_offset_texels (Weiskopf & Ertl 2003)
+  PolygonId, // the nearest triangle's id besides z1 (Hourcade & Nicolas 1985): only techniques that compare ids offer it
 };
 
 const char* depthLayerName(DepthLayer layer);
@@ -37,7 +38,12 @@ struct ShadowMapLayersData : LightSpaceData
 {
   std::vector<vtkSmartPointer<vtkTextureObject>> first;
   std::vector<vtkSmartPointer<vtkTextureObject>> second;
+  // depth_layer = polygon_id: the nearest triangle's id per texel (R32UI) and the id each camera pixel sees (R32UI).
+  vtkSmartPointer<vtkTextureObject> polygonIds;
+  vtkSmartPointer<vtkTextureObject> receiverPolygonIds;
 };
+// hard's `depth_layer` with polygon_id added (the structure's own list offers only what every technique can read).
+ParameterSpec depthLayerWithPolygonId();
 
 // The parameters its build reads, typed.
 struct ShadowMapSettings

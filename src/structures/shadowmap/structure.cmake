@@ -3,5 +3,5 @@ sl_structure(
   ORDER 10
   STRUCTURE shadowMapStructure ShadowMapStructure.h
   SOURCES ShadowMapStructure.cpp SamplingErrorBuffers.cpp vtkSLFocusPass.cxx vtkSLLightDepthPass.cxx
-  SHADERS shaders/DepthLayerCombine.glsl
+  SHADERS shaders/DepthLayerCombine.glsl shaders/ReceiverPolygonId.glsl
   GPU_TESTS tests/DepthLayerTest.cpp)

@@ -58,6 +58,11 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
     frame.viewShadowMapDepth[index] = frame.shadowMapDepth;
   }
   const sl::ShadowMapSettings settings = sl::shadowMapSettings(frame);
+  if (settings.depthLayer == sl::DepthLayer::PolygonId)
+  {
+    this->RenderPolygonIds(window);
+    return;
+  }
   if (settings.depthLayer == sl::DepthLayer::First)
   {
     if (index == 0)
@@ -141,6 +146,80 @@ void vtkSLLightDepthPass::RenderDepthLayers(
   {
     texture->Deactivate();
   }
+}
+
+namespace
+{
+
+// A 2-D R32UI target (nearest, clamped): polygon ids.
+vtkSmartPointer<vtkTextureObject> makePolygonIdTarget(vtkOpenGLRenderWindow* window, int width, int height)
+{
+  auto texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(window);
+  texture->SetInternalFormat(GL_R32UI);
+  texture->SetFormat(GL_RED_INTEGER);
+  texture->SetDataType(GL_UNSIGNED_INT);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  if (!texture->Allocate2D(width, height, 1, VTK_UNSIGNED_INT))
+  {
+    throw sl::GraphicsError(sl::format("cannot allocate a ", width, "x", height, " polygon-id target"));
+  }
+  return texture;
+}
+
+} // namespace
+
+void vtkSLLightDepthPass::RenderPolygonIds(vtkOpenGLRenderWindow* window)
+{
+  // Survey §5 (Hourcade & Nicolas 1985): the map stores the nearest triangle's id besides its depth, and the receivers
+  // compare their own triangle's id, which the camera pass below renders as the G-buffer does.
+  sl::FrameResources& frame = *this->Frame;
+  if (frame.partitions)
+  {
+    // Cube faces (a point light one map cannot cover, cube_map=auto or on): the ids are one map's.
+    throw sl::InputError("--set depth_layer=polygon_id: one map only, and this point light needs cube faces; use a "
+                         "spot or area light, or another depth_layer");
+  }
+  const sl::LightView& view = frame.lightView;
+  std::size_t triangles = 0;
+  for (const sl::GpuMesh& mesh : frame.gpuScene->meshes())
+  {
+    triangles += mesh.indexCount / 3;
+  }
+  if (triangles >= (std::size_t(1) << 24))
+  {
+    throw sl::InputError(sl::format("--set depth_layer=polygon_id: the scene has ", triangles,
+      " triangles; ids are exported as float, exact below 2^24 (16777216)"));
+  }
+  auto layers = std::make_shared<sl::ShadowMapLayersData>();
+  layers->polygonIds = makePolygonIdTarget(window, view.resolution, view.resolution);
+  layers->receiverPolygonIds = makePolygonIdTarget(window, frame.width(), frame.height());
+  sl::renderPolygonIdShadowMap(window, this->Framebuffer, this->Drawer, *frame.gpuScene, view, frame.shadowMapLinear,
+    frame.shadowMapDepth, layers->polygonIds);
+
+  auto cameraDepth = sl::makeDepthTarget(window, frame.width(), frame.height());
+  const GLuint none = 0;
+  glClearTexImage(layers->receiverPolygonIds->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+  {
+    const sl::ScopedRenderTarget target(window, this->Framebuffer, { layers->receiverPolygonIds }, cameraDepth);
+    target.clearDepth();
+    vtkShaderProgram* program =
+      sl::readyProgram(window, sl::assembleShader("gbuffer/GBufferVertex.glsl", sl::commonDefines()),
+        sl::assembleShader("shadowmap/ReceiverPolygonId.glsl", sl::commonDefines()), "receiver polygon id");
+    sl::setMatrix(program, "clipFromWorld", frame.camera.clipFromWorld);
+    sl::setMatrix(program, "viewFromWorld", frame.camera.viewFromWorld);
+    const float alphaTestOffset[2] = { static_cast<float>(frame.alphaTestOffset.x),
+      static_cast<float>(frame.alphaTestOffset.y) };
+    if (program->IsUniformUsed("alphaTestOffset"))
+    {
+      program->SetUniform2f("alphaTestOffset", alphaTestOffset);
+    }
+    this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject&) { return true; });
+  }
+  frame.lightSpaceData[sl::shadowMapStructure().name] = layers;
 }
 
 void vtkSLLightDepthPass::ReleaseGraphicsResources(vtkWindow* window)

@@ -38,6 +38,8 @@ private:
   void operator=(const vtkSLLightDepthPass&) = delete;
   // depth_layer = midpoint or dual: both layers into the frame's ShadowMapLayersData, their combination into the map.
   void RenderDepthLayers(vtkOpenGLRenderWindow* window, const sl::ShadowMapSettings& settings, std::size_t index);
+  // depth_layer = polygon_id: the map with its triangle ids, and the camera's receiver ids (ShadowMapLayersData).
+  void RenderPolygonIds(vtkOpenGLRenderWindow* window);
 
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   sl::MeshDrawer Drawer;

@@ -1,5 +1,7 @@
 #include "techniques/hard/HardTechnique.h"
 
+#include <algorithm>
+
 #include "techniques/ApproximationRules.h"
 
 #include "structures/shadowmap/ShadowMapStructure.h"
@@ -26,6 +28,11 @@ TechniqueDescriptor hardTechnique()
   descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.addParameters(shadowMapFvsmParameters());
   descriptor.addParameters(shadowMapCubeParameters());
+  // hard compares ids where the map stores them (survey §5, Hourcade & Nicolas 1985): its depth_layer offers polygon_id.
+  for (ParameterSpec& spec : descriptor.parameters)
+  {
+    spec = spec.name == "depth_layer" ? depthLayerWithPolygonId() : spec;
+  }
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),
@@ -50,8 +57,16 @@ TechniqueDescriptor hardTechnique()
   descriptor.accuracy.tolerance = 1e-3;
   descriptor.accuracy.approximations = { { "shadow-map sampling",
     "the texels within one of the receiver's hold occluding and non-occluding depths after the pixel's depth_bias, "
-    "or a caster lies within twice the bias of the receiver" } };
+    "or a caster lies within twice the bias of the receiver" },
+    { "polygon id: several triangles per texel",
+      "depth_layer = polygon_id: the 3 x 3 texels around the receiver's hold more than one triangle id (survey §5: "
+      "the mechanism breaks down if more than one triangle is present per texel)" } };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    if (context.frame->find("polygon_id"))
+    {
+      markSeveralPolygonIds(context, codes, 2.0f);
+      return;
+    }
     markShadowMapSampling(context, codes, 1.0f, nullptr);
   };
   return descriptor;
@@ -71,6 +86,22 @@ ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings&
     }
     lookup.sample.visibility = nearestTexelTest(
       inputs, lookup.sm.uvTexels, lookup.comparisonDepth, lookup.sample, recorder, "nearest texel");
+    if (!inputs.shadowMapPolygonId.empty())
+    {
+      // depth_layer = polygon_id (survey §5): the ids decide; the depth test above only fills the margins.
+      lookup.sample.visibility = polygonIdTest(inputs, lookup.sm.uvTexels, x, y, recorder);
+      lookup.sample.depthMargin = 1e300;
+      lookup.sample.texelEdgeMargin = 1e300;
+      for (const TexelEdge& edge : texelWithEdges(lookup.sm.uvTexels).edges)
+      {
+        // A GPU tap within float rounding of an edge may read the neighbour's id.
+        if (edge.distance < 1e-3 &&
+          polygonIdTest(inputs, glm::dvec2(edge.neighbour) + 0.5, x, y) != lookup.sample.visibility)
+        {
+          lookup.sample.texelEdgeMargin = std::min(lookup.sample.texelEdgeMargin, edge.distance);
+        }
+      }
+    }
     if (recorder)
     {
       recorder->quantity("visibility", lookup.sample.visibility, "", "Williams 1978: d - bias <= stored depth");

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -335,6 +336,89 @@ TEST(DepthLayers, PcfKernelOverTheMidpointMap)
     EXPECT_LE(midpoint.acne, nearest.rayLit / 200) << filter;
     EXPECT_LE(midpoint.leaks, nearest.leaks + 2) << filter;
   }
+}
+
+// Polygon-id shadow maps (survey §5, Hourcade & Nicolas 1985) with hard: GPU = hardReference's id test on the read-back
+// ids, and right or flagged against the exact ray: every acne or leak pixel away from the ray's shadow boundaries is one
+// the `approximation` buffer marks "polygon id: several triangles per texel" (code 2). `maxUnflagged` allows for the
+// pixels whose own triangle is narrower than a texel in every direction, which no neighbourhood shows.
+struct PolygonIdOutcome
+{
+  int acne = 0;
+  int leaks = 0;
+  int flagged = 0;
+  int unflaggedWrong = 0;
+  int tested = 0;
+};
+
+PolygonIdOutcome polygonIdOutcome(const Scene& scene, const std::string& label, int mapSize)
+{
+  const FrameResult frame =
+    test::renderDataset(scene, "hard", 128, 112, { "shadow_map_size=" + std::to_string(mapSize), "depth_layer=polygon_id" });
+  test::expectFiniteBuffersAndVisibilityInRange(frame, label);
+  EXPECT_GT(expectHardMatchesTwin(frame, scene, label), 128 * 112 / 4) << label;
+  const test::RayCaster rays(scene);
+  const ImageF exact = test::exactPointVisibility(frame, scene, rays);
+  const ImageF& visibility = frame.find("visibility")->image;
+  const ImageF& codes = frame.find("approximation")->image;
+  PolygonIdOutcome outcome;
+  for (int y = 0; y < exact.height; ++y)
+  {
+    for (int x = 0; x < exact.width; ++x)
+    {
+      const float ray = exact.at(x, y);
+      if (ray < 0.0f)
+      {
+        continue;
+      }
+      ++outcome.tested;
+      const bool flagged = codes.at(x, y) == 2.0f;
+      outcome.flagged += flagged ? 1 : 0;
+      bool uniform = true;
+      for (int dy = -1; dy <= 1; ++dy)
+      {
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const int nx = std::clamp(x + dx, 0, exact.width - 1);
+          const int ny = std::clamp(y + dy, 0, exact.height - 1);
+          uniform = uniform && (exact.at(nx, ny) < 0.0f || exact.at(nx, ny) == ray);
+        }
+      }
+      const bool acne = ray == 1.0f && visibility.at(x, y) < 0.5f;
+      const bool leak = ray == 0.0f && visibility.at(x, y) > 0.5f;
+      outcome.acne += acne ? 1 : 0;
+      outcome.leaks += leak ? 1 : 0;
+      outcome.unflaggedWrong += uniform && !flagged && (acne || leak) ? 1 : 0;
+    }
+  }
+  std::cout << "[ measured ] " << label << " polygon_id, map " << mapSize << ", 128 x 112: " << outcome.tested
+            << " tested, acne " << outcome.acne << ", leaks " << outcome.leaks << ", flagged " << outcome.flagged
+            << ", wrong and unflagged away from the ray's boundaries " << outcome.unflaggedWrong << "\n";
+  return outcome;
+}
+
+TEST(DepthLayers, PolygonIdHasNoAcneOnConvexMeshes)
+{
+  for (const std::string dataset : { "contact", "sphere-point", "planar-occluder", "grazing" })
+  {
+    const PolygonIdOutcome outcome = polygonIdOutcome(test::loadDataset(dataset), dataset, 512);
+    EXPECT_EQ(outcome.unflaggedWrong, 0) << dataset;
+    EXPECT_LE(outcome.acne, outcome.flagged) << dataset;
+  }
+}
+
+// The survey's failure mode: "the mechanism breaks down if more than one triangle is present per texel". The bunny's
+// triangles are far smaller than a texel of a 64-texel map: most of its pixels are flagged, and wrong ones unflagged
+// are the few whose whole neighbourhood is one other triangle.
+TEST(DepthLayers, PolygonIdFlagsManyTrianglesPerTexelOnTheBunny)
+{
+  const Scene scene = test::loadDataset("bunny");
+  const PolygonIdOutcome coarse = polygonIdOutcome(scene, "bunny", 64);
+  const PolygonIdOutcome fine = polygonIdOutcome(scene, "bunny", 1024);
+  EXPECT_GT(coarse.flagged, coarse.tested / 20);
+  EXPECT_GT(coarse.acne, 0) << "the coarse map should break down on the bunny";
+  EXPECT_LE(coarse.unflaggedWrong, coarse.acne / 10);
+  EXPECT_LT(fine.acne, coarse.acne);
 }
 
 // caster_faces = back with a layered depth is refused, naming the key.
