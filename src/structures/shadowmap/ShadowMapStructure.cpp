@@ -107,16 +107,11 @@ const char* depthLayerName(DepthLayer layer)
   return "first";
 }
 
-ParameterSpec depthLayerWithPolygonId()
+bool comparesPolygonIds(const TechniqueDescriptor& technique)
 {
-  ParameterSpec spec = *findParameterSpec(shadowMapStructure().parameters, "depth_layer");
-  spec.choices.push_back("polygon_id");
-  spec.maxValue = static_cast<double>(spec.choices.size() - 1);
-  spec.doc += "; polygon_id = the nearest triangle's id (32 bits), lit iff it is the receiver's own (Hourcade & "
-              "Nicolas 1985; flagged where the receiver's texel neighbourhood holds several ids)";
-  return spec;
+  // The techniques whose shader reads shadowMapPolygonId (HardVisibility.glsl's SHADOW_MAP_POLYGON_ID branch).
+  return technique.name == "hard";
 }
-
 void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus)
 {
   if (frame.parameters.has("fvsm") && frame.parameters.choice("fvsm") == "on")
@@ -157,6 +152,11 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     requireWarpableLight(settings.warp.kind, frame.light->type);
     requireCascadableLight(settings.cascades, frame.light->type);
     requireCubeMapLight(settings.cubeMap.value_or(CubeMapMode::Off), frame.light->type);
+    if (settings.depthLayer == DepthLayer::PolygonId && !comparesPolygonIds(*frame.technique))
+    {
+      throw InputError("--set depth_layer=polygon_id: " + frame.technique->name +
+        " compares depths, not polygon ids; use it with -t hard");
+    }
 
   }
   return settings;
@@ -429,7 +429,7 @@ const LightSpaceStructure& shadowMapStructure()
     s.parameters = {
       { "shadow_map_size", 2048, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1)", {}, true },
       { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },
-      { "depth_layer", 0, 0, 2, "", "the depth compared (survey §5): first = the nearest caster's; midpoint = (z1 + z2) / 2 of the nearest and the second-nearest (depth-peeled) surface (Woo 1992); dual = min((z1 + z2) / 2, z1 + dual_max_offset_texels texel footprints) (Weiskopf & Ertl 2003)", { "first", "midpoint", "dual" }, true },
+      { "depth_layer", 0, 0, 3, "", "the depth compared (survey §5): first = the nearest caster's; midpoint = (z1 + z2) / 2 of the nearest and the second-nearest (depth-peeled) surface (Woo 1992); dual = min((z1 + z2) / 2, z1 + dual_max_offset_texels texel footprints) (Weiskopf & Ertl 2003); polygon_id = the nearest triangle's id (32 bits), lit iff it is the receiver's own (Hourcade & Nicolas 1985; hard only; flagged where the receiver's 3 x 3 texels hold several ids)", { "first", "midpoint", "dual", "polygon_id" }, true },
       { "dual_max_offset_texels", 4.0, 0, 1e4, "texel footprints", "depth_layer = dual: the most the compared depth lies behind the nearest caster, in texel footprints at its depth (limits the effective caster thickness)", {}, false },
     };
     s.createBuildPasses = [] {
@@ -470,7 +470,8 @@ const LightSpaceStructure& shadowMapStructure()
       return layerBytes + textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
     };
     s.shaderDefines = [](const FrameResources& frame) {
-      const bool ids = frame.technique && shadowMapSettings(frame).depthLayer == DepthLayer::PolygonId;
+      const bool ids = frame.technique && comparesPolygonIds(*frame.technique) &&
+        shadowMapSettings(frame).depthLayer == DepthLayer::PolygonId;
       return ShaderDefines{ { "SHADOW_MAP_POLYGON_ID", ids ? "1" : "0" } };
     };
     s.bind = bindShadowMap;

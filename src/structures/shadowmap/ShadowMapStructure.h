@@ -27,7 +27,7 @@ enum class DepthLayer
   First,    // the nearest caster (Williams 1978); with caster_faces = back, the nearest back face (Wang & Molnar 1994)
   Midpoint, // (z1 + z2) / 2 (Woo 1992)
   Dual,     // the midpoint with the offset past z1 limited to dual_max_offset_texels (Weiskopf & Ertl 2003)
-  PolygonId, // the nearest triangle's id besides z1 (Hourcade & Nicolas 1985): only techniques that compare ids offer it
+  PolygonId, // the nearest triangle's id besides z1 (Hourcade & Nicolas 1985): techniques that compare ids (hard)
 };
 
 const char* depthLayerName(DepthLayer layer);
@@ -42,8 +42,8 @@ struct ShadowMapLayersData : LightSpaceData
   vtkSmartPointer<vtkTextureObject> polygonIds;
   vtkSmartPointer<vtkTextureObject> receiverPolygonIds;
 };
-// hard's `depth_layer` with polygon_id added (the structure's own list offers only what every technique can read).
-ParameterSpec depthLayerWithPolygonId();
+// Whether `technique`'s shader compares polygon ids (depth_layer = polygon_id; the others refuse it in one line).
+bool comparesPolygonIds(const TechniqueDescriptor& technique);
 
 // The parameters its build reads, typed.
 struct ShadowMapSettings

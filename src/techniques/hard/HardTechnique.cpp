@@ -28,11 +28,7 @@ TechniqueDescriptor hardTechnique()
   descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.addParameters(shadowMapFvsmParameters());
   descriptor.addParameters(shadowMapCubeParameters());
-  // hard compares ids where the map stores them (survey §5, Hourcade & Nicolas 1985): its depth_layer offers polygon_id.
-  for (ParameterSpec& spec : descriptor.parameters)
-  {
-    spec = spec.name == "depth_layer" ? depthLayerWithPolygonId() : spec;
-  }
+
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),

@@ -1,6 +1,7 @@
 // depth_layer = midpoint and dual (survey §5, "depth biasing"): the peeled layers and the combined map against their
 // CPU twin (layerComparisonDepth, double) on read-back buffers, hard's visibility against its twin on the combined
 // map, and acne and light leaks against the exact single ray to the light's centre (test::exactPointVisibility).
+#include "core/Error.h"
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
 #include "support/RayCaster.h"
@@ -421,8 +422,8 @@ TEST(DepthLayers, PolygonIdFlagsManyTrianglesPerTexelOnTheBunny)
   EXPECT_LT(fine.acne, coarse.acne);
 }
 
-// caster_faces = back with a layered depth is refused, naming the key.
-TEST(DepthLayers, SecondDepthFacesWithALayeredDepthIsRefused)
+// caster_faces = back with a layered depth, and polygon ids with a technique that compares depths, are refused.
+TEST(DepthLayers, UnsupportedCombinationsAreRefused)
 {
   const Scene scene = test::loadDataset("contact");
   try
@@ -433,6 +434,16 @@ TEST(DepthLayers, SecondDepthFacesWithALayeredDepthIsRefused)
   catch (const std::exception& error)
   {
     EXPECT_NE(std::string(error.what()).find("depth_layer=dual"), std::string::npos) << error.what();
+  }
+  // pcf's shader compares depths: polygon ids are refused, naming the setting.
+  try
+  {
+    test::renderDataset(scene, "pcf", 32, 32, { "depth_layer=polygon_id" });
+    FAIL() << "expected an InputError";
+  }
+  catch (const InputError& error)
+  {
+    EXPECT_EQ(std::string(error.what()).rfind("--set depth_layer=polygon_id:", 0), 0u) << error.what();
   }
 }
 
