@@ -747,6 +747,7 @@ void markSeveralPolygonIds(const ApproximationContext& context, ImageF& codes, f
   const ImageF& normal = frame.find("normal")->image;
   const ImageF& coverage = frame.find("coverage")->image;
   const ImageF& receives = frame.find("receives_shadows")->image;
+  const ImageF& ownIds = frame.find("polygon_id")->image; // 0: casts no shadow, compared by depth
   const int size = ids->width;
   for (int y = 0; y < codes.height; ++y)
   {
@@ -755,7 +756,7 @@ void markSeveralPolygonIds(const ApproximationContext& context, ImageF& codes, f
       const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
       const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
       if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f || receives.at(x, y) <= 0.5f ||
-        !lightCanReach(light, pWs, nWs))
+        ownIds.at(x, y) == 0.0f || !lightCanReach(light, pWs, nWs))
       {
         continue;
       }
@@ -776,6 +777,58 @@ void markSeveralPolygonIds(const ApproximationContext& context, ImageF& codes, f
         }
       }
       codes.at(x, y) = several ? code : 0.0f;
+    }
+  }
+}
+
+void markDepthLayerGap(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels)
+{
+  const FrameResult& frame = *context.frame;
+  const ImageF* first = nullptr;
+  const ImageF* compared = nullptr;
+  for (const NamedImage& named : frame.lightSpace)
+  {
+    first = named.name == "shadow_map_first_depth" ? &named.image : first;
+    compared = named.name == "shadow_map_depth" ? &named.image : compared;
+  }
+  if (!first || !compared || frame.partitions)
+  {
+    return; // no layered map (depth_layer = first), or views that partition the pixels (their layers are per view)
+  }
+  const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& normal = frame.find("normal")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& receives = frame.find("receives_shadows")->image;
+  const ImageF& bias = frame.find("depth_bias")->image;
+  const int size = first->width;
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+      if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f || receives.at(x, y) <= 0.5f ||
+        !lightCanReach(light, pWs, nWs))
+      {
+        continue;
+      }
+      const ShadowMapSample sm = projectToShadowMap(*frame.lightView, pWs);
+      const double depth = sm.depthLin - bias.at(x, y);
+      const int radius = static_cast<int>(std::ceil(kernelTexels ? 0.5 * kernelTexels->at(x, y) + 1.0 : 1.0));
+      const int tx = static_cast<int>(std::floor(sm.uvTexels.x));
+      const int ty = static_cast<int>(std::floor(sm.uvTexels.y));
+      bool gap = false;
+      for (int dy = -radius; dy <= radius && !gap; ++dy)
+      {
+        for (int dx = -radius; dx <= radius && !gap; ++dx)
+        {
+          const int sx = std::clamp(tx + dx, 0, size - 1);
+          const int sy = std::clamp(ty + dy, 0, size - 1);
+          gap = depth > first->at(sx, sy) && depth <= compared->at(sx, sy);
+        }
+      }
+      codes.at(x, y) = gap ? code : 0.0f;
     }
   }
 }

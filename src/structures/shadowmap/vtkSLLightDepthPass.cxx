@@ -217,7 +217,11 @@ void vtkSLLightDepthPass::RenderPolygonIds(vtkOpenGLRenderWindow* window)
     {
       program->SetUniform2f("alphaTestOffset", alphaTestOffset);
     }
-    this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject&) { return true; });
+    // Casters with their ids, the others with 0, into one depth buffer: each pixel keeps its nearest surface's.
+    program->SetUniformi("writePolygonIds", 1);
+    this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject& object) { return object.castShadows; });
+    program->SetUniformi("writePolygonIds", 0);
+    this->Drawer.draw(program, *frame.gpuScene, [](const sl::SceneObject& object) { return !object.castShadows; });
   }
   frame.lightSpaceData[sl::shadowMapStructure().name] = layers;
 }

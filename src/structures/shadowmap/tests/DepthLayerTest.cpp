@@ -406,6 +406,14 @@ TEST(DepthLayers, PolygonIdHasNoAcneOnConvexMeshes)
     EXPECT_EQ(outcome.unflaggedWrong, 0) << dataset;
     EXPECT_LE(outcome.acne, outcome.flagged) << dataset;
   }
+  // A random scene whose ground casts no shadow (scene/RandomScenes.h): the ground is not in the map, so its pixels
+  // (id 0) keep the depth test, and right or flagged still holds.
+  const RandomScene generated = randomScene(3, 80);
+  const Scene openGround = parseScene(generated.json, "random scene 3", test::sourceDir());
+  ASSERT_FALSE(openGround.objects.front().castShadows);
+  const PolygonIdOutcome outcome = polygonIdOutcome(openGround, "random seed 3 (ground casts no shadow)", 512);
+  EXPECT_EQ(outcome.unflaggedWrong, 0);
+  EXPECT_LE(outcome.acne + outcome.leaks, outcome.tested / 50);
 }
 
 // The survey's failure mode: "the mechanism breaks down if more than one triangle is present per texel". The bunny's
