@@ -107,6 +107,19 @@ const char* depthLayerName(DepthLayer layer)
   return "first";
 }
 
+bool declaresDepthLayerGap(const TechniqueDescriptor& technique)
+{
+  // Right or flagged: the techniques whose accuracy contract marks the "depth layer gap" (markDepthLayerGap).
+  for (const Approximation& approximation : technique.accuracy.approximations)
+  {
+    if (approximation.name == "depth layer gap")
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool comparesPolygonIds(const TechniqueDescriptor& technique)
 {
   // The techniques whose shader reads shadowMapPolygonId (HardVisibility.glsl's SHADOW_MAP_POLYGON_ID branch).
@@ -156,6 +169,12 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     {
       throw InputError("--set depth_layer=polygon_id: " + frame.technique->name +
         " compares depths, not polygon ids; use it with -t hard");
+    }
+    if ((settings.depthLayer == DepthLayer::Midpoint || settings.depthLayer == DepthLayer::Dual) &&
+      !declaresDepthLayerGap(*frame.technique))
+    {
+      throw InputError(format("--set depth_layer=", depthLayerName(settings.depthLayer), ": ", frame.technique->name,
+        " does not flag the pixels lit only by the gap to the second layer (its accuracy contract); use -t hard or pcf"));
     }
 
   }

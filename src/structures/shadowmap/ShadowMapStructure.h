@@ -44,6 +44,9 @@ struct ShadowMapLayersData : LightSpaceData
 };
 // Whether `technique`'s shader compares polygon ids (depth_layer = polygon_id; the others refuse it in one line).
 bool comparesPolygonIds(const TechniqueDescriptor& technique);
+// Whether `technique` flags the pixels a midpoint or dual map lights only by its layer gap (an approximation named
+// "depth layer gap", ApproximationRules.h's markDepthLayerGap); the others refuse those depth layers in one line.
+bool declaresDepthLayerGap(const TechniqueDescriptor& technique);
 
 // The parameters its build reads, typed.
 struct ShadowMapSettings
