@@ -180,25 +180,32 @@ TEST(DepthLayers, CombinedMapAndHardMatchTheirTwins)
 }
 
 // Random generated scenes (scene/RandomScenes.h: quads, boxes, perforated quads, area lights sampled from their
-// centre) with random depth_layer, offset and map size: the same two twins.
+// centre) with random depth_layer (midpoint, dual, polygon_id), offset and map size: the same twins (hard's id test for
+// polygon_id).
 TEST(DepthLayers, RandomScenesMatchTheTwins)
 {
   std::mt19937_64 random(20261204);
-  for (std::uint64_t seed = 1; seed <= 6; ++seed)
+  for (std::uint64_t seed = 1; seed <= 9; ++seed)
   {
     const RandomScene generated = randomScene(seed, 80);
     const Scene scene = parseScene(generated.json, "random scene", test::sourceDir());
-    const bool dual = test::uniform(random, 0.0, 1.0) < 0.5;
+    const double draw = test::uniform(random, 0.0, 1.0);
+    const bool dual = draw < 0.4;
+    const bool ids = draw >= 0.8; // polygon_id: the id twin instead of the combined map
     const double offset = std::round(test::uniform(random, 0.0, 16.0) * 4.0) / 4.0;
     const int mapSize = 64 << static_cast<int>(test::uniform(random, 0.0, 3.0));
     const std::vector<std::string> settings = { "shadow_map_size=" + std::to_string(mapSize),
-      std::string("depth_layer=") + (dual ? "dual" : "midpoint"), "dual_max_offset_texels=" + std::to_string(offset),
+      std::string("depth_layer=") + (ids ? "polygon_id" : dual ? "dual" : "midpoint"),
+      "dual_max_offset_texels=" + std::to_string(offset),
       "bias_constant_texels=" + std::to_string(test::uniform(random, 0.0, 1.0)), "bias_slope_texels=0" };
     const FrameResult frame =
       test::renderDataset(scene, "hard", scene.camera.resolution.x, scene.camera.resolution.y, settings);
     const std::string label = "seed " + std::to_string(seed) + " (" + generated.summary + ") " + settings[1] +
       " offset " + std::to_string(offset) + " map " + std::to_string(mapSize);
-    expectCombinedMapMatchesTwin(frame, dual ? DepthLayer::Dual : DepthLayer::Midpoint, offset, label);
+    if (!ids)
+    {
+      expectCombinedMapMatchesTwin(frame, dual ? DepthLayer::Dual : DepthLayer::Midpoint, offset, label);
+    }
     expectHardMatchesTwin(frame, scene, label);
     test::expectFiniteBuffersAndVisibilityInRange(frame, label);
   }
