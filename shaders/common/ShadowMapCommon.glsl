@@ -12,6 +12,12 @@ uniform int lightIsPerspective;
 uniform vec4 lightDepthToClip;  // clip.z = -x d + y, clip.w = -z d + w for linear depth d
 uniform float shadowTexelExtent; // texel size in window units (tangent for perspective, world for ortho)
 uniform int lightWarped;         // 1: lightClipFromWorld holds a perspective warp (survey §4.2)
+#if defined(SHADOW_MAP_POLYGON_ID) && SHADOW_MAP_POLYGON_ID
+// depth_layer = polygon_id (Hourcade & Nicolas 1985, survey §5): the nearest caster triangle's id per texel and the
+// triangle each pixel sees (scene triangle index + 1; 0: none).
+uniform usampler2D shadowMapPolygonId;
+uniform usampler2D receiverPolygonId;
+#endif
 
 // xy = uvTexels, z = depthLin
 vec3 projectToShadowMap(vec3 pWs)

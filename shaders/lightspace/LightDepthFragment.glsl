@@ -15,7 +15,20 @@ uniform float lightNearDepth;
 uniform float lightFarDepth;
 #endif
 
+#if DEPTH_PEEL
+// The layer before (depth peeling, survey §5's midpoint and dual maps): a fragment at or before its depth is peeled
+// off, so the depth test keeps the nearest surface strictly behind it. The same surface rasterizes to the same depth
+// at the same texel, so it never counts as its own second layer.
+uniform sampler2D firstLayerLinear;
+#endif
+
 layout(location = 0) out float outDepthLin;
+#if POLYGON_ID
+// Polygon-id shadow maps (Hourcade & Nicolas 1985, survey §5): the nearest triangle's id, unique in the scene
+// (MeshDrawer's meshTriangleBase + gl_PrimitiveID + 1; 0 = no caster), 32 bits (the survey: 8 bits are insufficient).
+uniform int meshTriangleBase;
+layout(location = 1) out uint outPolygonId;
+#endif
 
 void main()
 {
@@ -29,7 +42,16 @@ void main()
     discard;
   }
 #endif
+#if DEPTH_PEEL
+  if (depthLin <= texelFetch(firstLayerLinear, ivec2(gl_FragCoord.xy), 0).r)
+  {
+    discard;
+  }
+#endif
   outDepthLin = depthLin;
+#if POLYGON_ID
+  outPolygonId = uint(meshTriangleBase + gl_PrimitiveID + 1);
+#endif
 #if WARPED_DEPTH
   gl_FragDepth = (depthLin - lightNearDepth) / (lightFarDepth - lightNearDepth);
 #endif

@@ -421,7 +421,7 @@ void GpuScene::releaseGraphicsResources(vtkOpenGLRenderWindow* window)
 MeshDrawer::MeshDrawer() = default;
 MeshDrawer::~MeshDrawer() = default;
 
-void MeshDrawer::drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::size_t index)
+void MeshDrawer::drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::size_t index, std::size_t triangleBase)
 {
   if (vaos_.size() <= index)
   {
@@ -466,6 +466,10 @@ void MeshDrawer::drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::si
   if (program->IsUniformUsed("objectReceivesShadows"))
   {
     program->SetUniformi("objectReceivesShadows", object.receiveShadows ? 1 : 0);
+  }
+  if (program->IsUniformUsed("meshTriangleBase"))
+  {
+    program->SetUniformi("meshTriangleBase", static_cast<int>(triangleBase));
   }
   if (program->IsUniformUsed("hasAlphaTexture"))
   {

@@ -151,7 +151,9 @@ public:
   void releaseGraphicsResources(vtkOpenGLRenderWindow* window);
 
 private:
-  void drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::size_t index);
+  // `triangleBase`: the triangles of every mesh before this one in the scene (uniform meshTriangleBase, when used:
+  // base + gl_PrimitiveID numbers every triangle of the scene once, for polygon-id shadow maps).
+  void drawOne(vtkShaderProgram* program, const GpuMesh& mesh, std::size_t index, std::size_t triangleBase);
   std::vector<vtkSmartPointer<vtkOpenGLVertexArrayObject>> vaos_;
   vtkShaderProgram* boundProgram_ = nullptr;
   std::uint64_t sceneGeneration_ = 0;
@@ -166,12 +168,14 @@ void MeshDrawer::draw(vtkShaderProgram* program, const GpuScene& scene, Predicat
     releaseGraphicsResources(nullptr);
     sceneGeneration_ = scene.generation();
   }
+  std::size_t triangleBase = 0;
   for (std::size_t i = 0; i < scene.meshes().size(); ++i)
   {
     if (include(*scene.meshes()[i].object))
     {
-      drawOne(program, scene.meshes()[i], i);
+      drawOne(program, scene.meshes()[i], i, triangleBase);
     }
+    triangleBase += scene.meshes()[i].indexCount / 3;
   }
   boundProgram_ = program;
 }

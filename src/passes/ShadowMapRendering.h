@@ -17,5 +17,15 @@ namespace sl
 void renderShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
   const GpuScene& scene, const LightView& view, bool secondDepth, vtkTextureObject* linearDepth,
   vtkTextureObject* hardwareDepth);
+// The same as renderShadowMap (front and back faces) with, in `polygonIds` (R32UI), the nearest triangle's id
+// (MeshDrawer's meshTriangleBase + gl_PrimitiveID + 1; 0 where no caster): polygon-id shadow maps (survey §5).
+void renderPolygonIdShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, vtkTextureObject* linearDepth, vtkTextureObject* hardwareDepth,
+  vtkTextureObject* polygonIds);
+// Depth peeling (Everitt 2001), the second layer of midpoint and dual shadow maps (survey §5): the same casters, all
+// faces, keeping at each texel the nearest depth strictly behind `firstLayer`'s (a map renderShadowMap rendered).
+void renderPeeledShadowMap(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer, MeshDrawer& drawer,
+  const GpuScene& scene, const LightView& view, vtkTextureObject* firstLayer, vtkTextureObject* linearDepth,
+  vtkTextureObject* hardwareDepth);
 
 } // namespace sl

@@ -732,4 +732,105 @@ void markSampleRaysThroughPerforatedCaster(const ApproximationContext& context, 
     context, codes, code, [&](const glm::dvec3&, std::vector<glm::dvec3>& targets) { targets = samples; });
 }
 
+void markSeveralPolygonIds(const ApproximationContext& context, ImageF& codes, float code)
+{
+  const FrameResult& frame = *context.frame;
+  SL_CHECK_MSG(frame.lightView.has_value() && !frame.partitions, frame.technique, ": polygon ids need one map");
+  const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
+  const ImageF* ids = nullptr;
+  for (const NamedImage& named : frame.lightSpace)
+  {
+    ids = named.name == "shadow_map_polygon_id" ? &named.image : ids;
+  }
+  SL_CHECK_MSG(ids, frame.technique, ": no shadow_map_polygon_id");
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& normal = frame.find("normal")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& receives = frame.find("receives_shadows")->image;
+  const ImageF& ownIds = frame.find("polygon_id")->image; // 0: casts no shadow, compared by depth
+  const int size = ids->width;
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+      if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f || receives.at(x, y) <= 0.5f ||
+        ownIds.at(x, y) == 0.0f || !lightCanReach(light, pWs, nWs))
+      {
+        continue;
+      }
+      const glm::dvec2 uv = projectToShadowMap(*frame.lightView, pWs).uvTexels;
+      const int tx = static_cast<int>(std::floor(uv.x));
+      const int ty = static_cast<int>(std::floor(uv.y));
+      const float centre = ids->at(std::clamp(tx, 0, size - 1), std::clamp(ty, 0, size - 1));
+      bool several = false;
+      for (int dy = -1; dy <= 1 && !several; ++dy)
+      {
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          if (ids->at(std::clamp(tx + dx, 0, size - 1), std::clamp(ty + dy, 0, size - 1)) != centre)
+          {
+            several = true;
+            break;
+          }
+        }
+      }
+      codes.at(x, y) = several ? code : 0.0f;
+    }
+  }
+}
+
+void markDepthLayerGap(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels)
+{
+  const FrameResult& frame = *context.frame;
+  const ImageF* first = nullptr;
+  const ImageF* compared = nullptr;
+  for (const NamedImage& named : frame.lightSpace)
+  {
+    first = named.name == "shadow_map_first_depth" ? &named.image : first;
+    compared = named.name == "shadow_map_depth" ? &named.image : compared;
+  }
+  if (!first || !compared || frame.partitions)
+  {
+    return; // no layered map (depth_layer = first), or views that partition the pixels (their layers are per view)
+  }
+  const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
+  const ImageF& position = frame.find("position")->image;
+  const ImageF& normal = frame.find("normal")->image;
+  const ImageF& coverage = frame.find("coverage")->image;
+  const ImageF& receives = frame.find("receives_shadows")->image;
+  const ImageF& bias = frame.find("depth_bias")->image;
+  const int size = first->width;
+  for (int y = 0; y < codes.height; ++y)
+  {
+    for (int x = 0; x < codes.width; ++x)
+    {
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+      if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f || receives.at(x, y) <= 0.5f ||
+        !lightCanReach(light, pWs, nWs))
+      {
+        continue;
+      }
+      const ShadowMapSample sm = projectToShadowMap(*frame.lightView, pWs);
+      const double depth = sm.depthLin - bias.at(x, y);
+      const int radius = static_cast<int>(std::ceil(kernelTexels ? 0.5 * kernelTexels->at(x, y) + 1.0 : 1.0));
+      const int tx = static_cast<int>(std::floor(sm.uvTexels.x));
+      const int ty = static_cast<int>(std::floor(sm.uvTexels.y));
+      bool gap = false;
+      for (int dy = -radius; dy <= radius && !gap; ++dy)
+      {
+        for (int dx = -radius; dx <= radius && !gap; ++dx)
+        {
+          const int sx = std::clamp(tx + dx, 0, size - 1);
+          const int sy = std::clamp(ty + dy, 0, size - 1);
+          gap = depth > first->at(sx, sy) && depth <= compared->at(sx, sy);
+        }
+      }
+      codes.at(x, y) = gap ? code : 0.0f;
+    }
+  }
+}
+
 } // namespace sl

@@ -106,6 +106,14 @@ void markShadowMapSampling(const ShadowMapFootprint& footprint, const FrameResul
 // The same on the frame's own map, or with views that partition the pixels (survey §4.3) on each view's map for the
 // pixels that read it (the primary and, where they blend, the secondary of selectView).
 void markShadowMapSampling(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels);
+// depth_layer = polygon_id (survey §5, Hourcade & Nicolas 1985): `code` where a receiver that reaches the id test finds
+// more than one id (0, no caster, counts as one) among the 3 x 3 texels of the map around its own; 0 elsewhere left.
+void markSeveralPolygonIds(const ApproximationContext& context, ImageF& codes, float code);
+// depth_layer = midpoint or dual (survey §5): `code` where a receiver that reaches the depth test, within
+// `kernelTexels` / 2 + 1 texels of its own (1 without a kernel), finds a texel whose nearest caster (layer 1) lies in
+// front of its depth less depth_bias while the combined depth compared lies behind it: lit only by the gap to the
+// second layer, where a light leak and removed acne look alike. Pixels already coded are left.
+void markDepthLayerGap(const ApproximationContext& context, ImageF& codes, float code, const ImageF* kernelTexels);
 
 // Marks with `code` every pixel whose segment to the light's centre crosses a caster with an alpha texture (double
 // precision, RayTriangle.h), wherever the texture is: for techniques that shadow such casters as solid.

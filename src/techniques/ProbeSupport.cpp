@@ -32,6 +32,14 @@ ShadowMapInputs shadowMapInputsOf(
     {
       inputs.shadowMapWindow = named.image;
     }
+    else if (named.name == "shadow_map_polygon_id")
+    {
+      inputs.shadowMapPolygonId = named.image;
+    }
+  }
+  if (const NamedImage* ids = frame.find("polygon_id"))
+  {
+    inputs.receiverPolygonId = ids->image;
   }
   return inputs;
 }

@@ -98,4 +98,53 @@ double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexel
   return result;
 }
 
+double polygonIdTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int x, int y, ProbeRecorder* recorder)
+{
+  const int size = inputs.shadowMapPolygonId.width;
+  const glm::ivec2 texel = glm::clamp(glm::ivec2(static_cast<int>(std::floor(uvTexels.x)),
+    static_cast<int>(std::floor(uvTexels.y))), glm::ivec2(0), glm::ivec2(size - 1));
+  const double stored = inputs.shadowMapPolygonId.at(texel.x, texel.y);
+  const double own = inputs.receiverPolygonId.at(x, y);
+  const double result = stored == own ? 1.0 : 0.0;
+  if (recorder)
+  {
+    recorder->quantity("receiver_polygon_id", own, "", "survey §5 (Hourcade & Nicolas 1985: the receiver's polygon id)");
+    recorder->quantity("stored_polygon_id", stored, "", "survey §5 (the nearest caster triangle's id at the texel)");
+  }
+  return result;
+}
+
+double layerComparisonDepth(
+  DepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels)
+{
+  const double midpoint = 0.5 * (first + second);
+  switch (layer)
+  {
+    case DepthLayer::First:
+    case DepthLayer::PolygonId:
+      return first;
+    case DepthLayer::Midpoint:
+      return midpoint;
+    case DepthLayer::Dual:
+      return std::min(midpoint, first + dualMaxOffsetTexels * texelWorldSizeAtFirst);
+  }
+  return first;
+}
+
+ImageF layerComparisonMap(DepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
+  double dualMaxOffsetTexels)
+{
+  ImageF compared(first.width, first.height, 1);
+  for (int y = 0; y < first.height; ++y)
+  {
+    for (int x = 0; x < first.width; ++x)
+    {
+      const double z1 = first.at(x, y);
+      compared.at(x, y) = static_cast<float>(
+        layerComparisonDepth(layer, z1, second.at(x, y), view.texelWorldSize(z1), dualMaxOffsetTexels));
+    }
+  }
+  return compared;
+}
+
 } // namespace sl

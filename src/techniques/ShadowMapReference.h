@@ -9,6 +9,7 @@
 #include "lightspace/LightView.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
 
 #include <algorithm>
 #include <array>
@@ -29,6 +30,10 @@ struct ShadowMapInputs
   ImageF receives;       // 1 component: 1 if the surface receives shadows (G-buffer normal.w)
   ImageF shadowMapLinear; // linear depth per texel
   ImageF shadowMapWindow; // hardware depth per texel (window coordinates)
+  // depth_layer = polygon_id (survey §5): the map's nearest triangle id per texel and each pixel's own (float, exact
+  // below 2^24); empty otherwise.
+  ImageF shadowMapPolygonId;
+  ImageF receiverPolygonId;
 };
 
 // The result of a reference evaluation at one pixel.
@@ -84,5 +89,22 @@ TexelWithEdges texelWithEdges(const glm::dvec2& uvTexels);
 // `recorder` (optional): the texel as a ProbeTexel of role `role` with weight `weight`.
 double nearestTexelTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double comparisonDepth,
   ReferenceSample& sample, ProbeRecorder* recorder = nullptr, const char* role = "tap", double weight = 1.0);
+
+// Polygon-id test (Hourcade & Nicolas 1985, survey §5): 1 iff the texel holding `uvTexels` (clamped like texelFetch)
+// stores the id of the triangle pixel (x, y) sees. `recorder` (optional): the texel, its id as the "depth".
+double polygonIdTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int x, int y,
+  ProbeRecorder* recorder = nullptr);
+
+// The depth a texel compares receivers with, from its nearest caster depth `first` (z1) and the second-nearest
+// `second` (z2, depth peeling; 2 x far where none), survey §5. CPU twin of shadowmap/DepthLayerCombine.glsl.
+//   First     z1
+//   Midpoint  (z1 + z2) / 2 (Woo 1992)
+//   Dual      min((z1 + z2) / 2, z1 + dualMaxOffsetTexels x texelWorldSizeAtFirst) (Weiskopf & Ertl 2003, as the
+//             survey §5 summarises them: a parameter limiting the effective caster thickness)
+double layerComparisonDepth(
+  DepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels);
+// The same over whole maps (read back): `texelWorldSize` is LightView::texelWorldSize of the map's view.
+ImageF layerComparisonMap(DepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
+  double dualMaxOffsetTexels);
 
 } // namespace sl

@@ -33,6 +33,20 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
       settings.resolution, "-texel shadow map for them; use a larger shadow_map_size or a narrower filter"));
   }
   settings.secondDepth = values.has("caster_faces") && values.choice("caster_faces") == "back";
+  if (values.has("depth_layer"))
+  {
+    settings.depthLayer = choiceOf<DepthLayer>(values, "depth_layer",
+      { { "first", DepthLayer::First }, { "midpoint", DepthLayer::Midpoint }, { "dual", DepthLayer::Dual },
+        { "polygon_id", DepthLayer::PolygonId } });
+    settings.dualMaxOffsetTexels = values.get("dual_max_offset_texels");
+    if (settings.secondDepth && settings.depthLayer != DepthLayer::First)
+    {
+      // Both layers are peeled from every face; a back-face-only first layer would make the "second" the third.
+      throw InputError(format("--set depth_layer=", values.choice("depth_layer"),
+        ": peels its two layers from all faces; use it with caster_faces=front (caster_faces=back is the second-depth "
+        "map of Wang & Molnar 1994)"));
+    }
+  }
   if (values.has("warp"))
   {
     settings.warp.kind = choiceOf<WarpKind>(values, "warp",
@@ -70,9 +84,47 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
     settings.cubeMap = choiceOf<CubeMapMode>(
       values, "cube_map", { { "off", CubeMapMode::Off }, { "auto", CubeMapMode::Auto }, { "on", CubeMapMode::On } });
   }
+  if (settings.depthLayer == DepthLayer::PolygonId && (settings.cascades.active() || settings.fvsm.active()))
+  {
+    throw InputError("--set depth_layer=polygon_id: one map only; use cascades=1 and fvsm=off");
+  }
   return settings;
 }
 
+const char* depthLayerName(DepthLayer layer)
+{
+  switch (layer)
+  {
+    case DepthLayer::First:
+      return "first";
+    case DepthLayer::Midpoint:
+      return "midpoint";
+    case DepthLayer::Dual:
+      return "dual";
+    case DepthLayer::PolygonId:
+      return "polygon_id";
+  }
+  return "first";
+}
+
+bool declaresDepthLayerGap(const TechniqueDescriptor& technique)
+{
+  // Right or flagged: the techniques whose accuracy contract marks the "depth layer gap" (markDepthLayerGap).
+  for (const Approximation& approximation : technique.accuracy.approximations)
+  {
+    if (approximation.name == "depth layer gap")
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool comparesPolygonIds(const TechniqueDescriptor& technique)
+{
+  // The techniques whose shader reads shadowMapPolygonId (HardVisibility.glsl's SHADOW_MAP_POLYGON_ID branch).
+  return technique.name == "hard";
+}
 void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus)
 {
   if (frame.parameters.has("fvsm") && frame.parameters.choice("fvsm") == "on")
@@ -113,6 +165,18 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     requireWarpableLight(settings.warp.kind, frame.light->type);
     requireCascadableLight(settings.cascades, frame.light->type);
     requireCubeMapLight(settings.cubeMap.value_or(CubeMapMode::Off), frame.light->type);
+    if (settings.depthLayer == DepthLayer::PolygonId && !comparesPolygonIds(*frame.technique))
+    {
+      throw InputError("--set depth_layer=polygon_id: " + frame.technique->name +
+        " compares depths, not polygon ids; use it with -t hard");
+    }
+    if ((settings.depthLayer == DepthLayer::Midpoint || settings.depthLayer == DepthLayer::Dual) &&
+      !declaresDepthLayerGap(*frame.technique))
+    {
+      throw InputError(format("--set depth_layer=", depthLayerName(settings.depthLayer), ": ", frame.technique->name,
+        " does not flag the pixels lit only by the gap to the second layer (its accuracy contract); use -t hard or pcf"));
+    }
+
   }
   return settings;
 }
@@ -168,6 +232,45 @@ void exportFvsm(const FrameResources& frame, const ImageF& tile, FrameResult& re
     "fvsm quadtree level of the tile holding each grid cell (tile side = window / 2^level); -1: no tile (no receiver)" });
 }
 
+// depth_layer = midpoint or dual (survey §5): the two peeled layers the combined map came from, per view
+// (suffixed as the views' maps are).
+void exportDepthLayers(const FrameResources& frame, std::vector<NamedImage>& images)
+{
+  const auto found = frame.lightSpaceData.find(shadowMapStructure().name);
+  if (found == frame.lightSpaceData.end())
+  {
+    return;
+  }
+  const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*found->second);
+  if (layers.polygonIds)
+  {
+    // Ids are below 2^24 (the build checks), so float holds them exactly.
+    const auto asFloat = [](const Image<std::uint32_t>& ids) {
+      ImageF image(ids.width, ids.height, 1);
+      for (std::size_t i = 0; i < ids.data.size(); ++i)
+      {
+        image.data[i] = static_cast<float>(ids.data[i]);
+      }
+      return image;
+    };
+    images.push_back({ "shadow_map_polygon_id", asFloat(readUnsignedTextureExact(layers.polygonIds, 1)), "",
+      "depth_layer = polygon_id (Hourcade & Nicolas 1985): id of the nearest caster triangle per texel (scene triangle "
+      "index + 1; 0: none)" });
+  }
+  for (std::size_t k = 0; k < layers.first.size(); ++k)
+  {
+    if (!layers.first[k])
+    {
+      continue;
+    }
+    const std::string suffix = frame.partitions ? partitionViewSuffix(*frame.partitions, static_cast<int>(k)) : "";
+    images.push_back({ "shadow_map_first_depth" + suffix, readFloatTexture(layers.first[k], 1), "world units",
+      "depth layer 1: linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" });
+    images.push_back({ "shadow_map_second_depth" + suffix, readFloatTexture(layers.second[k], 1), "world units",
+      "depth layer 2 (depth peeling): the nearest caster depth strictly behind layer 1 at the texel (2 x far: none)" });
+  }
+}
+
 // Views that partition the pixels (survey §4.3, PartitionViews.h): the per-pixel categorical buffer of the kind
 // (`cascade`, `fvsm_tile` with fvsm's own buffers), the sampling error of each pixel's view, then each view's two
 // maps, suffixed as partitionViewSuffix names them (_c<k>, _t<k>).
@@ -213,6 +316,7 @@ std::vector<NamedImage> exportPartitions(const FrameResources& frame, FrameResul
     images.push_back({ "shadow_map_window_depth" + suffix, readDepthTexture(frame.viewShadowMapDepth[k]), "",
       format(label, "'s hardware depth buffer, window coordinates in [0, 1]") });
   }
+  exportDepthLayers(frame, images);
   return images;
 }
 
@@ -227,11 +331,33 @@ std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult
   result.buffers.insert(result.buffers.end(), std::make_move_iterator(samplingError.begin()),
     std::make_move_iterator(samplingError.end()));
   // Built in place: an initializer list would copy both maps (16 MiB each at the default size) once more.
+  const auto layersFound = frame.lightSpaceData.find(shadowMapStructure().name);
+  if (layersFound != frame.lightSpaceData.end())
+  {
+    const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*layersFound->second);
+    if (layers.receiverPolygonIds)
+    {
+      const Image<std::uint32_t> ids = readUnsignedTextureExact(layers.receiverPolygonIds, 1);
+      ImageF image(ids.width, ids.height, 1);
+      for (std::size_t i = 0; i < ids.data.size(); ++i)
+      {
+        image.data[i] = static_cast<float>(ids.data[i]);
+      }
+      result.buffers.push_back({ "polygon_id", std::move(image), "",
+        "depth_layer = polygon_id (Hourcade & Nicolas 1985): id of the triangle the pixel sees (scene triangle index + 1; "
+        "0: background), compared with the shadow map's shadow_map_polygon_id", BufferKind::Categorical, {} });
+    }
+  }
   std::vector<NamedImage> images(2);
+  const DepthLayer layer = shadowMapSettings(frame).depthLayer;
   images[0] = { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
-    "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)" };
+    layer == DepthLayer::First || layer == DepthLayer::PolygonId
+      ? "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)"
+      : format("the depth the receivers are compared with (depth_layer = ", depthLayerName(layer),
+          ", survey §5): combined from shadow_map_first_depth and shadow_map_second_depth") };
   images[1] = { "shadow_map_window_depth", readDepthTexture(frame.shadowMapDepth), "",
     "hardware depth buffer of the shadow map, window coordinates in [0, 1]" };
+  exportDepthLayers(frame, images);
   return images;
 }
 
@@ -246,6 +372,14 @@ std::vector<vtkTextureObject*> bindShadowMap(vtkShaderProgram* program, const Fr
   setMatrix(program, "lightClipFromWorld", view.clipFromWorld);
   setMatrix(program, "lightViewFromWorld", view.viewFromWorld);
   setIntIfUsed(program, "shadowMapSize", view.resolution);
+  const auto layersFound = frame.lightSpaceData.find(shadowMapStructure().name);
+  if (layersFound != frame.lightSpaceData.end() && program->IsUniformUsed("shadowMapPolygonId"))
+  {
+    const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*layersFound->second);
+    SL_CHECK_MSG(layers.polygonIds && layers.receiverPolygonIds, "depth_layer = polygon_id built no id maps");
+    bound.push_back(bindTexture(program, "shadowMapPolygonId", layers.polygonIds));
+    bound.push_back(bindTexture(program, "receiverPolygonId", layers.receiverPolygonIds));
+  }
   setIntIfUsed(program, "lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
   setIntIfUsed(program, "lightWarped", view.warp.active() ? 1 : 0);
   if (program->IsUniformUsed("lightDepthToClip"))
@@ -314,6 +448,8 @@ const LightSpaceStructure& shadowMapStructure()
     s.parameters = {
       { "shadow_map_size", 2048, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1)", {}, true },
       { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },
+      { "depth_layer", 0, 0, 3, "", "the depth compared (survey §5): first = the nearest caster's; midpoint = (z1 + z2) / 2 of the nearest and the second-nearest (depth-peeled) surface (Woo 1992); dual = min((z1 + z2) / 2, z1 + dual_max_offset_texels texel footprints) (Weiskopf & Ertl 2003); polygon_id = the nearest triangle's id (32 bits), lit iff it is the receiver's own (Hourcade & Nicolas 1985; hard only; flagged where the receiver's 3 x 3 texels hold several ids)", { "first", "midpoint", "dual", "polygon_id" }, true },
+      { "dual_max_offset_texels", 4.0, 0, 1e4, "texel footprints", "depth_layer = dual: the most the compared depth lies behind the nearest caster, in texel footprints at its depth (limits the effective caster thickness)", {}, false },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFocusPass>::New(),
@@ -328,11 +464,35 @@ const LightSpaceStructure& shadowMapStructure()
         {
           bytes += textureBytes(frame.viewShadowMapLinear[k], 4) + textureBytes(frame.viewShadowMapDepth[k], 4);
         }
+        const auto found = frame.lightSpaceData.find("shadow_map");
+        if (found != frame.lightSpaceData.end())
+        {
+          const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*found->second);
+          for (std::size_t k = 0; k < layers.first.size(); ++k)
+          {
+            bytes += textureBytes(layers.first[k], 4) + textureBytes(layers.second[k], 4);
+          }
+        }
         return bytes;
       }
-      return textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
+      std::size_t layerBytes = 0;
+      const auto found = frame.lightSpaceData.find("shadow_map");
+      if (found != frame.lightSpaceData.end())
+      {
+        const auto& layers = dynamic_cast<const ShadowMapLayersData&>(*found->second);
+        for (std::size_t k = 0; k < layers.first.size(); ++k)
+        {
+          layerBytes += textureBytes(layers.first[k], 4) + textureBytes(layers.second[k], 4);
+        }
+        layerBytes += textureBytes(layers.polygonIds, 4) + textureBytes(layers.receiverPolygonIds, 4);
+      }
+      return layerBytes + textureBytes(frame.shadowMapLinear, 4) + textureBytes(frame.shadowMapDepth, 4);
     };
-    s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
+    s.shaderDefines = [](const FrameResources& frame) {
+      const bool ids = frame.technique && comparesPolygonIds(*frame.technique) &&
+        shadowMapSettings(frame).depthLayer == DepthLayer::PolygonId;
+      return ShaderDefines{ { "SHADOW_MAP_POLYGON_ID", ids ? "1" : "0" } };
+    };
     s.bind = bindShadowMap;
     return s;
   }();

@@ -2,4 +2,6 @@
 sl_structure(
   ORDER 10
   STRUCTURE shadowMapStructure ShadowMapStructure.h
-  SOURCES ShadowMapStructure.cpp SamplingErrorBuffers.cpp vtkSLFocusPass.cxx vtkSLLightDepthPass.cxx)
+  SOURCES ShadowMapStructure.cpp SamplingErrorBuffers.cpp vtkSLFocusPass.cxx vtkSLLightDepthPass.cxx
+  SHADERS shaders/DepthLayerCombine.glsl shaders/ReceiverPolygonId.glsl
+  GPU_TESTS tests/DepthLayerTest.cpp)

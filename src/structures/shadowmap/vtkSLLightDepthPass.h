@@ -1,7 +1,9 @@
 // Stage 2b (when the technique needs a shadow map): renders the casters' linear and hardware depth from
-// the light view the focus stage fitted. Parameter it reads: caster_faces (first- or second-depth).
+// the light view the focus stage fitted. Parameters it reads: caster_faces (first- or second-depth) and depth_layer
+// (midpoint or dual: two peeled layers combined into the map, survey §5).
 #pragma once
 
+#include "passes/FullScreenQuad.h"
 #include "passes/vtkSLStagePass.h"
 
 #include <vtkNew.h>
@@ -11,6 +13,11 @@
 #include <vector>
 
 class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+namespace sl
+{
+struct ShadowMapSettings;
+}
 
 class vtkSLLightDepthPass : public vtkSLStagePass
 {
@@ -29,6 +36,10 @@ protected:
 private:
   vtkSLLightDepthPass(const vtkSLLightDepthPass&) = delete;
   void operator=(const vtkSLLightDepthPass&) = delete;
+  // depth_layer = midpoint or dual: both layers into the frame's ShadowMapLayersData, their combination into the map.
+  void RenderDepthLayers(vtkOpenGLRenderWindow* window, const sl::ShadowMapSettings& settings, std::size_t index);
+  // depth_layer = polygon_id: the map with its triangle ids, and the camera's receiver ids (ShadowMapLayersData).
+  void RenderPolygonIds(vtkOpenGLRenderWindow* window);
 
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   sl::MeshDrawer Drawer;
@@ -36,4 +47,7 @@ private:
   // views that partition the pixels (cascades).
   std::vector<vtkSmartPointer<vtkTextureObject>> LinearTargets;
   std::vector<vtkSmartPointer<vtkTextureObject>> DepthTargets;
+  // The depth buffer of the two peeled layers' passes (depth_layer = midpoint or dual), and the pass combining them.
+  vtkSmartPointer<vtkTextureObject> PeelDepth;
+  sl::FullScreenQuad CombineQuad;
 };

@@ -1,5 +1,7 @@
 #include "techniques/hard/HardTechnique.h"
 
+#include <algorithm>
+
 #include "techniques/ApproximationRules.h"
 
 #include "structures/shadowmap/ShadowMapStructure.h"
@@ -26,6 +28,7 @@ TechniqueDescriptor hardTechnique()
   descriptor.addParameters(shadowMapCascadeParameters());
   descriptor.addParameters(shadowMapFvsmParameters());
   descriptor.addParameters(shadowMapCubeParameters());
+
   descriptor.buffers = {
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),
@@ -50,8 +53,28 @@ TechniqueDescriptor hardTechnique()
   descriptor.accuracy.tolerance = 1e-3;
   descriptor.accuracy.approximations = { { "shadow-map sampling",
     "the texels within one of the receiver's hold occluding and non-occluding depths after the pixel's depth_bias, "
-    "or a caster lies within twice the bias of the receiver" } };
+    "or a caster lies within twice the bias of the receiver" },
+    { "polygon id: several triangles per texel",
+      "depth_layer = polygon_id: the 3 x 3 texels around the receiver's hold more than one triangle id (survey §5: "
+      "the mechanism breaks down if more than one triangle is present per texel)" },
+    { "depth layer gap",
+      "depth_layer = midpoint or dual: a texel within one of the receiver's holds its nearest caster in front of the "
+      "receiver (after depth_bias) but a compared depth behind it: lit only by the gap to the second layer, where a "
+      "light leak and removed acne look alike (survey §5)" } };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
+    if (const NamedImage* ids = context.frame->find("polygon_id"))
+    {
+      // Receivers with id 0 cast no shadow and keep the depth test (and its approximation).
+      markSeveralPolygonIds(context, codes, 2.0f);
+      ImageF depthCodes(codes.width, codes.height, 1);
+      markShadowMapSampling(context, depthCodes, 1.0f, nullptr);
+      for (std::size_t i = 0; i < codes.data.size(); ++i)
+      {
+        codes.data[i] = ids->image.data[i] == 0.0f && codes.data[i] == 0.0f ? depthCodes.data[i] : codes.data[i];
+      }
+      return;
+    }
+    markDepthLayerGap(context, codes, 3.0f, nullptr);
     markShadowMapSampling(context, codes, 1.0f, nullptr);
   };
   return descriptor;
@@ -71,6 +94,23 @@ ReferenceSample hardReference(const ShadowMapInputs& inputs, const BiasSettings&
     }
     lookup.sample.visibility = nearestTexelTest(
       inputs, lookup.sm.uvTexels, lookup.comparisonDepth, lookup.sample, recorder, "nearest texel");
+    if (!inputs.shadowMapPolygonId.empty() && inputs.receiverPolygonId.at(x, y) != 0.0f)
+    {
+      // depth_layer = polygon_id (survey §5): the ids decide; the depth test above only fills the margins. A receiver
+      // with id 0 casts no shadow (it is not in the map): the depth test decides it.
+      lookup.sample.visibility = polygonIdTest(inputs, lookup.sm.uvTexels, x, y, recorder);
+      lookup.sample.depthMargin = 1e300;
+      lookup.sample.texelEdgeMargin = 1e300;
+      for (const TexelEdge& edge : texelWithEdges(lookup.sm.uvTexels).edges)
+      {
+        // A GPU tap within float rounding of an edge may read the neighbour's id.
+        if (edge.distance < 1e-3 &&
+          polygonIdTest(inputs, glm::dvec2(edge.neighbour) + 0.5, x, y) != lookup.sample.visibility)
+        {
+          lookup.sample.texelEdgeMargin = std::min(lookup.sample.texelEdgeMargin, edge.distance);
+        }
+      }
+    }
     if (recorder)
     {
       recorder->quantity("visibility", lookup.sample.visibility, "", "Williams 1978: d - bias <= stored depth");

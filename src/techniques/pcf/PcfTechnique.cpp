@@ -70,9 +70,14 @@ TechniqueDescriptor pcfTechnique()
   descriptor.accuracy.tolerance = 1e-3;
   descriptor.accuracy.approximations = { { "filter footprint",
     "the comparisons within kernel_texels / 2 + 1 texels of the receiver's differ after the pixel's depth_bias (a "
-    "filtered edge), or a caster lies within twice the bias of the receiver" } };
+    "filtered edge), or a caster lies within twice the bias of the receiver" },
+    { "depth layer gap",
+      "depth_layer = midpoint or dual: a texel within kernel_texels / 2 + 1 of the receiver's holds its nearest caster "
+      "in front of the receiver (after depth_bias) but a compared depth behind it: lit only by the gap to the second "
+      "layer, where a light leak and removed acne look alike (survey §5)" } };
   descriptor.accuracy.markApproximations = [](const ApproximationContext& context, ImageF& codes) {
     const ImageF& kernel = context.frame->find("kernel_texels")->image;
+    markDepthLayerGap(context, codes, 2.0f, &kernel);
     markShadowMapSampling(context, codes, 1.0f, &kernel);
   };
   return descriptor;

@@ -25,7 +25,15 @@ void main()
     return;
   }
   float stored = storedDepth(receiver.uvTexels);
+#if defined(SHADOW_MAP_POLYGON_ID) && SHADOW_MAP_POLYGON_ID
+  // Survey §5 (Hourcade & Nicolas 1985): lit iff the texel's nearest triangle is the receiver's own; no depth, no bias.
+  uint storedId = texelFetch(shadowMapPolygonId, shadowMapTexel(receiver.uvTexels), 0).r;
+  uint ownId = texelFetch(receiverPolygonId, ivec2(gl_FragCoord.xy), 0).r;
+  // Id 0: the receiver casts no shadow, so it is not in the map; its depth decides, as without ids.
+  outVisibility = ownId == 0u ? (receiver.comparisonDepth <= stored ? 1.0 : 0.0) : (storedId == ownId ? 1.0 : 0.0);
+#else
   outVisibility = receiver.comparisonDepth <= stored ? 1.0 : 0.0; // shadowTest, with the depth kept for the margin
+#endif
   outKernelTexels = 1.0;
   outTexelRatio = texelRatio(gl_FragCoord.xy, receiver.pWs, receiver.nWs);
   outDepthBias = receiver.bias;
