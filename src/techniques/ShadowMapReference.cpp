@@ -115,23 +115,23 @@ double polygonIdTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, 
 }
 
 double layerComparisonDepth(
-  DepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels)
+  ShadowMapDepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels)
 {
   const double midpoint = 0.5 * (first + second);
   switch (layer)
   {
-    case DepthLayer::First:
-    case DepthLayer::PolygonId:
+    case ShadowMapDepthLayer::First:
+    case ShadowMapDepthLayer::PolygonId:
       return first;
-    case DepthLayer::Midpoint:
+    case ShadowMapDepthLayer::Midpoint:
       return midpoint;
-    case DepthLayer::Dual:
+    case ShadowMapDepthLayer::Dual:
       return std::min(midpoint, first + dualMaxOffsetTexels * texelWorldSizeAtFirst);
   }
   return first;
 }
 
-ImageF layerComparisonMap(DepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
+ImageF layerComparisonMap(ShadowMapDepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
   double dualMaxOffsetTexels)
 {
   ImageF compared(first.width, first.height, 1);

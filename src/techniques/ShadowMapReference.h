@@ -102,9 +102,9 @@ double polygonIdTest(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, 
 //   Dual      min((z1 + z2) / 2, z1 + dualMaxOffsetTexels x texelWorldSizeAtFirst) (Weiskopf & Ertl 2003, as the
 //             survey §5 summarises them: a parameter limiting the effective caster thickness)
 double layerComparisonDepth(
-  DepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels);
+  ShadowMapDepthLayer layer, double first, double second, double texelWorldSizeAtFirst, double dualMaxOffsetTexels);
 // The same over whole maps (read back): `texelWorldSize` is LightView::texelWorldSize of the map's view.
-ImageF layerComparisonMap(DepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
+ImageF layerComparisonMap(ShadowMapDepthLayer layer, const ImageF& first, const ImageF& second, const LightView& view,
   double dualMaxOffsetTexels);
 
 } // namespace sl

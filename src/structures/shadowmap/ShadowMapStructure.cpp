@@ -35,11 +35,11 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
   settings.secondDepth = values.has("caster_faces") && values.choice("caster_faces") == "back";
   if (values.has("depth_layer"))
   {
-    settings.depthLayer = choiceOf<DepthLayer>(values, "depth_layer",
-      { { "first", DepthLayer::First }, { "midpoint", DepthLayer::Midpoint }, { "dual", DepthLayer::Dual },
-        { "polygon_id", DepthLayer::PolygonId } });
+    settings.depthLayer = choiceOf<ShadowMapDepthLayer>(values, "depth_layer",
+      { { "first", ShadowMapDepthLayer::First }, { "midpoint", ShadowMapDepthLayer::Midpoint }, { "dual", ShadowMapDepthLayer::Dual },
+        { "polygon_id", ShadowMapDepthLayer::PolygonId } });
     settings.dualMaxOffsetTexels = values.get("dual_max_offset_texels");
-    if (settings.secondDepth && settings.depthLayer != DepthLayer::First)
+    if (settings.secondDepth && settings.depthLayer != ShadowMapDepthLayer::First)
     {
       // Both layers are peeled from every face; a back-face-only first layer would make the "second" the third.
       throw InputError(format("--set depth_layer=", values.choice("depth_layer"),
@@ -84,24 +84,24 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
     settings.cubeMap = choiceOf<CubeMapMode>(
       values, "cube_map", { { "off", CubeMapMode::Off }, { "auto", CubeMapMode::Auto }, { "on", CubeMapMode::On } });
   }
-  if (settings.depthLayer == DepthLayer::PolygonId && (settings.cascades.active() || settings.fvsm.active()))
+  if (settings.depthLayer == ShadowMapDepthLayer::PolygonId && (settings.cascades.active() || settings.fvsm.active()))
   {
     throw InputError("--set depth_layer=polygon_id: one map only; use cascades=1 and fvsm=off");
   }
   return settings;
 }
 
-const char* depthLayerName(DepthLayer layer)
+const char* depthLayerName(ShadowMapDepthLayer layer)
 {
   switch (layer)
   {
-    case DepthLayer::First:
+    case ShadowMapDepthLayer::First:
       return "first";
-    case DepthLayer::Midpoint:
+    case ShadowMapDepthLayer::Midpoint:
       return "midpoint";
-    case DepthLayer::Dual:
+    case ShadowMapDepthLayer::Dual:
       return "dual";
-    case DepthLayer::PolygonId:
+    case ShadowMapDepthLayer::PolygonId:
       return "polygon_id";
   }
   return "first";
@@ -165,12 +165,12 @@ ShadowMapSettings shadowMapSettings(const FrameResources& frame)
     requireWarpableLight(settings.warp.kind, frame.light->type);
     requireCascadableLight(settings.cascades, frame.light->type);
     requireCubeMapLight(settings.cubeMap.value_or(CubeMapMode::Off), frame.light->type);
-    if (settings.depthLayer == DepthLayer::PolygonId && !comparesPolygonIds(*frame.technique))
+    if (settings.depthLayer == ShadowMapDepthLayer::PolygonId && !comparesPolygonIds(*frame.technique))
     {
       throw InputError("--set depth_layer=polygon_id: " + frame.technique->name +
         " compares depths, not polygon ids; use it with -t hard");
     }
-    if ((settings.depthLayer == DepthLayer::Midpoint || settings.depthLayer == DepthLayer::Dual) &&
+    if ((settings.depthLayer == ShadowMapDepthLayer::Midpoint || settings.depthLayer == ShadowMapDepthLayer::Dual) &&
       !declaresDepthLayerGap(*frame.technique))
     {
       throw InputError(format("--set depth_layer=", depthLayerName(settings.depthLayer), ": ", frame.technique->name,
@@ -349,9 +349,9 @@ std::vector<NamedImage> exportShadowMap(const FrameResources& frame, FrameResult
     }
   }
   std::vector<NamedImage> images(2);
-  const DepthLayer layer = shadowMapSettings(frame).depthLayer;
+  const ShadowMapDepthLayer layer = shadowMapSettings(frame).depthLayer;
   images[0] = { "shadow_map_depth", readFloatTexture(frame.shadowMapLinear, 1), "world units",
-    layer == DepthLayer::First || layer == DepthLayer::PolygonId
+    layer == ShadowMapDepthLayer::First || layer == ShadowMapDepthLayer::PolygonId
       ? "linear depth of the nearest caster along the light axis (empty texels hold 2 x far)"
       : format("the depth the receivers are compared with (depth_layer = ", depthLayerName(layer),
           ", survey §5): combined from shadow_map_first_depth and shadow_map_second_depth") };
@@ -490,7 +490,7 @@ const LightSpaceStructure& shadowMapStructure()
     };
     s.shaderDefines = [](const FrameResources& frame) {
       const bool ids = frame.technique && comparesPolygonIds(*frame.technique) &&
-        shadowMapSettings(frame).depthLayer == DepthLayer::PolygonId;
+        shadowMapSettings(frame).depthLayer == ShadowMapDepthLayer::PolygonId;
       return ShaderDefines{ { "SHADOW_MAP_POLYGON_ID", ids ? "1" : "0" } };
     };
     s.bind = bindShadowMap;

@@ -22,7 +22,7 @@ const LightSpaceStructure& shadowMapStructure();
 // The depth the map stores for the comparison (survey §5, "depth biasing"): the nearest caster's (first), or one
 // combined from the nearest and the second-nearest surface at the texel, the second found by depth peeling (a second
 // pass keeping the nearest depth strictly behind the first layer's at the same texel; DepthLayers.h has the rules).
-enum class DepthLayer
+enum class ShadowMapDepthLayer
 {
   First,    // the nearest caster (Williams 1978); with caster_faces = back, the nearest back face (Wang & Molnar 1994)
   Midpoint, // (z1 + z2) / 2 (Woo 1992)
@@ -30,7 +30,7 @@ enum class DepthLayer
   PolygonId, // the nearest triangle's id besides z1 (Hourcade & Nicolas 1985): techniques that compare ids (hard)
 };
 
-const char* depthLayerName(DepthLayer layer);
+const char* depthLayerName(ShadowMapDepthLayer layer);
 
 // What a layered build (depth_layer = midpoint or dual) leaves besides the combined map, for the export: the two
 // peeled layers' linear depth (R32F), one pair per view for views that partition the pixels.
@@ -54,7 +54,7 @@ struct ShadowMapSettings
   int resolution = 2048;     // shadow_map_size
   double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
-  DepthLayer depthLayer = DepthLayer::First; // depth_layer (survey §5)
+  ShadowMapDepthLayer depthLayer = ShadowMapDepthLayer::First; // depth_layer (survey §5)
   double dualMaxOffsetTexels = 4.0;          // dual_max_offset_texels (depth_layer = dual)
   WarpSettings warp;         // warp, warp_n (survey §4.2), read only from techniques that list them
   CascadeSettings cascades;  // cascades, split_scheme, split_lambda, cascade_selection, cascade_blend, cascade_snap

@@ -58,12 +58,12 @@ void vtkSLLightDepthPass::Execute(const vtkRenderState* state)
     frame.viewShadowMapDepth[index] = frame.shadowMapDepth;
   }
   const sl::ShadowMapSettings settings = sl::shadowMapSettings(frame);
-  if (settings.depthLayer == sl::DepthLayer::PolygonId)
+  if (settings.depthLayer == sl::ShadowMapDepthLayer::PolygonId)
   {
     this->RenderPolygonIds(window);
     return;
   }
-  if (settings.depthLayer == sl::DepthLayer::First)
+  if (settings.depthLayer == sl::ShadowMapDepthLayer::First)
   {
     if (index == 0)
     {
@@ -117,7 +117,7 @@ void vtkSLLightDepthPass::RenderDepthLayers(
   sl::ShaderDefines defines = sl::commonDefines();
   defines.push_back({ "DEPTH_LAYER_MIDPOINT", "1" });
   defines.push_back({ "DEPTH_LAYER_DUAL", "2" });
-  defines.push_back({ "DEPTH_LAYER", settings.depthLayer == sl::DepthLayer::Dual ? "2" : "1" });
+  defines.push_back({ "DEPTH_LAYER", settings.depthLayer == sl::ShadowMapDepthLayer::Dual ? "2" : "1" });
   defines.push_back({ "WARPED_DEPTH", view.warp.active() ? "1" : "0" });
   vtkShaderProgram* program =
     this->CombineQuad.ready(window, sl::assembleShader("shadowmap/DepthLayerCombine.glsl", defines), "depth layers");

@@ -24,7 +24,7 @@ namespace
 
 // Per texel, the combined map the GPU stored against layerComparisonDepth of the two layers it stored; and the second
 // layer strictly behind the first wherever the first holds a caster. Returns the texels with a caster.
-int expectCombinedMapMatchesTwin(const FrameResult& frame, DepthLayer layer, double dualMaxOffsetTexels,
+int expectCombinedMapMatchesTwin(const FrameResult& frame, ShadowMapDepthLayer layer, double dualMaxOffsetTexels,
   const std::string& label)
 {
   const ImageF& first = test::lightSpaceArray(frame, "shadow_map_first_depth");
@@ -166,7 +166,7 @@ TEST(DepthLayers, CombinedMapAndHardMatchTheirTwins)
   for (const std::string dataset : { "contact", "grazing", "stacked-occluders", "bunny" })
   {
     const Scene scene = test::loadDataset(dataset);
-    for (const auto& [layer, name] : { std::pair{ DepthLayer::Midpoint, "midpoint" }, std::pair{ DepthLayer::Dual, "dual" } })
+    for (const auto& [layer, name] : { std::pair{ ShadowMapDepthLayer::Midpoint, "midpoint" }, std::pair{ ShadowMapDepthLayer::Dual, "dual" } })
     {
       const std::vector<std::string> settings =
         withSettings({ "shadow_map_size=256", std::string("depth_layer=") + name, "dual_max_offset_texels=3" }, kNoBias);
@@ -204,7 +204,7 @@ TEST(DepthLayers, RandomScenesMatchTheTwins)
       " offset " + std::to_string(offset) + " map " + std::to_string(mapSize);
     if (!ids)
     {
-      expectCombinedMapMatchesTwin(frame, dual ? DepthLayer::Dual : DepthLayer::Midpoint, offset, label);
+      expectCombinedMapMatchesTwin(frame, dual ? ShadowMapDepthLayer::Dual : ShadowMapDepthLayer::Midpoint, offset, label);
     }
     expectHardMatchesTwin(frame, scene, label);
     test::expectFiniteBuffersAndVisibilityInRange(frame, label);
