@@ -18,6 +18,12 @@ FourierBasisSettings FourierBasisSettings::from(const ParameterValues& values)
 {
   FourierBasisSettings settings;
   settings.terms = values.getInt("terms");
+  settings.depthRange = values.get("depth_range");
+  if (!(settings.depthRange > 0.0))
+  {
+    // The declared range is (0, 1]: at 0 every basis image is sin 0 = 0, cos 0 = 1 and the series reads 1/2.
+    throw InputError(format("--set depth_range=", settings.depthRange, ": must be above 0 (range (0, 1]); 0 maps every depth to 0"));
+  }
   if (settings.terms % fourierTermsPerTexture != 0)
   {
     throw InputError(format("--set terms=", settings.terms, ": the Fourier terms are stored four per RGBA texture; use 4, 8, 12 or 16"));
@@ -51,7 +57,7 @@ std::vector<NamedImage> exportFourierBasis(const FrameResources& frame, FrameRes
       {
         const int k = static_cast<int>(texture) * fourierTermsPerTexture + channel + 1;
         images.push_back({ format("fourier_", function, "_", k), basis.channels(channel, 1), "",
-          format("prefiltered ", function, "(c_k z_n), c_k = pi (2k - 1), k = ", k, " (Annen et al. 2007)") });
+          format("prefiltered ", function, "(c_k s z_n), c_k = pi (2k - 1), k = ", k, ", s = depth_range (Annen et al. 2007)") });
       }
     }
   };
@@ -67,10 +73,12 @@ const LightSpaceStructure& fourierBasisStructure()
   static const LightSpaceStructure structure = [] {
     LightSpaceStructure s;
     s.name = "fourier_basis";
-    s.doc = "sin(c_k z_n), cos(c_k z_n) of the shadow map, k = 1..terms, box-blurred or mip-mapped (Annen et al. 2007; survey §6)";
+    s.doc = "sin(c_k s z_n), cos(c_k s z_n) of the shadow map, k = 1..terms, s = depth_range, box-blurred or mip-mapped (Annen et al. 2007; survey §6)";
     s.builtFrom = { &shadowMapStructure() };
     s.parameters = {
       { "terms", 16, 4, 16, "", "M, the Fourier terms of the shadow test kept (Annen et al. 2007: 16); a multiple of 4", {}, true },
+      { "depth_range", 0.5, 0, 1, "",
+        "s in (0, 1] (0 is refused): normalised depths z_n in [0, 1] enter the series as s z_n, so every gap s (z_n - d_n) stays in [-s, s], away from the period-2 series' jump back at +-1 (ShadowLab; 1: the whole period, the series reads 1/2 where z_n - d_n = -1)", {}, false },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFourierBasisPass>::New() };

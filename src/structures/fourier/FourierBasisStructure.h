@@ -1,8 +1,9 @@
 // The Fourier basis images of convolution shadow maps (Annen et al. 2007, survey §6): per shadow-map texel,
-// sin(c_k z_n) and cos(c_k z_n) for k = 1..terms, c_k = pi (2k - 1), z_n the linear depth normalised to the light's
-// [near, far] (clamped to [0, 1]); four terms per RGBA32F texture (sine textures, then cosine textures), each
+// sin(c_k s z_n) and cos(c_k s z_n) for k = 1..terms, c_k = pi (2k - 1), z_n the linear depth normalised to the
+// light's [near, far] (clamped to [0, 1]), s = depth_range (so gaps s (z_n - d_n) stay inside (-1, 1), the series'
+// period, away from its jump back at +-1); four terms per RGBA32F texture (sine textures, then cosine textures), each
 // prefiltered like the moment map: a separable box blur of prefilter_texels, or mip-mapped. Its own parameter is
-// `terms`; the prefilter's (prefilter, prefilter_texels) are the moment map's, declared once by momentMapStructure()
+// `terms` and `depth_range`; the prefilter's (prefilter, prefilter_texels) are the moment map's, declared once by momentMapStructure()
 // and by each technique listing this structure. Built by vtkSLFourierBasisPass (stage fourier_basis).
 #pragma once
 
@@ -22,6 +23,7 @@ inline constexpr int fourierTermsPerTexture = 4;
 struct FourierBasisSettings
 {
   int terms = 16;     // M, a multiple of 4 in [4, 16]
+  double depthRange = 0.5; // s: the series reads s z_n, s in (0, 1]
   bool mipmap = false; // prefilter = mipmap
   int blurTexels = 1; // prefilter_texels for prefilter = blur; 1 = no blur
 

@@ -49,6 +49,7 @@ void vtkSLFourierBasisPass::Execute(const vtkRenderState* state)
     vtkTextureObject* bound = sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear);
     program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));
     program->SetUniformf("depthFar", static_cast<float>(frame.lightView.farDepth));
+    program->SetUniformf("depthRange", static_cast<float>(settings.depthRange));
     this->BasisQuad.render();
     bound->Deactivate();
   }

@@ -1,5 +1,5 @@
-// The Fourier basis images' build (structures/fourier/FourierBasisStructure.h; convsm): sin(c_k z_n) and
-// cos(c_k z_n) of the shadow map (fourier/FourierBasis.glsl, all textures in one draw), each texture prefiltered by
+// The Fourier basis images' build (structures/fourier/FourierBasisStructure.h; convsm): sin(c_k s z_n) and
+// cos(c_k s z_n) (s = depth_range) of the shadow map (fourier/FourierBasis.glsl, all textures in one draw), each texture prefiltered by
 // the moment map's separable box blur (moments/BoxBlur.glsl) of prefilter_texels (prefilter = blur) or mip-mapped
 // (prefilter = mipmap). Parameters read: FourierBasisSettings.
 #pragma once

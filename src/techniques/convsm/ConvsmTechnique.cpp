@@ -21,8 +21,11 @@ ConvsmSettings ConvsmSettings::from(const ParameterValues& values)
   ConvsmSettings settings;
   settings.bias = biasSettings(values);
   settings.prefilter = MomentPrefilterSettings::from(values);
-  settings.terms = FourierBasisSettings::from(values).terms;
+  const FourierBasisSettings basis = FourierBasisSettings::from(values);
+  settings.terms = basis.terms;
+  settings.depthRange = basis.depthRange;
   settings.ringingAlpha = values.get("ringing_alpha");
+  settings.reconstructionScale = values.get("reconstruction_scale");
   return settings;
 }
 
@@ -37,15 +40,20 @@ double convsmDamping(int k, int terms, double alpha)
   return std::exp(-alpha * kOverM * kOverM);
 }
 
-double convsmStepSeries(double dNormalized, double zNormalized, int terms, double alpha)
+double convsmStepSeries(double dSeries, double zSeries, int terms, double alpha)
 {
   double sum = 0.5;
   for (int k = 1; k <= terms; ++k)
   {
     const double ck = convsmFrequency(k);
-    sum += 2.0 * convsmDamping(k, terms, alpha) / ck * std::sin(ck * (zNormalized - dNormalized));
+    sum += 2.0 * convsmDamping(k, terms, alpha) / ck * std::sin(ck * (zSeries - dSeries));
   }
   return sum;
+}
+
+double convsmVisibility(double reconstruction, double reconstructionScale)
+{
+  return std::clamp(reconstructionScale * reconstruction, 0.0, 1.0);
 }
 
 double convsmNormalizedDepth(const ShadowMapInputs& inputs, double depthLin)
@@ -55,8 +63,13 @@ double convsmNormalizedDepth(const ShadowMapInputs& inputs, double depthLin)
   return std::clamp((depthLin - nearDepth) / (farDepth - nearDepth), 0.0, 1.0);
 }
 
+double convsmSeriesDepth(const ShadowMapInputs& inputs, double depthLin, double depthRange)
+{
+  return depthRange * convsmNormalizedDepth(inputs, depthLin);
+}
+
 FourierCoefficients convsmBasisAverage(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, int terms,
-  ProbeRecorder* recorder)
+  double depthRange, ProbeRecorder* recorder)
 {
   FourierCoefficients coefficients;
   coefficients.sine.assign(terms, 0.0);
@@ -72,11 +85,11 @@ FourierCoefficients convsmBasisAverage(const ShadowMapInputs& inputs, const glm:
     {
       const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
       const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double zNormalized = convsmNormalizedDepth(inputs, z);
+      const double zSeries = convsmSeriesDepth(inputs, z, depthRange);
       for (int k = 1; k <= terms; ++k)
       {
-        coefficients.sine[k - 1] += weight * std::sin(convsmFrequency(k) * zNormalized);
-        coefficients.cosine[k - 1] += weight * std::cos(convsmFrequency(k) * zNormalized);
+        coefficients.sine[k - 1] += weight * std::sin(convsmFrequency(k) * zSeries);
+        coefficients.cosine[k - 1] += weight * std::cos(convsmFrequency(k) * zSeries);
       }
       if (recorder)
       {
@@ -87,37 +100,33 @@ FourierCoefficients convsmBasisAverage(const ShadowMapInputs& inputs, const glm:
   return coefficients;
 }
 
-double convsmReconstruct(double dNormalized, const FourierCoefficients& coefficients, int terms, double alpha)
+double convsmReconstruct(double dSeries, const FourierCoefficients& coefficients, int terms, double alpha)
 {
   double sum = 0.5;
   for (int k = 1; k <= terms; ++k)
   {
     const double ck = convsmFrequency(k);
     sum += 2.0 * convsmDamping(k, terms, alpha) / ck *
-      (std::cos(ck * dNormalized) * coefficients.sine[k - 1] - std::sin(ck * dNormalized) * coefficients.cosine[k - 1]);
+      (std::cos(ck * dSeries) * coefficients.sine[k - 1] - std::sin(ck * dSeries) * coefficients.cosine[k - 1]);
   }
   return sum;
 }
 
 TechniqueDescriptor convsmTechnique()
 {
+  // The bias keeps pcf's defaults: with reconstruction_scale 2 the scaled series reads 1 wherever every texel of
+  // the box lies at or behind d (the partial sums of the step are >= 1/2 on [0, 1)), so the bias that makes a box
+  // lit for pcf makes it lit here too (the public implementations' reconstruction offset plays this part).
   TechniqueDescriptor descriptor = describeShadowMapTechnique("convsm", "Convolution shadow maps",
     "Annen, Mertens, Bekaert, Seidel & Kautz 2007; survey §6");
-  for (ParameterSpec& spec : descriptor.parameters)
-  {
-    // The paper compares the receiver's own depth: the series' transition, about 1 / M of the light's depth range
-    // wide, dwarfs a bias of a few texel footprints, which would only shift where it reads 1/2.
-    if (spec.name == "bias_constant_texels" || spec.name == "bias_slope_texels")
-    {
-      spec.defaultValue = 0.0;
-    }
-  }
   descriptor.addParameters(fourierBasisStructure().parameters);
   // The basis images are prefiltered as the moment map is, with its parameters (structures/fourier).
   descriptor.addParameters(momentMapStructure().parameters);
   descriptor.addParameters({
     { "ringing_alpha", 0, 0, 20, "",
       "alpha of the damping sigma_k = exp(-alpha (k / M)^2) of term k against ringing (CSM's ringing suppression; this form is not verified against the paper, see the page); 0: the plain truncated series", {}, false },
+    { "reconstruction_scale", 2, 1, 4, "",
+      "visibility = clamp(scale f, 0, 1) of the series f, mapping its 1/2 at z = d to lit (the form public CSM implementations use, clamp(2 f, 0, 1); not verified against the paper, see the page); 1: the raw series", {}, false },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &fourierBasisStructure() };
   descriptor.buffers = {
@@ -170,10 +179,12 @@ ConvsmSample convsmReference(const ShadowMapInputs& inputs, const ConvsmSettings
   {
     recordMomentBox(*recorder, inputs, lookup, width);
   }
-  result.coefficients = convsmBasisAverage(inputs, lookup.sm.uvTexels, width, terms, recorder);
+  const double scale = settings.reconstructionScale;
+  result.coefficients = convsmBasisAverage(inputs, lookup.sm.uvTexels, width, terms, settings.depthRange, recorder);
   result.dNormalized = convsmNormalizedDepth(inputs, lookup.comparisonDepth);
-  result.reconstruction = convsmReconstruct(result.dNormalized, result.coefficients, terms, alpha);
-  result.sample.visibility = std::clamp(result.reconstruction, 0.0, 1.0);
+  result.dSeries = settings.depthRange * result.dNormalized;
+  result.reconstruction = convsmReconstruct(result.dSeries, result.coefficients, terms, alpha);
+  result.sample.visibility = convsmVisibility(result.reconstruction, scale);
   if (recorder)
   {
     recorder->beginGroup("fourier");
@@ -181,6 +192,8 @@ ConvsmSample convsmReference(const ShadowMapInputs& inputs, const ConvsmSettings
     recorder->quantity("depth_near", inputs.lightView.nearDepth, "linear depth", "ShadowLab: the light's depth range, normalising z and d to [0, 1]");
     recorder->quantity("depth_far", inputs.lightView.farDepth, "linear depth", "ShadowLab: the light's depth range, normalising z and d to [0, 1]");
     recorder->quantity("d_normalized", result.dNormalized, "", "Annen et al. 2007: d, the receiver's depth (minus the bias) in [0, 1]");
+    recorder->quantity("depth_range", settings.depthRange, "", "ShadowLab: s, depths enter the series as s d_n, s z_n, so |z_s - d_s| <= s stays inside its period");
+    recorder->quantity("d_series", result.dSeries, "", "ShadowLab: d_s = s d_n, the receiver's depth in the series");
     recorder->quantity("ringing_alpha", alpha, "", "ShadowLab: alpha of sigma_k = exp(-alpha (k / M)^2), CSM's ringing damping in a form not verified against the paper");
     for (int k = 1; k <= terms; ++k)
     {
@@ -188,23 +201,24 @@ ConvsmSample convsmReference(const ShadowMapInputs& inputs, const ConvsmSettings
       recorder->quantity("c" + suffix, convsmFrequency(k), "", "Annen et al. 2007: c_k = pi (2k - 1)");
       recorder->quantity("sigma" + suffix, convsmDamping(k, terms, alpha), "", "ShadowLab: sigma_k = exp(-alpha (k / M)^2) (form not verified against the paper)");
       recorder->quantity("filtered_sin" + suffix, result.coefficients.sine[k - 1], "",
-        "Annen et al. 2007: [w * sin(c_k z)], the prefiltered sine basis image at the receiver");
+        "Annen et al. 2007: [w * sin(c_k z_s)], the prefiltered sine basis image at the receiver (z_s = s z_n)");
       recorder->quantity("filtered_cos" + suffix, result.coefficients.cosine[k - 1], "",
-        "Annen et al. 2007: [w * cos(c_k z)], the prefiltered cosine basis image at the receiver");
+        "Annen et al. 2007: [w * cos(c_k z_s)], the prefiltered cosine basis image at the receiver (z_s = s z_n)");
     }
-    // The reconstructed (filtered) step as a function of the compared depth, around the receiver's: where it
-    // crosses 1/2 and how far it rings.
+    // The reconstructed (filtered) step as a function of the compared series depth, around the receiver's: where
+    // it crosses 1/2 and how far it rings.
     for (int j = -4; j <= 4; ++j)
     {
-      // d' stays in [0, 1], the depths' domain; beyond it the series repeats (period 2).
-      const double dSample = std::clamp(result.dNormalized + j / (2.0 * terms), 0.0, 1.0);
+      // d' stays in [0, s], the series depths' domain; beyond it the gaps leave [-s, s].
+      const double dSample = std::clamp(result.dSeries + j / (2.0 * terms), 0.0, settings.depthRange);
       recorder->quantity(format("reconstructed_step_", j + 4), glm::dvec2(dSample, convsmReconstruct(dSample, result.coefficients, terms, alpha)), "",
-        "Annen et al. 2007: (d', 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d') E[sin(c_k z)] - sin(c_k d') E[cos(c_k z)]]), d' = d + j / 2M clamped to [0, 1]");
+        "Annen et al. 2007: (d', 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d') E[sin(c_k z_s)] - sin(c_k d') E[cos(c_k z_s)]]), d' = d_s + j / 2M clamped to [0, s]");
     }
     recorder->quantity("reconstruction", result.reconstruction, "",
-      "Annen et al. 2007: 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d) E[sin(c_k z)] - sin(c_k d) E[cos(c_k z)]]");
-    recorder->quantity("overshoot", result.reconstruction - result.sample.visibility, "", "ShadowLab: the reconstruction outside [0, 1] (Gibbs ringing)");
-    recorder->quantity("visibility", result.sample.visibility, "", "ShadowLab: the reconstruction clamped to [0, 1]");
+      "Annen et al. 2007: f = 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d_s) E[sin(c_k z_s)] - sin(c_k d_s) E[cos(c_k z_s)]]");
+    recorder->quantity("overshoot", result.reconstruction - std::clamp(result.reconstruction, 0.0, 1.0), "", "ShadowLab: f outside [0, 1] (Gibbs ringing)");
+    recorder->quantity("reconstruction_scale", scale, "", "public CSM implementations' clamp(2 f, 0, 1), not verified against the paper: the scale of f");
+    recorder->quantity("visibility", result.sample.visibility, "", "ShadowLab: clamp(reconstruction_scale f, 0, 1)");
     recorder->beginGroup("light leak");
   }
   // The leak's PCF compares as `pcf` does (its default bias), as vsm's and esm's do.

@@ -1,12 +1,15 @@
 // Convolution shadow maps (Annen et al. 2007; survey §6): the basis images of the Fourier expansion of the shadow
-// test. Per shadow-map texel, z_n = (z - near) / (far - near) clamped to [0, 1] (the expansion holds for
-// z_n - d_n in [-1, 1], so both depths must lie in [0, 1]), and for k = 1..FOURIER_TERMS with c_k = pi (2k - 1):
-//   sin(c_k z_n) into the sine textures (locations 0 .. T - 1), cos(c_k z_n) into the cosine ones (T .. 2T - 1),
+// test. Per shadow-map texel, z_n = (z - near) / (far - near) clamped to [0, 1], mapped to the series' depth
+// z_s = s z_n, s = depth_range (the series is H(t) only on (-1, 1) and jumps back at +-1: with s <= 1 every gap
+// z_s - d_s lies in [-s, s]; 1/2 keeps it half a period from the jump), and for k = 1..FOURIER_TERMS with
+// c_k = pi (2k - 1):
+//   sin(c_k z_s) into the sine textures (locations 0 .. T - 1), cos(c_k z_s) into the cosine ones (T .. 2T - 1),
 // four terms per RGBA texture, T = FOURIER_TERMS / 4. Empty texels (no caster, 2 x far) clamp to z_n = 1: every
 // receiver's d_n is at most 1, so they light it. CPU mirror: convsmBasisAverage (convsm/ConvsmTechnique.cpp).
 uniform sampler2D shadowMapLinear;
 uniform float depthNear;
 uniform float depthFar;
+uniform float depthRange; // s
 
 const int FOURIER_TEXTURES = FOURIER_TERMS / 4;
 layout(location = 0) out vec4 outBasis[2 * FOURIER_TEXTURES];
@@ -14,12 +17,12 @@ layout(location = 0) out vec4 outBasis[2 * FOURIER_TEXTURES];
 void main()
 {
   float z = texelFetch(shadowMapLinear, ivec2(gl_FragCoord.xy), 0).r;
-  float zNormalized = clamp((z - depthNear) / (depthFar - depthNear), 0.0, 1.0);
+  float zSeries = depthRange * clamp((z - depthNear) / (depthFar - depthNear), 0.0, 1.0);
   for (int group = 0; group < FOURIER_TEXTURES; ++group)
   {
     vec4 k = vec4(4 * group + 1, 4 * group + 2, 4 * group + 3, 4 * group + 4);
     vec4 ck = 3.14159265358979 * (2.0 * k - 1.0);
-    outBasis[group] = sin(ck * zNormalized);
-    outBasis[FOURIER_TEXTURES + group] = cos(ck * zNormalized);
+    outBasis[group] = sin(ck * zSeries);
+    outBasis[FOURIER_TEXTURES + group] = cos(ck * zSeries);
   }
 }

@@ -1,11 +1,15 @@
 // Convolution shadow maps (Annen et al. 2007; survey §6). The shadow test H(z_n - d_n), both depths normalised to
-// the light's [near, far], is expanded in the M-term Fourier series of the step on [-1, 1] (M = terms):
+// the light's [near, far] and mapped to z_s = s z_n, d_s = s d_n (s = depth_range, so |z_s - d_s| <= s stays
+// inside the series' period, away from its jump back at +-1), is expanded in the M-term Fourier series of the
+// step on [-1, 1] (M = terms):
 //   H(z - d) ~ 1/2 + 2 sum_k sigma_k / c_k sin(c_k (z - d)),   c_k = pi (2k - 1)
 //            = 1/2 + 2 sum_k sigma_k / c_k [cos(c_k d) sin(c_k z) - sin(c_k d) cos(c_k z)],
-// separable in d and z, so prefiltering the basis images sin(c_k z), cos(c_k z) (structures/fourier) filters the
-// shadow test itself. sigma_k = exp(-alpha (k / M)^2) damps the high terms against ringing (ringing_alpha; 0: the
-// plain truncated series; the form of CSM's damping is not verified against the paper, see the technique's page). The reconstruction overshoots [0, 1] (Gibbs) and reads 1/2 at d = z; visibility is it
-// clamped to [0, 1]. CPU mirror: src/techniques/convsm/ConvsmTechnique.cpp.
+// separable in d and z, so prefiltering the basis images sin(c_k z_s), cos(c_k z_s) (structures/fourier) filters
+// the shadow test itself. sigma_k = exp(-alpha (k / M)^2) damps the high terms against ringing (ringing_alpha; 0:
+// the plain truncated series; the form of CSM's damping is not verified against the paper, see the technique's
+// page). The series f overshoots [0, 1] (Gibbs) and reads 1/2 at d = z; visibility = clamp(scale f, 0, 1)
+// (reconstruction_scale, public CSM implementations' clamp(2 f, 0, 1)) maps that 1/2 to lit.
+// CPU mirror: src/techniques/convsm/ConvsmTechnique.cpp.
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
@@ -85,7 +89,7 @@ void main()
   {
     return;
   }
-  float dNormalized = clamp((receiver.comparisonDepth - depthNear) / (depthFar - depthNear), 0.0, 1.0);
+  float dSeries = param_depth_range * clamp((receiver.comparisonDepth - depthNear) / (depthFar - depthNear), 0.0, 1.0);
   float reconstruction = 0.5;
   for (int group = 0; group < FOURIER_TERMS / 4; ++group)
   {
@@ -95,11 +99,11 @@ void main()
     vec4 weight = 2.0 * exp(-param_ringing_alpha * kOverM * kOverM) / ck;
     vec4 filteredSin = filteredTerms(group, false, receiver.uvTexels);
     vec4 filteredCos = filteredTerms(group, true, receiver.uvTexels);
-    reconstruction += dot(weight, cos(ck * dNormalized) * filteredSin - sin(ck * dNormalized) * filteredCos);
+    reconstruction += dot(weight, cos(ck * dSeries) * filteredSin - sin(ck * dSeries) * filteredCos);
   }
-  outVisibility = clamp(reconstruction, 0.0, 1.0);
+  outVisibility = clamp(param_reconstruction_scale * reconstruction, 0.0, 1.0);
   outReconstruction = reconstruction;
-  outOvershoot = reconstruction - outVisibility;
+  outOvershoot = reconstruction - clamp(reconstruction, 0.0, 1.0);
   outLightLeak = outVisibility - boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
   outKernelTexels = float(kernelWidth);
 }
