@@ -39,8 +39,9 @@ Lesson filterableShadowMapsLesson()
       "Chebyshev's inequality; the bound bleeds light where the box holds occluders at different depths. **Layered "
       "VSM** (LM08) splits the depth range into layers, each a VSM of the depths clamped into it, so occluders of an "
       "earlier layer add no variance to a later one. **Convolution shadow maps** (CSM, Annen et al. 2007) expand the "
-      "step in a truncated Fourier series of M terms whose sine and cosine images are blurred; the truncation rings "
-      "(Gibbs) and smears the step over about 1/M of the depth range, which shows at contact. **Moment shadow maps** "
+      "step in a truncated Fourier series of M terms whose sine and cosine images are blurred; the truncated step "
+      "never reaches 0 (an umbra reads the series at its widest depth gap) and is smeared over about 1/M of the "
+      "depth range, which lets light in at contact. **Moment shadow maps** "
       "(MSM, Peters & Klein 2015) store four power moments and take the sharpest distribution with those moments "
       "(Hamburger 4MSM), a bound far tighter than Chebyshev's. `light_leak` is each method's visibility minus PCF over "
       "the same box of texels of the same " + std::to_string(filterableMapTexels) +
@@ -97,16 +98,24 @@ Lesson filterableShadowMapsLesson()
         ? "VSM's bound lets light through the lower occluder's shadow, by more than 0.05, along the upper occluder's "
           "shadow edge: light bleeding."
         : "VSM stays within 0.05 of PCF over the same texels here.");
+    lesson.observation(lesson.value("lvsm", "/buffers/light_leak/mean") < lesson.value("vsm", "/buffers/light_leak/mean")
+        ? "Layered VSM lets in less light than VSM over the image (its mean light_leak is lower): where the two "
+          "occluders fall in different layers, the nearer one, clamped onto the layer's near end, adds no variance."
+        : "Layered VSM does not let in less light than VSM over the image here.");
     lesson.observation(lesson.value("lvsm", "/buffers/light_leak/max") < vsmLeak
-        ? "Layered VSM's largest leak is below VSM's: the two occluders fall in different layers, and the nearer one, "
-          "clamped onto the far one's layer end, adds no variance there."
-        : "Layered VSM's largest leak is not below VSM's here.");
+        ? "Its largest leak is below VSM's too."
+        : "Its largest leak is not below VSM's: at a pixel whose box holds depths in front of its layer, clamping them "
+          "onto the layer's near end, close to the receiver, can lift the bound above VSM's (`clamped_above_vsm` "
+          "flags those pixels; the `lvsm` page measures them).");
     lesson.observation(lesson.value("msm", "/buffers/light_leak/max") < vsmLeak
         ? "MSM's largest leak is below VSM's: four moments pin the depth distribution down far more tightly than two."
         : "MSM's largest leak is not below VSM's here.");
     lesson.observation(lesson.value("csm-16", "/error/covered/rmse") < lesson.value("csm-4", "/error/covered/rmse")
-        ? "CSM with 16 terms is closer to PCF than with 4: the truncated step is sharper."
+        ? "CSM with 16 terms is closer to PCF than with 4: the truncated step is sharper and its umbra darker."
         : "CSM with 16 terms is not closer to PCF than with 4 here.");
+    lesson.observation(lesson.value("csm-16", "/buffers/light_leak/mean") > lesson.value("msm", "/buffers/light_leak/mean")
+        ? "Even with 16 terms, CSM lets in more light over the image than MSM: its umbrae keep the series' remainder."
+        : "With 16 terms, CSM lets in no more light over the image than MSM here.");
     lesson.observation(lesson.value("csm-16-contact", "/error/covered/rmse") > lesson.value("msm-contact", "/error/covered/rmse")
         ? "At contact, CSM is further from PCF than MSM, even with 16 terms: its step is smeared over a share of the "
           "depth range, larger than the gap between the box and the ground next to it."

@@ -240,6 +240,69 @@ TEST(LessonClaims, VsmLightBleeding)
   EXPECT_LT(leaking, covered / 50);
 }
 
+// ---- filterable-shadow-maps -------------------------------------------------------------------------------------
+
+// The lesson's box and map (FilterableShadowMapsLesson.cpp), on stacked-occluders.
+constexpr int kFilterableBoxTexels = 11;
+
+TEST(LessonClaims, FilterableShadowMaps)
+{
+  const LessonRuns lesson("filterable-shadow-maps");
+  const auto value = [&](const std::string& run, const std::string& pointer) { return lesson.value(run, pointer); };
+  std::cout << "[ measured ] filterable-shadow-maps at " << kResolution << ":";
+  for (const char* run : { "vsm", "lvsm", "csm-4", "csm-16", "msm" })
+  {
+    std::cout << " " << run << " leak max " << value(run, "/buffers/light_leak/max") << " mean "
+              << value(run, "/buffers/light_leak/mean") << " RMSE " << value(run, "/error/covered/rmse") << ";";
+  }
+  std::cout << " at contact RMSE csm-16 " << value("csm-16-contact", "/error/covered/rmse") << " msm "
+            << value("msm-contact", "/error/covered/rmse") << "\n";
+
+  // "VSM's bound lets light through ... by more than 0.05": light bleeding.
+  EXPECT_GT(value("vsm", "/buffers/light_leak/max"), 0.05);
+  // "Layered VSM lets in less light than VSM over the image".
+  EXPECT_LT(value("lvsm", "/buffers/light_leak/mean"), value("vsm", "/buffers/light_leak/mean"));
+  // "MSM's largest leak is below VSM's".
+  EXPECT_LT(value("msm", "/buffers/light_leak/max"), value("vsm", "/buffers/light_leak/max"));
+  // "CSM with 16 terms is closer to PCF than with 4".
+  EXPECT_LT(value("csm-16", "/error/covered/rmse"), value("csm-4", "/error/covered/rmse"));
+  // "Even with 16 terms, CSM lets in more light over the image than MSM".
+  EXPECT_GT(value("csm-16", "/buffers/light_leak/mean"), value("msm", "/buffers/light_leak/mean"));
+  // "At contact, CSM is further from PCF than MSM, even with 16 terms".
+  EXPECT_GT(value("csm-16-contact", "/error/covered/rmse"), value("msm-contact", "/error/covered/rmse"));
+
+  // The figures put light_leak on one scale as "the method's visibility minus PCF over the same texels": for each
+  // method, light_leak equals its visibility minus the pcf run's (same map, same box, pcf's default bias), pixel by
+  // pixel, wherever the method's own bias equals pcf's (MSM and CSM; VSM's and layered VSM's default bias is 0).
+  const std::string box = std::to_string(kFilterableBoxTexels);
+  const std::vector<std::string> common = { "--set", "shadow_map_size=512", "--set", "prefilter_texels=" + box };
+  const Buffers truth =
+    lesson.render("pcf", "stacked-occluders", { "-t", "pcf", "--set", "shadow_map_size=512", "--set", "kernel_texels=" + box });
+  ASSERT_FALSE(truth.empty());
+  for (const auto& [run, arguments] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+         { "msm", { "-t", "msm" } }, { "csm-16", { "-t", "convsm", "--set", "terms=16" } } })
+  {
+    std::vector<std::string> all = arguments;
+    all.insert(all.end(), common.begin(), common.end());
+    const Buffers method = lesson.render(run, "stacked-occluders", all);
+    ASSERT_FALSE(method.empty()) << run;
+    const ImageF& leak = buffer(method, "light_leak");
+    const ImageF& visibility = buffer(method, "visibility");
+    const ImageF& truthVisibility = buffer(truth, "visibility");
+    int mismatched = 0;
+    double largest = 0.0;
+    const int covered = forEachCovered(method, [&](int x, int y) {
+      const double mismatch = std::abs(leak.at(x, y) - (visibility.at(x, y) - truthVisibility.at(x, y)));
+      largest = std::max(largest, mismatch);
+      mismatched += mismatch > 1e-4 ? 1 : 0;
+    });
+    std::cout << "[ measured ] " << run << ": light_leak against (visibility - pcf) on " << covered
+              << " covered pixels, largest difference " << largest << "\n";
+    EXPECT_GT(covered, 0) << run;
+    EXPECT_EQ(mismatched, 0) << run << ": largest " << largest;
+  }
+}
+
 // ---- vssm-non-planarity ---------------------------------------------------------------------------------------
 
 TEST(LessonClaims, VssmNonPlanarity)
