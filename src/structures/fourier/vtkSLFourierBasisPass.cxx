@@ -7,6 +7,7 @@
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
 #include "structures/fourier/FourierBasisStructure.h"
+#include "structures/moments/MomentPrefilter.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>
@@ -53,37 +54,9 @@ void vtkSLFourierBasisPass::Execute(const vtkRenderState* state)
     this->BasisQuad.render();
     bound->Deactivate();
   }
-  if (settings.blurTexels > 1)
+  for (vtkSmartPointer<vtkTextureObject>& texture : basis)
   {
-    // Separable box of the moment map (moments/BoxBlur.glsl): x into a temporary, y into a new texture.
-    const int directions[2][2] = { { 1, 0 }, { 0, 1 } };
-    for (vtkSmartPointer<vtkTextureObject>& texture : basis)
-    {
-      auto horizontal = sl::makeFloatTarget(window, size, size, 4);
-      auto blurred = sl::makeFloatTarget(window, size, size, 4);
-      vtkTextureObject* sources[2] = { texture, horizontal };
-      vtkTextureObject* passTargets[2] = { horizontal, blurred };
-      for (int pass = 0; pass < 2; ++pass)
-      {
-        const sl::ScopedRenderTarget target(window, this->Framebuffer, { passTargets[pass] });
-        vtkShaderProgram* program = this->BlurQuad.ready(window, sl::assembleShader("moments/BoxBlur.glsl"), "box blur");
-        vtkTextureObject* bound = sl::bindTexture(program, "source", sources[pass]);
-        program->SetUniform2i("direction", directions[pass]);
-        program->SetUniformi("blurWidth", settings.blurTexels);
-        this->BlurQuad.render();
-        bound->Deactivate();
-      }
-      texture = blurred;
-    }
-  }
-  if (settings.mipmap)
-  {
-    for (vtkSmartPointer<vtkTextureObject>& texture : basis)
-    {
-      glGenerateTextureMipmap(texture->GetHandle());
-      texture->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
-      texture->SetMagnificationFilter(vtkTextureObject::Linear);
-    }
+    texture = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, texture, settings.blurTexels, settings.mipmap);
   }
   auto data = std::make_shared<sl::FourierBasisData>();
   data->sine.assign(basis.begin(), basis.begin() + textures);

@@ -2,5 +2,5 @@
 sl_structure(
   ORDER 20
   STRUCTURE momentMapStructure MomentMapStructure.h
-  SOURCES MomentMapStructure.cpp vtkSLMomentMapPass.cxx
+  SOURCES MomentMapStructure.cpp MomentPrefilter.cpp vtkSLMomentMapPass.cxx
   SHADERS shaders/MomentsFromDepth.glsl shaders/BoxBlur.glsl)

@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "gl/ShaderLibrary.h"
 #include "structures/moments/MomentMapStructure.h"
+#include "structures/moments/MomentPrefilter.h"
 #include "passes/FrameResources.h"
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
@@ -44,33 +45,7 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     this->MomentsQuad.render();
     bound->Deactivate();
   }
-  if (blurWidth > 1)
-  {
-    // Separable box: x into a temporary, y back into `moments`.
-    auto horizontal = sl::makeFloatTarget(window, size, size, 4);
-    const int directions[2][2] = { { 1, 0 }, { 0, 1 } };
-    vtkTextureObject* sources[2] = { moments, horizontal };
-    vtkTextureObject* targets[2] = { horizontal, moments };
-    auto blurredY = sl::makeFloatTarget(window, size, size, 4);
-    targets[1] = blurredY;
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      const sl::ScopedRenderTarget target(window, this->Framebuffer, { targets[pass] });
-      vtkShaderProgram* program = this->BlurQuad.ready(window, sl::assembleShader("moments/BoxBlur.glsl"), "box blur");
-      vtkTextureObject* bound = sl::bindTexture(program, "source", sources[pass]);
-      program->SetUniform2i("direction", directions[pass]);
-      program->SetUniformi("blurWidth", blurWidth);
-      this->BlurQuad.render();
-      bound->Deactivate();
-    }
-    moments = blurredY;
-  }
-  if (mipmap)
-  {
-    glGenerateTextureMipmap(moments->GetHandle());
-    moments->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
-    moments->SetMagnificationFilter(vtkTextureObject::Linear);
-  }
+  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, blurWidth, mipmap);
   auto data = std::make_shared<sl::MomentMapData>();
   data->moments = moments;
   data->mipmapped = mipmap;

@@ -6,6 +6,7 @@
 #include "passes/PassUtilities.h"
 #include "passes/ScopedRenderTarget.h"
 #include "structures/powermoments/PowerMomentMapStructure.h"
+#include "structures/moments/MomentPrefilter.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>
@@ -40,32 +41,8 @@ void vtkSLPowerMomentMapPass::Execute(const vtkRenderState* state)
     this->MomentsQuad.render();
     bound->Deactivate();
   }
-  if (settings.blurTexels > 1)
-  {
-    // The moment map's separable box (x into `horizontal`, y into `blurred`): the same texels as vsm's and esm's.
-    auto horizontal = sl::makeFloatTarget(window, size, size, 4);
-    auto blurred = sl::makeFloatTarget(window, size, size, 4);
-    const int directions[2][2] = { { 1, 0 }, { 0, 1 } };
-    vtkTextureObject* sources[2] = { moments, horizontal };
-    vtkTextureObject* targets[2] = { horizontal, blurred };
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      const sl::ScopedRenderTarget target(window, this->Framebuffer, { targets[pass] });
-      vtkShaderProgram* program = this->BlurQuad.ready(window, sl::assembleShader("moments/BoxBlur.glsl"), "box blur");
-      vtkTextureObject* bound = sl::bindTexture(program, "source", sources[pass]);
-      program->SetUniform2i("direction", directions[pass]);
-      program->SetUniformi("blurWidth", settings.blurTexels);
-      this->BlurQuad.render();
-      bound->Deactivate();
-    }
-    moments = blurred;
-  }
-  if (settings.mipmap)
-  {
-    glGenerateTextureMipmap(moments->GetHandle());
-    moments->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
-    moments->SetMagnificationFilter(vtkTextureObject::Linear);
-  }
+  // The moment map's prefilter: the same texels as vsm's and esm's.
+  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, settings.blurTexels, settings.mipmap);
   auto data = std::make_shared<sl::PowerMomentMapData>();
   data->moments = moments;
   data->mipmapped = settings.mipmap;
