@@ -234,8 +234,12 @@ MsmGroundLeak msmGroundLeak(const FrameResult& frame)
   return result;
 }
 
-// A planar occluder over a planar receiver: every filter box holds the occluder's depth and the ground's, and the
-// reconstruction is the true PCF up to the moment bias.
+// A planar occluder over a planar receiver: every filter box holds the occluder's depth (share w) and the ground's.
+// The biased moments are those of (1 - alpha) mu + alpha (delta_0 + delta_1) / 2, which puts (1 - alpha) w + alpha / 2
+// in front of a ground receiver, and G, a lower bound, cannot exceed that: light_leak = w - G >= alpha (w - 1/2)
+// >= -alpha / 2. On these boxes G attains it (not guaranteed for four support points in general; measured here:
+// README.md), so |light_leak| <= alpha / 2 plus the float rounding of the moments (1e-6; measured: 1.4e-7 above
+// alpha / 2 at alpha = 1e-3).
 TEST(MsmTechnique, TwoDepthsAreExactUpToTheMomentBias)
 {
   const Scene scene = test::loadDataset("planar-occluder");
@@ -245,9 +249,10 @@ TEST(MsmTechnique, TwoDepthsAreExactUpToTheMomentBias)
     const FrameResult frame = test::renderDataset(scene, "msm", 128, 128, settings);
     const MsmGroundLeak leak = msmGroundLeak(frame);
     std::cout << "[ measured ] msm light leak on the ground, " << test::caseLabel("planar-occluder", settings) << ": max "
-              << leak.maximum << ", mean " << leak.mean << " over " << leak.pixels << " pixels\n";
+              << leak.maximum << ", mean " << leak.mean << " over " << leak.pixels << " pixels (bound alpha / 2 + 1e-6)\n";
     ASSERT_GT(leak.pixels, 1000);
-    EXPECT_LT(leak.maximum, 0.01 + 30.0 * std::stod(bias)) << "two depths: the reconstruction is exact up to the bias";
+    const double bound = 0.5 * std::stod(bias) + 1e-6;
+    EXPECT_LT(leak.maximum, bound) << "two depths: the reconstruction is exact up to the bias";
   }
 }
 
