@@ -1,5 +1,6 @@
 #include "techniques/msm/MsmTechnique.h"
 
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/powermoments/PowerMomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/MomentReference.h"
@@ -45,7 +46,8 @@ TechniqueDescriptor msmTechnique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("msm", "Moment shadow maps",
     "Peters & Klein 2015 (Hamburger 4MSM, Algorithm 3)");
-  descriptor.addParameters(powerMomentMapStructure().parameters);
+  // The power moments are prefiltered as the moment map is, with its parameters (structures/powermoments).
+  descriptor.addParameters(momentMapStructure().parameters);
   descriptor.addParameters({
     // 3e-5: the value public ports of the authors' code use for 16-bit storage in their optimised basis (README.md
     // says what was and was not found); here the moments are RGBA32F.

@@ -162,5 +162,21 @@ TEST(MsmMath, IsTheSharpestLowerBoundOnRandomDistributions)
             << ", mean looseness " << sumGap / trials << ", G > 0.05 in " << positive << "\n";
 }
 
+// power_moment_map declares no parameters: it reads the moment map's prefilter from msm's values, and a table
+// without them is an internal error, not a silent box of 1.
+TEST(MsmMath, ThePowerMomentMapReadsMsmsPrefilter)
+{
+  ParameterValues values = findTechnique("msm").defaultParameters();
+  EXPECT_TRUE(powerMomentMapStructure().parameters.empty());
+  values.set("prefilter_texels", 7);
+  EXPECT_FALSE(PowerMomentMapSettings::from(values).mipmap);
+  EXPECT_EQ(PowerMomentMapSettings::from(values).blurTexels, 7);
+  values.set("prefilter=mipmap");
+  EXPECT_TRUE(PowerMomentMapSettings::from(values).mipmap);
+  EXPECT_EQ(PowerMomentMapSettings::from(values).blurTexels, 1);
+  const ParameterValues withoutPrefilter("power_moment_map", powerMomentMapStructure().parameters);
+  EXPECT_DEATH(PowerMomentMapSettings::from(withoutPrefilter), "must declare the moment map's prefilter parameters");
+}
+
 } // namespace
 } // namespace sl
