@@ -1,5 +1,6 @@
-// Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3). From the prefiltered power
-// moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
+// Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3, in the form public ports of the
+// authors' shader code give it; not compared with the printed algorithm: README.md, Sources). From the prefiltered
+// power moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
 // and the receiver's depth z_f (its depth minus the bias, normalised alike), in four steps (our grouping, not the
 // printed lines):
 //   1. b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5)        (moment bias: keeps the Hankel matrix definite
