@@ -4,7 +4,6 @@
 #include "frame/FrameResult.h"
 #include "gl/GlResources.h"
 #include "passes/PassUtilities.h"
-#include "structures/moments/MomentMapStructure.h"
 #include "structures/powermoments/vtkSLPowerMomentMapPass.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
@@ -18,8 +17,12 @@ namespace sl
 PowerMomentMapSettings PowerMomentMapSettings::from(const ParameterValues& values)
 {
   PowerMomentMapSettings settings;
-  settings.mipmap = values.has("prefilter") && values.choice("prefilter") == "mipmap";
-  settings.blurTexels = values.has("prefilter_texels") && !settings.mipmap ? values.getInt("prefilter_texels") : 1;
+  // The prefilter is the moment map's, read from its parameters (declared once, by momentMapStructure(); a
+  // technique listing this structure declares them too).
+  SL_CHECK_MSG(values.has("prefilter") && values.has("prefilter_texels"),
+    "a technique listing power_moment_map must declare the moment map's prefilter parameters");
+  settings.mipmap = values.choice("prefilter") == "mipmap";
+  settings.blurTexels = settings.mipmap ? 1 : values.getInt("prefilter_texels");
   return settings;
 }
 
@@ -59,8 +62,6 @@ const LightSpaceStructure& powerMomentMapStructure()
     s.name = "power_moment_map";
     s.doc = "(z, z^2, z^3, z^4) of the normalised shadow-map depth, box-blurred or mip-mapped (Peters & Klein 2015)";
     s.builtFrom = { &shadowMapStructure() };
-    // The moment map's prefilter parameters, the same specs: msm filters its moments over the same texels as vsm.
-    s.parameters = momentMapStructure().parameters;
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLPowerMomentMapPass>::New() };
     };

@@ -1,5 +1,6 @@
 #include "techniques/msm/MsmTechnique.h"
 
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/powermoments/PowerMomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 #include "techniques/MomentReference.h"
@@ -17,7 +18,7 @@ namespace sl
 namespace
 {
 
-constexpr double msmPivotFloor = 1e-12; // as MsmVisibility.glsl
+constexpr double msmPivotFloor = 1e-12; // D22's and D33's floor, as MsmVisibility.glsl
 
 BufferSpec msmRoundingSensitivityBuffer()
 {
@@ -45,11 +46,13 @@ TechniqueDescriptor msmTechnique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("msm", "Moment shadow maps",
     "Peters & Klein 2015 (Hamburger 4MSM, Algorithm 3)");
-  descriptor.addParameters(powerMomentMapStructure().parameters);
+  // The power moments are prefiltered as the moment map is, with its parameters (structures/powermoments).
+  descriptor.addParameters(momentMapStructure().parameters);
   descriptor.addParameters({
     // 3e-5: the value public ports of the authors' code use for 16-bit storage in their optimised basis (README.md
     // says what was and was not found); here the moments are RGBA32F.
-    { "moment_bias", 3e-5, 1e-8, 0.1, "",
+    // Minimum 1e-6: below it the bias vanishes in the float moments (README.md, Parameters).
+    { "moment_bias", 3e-5, 1e-6, 0.1, "",
       "alpha of MSM Alg. 3: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), keeps the Hankel matrix definite "
       "against rounding; larger leaks more light", {}, false },
   });
@@ -106,7 +109,8 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   result.biasedMoments = b;
   const double zf = fragmentDepth;
   // Step 2: B c = (1, z_f, z_f^2) by LDL^T (D11 = 1, L21 = b1, L31 = b2).
-  const double d22 = b.y - b.x * b.x;
+  // D22 >= alpha / 4 in exact arithmetic; floored as D33 only against float rounding (MsmVisibility.glsl).
+  const double d22 = std::max(b.y - b.x * b.x, msmPivotFloor);
   const double l32d22 = b.z - b.x * b.y;
   const double l32 = l32d22 / d22;
   // B is positive definite for alpha > 0, so D33 > 0; only float rounding makes it 0 or less (MsmVisibility.glsl).

@@ -1,5 +1,6 @@
-// Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3). From the prefiltered power
-// moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
+// Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3, in the form public ports of the
+// authors' shader code give it; not compared with the printed algorithm: README.md, Sources). From the prefiltered
+// power moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
 // and the receiver's depth z_f (its depth minus the bias, normalised alike), in four steps (our grouping, not the
 // printed lines):
 //   1. b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5)        (moment bias: keeps the Hankel matrix definite
@@ -55,7 +56,10 @@ MsmReconstruction hamburger4Msm(vec4 moments, float zf)
   // Step 1: the moment bias.
   vec4 b = mix(moments, vec4(0.5), param_moment_bias);
   // Step 2: LDL^T of the Hankel matrix, only its non-trivial entries (D11 = 1, L21 = b1, L31 = b2).
-  float d22 = b.y - b.x * b.x;
+  // D22, the variance of the biased depths: >= alpha / 4 in exact arithmetic (the bias mixes in mass alpha / 2 at
+  // 0 and at 1); where the box holds one depth and the bias is lost in float, rounding leaves it at 0 or below and
+  // l32 would be 0 / 0. Floored at 1e-12 as D33 (the twin alike); moment_bias >= 1e-6 keeps it above the rounding.
+  float d22 = max(b.y - b.x * b.x, 1e-12);
   float l32d22 = b.z - b.x * b.y;
   float l32 = l32d22 / d22;
   // The third pivot, det(B) / D22: > 0 for alpha > 0 in exact arithmetic; float rounding can make it 0 or less,

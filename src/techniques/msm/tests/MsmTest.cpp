@@ -12,6 +12,7 @@
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
 #include "techniques/ProbeSupport.h"
+#include "techniques/Registry.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/msm/MsmTechnique.h"
 #include "techniques/vsm/VsmTechnique.h"
@@ -156,7 +157,7 @@ TEST(MsmTechnique, MatchesTheCpuTwinOnRandomConfigurations)
     const RandomScene random = randomScene(seed, 96);
     const Scene scene = parseScene(random.json, "msm seed " + std::to_string(seed), ".");
     const int texels = 3 + 2 * static_cast<int>(seed % 4); // 3, 5, 7, 9
-    const char* momentBiases[6] = { "3e-5", "3e-4", "3e-7", "3e-3", "3e-6", "3e-5" };
+    const char* momentBiases[6] = { "3e-5", "3e-4", "1e-6", "3e-3", "3e-6", "3e-5" };
     const std::vector<std::string> settings{ "shadow_map_size=" + std::to_string(256 >> random.mapSizeHalvings),
       "prefilter_texels=" + std::to_string(texels), std::string("moment_bias=") + momentBiases[seed - 1] };
     const FrameResult frame = test::renderDataset(scene, "msm", scene.camera.resolution.x, scene.camera.resolution.y, settings);
@@ -233,8 +234,12 @@ MsmGroundLeak msmGroundLeak(const FrameResult& frame)
   return result;
 }
 
-// A planar occluder over a planar receiver: every filter box holds the occluder's depth and the ground's, and the
-// reconstruction is the true PCF up to the moment bias.
+// A planar occluder over a planar receiver: every filter box holds the occluder's depth (share w) and the ground's.
+// The biased moments are those of (1 - alpha) mu + alpha (delta_0 + delta_1) / 2, which puts (1 - alpha) w + alpha / 2
+// in front of a ground receiver, and G, a lower bound, cannot exceed that: light_leak = w - G >= alpha (w - 1/2)
+// >= -alpha / 2. On these boxes G attains it (not guaranteed for four support points in general; measured here:
+// README.md), so |light_leak| <= alpha / 2 plus the float rounding of the moments (1e-6; measured: 1.4e-7 above
+// alpha / 2 at alpha = 1e-3).
 TEST(MsmTechnique, TwoDepthsAreExactUpToTheMomentBias)
 {
   const Scene scene = test::loadDataset("planar-occluder");
@@ -244,9 +249,37 @@ TEST(MsmTechnique, TwoDepthsAreExactUpToTheMomentBias)
     const FrameResult frame = test::renderDataset(scene, "msm", 128, 128, settings);
     const MsmGroundLeak leak = msmGroundLeak(frame);
     std::cout << "[ measured ] msm light leak on the ground, " << test::caseLabel("planar-occluder", settings) << ": max "
-              << leak.maximum << ", mean " << leak.mean << " over " << leak.pixels << " pixels\n";
+              << leak.maximum << ", mean " << leak.mean << " over " << leak.pixels << " pixels (bound alpha / 2 + 1e-6)\n";
     ASSERT_GT(leak.pixels, 1000);
-    EXPECT_LT(leak.maximum, 0.01 + 30.0 * std::stod(bias)) << "two depths: the reconstruction is exact up to the bias";
+    const double bound = 0.5 * std::stod(bias) + 1e-6;
+    EXPECT_LT(leak.maximum, bound) << "two depths: the reconstruction is exact up to the bias";
+  }
+}
+
+// At the smallest moment_bias the parameter allows, a box holding one depth leaves D22 at the float moments'
+// rounding: every buffer stays finite, and the GPU agrees with the twin or flags the pixel (right or flagged). A NaN
+// that llvmpipe's min/max would clamp away (support depths of -1e6, garbage visibility) fails the second check.
+// prefilter_texels=1: every box holds one depth.
+TEST(MsmTechnique, IsFiniteAndRightOrFlaggedAtTheSmallestMomentBias)
+{
+  const ParameterSpec* momentBias = findTechnique("msm").findParameter("moment_bias");
+  ASSERT_NE(momentBias, nullptr);
+  for (const std::string dataset : { "planar-occluder", "stacked-occluders" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    for (const char* texels : { "1", "5" })
+    {
+      const std::vector<std::string> settings{ "shadow_map_size=128", std::string("prefilter_texels=") + texels,
+        format("moment_bias=", momentBias->minValue) };
+      const FrameResult frame = test::renderDataset(scene, "msm", 96, 80, settings);
+      const std::string label = test::caseLabel(dataset, settings);
+      test::expectFiniteBuffersAndVisibilityInRange(frame, label);
+      const MsmTwinAgreement agreement = compareMsmWithTwin(frame, scene);
+      printMsmAgreement(label, agreement);
+      EXPECT_EQ(agreement.mismatched, 0) << label << ": first " << agreement.firstMismatch;
+      EXPECT_EQ(agreement.unflaggedDisagreements, 0) << label;
+      EXPECT_GT(agreement.evaluated, 1000) << label;
+    }
   }
 }
 
