@@ -34,6 +34,26 @@ bool lvsmNearLayerBoundary(const ShadowMapInputs& inputs, const LvsmSettings& se
   return false;
 }
 
+// The GPU's p_max against the twin's: 2e-3, but 1e-2 where layer_bound=tightest took another layer's bound whose warped
+// variance over the box is below 1e-3. There the receiver lies behind that layer (phi_j(t) = 1) and most of the box is
+// clamped to 1: E[phi^2] - E[phi]^2 of float sums of values near 1 cancels (as vsm's float moments do, MomentTest).
+double lvsmTwinTolerance(const ShadowMapInputs& inputs, const LvsmSettings& settings, const LvsmSample& cpu,
+  const glm::dvec2& uvTexels, int* illConditioned)
+{
+  if (cpu.boundSource < 0 || cpu.boundSource == cpu.layer)
+  {
+    return 2e-3;
+  }
+  const FilteredMoments other = layeredBoxMoments(inputs, uvTexels, settings.prefilterTexels,
+    depthLayer(cpu.boundSource, lvsmLayerEnds(inputs, settings)));
+  if (other.second - other.mean * other.mean >= 1e-3)
+  {
+    return 2e-3;
+  }
+  ++*illConditioned;
+  return 1e-2;
+}
+
 const ImageF& lvsmBuffer(const FrameResult& frame, const char* name)
 {
   const auto* found = frame.find(name);
@@ -98,6 +118,7 @@ TEST(Lvsm, MatchesTheCpuTwin)
     int nearTexelEdge = 0;
     int partial = 0;
     int clampedAboveVsm = 0;
+    int illConditioned = 0;
     int layersSeen[16] = {};
     double maxVisibility = 0.0;
     double maxWarped = 0.0;
@@ -144,12 +165,15 @@ TEST(Lvsm, MatchesTheCpuTwin)
         ++compared;
         partial += (cpu.sample.visibility > 0.0 && cpu.sample.visibility < 1.0) ? 1 : 0;
         maxVisibility = std::max(maxVisibility, std::abs(gpu - cpu.sample.visibility));
-        EXPECT_NEAR(gpu, cpu.sample.visibility, 2e-3) << dataset << " pixel " << x << "," << y;
-        EXPECT_NEAR(lvsmBuffer(frame, "p_max").at(x, y), cpu.pMax, 2e-3) << dataset << " pixel " << x << "," << y;
+        const double tolerance = lvsmTwinTolerance(inputs, lvsmSettings, cpu, lookup.sm.uvTexels, &illConditioned);
+        EXPECT_NEAR(gpu, cpu.sample.visibility, tolerance) << dataset << " pixel " << x << "," << y;
+        EXPECT_NEAR(lvsmBuffer(frame, "p_max").at(x, y), cpu.pMax, tolerance)
+          << dataset << " pixel " << x << "," << y << ": bound from " << cpu.boundSource << " (own layer " << cpu.layer
+          << ", own bound " << cpu.ownPMax << ", vsm's " << cpu.vsmPMax << ")";
         // The leak's PCF may differ by a tie (a comparison within float rounding of its boundary): 1 / 49.
         const double leakError = std::abs(lvsmBuffer(frame, "light_leak").at(x, y) - cpu.lightLeak);
         maxLeak = std::max(maxLeak, leakError);
-        EXPECT_LT(leakError, 2e-3 + 1.0 / 49.0 + 1e-6) << dataset << " pixel " << x << "," << y;
+        EXPECT_LT(leakError, tolerance + 1.0 / 49.0 + 1e-6) << dataset << " pixel " << x << "," << y;
         // clamped_above_vsm compares with vsm's bound, which the shader computes from float sums of z and z^2: where
         // their variance cancels (below 1e-3 d^2, as in MomentTest) the flag is counted, not compared.
         const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, lvsmSettings.prefilterTexels, 0.0);
@@ -170,7 +194,8 @@ TEST(Lvsm, MatchesTheCpuTwin)
     }
     std::cout << "[ measured ] lvsm " << dataset << ": compared " << compared << " (partial " << partial
               << "), grazing " << grazing << ", at a layer boundary " << nearBoundary << ", at a texel edge " << nearTexelEdge
-              << ", layers read " << distinctLayers << ", clamped_above_vsm " << clampedAboveVsm << "; max |gpu - cpu| visibility " << maxVisibility << ", warped depth "
+              << ", layers read " << distinctLayers << ", clamped_above_vsm " << clampedAboveVsm
+              << ", bound from an ill-conditioned other layer (1e-2) " << illConditioned << "; max |gpu - cpu| visibility " << maxVisibility << ", warped depth "
               << maxWarped << ", light_leak " << maxLeak << "\n";
     EXPECT_GT(compared, 4000) << dataset;
   }
@@ -217,8 +242,9 @@ TEST(Lvsm, OneLayerEqualsVsm)
         const ShadowLookup lookup = prepareShadowLookup(inputs, vsmSettings.bias, x, y);
         const FilteredMoments layered = layeredBoxMoments(inputs, lookup.sm.uvTexels, 7, 0, 1);
         const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, 7, 0.0);
-        const double range = inputs.lightView.farDepth - inputs.lightView.nearDepth;
-        if (std::abs(layered.mean * range + inputs.lightView.nearDepth - plain.mean) > 1e-9 * plain.mean)
+        // The layer's ends are the float-rounded near and far the shader gets.
+        const std::vector<double> ends = layeredUniformEnds(1, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+        if (std::abs(layered.mean * (ends[1] - ends[0]) + ends[0] - plain.mean) > 1e-9 * plain.mean)
         {
           ++beyondRange;
           maxBeyond = std::max(maxBeyond, static_cast<double>(lvsmBuffer(lvsm, "p_max").at(x, y) - lvsmBuffer(vsm, "p_max").at(x, y)));
@@ -520,6 +546,8 @@ TEST(Lvsm, TightestBoundStaysAnUpperBound)
     int belowOwn = 0;
     int fromOtherLayer = 0;
     int fromVsm = 0;
+    int gpuSkipped = 0;
+    int illConditioned = 0;
     double tightestSlack = 1.0;
     for (int y = 0; y < 80; ++y)
     {
@@ -541,14 +569,29 @@ TEST(Lvsm, TightestBoundStaysAnUpperBound)
         belowOwn += cpu.pMax < cpu.ownPMax - 1e-3 ? 1 : 0;
         fromOtherLayer += cpu.boundSource >= 0 && cpu.boundSource != cpu.layer ? 1 : 0;
         fromVsm += cpu.boundSource == -1 ? 1 : 0;
+        // The GPU where it reads the twin's box and layer (as MatchesTheCpuTwin).
+        const TexelWithEdges cell = texelWithEdges(lookup.sm.uvTexels);
+        double edge = 1e300;
+        for (const TexelEdge& texelEdge : cell.edges)
+        {
+          edge = std::min(edge, texelEdge.distance);
+        }
+        if (edge < 1e-4 || cpu.sample.reachMargin < 1e-5 || lvsmNearLayerBoundary(inputs, settings, lookup.comparisonDepth))
+        {
+          ++gpuSkipped;
+          continue;
+        }
         const double gpu = lvsmBuffer(frame, "p_max").at(x, y);
+        EXPECT_NEAR(gpu, cpu.pMax, lvsmTwinTolerance(inputs, settings, cpu, lookup.sm.uvTexels, &illConditioned))
+          << dataset << " pixel " << x << "," << y;
         EXPECT_LE(gpu, cpu.ownPMax + 4e-3) << dataset << " pixel " << x << "," << y;
         EXPECT_LE(gpu, cpu.vsmPMax + 4e-3) << dataset << " pixel " << x << "," << y;
       }
     }
     std::cout << "[ measured ] lvsm tightest " << dataset << ": evaluated " << evaluated << ", p_max below the own "
               << "layer's by > 1e-3 at " << belowOwn << ", bound from another layer " << fromOtherLayer << ", from vsm's "
-              << fromVsm << "; min (p_max - lit fraction) " << tightestSlack << "\n";
+              << fromVsm << "; min (p_max - lit fraction) " << tightestSlack << "; GPU not compared (texel edge, grazing, "
+              << "layer boundary) " << gpuSkipped << ", ill-conditioned other layer " << illConditioned << "\n";
     EXPECT_GT(evaluated, 3000) << dataset;
   }
 }
