@@ -1,8 +1,10 @@
 // Technique `lvsm`: layered variance shadow maps (Lauritzen & McCool 2008; survey §6). The light's depth range is
-// split into `layers` equal, disjoint layers, each a variance shadow map of the depths warped into it
-// (structures/layeredmoments); a receiver reads the layer holding its depth and applies Chebyshev's bound to that
-// layer's moments at its warped depth. Math: lvsm/shaders/LvsmVisibility.glsl.
-// Parameters: the shadow-map ones, layers, prefilter_texels, light_bleeding_reduction, min_variance.
+// split into `layers` disjoint layers (layer_placement: equal, or boundaries in the depth histogram's gaps), each a
+// variance shadow map of the depths warped into it (structures/layeredmoments); a receiver applies Chebyshev's bound
+// to its own layer's moments at its warped depth (layer_bound=own, LM08) or takes the least of every layer's bound and
+// vsm's (tightest, ours: still an upper bound, README.md). Math: lvsm/shaders/LvsmVisibility.glsl.
+// Parameters: the shadow-map ones, layers, layer_placement, layer_bound, prefilter_texels, light_bleeding_reduction,
+// min_variance.
 // Buffers: p_max, light_leak (p_max - pcf over the same box, pcf's default bias, as vsm), layer, warped_depth,
 // clamped_above_vsm (clamping nearer depths lifted the bound above vsm's), vsm_comparison (where vsm leaks, whether
 // layering leaks less) and depth_bias: eight outputs, the GL's draw buffers, so the box width (prefilter_texels) is
