@@ -524,6 +524,8 @@ TEST(Lvsm, LeaksLessThanVsmWhereVsmLeaks)
   // bound is vsm's), saturated (every candidate bound is 1), vsm's bound the tightest (the bound is vsm's).
   EXPECT_EQ(total.byCategory[static_cast<int>(LvsmVsmComparison::ClampedInFront)], 0);
   EXPECT_EQ(total.moreThanVsm, 0);
+  // No same-layer box spans an empty bin of the depth histogram: there was no gap the gaps placement left unused.
+  EXPECT_EQ(total.sameLayerWithEmptyBin, 0);
 }
 
 // Each combination of layer_bound and layer_placement (the defaults are measured above): the counts per class
