@@ -18,7 +18,28 @@ LayeredMomentsSettings LayeredMomentsSettings::from(const ParameterValues& value
   LayeredMomentsSettings settings;
   settings.layers = values.getInt("layers");
   settings.blurTexels = values.getInt("prefilter_texels");
+  settings.placement =
+    choiceOf<LayerPlacement>(values, "layer_placement", { { "uniform", LayerPlacement::Uniform }, { "gaps", LayerPlacement::Gaps } });
   return settings;
+}
+
+std::vector<double> layeredEndsOf(const std::map<std::string, double>& statistics)
+{
+  std::vector<double> ends;
+  for (auto found = statistics.find(format("layer_end_", 0)); found != statistics.end();
+       found = statistics.find(format("layer_end_", ends.size())))
+  {
+    ends.push_back(found->second);
+  }
+  return ends;
+}
+
+void layeredEndStatistics(const std::vector<double>& ends, std::map<std::string, double>& statistics)
+{
+  for (std::size_t i = 0; i < ends.size(); ++i)
+  {
+    statistics[format("layer_end_", i)] = ends[i];
+  }
 }
 
 namespace
@@ -50,8 +71,11 @@ std::vector<vtkTextureObject*> bindLayeredMoments(vtkShaderProgram* program, con
   {
     program->SetUniformi("layeredLayers", data.layers);
   }
-  setFloatIfUsed(program, "layeredDepthNear", frame.lightView.nearDepth);
-  setFloatIfUsed(program, "layeredDepthFar", frame.lightView.farDepth);
+  if (program->IsUniformUsed("layeredEnds"))
+  {
+    const std::vector<float> ends(data.ends.begin(), data.ends.end());
+    program->SetUniform1fv("layeredEnds", static_cast<int>(ends.size()), ends.data());
+  }
   return { bindTexture(program, "layeredMoments", data.moments) };
 }
 
@@ -65,7 +89,8 @@ const LightSpaceStructure& layeredMomentsStructure()
     s.doc = "(phi_i(z), phi_i(z)^2) of the shadow map per depth layer i, box-blurred (Lauritzen & McCool 2008)";
     s.builtFrom = { &shadowMapStructure() };
     s.parameters = {
-      { "layers", 4, 1, 16, "", "depth layers: equal, disjoint intervals of the light's depth range (Lauritzen & McCool 2008)", {}, true },
+      { "layers", 4, 1, 16, "", "depth layers: disjoint intervals of the light's depth range (Lauritzen & McCool 2008)", {}, true },
+      { "layer_placement", 1, 0, 1, "", "where the layers' boundaries lie: uniform, equal intervals; gaps (ShadowLab's, not LM08's placement), in the widest empty runs of the shadow map's depth histogram (256 bins over [near, far], counted on the GPU), so that surfaces separated in depth fall into different layers", { "uniform", "gaps" }, true },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLLayeredMomentsPass>::New() };

@@ -7,6 +7,12 @@
 #pragma once
 
 #include "structures/LightSpaceStructure.h"
+#include "structures/layeredmoments/LayeredMoments.h"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace sl
 {
@@ -20,6 +26,7 @@ struct LayeredMomentsSettings
 {
   int layers = 1;     // layers
   int blurTexels = 1; // prefilter_texels
+  LayerPlacement placement = LayerPlacement::Uniform; // layer_placement
 
   static LayeredMomentsSettings from(const ParameterValues& values);
 };
@@ -29,6 +36,13 @@ struct LayeredMomentsData : LightSpaceData
 {
   vtkSmartPointer<vtkTextureObject> moments; // RG32F, size x size x layers
   int layers = 1;
+  std::vector<double> ends; // the layers' ends, layers + 1 linear depths (float-rounded, as the shaders get them)
+  std::vector<std::uint32_t> histogram; // layer_placement=gaps: the depth histogram they were placed from (else empty)
 };
+
+// The layers' ends of a rendered frame (FrameResult::techniqueStatistics layer_end_<i>, which a technique reading
+// the layered moments publishes with layeredEndStatistics); empty where the frame has none.
+std::vector<double> layeredEndsOf(const std::map<std::string, double>& statistics);
+void layeredEndStatistics(const std::vector<double>& ends, std::map<std::string, double>& statistics);
 
 } // namespace sl

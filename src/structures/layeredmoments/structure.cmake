@@ -3,4 +3,4 @@ sl_structure(
   ORDER 82
   STRUCTURE layeredMomentsStructure LayeredMomentsStructure.h
   SOURCES LayeredMoments.cpp LayeredMomentsStructure.cpp vtkSLLayeredMomentsPass.cxx
-  SHADERS shaders/LayeredMomentsBuild.glsl shaders/LayeredMomentsLayout.glsl)
+  SHADERS shaders/LayeredMomentsBuild.glsl shaders/LayeredMomentsHistogram.glsl shaders/LayeredMomentsLayout.glsl)

@@ -55,6 +55,38 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
     throw sl::InputError(sl::format("lvsm: a ", size, "^2 shadow map needs a ", size, "x", size, "x", settings.layers,
       " 3D texture and this GL allows ", max3dSize, " per side; use shadow_map_size <= ", max3dSize));
   }
+  const double nearDepth = frame.lightView.nearDepth;
+  const double farDepth = frame.lightView.farDepth;
+  auto data = std::make_shared<sl::LayeredMomentsData>();
+  data->layers = settings.layers;
+  if (settings.placement == sl::LayerPlacement::Gaps)
+  {
+    // The depth histogram on the GPU (atomics), read back as 256 words; the boundaries are placed on the CPU.
+    if (!this->HistogramProgram)
+    {
+      this->HistogramProgram = std::make_unique<sl::ComputeProgram>(
+        sl::assembleShader("layeredmoments/LayeredMomentsHistogram.glsl",
+          { { "LAYERED_HISTOGRAM_BINS", std::to_string(sl::layeredHistogramBins) } }),
+        "layered moments (depth histogram)");
+    }
+    sl::StorageBuffer histogram(sl::layeredHistogramBins);
+    histogram.upload(std::vector<std::uint32_t>(sl::layeredHistogramBins, 0));
+    histogram.bind(0);
+    frame.shadowMapLinear->Activate();
+    this->HistogramProgram->use();
+    this->HistogramProgram->setInt("shadowMapLinear", frame.shadowMapLinear->GetTextureUnit());
+    this->HistogramProgram->setInt("mapSize", size);
+    this->HistogramProgram->setFloat("depthNear", nearDepth);
+    this->HistogramProgram->setFloat("depthFar", farDepth);
+    this->HistogramProgram->dispatch({ (size + 7) / 8, (size + 7) / 8 });
+    frame.shadowMapLinear->Deactivate();
+    data->histogram = histogram.download();
+    data->ends = sl::layeredGapEnds(data->histogram, settings.layers, nearDepth, farDepth);
+  }
+  else
+  {
+    data->ends = sl::layeredUniformEnds(settings.layers, nearDepth, farDepth);
+  }
   // x pass into `horizontal` (warping each tap into the layer), y pass into `moments`.
   vtkSmartPointer<vtkTextureObject> horizontal = makeLayeredMomentTexture(window, size, settings.layers);
   vtkSmartPointer<vtkTextureObject> moments = makeLayeredMomentTexture(window, size, settings.layers);
@@ -74,13 +106,12 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
     program->setInt(pass == 0 ? "shadowMapLinear" : "horizontal", source->GetTextureUnit());
     program->setInt("blurWidth", settings.blurTexels);
     program->setInt("mapSize", size);
-    program->setInt("layeredLayers", settings.layers);
-    program->setFloat("layeredDepthNear", frame.lightView.nearDepth);
-    program->setFloat("layeredDepthFar", frame.lightView.farDepth);
     glBindImageTexture(0, targets[pass]->GetHandle(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
     for (int layer = 0; layer < settings.layers; ++layer)
     {
       program->setInt("layer", layer);
+      program->setFloat("layerNearEnd", data->ends[static_cast<std::size_t>(layer)]);
+      program->setFloat("layerFarEnd", data->ends[static_cast<std::size_t>(layer) + 1]);
       program->dispatch({ (size + 7) / 8, (size + 7) / 8 });
     }
     // The y pass and the technique read these image writes through samplers.
@@ -88,9 +119,7 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     source->Deactivate();
   }
-  auto data = std::make_shared<sl::LayeredMomentsData>();
   data->moments = moments;
-  data->layers = settings.layers;
   frame.lightSpaceData[sl::layeredMomentsStructure().name] = data;
 }
 
@@ -98,10 +127,12 @@ void vtkSLLayeredMomentsPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->BlurPrograms[0].reset();
   this->BlurPrograms[1].reset();
+  this->HistogramProgram.reset();
 }
 
 void vtkSLLayeredMomentsPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "BlurPrograms built: " << (this->BlurPrograms[0] != nullptr) << (this->BlurPrograms[1] != nullptr) << "\n";
+  os << indent << "BlurPrograms built: " << (this->BlurPrograms[0] != nullptr) << (this->BlurPrograms[1] != nullptr)
+     << ", histogram " << (this->HistogramProgram != nullptr) << "\n";
 }

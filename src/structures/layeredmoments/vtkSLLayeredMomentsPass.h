@@ -1,6 +1,7 @@
 // The layered moment map's build (structures/layeredmoments/LayeredMomentsStructure.h; lvsm): for each depth layer,
 // the shadow map's depths warped into the layer and their squares (Lauritzen & McCool 2008), box-blurred over
-// prefilter_texels by two compute passes (x, then y) of layeredmoments/LayeredMomentsBuild.glsl.
+// prefilter_texels by two compute passes (x, then y) of layeredmoments/LayeredMomentsBuild.glsl; with
+// layer_placement=gaps, first the shadow map's depth histogram (LayeredMomentsHistogram.glsl) that places the layers.
 #pragma once
 
 #include "gl/ComputeProgram.h"
@@ -29,4 +30,5 @@ private:
   void operator=(const vtkSLLayeredMomentsPass&) = delete;
 
   std::unique_ptr<sl::ComputeProgram> BlurPrograms[2]; // x (warping), y
+  std::unique_ptr<sl::ComputeProgram> HistogramProgram; // layer_placement=gaps: the depth histogram
 };

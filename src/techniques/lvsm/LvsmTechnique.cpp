@@ -10,6 +10,9 @@
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/lvsm/vtkSLLvsmPass.h"
 
+#include "core/Error.h"
+#include "frame/FrameResult.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,10 +25,33 @@ LvsmSettings LvsmSettings::from(const ParameterValues& values)
   LvsmSettings settings;
   settings.bias = biasSettings(values);
   settings.layers = values.getInt("layers");
+  settings.layerBound =
+    choiceOf<LvsmLayerBound>(values, "layer_bound", { { "own", LvsmLayerBound::Own }, { "tightest", LvsmLayerBound::Tightest } });
+  settings.layerPlacement = LayeredMomentsSettings::from(values).placement;
   settings.prefilterTexels = values.getInt("prefilter_texels");
   settings.lightBleedingReduction = values.get("light_bleeding_reduction");
   settings.minVariance = values.get("min_variance");
   return settings;
+}
+
+LvsmSettings lvsmSettingsOf(const FrameResult& frame)
+{
+  LvsmSettings settings = LvsmSettings::from(frame.parameters);
+  settings.layerEnds = layeredEndsOf(frame.techniqueStatistics);
+  return settings;
+}
+
+std::vector<double> lvsmLayerEnds(const ShadowMapInputs& inputs, const LvsmSettings& settings)
+{
+  if (settings.layerEnds.empty())
+  {
+    SL_CHECK_MSG(settings.layerPlacement == LayerPlacement::Uniform,
+      "layer_placement=gaps: the twin needs the frame's layer ends (lvsmSettingsOf)");
+    return layeredUniformEnds(settings.layers, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+  }
+  SL_CHECK_MSG(static_cast<int>(settings.layerEnds.size()) == settings.layers + 1, "lvsm: ", settings.layerEnds.size(),
+    " layer ends for ", settings.layers, " layers");
+  return settings.layerEnds;
 }
 
 TechniqueDescriptor lvsmTechnique()
@@ -50,6 +76,7 @@ TechniqueDescriptor lvsmTechnique()
     }
   }
   descriptor.addParameters({
+    { "layer_bound", 1, 0, 1, "", "which Chebyshev bound a receiver takes: own, its own layer's (Lauritzen & McCool 2008); tightest (ShadowLab's extension), the least of every layer's bound at its warped depth and vsm's bound on the unwarped depths of the same box, still an upper bound of the lit fraction (README.md)", { "own", "tightest" }, true },
     { "light_bleeding_reduction", 0.2, 0, 0.99, "", "p_max below this amount becomes 0 and [amount, 1] maps to [0, 1] (Lauritzen 2007), as vsm", {}, false },
     { "min_variance", 1e-6, 0, 0.01, "d^2", "floor of the variance, relative to the squared receiver depth in linear depth; rescaled by 1 / (q_i - p_i)^2 into the layer's warped units", {}, false },
   });
@@ -78,7 +105,8 @@ TechniqueDescriptor lvsmTechnique()
     {
       buffer.flagAtOrAbove = static_cast<double>(LvsmVsmComparison::SameLayer);
       buffer.flagWarning = "where vsm leaks more than 0.05, the layered bound leaks as much or more: the box lies in one "
-                           "layer, both bounds are 1, or depths in front of the layer were clamped toward the receiver "
+                           "layer, both bounds are 1, no layer's bound is below vsm's (layer_bound=tightest), or depths in front of the "
+                           "layer were clamped toward the receiver "
                            "(src/techniques/lvsm/README.md, \"Where layering cannot help\")";
     }
   }
@@ -87,7 +115,7 @@ TechniqueDescriptor lvsmTechnique()
   };
   descriptor.createPass = [] { return vtkSmartPointer<vtkSLTechniquePass>(vtkSmartPointer<vtkSLLvsmPass>::New()); };
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
-    const LvsmSettings settings = LvsmSettings::from(context.frame->parameters);
+    const LvsmSettings settings = lvsmSettingsOf(*context.frame);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
     const LvsmSample sample = lvsmReference(inputs, settings, pixel.x, pixel.y, &recorder);
     // LvsmTest.MatchesTheCpuTwin: within 2e-3 at every pixel but those at a texel edge of the map or a layer boundary
@@ -98,10 +126,13 @@ TechniqueDescriptor lvsmTechnique()
     {
       const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, pixel.x, pixel.y);
       noteMomentTexelEdge(outcome.ambiguity, lookup.sm.uvTexels);
-      const double position = (lookup.comparisonDepth - inputs.lightView.nearDepth) /
-        (inputs.lightView.farDepth - inputs.lightView.nearDepth) * settings.layers;
-      noteAmbiguity(outcome.ambiguity, "receiver depth from a layer boundary (layers)",
-        std::abs(position - std::round(position)), 1e-5);
+      double fromBoundary = 1e300;
+      for (const double end : lvsmLayerEnds(inputs, settings))
+      {
+        fromBoundary = std::min(fromBoundary, std::abs(lookup.comparisonDepth - end));
+      }
+      noteAmbiguity(outcome.ambiguity, "receiver depth from a layer boundary (layers, layer_placement)",
+        fromBoundary / (inputs.lightView.farDepth - inputs.lightView.nearDepth), 1e-5);
     }
     return outcome;
   };
@@ -112,7 +143,13 @@ TechniqueDescriptor lvsmTechnique()
 FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, int layer,
   int layers, ProbeRecorder* recorder)
 {
-  const DepthLayer interval = depthLayer(layer, layers, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+  return layeredBoxMoments(inputs, uvTexels, width,
+    depthLayer(layer, layers, inputs.lightView.nearDepth, inputs.lightView.farDepth), recorder);
+}
+
+FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width,
+  const DepthLayer& interval, ProbeRecorder* recorder)
+{
   const int size = inputs.shadowMapLinear.width;
   const int centerX = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
   const int centerY = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
@@ -156,6 +193,11 @@ LvsmVsmComparison lvsmVsmComparison(const LvsmSample& sample)
   {
     return LvsmVsmComparison::LeaksLess;
   }
+  // layer_bound=tightest (layerPMax filled): p_max is vsm's bound, no layer's is lower.
+  if (!sample.layerPMax.empty() && sample.pMax >= sample.vsmPMax)
+  {
+    return LvsmVsmComparison::VsmBoundTightest;
+  }
   return sample.texelsInFront > 0 ? LvsmVsmComparison::ClampedInFront : LvsmVsmComparison::Unexplained;
 }
 
@@ -170,12 +212,11 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
     return result;
   }
   const int width = settings.prefilterTexels;
-  const double nearDepth = inputs.lightView.nearDepth;
-  const double farDepth = inputs.lightView.farDepth;
   const double t = lookup.comparisonDepth;
   const double d = lookup.sm.depthLin;
-  result.layer = depthLayerIndex(t, settings.layers, nearDepth, farDepth);
-  const DepthLayer interval = depthLayer(result.layer, settings.layers, nearDepth, farDepth);
+  const std::vector<double> ends = lvsmLayerEnds(inputs, settings);
+  result.layer = depthLayerIndex(t, ends);
+  const DepthLayer interval = depthLayer(result.layer, ends);
   result.layerNear = interval.nearEnd;
   result.layerFar = interval.farEnd;
   result.warpedDepth = warpIntoLayer(t, interval);
@@ -183,19 +224,27 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
   {
     recordMomentBox(*recorder, inputs, lookup, width);
   }
-  const FilteredMoments moments = layeredBoxMoments(inputs, lookup.sm.uvTexels, width, result.layer, settings.layers, recorder);
+  const FilteredMoments moments = layeredBoxMoments(inputs, lookup.sm.uvTexels, width, interval, recorder);
   result.mean = moments.mean;
   result.second = moments.second;
-  // phi_i is affine inside the layer (slope 1 / (q_i - p_i)): vsm's floor in linear depth^2 in warped units.
-  result.varianceFloor = settings.minVariance * d * d / (interval.width() * interval.width());
-  result.variance = std::max(moments.second - moments.mean * moments.mean, result.varianceFloor);
+  // Chebyshev's one-tailed bound on layer `layer`'s moments at phi_j(t), with vsm's floor rescaled into its units
+  // (phi_j is affine inside the layer, slope 1 / (q_j - p_j)).
+  const auto layerBound = [&](const DepthLayer& layer, const FilteredMoments& layerMoments, double* floorOut,
+                            double* varianceOut) {
+    const double varianceFloor = settings.minVariance * d * d / (layer.width() * layer.width());
+    const double variance = std::max(layerMoments.second - layerMoments.mean * layerMoments.mean, varianceFloor);
+    const double warped = warpIntoLayer(t, layer);
+    if (floorOut)
+    {
+      *floorOut = varianceFloor;
+      *varianceOut = variance;
+    }
+    return warped <= layerMoments.mean ? 1.0
+                                       : variance / (variance + (warped - layerMoments.mean) * (warped - layerMoments.mean));
+  };
+  result.ownPMax = layerBound(interval, moments, &result.varianceFloor, &result.variance);
   const double warpedT = result.warpedDepth;
-  result.pMax = warpedT <= moments.mean
-    ? 1.0
-    : result.variance / (result.variance + (warpedT - moments.mean) * (warpedT - moments.mean));
-  const double amount = settings.lightBleedingReduction;
-  result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
-  // vsm's bound over the same box (the comparison of vsm_comparison).
+  // vsm's bound over the same box (the comparison of vsm_comparison; with layer_bound=tightest also a candidate).
   {
     const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, width, 0.0);
     const double variance = std::max(plain.second - plain.mean * plain.mean, settings.minVariance * d * d);
@@ -216,12 +265,53 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
       }
     }
   }
+  result.pMax = result.ownPMax;
+  result.boundSource = result.layer;
+  if (settings.layerBound == LvsmLayerBound::Tightest)
+  {
+    // Every phi_j is monotone: z >= t implies phi_j(z) >= phi_j(t), so P(z >= t) <= P(phi_j(z) >= phi_j(t)), which
+    // Chebyshev bounds on layer j's moments; the least of these bounds and vsm's still bounds the lit fraction
+    // (README.md, "Bound from several layers"; ours, not LM08's). Same order and ties as the shader.
+    result.layerPMax.assign(static_cast<std::size_t>(settings.layers), 1.0);
+    for (int j = 0; j < settings.layers; ++j)
+    {
+      if (j == result.layer)
+      {
+        result.layerPMax[static_cast<std::size_t>(j)] = result.ownPMax;
+        continue;
+      }
+      const DepthLayer other = depthLayer(j, ends);
+      const double bound =
+        layerBound(other, layeredBoxMoments(inputs, lookup.sm.uvTexels, width, other), nullptr, nullptr);
+      result.layerPMax[static_cast<std::size_t>(j)] = bound;
+      if (bound < result.pMax)
+      {
+        result.pMax = bound;
+        result.boundSource = j;
+      }
+    }
+    if (result.vsmPMax < result.pMax)
+    {
+      result.pMax = result.vsmPMax;
+      result.boundSource = -1;
+    }
+  }
+  const double amount = settings.lightBleedingReduction;
+  result.sample.visibility = std::clamp((result.pMax - amount) / (1.0 - amount), 0.0, 1.0);
   if (recorder)
   {
     recorder->beginGroup("layer");
     recorder->quantity("layer", result.layer, "", "Lauritzen & McCool 2008: the layer whose interval holds the receiver's depth");
     recorder->quantity("layer_interval", glm::dvec2(interval.nearEnd, interval.farEnd), "linear depth",
-      "Lauritzen & McCool 2008: [p_i, q_i], equal disjoint intervals of the light's depth range");
+      "Lauritzen & McCool 2008: [p_i, q_i], disjoint intervals of the light's depth range");
+    recorder->quantity("layer_placement", settings.layerPlacement == LayerPlacement::Gaps ? 1.0 : 0.0, "code",
+      settings.layerPlacement == LayerPlacement::Gaps
+        ? "ShadowLab: boundaries in the widest empty runs of the depth histogram (layeredGapEnds)"
+        : "uniform: equal intervals of [near, far]");
+    for (std::size_t i = 0; i < ends.size(); ++i)
+    {
+      recorder->quantity(format("layer_end_", i), ends[i], "linear depth", "the layers' ends, as the shader receives them");
+    }
     recorder->quantity("compared_depth", t, "linear depth", "the receiver's depth minus the bias (0 by default, as vsm)");
     recorder->quantity("warped_depth", warpedT, "", "Lauritzen & McCool 2008: phi_i(t) = (t - p_i) / (q_i - p_i)");
     recorder->beginGroup("moments");
@@ -233,8 +323,21 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
       "ShadowLab (min_variance): min_variance d^2 / (q_i - p_i)^2, vsm's floor in the layer's units");
     recorder->quantity("variance", result.variance, "warped depth^2", "the floored variance");
     recorder->beginGroup("chebyshev");
-    recorder->quantity("p_max", result.pMax, "",
+    recorder->quantity("own_layer_p_max", result.ownPMax, "",
       "Donnelly & Lauritzen 2006 on the warped depths: sigma^2 / (sigma^2 + (phi_i(t) - mu)^2) for phi_i(t) > mu, else 1");
+    for (std::size_t j = 0; j < result.layerPMax.size(); ++j)
+    {
+      recorder->quantity(format("layer", j, "_p_max"), result.layerPMax[j], "",
+        "ShadowLab (layer_bound=tightest): layer j's bound at phi_j(t), floor rescaled into its units");
+    }
+    recorder->quantity("bound_source", result.boundSource, "layer",
+      settings.layerBound == LvsmLayerBound::Tightest
+        ? "layer_bound=tightest: the layer whose bound is p_max, -1 where vsm's bound is the least"
+        : "layer_bound=own: the receiver's layer");
+    recorder->quantity("p_max", result.pMax, "",
+      settings.layerBound == LvsmLayerBound::Tightest
+        ? "ShadowLab: min(every layer's bound, vsm's bound): an upper bound of the lit fraction (README.md)"
+        : "Lauritzen & McCool 2008: the own layer's bound");
     recorder->quantity("light_bleeding_reduction", amount, "", "Lauritzen 2007 (GPU Gems 3 ch. 8): [amount, 1] -> [0, 1]");
     recorder->quantity("visibility", result.sample.visibility, "", "Lauritzen 2007: clamp((p_max - amount) / (1 - amount), 0, 1)");
     recorder->quantity("vsm_p_max", result.vsmPMax, "", "Donnelly & Lauritzen 2006: vsm's bound on the unwarped depths of the same box");

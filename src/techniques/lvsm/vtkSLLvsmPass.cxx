@@ -4,6 +4,7 @@
 #include "passes/PassUtilities.h"
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/ShadowMapReference.h"
+#include "structures/layeredmoments/LayeredMomentsStructure.h"
 #include "techniques/lvsm/LvsmTechnique.h"
 
 #include <sstream>
@@ -28,6 +29,8 @@ std::vector<vtkTextureObject*> vtkSLLvsmPass::SetTechniqueUniforms(vtkShaderProg
 {
   const sl::FrameResources& frame = *this->Frame;
   program->SetUniformi("kernelWidth", frame.parameters.getInt("prefilter_texels"));
+  program->SetUniformi("tightestBound", sl::LvsmSettings::from(frame.parameters).layerBound == sl::LvsmLayerBound::Tightest ? 1 : 0);
+  this->LayerEnds = frame.structureData<sl::LayeredMomentsData>(sl::layeredMomentsStructure().name).ends;
   if (program->IsUniformUsed("leakBiasTexels"))
   {
     const sl::BiasSettings leakBias = sl::defaultBiasSettings();
@@ -36,7 +39,15 @@ std::vector<vtkTextureObject*> vtkSLLvsmPass::SetTechniqueUniforms(vtkShaderProg
   return {};
 }
 
+std::map<std::string, double> vtkSLLvsmPass::CollectStatistics()
+{
+  std::map<std::string, double> statistics = this->Superclass::CollectStatistics();
+  sl::layeredEndStatistics(this->LayerEnds, statistics);
+  return statistics;
+}
+
 void vtkSLLvsmPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "LayerEnds: " << this->LayerEnds.size() << "\n";
 }

@@ -10,6 +10,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int blurWidth;
 uniform int layer;
+uniform float layerNearEnd; // p_i of `layer`, set per dispatch
+uniform float layerFarEnd;  // q_i
 uniform int mapSize;
 layout(rg32f, binding = 0) uniform writeonly image3D target;
 #if LAYERED_BLUR_PASS == 0
@@ -25,7 +27,7 @@ void main()
   {
     return;
   }
-  vec2 interval = depthLayer(layer);
+  vec2 interval = vec2(layerNearEnd, layerFarEnd);
   vec2 sum = vec2(0.0);
   int first = -(blurWidth - 1) / 2;
   for (int k = 0; k < blurWidth; ++k)

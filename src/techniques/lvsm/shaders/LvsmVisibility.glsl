@@ -8,6 +8,9 @@
 // phi = 0, toward the receiver: where that lifts the bound more than 0.05 above vsm's, clamped_above_vsm flags the
 // pixel (README.md, "Where layering cannot help"; e.g. a receiver just behind its layer's near end, whose nearer
 // occluders the variance floor then cannot tell from contact).
+// layer_bound=tightest (tightestBound, ShadowLab's extension, README.md "Bound from several layers"): every phi_j is
+// monotone, so z >= t implies phi_j(z) >= phi_j(t) and Chebyshev's bound on layer j's moments at phi_j(t) also bounds
+// the lit fraction; p_max is the least of all layers' bounds and vsm's (the unwarped depths of the same box).
 // Light bleeding is reduced as vsm does (Lauritzen 2007).
 // Also written, to check the issue's claim per pixel, from vsm's bound on the unwarped depths of the same box: where
 // vsm leaks more than LVSM_VSM_LEAK_THRESHOLD, whether the layered bound leaks less and if not why
@@ -23,6 +26,7 @@
 
 uniform sampler3D layeredMoments; // slice i: (E[phi_i(z)], E[phi_i(z)^2]) over the box
 uniform int kernelWidth;          // prefilter_texels
+uniform int tightestBound;        // layer_bound: 0 own, 1 tightest
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
 layout(location = OUT_P_MAX) out float outPMax;
@@ -34,7 +38,10 @@ layout(location = OUT_VSM_COMPARISON) out float outVsmComparison;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
 
 // vsm's bound over the same box, from the shadow map's depths (vsm's moment map is not built for lvsm), and the
-// number of the box's depths in front of and behind the layer `interval`.
+// number of the box's depths in front of and behind the layer `interval`. The depths are summed relative to the
+// receiver's t: Chebyshev's bound is invariant under that shift, and the float variance E[(z-t)^2] - E[z-t]^2 then
+// does not cancel as E[z^2] - E[z]^2 does at depths of several units (it is a candidate of layer_bound=tightest,
+// compared with the twin at 2e-3).
 float unlayeredBound(vec2 uvTexels, float t, float d, vec2 interval, out int inFront, out int behind)
 {
   inFront = 0;
@@ -48,14 +55,26 @@ float unlayeredBound(vec2 uvTexels, float t, float d, vec2 interval, out int inF
     {
       ivec2 texel = clamp(center + ivec2(first + i, first + j), ivec2(0), ivec2(shadowMapSize - 1));
       float z = texelFetch(shadowMapLinear, texel, 0).r;
-      sum += vec2(z, z * z);
+      float shifted = z - t;
+      sum += vec2(shifted, shifted * shifted);
       inFront += z < interval.x ? 1 : 0;
       behind += z > interval.y ? 1 : 0;
     }
   }
   vec2 moments = sum / float(kernelWidth * kernelWidth);
   float variance = max(moments.y - moments.x * moments.x, param_min_variance * d * d);
-  return chebyshevUpperBound(moments.x, variance, t);
+  return chebyshevUpperBound(moments.x, variance, 0.0);
+}
+
+// Chebyshev's bound on layer `layer`'s moments at phi(t), vsm's floor rescaled into the layer's warped units.
+float layerBound(ivec2 texel, int layer, float t, float d)
+{
+  vec2 interval = depthLayer(layer);
+  vec2 moments = texelFetch(layeredMoments, ivec3(texel, layer), 0).xy;
+  float layerScale = 1.0 / (interval.y - interval.x);
+  float varianceFloor = param_min_variance * d * d * layerScale * layerScale;
+  float variance = max(moments.y - moments.x * moments.x, varianceFloor);
+  return chebyshevUpperBound(moments.x, variance, warpIntoLayer(t, interval));
 }
 
 void main()
@@ -77,21 +96,31 @@ void main()
   int layer = depthLayerIndex(t);
   vec2 interval = depthLayer(layer);
   float warpedT = warpIntoLayer(t, interval);
-  vec2 moments = texelFetch(layeredMoments, ivec3(shadowMapTexel(receiver.uvTexels), layer), 0).xy;
+  ivec2 texel = shadowMapTexel(receiver.uvTexels);
   float d = receiver.depthLin;
-  float layerScale = 1.0 / (interval.y - interval.x);
-  float varianceFloor = param_min_variance * d * d * layerScale * layerScale;
-  float variance = max(moments.y - moments.x * moments.x, varianceFloor);
-  float pMax = chebyshevUpperBound(moments.x, variance, warpedT);
+  float ownPMax = layerBound(texel, layer, t, d);
+  int inFront;
+  int behind;
+  float vsmPMax = unlayeredBound(receiver.uvTexels, t, d, interval, inFront, behind);
+  float pMax = ownPMax;
+  if (tightestBound != 0)
+  {
+    // Same order and ties as lvsmReference.
+    for (int j = 0; j < layeredLayers; ++j)
+    {
+      if (j != layer)
+      {
+        pMax = min(pMax, layerBound(texel, j, t, d));
+      }
+    }
+    pMax = min(pMax, vsmPMax);
+  }
   outVisibility = reduceLightBleeding(pMax, param_light_bleeding_reduction);
   outPMax = pMax;
   float pcf = boxPcf(receiver.uvTexels, leakComparisonDepth(receiver), kernelWidth);
   outLightLeak = pMax - pcf;
   outLayer = float(layer);
   outWarpedDepth = warpedT;
-  int inFront;
-  int behind;
-  float vsmPMax = unlayeredBound(receiver.uvTexels, t, d, interval, inFront, behind);
   outClampedAboveVsm = inFront > 0 && pMax > vsmPMax + LVSM_VSM_LEAK_THRESHOLD ? 1.0 : 0.0;
   float vsmLeak = vsmPMax - pcf;
   int comparison = VSM_COMPARISON_VSM_BELOW_THRESHOLD;
@@ -100,6 +129,7 @@ void main()
     comparison = inFront + behind == 0                 ? VSM_COMPARISON_SAME_LAYER
       : pMax >= 1.0 && vsmPMax >= 1.0                   ? VSM_COMPARISON_SATURATED
       : pMax - pcf < vsmLeak                            ? VSM_COMPARISON_LEAKS_LESS
+      : tightestBound != 0 && pMax >= vsmPMax           ? VSM_COMPARISON_VSM_BOUND_TIGHTEST
       : inFront > 0                                     ? VSM_COMPARISON_CLAMPED_IN_FRONT
                                                         : VSM_COMPARISON_UNEXPLAINED;
   }

@@ -5,6 +5,7 @@
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
 #include "structures/layeredmoments/LayeredMoments.h"
+#include "structures/layeredmoments/LayeredMomentsStructure.h"
 #include "techniques/lvsm/LvsmTechnique.h"
 #include "techniques/vsm/VsmTechnique.h"
 
@@ -22,9 +23,35 @@ namespace
 // Receivers whose depth lies within float rounding of a layer boundary may read either layer on the GPU.
 bool lvsmNearLayerBoundary(const ShadowMapInputs& inputs, const LvsmSettings& settings, double depth)
 {
-  const double position = (depth - inputs.lightView.nearDepth) /
-    (inputs.lightView.farDepth - inputs.lightView.nearDepth) * settings.layers;
-  return std::abs(position - std::round(position)) < 1e-5 * settings.layers;
+  const double range = inputs.lightView.farDepth - inputs.lightView.nearDepth;
+  for (const double end : lvsmLayerEnds(inputs, settings))
+  {
+    if (std::abs(depth - end) < 1e-5 * range)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The GPU's p_max against the twin's: 2e-3, but 1e-2 where layer_bound=tightest took another layer's bound whose warped
+// variance over the box is below 1e-3. There the receiver lies behind that layer (phi_j(t) = 1) and most of the box is
+// clamped to 1: E[phi^2] - E[phi]^2 of float sums of values near 1 cancels (as vsm's float moments do, MomentTest).
+double lvsmTwinTolerance(const ShadowMapInputs& inputs, const LvsmSettings& settings, const LvsmSample& cpu,
+  const glm::dvec2& uvTexels, int* illConditioned)
+{
+  if (cpu.boundSource < 0 || cpu.boundSource == cpu.layer)
+  {
+    return 2e-3;
+  }
+  const FilteredMoments other = layeredBoxMoments(inputs, uvTexels, settings.prefilterTexels,
+    depthLayer(cpu.boundSource, lvsmLayerEnds(inputs, settings)));
+  if (other.second - other.mean * other.mean >= 1e-3)
+  {
+    return 2e-3;
+  }
+  ++*illConditioned;
+  return 1e-2;
 }
 
 const ImageF& lvsmBuffer(const FrameResult& frame, const char* name)
@@ -45,6 +72,8 @@ TEST(Lvsm, LayeredMomentMapMatchesTheCpuBoxes)
   const FrameResult frame = test::renderDataset(scene, "lvsm", 64, 64, { "shadow_map_size=128", "prefilter_texels=5" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const int size = inputs.shadowMapLinear.width;
+  const std::vector<double> ends = lvsmLayerEnds(inputs, lvsmSettingsOf(frame));
+  ASSERT_EQ(ends.size(), 5u);
   double maxError = 0.0;
   int partialTexels = 0;
   for (int layer = 0; layer < 4; ++layer)
@@ -56,7 +85,7 @@ TEST(Lvsm, LayeredMomentMapMatchesTheCpuBoxes)
     {
       for (int x = 0; x < size; ++x)
       {
-        const FilteredMoments cpu = layeredBoxMoments(inputs, glm::dvec2(x + 0.5, y + 0.5), 5, layer, 4);
+        const FilteredMoments cpu = layeredBoxMoments(inputs, glm::dvec2(x + 0.5, y + 0.5), 5, depthLayer(layer, ends));
         partialTexels += cpu.mean > 0.0 && cpu.mean < 1.0 ? 1 : 0;
         maxError = std::max({ maxError, std::abs(mean.at(x, y) - cpu.mean), std::abs(second.at(x, y) - cpu.second) });
         ASSERT_NEAR(mean.at(x, y), cpu.mean, 1e-5) << "layer " << layer << " texel " << x << "," << y;
@@ -82,13 +111,14 @@ TEST(Lvsm, MatchesTheCpuTwin)
     const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=7", "light_bleeding_reduction=0" };
     const FrameResult frame = test::renderDataset(scene, "lvsm", 96, 80, settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const LvsmSettings lvsmSettings = LvsmSettings::from(frame.parameters);
+    const LvsmSettings lvsmSettings = lvsmSettingsOf(frame);
     int compared = 0;
     int grazing = 0;
     int nearBoundary = 0;
     int nearTexelEdge = 0;
     int partial = 0;
     int clampedAboveVsm = 0;
+    int illConditioned = 0;
     int layersSeen[16] = {};
     double maxVisibility = 0.0;
     double maxWarped = 0.0;
@@ -135,12 +165,15 @@ TEST(Lvsm, MatchesTheCpuTwin)
         ++compared;
         partial += (cpu.sample.visibility > 0.0 && cpu.sample.visibility < 1.0) ? 1 : 0;
         maxVisibility = std::max(maxVisibility, std::abs(gpu - cpu.sample.visibility));
-        EXPECT_NEAR(gpu, cpu.sample.visibility, 2e-3) << dataset << " pixel " << x << "," << y;
-        EXPECT_NEAR(lvsmBuffer(frame, "p_max").at(x, y), cpu.pMax, 2e-3) << dataset << " pixel " << x << "," << y;
+        const double tolerance = lvsmTwinTolerance(inputs, lvsmSettings, cpu, lookup.sm.uvTexels, &illConditioned);
+        EXPECT_NEAR(gpu, cpu.sample.visibility, tolerance) << dataset << " pixel " << x << "," << y;
+        EXPECT_NEAR(lvsmBuffer(frame, "p_max").at(x, y), cpu.pMax, tolerance)
+          << dataset << " pixel " << x << "," << y << ": bound from " << cpu.boundSource << " (own layer " << cpu.layer
+          << ", own bound " << cpu.ownPMax << ", vsm's " << cpu.vsmPMax << ")";
         // The leak's PCF may differ by a tie (a comparison within float rounding of its boundary): 1 / 49.
         const double leakError = std::abs(lvsmBuffer(frame, "light_leak").at(x, y) - cpu.lightLeak);
         maxLeak = std::max(maxLeak, leakError);
-        EXPECT_LT(leakError, 2e-3 + 1.0 / 49.0 + 1e-6) << dataset << " pixel " << x << "," << y;
+        EXPECT_LT(leakError, tolerance + 1.0 / 49.0 + 1e-6) << dataset << " pixel " << x << "," << y;
         // clamped_above_vsm compares with vsm's bound, which the shader computes from float sums of z and z^2: where
         // their variance cancels (below 1e-3 d^2, as in MomentTest) the flag is counted, not compared.
         const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, lvsmSettings.prefilterTexels, 0.0);
@@ -161,7 +194,8 @@ TEST(Lvsm, MatchesTheCpuTwin)
     }
     std::cout << "[ measured ] lvsm " << dataset << ": compared " << compared << " (partial " << partial
               << "), grazing " << grazing << ", at a layer boundary " << nearBoundary << ", at a texel edge " << nearTexelEdge
-              << ", layers read " << distinctLayers << ", clamped_above_vsm " << clampedAboveVsm << "; max |gpu - cpu| visibility " << maxVisibility << ", warped depth "
+              << ", layers read " << distinctLayers << ", clamped_above_vsm " << clampedAboveVsm
+              << ", bound from an ill-conditioned other layer (1e-2) " << illConditioned << "; max |gpu - cpu| visibility " << maxVisibility << ", warped depth "
               << maxWarped << ", light_leak " << maxLeak << "\n";
     EXPECT_GT(compared, 4000) << dataset;
   }
@@ -180,6 +214,7 @@ TEST(Lvsm, OneLayerEqualsVsm)
     const std::vector<std::string> settings{ "shadow_map_size=256", "prefilter_texels=7" };
     std::vector<std::string> oneLayer = settings;
     oneLayer.push_back("layers=1");
+    oneLayer.push_back("layer_bound=own"); // tightest would take vsm's own bound among its candidates
     const FrameResult lvsm = test::renderDataset(scene, "lvsm", 96, 80, oneLayer);
     const FrameResult vsm = test::renderDataset(scene, "vsm", 96, 80, settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(vsm, scene);
@@ -207,8 +242,9 @@ TEST(Lvsm, OneLayerEqualsVsm)
         const ShadowLookup lookup = prepareShadowLookup(inputs, vsmSettings.bias, x, y);
         const FilteredMoments layered = layeredBoxMoments(inputs, lookup.sm.uvTexels, 7, 0, 1);
         const FilteredMoments plain = boxMoments(inputs, lookup.sm.uvTexels, 7, 0.0);
-        const double range = inputs.lightView.farDepth - inputs.lightView.nearDepth;
-        if (std::abs(layered.mean * range + inputs.lightView.nearDepth - plain.mean) > 1e-9 * plain.mean)
+        // The layer's ends are the float-rounded near and far the shader gets.
+        const std::vector<double> ends = layeredUniformEnds(1, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+        if (std::abs(layered.mean * (ends[1] - ends[0]) + ends[0] - plain.mean) > 1e-9 * plain.mean)
         {
           ++beyondRange;
           maxBeyond = std::max(maxBeyond, static_cast<double>(lvsmBuffer(lvsm, "p_max").at(x, y) - lvsmBuffer(vsm, "p_max").at(x, y)));
@@ -230,7 +266,7 @@ TEST(Lvsm, OneLayerEqualsVsm)
         EXPECT_NEAR(lvsmBuffer(lvsm, "light_leak").at(x, y), lvsmBuffer(vsm, "light_leak").at(x, y), 4e-3)
           << dataset << " pixel " << x << "," << y;
         // And in double: the twin with one layer is vsm's twin.
-        const LvsmSample layeredCpu = lvsmReference(inputs, LvsmSettings::from(lvsm.parameters), x, y);
+        const LvsmSample layeredCpu = lvsmReference(inputs, lvsmSettingsOf(lvsm), x, y);
         EXPECT_NEAR(layeredCpu.pMax, cpu.pMax, 1e-9) << dataset << " pixel " << x << "," << y;
       }
     }
@@ -255,7 +291,7 @@ TEST(Lvsm, TwoDepthsGiveTheExactLitFraction)
     const FrameResult frame =
       test::renderDataset(scene, "lvsm", 128, 128, { "shadow_map_size=256", "prefilter_texels=9", "min_variance=0", "layers=" + layers });
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const LvsmSettings settings = LvsmSettings::from(frame.parameters);
+    const LvsmSettings settings = lvsmSettingsOf(frame);
     int ground = 0;
     int penumbra = 0;
     double maxError = 0.0;
@@ -293,7 +329,13 @@ TEST(Lvsm, TwoDepthsGiveTheExactLitFraction)
 struct LvsmLeakCounts
 {
   int vsmLeaking = 0;   // vsm's light_leak buffer > 0.05
-  int byCategory[6] = {}; // the twin's LvsmVsmComparison of those pixels
+  int byCategory[7] = {}; // the twin's LvsmVsmComparison of those pixels
+  // Of the same-layer pixels, those where vsm's bound exceeds the exact P(z >= t) of the box (no bias) by more than
+  // 0.05: light bleeding proper; the others "leak" only against pcf's biased comparison.
+  int sameLayerBleeding = 0;
+  // Of the same-layer pixels, those whose box's depth range holds an empty bin of the map's depth histogram (a gap a
+  // boundary could have used).
+  int sameLayerWithEmptyBin = 0;
   int gpuFlagged = 0;   // lvsm's vsm_comparison >= SameLayer over the whole image
   int categoryTies = 0; // pixels where the GPU's category may differ from the twin's by float rounding
   int moreThanVsm = 0;  // lvsm's light_leak > vsm's + 0.05 (anywhere)
@@ -305,12 +347,16 @@ struct LvsmLeakCounts
 // smaller, except where one of LM08's own limits holds the layered bound up (the twin's LvsmVsmComparison, which the
 // test checks: the box in one layer gives vsm's bound, both bounds 1, or depths in front of the layer clamped toward
 // the receiver); no pixel may be left unexplained. lvsm's vsm_comparison buffer must agree with the twin's category.
-LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, int width, int height)
+LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, int width, int height,
+  const std::vector<std::string>& lvsmOptions = {})
 {
-  const FrameResult lvsm = test::renderDataset(scene, "lvsm", width, height);
+  const FrameResult lvsm = test::renderDataset(scene, "lvsm", width, height, lvsmOptions);
   const FrameResult vsm = test::renderDataset(scene, "vsm", width, height);
   const ShadowMapInputs inputs = test::shadowMapInputs(lvsm, scene);
-  const LvsmSettings settings = LvsmSettings::from(lvsm.parameters);
+  const LvsmSettings settings = lvsmSettingsOf(lvsm);
+  const std::vector<std::uint32_t> histogram = layeredDepthHistogram(
+    std::vector<float>(inputs.shadowMapLinear.data.begin(), inputs.shadowMapLinear.data.end()),
+    inputs.lightView.nearDepth, inputs.lightView.farDepth);
   LvsmLeakCounts counts;
   for (int y = 0; y < height; ++y)
   {
@@ -373,6 +419,33 @@ LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, in
         // phi_i is affine on every depth of the box: the bound is vsm's (in double; on the GPU where vsm's float
         // moments are well conditioned, variance >= 1e-3 d^2 as in MomentTest).
         EXPECT_NEAR(cpu.pMax, cpu.vsmPMax, 1e-9) << where;
+        counts.sameLayerBleeding += cpu.vsmPMax - boxPcf(inputs, prepareShadowLookup(inputs, settings.bias, x, y).sm.uvTexels,
+          t, settings.prefilterTexels) > lvsmVsmLeakThreshold ? 1 : 0;
+        {
+          double lowest = 1e300;
+          double highest = -1e300;
+          const glm::dvec2 uv = prepareShadowLookup(inputs, settings.bias, x, y).sm.uvTexels;
+          const int size = inputs.shadowMapLinear.width;
+          const int half = (settings.prefilterTexels - 1) / 2;
+          for (int j = -half; j <= half; ++j)
+          {
+            for (int i = -half; i <= half; ++i)
+            {
+              const double z = inputs.shadowMapLinear.at(std::clamp(static_cast<int>(std::floor(uv.x)) + i, 0, size - 1),
+                std::clamp(static_cast<int>(std::floor(uv.y)) + j, 0, size - 1));
+              lowest = std::min(lowest, z);
+              highest = std::max(highest, z);
+            }
+          }
+          const int first = layeredHistogramBin(lowest, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+          const int last = layeredHistogramBin(highest, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+          bool emptyBin = false;
+          for (int bin = first + 1; first >= 0 && bin < last; ++bin)
+          {
+            emptyBin = emptyBin || histogram[static_cast<std::size_t>(bin)] == 0;
+          }
+          counts.sameLayerWithEmptyBin += emptyBin ? 1 : 0;
+        }
         if (cpu.variance * (cpu.layerFar - cpu.layerNear) * (cpu.layerFar - cpu.layerNear) >= 1e-3 * t * t)
         {
           EXPECT_NEAR(lvsmLeak, vsmLeak, 4e-3) << where;
@@ -381,6 +454,12 @@ LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, in
       case LvsmVsmComparison::Saturated:
         EXPECT_GE(lvsmBuffer(lvsm, "p_max").at(x, y), 1.0 - 4e-3) << where;
         EXPECT_GE(lvsmBuffer(vsm, "p_max").at(x, y), 1.0 - 4e-3) << where;
+        break;
+      case LvsmVsmComparison::VsmBoundTightest:
+        // p_max is vsm's own bound: the leak is vsm's (no layer's bound is lower).
+        EXPECT_EQ(settings.layerBound, LvsmLayerBound::Tightest) << where;
+        EXPECT_GE(*std::min_element(cpu.layerPMax.begin(), cpu.layerPMax.end()), cpu.vsmPMax) << where;
+        std::cout << "[ vsm bound tightest ] " << where << "\n";
         break;
       case LvsmVsmComparison::ClampedInFront:
         EXPECT_GT(cpu.texelsInFront, 0) << where;
@@ -394,39 +473,94 @@ LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, in
   }
   std::cout << "[ measured ] " << label << ": vsm leaks > 0.05 at " << counts.vsmLeaking << " pixels: lvsm leaks less at "
             << counts.byCategory[1] << "; not less: same layer " << counts.byCategory[2] << ", both saturated "
-            << counts.byCategory[3] << ", clamped in front " << counts.byCategory[4] << ", unexplained "
-            << counts.byCategory[5] << "; vsm_comparison flags " << counts.gpuFlagged << " (category ties "
+            << counts.byCategory[3] << ", clamped in front " << counts.byCategory[4] << ", vsm's bound tightest "
+            << counts.byCategory[5] << ", unexplained " << counts.byCategory[6] << "; vsm_comparison flags " << counts.gpuFlagged << " (category ties "
             << counts.categoryTies << "); lvsm leaks more than vsm + 0.05 at " << counts.moreThanVsm << " (clamped_above_vsm "
             << counts.moreThanVsmClamped << ")\n";
   EXPECT_EQ(static_cast<double>(counts.gpuFlagged), lvsm.techniqueStatistics.at("vsm_comparison_flagged_pixels")) << label;
   return counts;
 }
 
-TEST(Lvsm, LeaksLessThanVsmWhereVsmLeaks)
+// The claim over stacked-occluders and random scenes 1-12, with `options` for lvsm (defaults otherwise).
+LvsmLeakCounts lvsmClaimCounts(const std::vector<std::string>& options, const std::string& label)
 {
   LvsmLeakCounts total;
   const auto add = [&](const LvsmLeakCounts& counts) {
     total.vsmLeaking += counts.vsmLeaking;
-    for (int code = 0; code < 6; ++code)
+    for (int code = 0; code < 7; ++code)
     {
       total.byCategory[code] += counts.byCategory[code];
     }
+    total.moreThanVsm += counts.moreThanVsm;
+    total.sameLayerBleeding += counts.sameLayerBleeding;
+    total.sameLayerWithEmptyBin += counts.sameLayerWithEmptyBin;
     total.worstClampedExcess = std::max(total.worstClampedExcess, counts.worstClampedExcess);
   };
-  add(lvsmCompareLeaks(test::loadDataset("stacked-occluders"), "stacked-occluders", 128, 128));
+  add(lvsmCompareLeaks(test::loadDataset("stacked-occluders"), "stacked-occluders", 128, 128, options));
   for (std::uint64_t seed = 1; seed <= 12; ++seed)
   {
     const RandomScene random = randomScene(seed, 64);
     const Scene scene = parseScene(random.json, format("random seed ", seed), ".");
-    add(lvsmCompareLeaks(scene, format("random seed ", seed), 64, 48));
+    add(lvsmCompareLeaks(scene, format("random seed ", seed), 64, 48, options));
   }
-  std::cout << "[ measured ] all: vsm leaks > 0.05 at " << total.vsmLeaking << " pixels: lvsm leaks less at "
-            << total.byCategory[1] << "; not less: same layer " << total.byCategory[2] << ", both saturated "
-            << total.byCategory[3] << ", clamped in front " << total.byCategory[4] << " (worst p_max excess "
-            << total.worstClampedExcess << "), unexplained " << total.byCategory[5] << "\n";
+  std::cout << "[ measured ] all, " << label << ": vsm leaks > 0.05 at " << total.vsmLeaking
+            << " pixels: lvsm leaks less at " << total.byCategory[1] << "; not less: same layer " << total.byCategory[2]
+            << " (of which vsm's bound above the unbiased P(z >= t) by > 0.05: " << total.sameLayerBleeding
+            << "; box depth range holding an empty histogram bin: " << total.sameLayerWithEmptyBin << "), both saturated " << total.byCategory[3] << ", clamped in front " << total.byCategory[4]
+            << " (worst p_max excess " << total.worstClampedExcess << "), vsm's bound tightest " << total.byCategory[5]
+            << ", unexplained " << total.byCategory[6] << "; lvsm leaks more than vsm + 0.05 at " << total.moreThanVsm
+            << "\n";
   EXPECT_GT(total.vsmLeaking, 1000) << "the scenes must make vsm leak";
-  EXPECT_EQ(total.byCategory[5], 0);
+  EXPECT_EQ(total.byCategory[static_cast<int>(LvsmVsmComparison::Unexplained)], 0) << label;
+  return total;
+}
+
+TEST(Lvsm, LeaksLessThanVsmWhereVsmLeaks)
+{
+  const LvsmLeakCounts total = lvsmClaimCounts({}, "defaults");
   EXPECT_GT(total.byCategory[1], 9 * (total.vsmLeaking - total.byCategory[1])) << "layering must leak less almost everywhere";
+  // At the defaults (layer_bound=tightest) the bound is never above vsm's: no pixel may leak more, and the class
+  // "clamped in front" is gone. What remains is inherent (README.md, "Where layering cannot help"): same layer (the
+  // bound is vsm's), saturated (every candidate bound is 1), vsm's bound the tightest (the bound is vsm's).
+  EXPECT_EQ(total.byCategory[static_cast<int>(LvsmVsmComparison::ClampedInFront)], 0);
+  EXPECT_EQ(total.moreThanVsm, 0);
+  // No same-layer box spans an empty bin of the depth histogram: there was no gap the gaps placement left unused.
+  EXPECT_EQ(total.sameLayerWithEmptyBin, 0);
+}
+
+// Each combination of layer_bound and layer_placement (the defaults are measured above): the counts per class
+// (README.md, "Measured"). tightest can only lower the bound (it takes the own layer's among its candidates), so it
+// leaks less at least where own does and never clearly more than vsm; gaps must not leave more pixels in one layer
+// than uniform.
+TEST(Lvsm, LeakClassesPerOption)
+{
+  LvsmLeakCounts counts[2][2];
+  const char* bounds[] = { "own", "tightest" };
+  const char* placements[] = { "uniform", "gaps" };
+  for (int bound = 0; bound < 2; ++bound)
+  {
+    for (int placement = 0; placement < 2; ++placement)
+    {
+      const std::vector<std::string> options{ format("layer_bound=", bounds[bound]),
+        format("layer_placement=", placements[placement]) };
+      counts[bound][placement] = lvsmClaimCounts(options, format(options[0], " ", options[1]));
+    }
+  }
+  for (int placement = 0; placement < 2; ++placement)
+  {
+    EXPECT_GE(counts[1][placement].byCategory[1], counts[0][placement].byCategory[1]) << placements[placement];
+    EXPECT_EQ(counts[1][placement].moreThanVsm, 0) << placements[placement];
+    EXPECT_EQ(counts[1][placement].byCategory[static_cast<int>(LvsmVsmComparison::ClampedInFront)], 0);
+  }
+  for (int bound = 0; bound < 2; ++bound)
+  {
+    EXPECT_LE(counts[bound][1].byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)],
+      counts[bound][0].byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)]) << bounds[bound];
+  }
+  // More layers split more boxes: the same-layer class shrinks (16 layers, the most allowed).
+  const LvsmLeakCounts sixteen = lvsmClaimCounts({ "layers=16" }, "layers=16");
+  EXPECT_LT(sixteen.byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)],
+    counts[1][1].byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)]);
 }
 
 // Where layering leaks clearly more than vsm (by 0.05), a flag says why (lvsmCompareLeaks requires it everywhere): on
@@ -435,9 +569,155 @@ TEST(Lvsm, LeaksLessThanVsmWhereVsmLeaks)
 // clamped_above_vsm.
 TEST(Lvsm, ClampedAboveVsmFlagsWhereLayeringLeaksMore)
 {
-  const LvsmLeakCounts counts = lvsmCompareLeaks(test::loadDataset("sphere-point"), "sphere-point", 128, 128);
+  const LvsmLeakCounts counts = lvsmCompareLeaks(test::loadDataset("sphere-point"), "sphere-point", 128, 128,
+    { "layer_bound=own", "layer_placement=uniform" });
   EXPECT_GT(counts.moreThanVsmClamped, 10) << "the layer boundary across the umbra must be flagged";
   EXPECT_EQ(counts.byCategory[static_cast<int>(LvsmVsmComparison::Unexplained)], 0);
+  // layer_bound=tightest takes the nearer layer's bound (and vsm's) there: the lit line is gone.
+  const LvsmLeakCounts tightest = lvsmCompareLeaks(test::loadDataset("sphere-point"), "sphere-point tightest", 128,
+    128, { "layer_bound=tightest", "layer_placement=uniform" });
+  EXPECT_EQ(tightest.moreThanVsm, 0);
+  EXPECT_EQ(tightest.byCategory[static_cast<int>(LvsmVsmComparison::Unexplained)], 0);
+}
+
+// layer_bound=tightest is still an upper bound of the box's lit fraction P(z >= t) (the exact count of the box's
+// depths at or behind the receiver's compared depth, in double), never above the own layer's bound nor vsm's; the GPU's
+// p_max follows the same rule within float rounding. On four datasets with gaps placement.
+TEST(Lvsm, TightestBoundStaysAnUpperBound)
+{
+  for (const std::string dataset : { "stacked-occluders", "bunny", "contact", "sphere-point" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult frame = test::renderDataset(scene, "lvsm", 96, 80,
+      { "shadow_map_size=256", "prefilter_texels=7", "layer_bound=tightest", "layer_placement=gaps" });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const LvsmSettings settings = lvsmSettingsOf(frame);
+    int evaluated = 0;
+    int belowOwn = 0;
+    int fromOtherLayer = 0;
+    int fromVsm = 0;
+    int gpuSkipped = 0;
+    int illConditioned = 0;
+    double tightestSlack = 1.0;
+    for (int y = 0; y < 80; ++y)
+    {
+      for (int x = 0; x < 96; ++x)
+      {
+        const LvsmSample cpu = lvsmReference(inputs, settings, x, y);
+        if (!cpu.sample.evaluated)
+        {
+          continue;
+        }
+        ++evaluated;
+        const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y);
+        // P(z >= t) over the box (boxPcf counts t <= z), the tail Chebyshev bounds.
+        const double litFraction = boxPcf(inputs, lookup.sm.uvTexels, lookup.comparisonDepth, 7);
+        tightestSlack = std::min(tightestSlack, cpu.pMax - litFraction);
+        EXPECT_GE(cpu.pMax, litFraction - 1e-9) << dataset << " pixel " << x << "," << y;
+        EXPECT_LE(cpu.pMax, cpu.ownPMax) << dataset << " pixel " << x << "," << y;
+        EXPECT_LE(cpu.pMax, cpu.vsmPMax) << dataset << " pixel " << x << "," << y;
+        belowOwn += cpu.pMax < cpu.ownPMax - 1e-3 ? 1 : 0;
+        fromOtherLayer += cpu.boundSource >= 0 && cpu.boundSource != cpu.layer ? 1 : 0;
+        fromVsm += cpu.boundSource == -1 ? 1 : 0;
+        // The GPU where it reads the twin's box and layer (as MatchesTheCpuTwin).
+        const TexelWithEdges cell = texelWithEdges(lookup.sm.uvTexels);
+        double edge = 1e300;
+        for (const TexelEdge& texelEdge : cell.edges)
+        {
+          edge = std::min(edge, texelEdge.distance);
+        }
+        if (edge < 1e-4 || cpu.sample.reachMargin < 1e-5 || lvsmNearLayerBoundary(inputs, settings, lookup.comparisonDepth))
+        {
+          ++gpuSkipped;
+          continue;
+        }
+        const double gpu = lvsmBuffer(frame, "p_max").at(x, y);
+        EXPECT_NEAR(gpu, cpu.pMax, lvsmTwinTolerance(inputs, settings, cpu, lookup.sm.uvTexels, &illConditioned))
+          << dataset << " pixel " << x << "," << y;
+        EXPECT_LE(gpu, cpu.ownPMax + 4e-3) << dataset << " pixel " << x << "," << y;
+        EXPECT_LE(gpu, cpu.vsmPMax + 4e-3) << dataset << " pixel " << x << "," << y;
+      }
+    }
+    std::cout << "[ measured ] lvsm tightest " << dataset << ": evaluated " << evaluated << ", p_max below the own "
+              << "layer's by > 1e-3 at " << belowOwn << ", bound from another layer " << fromOtherLayer << ", from vsm's "
+              << fromVsm << "; min (p_max - lit fraction) " << tightestSlack << "; GPU not compared (texel edge, grazing, "
+              << "layer boundary) " << gpuSkipped << ", ill-conditioned other layer " << illConditioned << "\n";
+    EXPECT_GT(evaluated, 3000) << dataset;
+  }
+}
+
+// layer_placement=gaps: the GPU's depth histogram (atomics) gives the same layer ends as the CPU's histogram of the
+// read-back shadow map; the ends are sorted, start at near, end at far, and every interior boundary lies in an empty
+// run of bins where the histogram has enough of them.
+TEST(Lvsm, GapPlacementMatchesTheCpuHistogram)
+{
+  for (const std::string dataset : { "stacked-occluders", "bunny", "sphere-point" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult frame =
+      test::renderDataset(scene, "lvsm", 64, 64, { "shadow_map_size=256", "layer_placement=gaps", "layers=4" });
+    const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
+    const std::vector<double> gpuEnds = layeredEndsOf(frame.techniqueStatistics);
+    ASSERT_EQ(gpuEnds.size(), 5u) << dataset;
+    const std::vector<float> depths(inputs.shadowMapLinear.data.begin(), inputs.shadowMapLinear.data.end());
+    const double nearDepth = inputs.lightView.nearDepth;
+    const double farDepth = inputs.lightView.farDepth;
+    const std::vector<std::uint32_t> histogram = layeredDepthHistogram(depths, nearDepth, farDepth);
+    const std::vector<double> cpuEnds = layeredGapEnds(histogram, 4, nearDepth, farDepth);
+    const double binWidth = (farDepth - nearDepth) / layeredHistogramBins;
+    std::cout << "[ measured ] lvsm gaps " << dataset << ": ends";
+    for (std::size_t i = 0; i < gpuEnds.size(); ++i)
+    {
+      std::cout << " " << gpuEnds[i];
+      // Float binning on the GPU may move a depth within rounding of a bin edge into the next bin.
+      EXPECT_NEAR(gpuEnds[i], cpuEnds[i], binWidth) << dataset << " end " << i;
+      if (i > 0)
+      {
+        EXPECT_GT(gpuEnds[i], gpuEnds[i - 1]) << dataset;
+      }
+      if (i > 0 && i + 1 < gpuEnds.size())
+      {
+        const int bin = layeredHistogramBin(cpuEnds[i], nearDepth, farDepth);
+        std::cout << " (bin " << bin << " holds " << histogram[static_cast<std::size_t>(bin)] << ")";
+      }
+    }
+    std::cout << "\n";
+    EXPECT_NEAR(gpuEnds.front(), nearDepth, 1e-6 * farDepth);
+    EXPECT_NEAR(gpuEnds.back(), farDepth, 1e-6 * farDepth);
+  }
+}
+
+// layeredGapEnds on histograms whose answer is known: three clusters give the two boundaries at the middles of the two
+// gaps between them (the widest first); with fewer gaps than boundaries the widest layer is halved.
+TEST(Lvsm, GapEndsOfKnownHistograms)
+{
+  std::vector<std::uint32_t> histogram(layeredHistogramBins, 0);
+  for (int bin : { 10, 11, 12, 100, 101, 200 })
+  {
+    histogram[static_cast<std::size_t>(bin)] = 5;
+  }
+  // Gaps: bins 13..99 (87 bins, middle 56.5), 102..199 (98 bins, middle 151); near 0, far 256: one bin per unit.
+  const std::vector<double> three = layeredGapEnds(histogram, 3, 0.0, 256.0);
+  ASSERT_EQ(three.size(), 4u);
+  EXPECT_DOUBLE_EQ(three[1], 56.5);
+  EXPECT_DOUBLE_EQ(three[2], 151.0);
+  // Two layers: only the widest gap.
+  const std::vector<double> two = layeredGapEnds(histogram, 2, 0.0, 256.0);
+  ASSERT_EQ(two.size(), 3u);
+  EXPECT_DOUBLE_EQ(two[1], 151.0);
+  // Four layers, two gaps: the widest of the three layers [0, 56.5], [56.5, 151], [151, 256] is halved.
+  const std::vector<double> four = layeredGapEnds(histogram, 4, 0.0, 256.0);
+  ASSERT_EQ(four.size(), 5u);
+  EXPECT_DOUBLE_EQ(four[3], 203.5);
+  EXPECT_EQ(depthLayerIndex(11.0, four), 0);
+  EXPECT_EQ(depthLayerIndex(100.5, four), 1);
+  EXPECT_EQ(depthLayerIndex(200.0, four), 2);
+  EXPECT_EQ(depthLayerIndex(255.0, four), 3);
+  // One occupied bin: no gap, the uniform halving.
+  std::vector<std::uint32_t> single(layeredHistogramBins, 0);
+  single[40] = 1;
+  const std::vector<double> halves = layeredGapEnds(single, 2, 0.0, 256.0);
+  EXPECT_DOUBLE_EQ(halves[1], 128.0);
 }
 
 } // namespace
