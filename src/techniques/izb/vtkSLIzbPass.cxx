@@ -55,6 +55,15 @@ void izbSetGridUniforms(const ComputeProgram& program, const IzbGrid& grid, cons
   program.setFloat("lightCosCone", std::cos(glm::radians(light.coneAngleDeg)));
 }
 
+// Storage bindings 0-7 (the pass's buffers) back to none, as the other passes leave their image units.
+void izbUnbindStorage()
+{
+  for (GLuint binding = 0; binding <= 7; ++binding)
+  {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+  }
+}
+
 } // namespace
 } // namespace sl
 
@@ -194,8 +203,9 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
     { "izb_cover_ms", coverMilliseconds },
   };
 
-  // Step 4: the resolve, the base class's full-screen shader.
+  // Step 4: the resolve, the base class's full-screen shader (SetTechniqueUniforms binds 1 and 3 again).
   this->Superclass::Execute(state);
+  sl::izbUnbindStorage();
 }
 
 std::vector<vtkTextureObject*> vtkSLIzbPass::SetTechniqueUniforms(vtkShaderProgram* program)
