@@ -110,8 +110,19 @@ StorageBuffer::~StorageBuffer()
 
 void StorageBuffer::upload(const std::vector<std::uint32_t>& words) const
 {
-  SL_CHECK(words.size() == words_);
-  glNamedBufferSubData(buffer_, 0, static_cast<GLsizeiptr>(words.size() * sizeof(std::uint32_t)), words.data());
+  upload(words.data(), words.size() * sizeof(std::uint32_t));
+}
+
+void StorageBuffer::upload(const void* data, std::size_t bytes) const
+{
+  SL_CHECK(bytes == words_ * sizeof(std::uint32_t));
+  glNamedBufferSubData(buffer_, 0, static_cast<GLsizeiptr>(bytes), data);
+}
+
+void StorageBuffer::clear() const
+{
+  const GLuint zero = 0;
+  glClearNamedBufferData(buffer_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
 std::vector<std::uint32_t> StorageBuffer::download() const

@@ -34,7 +34,7 @@ private:
   unsigned int program_ = 0;
 };
 
-// A small std430 buffer of 32-bit words bound at a storage binding point.
+// A std430 buffer of 32-bit words bound at a storage binding point.
 class StorageBuffer
 {
 public:
@@ -43,7 +43,12 @@ public:
   StorageBuffer(const StorageBuffer&) = delete;
   StorageBuffer& operator=(const StorageBuffer&) = delete;
 
+  std::size_t words() const { return words_; }
   void upload(const std::vector<std::uint32_t>& words) const;
+  // The whole buffer from any std430 data (a vec4 array, a struct array): `bytes` must be its size.
+  void upload(const void* data, std::size_t bytes) const;
+  // Every word to 0, on the GPU (no upload).
+  void clear() const;
   std::vector<std::uint32_t> download() const;
   void bind(unsigned int binding) const;
 

@@ -20,8 +20,6 @@ inline constexpr double izbFloatRoundoff = 1.0 / 16777216.0; // 2^-24
 // How far (in texels) a sample's float light-space position may lie from its double one before the pass flags the
 // sample (its texel may then miss a triangle's conservative cover); also the margin that cover is widened by.
 inline constexpr int izbCoverageMarginInverse = 64; // margin = 1/64 texel
-// Sentinel of the list heads and the nodes' next pointers.
-inline constexpr std::uint32_t izbListEnd = 0xFFFFFFFFu;
 
 // The light-space grid: one face for a directional light (an orthographic window over the scene's bounds), six cube
 // faces around a point or spot light (texel = (face, x, y), the face the direction's major axis picks).

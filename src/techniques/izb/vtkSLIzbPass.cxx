@@ -22,54 +22,18 @@
 namespace sl
 {
 
-// A shader-storage buffer of the pass (raw GL: sized per frame, cleared on the GPU).
-class IzbGlBuffer
-{
-public:
-  explicit IzbGlBuffer(std::size_t bytes)
-    : bytes_(std::max<std::size_t>(bytes, 16))
-  {
-    glCreateBuffers(1, &buffer_);
-    glNamedBufferData(buffer_, static_cast<GLsizeiptr>(bytes_), nullptr, GL_DYNAMIC_COPY);
-  }
-  ~IzbGlBuffer() { glDeleteBuffers(1, &buffer_); }
-  IzbGlBuffer(const IzbGlBuffer&) = delete;
-  IzbGlBuffer& operator=(const IzbGlBuffer&) = delete;
-
-  std::size_t bytes() const { return bytes_; }
-  void clear() const
-  {
-    const GLuint zero = 0;
-    glClearNamedBufferData(buffer_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  }
-  void upload(const void* data, std::size_t bytes) const
-  {
-    SL_CHECK(bytes <= bytes_);
-    glNamedBufferSubData(buffer_, 0, static_cast<GLsizeiptr>(bytes), data);
-  }
-  std::vector<std::uint32_t> download(std::size_t words) const
-  {
-    SL_CHECK(words * sizeof(std::uint32_t) <= bytes_);
-    std::vector<std::uint32_t> result(words);
-    glGetNamedBufferSubData(buffer_, 0, static_cast<GLsizeiptr>(words * sizeof(std::uint32_t)), result.data());
-    return result;
-  }
-  void bind(unsigned int binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_); }
-
-private:
-  GLuint buffer_ = 0;
-  std::size_t bytes_ = 0;
-};
-
 namespace
 {
 
-// A buffer of at least `bytes`, reallocated when the frame needs another size.
-void izbEnsureBuffer(std::unique_ptr<IzbGlBuffer>& buffer, std::size_t bytes)
+constexpr std::size_t izbNodeWords = 8;  // IzbNode: vec4 + 4 uints (std430)
+constexpr std::size_t izbPixelWords = 8; // two uvec4 per pixel (IzbCommon.glsl)
+
+// A buffer of `words` 32-bit words, reallocated when the frame needs another size.
+void izbEnsureBuffer(std::unique_ptr<StorageBuffer>& buffer, std::size_t words)
 {
-  if (!buffer || buffer->bytes() != std::max<std::size_t>(bytes, 16))
+  if (!buffer || buffer->words() != words)
   {
-    buffer = std::make_unique<IzbGlBuffer>(bytes);
+    buffer = std::make_unique<StorageBuffer>(words);
   }
 }
 
@@ -89,6 +53,15 @@ void izbSetGridUniforms(const ComputeProgram& program, const IzbGrid& grid, cons
   program.setVector("lightNormalWs", light.normal);
   program.setVector("lightDirectionWs", light.direction);
   program.setFloat("lightCosCone", std::cos(glm::radians(light.coneAngleDeg)));
+}
+
+// Storage bindings 0-7 (the pass's buffers) back to none, as the other passes leave their image units.
+void izbUnbindStorage()
+{
+  for (GLuint binding = 0; binding <= 7; ++binding)
+  {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
+  }
 }
 
 } // namespace
@@ -119,12 +92,11 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
   const int height = frame.height();
   const std::size_t pixelCount = static_cast<std::size_t>(width) * height;
   const std::size_t nodeCount = std::min<std::size_t>(static_cast<std::size_t>(settings.nodeBudget), pixelCount);
-  constexpr std::size_t nodeBytes = 32; // IzbNode: vec4 + 4 uints (std430)
-  sl::izbEnsureBuffer(this->Heads, grid.texelCount() * 4);
-  sl::izbEnsureBuffer(this->Counts, grid.texelCount() * 4);
-  sl::izbEnsureBuffer(this->Nodes, nodeCount * nodeBytes);
-  sl::izbEnsureBuffer(this->Pixels, pixelCount * 32); // two uvec4 per pixel (IzbCommon.glsl)
-  sl::izbEnsureBuffer(this->Counter, 4);
+  sl::izbEnsureBuffer(this->Heads, grid.texelCount());
+  sl::izbEnsureBuffer(this->Counts, grid.texelCount());
+  sl::izbEnsureBuffer(this->Nodes, nodeCount * sl::izbNodeWords);
+  sl::izbEnsureBuffer(this->Pixels, pixelCount * sl::izbPixelWords);
+  sl::izbEnsureBuffer(this->Counter, 1);
   this->Heads->clear();
   this->Counts->clear();
   this->Counter->clear();
@@ -154,7 +126,7 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
 
   // Step 2: the (triangle, texel) pairs whose texel lists a sample, from each triangle's conservative cover.
   const auto coverStart = std::chrono::steady_clock::now();
-  const std::vector<std::uint32_t> counts = this->Counts->download(grid.texelCount());
+  const std::vector<std::uint32_t> counts = this->Counts->download();
   const std::vector<glm::dvec3> triangles = sl::izbCasterTriangles(*frame.scene);
   std::vector<std::uint32_t> texels;
   std::vector<std::uint32_t> pairs;
@@ -187,13 +159,13 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
     {
       vertices.emplace_back(glm::vec3(vertex), 0.0f);
     }
-    sl::izbEnsureBuffer(this->Triangles, vertices.size() * sizeof(glm::vec4));
+    sl::izbEnsureBuffer(this->Triangles, vertices.size() * sizeof(glm::vec4) / sizeof(std::uint32_t));
     this->Triangles->upload(vertices.data(), vertices.size() * sizeof(glm::vec4));
     const std::vector<std::uint32_t> vertexIds = sl::izbCasterVertexIds(*frame.scene);
-    sl::izbEnsureBuffer(this->VertexIds, vertexIds.size() * sizeof(std::uint32_t));
-    this->VertexIds->upload(vertexIds.data(), vertexIds.size() * sizeof(std::uint32_t));
-    sl::izbEnsureBuffer(this->Pairs, pairs.size() * sizeof(std::uint32_t));
-    this->Pairs->upload(pairs.data(), pairs.size() * sizeof(std::uint32_t));
+    sl::izbEnsureBuffer(this->VertexIds, vertexIds.size());
+    this->VertexIds->upload(vertexIds);
+    sl::izbEnsureBuffer(this->Pairs, pairs.size());
+    this->Pairs->upload(pairs);
     const sl::ComputeProgram& test = this->Program("izb/IzbTest.glsl");
     test.use();
     sl::izbSetGridUniforms(test, grid, *frame.light);
@@ -231,8 +203,9 @@ void vtkSLIzbPass::Execute(const vtkRenderState* state)
     { "izb_cover_ms", coverMilliseconds },
   };
 
-  // Step 4: the resolve, the base class's full-screen shader.
+  // Step 4: the resolve, the base class's full-screen shader (SetTechniqueUniforms binds 1 and 3 again).
   this->Superclass::Execute(state);
+  sl::izbUnbindStorage();
 }
 
 std::vector<vtkTextureObject*> vtkSLIzbPass::SetTechniqueUniforms(vtkShaderProgram* program)
@@ -251,11 +224,12 @@ std::map<std::string, double> vtkSLIzbPass::CollectStatistics()
     return statistics;
   }
   const std::size_t pixelCount = static_cast<std::size_t>(this->Frame->width()) * this->Frame->height();
-  const std::vector<std::uint32_t> state = this->Pixels->download(8 * pixelCount);
+  const std::vector<std::uint32_t> state = this->Pixels->download();
+  SL_CHECK(state.size() == sl::izbPixelWords * pixelCount);
   double samples = 0.0, ambiguous = 0.0, cutShort = 0.0, paired = 0.0;
   for (std::size_t pixel = 0; pixel < pixelCount; ++pixel)
   {
-    const std::uint32_t* words = &state[8 * pixel];
+    const std::uint32_t* words = &state[sl::izbPixelWords * pixel];
     const std::uint32_t flags = words[0];
     samples += (flags & sl::IzbFlagTested) ? 1.0 : 0.0;
     cutShort += (flags & sl::IzbFlagCutShort) ? 1.0 : 0.0;
@@ -268,7 +242,7 @@ std::map<std::string, double> vtkSLIzbPass::CollectStatistics()
   statistics["izb_ambiguous_pixels"] = ambiguous;
   statistics["izb_cut_short_pixels"] = cutShort;
   statistics["izb_shared_edge_pixels"] = paired;
-  statistics["izb_nodes"] = std::min<double>(this->Counter->download(1)[0], this->Nodes->bytes() / 32);
+  statistics["izb_nodes"] = std::min<double>(this->Counter->download()[0], this->Nodes->words() / sl::izbNodeWords);
   return statistics;
 }
 

@@ -29,7 +29,7 @@
 namespace sl
 {
 class ComputeProgram;
-class IzbGlBuffer;
+class StorageBuffer;
 }
 
 class vtkSLIzbPass : public vtkSLTechniquePass
@@ -55,6 +55,6 @@ private:
   const sl::ComputeProgram& Program(const std::string& path);
 
   std::map<std::string, std::unique_ptr<sl::ComputeProgram>> Programs; // by assembled source
-  std::unique_ptr<sl::IzbGlBuffer> Heads, Counts, Nodes, Pixels, Counter, Triangles, Pairs, VertexIds;
+  std::unique_ptr<sl::StorageBuffer> Heads, Counts, Nodes, Pixels, Counter, Triangles, Pairs, VertexIds;
   std::map<std::string, double> Statistics;
 };

@@ -6,11 +6,13 @@
 #include "scene/RandomScenes.h"
 #include "support/IzbOracle.h"
 #include "support/RayCaster.h"
+#include "gl/vtkSLEglRenderWindow.h"
 #include "support/TestSupport.h"
 #include "techniques/izb/IzbTechnique.h"
 #include "techniques/izb/IzbTwin.h"
 
 #include <gtest/gtest.h>
+#include <vtk_glew.h>
 
 #include <cmath>
 #include <iostream>
@@ -356,6 +358,25 @@ TEST(Izb, MisclassifiesNoUnambiguousPixelFromAnAreaLightsCentre)
     EXPECT_LE(result.ambiguous, result.compared / 100) << name << ": " << result;
     EXPECT_GT(result.shadowed, 100) << name;
   }
+}
+
+// The pass binds its buffers at storage bindings 0-7; after the frame none may stay bound (the pass keeps the
+// buffers between frames, so a binding left behind would still name one).
+TEST(Izb, LeavesNoStorageBufferBound)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const FrameResult frame = izbRender(scene, 96, 96);
+  ASSERT_GT(frame.techniqueStatistics.at("izb_pairs"), 0.0);
+  test::sharedRenderWindow()->MakeCurrent();
+  for (GLuint binding = 0; binding <= 7; ++binding)
+  {
+    GLint buffer = -1;
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, binding, &buffer);
+    EXPECT_EQ(buffer, 0) << "storage binding " << binding;
+  }
+  GLint generic = -1;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic);
+  EXPECT_EQ(generic, 0);
 }
 
 } // namespace
