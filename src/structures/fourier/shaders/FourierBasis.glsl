@@ -6,6 +6,8 @@
 //   sin(c_k z_s) into the sine textures (locations 0 .. T - 1), cos(c_k z_s) into the cosine ones (T .. 2T - 1),
 // four terms per RGBA texture, T = FOURIER_TERMS / 4. Empty texels (no caster, 2 x far) clamp to z_n = 1: every
 // receiver's d_n is at most 1, so they light it. CPU mirror: convsmBasisAverage (convsm/ConvsmTechnique.cpp).
+#include "fourier/FourierTerms.glsl"
+
 uniform sampler2D shadowMapLinear;
 uniform float depthNear;
 uniform float depthFar;
@@ -17,11 +19,10 @@ layout(location = 0) out vec4 outBasis[2 * FOURIER_TEXTURES];
 void main()
 {
   float z = texelFetch(shadowMapLinear, ivec2(gl_FragCoord.xy), 0).r;
-  float zSeries = depthRange * clamp((z - depthNear) / (depthFar - depthNear), 0.0, 1.0);
+  float zSeries = fourierSeriesDepth(z, depthNear, depthFar, depthRange);
   for (int group = 0; group < FOURIER_TEXTURES; ++group)
   {
-    vec4 k = vec4(4 * group + 1, 4 * group + 2, 4 * group + 3, 4 * group + 4);
-    vec4 ck = 3.14159265358979 * (2.0 * k - 1.0);
+    vec4 ck = fourierFrequencies(fourierTermNumbers(group));
     outBasis[group] = sin(ck * zSeries);
     outBasis[FOURIER_TEXTURES + group] = cos(ck * zSeries);
   }

@@ -15,6 +15,7 @@
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
 #include "common/MomentLookup.glsl"
+#include "fourier/FourierTerms.glsl"
 
 uniform int kernelWidth; // prefilter_texels
 uniform float depthNear;
@@ -89,12 +90,12 @@ void main()
   {
     return;
   }
-  float dSeries = param_depth_range * clamp((receiver.comparisonDepth - depthNear) / (depthFar - depthNear), 0.0, 1.0);
+  float dSeries = fourierSeriesDepth(receiver.comparisonDepth, depthNear, depthFar, param_depth_range);
   float reconstruction = 0.5;
   for (int group = 0; group < FOURIER_TERMS / 4; ++group)
   {
-    vec4 k = vec4(4 * group + 1, 4 * group + 2, 4 * group + 3, 4 * group + 4);
-    vec4 ck = 3.14159265358979 * (2.0 * k - 1.0);
+    vec4 k = fourierTermNumbers(group);
+    vec4 ck = fourierFrequencies(k);
     vec4 kOverM = k / float(FOURIER_TERMS);
     vec4 weight = 2.0 * exp(-param_ringing_alpha * kOverM * kOverM) / ck;
     vec4 filteredSin = filteredTerms(group, false, receiver.uvTexels);
