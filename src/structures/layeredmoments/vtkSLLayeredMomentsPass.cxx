@@ -52,8 +52,9 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3dSize);
   if (size > max3dSize)
   {
-    throw sl::InputError(sl::format("lvsm: a ", size, "^2 shadow map needs a ", size, "x", size, "x", settings.layers,
-      " 3D texture and this GL allows ", max3dSize, " per side; use shadow_map_size <= ", max3dSize));
+    throw sl::InputError(sl::format("--set shadow_map_size=", size, ": the layered moments (layered_moments) need a ",
+      size, "x", size, "x", settings.layers, " 3D texture and this GL allows ", max3dSize,
+      " per side; use shadow_map_size <= ", max3dSize));
   }
   const double nearDepth = frame.lightView.nearDepth;
   const double farDepth = frame.lightView.farDepth;
