@@ -8,14 +8,21 @@ uniform float momentLod; // prefilter = mipmap: log2(prefilter_texels)
 // receiver with its own texels wherever it slopes in depth.
 uniform vec3 leakBiasTexels;
 
-vec4 filteredMoments(vec2 uvTexels)
+// The prefiltered value of any map built by the moment prefilter (structures/moments/MomentPrefilter: the moment
+// map, the power moment map, CSM's basis images) at the receiver's texel.
+vec4 prefilteredFetch(sampler2D prefiltered, vec2 uvTexels)
 {
 #if PREFILTER == PREFILTER_MIPMAP
-  return textureLod(momentMap, uvTexels / float(shadowMapSize), momentLod);
+  return textureLod(prefiltered, uvTexels / float(shadowMapSize), momentLod);
 #else
   // blur: the texel containing the receiver holds the average over the box centred on it
-  return texelFetch(momentMap, shadowMapTexel(uvTexels), 0);
+  return texelFetch(prefiltered, shadowMapTexel(uvTexels), 0);
 #endif
+}
+
+vec4 filteredMoments(vec2 uvTexels)
+{
+  return prefilteredFetch(momentMap, uvTexels);
 }
 
 // Fraction of the width x width texels around the receiver's texel (the blur's box, clamp to edge) that

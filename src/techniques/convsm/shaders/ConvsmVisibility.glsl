@@ -43,38 +43,28 @@ layout(location = OUT_LIGHT_LEAK) out float outLightLeak;
 layout(location = OUT_KERNEL_TEXELS) out float outKernelTexels;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
 
-vec4 filteredBasis(sampler2D basis, vec2 uvTexels)
-{
-#if PREFILTER == PREFILTER_MIPMAP
-  return textureLod(basis, uvTexels / float(shadowMapSize), momentLod);
-#else
-  // blur: the texel containing the receiver holds the average over the box centred on it
-  return texelFetch(basis, shadowMapTexel(uvTexels), 0);
-#endif
-}
-
 // The prefiltered sin (cosine = false) or cos of terms 4 group + 1 .. 4 group + 4.
 vec4 filteredTerms(int group, bool cosine, vec2 uvTexels)
 {
 #if FOURIER_TERMS > 4
   if (group == 1)
   {
-    return cosine ? filteredBasis(fourierCos1, uvTexels) : filteredBasis(fourierSin1, uvTexels);
+    return cosine ? prefilteredFetch(fourierCos1, uvTexels) : prefilteredFetch(fourierSin1, uvTexels);
   }
 #endif
 #if FOURIER_TERMS > 8
   if (group == 2)
   {
-    return cosine ? filteredBasis(fourierCos2, uvTexels) : filteredBasis(fourierSin2, uvTexels);
+    return cosine ? prefilteredFetch(fourierCos2, uvTexels) : prefilteredFetch(fourierSin2, uvTexels);
   }
 #endif
 #if FOURIER_TERMS > 12
   if (group == 3)
   {
-    return cosine ? filteredBasis(fourierCos3, uvTexels) : filteredBasis(fourierSin3, uvTexels);
+    return cosine ? prefilteredFetch(fourierCos3, uvTexels) : prefilteredFetch(fourierSin3, uvTexels);
   }
 #endif
-  return cosine ? filteredBasis(fourierCos0, uvTexels) : filteredBasis(fourierSin0, uvTexels);
+  return cosine ? prefilteredFetch(fourierCos0, uvTexels) : prefilteredFetch(fourierSin0, uvTexels);
 }
 
 void main()

@@ -34,12 +34,7 @@ layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
 
 vec4 filteredPowerMoments(vec2 uvTexels)
 {
-#if PREFILTER == PREFILTER_MIPMAP
-  return textureLod(powerMomentMap, uvTexels / float(shadowMapSize), momentLod);
-#else
-  // blur: the texel containing the receiver holds the average over the box centred on it
-  return texelFetch(powerMomentMap, shadowMapTexel(uvTexels), 0);
-#endif
+  return prefilteredFetch(powerMomentMap, uvTexels);
 }
 
 struct MsmReconstruction
