@@ -35,3 +35,12 @@ void vtkSLMomentTechniquePass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FragmentShader: " << this->ShaderPath << "\n";
 }
+
+std::function<vtkSmartPointer<vtkSLTechniquePass>()> sl::momentTechniquePass(std::string fragmentShaderPath)
+{
+  return [fragmentShaderPath] {
+    auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
+    pass->SetFragmentShaderPath(fragmentShaderPath);
+    return vtkSmartPointer<vtkSLTechniquePass>(pass);
+  };
+}

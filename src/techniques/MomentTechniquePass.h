@@ -1,9 +1,12 @@
-// The visibility pass of the moment-map techniques (vsm, esm): their full-screen shader with the
-// prefiltered moment map (passes/vtkSLMomentMapPass), its mip level, the box width, the depth range and the bias
+// The visibility pass of the prefiltered-map techniques (vsm, esm, msm, convsm): their full-screen shader with the
+// prefiltered map (structures/moments/MomentPrefilter), its mip level, the box width, the depth range and the bias
 // the light-leak PCF compares with (`pcf`'s default).
 #pragma once
 
 #include "techniques/vtkSLTechniquePass.h"
+
+#include <functional>
+#include <string>
 
 class vtkSLMomentTechniquePass : public vtkSLTechniquePass
 {
@@ -25,3 +28,11 @@ private:
 
   std::string ShaderPath;
 };
+
+namespace sl
+{
+
+// A descriptor's createPass for a technique this pass draws with its full-screen shader `fragmentShaderPath`.
+std::function<vtkSmartPointer<vtkSLTechniquePass>()> momentTechniquePass(std::string fragmentShaderPath);
+
+} // namespace sl

@@ -139,11 +139,7 @@ TechniqueDescriptor convsmTechnique()
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
     return LightSpaceRequest{ "prefilter_texels", static_cast<double>(ConvsmSettings::from(values).prefilter.texels) };
   };
-  descriptor.createPass = [] {
-    auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
-    pass->SetFragmentShaderPath("convsm/ConvsmVisibility.glsl");
-    return vtkSmartPointer<vtkSLTechniquePass>(pass);
-  };
+  descriptor.createPass = momentTechniquePass("convsm/ConvsmVisibility.glsl");
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ConvsmSettings settings = ConvsmSettings::from(context.frame->parameters);
     requireBlurPrefilter(settings.prefilter);

@@ -61,11 +61,7 @@ TechniqueDescriptor esmTechnique()
     const EsmSettings settings = EsmSettings::from(values);
     return LightSpaceRequest{ "prefilter_texels", static_cast<double>(settings.prefilter.texels), settings.exponent };
   };
-  descriptor.createPass = [] {
-    auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
-    pass->SetFragmentShaderPath("esm/EsmVisibility.glsl");
-    return vtkSmartPointer<vtkSLTechniquePass>(pass);
-  };
+  descriptor.createPass = momentTechniquePass("esm/EsmVisibility.glsl");
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const EsmSettings settings = EsmSettings::from(context.frame->parameters);
     requireBlurPrefilter(settings.prefilter);

@@ -71,11 +71,7 @@ TechniqueDescriptor msmTechnique()
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
     return LightSpaceRequest{ "prefilter_texels", static_cast<double>(MsmSettings::from(values).prefilter.texels) };
   };
-  descriptor.createPass = [] {
-    auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
-    pass->SetFragmentShaderPath("msm/MsmVisibility.glsl");
-    return vtkSmartPointer<vtkSLTechniquePass>(pass);
-  };
+  descriptor.createPass = momentTechniquePass("msm/MsmVisibility.glsl");
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const MsmSettings settings = MsmSettings::from(context.frame->parameters);
     requireBlurPrefilter(settings.prefilter);

@@ -53,11 +53,7 @@ TechniqueDescriptor vsmTechnique()
   descriptor.lightSpaceRequest = [](const ParameterValues& values) {
     return LightSpaceRequest{ "prefilter_texels", static_cast<double>(VsmSettings::from(values).prefilter.texels) };
   };
-  descriptor.createPass = [] {
-    auto pass = vtkSmartPointer<vtkSLMomentTechniquePass>::New();
-    pass->SetFragmentShaderPath("vsm/VsmVisibility.glsl");
-    return vtkSmartPointer<vtkSLTechniquePass>(pass);
-  };
+  descriptor.createPass = momentTechniquePass("vsm/VsmVisibility.glsl");
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const VsmSettings settings = VsmSettings::from(context.frame->parameters);
     requireBlurPrefilter(settings.prefilter);
