@@ -13,22 +13,6 @@ namespace sl
 namespace
 {
 
-template <typename Visit>
-void visitBox(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, Visit visit)
-{
-  const int size = inputs.shadowMapLinear.width;
-  const int centerX = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
-  const int centerY = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
-  const int first = -(width - 1) / 2;
-  for (int j = 0; j < width; ++j)
-  {
-    for (int i = 0; i < width; ++i)
-    {
-      const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
-      visit(static_cast<double>(inputs.shadowMapLinear.at(texel.x, texel.y)), texel);
-    }
-  }
-}
 
 } // namespace
 
@@ -39,7 +23,7 @@ FilteredMoments boxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTe
   const double nearDepth = inputs.lightView.nearDepth;
   const double farDepth = inputs.lightView.farDepth;
   const double weight = 1.0 / (static_cast<double>(width) * width);
-  visitBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
+  visitPrefilterBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
     moments.mean += z;
     moments.second += z * z;
     moments.exponential += std::exp(exponent * std::clamp((z - nearDepth) / (farDepth - nearDepth), 0.0, 1.0));
@@ -60,7 +44,7 @@ double boxPcf(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, double 
 {
   double lit = 0.0;
   const double weight = 1.0 / (static_cast<double>(width) * width);
-  visitBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
+  visitPrefilterBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
     lit += comparisonDepth <= z ? 1.0 : 0.0;
     if (recorder)
     {
@@ -75,7 +59,7 @@ PcfRange boxPcfRange(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, 
 {
   PcfRange range;
   const double weight = 1.0 / (static_cast<double>(width) * width);
-  visitBox(inputs, uvTexels, width, [&](double z, const glm::ivec2&) {
+  visitPrefilterBox(inputs, uvTexels, width, [&](double z, const glm::ivec2&) {
     if (std::abs(comparisonDepth - z) < relative * std::max(1e-30, std::abs(z)))
     {
       ++range.ties;

@@ -5,6 +5,8 @@
 #include "frame/TechniqueDescriptor.h"
 #include "techniques/ShadowMapReference.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace sl
@@ -16,6 +18,26 @@ struct FilteredMoments
   double second = 0.0;      // E[z^2]
   double exponential = 0.0; // E[exp(c z_n)]
 };
+
+// Calls visit(z, texel) for the width x width texels of the prefilter's box around the receiver's texel (clamp to
+// edge), z the map's linear depth: the texels the prefiltered maps average and the light-leak PCF compares, so that
+// every technique's twin walks the same box.
+template <typename Visit>
+void visitPrefilterBox(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, Visit visit)
+{
+  const int size = inputs.shadowMapLinear.width;
+  const int centerX = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
+  const int centerY = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
+  const int first = -(width - 1) / 2;
+  for (int j = 0; j < width; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
+      visit(static_cast<double>(inputs.shadowMapLinear.at(texel.x, texel.y)), texel);
+    }
+  }
+}
 
 // The box of `width` texels around the texel containing uvTexels (clamp to edge), as the blur computes it.
 // `recorder` (optional, `shadowlab probe`): the box's texels (role "moment box", read only, weight 1 / width^2).

@@ -74,29 +74,19 @@ FourierCoefficients convsmBasisAverage(const ShadowMapInputs& inputs, const glm:
   FourierCoefficients coefficients;
   coefficients.sine.assign(terms, 0.0);
   coefficients.cosine.assign(terms, 0.0);
-  const int size = inputs.shadowMapLinear.width;
-  const int centerX = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
-  const int centerY = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
-  const int first = -(width - 1) / 2;
   const double weight = 1.0 / (static_cast<double>(width) * width);
-  for (int j = 0; j < width; ++j)
-  {
-    for (int i = 0; i < width; ++i)
+  visitPrefilterBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
+    const double zSeries = convsmSeriesDepth(inputs, z, depthRange);
+    for (int k = 1; k <= terms; ++k)
     {
-      const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
-      const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double zSeries = convsmSeriesDepth(inputs, z, depthRange);
-      for (int k = 1; k <= terms; ++k)
-      {
-        coefficients.sine[k - 1] += weight * std::sin(convsmFrequency(k) * zSeries);
-        coefficients.cosine[k - 1] += weight * std::cos(convsmFrequency(k) * zSeries);
-      }
-      if (recorder)
-      {
-        recorder->texel({ texel, "fourier box", z, std::numeric_limits<double>::quiet_NaN(), false, weight });
-      }
+      coefficients.sine[k - 1] += weight * std::sin(convsmFrequency(k) * zSeries);
+      coefficients.cosine[k - 1] += weight * std::cos(convsmFrequency(k) * zSeries);
     }
-  }
+    if (recorder)
+    {
+      recorder->texel({ texel, "fourier box", z, std::numeric_limits<double>::quiet_NaN(), false, weight });
+    }
+  });
   return coefficients;
 }
 

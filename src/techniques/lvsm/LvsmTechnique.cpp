@@ -150,27 +150,17 @@ FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec
 FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width,
   const DepthLayer& interval, ProbeRecorder* recorder)
 {
-  const int size = inputs.shadowMapLinear.width;
-  const int centerX = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
-  const int centerY = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
-  const int first = -(width - 1) / 2;
   const double weight = 1.0 / (static_cast<double>(width) * width);
   FilteredMoments moments;
-  for (int j = 0; j < width; ++j)
-  {
-    for (int i = 0; i < width; ++i)
+  visitPrefilterBox(inputs, uvTexels, width, [&](double z, const glm::ivec2& texel) {
+    const double warped = warpIntoLayer(z, interval);
+    moments.mean += warped * weight;
+    moments.second += warped * warped * weight;
+    if (recorder)
     {
-      const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
-      const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double warped = warpIntoLayer(z, interval);
-      moments.mean += warped * weight;
-      moments.second += warped * warped * weight;
-      if (recorder)
-      {
-        recorder->texel({ texel, "moment box", z, std::numeric_limits<double>::quiet_NaN(), false, weight });
-      }
+      recorder->texel({ texel, "moment box", z, std::numeric_limits<double>::quiet_NaN(), false, weight });
     }
-  }
+  });
   return moments;
 }
 
@@ -250,20 +240,10 @@ LvsmSample lvsmReference(const ShadowMapInputs& inputs, const LvsmSettings& sett
     const double variance = std::max(plain.second - plain.mean * plain.mean, settings.minVariance * d * d);
     result.vsmPMax = t <= plain.mean ? 1.0 : variance / (variance + (t - plain.mean) * (t - plain.mean));
     // The box's depths outside the layer (clamped by phi_i).
-    const int size = inputs.shadowMapLinear.width;
-    const int centerX = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.x)), 0, size - 1);
-    const int centerY = std::clamp(static_cast<int>(std::floor(lookup.sm.uvTexels.y)), 0, size - 1);
-    const int first = -(width - 1) / 2;
-    for (int j = 0; j < width; ++j)
-    {
-      for (int i = 0; i < width; ++i)
-      {
-        const double z = inputs.shadowMapLinear.at(
-          std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
-        result.texelsInFront += z < interval.nearEnd ? 1 : 0;
-        result.texelsBehind += z > interval.farEnd ? 1 : 0;
-      }
-    }
+    visitPrefilterBox(inputs, lookup.sm.uvTexels, width, [&](double z, const glm::ivec2&) {
+      result.texelsInFront += z < interval.nearEnd ? 1 : 0;
+      result.texelsBehind += z > interval.farEnd ? 1 : 0;
+    });
   }
   result.pMax = result.ownPMax;
   result.boundSource = result.layer;

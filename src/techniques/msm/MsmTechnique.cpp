@@ -176,28 +176,18 @@ double msmRoundingSensitivity(const glm::dvec4& moments, double momentBias, doub
 
 glm::dvec4 msmBoxPowerMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width, ProbeRecorder* recorder)
 {
-  const int size = inputs.shadowMapLinear.width;
   const double nearDepth = inputs.lightView.nearDepth;
   const double farDepth = inputs.lightView.farDepth;
-  const int centerX = std::clamp(static_cast<int>(std::floor(uvTexels.x)), 0, size - 1);
-  const int centerY = std::clamp(static_cast<int>(std::floor(uvTexels.y)), 0, size - 1);
-  const int first = -(width - 1) / 2;
   const double weight = 1.0 / (static_cast<double>(width) * width);
   glm::dvec4 sum(0.0);
-  for (int j = 0; j < width; ++j)
-  {
-    for (int i = 0; i < width; ++i)
+  visitPrefilterBox(inputs, uvTexels, width, [&](double depth, const glm::ivec2& texel) {
+    const double z = PowerMomentMapSettings::normalisedDepth(depth, nearDepth, farDepth);
+    sum += glm::dvec4(z, z * z, z * z * z, z * z * z * z);
+    if (recorder)
     {
-      const glm::ivec2 texel(std::clamp(centerX + first + i, 0, size - 1), std::clamp(centerY + first + j, 0, size - 1));
-      const double depth = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double z = PowerMomentMapSettings::normalisedDepth(depth, nearDepth, farDepth);
-      sum += glm::dvec4(z, z * z, z * z * z, z * z * z * z);
-      if (recorder)
-      {
-        recorder->texel({ texel, "moment box", depth, std::numeric_limits<double>::quiet_NaN(), false, weight });
-      }
+      recorder->texel({ texel, "moment box", depth, std::numeric_limits<double>::quiet_NaN(), false, weight });
     }
-  }
+  });
   return sum * weight;
 }
 
