@@ -3,6 +3,7 @@
 set(SL_LIGHTSPACE_SOURCES
   src/lightspace/CameraView.cpp
   src/lightspace/LightView.cpp
+  src/lightspace/LayeredMoments.cpp
   src/lightspace/LightSamples.cpp
   src/lightspace/LightSampleSet.cpp
   src/lightspace/ShadowMapMath.cpp

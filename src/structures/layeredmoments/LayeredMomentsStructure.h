@@ -1,5 +1,5 @@
 // The layered moment map of layered variance shadow maps (Lauritzen & McCool 2008; survey §6): for each of
-// `layers` depth layers (structures/layeredmoments/LayeredMoments.h), the moments (phi_i(z), phi_i(z)^2) of the
+// `layers` depth layers (lightspace/LayeredMoments.h), the moments (phi_i(z), phi_i(z)^2) of the
 // shadow map's depths warped into that layer, box-blurred over prefilter_texels like the VSM moment map. One RG32F
 // slice per layer of a 3D texture (VTK 9.1's vtkTextureObject allocates no 2D array texture; texelFetch with
 // nearest filtering reads a slice as an array layer would). Built by vtkSLLayeredMomentsPass (stage
@@ -7,7 +7,7 @@
 #pragma once
 
 #include "structures/LightSpaceStructure.h"
-#include "structures/layeredmoments/LayeredMoments.h"
+#include "lightspace/LayeredMoments.h"
 
 #include <cstdint>
 #include <map>

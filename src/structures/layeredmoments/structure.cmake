@@ -2,5 +2,5 @@
 sl_structure(
   ORDER 82
   STRUCTURE layeredMomentsStructure LayeredMomentsStructure.h
-  SOURCES LayeredMoments.cpp LayeredMomentsStructure.cpp vtkSLLayeredMomentsPass.cxx
+  SOURCES LayeredMomentsStructure.cpp vtkSLLayeredMomentsPass.cxx
   SHADERS shaders/LayeredMomentsBuild.glsl shaders/LayeredMomentsHistogram.glsl shaders/LayeredMomentsLayout.glsl)

@@ -1,6 +1,6 @@
 #include "techniques/lvsm/LvsmTechnique.h"
 
-#include "structures/layeredmoments/LayeredMoments.h"
+#include "lightspace/LayeredMoments.h"
 #include "structures/layeredmoments/LayeredMomentsStructure.h"
 #include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"

@@ -14,7 +14,7 @@
 #include "techniques/MomentReference.h"
 #include "techniques/ShadowMapReference.h"
 #include "frame/TechniqueDescriptor.h"
-#include "structures/layeredmoments/LayeredMoments.h"
+#include "lightspace/LayeredMoments.h"
 
 #include <vector>
 
@@ -109,7 +109,7 @@ struct LvsmSample
 };
 
 // The moments (E[phi], E[phi^2]) of the box of `width` texels around uvTexels's texel (clamp to edge), each depth
-// warped into `layer` (structures/layeredmoments/LayeredMoments.h): the CPU mirror of the layered moment map.
+// warped into `layer` (lightspace/LayeredMoments.h): the CPU mirror of the layered moment map.
 FilteredMoments layeredBoxMoments(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, int width,
   const DepthLayer& interval, ProbeRecorder* recorder = nullptr);
 // The same for layer `layer` of the uniform partition into `layers`.

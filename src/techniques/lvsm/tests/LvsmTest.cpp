@@ -4,7 +4,7 @@
 #include "support/TestSupport.h"
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
-#include "structures/layeredmoments/LayeredMoments.h"
+#include "lightspace/LayeredMoments.h"
 #include "structures/layeredmoments/LayeredMomentsStructure.h"
 #include "techniques/lvsm/LvsmTechnique.h"
 #include "techniques/vsm/VsmTechnique.h"

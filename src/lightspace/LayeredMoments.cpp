@@ -1,4 +1,4 @@
-#include "structures/layeredmoments/LayeredMoments.h"
+#include "lightspace/LayeredMoments.h"
 
 #include <algorithm>
 #include <cmath>
