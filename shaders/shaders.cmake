@@ -13,6 +13,7 @@ set(SL_SHADER_FILES
   common/TexelRatio.glsl
   common/Chebyshev.glsl
   common/MomentLookup.glsl
+  common/LeakPcf.glsl
   common/SoftShadowKernels.glsl
   common/SatLookup.glsl
   common/HsmLayout.glsl

@@ -22,11 +22,7 @@ std::vector<vtkTextureObject*> vtkSLMomentTechniquePass::SetTechniqueUniforms(vt
   sl::setFloatIfUsed(program, "momentLod", std::log2(static_cast<double>(width)));
   sl::setFloatIfUsed(program, "depthNear", frame.lightView.nearDepth);
   sl::setFloatIfUsed(program, "depthFar", frame.lightView.farDepth);
-  if (program->IsUniformUsed("leakBiasTexels"))
-  {
-    const sl::BiasSettings leakBias = sl::defaultBiasSettings();
-    sl::setVector(program, "leakBiasTexels", { leakBias.constantTexels, leakBias.slopeTexels, leakBias.maxSlope });
-  }
+  sl::setLeakBiasUniform(program);
   return {}; // the moment map itself is bound by its structure (structures/moments)
 }
 
@@ -43,4 +39,13 @@ std::function<vtkSmartPointer<vtkSLTechniquePass>()> sl::momentTechniquePass(std
     pass->SetFragmentShaderPath(fragmentShaderPath);
     return vtkSmartPointer<vtkSLTechniquePass>(pass);
   };
+}
+
+void sl::setLeakBiasUniform(vtkShaderProgram* program)
+{
+  if (program->IsUniformUsed("leakBiasTexels"))
+  {
+    const BiasSettings leakBias = defaultBiasSettings();
+    setVector(program, "leakBiasTexels", { leakBias.constantTexels, leakBias.slopeTexels, leakBias.maxSlope });
+  }
 }

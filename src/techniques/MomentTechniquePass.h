@@ -32,6 +32,9 @@ private:
 namespace sl
 {
 
+// Sets common/LeakPcf.glsl's leakBiasTexels (pcf's default bias) when the program uses it.
+void setLeakBiasUniform(vtkShaderProgram* program);
+
 // A descriptor's createPass for a technique this pass draws with its full-screen shader `fragmentShaderPath`.
 std::function<vtkSmartPointer<vtkSLTechniquePass>()> momentTechniquePass(std::string fragmentShaderPath);
 

@@ -5,6 +5,7 @@
 #include "techniques/ShadowMapParameters.h"
 #include "techniques/ShadowMapReference.h"
 #include "structures/layeredmoments/LayeredMomentsStructure.h"
+#include "techniques/MomentTechniquePass.h"
 #include "techniques/lvsm/LvsmTechnique.h"
 
 #include <sstream>
@@ -16,26 +17,20 @@ vtkStandardNewMacro(vtkSLLvsmPass);
 
 sl::ShaderDefines vtkSLLvsmPass::GetExtraDefines() const
 {
-  // common/MomentLookup.glsl (boxPcf, leakComparisonDepth) also holds vsm's lookup of its moment map, which asks
-  // for the prefilter; lvsm's layers are always box-blurred.
   std::ostringstream threshold;
   threshold.precision(17);
   threshold << sl::lvsmVsmLeakThreshold;
-  return { { "PREFILTER_BLUR", "0" }, { "PREFILTER_MIPMAP", "1" }, { "PREFILTER", "0" },
-    { "LVSM_VSM_LEAK_THRESHOLD", threshold.str() } };
+  return { { "LVSM_VSM_LEAK_THRESHOLD", threshold.str() } };
 }
 
 std::vector<vtkTextureObject*> vtkSLLvsmPass::SetTechniqueUniforms(vtkShaderProgram* program)
 {
   const sl::FrameResources& frame = *this->Frame;
-  program->SetUniformi("kernelWidth", frame.parameters.getInt("prefilter_texels"));
-  program->SetUniformi("tightestBound", sl::LvsmSettings::from(frame.parameters).layerBound == sl::LvsmLayerBound::Tightest ? 1 : 0);
+  const sl::LvsmSettings settings = sl::LvsmSettings::from(frame.parameters);
+  program->SetUniformi("kernelWidth", settings.prefilterTexels);
+  program->SetUniformi("tightestBound", settings.layerBound == sl::LvsmLayerBound::Tightest ? 1 : 0);
   this->LayerEnds = frame.structureData<sl::LayeredMomentsData>(sl::layeredMomentsStructure().name).ends;
-  if (program->IsUniformUsed("leakBiasTexels"))
-  {
-    const sl::BiasSettings leakBias = sl::defaultBiasSettings();
-    sl::setVector(program, "leakBiasTexels", { leakBias.constantTexels, leakBias.slopeTexels, leakBias.maxSlope });
-  }
+  sl::setLeakBiasUniform(program);
   return {};
 }
 

@@ -20,7 +20,7 @@
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
-#include "common/MomentLookup.glsl"
+#include "common/LeakPcf.glsl"
 #include "common/Chebyshev.glsl"
 #include "layeredmoments/LayeredMomentsLayout.glsl"
 
