@@ -736,31 +736,29 @@ void markSeveralPolygonIds(const ApproximationContext& context, ImageF& codes, f
 {
   const FrameResult& frame = *context.frame;
   SL_CHECK_MSG(frame.lightView.has_value() && !frame.partitions, frame.technique, ": polygon ids need one map");
-  const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
   const ImageF* ids = nullptr;
   for (const NamedImage& named : frame.lightSpace)
   {
     ids = named.name == "shadow_map_polygon_id" ? &named.image : ids;
   }
   SL_CHECK_MSG(ids, frame.technique, ": no shadow_map_polygon_id");
-  const ImageF& position = frame.find("position")->image;
-  const ImageF& normal = frame.find("normal")->image;
-  const ImageF& coverage = frame.find("coverage")->image;
-  const ImageF& receives = frame.find("receives_shadows")->image;
+  const ShadowMapFootprint footprint(context);
   const ImageF& ownIds = frame.find("polygon_id")->image; // 0: casts no shadow, compared by depth
   const int size = ids->width;
   for (int y = 0; y < codes.height; ++y)
   {
     for (int x = 0; x < codes.width; ++x)
     {
-      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
-      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
-      if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f || receives.at(x, y) <= 0.5f ||
-        ownIds.at(x, y) == 0.0f || !lightCanReach(light, pWs, nWs))
+      if (codes.at(x, y) != 0.0f || ownIds.at(x, y) == 0.0f)
       {
         continue;
       }
-      const glm::dvec2 uv = projectToShadowMap(*frame.lightView, pWs).uvTexels;
+      const std::optional<ShadowMapFootprint::Receiver> receiver = footprint.receiver(x, y);
+      if (!receiver)
+      {
+        continue;
+      }
+      const glm::dvec2 uv = receiver->sample.uvTexels;
       const int tx = static_cast<int>(std::floor(uv.x));
       const int ty = static_cast<int>(std::floor(uv.y));
       const float centre = ids->at(std::clamp(tx, 0, size - 1), std::clamp(ty, 0, size - 1));
@@ -795,25 +793,23 @@ void markDepthLayerGap(const ApproximationContext& context, ImageF& codes, float
   {
     return; // no layered map (depth_layer = first), or views that partition the pixels (their layers are per view)
   }
-  const Light& light = context.scene->lights.at(static_cast<std::size_t>(context.lightIndex));
-  const ImageF& position = frame.find("position")->image;
-  const ImageF& normal = frame.find("normal")->image;
-  const ImageF& coverage = frame.find("coverage")->image;
-  const ImageF& receives = frame.find("receives_shadows")->image;
+  const ShadowMapFootprint footprint(context);
   const ImageF& bias = frame.find("depth_bias")->image;
   const int size = first->width;
   for (int y = 0; y < codes.height; ++y)
   {
     for (int x = 0; x < codes.width; ++x)
     {
-      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
-      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
-      if (codes.at(x, y) != 0.0f || coverage.at(x, y) <= 0.5f || receives.at(x, y) <= 0.5f ||
-        !lightCanReach(light, pWs, nWs))
+      if (codes.at(x, y) != 0.0f)
       {
         continue;
       }
-      const ShadowMapSample sm = projectToShadowMap(*frame.lightView, pWs);
+      const std::optional<ShadowMapFootprint::Receiver> receiver = footprint.receiver(x, y);
+      if (!receiver)
+      {
+        continue;
+      }
+      const ShadowMapSample& sm = receiver->sample;
       const double depth = sm.depthLin - bias.at(x, y);
       const int radius = static_cast<int>(std::ceil(kernelTexels ? 0.5 * kernelTexels->at(x, y) + 1.0 : 1.0));
       const int tx = static_cast<int>(std::floor(sm.uvTexels.x));
