@@ -45,6 +45,22 @@ fi
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" >/dev/null
 
+# The ParaView test (tests/paraview) runs Debian's pvpython. Its libraries come with `paraview`; its Python modules
+# (python3-paraview) conflict with libvtk9-dev (both ship vtkmodules), so the package is unpacked into the build
+# directory instead of installed; tests/paraview/run_in_pvpython.py puts its modules first.
+if [[ "$mode" == "test" && ! -x "$build_dir/pvpython-root/usr/bin/pvpython" ]]; then
+  apt-get update -qq
+  if ! dpkg-query -W -f='${Status}' paraview 2>/dev/null | grep -q "install ok installed"; then
+    echo "bootstrap: installing paraview (for the ParaView script test)" >&2
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends paraview >/dev/null
+  fi
+  download="$(mktemp -d)"
+  chmod 755 "$download" # apt-get download drops privileges to _apt
+  (cd "$download" && apt-get download -qq python3-paraview >/dev/null)
+  dpkg-deb -x "$download"/python3-paraview_*.deb "$build_dir/pvpython-root"
+  rm -rf "$download"
+fi
+
 case "$mode" in
   render)
     # Only what it runs: the executable and its libraries, not the test suites.

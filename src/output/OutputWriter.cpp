@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "lightspace/FittedVirtualShadowMap.h"
 #include "io/ImageIO.h"
+#include "output/ParaViewScript.h"
 #include "vis/BufferHeatMap.h"
 
 #include <algorithm>
@@ -303,6 +304,7 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
   const ImageU8 mask = coverageMask(*coverage);
   writeHeatMaps(buffers, &mask, dir, "heatmap_");
   writeHeatMaps(lightSpace, nullptr, dir, "heatmap_");
+  writeFileChecked(dir / "open_in_paraview.py", paraViewScript(buffers, lightSpace, mask));
 }
 
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path)

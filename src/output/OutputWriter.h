@@ -3,7 +3,7 @@
 // only when every file was written. A failure leaves no partial output (an existing --out is kept as it was).
 //
 // Files: buffers.vti, light_space.vti (when a light-space structure was built), image.png,
-// visibility.exr, heatmap_<buffer>.png per scalar buffer, stats.json. docs/outputs.md documents each.
+// visibility.exr, heatmap_<buffer>.png per scalar buffer, open_in_paraview.py (output/ParaViewScript.h), stats.json. docs/outputs.md documents each.
 #pragma once
 
 #include "io/OutputDirectory.h"
@@ -29,7 +29,7 @@ nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage);
 // coverage itself (over the whole image).
 nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers);
 // buffers.vti (+ light_space.vti when not empty), image.png (when given and not empty), visibility.exr
-// (when a visibility buffer exists) and a heat map per scalar buffer, into an existing directory.
+// (when a visibility buffer exists), a heat map per scalar buffer and open_in_paraview.py, into an existing directory.
 void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace,
   const ImageU8* image, const std::filesystem::path& dir);
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path);

@@ -104,7 +104,7 @@ TEST(CliRender, HardWritesEveryDocumentedOutput)
     temp.path());
   ASSERT_EQ(run.exitCode, 0) << run.describe();
   for (const char* file : { "buffers.vti", "light_space.vti", "image.png", "visibility.exr", "stats.json",
-         "heatmap_visibility.png", "heatmap_texel_ratio.png" })
+         "heatmap_visibility.png", "heatmap_texel_ratio.png", "open_in_paraview.py" })
   {
     EXPECT_TRUE(fs::is_regular_file(outDir / file)) << file << " missing; " << outDir << " has "
                                                     << joined(entriesOf(outDir));

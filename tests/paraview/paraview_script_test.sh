@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The open_in_paraview.py that `render` writes, run by ParaView's pvpython under Xvfb: for a sequential, a diverging
+# and a categorical buffer, its screenshot (one pixel per buffer pixel) must show the heat map's colours
+# (compare_screenshot.py). pvpython comes from the unpacked python3-paraview of scripts/bootstrap.sh
+# (BUILD_DIR/pvpython-root) or from PATH; without either the test is skipped (exit 77), never passed.
+#   paraview_script_test.sh SHADOWLAB DATASETS BUILD_DIR
+set -euo pipefail
+shadowlab="$1"
+datasets="$2"
+build_dir="$3"
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$build_dir/pvpython-root"
+if [[ -x "$root/usr/bin/pvpython" ]]; then
+  pvpython=("$root/usr/bin/pvpython" "$here/run_in_pvpython.py" "$root")
+elif command -v pvpython >/dev/null; then
+  pvpython=(pvpython)
+else
+  echo "SKIPPED: no pvpython (scripts/bootstrap.sh test unpacks it into $root)"
+  exit 77
+fi
+if ! command -v xvfb-run >/dev/null; then
+  echo "SKIPPED: no xvfb-run"
+  exit 77
+fi
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+width=128
+height=96
+"$shadowlab" render "$datasets/stacked-occluders/scene.json" -t vsm --resolution ${width}x${height} --out out 2>/dev/null
+test -f out/open_in_paraview.py
+for buffer in visibility light_leak approximation; do
+  xvfb-run -a "${pvpython[@]}" out/open_in_paraview.py --buffer "$buffer" --no-legend --screenshot "$work/shot_$buffer.png" \
+    >"$work/pvpython_$buffer.log" 2>&1 || { cat "$work/pvpython_$buffer.log"; exit 1; }
+  xvfb-run -a "${pvpython[@]}" "$here/compare_screenshot.py" "out/heatmap_$buffer.png" "$work/shot_$buffer.png" $width $height
+done
+# An unknown buffer: a one-line error naming it, nonzero exit.
+if xvfb-run -a "${pvpython[@]}" out/open_in_paraview.py --buffer no_such_buffer --screenshot "$work/x.png" >"$work/bad.log" 2>&1; then
+  echo "FAIL: --buffer no_such_buffer succeeded"
+  exit 1
+fi
+grep -q "no scalar buffer 'no_such_buffer'" "$work/bad.log" || { echo "FAIL: no error naming the buffer"; cat "$work/bad.log"; exit 1; }
+echo "PASS"
