@@ -146,7 +146,7 @@ int runDifferential(const DifferentialCommandOptions& options, std::ostream& log
   }
   if (options.samples < 1 || options.samples > 65536)
   {
-    throw InputError("--samples " + std::to_string(options.samples) + ": must be in 1 .. 65536");
+    throw InputError(options.samplesOption + " " + std::to_string(options.samples) + ": must be in 1 .. 65536");
   }
   run.maxSide = options.maxSide;
   run.referenceSamples = options.samples;
