@@ -200,6 +200,7 @@ struct DifferentialCommandOptions
   std::filesystem::path outDir = "shadowlab-differential";
   bool force = false;
   bool quiet = false;
+  bool progress = false; // --progress (cli/CommandProgress.h)
 };
 int runDifferential(const DifferentialCommandOptions& options, std::ostream& log);
 

@@ -344,6 +344,7 @@ Command addDifferentialCommand(
     "seed-S/scene.json (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(differentialCommand, differential.force);
   differentialCommand->add_flag("--quiet,-q", differential.quiet, "Print only failures and the table");
+  addProgressFlag(differentialCommand, differential.progress);
   return { differentialCommand,
     [&differential, &techniqueList, techniques, oldSamples] {
       if (techniques->count() > 0)

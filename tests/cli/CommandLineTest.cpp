@@ -339,6 +339,29 @@ TEST(CommandLine, ProgressOnlyWhenAsked)
   EXPECT_FALSE(hasProgressLines(referenceQuietly.err, "reference")) << referenceQuietly.describe();
 }
 
+TEST(CommandLine, DifferentialProgressPerConfigurationWhenAsked)
+{
+  // Two seeds of hard's default choice on 16-pixel random scenes: two configurations.
+  TempDir temp;
+  const std::vector<std::string> arguments = { "differential", "--seeds", "1,2", "-t", "hard", "--choice", "default",
+    "--max-side", "16", "--reference-samples", "4", "-q" };
+  std::vector<std::string> forced = arguments;
+  forced.insert(forced.end(), { "--out", "forced", "--progress" });
+  const RunResult run = test::runShadowlabIn(forced, temp.path());
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  EXPECT_TRUE(std::regex_search(run.err,
+    std::regex("shadowlab: differential: 2 seed\\(s\\), 2 configuration\\(s\\), expect about [0-9.]+ s on this "
+               "machine \\(measured: 1 configuration in [0-9.]+ s\\)\nshadowlab: differential: 2 configurations in "
+               "[0-9.]+ s\n")))
+    << run.describe();
+  std::vector<std::string> plain = arguments;
+  plain.insert(plain.end(), { "--out", "plain" });
+  const RunResult quiet = test::runShadowlabIn(plain, temp.path());
+  ASSERT_EQ(quiet.exitCode, 0) << quiet.describe();
+  EXPECT_EQ(quiet.err.find("shadowlab: differential: 2 seed"), std::string::npos) << quiet.describe();
+  EXPECT_EQ(quiet.err.find("elapsed"), std::string::npos) << quiet.describe();
+}
+
 TEST(CommandLine, LessonsProgressPerLessonWhenAsked)
 {
   // The two quickest lessons, at 32x32 (about 4 s in all).

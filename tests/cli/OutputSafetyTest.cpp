@@ -91,7 +91,7 @@ void expectOneLineRefusal(const RunResult& run, const std::string& mention)
 TEST(OutputSafety, UserDirectoryWithoutMarkerIsRefusedAndKeptByteForByte) // D07
 {
   TempDir temp;
-  const fs::path out = temp.path() / "out";
+  const fs::path out = temp.path() / "shadowlab-render";
   fillWithUserFiles(out);
   const auto before = snapshot(out);
   // The default --out name, as a plain `shadowlab render scene.json` would use it.
@@ -100,7 +100,7 @@ TEST(OutputSafety, UserDirectoryWithoutMarkerIsRefusedAndKeptByteForByte) // D07
   const RunResult run = test::runShadowlabIn(arguments, temp.path());
   expectOneLineRefusal(run, "--force");
   EXPECT_EQ(snapshot(out), before);
-  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "out" }) << joined(entriesOf(temp.path()));
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "shadowlab-render" }) << joined(entriesOf(temp.path()));
 }
 
 TEST(OutputSafety, ForceReplacesAUserDirectoryAndTheResultCarriesTheMarker)
