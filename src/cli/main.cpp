@@ -185,7 +185,10 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
   benchCommand->add_option("scenes", bench.sceneFiles, "Scene files")->required();
   CLI::Option* techniques = benchCommand
     ->add_option("--technique,-t", techniqueList,
-      "Technique names, comma-separated or repeated (default hard,pcf); old spelling --techniques");
+      "Technique names, comma-separated or repeated (default hard,pcf); old spelling --techniques")
+    ->expected(1) // one value per -t: a scene after it stays a scene
+    ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+    ->allow_extra_args(false);
   const RenamedOption oldTechniques =
     addOldSpelling(benchCommand, "--techniques", bench.techniques, techniques, "-t/--technique");
   benchCommand->add_option("--sweep", bench.sweeps, "key=v1,v2,... (repeatable: all combinations)");
@@ -329,7 +332,10 @@ Command addDifferentialCommand(
     "Every technique and each enumerated choice against the ray tracer on random scenes (seeded); exit 4 on a failure");
   differentialCommand->add_option("--seeds", differential.seeds, "A..B or A,B,...")->capture_default_str();
   CLI::Option* techniques = differentialCommand->add_option("--technique,-t", techniqueList,
-    "Technique names, comma-separated or repeated (default: all)");
+    "Technique names, comma-separated or repeated (default: all)")
+    ->expected(1)
+    ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+    ->allow_extra_args(false);
   differentialCommand->add_option("--choice", differential.choice,
     "Only this choice: default, or key=value of an enumerated parameter (default: every choice)");
   differentialCommand->add_option("--max-side", differential.maxSide, "Longest image side of the random scenes")

@@ -95,6 +95,13 @@ TEST(CommandLine, BenchTakesTechniquesAsEveryCommandDoes)
     EXPECT_EQ(run.err, "") << "a new spelling prints no note\n" << run.describe();
     EXPECT_EQ(benchTechniques(temp.path() / out), expected) << run.describe();
   }
+  // -t takes one value: a scene after it is a scene (as with the old string option).
+  const RunResult before = test::runShadowlabIn({ "bench", "-t", "pcf", "-t", "hard", commandLinePlanarScene(), "-r",
+                                                  "16x16", "--repeat", "1", "--reference-samples", "4", "--cache",
+                                                  "cache", "--out", "before", "-q" },
+    temp.path());
+  ASSERT_EQ(before.exitCode, 0) << before.describe();
+  EXPECT_EQ(benchTechniques(temp.path() / "before"), (std::vector<std::string>{ "pcf", "hard" }));
 }
 
 TEST(CommandLine, OldSpellingsWorkAndPrintOneNoteEach)
