@@ -11,6 +11,7 @@
 // be made (an error line says why).
 #include "cli/Commands.h"
 
+#include "cli/CommandProgress.h"
 #include "core/Error.h"
 #include "core/Parse.h"
 #include "io/ImageIO.h"
@@ -351,7 +352,7 @@ void checkScenesRepeatAndSamples(const BenchOptions& options)
   }
   if (options.referenceSamples < 1)
   {
-    throw InputError("--samples " + std::to_string(options.referenceSamples) + ": must be >= 1");
+    throw InputError(options.referenceSamplesOption + " " + std::to_string(options.referenceSamples) + ": must be >= 1");
   }
 }
 
@@ -409,9 +410,9 @@ std::vector<std::string> selectedTechniqueNames(const std::string& techniques)
 {
   if (techniques.empty())
   {
-    throw InputError("--techniques '" + techniques + "': no technique named");
+    throw InputError("--technique '" + techniques + "': no technique named");
   }
-  return splitList(techniques, "--techniques " + techniques);
+  return splitList(techniques, "--technique " + techniques);
 }
 
 std::vector<SettingSweep> parseSettingSweeps(const std::vector<std::string>& sweepTexts)
@@ -615,7 +616,7 @@ std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& reso
           << (problem == "missing" ? std::string() : " (the cached one is unusable: " + problem + ")") << "\n";
     }
     // --force: the entry (named by its hash) belongs to the cache; a bad one is replaced, marker or not.
-    std::vector<std::string> arguments{ "reference", variant.file, "--samples",
+    std::vector<std::string> arguments{ "reference", variant.file, "--reference-samples",
       std::to_string(options.referenceSamples), "--resolution", options.resolution, "--msaa", std::to_string(msaa),
       "--out", cached.string(), "--quiet", "--force" };
     for (const std::string& override : variant.overrides)
@@ -754,6 +755,10 @@ nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<
   const std::filesystem::path& dir, std::ostream& log)
 {
   nlohmann::json rows = nlohmann::json::array();
+  // Elapsed time and time left per configuration (cli/CommandProgress.h: a terminal, or --progress).
+  const ProgressSwitches switches{ options.progress, options.quiet };
+  Progress progress("bench", format(configurations.size(), " configuration(s)"), "configuration",
+    configurations.size(), commandProgressStream(switches, log), commandProgressSettings(switches));
   for (std::size_t c = 0; c < configurations.size(); ++c)
   {
     const Configuration& configuration = configurations[c];
@@ -789,7 +794,9 @@ nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<
           << "\n";
     }
     rows.push_back(row);
+    progress.step(c + 1);
   }
+  progress.finish();
   return rows;
 }
 

@@ -36,29 +36,40 @@ struct FrameCommandOptions
 
 struct RenderOptions : FrameCommandOptions
 {
-  RenderOptions() { outDir = "out"; }
+  RenderOptions() { outDir = "shadowlab-render"; }
+  bool progress = false; // --progress: a long frame's estimate even with --quiet (cli/CommandProgress.h)
 };
 
 int runRender(const RenderOptions& options, std::ostream& log);
-int runList(bool asJson, std::ostream& out);
+
+// shadowlab list [TECHNIQUE...]: every technique, or only those named (each argument one name or a comma list).
+struct ListOptions
+{
+  std::vector<std::string> techniques; // empty: all
+  bool json = false;
+  bool structures = false; // --structures: the light-space structures and the techniques that use each
+};
+int runList(const ListOptions& options, std::ostream& out);
 
 struct ReferenceOptions
 {
   std::string sceneFile;
   std::vector<std::string> sceneOverrides;
-  int samples = 1024;
-  bool samplesGiven = false;  // --samples was on the command line (with --light-samples, N defaults to 16)
+  int samples = 1024;         // --reference-samples (old spelling --samples)
+  bool samplesGiven = false;  // it was on the command line (with --light-samples, N defaults to 16)
+  std::string samplesOption = "--reference-samples"; // the spelling the user typed, as errors name it
   std::string sampling = "stratified";
   std::string lightSamples;   // --light-samples PATTERN (lightSamplePatternNames()); "" = `sampling`
   bool lightSamplesGiven = false; // --light-samples was on the command line (an empty PATTERN is refused)
   int msaa = 1;               // --msaa 1 | 4: trace every sample position of a 4x multisampled G-buffer, average
   std::uint64_t seed = 1;
   std::string resolution; // "WxH" or empty
-  std::string outDir = "out-reference";
+  std::string outDir = "shadowlab-reference";
   int lightIndex = 0;
   int threads = 0; // 0: all cores
   bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
+  bool progress = false; // --progress (cli/CommandProgress.h)
 };
 int runReference(const ReferenceOptions& options, std::ostream& log);
 
@@ -67,7 +78,7 @@ struct CompareOptions
   std::string testFile;
   std::string referenceFile;
   std::string array = "visibility";
-  std::string outDir = "out-compare";
+  std::string outDir = "shadowlab-compare";
   bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
 };
@@ -76,18 +87,20 @@ int runCompare(const CompareOptions& options, std::ostream& log);
 struct BenchOptions
 {
   std::vector<std::string> sceneFiles;
-  std::string techniques = "hard,pcf";         // comma-separated
+  std::string techniques = "hard,pcf";         // comma-separated (-t/--technique, old spelling --techniques)
   std::vector<std::string> sweeps;             // "key=v1,v2,..." (several: all combinations)
   std::vector<std::string> settings;           // "key=value" for every configuration that has the key
   std::vector<std::string> sceneOverrides;     // "/json/pointer=value" applied to every scene
   std::vector<std::string> sceneSweeps;        // "/json/pointer=v1,v2,..." (several: all combinations)
   int repeat = 5;                              // timed frames after one warm-up frame
   std::string resolution = "256x256";
-  int referenceSamples = 1024;
+  int referenceSamples = 1024;                 // --reference-samples (old spelling --samples)
+  std::string referenceSamplesOption = "--reference-samples"; // the spelling the user typed, as errors name it
   std::string cacheDir = ".shadowlab-cache";   // ray-traced references, keyed by scene + resolution + samples
-  std::string outDir = "out-bench";
+  std::string outDir = "shadowlab-bench";
   bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
+  bool progress = false; // --progress (cli/CommandProgress.h)
   // --depth-profile BUFFER: each configuration's BUFFER binned over the eye's depth (metrics/DepthProfile.h) into
   // depth_profile.csv and depth_profile_<scene>.png; --depth-bins, --depth-range "near,far" ("" = the pixels' own).
   std::string depthProfile;
@@ -122,9 +135,9 @@ int runBenchConfiguration(const BenchRunOptions& options);
 // shadowlab probe: one pixel replayed on the technique's CPU twin with a recorder (src/probe/Probe.h).
 struct ProbeOptions : FrameCommandOptions
 {
-  ProbeOptions() { outDir = "out-probe"; }
-  std::string pixel;              // "X,Y", image coordinates, row 0 at the bottom
-  std::vector<std::string> pick;  // {"world", "x,y,z"}
+  ProbeOptions() { outDir = "shadowlab-probe"; }
+  std::string pixel; // "X,Y", image coordinates, row 0 at the bottom
+  std::string pick;  // "x,y,z" or "world x,y,z" (main joins `--pick world X,Y,Z` into one value)
 };
 // Exit 0 when the twin agrees with the GPU buffer (or the pixel is ambiguous: within float rounding of a
 // decision), 3 when they differ beyond the tests' tolerance (the probe's files are still written).
@@ -154,7 +167,7 @@ struct MontageCommandOptions
 {
   std::vector<std::string> runDirs; // output directories of render / reference (buffers.vti + stats.json)
   std::string buffer;
-  std::string outFile = "montage.png";
+  std::string outFile = "shadowlab-montage.png";
   std::string referenceDir; // a run whose visibility the others' error labels are measured against ("" = none)
   bool quiet = false;
   bool force = false; // --out may replace an existing file montage did not write (never an input)
@@ -164,11 +177,13 @@ int runMontage(const MontageCommandOptions& options, std::ostream& log);
 // shadowlab lessons: the lesson pages generated from real runs (src/lessons/).
 struct LessonsOptions
 {
-  std::string outDir = "docs/lessons";
+  std::string outDir = "shadowlab-lessons"; // docs/lessons only when asked (--out docs/lessons)
   std::string resolution = "256x256";
   std::vector<std::string> only; // lesson names; empty = every lesson
+  bool list = false;             // --list: the lessons' names and titles, nothing run or written
   bool force = false;            // --force (OutputDirectory.h)
   bool quiet = false;
+  bool progress = false;         // --progress (cli/CommandProgress.h)
 };
 int runLessons(const LessonsOptions& options, std::ostream& log);
 
@@ -180,10 +195,12 @@ struct DifferentialCommandOptions
   std::string techniques;       // comma-separated; empty: all
   std::string choice;           // "default" or key=value; empty: every enumerated choice
   int maxSide = 128;
-  int samples = 256;            // reference samples per pixel
-  std::filesystem::path outDir = "out-differential";
+  int samples = 256;            // reference samples per pixel (--reference-samples, old spelling --samples)
+  std::string samplesOption = "--reference-samples"; // the spelling the user typed, as errors name it
+  std::filesystem::path outDir = "shadowlab-differential";
   bool force = false;
   bool quiet = false;
+  bool progress = false; // --progress (cli/CommandProgress.h)
 };
 int runDifferential(const DifferentialCommandOptions& options, std::ostream& log);
 

@@ -3,12 +3,14 @@
 // its seed and the one command that reproduces it.
 #include "cli/Commands.h"
 
+#include "cli/CommandProgress.h"
 #include "core/Error.h"
 #include "core/Parse.h"
 #include "differential/Differential.h"
 #include "io/OutputDirectory.h"
 #include "pipeline/ShadowRenderer.h"
 #include "scene/RandomScenes.h"
+#include "techniques/Registry.h"
 
 #include <nlohmann/json.hpp>
 
@@ -132,6 +134,28 @@ nlohmann::json outcomeJson(const ConfigurationOutcome& outcome)
   return json;
 }
 
+// How many configurations runDifferential reports for `run` (every seed: the CLI sets no seedsPerChoice): per seed,
+// each technique's enumerated choices, or the one --choice. Unknown techniques are refused here as there.
+std::size_t differentialConfigurationCount(const DifferentialOptions& run)
+{
+  std::size_t perSeed = 0;
+  const auto count = [&](const TechniqueDescriptor& technique) {
+    perSeed += run.choice.empty() ? enumeratedChoices(technique).size() : 1;
+  };
+  if (run.techniques.empty())
+  {
+    for (const TechniqueDescriptor& technique : techniqueRegistry())
+    {
+      count(technique);
+    }
+  }
+  for (const std::string& name : run.techniques)
+  {
+    count(findTechnique(name));
+  }
+  return perSeed * run.seeds.size();
+}
+
 } // namespace
 
 int runDifferential(const DifferentialCommandOptions& options, std::ostream& log)
@@ -146,7 +170,7 @@ int runDifferential(const DifferentialCommandOptions& options, std::ostream& log
   }
   if (options.samples < 1 || options.samples > 65536)
   {
-    throw InputError("--samples " + std::to_string(options.samples) + ": must be in 1 .. 65536");
+    throw InputError(options.samplesOption + " " + std::to_string(options.samples) + ": must be in 1 .. 65536");
   }
   run.maxSide = options.maxSide;
   run.referenceSamples = options.samples;
@@ -155,8 +179,15 @@ int runDifferential(const DifferentialCommandOptions& options, std::ostream& log
 
   const auto start = std::chrono::steady_clock::now();
   ShadowRenderer renderer;
+  // Elapsed time and time left per configuration (cli/CommandProgress.h: a terminal, or --progress).
+  const ProgressSwitches switches{ options.progress, options.quiet };
+  const std::size_t total = differentialConfigurationCount(run);
+  Progress progress("differential", format(run.seeds.size(), " seed(s), ", total, " configuration(s)"),
+    "configuration", total, commandProgressStream(switches, log), commandProgressSettings(switches));
+  std::size_t done = 0;
   const std::vector<ConfigurationOutcome> outcomes =
     runDifferential(renderer, run, [&](const ConfigurationOutcome& outcome) {
+      progress.step(++done);
       if (outcome.failed())
       {
         log << "shadowlab: differential: FAIL " << describeFailure(outcome) << "\n";
@@ -173,6 +204,7 @@ int runDifferential(const DifferentialCommandOptions& options, std::ostream& log
             << " ambiguous (" << std::fixed << std::setprecision(1) << outcome.seconds << std::defaultfloat << " s)\n";
       }
     });
+  progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::map<std::string, DifferentialTally> tallies = tallyByTechnique(outcomes);
   const std::string table = tallyTable(tallies);

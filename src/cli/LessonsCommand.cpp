@@ -1,9 +1,11 @@
-// shadowlab lessons [--out docs/lessons] [--resolution WxH] [--only NAME]...: the lesson pages (src/lessons/), each
-// generated from runs made now. --out is written atomically as a whole (io/OutputDirectory.h); with --only, the
+// shadowlab lessons [--out DIR] [--resolution WxH] [--only NAME]... [--list]: the lesson pages (src/lessons/), each
+// generated from runs made now, into shadowlab-lessons by default (`--out docs/lessons` regenerates the source tree's
+// pages). --out is written atomically as a whole (io/OutputDirectory.h); with --only, the
 // other lessons of an existing --out that shadowlab wrote are carried over unchanged, so one lesson can be
 // regenerated alone.
 #include "cli/Commands.h"
 
+#include "cli/CommandProgress.h"
 #include "core/Error.h"
 #include "io/OutputDirectory.h"
 #include "lessons/LessonBuilder.h"
@@ -20,6 +22,15 @@ namespace fs = std::filesystem;
 
 int runLessons(const LessonsOptions& options, std::ostream& log)
 {
+  if (options.list)
+  {
+    // The names --only takes, with the pages' headings: nothing is run or written.
+    for (const Lesson& lesson : lessonRegistry())
+    {
+      log << lesson.name << " - " << lesson.title << "\n";
+    }
+    return 0;
+  }
   LessonsSettings settings;
   settings.resolution = parseResolution(options.resolution);
   settings.datasets = fs::path(SL_SOURCE_DIR) / "datasets";
@@ -69,7 +80,11 @@ int runLessons(const LessonsOptions& options, std::ostream& log)
         }
       }
     }
-    writeLessons(selected, settings, dir);
+    const ProgressSwitches switches{ options.progress, options.quiet };
+    Progress progress("lessons", format(selected.size(), " lesson(s) at ", options.resolution), "lesson",
+      selected.size(), commandProgressStream(switches, log), commandProgressSettings(switches));
+    writeLessons(selected, settings, dir, [&progress](std::size_t done) { progress.step(done); });
+    progress.finish();
   });
   if (!options.quiet)
   {

@@ -1,7 +1,9 @@
-// shadowlab list: every technique in the registry with its parameters (default, range, unit), its
-// light-space structures and the buffers it publishes; --json for tools.
+// shadowlab list [TECHNIQUE...]: every technique in the registry (or only those named) with its parameters (default,
+// range, unit), its light-space structures and the buffers it publishes; --json for tools; --structures lists the
+// light-space structures instead, each with the techniques that use it.
 #include "cli/Commands.h"
 
+#include "core/Error.h"
 #include "structures/LightSpaceStructure.h"
 #include "structures/hsm/HsmStructure.h"
 #include "structures/mssm/DualMssmStructure.h"
@@ -71,11 +73,107 @@ std::string glLimitNote(const TechniqueDescriptor& technique, const ParameterSpe
          "llvmpipe), less 1 for the dual grid; a larger map is refused when the frame renders";
 }
 
-void listAsJson(std::ostream& out)
+using TechniqueSelection = std::vector<const TechniqueDescriptor*>;
+
+// The techniques `list` prints: those named (each argument a name or a comma list; registry order, each once), or
+// all. An unknown name is one error line listing the valid names.
+TechniqueSelection selectedTechniques(const std::vector<std::string>& arguments)
 {
-  nlohmann::json techniques = nlohmann::json::array();
+  std::vector<std::string> names;
+  for (const std::string& argument : arguments)
+  {
+    std::stringstream items(argument);
+    for (std::string name; std::getline(items, name, ',');)
+    {
+      if (name.empty())
+      {
+        throw InputError("list " + printable(argument) + ": an empty name in the comma-separated list");
+      }
+      names.push_back(name);
+    }
+  }
+  TechniqueSelection selection;
   for (const TechniqueDescriptor& technique : techniqueRegistry())
   {
+    if (names.empty() || std::find(names.begin(), names.end(), technique.name) != names.end())
+    {
+      selection.push_back(&technique);
+    }
+  }
+  for (const std::string& name : names)
+  {
+    if (std::none_of(selection.begin(), selection.end(),
+          [&name](const TechniqueDescriptor* technique) { return technique->name == name; }))
+    {
+      std::string valid;
+      for (const TechniqueDescriptor& technique : techniqueRegistry())
+      {
+        valid += (valid.empty() ? "" : ", ") + technique.name;
+      }
+      throw InputError("list " + printable(name) + ": unknown technique (valid: " + valid + ")");
+    }
+  }
+  return selection;
+}
+
+// The techniques of `selection` whose light-space structures include `structure`, by name.
+std::vector<std::string> techniquesUsing(const LightSpaceStructure& structure, const TechniqueSelection& selection)
+{
+  std::vector<std::string> names;
+  for (const TechniqueDescriptor* technique : selection)
+  {
+    const auto& used = technique->lightStructures;
+    if (std::find(used.begin(), used.end(), &structure) != used.end())
+    {
+      names.push_back(technique->name);
+    }
+  }
+  return names;
+}
+
+// --structures: every light-space structure (registry order) used by a technique of `selection`, or every one when
+// no technique was named.
+void listStructures(const TechniqueSelection& selection, bool named, bool asJson, std::ostream& out)
+{
+  nlohmann::json structures = nlohmann::json::array();
+  for (const LightSpaceStructure* structure : lightSpaceStructureRegistry())
+  {
+    const std::vector<std::string> users = techniquesUsing(*structure, selection);
+    if (named && users.empty())
+    {
+      continue;
+    }
+    std::vector<std::string> builtFrom;
+    for (const LightSpaceStructure* source : structure->builtFrom)
+    {
+      builtFrom.push_back(source->name);
+    }
+    if (asJson)
+    {
+      structures.push_back({ { "name", structure->name }, { "doc", structure->doc }, { "built_from", builtFrom },
+        { "techniques", users } });
+      continue;
+    }
+    std::string usersText;
+    for (const std::string& user : users)
+    {
+      usersText += (usersText.empty() ? "" : ", ") + user;
+    }
+    out << structure->name << " - " << structure->doc << "\n"
+        << "  used by: " << (usersText.empty() ? "none" : usersText) << "\n";
+  }
+  if (asJson)
+  {
+    out << structures.dump(2) << "\n";
+  }
+}
+
+void listAsJson(const TechniqueSelection& selection, std::ostream& out)
+{
+  nlohmann::json techniques = nlohmann::json::array();
+  for (const TechniqueDescriptor* selected : selection)
+  {
+    const TechniqueDescriptor& technique = *selected;
     nlohmann::json parameters = nlohmann::json::array();
     for (const ParameterSpec& spec : technique.parameters)
     {
@@ -105,10 +203,11 @@ void listAsJson(std::ostream& out)
   out << techniques.dump(2) << "\n";
 }
 
-void listAsText(std::ostream& out)
+void listAsText(const TechniqueSelection& selection, std::ostream& out)
 {
-  for (const TechniqueDescriptor& technique : techniqueRegistry())
+  for (const TechniqueDescriptor* selected : selection)
   {
+    const TechniqueDescriptor& technique = *selected;
     out << technique.name << " - " << technique.title << " (" << technique.paper << ")\n";
     std::string structures;
     for (const LightSpaceStructure* structure : technique.lightStructures)
@@ -138,15 +237,20 @@ void listAsText(std::ostream& out)
 
 } // namespace
 
-int runList(bool asJson, std::ostream& out)
+int runList(const ListOptions& options, std::ostream& out)
 {
-  if (asJson)
+  const TechniqueSelection selection = selectedTechniques(options.techniques);
+  if (options.structures)
   {
-    listAsJson(out);
+    listStructures(selection, !options.techniques.empty(), options.json, out);
+  }
+  else if (options.json)
+  {
+    listAsJson(selection, out);
   }
   else
   {
-    listAsText(out);
+    listAsText(selection, out);
   }
   return 0;
 }

@@ -83,16 +83,16 @@ struct OtherArguments
 
 inline constexpr OtherArguments kOtherArguments[] = {
   { "render", "--technique --resolution --light" },
-  { "reference", "--samples --sampling --light-samples --seed --msaa --resolution --light --threads" },
+  { "reference", "--reference-samples --sampling --light-samples --seed --msaa --resolution --light --threads" },
   { "compare", "--array" },
-  { "bench", "--techniques --repeat --resolution --samples --depth-profile --depth-bins --depth-range --view-stats" },
+  { "bench", "--technique --repeat --resolution --reference-samples --depth-profile --depth-bins --depth-range --view-stats" },
   { "bench-run", "--technique --resolution --repeat --depth-profile --depth-bins --depth-range --view-stats" },
   { "probe", "--technique --pixel --pick --resolution --light" },
   { "view", "--technique --resolution --light" },
   { "montage", "--buffer" },
   { "lessons", "--resolution --only" },
-  { "list", "" },
-  { "differential", "--seeds --technique --choice --max-side --samples" },
+  { "list", "techniques" },
+  { "differential", "--seeds --technique --choice --max-side --reference-samples" },
 };
 
 } // namespace sl

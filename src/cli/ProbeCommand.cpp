@@ -35,32 +35,45 @@ glm::ivec2 parsePixel(const std::string& text)
   return { std::stoi(match[1]), std::stoi(match[2]) };
 }
 
-glm::dvec3 parsePick(const std::vector<std::string>& pick)
+// --pick's value: "X,Y,Z", or "world X,Y,Z" as main joins the older two-word form.
+struct PickedPoint
 {
-  SL_CHECK(pick.size() == 2);
-  if (pick[0] != "world")
+  glm::dvec3 point{ 0.0 };
+  bool worldWord = false; // typed as `--pick world X,Y,Z`
+};
+
+PickedPoint parsePick(const std::string& pick)
+{
+  PickedPoint picked;
+  std::string numbers = pick;
+  const std::size_t space = pick.find(' ');
+  if (space != std::string::npos)
   {
-    throw InputError("--pick " + pick[0] + " " + pick[1] + ": expected `--pick world X,Y,Z`");
+    if (pick.substr(0, space) != "world")
+    {
+      throw InputError("--pick " + pick + ": expected --pick X,Y,Z (a world point; `--pick world X,Y,Z` too)");
+    }
+    picked.worldWord = true;
+    numbers = pick.substr(space + 1);
   }
-  glm::dvec3 point(0.0);
   std::size_t start = 0;
   for (int axis = 0; axis < 3; ++axis)
   {
-    const std::size_t end = pick[1].find(',', start);
+    const std::size_t end = numbers.find(',', start);
     const bool last = axis == 2;
     if ((end == std::string::npos) != last)
     {
-      throw InputError("--pick world " + pick[1] + ": expected three comma-separated numbers X,Y,Z");
+      throw InputError("--pick " + pick + ": expected three comma-separated numbers X,Y,Z (a world point)");
     }
-    const std::optional<double> value = parseNumber(pick[1].substr(start, last ? std::string::npos : end - start));
+    const std::optional<double> value = parseNumber(numbers.substr(start, last ? std::string::npos : end - start));
     if (!value || !std::isfinite(*value))
     {
-      throw InputError("--pick world " + pick[1] + ": expected three comma-separated finite numbers X,Y,Z");
+      throw InputError("--pick " + pick + ": expected three comma-separated finite numbers X,Y,Z (a world point)");
     }
-    point[axis] = *value;
+    picked.point[axis] = *value;
     start = end + 1;
   }
-  return point;
+  return picked;
 }
 
 } // namespace
@@ -70,12 +83,12 @@ int runProbe(const ProbeOptions& options, std::ostream& log)
   // Everything the user typed is checked before the GPU or the disk is touched.
   if (options.pixel.empty() == options.pick.empty())
   {
-    throw InputError("probe: give exactly one of --pixel X,Y and --pick world X,Y,Z");
+    throw InputError("probe: give exactly one of --pixel X,Y and --pick X,Y,Z");
   }
   const std::optional<glm::ivec2> pixel =
     options.pixel.empty() ? std::nullopt : std::optional<glm::ivec2>(parsePixel(options.pixel));
-  const std::optional<glm::dvec3> pick =
-    options.pick.empty() ? std::nullopt : std::optional<glm::dvec3>(parsePick(options.pick));
+  const std::optional<PickedPoint> pick =
+    options.pick.empty() ? std::nullopt : std::optional<PickedPoint>(parsePick(options.pick));
   const TechniqueDescriptor& technique = findTechnique(options.technique);
   if (!technique.probe)
   {
@@ -98,7 +111,21 @@ int runProbe(const ProbeOptions& options, std::ostream& log)
     // A visible point is within a fraction of a pixel's footprint of the G-buffer's surface point; the footprint
     // grows with the distance, so the tolerance is relative to it (1 %).
     const glm::dvec3 nearPoint = frame.camera.nearOrigin;
-    probed = pickPixel(frame, *pick, 0.01 * glm::length(*pick - nearPoint) + 1e-6);
+    try
+    {
+      probed = pickPixel(frame, pick->point, 0.01 * glm::length(pick->point - nearPoint) + 1e-6);
+    }
+    catch (const InputError& error)
+    {
+      // pickPixel names the point as `--pick world X,Y,Z`; say it as the user typed it.
+      const std::string message = error.what();
+      const std::string worldPrefix = "--pick world ";
+      if (pick->worldWord || message.rfind(worldPrefix, 0) != 0)
+      {
+        throw;
+      }
+      throw InputError("--pick " + message.substr(worldPrefix.size()));
+    }
   }
   const ProbeResult probe = probePixel(frame, scene, options.lightIndex, probed);
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {

@@ -5,6 +5,7 @@
 // and every sample's crossing count and hidden bit are written too, to check dcs sample by sample.
 #include "cli/Commands.h"
 
+#include "cli/CommandProgress.h"
 #include "core/Error.h"
 #include "lightspace/LightSampleSet.h"
 #include "output/OutputWriter.h"
@@ -13,12 +14,12 @@
 #include "scene/Scene.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <limits>
 #include <optional>
 #include <thread>
-#include <unistd.h>
 
 namespace sl
 {
@@ -50,7 +51,21 @@ std::optional<LightSampleSetSettings> lightSampleSetOf(const ReferenceOptions& o
       format("--seed ", options.seed, ": must be < 2^32 with --light-samples (the sets' seeds are 32-bit)"));
   }
   const int count = options.samplesGiven ? options.samples : LightSampleSetSettings{}.count;
-  return lightSampleSetSettings(options.lightSamples, count, static_cast<std::uint32_t>(options.seed));
+  try
+  {
+    return lightSampleSetSettings(options.lightSamples, count, static_cast<std::uint32_t>(options.seed));
+  }
+  catch (const InputError& error)
+  {
+    // lightSampleSetSettings names the count `--samples N`; name it as the user typed it.
+    const std::string message = error.what();
+    const std::string samplesPrefix = "--samples ";
+    if (message.rfind(samplesPrefix, 0) != 0 || options.samplesOption == "--samples")
+    {
+      throw;
+    }
+    throw InputError(options.samplesOption + " " + message.substr(samplesPrefix.size()));
+  }
 }
 
 } // namespace
@@ -60,7 +75,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   const std::optional<LightSampleSetSettings> sampleSet = lightSampleSetOf(options);
   if (options.samples < 1)
   {
-    throw InputError("--samples " + std::to_string(options.samples) + ": must be >= 1");
+    throw InputError(options.samplesOption + " " + std::to_string(options.samples) + ": must be >= 1");
   }
   if (options.sampling != "stratified" && options.sampling != "halton")
   {
@@ -108,26 +123,19 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   settings.threads = options.threads;
   settings.lightSampleSet = sampleSet;
 
-  // A progress bar only where a person watches (a terminal), so logs and tests stay one line.
-  const bool showProgress = !options.quiet && ::isatty(STDERR_FILENO);
-  int lastPercent = -1;
-  const auto progress = [&](double fraction) {
-    const int percent = static_cast<int>(100.0 * fraction);
-    if (showProgress && percent != lastPercent)
-    {
-      lastPercent = percent;
-      const int filled = percent / 5;
-      log << "\rreference [" << std::string(static_cast<std::size_t>(filled), '#')
-          << std::string(static_cast<std::size_t>(20 - filled), ' ') << "] " << std::setw(3) << percent << "%"
-          << std::flush;
-    }
+  // Progress by rows (the renderer reports the fraction of rows done, about 33 times): on a terminal when the
+  // trace is expected to take a few seconds, or with --progress (cli/CommandProgress.h).
+  const ProgressSwitches switches{ options.progress, options.quiet };
+  const std::size_t rows = static_cast<std::size_t>(gbuffer.resolution.y);
+  Progress progress("reference", format(gbuffer.resolution.x, "x", gbuffer.resolution.y, " pixels x ", sampleCount,
+      " samples", options.msaa > 1 ? format(" x ", options.msaa, " per pixel") : std::string()),
+    "row", rows, commandProgressStream(switches, log), commandProgressSettings(switches));
+  const auto rowsDone = [&progress, rows](double fraction) {
+    progress.step(static_cast<std::size_t>(std::lround(fraction * static_cast<double>(rows))));
   };
-  const ReferenceResult result = options.msaa > 1 ? renderMultisampleReference(sampleInputs, settings, progress)
-                                                 : renderReference(sampleInputs.front(), settings, progress);
-  if (showProgress)
-  {
-    log << "\n";
-  }
+  const ReferenceResult result = options.msaa > 1 ? renderMultisampleReference(sampleInputs, settings, rowsDone)
+                                                 : renderReference(sampleInputs.front(), settings, rowsDone);
+  progress.finish();
 
   std::vector<NamedImage> buffers;
   buffers.push_back({ "visibility", result.visibility, "", "ray-traced visible fraction of the light (ground truth)" });

@@ -24,8 +24,8 @@ int runRender(const RenderOptions& options, std::ostream& log)
   const std::size_t dropped = reportDroppedTriangles(scene, options.sceneFile, log);
   ShadowRenderer renderer;
   // Passes with long CPU-side loops (reference-sm's maps, dcs's wedges) print an estimate and progress when the
-  // frame is expected to take long (core/Progress.h); --quiet keeps them silent.
-  const ProgressStreamScope progress(options.quiet ? nullptr : &log);
+  // frame is expected to take long (core/Progress.h, 20 s); --quiet keeps them silent unless --progress.
+  const ProgressStreamScope progress(options.quiet && !options.progress ? nullptr : &log);
   const FrameResult frame = renderer.render(scene, request);
   OutputContext context;
   context.sceneFile = options.sceneFile;

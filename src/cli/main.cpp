@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <iostream>
@@ -51,13 +52,53 @@ CLI::Validator seedRange()
     "0 .. 2^64-1");
 }
 
-// One subcommand: the CLI11 command its options were added to, and what runs when it was parsed. The options it
-// fills live in main, beside it.
+// An option renamed in this release (issue 31, "one command line"): the old spelling still works for one release,
+// hidden from --help, and a run that uses it prints one note on stderr; giving both spellings is an error.
+struct RenamedOption
+{
+  CLI::Option* old = nullptr;
+  CLI::Option* replacement = nullptr;
+  std::string oldName;     // "--techniques" (CLI11 gives a hidden option no name)
+  std::string newSpelling; // "-t/--technique"
+};
+
+// One subcommand: the CLI11 command its options were added to, its renamed options, and what runs when it was
+// parsed. The options it fills live in main, beside it.
 struct Command
 {
   CLI::App* command = nullptr;
   std::function<int()> run;
+  std::vector<RenamedOption> renamed;
 };
+
+// `oldName` (e.g. "--samples"), hidden, filling `variable` as `replacement` does.
+template <typename T>
+RenamedOption addOldSpelling(CLI::App* command, const std::string& oldName, T& variable, CLI::Option* replacement,
+  const std::string& newSpelling)
+{
+  CLI::Option* old = command->add_option(oldName, variable)->group("");
+  return { old, replacement, oldName, newSpelling };
+}
+
+// Several techniques: -t a,b or -t a -t b (joined into one comma list, as the commands split it).
+std::string joinedTechniqueList(const std::vector<std::string>& items)
+{
+  std::string joined;
+  for (const std::string& item : items)
+  {
+    joined += (joined.empty() ? "" : ",") + item;
+  }
+  return joined;
+}
+
+// --progress: progress lines with the elapsed time and an estimate even when stderr is not a terminal
+// (cli/CommandProgress.h).
+void addProgressFlag(CLI::App* command, bool& progress)
+{
+  command->add_flag("--progress", progress,
+    "Progress lines (elapsed, time left) on stderr even when it is not a terminal, and with --quiet; by default "
+    "they appear only on a terminal");
+}
 
 Command addRenderCommand(CLI::App& app, sl::RenderOptions& render)
 {
@@ -73,7 +114,10 @@ Command addRenderCommand(CLI::App& app, sl::RenderOptions& render)
   renderCommand->add_option("--light", render.lightIndex, "Index of the scene light that casts shadows")
     ->capture_default_str();
   renderCommand->add_flag("--quiet,-q", render.quiet, "Print nothing on success");
-  return { renderCommand, [&render] { return sl::runRender(render, std::cerr); } };
+  renderCommand->add_flag("--progress", render.progress,
+    "A frame expected to take 20 s or more (reference-sm, dcs on large meshes) prints its estimate and progress "
+    "unless --quiet; --progress prints them with --quiet too");
+  return { renderCommand, [&render] { return sl::runRender(render, std::cerr); }, {} };
 }
 
 Command addReferenceCommand(CLI::App& app, sl::ReferenceOptions& reference)
@@ -82,8 +126,12 @@ Command addReferenceCommand(CLI::App& app, sl::ReferenceOptions& reference)
     "Ray-traced ground truth (Embree): the visible fraction of the light for every pixel the pipeline shades");
   referenceCommand->add_option("scene", reference.sceneFile, "Scene file (JSON)")->required();
   CLI::Option* referenceSamples = referenceCommand
-    ->add_option("--samples,-n", reference.samples, "Light samples per pixel (with --light-samples: 16, 64 or 256, default 16)")
+    ->add_option("--reference-samples,-n", reference.samples,
+      "Light samples per pixel of the ray-traced reference (with --light-samples: 16, 64 or 256, default 16); "
+      "old spelling --samples")
     ->capture_default_str();
+  const RenamedOption oldSamples =
+    addOldSpelling(referenceCommand, "--samples", reference.samples, referenceSamples, "--reference-samples");
   referenceCommand->add_option("--scene-set", reference.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
   CLI::Option* referenceSampling =
     referenceCommand->add_option("--sampling", reference.sampling, "stratified | halton")->capture_default_str();
@@ -106,11 +154,15 @@ Command addReferenceCommand(CLI::App& app, sl::ReferenceOptions& reference)
   referenceCommand->add_option("--light", reference.lightIndex, "Index of the scene light")->capture_default_str();
   referenceCommand->add_option("--threads", reference.threads, "Worker threads (0: all cores)")->capture_default_str();
   referenceCommand->add_flag("--quiet,-q", reference.quiet, "Print nothing on success");
-  return { referenceCommand, [&reference, referenceSamples, referenceLightSamples] {
-    reference.samplesGiven = referenceSamples->count() > 0;
-    reference.lightSamplesGiven = referenceLightSamples->count() > 0;
-    return sl::runReference(reference, std::cerr);
-  } };
+  addProgressFlag(referenceCommand, reference.progress);
+  return { referenceCommand,
+    [&reference, referenceSamples, referenceLightSamples, oldSamples] {
+      reference.samplesGiven = referenceSamples->count() > 0 || oldSamples.old->count() > 0;
+      reference.samplesOption = oldSamples.old->count() > 0 ? "--samples" : "--reference-samples";
+      reference.lightSamplesGiven = referenceLightSamples->count() > 0;
+      return sl::runReference(reference, std::cerr);
+    },
+    { oldSamples } };
 }
 
 Command addCompareCommand(CLI::App& app, sl::CompareOptions& compare)
@@ -123,15 +175,22 @@ Command addCompareCommand(CLI::App& app, sl::CompareOptions& compare)
   compareCommand->add_option("--out,-o", compare.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(compareCommand, compare.force);
   compareCommand->add_flag("--quiet,-q", compare.quiet, "Print nothing on success");
-  return { compareCommand, [&compare] { return sl::runCompare(compare, std::cerr); } };
+  return { compareCommand, [&compare] { return sl::runCompare(compare, std::cerr); }, {} };
 }
 
-Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench)
+Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std::string>& techniqueList)
 {
   CLI::App* benchCommand = app.add_subcommand("bench",
     "Speed against error: scenes x techniques x sweeps, each configuration in its own process");
   benchCommand->add_option("scenes", bench.sceneFiles, "Scene files")->required();
-  benchCommand->add_option("--techniques,-t", bench.techniques, "Comma-separated technique names")->capture_default_str();
+  CLI::Option* techniques = benchCommand
+    ->add_option("--technique,-t", techniqueList,
+      "Technique names, comma-separated or repeated (default hard,pcf); old spelling --techniques")
+    ->expected(1) // one value per -t: a scene after it stays a scene
+    ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+    ->allow_extra_args(false);
+  const RenamedOption oldTechniques =
+    addOldSpelling(benchCommand, "--techniques", bench.techniques, techniques, "-t/--technique");
   benchCommand->add_option("--sweep", bench.sweeps, "key=v1,v2,... (repeatable: all combinations)");
   benchCommand->add_option("--set,-s", bench.settings, "key=value for every technique that has the key");
   benchCommand->add_option("--scene-set", bench.sceneOverrides, "Scene value for every scene, /json/pointer=value");
@@ -140,8 +199,12 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench)
   benchCommand->add_option("--repeat", bench.repeat, "Timed frames after one warm-up frame (medians reported)")
     ->capture_default_str();
   benchCommand->add_option("--resolution,-r", bench.resolution, "Image size WxH")->capture_default_str();
-  benchCommand->add_option("--samples", bench.referenceSamples, "Light samples of the ray-traced reference")
+  CLI::Option* referenceSamples = benchCommand
+    ->add_option("--reference-samples", bench.referenceSamples,
+      "Light samples per pixel of the ray-traced reference (not a technique's `--set samples=`); old spelling --samples")
     ->capture_default_str();
+  const RenamedOption oldSamples =
+    addOldSpelling(benchCommand, "--samples", bench.referenceSamples, referenceSamples, "--reference-samples");
   benchCommand->add_option("--cache", bench.cacheDir, "Cache of ray-traced references")->capture_default_str();
   benchCommand->add_option("--out,-o", bench.outDir, "Output directory (replaced atomically; see --force)")->capture_default_str();
   benchCommand->add_option("--depth-profile", bench.depthProfile,
@@ -155,7 +218,17 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench)
     "columns and charts against the first --sweep key");
   addForceFlag(benchCommand, bench.force);
   benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
-  return { benchCommand, [&bench] { return sl::runBench(bench, std::cerr); } };
+  addProgressFlag(benchCommand, bench.progress);
+  return { benchCommand,
+    [&bench, &techniqueList, techniques, oldSamples] {
+      if (techniques->count() > 0)
+      {
+        bench.techniques = joinedTechniqueList(techniqueList);
+      }
+      bench.referenceSamplesOption = oldSamples.old->count() > 0 ? "--samples" : "--reference-samples";
+      return sl::runBench(bench, std::cerr);
+    },
+    { oldTechniques, oldSamples } };
 }
 
 Command addBenchRunCommand(CLI::App& app, sl::BenchRunOptions& benchRun)
@@ -174,7 +247,7 @@ Command addBenchRunCommand(CLI::App& app, sl::BenchRunOptions& benchRun)
   benchRunCommand->add_option("--depth-bins", benchRun.depthBins);
   benchRunCommand->add_option("--depth-range", benchRun.depthRange);
   benchRunCommand->add_option("--view-stats", benchRun.viewStats);
-  return { benchRunCommand, [&benchRun] { return sl::runBenchConfiguration(benchRun); } };
+  return { benchRunCommand, [&benchRun] { return sl::runBenchConfiguration(benchRun); }, {} };
 }
 
 Command addProbeCommand(CLI::App& app, sl::ProbeOptions& probe)
@@ -184,8 +257,8 @@ Command addProbeCommand(CLI::App& app, sl::ProbeOptions& probe)
   probeCommand->add_option("scene", probe.sceneFile, "Scene file (JSON)")->required();
   probeCommand->add_option("--technique,-t", probe.technique, "Technique name (see `shadowlab list`)")->capture_default_str();
   probeCommand->add_option("--pixel", probe.pixel, "X,Y in image coordinates, row 0 at the bottom (as buffers.vti)");
-  probeCommand->add_option("--pick", probe.pick, "world X,Y,Z: the pixel that shows this visible surface point")
-    ->expected(2);
+  probeCommand->add_option("--pick", probe.pick,
+    "X,Y,Z (world coordinates; `--pick world X,Y,Z` too): the pixel that shows this visible surface point");
   probeCommand->add_option("--set,-s", probe.settings, "Technique parameter, key=value (repeatable)");
   probeCommand->add_option("--scene-set", probe.sceneOverrides, "Scene value, /json/pointer=value (repeatable)");
   probeCommand->add_option("--resolution,-r", probe.resolution, "Image size WxH (default: the scene camera's)");
@@ -193,7 +266,7 @@ Command addProbeCommand(CLI::App& app, sl::ProbeOptions& probe)
   addForceFlag(probeCommand, probe.force);
   probeCommand->add_option("--light", probe.lightIndex, "Index of the scene light that casts shadows")->capture_default_str();
   probeCommand->add_flag("--quiet,-q", probe.quiet, "Print nothing on success");
-  return { probeCommand, [&probe] { return sl::runProbe(probe, std::cerr); } };
+  return { probeCommand, [&probe] { return sl::runProbe(probe, std::cerr); }, {} };
 }
 
 Command addViewCommand(CLI::App& app, sl::ViewOptions& view)
@@ -217,7 +290,7 @@ Command addViewCommand(CLI::App& app, sl::ViewOptions& view)
     "textures, --play, a file parameter)");
   viewCommand->add_option("--screenshot-dir", view.screenshotDir, "Where the s key saves screenshots (PNG)")
     ->capture_default_str();
-  return { viewCommand, [&view] { return sl::runView(view, std::cout); } };
+  return { viewCommand, [&view] { return sl::runView(view, std::cout); }, {} };
 }
 
 Command addMontageCommand(CLI::App& app, sl::MontageCommandOptions& montage)
@@ -232,47 +305,95 @@ Command addMontageCommand(CLI::App& app, sl::MontageCommandOptions& montage)
   montageCommand->add_flag("--force", montage.force,
     "Let --out replace an existing file montage did not write (never an input: a RUN_DIR or a file in one)");
   montageCommand->add_flag("--quiet,-q", montage.quiet, "Print nothing on success");
-  return { montageCommand, [&montage] { return sl::runMontage(montage, std::cerr); } };
+  return { montageCommand, [&montage] { return sl::runMontage(montage, std::cerr); }, {} };
 }
 
 Command addLessonsCommand(CLI::App& app, sl::LessonsOptions& lessons)
 {
   CLI::App* lessonsCommand = app.add_subcommand("lessons",
     "Lesson pages (Markdown) with figures and numbers from runs made now (src/lessons/)");
-  lessonsCommand->add_option("--out,-o", lessons.outDir, "Output directory (replaced atomically; see --force)")
-    ->capture_default_str();
+  lessonsCommand->add_option("--out,-o", lessons.outDir,
+    "Output directory (replaced atomically; see --force); `--out docs/lessons` regenerates the pages in the source "
+    "tree")->capture_default_str();
+  lessonsCommand->add_flag("--list", lessons.list, "Print each lesson's name and title, one per line; run nothing");
   lessonsCommand->add_option("--resolution,-r", lessons.resolution, "Image size WxH of every run")->capture_default_str();
   lessonsCommand->add_option("--only", lessons.only,
     "Only this lesson (repeatable); the other lessons of an existing --out are kept");
   addForceFlag(lessonsCommand, lessons.force);
   lessonsCommand->add_flag("--quiet,-q", lessons.quiet, "Print nothing on success");
-  return { lessonsCommand, [&lessons] { return sl::runLessons(lessons, std::cerr); } };
+  addProgressFlag(lessonsCommand, lessons.progress);
+  return { lessonsCommand, [&lessons] { return sl::runLessons(lessons, lessons.list ? std::cout : std::cerr); }, {} };
 }
 
-Command addDifferentialCommand(CLI::App& app, sl::DifferentialCommandOptions& differential)
+Command addDifferentialCommand(
+  CLI::App& app, sl::DifferentialCommandOptions& differential, std::vector<std::string>& techniqueList)
 {
   CLI::App* differentialCommand = app.add_subcommand("differential",
     "Every technique and each enumerated choice against the ray tracer on random scenes (seeded); exit 4 on a failure");
   differentialCommand->add_option("--seeds", differential.seeds, "A..B or A,B,...")->capture_default_str();
-  differentialCommand->add_option("--technique,-t", differential.techniques, "Comma-separated techniques (default: all)");
+  CLI::Option* techniques = differentialCommand->add_option("--technique,-t", techniqueList,
+    "Technique names, comma-separated or repeated (default: all)")
+    ->expected(1)
+    ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+    ->allow_extra_args(false);
   differentialCommand->add_option("--choice", differential.choice,
     "Only this choice: default, or key=value of an enumerated parameter (default: every choice)");
   differentialCommand->add_option("--max-side", differential.maxSide, "Longest image side of the random scenes")
     ->capture_default_str();
-  differentialCommand->add_option("--samples", differential.samples, "Reference light samples per pixel (stratified)")
+  CLI::Option* referenceSamples = differentialCommand
+    ->add_option("--reference-samples", differential.samples,
+      "Light samples per pixel of the ray-traced reference (stratified); old spelling --samples")
     ->capture_default_str();
+  const RenamedOption oldSamples = addOldSpelling(
+    differentialCommand, "--samples", differential.samples, referenceSamples, "--reference-samples");
   differentialCommand->add_option("--out,-o", differential.outDir, "Output directory: report.md, differential.json, "
     "seed-S/scene.json (replaced atomically; see --force)")->capture_default_str();
   addForceFlag(differentialCommand, differential.force);
   differentialCommand->add_flag("--quiet,-q", differential.quiet, "Print only failures and the table");
-  return { differentialCommand, [&differential] { return sl::runDifferential(differential, std::cerr); } };
+  addProgressFlag(differentialCommand, differential.progress);
+  return { differentialCommand,
+    [&differential, &techniqueList, techniques, oldSamples] {
+      if (techniques->count() > 0)
+      {
+        differential.techniques = joinedTechniqueList(techniqueList);
+      }
+      differential.samplesOption = oldSamples.old->count() > 0 ? "--samples" : "--reference-samples";
+      return sl::runDifferential(differential, std::cerr);
+    },
+    { oldSamples } };
 }
 
-Command addListCommand(CLI::App& app, bool& listJson)
+Command addListCommand(CLI::App& app, sl::ListOptions& list)
 {
-  CLI::App* listCommand = app.add_subcommand("list", "List techniques with their parameters, defaults and ranges");
-  listCommand->add_flag("--json", listJson, "Machine-readable output");
-  return { listCommand, [&listJson] { return sl::runList(listJson, std::cout); } };
+  CLI::App* listCommand = app.add_subcommand("list",
+    "List techniques with their parameters, defaults and ranges (all, or only the TECHNIQUEs named)");
+  listCommand->add_option("techniques", list.techniques,
+    "Only these techniques (names, or comma-separated lists of names)");
+  listCommand->add_flag("--json", list.json, "Machine-readable output");
+  listCommand->add_flag("--structures", list.structures,
+    "List the light-space structures instead, each with the techniques that use it");
+  return { listCommand, [&list] { return sl::runList(list, std::cout); }, {} };
+}
+
+// `--pick world X,Y,Z` (two words) becomes `--pick "world X,Y,Z"` before CLI11 sees it, so that --pick takes one
+// value (`--pick X,Y,Z`, and a scene after it is not taken for a second one) and the old form keeps working and is
+// named as typed in errors. Any word of letters after --pick is joined so (`--pick screen 0,0,0` is refused by
+// probe, naming both words).
+std::vector<std::string> joinedPickArguments(int argc, char** argv)
+{
+  std::vector<std::string> arguments(argv, argv + argc);
+  for (std::size_t i = 0; i + 2 < arguments.size(); ++i)
+  {
+    const std::string& word = arguments[i + 1];
+    const bool letters = !word.empty() &&
+      word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ") == std::string::npos;
+    if (arguments[i] == "--pick" && letters)
+    {
+      arguments[i + 1] = word + " " + arguments[i + 2];
+      arguments.erase(arguments.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+    }
+  }
+  return arguments;
 }
 
 // Runs the parsed command, each error kind one line with its exit code (docs/outputs.md, "Outputs and exit codes").
@@ -284,6 +405,19 @@ int runParsedCommand(const std::vector<Command>& commands)
     {
       if (command.command->parsed())
       {
+        for (const RenamedOption& renamed : command.renamed)
+        {
+          if (renamed.old->count() > 0 && renamed.replacement->count() > 0)
+          {
+            throw sl::InputError(renamed.oldName + " and " + renamed.newSpelling + ": the same option, given twice (" +
+              renamed.oldName + " is the old spelling)");
+          }
+          if (renamed.old->count() > 0)
+          {
+            std::cerr << "shadowlab: note: " << renamed.oldName << " is now " << renamed.newSpelling
+                      << "; the old spelling goes in the next release\n";
+          }
+        }
         return command.run();
       }
     }
@@ -328,16 +462,24 @@ int main(int argc, char** argv)
   sl::MontageCommandOptions montage;
   sl::LessonsOptions lessons;
   sl::DifferentialCommandOptions differential;
-  bool listJson = false;
+  sl::ListOptions list;
+  std::vector<std::string> benchTechniques;
+  std::vector<std::string> differentialTechniques;
   // In --help's order.
   const std::vector<Command> commands = { addRenderCommand(app, render), addReferenceCommand(app, reference),
-    addCompareCommand(app, compare), addBenchCommand(app, bench), addBenchRunCommand(app, benchRun),
+    addCompareCommand(app, compare), addBenchCommand(app, bench, benchTechniques), addBenchRunCommand(app, benchRun),
     addProbeCommand(app, probe), addViewCommand(app, view), addMontageCommand(app, montage),
-    addLessonsCommand(app, lessons), addDifferentialCommand(app, differential), addListCommand(app, listJson) };
+    addLessonsCommand(app, lessons), addDifferentialCommand(app, differential, differentialTechniques), addListCommand(app, list) };
 
   try
   {
-    app.parse(argc, argv);
+    const std::vector<std::string> arguments = joinedPickArguments(argc, argv);
+    std::vector<const char*> pointers;
+    for (const std::string& argument : arguments)
+    {
+      pointers.push_back(argument.c_str());
+    }
+    app.parse(static_cast<int>(pointers.size()), pointers.data());
   }
   catch (const CLI::CallForHelp& help)
   {

@@ -2,6 +2,7 @@
 set(SL_CLI_SOURCES
   src/cli/main.cpp
   src/cli/Commands.cpp
+  src/cli/CommandProgress.cpp
   src/cli/RenderCommand.cpp
   src/cli/ListCommand.cpp
   src/cli/ReferenceCommand.cpp

@@ -107,7 +107,7 @@ void Progress::step(std::size_t done)
 
 void Progress::finish()
 {
-  if (out_ != nullptr && announced_)
+  if (out_ != nullptr && (announced_ || (settings_.alwaysReportTotal && measured_)))
   {
     *out_ << "shadowlab: " << what_ << ": " << total_ << " " << unit_ << "s in " << seconds(now() - start_)
           << std::endl;

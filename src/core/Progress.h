@@ -33,6 +33,9 @@ struct ProgressSettings
   double announceAfterSeconds = 20.0; // expected total at or above this: the estimate and progress are printed
   double intervalSeconds = 5.0;       // between progress lines
   std::function<double()> clock;      // seconds; empty: std::chrono::steady_clock
+  // finish() prints the total even when no estimate was printed (a run asked to show its progress, --progress,
+  // whose first report came when it was already done).
+  bool alwaysReportTotal = false;
 };
 
 class Progress

@@ -99,7 +99,7 @@ Lesson acneAndBiasLesson()
     lesson.tryNext("Sweep the constant bias and watch acne give way to peter panning (the bench's error is against "
                    "a ray-traced reference of the area light, so hard shadows keep a penumbra error):",
       "shadowlab bench datasets/grazing/scene.json -t hard --set bias_slope_texels=0 --sweep "
-      "bias_constant_texels=0,0.5,2,8,32 -r " + resolution + " --repeat 1 --samples 64 --out out/bias-sweep");
+      "bias_constant_texels=0,0.5,2,8,32 -r " + resolution + " --repeat 1 --reference-samples 64 --out out/bias-sweep");
     lesson.tryNext("A second-depth map (back faces) needs no bias for closed casters (Wang & Molnar 1994):",
       "shadowlab render datasets/grazing/scene.json -t hard --set caster_faces=back --set bias_constant_texels=0 --set "
       "bias_slope_texels=0 -r " + resolution + " --out out/second-depth");

@@ -71,7 +71,7 @@ Lesson backProjectionLesson()
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Sub-lights 1, 2 and 4 with the packet-based traversal (same visibility as gbp07, faster):",
       "shadowlab bench datasets/bunny/scene.json -t yfgl09 --set shadow_map_size=512 --sweep sublights=1,2,4 -r " +
-        resolution + " --repeat 1 --samples 64 --out out/sublights");
+        resolution + " --repeat 1 --reference-samples 64 --out out/sublights");
     lesson.tryNext("Grow the light: the hidden surfaces matter more as the light widens:",
       "shadowlab render datasets/bunny/scene.json -t gbp07 --set shadow_map_size=512 --scene-set /lights/0/size=1.5 -r " +
         resolution + " --out out/bunny-wide-light");

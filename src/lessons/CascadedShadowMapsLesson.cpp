@@ -146,7 +146,7 @@ Lesson cascadedShadowMapsLesson()
                    "total texels, warping, z-partitioning and both:",
       "shadowlab bench datasets/deep-view/scene.json datasets/deep-view-behind/scene.json -t hard --sweep "
       "'cascades+shadow_map_size=1+512,4+256' --sweep 'warp+warp_n=lispsm+1e6,lispsm+0' --view-stats "
-      "texel_ratio -r 128x64 --repeat 1 --samples 1 --out out/fig18");
+      "texel_ratio -r 128x64 --repeat 1 --reference-samples 1 --out out/fig18");
   };
   return lesson;
 }

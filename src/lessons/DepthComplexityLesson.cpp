@@ -72,9 +72,9 @@ Lesson depthComplexityLesson()
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Compare every pattern at N = 16 and 64 against the ray tracer (Forest et al. 2009, Fig. 5):",
       "shadowlab bench datasets/stacked-occluders/scene.json -t dcs --sweep light_samples=grid,stratified,poisson,zero_two,poisson_4x4 "
-      "--sweep samples=16,64 -r " + resolution + " --repeat 1 --samples 256 --out out/dcs-patterns");
+      "--sweep samples=16,64 -r " + resolution + " --repeat 1 --reference-samples 256 --out out/dcs-patterns");
     lesson.tryNext("Trace the same samples and get every sample's crossing count from Embree:",
-      "shadowlab reference datasets/stacked-occluders/scene.json --light-samples poisson --samples 16 -r " + resolution +
+      "shadowlab reference datasets/stacked-occluders/scene.json --light-samples poisson --reference-samples 16 -r " + resolution +
         " --out out/dcs-reference");
     lesson.tryNext("Write the run with every sample's count and open `sample_depth_complexity` in ParaView:",
       "shadowlab render datasets/stacked-occluders/scene.json -t dcs --set export_sample_counts=1 -r " + resolution +

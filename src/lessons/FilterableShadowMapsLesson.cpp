@@ -124,10 +124,10 @@ Lesson filterableShadowMapsLesson()
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Sweep CSM's number of terms against the ray-traced reference:",
       "shadowlab bench datasets/contact/scene.json -t convsm --sweep terms=4,8,12,16 -r " + resolution +
-        " --repeat 1 --samples 64 --out out/csm-terms");
+        " --repeat 1 --reference-samples 64 --out out/csm-terms");
     lesson.tryNext("Sweep the number of layers of layered VSM:",
       "shadowlab bench datasets/stacked-occluders/scene.json -t lvsm --sweep layers=1,2,4,8 --set light_bleeding_reduction=0 -r " +
-        resolution + " --repeat 1 --samples 64 --out out/lvsm-layers");
+        resolution + " --repeat 1 --reference-samples 64 --out out/lvsm-layers");
     lesson.tryNext("Write the MSM run and look at its support depths and Hankel pivot in ParaView:",
       lesson.renderCommand("msm", "out/msm"));
   };

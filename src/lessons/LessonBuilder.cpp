@@ -530,8 +530,8 @@ nlohmann::json LessonBuilder::finish()
   return summary;
 }
 
-std::vector<nlohmann::json> writeLessons(
-  const std::vector<const Lesson*>& lessons, const LessonsSettings& settings, const fs::path& outDir)
+std::vector<nlohmann::json> writeLessons(const std::vector<const Lesson*>& lessons, const LessonsSettings& settings,
+  const fs::path& outDir, const std::function<void(std::size_t done)>& lessonDone)
 {
   ShadowRenderer renderer;
   std::vector<nlohmann::json> summaries;
@@ -540,6 +540,10 @@ std::vector<nlohmann::json> writeLessons(
     LessonBuilder builder(*lesson, settings, renderer, outDir / lesson->name);
     lesson->build(builder);
     summaries.push_back(builder.finish());
+    if (lessonDone)
+    {
+      lessonDone(summaries.size());
+    }
   }
   writeLessonsIndex(outDir);
   return summaries;

@@ -28,6 +28,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -162,8 +163,9 @@ private:
 
 // Renders every lesson of `lessons` into `outDir`/<name>/ with one renderer, and writes `outDir`/README.md listing
 // the lessons found in `outDir` (those just written and any kept there). Returns each lesson's lesson.json.
+// `lessonDone(n)` is called after the n-th lesson (the CLI's progress lines).
 std::vector<nlohmann::json> writeLessons(const std::vector<const Lesson*>& lessons, const LessonsSettings& settings,
-  const std::filesystem::path& outDir);
+  const std::filesystem::path& outDir, const std::function<void(std::size_t done)>& lessonDone = {});
 // `outDir`/README.md: the lessons in the registry's order that have a lesson.json in `outDir`, each with its
 // question and the command that generated it.
 void writeLessonsIndex(const std::filesystem::path& outDir);

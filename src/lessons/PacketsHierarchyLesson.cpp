@@ -70,7 +70,7 @@ Lesson packetsHierarchyLesson()
       "coherence_test=off -r " + resolution + " --out out/forced-packets");
     lesson.tryNext("The near-light occluder, where kernels are widest and the hierarchy pays most:",
       "shadowlab bench datasets/near-light/scene.json -t yfgl09 --set shadow_map_size=256 --sweep hierarchy=off,on -r " +
-        resolution + " --repeat 1 --samples 64 --out out/near-light-hierarchy");
+        resolution + " --repeat 1 --reference-samples 64 --out out/near-light-hierarchy");
     lesson.tryNext("Write two runs and compare visited_nodes yourself:",
       lesson.renderCommand("hierarchy", "out/hierarchy") + " && " +
         lesson.renderCommand("hierarchy-packets", "out/hierarchy-packets") +

@@ -73,7 +73,7 @@ Lesson pcfFixedKernelLesson()
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Sweep the kernel and find the width with the least error, for this scene only:",
       "shadowlab bench datasets/contact/scene.json -t pcf --sweep kernel_texels=1,3,7,15,31 -r " + resolution +
-        " --repeat 1 --samples 64 --out out/pcf-kernels");
+        " --repeat 1 --reference-samples 64 --out out/pcf-kernels");
     lesson.tryNext("Grow the light: the true penumbra widens, PCF's does not:",
       "shadowlab render datasets/contact/scene.json -t pcf --set kernel_texels=15 --scene-set /lights/0/size=2 -r " +
         resolution + " --out out/pcf-big-light");

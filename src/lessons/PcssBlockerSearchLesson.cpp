@@ -54,7 +54,7 @@ Lesson pcssBlockerSearchLesson()
     lesson.tryNext("VSSM splits the kernels into sub-kernels to meet the same problem; put both on the stacked "
                    "occluders:",
       "shadowlab bench datasets/stacked-occluders/scene.json -t pcss,vssm -r " + resolution +
-        " --repeat 1 --samples 64 --out out/pcss-vs-vssm");
+        " --repeat 1 --reference-samples 64 --out out/pcss-vs-vssm");
     lesson.tryNext("Move the upper occluder and watch the error follow the overlap:",
       "shadowlab render datasets/stacked-occluders/scene.json -t pcss --scene-set '/objects/2/center=[0.3,2.2,0.3]' -r " +
         resolution + " --out out/pcss-moved");

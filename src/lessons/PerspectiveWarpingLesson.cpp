@@ -134,7 +134,7 @@ Lesson perspectiveWarpingLesson()
                    "face the eye and the light:",
       "shadowlab bench datasets/facing-tiles/scene.json -t hard --set shadow_map_size=512 --sweep "
       "'warp+warp_n=lispsm+1e6,psm+0,lispsm+0' --depth-profile texel_ratio_t --depth-bins 20 --depth-range 1,100 "
-      "-r 256x64 --repeat 1 --samples 1 --out out/fig12");
+      "-r 256x64 --repeat 1 --reference-samples 1 --out out/fig12");
   };
   return lesson;
 }

@@ -84,7 +84,7 @@ Lesson vsmLightBleedingLesson()
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Sweep the reduction against the ray-traced reference:",
       "shadowlab bench datasets/stacked-occluders/scene.json -t vsm --sweep light_bleeding_reduction=0,0.1,0.2,0.4,0.6 -r " +
-        resolution + " --repeat 1 --samples 64 --out out/vsm-reduction");
+        resolution + " --repeat 1 --reference-samples 64 --out out/vsm-reduction");
     lesson.tryNext("Exponential shadow maps bound the test differently and leak elsewhere (their light_leak has the "
                    "same meaning):",
       "shadowlab render datasets/stacked-occluders/scene.json -t esm --set shadow_map_size=1024 -r " + resolution +

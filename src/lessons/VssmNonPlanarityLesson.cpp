@@ -66,7 +66,7 @@ Lesson vssmNonPlanarityLesson()
     const std::string resolution = lesson.resolutionText();
     lesson.tryNext("Uniform against adaptive subdivision of the visibility kernel (§6.2):",
       "shadowlab bench datasets/stacked-occluders/scene.json -t vssm --set shadow_map_size=1024 --sweep "
-      "shadow_subdivision=none,uniform,adaptive -r " + resolution + " --repeat 1 --samples 64 --out out/vssm-subdivision");
+      "shadow_subdivision=none,uniform,adaptive -r " + resolution + " --repeat 1 --reference-samples 64 --out out/vssm-subdivision");
     lesson.tryNext("The contact case of §6.4, where the blocker touches the receiver:",
       "shadowlab render datasets/contact/scene.json -t vssm --set shadow_map_size=1024 -r " + resolution +
         " --out out/vssm-contact");

@@ -966,7 +966,7 @@ TEST(LessonClaims, DepthComplexity)
   const Buffers counted = lesson.render("poisson-16", "stacked-occluders",
     { "-t", "dcs", "--set", "light_samples=poisson", "--set", "samples=16" });
   const Buffers traced =
-    lesson.reference("traced-poisson-16", "stacked-occluders", { "--light-samples", "poisson", "--samples", "16" });
+    lesson.reference("traced-poisson-16", "stacked-occluders", { "--light-samples", "poisson", "--reference-samples", "16" });
   ASSERT_FALSE(counted.empty());
   ASSERT_FALSE(traced.empty());
   const VisibilityDifference difference = compareVisibility(counted, traced, 1e-4);

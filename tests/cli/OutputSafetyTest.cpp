@@ -91,7 +91,7 @@ void expectOneLineRefusal(const RunResult& run, const std::string& mention)
 TEST(OutputSafety, UserDirectoryWithoutMarkerIsRefusedAndKeptByteForByte) // D07
 {
   TempDir temp;
-  const fs::path out = temp.path() / "out";
+  const fs::path out = temp.path() / "shadowlab-render";
   fillWithUserFiles(out);
   const auto before = snapshot(out);
   // The default --out name, as a plain `shadowlab render scene.json` would use it.
@@ -100,7 +100,7 @@ TEST(OutputSafety, UserDirectoryWithoutMarkerIsRefusedAndKeptByteForByte) // D07
   const RunResult run = test::runShadowlabIn(arguments, temp.path());
   expectOneLineRefusal(run, "--force");
   EXPECT_EQ(snapshot(out), before);
-  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "out" }) << joined(entriesOf(temp.path()));
+  EXPECT_EQ(entriesOf(temp.path()), std::vector<std::string>{ "shadowlab-render" }) << joined(entriesOf(temp.path()));
 }
 
 TEST(OutputSafety, ForceReplacesAUserDirectoryAndTheResultCarriesTheMarker)
@@ -243,7 +243,7 @@ TEST(OutputSafety, BenchRefusesItsCacheAsOutput) // H13
   for (const std::string& out : { std::string("cache"), std::string("cache/inside") })
   {
     const RunResult run = test::runShadowlabIn({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard",
-                                                 "-r", "16x16", "--samples", "4", "--cache", "cache", "--out", out,
+                                                 "-r", "16x16", "--reference-samples", "4", "--cache", "cache", "--out", out,
                                                  "--force" },
       temp.path());
     expectOneLineRefusal(run, "cache");
@@ -252,7 +252,7 @@ TEST(OutputSafety, BenchRefusesItsCacheAsOutput) // H13
   // A cache inside --out would be deleted with it.
   fs::create_directories(temp.path() / "out-bench" / "cache");
   const RunResult holds = test::runShadowlabIn({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard",
-                                                 "-r", "16x16", "--samples", "4", "--cache", "out-bench/cache",
+                                                 "-r", "16x16", "--reference-samples", "4", "--cache", "out-bench/cache",
                                                  "--out", "out-bench", "--force" },
     temp.path());
   expectOneLineRefusal(holds, "an input of this command");
@@ -280,7 +280,7 @@ TEST(OutputSafety, AFileParameterIsAnInputOfEveryCommandThatTakesSet)
     }
     if (name == "bench")
     {
-      arguments.insert(arguments.end(), { "--samples", "4", "--repeat", "1", "--cache", "cache" });
+      arguments.insert(arguments.end(), { "--reference-samples", "4", "--repeat", "1", "--cache", "cache" });
     }
     arguments.insert(arguments.end(), { "--out", out });
     if (force)
@@ -341,7 +341,7 @@ TEST(OutputSafety, BenchCountsAReferenceItCouldNotWriteAsAFailure)
 {
   TempDir temp;
   const std::vector<std::string> arguments{ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard", "-r",
-    "16x16", "--samples", "4", "--repeat", "1", "--cache", "cache", "--out", "out-bench" };
+    "16x16", "--reference-samples", "4", "--repeat", "1", "--cache", "cache", "--out", "out-bench" };
   ASSERT_EQ(test::runShadowlabIn(arguments, temp.path()).exitCode, 0);
   const std::vector<std::string> entries = entriesOf(temp.path() / "cache");
   ASSERT_EQ(entries.size(), 1u) << joined(entries);
@@ -358,7 +358,7 @@ TEST(OutputSafety, BenchCountsAReferenceItCouldNotWriteAsAFailure)
   fs::remove(entry);
   // A file size limit (SIGXFSZ left at its default: shadowlab ignores it itself): the reference cannot be written.
   const RunResult limited = test::runShadowlabIn({ "bench", test::datasetPath("planar-occluder").string(), "-t",
-                                                   "hard", "-r", "128x128", "--samples", "4", "--repeat", "1",
+                                                   "hard", "-r", "128x128", "--reference-samples", "4", "--repeat", "1",
                                                    "--cache", "cache", "--out", "out-limited" },
     temp.path(), "ulimit -f 24");
   EXPECT_NE(limited.exitCode, 0) << limited.describe();
@@ -539,7 +539,7 @@ TEST(OutputSafety, SigtermDuringBenchEndsItsChildrenAndLeavesNoTemporaryDirector
   // The signal reaches bench while its reference child writes into the cache (the child's temporary directory
   // is there) and bench's own temporary directory holds the logs: bench forwards it, and both clean up.
   const int ended = interruptDuringWrite({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard,pcf",
-                                           "-r", "32x32", "--samples", "4", "--repeat", "1", "--cache", "cache",
+                                           "-r", "32x32", "--reference-samples", "4", "--repeat", "1", "--cache", "cache",
                                            "--out", "out-bench" },
     temp.path(), temp.path() / "cache", SIGTERM);
   EXPECT_EQ(ended, 128 + SIGTERM);
@@ -586,7 +586,7 @@ TEST(OutputSafety, UsageErrorsAreOneLineWithExit1)
     { "render", scene, "extra-positional" },                   // P24
     {},                                                        // P25: no subcommand
     { "paint", scene },                                        // P26: unknown subcommand
-    { "reference", scene, "--samples", "99999999999" },        // F03
+    { "reference", scene, "--reference-samples", "99999999999" },        // F03
     { "reference", scene, "--seed", "-1" },                    // F06
     { "render", scene, "--set", "shadow_map_size=0x200" },     // P10: hexadecimal
     { "render", scene, "-t", "pcf", "--set", "kernel_texels=3", "--set", "kernel_texels=5" }, // P19
@@ -631,7 +631,7 @@ TEST(OutputSafety, BenchRecomputesAPoisonedCacheEntry) // H14
 {
   TempDir temp;
   const std::vector<std::string> arguments{ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard", "-r",
-    "16x16", "--samples", "4", "--repeat", "1", "--cache", "cache", "--out", "out-bench" };
+    "16x16", "--reference-samples", "4", "--repeat", "1", "--cache", "cache", "--out", "out-bench" };
   ASSERT_EQ(test::runShadowlabIn(arguments, temp.path()).exitCode, 0);
   const std::vector<std::string> entries = entriesOf(temp.path() / "cache");
   ASSERT_EQ(entries.size(), 1u) << joined(entries);

@@ -205,11 +205,11 @@ const std::map<std::string, Writer>& writers()
                             "--pixel", "8,8", "--out", out });
                         } };
     w["reference --out"] = { datasetCopy, [](const Inputs& in, const std::string& out) {
-                              return small({ "reference", in.scene.string(), "--samples", "4", "--out", out });
+                              return small({ "reference", in.scene.string(), "--reference-samples", "4", "--out", out });
                             } };
     w["bench --out"] = { datasetCopy,
       [](const Inputs& in, const std::string& out) {
-        return small({ "bench", in.scene.string(), "-t", "hard", "--samples", "4", "--repeat", "1", "--cache",
+        return small({ "bench", in.scene.string(), "-t", "hard", "--reference-samples", "4", "--repeat", "1", "--cache",
           in.cache.string(), "--out", out });
       },
       true, true,
@@ -230,7 +230,7 @@ const std::map<std::string, Writer>& writers()
     w["differential --out"] = { [](const fs::path&) { return Inputs{}; },
       [](const Inputs&, const std::string& out) {
         return std::vector<std::string>{ "differential", "--seeds", "1", "-t", "hard", "--choice", "default",
-          "--max-side", "16", "--samples", "4", "-q", "--out", out };
+          "--max-side", "16", "--reference-samples", "4", "-q", "--out", out };
       },
       true, false };
     w["montage --out"] = { datasetAndRun,

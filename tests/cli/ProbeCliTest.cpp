@@ -125,13 +125,19 @@ TEST(CliProbe, PickFindsThePixelThatShowsAWorldPoint)
   const ImageF& position = frame.find("position")->image;
   const std::string point = format(position.at(lit.x, lit.y, 0), ",", position.at(lit.x, lit.y, 1), ",",
     position.at(lit.x, lit.y, 2));
-  test::TempDir temp;
-  const fs::path out = temp.path() / "probe";
-  const test::RunResult run = test::runShadowlabIn(probeArguments("hard", { "--pick", "world", point }, out), temp.path());
-  ASSERT_EQ(run.exitCode, 0) << run.describe();
-  const Json json = Json::parse(test::readFile(out / "probe.json"));
-  EXPECT_EQ(json.at("pixel"), Json::array({ lit.x, lit.y }));
-  EXPECT_EQ(json.at("gpu_visibility").get<double>(), 1.0);
+  // `--pick X,Y,Z` (issue 31) and the older `--pick world X,Y,Z` pick the same pixel, without a note.
+  for (const std::vector<std::string>& pick :
+    { std::vector<std::string>{ "--pick", point }, std::vector<std::string>{ "--pick", "world", point } })
+  {
+    test::TempDir temp;
+    const fs::path out = temp.path() / "probe";
+    const test::RunResult run = test::runShadowlabIn(probeArguments("hard", pick, out), temp.path());
+    ASSERT_EQ(run.exitCode, 0) << run.describe();
+    EXPECT_EQ(run.err.find("note"), std::string::npos) << run.describe();
+    const Json json = Json::parse(test::readFile(out / "probe.json"));
+    EXPECT_EQ(json.at("pixel"), Json::array({ lit.x, lit.y })) << pick.size();
+    EXPECT_EQ(json.at("gpu_visibility").get<double>(), 1.0);
+  }
 }
 
 // One line on stderr mentioning each of `mentions`, a nonzero exit, and nothing written.
@@ -171,6 +177,9 @@ TEST(CliProbeErrors, MalformedOrMissingPixel)
   expectCleanProbeFailure("hard", { "--pixel", "3,4", "--pick", "world", "0,0,0" }, { "exactly one" });
   expectCleanProbeFailure("hard", { "--pick", "screen", "0,0,0" }, { "--pick screen", "world" });
   expectCleanProbeFailure("hard", { "--pick", "world", "0,nan,0" }, { "--pick world 0,nan,0" });
+  expectCleanProbeFailure("hard", { "--pick", "1,2" }, { "--pick 1,2", "X,Y,Z" });
+  expectCleanProbeFailure("hard", { "--pick", "1,2,3,4" }, { "--pick 1,2,3,4", "X,Y,Z" });
+  expectCleanProbeFailure("hard", { "--pick", "1,x,3" }, { "--pick 1,x,3", "X,Y,Z" });
 }
 
 TEST(CliProbeErrors, PickOfAPointNoPixelShows)
@@ -184,6 +193,8 @@ TEST(CliProbeErrors, PickOfAPointNoPixelShows)
   const glm::dvec3 midway = 0.5 * (surface + unprojectPixel(frame.camera, pixel.x + 0.5, pixel.y + 0.5, -1.0));
   const std::string point = format(midway.x, ",", midway.y, ",", midway.z);
   expectCleanProbeFailure("hard", { "--pick", "world", point }, { "--pick world " + point, "not a visible surface point" });
+  // Named as typed: without the word `world`.
+  expectCleanProbeFailure("hard", { "--pick", point }, { "--pick " + point, "not a visible surface point" });
 }
 
 TEST(CliProbeErrors, UnknownTechnique)

@@ -32,7 +32,7 @@ using test::readJson;
 TEST(ReferenceCommand, WritesTheBufferSchemaWithStandardErrorAndStats)
 {
   const std::filesystem::path out = test::freshOutputDir("reference-out");
-  const RunResult run = test::runShadowlabInTempDir({ "reference", test::datasetPath("stacked-occluders").string(), "--samples", "64",
+  const RunResult run = test::runShadowlabInTempDir({ "reference", test::datasetPath("stacked-occluders").string(), "--reference-samples", "64",
     "--resolution", "64x48", "--out", out.string(), "--quiet" });
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_TRUE(run.err.empty()) << run.err;
@@ -69,7 +69,7 @@ TEST(ReferenceCommand, BadSettingsAreOneLineErrorsWithNoOutput)
   const std::filesystem::path out = test::freshOutputDir("reference-bad");
   // {option, value, what the message names}: the multisample mode takes 1 or 4 samples, and no light-sample set
   // (its per-sample facts are of one surface point).
-  const std::vector<std::array<std::string, 3>> cases = { { "--samples", "0", "--samples" },
+  const std::vector<std::array<std::string, 3>> cases = { { "--reference-samples", "0", "--reference-samples" },
     { "--sampling", "sobol", "--sampling" }, { "--msaa", "3", "--msaa" }, { "--msaa", "0", "--msaa" },
     { "--msaa", "4 --light-samples stratified", "--light-samples" } };
   for (const auto& [option, value, named] : cases)
@@ -97,7 +97,7 @@ TEST(CompareCommand, MetricsMatchTheFilesAndErrorsNameTheInput)
   const std::string scene = test::datasetPath("planar-occluder").string();
   ASSERT_EQ(test::runShadowlabInTempDir({ "render", scene, "-t", "hard", "-r", "64x64", "-q", "--out", hard.string() }).exitCode, 0);
   ASSERT_EQ(
-    test::runShadowlabInTempDir({ "reference", scene, "--samples", "64", "-r", "64x64", "-q", "--out", reference.string() }).exitCode, 0);
+    test::runShadowlabInTempDir({ "reference", scene, "--reference-samples", "64", "-r", "64x64", "-q", "--out", reference.string() }).exitCode, 0);
   const RunResult run = test::runShadowlabInTempDir({ "compare", (hard / "buffers.vti").string(), (reference / "buffers.vti").string(),
     "-q", "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -145,7 +145,7 @@ TEST(BenchCommand, ReportsAFailingConfigurationAndFinishesTheRest)
   const std::filesystem::path cache = test::freshOutputDir("bench-cache");
   const std::vector<std::string> arguments = { "bench", test::datasetPath("planar-occluder").string(),
     (sceneDir / "surrounded.json").string(), "-t", "hard,pcf", "--set", "cube_map=off", "--sweep", "kernel_texels=1,5", "--repeat", "2", "-r",
-    "48x48", "--samples", "16", "--cache", cache.string(), "--out", out.string() };
+    "48x48", "--reference-samples", "16", "--cache", cache.string(), "--out", out.string() };
   const RunResult run = test::runShadowlabInTempDir(arguments);
   EXPECT_EQ(run.exitCode, 4) << run.err; // some configurations failed
   const nlohmann::json bench = readJson(out / "bench.json");
@@ -195,7 +195,7 @@ TEST(BenchCommand, SceneSweepsReachEveryChildAndGetTheirOwnReferences)
   const std::filesystem::path out = test::freshOutputDir("bench-sweep-out");
   const std::filesystem::path cache = test::freshOutputDir("bench-sweep-cache");
   const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("planar-occluder").string(), "-t", "hard",
-    "--scene-sweep", "/lights/0/size=0.25,1,2", "--repeat", "1", "-r", "48x48", "--samples", "64", "--quiet", "--cache",
+    "--scene-sweep", "/lights/0/size=0.25,1,2", "--repeat", "1", "-r", "48x48", "--reference-samples", "64", "--quiet", "--cache",
     cache.string(), "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json bench = readJson(out / "bench.json");
@@ -222,7 +222,7 @@ TEST(BenchCommand, WorkCounterColumnsAreTheImageTotalsOfTheCounterBuffers)
   const std::filesystem::path cache = test::freshOutputDir("bench-counters-cache");
   const std::vector<std::string> common = { "-s", "shadow_map_size=128", "-r", "32x32" };
   std::vector<std::string> bench = { "bench", test::datasetPath("planar-occluder").string(), "-t", "gbp07", "--sweep",
-    "sublights=1,2", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out", out.string() };
+    "sublights=1,2", "--repeat", "1", "--reference-samples", "16", "--quiet", "--cache", cache.string(), "--out", out.string() };
   bench.insert(bench.end(), common.begin(), common.end());
   const RunResult run = test::runShadowlabInTempDir(bench);
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -273,7 +273,7 @@ TEST(BenchCommand, ViewStatsAreTheBuffersDistributionOverTheViewAgainstTheFirstS
   const std::string scene = test::datasetPath("deep-view").string();
   const RunResult run = test::runShadowlabInTempDir({ "bench", scene, "-t", "hard", "--sweep",
     "cascades+shadow_map_size=1+128,4+64", "--view-stats", "texel_ratio,texel_ratio_t", "-r", "48x32", "--repeat", "1",
-    "--samples", "1", "--quiet", "--cache", cache.string(), "--out", out.string() });
+    "--reference-samples", "1", "--quiet", "--cache", cache.string(), "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json rows = readJson(out / "bench.json").at("configurations");
   ASSERT_EQ(rows.size(), 2u);
@@ -329,7 +329,7 @@ TEST(BenchCommand, CutShortPixelsAreAColumnAndAWarningEvenWhenQuiet)
   const std::filesystem::path out = test::freshOutputDir("bench-cut-out");
   const std::filesystem::path cache = test::freshOutputDir("bench-cut-cache");
   std::vector<std::string> bench = { "bench", test::datasetPath("stacked-occluders").string(), "-t", "yfgl09", "--sweep",
-    "hierarchy=off,on", "-r", "16x12", "--repeat", "1", "--samples", "16", "--quiet", "--cache", cache.string(), "--out",
+    "hierarchy=off,on", "-r", "16x12", "--repeat", "1", "--reference-samples", "16", "--quiet", "--cache", cache.string(), "--out",
     out.string() };
   const std::vector<std::string> scene = test::sceneSetArguments(test::wideKernelOverrides());
   bench.insert(bench.end(), scene.begin(), scene.end());
@@ -376,7 +376,7 @@ TEST(BenchCommand, DepthProfileAndJointSweepWriteOneRowPerConfigurationAndBin)
   const std::filesystem::path cache = test::freshOutputDir("bench-profile-cache");
   const RunResult run = test::runShadowlabInTempDir({ "bench", test::datasetPath("facing-tiles").string(), "-t", "hard",
     "-s", "shadow_map_size=256", "--sweep", "warp+warp_n=lispsm+1e6,lispsm+0", "--depth-profile", "texel_ratio_t",
-    "--depth-bins", "20", "--depth-range", "1,100", "--repeat", "1", "-r", "128x32", "--samples", "1", "--quiet",
+    "--depth-bins", "20", "--depth-range", "1,100", "--repeat", "1", "-r", "128x32", "--reference-samples", "1", "--quiet",
     "--cache", cache.string(), "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.err;
   std::vector<std::string> lines;

@@ -1,4 +1,4 @@
-// shadowlab reference --light-samples PATTERN --samples N --seed S, end to end through the executable: the shared
+// shadowlab reference --light-samples PATTERN --reference-samples N --seed S, end to end through the executable: the shared
 // light-sample set of technique `dcs`, and the per-sample arrays sample_crossings and light_sample_mask in
 // buffers.vti. The scene is planar-occluder: one square occluder over a ground plane, both horizontal under a
 // light above them, so no sample is below a tangent plane, a sample is hidden exactly when its segment crosses the
@@ -136,7 +136,7 @@ TEST(ReferenceLightSamplesCommand, WritesSampleCrossingsAndMaskWithTheSetsCount)
 {
   const std::string scene = test::datasetPath("planar-occluder").string();
   const std::filesystem::path out = test::freshOutputDir("reference-light-samples");
-  const RunResult run = test::runShadowlabInTempDir({ "reference", scene, "--light-samples", "poisson", "--samples", "64", "--seed",
+  const RunResult run = test::runShadowlabInTempDir({ "reference", scene, "--light-samples", "poisson", "--reference-samples", "64", "--seed",
     "3", "-r", "32x32", "--out", out.string() });
   ASSERT_EQ(run.exitCode, 0) << run.describe();
   // The log says the pattern, N and the seed.
@@ -199,9 +199,9 @@ TEST(ReferenceLightSamplesCommand, BadSetsAreOneLineErrorsWithNoOutput)
     std::vector<std::string> named; // what the message must name
   };
   const std::vector<Case> cases = {
-    { { planar, "--light-samples", "spiral", "--samples", "16" }, { "--light-samples", "spiral" } },
-    { { planar, "--light-samples", "grid", "--samples", "10" }, { "--samples", "10" } },
-    { { planar, "--light-samples", "poisson", "--samples", "1024" }, { "--samples", "1024" } },
+    { { planar, "--light-samples", "spiral", "--reference-samples", "16" }, { "--light-samples", "spiral" } },
+    { { planar, "--light-samples", "grid", "--reference-samples", "10" }, { "--reference-samples", "10" } },
+    { { planar, "--light-samples", "poisson", "--reference-samples", "1024" }, { "--reference-samples", "1024" } },
     { { planar, "--light-samples", "grid", "--sampling", "halton" }, { "--light-samples", "--sampling" } },
     { { planar, "--sampling", "stratified", "--light-samples", "grid" }, { "--light-samples", "--sampling" } },
     { { planar, "--light-samples", "grid", "--seed", "4294967296" }, { "--seed", "4294967296" } },

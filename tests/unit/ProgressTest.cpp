@@ -76,6 +76,54 @@ TEST(Progress, AShortRunPrintsNothingAndWaitsOnlyAroundTheFirstUnit)
 
 }
 
+// The settings the CLI's --progress uses (cli/CommandProgress.cpp): no threshold, no interval, the total always.
+ProgressSettings everyUnitSettings(double& clock)
+{
+  ProgressSettings settings;
+  settings.announceAfterSeconds = 0.0;
+  settings.intervalSeconds = 0.0;
+  settings.alwaysReportTotal = true;
+  settings.clock = [&clock] { return clock; };
+  return settings;
+}
+
+TEST(Progress, AskedForEveryUnitItPrintsALinePerUnitWithElapsedAndLeft)
+{
+  double clock = 10.0;
+  std::ostringstream out;
+  Progress progress("bench", "3 configuration(s)", "configuration", 3, &out, everyUnitSettings(clock));
+  for (std::size_t done = 1; done <= 3; ++done)
+  {
+    clock += 2.0;
+    progress.step(done);
+  }
+  progress.finish();
+  EXPECT_EQ(out.str(),
+    "shadowlab: bench: 3 configuration(s), expect about 6.0 s on this machine (measured: 1 configuration in 2.0 s)\n"
+    "shadowlab: bench: 2/3 configurations, 4.0 s elapsed, about 2.0 s left\n"
+    "shadowlab: bench: 3 configurations in 6.0 s\n");
+}
+
+TEST(Progress, ARunDoneAtItsFirstReportPrintsOnlyItsTotalWhenAskedTo)
+{
+  double clock = 10.0;
+  std::ostringstream asked;
+  Progress reported("reference", "16x16 pixels x 4 samples", "row", 16, &asked, everyUnitSettings(clock));
+  clock += 0.5;
+  reported.step(16);
+  reported.finish();
+  EXPECT_EQ(asked.str(), "shadowlab: reference: 16 rows in 0.5 s\n");
+  // Without alwaysReportTotal (a terminal's settings), such a run prints nothing.
+  std::ostringstream terminal;
+  ProgressSettings settings = everyUnitSettings(clock);
+  settings.alwaysReportTotal = false;
+  Progress quiet("reference", "16x16 pixels x 4 samples", "row", 16, &terminal, settings);
+  clock += 0.5;
+  quiet.step(16);
+  quiet.finish();
+  EXPECT_EQ(terminal.str(), "");
+}
+
 TEST(Progress, WithoutAStreamNothingIsPrintedAndNoWaitIsAsked)
 {
   setProgressStream(nullptr);

@@ -15,6 +15,6 @@ SL=${SHADOWLAB:-build/shadowlab}
 FIRST=${1:-1}
 LAST=${2:-6}
 start=$(date +%s)
-"$SL" differential --seeds "$FIRST..$LAST" --max-side 64 --samples 256 --out "$D/run" --force -q 2>&1 | tee "$D/run.log"
+"$SL" differential --seeds "$FIRST..$LAST" --max-side 64 --reference-samples 256 --out "$D/run" --force -q 2>&1 | tee "$D/run.log"
 status=${PIPESTATUS[0]}
 echo "wall time: $(( $(date +%s) - start )) s, exit $status" | tee -a "$D/run.log"

@@ -37,7 +37,7 @@ for part in $PARTS; do
     # pcss (their defaults), one run per scene so each speed_vs_error chart holds them all. Shadow maps at the
     # techniques' defaults (1024^2; pcss 2048^2). Bunny at 512x512, near-light at 256x256 (see probe).
     T=ss08,gbp06,gbp07,yfgl09,pcss
-    "$SL" bench datasets/bunny/scene.json -t $T --sweep budget=5,9,12,16,0 -r 512x512 --repeat 5 --samples 256 \
+    "$SL" bench datasets/bunny/scene.json -t $T --sweep budget=5,9,12,16,0 -r 512x512 --repeat 5 --reference-samples 256 \
       $CACHE --out $D/budget-bunny-512
     bash "$0" budget-near-light
     ;;
@@ -45,23 +45,23 @@ for part in $PARTS; do
     # Rerun alone with the build of 7b57965 + c946ec7 (ss08's micro_occluders counts the slots a cut pixel
     # reached; gbp06's cut-short flag detected): the first run's unlimited row reported the planned slots.
     "$SL" bench datasets/near-light/scene.json -t ss08,gbp06,gbp07,yfgl09,pcss --sweep budget=5,9,12,16,0 \
-      -r 256x256 --repeat 3 --samples 256 $CACHE --out $D/budget-near-light-256
+      -r 256x256 --repeat 3 --reference-samples 256 $CACHE --out $D/budget-near-light-256
     ;;
   rerun)
     # The same bunny run and structure run once more: on a machine shared with other jobs, a second sample shows
     # how far single configurations' times move between runs.
     "$SL" bench datasets/bunny/scene.json -t ss08,gbp06,gbp07,yfgl09,pcss --sweep budget=5,9,12,16,0 -r 512x512 \
-      --repeat 5 --samples 256 $CACHE --out $D/budget-bunny-512-run2
+      --repeat 5 --reference-samples 256 $CACHE --out $D/budget-bunny-512-run2
     "$SL" bench datasets/bunny/scene.json -t ss08 --sweep hsm=mipmap,ysm,nbuffers --sweep shadow_map_size=1024,2048 \
-      -r 64x64 --repeat 5 --samples 64 $CACHE --out $D/structures-run2
+      -r 64x64 --repeat 5 --reference-samples 64 $CACHE --out $D/structures-run2
     ;;
   structures)
     # Table 1's construction times as ratios: the hierarchical_shadow_map stage for each layout and map size,
     # and the microrects stage (micro_occluder=microrect), at a tiny image so the frame is the structures.
     "$SL" bench datasets/bunny/scene.json -t ss08 --sweep hsm=mipmap,ysm,nbuffers --sweep shadow_map_size=1024,2048 \
-      -r 64x64 --repeat 5 --samples 64 $CACHE --out $D/structures
+      -r 64x64 --repeat 5 --reference-samples 64 $CACHE --out $D/structures
     "$SL" bench datasets/bunny/scene.json -t ss08 -s micro_occluder=microrect -s hsm=mipmap \
-      --sweep shadow_map_size=1024,2048 -r 64x64 --repeat 5 --samples 64 $CACHE --out $D/microrects
+      --sweep shadow_map_size=1024,2048 -r 64x64 --repeat 5 --reference-samples 64 $CACHE --out $D/microrects
     ;;
   bytes)
     # Table 1's memory column: stats.json's light_structure_gpu_bytes (bench does not report it), one render each.
@@ -94,7 +94,7 @@ PY
     # Timings are not used (--repeat 1).
     "$SL" bench datasets/bunny/scene.json datasets/stacked-occluders/scene.json datasets/near-light/scene.json -t ss08 \
       --sweep force_level=2,3 --sweep shadow_map_size=256,512,1024 --sweep micro_occluder=micropatch,microrect \
-      --sweep accumulation=area,bitmask -r 256x256 --repeat 1 --samples 1024 $CACHE --out $D/fig12
+      --sweep accumulation=area,bitmask -r 256x256 --repeat 1 --reference-samples 1024 $CACHE --out $D/fig12
     ;;
   cost)
     # The slow-down of occlusion bitmasks and of microrects against area-accumulated micropatches (SS08 §8:
@@ -106,13 +106,13 @@ PY
       name=${scene%%:*}
       size=${scene##*:}
       "$SL" bench datasets/$name/scene.json -t ss08 -s budget=12 --sweep micro_occluder=micropatch,microrect \
-        --sweep accumulation=area,bitmask -r $size --repeat 5 --samples 256 $CACHE --out $D/cost-$name-${size%%x*}
+        --sweep accumulation=area,bitmask -r $size --repeat 5 --reference-samples 256 $CACHE --out $D/cost-$name-${size%%x*}
       "$SL" bench datasets/$name/scene.json -t ss08 -s budget=12 --sweep micro_occluder=microrect,micropatch \
-        --sweep accumulation=bitmask,area -r $size --repeat 5 --samples 256 $CACHE --out $D/cost-$name-${size%%x*}-run2
+        --sweep accumulation=bitmask,area -r $size --repeat 5 --reference-samples 256 $CACHE --out $D/cost-$name-${size%%x*}-run2
       # The baseline's micropatches are gap-filled (gap_filling=left_bottom, two neighbour reads per slot) and
       # microrects are not: the baseline again without gap filling, to separate that from the bitmasks' cost.
       "$SL" bench datasets/$name/scene.json -t ss08 -s budget=12 -s micro_occluder=micropatch -s accumulation=area \
-        --sweep gap_filling=left_bottom,off -r $size --repeat 5 --samples 256 $CACHE \
+        --sweep gap_filling=left_bottom,off -r $size --repeat 5 --reference-samples 256 $CACHE \
         --out $D/cost-gap-filling-$name-${size%%x*}
     done
     ;;
@@ -123,9 +123,9 @@ PY
     # G-buffer, the copy of its first sample and a plain resolve, "MSAA alone"). Each configuration's error is against
     # the reference of as many samples per pixel (bench's multisample mode). Twice, the second in reverse order.
     "$SL" bench datasets/bunny/scene.json -t ss08 --sweep msaa=1,4 --sweep msaa_depth_tolerance=0.001,1e30 \
-      -r 512x512 --repeat 5 --samples 256 $CACHE --out $D/msaa-bunny-512
+      -r 512x512 --repeat 5 --reference-samples 256 $CACHE --out $D/msaa-bunny-512
     "$SL" bench datasets/bunny/scene.json -t ss08 --sweep msaa=4,1 --sweep msaa_depth_tolerance=1e30,0.001 \
-      -r 512x512 --repeat 5 --samples 256 $CACHE --out $D/msaa-bunny-512-run2
+      -r 512x512 --repeat 5 --reference-samples 256 $CACHE --out $D/msaa-bunny-512-run2
     ;;
   table)
     python3 $D/table.py > $D/table.md

@@ -21,7 +21,7 @@ PARTS=${*:-textures perforated meshed table}
 T=../../$D
 TEXTURES=fence,$T/plate-8-h1.png,$T/plate-16-h2.png,$T/plate-32-h4.png,$T/plate-64-h2.png,$T/plate-64-h8.png
 TEXTURES=$TEXTURES,$T/plate-64-h16.png,$T/plate-128-h16.png,$T/plate-256-h32.png
-COMMON="-t dcs -s light_samples=poisson -s samples=16 --samples 64 --cache /tmp/slcache-stsv-scaling -r 128x128"
+COMMON="-t dcs -s light_samples=poisson -s samples=16 --reference-samples 64 --cache /tmp/slcache-stsv-scaling -r 128x128"
 COMMON="$COMMON --scene-sweep /objects/1/alpha_texture=$TEXTURES"
 
 for part in $PARTS; do

@@ -26,7 +26,7 @@ CACHE="--cache /tmp/slcache-stsv"
 PARTS=${*:-fence fence-dcs meshed references coverage fence-512 fence-dcs-512 meshed-512 rerun spread table}
 # The paper's pattern (Forest et al. 2009 §4.1), set explicitly so that a change of a technique's default cannot split the
 # two sides of the ratio (bench refuses a --set no technique of the run has, so gbp07's map size is set in `fence`).
-COMMON="-s light_samples=poisson --samples 1024 $CACHE"
+COMMON="-s light_samples=poisson --reference-samples 1024 $CACHE"
 
 for part in $PARTS; do
   case $part in
