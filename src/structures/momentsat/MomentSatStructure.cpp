@@ -1,0 +1,97 @@
+#include "structures/momentsat/MomentSatStructure.h"
+
+#include "frame/FrameResult.h"
+#include "gl/GlResources.h"
+#include "lightspace/MomentSummedAreaTable.h"
+#include "passes/PassUtilities.h"
+#include "structures/momentsat/vtkSLMomentSatPass.h"
+#include "structures/shadowmap/ShadowMapStructure.h"
+
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+namespace sl
+{
+
+const MomentSatData& momentSatData(const FrameResources& frame)
+{
+  return frame.structureData<MomentSatData>(momentSatStructure().name);
+}
+
+namespace
+{
+
+// The table's words are not useful as images (wrapping low words, high words that only grow): exported are the
+// per-texel moments decoded from the table (each texel's one-texel box sum / 2^32, what every box mean sums), and the
+// exact words are kept for tests (FrameResult::momentSummedAreaTable).
+std::vector<NamedImage> exportMomentSat(const FrameResources& frame, FrameResult& result)
+{
+  const MomentSatData& data = momentSatData(frame);
+  Image<std::uint32_t> words(static_cast<int>(data.low->GetWidth()), static_cast<int>(data.low->GetHeight()), 8);
+  {
+    const Image<std::uint32_t> low = readUnsignedTextureExact(data.low, 4);
+    const Image<std::uint32_t> high = readUnsignedTextureExact(data.high, 4);
+    for (std::size_t texel = 0; texel < low.pixelCount(); ++texel)
+    {
+      for (std::size_t k = 0; k < 4; ++k)
+      {
+        words.data[8 * texel + k] = low.data[4 * texel + k];
+        words.data[8 * texel + 4 + k] = high.data[4 * texel + k];
+      }
+    }
+  }
+  const Image<std::uint64_t> table = momentSummedAreaTableFromWords(words);
+  result.momentSummedAreaTable = std::move(words);
+  const char* names[4] = { "moment_sat_texel_1", "moment_sat_texel_2", "moment_sat_texel_3", "moment_sat_texel_4" };
+  const char* docs[4] = { "z of the texel as the moment SAT holds it (fixed point floor(z 2^32) / 2^32, decoded from its box sum)",
+    "z^2 of the texel as the moment SAT holds it", "z^3 of the texel as the moment SAT holds it",
+    "z^4 of the texel as the moment SAT holds it" };
+  std::vector<NamedImage> images(4);
+  for (int k = 0; k < 4; ++k)
+  {
+    images[static_cast<std::size_t>(k)] = { names[k], ImageF(table.width, table.height, 1), "", docs[k] };
+  }
+  for (int y = 0; y < table.height; ++y)
+  {
+    for (int x = 0; x < table.width; ++x)
+    {
+      const glm::dvec4 moments = momentBoxMean(table, { x, y }, { x, y });
+      for (int k = 0; k < 4; ++k)
+      {
+        images[static_cast<std::size_t>(k)].image.at(x, y) = static_cast<float>(moments[k]);
+      }
+    }
+  }
+  return images;
+}
+
+} // namespace
+
+const LightSpaceStructure& momentSatStructure()
+{
+  static const LightSpaceStructure structure = [] {
+    LightSpaceStructure s;
+    s.name = "moment_sat";
+    s.doc = "summed-area table of the four power moments (z, z^2, z^3, z^4), 32-bit fixed point per texel, exact 64-bit "
+            "sums (Peters et al. 2016, moment soft shadow mapping)";
+    s.builtFrom = { &shadowMapStructure() };
+    s.createBuildPasses = [] {
+      return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLMomentSatPass>::New() };
+    };
+    s.exportImages = exportMomentSat;
+    s.gpuBytes = [](const FrameResources& frame) {
+      const MomentSatData& data = momentSatData(frame);
+      return textureBytes(data.low, 16) + textureBytes(data.high, 16);
+    };
+    s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
+    s.bind = [](vtkShaderProgram* program, const FrameResources& frame) {
+      const MomentSatData& data = momentSatData(frame);
+      return std::vector<vtkTextureObject*>{ bindTexture(program, "momentSatLow", data.low),
+        bindTexture(program, "momentSatHigh", data.high) };
+    };
+    return s;
+  }();
+  return structure;
+}
+
+} // namespace sl

@@ -1,0 +1,84 @@
+// Technique `msmsoft`: moment soft shadow mapping (Peters, Münstermann, Wetzstein & Klein 2016; JCGT 2017). From the
+// moment summed-area table (structures/momentsat): the blocker intensity and average blocker depth from the four
+// moments over PCSS's search region (the canonical representation at the receiver's depth), the penumbra kernel by
+// similar triangles, and Hamburger 4MSM over the kernel's moments with fractional edges.
+// Math: msmsoft/shaders/MsmSoftVisibility.glsl.
+// Parameters: the shadow-map ones, moment_bias (msm's), fully_lit_bias, min_kernel_texels, max_grid_taps and
+// receiver_plane_bias (the light_leak buffer's PCF only).
+// Buffers: light_leak, blocker_kernel_texels, blocker_intensity, avg_blocker_depth, penumbra_kernel_texels,
+// support_depth_near/far, hankel_pivot, depth_bias.
+#pragma once
+
+#include "core/Image.h"
+#include "frame/TechniqueDescriptor.h"
+#include "lightspace/MomentHamburger.h"
+#include "techniques/ShadowMapReference.h"
+#include "techniques/SoftShadowSupport.h"
+
+#include <cstdint>
+
+namespace sl
+{
+
+TechniqueDescriptor msmSoftTechnique();
+
+// The GPU's visibility lies within this of the twin's (MsmSoftTest; README.md, Precision) where no search kernel edge
+// lies within 1e-4 texel of a texel centre and both Hankel pivots D33 are at least msmSoftPivotLimit.
+inline constexpr double msmSoftTwinTolerance = 2e-3;
+// Below this last pivot the float moments' rounding is a sizeable part of D33 and the reconstruction follows it.
+inline constexpr double msmSoftPivotLimit = 1e-6;
+
+// msmsoft's parameters, typed (parsed once, by from()).
+struct MsmSoftSettings
+{
+  BiasSettings bias;
+  double momentBias{};      // alpha of MSM Alg. 3 (msm's moment_bias)
+  double fullyLitBias{};    // epsilon of the average blocker depth
+  double minKernelTexels{}; // the penumbra kernel's smallest width
+  int maxGridTaps{};        // the light-leak PCF's grid
+  bool receiverPlaneBias{}; // the light-leak PCF's comparisons
+
+  static MsmSoftSettings from(const ParameterValues& values);
+};
+
+// Step 4: the blocker estimate from the search region's moments at z_f.
+struct MsmSoftBlockers
+{
+  MsmReconstruction canonical; // Hamburger 4MSM at z_f on the search moments: its support z_1, z_2
+  glm::dvec2 weights{ 0.0 };   // of z_1 and z_2 in the three-point distribution with z_f (floored at 0)
+  double intensity = 0.0;      // G_b: the weights of the z_i < z_f (unclamped; the buffer clamps at 1)
+  double averageDepth = 0.0;   // z_avg, moment depth
+};
+MsmSoftBlockers msmSoftBlockers(const glm::dvec4& searchMoments, double momentBias, double fullyLitBias, double zf);
+
+struct MsmSoftSample
+{
+  ReferenceSample sample;
+  double fragmentDepth = 0.0;      // z_f
+  glm::dvec2 searchHalfTexels{ 0.0 };
+  glm::ivec2 searchLo{ 0 };        // the search rectangle, inclusive texels
+  glm::ivec2 searchHi{ 0 };
+  double searchEdgeMargin = 1e300; // the search kernel's edges' distance to texel centres (texels)
+  glm::dvec4 searchMoments{ 0.0 };
+  MsmSoftBlockers blockers;
+  double averageBlockerDepth = 0.0; // linear depth
+  glm::dvec2 filterHalfTexels{ 0.0 };
+  glm::dvec2 filterMin{ 0.0 };      // the fractional filter rectangle, texels
+  glm::dvec2 filterMax{ 0.0 };
+  glm::dvec4 filterMoments{ 0.0 };
+  MsmReconstruction filter;         // Hamburger 4MSM over the filter rectangle
+  glm::ivec2 coverLo{ 0 };          // the filter rectangle's integer cover (the light-leak PCF)
+  glm::ivec2 coverHi{ 0 };
+  double lightLeak = 0.0;
+};
+
+// CPU twin (double precision) of MsmSoftVisibility.glsl at pixel (x, y). `momentTable` is the moment SAT of
+// inputs.shadowMapLinear (momentSummedAreaTable, lightspace/MomentSummedAreaTable.h): its box sums are exact, so the
+// twin's box means are the quantised moments' (2^-32) in double. `recorder` (optional, `shadowlab probe`): the
+// receiver, the search box and its moments, the canonical representation with its weights, G_b and z_avg, the
+// penumbra kernel and the filter box, the filter's Hamburger 4MSM (pivots, support points, weights), the visibility
+// and the light leak against the PCF over the filter rectangle's integer cover.
+MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSettings& settings,
+  const Image<std::uint64_t>& momentTable, int x, int y, ProbeRecorder* recorder = nullptr);
+
+} // namespace sl
