@@ -106,6 +106,40 @@ void recordHamburger(ProbeRecorder& recorder, const MsmReconstruction& msm, cons
     "ShadowLab (Lagrange): weights of z_f and the two support points in the distribution matching 1, b1', b2'");
 }
 
+
+// Steps 4-6 of MsmSoftVisibility.glsl from the search moments and z_f; `filterShift` is added to the filter
+// moments (the rounding sensitivity moves them, 0 otherwise).
+struct MsmSoftSteps
+{
+  MsmSoftBlockers blockers;
+  double averageBlockerDepth = 0.0;
+  glm::dvec2 filterHalfTexels{ 0.0 };
+  glm::dvec2 filterMin{ 0.0 };
+  glm::dvec2 filterMax{ 0.0 };
+  glm::dvec4 filterMoments{ 0.0 };
+  MsmReconstruction filter;
+};
+
+MsmSoftSteps msmSoftSteps(const glm::dvec4& searchMoments, double zf, const glm::dvec4& filterShift,
+  const glm::dvec2& uv, const glm::dvec2& searchHalfTexels, const SoftShadowGeometry& geometry, const LightView& view,
+  const MsmSoftSettings& settings, const Image<std::uint64_t>& momentTable)
+{
+  MsmSoftSteps steps;
+  // Step 4, back to linear depth.
+  steps.blockers = msmSoftBlockers(searchMoments, settings.momentBias, settings.fullyLitBias, zf);
+  steps.averageBlockerDepth = view.nearDepth + steps.blockers.averageDepth * (view.farDepth - view.nearDepth);
+  // Step 5.
+  const glm::dvec2 minimumHalf(0.5 * settings.minKernelTexels);
+  steps.filterHalfTexels = glm::min(glm::max(geometry.kernelHalfTexels(steps.averageBlockerDepth), minimumHalf),
+    glm::max(searchHalfTexels, minimumHalf));
+  // Step 6.
+  steps.filterMin = uv - steps.filterHalfTexels;
+  steps.filterMax = uv + steps.filterHalfTexels;
+  steps.filterMoments = momentFractionalBoxMean(momentTable, steps.filterMin, steps.filterMax) + filterShift;
+  steps.filter = msmHamburger4(steps.filterMoments, settings.momentBias, zf);
+  return steps;
+}
+
 } // namespace
 
 MsmSoftSettings MsmSoftSettings::from(const ParameterValues& values)
@@ -174,10 +208,12 @@ TechniqueDescriptor msmSoftTechnique()
     {
       noteAmbiguity(outcome.ambiguity, "search kernel edge from a texel centre (texels)", sample.searchEdgeMargin,
         probeTexelEdgeAmbiguity);
-      noteAmbiguity(outcome.ambiguity, "search step's Hankel pivot D33 (float rounding below)",
-        sample.blockers.canonical.pivot3, msmSoftPivotLimit);
-      noteAmbiguity(outcome.ambiguity, "filter step's Hankel pivot D33 (float rounding below)", sample.filter.pivot3,
-        msmSoftPivotLimit);
+      recorder.beginGroup("conditioning");
+      recorder.quantity("rounding_sensitivity", sample.sensitivity.visibility, "",
+        "ShadowLab: sum of |visibility change| when a search or filter moment or z_f moves by 1e-6 (float rounding); "
+        "ill-conditioned above 1e-3");
+      noteAmbiguity(outcome.ambiguity, "headroom against float rounding (1e-3 / rounding sensitivity)",
+        msmSoftSensitivityLimit / std::max(sample.sensitivity.visibility, 1e-300), 1.0);
     }
     return outcome;
   };
@@ -252,18 +288,43 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
   result.searchLo = search.lo;
   result.searchHi = search.hi;
   result.searchMoments = momentBoxMean(momentTable, search.lo, search.hi);
-  // Step 4.
-  result.blockers = msmSoftBlockers(result.searchMoments, settings.momentBias, settings.fullyLitBias, zf);
-  result.averageBlockerDepth = view.nearDepth + result.blockers.averageDepth * range;
-  // Step 5.
-  const glm::dvec2 minimumHalf(0.5 * settings.minKernelTexels);
-  result.filterHalfTexels = glm::min(glm::max(geometry.kernelHalfTexels(result.averageBlockerDepth), minimumHalf),
-    glm::max(result.searchHalfTexels, minimumHalf));
-  // Step 6.
-  result.filterMin = uv - result.filterHalfTexels;
-  result.filterMax = uv + result.filterHalfTexels;
-  result.filterMoments = momentFractionalBoxMean(momentTable, result.filterMin, result.filterMax);
-  result.filter = msmHamburger4(result.filterMoments, settings.momentBias, zf);
+  // Steps 4-6.
+  const MsmSoftSteps steps =
+    msmSoftSteps(result.searchMoments, zf, glm::dvec4(0.0), uv, result.searchHalfTexels, geometry, view, settings, momentTable);
+  result.blockers = steps.blockers;
+  result.averageBlockerDepth = steps.averageBlockerDepth;
+  result.filterHalfTexels = steps.filterHalfTexels;
+  result.filterMin = steps.filterMin;
+  result.filterMax = steps.filterMax;
+  result.filterMoments = steps.filterMoments;
+  result.filter = steps.filter;
+  // How far float rounding of the moments and of z_f (msmSoftMomentRounding) moves steps 4-6.
+  const double kernel = 2.0 * std::max(steps.filterHalfTexels.x, steps.filterHalfTexels.y);
+  for (int k = 0; k < 9; ++k)
+  {
+    MsmSoftSensitivity largest;
+    for (const double sign : { -1.0, 1.0 })
+    {
+      glm::dvec4 searchMoments = result.searchMoments;
+      glm::dvec4 filterShift(0.0);
+      double depth = zf;
+      const double delta = sign * msmSoftMomentRounding;
+      (k < 4 ? searchMoments[k] : k < 8 ? filterShift[k - 4] : depth) += delta;
+      const MsmSoftSteps moved =
+        msmSoftSteps(searchMoments, depth, filterShift, uv, result.searchHalfTexels, geometry, view, settings, momentTable);
+      const double movedKernel = 2.0 * std::max(moved.filterHalfTexels.x, moved.filterHalfTexels.y);
+      largest.visibility = std::max(largest.visibility, std::abs(moved.filter.shadowIntensity - steps.filter.shadowIntensity));
+      largest.blockerIntensity = std::max(largest.blockerIntensity,
+        std::abs(std::min(moved.blockers.intensity, 1.0) - std::min(steps.blockers.intensity, 1.0)));
+      largest.averageDepth = std::max(largest.averageDepth,
+        std::abs(moved.averageBlockerDepth - steps.averageBlockerDepth) / steps.averageBlockerDepth);
+      largest.kernel = std::max(largest.kernel, std::abs(movedKernel - kernel) / kernel);
+    }
+    result.sensitivity.visibility += largest.visibility;
+    result.sensitivity.blockerIntensity += largest.blockerIntensity;
+    result.sensitivity.averageDepth += largest.averageDepth;
+    result.sensitivity.kernel += largest.kernel;
+  }
   result.sample.visibility = 1.0 - result.filter.shadowIntensity;
   result.coverLo = glm::clamp(glm::ivec2(glm::floor(result.filterMin)), glm::ivec2(0), glm::ivec2(size - 1));
   result.coverHi = glm::clamp(glm::ivec2(glm::ceil(result.filterMax)) - 1, result.coverLo, glm::ivec2(size - 1));

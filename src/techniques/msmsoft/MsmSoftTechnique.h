@@ -23,10 +23,8 @@ namespace sl
 TechniqueDescriptor msmSoftTechnique();
 
 // The GPU's visibility lies within this of the twin's (MsmSoftTest; README.md, Precision) where no search kernel edge
-// lies within 1e-4 texel of a texel centre and both Hankel pivots D33 are at least msmSoftPivotLimit.
-inline constexpr double msmSoftTwinTolerance = 2e-3;
-// Below this last pivot the float moments' rounding is a sizeable part of D33 and the reconstruction follows it.
-inline constexpr double msmSoftPivotLimit = 1e-6;
+// lies within 1e-4 texel of a texel centre and the rounding sensitivity is at most msmSoftSensitivityLimit.
+inline constexpr double msmSoftTwinTolerance = 5e-4;
 
 // msmsoft's parameters, typed (parsed once, by from()).
 struct MsmSoftSettings
@@ -51,6 +49,20 @@ struct MsmSoftBlockers
 };
 MsmSoftBlockers msmSoftBlockers(const glm::dvec4& searchMoments, double momentBias, double fullyLitBias, double zf);
 
+// How far float rounding moves steps 4-6: the sum over the four search moments, the four filter moments and z_f of the
+// largest change when one moves by +-msmSoftMomentRounding.
+inline constexpr double msmSoftMomentRounding = 1e-6; // the absolute rounding of a float moment in [0, 1] (as msm's)
+struct MsmSoftSensitivity
+{
+  double visibility = 0.0;
+  double blockerIntensity = 0.0; // G_b (clamped at 1 as the buffer)
+  double averageDepth = 0.0;     // relative change of the linear average blocker depth
+  double kernel = 0.0;           // relative change of penumbra_kernel_texels
+};
+// Above this a quantity is ill-conditioned (a near-singular Hankel matrix): tests and the probe count it instead of
+// comparing it (msm's msmSensitivityLimit).
+inline constexpr double msmSoftSensitivityLimit = 1e-3;
+
 struct MsmSoftSample
 {
   ReferenceSample sample;
@@ -70,6 +82,7 @@ struct MsmSoftSample
   glm::ivec2 coverLo{ 0 };          // the filter rectangle's integer cover (the light-leak PCF)
   glm::ivec2 coverHi{ 0 };
   double lightLeak = 0.0;
+  MsmSoftSensitivity sensitivity;
 };
 
 // CPU twin (double precision) of MsmSoftVisibility.glsl at pixel (x, y). `momentTable` is the moment SAT of

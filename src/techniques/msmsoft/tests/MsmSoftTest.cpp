@@ -4,9 +4,10 @@
 // tracer beside savsm's and pcss's.
 //
 // Exclusions (counted and printed): receivers whose search kernel edge lies within 1e-4 texel of a texel centre (the
-// GPU's float may include or exclude a row of the integer search box), whose light-reach test is grazing, and whose
-// Hankel pivot D33 (search or filter step) is below msmSoftPivotLimit (float rounding of the moments is then a
-// sizeable part of D33 and the reconstruction follows it).
+// GPU's float may include or exclude a row of the integer search box), whose light-reach test is grazing, and where
+// float rounding of the moments decides the value (MsmSoftSensitivity above msmSoftSensitivityLimit: a near-singular
+// Hankel matrix, one or two depths in the box held apart only by the moment bias): visibility is compared where its
+// sensitivity is small, G_b, z_avg and the kernel where theirs are.
 #include "support/TestSupport.h"
 #include "frame/ProbeRecord.h"
 #include "lightspace/MomentSummedAreaTable.h"
@@ -33,7 +34,9 @@ struct MsmSoftAgreement
   int compared = 0;
   int partial = 0;
   int edgeExcluded = 0;
-  int pivotExcluded = 0;
+  int sensitivityExcluded = 0;
+  int blockersCompared = 0;           // G_b, z_avg and the kernel compared (their sensitivities small)
+  double maxExcludedVisibility = 0.0; // |gpu - cpu| at the pixels excluded for sensitivity
   int reachExcluded = 0;
   int mismatched = 0;
   int leakMismatched = 0; // |light_leak| differs by > 2e-3 (a tap within float rounding of its texel's depth)
@@ -82,20 +85,27 @@ MsmSoftAgreement compareMsmSoftWithTwin(const FrameResult& frame, const Scene& s
         ++agreement.reachExcluded;
         continue;
       }
-      if (cpu.blockers.canonical.pivot3 < msmSoftPivotLimit || cpu.filter.pivot3 < msmSoftPivotLimit)
+      const MsmSoftSensitivity& sensitivity = cpu.sensitivity;
+      const double cpuKernel = 2.0 * std::max(cpu.filterHalfTexels.x, cpu.filterHalfTexels.y);
+      if (sensitivity.blockerIntensity <= msmSoftSensitivityLimit && sensitivity.averageDepth <= msmSoftSensitivityLimit &&
+        sensitivity.kernel <= msmSoftSensitivityLimit)
       {
-        ++agreement.pivotExcluded;
+        ++agreement.blockersCompared;
+        agreement.maxIntensity = std::max(agreement.maxIntensity, std::abs(intensity.at(x, y) - std::min(cpu.blockers.intensity, 1.0)));
+        agreement.maxAverageDepth = std::max(agreement.maxAverageDepth,
+          std::abs(averageDepth.at(x, y) - cpu.averageBlockerDepth) / cpu.averageBlockerDepth);
+        agreement.maxKernel = std::max(agreement.maxKernel, std::abs(kernel.at(x, y) - cpuKernel) / cpuKernel);
+      }
+      if (sensitivity.visibility > msmSoftSensitivityLimit)
+      {
+        ++agreement.sensitivityExcluded;
+        agreement.maxExcludedVisibility = std::max(agreement.maxExcludedVisibility, std::abs(gpu - cpu.sample.visibility));
         continue;
       }
       ++agreement.compared;
       agreement.partial += cpu.sample.visibility > 0.01 && cpu.sample.visibility < 0.99 ? 1 : 0;
       const double difference = std::abs(gpu - cpu.sample.visibility);
       agreement.maxVisibility = std::max(agreement.maxVisibility, difference);
-      agreement.maxIntensity = std::max(agreement.maxIntensity, std::abs(intensity.at(x, y) - std::min(cpu.blockers.intensity, 1.0)));
-      agreement.maxAverageDepth = std::max(agreement.maxAverageDepth,
-        std::abs(averageDepth.at(x, y) - cpu.averageBlockerDepth) / cpu.averageBlockerDepth);
-      const double cpuKernel = 2.0 * std::max(cpu.filterHalfTexels.x, cpu.filterHalfTexels.y);
-      agreement.maxKernel = std::max(agreement.maxKernel, std::abs(kernel.at(x, y) - cpuKernel) / cpuKernel);
       const double leakDifference = std::abs(leak.at(x, y) - cpu.lightLeak);
       agreement.maxLeak = std::max(agreement.maxLeak, leakDifference);
       agreement.leakMismatched += leakDifference > 2e-3 ? 1 : 0;
@@ -113,8 +123,9 @@ void printMsmSoftAgreement(const std::string& label, const MsmSoftAgreement& agr
 {
   std::cout << "[ measured ] msmsoft vs twin, " << label << ": compared " << agreement.compared << " of "
             << agreement.evaluated << " (partial " << agreement.partial << "; excluded: search edge "
-            << agreement.edgeExcluded << ", pivot " << agreement.pivotExcluded << ", reach " << agreement.reachExcluded
-            << "), max |gpu - cpu| visibility " << agreement.maxVisibility << ", G_b " << agreement.maxIntensity
+            << agreement.edgeExcluded << ", rounding sensitivity " << agreement.sensitivityExcluded << ", reach " << agreement.reachExcluded
+            << "; excluded pixels differ by up to " << agreement.maxExcludedVisibility << "), max |gpu - cpu| visibility "
+            << agreement.maxVisibility << "; over " << agreement.blockersCompared << " pixels G_b " << agreement.maxIntensity
             << ", z_avg (relative) " << agreement.maxAverageDepth << ", kernel (relative) " << agreement.maxKernel
             << ", light_leak " << agreement.maxLeak << " (" << agreement.leakMismatched << " over 2e-3)\n";
 }
@@ -122,9 +133,9 @@ void printMsmSoftAgreement(const std::string& label, const MsmSoftAgreement& agr
 void expectAgreement(const MsmSoftAgreement& agreement, const std::string& label)
 {
   EXPECT_EQ(agreement.mismatched, 0) << label << ": first " << agreement.firstMismatch;
-  EXPECT_LT(agreement.maxIntensity, 1e-3) << label;
+  EXPECT_LT(agreement.maxIntensity, 1e-4) << label;
   EXPECT_LT(agreement.maxAverageDepth, 1e-4) << label;
-  EXPECT_LT(agreement.maxKernel, 1e-3) << label;
+  EXPECT_LT(agreement.maxKernel, 5e-4) << label;
   EXPECT_LE(agreement.leakMismatched, agreement.compared / 100 + 1) << label;
 }
 
@@ -140,8 +151,11 @@ TEST(MsmSoft, MatchesTheCpuTwinOnThreeDatasets)
     printMsmSoftAgreement(test::caseLabel(dataset, settings), agreement);
     expectAgreement(agreement, dataset);
     EXPECT_GT(agreement.compared, 2000) << dataset;
-    EXPECT_GT(agreement.partial, 100) << dataset;
-    EXPECT_LT(agreement.edgeExcluded + agreement.pivotExcluded, agreement.evaluated / 20) << dataset;
+    EXPECT_GT(agreement.partial, 50) << dataset;
+    // Lit receivers with a few blocker texels in the search box keep a tiny G_b, and z_avg there follows rounding;
+    // one or two depths in a box leave D33 at the bias: the exclusions stay a minority.
+    EXPECT_LT(agreement.edgeExcluded + agreement.sensitivityExcluded, agreement.evaluated / 4) << dataset;
+    EXPECT_GT(agreement.blockersCompared, agreement.evaluated / 4) << dataset;
   }
 }
 
@@ -266,8 +280,8 @@ TEST(MsmSoft, ProbeRecordsTheKernelsAndTheGpuBuffers)
     for (int x = 0; x < 96; ++x)
     {
       const MsmSoftSample cpu = msmSoftReference(inputs, settings, table, x, y);
-      if (!cpu.sample.evaluated || cpu.searchEdgeMargin < 1e-4 || cpu.filter.pivot3 < msmSoftPivotLimit ||
-        cpu.blockers.canonical.pivot3 < msmSoftPivotLimit)
+      if (!cpu.sample.evaluated || cpu.searchEdgeMargin < 1e-4 || cpu.sensitivity.visibility > msmSoftSensitivityLimit ||
+        cpu.sensitivity.averageDepth > msmSoftSensitivityLimit || cpu.sensitivity.kernel > msmSoftSensitivityLimit)
       {
         continue;
       }
