@@ -92,17 +92,18 @@ double msmSoftLeakPcf(const ShadowMapInputs& inputs, const SoftShadowGeometry& g
   return lit * weight;
 }
 
-void recordHamburger(ProbeRecorder& recorder, const MsmReconstruction& msm, const char* source)
+void recordHamburger(ProbeRecorder& recorder, const std::string& prefix, const MsmReconstruction& msm, const char* source)
 {
-  recorder.quantity("biased_moments", glm::dvec3(msm.biasedMoments.x, msm.biasedMoments.y, msm.biasedMoments.z), "",
+  const auto name = [&](const char* quantity) { return prefix + quantity; };
+  recorder.quantity(name("biased_moments"), glm::dvec3(msm.biasedMoments.x, msm.biasedMoments.y, msm.biasedMoments.z), "",
     std::string(source) + "; MSM Alg. 3, moment bias: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), components 1-3");
-  recorder.quantity("biased_moment_4", msm.biasedMoments.w, "", "MSM Alg. 3, moment bias: b4'");
-  recorder.quantity("pivot_d22", msm.pivot2, "", "MSM Alg. 3, Cholesky solve: D22 = b2' - b1'^2");
-  recorder.quantity("hankel_pivot", msm.pivot3, "", "MSM Alg. 3, Cholesky solve: D33 = det(B) / D22, the last pivot");
-  recorder.quantity("polynomial", msm.polynomial, "", "MSM Alg. 3, Cholesky solve: c solving B c = (1, z_f, z_f^2)");
-  recorder.quantity("support_depth_near", msm.supportNear, "moment depth", "MSM Alg. 3, quadratic: the smaller root of c1 + c2 z + c3 z^2");
-  recorder.quantity("support_depth_far", msm.supportFar, "moment depth", "MSM Alg. 3, quadratic: the larger root");
-  recorder.quantity("support_weights", msm.weights, "",
+  recorder.quantity(name("biased_moment_4"), msm.biasedMoments.w, "", "MSM Alg. 3, moment bias: b4'");
+  recorder.quantity(name("pivot_d22"), msm.pivot2, "", "MSM Alg. 3, Cholesky solve: D22 = b2' - b1'^2");
+  recorder.quantity(name("hankel_pivot"), msm.pivot3, "", "MSM Alg. 3, Cholesky solve: D33 = det(B) / D22, the last pivot");
+  recorder.quantity(name("polynomial"), msm.polynomial, "", "MSM Alg. 3, Cholesky solve: c solving B c = (1, z_f, z_f^2)");
+  recorder.quantity(name("support_depth_near"), msm.supportNear, "moment depth", "MSM Alg. 3, quadratic: the smaller root of c1 + c2 z + c3 z^2");
+  recorder.quantity(name("support_depth_far"), msm.supportFar, "moment depth", "MSM Alg. 3, quadratic: the larger root");
+  recorder.quantity(name("support_weights"), msm.weights, "",
     "ShadowLab (Lagrange): weights of z_f and the two support points in the distribution matching 1, b1', b2'");
 }
 
@@ -346,7 +347,7 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
       "", "Peters et al. 2016: E[z], E[z^2], E[z^3] over the search box (exact box sums / texels)");
     recorder->quantity("search_moment_4", result.searchMoments.w, "", "Peters et al. 2016: E[z^4] over the search box");
     recorder->beginGroup("canonical representation");
-    recordHamburger(*recorder, result.blockers.canonical, "Peters et al. 2016 (blocker search)");
+    recordHamburger(*recorder, "search_", result.blockers.canonical, "Peters et al. 2016 (blocker search)");
     recorder->quantity("blocker_weights", result.blockers.weights, "",
       "Peters et al. 2016: weights of the two support points beside z_f, floored at 0");
     recorder->quantity("blocker_intensity", std::min(result.blockers.intensity, 1.0), "",
@@ -364,7 +365,7 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
       "", "Peters et al. 2016: E[z], E[z^2], E[z^3] over w_p, texels weighted by covered area");
     recorder->quantity("filter_moment_4", result.filterMoments.w, "", "Peters et al. 2016: E[z^4] over w_p");
     recorder->beginGroup("hamburger 4msm (filter)");
-    recordHamburger(*recorder, result.filter, "Peters & Klein 2015 (filter)");
+    recordHamburger(*recorder, "", result.filter, "Peters & Klein 2015 (filter)");
     recorder->quantity("shadow_intensity", result.filter.shadowIntensity, "",
       "MSM Alg. 3, weights: the weights of the support points in front of z_f, clamped to [0, 1]");
     recorder->quantity("visibility", result.sample.visibility, "", "ShadowLab: 1 - shadow intensity");
