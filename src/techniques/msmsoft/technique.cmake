@@ -4,4 +4,5 @@ sl_technique(
   DESCRIPTOR msmSoftTechnique MsmSoftTechnique.h
   SOURCES MsmSoftTechnique.cpp vtkSLMsmSoftPass.cxx
   SHADERS shaders/MsmSoftVisibility.glsl
+  UNIT_TESTS tests/MsmSoftMathTest.cpp
   GPU_TESTS tests/MsmSoftTest.cpp)
