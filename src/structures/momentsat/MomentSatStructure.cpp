@@ -40,8 +40,6 @@ std::vector<NamedImage> exportMomentSat(const FrameResources& frame, FrameResult
       }
     }
   }
-  const Image<std::uint64_t> table = momentSummedAreaTableFromWords(words);
-  result.momentSummedAreaTable = std::move(words);
   const char* names[4] = { "moment_sat_texel_1", "moment_sat_texel_2", "moment_sat_texel_3", "moment_sat_texel_4" };
   const char* docs[4] = { "z of the texel as the moment SAT holds it (fixed point floor(z 2^32) / 2^32, decoded from its box sum)",
     "z^2 of the texel as the moment SAT holds it", "z^3 of the texel as the moment SAT holds it",
@@ -49,19 +47,24 @@ std::vector<NamedImage> exportMomentSat(const FrameResources& frame, FrameResult
   std::vector<NamedImage> images(4);
   for (int k = 0; k < 4; ++k)
   {
-    images[static_cast<std::size_t>(k)] = { names[k], ImageF(table.width, table.height, 1), "", docs[k] };
+    images[static_cast<std::size_t>(k)] = { names[k], ImageF(words.width, words.height, 1), "", docs[k] };
   }
-  for (int y = 0; y < table.height; ++y)
+  // Each texel's one-texel box sum, straight from the words (no 64-bit copy of the table: 2 GiB at 8192^2).
+  const auto sum = [&words](int x, int y, int k) -> std::uint64_t {
+    return x < 0 || y < 0 ? 0u : (static_cast<std::uint64_t>(words.at(x, y, 4 + k)) << 32) | words.at(x, y, k);
+  };
+  for (int y = 0; y < words.height; ++y)
   {
-    for (int x = 0; x < table.width; ++x)
+    for (int x = 0; x < words.width; ++x)
     {
-      const glm::dvec4 moments = momentBoxMean(table, { x, y }, { x, y });
       for (int k = 0; k < 4; ++k)
       {
-        images[static_cast<std::size_t>(k)].image.at(x, y) = static_cast<float>(moments[k]);
+        const std::uint64_t texel = sum(x, y, k) - sum(x - 1, y, k) - sum(x, y - 1, k) + sum(x - 1, y - 1, k);
+        images[static_cast<std::size_t>(k)].image.at(x, y) = static_cast<float>(static_cast<double>(texel) / momentSatScale);
       }
     }
   }
+  result.momentSummedAreaTable = std::move(words);
   return images;
 }
 
