@@ -1,5 +1,7 @@
-// The moment summed-area table's build (structures/momentsat/MomentSatStructure.h; msmsoft): the 64-bit summed-area
-// table of the shadow map's four power moments, two compute passes (structures/momentsat/shaders/MomentSatBuild.glsl).
+// The moment summed-area table's build (structures/momentsat/MomentSatStructure.h; msmsoft): the summed-area table of
+// the shadow map's four power moments (64-bit or 32-bit sums), two compute passes
+// (structures/momentsat/shaders/MomentSatBuild.glsl). Parameters read: moment_sat_precision,
+// moment_sat_max_kernel_texels.
 #pragma once
 
 #include "gl/ComputeProgram.h"
@@ -8,7 +10,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkTextureObject.h>
 
-#include <array>
+#include <map>
 #include <memory>
 
 class vtkSLMomentSatPass : public vtkSLStagePass
@@ -29,9 +31,9 @@ private:
   vtkSLMomentSatPass(const vtkSLMomentSatPass&) = delete;
   void operator=(const vtkSLMomentSatPass&) = delete;
 
-  // Compiled programs by pass (rows, columns).
-  std::array<std::unique_ptr<sl::ComputeProgram>, 2> Programs;
-  // The last tables built (low and high words), reused by the next frame when their size fits.
+  // Compiled programs by (int64?, pass).
+  std::map<std::pair<bool, int>, std::unique_ptr<sl::ComputeProgram>> Programs;
+  // The last tables built (low and high words; int32 uses the low only), reused when their size fits.
   vtkSmartPointer<vtkTextureObject> Low;
   vtkSmartPointer<vtkTextureObject> High;
 };

@@ -123,7 +123,7 @@ struct MsmSoftSteps
 
 MsmSoftSteps msmSoftSteps(const glm::dvec4& searchMoments, double zf, const glm::dvec4& filterShift,
   const glm::dvec2& uv, const glm::dvec2& searchHalfTexels, const SoftShadowGeometry& geometry, const LightView& view,
-  const MsmSoftSettings& settings, const Image<std::uint64_t>& momentTable)
+  const MsmSoftSettings& settings, const MomentSatTable& momentTable)
 {
   MsmSoftSteps steps;
   // Step 4, back to linear depth.
@@ -152,6 +152,7 @@ MsmSoftSettings MsmSoftSettings::from(const ParameterValues& values)
   settings.minKernelTexels = values.get("min_kernel_texels");
   settings.maxGridTaps = values.getInt("max_grid_taps");
   settings.receiverPlaneBias = receiverPlaneBiasOf(values);
+  settings.satFormat = momentSatFormat(values);
   return settings;
 }
 
@@ -159,6 +160,7 @@ TechniqueDescriptor msmSoftTechnique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("msmsoft", "Moment soft shadow mapping",
     "Peters, Münstermann, Wetzstein & Klein 2016 (I3D; JCGT 6(1) 2017), with PCSS's search kernel (Fernando 2005)");
+  descriptor.addParameters(momentSatStructure().parameters);
   descriptor.addParameters({
     // msm's parameter, same default and range (msm/README.md, Parameters).
     { "moment_bias", 3e-5, 1e-6, 0.1, "",
@@ -182,6 +184,13 @@ TechniqueDescriptor msmSoftTechnique()
     { "penumbra_kernel_texels", "texels", "width of the penumbra kernel (similar triangles at avg_blocker_depth, clamped to [min_kernel_texels, w_i])" },
     depthBiasBuffer(),
   };
+  BufferSpec overflow{ "moment_sat_overflow", "",
+    "1 where moment_sat_precision = int32 and the search box or the filter's integer cover holds more texels than the "
+    "table sums exactly (moment_sat_max_kernel_texels squared): its sums wrapped, the value is wrong (0 otherwise)" };
+  overflow.flagAtOrAbove = 0.5;
+  overflow.flagWarning = "the int32 moment SAT's sums wrapped over boxes wider than moment_sat_max_kernel_texels; raise "
+                         "it or use moment_sat_precision=int64";
+  descriptor.buffers.push_back(overflow);
   // The filter step's Hamburger 4MSM, stored by the shader into an image (eight render targets at most).
   BufferSpec supportNear{ "support_depth_near", "moment depth",
     "z_2 of the filter step's Hamburger 4MSM, the nearer support point beside z_f (moment depth: (d - near) / (far - near))",
@@ -199,8 +208,8 @@ TechniqueDescriptor msmSoftTechnique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const MsmSoftSettings settings = MsmSoftSettings::from(context.frame->parameters);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const Image<std::uint64_t> table =
-      momentSummedAreaTable(inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+    const MomentSatTable table = momentSummedAreaTable(
+      inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth, settings.satFormat);
     const MsmSoftSample sample = msmSoftReference(inputs, settings, table, pixel.x, pixel.y, &recorder);
     // MsmSoftTest: within msmSoftTwinTolerance where the search edges and the pivots leave float rounding no say.
     ProbeOutcome outcome = probeOutcome(sample.sample, msmSoftTwinTolerance,
@@ -209,6 +218,11 @@ TechniqueDescriptor msmSoftTechnique()
     {
       noteAmbiguity(outcome.ambiguity, "search kernel edge from a texel centre (texels)", sample.searchEdgeMargin,
         probeTexelEdgeAmbiguity);
+      if (sample.satOverflow)
+      {
+        outcome.ambiguity += std::string(outcome.ambiguity.empty() ? "" : ", ") +
+          "int32 moment SAT: a box beyond moment_sat_max_kernel_texels^2 texels (the GPU's sums wrapped; the twin's are exact)";
+      }
       recorder.beginGroup("conditioning");
       recorder.quantity("rounding_sensitivity", sample.sensitivity.visibility, "",
         "ShadowLab: sum of |visibility change| when a search or filter moment or z_f moves by 1e-6 (float rounding); "
@@ -264,7 +278,7 @@ MsmSoftBlockers msmSoftBlockers(const glm::dvec4& searchMoments, double momentBi
 }
 
 MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSettings& settings,
-  const Image<std::uint64_t>& momentTable, int x, int y, ProbeRecorder* recorder)
+  const MomentSatTable& momentTable, int x, int y, ProbeRecorder* recorder)
 {
   MsmSoftSample result;
   const ShadowLookup lookup = prepareShadowLookup(inputs, settings.bias, x, y, recorder);
@@ -329,6 +343,9 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
   result.sample.visibility = 1.0 - result.filter.shadowIntensity;
   result.coverLo = glm::clamp(glm::ivec2(glm::floor(result.filterMin)), glm::ivec2(0), glm::ivec2(size - 1));
   result.coverHi = glm::clamp(glm::ivec2(glm::ceil(result.filterMax)) - 1, result.coverLo, glm::ivec2(size - 1));
+  const double coverTexels =
+    static_cast<double>(result.coverHi.x - result.coverLo.x + 1) * (result.coverHi.y - result.coverLo.y + 1);
+  result.satOverflow = std::max(search.area(), coverTexels) > settings.satFormat.exactTexels();
 
   if (recorder)
   {

@@ -12,6 +12,7 @@
 #include "core/Image.h"
 #include "frame/TechniqueDescriptor.h"
 #include "lightspace/MomentHamburger.h"
+#include "lightspace/MomentSummedAreaTable.h"
 #include "techniques/ShadowMapReference.h"
 #include "techniques/SoftShadowSupport.h"
 
@@ -35,6 +36,7 @@ struct MsmSoftSettings
   double minKernelTexels{}; // the penumbra kernel's smallest width
   int maxGridTaps{};        // the light-leak PCF's grid
   bool receiverPlaneBias{}; // the light-leak PCF's comparisons
+  MomentSatFormat satFormat; // moment_sat_precision, moment_sat_max_kernel_texels (structures/momentsat)
 
   static MsmSoftSettings from(const ParameterValues& values);
 };
@@ -83,15 +85,18 @@ struct MsmSoftSample
   glm::ivec2 coverHi{ 0 };
   double lightLeak = 0.0;
   MsmSoftSensitivity sensitivity;
+  // int32 table: the search box or the filter's integer cover holds more texels than the table sums exactly (the
+  // GPU's sums wrapped; the moment_sat_overflow buffer). The twin's sums are exact regardless.
+  bool satOverflow = false;
 };
 
 // CPU twin (double precision) of MsmSoftVisibility.glsl at pixel (x, y). `momentTable` is the moment SAT of
-// inputs.shadowMapLinear (momentSummedAreaTable, lightspace/MomentSummedAreaTable.h): its box sums are exact, so the
-// twin's box means are the quantised moments' (2^-32) in double. `recorder` (optional, `shadowlab probe`): the
+// inputs.shadowMapLinear in settings.satFormat (momentSummedAreaTable, lightspace/MomentSummedAreaTable.h): its box
+// sums are exact, so the twin's box means are the quantised moments' (2^-bits) in double. `recorder` (optional, `shadowlab probe`): the
 // receiver, the search box and its moments, the canonical representation with its weights, G_b and z_avg, the
 // penumbra kernel and the filter box, the filter's Hamburger 4MSM (pivots, support points, weights), the visibility
 // and the light leak against the PCF over the filter rectangle's integer cover.
 MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSettings& settings,
-  const Image<std::uint64_t>& momentTable, int x, int y, ProbeRecorder* recorder = nullptr);
+  const MomentSatTable& momentTable, int x, int y, ProbeRecorder* recorder = nullptr);
 
 } // namespace sl

@@ -1,8 +1,14 @@
 // Box means of the four power moments from the moment summed-area table (structures/momentsat, MomentSatBuild.glsl):
-// exact 64-bit box sums (two 32-bit words, uaddCarry / usubBorrow), over an inclusive texel rectangle or over a
-// continuous rectangle with fractional edges. CPU mirror: src/lightspace/MomentSummedAreaTable.cpp.
+// exact 64-bit box sums (two 32-bit words, uaddCarry / usubBorrow; moment_sat_precision = int64) or 32-bit sums
+// exact modulo 2^32 (int32: exact up to momentSatExactTexels texels), over an inclusive texel rectangle or over a
+// continuous rectangle with fractional edges. MOMENT_SAT_PRECISION_* come from the technique's moment_sat_precision
+// parameter. CPU mirror: src/lightspace/MomentSummedAreaTable.cpp.
 uniform usampler2D momentSatLow;
+#if MOMENT_SAT_PRECISION == MOMENT_SAT_PRECISION_INT64
 uniform usampler2D momentSatHigh;
+#endif
+uniform float momentSatScale;       // 2^b, the fixed point of a texel's moment
+uniform float momentSatExactTexels; // the largest box summed exactly (int32; 2^64 for int64)
 
 struct MomentSum
 {
@@ -12,7 +18,11 @@ struct MomentSum
 
 MomentSum momentSatCorner(ivec2 texel)
 {
+#if MOMENT_SAT_PRECISION == MOMENT_SAT_PRECISION_INT64
   return MomentSum(texelFetch(momentSatLow, texel, 0), texelFetch(momentSatHigh, texel, 0));
+#else
+  return MomentSum(texelFetch(momentSatLow, texel, 0), uvec4(0u)); // wrapped 32-bit sums: the high words stay 0
+#endif
 }
 
 MomentSum addMomentSums(MomentSum a, MomentSum b)
@@ -50,10 +60,15 @@ MomentSum momentSatBoxSum(ivec2 lo, ivec2 hi)
   return sum;
 }
 
-// A box sum in moment units (sum / 2^32): float(high) + float(low) 2^-32, the scalings exact.
+// A box sum in moment units: (float(high) 2^32 + float(low)) / 2^b, the scalings exact. int32: the low words are
+// the sum modulo 2^32 and the high words (borrows of the wrapped differences) are ignored.
 vec4 decodedMomentSum(MomentSum sum)
 {
-  return vec4(sum.high) + vec4(sum.low) * (1.0 / 4294967296.0);
+#if MOMENT_SAT_PRECISION == MOMENT_SAT_PRECISION_INT64
+  return (vec4(sum.high) * 4294967296.0 + vec4(sum.low)) / momentSatScale;
+#else
+  return vec4(sum.low) / momentSatScale;
+#endif
 }
 
 // The moments' mean over the texels [lo, hi] (inclusive; clamped to the map by the caller) (momentBoxMean).

@@ -28,6 +28,7 @@ layout(location = OUT_BLOCKER_INTENSITY) out float outBlockerIntensity;
 layout(location = OUT_AVG_BLOCKER_DEPTH) out float outAvgBlockerDepth;
 layout(location = OUT_PENUMBRA_KERNEL_TEXELS) out float outPenumbraKernelTexels;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
+layout(location = OUT_MOMENT_SAT_OVERFLOW) out float outMomentSatOverflow;
 // The filter step's (support_depth_near, support_depth_far, hankel_pivot, 0): beyond the eight render targets, stored
 // into an image the pass reads back (vtkSLMsmSoftPass).
 layout(rgba32f, binding = 0) uniform writeonly image2D filterSupport;
@@ -124,6 +125,7 @@ void main()
   outPenumbraKernelTexels = 0.0;
   imageStore(filterSupport, pixel, vec4(0.0));
   outDepthBias = receiver.bias;
+  outMomentSatOverflow = 0.0;
   if (!receiver.needsShadowTest)
   {
     return;
@@ -167,4 +169,8 @@ void main()
   ivec2 coverLo = clamp(ivec2(floor(boxMin)), ivec2(0), ivec2(shadowMapSize - 1));
   ivec2 coverHi = clamp(ivec2(ceil(boxMax)) - 1, coverLo, ivec2(shadowMapSize - 1));
   outLightLeak = visibility - pcfOverTexels(coverLo, coverHi, d, receiver.bias);
+  // int32 table: a box beyond the exact size wrapped (its sum is wrong): flagged.
+  float searchTexels = float(searchHi.x - searchLo.x + 1) * float(searchHi.y - searchLo.y + 1);
+  float coverTexels = float(coverHi.x - coverLo.x + 1) * float(coverHi.y - coverLo.y + 1);
+  outMomentSatOverflow = max(searchTexels, coverTexels) > momentSatExactTexels ? 1.0 : 0.0;
 }

@@ -35,6 +35,8 @@ struct MsmSoftAgreement
   int partial = 0;
   int edgeExcluded = 0;
   int sensitivityExcluded = 0;
+  int overflowExcluded = 0;  // int32 table: a box beyond its exact size (the twin's flag)
+  int overflowMismatched = 0; // the GPU's moment_sat_overflow differs from the twin's flag
   int blockersCompared = 0;           // G_b, z_avg and the kernel compared (their sensitivities small)
   double maxExcludedVisibility = 0.0; // |gpu - cpu| at the pixels excluded for sensitivity
   int reachExcluded = 0;
@@ -52,13 +54,14 @@ MsmSoftAgreement compareMsmSoftWithTwin(const FrameResult& frame, const Scene& s
 {
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const MsmSoftSettings settings = MsmSoftSettings::from(frame.parameters);
-  const Image<std::uint64_t> table =
-    momentSummedAreaTable(inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+  const MomentSatTable table = momentSummedAreaTable(
+    inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth, settings.satFormat);
   const ImageF& visibility = frame.find("visibility")->image;
   const ImageF& intensity = frame.find("blocker_intensity")->image;
   const ImageF& averageDepth = frame.find("avg_blocker_depth")->image;
   const ImageF& kernel = frame.find("penumbra_kernel_texels")->image;
   const ImageF& leak = frame.find("light_leak")->image;
+  const ImageF& overflow = frame.find("moment_sat_overflow")->image;
   MsmSoftAgreement agreement;
   for (int y = 0; y < visibility.height; ++y)
   {
@@ -75,6 +78,12 @@ MsmSoftAgreement compareMsmSoftWithTwin(const FrameResult& frame, const Scene& s
         continue;
       }
       ++agreement.evaluated;
+      agreement.overflowMismatched += (overflow.at(x, y) > 0.5f) != cpu.satOverflow ? 1 : 0;
+      if (cpu.satOverflow)
+      {
+        ++agreement.overflowExcluded;
+        continue;
+      }
       if (cpu.searchEdgeMargin < 1e-4)
       {
         ++agreement.edgeExcluded;
@@ -123,7 +132,8 @@ void printMsmSoftAgreement(const std::string& label, const MsmSoftAgreement& agr
 {
   std::cout << "[ measured ] msmsoft vs twin, " << label << ": compared " << agreement.compared << " of "
             << agreement.evaluated << " (partial " << agreement.partial << "; excluded: search edge "
-            << agreement.edgeExcluded << ", rounding sensitivity " << agreement.sensitivityExcluded << ", reach " << agreement.reachExcluded
+            << agreement.edgeExcluded << ", rounding sensitivity " << agreement.sensitivityExcluded << ", reach " << agreement.reachExcluded << ", int32 overflow " << agreement.overflowExcluded
+            << " (GPU flag differs at " << agreement.overflowMismatched << ")"
             << "; excluded pixels differ by up to " << agreement.maxExcludedVisibility << "), max |gpu - cpu| visibility "
             << agreement.maxVisibility << "; over " << agreement.blockersCompared << " pixels G_b " << agreement.maxIntensity
             << ", z_avg (relative) " << agreement.maxAverageDepth << ", kernel (relative) " << agreement.maxKernel
@@ -133,6 +143,8 @@ void printMsmSoftAgreement(const std::string& label, const MsmSoftAgreement& agr
 void expectAgreement(const MsmSoftAgreement& agreement, const std::string& label)
 {
   EXPECT_EQ(agreement.mismatched, 0) << label << ": first " << agreement.firstMismatch;
+  // The flag's box areas are integers in both; they differ only where float rounding moves the integer cover.
+  EXPECT_LE(agreement.overflowMismatched, agreement.edgeExcluded + agreement.overflowExcluded / 100) << label;
   EXPECT_LT(agreement.maxIntensity, 1e-4) << label;
   EXPECT_LT(agreement.maxAverageDepth, 1e-4) << label;
   EXPECT_LT(agreement.maxKernel, 5e-4) << label;
@@ -198,8 +210,8 @@ TEST(MsmSoft, BlockerEstimateOfOnePlanarOccluderIsExactUpToTheBiases)
   const FrameResult frame = test::renderDataset(scene, "msmsoft", 128, 128, { "shadow_map_size=256" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const MsmSoftSettings settings = MsmSoftSettings::from(frame.parameters);
-  const Image<std::uint64_t> table =
-    momentSummedAreaTable(inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+  const MomentSatTable table = momentSummedAreaTable(
+    inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth, settings.satFormat);
   const ImageF& intensity = frame.find("blocker_intensity")->image;
   const ImageF& averageDepth = frame.find("avg_blocker_depth")->image;
   const double nearDepth = inputs.lightView.nearDepth;
@@ -264,6 +276,34 @@ TEST(MsmSoft, BlockerEstimateOfOnePlanarOccluderIsExactUpToTheBiases)
   EXPECT_LT(largestDepthError, 100.0 * settings.momentBias + 1e-4);
 }
 
+// moment_sat_precision = int32 (the authors' form): fewer fixed-point bits and 32-bit sums that wrap. Where the
+// boxes fit (at most moment_sat_max_kernel_texels squared texels) the GPU is the twin's, at its coarser fixed point;
+// where they do not, moment_sat_overflow flags the pixel (and stats.json counts it).
+TEST(MsmSoft, Int32TableMatchesTheTwinWhereItsBoxesFitAndFlagsTheRest)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  for (const std::string maxKernel : { "64", "256" })
+  {
+    const std::vector<std::string> settings{ "shadow_map_size=512", "moment_sat_precision=int32",
+      "moment_sat_max_kernel_texels=" + maxKernel };
+    const FrameResult frame = test::renderDataset(scene, "msmsoft", 96, 80, settings);
+    test::expectFiniteBuffersAndVisibilityInRange(frame, maxKernel);
+    const MsmSoftAgreement agreement = compareMsmSoftWithTwin(frame, scene);
+    printMsmSoftAgreement(test::caseLabel("stacked-occluders", settings), agreement);
+    expectAgreement(agreement, maxKernel);
+    // At 64 most search boxes exceed 64^2 texels and are flagged; at 256 (16 bits) the coarser fixed point leaves
+    // more Hankel matrices near singular (README.md, Precision).
+    EXPECT_GT(agreement.compared, maxKernel == "64" ? 300 : 1000) << maxKernel;
+    const auto flagged = frame.techniqueStatistics.find("moment_sat_overflow_flagged_pixels");
+    ASSERT_NE(flagged, frame.techniqueStatistics.end());
+    EXPECT_NEAR(flagged->second, agreement.overflowExcluded, agreement.overflowMismatched) << maxKernel;
+    if (maxKernel == "64")
+    {
+      EXPECT_GT(agreement.overflowExcluded, 100) << "stacked-occluders' search boxes exceed 64 x 64 texels at 512^2";
+    }
+  }
+}
+
 // The probe replays the twin: its visibility is the twin's and (unambiguous pixels) the GPU's within the tolerance,
 // and it records the search and filter kernels and the quantities the buffers hold.
 TEST(MsmSoft, ProbeRecordsTheKernelsAndTheGpuBuffers)
@@ -272,8 +312,8 @@ TEST(MsmSoft, ProbeRecordsTheKernelsAndTheGpuBuffers)
   const FrameResult frame = test::renderDataset(scene, "msmsoft", 96, 80, { "shadow_map_size=512" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
   const MsmSoftSettings settings = MsmSoftSettings::from(frame.parameters);
-  const Image<std::uint64_t> table =
-    momentSummedAreaTable(inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth);
+  const MomentSatTable table = momentSummedAreaTable(
+    inputs.shadowMapLinear, inputs.lightView.nearDepth, inputs.lightView.farDepth, settings.satFormat);
   std::vector<glm::ivec2> pixels(3, glm::ivec2(-1)); // lit, penumbra, umbra
   for (int y = 0; y < 80; ++y)
   {
