@@ -3,10 +3,11 @@
 // moments over PCSS's search region (the canonical representation at the receiver's depth), the penumbra kernel by
 // similar triangles, and Hamburger 4MSM over the kernel's moments with fractional edges.
 // Math: msmsoft/shaders/MsmSoftVisibility.glsl.
-// Parameters: the shadow-map ones, moment_bias (msm's), fully_lit_bias, min_kernel_texels, max_grid_taps and
-// receiver_plane_bias (the light_leak buffer's PCF only).
-// Buffers: light_leak, blocker_kernel_texels, blocker_intensity, avg_blocker_depth, penumbra_kernel_texels,
-// support_depth_near/far, hankel_pivot, depth_bias.
+// Parameters: the shadow-map ones, the moment SAT's (moment_sat_precision, moment_sat_max_kernel_texels),
+// moment_bias (msm's), fully_lit_bias, min_kernel_texels, max_grid_taps and receiver_plane_bias (the light_leak
+// buffer's PCF only).
+// Buffers: light_leak, blocker_kernel_texels, blocker_intensity, avg_blocker_depth, penumbra_kernel_texels, depth_bias,
+// moment_sat_overflow, and from the pass support_depth_near/far, hankel_pivot.
 #pragma once
 
 #include "core/Image.h"
