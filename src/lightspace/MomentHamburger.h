@@ -7,7 +7,7 @@
 namespace sl
 {
 
-// MSM Alg. 3 (Hamburger 4MSM) in double precision, step by step as MsmVisibility.glsl computes it.
+// MSM Alg. 3 (Hamburger 4MSM) in double precision, step by step as common/MomentHamburger.glsl computes it.
 struct MsmReconstruction
 {
   glm::dvec4 biasedMoments{ 0.0 }; // b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5)
