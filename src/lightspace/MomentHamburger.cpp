@@ -25,7 +25,8 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   const double d22 = std::max(b.y - b.x * b.x, msmPivotFloor);
   const double l32d22 = b.z - b.x * b.y;
   const double l32 = l32d22 / d22;
-  // B is positive definite for alpha > 0, so D33 > 0; only float rounding makes it 0 or less (common/MomentHamburger.glsl).
+  // B is positive definite for alpha > 0, so D33 > 0; only float rounding makes it 0 or less
+  // (common/MomentHamburger.glsl).
   const double d33 = std::max((b.w - b.y * b.y) - l32d22 * l32, msmPivotFloor);
   result.pivot2 = d22;
   result.pivot3 = d33;
@@ -37,8 +38,9 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   c.y -= l32 * c.z;
   c.x -= c.y * b.x + c.z * b.y;
   result.polynomial = c;
-  // Step 3: the two other support points, the roots of c1 + c2 z + c3 z^2, by the stable form common/MomentHamburger.glsl
-  // uses (equal to Alg. 3's -p/2 -+ sqrt(p^2/4 - q) in exact arithmetic), clamped to +-1e6 as there.
+  // Step 3: the two other support points, the roots of c1 + c2 z + c3 z^2, by the stable form
+  // common/MomentHamburger.glsl uses (equal to Alg. 3's -p/2 -+ sqrt(p^2/4 - q) in exact arithmetic), clamped to
+  // +-1e6 as there.
   const double root = std::sqrt(std::max(c.y * c.y - 4.0 * c.x * c.z, 0.0));
   const double large = -0.5 * (c.y + (c.y < 0.0 ? -root : root));
   const double rootA = std::clamp(large / c.z, -1e6, 1e6);

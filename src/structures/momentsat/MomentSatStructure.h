@@ -3,8 +3,8 @@
 // range, as structures/powermoments). moment_sat_precision = int64: each texel's moment in 32-bit fixed point and the
 // sums in 64-bit integers (two RGBA32UI images, low and high words), exact box sums for every box of every map size
 // allowed; int32 (the authors' form): fewer bits per texel and 32-bit sums that wrap (one RGBA32UI image), exact for
-// boxes up to moment_sat_max_kernel_texels squared (shaders/MomentSatBuild.glsl). Built by vtkSLMomentSatPass (stage moment_sat); CPU mirror:
-// lightspace/MomentSummedAreaTable.h; lookup: momentsat/MomentSatLookup.glsl.
+// boxes up to moment_sat_max_kernel_texels squared (shaders/MomentSatBuild.glsl). Built by vtkSLMomentSatPass (stage
+// moment_sat); CPU mirror: lightspace/MomentSummedAreaTable.h; lookup: momentsat/MomentSatLookup.glsl.
 #pragma once
 
 #include "lightspace/MomentSummedAreaTable.h"

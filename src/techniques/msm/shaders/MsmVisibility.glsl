@@ -11,7 +11,8 @@
 // and visibility = 1 - clamp(G, 0, 1): the sharpest lower bound on the shadow intensity that four moments give
 // (Hamburger moment problem), so visibility never falls below the true PCF except through the bias.
 // Exact when the region holds two depths (a planar occluder over a planar receiver), up to the bias.
-// Steps 1-4: common/MomentHamburger.glsl (hamburger4Msm). CPU mirror: src/lightspace/MomentHamburger.cpp (msmHamburger4).
+// Steps 1-4: common/MomentHamburger.glsl (hamburger4Msm). CPU mirror: src/lightspace/MomentHamburger.cpp
+// (msmHamburger4).
 #include "common/GBufferInputs.glsl"
 #include "common/LightModel.glsl"
 #include "common/ShadowMapCommon.glsl"
