@@ -16,6 +16,7 @@ set(SL_SHADER_FILES
   common/LeakPcf.glsl
   common/SoftShadowKernels.glsl
   common/SatLookup.glsl
+  common/MomentHamburger.glsl
   common/HsmLayout.glsl
   common/HsmLookup.glsl
   common/MipAtlasLayout.glsl

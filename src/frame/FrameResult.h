@@ -56,6 +56,8 @@ struct FrameResult
   ImageU8 image;                      // shaded, RGB, row 0 at the bottom
   // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
   std::optional<Image<std::uint32_t>> integerSummedAreaTable;
+  // The moment SAT's words as stored (exact, for tests), 8 per texel: the low words of its four sums, then the high.
+  std::optional<Image<std::uint32_t>> momentSummedAreaTable;
   std::vector<StageTiming> stages;
   std::map<std::string, double> techniqueStatistics; // vtkSLTechniquePass::CollectStatistics
   double frameWallMs = 0.0;

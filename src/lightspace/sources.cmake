@@ -14,4 +14,6 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/CubeFaces.cpp
   src/lightspace/HierarchicalShadowMap.cpp
   src/lightspace/Microrects.cpp
-  src/lightspace/SummedAreaTable.cpp)
+  src/lightspace/SummedAreaTable.cpp
+  src/lightspace/MomentHamburger.cpp
+  src/lightspace/MomentSummedAreaTable.cpp)
