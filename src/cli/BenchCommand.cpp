@@ -11,6 +11,7 @@
 // be made (an error line says why).
 #include "cli/Commands.h"
 
+#include "cli/BenchPlan.h"
 #include "cli/CommandProgress.h"
 #include "core/Error.h"
 #include "core/Parse.h"
@@ -748,6 +749,33 @@ std::string numberText(const nlohmann::json& value)
   return text.str();
 }
 
+// One row of bench.json: "ok" with the result in `resultFile` when `failure` is empty, else "failed" with it (a
+// result that does not parse, cut short on a shared filesystem, is a failure too).
+nlohmann::json configurationRow(const SceneVariant& variant, const Configuration& configuration,
+  const std::filesystem::path& resultFile, const std::string& failure)
+{
+  nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
+    { "scene_name", variant.name },
+    { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
+  row["status"] = "failed";
+  row["error"] = failure;
+  if (failure.empty())
+  {
+    std::ifstream file(resultFile);
+    try
+    {
+      row["result"] = nlohmann::json::parse(file);
+      row["status"] = "ok";
+      row.erase("error");
+    }
+    catch (const nlohmann::json::exception&)
+    {
+      row["error"] = resultFile.string() + ": not JSON (cut short?)";
+    }
+  }
+  return row;
+}
+
 // Runs every configuration in its own `shadowlab bench-run` child; one row of bench.json each, "ok" with the
 // child's result or "failed" with its last line.
 nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<SceneVariant>& variants,
@@ -768,20 +796,9 @@ nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<
       runChild(benchRunArguments(options, variant, configuration,
                  referenceFiles[configuration.sceneIndex].at(multisamplesOf(configuration)), resultFile),
         dir / "logs" / format("run-", c, ".txt"));
-    nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
-      { "scene_name", variant.name },
-      { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
-    if (child.exitCode == 0 && std::filesystem::is_regular_file(resultFile))
-    {
-      std::ifstream file(resultFile);
-      row["status"] = "ok";
-      row["result"] = nlohmann::json::parse(file);
-    }
-    else
-    {
-      row["status"] = "failed";
-      row["error"] = child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine;
-    }
+    const bool ran = child.exitCode == 0 && std::filesystem::is_regular_file(resultFile);
+    const nlohmann::json row = configurationRow(variant, configuration, resultFile,
+      ran ? std::string() : child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine);
     // Pixels cut short (a GL's loop cap) make the row's error and time not those of the technique as written:
     // said even with --quiet.
     const double cutShort = row["status"] == "ok" ? statisticsOf(row["result"]).value("cut_short_pixels", 0.0) : 0.0;
@@ -1185,10 +1202,148 @@ void writeBenchResults(const nlohmann::json& rows, const std::vector<Configurati
   writeViewStatisticCharts(rows, configurations, variants, options, sweeps, dir);
 }
 
+// bench --plan (cli/BenchPlan.h): every reference the configurations need and is not in the cache yet (whole, or as
+// --reference-tiles row tiles and their merge), then every configuration; paths absolute, results under the plan.
+std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2& resolution,
+  const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations, std::ostream& log)
+{
+  const std::filesystem::path planDir = planDirectory(options);
+  if (options.referenceTiles > resolution.y)
+  {
+    throw InputError(format("--reference-tiles ", options.referenceTiles, ": more than the ", resolution.y,
+      " rows of --resolution ", options.resolution));
+  }
+  std::vector<std::set<int>> needed(variants.size());
+  for (const Configuration& configuration : configurations)
+  {
+    needed[configuration.sceneIndex].insert(multisamplesOf(configuration));
+  }
+  std::vector<PlanJob> jobs;
+  std::set<std::string> planned;
+  for (std::size_t s = 0; s < variants.size(); ++s)
+  {
+    const SceneVariant& variant = variants[s];
+    for (const int msaa : needed[s])
+    {
+      const std::string key = referenceKey(variant.scene, options.resolution, options.referenceSamples, msaa);
+      const std::filesystem::path cached = std::filesystem::path(options.cacheDir) / key;
+      const std::string name = "reference of " + variant.name + (msaa > 1 ? format(" (", msaa, " per pixel)") : "");
+      if (cachedReferenceProblem(cached, resolution).empty())
+      {
+        if (!options.quiet)
+        {
+          log << "bench: " << name << " is in the cache (" << cached.string() << "), no job\n";
+        }
+        continue;
+      }
+      if (!planned.insert(key).second)
+      {
+        continue;
+      }
+      std::vector<std::string> arguments{ "reference", variant.file, "--reference-samples",
+        std::to_string(options.referenceSamples), "--resolution", options.resolution, "--msaa", std::to_string(msaa),
+        "--quiet" };
+      for (const std::string& override : variant.overrides)
+      {
+        arguments.insert(arguments.end(), { "--scene-set", override });
+      }
+      if (options.referenceTiles == 1)
+      {
+        std::vector<std::string> whole = arguments;
+        whole.insert(whole.end(), { "--out", cached.string(), "--force" }); // the cache's entry, as bench replaces it
+        jobs.push_back({ "references", name, whole, "logs/reference-" + key + ".txt", cached.string() });
+        continue;
+      }
+      std::vector<std::string> merge{ "reference-merge" };
+      for (int k = 0; k < options.referenceTiles; ++k)
+      {
+        const std::filesystem::path tileDir = planDir / "tiles" / key / std::to_string(k);
+        std::vector<std::string> tile = arguments;
+        tile.insert(tile.end(), { "--tile", format(k, "/", options.referenceTiles), "--out", tileDir.string() });
+        jobs.push_back({ "references", format(name, " (tile ", k, " of ", options.referenceTiles, ")"), tile,
+          format("logs/reference-", key, "-tile", k, ".txt"), tileDir.string() });
+        merge.push_back(tileDir.string());
+      }
+      merge.insert(merge.end(), { "--out", cached.string(), "--quiet", "--force" });
+      jobs.push_back({ "merges", name + " (merge of the tiles)", merge, "logs/merge-" + key + ".txt", cached.string() });
+    }
+  }
+  for (std::size_t c = 0; c < configurations.size(); ++c)
+  {
+    const Configuration& configuration = configurations[c];
+    const SceneVariant& variant = variants[configuration.sceneIndex];
+    const std::filesystem::path result = planDir / "runs" / format(c, ".json");
+    const std::filesystem::path reference = std::filesystem::path(options.cacheDir) /
+      referenceKey(variant.scene, options.resolution, options.referenceSamples, multisamplesOf(configuration)) /
+      "buffers.vti";
+    jobs.push_back({ "configurations",
+      format("configuration ", c, " (", configuration.technique, configuration.settings.empty() ? "" : " ",
+        joined(configuration.settings, " "), " on ", variant.name, ")"),
+      benchRunArguments(options, variant, configuration, reference.string(), result.string() + ".partial"),
+      format("logs/run-", c, ".txt"), result.string() });
+  }
+  return jobs;
+}
+
+// bench --collect: the rows of the plan's configurations from what their tasks wrote; every unfinished job (a
+// reference, merge or configuration) named in `log` and returned in `unfinished`.
+nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVariant>& variants,
+  const std::vector<Configuration>& configurations, std::vector<PlanJob>& unfinished, std::ostream& log)
+{
+  std::vector<const PlanJob*> configurationJobs;
+  for (const PlanJob& job : plan.jobs)
+  {
+    const std::string problem = planJobProblem(plan.dir, job);
+    if (!problem.empty())
+    {
+      log << "bench: " << job.name << ": " << problem << "\n"; // said even with --quiet: rows are missing
+      unfinished.push_back(job);
+    }
+    if (job.stage == "configurations")
+    {
+      configurationJobs.push_back(&job);
+    }
+  }
+  if (configurationJobs.size() != configurations.size())
+  {
+    throw InputError(format("--collect ", plan.dir.string(), ": the plan lists ", configurationJobs.size(),
+      " configurations, its options give ", configurations.size(), " (planned by another version?)"));
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t c = 0; c < configurations.size(); ++c)
+  {
+    const PlanJob& job = *configurationJobs[c];
+    rows.push_back(configurationRow(variants[configurations[c].sceneIndex], configurations[c], job.result,
+      planJobProblem(plan.dir, job)));
+  }
+  return rows;
+}
+
 } // namespace
 
-int runBench(const BenchOptions& options, std::ostream& log)
+int runBench(const BenchOptions& given, std::ostream& log)
 {
+  // --plan and --collect (cli/BenchPlan.h): the same bench as jobs, from the options the plan saved.
+  checkPlanOptions(given);
+  std::optional<LoadedPlan> plan;
+  BenchOptions options = given;
+  if (!given.collectDir.empty())
+  {
+    plan = loadBenchPlan(given.collectDir);
+    options = plan->options;
+    options.outDir = given.outDir;
+    options.force = given.force;
+    options.quiet = given.quiet;
+    options.progress = given.progress;
+  }
+  else if (!given.planDir.empty())
+  {
+    for (std::string& scene : options.sceneFiles)
+    {
+      scene = std::filesystem::absolute(scene).lexically_normal().string(); // the tasks run anywhere
+    }
+    options.cacheDir = std::filesystem::absolute(options.cacheDir).lexically_normal().string();
+  }
   // Everything the user typed is checked before any child runs.
   checkScenesRepeatAndSamples(options);
   checkSceneOverrides(options.sceneOverrides, options.sceneSweeps);
@@ -1204,8 +1359,43 @@ int runBench(const BenchOptions& options, std::ostream& log)
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
-  const OutputTarget output{ options.outDir, "bench", options.force, benchInputs(options, variants, configurations) };
+  std::vector<std::filesystem::path> inputs = benchInputs(options, variants, configurations);
+  if (!options.planDir.empty())
+  {
+    writeBenchPlan(options, benchPlanJobs(options, resolution, variants, configurations, log), inputs, log);
+    return 0;
+  }
+  if (plan)
+  {
+    inputs.push_back(plan->dir);
+  }
+  const OutputTarget output{ options.outDir, "bench", options.force, inputs };
   checkOutputTarget(output);
+  if (plan)
+  {
+    std::vector<PlanJob> unfinished;
+    int failed = 0;
+    writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
+      const nlohmann::json rows = collectedRows(*plan, variants, configurations, unfinished, log);
+      failed = countFailed(rows);
+      writeBenchResults(rows, configurations, variants, options, sweeps, dir);
+      if (!unfinished.empty())
+      {
+        writeRetryLists(plan->dir, unfinished, dir);
+      }
+    });
+    if (!options.quiet || !unfinished.empty())
+    {
+      log << "shadowlab: bench of " << configurations.size() << " configuration(s) collected from "
+          << printable(given.collectDir) << ", " << failed << " failed or missing -> " << printable(options.outDir)
+          << (unfinished.empty() ? std::string()
+                                 : format("; ", unfinished.size(), " unfinished job(s), resubmit them: ",
+                                     (plan->dir / "submit.sh").string(), " ",
+                                     (std::filesystem::absolute(options.outDir) / "retry").string()))
+          << "\n";
+    }
+    return failed == 0 && unfinished.empty() ? 0 : 4;
+  }
   createCacheDirectory(options.cacheDir);
 
   int failures = 0;

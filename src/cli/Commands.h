@@ -70,8 +70,20 @@ struct ReferenceOptions
   bool force = false; // --force (OutputDirectory.h)
   bool quiet = false;
   bool progress = false; // --progress (cli/CommandProgress.h)
+  std::string tile;      // --tile K/N: trace only row tile K of N (cli/ReferenceTiles.h); "" = every row
 };
 int runReference(const ReferenceOptions& options, std::ostream& log);
+
+// shadowlab reference-merge TILE... --out DIR: the row tiles of one reference (reference --tile K/N, every K once)
+// into the buffers.vti the single-process reference writes, bit for bit (cli/ReferenceTiles.h).
+struct ReferenceMergeOptions
+{
+  std::vector<std::string> tileDirs;
+  std::string outDir = "shadowlab-reference";
+  bool force = false;
+  bool quiet = false;
+};
+int runReferenceMerge(const ReferenceMergeOptions& options, std::ostream& log);
 
 struct CompareOptions
 {
@@ -110,6 +122,15 @@ struct BenchOptions
   // over the view (bench-run's view_stats) as bench.csv columns <B>_max, <B>_p99, <B>_mean, and, against the first
   // --sweep key, the charts view_<B>_<scene>.png and sweep_above_0.05_<scene>.png.
   std::string viewStats;
+  // --plan DIR: write the bench as jobs instead of running it; --collect DIR: merge what a plan's tasks wrote
+  // (cli/BenchPlan.h). The --slurm-* values go into the plan's batch script.
+  std::string planDir;
+  std::string collectDir;
+  std::string slurmPartition;
+  std::string slurmTime;
+  int slurmGpus = 0;
+  int slurmThrottle = 0;
+  int referenceTiles = 1; // row tiles per reference in a plan (reference --tile K/N, then reference-merge)
 };
 int runBench(const BenchOptions& options, std::ostream& log);
 

@@ -6,6 +6,7 @@
 #include "cli/Commands.h"
 
 #include "cli/CommandProgress.h"
+#include "cli/ReferenceTiles.h"
 #include "core/Error.h"
 #include "lightspace/LightSampleSet.h"
 #include "output/OutputWriter.h"
@@ -107,6 +108,10 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   {
     throw InputError("--light-samples: per-sample facts of one surface point; not available with --msaa 4");
   }
+  if (!options.tile.empty())
+  {
+    parseRowTile(options.tile, std::numeric_limits<int>::max()); // its form, before anything is rendered
+  }
   ShadowRenderer renderer;
   std::vector<FrameResult> sampleGBuffers = renderer.renderSampleGBuffers(scene, request, options.msaa);
   std::vector<ReferenceInputs> sampleInputs;
@@ -122,11 +127,18 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   settings.seed = options.seed;
   settings.threads = options.threads;
   settings.lightSampleSet = sampleSet;
+  std::optional<RowTile> tile;
+  if (!options.tile.empty())
+  {
+    tile = parseRowTile(options.tile, gbuffer.resolution.y);
+    settings.rowBegin = tile->rowBegin;
+    settings.rowEnd = tile->rowEnd;
+  }
 
   // Progress by rows (the renderer reports the fraction of rows done, about 33 times): on a terminal when the
   // trace is expected to take a few seconds, or with --progress (cli/CommandProgress.h).
   const ProgressSwitches switches{ options.progress, options.quiet };
-  const std::size_t rows = static_cast<std::size_t>(gbuffer.resolution.y);
+  const std::size_t rows = static_cast<std::size_t>(tile ? tile->rowEnd - tile->rowBegin : gbuffer.resolution.y);
   Progress progress("reference", format(gbuffer.resolution.x, "x", gbuffer.resolution.y, " pixels x ", sampleCount,
       " samples", options.msaa > 1 ? format(" x ", options.msaa, " per pixel") : std::string()),
     "row", rows, commandProgressStream(switches, log), commandProgressSettings(switches));
@@ -174,6 +186,12 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
   {
     stats["light_samples"] = { { "pattern", samplingName }, { "count", sampleSet->count },
       { "seed", sampleSet->seed } };
+  }
+  if (tile)
+  {
+    // reference-merge reads it: which rows this directory traced (the others hold 0).
+    stats["tile"] = { { "index", tile->index }, { "count", tile->count }, { "row_begin", tile->rowBegin },
+      { "row_end", tile->rowEnd } };
   }
   stats["buffers"] = bufferSummaries(buffers);
   writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {

@@ -153,6 +153,8 @@ Command addReferenceCommand(CLI::App& app, sl::ReferenceOptions& reference)
   addForceFlag(referenceCommand, reference.force);
   referenceCommand->add_option("--light", reference.lightIndex, "Index of the scene light")->capture_default_str();
   referenceCommand->add_option("--threads", reference.threads, "Worker threads (0: all cores)")->capture_default_str();
+  referenceCommand->add_option("--tile", reference.tile,
+    "K/N: trace only row tile K of N (merged by reference-merge, bit for bit the whole reference)");
   referenceCommand->add_flag("--quiet,-q", reference.quiet, "Print nothing on success");
   addProgressFlag(referenceCommand, reference.progress);
   return { referenceCommand,
@@ -163,6 +165,18 @@ Command addReferenceCommand(CLI::App& app, sl::ReferenceOptions& reference)
       return sl::runReference(reference, std::cerr);
     },
     { oldSamples } };
+}
+
+Command addReferenceMergeCommand(CLI::App& app, sl::ReferenceMergeOptions& merge)
+{
+  CLI::App* mergeCommand = app.add_subcommand("reference-merge",
+    "Row tiles of one reference (reference --tile K/N, every K once) into one reference directory");
+  mergeCommand->add_option("tiles", merge.tileDirs, "Tile directories (reference --tile K/N --out DIR)")->required();
+  mergeCommand->add_option("--out,-o", merge.outDir, "Output directory (replaced atomically; see --force)")
+    ->capture_default_str();
+  addForceFlag(mergeCommand, merge.force);
+  mergeCommand->add_flag("--quiet,-q", merge.quiet, "Print nothing on success");
+  return { mergeCommand, [&merge] { return sl::runReferenceMerge(merge, std::cerr); }, {} };
 }
 
 Command addCompareCommand(CLI::App& app, sl::CompareOptions& compare)
@@ -182,7 +196,7 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
 {
   CLI::App* benchCommand = app.add_subcommand("bench",
     "Speed against error: scenes x techniques x sweeps, each configuration in its own process");
-  benchCommand->add_option("scenes", bench.sceneFiles, "Scene files")->required();
+  benchCommand->add_option("scenes", bench.sceneFiles, "Scene files (none with --collect: the plan names them)");
   CLI::Option* techniques = benchCommand
     ->add_option("--technique,-t", techniqueList,
       "Technique names, comma-separated or repeated (default hard,pcf); old spelling --techniques")
@@ -216,6 +230,18 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
   benchCommand->add_option("--view-stats", bench.viewStats,
     "Buffers (e.g. texel_ratio,perspective_factor) whose max, 99th percentile and mean over the view become bench.csv "
     "columns and charts against the first --sweep key");
+  benchCommand->add_option("--plan", bench.planDir,
+    "Write the bench as jobs (jobs.txt, Slurm job arrays: submit.sh) into DIR instead of running it (docs/cluster.md)");
+  benchCommand->add_option("--collect", bench.collectDir,
+    "Merge what the tasks of the plan in DIR wrote into --out (bench.csv, ...); names missing and failed tasks");
+  benchCommand->add_option("--slurm-partition", bench.slurmPartition, "With --plan: the Slurm partition (-p)");
+  benchCommand->add_option("--slurm-time", bench.slurmTime, "With --plan: time limit per task (MM, HH:MM:SS, D-HH:MM)");
+  benchCommand->add_option("--slurm-gpus", bench.slurmGpus, "With --plan: GPUs per task (--gres=gpu:N; 0: none)")
+    ->capture_default_str();
+  benchCommand->add_option("--slurm-throttle", bench.slurmThrottle,
+    "With --plan: at most N tasks of an array at once (0: no limit)")->capture_default_str();
+  benchCommand->add_option("--reference-tiles", bench.referenceTiles,
+    "With --plan: each reference traced as N row tiles (array tasks), merged bit for bit")->capture_default_str();
   addForceFlag(benchCommand, bench.force);
   benchCommand->add_flag("--quiet,-q", bench.quiet, "Print only the summary line");
   addProgressFlag(benchCommand, bench.progress);
@@ -454,6 +480,7 @@ int main(int argc, char** argv)
 
   sl::RenderOptions render;
   sl::ReferenceOptions reference;
+  sl::ReferenceMergeOptions referenceMerge;
   sl::CompareOptions compare;
   sl::BenchOptions bench;
   sl::BenchRunOptions benchRun;
@@ -467,7 +494,7 @@ int main(int argc, char** argv)
   std::vector<std::string> differentialTechniques;
   // In --help's order.
   const std::vector<Command> commands = { addRenderCommand(app, render), addReferenceCommand(app, reference),
-    addCompareCommand(app, compare), addBenchCommand(app, bench, benchTechniques), addBenchRunCommand(app, benchRun),
+    addReferenceMergeCommand(app, referenceMerge), addCompareCommand(app, compare), addBenchCommand(app, bench, benchTechniques), addBenchRunCommand(app, benchRun),
     addProbeCommand(app, probe), addViewCommand(app, view), addMontageCommand(app, montage),
     addLessonsCommand(app, lessons), addDifferentialCommand(app, differential, differentialTechniques), addListCommand(app, list) };
 

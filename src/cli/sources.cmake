@@ -6,6 +6,8 @@ set(SL_CLI_SOURCES
   src/cli/RenderCommand.cpp
   src/cli/ListCommand.cpp
   src/cli/ReferenceCommand.cpp
+  src/cli/ReferenceTiles.cpp
+  src/cli/BenchPlan.cpp
   src/cli/CompareCommand.cpp
   src/cli/BenchCommand.cpp
   src/cli/BenchRunCommand.cpp

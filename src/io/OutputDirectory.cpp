@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <fstream>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -281,6 +282,30 @@ std::string timestamp()
   return text;
 }
 
+// This machine's name, as the marker records it: a process id means something only on the host that made it.
+std::string thisHostName()
+{
+  char name[HOST_NAME_MAX + 1] = {};
+  return ::gethostname(name, sizeof(name) - 1) == 0 ? std::string(name) : std::string();
+}
+
+// Whether the temporary sibling `dir` was made on this host (its marker's "host"; a marker without one predates
+// the field and was written here). On a shared filesystem another node's live writer has a process id that means
+// nothing here: its sibling must not be taken for a dead process's (issue 32).
+bool madeOnThisHost(const fs::path& dir)
+{
+  std::ifstream file(dir / kOutputMarkerName);
+  try
+  {
+    const nlohmann::json marker = nlohmann::json::parse(file);
+    return !marker.contains("host") || marker["host"] == thisHostName();
+  }
+  catch (const nlohmann::json::exception&)
+  {
+    return false;
+  }
+}
+
 // Temporary siblings left by a process that no longer runs (SIGKILL, a crash, power loss) and that carry the
 // marker (so they are ShadowLab's): removed. A live process's sibling (another run writing the same --out) is
 // left alone.
@@ -301,7 +326,7 @@ void removeStaleSiblings(const fs::path& parent)
       continue;
     }
     const bool processGone = ::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH;
-    if (processGone && hasMarker(it->path()))
+    if (processGone && hasMarker(it->path()) && madeOnThisHost(it->path()))
     {
       std::error_code ignored;
       fs::remove_all(it->path(), ignored);
@@ -518,7 +543,8 @@ TemporaryOutput::TemporaryOutput(const OutputTarget& target)
   }
   // The marker goes in first, so even a sibling left by a killed run is recognisably ShadowLab's.
   const nlohmann::json marker = { { "tool", "shadowlab" }, { "command", target_.command },
-    { "version", SL_VERSION }, { "created", timestamp() }, { "pid", ::getpid() } };
+    { "version", SL_VERSION }, { "created", timestamp() }, { "pid", ::getpid() },
+    { "host", thisHostName() } };
   try
   {
     writeFileChecked(temporary_ / kOutputMarkerName, marker.dump(2) + "\n");

@@ -254,12 +254,15 @@ ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSe
   }
   const Tracer tracer{ inputs, light, casters, sampler, sampleSet, referenceRayOffset(*inputs.scene, settings) };
 
+  const int rowBegin = std::clamp(settings.rowBegin, 0, height);
+  const int rowEnd = settings.rowEnd < 0 ? height : std::clamp(settings.rowEnd, rowBegin, height);
+  const int tracedRows = rowEnd - rowBegin;
   const unsigned hardwareThreads = std::max(1u, std::thread::hardware_concurrency());
   const int threadCount =
-    std::max(1, std::min(height, settings.threads > 0 ? settings.threads : static_cast<int>(hardwareThreads)));
+    std::max(1, std::min(tracedRows, settings.threads > 0 ? settings.threads : static_cast<int>(hardwareThreads)));
 
   const auto traceStart = std::chrono::steady_clock::now();
-  std::atomic<int> nextRow{ 0 };
+  std::atomic<int> nextRow{ rowBegin };
   std::atomic<bool> stop{ false };
   std::atomic<std::uint64_t> raysTraced{ 0 };
   std::mutex mutex;
@@ -271,7 +274,7 @@ ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSe
     std::uint64_t rays = 0;
     try
     {
-      for (int y = nextRow++; y < height && !stop; y = nextRow++)
+      for (int y = nextRow++; y < rowEnd && !stop; y = nextRow++)
       {
         for (int x = 0; x < width; ++x)
         {
@@ -322,25 +325,25 @@ ReferenceResult renderReference(const ReferenceInputs& inputs, const ReferenceSe
     {
       workers.emplace_back(work);
     }
-    if (progress && height > 0)
+    if (progress && tracedRows > 0)
     {
-      const int rowsPerReport = std::max(1, (height + kProgressReports - 1) / kProgressReports);
+      const int rowsPerReport = std::max(1, (tracedRows + kProgressReports - 1) / kProgressReports);
       int reported = 0;
       while (true)
       {
         int done;
         {
           std::unique_lock<std::mutex> lock(mutex);
-          const int target = std::min(height, reported + rowsPerReport);
+          const int target = std::min(tracedRows, reported + rowsPerReport);
           rowFinished.wait(lock, [&]() { return rowsDone >= target || stop; });
           done = rowsDone;
         }
-        if (stop || done >= height)
+        if (stop || done >= tracedRows)
         {
           break;
         }
         reported = done;
-        progress(static_cast<double>(done) / height);
+        progress(static_cast<double>(done) / tracedRows);
       }
     }
   }

@@ -71,6 +71,11 @@ struct ReferenceSettings
   double rayOffset = -1.0;                           // < 0: 1e-4 * scene bounding-sphere radius
   // The shared per-pixel sample set instead of `samples`/`sampling`/`seed` (area lights only; see above).
   std::optional<LightSampleSetSettings> lightSampleSet;
+  // Only rows [rowBegin, rowEnd) are traced (rowEnd < 0: to the last row); the others stay 0. A pixel's samples
+  // depend on (seed, x, y, index) only (LightSampler.h), so a reference traced in row tiles and merged
+  // (reference --tile / --merge-tiles) equals the single-process one bit for bit.
+  int rowBegin = 0;
+  int rowEnd = -1;
 };
 
 struct ReferenceInputs
