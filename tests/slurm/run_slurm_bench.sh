@@ -48,7 +48,8 @@ dd if=/dev/urandom of="$work/munge/munge.key" bs=1024 count=1 status=none
 chmod 400 "$work/munge/munge.key"
 socket="$work/munge/munge.socket"
 munged --foreground --force --key-file="$work/munge/munge.key" --socket="$socket" \
-  --pid-file="$work/munge/munged.pid" --seed-file="$work/munge/munged.seed" --log-file="$work/munged.log" &
+  --pid-file="$work/munge/munged.pid" --seed-file="$work/munge/munged.seed" --log-file="$work/munged.log" \
+  >>"$work/munged.log" 2>&1 &
 daemons+=($!)
 
 # Ports no one else on this machine uses (bash's RANDOM keeps two runs side by side apart).
