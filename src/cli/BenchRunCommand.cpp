@@ -186,6 +186,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
     { "resolution", { last.resolution.x, last.resolution.y } },
     { "repeat", options.repeat },
     { "gl_renderer", last.glRenderer },
+    { "egl_device", { { "index", last.eglDeviceIndex }, { "description", last.eglDevice } } },
     { "stages", stages },
     { "frame_gpu_ms", median(frameGpu) },
     { "frame_wall_ms", median(frameWall) },

@@ -181,6 +181,7 @@ int runReference(const ReferenceOptions& options, std::ostream& log)
     { "seconds", result.seconds },
     { "rays_per_second", result.raysPerSecond },
     { "gl_renderer", gbuffer.glRenderer },
+    { "egl_device", { { "index", gbuffer.eglDeviceIndex }, { "description", gbuffer.eglDevice } } },
   };
   if (sampleSet)
   {

@@ -64,6 +64,8 @@ struct FrameResult
   std::string glRenderer;
   std::string glVersion;
   std::string eglPlatform;
+  int eglDeviceIndex = -1;   // among the hardware EGL devices; -1: none (surfaceless, default display)
+  std::string eglDevice;     // EglContext::deviceDescription()
   // Multisampled frames (MultisampleSettings, RenderRequest::gbufferSamples): the G-buffer's sample positions within
   // the pixel, in [0, 1)^2 as GL reports them (glGetMultisamplefv); empty when single-sampled.
   std::vector<glm::dvec2> samplePositions;

@@ -1,6 +1,7 @@
 #include "gl/EglContext.h"
 
 #include "core/Error.h"
+#include "gl/EglDeviceSelection.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -187,18 +188,37 @@ EglContext::EglContext()
       EGLDeviceEXT devices[16];
       EGLint deviceCount = 0;
       queryDevices(16, devices, &deviceCount);
-      bool triedOne = false;
-      for (EGLint i = 0; i < deviceCount && platformName_.empty(); ++i)
+      std::vector<EGLDeviceEXT> hardware;
+      for (EGLint i = 0; i < deviceCount; ++i)
       {
         const char* deviceExtensions = queryDeviceString ? queryDeviceString(devices[i], EGL_EXTENSIONS) : nullptr;
-        if (hasExtension(deviceExtensions, "EGL_MESA_device_software"))
+        if (!hasExtension(deviceExtensions, "EGL_MESA_device_software"))
         {
-          continue;
+          hardware.push_back(devices[i]);
         }
-        triedOne = true;
-        attempt("device", getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
       }
-      if (!triedOne)
+      const EglDeviceSelection selection = selectEglDevice(eglDeviceEnvironment(), static_cast<int>(hardware.size()));
+      // An assigned device only: another GPU would be another job's.
+      for (std::size_t k = 0; k < hardware.size() && platformName_.empty(); ++k)
+      {
+        const std::size_t i = selection.assigned ? static_cast<std::size_t>(selection.index) : k;
+        if (i < hardware.size() && attempt("device", getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, hardware[i], nullptr)))
+        {
+          const char* deviceExtensions = queryDeviceString(hardware[i], EGL_EXTENSIONS);
+          const char* drmFile = hasExtension(deviceExtensions, "EGL_EXT_device_drm")
+            ? queryDeviceString(hardware[i], EGL_DRM_DEVICE_FILE_EXT)
+            : nullptr;
+          const char* vendor = eglQueryString(handles_->display, EGL_VENDOR);
+          deviceIndex_ = static_cast<int>(i);
+          deviceDescription_ = format("EGL device ", i, " of ", hardware.size(), " (", drmFile ? drmFile : "no DRM file",
+            ", ", vendor ? vendor : "unknown vendor", "), chosen by ", selection.source);
+        }
+        if (selection.assigned)
+        {
+          break;
+        }
+      }
+      if (hardware.empty())
       {
         failures.push_back(format("device: no hardware EGL device among ", deviceCount));
       }
@@ -220,6 +240,15 @@ EglContext::EglContext()
   if (platformName_.empty() && (only.empty() || only == "default"))
   {
     attempt("default", eglGetDisplay(EGL_DEFAULT_DISPLAY));
+  }
+  if (!platformName_.empty() && deviceIndex_ < 0)
+  {
+    const char* vendor = eglQueryString(handles_->display, EGL_VENDOR);
+    const EglDeviceEnvironment environment = eglDeviceEnvironment();
+    const bool assigned = !environment.explicitDevice.empty() || !environment.slurmStepGpus.empty() ||
+      !environment.slurmJobGpus.empty() || !environment.cudaVisibleDevices.empty();
+    deviceDescription_ = format(platformName_, " display (", vendor ? vendor : "unknown vendor", "), no hardware EGL device",
+      assigned ? " (the GPU assignment in the environment does not apply)" : "");
   }
   if (platformName_.empty())
   {

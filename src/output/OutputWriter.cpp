@@ -123,6 +123,7 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     { "gl_renderer", frame.glRenderer },
     { "gl_version", frame.glVersion },
     { "egl_platform", frame.eglPlatform },
+    { "egl_device", { { "index", frame.eglDeviceIndex }, { "description", frame.eglDevice } } },
     { "stages", stages },
     { "total_gpu_ms", totalGpuMs },
     { "frame_wall_ms", frame.frameWallMs },

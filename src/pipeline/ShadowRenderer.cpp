@@ -393,6 +393,8 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
   result.glRenderer = window_->GetRendererString();
   result.glVersion = window_->GetVersionString();
   result.eglPlatform = window_->GetEglContext()->platformName();
+  result.eglDeviceIndex = window_->GetEglContext()->deviceIndex();
+  result.eglDevice = window_->GetEglContext()->deviceDescription();
   result.samplePositions = frame.samplePositions;
 }
 

@@ -158,6 +158,31 @@ TEST(BenchPlan, ATiledReferenceMergesBitForBitIntoTheWholeOne)
     test::readJson(temp.path() / "whole" / "stats.json").at("rays_traced"));
 }
 
+TEST(BenchPlan, StatsNameTheEglDeviceAndWhetherAnAssignmentApplied)
+{
+  // No GPU here: llvmpipe on the surfaceless display, no hardware device; a Slurm GPU assignment in the environment
+  // is said not to apply rather than passed off as honoured.
+  const test::TempDir temp;
+  const std::vector<std::string> render = { "render", test::datasetPath("planar-occluder").string(), "-t", "hard", "-r",
+    "32x32", "-q", "--out", (temp.path() / "frame").string() };
+  ASSERT_EQ(test::runShadowlabIn(render, temp.path(), "unset CUDA_VISIBLE_DEVICES SLURM_STEP_GPUS SLURM_JOB_GPUS "
+    "SHADOWLAB_EGL_DEVICE").exitCode, 0);
+  const nlohmann::json stats = test::readJson(temp.path() / "frame" / "stats.json");
+  const std::string platform = stats.at("egl_platform").get<std::string>();
+  const nlohmann::json device = stats.at("egl_device");
+  if (platform == "device")
+  {
+    GTEST_SKIP() << "a hardware EGL device: " << device.dump();
+  }
+  EXPECT_EQ(device.at("index").get<int>(), -1);
+  const std::string description = device.at("description").get<std::string>();
+  EXPECT_EQ(description.rfind(platform + " display (", 0), 0u) << description;
+  EXPECT_EQ(description.find("does not apply"), std::string::npos) << description;
+  ASSERT_EQ(test::runShadowlabIn(render, temp.path(), "export SLURM_STEP_GPUS=1 CUDA_VISIBLE_DEVICES=1").exitCode, 0);
+  EXPECT_NE(test::readJson(temp.path() / "frame" / "stats.json").at("egl_device").at("description").get<std::string>()
+    .find("the GPU assignment in the environment does not apply"), std::string::npos);
+}
+
 TEST(BenchPlan, BadInputIsOneLineWithNoOutput)
 {
   const test::TempDir temp;
