@@ -2,7 +2,8 @@
 // every command added later) goes through writeDirectoryAtomically, which never destroys what ShadowLab did
 // not create. docs/outputs.md ("Outputs and exit codes") states the same rules for users:
 //
-//  - Each output directory carries a marker file, `.shadowlab-output` (JSON: tool, command, version, time).
+//  - Each output directory carries a marker file, `.shadowlab-output` (JSON: tool, command, version, time, pid and
+//    host; a temporary sibling is judged stale only on the host that made it, for shared filesystems).
 //  - --out may replace an existing directory only when it is empty or carries that marker. A non-empty
 //    directory without it is refused with one line, unless the command was given --force.
 //  - Even with --force, these are always refused: the filesystem root, the current directory and each of its
