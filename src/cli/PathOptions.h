@@ -52,6 +52,10 @@ inline constexpr PathArgument kPathArguments[] = {
   { "bench", "--scene-sweep", PathRole::Reads },
   { "bench", "--cache", PathRole::AddsFiles },
   { "bench", "--out", PathRole::WritesDirectory },
+  { "bench", "--plan", PathRole::WritesDirectory },
+  { "bench", "--collect", PathRole::Reads },
+  { "reference-merge", "tiles", PathRole::Reads },
+  { "reference-merge", "--out", PathRole::WritesDirectory },
   { "bench-run", "scene", PathRole::Reads },
   { "bench-run", "--set", PathRole::Reads },
   { "bench-run", "--scene-set", PathRole::Reads },
@@ -83,9 +87,11 @@ struct OtherArguments
 
 inline constexpr OtherArguments kOtherArguments[] = {
   { "render", "--technique --resolution --light" },
-  { "reference", "--reference-samples --sampling --light-samples --seed --msaa --resolution --light --threads" },
+  { "reference", "--reference-samples --sampling --light-samples --seed --msaa --resolution --light --threads --tile" },
+  { "reference-merge", "" },
   { "compare", "--array" },
-  { "bench", "--technique --repeat --resolution --reference-samples --depth-profile --depth-bins --depth-range --view-stats" },
+  { "bench", "--technique --repeat --resolution --reference-samples --depth-profile --depth-bins --depth-range --view-stats "
+             "--slurm-partition --slurm-time --slurm-gpus --slurm-throttle --reference-tiles" },
   { "bench-run", "--technique --resolution --repeat --depth-profile --depth-bins --depth-range --view-stats" },
   { "probe", "--technique --pixel --pick --resolution --light" },
   { "view", "--technique --resolution --light" },

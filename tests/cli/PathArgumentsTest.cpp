@@ -218,6 +218,30 @@ const std::map<std::string, Writer>& writers()
         writeFile(in.cache / "0123456789abcdef", "a cache entry");
         return in.cache;
       } };
+    w["bench --plan"] = { datasetCopy,
+      [](const Inputs& in, const std::string& out) {
+        return small({ "bench", in.scene.string(), "-t", "hard", "--reference-samples", "4", "--repeat", "1", "--cache",
+          in.cache.string(), "--plan", out });
+      },
+      true, true,
+      [](const Inputs& in) {
+        fs::create_directories(in.cache);
+        writeFile(in.cache / "0123456789abcdef", "a cache entry");
+        return in.cache;
+      } };
+    // A reference of one tile (0/1) is its whole, merged alone.
+    w["reference-merge --out"] = { [](const fs::path& where) {
+                                    Inputs inputs = datasetCopy(where);
+                                    inputs.run = where / "tile";
+                                    EXPECT_EQ(test::runShadowlabInTempDir(small({ "reference", inputs.scene.string(),
+                                                "--reference-samples", "4", "--tile", "0/1", "--out",
+                                                inputs.run.string() })).exitCode, 0);
+                                    return inputs;
+                                  },
+      [](const Inputs& in, const std::string& out) {
+        return std::vector<std::string>{ "reference-merge", in.run.string(), "-q", "--out", out };
+      },
+      true, true, [](const Inputs& in) { return in.run; } };
     w["compare --out"] = { datasetAndRun, [](const Inputs& in, const std::string& out) {
                             const std::string vti = (in.run / "buffers.vti").string();
                             return std::vector<std::string>{ "compare", vti, vti, "-q", "--out", out };
