@@ -716,9 +716,11 @@ ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting, c
     keyEntries.push_back({ "contour edge back-projected (coloured by its signed area)", paintLineSwatch,
       areaColorKeySample(diverging) });
   }
-  for (const std::string& role : polygonRoleLines(record))
+  const std::vector<std::string> polygonRoles = polygonRoleLabels(record);
+  const std::vector<std::string> roleLines = polygonRoleLines(record);
+  for (std::size_t r = 0; r < roleLines.size(); ++r)
   {
-    keyEntries.push_back({ role, paintBoxSwatch, kDarkGrey });
+    keyEntries.push_back({ roleLines[r], paintBoxSwatch, ColorMap::categoryColor(long(r)) });
   }
   {
     double areaSum = 0.0;
@@ -810,7 +812,10 @@ ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting, c
       points.push_back(toPx(p));
     }
     fillPolygon(plane, points, areaColor(polygon.signedArea), 0.7);
-    strokePolygon(plane, points, kDarkGrey, 1.0);
+    // The outline in its role's colour (the key's swatch): which wedge or micropatch it is.
+    const RgbColor roleColor = ColorMap::categoryColor(labelCode(polygonRoles, polygon.role));
+    strokePolygon(plane, points, kBlack, points.size() > 2 ? 1.0 : 4.0);
+    strokePolygon(plane, points, roleColor, points.size() > 2 ? 1.0 : 2.0);
   }
   for (const ProbeContourEdge& edge : record.contourEdges)
   {
@@ -882,11 +887,15 @@ ImageU8 sectionPanel(const Scene& scene, const ProbeSetting& setting, const Figu
   const glm::dvec2 lightCentre = section.toSection(lightFrame.eyeWs);
   const glm::dvec2 receiverPoint = section.toSection(receiver.position);
   const bool directional = light.type == LightType::Directional;
-  const std::vector<KeyEntry> keyEntries = { { "casters", paintLineSwatch, kCasterColor },
+  std::vector<KeyEntry> keyEntries = { { "casters", paintLineSwatch, kCasterColor },
     { "non-casters", paintLineSwatch, kLightGrey }, { "shadow-map depth per texel", paintLineSwatch, kDepthStepColor },
     { "light", paintLineSwatch, kLightColor },
     { directional ? "ray to the light" : "rays to its ends", paintLineSwatch, kRayColor },
     { "receiver", paintMarkerSwatch, kProbeMarkerColor } };
+  if (setting.map.depth == nullptr || setting.map.view == nullptr)
+  {
+    keyEntries.erase(keyEntries.begin() + 2); // no map, no depth steps
+  }
   const double keyBand = keyHeight(keyEntries, int(box.width));
   const Box sectionBox{ box.left, box.bottom + keyBand, box.width, box.height - keyBand };
 
@@ -1121,8 +1130,19 @@ ImageU8 penumbraPanel(const PenumbraEstimate& estimate, const FigureRect& rect, 
   const Box diagram{ box.left, box.bottom + textBand, box.width - labelStrip, box.height - textBand };
   const double penumbraHalf = estimate.blockerDepth ? 0.5 * estimate.penumbraWidth() : 0.0;
   const double halfWidth = std::max({ 0.5 * w, penumbraHalf, 1e-9 });
-  const View2D view = fitView({ -halfWidth, -dr }, { halfWidth, 0.0 }, diagram, 0.08);
-  const auto px = [&](double x, double depth) { return view.toPx({ x, -depth }); };
+  // Across stretched to the diagram's width where the light is narrow beside the depths: an affine map keeps
+  // the ratios along each plane, so the triangles still give w_i and w_penumbra; the text names the stretch.
+  const double depthScale = 0.84 * diagram.height / dr;
+  const double acrossScale = std::max(depthScale, 0.84 * diagram.width / (2.0 * halfWidth));
+  const auto px = [&](double x, double depth) {
+    return glm::dvec2(diagram.left + 0.5 * diagram.width + x * acrossScale,
+      diagram.bottom + 0.5 * diagram.height + (0.5 * dr - depth) * depthScale);
+  };
+  if (acrossScale > 1.05 * depthScale)
+  {
+    putText(panel, "across stretched x" + numberText(acrossScale / depthScale, 2), kBodyFontPx, int(diagram.left),
+      int(diagram.bottom + diagram.height) - kKeyLinePx, kDarkGrey);
+  }
   const double right = diagram.left + diagram.width;
   const auto planeLabel = [&](double depth, const std::string& label, const RgbColor& color) {
     putText(panel, label, kBodyFontPx, int(right) + 4, int(px(0.0, depth).y) - 5, color);
@@ -1235,7 +1255,9 @@ ImageU8 chebyshevPanel(const ChebyshevPoint& point, const FigureRect& rect, char
 
   // Axes: x = t - mean from a little below 0 to past the pixel's point and 3 standard deviations; y = 0 .. 1.
   const double sigma = std::sqrt(std::max(0.0, point.variance));
-  const double xMax = std::max({ 3.0 * sigma, 1.3 * std::abs(point.offset), 1e-9 });
+  // Past 6 sigma the bound is flat at this scale: the axis stops there and the point sits at its end, labelled.
+  const bool pointOffAxis = sigma > 0.0 && point.offset > 6.0 * sigma;
+  const double xMax = pointOffAxis ? 6.0 * sigma : std::max({ 3.0 * sigma, 1.3 * std::abs(point.offset), 1e-9 });
   const double xMin = -0.25 * xMax;
   const int axisLabelPx = kKeyLinePx + 4;
   const int leftLabelPx = textWidth("0.5", kBodyFontPx) + 10;
@@ -1274,15 +1296,22 @@ ImageU8 chebyshevPanel(const ChebyshevPoint& point, const FigureRect& rect, char
     drawLine(panel, previous, next, kPenumbraColor, 2.0);
     previous = next;
   }
-  const glm::dvec2 at = px(point.offset, point.bound());
-  drawDashedLine(panel, px(point.offset, 0.0), at, kDarkGrey, 1.0, 4.0);
+  const glm::dvec2 at = px(std::min(point.offset, xMax), point.bound());
+  drawDashedLine(panel, glm::dvec2(at.x, plot.bottom), at, kDarkGrey, 1.0, 4.0);
   fillDisk(panel, at, 6.0, kBlack);
   fillDisk(panel, at, 4.0, kRayColor);
+  if (pointOffAxis)
+  {
+    const std::string label = "t - mean " + numberText(point.offset) + " (" + numberText(point.offset / sigma, 3) +
+      " sigma) ->";
+    putText(panel, label, kBodyFontPx, int(plot.left + plot.width) - textWidth(label, kBodyFontPx), int(at.y) + 10,
+      kRayColor);
+  }
   if (sigma > 0.0)
   {
     const glm::dvec2 sigmaAt = px(sigma, 0.5);
     drawLine(panel, sigmaAt - glm::dvec2(0, 4), sigmaAt + glm::dvec2(0, 4), kDarkGrey, 1.0);
-    putText(panel, "sigma", kBodyFontPx, int(sigmaAt.x) + 3, int(sigmaAt.y) + 2, kDarkGrey);
+    putText(panel, "sigma", kBodyFontPx, int(sigmaAt.x) + 5, int(sigmaAt.y) + 4, kDarkGrey);
   }
   return panel;
 }
@@ -1440,7 +1469,7 @@ void addRecordCounts(LegendLines& lines, const ProbeRecord& record)
       numberText(sum)));
     for (const std::string& role : polygonRoleLines(record))
     {
-      lines.add("  " + role);
+      lines.add("- " + role);
     }
   }
   if (!record.contourEdges.empty() || record.droppedEdges > 0)
@@ -1493,34 +1522,28 @@ LegendPages legendPages(const ProbeResult& probe, const ProbeSetting& setting)
   addRecordedQuantities(lines, probe.record);
   const Box box = contentBox({ 0, 0, kProbeFigurePanelSide, kProbeFigurePanelSide });
   LegendPages pages;
+  const int lineHeight = measureText("Ag", kBodyFontPx).height + 2;
+  const int rowsPerPage = std::max(1, int(box.height) / lineHeight);
+  pages.rowsPerPage = rowsPerPage;
   for (const auto& [text, color] : lines.lines())
   {
     pages.lines.push_back(text);
     bool first = true;
-    for (const std::string& line : wrapText(text, kBodyFontPx, int(box.width)))
+    // Wrapped two characters short, so the continuation rows' indent fits too.
+    const std::vector<std::string> wrapped = wrapText(text, kBodyFontPx, int(box.width) - textWidth("  ", kBodyFontPx));
+    const int rowsLeft = rowsPerPage - int(pages.rows.size() % std::size_t(rowsPerPage));
+    if (int(wrapped.size()) > rowsLeft && int(wrapped.size()) <= rowsPerPage)
+    {
+      // A wrapped line starts the next page rather than break across two.
+      pages.rows.insert(pages.rows.end(), std::size_t(rowsLeft), { std::string(), kBlack });
+    }
+    for (const std::string& line : wrapped)
     {
       // Continuation rows are indented so a wrapped quantity reads as one.
       pages.rows.emplace_back(first ? line : "  " + line, color);
       first = false;
     }
   }
-  // Re-wrap continuation rows that the indent pushed past the width.
-  std::vector<std::pair<std::string, RgbColor>> fitted;
-  for (const auto& [row, color] : pages.rows)
-  {
-    if (textWidth(row, kBodyFontPx) <= int(box.width))
-    {
-      fitted.emplace_back(row, color);
-      continue;
-    }
-    for (const std::string& part : wrapText(row.substr(2), kBodyFontPx, int(box.width) - textWidth("  ", kBodyFontPx)))
-    {
-      fitted.emplace_back("  " + part, color);
-    }
-  }
-  pages.rows = std::move(fitted);
-  const int lineHeight = measureText("Ag", kBodyFontPx).height + 2;
-  pages.rowsPerPage = std::max(1, int(box.height) / lineHeight);
   return pages;
 }
 
