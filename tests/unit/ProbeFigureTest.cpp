@@ -26,12 +26,16 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkStructuredGrid.h>
+#include <vtkFieldData.h>
 #include <vtkXMLMultiBlockDataReader.h>
 #include <vtkXMLMultiBlockDataWriter.h>
 
 #include <glm/gtc/matrix_access.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -327,7 +331,7 @@ TEST(ProbeDataSet, RoundTripsThroughXmlWithItsBlocksAndArrays)
         EXPECT_NE(piece(read, block, name), nullptr) << block << "/" << name;
       }
     }
-    auto* crop = vtkImageData::SafeDownCast(piece(read, "shadow_map", "crop"));
+    auto* crop = vtkStructuredGrid::SafeDownCast(piece(read, "shadow_map", "crop"));
     ASSERT_NE(crop, nullptr);
     for (const char* array : { "depth", "read", "compared", "occluding", "weight", "visited_level" })
     {
@@ -366,12 +370,14 @@ TEST(ProbeDataSet, CropArraysMarkExactlyTheRecordedTexels)
   const Synthetic s = makeSynthetic();
   const test::TempDir dir;
   const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
-  auto* crop = vtkImageData::SafeDownCast(piece(read, "shadow_map", "crop"));
+  auto* crop = vtkStructuredGrid::SafeDownCast(piece(read, "shadow_map", "crop"));
   ASSERT_NE(crop, nullptr);
   int dims[3];
   crop->GetDimensions(dims);
-  double origin[3];
-  crop->GetOrigin(origin);
+  // The crop's first texel: its first point's texel coordinates.
+  vtkDataArray* texelUv = crop->GetPointData()->GetArray("texel_uv");
+  ASSERT_NE(texelUv, nullptr);
+  const double origin[2] = { texelUv->GetComponent(0, 0), texelUv->GetComponent(0, 1) };
   const int width = dims[0] - 1; // one cell per texel
   const int height = dims[1] - 1;
   ASSERT_GT(width, 3);
@@ -403,6 +409,82 @@ TEST(ProbeDataSet, CropArraysMarkExactlyTheRecordedTexels)
     }
   }
   EXPECT_EQ(occludingSeen, s.occludingTexels.size()); // every recorded occluding texel lies in the crop
+}
+
+// The bounds of every non-empty piece of `blocks`, by block.
+std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> pieceBounds(
+  vtkMultiBlockDataSet* blocks)
+{
+  std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> bounds;
+  for (unsigned int b = 0; b < blocks->GetNumberOfBlocks(); ++b)
+  {
+    auto* block = vtkMultiBlockDataSet::SafeDownCast(blocks->GetBlock(b));
+    for (unsigned int p = 0; block != nullptr && p < block->GetNumberOfBlocks(); ++p)
+    {
+      auto* data = vtkDataSet::SafeDownCast(block->GetBlock(p));
+      if (data == nullptr || data->GetNumberOfPoints() == 0)
+      {
+        continue;
+      }
+      std::array<double, 6> box{};
+      data->GetBounds(box.data());
+      bounds[blockName(blocks, b)].push_back({ blockName(block, p), box });
+    }
+  }
+  return bounds;
+}
+
+TEST(ProbeDataSet, EveryBlockIsInWorldUnitsAndOverlapsTheScene)
+{
+  // issue 31: the shadow_map block was in texel units (0..64 here, 0..2048 in a real map) and landed far from the
+  // world and light_plane blocks in ParaView. Now every piece lies within the scene's reach: the scene's bounds
+  // (ground 8 x 8 at y = 0, light at y = 5) grown by a margin, and the crop sits under the receiver.
+  const Synthetic s = makeSynthetic();
+  const test::TempDir dir;
+  const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
+  const auto bounds = pieceBounds(read);
+  ASSERT_EQ(bounds.count("shadow_map"), 1u);
+  const double sceneLo[3] = { -kGroundHalf, 0.0, -kGroundHalf };
+  const double sceneHi[3] = { kGroundHalf, kLightHeight, kGroundHalf };
+  const double margin = 1.0;
+  for (const auto& [block, pieces] : bounds)
+  {
+    for (const auto& [name, box] : pieces)
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        EXPECT_GE(box[2 * axis], sceneLo[axis] - margin) << block << "/" << name << " axis " << axis;
+        EXPECT_LE(box[2 * axis + 1], sceneHi[axis] + margin) << block << "/" << name << " axis " << axis;
+      }
+      auto* data = vtkDataSet::SafeDownCast(piece(read, block, name));
+      ASSERT_NE(data, nullptr);
+      auto* coordinates = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("coordinates"));
+      ASSERT_NE(coordinates, nullptr) << block << "/" << name << " names no coordinate system";
+      EXPECT_EQ(coordinates->GetValue(0).rfind("world units", 0), 0u) << coordinates->GetValue(0);
+    }
+  }
+  // The crop and the receiver's texel lie on the receiver's plane (the ground, y = 0) around the receiver.
+  const auto crop = std::find_if(bounds.at("shadow_map").begin(), bounds.at("shadow_map").end(),
+    [](const auto& entry) { return entry.first == "crop"; });
+  ASSERT_NE(crop, bounds.at("shadow_map").end());
+  EXPECT_NEAR(crop->second[2], 0.0, 1e-9);
+  EXPECT_NEAR(crop->second[3], 0.0, 1e-9);
+  EXPECT_LE(crop->second[0], s.receiver.x);
+  EXPECT_GE(crop->second[1], s.receiver.x);
+  EXPECT_LE(crop->second[4], s.receiver.z);
+  EXPECT_GE(crop->second[5], s.receiver.z);
+  auto* receiverTexel = vtkPolyData::SafeDownCast(piece(read, "shadow_map", "receiver"));
+  ASSERT_NE(receiverTexel, nullptr);
+  ASSERT_EQ(receiverTexel->GetNumberOfPoints(), 1);
+  const glm::dvec3 placed = pointOf(receiverTexel, 0);
+  EXPECT_NEAR(glm::length(placed - s.receiver), 0.0, 1e-9) << placed.x << "," << placed.y << "," << placed.z;
+  // Kernels keep their texel coordinates alongside.
+  auto* kernels = vtkPolyData::SafeDownCast(piece(read, "shadow_map", "kernels"));
+  ASSERT_NE(kernels, nullptr);
+  vtkDataArray* texelUv = kernels->GetPointData()->GetArray("texel_uv");
+  ASSERT_NE(texelUv, nullptr);
+  EXPECT_EQ(texelUv->GetComponent(0, 0), s.probe.record.kernels.front().lo.x);
+  EXPECT_EQ(texelUv->GetComponent(0, 1), s.probe.record.kernels.front().lo.y);
 }
 
 TEST(ProbeDataSet, WorldReceiverAndLightPlanePolygonsMatchTheRecord)
