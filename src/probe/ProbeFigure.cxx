@@ -1122,8 +1122,9 @@ ImageU8 penumbraPanel(const PenumbraEstimate& estimate, const FigureRect& rect, 
   {
     lines.push_back({ "no blocker in the search region: lit, no penumbra estimate", kDarkGrey });
   }
-  const int textBand = wrappedLineCount(lines, int(box.width)) * kKeyLinePx + 4;
-  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand, int(box.width));
+  // One line more on top for the diagram's stretch, when it has one.
+  const int textBand = (wrappedLineCount(lines, int(box.width)) + 1) * kKeyLinePx + 4;
+  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand - kKeyLinePx, int(box.width));
 
   // Diagram: x across, y = -depth. Labels on the right take a fixed strip.
   const double labelStrip = 9.0 * textWidth("M", kBodyFontPx);
@@ -1140,16 +1141,18 @@ ImageU8 penumbraPanel(const PenumbraEstimate& estimate, const FigureRect& rect, 
   };
   if (acrossScale > 1.05 * depthScale)
   {
-    putText(panel, "across stretched x" + numberText(acrossScale / depthScale, 2), kBodyFontPx, int(diagram.left),
-      int(diagram.bottom + diagram.height) - kKeyLinePx, kDarkGrey);
+    putText(panel, "diagram: across stretched x" + numberText(acrossScale / depthScale, 2) + " against depth",
+      kBodyFontPx, int(box.left), int(box.bottom) + textBand - kKeyLinePx, kDarkGrey);
   }
   const double right = diagram.left + diagram.width;
-  const auto planeLabel = [&](double depth, const std::string& label, const RgbColor& color) {
-    putText(panel, label, kBodyFontPx, int(right) + 4, int(px(0.0, depth).y) - 5, color);
+  const auto planeLabel = [&](double depth, const std::string& label, const RgbColor& color, int raisePx = 0) {
+    putText(panel, label, kBodyFontPx, int(right) + 4, int(px(0.0, depth).y) - 5 + raisePx, color);
   };
+  // The search plane's label above the blocker's where the two planes are closer than a line (d_b near n).
+  const bool planesClose = estimate.blockerDepth && std::abs(px(0, n).y - px(0, *estimate.blockerDepth).y) < kKeyLinePx;
   // Planes: search, blocker, receiver.
   drawDashedLine(panel, { diagram.left, px(0, n).y }, { right, px(0, n).y }, kSearchColor, 1.0, 5.0);
-  planeLabel(n, "n " + numberText(n, 3), kSearchColor);
+  planeLabel(n, "n " + numberText(n, 3), kSearchColor, planesClose ? kKeyLinePx : 0);
   drawLine(panel, { diagram.left, px(0, dr).y }, { right, px(0, dr).y }, kLightGrey, 2.0);
   planeLabel(dr, "d_r " + numberText(dr, 3), kBlack);
   // Step 1: the light's ends to the receiver, and the search region they cut from the search plane.
