@@ -1488,23 +1488,98 @@ void addRecordCounts(LegendLines& lines, const ProbeRecord& record)
 }
 
 // The record's other quantities, in the twin's order (the receiver's already shown are left out).
+// A group name "<prefix> <index>" (vssm's "blocker sub-kernel 12"): the prefix, or "" when it has no index.
+std::string indexedGroupPrefix(const std::string& group)
+{
+  const std::size_t space = group.rfind(' ');
+  if (space == std::string::npos || space + 1 >= group.size() ||
+    group.find_first_not_of("0123456789", space + 1) != std::string::npos)
+  {
+    return {};
+  }
+  return group.substr(0, space);
+}
+
+std::string quantityValueText(const ProbeQuantity& quantity)
+{
+  return quantity.text.empty() ? vectorText(quantity.value) : quantity.text;
+}
+
+// The record's other quantities, in the twin's order, under their steps' headings (the receiver's already shown
+// are left out). Runs of three or more groups "<prefix> <index>" that record the same quantities (vssm's
+// sub-kernels, one group each) become a table: one heading naming the columns with their units, then one line a
+// group, "<index>: value | value | ...", every value in full.
 void addRecordedQuantities(LegendLines& lines, const ProbeRecord& record)
 {
   static const char* shown[] = { "position", "normal", "receiver_depth", "depth_bias", "shadow_map_position" };
-  std::optional<std::string> group;
+  struct Group
+  {
+    std::string name;
+    std::vector<const ProbeQuantity*> quantities;
+  };
+  std::vector<Group> groups;
   for (const ProbeQuantity& quantity : record.quantities)
   {
     if (quantity.group == "receiver" && std::find(std::begin(shown), std::end(shown), quantity.name) != std::end(shown))
     {
       continue;
     }
-    if (!group || *group != quantity.group)
+    if (groups.empty() || groups.back().name != quantity.group)
     {
-      // The twin's steps as headings, in its order.
-      group = quantity.group;
-      lines.add("-- " + (quantity.group.empty() ? std::string("recorded") : quantity.group) + " --", kDarkGrey);
+      groups.push_back({ quantity.group, {} });
     }
-    lines.add(probeQuantityText(quantity));
+    groups.back().quantities.push_back(&quantity);
+  }
+  const auto sameColumns = [](const Group& a, const Group& b) {
+    if (a.quantities.size() != b.quantities.size())
+    {
+      return false;
+    }
+    for (std::size_t i = 0; i < a.quantities.size(); ++i)
+    {
+      if (a.quantities[i]->name != b.quantities[i]->name || a.quantities[i]->unit != b.quantities[i]->unit)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (std::size_t g = 0; g < groups.size();)
+  {
+    const std::string prefix = indexedGroupPrefix(groups[g].name);
+    std::size_t end = g + 1;
+    while (!prefix.empty() && end < groups.size() && indexedGroupPrefix(groups[end].name) == prefix &&
+      sameColumns(groups[g], groups[end]))
+    {
+      ++end;
+    }
+    if (end - g >= 3)
+    {
+      std::string columns;
+      for (const ProbeQuantity* quantity : groups[g].quantities)
+      {
+        columns += (columns.empty() ? "" : " | ") + quantity->name + (quantity->unit.empty() ? "" : " [" + quantity->unit + "]");
+      }
+      lines.add(format("-- ", prefix, " (", end - g, " groups, one line each): ", columns, " --"), kDarkGrey);
+      for (std::size_t k = g; k < end; ++k)
+      {
+        std::string row = groups[k].name.substr(prefix.size() + 1) + ":";
+        for (std::size_t i = 0; i < groups[k].quantities.size(); ++i)
+        {
+          row += (i == 0 ? " " : " | ") + quantityValueText(*groups[k].quantities[i]);
+        }
+        lines.add(row);
+      }
+      g = end;
+      continue;
+    }
+    // The twin's steps as headings, in its order.
+    lines.add("-- " + (groups[g].name.empty() ? std::string("recorded") : groups[g].name) + " --", kDarkGrey);
+    for (const ProbeQuantity* quantity : groups[g].quantities)
+    {
+      lines.add(probeQuantityText(*quantity));
+    }
+    ++g;
   }
 }
 

@@ -731,16 +731,24 @@ std::string legendTextOf(const ProbeFigureDrawing& drawing)
 TEST(ProbeFigure, DrawsEveryRecordedQuantityInFullOverAsManyPagesAsItTakes)
 {
   Synthetic s = makeSynthetic();
-  // Sixty sub-kernel groups of long names and a categorical value far wider than a page: vssm's record's shape.
+  // Sixty steps of long names and a categorical value far wider than a page, then sixty sub-kernel groups that
+  // record the same quantities (vssm's record's shape), which the key numbers list as a table.
   ProbeRecorder recorder;
   recorder.record() = s.probe.record;
+  const std::string longClass = "non-planar: the mean lies in front of the comparison depth, so Chebyshev's bound "
+                                "does not apply and the sub-kernel is split or filtered with PCF";
+  for (int k = 0; k < 60; ++k)
+  {
+    recorder.beginGroup(format("step ", k % 2 == 0 ? "one" : "two", " of many, number ", k, "a"));
+    recorder.quantity(format("mean_depth_of_step_", k), 2.5 + 0.001 * k, "linear depth", "test");
+    recorder.category("class", k % 2 == 0 ? "planar" : longClass, "test");
+  }
   for (int k = 0; k < 60; ++k)
   {
     recorder.beginGroup(format("blocker sub-kernel ", k));
     recorder.quantity("texel_lo", glm::dvec2(100 + k, 200 + k), "texels", "test");
-    recorder.quantity(format("mean_depth_of_sub_kernel_", k), 2.5 + 0.001 * k, "linear depth", "test");
-    recorder.category("class", k % 2 == 0 ? "planar" : "non-planar: the mean lies in front of the comparison depth, "
-      "so Chebyshev's bound does not apply and the sub-kernel is split or filtered with PCF", "test");
+    recorder.quantity("mean_depth", 3.5 + 0.001 * k, "linear depth", "test");
+    recorder.category("class", k % 2 == 0 ? "planar" : longClass, "test");
   }
   s.probe.record = recorder.record();
   const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
@@ -756,12 +764,31 @@ TEST(ProbeFigure, DrawsEveryRecordedQuantityInFullOverAsManyPagesAsItTakes)
     {
       continue; // shown in the summary's own words
     }
+    if (quantity.group.rfind("blocker sub-kernel ", 0) == 0)
+    {
+      // A table row: "<k>: (100+k, 200+k) | 3.5xx | class", every value in full on the group's own line.
+      const std::string index = quantity.group.substr(std::string("blocker sub-kernel ").size());
+      const std::size_t row = legend.find("\n" + index + ": ");
+      ASSERT_NE(row, std::string::npos) << quantity.group;
+      const std::string rowText = legend.substr(row + 1, legend.find('\n', row + 1) - row - 1);
+      const std::string value = quantity.text.empty()
+        ? (quantity.value.size() == 1 ? readableNumber(quantity.value[0], 4)
+                                      : "(" + readableNumber(quantity.value[0], 4) + ", " + readableNumber(quantity.value[1], 4) + ")")
+        : quantity.text;
+      EXPECT_NE(rowText.find(value), std::string::npos) << quantity.group << " " << quantity.name << ": " << rowText;
+      ++checked;
+      continue;
+    }
     const std::string line = probeQuantityText(quantity);
     EXPECT_NE(std::find(drawing.legendLines.begin(), drawing.legendLines.end(), line), drawing.legendLines.end()) << line;
     EXPECT_NE(legend.find("\n" + line + "\n"), std::string::npos) << "not drawn in full: " << line;
     ++checked;
   }
-  EXPECT_EQ(checked, 180u);
+  EXPECT_EQ(checked, 300u);
+  // The table's heading names its columns with their units.
+  EXPECT_NE(legend.find("-- blocker sub-kernel (60 groups, one line each): texel_lo [texels] | mean_depth [linear "
+                        "depth] | class --"),
+    std::string::npos);
   // Every legend line, the last page's included, is on the figure.
   for (const std::string& line : drawing.legendLines)
   {
