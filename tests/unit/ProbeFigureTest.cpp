@@ -412,7 +412,7 @@ TEST(ProbeDataSet, CropArraysMarkExactlyTheRecordedTexels)
 }
 
 // The bounds of every non-empty piece of `blocks`, by block.
-std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> pieceBounds(
+std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> probeDataSetPieceBounds(
   vtkMultiBlockDataSet* blocks)
 {
   std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> bounds;
@@ -442,7 +442,7 @@ TEST(ProbeDataSet, EveryBlockIsInWorldUnitsAndOverlapsTheScene)
   const Synthetic s = makeSynthetic();
   const test::TempDir dir;
   const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
-  const auto bounds = pieceBounds(read);
+  const auto bounds = probeDataSetPieceBounds(read);
   ASSERT_EQ(bounds.count("shadow_map"), 1u);
   const double sceneLo[3] = { -kGroundHalf, 0.0, -kGroundHalf };
   const double sceneHi[3] = { kGroundHalf, kLightHeight, kGroundHalf };
@@ -605,7 +605,7 @@ RgbColor rgbOf(const ImageU8& image, int x, int y)
   return { image.at(x, y, 0) / 255.0, image.at(x, y, 1) / 255.0, image.at(x, y, 2) / 255.0 };
 }
 
-bool figureHasColor(const ImageU8& image, int x, int y, const RgbColor& color)
+bool probeFigureHasColor(const ImageU8& image, int x, int y, const RgbColor& color)
 {
   const auto rgb = toRgb8(color);
   return image.at(x, y, 0) == rgb[0] && image.at(x, y, 1) == rgb[1] && image.at(x, y, 2) == rgb[2];
@@ -704,7 +704,7 @@ TEST(ProbeFigure, LaysOutItsPanelsOnTheGridAndMarksThePixel)
 }
 
 // Every text the figure drew lies inside its canvas, and no drawn text is a cut one ("...").
-void expectNoTextCut(const ProbeFigureDrawing& drawing)
+void expectNoProbeFigureTextCut(const ProbeFigureDrawing& drawing)
 {
   ASSERT_FALSE(drawing.texts.empty());
   for (const ProbeFigureText& text : drawing.texts)
@@ -715,7 +715,7 @@ void expectNoTextCut(const ProbeFigureDrawing& drawing)
 }
 
 // The legend pages' rows joined back into the lines they wrap (a continuation row starts with two spaces).
-std::string legendTextOf(const ProbeFigureDrawing& drawing)
+std::string probeFigureLegendText(const ProbeFigureDrawing& drawing)
 {
   std::string joined;
   for (const ProbeFigureText& text : drawing.texts)
@@ -754,9 +754,9 @@ TEST(ProbeFigure, DrawsEveryRecordedQuantityInFullOverAsManyPagesAsItTakes)
   const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
   std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
   writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / "probe_figure_many_quantities.png", drawing.image);
-  expectNoTextCut(drawing);
+  expectNoProbeFigureTextCut(drawing);
   EXPECT_GT(drawing.layout.pages(ProbePanel::Legend), 3);
-  const std::string legend = legendTextOf(drawing);
+  const std::string legend = probeFigureLegendText(drawing);
   std::size_t checked = 0;
   for (const ProbeQuantity& quantity : s.probe.record.quantities)
   {
@@ -797,7 +797,7 @@ TEST(ProbeFigure, DrawsEveryRecordedQuantityInFullOverAsManyPagesAsItTakes)
 }
 
 // The fraction of a panel's content (below the title band) that is not white.
-double inkFraction(const ImageU8& figure, const FigureRect& rect)
+double probeFigureInkFraction(const ImageU8& figure, const FigureRect& rect)
 {
   std::size_t ink = 0;
   std::size_t total = 0;
@@ -828,7 +828,7 @@ TEST(ProbeFigure, LeavesOutPanelsWithoutContentAndInksEveryOther)
   }
   for (const ProbeFigurePanel& panel : drawing.layout.panels)
   {
-    EXPECT_GT(inkFraction(drawing.image, panel.rect), 0.01) << "panel (" << panel.letter << ") is empty";
+    EXPECT_GT(probeFigureInkFraction(drawing.image, panel.rect), 0.01) << "panel (" << panel.letter << ") is empty";
   }
   // No shadow map (dcs, shadow volumes): no map panel.
   s.frame.lightSpace.clear();
@@ -839,19 +839,19 @@ TEST(ProbeFigure, LeavesOutPanelsWithoutContentAndInksEveryOther)
   EXPECT_TRUE(drawing.layout.rect(ProbePanel::LightPlane).has_value());
   for (const ProbeFigurePanel& panel : drawing.layout.panels)
   {
-    EXPECT_GT(inkFraction(drawing.image, panel.rect), 0.01) << "panel (" << panel.letter << ") is empty";
+    EXPECT_GT(probeFigureInkFraction(drawing.image, panel.rect), 0.01) << "panel (" << panel.letter << ") is empty";
   }
-  expectNoTextCut(drawing);
+  expectNoProbeFigureTextCut(drawing);
 }
 
 // Which texts of a panel contain `part`.
-bool panelSays(const ProbeFigureDrawing& drawing, ProbePanel panel, const std::string& part)
+bool probeFigurePanelSays(const ProbeFigureDrawing& drawing, ProbePanel panel, const std::string& part)
 {
   return std::any_of(drawing.texts.begin(), drawing.texts.end(),
     [&](const ProbeFigureText& text) { return text.panel == panel && text.text.find(part) != std::string::npos; });
 }
 
-std::string panelText(const ProbeFigureDrawing& drawing, ProbePanel panel)
+std::string probeFigurePanelText(const ProbeFigureDrawing& drawing, ProbePanel panel)
 {
   std::string joined;
   for (const ProbeFigureText& text : drawing.texts)
@@ -887,10 +887,10 @@ TEST(ProbeFigure, PcssPanelDrawsTheSimilarTrianglesWithThePixelsNumbers)
   // Fernando 2005: w_penumbra = w_light (d_r - d_b) / d_b; the search region w_light (d_r - n) / d_r.
   const std::string penumbra = readableNumber(lightSize * (receiverDepth - blockerDepth) / blockerDepth, 4);
   const std::string search = readableNumber(lightSize * (receiverDepth - nearDepth) / receiverDepth, 4);
-  const std::string text = panelText(drawing, ProbePanel::Penumbra);
+  const std::string text = probeFigurePanelText(drawing, ProbePanel::Penumbra);
   EXPECT_NE(text.find("= " + penumbra + " world units"), std::string::npos) << text;
   EXPECT_NE(text.find("= " + search + " world units"), std::string::npos) << text;
-  EXPECT_TRUE(panelSays(drawing, ProbePanel::Penumbra, "d_b 2.55")) << text;
+  EXPECT_TRUE(probeFigurePanelSays(drawing, ProbePanel::Penumbra, "d_b 2.55")) << text;
   // The light drawn in gold, the penumbra span in blue on the receiver line.
   const FigureRect rect = *drawing.layout.rect(ProbePanel::Penumbra);
   std::size_t gold = 0;
@@ -898,11 +898,11 @@ TEST(ProbeFigure, PcssPanelDrawsTheSimilarTrianglesWithThePixelsNumbers)
   {
     for (int x = rect.left; x < rect.left + rect.width; ++x)
     {
-      gold += figureHasColor(drawing.image, x, y, { 1.0, 0.85, 0.2 }) ? 1 : 0;
+      gold += probeFigureHasColor(drawing.image, x, y, { 1.0, 0.85, 0.2 }) ? 1 : 0;
     }
   }
   EXPECT_GT(gold, 50u);
-  expectNoTextCut(drawing);
+  expectNoProbeFigureTextCut(drawing);
 }
 
 TEST(ProbeFigure, MomentPanelDrawsTheChebyshevBoundAtThePixel)
@@ -926,11 +926,11 @@ TEST(ProbeFigure, MomentPanelDrawsTheChebyshevBoundAtThePixel)
   ASSERT_TRUE(drawing.layout.rect(ProbePanel::Chebyshev).has_value());
   EXPECT_FALSE(drawing.layout.rect(ProbePanel::Penumbra).has_value());
   const std::string bound = readableNumber(variance / (variance + (t - mean) * (t - mean)), 4);
-  const std::string text = panelText(drawing, ProbePanel::Chebyshev);
+  const std::string text = probeFigurePanelText(drawing, ProbePanel::Chebyshev);
   EXPECT_NE(text.find("= " + bound), std::string::npos) << text;
   EXPECT_NE(text.find("mean 3.1"), std::string::npos) << text;
   EXPECT_NE(text.find("t 3.19"), std::string::npos) << text;
-  expectNoTextCut(drawing);
+  expectNoProbeFigureTextCut(drawing);
 }
 
 TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)
