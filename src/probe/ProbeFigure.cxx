@@ -1093,7 +1093,7 @@ int wrappedLineCount(const std::vector<std::pair<std::string, RgbColor>>& lines,
 // The similar triangles of PCSS in the section's units (x across, y up, the light at depth 0): the light's ends
 // to the receiver cross the search plane over w_i = w_light (d_r - n) / d_r (step 1's search region); a blocker
 // edge at the average blocker depth seen from the light's ends spans w_penumbra = w_light (d_r - d_b) / d_b on
-// the receiver (step 2, Fernando 2005 Eq. 1). The receiver and the blocker edge share x = 0: a schematic of the
+// the receiver (Fernando 2005, step 2). The receiver and the blocker edge share x = 0: a schematic of the
 // pixel's numbers, not the scene's geometry (panel (d) has that).
 ImageU8 penumbraPanel(const PenumbraEstimate& estimate, const FigureRect& rect, char letter)
 {
