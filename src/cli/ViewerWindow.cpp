@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "io/vtkSLOutputWindow.h"
+#include "probe/NumberText.h"
 #include "probe/ProbeFigure.h"
 #include "vis/Canvas.h"
 
@@ -37,26 +38,6 @@ constexpr int kProbePanelWidthPx = kProbeFigureWidth;
 constexpr int kProbePanelHeightPx = 2 * kProbeFigurePanelSide;
 constexpr double kBackground[3] = { 0.12, 0.12, 0.12 };
 
-// `text` broken into lines of at most `maxChars` characters, at spaces where it can (Courier: every character
-// is as wide); continuation lines indented by two.
-std::vector<std::string> wrapStatusLine(const std::string& text, std::size_t maxChars)
-{
-  std::vector<std::string> lines;
-  std::string rest = text;
-  maxChars = std::max<std::size_t>(maxChars, 16);
-  while (rest.size() > maxChars)
-  {
-    std::size_t cut = rest.rfind(' ', maxChars);
-    if (cut == std::string::npos || cut < maxChars / 2)
-    {
-      cut = maxChars;
-    }
-    lines.push_back(rest.substr(0, cut));
-    rest = "  " + rest.substr(rest[cut] == ' ' ? cut + 1 : cut);
-  }
-  lines.push_back(rest);
-  return lines;
-}
 
 void setImage(vtkImageData* data, const ImageU8& rgb)
 {
@@ -445,7 +426,7 @@ void ViewerWindow::refresh()
   std::vector<std::string> wrapped;
   for (const std::string& line : lines)
   {
-    for (const std::string& part : wrapStatusLine(line, maxChars))
+    for (const std::string& part : wrapAtSpaces(line, maxChars))
     {
       wrapped.push_back(part);
     }

@@ -59,4 +59,23 @@ std::vector<std::string> distinctTickLabels(const std::vector<double>& values, i
   return labels;
 }
 
+std::vector<std::string> wrapAtSpaces(const std::string& text, std::size_t maxChars)
+{
+  std::vector<std::string> lines;
+  std::string rest = text;
+  maxChars = std::max<std::size_t>(maxChars, 16);
+  while (rest.size() > maxChars)
+  {
+    std::size_t cut = rest.rfind(' ', maxChars);
+    if (cut == std::string::npos || cut < maxChars / 2)
+    {
+      cut = maxChars;
+    }
+    lines.push_back(rest.substr(0, cut));
+    rest = "  " + rest.substr(rest[cut] == ' ' ? cut + 1 : cut);
+  }
+  lines.push_back(rest);
+  return lines;
+}
+
 } // namespace sl

@@ -1,8 +1,9 @@
-// Numbers as a person reads them (issue 31): the probe figure's colour-bar ticks and key numbers, and the viewer's
-// status line, share these so that a light size reads 1.17 rather than 1.171875 and five ticks over a narrow
-// range never print the same label twice.
+// Numbers and lines as a person reads them (issue 31): the probe figure's colour-bar ticks and key numbers, and the
+// viewer's status line, share these so that a light size reads 1.17 rather than 1.171875, five ticks over a narrow
+// range never print the same label twice, and a status line longer than the window wraps instead of running off it.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -18,5 +19,10 @@ std::string readableNumber(double value, int significant = 3);
 // every two different values get different labels: ticks at 3.4752, 3.4731, 3.4710 over a narrow range read
 // "3.475", "3.473", "3.471" where three digits would print "3.48", "3.47", "3.47".
 std::vector<std::string> distinctTickLabels(const std::vector<double>& values, int minSignificant = 3);
+
+// `text` in lines of at most `maxChars` characters (at least 16), broken at the last space that leaves a line at
+// least half full, else inside a word; continuation lines start with two spaces. Every character of `text` but the
+// spaces it breaks at is kept, in order.
+std::vector<std::string> wrapAtSpaces(const std::string& text, std::size_t maxChars);
 
 } // namespace sl

@@ -974,6 +974,35 @@ TEST(NumberText, RoundsForPeopleAndTicksDiffer)
   EXPECT_EQ(distinctTickLabels({ 0.0, 0.5, 1.0 }), (std::vector<std::string>{ "0", "0.5", "1" }));
 }
 
+TEST(NumberText, WrapsAStatusLineToTheWidthKeepingEveryWord)
+{
+  // The viewer's status (issue 31: it ran off the window): a screenshot line with its render command.
+  const std::string line = "screenshot shots/view-003-hard-texel_ratio.png = shadowlab render "
+                           "datasets/contact/scene.json -t hard --set bias_constant_texels=2 --scene-set "
+                           "/lights/0/size=1 --resolution 128x128";
+  for (const std::size_t width : { std::size_t(16), std::size_t(40), std::size_t(80), std::size_t(500) })
+  {
+    const std::vector<std::string> lines = wrapAtSpaces(line, width);
+    std::string joined;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+    {
+      EXPECT_LE(lines[i].size(), width) << "'" << lines[i] << "'";
+      if (i > 0)
+      {
+        ASSERT_EQ(lines[i].rfind("  ", 0), 0u) << lines[i];
+      }
+      joined += i == 0 ? lines[i] : lines[i].substr(2);
+    }
+    std::string withoutSpaces = line;
+    withoutSpaces.erase(std::remove(withoutSpaces.begin(), withoutSpaces.end(), ' '), withoutSpaces.end());
+    joined.erase(std::remove(joined.begin(), joined.end(), ' '), joined.end());
+    EXPECT_EQ(joined, withoutSpaces) << "width " << width;
+    EXPECT_EQ(lines.size() == 1, line.size() <= width) << "width " << width;
+  }
+  // Words break at spaces where a line stays at least half full.
+  EXPECT_EQ(wrapAtSpaces("aaaa bbbb cccc dddd eeee", 16), (std::vector<std::string>{ "aaaa bbbb cccc", "  dddd eeee" }));
+}
+
 TEST(CanvasShapes, FillsAndStrokesWhatTheyCover)
 {
   ImageU8 canvas(40, 30, 3, 0);
