@@ -1209,6 +1209,12 @@ std::optional<ChebyshevPoint> chebyshevPointOf(const ProbeRecord& record)
     {
       return std::nullopt;
     }
+    // The three in one depth space (lvsm's moments are in warped depth, its compared_depth linear): else the
+    // bound drawn would not be the one the technique took.
+    if (mean->unit != t->unit || variance->unit != mean->unit + "^2")
+    {
+      return std::nullopt;
+    }
     point.mean = mean->value[0];
     point.comparedDepth = t->value[0];
     point.variance = variance->value[0];
@@ -1221,7 +1227,7 @@ std::optional<ChebyshevPoint> chebyshevPointOf(const ProbeRecord& record)
   const ProbeQuantity* variance = record.find("pooled_variance");
   const ProbeQuantity* bound = record.find("chebyshev_unoccluded");
   if (offset == nullptr || variance == nullptr || bound == nullptr || offset->value.empty() || variance->value.empty() ||
-    bound->value.empty())
+    bound->value.empty() || variance->unit != offset->unit + "^2")
   {
     return std::nullopt;
   }

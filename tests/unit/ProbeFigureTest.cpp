@@ -933,6 +933,27 @@ TEST(ProbeFigure, MomentPanelDrawsTheChebyshevBoundAtThePixel)
   expectNoProbeFigureTextCut(drawing);
 }
 
+TEST(ProbeFigure, MomentPanelIsLeftOutWhenTheMomentsAndTheComparedDepthAreInDifferentSpaces)
+{
+  // lvsm's shape: moments in warped depth, compared_depth linear; a bound drawn from them would not be the one the
+  // technique took.
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("moments");
+  recorder.quantity("mean", 0.0, "warped depth", "test");
+  recorder.quantity("variance", 1e-4, "warped depth^2", "test");
+  recorder.beginGroup("chebyshev");
+  recorder.quantity("compared_depth", 3.2, "linear depth", "test");
+  recorder.quantity("p_max", 4.5e-6, "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_FALSE(drawing.layout.rect(ProbePanel::Chebyshev).has_value());
+  // The quantities are still all in the key numbers.
+  EXPECT_NE(std::find(drawing.legendLines.begin(), drawing.legendLines.end(), "mean 0 warped depth"),
+    drawing.legendLines.end());
+}
+
 TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)
 {
   Synthetic s = makeSynthetic();
