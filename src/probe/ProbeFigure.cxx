@@ -1337,6 +1337,90 @@ std::string vectorText(const std::vector<double>& value)
   return value.size() == 1 ? text : "(" + text + ")";
 }
 
+// ESM's test (Annen et al. 2008): the step "d <= z" replaced by exp(c (z_n - t_n)), filtered as
+// E[exp(c z_n)] exp(-c t_n) and clamped to [0, 1], in depths normalized to [0, 1] between the map's near and far.
+struct ExponentialTest
+{
+  double exponent = 0.0;      // c
+  double moment = 0.0;        // E[exp(c z_n)] over the filter region
+  double comparedDepth = 0.0; // t_n
+  double recordedVisibility = 0.0;
+  double visibility(double t) const { return std::clamp(moment * std::exp(-exponent * t), 0.0, 1.0); }
+};
+
+std::optional<ExponentialTest> exponentialTestOf(const ProbeRecord& record)
+{
+  const ProbeQuantity* exponent = record.find("esm_exponent");
+  const ProbeQuantity* moment = record.find("exponential_moment");
+  const ProbeQuantity* t = record.find("normalized_compared_depth");
+  const ProbeQuantity* visibility = record.find("visibility");
+  if (exponent == nullptr || moment == nullptr || t == nullptr || visibility == nullptr || exponent->value.empty() ||
+    moment->value.empty() || t->value.empty() || visibility->value.empty() || !(exponent->value[0] > 0.0))
+  {
+    return std::nullopt;
+  }
+  return ExponentialTest{ exponent->value[0], moment->value[0], t->value[0], visibility->value[0] };
+}
+
+ImageU8 exponentialPanel(const ExponentialTest& test, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "ESM: exp(-c t) E[exp(c z)] over t");
+  const Box box = contentBox(rect);
+  // Where the filtered exponential crosses 1: the depth the occluders' exponential mean stands for.
+  const double edge = std::log(std::max(test.moment, 1e-300)) / test.exponent;
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { "c " + numberText(test.exponent) + ", E[exp(c z)] " + numberText(test.moment) + " (depths normalized to [0, 1])",
+      kBlack },
+    { "t " + numberText(test.comparedDepth, 6) + "; the estimate falls from 1 at t = ln(E[exp(c z)]) / c = " +
+        numberText(edge),
+      kBlack },
+    { "visibility = clamp(E[exp(c z)] exp(-c t), 0, 1) = " + numberText(test.visibility(test.comparedDepth)) +
+        " (recorded " + numberText(test.recordedVisibility) + ")",
+      kRayColor },
+  };
+  const int textBand = wrappedLineCount(lines, int(box.width)) * kKeyLinePx + 4;
+  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand, int(box.width));
+
+  // Axes: t over [0, 1] (the normalized depth range), visibility 0 .. 1.
+  const int axisLabelPx = kKeyLinePx + 4;
+  const int leftLabelPx = textWidth("0.5", kBodyFontPx) + 10;
+  const Box plot{ box.left + leftLabelPx, box.bottom + textBand + axisLabelPx + kKeyLinePx, box.width - leftLabelPx - 10.0,
+    box.height - textBand - axisLabelPx - kKeyLinePx - 8.0 };
+  const auto px = [&](double x, double y) { return glm::dvec2(plot.left + x * plot.width, plot.bottom + y * plot.height); };
+  drawLine(panel, px(0.0, 0.0), px(1.0, 0.0), kBlack, 1.0);
+  drawLine(panel, px(0.0, 0.0), px(0.0, 1.0), kBlack, 1.0);
+  for (const double y : { 0.0, 0.5, 1.0 })
+  {
+    const std::string label = numberText(y);
+    drawLine(panel, px(0.0, y) - glm::dvec2(4, 0), px(0.0, y), kBlack, 1.0);
+    putText(panel, label, kBodyFontPx, int(plot.left) - 6 - textWidth(label, kBodyFontPx), int(px(0.0, y).y) - 5);
+  }
+  for (const double x : { 0.0, 0.5, 1.0 })
+  {
+    const std::string label = numberText(x);
+    const glm::dvec2 at = px(x, 0.0);
+    drawLine(panel, at, at - glm::dvec2(0, 4), kBlack, 1.0);
+    const int width = textWidth(label, kBodyFontPx);
+    putText(panel, label, kBodyFontPx, std::min(int(at.x) - width / 2, int(box.left + box.width) - width),
+      int(at.y) - 6 - kKeyLinePx + 4);
+  }
+  putText(panel, "t, normalized compared depth", kBodyFontPx, int(box.left + leftLabelPx), int(box.bottom) + textBand);
+  glm::dvec2 previous = px(0.0, test.visibility(0.0));
+  for (int i = 1; i <= 400; ++i)
+  {
+    const double x = i / 400.0;
+    const glm::dvec2 next = px(x, test.visibility(x));
+    drawLine(panel, previous, next, kPenumbraColor, 2.0);
+    previous = next;
+  }
+  const double shownT = std::clamp(test.comparedDepth, 0.0, 1.0);
+  const glm::dvec2 at = px(shownT, test.visibility(test.comparedDepth));
+  drawDashedLine(panel, glm::dvec2(at.x, plot.bottom), at, kDarkGrey, 1.0, 4.0);
+  fillDisk(panel, at, 6.0, kBlack);
+  fillDisk(panel, at, 4.0, kRayColor);
+  return panel;
+}
+
 } // namespace
 
 std::string probeQuantityText(const ProbeQuantity& quantity)
@@ -1746,6 +1830,7 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   const LegendPages pages = legendPages(probe, setting);
   const std::optional<PenumbraEstimate> penumbra = penumbraEstimateOf(record, setting);
   const std::optional<ChebyshevPoint> chebyshev = chebyshevPointOf(record);
+  const std::optional<ExponentialTest> exponential = exponentialTestOf(record);
 
   // Only panels with content: no map, nothing on the light, no algorithm quantities leave theirs out.
   std::vector<std::pair<ProbeFigurePanel, int>> wanted;
@@ -1767,6 +1852,10 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   if (chebyshev)
   {
     want(ProbePanel::Chebyshev, 1);
+  }
+  if (exponential)
+  {
+    want(ProbePanel::Exponential, 1);
   }
   for (int page = 0; page < pages.pageCount(); ++page)
   {
@@ -1805,6 +1894,9 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
         break;
       case ProbePanel::Chebyshev:
         panel = chebyshevPanel(*chebyshev, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Exponential:
+        panel = exponentialPanel(*exponential, placed.rect, placed.letter);
         break;
       case ProbePanel::Legend:
         panel = legendPanel(pages, placed.page, placed.rect, placed.letter);

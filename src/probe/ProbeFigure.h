@@ -43,6 +43,7 @@ enum class ProbePanel
   Section,    // casters cut by the plane through the light's centre and the receiver, rays, map depth steps
   Penumbra,   // PCSS's similar triangles: light, search plane, average blocker depth, receiver, penumbra width
   Chebyshev,  // the one-tailed Chebyshev bound p_max(t) over t - mean, with the pixel's point
+  Exponential, // ESM's exp(-c t) E[exp(c z)] over the normalized compared depth t, with the pixel's point
   Legend      // technique, pixel, GPU and twin visibility, tolerance, every recorded quantity (one or more pages)
 };
 

@@ -933,6 +933,33 @@ TEST(ProbeFigure, MomentPanelDrawsTheChebyshevBoundAtThePixel)
   expectNoProbeFigureTextCut(drawing);
 }
 
+TEST(ProbeFigure, EsmPanelDrawsTheFilteredExponentialAtThePixel)
+{
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const double c = 40.0;
+  const double moment = std::exp(c * 0.6) * 0.5; // half the region at z_n = 0.6, the other half far (exp -> 0)
+  const double t = 0.62;
+  recorder.beginGroup("moments");
+  recorder.quantity("esm_exponent", c, "", "test");
+  recorder.quantity("exponential_moment", moment, "", "test");
+  recorder.beginGroup("exponential test");
+  recorder.quantity("normalized_compared_depth", t, "", "test");
+  recorder.quantity("visibility", std::min(1.0, moment * std::exp(-c * t)), "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+  writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / "probe_figure_esm.png", drawing.image);
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Exponential).has_value());
+  const std::string text = probeFigurePanelText(drawing, ProbePanel::Exponential);
+  // Annen et al. 2008: E[exp(c z)] exp(-c t) = 0.5 exp(40 (0.6 - 0.62)) = 0.2247; the fall from 1 at
+  // ln(E) / c = 0.6 - ln 2 / 40.
+  EXPECT_NE(text.find("= " + readableNumber(0.5 * std::exp(c * (0.6 - t)), 4) + " (recorded"), std::string::npos) << text;
+  EXPECT_NE(text.find("= " + readableNumber(0.6 - std::log(2.0) / c, 4)), std::string::npos) << text;
+  expectNoProbeFigureTextCut(drawing);
+}
+
 TEST(ProbeFigure, MomentPanelIsLeftOutWhenTheMomentsAndTheComparedDepthAreInDifferentSpaces)
 {
   // lvsm's shape: moments in warped depth, compared_depth linear; a bound drawn from them would not be the one the
