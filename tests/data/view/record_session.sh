@@ -39,6 +39,7 @@ step key shift+b key shift+b # back to visibility
 step key s                   # 004: hard, visibility, probed
 step key h                   # the keys, on stdout and over the probe figure
 step key s                   # 005: hard, visibility, the keys shown
+step key f                   # scroll the probe figure (hard's two rows all fit: rows 1..2 of 2)
 step key q
 wait "$viewer"
 viewer=
