@@ -296,10 +296,11 @@ TEST(HeatMap, MarginsHoldTheColourBarAndTitleText)
         darkPixels += isDark(pixelAt(canvas, x, y)) ? 1 : 0;
     EXPECT_GT(darkPixels, 10) << "size " << size << ": no title text rendered";
     EXPECT_LT(darkPixels, titleBandPixels / 2) << "size " << size;
-    // The whole title fits on the canvas.
-    const TextSize titleSize =
-      measureText(heatMapTitle(options, validValueRange(values, nullptr)), heatMapFontPx(size));
-    EXPECT_GE(canvas.width, titleSize.width) << "size " << size;
+    // The whole title fits on the canvas, every line of it.
+    const std::vector<std::string> titleLines = heatMapTitleLines(options, heatMapScale({ { &values, nullptr } }, options));
+    ASSERT_EQ(titleLines.size(), 2u) << "size " << size;
+    for (const std::string& line : titleLines)
+      EXPECT_GE(canvas.width, measureText(line, heatMapFontPx(size)).width) << "size " << size << ": " << line;
 
     // The right margin holds the bar (both ends of the colour map) and dark label/outline pixels.
     const std::set<Rgb8> keyColors = colorsIn(canvas, values.width, canvas.width, 0, canvas.height);
