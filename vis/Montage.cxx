@@ -167,16 +167,20 @@ std::vector<std::string> wrapText(const std::string& text, int widthPx, int font
     if (!line.empty())
       lines.push_back(line);
     line.clear();
-    // A word wider than the column: broken between characters (at least one per line).
-    for (const char c : word)
+    // A word wider than the column: broken after its last '_' or '=' that fits (bias_constant_ / texels=0.5),
+    // else between characters (at least one per line).
+    std::string rest = word;
+    while (!fits(rest))
     {
-      if (!line.empty() && !fits(line + c))
-      {
-        lines.push_back(line);
-        line.clear();
-      }
-      line += c;
+      std::size_t fitting = 1;
+      while (fitting < rest.size() && fits(rest.substr(0, fitting + 1)))
+        ++fitting;
+      const std::size_t separator = rest.find_last_of("_=", fitting - 1);
+      const std::size_t cut = separator != std::string::npos && separator + 1 < fitting ? separator + 1 : fitting;
+      lines.push_back(rest.substr(0, cut));
+      rest.erase(0, cut);
     }
+    line = rest;
   }
   if (!line.empty() || lines.empty())
     lines.push_back(line);
@@ -266,7 +270,7 @@ MontageLayout montageLayout(const std::vector<MontagePanel>& panels, const Monta
   const int wrapWidth = std::max(layout.keyLeft + key.width() - 2 * layout.paddingPx, minColumnWidth);
   std::string common;
   for (const std::string& item : options.commonLines)
-    common += (common.empty() ? "" : "  ") + item;
+    common += (common.empty() ? "" : ", ") + item;
   if (!common.empty())
     for (std::string& line : wrapText("shared: " + common, wrapWidth, layout.fontPx))
       titleLines.push_back(std::move(line));

@@ -70,7 +70,7 @@ std::optional<ValueRange> montageValueRange(const std::vector<MontagePanel>& pan
 // lines (the most any panel has after wrapping), the row of panels (bottom-aligned, left to right, `paddingPx` apart
 // and from the edges, each column as wide as its values, or kMinLabelChars characters when narrower), then the
 // title band; the colour key fills the right margin beside the panel row. Label lines are wrapped to their column
-// (at spaces, else between characters), lineGapPx apart. fontPx = heatMapFontPx(tallest panel).
+// (wrapText), lineGapPx apart. fontPx = heatMapFontPx(tallest panel).
 struct MontageLayout
 {
   int width = 0;
@@ -96,7 +96,8 @@ struct MontageLayout
 // The narrowest column labels wrap to, in characters of the label font.
 inline constexpr int kMinLabelChars = 10;
 
-// `text` broken into lines no wider than widthPx at fontPx: at spaces where a word fits, else between characters.
+// `text` broken into lines no wider than widthPx at fontPx: at spaces where a word fits, else after the word's last
+// '_' or '=' that fits, else between characters.
 std::vector<std::string> wrapText(const std::string& text, int widthPx, int fontPx);
 
 // Throws InputError when there are no panels or a panel is not a non-empty 1-component image with a mask of its

@@ -226,10 +226,11 @@ TEST(HonestHeatMap, ShadowTestedBuffersAreNotApplicableWhereNoTestRan)
   EXPECT_EQ(bufferValueMask(margin, frame).data, (std::vector<std::uint8_t>{ 0, 1, 1 }));
 }
 
+// Touching counts: two lines whose boxes share an edge have glyphs (descenders, underscores) that meet.
 bool boxesOverlap(const MontageTextBox& a, const MontageTextBox& b)
 {
-  return a.left < b.left + b.width && b.left < a.left + a.width && a.bottom < b.bottom + b.height &&
-    b.bottom < a.bottom + a.height;
+  return a.left <= b.left + b.width && b.left <= a.left + a.width && a.bottom <= b.bottom + b.height &&
+    b.bottom <= a.bottom + a.height;
 }
 
 void expectNoLabelCollisions(const std::vector<MontagePanel>& panels, const MontageOptions& options)
@@ -334,6 +335,9 @@ TEST(MontageLabels, WrapTextBreaksAtSpacesThenBetweenCharacters)
   EXPECT_EQ(wrapText("abc def ghi", width, fontPx), (std::vector<std::string>{ "abc def", "ghi" }));
   EXPECT_EQ(wrapText("abcdefghijklmno", width, fontPx), (std::vector<std::string>{ "abcdefghij", "klmno" }));
   EXPECT_EQ(wrapText("", width, fontPx), std::vector<std::string>{ "" });
+  // A parameter wider than the column breaks after a '_' or '=' that fits rather than inside a name.
+  const int wider = measureText("bias_constant_tex", fontPx).width;
+  EXPECT_EQ(wrapText("bias_constant_texels=0.5", wider, fontPx), (std::vector<std::string>{ "bias_constant_", "texels=0.5" }));
 }
 
 } // namespace
