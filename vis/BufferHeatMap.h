@@ -14,8 +14,8 @@ namespace sl
 // The colour map by the buffer's kind: viridis (perceptually uniform) for magnitudes and bit counts, the diverging
 // map centred on 0 for signed values, the categorical palette with the buffer's labels for classes. `visibility`
 // and `coverage` keep the fixed scale [0, 1], a bit mask the scale [0, its bit count]; other continuous and signed
-// buffers get the robust scale (HeatMapOptions::robustRange: 1st to 99th percentile of the pixels with a value,
-// signed ones symmetric about 0), and the title gives their true range and the share of pixels beyond the scale.
+// buffers get the robust scale (HeatMapOptions::robustRange: 0.5th to 99.5th percentile of the pixels with a
+// value, signed ones symmetric about 0), and the title gives their true range and the share of pixels beyond the scale.
 HeatMapOptions bufferHeatMapOptions(const NamedImage& buffer, const ImageU8* validMask);
 // The colour map alone, by the buffer's kind (also the montage's, vis/Montage.h).
 ColorMapKind colorMapFor(BufferKind kind);

@@ -39,8 +39,6 @@ double quantileOf(std::vector<double>& values, double q)
   return *at;
 }
 
-// The share of pixels a robust scale may leave beyond each of its ends.
-constexpr double kRobustTail = 0.01;
 
 // Class id of a categorical value: the nearest integer (clamped so that the conversion cannot overflow).
 long long categoryId(double value)

@@ -36,10 +36,15 @@ struct HeatMapOptions
   // lists the ids from the smallest to the largest valid value.
   std::vector<std::string> categoryLabels;
   // Viridis and Diverging without explicit bounds: end the scale at robust percentiles of the pixels with a value
-  // (heatMapScale: the 1st and 99th, for Diverging the 99th of |value|) instead of at their min and max, so that a
-  // few extreme pixels cannot flatten the rest and at most about 2 % of them saturate.
+  // (heatMapScale: the 0.5th and 99.5th, for Diverging the 99.5th of |value|) instead of at their min and max, so
+  // that a few extreme pixels cannot flatten the rest and at most 2 % of them saturate.
   bool robustRange = false;
 };
+
+// The share of the pixels with a value that a robust scale (HeatMapOptions::robustRange) leaves beyond each of its
+// ends: its ends are the 0.5th and 99.5th percentiles, so that at most 1 % lie beyond the scale, and the pixels
+// drawn in an end colour (those beyond, those at an end, and those within an 8-bit step of it) stay under 2 %.
+inline constexpr double kRobustTail = 0.005;
 
 // The mask value of a surface pixel the quantity does not apply to (a buffer's BufferDomain, core/NamedImage.h):
 // drawn in kNotApplicableColor and left out of every range. Mask 0: no surface. Any other nonzero value: a pixel
@@ -84,8 +89,9 @@ struct HeatMapScale
 };
 
 // The scale of `images`: colorMapRange over their valid range, except that with options.robustRange (and no
-// explicit bound) Viridis ends at the 1st and 99th percentiles (their min and max when those two are equal) and
-// Diverging at +-(99th percentile of |value|) (the largest |value| when that is 0). Categorical: the valid range.
+// explicit bound) Viridis ends at the kRobustTail and 1 - kRobustTail quantiles (rank floor(q (n - 1)); their min
+// and max when those two are equal) and Diverging at +-(1 - kRobustTail quantile of |value|) (the largest |value|
+// when that is 0). Categorical: the valid range.
 HeatMapScale heatMapScale(const std::vector<MaskedValues>& images, const HeatMapOptions& options);
 
 // The title band's lines: "<title> [<unit>]", then for continuous and diverging maps "values [<min>, <max>]",

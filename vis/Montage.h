@@ -6,10 +6,11 @@
 // every panel shares (MontageOptions::commonLines) once.
 //
 // Colour maps (vis/ColorMap.h), by the buffer's kind, over the pixels with a value of ALL panels:
-//  - Continuous: viridis (perceptually uniform), from the 1st to the 99th percentile (HeatMapOptions::robustRange);
-//  - Signed: ColorBrewer RdBu, blue - white - red, centred on 0 (white) and symmetric: [-m, m] with m the 99th
-//    percentile of |value|. RdBu is one of ColorBrewer's colour-blind-safe schemes: its two arms differ in hue
-//    along the blue-yellow axis that deuteranopes and protanopes keep, and in lightness, which everybody sees;
+//  - Continuous: viridis (perceptually uniform), from the 0.5th to the 99.5th percentile
+//    (HeatMapOptions::robustRange);
+//  - Signed: ColorBrewer RdBu, blue - white - red, centred on 0 (white) and symmetric: [-m, m] with m the 99.5th
+//    percentile of |value|. RdBu is one of ColorBrewer's colour-blind-safe schemes: its two arms differ in hue along
+//    the blue-yellow axis that deuteranopes and protanopes keep, and in lightness, which everybody sees;
 //  - Categorical: the Tableau 10 palette by class id, the key listing the classes by label (no numeric range).
 // No surface (mask 0, NaN, inf): kInvalidPixelColor; not applicable (mask kNotApplicablePixel, e.g. depth_margin
 // where no shadow test ran): kNotApplicableColor; both with a swatch in the key. No OpenGL (text through FreeType,
@@ -47,7 +48,7 @@ struct MontageOptions
   std::vector<std::string> categoryLabels; // Categorical: the label of class id 0..n-1
   // Continuous and Signed: end the scale at this quantile (0 < q <= 1) of the valid values over all panels
   // (Continuous: [min, quantile q]; Signed: +-(quantile q of |value|)); values beyond take the end colours and the
-  // title says so. Unset: the robust scale (1st to 99th percentile; Signed: 99th of |value|).
+  // title says so. Unset: the robust scale (0.5th to 99.5th percentile; Signed: 99.5th of |value|).
   std::optional<double> clipQuantile;
   // What every panel shares (montageCommonLabels), drawn once under the title, wrapped to the montage's width.
   std::vector<std::string> commonLines;

@@ -48,7 +48,7 @@ Lesson acneAndBiasLesson()
 
     lesson.montage("depth_margin", "**depth_margin on one diverging scale** (white = 0, red = shadowed by the "
       "comparison, blue = lit with room to spare; light grey = no shadow test, faces turned from the light), ending "
-      "at the 99th percentile of the magnitudes: the title gives the share of pixels beyond it.",
+      "at the 99.5th percentile of the magnitudes: the title gives the share of pixels beyond it.",
       { "bias-off", "bias-default", "bias-large", "midpoint", "dual" }, "depth_margin");
     lesson.errorMontage("error", "**Against the exact hard shadow** (blue = too dark: acne or aliasing; red = too "
       "bright: light leaking under the caster).",

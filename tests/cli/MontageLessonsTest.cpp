@@ -182,14 +182,14 @@ TEST_F(MontageCommand, TwoTechniquesShareOneRobustScaleOverBothRuns)
   EXPECT_EQ(result.errLines(), 1u) << result.describe();
   EXPECT_EQ(test::entriesOf(temp.path()), std::vector<std::string>{ "m.png" }) << "a temporary file was left";
 
-  // The scale's ends are the 1st and 99th percentiles of texel_ratio over both runs' shadow-tested pixels
+  // The scale's ends are the 0.5th and 99.5th percentiles of texel_ratio over both runs' shadow-tested pixels
   // (texel_ratio is declared on them: the faces turned from the light hold no ratio).
   const Json hard = readJson(run("hard") / "stats.json")["buffers"]["texel_ratio"];
   const Json pcf = readJson(run("pcf") / "stats.json")["buffers"]["texel_ratio"];
   ASSERT_GT(pcf["max"].get<double>(), 2.0 * hard["max"].get<double>()) << "the runs should differ in their maxima";
   const std::vector<MontagePanel> panels = panelsOf({ run("hard"), run("pcf") }, "texel_ratio");
-  const double globalMin = panelQuantile(panels, 0.01, false);
-  const double globalMax = panelQuantile(panels, 0.99, false);
+  const double globalMin = panelQuantile(panels, kRobustTail, false);
+  const double globalMax = panelQuantile(panels, 1.0 - kRobustTail, false);
   const ValueRange scale = reportedScale(result.err);
   EXPECT_TRUE(near(scale.min, globalMin)) << scale.min << " vs " << globalMin;
   EXPECT_TRUE(near(scale.max, globalMax)) << scale.max << " vs " << globalMax;
@@ -253,9 +253,9 @@ TEST_F(MontageCommand, ASignedBufferIsCentredOnZeroAndDiverging)
     temp.path());
   ASSERT_EQ(result.exitCode, 0) << result.describe();
   EXPECT_NE(result.err.find("signed scale"), std::string::npos) << result.err;
-  // m = the 99th percentile of |depth_margin| over both runs' shadow-tested pixels.
+  // m = the 99.5th percentile of |depth_margin| over both runs' shadow-tested pixels.
   const std::vector<MontagePanel> panels = panelsOf({ run("hard"), run("hard-bias-off") }, "depth_margin");
-  const double magnitude = panelQuantile(panels, 0.99, true);
+  const double magnitude = panelQuantile(panels, 1.0 - kRobustTail, true);
   const ValueRange scale = reportedScale(result.err);
   EXPECT_TRUE(near(scale.min, -magnitude)) << scale.min << " vs " << -magnitude;
   EXPECT_TRUE(near(scale.max, magnitude)) << scale.max << " vs " << magnitude;
@@ -407,7 +407,7 @@ TEST(Montage, ClipQuantileEndsTheScaleAtThatQuantile)
   const MontageLayout signedLayout = montageLayout({ panel }, options);
   EXPECT_EQ(signedLayout.colorRange.min, -signedLayout.colorRange.max);
   EXPECT_NEAR(signedLayout.colorRange.max, 29.0, 1.0); // the median of |-20 .. 79|: 0, 1, 1, ..., 20, 20, 21, ..., 79
-  options.clipQuantile.reset(); // the robust scale: +-(99th percentile of |value|), rank 98 of 0, 1, 1, ..., 79
+  options.clipQuantile.reset(); // the robust scale: +-(99.5th percentile of |value|), rank 98 of 0, 1, 1, ..., 79
   EXPECT_EQ(montageLayout({ panel }, options).colorRange.max, 78.0);
   options.clipQuantile = 0.0;
   EXPECT_THROW(montageLayout({ panel }, options), InputError);

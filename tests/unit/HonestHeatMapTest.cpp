@@ -39,7 +39,7 @@ int honestColourDistance(const HonestRgb8& a, const HonestRgb8& b)
 }
 
 // A signed buffer as depth_margin looks: a 100 x 100 image whose left 20 columns are surfaces without a shadow
-// test (the shader wrote 0 there), its top row background, the rest uniform in [-1, 1] plus 0.5 % outliers at
+// test (the shader wrote 0 there), its top row background, the rest uniform in [-1, 1] plus 0.25 % outliers at
 // +-1000 that a min/max scale would let flatten everything to white.
 struct SignedSample
 {
@@ -63,7 +63,7 @@ SignedSample signedSample()
       else if (x < 20)
         mark = kNotApplicablePixel;
       value = mark == 1 ? uniform(random) : 0.0f;
-      if (mark == 1 && (x * 7 + y * 13) % 200 == 0)
+      if (mark == 1 && (x * 7 + y * 13) % 400 == 0)
         value = (x % 2 ? 1000.0f : -1000.0f);
       sample.valued += mark == 1;
     }
@@ -137,18 +137,20 @@ TEST(HonestHeatMap, NotApplicablePixelsAreGreyAndTheRobustScaleSaturatesAtMostTw
   EXPECT_NE(title[1].find("% of pixels beyond"), std::string::npos) << title[1];
 }
 
-TEST(HonestHeatMap, ContinuousScaleEndsAtTheFirstAndNinetyNinthPercentiles)
+TEST(HonestHeatMap, ContinuousScaleEndsAtTheRobustPercentiles)
 {
-  // 0 .. 9899 and 100 pixels at 1e6: the 99th percentile (rank floor(0.99 * 9999) = 9899) is 9899, the 1st 99.
+  // 0 .. 9959 and 40 pixels at 1e6: the 99.5th percentile (rank floor(0.995 * 9999) = 9949) is 9949, the 0.5th
+  // (rank 49) 49.
+  ASSERT_EQ(kRobustTail, 0.005);
   ImageF values(100, 100, 1);
   for (int i = 0; i < 10000; ++i)
-    values.data[static_cast<std::size_t>(i)] = i < 9900 ? static_cast<float>(i) : 1e6f;
+    values.data[static_cast<std::size_t>(i)] = i < 9960 ? static_cast<float>(i) : 1e6f;
   HeatMapOptions options;
   options.robustRange = true;
   const HeatMapScale scale = heatMapScale({ { &values, nullptr } }, options);
-  EXPECT_EQ(scale.colorRange.min, 99.0);
-  EXPECT_EQ(scale.colorRange.max, 9899.0);
-  EXPECT_EQ(scale.clippedPixels, 199u); // 0 .. 98 below, the 100 outliers above
+  EXPECT_EQ(scale.colorRange.min, 49.0);
+  EXPECT_EQ(scale.colorRange.max, 9949.0);
+  EXPECT_EQ(scale.clippedPixels, 99u); // 0 .. 48 below; 9950 .. 9959 and the 40 outliers above
   EXPECT_TRUE(scale.clippedBelow && scale.clippedAbove);
   EXPECT_LE(scale.clippedPercent(), 2.0);
   // Without robustRange: the full range, nothing clipped (error maps, probe figures).
@@ -156,7 +158,7 @@ TEST(HonestHeatMap, ContinuousScaleEndsAtTheFirstAndNinetyNinthPercentiles)
   EXPECT_EQ(full.colorRange.max, 1e6);
   EXPECT_EQ(full.clippedPixels, 0u);
   // All but the tails equal: the scale is the full range rather than none.
-  ImageF mostlyZero(100, 1, 1, 0.0f);
+  ImageF mostlyZero(1000, 1, 1, 0.0f);
   mostlyZero.data[0] = 5.0f;
   const HeatMapScale tails = heatMapScale({ { &mostlyZero, nullptr } }, options);
   EXPECT_EQ(tails.colorRange.min, 0.0);
