@@ -266,12 +266,26 @@ ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const Heat
   const ColorMap colorMap(options.colorMap);
   const int fontPx = heatMapFontPx(values.height);
   const ColorKey colorKey = heatMapColorKey(colorMap, scale, options, fontPx);
-  const std::vector<std::string> titleLines = heatMapTitleLines(options, scale);
   const int lineHeight = measureText("0", fontPx).height;
+  const int paddingPx = std::max(3, fontPx / 2);
+  // The title lines wrap at spaces to the width of the values and the key (or of their widest word): the numbers
+  // line must not widen a small map.
+  const std::vector<std::string> unwrapped = heatMapTitleLines(options, scale);
+  int wrapWidth = values.width + colorKey.width() - 2 * paddingPx;
+  for (const std::string& line : unwrapped)
+    for (std::size_t start = 0; start < line.size();)
+    {
+      const std::size_t space = std::min(line.find(' ', start), line.size());
+      wrapWidth = std::max(wrapWidth, measureText(line.substr(start, space - start), fontPx).width);
+      start = space + 1;
+    }
+  std::vector<std::string> titleLines;
+  for (const std::string& line : unwrapped)
+    for (std::string& wrapped : wrapText(line, wrapWidth, fontPx))
+      titleLines.push_back(std::move(wrapped));
   int titleWidth = 0;
   for (const std::string& line : titleLines)
     titleWidth = std::max(titleWidth, measureText(line, fontPx).width);
-  const int paddingPx = std::max(3, fontPx / 2);
 
   // Layout, bottom to top: [values | colour key] (as tall as the taller of the two), then the title band.
   const int keyLeft = values.width;

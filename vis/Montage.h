@@ -97,9 +97,6 @@ struct MontageLayout
 // The narrowest column labels wrap to, in characters of the label font.
 inline constexpr int kMinLabelChars = 10;
 
-// `text` broken into lines no wider than widthPx at fontPx: at spaces where a word fits, else after the word's last
-// '_' or '=' that fits, else between characters.
-std::vector<std::string> wrapText(const std::string& text, int widthPx, int fontPx);
 
 // Throws InputError when there are no panels or a panel is not a non-empty 1-component image with a mask of its
 // size (naming the panel by its first label).
