@@ -28,8 +28,8 @@ ColorKey::ColorKey(int fontPx)
 {
 }
 
-ColorKey ColorKey::continuous(
-  const ColorMap& colorMap, double valueMin, double valueMax, int fontPx, bool openBelow, bool openAbove)
+ColorKey ColorKey::continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx,
+  bool openBelow, bool openAbove, double signedLogLinearWidth)
 {
   SL_CHECK_MSG(valueMin < valueMax, "colour bar range [", valueMin, ", ", valueMax, "]");
   ColorKey key(fontPx);
@@ -38,7 +38,13 @@ ColorKey ColorKey::continuous(
   for (const double fraction : { 0.0, 0.25, 0.5, 0.75, 1.0 })
   {
     const std::string prefix = fraction == 0.0 && openBelow ? "<=" : fraction == 1.0 && openAbove ? ">=" : "";
-    key.ticks_.push_back({ fraction, prefix + formatThreeSignificant(valueMin + fraction * (valueMax - valueMin)) });
+    const double value = signedLogLinearWidth > 0.0
+      ? std::copysign(signedLogLinearWidth *
+            std::expm1(std::abs(2.0 * fraction - 1.0) *
+              std::log1p(std::max(std::abs(valueMin), std::abs(valueMax)) / signedLogLinearWidth)),
+          2.0 * fraction - 1.0)
+      : valueMin + fraction * (valueMax - valueMin);
+    key.ticks_.push_back({ fraction, prefix + formatThreeSignificant(value) });
     labelWidth = std::max(labelWidth, measureText(key.ticks_.back().label, fontPx).width);
   }
   key.width_ =

@@ -20,9 +20,10 @@ class ColorKey
 public:
   // A bar from valueMin (bottom) to valueMax (top), valueMin < valueMax, with ticks at both ends and in the
   // middle (and at the quarters when the bar is tall enough), labelled with formatThreeSignificant(). An open end
-  // (pixels lie beyond it, drawn in its colour) is labelled "<=" or ">=" its value.
+  // (pixels lie beyond it, drawn in its colour) is labelled "<=" or ">=" its value. signedLogLinearWidth > 0: the
+  // bar is a symmetric log scale (vis/HeatMap.h colorMapPosition) and the ticks give the values drawn there.
   static ColorKey continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx,
-    bool openBelow = false, bool openAbove = false);
+    bool openBelow = false, bool openAbove = false, double signedLogLinearWidth = 0.0);
 
   // One swatch per class id firstId .. firstId + count - 1, top to bottom, each labelled "<id>: <label>" with
   // labels[id] where 0 <= id < labels.size(), else "<id>". Swatch colours are ColorMap::categoryColor(id).

@@ -53,12 +53,36 @@ double explicitBound(const std::optional<double>& bound, const char* name, const
   return *bound;
 }
 
+// The symmetric log scale's linear width, where it applies (diverging maps only).
+double symlogWidthOf(const HeatMapOptions& options)
+{
+  return options.colorMap == ColorMapKind::Diverging ? std::max(options.signedLogLinearWidth, 0.0) : 0.0;
+}
+
 } // namespace
 
-void paintHeatMapValues(ImageU8& canvas, int left, int bottom, const ImageF& values, const ImageU8* validMask,
-  const ColorMap& colorMap, const ValueRange& colorRange)
+double colorMapPosition(double value, const ValueRange& colorRange, double signedLogLinearWidth)
 {
-  const double rangeWidth = colorRange.max - colorRange.min;
+  if (signedLogLinearWidth <= 0.0)
+    return (value - colorRange.min) / (colorRange.max - colorRange.min);
+  const double magnitude = std::max(std::abs(colorRange.min), std::abs(colorRange.max));
+  const double scaled = std::log1p(std::abs(value) / signedLogLinearWidth) / std::log1p(magnitude / signedLogLinearWidth);
+  return 0.5 + 0.5 * std::copysign(scaled, value);
+}
+
+double colorMapValueAt(double t, const ValueRange& colorRange, double signedLogLinearWidth)
+{
+  if (signedLogLinearWidth <= 0.0)
+    return colorRange.min + t * (colorRange.max - colorRange.min);
+  const double magnitude = std::max(std::abs(colorRange.min), std::abs(colorRange.max));
+  const double scaled = 2.0 * t - 1.0;
+  return std::copysign(
+    signedLogLinearWidth * std::expm1(std::abs(scaled) * std::log1p(magnitude / signedLogLinearWidth)), scaled);
+}
+
+void paintHeatMapValues(ImageU8& canvas, int left, int bottom, const ImageF& values, const ImageU8* validMask,
+  const ColorMap& colorMap, const ValueRange& colorRange, double signedLogLinearWidth)
+{
   for (int y = 0; y < values.height; ++y)
     for (int x = 0; x < values.width; ++x)
     {
@@ -68,7 +92,7 @@ void paintHeatMapValues(ImageU8& canvas, int left, int bottom, const ImageF& val
         const double value = values.at(x, y);
         color = colorMap.kind() == ColorMapKind::Categorical
                   ? ColorMap::categoryColor(categoryId(value))
-                  : colorMap.map((value - colorRange.min) / rangeWidth);
+                  : colorMap.map(colorMapPosition(value, colorRange, signedLogLinearWidth));
       }
       fillRect(canvas, left + x, bottom + y, 1, 1, color);
     }
@@ -217,6 +241,8 @@ std::vector<std::string> heatMapTitleLines(const HeatMapOptions& options, const 
     numbers += format("; scale [", formatThreeSignificant(scale.colorRange.min), ", ",
       formatThreeSignificant(scale.colorRange.max), "], ", percent, "% of pixels beyond");
   }
+  if (symlogWidthOf(options) > 0.0)
+    numbers += format("; log scale, linear within +-", formatThreeSignificant(options.signedLogLinearWidth));
   lines.push_back(numbers);
   return lines;
 }
@@ -225,8 +251,8 @@ ColorKey heatMapColorKey(const ColorMap& colorMap, const HeatMapScale& scale, co
 {
   ColorKey key = colorMap.kind() == ColorMapKind::Categorical
     ? heatMapColorKey(colorMap, scale.validRange, scale.colorRange, options, fontPx)
-    : ColorKey::continuous(
-        colorMap, scale.colorRange.min, scale.colorRange.max, fontPx, scale.clippedBelow, scale.clippedAbove);
+    : ColorKey::continuous(colorMap, scale.colorRange.min, scale.colorRange.max, fontPx, scale.clippedBelow,
+        scale.clippedAbove, symlogWidthOf(options));
   if (scale.notApplicablePixels > 0)
     key.addSwatch(kNotApplicableColor, "not tested / n.a.");
   if (scale.noSurfacePixels > 0)
@@ -294,7 +320,7 @@ ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const Heat
   const int canvasWidth = std::max(keyLeft + colorKey.width(), titleWidth + 2 * paddingPx);
   ImageU8 canvas(canvasWidth, bodyHeight + titleBandHeight, 3, 255); // white margins
 
-  paintHeatMapValues(canvas, 0, 0, values, validMask, colorMap, scale.colorRange);
+  paintHeatMapValues(canvas, 0, 0, values, validMask, colorMap, scale.colorRange, symlogWidthOf(options));
   colorKey.draw(canvas, keyLeft, 0, bodyHeight);
   int lineBottom = bodyHeight + titleBandHeight - paddingPx - lineHeight;
   for (const std::string& line : titleLines)

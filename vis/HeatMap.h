@@ -39,6 +39,10 @@ struct HeatMapOptions
   // (heatMapScale: the 0.5th and 99.5th, for Diverging the 99.5th of |value|) instead of at their min and max, so
   // that a few extreme pixels cannot flatten the rest and at most 2 % of them saturate.
   bool robustRange = false;
+  // Diverging only, > 0: a symmetric log scale, linear within +-signedLogLinearWidth and logarithmic in |value|
+  // beyond (colorMapPosition), for signed buffers whose values near 0 matter and span decades (depth_margin, where
+  // acne lies within a bias of 0 and shadowed pixels a caster's distance away). 0: linear.
+  double signedLogLinearWidth = 0.0;
 };
 
 // The share of the pixels with a value that a robust scale (HeatMapOptions::robustRange) leaves beyond each of its
@@ -99,12 +103,18 @@ HeatMapScale heatMapScale(const std::vector<MaskedValues>& images, const HeatMap
 // "no pixel with a value" when there is none. Categorical maps give no numbers: the key names the classes.
 std::vector<std::string> heatMapTitleLines(const HeatMapOptions& options, const HeatMapScale& scale);
 
+// Where `value` falls on the colour map drawn over `colorRange`, t in [0, 1] before clamping: linear, or with
+// signedLogLinearWidth c > 0 (colorRange [-m, m]) 0.5 + 0.5 sign(v) log(1 + |v| / c) / log(1 + m / c).
+double colorMapPosition(double value, const ValueRange& colorRange, double signedLogLinearWidth = 0.0);
+// Its inverse for t in [0, 1]: the value drawn at t (the colour key's tick labels).
+double colorMapValueAt(double t, const ValueRange& colorRange, double signedLogLinearWidth = 0.0);
+
 // Paints `values` 1:1 with values.at(0, 0) at canvas pixel (left, bottom): a valid pixel (validMask nonzero and not
 // kNotApplicablePixel, or all when null, and a finite value) in `colorMap` over `colorRange` (categorical: its class
 // id's colour, the nearest integer), kNotApplicablePixel in kNotApplicableColor, the others kInvalidPixelColor;
 // what falls outside the canvas is clipped.
 void paintHeatMapValues(ImageU8& canvas, int left, int bottom, const ImageF& values, const ImageU8* validMask,
-  const ColorMap& colorMap, const ValueRange& colorRange);
+  const ColorMap& colorMap, const ValueRange& colorRange, double signedLogLinearWidth = 0.0);
 
 // The colour key beside a heat map drawn with `colorMap` over `colorRange`: a continuous scale, or for a categorical
 // map the classes of options.categoryLabels, or without labels the ids from the smallest to the largest valid value.

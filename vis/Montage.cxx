@@ -74,15 +74,19 @@ HeatMapOptions montageHeatMapOptions(const MontageOptions& options)
 // The heat map's key over all panels (one scale).
 ColorKey makeKey(const MontageOptions& options, const MontageLayout& layout)
 {
-  const HeatMapOptions heatMap = montageHeatMapOptions(options);
+  HeatMapOptions heatMap = montageHeatMapOptions(options);
+  heatMap.signedLogLinearWidth = layout.signedLogLinearWidth;
   return heatMapColorKey(ColorMap(heatMap.colorMap), layout.scale, heatMap, layout.fontPx);
 }
 
 // The title band's lines before wrapping: the heat map's title lines, the first saying how many panels share the
 // scale (and the clip quantile when one was asked for), then the common lines as one text.
-std::vector<std::string> montageTitleLines(const MontageOptions& options, const HeatMapScale& scale, std::size_t panelCount)
+std::vector<std::string> montageTitleLines(
+  const MontageOptions& options, const MontageLayout& layout, std::size_t panelCount)
 {
-  std::vector<std::string> lines = heatMapTitleLines(montageHeatMapOptions(options), scale);
+  HeatMapOptions heatMap = montageHeatMapOptions(options);
+  heatMap.signedLogLinearWidth = layout.signedLogLinearWidth;
+  std::vector<std::string> lines = heatMapTitleLines(heatMap, layout.scale);
   if (lines.empty())
     lines.emplace_back();
   std::string& first = lines.front();
@@ -172,6 +176,16 @@ MontageLayout montageLayout(const std::vector<MontagePanel>& panels, const Monta
   for (const MontagePanel& panel : panels)
     images.emplace_back(&panel.values, validMaskOf(panel));
   layout.scale = heatMapScale(images, heatMap);
+  if (options.signedLogLinearQuantile && options.kind == BufferKind::Signed && layout.scale.validRange)
+  {
+    if (!(*options.signedLogLinearQuantile > 0.0 && *options.signedLogLinearQuantile < 1.0))
+      throw InputError(format("montage '", options.title, "': log scale quantile ", *options.signedLogLinearQuantile,
+        " is not in (0, 1)"));
+    layout.signedLogLinearWidth = valueQuantile(panels, *options.signedLogLinearQuantile, true);
+    // All but a few values 0: a linear scale shows them as well.
+    if (!(layout.signedLogLinearWidth > 0.0) || layout.signedLogLinearWidth >= layout.scale.colorRange.max)
+      layout.signedLogLinearWidth = 0.0;
+  }
   layout.validRange = layout.scale.validRange;
   layout.colorRange = layout.scale.colorRange;
 
@@ -224,7 +238,7 @@ MontageLayout montageLayout(const std::vector<MontagePanel>& panels, const Monta
 
   // The title band: the title lines as they are (the canvas widens for them), the common lines wrapped to the
   // width of the panels and the key.
-  std::vector<std::string> titleLines = montageTitleLines(options, layout.scale, panels.size());
+  std::vector<std::string> titleLines = montageTitleLines(options, layout, panels.size());
   const int wrapWidth = std::max(layout.keyLeft + key.width() - 2 * layout.paddingPx, minColumnWidth);
   std::string common;
   for (const std::string& item : options.commonLines)
@@ -255,8 +269,8 @@ ImageU8 renderMontage(const std::vector<MontagePanel>& panels, const MontageOpti
   for (std::size_t p = 0; p < panels.size(); ++p)
   {
     const MontagePanel& panel = panels[p];
-    paintHeatMapValues(
-      canvas, layout.panelLeft[p], layout.panelBottom, panel.values, validMaskOf(panel), colorMap, layout.colorRange);
+    paintHeatMapValues(canvas, layout.panelLeft[p], layout.panelBottom, panel.values, validMaskOf(panel), colorMap,
+      layout.colorRange, layout.signedLogLinearWidth);
     for (const MontageTextBox& box : layout.labelBoxes[p])
       drawText(canvas, box.text, layout.fontPx, box.left, box.bottom);
   }

@@ -52,6 +52,9 @@ struct MontageOptions
   std::optional<double> clipQuantile;
   // What every panel shares (montageCommonLabels), drawn once under the title, wrapped to the montage's width.
   std::vector<std::string> commonLines;
+  // Signed only: a symmetric log scale (HeatMapOptions::signedLogLinearWidth) linear within the quantile q
+  // (0 < q < 1) of |value| over all panels, for buffers whose values near 0 matter and span decades.
+  std::optional<double> signedLogLinearQuantile;
 };
 
 // A line of text on the montage canvas and its box (measureText's, row 0 at the bottom).
@@ -89,6 +92,7 @@ struct MontageLayout
   ValueRange colorRange;
   std::optional<ValueRange> validRange; // over all panels
   HeatMapScale scale;                   // colorRange, validRange and the pixel counts behind them
+  double signedLogLinearWidth = 0.0;    // from signedLogLinearQuantile; 0: linear
   int lineGapPx = 0;
   std::vector<std::vector<MontageTextBox>> labelBoxes; // per panel, its wrapped label lines top to bottom
   std::vector<MontageTextBox> titleBoxes;              // the title band's lines, top to bottom

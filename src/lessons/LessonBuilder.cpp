@@ -229,7 +229,7 @@ void LessonBuilder::reference(const std::string& name, const std::string& datase
 }
 
 void LessonBuilder::montage(const std::string& stem, const std::string& caption, const std::vector<std::string>& runs,
-  const std::string& buffer, std::optional<double> clipQuantile)
+  const std::string& buffer, std::optional<double> clipQuantile, std::optional<double> signedLogLinearQuantile)
 {
   std::vector<MontagePanel> panels;
   std::vector<nlohmann::json> stats;
@@ -255,6 +255,7 @@ void LessonBuilder::montage(const std::string& stem, const std::string& caption,
   options.kind = spec.kind;
   options.categoryLabels = spec.categoryLabels;
   options.clipQuantile = clipQuantile;
+  options.signedLogLinearQuantile = signedLogLinearQuantile;
   options.commonLines = montageCommonLabels(stats);
   writePng(dir_ / (stem + ".png"), renderMontage(panels, options));
   figures_.push_back({ stem + ".png", caption });

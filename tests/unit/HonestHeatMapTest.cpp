@@ -2,6 +2,7 @@
 // pixels a quantity does not apply to are light grey (never the diverging map's white, "at the threshold"), robust
 // scales leave at most about 2 % of the pixels saturated, bit masks are drawn as bit counts, categorical titles give
 // no numeric range, and montage labels never overlap at 128 x 128 panels and list only what differs.
+#include "core/Error.h"
 #include "vis/BufferHeatMap.h"
 #include "vis/Canvas.h"
 #include "vis/HeatMap.h"
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <random>
@@ -229,6 +231,46 @@ TEST(HonestHeatMap, ShadowTestedBuffersAreNotApplicableWhereNoTestRan)
 }
 
 // Touching counts: two lines whose boxes share an edge have glyphs (descenders, underscores) that meet.
+TEST(HonestHeatMap, SymmetricLogScaleShowsValuesNearZeroBesideFarOnesWithoutSaturating)
+{
+  const ValueRange range{ -10.0, 10.0 };
+  const double width = 0.001; // linear within +-0.001, 4 decades to 10
+  EXPECT_EQ(colorMapPosition(0.0, range, width), 0.5);
+  EXPECT_NEAR(colorMapPosition(10.0, range, width), 1.0, 1e-12);
+  EXPECT_NEAR(colorMapPosition(-10.0, range, width), 0.0, 1e-12);
+  // A value at the linear width sits log(2) / log(10001) of the way to the end: visibly off white, where a linear
+  // scale would put it 1e-4 of the way.
+  EXPECT_NEAR(colorMapPosition(width, range, width) - 0.5, 0.5 * std::log(2.0) / std::log(10001.0), 1e-12);
+  EXPECT_GT(colorMapPosition(width, range, width) - 0.5, 0.03);
+  for (const double t : { 0.0, 0.1, 0.37, 0.5, 0.8, 1.0 })
+    EXPECT_NEAR(colorMapPosition(colorMapValueAt(t, range, width), range, width), t, 1e-12) << t;
+  EXPECT_EQ(colorMapPosition(2.5, range, 0.0), 0.625) << "width 0: linear";
+
+  // A montage of a signed buffer with values 1e-3 .. 10 (both signs) on the log scale: the smallest are not white,
+  // and the title says which scale it is.
+  MontagePanel panel;
+  panel.values = ImageF(100, 1, 1);
+  for (int x = 0; x < 100; ++x)
+    panel.values.at(x, 0) = static_cast<float>((x % 2 ? 1.0 : -1.0) * std::pow(10.0, -3.0 + 4.0 * x / 99.0));
+  MontageOptions options;
+  options.title = "depth_margin";
+  options.kind = BufferKind::Signed;
+  options.signedLogLinearQuantile = 0.1;
+  const MontageLayout layout = montageLayout({ panel }, options);
+  EXPECT_GT(layout.signedLogLinearWidth, 1e-3);
+  EXPECT_LT(layout.signedLogLinearWidth, 1e-2);
+  const ImageU8 canvas = renderMontage({ panel }, options);
+  const HonestRgb8 white = toRgb8(ColorMap(ColorMapKind::Diverging).map(0.5));
+  EXPECT_GT(honestColourDistance(honestPixelAt(canvas, layout.panelLeft[0] + 1, layout.panelBottom), white), 8)
+    << "a value of 1e-3 must not be drawn white on the log scale";
+  bool titleSaysLog = false;
+  for (const MontageTextBox& box : layout.titleBoxes)
+    titleSaysLog = titleSaysLog || box.text.find("log scale, linear within") != std::string::npos;
+  EXPECT_TRUE(titleSaysLog);
+  options.signedLogLinearQuantile = 1.0;
+  EXPECT_THROW(montageLayout({ panel }, options), InputError);
+}
+
 bool boxesOverlap(const MontageTextBox& a, const MontageTextBox& b)
 {
   return a.left <= b.left + b.width && b.left <= a.left + a.width && a.bottom <= b.bottom + b.height &&
