@@ -90,7 +90,7 @@ std::vector<std::string> montageTitleLines(
   if (lines.empty())
     lines.emplace_back();
   std::string& first = lines.front();
-  first += format(first == "no pixel with a value" ? "" : ", ", "one scale for ", panelCount, " panels");
+  first += format(first == "no pixel with a value" ? "" : ", ", "one scale for ", panelCount, panelCount == 1 ? " panel" : " panels");
   if (options.clipQuantile && options.kind != BufferKind::Categorical)
     first += format(", clipped at the ", formatThreeSignificant(100.0 * *options.clipQuantile), "th percentile",
       options.kind == BufferKind::Signed ? " of |value|" : "");
