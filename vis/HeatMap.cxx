@@ -66,7 +66,8 @@ double colorMapPosition(double value, const ValueRange& colorRange, double signe
   if (signedLogLinearWidth <= 0.0)
     return (value - colorRange.min) / (colorRange.max - colorRange.min);
   const double magnitude = std::max(std::abs(colorRange.min), std::abs(colorRange.max));
-  const double scaled = std::log1p(std::abs(value) / signedLogLinearWidth) / std::log1p(magnitude / signedLogLinearWidth);
+  const double scaled =
+    std::log1p(std::abs(value) / signedLogLinearWidth) / std::log1p(magnitude / signedLogLinearWidth);
   return 0.5 + 0.5 * std::copysign(scaled, value);
 }
 

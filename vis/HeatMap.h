@@ -122,7 +122,8 @@ ColorKey heatMapColorKey(const ColorMap& colorMap, const std::optional<ValueRang
   const ValueRange& colorRange, const HeatMapOptions& options, int fontPx);
 // The same for `scale`, with open ends ("<= lo", ">= hi") where pixels lie beyond the scale, and swatches for
 // "not tested / n.a." and "no surface" where `scale` counts such pixels.
-ColorKey heatMapColorKey(const ColorMap& colorMap, const HeatMapScale& scale, const HeatMapOptions& options, int fontPx);
+ColorKey heatMapColorKey(
+  const ColorMap& colorMap, const HeatMapScale& scale, const HeatMapOptions& options, int fontPx);
 
 // "<title> [<unit>]  range [<min>, <max>]" with the range of the valid values, 3 significant digits;
 // "... no valid pixels" when there are none.

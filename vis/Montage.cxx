@@ -90,7 +90,8 @@ std::vector<std::string> montageTitleLines(
   if (lines.empty())
     lines.emplace_back();
   std::string& first = lines.front();
-  first += format(first == "no pixel with a value" ? "" : ", ", "one scale for ", panelCount, panelCount == 1 ? " panel" : " panels");
+  first += format(first == "no pixel with a value" ? "" : ", ", "one scale for ", panelCount,
+    panelCount == 1 ? " panel" : " panels");
   if (options.clipQuantile && options.kind != BufferKind::Categorical)
     first += format(", clipped at the ", formatThreeSignificant(100.0 * *options.clipQuantile), "th percentile",
       options.kind == BufferKind::Signed ? " of |value|" : "");
@@ -255,7 +256,8 @@ MontageLayout montageLayout(const std::vector<MontagePanel>& panels, const Monta
   int lineBottom = layout.height - layout.paddingPx - lineHeight;
   for (const std::string& line : titleLines)
   {
-    layout.titleBoxes.push_back({ line, layout.paddingPx, lineBottom, measureText(line, layout.fontPx).width, lineHeight });
+    layout.titleBoxes.push_back(
+      { line, layout.paddingPx, lineBottom, measureText(line, layout.fontPx).width, lineHeight });
     lineBottom -= linePitch;
   }
   return layout;

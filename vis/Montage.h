@@ -110,12 +110,12 @@ MontageLayout montageLayout(const std::vector<MontagePanel>& panels, const Monta
 ImageU8 renderMontage(const std::vector<MontagePanel>& panels, const MontageOptions& options);
 
 // The label lines of panels made from runs, from each run's stats.json document (render or reference output,
-// or any document with the same keys): the run's name and its technique ("reference" for a ray-traced reference);
-// the parameters whose values differ between the runs that have them ("key=value", a line each, on the runs that
-// have the key; a key of one technique only is left to the technique's name); the scene and resolution when they differ; "GPU <ms> ms" (total_gpu_ms) when present; and
-// "RMSE <value>" (error/covered/rmse, bench-run and lesson runs) when the run was compared against a reference.
-// When every run is of one technique, the first line is the run's name alone (the technique goes to
-// montageCommonLabels).
+// or any document with the same keys): the run's name and its technique ("reference" for a ray-traced reference;
+// the name alone when every run is of one technique, which montageCommonLabels then names once); the parameters
+// whose values differ between the runs that have them ("key=value", a line each, on the runs that have the key; a
+// key of one technique only is left to the technique's name); the scene and resolution when they differ;
+// "GPU <ms> ms" (total_gpu_ms) when present; and "RMSE <value>" (error/covered/rmse, bench-run and lesson runs) when
+// the run was compared against a reference.
 std::vector<std::vector<std::string>> montageRunLabels(
   const std::vector<std::string>& runNames, const std::vector<nlohmann::json>& stats);
 

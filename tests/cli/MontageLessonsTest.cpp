@@ -227,7 +227,8 @@ TEST_F(MontageCommand, TwoTechniquesShareOneRobustScaleOverBothRuns)
         wrong += colourDistance(png, px, py, expected) > 1;
         valued += mark == 1;
         notApplicable += mark == kNotApplicablePixel;
-        saturated += mark == 1 && (colourDistance(png, px, py, top) == 0 || colourDistance(png, px, py, toRgb8(viridis.map(0.0))) == 0);
+        saturated += mark == 1 &&
+          (colourDistance(png, px, py, top) == 0 || colourDistance(png, px, py, toRgb8(viridis.map(0.0))) == 0);
       }
     EXPECT_EQ(wrong, 0) << "panel " << p << ": pixels off the shared scale";
   }
@@ -275,7 +276,8 @@ TEST_F(MontageCommand, ASignedBufferIsCentredOnZeroAndDiverging)
       for (int x = 0; x < 64; ++x)
         if (panels[p].validMask.at(x, y) == kNotApplicablePixel)
         {
-          wrong += colourDistance(png, layout.panelLeft[p] + x, layout.panelBottom + y, toRgb8(kNotApplicableColor)) > 0;
+          const auto grey = toRgb8(kNotApplicableColor);
+          wrong += colourDistance(png, layout.panelLeft[p] + x, layout.panelBottom + y, grey) > 0;
         }
         else if (panels[p].validMask.at(x, y))
         {

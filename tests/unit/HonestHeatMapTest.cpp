@@ -218,7 +218,8 @@ TEST(HonestHeatMap, BitMasksAreDrawnAsTheirSetBitCountAndSummedAreaTablesNotAtAl
 TEST(HonestHeatMap, ShadowTestedBuffersAreNotApplicableWhereNoTestRan)
 {
   // Pixel 0: background; 1: covered and tested; 2: covered, not tested (a face turned from the light).
-  std::vector<NamedImage> frame = { { "coverage", ImageF(3, 1, 1), "", "" }, { "shadow_tested", ImageF(3, 1, 1), "", "" } };
+  std::vector<NamedImage> frame = { { "coverage", ImageF(3, 1, 1), "", "" },
+    { "shadow_tested", ImageF(3, 1, 1), "", "" } };
   frame[0].image.data = { 0.0f, 1.0f, 1.0f };
   frame[1].image.data = { 0.0f, 1.0f, 0.0f };
   NamedImage margin{ "depth_margin", ImageF(3, 1, 1, 0.0f), "world units", "", BufferKind::Signed };
@@ -283,7 +284,8 @@ void expectNoLabelCollisions(const std::vector<MontagePanel>& panels, const Mont
   std::vector<MontageTextBox> boxes = layout.titleBoxes;
   for (std::size_t p = 0; p < panels.size(); ++p)
   {
-    const int columnRight = p + 1 < panels.size() ? layout.panelLeft[p + 1] - layout.paddingPx : layout.keyLeft - layout.paddingPx;
+    const int columnRight =
+      (p + 1 < panels.size() ? layout.panelLeft[p + 1] : layout.keyLeft) - layout.paddingPx;
     for (const MontageTextBox& box : layout.labelBoxes[p])
     {
       EXPECT_GE(box.left, layout.panelLeft[p]) << box.text;
@@ -302,7 +304,8 @@ void expectNoLabelCollisions(const std::vector<MontagePanel>& panels, const Mont
   for (std::size_t i = 0; i < boxes.size(); ++i)
     for (std::size_t j = i + 1; j < boxes.size(); ++j)
       EXPECT_FALSE(boxesOverlap(boxes[i], boxes[j]))
-        << "'" << boxes[i].text << "' at (" << boxes[i].left << ", " << boxes[i].bottom << ") overlaps '" << boxes[j].text
+        << "'" << boxes[i].text << "' at (" << boxes[i].left << ", " << boxes[i].bottom << ") overlaps '"
+        << boxes[j].text
         << "' at (" << boxes[j].left << ", " << boxes[j].bottom << ")";
   // Every character of every label is drawn: the wrapped lines join back to the labels.
   for (std::size_t p = 0; p < panels.size(); ++p)
@@ -351,8 +354,10 @@ TEST(MontageLabels, ListOnlyWhatDiffersAndWhatIsSharedOnceInTheTitle)
 {
   std::vector<nlohmann::json> stats;
   for (const double slope : { 0.0, 1.0, 16.0 })
-    stats.push_back({ { "technique", "hard" }, { "scene", "datasets/grazing/scene.json" }, { "resolution", { 128, 128 } },
-      { "parameters", { { "bias_constant_texels", 0.5 }, { "bias_slope_texels", slope }, { "depth_layer", "first" } } } });
+    stats.push_back({ { "technique", "hard" }, { "scene", "datasets/grazing/scene.json" },
+      { "resolution", { 128, 128 } },
+      { "parameters",
+        { { "bias_constant_texels", 0.5 }, { "bias_slope_texels", slope }, { "depth_layer", "first" } } } });
   const std::vector<std::vector<std::string>> labels = montageRunLabels({ "off", "on", "large" }, stats);
   ASSERT_EQ(labels.size(), 3u);
   EXPECT_EQ(labels[0], (std::vector<std::string>{ "off", "bias_slope_texels=0" }));
@@ -381,7 +386,8 @@ TEST(MontageLabels, WrapTextBreaksAtSpacesThenBetweenCharacters)
   EXPECT_EQ(wrapText("", width, fontPx), std::vector<std::string>{ "" });
   // A parameter wider than the column breaks after a '_' or '=' that fits rather than inside a name.
   const int wider = measureText("bias_constant_tex", fontPx).width;
-  EXPECT_EQ(wrapText("bias_constant_texels=0.5", wider, fontPx), (std::vector<std::string>{ "bias_constant_", "texels=0.5" }));
+  EXPECT_EQ(wrapText("bias_constant_texels=0.5", wider, fontPx),
+    (std::vector<std::string>{ "bias_constant_", "texels=0.5" }));
 }
 
 } // namespace
