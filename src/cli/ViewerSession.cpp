@@ -465,11 +465,13 @@ ViewerCanvas ViewerSession::drawBuffer(const std::string& name) const
   const NamedImage* buffer = frame_.find(name);
   const NamedImage* coverage = frame_.find("coverage");
   SL_CHECK(buffer && coverage);
-  const ImageU8 mask = coverageMask(*coverage);
+  // As the heat map PNGs: grey where the buffer has no value (not covered, or not shadow-tested for a quantity defined
+  // only there), a bit mask as its count of set bits.
+  const ImageU8 mask = bufferValueMask(*buffer, frame_.buffers);
   // The colour scale comes from the frame's own pixels (the enlarged copy repeats each zoom^2 times).
   const HeatMapOptions options = bufferHeatMapOptions(*buffer, &mask);
   const ImageU8 enlargedMask = enlarged(mask, zoom_);
-  canvas.rgb = renderHeatMap(enlarged(buffer->image, zoom_), &enlargedMask, options);
+  canvas.rgb = renderHeatMap(enlarged(heatMapValues(*buffer), zoom_), &enlargedMask, options);
   return canvas;
 }
 
