@@ -106,7 +106,9 @@ void writeSpeedErrorChart(const std::vector<ChartPoint>& points, const std::stri
     plot->SetWidth(1.5f);
     if (auto* pointsPlot = vtkPlotPoints::SafeDownCast(plot))
     {
-      pointsPlot->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+      // The palette has ten colours: the next ten series are squares, then diamonds, so no two series look alike.
+      const int shapes[] = { vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE, vtkPlotPoints::DIAMOND };
+      pointsPlot->SetMarkerStyle(shapes[((colorIndex - 1) / 10) % 3]);
       pointsPlot->SetMarkerSize(10.0f);
     }
     for (const std::size_t index : indices)

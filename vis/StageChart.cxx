@@ -14,9 +14,27 @@
 #include <vtkTable.h>
 
 #include <algorithm>
+#include <array>
 
 namespace sl
 {
+namespace
+{
+
+// Tableau 10 for the first ten stages, then the lighter companion of each (Tableau 20's pairs): a frame with a few
+// structures has more than ten stages, and a repeated colour would merge two of them.
+RgbColor stageChartColor(std::size_t stage)
+{
+  static const std::array<RgbColor, 10> lighter{ { { 0xae / 255.0, 0xc7 / 255.0, 0xe8 / 255.0 },
+    { 0xff / 255.0, 0xbb / 255.0, 0x78 / 255.0 }, { 0x98 / 255.0, 0xdf / 255.0, 0x8a / 255.0 },
+    { 0xff / 255.0, 0x98 / 255.0, 0x96 / 255.0 }, { 0xc5 / 255.0, 0xb0 / 255.0, 0xd5 / 255.0 },
+    { 0xc4 / 255.0, 0x9c / 255.0, 0x94 / 255.0 }, { 0xf7 / 255.0, 0xb6 / 255.0, 0xd2 / 255.0 },
+    { 0xc7 / 255.0, 0xc7 / 255.0, 0xc7 / 255.0 }, { 0xdb / 255.0, 0xdb / 255.0, 0x8d / 255.0 },
+    { 0x9e / 255.0, 0xda / 255.0, 0xe5 / 255.0 } } };
+  return stage < 10 ? ColorMap::categoryColor(static_cast<long long>(stage)) : lighter[(stage - 10) % 10];
+}
+
+} // namespace
 
 void writeStageChart(const std::vector<StageBar>& bars, const StageChartSpec& spec, const std::filesystem::path& pngPath)
 {
@@ -73,7 +91,7 @@ void writeStageChart(const std::vector<StageBar>& bars, const StageChartSpec& sp
   colors->ClearColors();
   for (std::size_t s = 0; s < spec.stages.size(); ++s)
   {
-    const RgbColor color = ColorMap::categoryColor(static_cast<long long>(s));
+    const RgbColor color = stageChartColor(s);
     colors->AddColor(vtkColor3ub(static_cast<unsigned char>(255 * color[0]), static_cast<unsigned char>(255 * color[1]),
       static_cast<unsigned char>(255 * color[2])));
   }
