@@ -1,8 +1,10 @@
 #include "vis/BufferHeatMap.h"
 
-#include <algorithm>
+#include "core/Error.h"
+
+#include <bitset>
 #include <cmath>
-#include <vector>
+#include <cstdint>
 
 namespace sl
 {
@@ -13,13 +15,16 @@ ColorMapKind colorMapFor(BufferKind kind)
   {
     case BufferKind::Signed: return ColorMapKind::Diverging;
     case BufferKind::Categorical: return ColorMapKind::Categorical;
-    case BufferKind::Continuous: return ColorMapKind::Viridis;
+    case BufferKind::Continuous:
+    case BufferKind::BitMask:
+    case BufferKind::SummedArea: return ColorMapKind::Viridis;
   }
   return ColorMapKind::Viridis;
 }
 
 HeatMapOptions bufferHeatMapOptions(const NamedImage& buffer, const ImageU8* validMask)
 {
+  (void)validMask; // the scale is decided from the pixels with a value when the map is drawn (heatMapScale)
   HeatMapOptions options;
   options.title = buffer.name;
   options.unit = buffer.unit;
@@ -30,33 +35,46 @@ HeatMapOptions bufferHeatMapOptions(const NamedImage& buffer, const ImageU8* val
     options.rangeMin = 0.0;
     options.rangeMax = 1.0;
   }
-  else if (buffer.kind == BufferKind::Continuous)
+  else if (buffer.kind == BufferKind::BitMask)
   {
-    // A few extreme values (texel_ratio where a surface runs parallel to the light) would flatten the
-    // colour scale; clip the scale at the 99th percentile then. The title still gives the true range.
-    std::vector<float> valid;
-    for (std::size_t i = 0; i < buffer.image.pixelCount(); ++i)
-    {
-      if ((!validMask || validMask->data[i]) && std::isfinite(buffer.image.data[i]))
-      {
-        valid.push_back(buffer.image.data[i]);
-      }
-    }
-    if (valid.size() > 100)
-    {
-      const auto percentile = valid.begin() + static_cast<std::ptrdiff_t>(0.99 * (valid.size() - 1));
-      std::nth_element(valid.begin(), percentile, valid.end());
-      const double p99 = *percentile;
-      const double maximum = *std::max_element(percentile, valid.end());
-      const double minimum = *std::min_element(valid.begin(), percentile + 1);
-      if (maximum - minimum > 4.0 * (p99 - minimum) && p99 > minimum)
-      {
-        options.rangeMin = minimum;
-        options.rangeMax = p99;
-      }
-    }
+    const int bits = 16 * buffer.image.components;
+    options.unit = format("bits set, of ", bits);
+    options.rangeMin = 0.0;
+    options.rangeMax = bits;
+  }
+  else
+  {
+    options.robustRange = true;
   }
   return options;
+}
+
+bool drawsHeatMap(const NamedImage& buffer)
+{
+  if (buffer.kind == BufferKind::SummedArea || buffer.image.empty())
+    return false;
+  return buffer.image.components == 1 || buffer.kind == BufferKind::BitMask;
+}
+
+ImageF heatMapValues(const NamedImage& buffer)
+{
+  if (buffer.kind != BufferKind::BitMask)
+    return buffer.image;
+  ImageF counts(buffer.image.width, buffer.image.height, 1, 0.0f);
+  for (std::size_t pixel = 0; pixel < counts.pixelCount(); ++pixel)
+  {
+    int setBits = 0;
+    for (int c = 0; c < buffer.image.components; ++c)
+    {
+      const float word = buffer.image.data[pixel * buffer.image.components + c];
+      // 16 bits per float component, an exact integer; anything else is not a mask word.
+      SL_CHECK_MSG(word >= 0.0f && word <= 65535.0f && word == std::floor(word), "bit mask ", buffer.name,
+        ": component ", c, " of pixel ", pixel, " holds ", word, ", not a 16-bit word");
+      setBits += static_cast<int>(std::bitset<16>(static_cast<std::uint32_t>(word)).count());
+    }
+    counts.data[pixel] = static_cast<float>(setBits);
+  }
+  return counts;
 }
 
 ImageU8 coverageMask(const NamedImage& coverage)
@@ -65,6 +83,23 @@ ImageU8 coverageMask(const NamedImage& coverage)
   for (std::size_t i = 0; i < mask.data.size(); ++i)
   {
     mask.data[i] = coverage.image.data[i] > 0.5f ? 1 : 0;
+  }
+  return mask;
+}
+
+ImageU8 bufferValueMask(const NamedImage& buffer, const std::vector<NamedImage>& frameBuffers)
+{
+  const NamedImage* coverage = findNamed(frameBuffers, "coverage");
+  ImageU8 mask = coverage ? coverageMask(*coverage) : ImageU8(buffer.image.width, buffer.image.height, 1, 1);
+  const NamedImage* tested = findNamed(frameBuffers, "shadow_tested");
+  if (buffer.domain == BufferDomain::ShadowTested && tested && tested->image.width == mask.width &&
+    tested->image.height == mask.height)
+  {
+    for (std::size_t i = 0; i < mask.data.size(); ++i)
+    {
+      if (mask.data[i] != 0 && !(tested->image.data[i] > 0.5f))
+        mask.data[i] = kNotApplicablePixel;
+    }
   }
   return mask;
 }

@@ -124,4 +124,46 @@ void drawText(ImageU8& canvas, const std::string& text, int fontPx, int left, in
   }
 }
 
+std::vector<std::string> wrapText(const std::string& text, int widthPx, int fontPx)
+{
+  std::vector<std::string> lines;
+  std::string line;
+  const auto fits = [&](const std::string& candidate) { return measureText(candidate, fontPx).width <= widthPx; };
+  std::size_t at = 0;
+  while (at < text.size())
+  {
+    const std::size_t space = text.find(' ', at);
+    const std::string word = text.substr(at, space == std::string::npos ? std::string::npos : space - at);
+    at = space == std::string::npos ? text.size() : space + 1;
+    if (word.empty())
+      continue;
+    const std::string joined = line.empty() ? word : line + " " + word;
+    if (fits(joined))
+    {
+      line = joined;
+      continue;
+    }
+    if (!line.empty())
+      lines.push_back(line);
+    line.clear();
+    // A word wider than the column: broken after its last '_' or '=' that fits (bias_constant_ / texels=0.5),
+    // else between characters (at least one per line).
+    std::string rest = word;
+    while (!fits(rest))
+    {
+      std::size_t fitting = 1;
+      while (fitting < rest.size() && fits(rest.substr(0, fitting + 1)))
+        ++fitting;
+      const std::size_t separator = rest.find_last_of("_=", fitting - 1);
+      const std::size_t cut = separator != std::string::npos && separator + 1 < fitting ? separator + 1 : fitting;
+      lines.push_back(rest.substr(0, cut));
+      rest.erase(0, cut);
+    }
+    line = rest;
+  }
+  if (!line.empty() || lines.empty())
+    lines.push_back(line);
+  return lines;
+}
+
 } // namespace sl

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace sl
 {
@@ -33,6 +34,10 @@ struct TextSize
 
 // The size of `text` rendered at `fontPx` pixels (font size in points at 72 dpi).
 TextSize measureText(const std::string& text, int fontPx);
+
+// `text` broken into lines no wider than widthPx at fontPx: at spaces where a word fits, else after the word's last
+// '_' or '=' that fits, else between characters. Never empty (an empty text is one empty line).
+std::vector<std::string> wrapText(const std::string& text, int widthPx, int fontPx);
 
 // Draws `text` (bold Courier, `fontPx` pixels) with its box's bottom-left at (left, bottom), alpha-blended.
 void drawText(

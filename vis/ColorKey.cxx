@@ -28,7 +28,8 @@ ColorKey::ColorKey(int fontPx)
 {
 }
 
-ColorKey ColorKey::continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx)
+ColorKey ColorKey::continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx,
+  bool openBelow, bool openAbove, double signedLogLinearWidth)
 {
   SL_CHECK_MSG(valueMin < valueMax, "colour bar range [", valueMin, ", ", valueMax, "]");
   ColorKey key(fontPx);
@@ -36,7 +37,14 @@ ColorKey ColorKey::continuous(const ColorMap& colorMap, double valueMin, double 
   int labelWidth = 0;
   for (const double fraction : { 0.0, 0.25, 0.5, 0.75, 1.0 })
   {
-    key.ticks_.push_back({ fraction, formatThreeSignificant(valueMin + fraction * (valueMax - valueMin)) });
+    const std::string prefix = fraction == 0.0 && openBelow ? "<=" : fraction == 1.0 && openAbove ? ">=" : "";
+    const double value = signedLogLinearWidth > 0.0
+      ? std::copysign(signedLogLinearWidth *
+            std::expm1(std::abs(2.0 * fraction - 1.0) *
+              std::log1p(std::max(std::abs(valueMin), std::abs(valueMax)) / signedLogLinearWidth)),
+          2.0 * fraction - 1.0)
+      : valueMin + fraction * (valueMax - valueMin);
+    key.ticks_.push_back({ fraction, prefix + formatThreeSignificant(value) });
     labelWidth = std::max(labelWidth, measureText(key.ticks_.back().label, fontPx).width);
   }
   key.width_ =
@@ -69,13 +77,44 @@ ColorKey ColorKey::categorical(
   return key;
 }
 
+void ColorKey::addSwatch(const RgbColor& color, const std::string& label)
+{
+  swatches_.push_back({ color, label });
+  width_ = std::max(width_, paddingPx_ + swatchPx_ + labelGapPx_ + measureText(label, fontPx_).width + paddingPx_);
+  minHeight_ += rowHeight() + (swatches_.size() == 1 ? paddingPx_ : 0);
+}
+
+int ColorKey::swatchBlockHeight() const
+{
+  return swatches_.empty() ? 0 : paddingPx_ + static_cast<int>(swatches_.size()) * rowHeight();
+}
+
+void ColorKey::drawSwatchRow(
+  ImageU8& canvas, int left, int rowBottom, const RgbColor& color, const std::string& label) const
+{
+  const int swatchLeft = left + paddingPx_;
+  const int swatchSide = std::min(swatchPx_, lineHeightPx_);
+  const int swatchBottom = rowBottom + (lineHeightPx_ - swatchSide) / 2;
+  fillRect(canvas, swatchLeft, swatchBottom, swatchSide, swatchSide, color);
+  strokeRect(canvas, swatchLeft, swatchBottom, swatchSide, swatchSide, kBlack, lineWidthPx_);
+  drawText(canvas, label, fontPx_, swatchLeft + swatchPx_ + labelGapPx_, rowBottom);
+}
+
 void ColorKey::draw(ImageU8& canvas, int left, int bottom, int height) const
 {
   SL_CHECK_MSG(height >= minHeight_, "colour key height ", height, " < ", minHeight_);
+  // The swatches take the bottom rows; the bar or the classes the rest.
+  const int block = swatchBlockHeight();
+  int rowBottom = bottom + block - paddingPx_ - rowHeight();
+  for (const Swatch& swatch : swatches_)
+  {
+    drawSwatchRow(canvas, left, rowBottom + labelGapPx_, swatch.color, swatch.label);
+    rowBottom -= rowHeight();
+  }
   if (isCategorical_)
-    drawCategories(canvas, left, bottom, height);
+    drawCategories(canvas, left, bottom + block, height - block);
   else
-    drawBar(canvas, left, bottom, height);
+    drawBar(canvas, left, bottom + block, height - block);
 }
 
 int ColorKey::tickRow(double fraction, int barBottom, int barHeight) const

@@ -19,8 +19,11 @@ class ColorKey
 {
 public:
   // A bar from valueMin (bottom) to valueMax (top), valueMin < valueMax, with ticks at both ends and in the
-  // middle (and at the quarters when the bar is tall enough), labelled with formatThreeSignificant().
-  static ColorKey continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx);
+  // middle (and at the quarters when the bar is tall enough), labelled with formatThreeSignificant(). An open end
+  // (pixels lie beyond it, drawn in its colour) is labelled "<=" or ">=" its value. signedLogLinearWidth > 0: the
+  // bar is a symmetric log scale (vis/HeatMap.h colorMapPosition) and the ticks give the values drawn there.
+  static ColorKey continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx,
+    bool openBelow = false, bool openAbove = false, double signedLogLinearWidth = 0.0);
 
   // One swatch per class id firstId .. firstId + count - 1, top to bottom, each labelled "<id>: <label>" with
   // labels[id] where 0 <= id < labels.size(), else "<id>". Swatch colours are ColorMap::categoryColor(id).
@@ -28,6 +31,10 @@ public:
   static ColorKey categorical(
     long long firstId, long long count, const std::vector<std::string>& labels, int fontPx);
   static constexpr int kMaxCategoryRows = 32;
+
+  // A row under the bar or the classes: a swatch of `color` labelled `label` (pixels drawn outside the scale:
+  // "not tested / n.a.", "no surface"). Widens the key and raises minHeight() to fit.
+  void addSwatch(const RgbColor& color, const std::string& label);
 
   int width() const { return width_; }
   int minHeight() const { return minHeight_; }
@@ -41,6 +48,11 @@ private:
     long long id;
     std::string label;
   };
+  struct Swatch
+  {
+    RgbColor color;
+    std::string label;
+  };
   struct Tick
   {
     double fraction; // 0 = bottom of the bar, 1 = top
@@ -51,12 +63,16 @@ private:
   void drawBar(ImageU8& canvas, int left, int bottom, int height) const;
   void drawCategories(ImageU8& canvas, int left, int bottom, int height) const;
   int tickRow(double fraction, int barBottom, int barHeight) const;
+  int rowHeight() const { return lineHeightPx_ + labelGapPx_; }
+  int swatchBlockHeight() const;
+  void drawSwatchRow(ImageU8& canvas, int left, int rowBottom, const RgbColor& color, const std::string& label) const;
 
   bool isCategorical_ = false;
   ColorMap colorMap_{ ColorMapKind::Viridis };
   std::vector<Tick> ticks_;          // continuous
   std::vector<Category> categories_; // categorical
   std::string moreCategoriesLabel_;  // "+N more", empty when every category fits
+  std::vector<Swatch> swatches_;     // under the bar or the classes
 
   int fontPx_;
   int lineHeightPx_;

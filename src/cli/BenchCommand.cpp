@@ -4,9 +4,12 @@
 // machines by any batch system and a crash in one configuration is reported while the rest go on. The
 // ray-traced reference of each scene is computed once (`shadowlab reference`, also a child process) and
 // cached under --cache, keyed by a hash of the loaded scene (geometry, lights, camera), the resolution and
-// the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md, one
-// speed_vs_error_<scene>.png per scene, runs/<n>.json (each child's result), logs/ (a child's stdout and
-// stderr, kept only when it printed something).
+// the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md (the renderer and the
+// machine, then a row per configuration: time spread, stages, errors, memory, key counters), per scene
+// stages_<scene>.png (stacked stage times), speed_vs_error_<scene>.png and speed_vs_penumbra_error_<scene>.png (log
+// axes, sweeps joined and labelled), thumbnails_<scene>.png (visibility and error of every configuration),
+// cost_growth_<scene>.png when a --sweep varies shadow_map_size, runs/<n>.json (each child's result), logs/ (a
+// child's stdout and stderr, kept only when it printed something).
 // Exit status: 0 when every configuration ran, 4 when some failed (their rows say why) or a reference could not
 // be made (an error line says why).
 #include "cli/Commands.h"
@@ -23,6 +26,8 @@
 #include "techniques/Registry.h"
 #include "vis/SpeedErrorChart.h"
 #include "vis/DepthProfileChart.h"
+#include "vis/Montage.h"
+#include "vis/StageChart.h"
 #include "vis/SweepChart.h"
 
 #include <nlohmann/json.hpp>
@@ -39,6 +44,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <thread>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -840,138 +846,631 @@ std::set<std::string> statisticNamesOf(const nlohmann::json& rows)
   return statisticNames;
 }
 
-// "name value, ..." of the statistics a result reports, for summary.md.
-std::string statisticsText(const nlohmann::json& result, const std::set<std::string>& statisticNames)
+// The number a configuration's settings give `key`, if it sets it to one.
+std::optional<double> settingNumber(const std::vector<std::string>& settings, const std::string& key)
+{
+  for (const std::string& setting : settings)
+  {
+    if (setting.rfind(key + "=", 0) == 0)
+    {
+      return parseNumber(setting.substr(key.size() + 1));
+    }
+  }
+  return std::nullopt;
+}
+
+// Where the bench ran: the GL renderer(s) the children report and the CPU, for summary.md, bench.json and every
+// chart (llvmpipe's milliseconds are the CPU's, not a GPU's).
+struct BenchEnvironment
+{
+  std::string renderer;  // GL_RENDERER, distinct values joined by " / " (one, unless children differed)
+  std::string glVersion; // GL_VERSION (of the first ok row)
+  std::string cpu;       // /proc/cpuinfo's model name
+  unsigned logicalCores = 0;
+
+  std::string line() const
+  {
+    return format("renderer ", renderer.empty() ? std::string("unknown") : renderer, "; machine ",
+      cpu.empty() ? std::string("unknown CPU") : cpu, ", ", logicalCores, " logical cores");
+  }
+};
+
+BenchEnvironment benchEnvironment(const nlohmann::json& rows)
+{
+  BenchEnvironment environment;
+  std::vector<std::string> renderers;
+  for (const nlohmann::json& row : rows)
+  {
+    if (row["status"] == "ok")
+    {
+      const std::string renderer = row["result"].value("gl_renderer", std::string());
+      if (!renderer.empty() && std::find(renderers.begin(), renderers.end(), renderer) == renderers.end())
+      {
+        renderers.push_back(renderer);
+      }
+      if (environment.glVersion.empty())
+      {
+        environment.glVersion = row["result"].value("gl_version", std::string());
+      }
+    }
+  }
+  environment.renderer = joined(renderers, " / ");
+  std::ifstream cpuInfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuInfo, line);)
+  {
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+    {
+      environment.cpu = line.substr(line.find(':') + 1);
+      environment.cpu.erase(0, environment.cpu.find_first_not_of(" \t"));
+      break;
+    }
+  }
+  environment.logicalCores = std::thread::hardware_concurrency();
+  return environment;
+}
+
+// A chart's title: what it shows, then where it was measured.
+std::string benchChartTitle(const std::string& what, const BenchEnvironment& environment)
+{
+  return what + "\n" + environment.line();
+}
+
+// `key` of a timing object, and its _min and _max (a result without them, written before they were: the median).
+double timingValue(const nlohmann::json& timing, const std::string& key)
+{
+  return timing.contains(key) ? timing[key].get<double>() : 0.0;
+}
+double timingMin(const nlohmann::json& timing, const std::string& key)
+{
+  return timing.contains(key + "_min") ? timing[key + "_min"].get<double>() : timingValue(timing, key);
+}
+double timingMax(const nlohmann::json& timing, const std::string& key)
+{
+  return timing.contains(key + "_max") ? timing[key + "_max"].get<double>() : timingValue(timing, key);
+}
+
+// Up to three of a result's statistics for summary.md's compact column, the rest being in bench.json and bench.csv:
+// first those that say a value is not exact (cut short, flagged, fallen back, overflowed) when nonzero, then the work
+// counters' image totals (<buffer>_sum), then --view-stats values, then the other nonzero counters by name; timings
+// (*_ms) and byte counts (the memory column) are left to the full record.
+std::string compactStatisticsText(const nlohmann::json& result)
 {
   const nlohmann::json values = statisticsOf(result);
-  std::string statistics;
-  for (const std::string& name : statisticNames)
+  const auto contains = [](const std::string& name, const char* part) { return name.find(part) != std::string::npos; };
+  const auto rank = [&](const std::string& name, double value) -> int {
+    if (value != 0.0 && (contains(name, "cut_short") || contains(name, "flag") || contains(name, "fallback") ||
+                          contains(name, "overflow")))
+    {
+      return 0;
+    }
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, "_sum") == 0)
+    {
+      return 1;
+    }
+    if (result.contains("view_stats") && (contains(name, "_max") || contains(name, "_p99") || contains(name, "_mean")))
+    {
+      return 2;
+    }
+    const bool timing = name.size() > 3 && name.compare(name.size() - 3, 3, "_ms") == 0;
+    return value == 0.0 || timing || contains(name, "bytes") ? 4 : 3;
+  };
+  std::vector<std::pair<int, std::string>> ranked;
+  for (const auto& [name, value] : values.items())
   {
-    statistics += values.contains(name) ? (statistics.empty() ? "" : ", ") + name + " " + numberText(values[name]) : "";
+    const int r = rank(name, value.get<double>());
+    if (r < 4)
+    {
+      ranked.emplace_back(r, name);
+    }
   }
-  return statistics;
+  std::stable_sort(ranked.begin(), ranked.end(),
+    [](const auto& a, const auto& b) { return a.first < b.first; }); // by name within a rank (items() is sorted)
+  std::string text;
+  for (std::size_t i = 0; i < ranked.size() && i < 3; ++i)
+  {
+    text += (text.empty() ? "" : ", ") + ranked[i].second + " " + numberText(values[ranked[i].second]);
+  }
+  const std::size_t more = values.size() - std::min<std::size_t>(ranked.size(), 3);
+  if (more > 0)
+  {
+    text += format(text.empty() ? "" : " ", "(+", more, " in bench.json)");
+  }
+  return text;
+}
+
+// "shadow_map 19.5 (71 %), technique 2.2 (8 %)": the stages, largest first, that took at least 5 % of the
+// summed stage times (at most four), for summary.md; every stage is in bench.csv and stages_<scene>.png.
+std::string stageShareText(const nlohmann::json& result)
+{
+  std::vector<std::pair<double, std::string>> stages;
+  double total = 0.0;
+  for (const auto& [stage, timing] : result["stages"].items())
+  {
+    stages.emplace_back(timingValue(timing, "gpu_ms"), stage);
+    total += stages.back().first;
+  }
+  std::sort(stages.begin(), stages.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string text;
+  for (std::size_t i = 0; i < stages.size() && i < 4; ++i)
+  {
+    if (total <= 0.0 || stages[i].first < 0.05 * total)
+    {
+      break;
+    }
+    std::ostringstream item;
+    item << stages[i].second << " " << std::fixed << std::setprecision(1) << stages[i].first << " ("
+         << std::setprecision(0) << 100.0 * stages[i].first / total << " %)";
+    text += (text.empty() ? "" : ", ") + item.str();
+  }
+  return text;
+}
+
+double structureBytesOf(const nlohmann::json& result)
+{
+  return result.value("light_structure_gpu_bytes_total", 0.0);
+}
+
+// The error columns of bench.csv, in order, with where each comes from in a result's "error".
+struct ErrorColumn
+{
+  const char* header;
+  const char* set; // "covered" or "penumbra"
+  const char* key;
+};
+const std::vector<ErrorColumn>& benchErrorColumns()
+{
+  static const std::vector<ErrorColumn> columns{ { "rmse", "covered", "rmse" }, { "mae", "covered", "mae" },
+    { "max_abs_error", "covered", "max_abs_error" }, { "fraction_above_0.05", "covered", "fraction_above_0.05" },
+    { "p99_abs_error", "covered", "p99_abs_error" }, { "penumbra_rmse", "penumbra", "rmse" },
+    { "penumbra_p99_abs_error", "penumbra", "p99_abs_error" },
+    { "penumbra_fraction_above_0.05", "penumbra", "fraction_above_0.05" }, { "penumbra_pixels", "penumbra", "pixels" } };
+  return columns;
 }
 
 std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& statisticNames)
 {
   const std::vector<std::string> stages = stageColumns(rows);
-  std::ostringstream csv;
-  csv << "scene,scene_overrides,technique,settings,status,frame_gpu_ms,frame_wall_ms";
+  std::vector<std::string> header{ "scene", "scene_overrides", "technique", "settings", "status", "frame_gpu_ms",
+    "frame_gpu_ms_min", "frame_gpu_ms_max", "frame_wall_ms", "frame_wall_ms_min", "frame_wall_ms_max" };
   for (const std::string& stage : stages)
   {
-    csv << "," << stage << "_gpu_ms";
+    for (const char* suffix : { "_gpu_ms", "_gpu_ms_min", "_gpu_ms_max" })
+    {
+      header.push_back(stage + suffix);
+    }
   }
-  for (const std::string& name : statisticNames)
+  header.push_back("light_structure_gpu_bytes");
+  header.insert(header.end(), statisticNames.begin(), statisticNames.end());
+  for (const ErrorColumn& column : benchErrorColumns())
   {
-    csv << "," << name;
+    header.push_back(column.header);
   }
-  csv << ",rmse,mae,max_abs_error,fraction_above_0.05,penumbra_rmse,penumbra_pixels,error\n";
+  header.insert(header.end(), { "renderer", "error" });
+  std::ostringstream csv;
+  csv << joined(header, ",") << "\n";
   for (const nlohmann::json& row : rows)
   {
-    csv << csvField(row["scene"]) << "," << csvField(row["scene_overrides"]) << "," << row["technique"].get<std::string>() << "," << csvField(row["settings"])
-        << "," << row["status"].get<std::string>();
+    std::vector<std::string> cells{ csvField(row["scene"]), csvField(row["scene_overrides"]),
+      row["technique"].get<std::string>(), csvField(row["settings"]), row["status"].get<std::string>() };
     if (row["status"] != "ok")
     {
-      // Empty frame times, stages, statistics and the six error columns, then the error.
-      csv << std::string(2 + stages.size() + statisticNames.size() + 6, ',') << "," << csvField(row["error"]) << "\n";
+      cells.resize(header.size() - 1);
+      cells.push_back(csvField(row["error"]));
+      csv << joined(cells, ",") << "\n";
       continue;
     }
     const nlohmann::json& result = row["result"];
-    csv << "," << numberText(result["frame_gpu_ms"]) << "," << numberText(result["frame_wall_ms"]);
+    const auto number = [](double value) { return numberText(nlohmann::json(value)); };
+    for (const char* key : { "frame_gpu_ms", "frame_wall_ms" })
+    {
+      cells.insert(cells.end(),
+        { number(timingValue(result, key)), number(timingMin(result, key)), number(timingMax(result, key)) });
+    }
     for (const std::string& stage : stages)
     {
-      csv << "," << (result["stages"].contains(stage) ? numberText(result["stages"][stage]["gpu_ms"]) : "");
+      const bool ran = result["stages"].contains(stage);
+      const nlohmann::json timing = ran ? result["stages"][stage] : nlohmann::json::object();
+      cells.insert(cells.end(), { ran ? number(timingValue(timing, "gpu_ms")) : "",
+        ran ? number(timingMin(timing, "gpu_ms")) : "", ran ? number(timingMax(timing, "gpu_ms")) : "" });
     }
+    cells.push_back(format(static_cast<unsigned long long>(structureBytesOf(result))));
     const nlohmann::json statistics = statisticsOf(result);
     for (const std::string& name : statisticNames)
     {
-      csv << "," << (statistics.contains(name) ? numberText(statistics[name]) : "");
+      cells.push_back(statistics.contains(name) ? numberText(statistics[name]) : "");
     }
-    if (result.contains("error"))
+    for (const ErrorColumn& column : benchErrorColumns())
     {
-      const nlohmann::json& covered = result["error"]["covered"];
-      const nlohmann::json& penumbra = result["error"]["penumbra"];
-      csv << "," << numberText(covered["rmse"]) << "," << numberText(covered["mae"]) << ","
-          << numberText(covered["max_abs_error"]) << "," << numberText(covered["fraction_above_0.05"]) << ","
-          << numberText(penumbra["rmse"]) << "," << penumbra["pixels"].get<std::size_t>() << ",\n";
+      const bool has = result.contains("error") && result["error"][column.set].contains(column.key);
+      cells.push_back(has ? numberText(result["error"][column.set][column.key]) : "");
     }
-    else
-    {
-      csv << ",,,,,,,no reference\n";
-    }
+    cells.push_back(csvField(result.value("gl_renderer", std::string())));
+    cells.push_back(result.contains("error") ? "" : "no reference");
+    csv << joined(cells, ",") << "\n";
   }
   return csv.str();
 }
 
-std::string summaryMarkdown(const nlohmann::json& rows, const std::set<std::string>& statisticNames)
+std::string summaryMarkdown(const nlohmann::json& rows, const BenchOptions& options, const BenchEnvironment& environment,
+  const std::vector<std::string>& chartFiles)
 {
   std::ostringstream markdown;
-  markdown << "| scene | technique | settings | GPU ms | technique GPU ms | wall ms | RMSE | penumbra RMSE | max error | statistics |\n"
-           << "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+  markdown << "Renderer: " << (environment.renderer.empty() ? std::string("unknown") : environment.renderer)
+           << (environment.glVersion.empty() ? std::string() : ", OpenGL " + environment.glVersion) << ".  \n"
+           << "Machine: " << (environment.cpu.empty() ? std::string("unknown CPU") : environment.cpu) << ", "
+           << environment.logicalCores << " logical cores.  \n"
+           << "Resolution " << options.resolution << "; times are the median (min-max) of " << options.repeat
+           << " timed frame(s) after one warm-up; errors are of visibility against a " << options.referenceSamples
+           << "-sample ray-traced reference over covered pixels, the penumbra being the pixels whose reference is "
+              "strictly between 0 and 1; p99 is the 99th percentile of |error|, > 0.05 the share of pixels off by more "
+              "than 0.05. Structures: GPU memory of the light-space structures built. Statistics: at most three key "
+              "counters; every counter is in bench.json and bench.csv.\n\n";
+  markdown << "| scene | technique | settings | GPU ms median (min-max) | largest stages, GPU ms (share) | wall ms | "
+              "RMSE | penumbra RMSE | p99 error | penumbra p99 | > 0.05 | max error | structures MiB | statistics |\n"
+           << "| --- | --- | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
   for (const nlohmann::json& row : rows)
   {
     if (row["status"] != "ok")
     {
       markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
                << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
-               << " | | | | | | |\n";
+               << " | | | | | | | | | | |\n";
       continue;
     }
     const nlohmann::json& result = row["result"];
     const bool hasError = result.contains("error");
-    markdown << std::fixed << std::setprecision(2) << "| " << row["scene_name"].get<std::string>() << " | "
-             << row["technique"].get<std::string>() << " | " << row["settings"].get<std::string>() << " | "
-             << result["frame_gpu_ms"].get<double>() << " | "
-             << (result["stages"].contains("technique") ? result["stages"]["technique"]["gpu_ms"].get<double>() : 0.0)
-             << " | " << result["frame_wall_ms"].get<double>() << " | "
-             << std::setprecision(4)
-             << (hasError ? numberText(result["error"]["covered"]["rmse"]) : std::string("-")) << " | "
-             << (hasError ? numberText(result["error"]["penumbra"]["rmse"]) : std::string("-")) << " | "
-             << (hasError ? numberText(result["error"]["covered"]["max_abs_error"]) : std::string("-")) << " | "
-             << statisticsText(result, statisticNames) << " |\n";
+    const auto errorCell = [&](const char* set, const char* key) {
+      return hasError && result["error"][set].contains(key) ? numberText(result["error"][set][key]) : std::string("-");
+    };
+    std::ostringstream time;
+    time << std::fixed << std::setprecision(2) << timingValue(result, "frame_gpu_ms") << " ("
+         << timingMin(result, "frame_gpu_ms") << "-" << timingMax(result, "frame_gpu_ms") << ")";
+    std::ostringstream wall;
+    wall << std::fixed << std::setprecision(2) << timingValue(result, "frame_wall_ms");
+    std::ostringstream bytes;
+    bytes << std::fixed << std::setprecision(2) << structureBytesOf(result) / (1024.0 * 1024.0);
+    markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
+             << row["settings"].get<std::string>() << " | " << time.str() << " | " << stageShareText(result) << " | "
+             << wall.str() << " | " << errorCell("covered", "rmse") << " | " << errorCell("penumbra", "rmse") << " | "
+             << errorCell("covered", "p99_abs_error") << " | " << errorCell("penumbra", "p99_abs_error") << " | "
+             << errorCell("covered", "fraction_above_0.05") << " | " << errorCell("covered", "max_abs_error") << " | "
+             << bytes.str() << " | " << compactStatisticsText(result) << " |\n";
+  }
+  if (!chartFiles.empty())
+  {
+    markdown << "\nCharts:\n\n";
+    for (const std::string& file : chartFiles)
+    {
+      markdown << "- [" << file << "](" << file << ")\n";
+    }
   }
   return markdown.str();
 }
 
-// speed_vs_error_<scene>.png: one per scene variant with error metrics; one series per technique, a sweep's
-// configurations being points of the same series.
-void writeSpeedErrorCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const std::string& resolution, const std::filesystem::path& dir)
+// The file-name stem of a scene variant: its dataset folder, then each swept scene value.
+std::string variantStem(const SceneVariant& variant, std::size_t sceneIndex)
 {
+  std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
+  stem = stem.empty() ? std::to_string(sceneIndex) : stem;
+  for (const std::string& swept : variant.swept)
+  {
+    std::string part = swept;
+    for (char& c : part)
+    {
+      c = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+    }
+    stem += "_" + part;
+  }
+  return stem;
+}
+
+// The keys some --sweep varies.
+std::set<std::string> sweptKeys(const std::vector<SettingSweep>& sweeps)
+{
+  std::set<std::string> keys;
+  for (const SettingSweep& sweep : sweeps)
+  {
+    keys.insert(sweep.keys.begin(), sweep.keys.end());
+  }
+  return keys;
+}
+
+// A configuration's series on the charts (technique and the settings no sweep varies) and its point's label (the
+// swept values, space-separated; empty when nothing is swept).
+std::pair<std::string, std::string> seriesAndLabel(const Configuration& configuration, const std::set<std::string>& swept)
+{
+  std::string series = configuration.technique;
+  std::string label;
+  for (const std::string& setting : configuration.settings)
+  {
+    const std::size_t equals = setting.find('=');
+    if (swept.count(setting.substr(0, equals)))
+    {
+      label += (label.empty() ? "" : " ") + setting.substr(equals + 1);
+    }
+    else
+    {
+      series += " " + setting;
+    }
+  }
+  return { series, label };
+}
+
+// speed_vs_error_<scene>.png (RMSE) and, where the reference has a penumbra, speed_vs_penumbra_error_<scene>.png: one
+// per scene variant with error metrics; one series per technique and fixed settings, a sweep's configurations being
+// its points, joined and labelled by their swept values.
+std::vector<std::string> writeSpeedErrorCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const std::vector<SettingSweep>& sweeps, const std::string& resolution,
+  const BenchEnvironment& environment, const std::filesystem::path& dir)
+{
+  const std::set<std::string> swept = sweptKeys(sweeps);
   std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
+  std::map<std::size_t, std::vector<ChartPoint>> penumbraPoints;
   for (std::size_t c = 0; c < rows.size(); ++c)
   {
     const nlohmann::json& row = rows[c];
     if (row["status"] == "ok" && row["result"].contains("error"))
     {
       const nlohmann::json& result = row["result"];
-      chartPoints[configurations[c].sceneIndex].push_back({ row["technique"].get<std::string>(),
-        result["frame_gpu_ms"].get<double>(), result["error"]["covered"]["rmse"].get<double>() });
+      const auto [series, label] = seriesAndLabel(configurations[c], swept);
+      const double time = result["frame_gpu_ms"].get<double>();
+      chartPoints[configurations[c].sceneIndex].push_back(
+        { series, time, result["error"]["covered"]["rmse"].get<double>(), label });
+      if (result["error"]["penumbra"]["pixels"].get<std::size_t>() > 0)
+      {
+        penumbraPoints[configurations[c].sceneIndex].push_back(
+          { series, time, result["error"]["penumbra"]["rmse"].get<double>(), label });
+      }
     }
   }
+  std::vector<std::string> files;
   for (const auto& [sceneIndex, points] : chartPoints)
   {
     const SceneVariant& variant = variants[sceneIndex];
-    std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
-    stem = stem.empty() ? std::to_string(sceneIndex) : stem;
-    for (const std::string& swept : variant.swept)
+    const std::string stem = variantStem(variant, sceneIndex);
+    files.push_back("speed_vs_error_" + stem + ".png");
+    writeSpeedErrorChart(points,
+      benchChartTitle("speed vs error: " + variant.name + " (" + resolution + ")", environment), dir / files.back());
+    if (penumbraPoints.count(sceneIndex))
     {
-      std::string part = swept;
-      for (char& c : part)
-      {
-        c = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
-      }
-      stem += "_" + part;
+      files.push_back("speed_vs_penumbra_error_" + stem + ".png");
+      SpeedErrorAxes axes;
+      axes.errorTitle = "penumbra RMSE (reference strictly inside (0, 1))";
+      writeSpeedErrorChart(penumbraPoints.at(sceneIndex),
+        benchChartTitle("speed vs penumbra error: " + variant.name + " (" + resolution + ")", environment),
+        dir / files.back(), axes);
     }
-    writeSpeedErrorChart(points, "speed vs error: " + variant.name + " (" + resolution + ")",
-      dir / ("speed_vs_error_" + stem + ".png"));
   }
+  return files;
+}
+
+// stages_<scene>.png: per scene variant, a bar per configuration stacked from its stages' median GPU times.
+std::vector<std::string> writeStageCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const std::string& resolution, const BenchEnvironment& environment,
+  const std::filesystem::path& dir)
+{
+  const std::vector<std::string> allStages = stageColumns(rows);
+  std::map<std::size_t, std::vector<std::size_t>> byVariant;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    if (rows[c]["status"] == "ok")
+    {
+      byVariant[configurations[c].sceneIndex].push_back(c);
+    }
+  }
+  std::vector<std::string> files;
+  for (const auto& [sceneIndex, indices] : byVariant)
+  {
+    StageChartSpec spec;
+    for (const std::string& stage : allStages)
+    {
+      if (std::any_of(indices.begin(), indices.end(),
+            [&](std::size_t c) { return rows[c]["result"]["stages"].contains(stage); }))
+      {
+        spec.stages.push_back(stage);
+      }
+    }
+    std::vector<StageBar> bars;
+    for (const std::size_t c : indices)
+    {
+      const nlohmann::json& result = rows[c]["result"];
+      std::ostringstream label;
+      label << rows[c]["technique"].get<std::string>()
+            << (rows[c]["settings"].get<std::string>().empty() ? "" : " " + rows[c]["settings"].get<std::string>())
+            << "  " << std::fixed << std::setprecision(1) << timingValue(result, "frame_gpu_ms") << " ms ("
+            << timingMin(result, "frame_gpu_ms") << "-" << timingMax(result, "frame_gpu_ms") << ")";
+      StageBar bar{ label.str(), {} };
+      for (const std::string& stage : spec.stages)
+      {
+        bar.stageMs.push_back(result["stages"].contains(stage) ? timingValue(result["stages"][stage], "gpu_ms") : 0.0);
+      }
+      bars.push_back(bar);
+    }
+    const SceneVariant& variant = variants[sceneIndex];
+    spec.title = benchChartTitle("GPU time by stage: " + variant.name + " (" + resolution + "; label: frame median (min-max))",
+      environment);
+    files.push_back("stages_" + variantStem(variant, sceneIndex) + ".png");
+    writeStageChart(bars, spec, dir / files.back());
+  }
+  return files;
+}
+
+// The side-by-side of two montages: `top` above `bottom`, on white, left-aligned.
+ImageU8 stackImages(const ImageU8& top, const ImageU8& bottom)
+{
+  ImageU8 stacked(std::max(top.width, bottom.width), top.height + bottom.height, 3, 255);
+  const auto place = [&](const ImageU8& image, int rowOffset) {
+    for (int y = 0; y < image.height; ++y)
+    {
+      std::copy_n(&image.data[static_cast<std::size_t>(y) * image.width * 3], static_cast<std::size_t>(image.width) * 3,
+        &stacked.data[(static_cast<std::size_t>(y + rowOffset) * stacked.width) * 3]);
+    }
+  };
+  place(bottom, 0); // row 0 at the bottom
+  place(top, bottom.height);
+  return stacked;
+}
+
+// thumbnails_<scene>.png: per scene variant, the reference and each configuration's visibility (one scale) above each
+// configuration's error against the reference (one signed scale), from the children's <n>.thumbnail.vti, which are
+// removed afterwards (they are the strip's inputs, not results).
+std::vector<std::string> writeThumbnailStrips(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const std::string& resolution, const BenchEnvironment& environment,
+  const std::filesystem::path& dir)
+{
+  std::map<std::size_t, std::vector<MontagePanel>> visibilityPanels;
+  std::map<std::size_t, std::vector<MontagePanel>> errorPanels;
+  const auto maskOf = [](const ImageF& mask) {
+    ImageU8 valid(mask.width, mask.height, 1, 0);
+    for (std::size_t i = 0; i < mask.pixelCount(); ++i)
+    {
+      valid.data[i] = mask.data[i] > 0.5f ? 255 : 0;
+    }
+    return valid;
+  };
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const std::filesystem::path file = dir / "runs" / format(c, ".thumbnail.vti");
+    if (rows[c]["status"] != "ok" || !std::filesystem::is_regular_file(file))
+    {
+      continue;
+    }
+    const std::vector<NamedImage> thumbnails = readVti(file);
+    const std::size_t sceneIndex = configurations[c].sceneIndex;
+    const nlohmann::json& result = rows[c]["result"];
+    std::vector<std::string> labels{ rows[c]["technique"].get<std::string>() };
+    for (const std::string& setting : configurations[c].settings)
+    {
+      labels.push_back(setting);
+    }
+    const NamedImage* reference = findNamed(thumbnails, "reference");
+    if (reference && visibilityPanels[sceneIndex].empty())
+    {
+      visibilityPanels[sceneIndex].push_back(
+        { reference->image, maskOf(requireArray(thumbnails, "reference_mask", file.string())), { "reference" } });
+    }
+    std::vector<std::string> visibilityLabels = labels;
+    if (result.contains("error"))
+    {
+      visibilityLabels.push_back("RMSE " + numberText(result["error"]["covered"]["rmse"]));
+    }
+    visibilityPanels[sceneIndex].push_back({ requireArray(thumbnails, "visibility", file.string()),
+      maskOf(requireArray(thumbnails, "visibility_mask", file.string())), visibilityLabels });
+    if (const NamedImage* error = findNamed(thumbnails, "error"))
+    {
+      std::vector<std::string> errorLabels = labels;
+      if (result.contains("error"))
+      {
+        errorLabels.push_back("p99 " + numberText(result["error"]["covered"]["p99_abs_error"]));
+      }
+      errorPanels[sceneIndex].push_back(
+        { error->image, maskOf(requireArray(thumbnails, "error_mask", file.string())), errorLabels });
+    }
+  }
+  std::vector<std::string> files;
+  for (const auto& [sceneIndex, panels] : visibilityPanels)
+  {
+    const SceneVariant& variant = variants[sceneIndex];
+    MontageOptions visibility;
+    visibility.title = "visibility: " + variant.name + " (" + resolution + ", thumbnails) - " + environment.renderer;
+    ImageU8 strip = renderMontage(panels, visibility);
+    if (errorPanels.count(sceneIndex))
+    {
+      MontageOptions error;
+      error.title = "error (technique - reference)";
+      error.kind = BufferKind::Signed;
+      strip = stackImages(strip, renderMontage(errorPanels.at(sceneIndex), error));
+    }
+    files.push_back("thumbnails_" + variantStem(variant, sceneIndex) + ".png");
+    writePng(dir / files.back(), strip);
+  }
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    std::error_code ignored;
+    std::filesystem::remove(dir / "runs" / format(c, ".thumbnail.vti"), ignored);
+  }
+  return files;
+}
+
+// cost_growth_<scene>.png, when a --sweep varies shadow_map_size: each series' frame GPU time and its largest stage's
+// against the map size on log-log axes, beside a line growing as the texel count (size squared) from the smallest
+// size's frame time of the first series: a slope reads off how the cost grows.
+std::vector<std::string> writeCostGrowthCharts(const nlohmann::json& rows,
+  const std::vector<Configuration>& configurations, const std::vector<SceneVariant>& variants,
+  const std::vector<SettingSweep>& sweeps, const std::string& resolution, const BenchEnvironment& environment,
+  const std::filesystem::path& dir)
+{
+  const std::string key = "shadow_map_size";
+  if (!sweptKeys(sweeps).count(key))
+  {
+    return {};
+  }
+  std::set<std::string> others = sweptKeys(sweeps);
+  others.erase(key);
+  std::map<std::size_t, std::vector<SweepPoint>> charts;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const std::optional<double> size = settingNumber(configurations[c].settings, key);
+    if (rows[c]["status"] != "ok" || !size || !(*size > 0.0))
+    {
+      continue;
+    }
+    // Series: the technique with every setting but the map size (other swept keys too: each is its own line).
+    std::string series = configurations[c].technique;
+    for (const std::string& setting : configurations[c].settings)
+    {
+      series += setting.rfind(key + "=", 0) == 0 ? "" : " " + setting;
+    }
+    const nlohmann::json& result = rows[c]["result"];
+    charts[configurations[c].sceneIndex].push_back({ series + " frame", *size, timingValue(result, "frame_gpu_ms") });
+    std::string largest;
+    double largestMs = -1.0;
+    for (const auto& [stage, timing] : result["stages"].items())
+    {
+      if (timingValue(timing, "gpu_ms") > largestMs)
+      {
+        largestMs = timingValue(timing, "gpu_ms");
+        largest = stage;
+      }
+    }
+    if (largestMs > 0.0)
+    {
+      charts[configurations[c].sceneIndex].push_back({ series + " " + largest, *size, largestMs });
+    }
+  }
+  std::vector<std::string> files;
+  for (auto& [sceneIndex, points] : charts)
+  {
+    points.erase(std::remove_if(points.begin(), points.end(), [](const SweepPoint& p) { return !(p.value > 0.0); }),
+      points.end());
+    if (points.empty())
+    {
+      continue;
+    }
+    const SweepPoint anchor = *std::min_element(points.begin(), points.end(),
+      [](const SweepPoint& a, const SweepPoint& b) { return a.parameter < b.parameter; });
+    double largestSize = anchor.parameter;
+    for (const SweepPoint& point : points)
+    {
+      largestSize = std::max(largestSize, point.parameter);
+    }
+    const std::string guide = "~ size^2 (texels), from " + anchor.series; // "~" sorts it last in the legend
+    points.push_back({ guide, anchor.parameter, anchor.value });
+    points.push_back({ guide, largestSize, anchor.value * (largestSize / anchor.parameter) * (largestSize / anchor.parameter) });
+    const SceneVariant& variant = variants[sceneIndex];
+    files.push_back("cost_growth_" + variantStem(variant, sceneIndex) + ".png");
+    writeSweepChart(points,
+      benchChartTitle("cost against shadow_map_size: " + variant.name + " (" + resolution + ")", environment),
+      { "shadow_map_size (texels across)", "GPU time (ms, median)", true, true }, dir / files.back());
+  }
+  return files;
 }
 
 // With exactly one numeric --scene-sweep (e.g. light sizes): sweep_time_<scene>.png and sweep_rmse_<scene>.png,
 // frame GPU time and RMSE against the swept value, per scene file; one series per technique and settings.
 void writeSceneSweepCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const BenchEnvironment& environment,
+  const std::filesystem::path& dir)
 {
   if (options.sceneSweeps.size() != 1)
   {
@@ -1003,9 +1502,11 @@ void writeSceneSweepCharts(const nlohmann::json& rows, const std::vector<Configu
   {
     const std::string stem = std::filesystem::path(file).parent_path().filename().string();
     const bool positive = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.parameter > 0.0; });
-    writeSweepChart(points, "frame GPU time against " + pointer + ": " + stem + " (" + options.resolution + ")",
+    writeSweepChart(points,
+      benchChartTitle("frame GPU time against " + pointer + ": " + stem + " (" + options.resolution + ")", environment),
       { pointer, "frame GPU time (ms)", positive, true }, dir / ("sweep_time_" + stem + ".png"));
-    writeSweepChart(sweepErrors.at(file), "RMSE against " + pointer + ": " + stem + " (" + options.resolution + ")",
+    writeSweepChart(sweepErrors.at(file),
+      benchChartTitle("RMSE against " + pointer + ": " + stem + " (" + options.resolution + ")", environment),
       { pointer, "RMSE of visibility vs ray-traced reference", positive, false }, dir / ("sweep_rmse_" + stem + ".png"));
   }
 }
@@ -1014,7 +1515,8 @@ void writeSceneSweepCharts(const nlohmann::json& rows, const std::vector<Configu
 // metrics/DepthProfile.h), and depth_profile_<scene>.png, the medians and closed forms against the eye's depth plus
 // logarithmic warping's closed form (§4.2.1) for the first configuration that has a closed form.
 void writeDepthProfiles(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::filesystem::path& dir)
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const BenchEnvironment& environment,
+  const std::filesystem::path& dir)
 {
   if (options.depthProfile.empty())
   {
@@ -1096,22 +1598,11 @@ void writeDepthProfiles(const nlohmann::json& rows, const std::vector<Configurat
     const SceneVariant& variant = variants[sceneIndex];
     std::string stem = std::filesystem::path(variant.file).parent_path().filename().string();
     stem = stem.empty() ? std::to_string(sceneIndex) : stem;
-    writeDepthProfileChart(series, options.depthProfile + " median per depth bin: " + variant.name + " (" +
-        options.resolution + ")", options.depthProfile, dir / ("depth_profile_" + stem + ".png"));
+    writeDepthProfileChart(series,
+      benchChartTitle(options.depthProfile + " median per depth bin: " + variant.name + " (" + options.resolution + ")",
+        environment),
+      options.depthProfile, dir / ("depth_profile_" + stem + ".png"));
   }
-}
-
-// The number a configuration's settings give `key`, if it sets it to one.
-std::optional<double> settingNumber(const std::vector<std::string>& settings, const std::string& key)
-{
-  for (const std::string& setting : settings)
-  {
-    if (setting.rfind(key + "=", 0) == 0)
-    {
-      return parseNumber(setting.substr(key.size() + 1));
-    }
-  }
-  return std::nullopt;
 }
 
 // --view-stats with a --sweep: against the first swept key's value (e.g. cascades, swept jointly with a matching
@@ -1121,7 +1612,7 @@ std::optional<double> settingNumber(const std::vector<std::string>& settings, co
 // misclassified pixels). A series is a technique and its settings other than the first sweep's keys.
 void writeViewStatisticCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
   const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::vector<SettingSweep>& sweeps,
-  const std::filesystem::path& dir)
+  const BenchEnvironment& environment, const std::filesystem::path& dir)
 {
   if (options.viewStats.empty() || sweeps.empty())
   {
@@ -1172,34 +1663,55 @@ void writeViewStatisticCharts(const nlohmann::json& rows, const std::vector<Conf
       const bool positiveY = std::all_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.value > 0.0; });
       if (buffer.empty())
       {
-        writeSweepChart(points, "pixels wrong by more than 0.05 against " + axis + ": " + variant.name + " (" +
-            options.resolution + ")",
+        writeSweepChart(points,
+          benchChartTitle("pixels wrong by more than 0.05 against " + axis + ": " + variant.name + " (" +
+              options.resolution + ")", environment),
           { axis, "share of covered pixels wrong by more than 0.05", positiveX, positiveY },
           dir / ("sweep_above_0.05_" + stem + ".png"));
         continue;
       }
-      writeSweepChart(points, buffer + " over the view (max, mean) against " + axis + ": " + variant.name + " (" +
-          options.resolution + ")",
+      writeSweepChart(points,
+        benchChartTitle(buffer + " over the view (max, mean) against " + axis + ": " + variant.name + " (" +
+            options.resolution + ")", environment),
         { axis, buffer + " over the view", positiveX, positiveY }, dir / ("view_" + buffer + "_" + stem + ".png"));
     }
   }
 }
 
-// bench.json, bench.csv, summary.md and the charts.
+// bench.json, bench.csv, the charts and thumbnail strips, then summary.md (which lists them).
 void writeBenchResults(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
   const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::vector<SettingSweep>& sweeps,
   const std::filesystem::path& dir)
 {
+  const BenchEnvironment environment = benchEnvironment(rows);
+  nlohmann::json configurationsJson = rows;
+  for (nlohmann::json& row : configurationsJson)
+  {
+    if (row["status"] == "ok")
+    {
+      row["statistics"] = statisticsOf(row["result"]); // every counter; summary.md shows at most three
+    }
+  }
   writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
-              { "reference_samples", options.referenceSamples }, { "configurations", rows } },
+              { "reference_samples", options.referenceSamples }, { "renderer", environment.renderer },
+              { "gl_version", environment.glVersion },
+              { "machine", { { "cpu", environment.cpu }, { "logical_cores", environment.logicalCores } } },
+              { "configurations", configurationsJson } },
     dir / "bench.json");
   const std::set<std::string> statisticNames = statisticNamesOf(rows);
   writeFileChecked(dir / "bench.csv", benchCsv(rows, statisticNames));
-  writeFileChecked(dir / "summary.md", summaryMarkdown(rows, statisticNames));
-  writeSpeedErrorCharts(rows, configurations, variants, options.resolution, dir);
-  writeSceneSweepCharts(rows, configurations, variants, options, dir);
-  writeDepthProfiles(rows, configurations, variants, options, dir);
-  writeViewStatisticCharts(rows, configurations, variants, options, sweeps, dir);
+  std::vector<std::string> charts = writeStageCharts(rows, configurations, variants, options.resolution, environment, dir);
+  for (const std::vector<std::string>& more :
+    { writeSpeedErrorCharts(rows, configurations, variants, sweeps, options.resolution, environment, dir),
+      writeThumbnailStrips(rows, configurations, variants, options.resolution, environment, dir),
+      writeCostGrowthCharts(rows, configurations, variants, sweeps, options.resolution, environment, dir) })
+  {
+    charts.insert(charts.end(), more.begin(), more.end());
+  }
+  writeSceneSweepCharts(rows, configurations, variants, options, environment, dir);
+  writeDepthProfiles(rows, configurations, variants, options, environment, dir);
+  writeViewStatisticCharts(rows, configurations, variants, options, sweeps, environment, dir);
+  writeFileChecked(dir / "summary.md", summaryMarkdown(rows, options, environment, charts));
 }
 
 // bench --plan (cli/BenchPlan.h): every reference the configurations need and is not in the cache yet (whole, or as
@@ -1287,8 +1799,11 @@ std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2
 
 // bench --collect: the rows of the plan's configurations from what their tasks wrote; every unfinished job (a
 // reference, merge or configuration) named in `log` and returned in `unfinished`.
+// The configurations' thumbnails (bench-run's <result>.thumbnail.vti, the result being named <n>.json.partial in a
+// plan) are copied to where writeThumbnailStrips reads a bench's, under `dir`.
 nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVariant>& variants,
-  const std::vector<Configuration>& configurations, std::vector<PlanJob>& unfinished, std::ostream& log)
+  const std::vector<Configuration>& configurations, std::vector<PlanJob>& unfinished, std::ostream& log,
+  const std::filesystem::path& dir)
 {
   std::vector<const PlanJob*> configurationJobs;
   for (const PlanJob& job : plan.jobs)
@@ -1315,6 +1830,12 @@ nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVari
     const PlanJob& job = *configurationJobs[c];
     rows.push_back(configurationRow(variants[configurations[c].sceneIndex], configurations[c], job.result,
       planJobProblem(plan.dir, job)));
+    const std::filesystem::path thumbnail = std::filesystem::path(job.result + ".partial").replace_extension(".thumbnail.vti");
+    if (rows.back()["status"] == "ok" && std::filesystem::is_regular_file(thumbnail))
+    {
+      std::filesystem::create_directories(dir / "runs");
+      std::filesystem::copy_file(thumbnail, dir / "runs" / format(c, ".thumbnail.vti"));
+    }
   }
   return rows;
 }
@@ -1376,9 +1897,10 @@ int runBench(const BenchOptions& given, std::ostream& log)
     std::vector<PlanJob> unfinished;
     int failed = 0;
     writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
-      const nlohmann::json rows = collectedRows(*plan, variants, configurations, unfinished, log);
+      const nlohmann::json rows = collectedRows(*plan, variants, configurations, unfinished, log, dir);
       failed = countFailed(rows);
       writeBenchResults(rows, configurations, variants, options, sweeps, dir);
+      removeIfEmptyDirectory(dir / "runs");
       if (!unfinished.empty())
       {
         writeRetryLists(plan->dir, unfinished, dir);

@@ -31,6 +31,93 @@ double median(std::vector<double> values)
   return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
 }
 
+// `<key>` (the median, the number every reader of bench.json already takes), `<key>_min` and `<key>_max` over the
+// --repeat frames into `target`: the spread says how far one frame's time can be trusted.
+void putTimingSpread(nlohmann::json& target, const std::string& key, const std::vector<double>& values)
+{
+  target[key] = median(values);
+  target[key + "_min"] = *std::min_element(values.begin(), values.end());
+  target[key + "_max"] = *std::max_element(values.begin(), values.end());
+}
+
+// The nearest-rank 99th percentile of |error| over `errors` (0 for none), as viewStatistics ranks: unlike the largest
+// error, which one misplaced silhouette pixel sets to 1 in almost every frame, it tells techniques apart.
+double percentile99(std::vector<double> errors)
+{
+  if (errors.empty())
+  {
+    return 0.0;
+  }
+  std::sort(errors.begin(), errors.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(errors.size())));
+  return errors[std::max<std::size_t>(rank, 1) - 1];
+}
+
+// metricsJson plus each set's p99_abs_error (the penumbra: the reference strictly inside (0, 1), ErrorMetrics.h).
+nlohmann::json benchErrorJson(const Comparison& comparison)
+{
+  std::vector<double> coveredErrors;
+  std::vector<double> penumbraErrors;
+  for (std::size_t i = 0; i < comparison.error.pixelCount(); ++i)
+  {
+    if (comparison.mask.data[i] > 0.5f)
+    {
+      const double magnitude = std::abs(static_cast<double>(comparison.error.data[i]));
+      coveredErrors.push_back(magnitude);
+      const float referenceValue = comparison.reference.data[i];
+      if (referenceValue > 0.0f && referenceValue < 1.0f)
+      {
+        penumbraErrors.push_back(magnitude);
+      }
+    }
+  }
+  nlohmann::json json = metricsJson(comparison.metrics);
+  json["covered"]["p99_abs_error"] = percentile99(std::move(coveredErrors));
+  json["penumbra"]["p99_abs_error"] = percentile99(std::move(penumbraErrors));
+  return json;
+}
+
+// `image` shrunk by box filtering to at most `longestSide` pixels across, counting only the pixels `mask` marks
+// (an empty mask marks all); a thumbnail pixel none of whose pixels is marked is 0 and unmarked in `thumbnailMask`.
+ImageF benchThumbnail(const ImageF& image, const ImageF& mask, int longestSide, ImageF* thumbnailMask)
+{
+  const int factor = std::max(1, (std::max(image.width, image.height) + longestSide - 1) / longestSide);
+  const int width = std::max(1, image.width / factor);
+  const int height = std::max(1, image.height / factor);
+  ImageF thumbnail(width, height, 1, 0.0f);
+  if (thumbnailMask)
+  {
+    *thumbnailMask = ImageF(width, height, 1, 0.0f);
+  }
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      double sum = 0.0;
+      int marked = 0;
+      for (int dy = 0; dy < factor; ++dy)
+      {
+        for (int dx = 0; dx < factor; ++dx)
+        {
+          const std::size_t source = static_cast<std::size_t>(y * factor + dy) * image.width + (x * factor + dx);
+          if (mask.empty() || mask.data[source] > 0.5f)
+          {
+            sum += image.data[source];
+            ++marked;
+          }
+        }
+      }
+      const std::size_t target = static_cast<std::size_t>(y) * width + x;
+      thumbnail.data[target] = marked > 0 ? static_cast<float>(sum / marked) : 0.0f;
+      if (thumbnailMask)
+      {
+        thumbnailMask->data[target] = marked > 0 ? 1.0f : 0.0f;
+      }
+    }
+  }
+  return thumbnail;
+}
+
 // The image-wide total of each work counter the technique publishes (buffers its descriptor sums over
 // sub-lights, e.g. yfgl09's visited_nodes), over covered pixels like stats.json's means: Yang et al. 2009's
 // Eq. 9 is a statement about this total, which a mean over pixels hides.
@@ -175,7 +262,17 @@ int runBenchConfiguration(const BenchRunOptions& options)
   nlohmann::json stages = nlohmann::json::object();
   for (const StageTiming& stage : last.stages)
   {
-    stages[stage.stage] = { { "gpu_ms", median(stageGpu[stage.stage]) }, { "wall_ms", median(stageWall[stage.stage]) } };
+    nlohmann::json timing = nlohmann::json::object();
+    putTimingSpread(timing, "gpu_ms", stageGpu[stage.stage]);
+    putTimingSpread(timing, "wall_ms", stageWall[stage.stage]);
+    stages[stage.stage] = timing;
+  }
+  nlohmann::json structureBytes = nlohmann::json::object();
+  std::size_t structureBytesTotal = 0;
+  for (const auto& [name, bytes] : last.lightStructureGpuBytes)
+  {
+    structureBytes[name] = bytes;
+    structureBytesTotal += bytes;
   }
   nlohmann::json result = {
     { "scene", options.sceneFile },
@@ -186,21 +283,43 @@ int runBenchConfiguration(const BenchRunOptions& options)
     { "resolution", { last.resolution.x, last.resolution.y } },
     { "repeat", options.repeat },
     { "gl_renderer", last.glRenderer },
+    { "gl_version", last.glVersion },
     { "egl_device", { { "index", last.eglDeviceIndex }, { "description", last.eglDevice } } },
     { "stages", stages },
-    { "frame_gpu_ms", median(frameGpu) },
-    { "frame_wall_ms", median(frameWall) },
+    { "frame_gpu_ms_samples", frameGpu },
     { "technique_statistics", last.techniqueStatistics },
     { "work_counter_sums", workCounterSums(last) },
+    { "light_structure_gpu_bytes", structureBytes },
+    { "light_structure_gpu_bytes_total", structureBytesTotal },
   };
+  putTimingSpread(result, "frame_gpu_ms", frameGpu);
+  putTimingSpread(result, "frame_wall_ms", frameWall);
+  // Small copies of the visibility (and, against a reference, of the reference and the error) beside the result,
+  // <result>.thumbnail.vti: bench lays them out as its per-scene strip and removes them.
+  const int thumbnailSide = 96;
+  const ImageF& coverage = last.find("coverage")->image;
+  ImageF visibleMask;
+  std::vector<NamedImage> thumbnails{ { "visibility", benchThumbnail(last.find("visibility")->image, coverage,
+    thumbnailSide, &visibleMask) } };
+  thumbnails.push_back({ "visibility_mask", visibleMask });
   if (!options.referenceFile.empty())
   {
     const std::vector<NamedImage> reference = readVti(options.referenceFile);
-    const ErrorMetrics metrics = computeErrorMetrics(last.find("visibility")->image,
-      requireArray(reference, "visibility", options.referenceFile), last.find("coverage")->image,
-      requireArray(reference, "coverage", options.referenceFile));
-    result["error"] = metricsJson(metrics);
+    const ImageF& referenceCoverage = requireArray(reference, "coverage", options.referenceFile);
+    const Comparison comparison = compareImages(last.find("visibility")->image,
+      requireArray(reference, "visibility", options.referenceFile), coverage, referenceCoverage);
+    result["error"] = benchErrorJson(comparison);
+    ImageF errorMask;
+    thumbnails.push_back({ "error", benchThumbnail(comparison.error, comparison.mask, thumbnailSide, &errorMask) });
+    thumbnails.push_back({ "error_mask", errorMask });
+    ImageF referenceMask;
+    thumbnails.push_back({ "reference", benchThumbnail(comparison.reference, referenceCoverage, thumbnailSide,
+      &referenceMask) });
+    thumbnails.push_back({ "reference_mask", referenceMask });
   }
+  std::filesystem::path thumbnailFile = options.resultFile;
+  thumbnailFile.replace_extension(".thumbnail.vti");
+  writeVti(thumbnailFile, thumbnails);
   if (profileSettings)
   {
     result["depth_profile"] = depthProfileJson(depthProfile(last, *profileSettings));

@@ -15,6 +15,7 @@
 #include "lessons/RunMontage.h"
 #include "metrics/Comparison.h"
 #include "metrics/ErrorMetrics.h"
+#include "vis/BufferHeatMap.h"
 #include "vis/Montage.h"
 
 #include <nlohmann/json.hpp>
@@ -115,6 +116,8 @@ const char* kindName(BufferKind kind)
     case BufferKind::Signed: return "signed";
     case BufferKind::Categorical: return "categorical";
     case BufferKind::Continuous: return "continuous";
+    case BufferKind::BitMask: return "bit-count";
+    case BufferKind::SummedArea: return "summed-area";
   }
   return "?";
 }
@@ -232,12 +235,17 @@ int runMontage(const MontageCommandOptions& options, std::ostream& log)
       throw InputError("RUN_DIR " + quoted(run.dir) + ": no buffer '" + printable(options.buffer) +
         "' in buffers.vti (it has: " + bufferNames(run.buffers) + ")");
     }
-    if (buffer->image.components != 1)
+    const BufferSpec spec = runBufferSpec(run.stats, options.buffer);
+    if (spec.kind == BufferKind::SummedArea)
+    {
+      throw InputError("--buffer " + printable(options.buffer) + ": is a summed-area table, whose texels are sums "
+        "over rectangles (only box differences mean something); a montage shows per-pixel values");
+    }
+    if (buffer->image.components != 1 && spec.kind != BufferKind::BitMask)
     {
       throw InputError(format("--buffer ", printable(options.buffer), ": has ", buffer->image.components,
         " components in ", quoted(run.dir / "buffers.vti"), "; a montage shows 1-component buffers"));
     }
-    const BufferSpec spec = runBufferSpec(run.stats, options.buffer);
     if (!firstSpec)
     {
       firstSpec = spec;
@@ -250,8 +258,11 @@ int runMontage(const MontageCommandOptions& options, std::ostream& log)
         printable(firstRun) + "; one colour scale cannot show both");
     }
     MontagePanel panel;
-    panel.values = buffer->image;
-    panel.validMask = coverageMask(run.buffers);
+    // A bit mask is shown as its count of set bits (vis/BufferHeatMap.h); the mask marks where it applies.
+    NamedImage declared = *buffer;
+    declared.kind = spec.kind;
+    panel.values = heatMapValues(declared);
+    panel.validMask = runValueMask(run.buffers, *buffer, spec);
     if (reference && !run.stats.contains("error"))
     {
       // The visibility error against --reference, over the pixels covered in both (as `compare`).
@@ -288,6 +299,7 @@ int runMontage(const MontageCommandOptions& options, std::ostream& log)
   montage.unit = firstSpec->unit;
   montage.kind = firstSpec->kind;
   montage.categoryLabels = firstSpec->categoryLabels;
+  montage.commonLines = montageCommonLabels(stats);
   const MontageLayout layout = montageLayout(panels, montage);
   writePngAtomically(renderMontage(panels, montage), out);
   if (!options.quiet)

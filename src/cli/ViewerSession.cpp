@@ -3,6 +3,7 @@
 #include "cli/Commands.h"
 #include "core/Error.h"
 #include "pipeline/ShadowRenderer.h"
+#include "probe/NumberText.h"
 #include "probe/ProbeFigure.h"
 #include "techniques/Registry.h"
 #include "vis/BufferHeatMap.h"
@@ -381,7 +382,7 @@ std::string ViewerSession::stepLightSize(int step)
   Settings next = settings_;
   next.lightSize = light.size * std::pow(kLightSizeFactor, step);
   renderSettings(next);
-  return "light size " + numberText(scene_.lights[static_cast<std::size_t>(start_.lightIndex)].size);
+  return "light size " + readableNumber(scene_.lights[static_cast<std::size_t>(start_.lightIndex)].size);
 }
 
 std::string ViewerSession::resetParameters()
@@ -464,11 +465,13 @@ ViewerCanvas ViewerSession::drawBuffer(const std::string& name) const
   const NamedImage* buffer = frame_.find(name);
   const NamedImage* coverage = frame_.find("coverage");
   SL_CHECK(buffer && coverage);
-  const ImageU8 mask = coverageMask(*coverage);
+  // As the heat map PNGs: grey where the buffer has no value (not covered, or not shadow-tested for a quantity defined
+  // only there), a bit mask as its count of set bits.
+  const ImageU8 mask = bufferValueMask(*buffer, frame_.buffers);
   // The colour scale comes from the frame's own pixels (the enlarged copy repeats each zoom^2 times).
   const HeatMapOptions options = bufferHeatMapOptions(*buffer, &mask);
   const ImageU8 enlargedMask = enlarged(mask, zoom_);
-  canvas.rgb = renderHeatMap(enlarged(buffer->image, zoom_), &enlargedMask, options);
+  canvas.rgb = renderHeatMap(enlarged(heatMapValues(*buffer), zoom_), &enlargedMask, options);
   return canvas;
 }
 
@@ -519,8 +522,9 @@ std::string ViewerSession::parameterText(const ParameterSpec& spec, const Parame
     }
     return spec.name + " = " + values.choice(spec.name) + " (" + choices + ")";
   }
-  return spec.name + " = " + numberText(values.get(spec.name)) + (spec.unit.empty() ? "" : " " + spec.unit) + " (" +
-    numberText(spec.minValue) + " .. " + numberText(spec.maxValue) + ")";
+  // Rounded as a person reads them (1.17, not 1.171875); the render command keeps every digit (renderCommand).
+  return spec.name + " = " + readableNumber(values.get(spec.name)) + (spec.unit.empty() ? "" : " " + spec.unit) + " (" +
+    readableNumber(spec.minValue) + " .. " + readableNumber(spec.maxValue) + ")";
 }
 
 std::vector<std::string> ViewerSession::statusLines() const
@@ -547,7 +551,7 @@ std::vector<std::string> ViewerSession::statusLines() const
   }
   const Light& light = scene_.lights[static_cast<std::size_t>(start_.lightIndex)];
   lines.push_back("parameter  " + parameter + "   light size " +
-    (light.type == LightType::Area ? numberText(light.size) : std::string("-")));
+    (light.type == LightType::Area ? readableNumber(light.size) : std::string("-")));
   lines.push_back(probeStatus_.empty() ? "click a pixel to probe it; h: keys" : probeStatus_);
   return lines;
 }

@@ -3,6 +3,9 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "io/vtkSLOutputWindow.h"
+#include "probe/NumberText.h"
+#include "probe/ProbeFigure.h"
+#include "vis/Canvas.h"
 
 #include <vtkCamera.h>
 #include <vtkImageMapper3D.h>
@@ -25,12 +28,16 @@ namespace
 constexpr int kMarginPx = 8;
 constexpr int kStatusFontPx = 13;
 constexpr int kStatusLineHeightPx = 16;
-constexpr int kStatusLines = 5; // the session's four and the last action's
+// The session's four lines and the last action's, each wrapped to the window's width (issue 31): room for three
+// continuation lines; a status longer than that is cut with its last line saying so.
+constexpr int kStatusLines = 8;
 constexpr int kStatusHeightPx = kStatusLines * kStatusLineHeightPx + 2 * kMarginPx;
-// The probe figure (1200 x 800) is fitted into the right panel; below this height its text is hard to read.
-constexpr int kMinPanelHeightPx = 400;
-constexpr double kProbePanelAspect = 1.5; // the probe figure's width / height
+// The probe figure (ProbeFigure.h: 1200 wide, 400 a row of panels) shows at full size, two rows of panels at a
+// time; f / F scroll it a row (issue 31: fitted into the panel its text was 5 pixels tall).
+constexpr int kProbePanelWidthPx = kProbeFigureWidth;
+constexpr int kProbePanelHeightPx = 2 * kProbeFigurePanelSide;
 constexpr double kBackground[3] = { 0.12, 0.12, 0.12 };
+
 
 void setImage(vtkImageData* data, const ImageU8& rgb)
 {
@@ -72,6 +79,13 @@ void styleText(vtkTextActor* text, bool centred)
   property->SetVerticalJustification(centred ? VTK_TEXT_CENTERED : VTK_TEXT_TOP);
 }
 
+// The width of one status character, as VTK's FreeType renders Courier at kStatusFontPx.
+int statusCharWidthPx()
+{
+  static const int width = std::max(1, (measureText("MMMMMMMMMM", kStatusFontPx).width + 9) / 10);
+  return width;
+}
+
 } // namespace
 
 ViewerWindow::ViewerWindow(ViewerSession& session, void* xDisplay, const std::string& title,
@@ -86,10 +100,10 @@ ViewerWindow::ViewerWindow(ViewerSession& session, void* xDisplay, const std::st
   for (const glm::ivec2& size : session_.canvasSizesOfAllBuffers())
   {
     leftPanelWidth_ = std::max(leftPanelWidth_, size.x);
-    panelHeight_ = std::max(panelHeight_, size.y);
+    canvasHeight_ = std::max(canvasHeight_, size.y);
   }
-  panelHeight_ = std::max(panelHeight_, kMinPanelHeightPx);
-  const int rightPanelWidth = static_cast<int>(std::lround(kProbePanelAspect * panelHeight_));
+  panelHeight_ = std::max(canvasHeight_, kProbePanelHeightPx);
+  const int rightPanelWidth = kProbePanelWidthPx;
 
   window_->SetDisplayId(xDisplay);
   window_->SetMultiSamples(0);
@@ -117,8 +131,17 @@ ViewerWindow::ViewerWindow(ViewerSession& session, void* xDisplay, const std::st
 
   styleText(statusText_, false);
   styleText(probeHint_, true);
+  styleText(keysText_, false);
+  // The keys over the probe panel, on an opaque backing so they read over the figure (h shows and hides them).
+  keysText_->GetTextProperty()->SetBackgroundColor(0.0, 0.0, 0.0);
+  keysText_->GetTextProperty()->SetBackgroundOpacity(0.9);
+  keysText_->GetTextProperty()->SetFrame(1);
+  keysText_->GetTextProperty()->SetFrameColor(0.92, 0.92, 0.92);
+  keysText_->SetInput(keyHelp().c_str());
+  keysText_->VisibilityOff();
   statusPanel_->AddActor2D(statusText_);
   probePanel_->AddActor2D(probeHint_);
+  probePanel_->AddActor2D(keysText_);
 
   style_->KeyPressActivationOff();
   style_->SetKeyHandler([this](char keyCode, const std::string& keySym) { handleKey(keyCode, keySym); });
@@ -157,9 +180,10 @@ std::string ViewerWindow::keyHelp()
          "] / [       light size times / divided by 1.25 (area lights)\n"
          "r           reset the technique's parameters and the light size\n"
          "left click  probe that pixel: its probe figure beside the image, the pixel ringed\n"
+         "f / F       scroll the probe figure down / up a row of panels\n"
          "c           clear the probe\n"
          "s           save a screenshot (PNG) into --screenshot-dir\n"
-         "h           print these keys\n"
+         "h           print these keys (and show / hide them in the window)\n"
          "q, Escape   quit\n";
 }
 
@@ -172,8 +196,9 @@ void ViewerWindow::show()
   const int* size = window_->GetSize();
   const int* origin = imagePanel_->GetOrigin();
   const int zoom = session_.canvas().zoom;
-  report(format("window ", size[0], "x", size[1], ": image pixel (x, y) at window pixel (", origin[0], " + ", zoom,
-    "x, ", origin[1], " + ", zoom, "y) from the bottom-left corner"));
+  const glm::ivec2 offset = imageOffset();
+  report(format("window ", size[0], "x", size[1], ": image pixel (x, y) at window pixel (", origin[0] + offset.x, " + ",
+    zoom, "x, ", origin[1] + offset.y, " + ", zoom, "y) from the bottom-left corner"));
   report("showing " + session_.technique() + ", " + session_.buffer() + " (h: keys)");
 }
 
@@ -243,11 +268,18 @@ void ViewerWindow::handleKey(char keyCode, const std::string& keySym)
       case ']': report(session_.stepLightSize(1)); break;
       case '[': report(session_.stepLightSize(-1)); break;
       case 'r': report(session_.resetParameters()); break;
-      case 'c': report(session_.clearProbe()); break;
+      case 'c':
+        report(session_.clearProbe());
+        figureScrollRows_ = 0;
+        break;
+      case 'f': report(scrollFigure(1)); break;
+      case 'F': report(scrollFigure(-1)); break;
       case 's': saveScreenshot(); break;
       case 'h':
         out_ << keyHelp() << std::flush;
-        report("keys printed on the terminal");
+        keysText_->SetVisibility(!keysText_->GetVisibility());
+        report(keysText_->GetVisibility() ? "keys shown in the window (h hides them) and printed on the terminal"
+                                          : "keys hidden (h shows them)");
         break;
       case 'q':
       case 27: // Escape
@@ -319,6 +351,30 @@ void ViewerWindow::layout()
   statusPanel_->SetViewport(0.0, 0.0, 1.0, panelBottom / height);
   statusText_->SetPosition(kMarginPx, kStatusHeightPx - kMarginPx);
   probeHint_->SetPosition(0.5 * (rightEnd - rightStart), 0.5 * (panelTop - panelBottom));
+  keysText_->SetPosition(kMarginPx, panelTop - panelBottom - kMarginPx);
+}
+
+glm::ivec2 ViewerWindow::imageOffset() const
+{
+  // Centred on the largest canvas of the buffers, so an image pixel stays put whatever buffer is on show.
+  const int* size = imagePanel_->GetSize();
+  return { std::max(0, (size[0] - leftPanelWidth_) / 2), std::max(0, (size[1] - canvasHeight_) / 2) };
+}
+
+std::string ViewerWindow::scrollFigure(int rows)
+{
+  const ImageU8* figure = session_.probeFigureImage();
+  if (figure == nullptr)
+  {
+    return "no probe figure to scroll (click a pixel)";
+  }
+  const int* probeSize = probePanel_->GetSize();
+  const int rowCount = figure->height / kProbeFigurePanelSide;
+  const int shownRows = std::max(1, probeSize[1] / kProbeFigurePanelSide);
+  const int lastFirstRow = std::max(0, rowCount - shownRows);
+  figureScrollRows_ = std::clamp(figureScrollRows_ + rows, 0, lastFirstRow);
+  return format("probe figure rows ", figureScrollRows_ + 1, "..", std::min(rowCount, figureScrollRows_ + shownRows),
+    " of ", rowCount);
 }
 
 void ViewerWindow::refresh()
@@ -329,20 +385,24 @@ void ViewerWindow::refresh()
   const int* imageSize = imagePanel_->GetSize();
   const double fitLeft = std::min({ 1.0, static_cast<double>(imageSize[0]) / canvas.rgb.width,
     static_cast<double>(imageSize[1]) / canvas.rgb.height });
-  placeImage(imagePanel_, fitLeft, 0.0, 0.0);
+  const glm::ivec2 offset = fitLeft < 1.0 ? glm::ivec2(0) : imageOffset();
+  placeImage(imagePanel_, fitLeft, offset.x, offset.y);
   imageActor_->GetProperty()->SetInterpolationType(
     fitLeft < 1.0 ? VTK_LINEAR_INTERPOLATION : VTK_NEAREST_INTERPOLATION);
 
-  // Right: the probe figure, the largest integer zoom that fits, or shrunk to fit (smoothly), centred.
+  // Right: the probe figure at full size, its top (or the row f scrolled to) at the panel's top, centred
+  // across; shrunk (smoothly) only when the window is narrower than the figure.
   if (const ImageU8* figure = session_.probeFigureImage())
   {
     setImage(probeData_, *figure);
     const int* probeSize = probePanel_->GetSize();
-    double fit = std::min(
-      static_cast<double>(probeSize[0]) / figure->width, static_cast<double>(probeSize[1]) / figure->height);
-    fit = fit >= 1.0 ? std::floor(fit) : fit;
-    placeImage(probePanel_, fit, std::floor(0.5 * (probeSize[0] - fit * figure->width)),
-      std::floor(0.5 * (probeSize[1] - fit * figure->height)));
+    const int rowCount = figure->height / kProbeFigurePanelSide;
+    figureScrollRows_ = std::clamp(figureScrollRows_, 0, std::max(0, rowCount - 1));
+    const double fit = std::min(1.0, static_cast<double>(probeSize[0]) / figure->width);
+    const double shownTop = figure->height - figureScrollRows_ * kProbeFigurePanelSide; // figure rows above: scrolled off
+    const double bottom = fit * figure->height <= probeSize[1] ? std::floor(0.5 * (probeSize[1] - fit * figure->height))
+                                                               : std::floor(probeSize[1] - fit * shownTop);
+    placeImage(probePanel_, fit, std::floor(0.5 * (probeSize[0] - fit * figure->width)), bottom);
     probeActor_->GetProperty()->SetInterpolationType(fit < 1.0 ? VTK_LINEAR_INTERPOLATION : VTK_NEAREST_INTERPOLATION);
     probeActor_->VisibilityOn();
     probeHint_->VisibilityOff();
@@ -354,14 +414,32 @@ void ViewerWindow::refresh()
     probeHint_->VisibilityOn();
   }
 
+  // The status wrapped to the window's width (Courier: one width for every character).
+  const int* windowSize = window_->GetSize();
+  const std::size_t maxChars = static_cast<std::size_t>(
+    std::max(16, (windowSize[0] - 2 * kMarginPx) / std::max(1, statusCharWidthPx())));
+  std::vector<std::string> lines = session_.statusLines();
+  if (lastAction_ != lines.back())
+  {
+    lines.push_back(lastAction_); // the probe line already says what a click did
+  }
+  std::vector<std::string> wrapped;
+  for (const std::string& line : lines)
+  {
+    for (const std::string& part : wrapAtSpaces(line, maxChars))
+    {
+      wrapped.push_back(part);
+    }
+  }
+  if (wrapped.size() > std::size_t(kStatusLines))
+  {
+    wrapped.resize(std::size_t(kStatusLines));
+    wrapped.back() = "  (more on the terminal)";
+  }
   std::string status;
-  for (const std::string& line : session_.statusLines())
+  for (const std::string& line : wrapped)
   {
     status += line + "\n";
-  }
-  if (lastAction_ != session_.statusLines().back())
-  {
-    status += lastAction_; // the probe line already says what a click did
   }
   statusText_->SetInput(status.c_str());
   window_->Render();

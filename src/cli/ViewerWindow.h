@@ -3,16 +3,17 @@
 //
 //   +----------------------------+--------------------------------------+
 //   | the buffer on show (image, | the probe figure of the clicked      |
-//   | visibility or a heat map   | pixel (probeFigure: image, shadow-   |
-//   | with its colour key), the  | map crop, light plane, cross-        |
-//   | probed pixel ringed        | section, key numbers), fitted        |
+//   | visibility or a heat map   | pixel (probeFigure) at full size,    |
+//   | with its colour key), the  | two rows of its panels at a time     |
+//   | probed pixel ringed        | (f / F scroll); h: the keys over it  |
 //   +----------------------------+--------------------------------------+
-//   | status: technique, buffer, selected parameter and light size, probe |
+//   | status: technique, buffer, selected parameter and light size, probe, |
+//   | the last action; wrapped to the window's width                      |
 //   +--------------------------------------------------------------------+
 //
-// The left panel shows its canvas 1:1 (the session already enlarged small frames), anchored at its bottom-left
-// corner, so an image pixel stays at the same place on the screen whatever buffer is on show. Keys and clicks
-// go through vtkSLViewerInteractorStyle; every action prints one line on `out`.
+// The left panel shows its canvas 1:1 (the session already enlarged small frames), centred on the largest canvas
+// of the buffers, so an image pixel stays at the same place on the screen whatever buffer is on show. Keys and
+// clicks go through vtkSLViewerInteractorStyle; every action prints one line on `out`.
 #pragma once
 
 #include "cli/ViewerSession.h"
@@ -27,6 +28,8 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTextActor.h>
+
+#include <glm/glm.hpp>
 
 #include <filesystem>
 #include <ostream>
@@ -65,6 +68,8 @@ private:
   void layout();  // viewports and cameras for the window's current size
   void refresh(); // the session's canvas, probe figure and status into the actors, then Render()
   void saveScreenshot();
+  glm::ivec2 imageOffset() const;    // where the canvas' bottom-left corner sits in the image panel
+  std::string scrollFigure(int rows); // f / F
   void report(const std::string& line);
 
   ViewerSession& session_;
@@ -73,7 +78,9 @@ private:
   bool quit_ = false;
   std::string lastAction_; // the status' last line
   int leftPanelWidth_ = 0;  // the widest canvas of the first frame's buffers
-  int panelHeight_ = 0;     // the tallest, at least a probe figure's useful height
+  int canvasHeight_ = 0;    // the tallest canvas of the first frame's buffers
+  int panelHeight_ = 0;     // at least two rows of the probe figure's panels
+  int figureScrollRows_ = 0; // probe-figure rows scrolled off the panel's top
 
   vtkNew<vtkRenderWindow> window_;
   vtkNew<vtkRenderer> backdrop_; // the whole window, under the panels: no pixel is left undrawn
@@ -86,6 +93,7 @@ private:
   vtkNew<vtkImageActor> probeActor_;
   vtkNew<vtkTextActor> statusText_;
   vtkNew<vtkTextActor> probeHint_;
+  vtkNew<vtkTextActor> keysText_; // h: the keys over the probe panel
   vtkNew<vtkSLViewerInteractorStyle> style_;
   vtkNew<vtkRenderWindowInteractor> interactor_;
   // Declared after the interactor they observe, so that they go first.

@@ -13,9 +13,21 @@ namespace sl
 
 enum class BufferKind
 {
-  Continuous, // heat map with a sequential colour map
-  Signed,     // diverging colour map about 0
-  Categorical // integer classes with labels
+  Continuous,  // heat map with a sequential colour map
+  Signed,      // diverging colour map about 0
+  Categorical, // integer classes with labels
+  BitMask,     // bits of a mask, 16 per float component (light_sample_mask): drawn as the count of set bits
+  SummedArea   // a summed-area table (sat_z): a texel holds a sum over a rectangle, wrapping mod 2^32 in fixed
+               // point, so one texel's value says nothing by itself; no heat map (docs/outputs.md)
+};
+
+// The pixels a buffer has a value at. Heat maps and montages draw the others in kNotApplicableColor
+// (vis/HeatMap.h), never in a colour of the scale: a 0 written where no shadow test ran is not a margin of 0.
+enum class BufferDomain
+{
+  Covered,     // every pixel a surface covers (coverage > 0.5)
+  ShadowTested // the covered pixels that reach a shadow test: the frame's shadow_tested buffer is 1 (the surface
+               // receives shadows and the light can reach it); 0 is written elsewhere and means nothing
 };
 
 struct NamedImage
@@ -26,6 +38,7 @@ struct NamedImage
   std::string doc;
   BufferKind kind = BufferKind::Continuous;
   std::vector<std::string> categoryLabels;
+  BufferDomain domain = BufferDomain::Covered;
 };
 
 // The image called `name` in `images`, or nullptr.

@@ -90,6 +90,11 @@ const std::vector<BufferSpec>& commonBufferSpecs()
     { "coverage", "", "1 where a surface covers the pixel centre (multisampled frames: the first sample), 0 for background" },
     { "albedo", "", "surface albedo (3 components)" },
     { "receives_shadows", "", "1 where the surface receives shadows (the object's receive_shadows), else 0" },
+    { "shadow_tested", "", "1 where the pixel reaches a shadow test: covered, receives shadows, and the light can reach "
+                           "the surface (it faces the light, inside a spot's cone, in front of an area light), "
+                           "decided on the CPU from position and normal as the shaders' lightCanReach; 0 elsewhere, "
+                           "where buffers declared on shadow-tested pixels (depth_margin, depth_bias, ...) hold no "
+                           "value and their heat maps are grey" },
   };
   return specs;
 }

@@ -90,7 +90,17 @@ struct BufferSpec
   // with `flagWarning`, which says why and what to change. Infinity: the buffer flags nothing.
   double flagAtOrAbove = std::numeric_limits<double>::infinity();
   std::string flagWarning;
+  // Where the buffer has a value (core/NamedImage.h); the heat maps draw the other pixels grey.
+  BufferDomain domain = BufferDomain::Covered;
 };
+
+// `spec` declared to hold values only where a shadow test ran (BufferDomain::ShadowTested): the shader writes 0
+// elsewhere, which the heat maps must not show as a value.
+inline BufferSpec onShadowTestedPixels(BufferSpec spec)
+{
+  spec.domain = BufferDomain::ShadowTested;
+  return spec;
+}
 
 // An integer the technique's shaders and its C++ share (a loop budget, the bound of an array, the codes of a
 // decision the CPU mirror makes too): generated into the shader preamble as `#define <name> <value>`, from the

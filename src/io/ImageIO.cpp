@@ -24,10 +24,12 @@
 #include <vtkPointData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkStructuredGrid.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLStructuredGridWriter.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkXMLWriter.h>
@@ -549,8 +551,17 @@ std::string writeLeaf(vtkDataObject* leaf, const std::filesystem::path& pieceDir
     writeVtp(pieceDir / (stem + ".vtp"), polyData);
     return stem + ".vtp";
   }
+  if (auto* grid = vtkStructuredGrid::SafeDownCast(leaf))
+  {
+    // probe.vtm's shadow-map crop: texels placed in world space (probe/ProbeDataSet.cxx).
+    vtkNew<vtkXMLStructuredGridWriter> writer;
+    writer->SetInputData(grid);
+    writeXmlDataFile(pieceDir / (stem + ".vts"), writer);
+    return stem + ".vts";
+  }
   auto* image = vtkImageData::SafeDownCast(leaf);
-  SL_CHECK_MSG(image != nullptr, "writeVtm: a leaf of type ", leaf->GetClassName(), " (only vtkPolyData and vtkImageData)");
+  SL_CHECK_MSG(image != nullptr, "writeVtm: a leaf of type ", leaf->GetClassName(),
+    " (only vtkPolyData, vtkStructuredGrid and vtkImageData)");
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(image);
   writeXmlDataFile(pieceDir / (stem + ".vti"), writer);

@@ -31,7 +31,8 @@ struct NamedImage;
 void writeVti(const std::filesystem::path& path, const std::vector<NamedImage>& images);
 // vtkPolyData as a .vtp (XML, appended zlib), written like writeVti.
 void writeVtp(const std::filesystem::path& path, vtkPolyData* polyData);
-// A vtkMultiBlockDataSet as <stem>.vtm plus one file per leaf under <stem>/ (vtkPolyData .vtp, vtkImageData .vti),
+// A vtkMultiBlockDataSet as <stem>.vtm plus one file per leaf under <stem>/ (vtkPolyData .vtp, vtkImageData .vti,
+// vtkStructuredGrid .vts),
 // blocks nested at most two deep (blocks of leaves), names from vtkCompositeDataSet::NAME(). Every file is
 // written and checked like writeVtp; the index is the XML vtkXMLMultiBlockDataReader (ParaView) reads.
 void writeVtm(const std::filesystem::path& path, vtkMultiBlockDataSet* blocks);

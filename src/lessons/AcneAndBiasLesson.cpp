@@ -47,9 +47,11 @@ Lesson acneAndBiasLesson()
       "quad's two, along its diagonal) it breaks down, and those pixels are flagged (`approximation` code 2).");
 
     lesson.montage("depth_margin", "**depth_margin on one diverging scale** (white = 0, red = shadowed by the "
-      "comparison, blue = lit with room to spare), clipped at the 10th percentile of the magnitudes so that the values around 0, "
-      "where acne starts, are not washed out by the far-off ones.",
-      { "bias-off", "bias-default", "bias-large", "midpoint", "dual" }, "depth_margin", 0.1);
+      "comparison, blue = lit with room to spare; light grey = no shadow test, faces turned from the light). The "
+      "scale is logarithmic in the magnitude beyond its 10th percentile (linear within it), so that the values "
+      "around 0, where acne starts, show beside the far-off ones; it ends at the 99.5th percentile of the "
+      "magnitudes, and the title gives the share of pixels beyond.",
+      { "bias-off", "bias-default", "bias-large", "midpoint", "dual" }, "depth_margin", std::nullopt, 0.1);
     lesson.errorMontage("error", "**Against the exact hard shadow** (blue = too dark: acne or aliasing; red = too "
       "bright: light leaking under the caster).",
       { "bias-off", "bias-default", "bias-large", "midpoint", "dual", "polygon-id" });

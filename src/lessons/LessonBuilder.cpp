@@ -229,7 +229,7 @@ void LessonBuilder::reference(const std::string& name, const std::string& datase
 }
 
 void LessonBuilder::montage(const std::string& stem, const std::string& caption, const std::vector<std::string>& runs,
-  const std::string& buffer, std::optional<double> clipQuantile)
+  const std::string& buffer, std::optional<double> clipQuantile, std::optional<double> signedLogLinearQuantile)
 {
   std::vector<MontagePanel> panels;
   std::vector<nlohmann::json> stats;
@@ -241,7 +241,7 @@ void LessonBuilder::montage(const std::string& stem, const std::string& caption,
     SL_CHECK_MSG(values && values->image.components == 1, "lesson ", lesson_.name, ": run ", name, " has no scalar buffer ", buffer);
     SL_CHECK_MSG(runBufferSpec(source.stats, buffer).kind == spec.kind, "lesson ", lesson_.name, ": ", buffer,
       " is not of one kind in the runs of ", stem);
-    panels.push_back({ values->image, coverageMask(source.buffers), {} });
+    panels.push_back({ values->image, runValueMask(source.buffers, *values, spec), {} });
     stats.push_back(source.stats);
   }
   const std::vector<std::vector<std::string>> labels = montageRunLabels(runs, stats);
@@ -255,6 +255,8 @@ void LessonBuilder::montage(const std::string& stem, const std::string& caption,
   options.kind = spec.kind;
   options.categoryLabels = spec.categoryLabels;
   options.clipQuantile = clipQuantile;
+  options.signedLogLinearQuantile = signedLogLinearQuantile;
+  options.commonLines = montageCommonLabels(stats);
   writePng(dir_ / (stem + ".png"), renderMontage(panels, options));
   figures_.push_back({ stem + ".png", caption });
 }
@@ -290,6 +292,7 @@ void LessonBuilder::errorMontage(const std::string& stem, const std::string& cap
   MontageOptions options;
   options.title = "visibility error (run - truth)";
   options.kind = BufferKind::Signed;
+  options.commonLines = montageCommonLabels(stats);
   writePng(dir_ / (stem + ".png"), renderMontage(panels, options));
   figures_.push_back({ stem + ".png", caption });
 }

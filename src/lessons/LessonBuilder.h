@@ -98,10 +98,11 @@ public:
   // The ray-traced ground truth (Embree, settings.referenceSamples stratified samples, seed 1) of a dataset.
   void reference(const std::string& name, const std::string& dataset, const std::vector<std::string>& sceneOverrides = {});
 
-  // A montage of `buffer` over `runs` on one colour scale (vis/Montage.h), written as <stem>.png; clipQuantile as
-  // MontageOptions::clipQuantile.
+  // A montage of `buffer` over `runs` on one colour scale (vis/Montage.h), written as <stem>.png; clipQuantile and
+  // signedLogLinearQuantile as MontageOptions'.
   void montage(const std::string& stem, const std::string& caption, const std::vector<std::string>& runs,
-    const std::string& buffer, std::optional<double> clipQuantile = std::nullopt);
+    const std::string& buffer, std::optional<double> clipQuantile = std::nullopt,
+    std::optional<double> signedLogLinearQuantile = std::nullopt);
   // A montage of each run's signed visibility error (run - the run it was compared with; blue = too dark, red =
   // too bright), over the pixels covered in both.
   void errorMontage(const std::string& stem, const std::string& caption, const std::vector<std::string>& runs);

@@ -42,6 +42,14 @@ BufferSpec runBufferSpec(const nlohmann::json& stats, const std::string& buffer)
   return spec;
 }
 
+ImageU8 runValueMask(const std::vector<NamedImage>& buffers, const NamedImage& values, const BufferSpec& spec)
+{
+  // Read back from buffers.vti, the image carries no domain: the declaration gives it.
+  NamedImage declared{ values.name, ImageF(values.image.width, values.image.height, 1), values.unit, values.doc,
+    spec.kind, {}, spec.domain };
+  return bufferValueMask(declared, buffers);
+}
+
 ImageU8 coverageMask(const std::vector<NamedImage>& buffers)
 {
   const NamedImage* coverage = findNamed(buffers, "coverage");

@@ -21,4 +21,8 @@ BufferSpec runBufferSpec(const nlohmann::json& stats, const std::string& buffer)
 // 1 where the run's "coverage" buffer is > 0.5; empty (every pixel valid) when the run has no coverage buffer.
 ImageU8 coverageMask(const std::vector<NamedImage>& buffers);
 
+// The montage mask of the run's buffer `values` as `spec` declares it: coverage, and kNotApplicablePixel where a
+// buffer on BufferDomain::ShadowTested had no shadow test (vis/BufferHeatMap.h bufferValueMask).
+ImageU8 runValueMask(const std::vector<NamedImage>& buffers, const NamedImage& values, const BufferSpec& spec);
+
 } // namespace sl

@@ -15,17 +15,21 @@ namespace sl
 namespace
 {
 
-void writeHeatMaps(const std::vector<NamedImage>& images, const ImageU8* mask, const std::filesystem::path& dir,
-  const std::string& prefix)
+// One heat map per buffer that drawsHeatMap (vis/BufferHeatMap.h): frame buffers over their declared pixels
+// (bufferValueMask: grey where the quantity does not apply), light-space ones (`frameBuffers` null) over every texel.
+void writeHeatMaps(const std::vector<NamedImage>& images, const std::vector<NamedImage>* frameBuffers,
+  const std::filesystem::path& dir, const std::string& prefix)
 {
   for (const NamedImage& named : images)
   {
-    if (named.image.components != 1)
+    if (!drawsHeatMap(named))
     {
       continue;
     }
-    const HeatMapOptions options = bufferHeatMapOptions(named, mask);
-    writeHeatMapPng(named.image, mask, options, dir / (prefix + named.name + ".png"));
+    const ImageU8 mask = frameBuffers ? bufferValueMask(named, *frameBuffers) : ImageU8();
+    const ImageU8* maskOrAll = frameBuffers ? &mask : nullptr;
+    const HeatMapOptions options = bufferHeatMapOptions(named, maskOrAll);
+    writeHeatMapPng(heatMapValues(named), maskOrAll, options, dir / (prefix + named.name + ".png"));
   }
 }
 
@@ -300,12 +304,10 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
   {
     writeExr(dir / "visibility.exr", visibility->image);
   }
-  const NamedImage* coverage = findNamed(buffers, "coverage");
-  SL_CHECK(coverage);
-  const ImageU8 mask = coverageMask(*coverage);
-  writeHeatMaps(buffers, &mask, dir, "heatmap_");
+  SL_CHECK(findNamed(buffers, "coverage"));
+  writeHeatMaps(buffers, &buffers, dir, "heatmap_");
   writeHeatMaps(lightSpace, nullptr, dir, "heatmap_");
-  writeFileChecked(dir / "open_in_paraview.py", paraViewScript(buffers, lightSpace, mask));
+  writeFileChecked(dir / "open_in_paraview.py", paraViewScript(buffers, lightSpace));
 }
 
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path)

@@ -33,14 +33,16 @@ nlohmann::json colorMapPoints(const ColorMap& colorMap, const ValueRange& range)
 }
 
 // One entry of the script's BUFFERS table: where the buffer is and how its heat map draws it.
-nlohmann::json bufferEntry(const NamedImage& named, const ImageU8* mask, const std::string& file)
+// `appliesWhere`: the buffer's array that marks the pixels with a value ("coverage", "shadow_tested"), or "" for all.
+nlohmann::json bufferEntry(
+  const NamedImage& named, const ImageU8* mask, const std::string& file, const std::string& appliesWhere)
 {
   const HeatMapOptions options = bufferHeatMapOptions(named, mask);
   const std::optional<ValueRange> valid = validValueRange(named.image, mask);
   nlohmann::json entry;
   entry["file"] = file;
   entry["unit"] = named.unit;
-  entry["masked_by_coverage"] = mask != nullptr;
+  entry["applies_where"] = appliesWhere;
   if (options.colorMap == ColorMapKind::Categorical)
   {
     // The classes the heat map's key lists (heatMapColorKey): the labels' ids, or the valid ids' span.
@@ -67,7 +69,8 @@ nlohmann::json bufferEntry(const NamedImage& named, const ImageU8* mask, const s
     entry["categories"] = categories;
     return entry;
   }
-  const ValueRange range = colorMapRange(valid, options);
+  // The heat map's own scale (robust percentiles of the pixels with a value, vis/HeatMap.h heatMapScale).
+  const ValueRange range = heatMapScale({ { &named.image, mask } }, options).colorRange;
   entry["kind"] = options.colorMap == ColorMapKind::Diverging ? "diverging" : "sequential";
   entry["range"] = { range.min, range.max };
   entry["rgb_points"] = colorMapPoints(ColorMap(options.colorMap), range);
@@ -77,7 +80,8 @@ nlohmann::json bufferEntry(const NamedImage& named, const ImageU8* mask, const s
 // The script's fixed part: reads BUFFERS (written above it) and shows one buffer.
 constexpr const char* kScriptBody = R"PY(
 
-INVALID_GREY = [0.25, 0.25, 0.25]  # the heat maps' colour for pixels without data (vis/HeatMap.h)
+INVALID_GREY = [0.25, 0.25, 0.25]  # the heat maps' colour where no surface is (vis/HeatMap.h kInvalidPixelColor)
+NOT_APPLICABLE_GREY = [0.66, 0.66, 0.66]  # where the quantity does not apply (kNotApplicableColor)
 
 
 def _here():
@@ -85,6 +89,24 @@ def _here():
         return os.path.dirname(os.path.abspath(__file__))
     except NameError:  # paraview --script= may run it without __file__
         return os.getcwd()
+
+
+def _pixels_where(image, array):
+    """The pixels whose `array` is at least 0.5 (coverage, shadow_tested)."""
+    selected = Threshold(Input=image, Scalars=["POINTS", array])
+    if hasattr(selected, "LowerThreshold"):
+        selected.LowerThreshold = 0.5
+        selected.UpperThreshold = 1.0e30
+    else:
+        selected.ThresholdRange = [0.5, 1.0e30]
+    return selected
+
+
+def _unlit(display):
+    """Colours as the heat maps draw them: ParaView's light kit would darken every one."""
+    display.Ambient = 1.0
+    display.Diffuse = 0.0
+    display.Specular = 0.0
 
 
 def show_buffer(name, view=None, legend=True):
@@ -95,19 +117,19 @@ def show_buffer(name, view=None, legend=True):
     view = view or GetActiveViewOrCreate("RenderView")
     image = OpenDataFile(os.path.join(_here(), spec["file"]))
     source = image
-    if spec["masked_by_coverage"]:
-        # Uncovered pixels are not drawn (the background shows them in the heat maps' grey).
-        source = Threshold(Input=image, Scalars=["POINTS", "coverage"])
-        if hasattr(source, "LowerThreshold"):
-            source.LowerThreshold = 0.5
-            source.UpperThreshold = 1.0e30
-        else:
-            source.ThresholdRange = [0.5, 1.0e30]
+    if spec["applies_where"]:
+        # Pixels without a value are not drawn: the background shows "no surface" in the heat maps' dark grey, and
+        # for a quantity defined on shadow-tested pixels only, the covered surface behind it shows light grey.
+        source = _pixels_where(image, spec["applies_where"])
+        if spec["applies_where"] != "coverage":
+            surface = Show(_pixels_where(image, "coverage"), view)
+            surface.ColorArrayName = [None, ""]
+            surface.AmbientColor = NOT_APPLICABLE_GREY
+            surface.DiffuseColor = NOT_APPLICABLE_GREY
+            _unlit(surface)
+            surface.Position = [0.0, 0.0, -1.0]
     display = Show(source, view)
-    # Unlit, as the heat maps: ParaView's light kit would darken every colour.
-    display.Ambient = 1.0
-    display.Diffuse = 0.0
-    display.Specular = 0.0
+    _unlit(display)
     ColorBy(display, ("POINTS", name))
     lut = GetColorTransferFunction(name)
     lut.AutomaticRescaleRangeMode = "Never"
@@ -166,8 +188,7 @@ main(sys.argv[1:])
 
 } // namespace
 
-std::string paraViewScript(
-  const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace, const ImageU8& coverageMask)
+std::string paraViewScript(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace)
 {
   nlohmann::json table = nlohmann::json::object();
   std::string defaultBuffer;
@@ -179,7 +200,15 @@ std::string paraViewScript(
     {
       continue;
     }
-    table[named.name] = bufferEntry(named, &coverageMask, "buffers.vti");
+    // A bit mask's heat map counts its set bits, which ParaView would have to compute: left to the PNG.
+    if (named.kind == BufferKind::BitMask || !drawsHeatMap(named))
+    {
+      continue;
+    }
+    const ImageU8 mask = bufferValueMask(named, buffers);
+    const bool onShadowTested = named.domain == BufferDomain::ShadowTested && findNamed(buffers, "shadow_tested");
+    const std::string appliesWhere = onShadowTested ? "shadow_tested" : findNamed(buffers, "coverage") ? "coverage" : "";
+    table[named.name] = bufferEntry(named, &mask, "buffers.vti", appliesWhere);
     if (defaultBuffer.empty() || named.name == "visibility")
     {
       defaultBuffer = named.name;
@@ -189,9 +218,10 @@ std::string paraViewScript(
   }
   for (const NamedImage& named : lightSpace)
   {
-    if (named.image.components == 1 && !table.contains(named.name))
+    if (named.image.components == 1 && named.kind != BufferKind::BitMask && drawsHeatMap(named) &&
+      !table.contains(named.name))
     {
-      table[named.name] = bufferEntry(named, nullptr, "light_space.vti");
+      table[named.name] = bufferEntry(named, nullptr, "light_space.vti", "");
     }
   }
   std::ostringstream script;

@@ -209,6 +209,27 @@ void setFrameInputs(FrameResources& frame, const Scene& scene, const RenderReque
   }
 }
 
+// 1 where the pixel reaches a shadow test (shaders/common/ShadowReceiver.glsl: covered, receiving, lightCanReach),
+// else 0: what tells the heat maps that a 0 in depth_margin is no margin. Decided again here in double precision
+// from the float G-buffer, so a pixel whose facing test lies within float rounding of 0 may be decided the other
+// way than the shader did (lightReachMargin < 1e-5; grazing pixels only).
+ImageF shadowTestedPixels(const Light& light, const ImageF& position, const ImageF& normal)
+{
+  ImageF tested(position.width, position.height, 1, 0.0f);
+  for (int y = 0; y < position.height; ++y)
+  {
+    for (int x = 0; x < position.width; ++x)
+    {
+      const bool covered = position.at(x, y, 3) > 0.5f;
+      const bool receives = normal.at(x, y, 3) > 0.5f;
+      const glm::dvec3 pWs(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+      const glm::dvec3 nWs(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+      tested.at(x, y, 0) = covered && receives && lightCanReach(light, pWs, nWs) ? 1.0f : 0.0f;
+    }
+  }
+  return tested;
+}
+
 // The per-pixel buffers: the common ones (G-buffer, visibility), the technique's, and the sub-lights'.
 void readBackBuffers(const FrameResources& frame, const RenderRequest& request, FrameResult& result)
 {
@@ -218,7 +239,7 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
   const auto& common = commonBufferSpecs();
   const auto commonBuffer = [&](const std::string& name, ImageF image) {
     const auto spec = std::find_if(common.begin(), common.end(), [&](const BufferSpec& s) { return s.name == name; });
-    result.buffers.push_back({ name, std::move(image), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
+    result.buffers.push_back({ name, std::move(image), spec->unit, spec->doc, spec->kind, spec->categoryLabels, spec->domain });
   };
   if (!request.gbufferOnly)
   {
@@ -230,6 +251,7 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
   commonBuffer("coverage", position.channels(3, 1));
   commonBuffer("albedo", albedoDepth.channels(0, 3));
   commonBuffer("receives_shadows", normal.channels(3, 1));
+  commonBuffer("shadow_tested", shadowTestedPixels(*frame.light, position, normal));
   if (request.gbufferOnly)
   {
     return;
@@ -240,7 +262,7 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
       const auto& specs = multisampleBufferSpecs();
       const auto spec = std::find_if(specs.begin(), specs.end(), [&](const BufferSpec& s) { return s.name == name; });
       result.buffers.push_back(
-        { name, readFloatTexture(texture, components), spec->unit, spec->doc, spec->kind, spec->categoryLabels });
+        { name, readFloatTexture(texture, components), spec->unit, spec->doc, spec->kind, spec->categoryLabels, spec->domain });
     };
     multisampleBuffer("msaa_distinct_samples", frame.distinctSamples, 1);
     multisampleBuffer("msaa_interpolated_samples", frame.interpolatedSamples, 1);
@@ -253,7 +275,7 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
     if (!spec.fromPass)
     {
       result.buffers.push_back({ spec.name, readFloatTexture(frame.techniqueTargets.at(spec.name), 1), spec.unit,
-        spec.doc, spec.kind, spec.categoryLabels });
+        spec.doc, spec.kind, spec.categoryLabels, spec.domain });
     }
   }
   if (!frame.subLightVisibility.empty())
@@ -269,7 +291,7 @@ void readBackBuffers(const FrameResources& frame, const RenderRequest& request, 
       }
     }
     const BufferSpec& spec = subLightBufferSpecs().front();
-    result.buffers.push_back({ spec.name, std::move(subLights), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
+    result.buffers.push_back({ spec.name, std::move(subLights), spec.unit, spec.doc, spec.kind, spec.categoryLabels, spec.domain });
   }
 }
 
@@ -418,7 +440,7 @@ void ShadowRenderer::appendPassBuffers(const FrameResources& frame, FrameResult&
           continue; // not asked for by this frame's parameters
         }
         SL_CHECK(found->image.width == frame.width() && found->image.height == frame.height());
-        result.buffers.push_back({ spec.name, std::move(found->image), spec.unit, spec.doc, spec.kind, spec.categoryLabels });
+        result.buffers.push_back({ spec.name, std::move(found->image), spec.unit, spec.doc, spec.kind, spec.categoryLabels, spec.domain });
       }
     }
   }

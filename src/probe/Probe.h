@@ -49,16 +49,19 @@ glm::ivec2 pickPixel(const FrameResult& frame, const glm::dvec3& world, double t
 // technique's parameters, light) and every record item with its unit and source.
 nlohmann::json probeJson(const ProbeResult& probe, const FrameResult& frame, const Scene& scene);
 
-// probe.vtm's content (probe/ProbeDataSet.cxx): blocks "world" (light, receiver point and normal, segments to
-// the light's corners or samples, the kernel's frustum), "shadow_map" (a crop of the map around the kernel as
-// vtkImageData with per-texel arrays read / compared / occluding / visited_level; rectangles of visited nodes
-// and kernels), "light_plane" (back-projected polygons or micro-occluders clipped to the light, light samples).
+// probe.vtm's content (probe/ProbeDataSet.cxx), every block in world units: "world" (light, receiver point and
+// normal, segments to the light's corners or samples, the kernel's frustum), "shadow_map" (a crop of the map around
+// the kernel as a vtkStructuredGrid with per-texel arrays read / compared / occluding / visited_level; rectangles
+// of visited nodes and kernels; placed on the receiver's plane through the light view, texel coordinates in
+// texel_uv), "light_plane" (back-projected polygons or micro-occluders clipped to the light, light samples).
 vtkSmartPointer<vtkMultiBlockDataSet> probeDataSet(const ProbeResult& probe, const FrameResult& frame, const Scene& scene);
 
 // probe.png (probe/ProbeFigure.cxx): panels drawn on a CPU canvas (vis/Canvas.h, text through VTK's FreeType
 // renderer; no GL context needed, so the viewer can call it between frames): the image with the pixel marked, the shadow-map
 // crop with kernel and traversal, the light plane with what covers it, a cross-section through the light centre
-// and the receiver point, and a legend of key numbers. RGB, row 0 at the bottom.
+// and the receiver point, the algorithm's own diagrams (PCSS's similar triangles, the Chebyshev bound) and every
+// recorded quantity over as many key-number pages as it takes; only panels with content (layout in
+// probe/ProbeFigure.h, drawProbeFigure). RGB, row 0 at the bottom.
 ImageU8 probeFigure(const ProbeResult& probe, const FrameResult& frame, const Scene& scene);
 
 } // namespace sl

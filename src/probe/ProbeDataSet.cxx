@@ -1,10 +1,14 @@
 // probe.vtm (probe/Probe.h): what a probe recorded as VTK data for ParaView, in three blocks of named pieces.
 //   world        light, receiver, rays_to_light, rays_to_samples, kernel_frustum   (world space)
-//   shadow_map   crop (vtkImageData, one cell per texel, texel units), visited_nodes, kernels, receiver,
-//                pixel_footprint
-//                (shadow-map texel coordinates: texel i spans [i, i + 1], z = 0)
+//   shadow_map   crop (vtkStructuredGrid, one cell per texel), visited_nodes, kernels, receiver, pixel_footprint
+//                (world space: the map's texels placed on the plane through the receiver perpendicular to the
+//                light's axis, texel (u, v) at worldFromTexel(view, (u, v), d_receiver), so the crop lies under
+//                the receiver and its kernels over the scene; every point keeps its texel coordinates in the
+//                point array texel_uv: texel i spans [i, i + 1])
 //   light_plane  light_outline, polygons, contour_edges, light_samples            (world space, on the light plane)
-// Every piece is present, possibly empty, so the block layout is the same for every technique.
+// One coordinate system, world units, for every block (issue 31: the shadow_map block in texel units landed far
+// from the others in ParaView); each block names it in its field data `coordinates`. Every piece is present,
+// possibly empty, so the block layout is the same for every technique.
 #include "probe/Probe.h"
 
 #include "probe/ProbeGeometry.h"
@@ -23,6 +27,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
+#include <vtkStructuredGrid.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <cmath>
@@ -110,6 +115,19 @@ void addFieldNumber(vtkDataObject* data, const char* name, double value)
   array->SetName(name);
   array->InsertNextValue(value);
   data->GetFieldData()->AddArray(array);
+}
+
+// Every piece of `block` names its coordinate system in its field data (`coordinates`): composite data sets keep
+// no field data in a .vtm, their leaves do.
+void nameCoordinates(vtkMultiBlockDataSet* block, const std::string& coordinates)
+{
+  for (unsigned int i = 0; i < block->GetNumberOfBlocks(); ++i)
+  {
+    if (vtkDataObject* leaf = block->GetBlock(i))
+    {
+      addFieldString(leaf, "coordinates", { coordinates });
+    }
+  }
 }
 
 // What every piece needs: the light, its view frame, the receiver.
@@ -287,11 +305,12 @@ vtkSmartPointer<vtkMultiBlockDataSet> worldBlock(const Context& context)
   setBlock(block, "rays_to_light", raysToLightPiece(context));
   setBlock(block, "rays_to_samples", raysToSamplesPiece(context));
   setBlock(block, "kernel_frustum", kernelFrustumPiece(context));
+  nameCoordinates(block, "world units (the scene's)");
   return block;
 }
 
 template <typename Array, typename T>
-void addCellImageArray(vtkImageData* image, const char* name, const Image<T>& values)
+void addCellImageArray(vtkDataSet* image, const char* name, const Image<T>& values)
 {
   vtkNew<Array> array;
   array->SetName(name);
@@ -305,9 +324,46 @@ void addCellImageArray(vtkImageData* image, const char* name, const Image<T>& va
   image->GetCellData()->AddArray(array);
 }
 
-vtkSmartPointer<vtkImageData> cropPiece(const Context& context)
+// A shadow-map position (continuous texel coordinates) in world space, on the plane through the receiver
+// perpendicular to the light's axis; the texel position itself where the frame has no map.
+glm::dvec3 mapPoint(const Context& context, const glm::dvec2& uvTexels)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
+  if (context.map.view == nullptr)
+  {
+    return { uvTexels.x, uvTexels.y, 0.0 };
+  }
+  return worldFromTexel(*context.map.view, uvTexels, context.receiver.depthLin);
+}
+
+// The shadow-map block's points: world positions (mapPoint) with their texel coordinates alongside.
+class MapPolyBuilder
+{
+public:
+  explicit MapPolyBuilder(const Context& context)
+    : context_(context)
+    , texelUv_(builder_.pointArray<vtkDoubleArray>("texel_uv", 2))
+  {
+  }
+  vtkIdType point(const glm::dvec2& uvTexels)
+  {
+    texelUv_->InsertNextTuple2(uvTexels.x, uvTexels.y);
+    return builder_.point(mapPoint(context_, uvTexels));
+  }
+  PolyBuilder& builder() { return builder_; }
+
+private:
+  const Context& context_;
+  PolyBuilder builder_;
+  vtkDoubleArray* texelUv_;
+};
+
+constexpr const char* kMapCoordinates = "world units: shadow-map texels placed on the plane through the receiver "
+  "perpendicular to the light's axis (texel (u, v) at the light view's ray through it, at the receiver's linear "
+  "depth); point array texel_uv holds their texel coordinates";
+
+vtkSmartPointer<vtkStructuredGrid> cropPiece(const Context& context)
+{
+  auto image = vtkSmartPointer<vtkStructuredGrid>::New();
   const ImageF* depth = context.map.depth;
   if (depth == nullptr || context.map.view == nullptr)
   {
@@ -320,10 +376,27 @@ vtkSmartPointer<vtkImageData> cropPiece(const Context& context)
   }
   const ProbeCropArrays arrays = probeCropArrays(context.probe.record, *depth, crop);
   // One cell per texel: points at texel corners, so cell (i, j) spans exactly [i, i + 1] x [j, j + 1] in the
-  // map's continuous texel coordinates, as the kernels' and nodes' rectangles do.
+  // map's continuous texel coordinates, as the kernels' and nodes' rectangles do; placed in world space.
   image->SetDimensions(crop.size.x + 1, crop.size.y + 1, 1);
-  image->SetOrigin(crop.lo.x, crop.lo.y, 0.0);
-  image->SetSpacing(1.0, 1.0, 1.0);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> texelUv;
+  texelUv->SetName("texel_uv");
+  texelUv->SetNumberOfComponents(2);
+  for (int j = 0; j <= crop.size.y; ++j)
+  {
+    for (int i = 0; i <= crop.size.x; ++i)
+    {
+      const glm::dvec2 uv(crop.lo.x + i, crop.lo.y + j);
+      const glm::dvec3 p = mapPoint(context, uv);
+      points->InsertNextPoint(p.x, p.y, p.z);
+      texelUv->InsertNextTuple2(uv.x, uv.y);
+    }
+  }
+  image->SetPoints(points);
+  image->GetPointData()->AddArray(texelUv);
+  addFieldNumber(image, "texel_lo_x", crop.lo.x);
+  addFieldNumber(image, "texel_lo_y", crop.lo.y);
   addCellImageArray<vtkFloatArray>(image, "depth", arrays.depth);
   addCellImageArray<vtkUnsignedCharArray>(image, "read", arrays.read);
   addCellImageArray<vtkUnsignedCharArray>(image, "compared", arrays.compared);
@@ -341,15 +414,16 @@ vtkSmartPointer<vtkImageData> cropPiece(const Context& context)
   return image;
 }
 
-void addRectangle(PolyBuilder& builder, const glm::dvec2& lo, const glm::dvec2& hi)
+void addRectangle(MapPolyBuilder& builder, const glm::dvec2& lo, const glm::dvec2& hi)
 {
-  builder.polygon({ builder.point({ lo.x, lo.y, 0.0 }), builder.point({ hi.x, lo.y, 0.0 }),
-    builder.point({ hi.x, hi.y, 0.0 }), builder.point({ lo.x, hi.y, 0.0 }) });
+  builder.builder().polygon({ builder.point({ lo.x, lo.y }), builder.point({ hi.x, lo.y }), builder.point({ hi.x, hi.y }),
+    builder.point({ lo.x, hi.y }) });
 }
 
 vtkSmartPointer<vtkPolyData> visitedNodesPiece(const Context& context)
 {
-  PolyBuilder builder;
+  MapPolyBuilder mapBuilder(context);
+  PolyBuilder& builder = mapBuilder.builder();
   auto* level = builder.cellArray<vtkIntArray>("level");
   auto* decisionCode = builder.cellArray<vtkIntArray>("decision_code");
   auto* decision = builder.cellArray<vtkStringArray>("decision");
@@ -359,7 +433,7 @@ vtkSmartPointer<vtkPolyData> visitedNodesPiece(const Context& context)
   const std::vector<std::string> decisions = nodeDecisionLabels(context.probe.record);
   for (const ProbeNode& node : context.probe.record.nodes)
   {
-    addRectangle(builder, glm::dvec2(node.lo), glm::dvec2(node.hi) + 1.0);
+    addRectangle(mapBuilder, glm::dvec2(node.lo), glm::dvec2(node.hi) + 1.0);
     level->InsertNextValue(node.level);
     decisionCode->InsertNextValue(labelCode(decisions, node.decision));
     decision->InsertNextValue(node.decision);
@@ -374,7 +448,8 @@ vtkSmartPointer<vtkPolyData> visitedNodesPiece(const Context& context)
 
 vtkSmartPointer<vtkPolyData> kernelsPiece(const Context& context)
 {
-  PolyBuilder builder;
+  MapPolyBuilder mapBuilder(context);
+  PolyBuilder& builder = mapBuilder.builder();
   auto* roleId = builder.cellArray<vtkIntArray>("role_id");
   auto* role = builder.cellArray<vtkStringArray>("role");
   auto* label = builder.cellArray<vtkStringArray>("label");
@@ -382,7 +457,7 @@ vtkSmartPointer<vtkPolyData> kernelsPiece(const Context& context)
   const std::vector<std::string> roles = kernelRoleLabels(context.probe.record);
   for (const ProbeKernel& kernel : context.probe.record.kernels)
   {
-    addRectangle(builder, kernel.lo, kernel.hi);
+    addRectangle(mapBuilder, kernel.lo, kernel.hi);
     roleId->InsertNextValue(labelCode(roles, kernel.role));
     role->InsertNextValue(kernel.role);
     label->InsertNextValue(kernel.label);
@@ -393,17 +468,18 @@ vtkSmartPointer<vtkPolyData> kernelsPiece(const Context& context)
   return data;
 }
 
-// The pixel's footprint in the map (Probe.cpp recordSamplingError), a closed polygon in texel units.
+// The pixel's footprint in the map (Probe.cpp recordSamplingError), a closed polygon.
 vtkSmartPointer<vtkPolyData> pixelFootprintPiece(const Context& context)
 {
-  PolyBuilder builder;
+  MapPolyBuilder mapBuilder(context);
+  PolyBuilder& builder = mapBuilder.builder();
   auto* role = builder.cellArray<vtkStringArray>("role");
   for (const ProbeMapPolygon& polygon : context.probe.record.mapPolygons)
   {
     std::vector<vtkIdType> ids;
     for (const glm::dvec2& point : polygon.points)
     {
-      ids.push_back(builder.point({ point.x, point.y, 0.0 }));
+      ids.push_back(mapBuilder.point(point));
     }
     builder.polygon(ids);
     role->InsertNextValue(polygon.role);
@@ -413,12 +489,12 @@ vtkSmartPointer<vtkPolyData> pixelFootprintPiece(const Context& context)
 
 vtkSmartPointer<vtkPolyData> receiverTexelPiece(const Context& context)
 {
-  PolyBuilder builder;
+  MapPolyBuilder mapBuilder(context);
   if (context.receiver.uvTexels)
   {
-    builder.vertex(builder.point({ context.receiver.uvTexels->x, context.receiver.uvTexels->y, 0.0 }));
+    mapBuilder.builder().vertex(mapBuilder.point(*context.receiver.uvTexels));
   }
-  return builder.data();
+  return mapBuilder.builder().data();
 }
 
 vtkSmartPointer<vtkMultiBlockDataSet> shadowMapBlock(const Context& context)
@@ -429,6 +505,7 @@ vtkSmartPointer<vtkMultiBlockDataSet> shadowMapBlock(const Context& context)
   setBlock(block, "kernels", kernelsPiece(context));
   setBlock(block, "receiver", receiverTexelPiece(context));
   setBlock(block, "pixel_footprint", pixelFootprintPiece(context));
+  nameCoordinates(block, kMapCoordinates);
   return block;
 }
 
@@ -524,6 +601,8 @@ vtkSmartPointer<vtkMultiBlockDataSet> lightPlaneBlock(const Context& context)
   setBlock(block, "polygons", lightPolygonsPiece(context));
   setBlock(block, "contour_edges", contourEdgesPiece(context));
   setBlock(block, "light_samples", lightSamplesPiece(context));
+  nameCoordinates(block, "world units, on the light's plane; point array light_xy holds the light coordinates (the "
+    "light view's x, y from the light's centre)");
   return block;
 }
 

@@ -5,11 +5,11 @@
 // read texels, blocked or visible samples) differ in shape or fill as well.
 #include "probe/ProbeFigure.h"
 
+#include "probe/NumberText.h"
 #include "probe/Probe.h"
 #include "probe/ProbeGeometry.h"
 #include "vis/Canvas.h"
 #include "vis/CanvasShapes.h"
-#include "vis/ColorKey.h"
 #include "vis/ColorMap.h"
 #include "vis/HeatMap.h"
 
@@ -38,6 +38,9 @@ constexpr RgbColor kLightColor{ 1.0, 0.85, 0.2 };      // the light's extent (go
 constexpr RgbColor kRayColor{ 0.84, 0.15, 0.16 };       // rays to the light's ends
 constexpr RgbColor kDepthStepColor{ 1.0, 0.5, 0.05 };   // the shadow map's stored depths in the section
 constexpr RgbColor kCasterColor{ 0.12, 0.12, 0.12 };
+constexpr RgbColor kContourColor{ 0.0, 0.75, 0.85 };    // contour edges in the map (cyan: not in viridis' range)
+constexpr RgbColor kSearchColor{ 0.84, 0.15, 0.16 };    // PCSS's blocker search
+constexpr RgbColor kPenumbraColor{ 0.12, 0.47, 0.71 };  // PCSS's penumbra estimate
 
 // A panel-local rectangle in continuous pixel coordinates.
 struct Box
@@ -56,13 +59,27 @@ Box contentBox(const FigureRect& panel)
 
 std::string numberText(double value, int digits = 4)
 {
-  if (!std::isfinite(value))
+  return readableNumber(value, digits);
+}
+
+// What the figure being drawn wrote (ProbeFigureDrawing::texts): the tests check from it that nothing was cut.
+struct FigureTextLog
+{
+  std::vector<ProbeFigureText>* texts = nullptr;
+  ProbePanel panel = ProbePanel::Image;
+};
+thread_local FigureTextLog tFigureTextLog;
+
+// drawText, logged with whether the text lies wholly inside `canvas`.
+void putText(ImageU8& canvas, const std::string& text, int fontPx, int x, int y, const RgbColor& color = kBlack)
+{
+  drawText(canvas, text, fontPx, x, y, color);
+  if (tFigureTextLog.texts != nullptr && !text.empty())
   {
-    return std::isnan(value) ? "n/a" : (value > 0 ? "inf" : "-inf");
+    const TextSize size = measureText(text, fontPx);
+    const bool inside = x >= 0 && y >= 0 && x + size.width <= canvas.width && y + size.height <= canvas.height;
+    tFigureTextLog.texts->push_back({ text, tFigureTextLog.panel, inside });
   }
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*g", digits, value);
-  return text;
 }
 
 int textWidth(const std::string& text, int fontPx)
@@ -70,22 +87,21 @@ int textWidth(const std::string& text, int fontPx)
   return measureText(text, fontPx).width;
 }
 
-// Cuts `text` to `maxWidthPx`, ending in "..." when cut (Courier: every character is as wide).
-std::string fitText(const std::string& text, int fontPx, int maxWidthPx)
+// The largest font size from `fontPx` down to 9 at which `text` fits `maxWidthPx` (titles shrink rather than lose
+// their end).
+int fittingFontPx(const std::string& text, int fontPx, int maxWidthPx)
 {
-  if (text.empty() || textWidth(text, fontPx) <= maxWidthPx)
+  while (fontPx > 9 && textWidth(text, fontPx) > maxWidthPx)
   {
-    return text;
+    --fontPx;
   }
-  const int charWidth = std::max(1, textWidth("MMMMMMMMMM", fontPx) / 10);
-  const int keep = std::max(0, maxWidthPx / charWidth - 3);
-  return text.substr(0, static_cast<std::size_t>(keep)) + "...";
+  return fontPx;
 }
 
 // Breaks `text` at spaces into lines of at most `maxWidthPx`.
 std::vector<std::string> wrapText(const std::string& text, int fontPx, int maxWidthPx)
 {
-  const int charWidth = std::max(1, textWidth("MMMMMMMMMM", fontPx) / 10);
+  const int charWidth = std::max(1, (textWidth("MMMMMMMMMM", fontPx) + 9) / 10);
   const std::size_t maxChars = static_cast<std::size_t>(std::max(8, maxWidthPx / charWidth));
   std::vector<std::string> lines;
   std::string line;
@@ -127,18 +143,24 @@ ImageU8 newPanel(const FigureRect& rect, const std::string& title)
 {
   ImageU8 panel(rect.width, rect.height, 3, 255);
   strokeRect(panel, 0, 0, rect.width, rect.height, kPanelBorder, 1);
-  const int textHeight = measureText("Ag", kTitleFontPx).height;
-  drawText(panel, fitText(title, kTitleFontPx, rect.width - 2 * kInsetPx), kTitleFontPx, kInsetPx,
-    rect.height - kTitleBandPx + (kTitleBandPx - textHeight) / 2, kBlack);
+  const int fontPx = fittingFontPx(title, kTitleFontPx, rect.width - 2 * kInsetPx);
+  const int textHeight = measureText("Ag", fontPx).height;
+  putText(panel, title, fontPx, kInsetPx, rect.height - kTitleBandPx + (kTitleBandPx - textHeight) / 2, kBlack);
   return panel;
 }
 
+// A note centred in `box`, wrapped to its width.
 void drawCentredNote(ImageU8& panel, const Box& box, const std::string& note)
 {
-  const TextSize size = measureText(note, kBodyFontPx);
-  drawText(panel, fitText(note, kBodyFontPx, int(box.width)), kBodyFontPx,
-    int(box.left + std::max(0.0, 0.5 * (box.width - size.width))), int(box.bottom + 0.5 * (box.height - size.height)),
-    kDarkGrey);
+  const std::vector<std::string> lines = wrapText(note, kBodyFontPx, int(box.width));
+  const int lineHeight = measureText("Ag", kBodyFontPx).height + 2;
+  int y = int(box.bottom + 0.5 * (box.height + lines.size() * lineHeight)) - lineHeight;
+  for (const std::string& line : lines)
+  {
+    const TextSize size = measureText(line, kBodyFontPx);
+    putText(panel, line, kBodyFontPx, int(box.left + std::max(0.0, 0.5 * (box.width - size.width))), y, kDarkGrey);
+    y -= lineHeight;
+  }
 }
 
 // A 2-D region mapped to a box with equal scales on both axes, centred.
@@ -185,8 +207,141 @@ using SwatchPainter = void (*)(ImageU8&, const glm::dvec2&, const RgbColor&);
 int drawKeyEntry(ImageU8& panel, int x, int y, const std::string& label, SwatchPainter paint, const RgbColor& color)
 {
   paint(panel, glm::dvec2(x + 7.0, y + 7.0), color);
-  drawText(panel, label, kBodyFontPx, x + 17, y, kBlack);
+  putText(panel, label, kBodyFontPx, x + 17, y, kBlack);
   return x + 17 + textWidth(label, kBodyFontPx) + 12;
+}
+
+// The diverging map's negative end: a contour edge's swatch.
+RgbColor areaColorKeySample(const ColorMap& diverging)
+{
+  return diverging.map(0.1);
+}
+
+// A panel's key: entries flowed left to right and wrapped to the panel's width, every label in full.
+struct KeyEntry
+{
+  std::string label;
+  SwatchPainter paint = nullptr; // nullptr: a line of text (grey), no swatch
+  RgbColor color = kBlack;
+};
+
+int keyEntryWidth(const KeyEntry& entry)
+{
+  return (entry.paint != nullptr ? 17 : 0) + textWidth(entry.label, kBodyFontPx) + 12;
+}
+
+// The entries as lines of (entry, x offset); an entry wider than the line gets its label wrapped into text lines.
+std::vector<std::vector<std::pair<KeyEntry, int>>> keyRows(const std::vector<KeyEntry>& entries, int widthPx)
+{
+  std::vector<std::vector<std::pair<KeyEntry, int>>> rows(1);
+  int x = 0;
+  for (const KeyEntry& entry : entries)
+  {
+    const int width = keyEntryWidth(entry);
+    if (width - 12 > widthPx || entry.paint == nullptr)
+    {
+      if (!rows.back().empty())
+      {
+        rows.emplace_back();
+      }
+      const int swatch = entry.paint != nullptr ? 17 : 0;
+      bool first = true;
+      for (const std::string& line : wrapText(entry.label, kBodyFontPx, widthPx - swatch))
+      {
+        if (!first)
+        {
+          rows.emplace_back();
+        }
+        rows.back().push_back({ KeyEntry{ line, first ? entry.paint : nullptr, entry.color }, first ? 0 : swatch });
+        first = false;
+      }
+      rows.emplace_back();
+      x = 0;
+      continue;
+    }
+    if (x > 0 && x + width - 12 > widthPx)
+    {
+      rows.emplace_back();
+      x = 0;
+    }
+    rows.back().push_back({ entry, x });
+    x += width;
+  }
+  if (rows.back().empty())
+  {
+    rows.pop_back();
+  }
+  return rows;
+}
+
+int keyHeight(const std::vector<KeyEntry>& entries, int widthPx)
+{
+  return static_cast<int>(keyRows(entries, widthPx).size()) * kKeyLinePx + 4;
+}
+
+// Draws the key with its first line's bottom at `top` - kKeyLinePx.
+void drawKey(ImageU8& panel, const std::vector<KeyEntry>& entries, int left, int top, int widthPx)
+{
+  int y = top - kKeyLinePx;
+  for (const auto& row : keyRows(entries, widthPx))
+  {
+    for (const auto& [entry, x] : row)
+    {
+      if (entry.paint != nullptr)
+      {
+        drawKeyEntry(panel, left + x, y, entry.label, entry.paint, entry.color);
+      }
+      else
+      {
+        putText(panel, entry.label, kBodyFontPx, left + x, y, x > 0 ? kBlack : kDarkGrey);
+      }
+    }
+    y -= kKeyLinePx;
+  }
+}
+
+// A vertical colour bar from `valueMin` (bottom) to `valueMax` (top) with five ticks whose labels have the
+// digits to differ (distinctTickLabels). colorBarWidth is its width; drawColorBar returns the labels.
+int colorBarWidth(const ColorMap&, double valueMin, double valueMax)
+{
+  int labelWidth = 0;
+  std::vector<double> values;
+  for (int i = 0; i <= 4; ++i)
+  {
+    values.push_back(valueMin + 0.25 * i * (valueMax - valueMin));
+  }
+  for (const std::string& label : distinctTickLabels(values))
+  {
+    labelWidth = std::max(labelWidth, textWidth(label, kBodyFontPx));
+  }
+  return 14 + 5 + 3 + labelWidth + 2;
+}
+
+std::vector<std::string> drawColorBar(ImageU8& panel, const ColorMap& colorMap, double valueMin, double valueMax,
+  int left, int bottom, int height)
+{
+  const int barWidth = 14;
+  const int textHeight = measureText("Ag", kBodyFontPx).height;
+  const int barBottom = bottom + textHeight / 2;
+  const int barHeight = std::max(10, height - textHeight);
+  for (int row = 0; row < barHeight; ++row)
+  {
+    fillRect(panel, left, barBottom + row, barWidth, 1, colorMap.map((row + 0.5) / barHeight));
+  }
+  strokeRect(panel, left, barBottom, barWidth, barHeight, kBlack, 1);
+  std::vector<double> values;
+  for (int i = 0; i <= 4; ++i)
+  {
+    values.push_back(valueMin + 0.25 * i * (valueMax - valueMin));
+  }
+  const std::vector<std::string> labels = distinctTickLabels(values);
+  for (int i = 0; i <= 4; ++i)
+  {
+    const int row = barBottom + int(std::lround(0.25 * i * (barHeight - 1)));
+    fillRect(panel, left + barWidth, row, 5, 1, kBlack);
+    putText(panel, labels[std::size_t(i)], kBodyFontPx, left + barWidth + 8, row - textHeight / 2, kBlack);
+  }
+  return labels;
 }
 
 void paintLineSwatch(ImageU8& canvas, const glm::dvec2& c, const RgbColor& color)
@@ -225,10 +380,15 @@ void paintMarkerSwatch(ImageU8& canvas, const glm::dvec2& c, const RgbColor& col
 
 // --- (a) the image with the pixel marked -----------------------------------------------------------------------
 
-ImageU8 imagePanel(const ProbeResult& probe, const FrameResult& frame)
+// "(b) " for the panel's letter.
+std::string panelTag(char letter)
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::Image);
-  ImageU8 panel = newPanel(rect, format("(a) image ", frame.image.width, "x", frame.image.height, ", pixel ",
+  return std::string("(") + letter + ") ";
+}
+
+ImageU8 imagePanel(const ProbeResult& probe, const FrameResult& frame, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, format(panelTag(letter), "image ", frame.image.width, "x", frame.image.height, ", pixel ",
     probe.pixel.x, ",", probe.pixel.y));
   const Box box = contentBox(rect);
   if (frame.image.empty() || frame.image.components < 3)
@@ -236,7 +396,7 @@ ImageU8 imagePanel(const ProbeResult& probe, const FrameResult& frame)
     drawCentredNote(panel, box, "no shaded image in this frame");
     return panel;
   }
-  const ImagePlacement placement = probeImagePlacement({ frame.image.width, frame.image.height });
+  const ImagePlacement placement = probeImagePlacement(rect, { frame.image.width, frame.image.height });
   const double left = placement.left - rect.left;
   const double bottom = placement.bottom - rect.bottom;
   const int xEnd = int(std::ceil(left + frame.image.width * placement.scale));
@@ -368,46 +528,47 @@ void drawTexelsRead(CropCanvas& canvas, const ProbeCropArrays& arrays, const Tex
   }
 }
 
-// The key below the map: the marks on the first line, the node decisions (two to a line, cut to fit; the legend
-// and probe.vtm have them in full) or the crop's texel range on the next two.
-void drawShadowMapKey(ImageU8& panel, const Box& box, const std::vector<std::string>& decisions, const TexelRect& crop,
-  int mapWidth)
+// The key below the map: the marks, then every node decision (categorical colours) in full, then the crop's texel
+// range.
+std::vector<KeyEntry> shadowMapKey(const ProbeRecord& record, const std::vector<std::string>& decisions,
+  const TexelRect& crop, int mapWidth)
 {
-  const int keyTop = int(box.bottom + 2 * kKeyLinePx + 2);
-  int x = int(box.left);
-  x = drawKeyEntry(panel, x, keyTop, "kernel", paintBoxSwatch, kWhite);
-  x = drawKeyEntry(panel, x, keyTop, "read", paintDot, kWhite);
-  x = drawKeyEntry(panel, x, keyTop, "occluding", paintFilledSquare, kBlack);
-  x = drawKeyEntry(panel, x, keyTop, "receiver", paintMarkerSwatch, kProbeMarkerColor);
-  drawKeyEntry(panel, x, keyTop, "pixel", paintBoxSwatch, kProbeMarkerColor);
-  if (decisions.empty())
+  std::vector<KeyEntry> entries = { { "kernel", paintBoxSwatch, kWhite }, { "read", paintDot, kWhite },
+    { "occluding", paintFilledSquare, kBlack }, { "receiver", paintMarkerSwatch, kProbeMarkerColor } };
+  if (!record.mapPolygons.empty())
   {
-    drawText(panel, format("texels ", crop.lo.x, "..", crop.lo.x + crop.size.x - 1, " x ", crop.lo.y, "..",
-      crop.lo.y + crop.size.y - 1, " of ", mapWidth), kBodyFontPx, int(box.left), int(box.bottom), kDarkGrey);
+    entries.push_back({ "pixel", paintBoxSwatch, kProbeMarkerColor });
   }
-  const double slotWidth = 0.5 * box.width;
+  if (!record.contourEdges.empty())
+  {
+    entries.push_back({ "contour edge", paintLineSwatch, kContourColor });
+  }
   for (std::size_t d = 0; d < decisions.size(); ++d)
   {
-    const int line = int(d / 2);
-    const int slotLeft = int(box.left + (d % 2) * slotWidth);
-    const int slotBottom = int(box.bottom + (1 - line) * kKeyLinePx);
-    if (line == 1 && d % 2 == 1 && decisions.size() > 4)
-    {
-      drawText(panel, format("+", decisions.size() - d, " more decisions"), kBodyFontPx, slotLeft, slotBottom, kDarkGrey);
-      break;
-    }
-    drawKeyEntry(panel, slotLeft, slotBottom, fitText(decisions[d], kBodyFontPx, int(slotWidth) - 24), paintBoxSwatch,
-      ColorMap::categoryColor(long(d)));
+    entries.push_back({ decisions[d], paintBoxSwatch, ColorMap::categoryColor(long(d)) });
+  }
+  entries.push_back({ format("texels ", crop.lo.x, "..", crop.lo.x + crop.size.x - 1, " x ", crop.lo.y, "..",
+    crop.lo.y + crop.size.y - 1, " of ", mapWidth), nullptr, kDarkGrey });
+  return entries;
+}
+
+// The contour edges the technique found (their shadow-map texel coordinates), over the crop.
+void drawContourEdgesInMap(CropCanvas& canvas, const ProbeRecord& record)
+{
+  for (const ProbeContourEdge& edge : record.contourEdges)
+  {
+    drawLine(canvas.map, canvas.toMap(edge.a), canvas.toMap(edge.b), kBlack, 4.0);
+    drawLine(canvas.map, canvas.toMap(edge.a), canvas.toMap(edge.b), kContourColor, 2.0);
   }
 }
 
-ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const ProbeSetting& setting)
+ImageU8 shadowMapPanel(const ProbeResult& probe, const ProbeSetting& setting, const FigureRect& rect, char letter,
+  std::vector<std::vector<std::string>>& colorBarTicks)
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::ShadowMap);
   // With views that partition the pixels (cascades) the map is the pixel's own view's, named in the title.
   const ProbeMap& map = setting.map;
-  ImageU8 panel = newPanel(rect, map.label.empty() ? std::string("(b) shadow map: linear depth [world units]")
-      : "(b) " + map.exportName + ", linear depth");
+  ImageU8 panel = newPanel(rect, panelTag(letter) + (map.label.empty() ? std::string("shadow map: linear depth [world units]")
+      : map.exportName + ", linear depth"));
   const Box box = contentBox(rect);
   const ImageF* depthMap = map.depth;
   if (depthMap == nullptr || map.view == nullptr)
@@ -435,20 +596,24 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
   options.colorMap = ColorMapKind::Viridis;
   const ValueRange range = colorMapRange(validValueRange(arrays.depth, &valid), options);
   const ColorMap viridis(ColorMapKind::Viridis);
-  const ColorKey key = ColorKey::continuous(viridis, range.min, range.max, kBodyFontPx);
+  const int barWidth = colorBarWidth(viridis, range.min, range.max);
 
-  // Layout: the map on the left, its colour bar on the right, three key lines below.
-  const double keyBand = 3.0 * kKeyLinePx + 4.0;
-  const double labelBand = map.label.empty() ? 0.0 : kKeyLinePx + 2.0; // the view's label above the map
-  const Box mapBox{ box.left, box.bottom + keyBand, box.width - key.width() - 6.0, box.height - keyBand - labelBand };
+  // Layout: the map on the left, its colour bar on the right, the key below, the view's label above.
+  const std::vector<std::string> decisions = nodeDecisionLabels(record);
+  const std::vector<KeyEntry> keyEntries = shadowMapKey(record, decisions, crop, depthMap->width);
+  const double keyBand = keyHeight(keyEntries, int(box.width));
+  const std::vector<std::string> labelLines =
+    map.label.empty() ? std::vector<std::string>() : wrapText(map.label, kBodyFontPx, int(box.width));
+  const double labelBand = labelLines.size() * double(kKeyLinePx) + (labelLines.empty() ? 0.0 : 2.0);
+  const Box mapBox{ box.left, box.bottom + keyBand, box.width - barWidth - 6.0, box.height - keyBand - labelBand };
   const double scale = std::min(mapBox.width / crop.size.x, mapBox.height / crop.size.y);
-  key.draw(panel, int(mapBox.left + mapBox.width + 6.0), int(mapBox.bottom),
-    std::max(key.minHeight(), int(mapBox.height)));
+  colorBarTicks.push_back(drawColorBar(panel, viridis, range.min, range.max, int(mapBox.left + mapBox.width + 6.0),
+    int(mapBox.bottom), int(mapBox.height)));
 
   CropCanvas canvas = paintDepthCrop(arrays, crop, valid, range, viridis, scale);
-  const std::vector<std::string> decisions = nodeDecisionLabels(record);
   drawNodesAndKernels(canvas, record, decisions);
   drawTexelsRead(canvas, arrays, crop);
+  drawContourEdgesInMap(canvas, record);
   if (setting.receiver.uvTexels)
   {
     drawMarker(canvas.map, canvas.toMap(*setting.receiver.uvTexels), 3.0);
@@ -469,22 +634,53 @@ ImageU8 shadowMapPanel(const ProbeResult& probe, const FrameResult& frame, const
   const int mapBottom = int(mapBox.bottom + 0.5 * (mapBox.height - canvas.map.height));
   blit(panel, canvas.map, mapLeft, mapBottom);
   strokeRect(panel, mapLeft - 1, mapBottom - 1, canvas.map.width + 2, canvas.map.height + 2, kDarkGrey, 1);
-  drawShadowMapKey(panel, box, decisions, crop, depthMap->width);
-  if (!map.label.empty())
+  drawKey(panel, keyEntries, int(box.left), int(box.bottom + keyBand), int(box.width));
+  // Which view of the partition, and the pixels it serves (its split depths), over the map's top edge.
+  int labelY = int(box.bottom + box.height) - kKeyLinePx;
+  for (const std::string& line : labelLines)
   {
-    // Which view of the partition, and the pixels it serves (its split depths), over the map's top edge.
-    drawText(panel, fitText(map.label, kBodyFontPx, int(box.width)), kBodyFontPx, int(box.left),
-      int(box.bottom + box.height) - measureText("Ag", kBodyFontPx).height, kDarkGrey);
+    putText(panel, line, kBodyFontPx, int(box.left), labelY, kDarkGrey);
+    labelY -= kKeyLinePx;
   }
   return panel;
 }
 
 // --- (c) the light plane -----------------------------------------------------------------------------------------
 
-ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting)
+// Whether the record holds anything to draw on the light plane (panel (c) is left out otherwise).
+bool hasLightPlaneContent(const ProbeRecord& record)
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::LightPlane);
-  ImageU8 panel = newPanel(rect, "(c) light plane (light's view), signed area");
+  return !record.lightPolygons.empty() || !record.contourEdges.empty() || !record.lightSamples.empty();
+}
+
+// The polygons' roles with their counts ("wedge of caster 1: M_e = 1, 5 samples changed"), in order.
+std::vector<std::string> polygonRoleLines(const ProbeRecord& record)
+{
+  std::vector<std::pair<std::string, std::size_t>> roles;
+  for (const ProbeLightPolygon& polygon : record.lightPolygons)
+  {
+    const auto found = std::find_if(roles.begin(), roles.end(), [&](const auto& r) { return r.first == polygon.role; });
+    if (found == roles.end())
+    {
+      roles.emplace_back(polygon.role, 1);
+    }
+    else
+    {
+      ++found->second;
+    }
+  }
+  std::vector<std::string> lines;
+  for (const auto& [role, count] : roles)
+  {
+    lines.push_back(count > 1 ? format(role, " (x", count, ")") : role);
+  }
+  return lines;
+}
+
+ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting, const FigureRect& rect, char letter,
+  std::vector<std::vector<std::string>>& colorBarTicks)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "light plane (light's view), signed area");
   const Box box = contentBox(rect);
   const ProbeRecord& record = probe.record;
   const Light& light = *setting.light;
@@ -506,13 +702,60 @@ ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting)
   const bool hasAreas = !record.lightPolygons.empty() || !record.contourEdges.empty();
   const ColorMap diverging(ColorMapKind::Diverging);
   const double areaRange = maxArea > 0.0 ? maxArea : 1.0;
-  const ColorKey key = ColorKey::continuous(diverging, -areaRange, areaRange, kBodyFontPx);
-  const double keyBand = 2.0 * kKeyLinePx + 4.0;
-  const Box planeBox{ box.left, box.bottom + keyBand, box.width - (hasAreas ? key.width() + 6.0 : 0.0), box.height - keyBand };
+  const int barWidth = colorBarWidth(diverging, -areaRange, areaRange);
+
+  // The key: the marks, each polygon role (a wedge's caster and the samples it changed), the totals.
+  std::vector<KeyEntry> keyEntries = { { "light", paintLineSwatch, kBlack } };
+  if (!record.lightSamples.empty())
+  {
+    keyEntries.push_back({ "blocked", paintDot, kBlack });
+    keyEntries.push_back({ "visible sample", paintDot, kWhite });
+  }
+  if (!record.contourEdges.empty())
+  {
+    keyEntries.push_back({ "contour edge back-projected (coloured by its signed area)", paintLineSwatch,
+      areaColorKeySample(diverging) });
+  }
+  const std::vector<std::string> polygonRoles = polygonRoleLabels(record);
+  const std::vector<std::string> roleLines = polygonRoleLines(record);
+  for (std::size_t r = 0; r < roleLines.size(); ++r)
+  {
+    keyEntries.push_back({ roleLines[r], paintBoxSwatch, ColorMap::categoryColor(long(r)) });
+  }
+  {
+    double areaSum = 0.0;
+    for (const ProbeLightPolygon& polygon : record.lightPolygons)
+    {
+      areaSum += polygon.signedArea;
+    }
+    std::string summary = format(record.lightPolygons.size() + record.droppedPolygons, " polygons");
+    if (!record.lightPolygons.empty())
+    {
+      summary += ", sum " + numberText(areaSum) +
+        (light.type == LightType::Area ? " (light's area " + numberText(light.area()) + ")" : "");
+    }
+    if (!record.contourEdges.empty())
+    {
+      summary += format(", ", record.contourEdges.size() + record.droppedEdges, " contour edges");
+    }
+    keyEntries.push_back({ summary, nullptr, kDarkGrey });
+  }
+  if (keyHeight(keyEntries, int(box.width)) > 0.45 * box.height)
+  {
+    // Too many roles to leave the plane room: the key-number pages list them (addRecordCounts).
+    const auto roles = polygonRoleLines(record);
+    keyEntries.erase(std::remove_if(keyEntries.begin(), keyEntries.end(), [&](const KeyEntry& entry) {
+      return entry.paint == paintBoxSwatch && std::find(roles.begin(), roles.end(), entry.label) != roles.end();
+    }), keyEntries.end());
+    keyEntries.insert(keyEntries.end() - 1, KeyEntry{ format(roles.size(), " polygon roles: listed in the key numbers"),
+      nullptr, kDarkGrey });
+  }
+  const double keyBand = keyHeight(keyEntries, int(box.width));
+  const Box planeBox{ box.left, box.bottom + keyBand, box.width - (hasAreas ? barWidth + 6.0 : 0.0), box.height - keyBand };
   if (hasAreas)
   {
-    key.draw(panel, int(planeBox.left + planeBox.width + 6.0), int(planeBox.bottom),
-      std::max(key.minHeight(), int(planeBox.height)));
+    colorBarTicks.push_back(drawColorBar(panel, diverging, -areaRange, areaRange, int(planeBox.left + planeBox.width + 6.0),
+      int(planeBox.bottom), int(planeBox.height)));
   }
 
   // The view: the light and a margin around it; without an outline (a point light), whatever was recorded.
@@ -569,7 +812,10 @@ ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting)
       points.push_back(toPx(p));
     }
     fillPolygon(plane, points, areaColor(polygon.signedArea), 0.7);
-    strokePolygon(plane, points, kDarkGrey, 1.0);
+    // The outline in its role's colour (the key's swatch): which wedge or micropatch it is.
+    const RgbColor roleColor = ColorMap::categoryColor(labelCode(polygonRoles, polygon.role));
+    strokePolygon(plane, points, kBlack, points.size() > 2 ? 1.0 : 4.0);
+    strokePolygon(plane, points, roleColor, points.size() > 2 ? 1.0 : 2.0);
   }
   for (const ProbeContourEdge& edge : record.contourEdges)
   {
@@ -608,26 +854,7 @@ ImageU8 lightPlanePanel(const ProbeResult& probe, const ProbeSetting& setting)
   }
   blit(panel, plane, int(planeBox.left), int(planeBox.bottom));
 
-  const int keyTop = int(box.bottom + kKeyLinePx + 2);
-  int x = int(box.left);
-  x = drawKeyEntry(panel, x, keyTop, "light", paintLineSwatch, kBlack);
-  x = drawKeyEntry(panel, x, keyTop, "blocked", paintDot, kBlack);
-  drawKeyEntry(panel, x, keyTop, "visible sample", paintDot, kWhite);
-  double areaSum = 0.0;
-  for (const ProbeLightPolygon& polygon : record.lightPolygons)
-  {
-    areaSum += polygon.signedArea;
-  }
-  std::string summary = format(record.lightPolygons.size(), " polygons");
-  if (!record.lightPolygons.empty())
-  {
-    summary += ", sum " + numberText(areaSum) + (light.type == LightType::Area ? " (light's area " + numberText(light.area()) + ")" : "");
-  }
-  if (!record.contourEdges.empty())
-  {
-    summary += format(", ", record.contourEdges.size(), " edges");
-  }
-  drawText(panel, fitText(summary, kBodyFontPx, int(box.width)), kBodyFontPx, int(box.left), int(box.bottom), kDarkGrey);
+  drawKey(panel, keyEntries, int(box.left), int(box.bottom + keyBand), int(box.width));
   return panel;
 }
 
@@ -647,23 +874,31 @@ double niceLength(double limit)
   return decade;
 }
 
-ImageU8 sectionPanel(const FrameResult& frame, const Scene& scene, const ProbeSetting& setting)
+ImageU8 sectionPanel(const Scene& scene, const ProbeSetting& setting, const FigureRect& rect, char letter)
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::Section);
   const ProbeLightFrame& lightFrame = setting.lightFrame;
   const ProbeReceiver& receiver = setting.receiver;
   const Light& light = *setting.light;
   const ProbeSection section = probeSection(lightFrame.eyeWs, lightFrame.axisWs, receiver.position, receiver.normal);
-  ImageU8 panel = newPanel(rect, std::string("(d) section through the light's centre and the receiver, containing ") +
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "section through the light's centre and the receiver, containing " +
       (section.usesReceiverNormal ? "the receiver's normal" : "the light's axis"));
   const Box box = contentBox(rect);
-  const double keyBand = kKeyLinePx + 4.0;
-  const Box sectionBox{ box.left, box.bottom + keyBand, box.width, box.height - keyBand };
-
   const double halfExtent = lightHalfExtentInSection(light, section);
   const glm::dvec2 lightCentre = section.toSection(lightFrame.eyeWs);
   const glm::dvec2 receiverPoint = section.toSection(receiver.position);
   const bool directional = light.type == LightType::Directional;
+  std::vector<KeyEntry> keyEntries = { { "casters", paintLineSwatch, kCasterColor },
+    { "non-casters", paintLineSwatch, kLightGrey }, { "shadow-map depth per texel", paintLineSwatch, kDepthStepColor },
+    { "light", paintLineSwatch, kLightColor },
+    { directional ? "ray to the light" : "rays to its ends", paintLineSwatch, kRayColor },
+    { "receiver", paintMarkerSwatch, kProbeMarkerColor } };
+  if (setting.map.depth == nullptr || setting.map.view == nullptr)
+  {
+    keyEntries.erase(keyEntries.begin() + 2); // no map, no depth steps
+  }
+  const double keyBand = keyHeight(keyEntries, int(box.width));
+  const Box sectionBox{ box.left, box.bottom + keyBand, box.width, box.height - keyBand };
+
   // Where the rays go: the light's two ends (its centre for a point light); a directional light's rays are
   // parallel, back along its direction to the eye's plane.
   std::vector<glm::dvec2> rayEnds;
@@ -758,17 +993,335 @@ ImageU8 sectionPanel(const FrameResult& frame, const Scene& scene, const ProbeSe
   drawLine(canvas, barStart - glm::dvec2(0, 4), barStart + glm::dvec2(0, 4), kBlack, 2.0);
   drawLine(canvas, barEnd - glm::dvec2(0, 4), barEnd + glm::dvec2(0, 4), kBlack, 2.0);
   const std::string barLabel = numberText(barLength) + " world units";
-  drawText(canvas, barLabel, kBodyFontPx, int(barEnd.x) - textWidth(barLabel, kBodyFontPx), int(barEnd.y) + 6, kBlack);
+  putText(canvas, barLabel, kBodyFontPx, int(barEnd.x) - textWidth(barLabel, kBodyFontPx), int(barEnd.y) + 6, kBlack);
   blit(panel, canvas, int(sectionBox.left), int(sectionBox.bottom));
 
-  int x = int(box.left);
-  const int y = int(box.bottom);
-  x = drawKeyEntry(panel, x, y, "casters", paintLineSwatch, kCasterColor);
-  x = drawKeyEntry(panel, x, y, "non-casters", paintLineSwatch, kLightGrey);
-  x = drawKeyEntry(panel, x, y, "shadow-map depth per texel", paintLineSwatch, kDepthStepColor);
-  x = drawKeyEntry(panel, x, y, "light", paintLineSwatch, kLightColor);
-  x = drawKeyEntry(panel, x, y, directional ? "ray to the light" : "rays to its ends", paintLineSwatch, kRayColor);
-  drawKeyEntry(panel, x, y, "receiver", paintMarkerSwatch, kProbeMarkerColor);
+  drawKey(panel, keyEntries, int(box.left), int(box.bottom + keyBand), int(box.width));
+  return panel;
+}
+
+// --- the algorithm panels ------------------------------------------------------------------------------------------
+
+// The first of `names` the record holds (in any group), or nullptr.
+const ProbeQuantity* findAny(const ProbeRecord& record, std::initializer_list<const char*> names)
+{
+  for (const char* name : names)
+  {
+    if (const ProbeQuantity* quantity = record.find(name); quantity != nullptr && !quantity->value.empty())
+    {
+      return quantity;
+    }
+  }
+  return nullptr;
+}
+
+// PCSS's penumbra estimate (Fernando 2005; VSSM Alg. 1 L7-L16) as the record gives it: the light's width w_light,
+// the search plane's depth n (the map's near plane), the receiver's depth d_r and, where blockers were found, the
+// average blocker depth d_b. pcss, savsm (through pcssReference) and vssm record these.
+struct PenumbraEstimate
+{
+  double lightSize = 0.0;
+  double searchDepth = 0.0;
+  double receiverDepth = 0.0;
+  std::optional<double> blockerDepth;        // none: no blocker in the search region (lit)
+  std::optional<double> recordedPenumbra;    // the twin's penumbra_width, where it records one
+  std::optional<double> recordedSearchWidth; // blocker_kernel_world_size
+  double searchWidth() const { return lightSize * (receiverDepth - searchDepth) / receiverDepth; }
+  double penumbraWidth() const { return lightSize * (receiverDepth - *blockerDepth) / *blockerDepth; }
+};
+
+std::optional<PenumbraEstimate> penumbraEstimateOf(const ProbeRecord& record, const ProbeSetting& setting)
+{
+  const ProbeQuantity* lightSize = record.find("light_size");
+  const ProbeQuantity* searchDepth = findAny(record, { "search_plane_depth", "near_depth" });
+  if (lightSize == nullptr || searchDepth == nullptr || lightSize->value.empty() || !(lightSize->value[0] > 0.0))
+  {
+    return std::nullopt;
+  }
+  PenumbraEstimate estimate;
+  estimate.lightSize = lightSize->value[0];
+  estimate.searchDepth = searchDepth->value[0];
+  const ProbeQuantity* receiverDepth = record.find("receiver_depth");
+  estimate.receiverDepth = receiverDepth != nullptr && !receiverDepth->value.empty() ? receiverDepth->value[0]
+                                                                                    : setting.receiver.depthLin;
+  if (!(estimate.receiverDepth > 0.0))
+  {
+    return std::nullopt;
+  }
+  if (const ProbeQuantity* blocker = record.find("avg_blocker_depth"); blocker != nullptr && !blocker->value.empty() &&
+    blocker->value[0] > 0.0)
+  {
+    estimate.blockerDepth = blocker->value[0];
+  }
+  if (const ProbeQuantity* penumbra = record.find("penumbra_width"); penumbra != nullptr && !penumbra->value.empty())
+  {
+    estimate.recordedPenumbra = penumbra->value[0];
+  }
+  if (const ProbeQuantity* search = record.find("blocker_kernel_world_size"); search != nullptr && !search->value.empty())
+  {
+    estimate.recordedSearchWidth = search->value[0];
+  }
+  return estimate;
+}
+
+// Lines of text under a diagram, top down from `top`; returns the y under the last.
+int drawTextLines(ImageU8& panel, const std::vector<std::pair<std::string, RgbColor>>& lines, int left, int top,
+  int widthPx)
+{
+  int y = top - kKeyLinePx;
+  for (const auto& [text, color] : lines)
+  {
+    for (const std::string& line : wrapText(text, kBodyFontPx, widthPx))
+    {
+      putText(panel, line, kBodyFontPx, left, y, color);
+      y -= kKeyLinePx;
+    }
+  }
+  return y;
+}
+
+int wrappedLineCount(const std::vector<std::pair<std::string, RgbColor>>& lines, int widthPx)
+{
+  int count = 0;
+  for (const auto& line : lines)
+  {
+    count += static_cast<int>(wrapText(line.first, kBodyFontPx, widthPx).size());
+  }
+  return count;
+}
+
+// The similar triangles of PCSS in the section's units (x across, y up, the light at depth 0): the light's ends
+// to the receiver cross the search plane over w_i = w_light (d_r - n) / d_r (step 1's search region); a blocker
+// edge at the average blocker depth seen from the light's ends spans w_penumbra = w_light (d_r - d_b) / d_b on
+// the receiver (Fernando 2005, step 2). The receiver and the blocker edge share x = 0: a schematic of the
+// pixel's numbers, not the scene's geometry (panel (d) has that).
+ImageU8 penumbraPanel(const PenumbraEstimate& estimate, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "PCSS penumbra estimate (similar triangles)");
+  const Box box = contentBox(rect);
+  const double w = estimate.lightSize;
+  const double n = estimate.searchDepth;
+  const double dr = estimate.receiverDepth;
+  std::vector<std::pair<std::string, RgbColor>> lines;
+  lines.push_back({ "w_light " + numberText(w) + ", search plane n " + numberText(n) + ", receiver d_r " +
+      numberText(dr) + " (linear depth)", kBlack });
+  lines.push_back({ "step 1, search width w_i = w_light (d_r - n) / d_r = " + numberText(w) + " (" + numberText(dr) +
+      " - " + numberText(n) + ") / " + numberText(dr) + " = " + numberText(estimate.searchWidth()) + " world units" +
+      (estimate.recordedSearchWidth ? " (recorded " + numberText(*estimate.recordedSearchWidth) + ")" : ""),
+    kSearchColor });
+  if (estimate.blockerDepth)
+  {
+    const double db = *estimate.blockerDepth;
+    lines.push_back({ "average blocker depth d_b " + numberText(db), kBlack });
+    lines.push_back({ "step 2, w_penumbra = w_light (d_r - d_b) / d_b = " + numberText(w) + " (" + numberText(dr) + " - " +
+        numberText(db) + ") / " + numberText(db) + " = " + numberText(estimate.penumbraWidth()) + " world units" +
+        (estimate.recordedPenumbra ? " (recorded " + numberText(*estimate.recordedPenumbra) + ")" : ""),
+      kPenumbraColor });
+  }
+  else
+  {
+    lines.push_back({ "no blocker in the search region: lit, no penumbra estimate", kDarkGrey });
+  }
+  // One line more on top for the diagram's stretch, when it has one.
+  const int textBand = (wrappedLineCount(lines, int(box.width)) + 1) * kKeyLinePx + 4;
+  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand - kKeyLinePx, int(box.width));
+
+  // Diagram: x across, y = -depth. Labels on the right take a fixed strip.
+  const double labelStrip = 9.0 * textWidth("M", kBodyFontPx);
+  const Box diagram{ box.left, box.bottom + textBand, box.width - labelStrip, box.height - textBand };
+  const double penumbraHalf = estimate.blockerDepth ? 0.5 * estimate.penumbraWidth() : 0.0;
+  const double halfWidth = std::max({ 0.5 * w, penumbraHalf, 1e-9 });
+  // Across stretched to the diagram's width where the light is narrow beside the depths: an affine map keeps
+  // the ratios along each plane, so the triangles still give w_i and w_penumbra; the text names the stretch.
+  const double depthScale = 0.84 * diagram.height / dr;
+  const double acrossScale = std::max(depthScale, 0.84 * diagram.width / (2.0 * halfWidth));
+  const auto px = [&](double x, double depth) {
+    return glm::dvec2(diagram.left + 0.5 * diagram.width + x * acrossScale,
+      diagram.bottom + 0.5 * diagram.height + (0.5 * dr - depth) * depthScale);
+  };
+  if (acrossScale > 1.05 * depthScale)
+  {
+    putText(panel, "diagram: across stretched x" + numberText(acrossScale / depthScale, 2) + " against depth",
+      kBodyFontPx, int(box.left), int(box.bottom) + textBand - kKeyLinePx, kDarkGrey);
+  }
+  const double right = diagram.left + diagram.width;
+  const auto planeLabel = [&](double depth, const std::string& label, const RgbColor& color, int raisePx = 0) {
+    putText(panel, label, kBodyFontPx, int(right) + 4, int(px(0.0, depth).y) - 5 + raisePx, color);
+  };
+  // The search plane's label above the blocker's where the two planes are closer than a line (d_b near n).
+  const bool planesClose = estimate.blockerDepth && std::abs(px(0, n).y - px(0, *estimate.blockerDepth).y) < kKeyLinePx;
+  // Planes: search, blocker, receiver.
+  drawDashedLine(panel, { diagram.left, px(0, n).y }, { right, px(0, n).y }, kSearchColor, 1.0, 5.0);
+  planeLabel(n, "n " + numberText(n, 3), kSearchColor, planesClose ? kKeyLinePx : 0);
+  drawLine(panel, { diagram.left, px(0, dr).y }, { right, px(0, dr).y }, kLightGrey, 2.0);
+  planeLabel(dr, "d_r " + numberText(dr, 3), kBlack);
+  // Step 1: the light's ends to the receiver, and the search region they cut from the search plane.
+  const double searchHalf = 0.5 * estimate.searchWidth();
+  drawLine(panel, px(-0.5 * w, 0.0), px(0.0, dr), kSearchColor, 1.0);
+  drawLine(panel, px(0.5 * w, 0.0), px(0.0, dr), kSearchColor, 1.0);
+  drawLine(panel, px(-searchHalf, n), px(searchHalf, n), kSearchColor, 4.0);
+  if (estimate.blockerDepth)
+  {
+    const double db = *estimate.blockerDepth;
+    // A blocker reaching from the left to its edge at x = 0, at the average blocker depth.
+    drawLine(panel, { diagram.left, px(0, db).y }, px(0.0, db), kCasterColor, 4.0);
+    drawDashedLine(panel, px(0.0, db), { right, px(0, db).y }, kCasterColor, 1.0, 5.0);
+    planeLabel(db, "d_b " + numberText(db, 3), kBlack);
+    // Step 2: the light's ends through the blocker's edge, on to the receiver: the penumbra.
+    drawLine(panel, px(-0.5 * w, 0.0), px(penumbraHalf, dr), kPenumbraColor, 1.5);
+    drawLine(panel, px(0.5 * w, 0.0), px(-penumbraHalf, dr), kPenumbraColor, 1.5);
+    drawLine(panel, px(-penumbraHalf, dr) + glm::dvec2(0, -4), px(penumbraHalf, dr) + glm::dvec2(0, -4), kPenumbraColor,
+      4.0);
+  }
+  // The light on top, and the receiver point.
+  drawLine(panel, px(-0.5 * w, 0.0), px(0.5 * w, 0.0), kBlack, 7.0);
+  drawLine(panel, px(-0.5 * w, 0.0), px(0.5 * w, 0.0), kLightColor, 4.0);
+  planeLabel(0.0, "w_light " + numberText(w, 3), kBlack);
+  drawMarker(panel, px(0.0, dr), 3.0);
+  return panel;
+}
+
+// The one-tailed Chebyshev bound of the moment techniques (Donnelly & Lauritzen 2006; VSSM Eq. 1): with the
+// filter region's mean mu and variance sigma^2, P(x >= t) <= p_max(t) = sigma^2 / (sigma^2 + (t - mu)^2) for
+// t > mu, 1 otherwise. vsm and savsm record mean, variance, the compared depth t and p_max; vssm its pooled
+// planar sub-kernels' mean offset mu - t, variance and bound (Eq. 5).
+struct ChebyshevPoint
+{
+  double variance = 0.0;
+  double offset = 0.0; // t - mu
+  std::optional<double> mean;
+  std::optional<double> comparedDepth;
+  double recordedBound = 0.0;
+  std::string boundName;
+  double bound() const { return offset <= 0.0 ? 1.0 : variance / (variance + offset * offset); }
+};
+
+std::optional<ChebyshevPoint> chebyshevPointOf(const ProbeRecord& record)
+{
+  ChebyshevPoint point;
+  if (const ProbeQuantity* pMax = record.find("p_max"); pMax != nullptr && !pMax->value.empty())
+  {
+    const ProbeQuantity* mean = record.find("mean");
+    const ProbeQuantity* variance = record.find("variance");
+    const ProbeQuantity* t = record.find("compared_depth");
+    if (mean == nullptr || variance == nullptr || t == nullptr || mean->value.empty() || variance->value.empty() ||
+      t->value.empty())
+    {
+      return std::nullopt;
+    }
+    // The three in one depth space (lvsm's moments are in warped depth, its compared_depth linear): else the
+    // bound drawn would not be the one the technique took.
+    if (mean->unit != t->unit || variance->unit != mean->unit + "^2")
+    {
+      return std::nullopt;
+    }
+    point.mean = mean->value[0];
+    point.comparedDepth = t->value[0];
+    point.variance = variance->value[0];
+    point.offset = t->value[0] - mean->value[0];
+    point.recordedBound = pMax->value[0];
+    point.boundName = "p_max";
+    return point;
+  }
+  const ProbeQuantity* offset = record.find("pooled_mean_offset");
+  const ProbeQuantity* variance = record.find("pooled_variance");
+  const ProbeQuantity* bound = record.find("chebyshev_unoccluded");
+  if (offset == nullptr || variance == nullptr || bound == nullptr || offset->value.empty() || variance->value.empty() ||
+    bound->value.empty() || variance->unit != offset->unit + "^2")
+  {
+    return std::nullopt;
+  }
+  point.variance = variance->value[0];
+  point.offset = -offset->value[0]; // the record's offset is mu - t
+  point.recordedBound = bound->value[0];
+  point.boundName = "chebyshev_unoccluded";
+  return point;
+}
+
+ImageU8 chebyshevPanel(const ChebyshevPoint& point, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "Chebyshev bound p_max(t) over t - mean");
+  const Box box = contentBox(rect);
+  std::vector<std::pair<std::string, RgbColor>> lines;
+  if (point.mean && point.comparedDepth)
+  {
+    lines.push_back({ "moments: mean " + numberText(*point.mean, 6) + " (linear depth), variance " +
+        numberText(point.variance) + " (linear depth^2)", kBlack });
+    lines.push_back({ "t " + numberText(*point.comparedDepth, 6) + ", t - mean " + numberText(point.offset), kBlack });
+  }
+  else
+  {
+    lines.push_back({ "pooled planar sub-kernels (Eq. 5): variance " + numberText(point.variance) +
+        " (linear depth^2), t - mean " + numberText(point.offset) + " (linear depth)", kBlack });
+  }
+  lines.push_back({ point.offset <= 0.0
+      ? "t <= mean: p_max = 1 (the bound does not apply, lit)"
+      : "p_max = var / (var + (t - mean)^2) = " + numberText(point.bound()) + " (recorded " + point.boundName + " " +
+        numberText(point.recordedBound) + ")",
+    kRayColor });
+  const int textBand = wrappedLineCount(lines, int(box.width)) * kKeyLinePx + 4;
+  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand, int(box.width));
+
+  // Axes: x = t - mean from a little below 0 to past the pixel's point and 3 standard deviations; y = 0 .. 1.
+  const double sigma = std::sqrt(std::max(0.0, point.variance));
+  // Past 6 sigma the bound is flat at this scale: the axis stops there and the point sits at its end, labelled.
+  const bool pointOffAxis = sigma > 0.0 && point.offset > 6.0 * sigma;
+  const double xMax = pointOffAxis ? 6.0 * sigma : std::max({ 3.0 * sigma, 1.3 * std::abs(point.offset), 1e-9 });
+  const double xMin = -0.25 * xMax;
+  const int axisLabelPx = kKeyLinePx + 4;
+  const int leftLabelPx = textWidth("0.5", kBodyFontPx) + 10;
+  const Box plot{ box.left + leftLabelPx, box.bottom + textBand + axisLabelPx + kKeyLinePx, box.width - leftLabelPx - 10.0,
+    box.height - textBand - axisLabelPx - kKeyLinePx - 8.0 };
+  const auto px = [&](double x, double y) {
+    return glm::dvec2(plot.left + (x - xMin) / (xMax - xMin) * plot.width, plot.bottom + y * plot.height);
+  };
+  drawLine(panel, px(xMin, 0.0), px(xMax, 0.0), kBlack, 1.0);
+  drawLine(panel, { plot.left, plot.bottom }, { plot.left, plot.bottom + plot.height }, kBlack, 1.0);
+  drawDashedLine(panel, px(0.0, 0.0), px(0.0, 1.0), kLightGrey, 1.0, 4.0);
+  for (const double y : { 0.0, 0.5, 1.0 })
+  {
+    const std::string label = numberText(y);
+    drawLine(panel, px(xMin, y) - glm::dvec2(4, 0), px(xMin, y), kBlack, 1.0);
+    putText(panel, label, kBodyFontPx, int(plot.left) - 6 - textWidth(label, kBodyFontPx), int(px(xMin, y).y) - 5);
+  }
+  const std::vector<double> xTicks = { 0.0, 0.5 * xMax, xMax };
+  const std::vector<std::string> xLabels = distinctTickLabels(xTicks);
+  for (std::size_t i = 0; i < xTicks.size(); ++i)
+  {
+    const glm::dvec2 at = px(xTicks[i], 0.0);
+    drawLine(panel, at, at - glm::dvec2(0, 4), kBlack, 1.0);
+    const int width = textWidth(xLabels[i], kBodyFontPx);
+    putText(panel, xLabels[i], kBodyFontPx, std::min(int(at.x) - width / 2, int(box.left + box.width) - width),
+      int(at.y) - 6 - kKeyLinePx + 4);
+  }
+  putText(panel, "t - mean (linear depth)", kBodyFontPx, int(box.left + leftLabelPx), int(box.bottom) + textBand);
+  // The curve, then the pixel's point on it.
+  glm::dvec2 previous = px(xMin, 1.0);
+  for (int i = 1; i <= 200; ++i)
+  {
+    const double x = xMin + (xMax - xMin) * i / 200.0;
+    const double y = x <= 0.0 ? 1.0 : point.variance / (point.variance + x * x);
+    const glm::dvec2 next = px(x, y);
+    drawLine(panel, previous, next, kPenumbraColor, 2.0);
+    previous = next;
+  }
+  const glm::dvec2 at = px(std::min(point.offset, xMax), point.bound());
+  drawDashedLine(panel, glm::dvec2(at.x, plot.bottom), at, kDarkGrey, 1.0, 4.0);
+  fillDisk(panel, at, 6.0, kBlack);
+  fillDisk(panel, at, 4.0, kRayColor);
+  if (pointOffAxis)
+  {
+    const std::string label = "t - mean " + numberText(point.offset) + " (" + numberText(point.offset / sigma, 3) +
+      " sigma) ->";
+    putText(panel, label, kBodyFontPx, int(plot.left + plot.width) - textWidth(label, kBodyFontPx), int(at.y) + 10,
+      kRayColor);
+  }
+  if (sigma > 0.0)
+  {
+    const glm::dvec2 sigmaAt = px(sigma, 0.5);
+    drawLine(panel, sigmaAt - glm::dvec2(0, 4), sigmaAt + glm::dvec2(0, 4), kDarkGrey, 1.0);
+    putText(panel, "sigma", kBodyFontPx, int(sigmaAt.x) + 5, int(sigmaAt.y) + 4, kDarkGrey);
+  }
   return panel;
 }
 
@@ -784,11 +1337,100 @@ std::string vectorText(const std::vector<double>& value)
   return value.size() == 1 ? text : "(" + text + ")";
 }
 
-std::string quantityText(const ProbeQuantity& quantity)
+// ESM's test (Annen et al. 2008): the step "d <= z" replaced by exp(c (z_n - t_n)), filtered as
+// E[exp(c z_n)] exp(-c t_n) and clamped to [0, 1], in depths normalized to [0, 1] between the map's near and far.
+struct ExponentialTest
+{
+  double exponent = 0.0;      // c
+  double moment = 0.0;        // E[exp(c z_n)] over the filter region
+  double comparedDepth = 0.0; // t_n
+  double recordedVisibility = 0.0;
+  double visibility(double t) const { return std::clamp(moment * std::exp(-exponent * t), 0.0, 1.0); }
+};
+
+std::optional<ExponentialTest> exponentialTestOf(const ProbeRecord& record)
+{
+  const ProbeQuantity* exponent = record.find("esm_exponent");
+  const ProbeQuantity* moment = record.find("exponential_moment");
+  const ProbeQuantity* t = record.find("normalized_compared_depth");
+  const ProbeQuantity* visibility = record.find("visibility");
+  if (exponent == nullptr || moment == nullptr || t == nullptr || visibility == nullptr || exponent->value.empty() ||
+    moment->value.empty() || t->value.empty() || visibility->value.empty() || !(exponent->value[0] > 0.0))
+  {
+    return std::nullopt;
+  }
+  return ExponentialTest{ exponent->value[0], moment->value[0], t->value[0], visibility->value[0] };
+}
+
+ImageU8 exponentialPanel(const ExponentialTest& test, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "ESM: exp(-c t) E[exp(c z)] over t");
+  const Box box = contentBox(rect);
+  // Where the filtered exponential crosses 1: the depth the occluders' exponential mean stands for.
+  const double edge = std::log(std::max(test.moment, 1e-300)) / test.exponent;
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { "c " + numberText(test.exponent) + ", E[exp(c z)] " + numberText(test.moment) + " (depths normalized to [0, 1])",
+      kBlack },
+    { "t " + numberText(test.comparedDepth, 6) + "; the estimate falls from 1 at t = ln(E[exp(c z)]) / c = " +
+        numberText(edge),
+      kBlack },
+    { "visibility = clamp(E[exp(c z)] exp(-c t), 0, 1) = " + numberText(test.visibility(test.comparedDepth)) +
+        " (recorded " + numberText(test.recordedVisibility) + ")",
+      kRayColor },
+  };
+  const int textBand = wrappedLineCount(lines, int(box.width)) * kKeyLinePx + 4;
+  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand, int(box.width));
+
+  // Axes: t over [0, 1] (the normalized depth range), visibility 0 .. 1.
+  const int axisLabelPx = kKeyLinePx + 4;
+  const int leftLabelPx = textWidth("0.5", kBodyFontPx) + 10;
+  const Box plot{ box.left + leftLabelPx, box.bottom + textBand + axisLabelPx + kKeyLinePx, box.width - leftLabelPx - 10.0,
+    box.height - textBand - axisLabelPx - kKeyLinePx - 8.0 };
+  const auto px = [&](double x, double y) { return glm::dvec2(plot.left + x * plot.width, plot.bottom + y * plot.height); };
+  drawLine(panel, px(0.0, 0.0), px(1.0, 0.0), kBlack, 1.0);
+  drawLine(panel, px(0.0, 0.0), px(0.0, 1.0), kBlack, 1.0);
+  for (const double y : { 0.0, 0.5, 1.0 })
+  {
+    const std::string label = numberText(y);
+    drawLine(panel, px(0.0, y) - glm::dvec2(4, 0), px(0.0, y), kBlack, 1.0);
+    putText(panel, label, kBodyFontPx, int(plot.left) - 6 - textWidth(label, kBodyFontPx), int(px(0.0, y).y) - 5);
+  }
+  for (const double x : { 0.0, 0.5, 1.0 })
+  {
+    const std::string label = numberText(x);
+    const glm::dvec2 at = px(x, 0.0);
+    drawLine(panel, at, at - glm::dvec2(0, 4), kBlack, 1.0);
+    const int width = textWidth(label, kBodyFontPx);
+    putText(panel, label, kBodyFontPx, std::min(int(at.x) - width / 2, int(box.left + box.width) - width),
+      int(at.y) - 6 - kKeyLinePx + 4);
+  }
+  putText(panel, "t, normalized compared depth", kBodyFontPx, int(box.left + leftLabelPx), int(box.bottom) + textBand);
+  glm::dvec2 previous = px(0.0, test.visibility(0.0));
+  for (int i = 1; i <= 400; ++i)
+  {
+    const double x = i / 400.0;
+    const glm::dvec2 next = px(x, test.visibility(x));
+    drawLine(panel, previous, next, kPenumbraColor, 2.0);
+    previous = next;
+  }
+  const double shownT = std::clamp(test.comparedDepth, 0.0, 1.0);
+  const glm::dvec2 at = px(shownT, test.visibility(test.comparedDepth));
+  drawDashedLine(panel, glm::dvec2(at.x, plot.bottom), at, kDarkGrey, 1.0, 4.0);
+  fillDisk(panel, at, 6.0, kBlack);
+  fillDisk(panel, at, 4.0, kRayColor);
+  return panel;
+}
+
+} // namespace
+
+std::string probeQuantityText(const ProbeQuantity& quantity)
 {
   const std::string value = quantity.text.empty() ? vectorText(quantity.value) : quantity.text;
   return quantity.name + " " + value + (quantity.unit.empty() ? "" : " " + quantity.unit);
 }
+
+namespace
+{
 
 // The legend's lines, each with its colour.
 class LegendLines
@@ -918,6 +1560,10 @@ void addRecordCounts(LegendLines& lines, const ProbeRecord& record)
     }
     lines.add(format("light polygons ", record.lightPolygons.size() + record.droppedPolygons, ", signed area sum ",
       numberText(sum)));
+    for (const std::string& role : polygonRoleLines(record))
+    {
+      lines.add("- " + role);
+    }
   }
   if (!record.contourEdges.empty() || record.droppedEdges > 0)
   {
@@ -932,77 +1578,238 @@ void addRecordCounts(LegendLines& lines, const ProbeRecord& record)
 }
 
 // The record's other quantities, in the twin's order (the receiver's already shown are left out).
+// A group name "<prefix> <index>" (vssm's "blocker sub-kernel 12"): the prefix, or "" when it has no index.
+std::string indexedGroupPrefix(const std::string& group)
+{
+  const std::size_t space = group.rfind(' ');
+  if (space == std::string::npos || space + 1 >= group.size() ||
+    group.find_first_not_of("0123456789", space + 1) != std::string::npos)
+  {
+    return {};
+  }
+  return group.substr(0, space);
+}
+
+std::string quantityValueText(const ProbeQuantity& quantity)
+{
+  return quantity.text.empty() ? vectorText(quantity.value) : quantity.text;
+}
+
+// The record's other quantities, in the twin's order, under their steps' headings (the receiver's already shown
+// are left out). Runs of three or more groups "<prefix> <index>" that record the same quantities (vssm's
+// sub-kernels, one group each) become a table: one heading naming the columns with their units, then one line a
+// group, "<index>: value | value | ...", every value in full.
 void addRecordedQuantities(LegendLines& lines, const ProbeRecord& record)
 {
   static const char* shown[] = { "position", "normal", "receiver_depth", "depth_bias", "shadow_map_position" };
-  bool first = true;
+  struct Group
+  {
+    std::string name;
+    std::vector<const ProbeQuantity*> quantities;
+  };
+  std::vector<Group> groups;
   for (const ProbeQuantity& quantity : record.quantities)
   {
     if (quantity.group == "receiver" && std::find(std::begin(shown), std::end(shown), quantity.name) != std::end(shown))
     {
       continue;
     }
-    if (first)
+    if (groups.empty() || groups.back().name != quantity.group)
     {
-      lines.add("-- recorded --", kDarkGrey);
-      first = false;
+      groups.push_back({ quantity.group, {} });
     }
-    lines.add(quantityText(quantity));
+    groups.back().quantities.push_back(&quantity);
+  }
+  const auto sameColumns = [](const Group& a, const Group& b) {
+    if (a.quantities.size() != b.quantities.size())
+    {
+      return false;
+    }
+    for (std::size_t i = 0; i < a.quantities.size(); ++i)
+    {
+      if (a.quantities[i]->name != b.quantities[i]->name || a.quantities[i]->unit != b.quantities[i]->unit)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (std::size_t g = 0; g < groups.size();)
+  {
+    const std::string prefix = indexedGroupPrefix(groups[g].name);
+    std::size_t end = g + 1;
+    while (!prefix.empty() && end < groups.size() && indexedGroupPrefix(groups[end].name) == prefix &&
+      sameColumns(groups[g], groups[end]))
+    {
+      ++end;
+    }
+    if (end - g >= 3)
+    {
+      std::string columns;
+      for (const ProbeQuantity* quantity : groups[g].quantities)
+      {
+        columns += (columns.empty() ? "" : " | ") + quantity->name + (quantity->unit.empty() ? "" : " [" + quantity->unit + "]");
+      }
+      lines.add(format("-- ", prefix, " (", end - g, " groups, one line each): ", columns, " --"), kDarkGrey);
+      for (std::size_t k = g; k < end; ++k)
+      {
+        std::string row = groups[k].name.substr(prefix.size() + 1) + ":";
+        for (std::size_t i = 0; i < groups[k].quantities.size(); ++i)
+        {
+          row += (i == 0 ? " " : " | ") + quantityValueText(*groups[k].quantities[i]);
+        }
+        lines.add(row);
+      }
+      g = end;
+      continue;
+    }
+    // The twin's steps as headings, in its order.
+    lines.add("-- " + (groups[g].name.empty() ? std::string("recorded") : groups[g].name) + " --", kDarkGrey);
+    for (const ProbeQuantity* quantity : groups[g].quantities)
+    {
+      lines.add(probeQuantityText(*quantity));
+    }
+    ++g;
   }
 }
 
-ImageU8 legendPanel(const ProbeResult& probe, const ProbeSetting& setting)
+// The key numbers wrapped to a page's width, and how many rows a page holds.
+struct LegendPages
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::Legend);
-  ImageU8 panel = newPanel(rect, "(e) key numbers");
-  const Box box = contentBox(rect);
+  std::vector<std::string> lines; // before wrapping
+  std::vector<std::pair<std::string, RgbColor>> rows;
+  int rowsPerPage = 1;
+  int pageCount() const { return std::max(1, int((rows.size() + rowsPerPage - 1) / rowsPerPage)); }
+};
+
+LegendPages legendPages(const ProbeResult& probe, const ProbeSetting& setting)
+{
   LegendLines lines;
   addProbeSummary(lines, probe, setting);
   addRecordCounts(lines, probe.record);
   addRecordedQuantities(lines, probe.record);
-
-  // Top down, wrapped to the panel, as far as they fit.
+  const Box box = contentBox({ 0, 0, kProbeFigurePanelSide, kProbeFigurePanelSide });
+  LegendPages pages;
   const int lineHeight = measureText("Ag", kBodyFontPx).height + 2;
-  int y = int(box.bottom + box.height) - lineHeight;
+  const int rowsPerPage = std::max(1, int(box.height) / lineHeight);
+  pages.rowsPerPage = rowsPerPage;
   for (const auto& [text, color] : lines.lines())
   {
-    for (const std::string& line : wrapText(text, kBodyFontPx, int(box.width)))
+    pages.lines.push_back(text);
+    bool first = true;
+    // Wrapped two characters short, so the continuation rows' indent fits too.
+    const std::vector<std::string> wrapped = wrapText(text, kBodyFontPx, int(box.width) - textWidth("  ", kBodyFontPx));
+    const int rowsLeft = rowsPerPage - int(pages.rows.size() % std::size_t(rowsPerPage));
+    if (int(wrapped.size()) > rowsLeft && int(wrapped.size()) <= rowsPerPage)
     {
-      if (y < box.bottom)
-      {
-        return panel;
-      }
-      drawText(panel, fitText(line, kBodyFontPx, int(box.width)), kBodyFontPx, int(box.left), y, color);
-      y -= lineHeight;
+      // A wrapped line starts the next page rather than break across two.
+      pages.rows.insert(pages.rows.end(), std::size_t(rowsLeft), { std::string(), kBlack });
     }
+    for (const std::string& line : wrapped)
+    {
+      // Continuation rows are indented so a wrapped quantity reads as one.
+      pages.rows.emplace_back(first ? line : "  " + line, color);
+      first = false;
+    }
+  }
+  return pages;
+}
+
+ImageU8 legendPanel(const LegendPages& pages, int page, const FigureRect& rect, char letter)
+{
+  const int pageCount = pages.pageCount();
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "key numbers" +
+      (pageCount > 1 ? format(", page ", page + 1, " of ", pageCount) : std::string()));
+  const Box box = contentBox(rect);
+  const int lineHeight = measureText("Ag", kBodyFontPx).height + 2;
+  int y = int(box.bottom + box.height) - lineHeight;
+  const std::size_t first = std::size_t(page) * std::size_t(pages.rowsPerPage);
+  for (std::size_t row = first; row < std::min(pages.rows.size(), first + std::size_t(pages.rowsPerPage)); ++row)
+  {
+    putText(panel, pages.rows[row].first, kBodyFontPx, int(box.left), y, pages.rows[row].second);
+    y -= lineHeight;
   }
   return panel;
 }
 
-} // namespace
-
-FigureRect probeFigurePanel(ProbePanel panel)
+// Panels in the figure's order with their widths in cells, packed three cells to a row: a two-cell panel that
+// does not fit the row's end waits for the next row while the one-cell panels after it fill the gap.
+ProbeFigureLayout layoutPanels(const std::vector<std::pair<ProbeFigurePanel, int>>& wanted)
 {
-  const int side = kProbeFigurePanelSide;
-  switch (panel)
+  ProbeFigureLayout layout;
+  struct Cell
   {
-    case ProbePanel::Image:
-      return { 0, side, side, side };
-    case ProbePanel::ShadowMap:
-      return { side, side, side, side };
-    case ProbePanel::LightPlane:
-      return { 2 * side, side, side, side };
-    case ProbePanel::Section:
-      return { 0, 0, 2 * side, side };
-    case ProbePanel::Legend:
-      return { 2 * side, 0, side, side };
+    ProbeFigurePanel panel;
+    int row;
+    int column;
+    int span;
+  };
+  std::vector<Cell> placed;
+  std::vector<std::pair<ProbeFigurePanel, int>> pending = wanted;
+  int row = 0;
+  while (!pending.empty())
+  {
+    int column = 0;
+    while (column < kProbeFigureColumns)
+    {
+      const auto fits = std::find_if(pending.begin(), pending.end(),
+        [&](const auto& entry) { return entry.second <= kProbeFigureColumns - column; });
+      if (fits == pending.end())
+      {
+        break;
+      }
+      placed.push_back({ fits->first, row, column, fits->second });
+      column += fits->second;
+      pending.erase(fits);
+    }
+    ++row;
   }
-  return {};
+  layout.height = row * kProbeFigurePanelSide;
+  char letter = 'a';
+  for (Cell& cell : placed)
+  {
+    cell.panel.letter = letter++;
+    cell.panel.rect = { cell.column * kProbeFigurePanelSide, layout.height - (cell.row + 1) * kProbeFigurePanelSide,
+      cell.span * kProbeFigurePanelSide, kProbeFigurePanelSide };
+    layout.panels.push_back(cell.panel);
+  }
+  return layout;
 }
 
-ImagePlacement probeImagePlacement(glm::ivec2 imageSize)
+} // namespace
+
+std::optional<FigureRect> ProbeFigureLayout::rect(ProbePanel panel, int page) const
 {
-  const FigureRect rect = probeFigurePanel(ProbePanel::Image);
+  for (const ProbeFigurePanel& placed : panels)
+  {
+    if (placed.panel == panel && placed.page == page)
+    {
+      return placed.rect;
+    }
+  }
+  return std::nullopt;
+}
+
+char ProbeFigureLayout::letter(ProbePanel panel, int page) const
+{
+  for (const ProbeFigurePanel& placed : panels)
+  {
+    if (placed.panel == panel && placed.page == page)
+    {
+      return placed.letter;
+    }
+  }
+  return '?';
+}
+
+int ProbeFigureLayout::pages(ProbePanel panel) const
+{
+  return static_cast<int>(
+    std::count_if(panels.begin(), panels.end(), [&](const ProbeFigurePanel& placed) { return placed.panel == panel; }));
+}
+
+ImagePlacement probeImagePlacement(const FigureRect& rect, glm::ivec2 imageSize)
+{
   const Box box = contentBox(rect);
   ImagePlacement placement;
   if (imageSize.x <= 0 || imageSize.y <= 0)
@@ -1016,20 +1823,93 @@ ImagePlacement probeImagePlacement(glm::ivec2 imageSize)
   return placement;
 }
 
-ImageU8 probeFigure(const ProbeResult& probe, const FrameResult& frame, const Scene& scene)
+ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& frame, const Scene& scene)
 {
   const ProbeSetting setting = probeSetting(probe, frame, scene);
-  ImageU8 figure(kProbeFigureWidth, kProbeFigureHeight, 3, 255);
-  const auto place = [&](ProbePanel which, const ImageU8& panel) {
-    const FigureRect rect = probeFigurePanel(which);
-    blit(figure, panel, rect.left, rect.bottom);
-  };
-  place(ProbePanel::Image, imagePanel(probe, frame));
-  place(ProbePanel::ShadowMap, shadowMapPanel(probe, frame, setting));
-  place(ProbePanel::LightPlane, lightPlanePanel(probe, setting));
-  place(ProbePanel::Section, sectionPanel(frame, scene, setting));
-  place(ProbePanel::Legend, legendPanel(probe, setting));
-  return figure;
+  const ProbeRecord& record = probe.record;
+  const LegendPages pages = legendPages(probe, setting);
+  const std::optional<PenumbraEstimate> penumbra = penumbraEstimateOf(record, setting);
+  const std::optional<ChebyshevPoint> chebyshev = chebyshevPointOf(record);
+  const std::optional<ExponentialTest> exponential = exponentialTestOf(record);
+
+  // Only panels with content: no map, nothing on the light, no algorithm quantities leave theirs out.
+  std::vector<std::pair<ProbeFigurePanel, int>> wanted;
+  const auto want = [&](ProbePanel panel, int span, int page = 0) { wanted.push_back({ { panel, page, 'a', {} }, span }); };
+  want(ProbePanel::Image, 1);
+  if (setting.map.depth != nullptr && setting.map.view != nullptr)
+  {
+    want(ProbePanel::ShadowMap, 1);
+  }
+  if (hasLightPlaneContent(record))
+  {
+    want(ProbePanel::LightPlane, 1);
+  }
+  want(ProbePanel::Section, 2);
+  if (penumbra)
+  {
+    want(ProbePanel::Penumbra, 1);
+  }
+  if (chebyshev)
+  {
+    want(ProbePanel::Chebyshev, 1);
+  }
+  if (exponential)
+  {
+    want(ProbePanel::Exponential, 1);
+  }
+  for (int page = 0; page < pages.pageCount(); ++page)
+  {
+    want(ProbePanel::Legend, 1, page);
+  }
+
+  ProbeFigureDrawing drawing;
+  drawing.layout = layoutPanels(wanted);
+  drawing.legendLines = pages.lines;
+  drawing.image = ImageU8(drawing.layout.width, drawing.layout.height, 3, 255);
+  tFigureTextLog.texts = &drawing.texts;
+  struct ResetLog
+  {
+    ~ResetLog() { tFigureTextLog.texts = nullptr; }
+  } resetLog;
+  for (const ProbeFigurePanel& placed : drawing.layout.panels)
+  {
+    tFigureTextLog.panel = placed.panel;
+    ImageU8 panel;
+    switch (placed.panel)
+    {
+      case ProbePanel::Image:
+        panel = imagePanel(probe, frame, placed.rect, placed.letter);
+        break;
+      case ProbePanel::ShadowMap:
+        panel = shadowMapPanel(probe, setting, placed.rect, placed.letter, drawing.colorBarTicks);
+        break;
+      case ProbePanel::LightPlane:
+        panel = lightPlanePanel(probe, setting, placed.rect, placed.letter, drawing.colorBarTicks);
+        break;
+      case ProbePanel::Section:
+        panel = sectionPanel(scene, setting, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Penumbra:
+        panel = penumbraPanel(*penumbra, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Chebyshev:
+        panel = chebyshevPanel(*chebyshev, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Exponential:
+        panel = exponentialPanel(*exponential, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Legend:
+        panel = legendPanel(pages, placed.page, placed.rect, placed.letter);
+        break;
+    }
+    blit(drawing.image, panel, placed.rect.left, placed.rect.bottom);
+  }
+  return drawing;
+}
+
+ImageU8 probeFigure(const ProbeResult& probe, const FrameResult& frame, const Scene& scene)
+{
+  return drawProbeFigure(probe, frame, scene).image;
 }
 
 } // namespace sl

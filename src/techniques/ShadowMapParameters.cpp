@@ -104,14 +104,14 @@ TechniqueDescriptor describeShadowMapTechnique(
 
 BufferSpec texelRatioBuffer()
 {
-  return { "texel_ratio", "pixels/texel",
+  return onShadowTestedPixels({ "texel_ratio", "pixels/texel",
     "aliasing error m (survey Eq. 2): screen pixels spanned by one shadow-map texel along its most stretched "
-    "direction; > 1 means undersampling" };
+    "direction; > 1 means undersampling" });
 }
 
 BufferSpec depthBiasBuffer()
 {
-  return { "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" };
+  return onShadowTestedPixels({ "depth_bias", "world units", "depth bias applied at the pixel (constant + slope-scaled)" });
 }
 
 BiasSettings biasSettings(const ParameterValues& values)

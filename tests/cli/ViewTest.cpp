@@ -68,7 +68,7 @@ RunResult runUnderXvfb(const std::vector<std::string>& arguments, const fs::path
   const fs::path outFile = workDir.parent_path() / (".capture-" + workDir.filename().string() + ".stdout");
   const fs::path errFile = workDir.parent_path() / (".capture-" + workDir.filename().string() + ".stderr");
   std::string command = "cd " + test::shellQuote(workDir.string()) + " && exec xvfb-run -a -n " +
-    std::to_string(100 + getpid() % 800) + " -s '-screen 0 1280x1024x24 -nolisten tcp' " +
+    std::to_string(100 + getpid() % 800) + " -s '-screen 0 1600x1200x24 -nolisten tcp' " +
     test::shellQuote(SL_SHADOWLAB_EXE);
   for (const std::string& argument : arguments)
   {
@@ -253,7 +253,11 @@ TEST(ViewCommand, RecordedSessionDrivesTheWindowAndItsScreenshotsMatchTheBaselin
       " -t hard --set bias_constant_texels=2 --scene-set /lights/0/size=1 --resolution 128x128",
     "view: buffer visibility",
     "view: screenshot shots/view-004-hard-visibility.png",
-    "h           print these keys" };
+    "h           print these keys",
+    "view: keys shown in the window (h hides them) and printed on the terminal",
+    "view: screenshot shots/view-005-hard-visibility.png",
+    // hard's figure is two rows of panels, all on show: f has nothing to scroll and says so.
+    "view: probe figure rows 1..2 of 2" };
   std::size_t at = 0;
   for (const std::string& action : actions)
   {
@@ -273,7 +277,7 @@ TEST(ViewCommand, RecordedSessionDrivesTheWindowAndItsScreenshotsMatchTheBaselin
   ASSERT_EQ(zoom, std::stoi(layout[4]));
   ASSERT_EQ(zoom, 2) << "a 128x128 frame is drawn 2 screen pixels per pixel (ViewerSession.cpp)";
   const std::vector<std::string> names = { "view-001-pcf-image.png", "view-002-pcf-visibility.png",
-    "view-003-hard-texel_ratio.png", "view-004-hard-visibility.png" };
+    "view-003-hard-texel_ratio.png", "view-004-hard-visibility.png", "view-005-hard-visibility.png" };
   ASSERT_EQ(test::joined(test::entriesOf(temp.path() / "shots")), test::joined(names)) << run.describe();
   std::vector<ImageU8> shots;
   for (const std::string& name : names)
@@ -329,6 +333,34 @@ TEST(ViewCommand, RecordedSessionDrivesTheWindowAndItsScreenshotsMatchTheBaselin
   };
   EXPECT_EQ(colouredPixelsRightOfTheImage(shots[0]), 0) << "before the click: the panel's background and hint";
   EXPECT_GT(colouredPixelsRightOfTheImage(shots[3]), 2000) << "after the click: the probe figure";
+
+  // The probe figure at full size (issue 31: it was shrunk to about 600 x 400): its white page covers most of the
+  // right half of the window above the status.
+  const auto isWhite = [&](const ImageU8& shot, int x, int y) {
+    return shot.at(x, y, 0) == 255 && shot.at(x, y, 1) == 255 && shot.at(x, y, 2) == 255;
+  };
+  int whiteInRightPanel = 0;
+  for (int y = bottom; y < shots[3].height; ++y)
+  {
+    for (int x = shots[3].width / 2; x < shots[3].width; ++x)
+    {
+      whiteInRightPanel += isWhite(shots[3], x, y) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(whiteInRightPanel, 300000) << "the probe figure is not at full size";
+  // h: the keys over the probe panel on a dark backing (view-005), where the figure's white page was (view-004).
+  const auto darkInTopRight = [&](const ImageU8& shot) {
+    int count = 0;
+    for (int y = shot.height - 200; y < shot.height - 8; ++y)
+    {
+      for (int x = shot.width - 1200; x < shot.width - 700; ++x)
+      {
+        count += std::max({ shot.at(x, y, 0), shot.at(x, y, 1), shot.at(x, y, 2) }) < 40 ? 1 : 0;
+      }
+    }
+    return count;
+  };
+  EXPECT_GT(darkInTopRight(shots[4]), darkInTopRight(shots[3]) + 20000) << "h shows the keys in the window";
 
   // The same session recorded again while it replayed: the same input events (RenderEvent is VTK reporting a
   // render, not input: the screenshots' renders add some).

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The open_in_paraview.py that `render` writes, run by ParaView's pvpython under Xvfb: for a sequential, a diverging
-# and a categorical buffer, its screenshot (one pixel per buffer pixel) must show the heat map's colours
+# and a categorical buffer (light_leak holds values on shadow-tested pixels only: the others must show the heat map's
+# light grey), its screenshot (one pixel per buffer pixel) must show the heat map's colours
 # (compare_screenshot.py). pvpython comes from the unpacked python3-paraview of scripts/bootstrap.sh
 # (BUILD_DIR/pvpython-root) or from PATH; without either the test is skipped (exit 77), never passed.
 #   paraview_script_test.sh SHADOWLAB DATASETS BUILD_DIR
@@ -22,6 +23,12 @@ if ! command -v xvfb-run >/dev/null; then
   echo "SKIPPED: no xvfb-run"
   exit 77
 fi
+# One X server for every pvpython run, its number drawn from 200-699 (xvfb-run -a alone starts at 99 for every caller,
+# and two tests starting their servers at once can race for the same number).
+if [[ -z "${SL_PARAVIEW_TEST_DISPLAY:-}" ]]; then
+  exec xvfb-run -a -n $((200 + RANDOM % 500)) -s "-screen 0 640x480x24" \
+    env SL_PARAVIEW_TEST_DISPLAY=1 bash "$0" "$@"
+fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -30,12 +37,12 @@ height=96
 "$shadowlab" render "$datasets/stacked-occluders/scene.json" -t vsm --resolution ${width}x${height} --out out 2>/dev/null
 test -f out/open_in_paraview.py
 for buffer in visibility light_leak approximation; do
-  xvfb-run -a "${pvpython[@]}" out/open_in_paraview.py --buffer "$buffer" --no-legend --screenshot "$work/shot_$buffer.png" \
+  "${pvpython[@]}" out/open_in_paraview.py --buffer "$buffer" --no-legend --screenshot "$work/shot_$buffer.png" \
     >"$work/pvpython_$buffer.log" 2>&1 || { cat "$work/pvpython_$buffer.log"; exit 1; }
-  xvfb-run -a "${pvpython[@]}" "$here/compare_screenshot.py" "out/heatmap_$buffer.png" "$work/shot_$buffer.png" $width $height
+  "${pvpython[@]}" "$here/compare_screenshot.py" "out/heatmap_$buffer.png" "$work/shot_$buffer.png" $width $height
 done
 # An unknown buffer: a one-line error naming it, nonzero exit.
-if xvfb-run -a "${pvpython[@]}" out/open_in_paraview.py --buffer no_such_buffer --screenshot "$work/x.png" >"$work/bad.log" 2>&1; then
+if "${pvpython[@]}" out/open_in_paraview.py --buffer no_such_buffer --screenshot "$work/x.png" >"$work/bad.log" 2>&1; then
   echo "FAIL: --buffer no_such_buffer succeeded"
   exit 1
 fi

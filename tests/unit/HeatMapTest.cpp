@@ -20,6 +20,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 
 namespace sl
@@ -296,10 +297,15 @@ TEST(HeatMap, MarginsHoldTheColourBarAndTitleText)
         darkPixels += isDark(pixelAt(canvas, x, y)) ? 1 : 0;
     EXPECT_GT(darkPixels, 10) << "size " << size << ": no title text rendered";
     EXPECT_LT(darkPixels, titleBandPixels / 2) << "size " << size;
-    // The whole title fits on the canvas.
-    const TextSize titleSize =
-      measureText(heatMapTitle(options, validValueRange(values, nullptr)), heatMapFontPx(size));
-    EXPECT_GE(canvas.width, titleSize.width) << "size " << size;
+    // The whole title fits on the canvas: its lines wrap to it, so every word of them fits.
+    const std::vector<std::string> titleLines = heatMapTitleLines(options, heatMapScale({ { &values, nullptr } }, options));
+    ASSERT_EQ(titleLines.size(), 2u) << "size " << size;
+    for (const std::string& line : titleLines)
+    {
+      std::istringstream words(line);
+      for (std::string word; words >> word;)
+        EXPECT_GE(canvas.width, measureText(word, heatMapFontPx(size)).width) << "size " << size << ": " << word;
+    }
 
     // The right margin holds the bar (both ends of the colour map) and dark label/outline pixels.
     const std::set<Rgb8> keyColors = colorsIn(canvas, values.width, canvas.width, 0, canvas.height);

@@ -2,6 +2,7 @@
 // on a synthetic frame: an area light 5 units above a ground plane, a 2 x 2 quad caster at height 1, a 64^2
 // shadow map rasterised here by intersecting each texel's ray with the two quads, and a hand-made record (texels,
 // a kernel, nodes, light polygons, samples) whose every item has a known place in the output.
+#include "probe/NumberText.h"
 #include "probe/Probe.h"
 #include "probe/ProbeFigure.h"
 #include "probe/ProbeGeometry.h"
@@ -25,11 +26,16 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkStructuredGrid.h>
+#include <vtkFieldData.h>
 #include <vtkXMLMultiBlockDataReader.h>
 #include <vtkXMLMultiBlockDataWriter.h>
 
 #include <glm/gtc/matrix_access.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -325,7 +331,7 @@ TEST(ProbeDataSet, RoundTripsThroughXmlWithItsBlocksAndArrays)
         EXPECT_NE(piece(read, block, name), nullptr) << block << "/" << name;
       }
     }
-    auto* crop = vtkImageData::SafeDownCast(piece(read, "shadow_map", "crop"));
+    auto* crop = vtkStructuredGrid::SafeDownCast(piece(read, "shadow_map", "crop"));
     ASSERT_NE(crop, nullptr);
     for (const char* array : { "depth", "read", "compared", "occluding", "weight", "visited_level" })
     {
@@ -364,12 +370,14 @@ TEST(ProbeDataSet, CropArraysMarkExactlyTheRecordedTexels)
   const Synthetic s = makeSynthetic();
   const test::TempDir dir;
   const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
-  auto* crop = vtkImageData::SafeDownCast(piece(read, "shadow_map", "crop"));
+  auto* crop = vtkStructuredGrid::SafeDownCast(piece(read, "shadow_map", "crop"));
   ASSERT_NE(crop, nullptr);
   int dims[3];
   crop->GetDimensions(dims);
-  double origin[3];
-  crop->GetOrigin(origin);
+  // The crop's first texel: its first point's texel coordinates.
+  vtkDataArray* texelUv = crop->GetPointData()->GetArray("texel_uv");
+  ASSERT_NE(texelUv, nullptr);
+  const double origin[2] = { texelUv->GetComponent(0, 0), texelUv->GetComponent(0, 1) };
   const int width = dims[0] - 1; // one cell per texel
   const int height = dims[1] - 1;
   ASSERT_GT(width, 3);
@@ -401,6 +409,82 @@ TEST(ProbeDataSet, CropArraysMarkExactlyTheRecordedTexels)
     }
   }
   EXPECT_EQ(occludingSeen, s.occludingTexels.size()); // every recorded occluding texel lies in the crop
+}
+
+// The bounds of every non-empty piece of `blocks`, by block.
+std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> probeDataSetPieceBounds(
+  vtkMultiBlockDataSet* blocks)
+{
+  std::map<std::string, std::vector<std::pair<std::string, std::array<double, 6>>>> bounds;
+  for (unsigned int b = 0; b < blocks->GetNumberOfBlocks(); ++b)
+  {
+    auto* block = vtkMultiBlockDataSet::SafeDownCast(blocks->GetBlock(b));
+    for (unsigned int p = 0; block != nullptr && p < block->GetNumberOfBlocks(); ++p)
+    {
+      auto* data = vtkDataSet::SafeDownCast(block->GetBlock(p));
+      if (data == nullptr || data->GetNumberOfPoints() == 0)
+      {
+        continue;
+      }
+      std::array<double, 6> box{};
+      data->GetBounds(box.data());
+      bounds[blockName(blocks, b)].push_back({ blockName(block, p), box });
+    }
+  }
+  return bounds;
+}
+
+TEST(ProbeDataSet, EveryBlockIsInWorldUnitsAndOverlapsTheScene)
+{
+  // issue 31: the shadow_map block was in texel units (0..64 here, 0..2048 in a real map) and landed far from the
+  // world and light_plane blocks in ParaView. Now every piece lies within the scene's reach: the scene's bounds
+  // (ground 8 x 8 at y = 0, light at y = 5) grown by a margin, and the crop sits under the receiver.
+  const Synthetic s = makeSynthetic();
+  const test::TempDir dir;
+  const auto read = roundTrip(probeDataSet(s.probe, s.frame, s.scene), dir.path(), Writer::ShadowLab);
+  const auto bounds = probeDataSetPieceBounds(read);
+  ASSERT_EQ(bounds.count("shadow_map"), 1u);
+  const double sceneLo[3] = { -kGroundHalf, 0.0, -kGroundHalf };
+  const double sceneHi[3] = { kGroundHalf, kLightHeight, kGroundHalf };
+  const double margin = 1.0;
+  for (const auto& [block, pieces] : bounds)
+  {
+    for (const auto& [name, box] : pieces)
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        EXPECT_GE(box[2 * axis], sceneLo[axis] - margin) << block << "/" << name << " axis " << axis;
+        EXPECT_LE(box[2 * axis + 1], sceneHi[axis] + margin) << block << "/" << name << " axis " << axis;
+      }
+      auto* data = vtkDataSet::SafeDownCast(piece(read, block, name));
+      ASSERT_NE(data, nullptr);
+      auto* coordinates = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("coordinates"));
+      ASSERT_NE(coordinates, nullptr) << block << "/" << name << " names no coordinate system";
+      EXPECT_EQ(coordinates->GetValue(0).rfind("world units", 0), 0u) << coordinates->GetValue(0);
+    }
+  }
+  // The crop and the receiver's texel lie on the receiver's plane (the ground, y = 0) around the receiver.
+  const auto crop = std::find_if(bounds.at("shadow_map").begin(), bounds.at("shadow_map").end(),
+    [](const auto& entry) { return entry.first == "crop"; });
+  ASSERT_NE(crop, bounds.at("shadow_map").end());
+  EXPECT_NEAR(crop->second[2], 0.0, 1e-9);
+  EXPECT_NEAR(crop->second[3], 0.0, 1e-9);
+  EXPECT_LE(crop->second[0], s.receiver.x);
+  EXPECT_GE(crop->second[1], s.receiver.x);
+  EXPECT_LE(crop->second[4], s.receiver.z);
+  EXPECT_GE(crop->second[5], s.receiver.z);
+  auto* receiverTexel = vtkPolyData::SafeDownCast(piece(read, "shadow_map", "receiver"));
+  ASSERT_NE(receiverTexel, nullptr);
+  ASSERT_EQ(receiverTexel->GetNumberOfPoints(), 1);
+  const glm::dvec3 placed = pointOf(receiverTexel, 0);
+  EXPECT_NEAR(glm::length(placed - s.receiver), 0.0, 1e-9) << placed.x << "," << placed.y << "," << placed.z;
+  // Kernels keep their texel coordinates alongside.
+  auto* kernels = vtkPolyData::SafeDownCast(piece(read, "shadow_map", "kernels"));
+  ASSERT_NE(kernels, nullptr);
+  vtkDataArray* texelUv = kernels->GetPointData()->GetArray("texel_uv");
+  ASSERT_NE(texelUv, nullptr);
+  EXPECT_EQ(texelUv->GetComponent(0, 0), s.probe.record.kernels.front().lo.x);
+  EXPECT_EQ(texelUv->GetComponent(0, 1), s.probe.record.kernels.front().lo.y);
 }
 
 TEST(ProbeDataSet, WorldReceiverAndLightPlanePolygonsMatchTheRecord)
@@ -521,31 +605,67 @@ RgbColor rgbOf(const ImageU8& image, int x, int y)
   return { image.at(x, y, 0) / 255.0, image.at(x, y, 1) / 255.0, image.at(x, y, 2) / 255.0 };
 }
 
+bool probeFigureHasColor(const ImageU8& image, int x, int y, const RgbColor& color)
+{
+  const auto rgb = toRgb8(color);
+  return image.at(x, y, 0) == rgb[0] && image.at(x, y, 1) == rgb[1] && image.at(x, y, 2) == rgb[2];
+}
+
 bool isMarker(const ImageU8& image, int x, int y)
 {
   const auto marker = toRgb8(kProbeMarkerColor);
   return image.at(x, y, 0) == marker[0] && image.at(x, y, 1) == marker[1] && image.at(x, y, 2) == marker[2];
 }
 
-TEST(ProbeFigure, HasTheDocumentedSizeAndMarksThePixel)
+TEST(ProbeFigure, LaysOutItsPanelsOnTheGridAndMarksThePixel)
 {
   for (const glm::ivec2 pixel : { glm::ivec2(20, 30), glm::ivec2(45, 10) })
   {
     SCOPED_TRACE(format("pixel ", pixel.x, ",", pixel.y));
     const Synthetic s = makeSynthetic(pixel);
-    const ImageU8 figure = probeFigure(s.probe, s.frame, s.scene);
+    const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+    const ImageU8& figure = drawing.image;
     ASSERT_EQ(figure.width, kProbeFigureWidth);
-    ASSERT_EQ(figure.height, kProbeFigureHeight);
+    ASSERT_EQ(figure.height, drawing.layout.height);
+    ASSERT_EQ(figure.height % kProbeFigurePanelSide, 0);
     ASSERT_EQ(figure.components, 3);
     // For a look at the figure: build/test-output/probe_figure_<x>_<y>.png.
     std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
     writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / format("probe_figure_", pixel.x, "_", pixel.y, ".png"), figure);
     EXPECT_EQ(kProbeFigureWidth, 1200);
-    EXPECT_EQ(kProbeFigureHeight, 800);
+    // The synthetic record has a map, light polygons and samples: image, map, light plane, section, key numbers,
+    // lettered in order; no two panels overlap and all lie on the figure.
+    for (const ProbePanel panel : { ProbePanel::Image, ProbePanel::ShadowMap, ProbePanel::LightPlane, ProbePanel::Section,
+           ProbePanel::Legend })
+    {
+      EXPECT_TRUE(drawing.layout.rect(panel).has_value()) << int(panel);
+    }
+    EXPECT_FALSE(drawing.layout.rect(ProbePanel::Penumbra).has_value());
+    EXPECT_FALSE(drawing.layout.rect(ProbePanel::Chebyshev).has_value());
+    EXPECT_EQ(drawing.layout.letter(ProbePanel::Image), 'a');
+    EXPECT_EQ(drawing.layout.letter(ProbePanel::ShadowMap), 'b');
+    EXPECT_EQ(drawing.layout.letter(ProbePanel::LightPlane), 'c');
+    EXPECT_EQ(drawing.layout.letter(ProbePanel::Section), 'd');
+    for (std::size_t i = 0; i < drawing.layout.panels.size(); ++i)
+    {
+      const FigureRect& a = drawing.layout.panels[i].rect;
+      EXPECT_GE(a.left, 0);
+      EXPECT_GE(a.bottom, 0);
+      EXPECT_LE(a.left + a.width, figure.width);
+      EXPECT_LE(a.bottom + a.height, figure.height);
+      for (std::size_t j = i + 1; j < drawing.layout.panels.size(); ++j)
+      {
+        const FigureRect& b = drawing.layout.panels[j].rect;
+        const bool apart = a.left + a.width <= b.left || b.left + b.width <= a.left || a.bottom + a.height <= b.bottom ||
+          b.bottom + b.height <= a.bottom;
+        EXPECT_TRUE(apart) << "panels " << i << " and " << j << " overlap";
+      }
+    }
 
     // Panel (a) shows the image where probeImagePlacement says: image pixels away from the marker keep their
     // colour.
-    const ImagePlacement placement = probeImagePlacement({ 64, 48 });
+    const FigureRect panel = *drawing.layout.rect(ProbePanel::Image);
+    const ImagePlacement placement = probeImagePlacement(panel, { 64, 48 });
     EXPECT_GE(placement.scale, 5.0);
     for (const glm::ivec2 imagePixel : { glm::ivec2(2, 2), glm::ivec2(61, 45), glm::ivec2(5, 40) })
     {
@@ -557,7 +677,6 @@ TEST(ProbeFigure, HasTheDocumentedSizeAndMarksThePixel)
       }
     }
     // The marker: magenta pixels inside panel (a), centred on the pixel's centre.
-    const FigureRect panel = probeFigurePanel(ProbePanel::Image);
     glm::dvec2 sum(0.0);
     double count = 0.0;
     for (int y = panel.bottom; y < panel.bottom + panel.height; ++y)
@@ -582,6 +701,354 @@ TEST(ProbeFigure, HasTheDocumentedSizeAndMarksThePixel)
     EXPECT_EQ(toRgb8(inside)[0], pixelColor.at(pixel.x, pixel.y, 0));
     EXPECT_EQ(toRgb8(inside)[1], pixelColor.at(pixel.x, pixel.y, 1));
   }
+}
+
+// Every text the figure drew lies inside its canvas, and no drawn text is a cut one ("...").
+void expectNoProbeFigureTextCut(const ProbeFigureDrawing& drawing)
+{
+  ASSERT_FALSE(drawing.texts.empty());
+  for (const ProbeFigureText& text : drawing.texts)
+  {
+    EXPECT_TRUE(text.inside) << "panel " << int(text.panel) << ": '" << text.text << "' runs off its canvas";
+    EXPECT_EQ(text.text.find("..."), std::string::npos) << text.text;
+  }
+}
+
+// The legend pages' rows joined back into the lines they wrap (a continuation row starts with two spaces).
+std::string probeFigureLegendText(const ProbeFigureDrawing& drawing)
+{
+  std::string joined;
+  for (const ProbeFigureText& text : drawing.texts)
+  {
+    if (text.panel == ProbePanel::Legend && text.text.rfind("(", 0) != 0) // not a title
+    {
+      joined += (text.text.rfind("  ", 0) == 0 ? " " + text.text.substr(2) : "\n" + text.text);
+    }
+  }
+  return joined + "\n";
+}
+
+TEST(ProbeFigure, DrawsEveryRecordedQuantityInFullOverAsManyPagesAsItTakes)
+{
+  Synthetic s = makeSynthetic();
+  // Sixty steps of long names and a categorical value far wider than a page, then sixty sub-kernel groups that
+  // record the same quantities (vssm's record's shape), which the key numbers list as a table.
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const std::string longClass = "non-planar: the mean lies in front of the comparison depth, so Chebyshev's bound "
+                                "does not apply and the sub-kernel is split or filtered with PCF";
+  for (int k = 0; k < 60; ++k)
+  {
+    recorder.beginGroup(format("step ", k % 2 == 0 ? "one" : "two", " of many, number ", k, "a"));
+    recorder.quantity(format("mean_depth_of_step_", k), 2.5 + 0.001 * k, "linear depth", "test");
+    recorder.category("class", k % 2 == 0 ? "planar" : longClass, "test");
+  }
+  for (int k = 0; k < 60; ++k)
+  {
+    recorder.beginGroup(format("blocker sub-kernel ", k));
+    recorder.quantity("texel_lo", glm::dvec2(100 + k, 200 + k), "texels", "test");
+    recorder.quantity("mean_depth", 3.5 + 0.001 * k, "linear depth", "test");
+    recorder.category("class", k % 2 == 0 ? "planar" : longClass, "test");
+  }
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+  writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / "probe_figure_many_quantities.png", drawing.image);
+  expectNoProbeFigureTextCut(drawing);
+  EXPECT_GT(drawing.layout.pages(ProbePanel::Legend), 3);
+  const std::string legend = probeFigureLegendText(drawing);
+  std::size_t checked = 0;
+  for (const ProbeQuantity& quantity : s.probe.record.quantities)
+  {
+    if (quantity.group == "receiver")
+    {
+      continue; // shown in the summary's own words
+    }
+    if (quantity.group.rfind("blocker sub-kernel ", 0) == 0)
+    {
+      // A table row: "<k>: (100+k, 200+k) | 3.5xx | class", every value in full on the group's own line.
+      const std::string index = quantity.group.substr(std::string("blocker sub-kernel ").size());
+      const std::size_t row = legend.find("\n" + index + ": ");
+      ASSERT_NE(row, std::string::npos) << quantity.group;
+      const std::string rowText = legend.substr(row + 1, legend.find('\n', row + 1) - row - 1);
+      const std::string value = quantity.text.empty()
+        ? (quantity.value.size() == 1 ? readableNumber(quantity.value[0], 4)
+                                      : "(" + readableNumber(quantity.value[0], 4) + ", " + readableNumber(quantity.value[1], 4) + ")")
+        : quantity.text;
+      EXPECT_NE(rowText.find(value), std::string::npos) << quantity.group << " " << quantity.name << ": " << rowText;
+      ++checked;
+      continue;
+    }
+    const std::string line = probeQuantityText(quantity);
+    EXPECT_NE(std::find(drawing.legendLines.begin(), drawing.legendLines.end(), line), drawing.legendLines.end()) << line;
+    EXPECT_NE(legend.find("\n" + line + "\n"), std::string::npos) << "not drawn in full: " << line;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 300u);
+  // The table's heading names its columns with their units.
+  EXPECT_NE(legend.find("-- blocker sub-kernel (60 groups, one line each): texel_lo [texels] | mean_depth [linear "
+                        "depth] | class --"),
+    std::string::npos);
+  // Every legend line, the last page's included, is on the figure.
+  for (const std::string& line : drawing.legendLines)
+  {
+    EXPECT_NE(legend.find("\n" + line + "\n"), std::string::npos) << line;
+  }
+}
+
+// The fraction of a panel's content (below the title band) that is not white.
+double probeFigureInkFraction(const ImageU8& figure, const FigureRect& rect)
+{
+  std::size_t ink = 0;
+  std::size_t total = 0;
+  for (int y = rect.bottom + 4; y < rect.bottom + rect.height - 30; ++y)
+  {
+    for (int x = rect.left + 4; x < rect.left + rect.width - 4; ++x)
+    {
+      ++total;
+      ink += (figure.at(x, y, 0) < 250 || figure.at(x, y, 1) < 250 || figure.at(x, y, 2) < 250) ? 1 : 0;
+    }
+  }
+  return double(ink) / double(total);
+}
+
+TEST(ProbeFigure, LeavesOutPanelsWithoutContentAndInksEveryOther)
+{
+  Synthetic s = makeSynthetic();
+  // Nothing on the light (hard, pcf, pcss, vsm): no light-plane panel.
+  s.probe.record.lightPolygons.clear();
+  s.probe.record.lightSamples.clear();
+  s.probe.record.contourEdges.clear();
+  ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_FALSE(drawing.layout.rect(ProbePanel::LightPlane).has_value());
+  // Letters run on without a gap: a, b, c, ... in layout order.
+  for (std::size_t i = 0; i < drawing.layout.panels.size(); ++i)
+  {
+    EXPECT_EQ(drawing.layout.panels[i].letter, char('a' + i));
+  }
+  for (const ProbeFigurePanel& panel : drawing.layout.panels)
+  {
+    EXPECT_GT(probeFigureInkFraction(drawing.image, panel.rect), 0.01) << "panel (" << panel.letter << ") is empty";
+  }
+  // No shadow map (dcs, shadow volumes): no map panel.
+  s.frame.lightSpace.clear();
+  s.frame.lightView.reset();
+  s.probe.record.lightSamples.push_back({ { 0.1, 0.1 }, true, 1 });
+  drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_FALSE(drawing.layout.rect(ProbePanel::ShadowMap).has_value());
+  EXPECT_TRUE(drawing.layout.rect(ProbePanel::LightPlane).has_value());
+  for (const ProbeFigurePanel& panel : drawing.layout.panels)
+  {
+    EXPECT_GT(probeFigureInkFraction(drawing.image, panel.rect), 0.01) << "panel (" << panel.letter << ") is empty";
+  }
+  expectNoProbeFigureTextCut(drawing);
+}
+
+// Which texts of a panel contain `part`.
+bool probeFigurePanelSays(const ProbeFigureDrawing& drawing, ProbePanel panel, const std::string& part)
+{
+  return std::any_of(drawing.texts.begin(), drawing.texts.end(),
+    [&](const ProbeFigureText& text) { return text.panel == panel && text.text.find(part) != std::string::npos; });
+}
+
+std::string probeFigurePanelText(const ProbeFigureDrawing& drawing, ProbePanel panel)
+{
+  std::string joined;
+  for (const ProbeFigureText& text : drawing.texts)
+  {
+    joined += text.panel == panel ? text.text + " | " : "";
+  }
+  return joined;
+}
+
+TEST(ProbeFigure, PcssPanelDrawsTheSimilarTrianglesWithThePixelsNumbers)
+{
+  Synthetic s = makeSynthetic();
+  s.probe.record.lightPolygons.clear();
+  s.probe.record.lightSamples.clear();
+  s.probe.record.contourEdges.clear();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const double lightSize = 1.2;
+  const double nearDepth = 1.7;
+  const double blockerDepth = 2.546;
+  const double receiverDepth = s.probe.record.find("receiver_depth")->value[0];
+  recorder.beginGroup("blocker search");
+  recorder.quantity("light_size", lightSize, "world units", "test");
+  recorder.quantity("search_plane_depth", nearDepth, "linear depth", "test");
+  recorder.beginGroup("penumbra estimate");
+  recorder.quantity("avg_blocker_depth", blockerDepth, "linear depth", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+  writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / "probe_figure_pcss.png", drawing.image);
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Penumbra).has_value());
+  EXPECT_FALSE(drawing.layout.rect(ProbePanel::Chebyshev).has_value());
+  // Fernando 2005: w_penumbra = w_light (d_r - d_b) / d_b; the search region w_light (d_r - n) / d_r.
+  const std::string penumbra = readableNumber(lightSize * (receiverDepth - blockerDepth) / blockerDepth, 4);
+  const std::string search = readableNumber(lightSize * (receiverDepth - nearDepth) / receiverDepth, 4);
+  const std::string text = probeFigurePanelText(drawing, ProbePanel::Penumbra);
+  EXPECT_NE(text.find("= " + penumbra + " world units"), std::string::npos) << text;
+  EXPECT_NE(text.find("= " + search + " world units"), std::string::npos) << text;
+  EXPECT_TRUE(probeFigurePanelSays(drawing, ProbePanel::Penumbra, "d_b 2.55")) << text;
+  // The light drawn in gold, the penumbra span in blue on the receiver line.
+  const FigureRect rect = *drawing.layout.rect(ProbePanel::Penumbra);
+  std::size_t gold = 0;
+  for (int y = rect.bottom; y < rect.bottom + rect.height; ++y)
+  {
+    for (int x = rect.left; x < rect.left + rect.width; ++x)
+    {
+      gold += probeFigureHasColor(drawing.image, x, y, { 1.0, 0.85, 0.2 }) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(gold, 50u);
+  expectNoProbeFigureTextCut(drawing);
+}
+
+TEST(ProbeFigure, MomentPanelDrawsTheChebyshevBoundAtThePixel)
+{
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const double mean = 3.1;
+  const double variance = 0.004;
+  const double t = 3.19;
+  recorder.beginGroup("moments");
+  recorder.quantity("mean", mean, "linear depth", "test");
+  recorder.quantity("variance", variance, "linear depth^2", "test");
+  recorder.beginGroup("chebyshev");
+  recorder.quantity("compared_depth", t, "linear depth", "test");
+  recorder.quantity("p_max", variance / (variance + (t - mean) * (t - mean)), "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+  writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / "probe_figure_chebyshev.png", drawing.image);
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Chebyshev).has_value());
+  EXPECT_FALSE(drawing.layout.rect(ProbePanel::Penumbra).has_value());
+  const std::string bound = readableNumber(variance / (variance + (t - mean) * (t - mean)), 4);
+  const std::string text = probeFigurePanelText(drawing, ProbePanel::Chebyshev);
+  EXPECT_NE(text.find("= " + bound), std::string::npos) << text;
+  EXPECT_NE(text.find("mean 3.1"), std::string::npos) << text;
+  EXPECT_NE(text.find("t 3.19"), std::string::npos) << text;
+  expectNoProbeFigureTextCut(drawing);
+}
+
+TEST(ProbeFigure, EsmPanelDrawsTheFilteredExponentialAtThePixel)
+{
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const double c = 40.0;
+  const double moment = std::exp(c * 0.6) * 0.5; // half the region at z_n = 0.6, the other half far (exp -> 0)
+  const double t = 0.62;
+  recorder.beginGroup("moments");
+  recorder.quantity("esm_exponent", c, "", "test");
+  recorder.quantity("exponential_moment", moment, "", "test");
+  recorder.beginGroup("exponential test");
+  recorder.quantity("normalized_compared_depth", t, "", "test");
+  recorder.quantity("visibility", std::min(1.0, moment * std::exp(-c * t)), "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+  writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / "probe_figure_esm.png", drawing.image);
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Exponential).has_value());
+  const std::string text = probeFigurePanelText(drawing, ProbePanel::Exponential);
+  // Annen et al. 2008: E[exp(c z)] exp(-c t) = 0.5 exp(40 (0.6 - 0.62)) = 0.2247; the fall from 1 at
+  // ln(E) / c = 0.6 - ln 2 / 40.
+  EXPECT_NE(text.find("= " + readableNumber(0.5 * std::exp(c * (0.6 - t)), 4) + " (recorded"), std::string::npos) << text;
+  EXPECT_NE(text.find("= " + readableNumber(0.6 - std::log(2.0) / c, 4)), std::string::npos) << text;
+  expectNoProbeFigureTextCut(drawing);
+}
+
+TEST(ProbeFigure, MomentPanelIsLeftOutWhenTheMomentsAndTheComparedDepthAreInDifferentSpaces)
+{
+  // lvsm's shape: moments in warped depth, compared_depth linear; a bound drawn from them would not be the one the
+  // technique took.
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("moments");
+  recorder.quantity("mean", 0.0, "warped depth", "test");
+  recorder.quantity("variance", 1e-4, "warped depth^2", "test");
+  recorder.beginGroup("chebyshev");
+  recorder.quantity("compared_depth", 3.2, "linear depth", "test");
+  recorder.quantity("p_max", 4.5e-6, "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_FALSE(drawing.layout.rect(ProbePanel::Chebyshev).has_value());
+  // The quantities are still all in the key numbers.
+  EXPECT_NE(std::find(drawing.legendLines.begin(), drawing.legendLines.end(), "mean 0 warped depth"),
+    drawing.legendLines.end());
+}
+
+TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)
+{
+  Synthetic s = makeSynthetic();
+  // A map whose crop holds depths 3.46 .. 3.48 only: three significant digits would repeat labels.
+  ImageF& depth = s.frame.lightSpace.front().image;
+  for (int y = 0; y < depth.height; ++y)
+  {
+    for (int x = 0; x < depth.width; ++x)
+    {
+      depth.at(x, y) = float(3.46 + 0.02 * (x + y) / double(depth.width + depth.height));
+    }
+  }
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  ASSERT_FALSE(drawing.colorBarTicks.empty());
+  for (const std::vector<std::string>& ticks : drawing.colorBarTicks)
+  {
+    ASSERT_EQ(ticks.size(), 5u);
+    const std::set<std::string> distinct(ticks.begin(), ticks.end());
+    std::string all;
+    for (const std::string& tick : ticks)
+    {
+      all += tick + " ";
+    }
+    EXPECT_EQ(distinct.size(), ticks.size()) << all;
+  }
+}
+
+TEST(NumberText, RoundsForPeopleAndTicksDiffer)
+{
+  EXPECT_EQ(readableNumber(1.171875), "1.17");
+  EXPECT_EQ(readableNumber(2.0), "2");
+  EXPECT_EQ(readableNumber(0.000123456), "0.000123");
+  EXPECT_EQ(readableNumber(1234.4), "1234");
+  EXPECT_EQ(readableNumber(-0.0), "0");
+  EXPECT_EQ(readableNumber(2.5e-7), "2.5e-07");
+  EXPECT_EQ(readableNumber(std::numeric_limits<double>::quiet_NaN()), "n/a");
+  const std::vector<std::string> ticks = distinctTickLabels({ 3.4752, 3.4731, 3.4710, 3.4689, 3.4668 });
+  EXPECT_EQ(ticks, (std::vector<std::string>{ "3.475", "3.473", "3.471", "3.469", "3.467" }));
+  EXPECT_EQ(distinctTickLabels({ 0.0, 0.5, 1.0 }), (std::vector<std::string>{ "0", "0.5", "1" }));
+}
+
+TEST(NumberText, WrapsAStatusLineToTheWidthKeepingEveryWord)
+{
+  // The viewer's status (issue 31: it ran off the window): a screenshot line with its render command.
+  const std::string line = "screenshot shots/view-003-hard-texel_ratio.png = shadowlab render "
+                           "datasets/contact/scene.json -t hard --set bias_constant_texels=2 --scene-set "
+                           "/lights/0/size=1 --resolution 128x128";
+  for (const std::size_t width : { std::size_t(16), std::size_t(40), std::size_t(80), std::size_t(500) })
+  {
+    const std::vector<std::string> lines = wrapAtSpaces(line, width);
+    std::string joined;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+    {
+      EXPECT_LE(lines[i].size(), width) << "'" << lines[i] << "'";
+      if (i > 0)
+      {
+        ASSERT_EQ(lines[i].rfind("  ", 0), 0u) << lines[i];
+      }
+      joined += i == 0 ? lines[i] : lines[i].substr(2);
+    }
+    std::string withoutSpaces = line;
+    withoutSpaces.erase(std::remove(withoutSpaces.begin(), withoutSpaces.end(), ' '), withoutSpaces.end());
+    joined.erase(std::remove(joined.begin(), joined.end(), ' '), joined.end());
+    EXPECT_EQ(joined, withoutSpaces) << "width " << width;
+    EXPECT_EQ(lines.size() == 1, line.size() <= width) << "width " << width;
+  }
+  // Words break at spaces where a line stays at least half full.
+  EXPECT_EQ(wrapAtSpaces("aaaa bbbb cccc dddd eeee", 16), (std::vector<std::string>{ "aaaa bbbb cccc", "  dddd eeee" }));
 }
 
 TEST(CanvasShapes, FillsAndStrokesWhatTheyCover)

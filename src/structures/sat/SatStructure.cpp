@@ -36,8 +36,10 @@ std::vector<NamedImage> exportTable(const FrameResources& frame, FrameResult& re
   const SummedAreaTableData& data = summedAreaTableData(frame);
   // Built in place: an initializer list would copy both tables once more.
   std::vector<NamedImage> images(2);
-  images[0] = { "sat_z", {}, "", "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)" };
-  images[1] = { "sat_z2", {}, "", "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)" };
+  images[0] = { "sat_z", {}, "", "summed-area table of z (centred, or 16-bit fixed point z_n wrapping mod 2^32)",
+    BufferKind::SummedArea };
+  images[1] = { "sat_z2", {}, "", "summed-area table of z^2 (centred, or 16-bit fixed point z_n^2 wrapping mod 2^32)",
+    BufferKind::SummedArea };
   if (data.integer)
   {
     // Each component straight from the exact table (no two-component float copy: at 2048^2 it is 32 MB).

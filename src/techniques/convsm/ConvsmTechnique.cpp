@@ -122,7 +122,7 @@ TechniqueDescriptor convsmTechnique()
   descriptor.buffers = {
     { "reconstruction", "", "the damped Fourier series of the filtered shadow test before clamping: outside [0, 1] where it rings", BufferKind::Signed },
     { "overshoot", "", "reconstruction minus its clamp to [0, 1]: > 0 above 1, < 0 below 0 (Gibbs ringing), 0 inside", BufferKind::Signed },
-    { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias): > 0 where it leaks light, < 0 where it darkens", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias): > 0 where it leaks light, < 0 where it darkens", BufferKind::Signed }),
     { "kernel_texels", "texels", "width of the prefilter box" },
     depthBiasBuffer(),
   };

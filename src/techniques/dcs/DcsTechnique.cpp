@@ -97,6 +97,7 @@ TechniqueDescriptor dcsTechnique()
   BufferSpec mask{ "light_sample_mask", "bits",
     "which samples are hidden (blocked or below the tangent plane): bit i % 16 of component i / 16, N/16 components (Forest et al. 2009 §5.1's LS_buffer)" };
   mask.fromPass = true;
+  mask.kind = BufferKind::BitMask;
   BufferSpec counts{ "sample_depth_complexity", "surfaces",
     "every sample's count, N components; only with export_sample_counts = 1" };
   counts.fromPass = true;

@@ -52,7 +52,7 @@ TechniqueDescriptor esmTechnique()
   });
   descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
-    { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias)", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias)", BufferKind::Signed }),
     { "kernel_texels", "texels", "width of the prefilter box" },
     depthBiasBuffer(),
     esmBiasGainBuffer(),

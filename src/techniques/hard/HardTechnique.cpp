@@ -33,7 +33,7 @@ TechniqueDescriptor hardTechnique()
     { "kernel_texels", "texels", "filter footprint width in shadow-map texels (1: a single texel)" },
     texelRatioBuffer(),
     depthBiasBuffer(),
-    { "depth_margin", "world units", "receiver depth - bias - stored caster depth: > 0 shadowed, <= 0 lit; values near 0 are where acne or leaks start", BufferKind::Signed },
+    onShadowTestedPixels({ "depth_margin", "world units", "receiver depth - bias - stored caster depth: > 0 shadowed, <= 0 lit; values near 0 are where acne or leaks start", BufferKind::Signed }),
   };
   descriptor.createPass = newTechniquePass<vtkSLHardShadowPass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {

@@ -83,7 +83,7 @@ TechniqueDescriptor lvsmTechnique()
   descriptor.lightStructures = { &shadowMapStructure(), &layeredMomentsStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the warped depths of the receiver's layer, before light-bleeding reduction" },
-    { "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where LVSM bleeds light", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where LVSM bleeds light", BufferKind::Signed }),
     { "layer", "", "the depth layer the receiver read (0 nearest the light; -1 no shadow test)" },
     { "warped_depth", "", "the receiver's depth warped into its layer, phi_i(t) in [0, 1]" },
     { "clamped_above_vsm", "", "1 where the box holds depths in front of the receiver's layer (clamped onto its near end) and the layered bound exceeds vsm's by more than 0.05" },

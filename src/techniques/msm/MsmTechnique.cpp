@@ -56,7 +56,7 @@ TechniqueDescriptor msmTechnique()
   });
   descriptor.lightStructures = { &shadowMapStructure(), &powerMomentMapStructure() };
   descriptor.buffers = {
-    { "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias): > 0 where MSM leaks light", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "visibility minus pcf over the same box of texels (pcf's default bias): > 0 where MSM leaks light", BufferKind::Signed }),
     { "support_depth_near", "moment depth",
       "z_2, the nearer of the two support points Hamburger 4MSM adds to the receiver's z_f (moment depth: (d - near) / (far - near) of the light's range)", BufferKind::Signed },
     { "support_depth_far", "moment depth", "z_3, the farther one", BufferKind::Signed },

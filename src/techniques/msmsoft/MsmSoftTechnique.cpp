@@ -176,8 +176,8 @@ TechniqueDescriptor msmSoftTechnique()
   });
   descriptor.lightStructures = { &shadowMapStructure(), &momentSatStructure() };
   descriptor.buffers = {
-    { "light_leak", "", "visibility minus the PCF over the filter rectangle's integer cover (every texel it touches), "
-      "compared as pcss filters (bias, receiver plane): > 0 where the moment bound leaks light", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "visibility minus the PCF over the filter rectangle's integer cover (every texel it touches), "
+      "compared as pcss filters (bias, receiver plane): > 0 where the moment bound leaks light", BufferKind::Signed }),
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (PCSS's, VSSM Alg. 1 L7)" },
     { "blocker_intensity", "", "G_b: the weight of the canonical representation's support points in front of z_f over the search region" },
     { "avg_blocker_depth", "world units", "average blocker depth from the canonical representation (linear depth; the receiver's own depth minus the bias where no blocker)" },

@@ -64,6 +64,7 @@ TechniqueDescriptor penumbraWedgeTechnique()
   BufferSpec mask{ "light_sample_mask", "bits",
     "which samples perforated casters hide (the STSVs' LS_buffer, Forest et al. 2009 §3.1): bit i % 16 of component i / 16, N/16 components" };
   mask.fromPass = true;
+  mask.kind = BufferKind::BitMask;
   descriptor.buffers.push_back(mask);
   descriptor.supportedLights = { LightType::Area };
   descriptor.supportedAreaShapes = { LightShape::Square };

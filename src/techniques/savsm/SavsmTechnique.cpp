@@ -45,7 +45,7 @@ TechniqueDescriptor savsmTechnique()
   descriptor.lightStructures = { &shadowMapStructure(), &summedAreaTableStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the lit fraction over w_p, before light-bleeding reduction" },
-    { "light_leak", "", "p_max minus the PCF over the same rectangle of texels, compared as pcss filters (bias, receiver plane)", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "p_max minus the PCF over the same rectangle of texels, compared as pcss filters (bias, receiver plane)", BufferKind::Signed }),
     { "blocker_kernel_texels", "texels", "width of the blocker search kernel w_i (Alg. 1 L7)" },
     { "blocker_samples", "taps", "depth samples read in the blocker search" },
     { "avg_blocker_depth", "world units", "average depth of the blockers found (0: none, lit)" },

@@ -46,7 +46,7 @@ TechniqueDescriptor vsmTechnique()
   descriptor.lightStructures = { &shadowMapStructure(), &momentMapStructure() };
   descriptor.buffers = {
     { "p_max", "", "Chebyshev upper bound on the lit fraction, before light-bleeding reduction" },
-    { "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where VSM bleeds light", BufferKind::Signed },
+    onShadowTestedPixels({ "light_leak", "", "p_max minus pcf over the same box of texels (pcf's default bias): > 0 where VSM bleeds light", BufferKind::Signed }),
     { "kernel_texels", "texels", "width of the prefilter box" },
     depthBiasBuffer(),
   };

@@ -814,6 +814,11 @@ public:
       recorder_->quantity("penumbra_half_texels", filterHalf, "texels",
         cite("Alg. 1 L16 (w_p: the light's extent seen from the receiver, at z_avg; PCSS step 2)"));
       recorder_->quantity("penumbra_kernel_texels", result_.penumbraKernelTexels, "texels", cite("Alg. 1 L16 (w_p)"));
+      // The estimate on the receiver (PCSS step 2) that w_p scales down to the plane at z_avg; the probe figure
+      // draws it with its similar triangles.
+      recorder_->quantity("penumbra_width",
+        geometry_.lightSize * (geometry_.d - result_.averageBlockerDepth) / result_.averageBlockerDepth, "world units",
+        "Fernando 2005 step 2: w_penumbra = (d_receiver - d_blocker) w_light / d_blocker");
     }
     return filterHalf;
   }

@@ -12,7 +12,7 @@ work="$(mktemp -d)"
 trap 'kill "${viewer:-}" "${server:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
 
 display=":$((200 + RANDOM % 500))"
-Xvfb "$display" -screen 0 1280x1024x24 -nolisten tcp &
+Xvfb "$display" -screen 0 1600x1200x24 -nolisten tcp &
 server=$!
 sleep 1
 export DISPLAY="$display"
@@ -27,8 +27,9 @@ step key s                   # 001: pcf, the shaded image
 step key b                   # visibility
 step key s                   # 002: pcf, visibility
 step key shift+t             # previous technique: hard
-# Image pixel (100, 37) at zoom 2: window x = 8 + 2 * 100 + 1; from the top, y = 504 - 1 - (96 + 2 * 37 + 1).
-step mousemove --window "$window" 209 332 click 1
+# Image pixel (100, 37) at zoom 2: window x = 8 + 2 * 100 + 1; from the top, y = 952 - 1 - (403 + 2 * 37 + 1)
+# (the viewer prints where the image lies: "image pixel (x, y) at window pixel (8 + 2x, 403 + 2y)").
+step mousemove --window "$window" 209 473 click 1
 step key p key p             # select bias_constant_texels
 step key plus                # 0.5 -> 2 texel footprints
 step key bracketright        # light size 0.8 -> 1
@@ -36,7 +37,9 @@ step key b key b             # kernel_texels, texel_ratio
 step key s                   # 003: hard, texel_ratio, probed
 step key shift+b key shift+b # back to visibility
 step key s                   # 004: hard, visibility, probed
-step key h                   # the keys, on stdout
+step key h                   # the keys, on stdout and over the probe figure
+step key s                   # 005: hard, visibility, the keys shown
+step key f                   # scroll the probe figure (hard's two rows all fit: rows 1..2 of 2)
 step key q
 wait "$viewer"
 viewer=

@@ -1,0 +1,256 @@
+// shadowlab bench as a results section (issue 31 item 1): the spread of the timed frames, the renderer and the
+// machine, penumbra and percentile errors, the light-space structures' memory, every counter in bench.json, and the
+// charts and thumbnail strips, from one small bench run end to end.
+#include "io/ImageIO.h"
+#include "support/CliRun.h"
+#include "support/TempDir.h"
+#include "support/TestSupport.h"
+#include "vis/ColorMap.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+// The cells of one bench.csv line, a quoted cell ("llvmpipe (LLVM 15.0.6, 256 bits)") unquoted.
+std::vector<std::string> benchReportCells(const std::string& line)
+{
+  std::vector<std::string> cells(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i)
+  {
+    const char c = line[i];
+    if (c == '"')
+    {
+      if (quoted && i + 1 < line.size() && line[i + 1] == '"')
+      {
+        cells.back() += '"';
+        ++i;
+      }
+      else
+      {
+        quoted = !quoted;
+      }
+    }
+    else if (c == ',' && !quoted)
+    {
+      cells.emplace_back();
+    }
+    else
+    {
+      cells.back() += c;
+    }
+  }
+  return cells;
+}
+
+// The nearest-rank 99th percentile, as the bench documents it.
+double benchReportP99(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(values.size())));
+  return values[std::max<std::size_t>(rank, 1) - 1];
+}
+
+// Pixels of `image` within 3 of `color` in every channel.
+std::size_t benchReportPixelsOf(const ImageU8& image, const RgbColor& color)
+{
+  std::size_t count = 0;
+  for (std::size_t i = 0; i + 2 < image.data.size(); i += 3)
+  {
+    bool same = true;
+    for (int c = 0; c < 3; ++c)
+    {
+      same = same && std::abs(static_cast<int>(image.data[i + c]) - static_cast<int>(std::lround(255 * color[c]))) <= 3;
+    }
+    count += same ? 1 : 0;
+  }
+  return count;
+}
+
+std::size_t benchReportDistinctColors(const ImageU8& image)
+{
+  std::set<int> colors;
+  for (std::size_t i = 0; i + 2 < image.data.size(); i += 3)
+  {
+    colors.insert((image.data[i] << 16) | (image.data[i + 1] << 8) | image.data[i + 2]);
+  }
+  return colors.size();
+}
+
+TEST(BenchReport, SpreadRendererErrorsMemoryCountersChartsAndThumbnails)
+{
+  const std::filesystem::path out = test::freshOutputDir("bench-report-out");
+  const std::filesystem::path cache = test::freshOutputDir("bench-report-cache");
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  const RunResult run = test::runShadowlabInTempDir({ "bench", scene, "-t", "hard,vsm", "--sweep",
+    "shadow_map_size=128,256", "--repeat", "3", "-r", "96x96", "--samples", "64", "--quiet", "--cache", cache.string(),
+    "--out", out.string() });
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+
+  // bench.json: the renderer and machine; per row every timed frame, whose min / median / max the row states, and
+  // every counter.
+  const nlohmann::json bench = test::readJson(out / "bench.json");
+  const std::string renderer = bench.at("renderer").get<std::string>();
+  ASSERT_FALSE(renderer.empty());
+  EXPECT_GT(bench.at("machine").at("logical_cores").get<int>(), 0);
+  const nlohmann::json& rows = bench.at("configurations");
+  ASSERT_EQ(rows.size(), 4u);
+  std::map<std::string, double> structureBytes; // "technique size" -> bytes
+  for (const nlohmann::json& row : rows)
+  {
+    ASSERT_EQ(row.at("status"), "ok") << row.dump();
+    const nlohmann::json& result = row.at("result");
+    std::vector<double> frames = result.at("frame_gpu_ms_samples").get<std::vector<double>>();
+    ASSERT_EQ(frames.size(), 3u);
+    std::sort(frames.begin(), frames.end());
+    EXPECT_DOUBLE_EQ(result.at("frame_gpu_ms_min").get<double>(), frames[0]);
+    EXPECT_DOUBLE_EQ(result.at("frame_gpu_ms").get<double>(), frames[1]);
+    EXPECT_DOUBLE_EQ(result.at("frame_gpu_ms_max").get<double>(), frames[2]);
+    for (const auto& [stage, timing] : result.at("stages").items())
+    {
+      EXPECT_LE(timing.at("gpu_ms_min").get<double>(), timing.at("gpu_ms").get<double>()) << stage;
+      EXPECT_LE(timing.at("gpu_ms").get<double>(), timing.at("gpu_ms_max").get<double>()) << stage;
+    }
+    EXPECT_EQ(result.at("gl_renderer").get<std::string>(), renderer);
+    double bytes = 0.0;
+    for (const auto& [name, value] : result.at("light_structure_gpu_bytes").items())
+    {
+      bytes += value.get<double>();
+    }
+    EXPECT_GT(bytes, 0.0) << row.dump();
+    EXPECT_EQ(result.at("light_structure_gpu_bytes_total").get<double>(), bytes);
+    structureBytes[row.at("technique").get<std::string>() + " " + row.at("settings").get<std::string>()] = bytes;
+    for (const auto& [name, value] : result.at("technique_statistics").items())
+    {
+      EXPECT_EQ(row.at("statistics").at(name), value) << name << ": bench.json rows hold every counter";
+    }
+    const nlohmann::json& covered = result.at("error").at("covered");
+    EXPECT_LE(covered.at("p99_abs_error").get<double>(), covered.at("max_abs_error").get<double>());
+    EXPECT_GT(result.at("error").at("penumbra").at("pixels").get<double>(), 0.0);
+  }
+  // A map twice as wide holds four times the texels (the moments' mip chain keeps that ratio).
+  for (const std::string technique : { "hard", "vsm" })
+  {
+    const double ratio =
+      structureBytes.at(technique + " shadow_map_size=256") / structureBytes.at(technique + " shadow_map_size=128");
+    EXPECT_NEAR(ratio, 4.0, 0.05) << technique;
+  }
+
+  // The 99th-percentile errors are those of the frame `render` makes, against the cached reference.
+  const std::filesystem::path rendered = test::freshOutputDir("bench-report-render");
+  const RunResult renderRun = test::runShadowlabInTempDir(
+    { "render", scene, "-t", "hard", "-s", "shadow_map_size=256", "-r", "96x96", "-q", "--out", rendered.string() });
+  ASSERT_EQ(renderRun.exitCode, 0) << renderRun.err;
+  std::filesystem::path referenceFile;
+  for (const auto& entry : std::filesystem::directory_iterator(cache))
+  {
+    referenceFile = entry.path() / "buffers.vti";
+  }
+  const std::vector<NamedImage> renderedBuffers = readVti(rendered / "buffers.vti");
+  const std::vector<NamedImage> reference = readVti(referenceFile);
+  const ImageF& visibility = test::arrayNamed(renderedBuffers, "visibility").image;
+  const ImageF& coverage = test::arrayNamed(renderedBuffers, "coverage").image;
+  const ImageF& referenceVisibility = test::arrayNamed(reference, "visibility").image;
+  const ImageF& referenceCoverage = test::arrayNamed(reference, "coverage").image;
+  std::vector<double> coveredErrors;
+  std::vector<double> penumbraErrors;
+  for (std::size_t i = 0; i < visibility.pixelCount(); ++i)
+  {
+    if (coverage.data[i] > 0.5f && referenceCoverage.data[i] > 0.5f)
+    {
+      const double error = std::abs(static_cast<double>(visibility.data[i]) - referenceVisibility.data[i]);
+      coveredErrors.push_back(error);
+      if (referenceVisibility.data[i] > 0.0f && referenceVisibility.data[i] < 1.0f)
+      {
+        penumbraErrors.push_back(error);
+      }
+    }
+  }
+  const nlohmann::json& hardError = rows[1].at("result").at("error");
+  ASSERT_EQ(rows[1].at("settings"), "shadow_map_size=256");
+  EXPECT_NEAR(hardError.at("covered").at("p99_abs_error").get<double>(), benchReportP99(coveredErrors), 1e-6);
+  EXPECT_NEAR(hardError.at("penumbra").at("p99_abs_error").get<double>(), benchReportP99(penumbraErrors), 1e-6);
+  EXPECT_LT(benchReportP99(coveredErrors), 1.0) << "hard shadows' largest error is 1 at a silhouette, not its p99";
+
+  // bench.csv: the spread and error columns, min <= median <= max in every row.
+  std::ifstream csv(out / "bench.csv");
+  std::string line;
+  std::getline(csv, line);
+  const std::vector<std::string> header = benchReportCells(line);
+  std::map<std::string, std::size_t> column;
+  for (std::size_t i = 0; i < header.size(); ++i)
+  {
+    column[header[i]] = i;
+  }
+  for (const char* name : { "frame_gpu_ms", "frame_gpu_ms_min", "frame_gpu_ms_max", "frame_wall_ms_min",
+         "shadow_map_gpu_ms_min", "shadow_map_gpu_ms_max", "rmse", "penumbra_rmse", "p99_abs_error",
+         "penumbra_p99_abs_error", "fraction_above_0.05", "max_abs_error", "light_structure_gpu_bytes", "renderer" })
+  {
+    EXPECT_TRUE(column.count(name)) << name << " in " << line;
+  }
+  int dataRows = 0;
+  while (std::getline(csv, line))
+  {
+    const std::vector<std::string> cells = benchReportCells(line);
+    ASSERT_EQ(cells.size(), header.size()) << line;
+    ++dataRows;
+    for (const std::string stem : { "frame_gpu_ms", "frame_wall_ms", "shadow_map_gpu_ms" })
+    {
+      const double low = std::stod(cells[column.at(stem + "_min")]);
+      const double middle = std::stod(cells[column.at(stem)]);
+      const double high = std::stod(cells[column.at(stem + "_max")]);
+      EXPECT_LE(low, middle) << stem << ": " << line;
+      EXPECT_LE(middle, high) << stem << ": " << line;
+    }
+    EXPECT_GT(std::stod(cells[column.at("light_structure_gpu_bytes")]), 0.0) << line;
+    EXPECT_EQ(cells[column.at("renderer")], renderer) << line;
+  }
+  EXPECT_EQ(dataRows, 4);
+
+  // summary.md names the renderer and the machine, and every row's statistics cell holds at most three counters.
+  std::ifstream summaryFile(out / "summary.md");
+  const std::string summary((std::istreambuf_iterator<char>(summaryFile)), std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("Renderer: " + renderer), std::string::npos) << summary;
+  EXPECT_NE(summary.find("logical cores"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("penumbra p99"), std::string::npos) << summary;
+
+  // The charts exist and are drawn; the stage chart's bars carry each stage's colour over many pixels; no thumbnail
+  // input is left behind.
+  for (const char* chart : { "stages_planar-occluder.png", "speed_vs_error_planar-occluder.png",
+         "speed_vs_penumbra_error_planar-occluder.png", "thumbnails_planar-occluder.png",
+         "cost_growth_planar-occluder.png" })
+  {
+    ASSERT_TRUE(std::filesystem::is_regular_file(out / chart)) << chart;
+    const ImageU8 image = readPng(out / chart);
+    EXPECT_GT(image.width, 200) << chart;
+    EXPECT_GT(benchReportDistinctColors(image), 20u) << chart << " is blank";
+    EXPECT_NE(summary.find(chart), std::string::npos) << chart << " is listed in summary.md";
+  }
+  const ImageU8 stages = readPng(out / "stages_planar-occluder.png");
+  // The chart stacks the stages that ran in pipeline order: gbuffer, focus, shadow_map, moment_map (vsm's largest
+  // at 256: it fills most of that bar), technique, shading; the legend's swatches are far smaller.
+  ASSERT_GT(rows[3].at("result").at("stages").at("moment_map").at("gpu_ms").get<double>(),
+    0.4 * rows[3].at("result").at("frame_gpu_ms").get<double>());
+  EXPECT_GT(benchReportPixelsOf(stages, ColorMap::categoryColor(3)), 3000u) << "moment_map bars";
+  EXPECT_GT(benchReportPixelsOf(stages, ColorMap::categoryColor(0)), 1000u) << "gbuffer bars";
+  for (const auto& entry : std::filesystem::directory_iterator(out / "runs"))
+  {
+    EXPECT_EQ(entry.path().extension(), ".json") << entry.path();
+  }
+}
+
+} // namespace
+} // namespace sl
