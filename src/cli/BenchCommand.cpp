@@ -1799,8 +1799,9 @@ std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2
 
 // bench --collect: the rows of the plan's configurations from what their tasks wrote; every unfinished job (a
 // reference, merge or configuration) named in `log` and returned in `unfinished`.
-// The configurations' thumbnails (bench-run's <result>.thumbnail.vti, the result being named <n>.json.partial in a
-// plan) are copied to where writeThumbnailStrips reads a bench's, under `dir`.
+// The finished configurations' results are copied to `dir`/runs/<n>.json as a bench writes them, and their thumbnails
+// (bench-run's <result>.thumbnail.vti, the result being named <n>.json.partial in a plan) to where
+// writeThumbnailStrips reads a bench's.
 nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVariant>& variants,
   const std::vector<Configuration>& configurations, std::vector<PlanJob>& unfinished, std::ostream& log,
   const std::filesystem::path& dir)
@@ -1830,10 +1831,16 @@ nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVari
     const PlanJob& job = *configurationJobs[c];
     rows.push_back(configurationRow(variants[configurations[c].sceneIndex], configurations[c], job.result,
       planJobProblem(plan.dir, job)));
-    const std::filesystem::path thumbnail = std::filesystem::path(job.result + ".partial").replace_extension(".thumbnail.vti");
-    if (rows.back()["status"] == "ok" && std::filesystem::is_regular_file(thumbnail))
+    if (rows.back()["status"] != "ok")
     {
-      std::filesystem::create_directories(dir / "runs");
+      continue;
+    }
+    // runs/<n>.json as a bench writes them.
+    std::filesystem::create_directories(dir / "runs");
+    std::filesystem::copy_file(job.result, dir / "runs" / format(c, ".json"));
+    const std::filesystem::path thumbnail = std::filesystem::path(job.result + ".partial").replace_extension(".thumbnail.vti");
+    if (std::filesystem::is_regular_file(thumbnail))
+    {
       std::filesystem::copy_file(thumbnail, dir / "runs" / format(c, ".thumbnail.vti"));
     }
   }
@@ -1900,7 +1907,6 @@ int runBench(const BenchOptions& given, std::ostream& log)
       const nlohmann::json rows = collectedRows(*plan, variants, configurations, unfinished, log, dir);
       failed = countFailed(rows);
       writeBenchResults(rows, configurations, variants, options, sweeps, dir);
-      removeIfEmptyDirectory(dir / "runs");
       if (!unfinished.empty())
       {
         writeRetryLists(plan->dir, unfinished, dir);

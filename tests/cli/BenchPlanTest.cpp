@@ -88,10 +88,9 @@ TEST(BenchPlan, JobLinesRunAndTheCollectedBenchEqualsADirectOne)
   }
   EXPECT_GT(collectedRows[1].at("result").at("error").at("penumbra").at("pixels").get<double>(), 0.0)
     << "pcf on planar-occluder has a penumbra: the comparison is not of empty metrics";
-  for (const char* file : { "bench.csv", "summary.md" })
-  {
-    EXPECT_TRUE(std::filesystem::is_regular_file(temp.path() / "collected" / file)) << file;
-  }
+  // The same outputs as the bench's (charts, thumbnail strips, runs/), through the same code.
+  EXPECT_EQ(test::entriesOf(temp.path() / "collected"), test::entriesOf(temp.path() / "direct"));
+  EXPECT_EQ(test::entriesOf(temp.path() / "collected" / "runs"), test::entriesOf(temp.path() / "direct" / "runs"));
   // The tiled and merged cache entries are the direct bench's single-process references, byte for byte.
   std::size_t entries = 0;
   for (const auto& entry : std::filesystem::directory_iterator(temp.path() / "direct-cache"))
