@@ -1838,7 +1838,8 @@ nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVari
     // runs/<n>.json as a bench writes them.
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::copy_file(job.result, dir / "runs" / format(c, ".json"));
-    const std::filesystem::path thumbnail = std::filesystem::path(job.result + ".partial").replace_extension(".thumbnail.vti");
+    const std::filesystem::path thumbnail =
+      std::filesystem::path(job.result + ".partial").replace_extension(".thumbnail.vti");
     if (std::filesystem::is_regular_file(thumbnail))
     {
       std::filesystem::copy_file(thumbnail, dir / "runs" / format(c, ".thumbnail.vti"));

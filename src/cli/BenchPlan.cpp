@@ -244,7 +244,8 @@ void writeBenchPlan(const BenchOptions& options, const std::vector<PlanJob>& job
     }
     writeFileChecked(dir / "task.sbatch", taskScript(options, planDir));
     writeFileChecked(dir / "submit.sh", submitScript(options, planDir));
-    std::filesystem::permissions(dir / "submit.sh", std::filesystem::perms::owner_exec | std::filesystem::perms::group_exec,
+    std::filesystem::permissions(dir / "submit.sh",
+      std::filesystem::perms::owner_exec | std::filesystem::perms::group_exec,
       std::filesystem::perm_options::add);
   });
   if (!options.quiet)
@@ -302,7 +303,8 @@ std::string planJobProblem(const std::filesystem::path& planDir, const PlanJob& 
   const std::filesystem::path result(job.result);
   const bool done = job.stage == "configurations"
     ? std::filesystem::is_regular_file(result)
-    : std::filesystem::is_regular_file(result / "buffers.vti") && std::filesystem::is_regular_file(result / "stats.json");
+    : std::filesystem::is_regular_file(result / "buffers.vti") &&
+      std::filesystem::is_regular_file(result / "stats.json");
   if (done)
   {
     return {};

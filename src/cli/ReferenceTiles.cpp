@@ -69,7 +69,8 @@ nlohmann::json readTileStats(const std::filesystem::path& dir)
 // What must be equal in every tile of one reference: everything but the tile, the timings and the buffers' summaries.
 nlohmann::json tileIdentity(nlohmann::json stats)
 {
-  for (const char* key : { "tile", "rays_traced", "seconds", "rays_per_second", "buffers", "threads", "gl_renderer", "egl_device" })
+  for (const char* key :
+    { "tile", "rays_traced", "seconds", "rays_per_second", "buffers", "threads", "gl_renderer", "egl_device" })
   {
     stats.erase(key);
   }

@@ -210,7 +210,8 @@ EglContext::EglContext()
             : nullptr;
           const char* vendor = eglQueryString(handles_->display, EGL_VENDOR);
           deviceIndex_ = static_cast<int>(i);
-          deviceDescription_ = format("EGL device ", i, " of ", hardware.size(), " (", drmFile ? drmFile : "no DRM file",
+          deviceDescription_ = format("EGL device ", i, " of ", hardware.size(), " (",
+            drmFile ? drmFile : "no DRM file",
             ", ", vendor ? vendor : "unknown vendor", "), chosen by ", selection.source);
         }
         if (selection.assigned)
@@ -247,7 +248,8 @@ EglContext::EglContext()
     const EglDeviceEnvironment environment = eglDeviceEnvironment();
     const bool assigned = !environment.explicitDevice.empty() || !environment.slurmStepGpus.empty() ||
       !environment.slurmJobGpus.empty() || !environment.cudaVisibleDevices.empty();
-    deviceDescription_ = format(platformName_, " display (", vendor ? vendor : "unknown vendor", "), no hardware EGL device",
+    deviceDescription_ = format(platformName_, " display (", vendor ? vendor : "unknown vendor",
+      "), no hardware EGL device",
       assigned ? " (the GPU assignment in the environment does not apply)" : "");
   }
   if (platformName_.empty())

@@ -40,7 +40,8 @@ nlohmann::json planTestMetricsOf(const nlohmann::json& row)
     { "statistics", row.at("result").value("technique_statistics", nlohmann::json::object()) } };
 }
 
-const std::vector<std::string> kPlanTestBench = { "-t", "hard,pcf", "--resolution", "48x32", "--reference-samples", "16",
+const std::vector<std::string> kPlanTestBench = { "-t", "hard,pcf", "--resolution", "48x32", "--reference-samples",
+  "16",
   "--repeat", "1", "--quiet" };
 
 TEST(BenchPlan, JobLinesRunAndTheCollectedBenchEqualsADirectOne)
@@ -143,7 +144,8 @@ TEST(BenchPlan, ATiledReferenceMergesBitForBitIntoTheWholeOne)
     merge.push_back(tileDir);
   }
   // A tile alone is not the reference: its other rows are 0.
-  EXPECT_FALSE(test::readFile(temp.path() / "tile1" / "buffers.vti") == test::readFile(temp.path() / "whole" / "buffers.vti"));
+  const std::string whole = test::readFile(temp.path() / "whole" / "buffers.vti");
+  EXPECT_FALSE(test::readFile(temp.path() / "tile1" / "buffers.vti") == whole);
   const std::vector<std::string> missingOne(merge.begin(), merge.end() - 1);
   const test::RunResult incomplete = test::runShadowlabInTempDir(missingOne);
   EXPECT_EQ(incomplete.exitCode, 1) << incomplete.describe();
@@ -151,7 +153,7 @@ TEST(BenchPlan, ATiledReferenceMergesBitForBitIntoTheWholeOne)
   EXPECT_FALSE(std::filesystem::exists(temp.path() / "merged"));
   const test::RunResult merged = test::runShadowlabInTempDir(merge);
   ASSERT_EQ(merged.exitCode, 0) << merged.describe();
-  EXPECT_TRUE(test::readFile(temp.path() / "merged" / "buffers.vti") == test::readFile(temp.path() / "whole" / "buffers.vti"))
+  EXPECT_TRUE(test::readFile(temp.path() / "merged" / "buffers.vti") == whole)
     << "the merged buffers.vti differs from the single-process reference";
   EXPECT_EQ(test::readJson(temp.path() / "merged" / "stats.json").at("rays_traced"),
     test::readJson(temp.path() / "whole" / "stats.json").at("rays_traced"));

@@ -40,7 +40,8 @@ TEST(SharedFilesystemOutput, ADeadWritersSiblingIsRemovedOnlyOnItsOwnHost)
   const test::TempDir temp;
   const pid_t dead = sharedFilesystemDeadPid();
   const auto sibling = [&](const std::string& host, int n) {
-    const std::filesystem::path dir = temp.path() / (".shadowlab-partial-" + std::to_string(dead) + "-" + std::to_string(n));
+    const std::filesystem::path dir =
+      temp.path() / (".shadowlab-partial-" + std::to_string(dead) + "-" + std::to_string(n));
     std::filesystem::create_directories(dir);
     test::writeFile(dir / kOutputMarkerName,
       nlohmann::json{ { "tool", "shadowlab" }, { "command", "reference" }, { "pid", dead }, { "host", host } }.dump());
