@@ -144,8 +144,8 @@ TEST(BenchPlan, ATiledReferenceMergesBitForBitIntoTheWholeOne)
     merge.push_back(tileDir);
   }
   // A tile alone is not the reference: its other rows are 0.
-  const std::string whole = test::readFile(temp.path() / "whole" / "buffers.vti");
-  EXPECT_FALSE(test::readFile(temp.path() / "tile1" / "buffers.vti") == whole);
+  const std::string wholeBytes = test::readFile(temp.path() / "whole" / "buffers.vti");
+  EXPECT_FALSE(test::readFile(temp.path() / "tile1" / "buffers.vti") == wholeBytes);
   const std::vector<std::string> missingOne(merge.begin(), merge.end() - 1);
   const test::RunResult incomplete = test::runShadowlabInTempDir(missingOne);
   EXPECT_EQ(incomplete.exitCode, 1) << incomplete.describe();
@@ -153,7 +153,7 @@ TEST(BenchPlan, ATiledReferenceMergesBitForBitIntoTheWholeOne)
   EXPECT_FALSE(std::filesystem::exists(temp.path() / "merged"));
   const test::RunResult merged = test::runShadowlabInTempDir(merge);
   ASSERT_EQ(merged.exitCode, 0) << merged.describe();
-  EXPECT_TRUE(test::readFile(temp.path() / "merged" / "buffers.vti") == whole)
+  EXPECT_TRUE(test::readFile(temp.path() / "merged" / "buffers.vti") == wholeBytes)
     << "the merged buffers.vti differs from the single-process reference";
   EXPECT_EQ(test::readJson(temp.path() / "merged" / "stats.json").at("rays_traced"),
     test::readJson(temp.path() / "whole" / "stats.json").at("rays_traced"));
