@@ -20,6 +20,7 @@
 #include "core/Parse.h"
 #include "io/ImageIO.h"
 #include "output/OutputWriter.h"
+#include "output/ParaViewScript.h"
 #include "metrics/Comparison.h"
 #include "metrics/DepthProfile.h"
 #include "scene/Scene.h"
@@ -1711,6 +1712,7 @@ void writeBenchResults(const nlohmann::json& rows, const std::vector<Configurati
   writeSceneSweepCharts(rows, configurations, variants, options, environment, dir);
   writeDepthProfiles(rows, configurations, variants, options, environment, dir);
   writeViewStatisticCharts(rows, configurations, variants, options, sweeps, environment, dir);
+  writeFileChecked(dir / "open_in_paraview.py", benchParaViewScript());
   writeFileChecked(dir / "summary.md", summaryMarkdown(rows, options, environment, charts));
 }
 

@@ -20,4 +20,8 @@ namespace sl
 // scalar buffers are listed (as the heat maps); the first shown is `visibility` when present.
 std::string paraViewScript(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace);
 
+// The bench's open_in_paraview.py, beside bench.csv: a spreadsheet of every configuration and a chart of one column
+// against another (default: RMSE against median frame GPU ms, both axes logarithmic, as speed_vs_error_*.png).
+std::string benchParaViewScript();
+
 } // namespace sl

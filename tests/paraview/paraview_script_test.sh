@@ -3,7 +3,8 @@
 # and a categorical buffer (light_leak holds values on shadow-tested pixels only: the others must show the heat map's
 # light grey), its screenshot (one pixel per buffer pixel) must show the heat map's colours
 # (compare_screenshot.py). pvpython comes from the unpacked python3-paraview of scripts/bootstrap.sh
-# (BUILD_DIR/pvpython-root) or from PATH; without either the test is skipped (exit 77), never passed.
+# (BUILD_DIR/pvpython-root) or from PATH; without either the test is skipped (exit 77), never passed. The bench's
+# script must draw its chart.
 #   paraview_script_test.sh SHADOWLAB DATASETS BUILD_DIR
 set -euo pipefail
 shadowlab="$1"
@@ -47,4 +48,16 @@ if "${pvpython[@]}" out/open_in_paraview.py --buffer no_such_buffer --screenshot
   exit 1
 fi
 grep -q "no scalar buffer 'no_such_buffer'" "$work/bad.log" || { echo "FAIL: no error naming the buffer"; cat "$work/bad.log"; exit 1; }
+# The bench's script: its chart of RMSE against frame time is drawn (not a blank view), and a missing column is named.
+"$shadowlab" bench "$datasets/stacked-occluders/scene.json" -t hard,pcf --resolution 48x32 --reference-samples 8 \
+  --cache "$work/cache" --out bench 2>/dev/null
+test -f bench/open_in_paraview.py
+"${pvpython[@]}" bench/open_in_paraview.py --screenshot "$work/bench_chart.png" >"$work/bench.log" 2>&1 ||
+  { cat "$work/bench.log"; exit 1; }
+"${pvpython[@]}" "$here/check_chart.py" "$work/bench_chart.png"
+if "${pvpython[@]}" bench/open_in_paraview.py --y no_such_column --screenshot "$work/y.png" >"$work/bad.log" 2>&1; then
+  echo "FAIL: --y no_such_column succeeded"
+  exit 1
+fi
+grep -q "bench.csv has no column 'no_such_column'" "$work/bad.log" || { echo "FAIL: no error naming the column"; cat "$work/bad.log"; exit 1; }
 echo "PASS"
