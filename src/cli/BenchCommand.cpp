@@ -1182,19 +1182,22 @@ std::pair<std::string, std::string> seriesAndLabel(const Configuration& configur
 {
   std::string series = configuration.technique;
   std::string label;
+  std::string labelKeys;
   for (const std::string& setting : configuration.settings)
   {
     const std::size_t equals = setting.find('=');
     if (swept.count(setting.substr(0, equals)))
     {
       label += (label.empty() ? "" : " ") + setting.substr(equals + 1);
+      labelKeys += (labelKeys.empty() ? "" : " ") + setting.substr(0, equals);
     }
     else
     {
       series += " " + setting;
     }
   }
-  return { series, label };
+  // The legend names what the point labels are: "pcf, labels: kernel_texels".
+  return { labelKeys.empty() ? series : series + ", labels: " + labelKeys, label };
 }
 
 // speed_vs_error_<scene>.png (RMSE) and, where the reference has a penumbra, speed_vs_penumbra_error_<scene>.png: one
