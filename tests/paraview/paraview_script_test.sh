@@ -35,7 +35,8 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 width=128
 height=96
-"$shadowlab" render "$datasets/stacked-occluders/scene.json" -t vsm --resolution ${width}x${height} --out out 2>/dev/null
+"$shadowlab" render "$datasets/stacked-occluders/scene.json" -t vsm --resolution ${width}x${height} --out out 2>"$work/render.log" ||
+  { cat "$work/render.log"; exit 1; }
 test -f out/open_in_paraview.py
 for buffer in visibility light_leak approximation; do
   "${pvpython[@]}" out/open_in_paraview.py --buffer "$buffer" --no-legend --screenshot "$work/shot_$buffer.png" \
@@ -50,7 +51,7 @@ fi
 grep -q "no scalar buffer 'no_such_buffer'" "$work/bad.log" || { echo "FAIL: no error naming the buffer"; cat "$work/bad.log"; exit 1; }
 # The bench's script: its chart of RMSE against frame time is drawn (not a blank view), and a missing column is named.
 "$shadowlab" bench "$datasets/stacked-occluders/scene.json" -t hard,pcf --resolution 48x32 --reference-samples 8 \
-  --cache "$work/cache" --out bench 2>/dev/null
+  --cache "$work/cache" --out bench 2>"$work/bench_run.log" || { cat "$work/bench_run.log"; exit 1; }
 test -f bench/open_in_paraview.py
 "${pvpython[@]}" bench/open_in_paraview.py --screenshot "$work/bench_chart.png" >"$work/bench.log" 2>&1 ||
   { cat "$work/bench.log"; exit 1; }
