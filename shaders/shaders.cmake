@@ -17,6 +17,7 @@ set(SL_SHADER_FILES
   common/SoftShadowKernels.glsl
   common/SatLookup.glsl
   common/MomentHamburger.glsl
+  common/RectanglePcf.glsl
   common/HsmLayout.glsl
   common/HsmLookup.glsl
   common/MipAtlasLayout.glsl

@@ -3,6 +3,7 @@
 #include "core/Error.h"
 #include "techniques/ApproximationRules.h"
 #include "techniques/ProbeSupport.h"
+#include "techniques/SoftShadowSupport.h"
 
 #include <algorithm>
 #include <cmath>
@@ -144,6 +145,56 @@ AccuracyContract prefilteredCentreShadowAccuracy()
     markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 1e-3f; }, codes, 2.0f);
   };
   return accuracy;
+}
+
+double rectanglePcf(const ShadowMapInputs& inputs, const SoftShadowGeometry& geometry, int maxGridTaps, double bias,
+  glm::ivec2 lo, glm::ivec2 hi, PcfRange* range, ProbeRecorder* recorder)
+{
+  const int size = inputs.shadowMapLinear.width;
+  glm::dvec2 origin(0.0);
+  glm::dvec2 step(1.0);
+  glm::ivec2 count(0);
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    const int texels = hi[axis] - lo[axis] + 1;
+    if (texels <= maxGridTaps)
+    {
+      origin[axis] = lo[axis] + 0.5;
+      step[axis] = 1.0;
+      count[axis] = texels;
+    }
+    else
+    {
+      count[axis] = maxGridTaps;
+      step[axis] = static_cast<double>(texels) / maxGridTaps;
+      origin[axis] = lo[axis] + 0.5 * step[axis];
+    }
+  }
+  const double weight = 1.0 / (static_cast<double>(count.x) * count.y);
+  double lit = 0.0;
+  for (int j = 0; j < count.y; ++j)
+  {
+    for (int i = 0; i < count.x; ++i)
+    {
+      const glm::dvec2 tap = origin + glm::dvec2(i, j) * step;
+      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(size - 1));
+      const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
+      const double compared = geometry.tapComparisonDepth(tap, bias);
+      lit += compared <= z ? 1.0 : 0.0;
+      if (range)
+      {
+        const bool tie = std::abs(compared - z) < probeDepthAmbiguity * std::max(1e-30, std::abs(z));
+        range->ties += tie ? 1 : 0;
+        range->lowest += !tie && compared <= z ? weight : 0.0;
+        range->highest += tie || compared <= z ? weight : 0.0;
+      }
+      if (recorder)
+      {
+        recorder->texel({ texel, "light-leak pcf", z, compared, !(compared <= z), weight });
+      }
+    }
+  }
+  return lit * weight;
 }
 
 } // namespace sl

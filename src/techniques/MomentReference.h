@@ -62,6 +62,15 @@ PcfRange boxPcfRange(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, 
 // buffer's name) when no comparison ties, else as light_leak_range (lowest, highest): the GPU's buffer lies there.
 void recordLightLeak(ProbeRecorder& recorder, double value, double pcf, const PcfRange& range, const std::string& source);
 
+struct SoftShadowGeometry;
+// CPU mirror of common/RectanglePcf.glsl: the PCF over the texels [lo, hi] (every texel up to maxGridTaps per axis, a
+// regular sub-grid beyond), each tap compared as PCSS's filter step compares it (`geometry`: the bias and the
+// receiver's tangent plane), the light_leak reference of savsm and msmsoft. `range` (optional): the same PCF with
+// the comparisons within rounding of their boundary counted both ways; `recorder` (optional): every tap (role
+// "light-leak pcf").
+double rectanglePcf(const ShadowMapInputs& inputs, const SoftShadowGeometry& geometry, int maxGridTaps, double bias,
+  glm::ivec2 lo, glm::ivec2 hi, PcfRange* range = nullptr, ProbeRecorder* recorder = nullptr);
+
 enum class MomentPrefilter
 {
   Blur,

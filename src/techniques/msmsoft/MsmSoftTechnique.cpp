@@ -40,58 +40,6 @@ double msmSoftSupportWeight(double zi, double zj, double zk, const glm::dvec4& b
   return std::abs(denominator) > 1e-20 ? (zj * zk - b.x * (zj + zk) + b.y) / denominator : 0.0;
 }
 
-// pcfOverTexels of MsmSoftVisibility.glsl: the PCF over the texels [lo, hi] (every texel up to max_grid_taps per
-// axis, a regular sub-grid beyond), each tap compared as PCSS's filter compares it. With `recorder`, the taps.
-double msmSoftLeakPcf(const ShadowMapInputs& inputs, const SoftShadowGeometry& geometry, int maxTaps, double bias,
-  glm::ivec2 lo, glm::ivec2 hi, ProbeRecorder* recorder, PcfRange* range)
-{
-  const int size = inputs.shadowMapLinear.width;
-  glm::dvec2 origin(0.0);
-  glm::dvec2 step(1.0);
-  glm::ivec2 count(0);
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    const int texels = hi[axis] - lo[axis] + 1;
-    if (texels <= maxTaps)
-    {
-      origin[axis] = lo[axis] + 0.5;
-      step[axis] = 1.0;
-      count[axis] = texels;
-    }
-    else
-    {
-      count[axis] = maxTaps;
-      step[axis] = static_cast<double>(texels) / maxTaps;
-      origin[axis] = lo[axis] + 0.5 * step[axis];
-    }
-  }
-  const double weight = 1.0 / (static_cast<double>(count.x) * count.y);
-  double lit = 0.0;
-  for (int j = 0; j < count.y; ++j)
-  {
-    for (int i = 0; i < count.x; ++i)
-    {
-      const glm::dvec2 tap = origin + glm::dvec2(i, j) * step;
-      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(size - 1));
-      const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double compared = geometry.tapComparisonDepth(tap, bias);
-      lit += compared <= z ? 1.0 : 0.0;
-      if (range)
-      {
-        const bool tie = std::abs(compared - z) < probeDepthAmbiguity * std::max(1e-30, std::abs(z));
-        range->ties += tie ? 1 : 0;
-        range->lowest += !tie && compared <= z ? weight : 0.0;
-        range->highest += tie || compared <= z ? weight : 0.0;
-      }
-      if (recorder)
-      {
-        recorder->texel({ texel, "light-leak pcf", z, compared, !(compared <= z), weight });
-      }
-    }
-  }
-  return lit * weight;
-}
-
 void recordHamburger(ProbeRecorder& recorder, const std::string& prefix, const MsmReconstruction& msm, const char* source)
 {
   const auto name = [&](const char* quantity) { return prefix + quantity; };
@@ -290,7 +238,6 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
   const LightView& view = inputs.lightView;
   const double range = view.farDepth - view.nearDepth;
   const int size = inputs.shadowMapLinear.width;
-  const double d = lookup.sm.depthLin;
   const glm::dvec2 uv = lookup.sm.uvTexels;
   const SoftShadowGeometry geometry = softShadowGeometry(inputs, lookup, settings.receiverPlaneBias, x, y);
 
@@ -391,8 +338,8 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
       "ShadowLab: the texels w_p touches, compared as pcss filters" });
   }
   PcfRange leakRange;
-  const double pcf = msmSoftLeakPcf(inputs, geometry, settings.maxGridTaps, lookup.sample.bias, result.coverLo,
-    result.coverHi, recorder, recorder ? &leakRange : nullptr);
+  const double pcf = rectanglePcf(inputs, geometry, settings.maxGridTaps, lookup.sample.bias, result.coverLo,
+    result.coverHi, recorder ? &leakRange : nullptr, recorder);
   result.lightLeak = result.sample.visibility - pcf;
   if (recorder)
   {

@@ -108,57 +108,13 @@ TechniqueDescriptor savsmTechnique()
 namespace
 {
 
-// What SavsmVisibility.glsl's light_leak buffer compares p_max with: the PCF over the penumbra rectangle, every
-// texel up to max_grid_taps per axis, a regular sub-grid beyond, each tap compared as PCSS's filter step compares
-// it (the bias and, with receiver_plane_bias, the receiver's tangent plane). With `recorder`, the taps and the
-// light leak (recordLightLeak).
+// What SavsmVisibility.glsl's light_leak buffer compares p_max with: the PCF over the penumbra rectangle
+// (rectanglePcf, common/RectanglePcf.glsl). With `recorder`, the taps and the light leak (recordLightLeak).
 double lightLeakPcf(const ShadowMapInputs& inputs, const SoftShadowSettings& soft, const SoftShadowGeometry& geometry,
   double bias, glm::ivec2 lo, glm::ivec2 hi, double pMax, ProbeRecorder* recorder)
 {
-  const int size = inputs.shadowMapLinear.width;
-  const int maxTaps = soft.maxGridTaps;
-  glm::dvec2 origin(0.0);
-  glm::dvec2 step(1.0);
-  glm::ivec2 count(0);
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    const int texels = hi[axis] - lo[axis] + 1;
-    if (texels <= maxTaps)
-    {
-      origin[axis] = lo[axis] + 0.5;
-      step[axis] = 1.0;
-      count[axis] = texels;
-    }
-    else
-    {
-      count[axis] = maxTaps;
-      step[axis] = static_cast<double>(texels) / maxTaps;
-      origin[axis] = lo[axis] + 0.5 * step[axis];
-    }
-  }
-  const double weight = 1.0 / (static_cast<double>(count.x) * count.y);
-  double lit = 0.0;
   PcfRange range;
-  for (int j = 0; j < count.y; ++j)
-  {
-    for (int i = 0; i < count.x; ++i)
-    {
-      const glm::dvec2 tap = origin + glm::dvec2(i, j) * step;
-      const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(tap)), glm::ivec2(0), glm::ivec2(size - 1));
-      const double z = inputs.shadowMapLinear.at(texel.x, texel.y);
-      const double compared = geometry.tapComparisonDepth(tap, bias);
-      lit += compared <= z ? 1.0 : 0.0;
-      if (recorder)
-      {
-        const bool tie = std::abs(compared - z) < probeDepthAmbiguity * std::max(1e-30, std::abs(z));
-        range.ties += tie ? 1 : 0;
-        range.lowest += !tie && compared <= z ? weight : 0.0;
-        range.highest += tie || compared <= z ? weight : 0.0;
-        recorder->texel({ texel, "light-leak pcf", z, compared, !(compared <= z), weight });
-      }
-    }
-  }
-  const double pcf = lit * weight;
+  const double pcf = rectanglePcf(inputs, geometry, soft.maxGridTaps, bias, lo, hi, recorder ? &range : nullptr, recorder);
   if (recorder)
   {
     recordLightLeak(*recorder, pMax, pcf, range, "Lauritzen 2007 (light bleeding): p_max - PCF over w_p, compared as PCSS filters");

@@ -15,6 +15,7 @@
 #include "common/ShadowMapCommon.glsl"
 #include "common/ShadowReceiver.glsl"
 #include "common/SoftShadowKernels.glsl"
+#include "common/RectanglePcf.glsl"
 #include "common/MomentHamburger.glsl"
 #include "momentsat/MomentSatLookup.glsl"
 
@@ -77,42 +78,6 @@ BlockerEstimate estimateBlockers(vec4 moments, float zf)
   return estimate;
 }
 
-// The PCF over the texels [lo, hi] (every texel up to max_grid_taps per axis, a regular sub-grid beyond), each tap
-// compared as PCSS's filter step compares it (the bias, with receiver_plane_bias the receiver's tangent plane): the
-// light_leak buffer's reference (savsm's, over the filter rectangle's integer cover).
-float pcfOverTexels(ivec2 lo, ivec2 hi, float d, float bias)
-{
-  vec2 origin;
-  vec2 step;
-  ivec2 count;
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    int texels = hi[axis] - lo[axis] + 1;
-    if (texels <= int(param_max_grid_taps))
-    {
-      origin[axis] = float(lo[axis]) + 0.5;
-      step[axis] = 1.0;
-      count[axis] = texels;
-    }
-    else
-    {
-      count[axis] = int(param_max_grid_taps);
-      step[axis] = float(texels) / param_max_grid_taps;
-      origin[axis] = float(lo[axis]) + 0.5 * step[axis];
-    }
-  }
-  float lit = 0.0;
-  for (int j = 0; j < count.y; ++j)
-  {
-    for (int i = 0; i < count.x; ++i)
-    {
-      vec2 tap = origin + vec2(i, j) * step;
-      lit += shadowTest(tap, tapComparisonDepth(tap, d, bias));
-    }
-  }
-  return lit / float(count.x * count.y);
-}
-
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -168,7 +133,7 @@ void main()
   // Light leak: against the PCF over the fractional rectangle's integer cover (every texel it touches).
   ivec2 coverLo = clamp(ivec2(floor(boxMin)), ivec2(0), ivec2(shadowMapSize - 1));
   ivec2 coverHi = clamp(ivec2(ceil(boxMax)) - 1, coverLo, ivec2(shadowMapSize - 1));
-  outLightLeak = visibility - pcfOverTexels(coverLo, coverHi, d, receiver.bias);
+  outLightLeak = visibility - pcfOverRectangle(coverLo, coverHi, d, receiver.bias);
   // int32 table: a box beyond the exact size wrapped (its sum is wrong): flagged.
   float searchTexels = float(searchHi.x - searchLo.x + 1) * float(searchHi.y - searchLo.y + 1);
   float coverTexels = float(coverHi.x - coverLo.x + 1) * float(coverHi.y - coverLo.y + 1);

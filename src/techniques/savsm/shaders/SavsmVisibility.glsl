@@ -10,6 +10,7 @@
 #include "common/SamplingPatterns.glsl"
 #include "common/SoftShadowKernels.glsl"
 #include "common/SatLookup.glsl"
+#include "common/RectanglePcf.glsl"
 #include "common/Chebyshev.glsl"
 
 layout(location = OUT_VISIBILITY) out float outVisibility;
@@ -20,41 +21,6 @@ layout(location = OUT_BLOCKER_SAMPLES) out float outBlockerSamples;
 layout(location = OUT_AVG_BLOCKER_DEPTH) out float outAvgBlockerDepth;
 layout(location = OUT_PENUMBRA_KERNEL_TEXELS) out float outPenumbraKernelTexels;
 layout(location = OUT_DEPTH_BIAS) out float outDepthBias;
-
-// The PCF over the texel rectangle [lo, hi] (every texel up to MAX_GRID_TAPS per axis, a regular sub-grid beyond),
-// each tap compared as PCSS's filter step compares it (the bias and, with receiver_plane_bias, the receiver's
-// tangent plane), not at t: unbiased, a receiver sloped in depth fails against its own texels and light_leak
-// would be p_max minus self-shadowing.
-float pcfOverRectangle(ivec2 lo, ivec2 hi, float d, float bias)
-{
-  KernelGrid grid;
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    int texels = hi[axis] - lo[axis] + 1;
-    if (texels <= int(param_max_grid_taps))
-    {
-      grid.origin[axis] = float(lo[axis]) + 0.5;
-      grid.step[axis] = 1.0;
-      grid.count[axis] = texels;
-    }
-    else
-    {
-      grid.count[axis] = int(param_max_grid_taps);
-      grid.step[axis] = float(texels) / param_max_grid_taps;
-      grid.origin[axis] = float(lo[axis]) + 0.5 * grid.step[axis];
-    }
-  }
-  float lit = 0.0;
-  for (int j = 0; j < grid.count.y; ++j)
-  {
-    for (int i = 0; i < grid.count.x; ++i)
-    {
-      vec2 tap = grid.origin + vec2(i, j) * grid.step;
-      lit += shadowTest(tap, tapComparisonDepth(tap, d, bias));
-    }
-  }
-  return lit / float(grid.count.x * grid.count.y);
-}
 
 void main()
 {
