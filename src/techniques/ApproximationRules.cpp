@@ -578,6 +578,24 @@ AccuracyContract oneLayerSoftShadowContract(BlockerDepthModel model, double tole
   return contract;
 }
 
+AccuracyContract momentBoundSoftShadowContract(Approximation bound, double tolerance)
+{
+  AccuracyContract contract;
+  contract.reference = ReferenceModel::AreaLight;
+  contract.tolerance = tolerance;
+  contract.approximations = { averageBlockerDepthApproximation(), std::move(bound), coarseShadowMapApproximation(),
+    perforatedCasterInMapApproximation(), blockerSearchBeyondTheLightApproximation() };
+  contract.markApproximations = [tolerance](const ApproximationContext& context, ImageF& codes) {
+    const ShadowMapFootprint footprint(context);
+    markMultipleBlockerDepths(footprint, codes, 1.0f, tolerance);
+    markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
+    markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
+    markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
+    markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 5.0f);
+  };
+  return contract;
+}
+
 void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon)
 {
   markWhere(frame, "visibility", [&](float value) { return value > epsilon && value < 1.0 - epsilon; }, codes, code);

@@ -152,6 +152,11 @@ enum class BlockerDepthModel
   OccluderFusion // back-projected micro-occluders: occluderFusionApproximation
 };
 AccuracyContract oneLayerSoftShadowContract(BlockerDepthModel model, double tolerance);
+// The contract of PCSS's average blocker depth followed by a moment bound over the penumbra kernel in place of its PCF
+// (savsm: Chebyshev; msmsoft: Hamburger 4MSM): against the area light within `tolerance`, approximations 1 average
+// blocker depth, 2 `bound` (marked where |light_leak| > 0.01), 3 coarse shadow map, 4 perforated caster in the map,
+// 5 blocker search beyond the light.
+AccuracyContract momentBoundSoftShadowContract(Approximation bound, double tolerance);
 
 // Marks with `code` every pixel whose value lies strictly inside (epsilon, 1 - epsilon): a filtered (partial) value.
 void markPartialVisibility(const FrameResult& frame, ImageF& codes, float code, double epsilon = 1e-3);

@@ -182,20 +182,8 @@ TechniqueDescriptor msmSoftTechnique()
   };
   // PCSS's single average blocker depth (here from the moments), then the moment bound over the kernel instead of
   // its PCF: a lower bound on the shadow, equal where the kernel's depths are two-valued.
-  descriptor.accuracy.reference = ReferenceModel::AreaLight;
-  descriptor.accuracy.tolerance = 0.1;
-  descriptor.accuracy.approximations = { averageBlockerDepthApproximation(),
-    { "moment bound", "the value differs from the kernel's PCF by more than 0.01 (light_leak)" },
-    coarseShadowMapApproximation(), perforatedCasterInMapApproximation(), blockerSearchBeyondTheLightApproximation() };
-  descriptor.accuracy.markApproximations = [tolerance = descriptor.accuracy.tolerance](
-    const ApproximationContext& context, ImageF& codes) {
-    const ShadowMapFootprint footprint(context);
-    markMultipleBlockerDepths(footprint, codes, 1.0f, tolerance);
-    markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
-    markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
-    markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
-    markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 5.0f);
-  };
+  descriptor.accuracy = momentBoundSoftShadowContract(
+    { "moment bound", "the value differs from the kernel's PCF by more than 0.01 (light_leak)" }, 0.1);
   return descriptor;
 }
 

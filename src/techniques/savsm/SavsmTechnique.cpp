@@ -88,20 +88,8 @@ TechniqueDescriptor savsmTechnique()
   };
   // PCSS's average blocker depth (Fernando 2005), then the Chebyshev bound over the kernel instead of its PCF
   // (Lauritzen 2007): an upper bound, equal only where the kernel's depths are two-valued.
-  descriptor.accuracy.reference = ReferenceModel::AreaLight;
-  descriptor.accuracy.tolerance = 0.1;
-  descriptor.accuracy.approximations = { averageBlockerDepthApproximation(),
-    { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" },
-    coarseShadowMapApproximation(), perforatedCasterInMapApproximation(), blockerSearchBeyondTheLightApproximation() };
-  descriptor.accuracy.markApproximations = [tolerance = descriptor.accuracy.tolerance](
-    const ApproximationContext& context, ImageF& codes) {
-    const ShadowMapFootprint footprint(context);
-    markMultipleBlockerDepths(footprint, codes, 1.0f, tolerance);
-    markWhere(*context.frame, "light_leak", [](float leak) { return std::abs(leak) > 0.01f; }, codes, 2.0f);
-    markCoarseShadowMap(footprint, codes, 3.0f, tolerance);
-    markLightRaysThroughPerforatedCaster(context, codes, 4.0f);
-    markBlockerSearchBeyondTheLight(footprint, *context.frame, codes, 5.0f);
-  };
+  descriptor.accuracy = momentBoundSoftShadowContract(
+    { "chebyshev bound", "the value exceeds the kernel's PCF by more than 0.01 (light_leak)" }, 0.1);
   return descriptor;
 }
 
