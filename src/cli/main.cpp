@@ -210,7 +210,7 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
   benchCommand->add_option("--scene-set", bench.sceneOverrides, "Scene value for every scene, /json/pointer=value");
   benchCommand->add_option("--scene-sweep", bench.sceneSweeps,
     "Scene values to sweep, /json/pointer=v1,v2,... e.g. /lights/0/size=0.25,0.5,1,2,4 (repeatable: all combinations)");
-  benchCommand->add_option("--repeat", bench.repeat, "Timed frames after one warm-up frame (medians reported)")
+  benchCommand->add_option("--repeat", bench.repeat, "Timed frames after one warm-up frame (median, min and max reported)")
     ->capture_default_str();
   benchCommand->add_option("--resolution,-r", bench.resolution, "Image size WxH")->capture_default_str();
   CLI::Option* referenceSamples = benchCommand
