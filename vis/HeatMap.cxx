@@ -279,7 +279,8 @@ int heatMapFontPx(int imageHeight)
   return std::clamp(imageHeight / 32, 12, 96);
 }
 
-ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options)
+ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options,
+  HeatMapScale* drawnScale)
 {
   SL_CHECK_MSG(values.components == 1 && !values.empty(), "heat map of a ", values.width, "x", values.height,
     "x", values.components, " image");
@@ -290,6 +291,10 @@ ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const Heat
     validMask->components, " for values ", values.width, "x", values.height);
 
   const HeatMapScale scale = heatMapScale({ { &values, validMask } }, options);
+  if (drawnScale)
+  {
+    *drawnScale = scale;
+  }
   const ColorMap colorMap(options.colorMap);
   const int fontPx = heatMapFontPx(values.height);
   const ColorKey colorKey = heatMapColorKey(colorMap, scale, options, fontPx);
@@ -332,14 +337,16 @@ ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const Heat
   return canvas;
 }
 
-void writeHeatMapPng(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options,
+HeatMapScale writeHeatMapPng(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options,
   const std::filesystem::path& pngPath)
 {
-  const ImageU8 canvas = renderHeatMap(values, validMask, options);
+  HeatMapScale scale;
+  const ImageU8 canvas = renderHeatMap(values, validMask, options, &scale);
 
   // writePng checks every step of the write (a full disk or a file-size limit is an InputError naming
   // the file, never a truncated PNG that passes as written).
   writePng(pngPath, canvas);
+  return scale;
 }
 
 } // namespace sl

@@ -136,11 +136,13 @@ int heatMapFontPx(int imageHeight);
 // validMask: same size, 1 component, 0 = no surface, kNotApplicablePixel = not applicable, other = pixel has a
 // value; null = all valid. Categorical colours the value
 // rounded to the nearest integer class id.
-ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options);
+// `drawnScale` (optional): the scale it drew with, for a consumer that must match it (output/ParaViewScript.h).
+ImageU8 renderHeatMap(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options,
+  HeatMapScale* drawnScale = nullptr);
 
 // renderHeatMap written as an 8-bit RGB PNG (top row of the PNG = top row of the image). Throws InputError
-// naming the path when it cannot be written.
-void writeHeatMapPng(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options,
+// naming the path when it cannot be written. Returns the scale it drew with.
+HeatMapScale writeHeatMapPng(const ImageF& values, const ImageU8* validMask, const HeatMapOptions& options,
   const std::filesystem::path& pngPath);
 
 } // namespace sl

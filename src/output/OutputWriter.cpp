@@ -17,8 +17,10 @@ namespace
 
 // One heat map per buffer that drawsHeatMap (vis/BufferHeatMap.h): frame buffers over their declared pixels
 // (bufferValueMask: grey where the quantity does not apply), light-space ones (`frameBuffers` null) over every texel.
+// Appends to `drawn` how each was drawn, for open_in_paraview.py (`file`: the .vti that holds the buffers).
 void writeHeatMaps(const std::vector<NamedImage>& images, const std::vector<NamedImage>* frameBuffers,
-  const std::filesystem::path& dir, const std::string& prefix)
+  const std::filesystem::path& dir, const std::string& prefix, const std::string& file,
+  std::vector<DrawnHeatMap>& drawn)
 {
   for (const NamedImage& named : images)
   {
@@ -28,8 +30,15 @@ void writeHeatMaps(const std::vector<NamedImage>& images, const std::vector<Name
     }
     const ImageU8 mask = frameBuffers ? bufferValueMask(named, *frameBuffers) : ImageU8();
     const ImageU8* maskOrAll = frameBuffers ? &mask : nullptr;
-    const HeatMapOptions options = bufferHeatMapOptions(named, maskOrAll);
-    writeHeatMapPng(heatMapValues(named), maskOrAll, options, dir / (prefix + named.name + ".png"));
+    DrawnHeatMap heatMap{ &named, file, "", bufferHeatMapOptions(named, maskOrAll), {} };
+    heatMap.scale = writeHeatMapPng(heatMapValues(named), maskOrAll, heatMap.options, dir / (prefix + named.name + ".png"));
+    if (frameBuffers)
+    {
+      // The array bufferValueMask read: shadow_tested for a quantity declared on shadow-tested pixels, else coverage.
+      const bool onShadowTested = named.domain == BufferDomain::ShadowTested && findNamed(*frameBuffers, "shadow_tested");
+      heatMap.appliesWhere = onShadowTested ? "shadow_tested" : findNamed(*frameBuffers, "coverage") ? "coverage" : "";
+    }
+    drawn.push_back(std::move(heatMap));
   }
 }
 
@@ -304,10 +313,13 @@ void writeBufferFiles(const std::vector<NamedImage>& buffers, const std::vector<
   {
     writeExr(dir / "visibility.exr", visibility->image);
   }
-  SL_CHECK(findNamed(buffers, "coverage"));
-  writeHeatMaps(buffers, &buffers, dir, "heatmap_");
-  writeHeatMaps(lightSpace, nullptr, dir, "heatmap_");
-  writeFileChecked(dir / "open_in_paraview.py", paraViewScript(buffers, lightSpace));
+  const NamedImage* coverage = findNamed(buffers, "coverage");
+  SL_CHECK(coverage);
+  std::vector<DrawnHeatMap> drawn;
+  writeHeatMaps(buffers, &buffers, dir, "heatmap_", "buffers.vti", drawn);
+  writeHeatMaps(lightSpace, nullptr, dir, "heatmap_", "light_space.vti", drawn);
+  writeFileChecked(dir / "open_in_paraview.py",
+    paraViewScript(drawn, glm::ivec2(coverage->image.width, coverage->image.height)));
 }
 
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path)

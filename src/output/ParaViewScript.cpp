@@ -1,7 +1,5 @@
 #include "output/ParaViewScript.h"
 
-#include "vis/BufferHeatMap.h"
-#include "vis/HeatMap.h"
 
 #include <nlohmann/json.hpp>
 
@@ -32,17 +30,14 @@ nlohmann::json colorMapPoints(const ColorMap& colorMap, const ValueRange& range)
   return points;
 }
 
-// One entry of the script's BUFFERS table: where the buffer is and how its heat map draws it.
-// `appliesWhere`: the buffer's array that marks the pixels with a value ("coverage", "shadow_tested"), or "" for all.
-nlohmann::json bufferEntry(
-  const NamedImage& named, const ImageU8* mask, const std::string& file, const std::string& appliesWhere)
+// One entry of the script's BUFFERS table: where the buffer is and how its heat map drew it.
+nlohmann::json bufferEntry(const DrawnHeatMap& drawn)
 {
-  const HeatMapOptions options = bufferHeatMapOptions(named, mask);
-  const std::optional<ValueRange> valid = validValueRange(named.image, mask);
+  const HeatMapOptions& options = drawn.options;
   nlohmann::json entry;
-  entry["file"] = file;
-  entry["unit"] = named.unit;
-  entry["applies_where"] = appliesWhere;
+  entry["file"] = drawn.file;
+  entry["unit"] = drawn.buffer->unit;
+  entry["applies_where"] = drawn.appliesWhere;
   if (options.colorMap == ColorMapKind::Categorical)
   {
     // The classes the heat map's key lists (heatMapColorKey): the labels' ids, or the valid ids' span.
@@ -53,10 +48,10 @@ nlohmann::json bufferEntry(
     {
       last = static_cast<long long>(options.categoryLabels.size()) - 1;
     }
-    else if (valid)
+    else if (drawn.scale.validRange)
     {
-      first = std::llround(valid->min);
-      last = std::llround(valid->max);
+      first = std::llround(drawn.scale.validRange->min);
+      last = std::llround(drawn.scale.validRange->max);
     }
     for (long long id = first; id <= last && id - first < 256; ++id)
     {
@@ -69,8 +64,7 @@ nlohmann::json bufferEntry(
     entry["categories"] = categories;
     return entry;
   }
-  // The heat map's own scale (robust percentiles of the pixels with a value, vis/HeatMap.h heatMapScale).
-  const ValueRange range = heatMapScale({ { &named.image, mask } }, options).colorRange;
+  const ValueRange& range = drawn.scale.colorRange;
   entry["kind"] = options.colorMap == ColorMapKind::Diverging ? "diverging" : "sequential";
   entry["range"] = { range.min, range.max };
   entry["rgb_points"] = colorMapPoints(ColorMap(options.colorMap), range);
@@ -252,40 +246,22 @@ std::string benchParaViewScript()
   return kBenchScript;
 }
 
-std::string paraViewScript(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace)
+std::string paraViewScript(const std::vector<DrawnHeatMap>& heatMaps, glm::ivec2 imageSize)
 {
   nlohmann::json table = nlohmann::json::object();
   std::string defaultBuffer;
-  int width = 0;
-  int height = 0;
-  for (const NamedImage& named : buffers)
+  for (const DrawnHeatMap& drawn : heatMaps)
   {
-    if (named.image.components != 1)
-    {
-      continue;
-    }
     // A bit mask's heat map counts its set bits, which ParaView would have to compute: left to the PNG.
-    if (named.kind == BufferKind::BitMask || !drawsHeatMap(named))
+    const NamedImage& named = *drawn.buffer;
+    if (named.kind == BufferKind::BitMask || table.contains(named.name))
     {
       continue;
     }
-    const ImageU8 mask = bufferValueMask(named, buffers);
-    const bool onShadowTested = named.domain == BufferDomain::ShadowTested && findNamed(buffers, "shadow_tested");
-    const std::string appliesWhere = onShadowTested ? "shadow_tested" : findNamed(buffers, "coverage") ? "coverage" : "";
-    table[named.name] = bufferEntry(named, &mask, "buffers.vti", appliesWhere);
-    if (defaultBuffer.empty() || named.name == "visibility")
+    table[named.name] = bufferEntry(drawn);
+    if (drawn.file == "buffers.vti" && (defaultBuffer.empty() || named.name == "visibility"))
     {
       defaultBuffer = named.name;
-    }
-    width = named.image.width;
-    height = named.image.height;
-  }
-  for (const NamedImage& named : lightSpace)
-  {
-    if (named.image.components == 1 && named.kind != BufferKind::BitMask && drawsHeatMap(named) &&
-      !table.contains(named.name))
-    {
-      table[named.name] = bufferEntry(named, nullptr, "light_space.vti", "");
     }
   }
   std::ostringstream script;
@@ -310,7 +286,7 @@ std::string paraViewScript(const std::vector<NamedImage>& buffers, const std::ve
   }
   script << "BUFFERS = json.loads(r'''" << tableText << "''')\n";
   script << "DEFAULT_BUFFER = " << nlohmann::json(defaultBuffer).dump() << "\n";
-  script << "IMAGE_SIZE = [" << width << ", " << height << "]\n";
+  script << "IMAGE_SIZE = [" << imageSize.x << ", " << imageSize.y << "]\n";
   script << kScriptBody;
   return script.str();
 }

@@ -6,8 +6,8 @@
 // the script does not depend on the presets of a ParaView version.
 #pragma once
 
-#include "core/Image.h"
 #include "core/NamedImage.h"
+#include "vis/HeatMap.h"
 
 #include <string>
 #include <vector>
@@ -15,10 +15,21 @@
 namespace sl
 {
 
-// The script's text for a directory holding buffers.vti (the frame's buffers, each over the pixels its heat map
-// gives a value, vis/BufferHeatMap.h bufferValueMask) and, when `lightSpace` is not empty, light_space.vti. Only
-// scalar buffers are listed (as the heat maps); the first shown is `visibility` when present.
-std::string paraViewScript(const std::vector<NamedImage>& buffers, const std::vector<NamedImage>& lightSpace);
+// A heat map as OutputWriter drew it: the buffer, the file that holds it, the array that marks its pixels with a value
+// ("coverage", "shadow_tested", or "" for every pixel), and the options and scale it was drawn with.
+struct DrawnHeatMap
+{
+  const NamedImage* buffer = nullptr;
+  std::string file; // "buffers.vti" or "light_space.vti"
+  std::string appliesWhere;
+  HeatMapOptions options;
+  HeatMapScale scale;
+};
+
+// The script's text for the heat maps drawn into a directory holding buffers.vti and, for light-space ones,
+// light_space.vti: each with its heat map's colour map and scale. Bit masks (drawn as bit counts) are left out; the
+// first shown is `visibility` when present; the screenshot is `imageSize` pixels (the frame's).
+std::string paraViewScript(const std::vector<DrawnHeatMap>& heatMaps, glm::ivec2 imageSize);
 
 // The bench's open_in_paraview.py, beside bench.csv: a spreadsheet of every configuration and a chart of one column
 // against another (default: RMSE against median frame GPU ms, both axes logarithmic, as speed_vs_error_*.png).
