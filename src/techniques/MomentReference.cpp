@@ -147,6 +147,13 @@ AccuracyContract prefilteredCentreShadowAccuracy()
   return accuracy;
 }
 
+ParameterSpec momentBiasParameter()
+{
+  return { "moment_bias", 3e-5, 1e-6, 0.1, "",
+    "alpha of MSM Alg. 3: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), keeps the Hankel matrix definite "
+    "against rounding; larger leaks more light", {}, false };
+}
+
 double rectanglePcf(const ShadowMapInputs& inputs, const SoftShadowGeometry& geometry, int maxGridTaps, double bias,
   glm::ivec2 lo, glm::ivec2 hi, PcfRange* range, ProbeRecorder* recorder)
 {

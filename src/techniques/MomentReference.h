@@ -62,6 +62,11 @@ PcfRange boxPcfRange(const ShadowMapInputs& inputs, const glm::dvec2& uvTexels, 
 // buffer's name) when no comparison ties, else as light_leak_range (lowest, highest): the GPU's buffer lies there.
 void recordLightLeak(ProbeRecorder& recorder, double value, double pcf, const PcfRange& range, const std::string& source);
 
+// `moment_bias`, alpha of MSM Alg. 3, declared alike by msm and msmsoft (Hamburger 4MSM, common/MomentHamburger.glsl).
+// 3e-5: the value public ports of the authors' code use for 16-bit storage in their optimised basis (msm's page says
+// what was and was not found); minimum 1e-6: below it the bias vanishes in float moments.
+ParameterSpec momentBiasParameter();
+
 struct SoftShadowGeometry;
 // CPU mirror of common/RectanglePcf.glsl: the PCF over the texels [lo, hi] (every texel up to maxGridTaps per axis, a
 // regular sub-grid beyond), each tap compared as PCSS's filter step compares it (`geometry`: the bias and the

@@ -47,12 +47,7 @@ TechniqueDescriptor msmTechnique()
   // The power moments are prefiltered as the moment map is, with its parameters (structures/powermoments).
   descriptor.addParameters(momentMapStructure().parameters);
   descriptor.addParameters({
-    // 3e-5: the value public ports of the authors' code use for 16-bit storage in their optimised basis (README.md
-    // says what was and was not found); here the moments are RGBA32F.
-    // Minimum 1e-6: below it the bias vanishes in the float moments (README.md, Parameters).
-    { "moment_bias", 3e-5, 1e-6, 0.1, "",
-      "alpha of MSM Alg. 3: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), keeps the Hankel matrix definite "
-      "against rounding; larger leaks more light", {}, false },
+    momentBiasParameter(), // here the moments are RGBA32F
   });
   descriptor.lightStructures = { &shadowMapStructure(), &powerMomentMapStructure() };
   descriptor.buffers = {

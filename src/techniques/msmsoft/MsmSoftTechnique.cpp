@@ -110,10 +110,7 @@ TechniqueDescriptor msmSoftTechnique()
     "Peters, Münstermann, Wetzstein & Klein 2016 (I3D; JCGT 6(1) 2017), with PCSS's search kernel (Fernando 2005)");
   descriptor.addParameters(momentSatStructure().parameters);
   descriptor.addParameters({
-    // msm's parameter, same default and range (msm/README.md, Parameters).
-    { "moment_bias", 3e-5, 1e-6, 0.1, "",
-      "alpha of MSM Alg. 3: b' = (1 - alpha) b + alpha (0.5, 0.5, 0.5, 0.5), in the blocker search and the filter; "
-      "larger leaks more light", {}, false },
+    momentBiasParameter(), // in the blocker search and the filter
     { "fully_lit_bias", 1e-3, 1e-6, 0.1, "",
       "epsilon of the average blocker depth z_avg = (epsilon z_f + sum w_i z_i) / (epsilon + G_b) (the authors' "
       "constant): without blockers z_avg -> z_f and the kernel shrinks to min_kernel_texels", {}, false },
