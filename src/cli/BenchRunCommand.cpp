@@ -256,6 +256,7 @@ int runBenchConfiguration(const BenchRunOptions& options)
   for (const ParameterSpec& spec : last.parameters.specs())
   {
     parameters[spec.name] = spec.file ? nlohmann::json(last.parameters.file(spec.name))
+      : last.parameters.automatic(spec.name) ? nlohmann::json(spec.automatic)
       : spec.choices.empty()          ? nlohmann::json(last.parameters.get(spec.name))
                                       : nlohmann::json(last.parameters.choice(spec.name));
   }
@@ -292,6 +293,10 @@ int runBenchConfiguration(const BenchRunOptions& options)
     { "light_structure_gpu_bytes", structureBytes },
     { "light_structure_gpu_bytes_total", structureBytesTotal },
   };
+  if (last.lightView)
+  {
+    result["shadow_map_size_chosen"] = last.lightView->resolution; // given, or chosen by shadow_map_size = auto
+  }
   putTimingSpread(result, "frame_gpu_ms", frameGpu);
   putTimingSpread(result, "frame_wall_ms", frameWall);
   // Small copies of the visibility (and, against a reference, of the reference and the error) beside the result,

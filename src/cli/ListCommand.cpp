@@ -37,6 +37,10 @@ std::string describeRange(const ParameterSpec& spec)
   }
   std::ostringstream range;
   range << spec.minValue << " .. " << spec.maxValue;
+  if (!spec.automatic.empty())
+  {
+    range << " or " << spec.automatic;
+  }
   return range.str();
 }
 
@@ -49,6 +53,10 @@ std::string describeDefault(const ParameterSpec& spec)
   if (!spec.choices.empty())
   {
     return spec.choices.at(static_cast<std::size_t>(spec.defaultValue));
+  }
+  if (isAutomaticValue(spec, spec.defaultValue))
+  {
+    return spec.automatic;
   }
   std::ostringstream value;
   value << spec.defaultValue;
@@ -178,7 +186,8 @@ void listAsJson(const TechniqueSelection& selection, std::ostream& out)
     for (const ParameterSpec& spec : technique.parameters)
     {
       const nlohmann::json defaultValue =
-        spec.choices.empty() ? nlohmann::json(spec.defaultValue) : nlohmann::json(describeDefault(spec));
+        spec.choices.empty() && !isAutomaticValue(spec, spec.defaultValue) ? nlohmann::json(spec.defaultValue)
+                                                                            : nlohmann::json(describeDefault(spec));
       parameters.push_back({ { "name", spec.name }, { "default", defaultValue },
         { "min", spec.minValue }, { "max", spec.maxValue }, { "unit", spec.unit }, { "choices", spec.choices },
         { "integer", spec.integer }, { "file", spec.file }, { "doc", spec.doc } });

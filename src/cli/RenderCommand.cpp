@@ -42,8 +42,14 @@ int runRender(const RenderOptions& options, std::ostream& log)
     {
       gpuMs += stage.gpuMs;
     }
+    // The map's size as rendered; "(auto)" when shadow_map_size = auto chose it.
+    std::string map;
+    if (frame.lightView)
+    {
+      map = format(", shadow map ", frame.lightView->resolution, "^2", frame.automaticMapSize ? " (auto)" : "");
+    }
     log << "shadowlab: rendered " << printable(options.sceneFile) << " with " << frame.technique << " at " << frame.resolution.x
-        << "x" << frame.resolution.y << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)
+        << "x" << frame.resolution.y << map << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)
         << gpuMs << " ms, frame " << frame.frameWallMs << " ms -> " << printable(options.outDir) << "\n";
   }
   return 0;

@@ -196,7 +196,9 @@ std::vector<std::string> ViewerSession::settingsOf(const ParameterValues& values
       continue;
     }
     assignments.push_back(spec.name + "=" +
-      (spec.choices.empty() ? numberText(values.get(spec.name)) : values.choice(spec.name)));
+      (values.automatic(spec.name) ? spec.automatic
+          : spec.choices.empty()   ? numberText(values.get(spec.name))
+                                   : values.choice(spec.name)));
   }
   return assignments;
 }
@@ -362,7 +364,10 @@ std::string ViewerSession::stepParameter(int step)
   const ParameterSpec& spec = *specs[std::min(selectedParameter_[technique()], specs.size() - 1)];
   Settings next = settings_;
   ParameterValues& values = parametersOf(next, next.techniqueIndex);
-  const double value = steppedValue(spec, values.get(spec.name), step);
+  // From `auto`, a step goes from the size the frame chose (shadow_map_size = auto) to an explicit one.
+  const bool automatic = values.automatic(spec.name);
+  const double from = automatic && frame_.lightView ? frame_.lightView->resolution : values.get(spec.name);
+  const double value = steppedValue(spec, from, step);
   if (value == values.get(spec.name))
   {
     return "parameter " + parameterText(spec, values) + " (at the end of its range)";
@@ -521,6 +526,12 @@ std::string ViewerSession::parameterText(const ParameterSpec& spec, const Parame
       choices += (choices.empty() ? "" : "|") + choice;
     }
     return spec.name + " = " + values.choice(spec.name) + " (" + choices + ")";
+  }
+  if (values.automatic(spec.name))
+  {
+    const std::string chosen = frame_.lightView ? format(", now ", frame_.lightView->resolution) : std::string();
+    return spec.name + " = " + spec.automatic + chosen + (spec.unit.empty() ? "" : " " + spec.unit) + " (" +
+      readableNumber(spec.minValue) + " .. " + readableNumber(spec.maxValue) + " or " + spec.automatic + ")";
   }
   // Rounded as a person reads them (1.17, not 1.171875); the render command keeps every digit (renderCommand).
   return spec.name + " = " + readableNumber(values.get(spec.name)) + (spec.unit.empty() ? "" : " " + spec.unit) + " (" +

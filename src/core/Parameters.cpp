@@ -18,6 +18,17 @@ const ParameterSpec* findParameterSpec(const std::vector<ParameterSpec>& specs, 
   return found == specs.end() ? nullptr : &*found;
 }
 
+bool isAutomaticValue(const ParameterSpec& spec, double value)
+{
+  return !spec.automatic.empty() && value == kAutomaticValue;
+}
+
+bool ParameterValues::automatic(const std::string& name) const
+{
+  const ParameterSpec* spec = findParameterSpec(specs(), name);
+  return spec && isAutomaticValue(*spec, get(name));
+}
+
 const std::vector<ParameterSpec>& ParameterValues::specs() const
 {
   static const std::vector<ParameterSpec> none;
@@ -81,8 +92,9 @@ void ParameterValues::set(const std::string& key, double value)
   }
   if (!std::isfinite(value) || value < spec->minValue || value > spec->maxValue)
   {
-    throw InputError(format("--set ", key, "=", value, ": out of range for technique '", owner_,
-      "' (allowed ", spec->minValue, " to ", spec->maxValue, spec->unit.empty() ? "" : " ", spec->unit, ")"));
+    throw InputError(format("--set ", key, "=", value, ": out of range for technique '", owner_, "' (allowed ",
+      spec->minValue, " to ", spec->maxValue, spec->unit.empty() ? "" : " ", spec->unit,
+      spec->automatic.empty() ? "" : ", or " + spec->automatic, ")"));
   }
   if (spec->integer && std::abs(value - std::round(value)) > 1e-9)
   {
@@ -126,6 +138,11 @@ void ParameterValues::set(const std::string& assignment)
     values_[key] = static_cast<double>(found - spec->choices.begin());
     return;
   }
+  if (spec && !spec->automatic.empty() && text == spec->automatic)
+  {
+    values_[key] = kAutomaticValue;
+    return;
+  }
   if (spec && spec->integer && spec->minValue == 0.0 && spec->maxValue == 1.0 && (text == "true" || text == "false"))
   {
     values_[key] = text == "true" ? 1.0 : 0.0;
@@ -134,7 +151,8 @@ void ParameterValues::set(const std::string& assignment)
   const std::optional<double> value = parseNumber(text);
   if (!value)
   {
-    throw InputError(format("--set ", assignment, ": '", text, "' is not a number"));
+    throw InputError(format("--set ", assignment, ": '", text, "' is not a number",
+      spec && !spec->automatic.empty() ? " nor " + spec->automatic : std::string()));
   }
   set(key, *value);
 }

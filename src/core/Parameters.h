@@ -25,7 +25,16 @@ struct ParameterSpec
   // A file path (`--set key=PATH`, e.g. ss08's budget image): its number is 1 once a path is set, 0 before (the
   // range 0..1); ParameterValues::file gives the path. Checked by whoever reads the file, which names it.
   bool file = false;
+  // Non-empty: a word (`auto`) that leaves the value to each frame, stored as kAutomaticValue (outside the range);
+  // the default may be it. shadow_map_size=auto: the size the focus stage derives from the view (ShadowMapStructure.h).
+  std::string automatic;
 };
+
+// The value an `automatic` word stands for.
+constexpr double kAutomaticValue = 0.0;
+
+// Whether `value` of `spec` is its automatic word's.
+bool isAutomaticValue(const ParameterSpec& spec, double value);
 
 // The spec called `name` in `specs`, or nullptr.
 const ParameterSpec* findParameterSpec(const std::vector<ParameterSpec>& specs, const std::string& name);
@@ -46,7 +55,10 @@ public:
   int getInt(const std::string& name) const;
   const std::string& choice(const std::string& name) const; // enumeration's chosen name
   const std::string& file(const std::string& name) const;   // a file parameter's path ("" when unset)
-  // Parses "key=value" (a number, or a choice name for enumerations, or true/false for 0..1 integers).
+  // Whether `name` holds its spec's automatic word (e.g. shadow_map_size=auto): the frame chooses the value.
+  bool automatic(const std::string& name) const;
+  // Parses "key=value" (a number, or a choice name for enumerations, or true/false for 0..1 integers, or the spec's
+  // automatic word).
   // Throws InputError naming the technique, key and value when unknown or out of range.
   void set(const std::string& assignment);
   void set(const std::string& key, double value);

@@ -23,15 +23,18 @@ namespace sl
 namespace
 {
 
-// The drawn shadow-map size: the technique's default halved `halvings` times, within the parameter's range.
+// The drawn shadow-map size: the technique's default halved `halvings` times, within the parameter's range. Where
+// the default is `auto`, halvings 0 keeps it and 1..3 give 1024, 512 and 256 (the sizes the earlier fixed default,
+// 2048, halved to).
 std::optional<std::string> mapSizeSetting(const TechniqueDescriptor& technique, int halvings)
 {
   const ParameterSpec* spec = technique.findParameter("shadow_map_size");
-  if (!spec)
+  if (!spec || (isAutomaticValue(*spec, spec->defaultValue) && halvings == 0))
   {
     return std::nullopt;
   }
-  const double size = std::max(spec->minValue, std::floor(spec->defaultValue / static_cast<double>(1 << halvings)));
+  const double largest = isAutomaticValue(*spec, spec->defaultValue) ? 2048.0 : spec->defaultValue;
+  const double size = std::max(spec->minValue, std::floor(largest / static_cast<double>(1 << halvings)));
   return "shadow_map_size=" + std::to_string(static_cast<long long>(size));
 }
 

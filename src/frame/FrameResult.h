@@ -6,6 +6,7 @@
 #include "core/Image.h"
 #include "core/NamedImage.h"
 #include "frame/TechniqueDescriptor.h"
+#include "lightspace/AutomaticMapSize.h"
 #include "lightspace/CameraView.h"
 #include "lightspace/PartitionViews.h"
 #include "lightspace/LightView.h"
@@ -46,6 +47,7 @@ struct FrameResult
   glm::ivec2 resolution{ 0 };
   CameraView camera;
   std::optional<LightView> lightView; // with views that partition the pixels, view 0's
+  std::optional<AutomaticMapSize> automaticMapSize; // shadow_map_size = auto: how its size was chosen
   // Views that partition the pixels (survey §4.3, PartitionViews.h): cascades > 1 (§4.3.1), with their split depths.
   std::optional<PartitionSet> partitions;
   std::vector<NamedImage> buffers;    // per pixel: visibility, position, normal, depth, coverage, albedo, technique's

@@ -7,6 +7,7 @@ set(SL_LIGHTSPACE_SOURCES
   src/lightspace/LightSamples.cpp
   src/lightspace/LightSampleSet.cpp
   src/lightspace/ShadowMapMath.cpp
+  src/lightspace/AutomaticMapSize.cpp
   src/lightspace/PerspectiveWarp.cpp
   src/lightspace/Cascades.cpp
   src/lightspace/PartitionViews.cpp

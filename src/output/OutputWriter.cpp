@@ -109,6 +109,10 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     {
       parameters[spec.name] = frame.parameters.file(spec.name);
     }
+    else if (frame.parameters.automatic(spec.name))
+    {
+      parameters[spec.name] = spec.automatic; // the value chosen: light_view (shadow_map_size_chosen)
+    }
     else if (spec.choices.empty())
     {
       parameters[spec.name] = frame.parameters.get(spec.name);
@@ -175,6 +179,15 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
       { "receiver_samples", view.receiverSampleCount },
     };
+    // The map's size as rendered, whether given or chosen (shadow_map_size = auto, AutomaticMapSize.h).
+    stats["shadow_map_size_chosen"] = view.resolution;
+    if (frame.automaticMapSize)
+    {
+      const AutomaticMapSize& choice = *frame.automaticMapSize;
+      stats["shadow_map_size_automatic"] = { { "quantile", kAutomaticMapQuantile },
+        { "required_texels", choice.requiredTexels }, { "receiver_samples", choice.samples },
+        { "pixel_stride", choice.pixelStride }, { "capped", choice.capped } };
+    }
     if (view.warp.active())
     {
       // Survey §4.2: P's free parameter and the angle that sets LiSPSM's falloff (n null: degraded to uniform).

@@ -9,6 +9,7 @@
 
 #include "core/Error.h"
 #include "gl/GlResources.h"
+#include "lightspace/AutomaticMapSize.h"
 #include "lightspace/CameraView.h"
 #include "lightspace/PartitionViews.h"
 #include "lightspace/LightView.h"
@@ -79,6 +80,8 @@ struct FrameResources
   // needs it).
   bool hasLightView = false;
   LightView lightView;
+  // shadow_map_size = auto: how the focus stage chose the size (lightspace/AutomaticMapSize.h).
+  std::optional<AutomaticMapSize> automaticMapSize;
   vtkSmartPointer<vtkTextureObject> shadowMapLinear; // R32F, linear depth along the light axis
   vtkSmartPointer<vtkTextureObject> shadowMapDepth;  // D32F, window depth (for hardware compare)
   // Views that partition the pixels (survey §4.3, lightspace/PartitionViews.h; vtkSLMultiViewPass): whether the stages

@@ -53,6 +53,10 @@ struct LightSpaceStructure
   // bind returns the textures to deactivate after drawing.
   std::function<ShaderDefines(const FrameResources& frame)> shaderDefines;
   std::function<std::vector<vtkTextureObject*>(vtkShaderProgram* program, const FrameResources& frame)> bind;
+  // The largest shadow-map size its build accepts on a GL whose 3D textures are at most max3dTextureSize per side (a
+  // structure stored as a 3D texture as wide as the map); unset: no limit of its own. shadow_map_size = auto stays
+  // within it; an explicit size beyond it is refused by the build, which names the limit.
+  std::function<int(const ParameterValues& values, int max3dTextureSize)> largestMapSize;
 };
 
 // Every structure, in build order (a structure after those it is built from): its folder's structure.cmake ORDER.

@@ -21,19 +21,6 @@ std::vector<ParameterSpec> shadowMapParameters()
   return parameters;
 }
 
-std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize)
-{
-  std::vector<ParameterSpec> parameters = shadowMapParameters();
-  ParameterSpec* size = nullptr;
-  for (ParameterSpec& spec : parameters)
-  {
-    size = spec.name == "shadow_map_size" ? &spec : size;
-  }
-  SL_CHECK(size && defaultMapSize >= size->minValue && defaultMapSize <= size->maxValue);
-  size->defaultValue = defaultMapSize;
-  return parameters;
-}
-
 std::vector<LightType> shadowMapLights()
 {
   return { LightType::Area, LightType::Point, LightType::Spot, LightType::Directional };
@@ -94,12 +81,6 @@ TechniqueDescriptor shadowMapDescriptor(
 TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper)
 {
   return shadowMapDescriptor(std::move(name), std::move(title), std::move(paper), shadowMapParameters());
-}
-
-TechniqueDescriptor describeShadowMapTechnique(
-  std::string name, std::string title, std::string paper, int defaultMapSize)
-{
-  return shadowMapDescriptor(std::move(name), std::move(title), std::move(paper), shadowMapParameters(defaultMapSize));
 }
 
 BufferSpec texelRatioBuffer()

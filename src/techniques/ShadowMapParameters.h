@@ -17,8 +17,6 @@ namespace sl
 {
 
 std::vector<ParameterSpec> shadowMapParameters();
-// The same with shadow_map_size defaulting to `defaultMapSize` (the back-projection methods and reference-sm: 1024).
-std::vector<ParameterSpec> shadowMapParameters(int defaultMapSize);
 std::vector<LightType> shadowMapLights(); // area (from its centre), point, spot, directional
 // The perspective warp of the shadow map (survey §4.2), for the techniques whose lookups stay valid under it (a
 // texel's footprint from the warped matrix, linear depth unchanged): hard and pcf list them with addParameters.
@@ -46,10 +44,8 @@ std::vector<ParameterSpec> shadowMapFvsmParameters();
 std::vector<ParameterSpec> shadowMapCubeParameters();
 
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
-// (shadow_map_size defaulting to `defaultMapSize`), the shadow-map structure and shadowMapLights.
+// (shadow_map_size = auto by default), the shadow-map structure and shadowMapLights.
 TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper);
-TechniqueDescriptor describeShadowMapTechnique(
-  std::string name, std::string title, std::string paper, int defaultMapSize);
 
 // Buffers every technique that compares against one shadow map can publish, declared once.
 BufferSpec texelRatioBuffer(); // survey Eq. 2's aliasing error m

@@ -190,7 +190,11 @@ TEST(CliRender, HardWritesEveryDocumentedOutput)
   {
     ASSERT_TRUE(stats.at("parameters").contains(spec.name)) << spec.name << " missing from stats.json parameters";
     const Json& value = stats.at("parameters").at(spec.name);
-    if (spec.choices.empty())
+    if (isAutomaticValue(spec, spec.defaultValue))
+    {
+      EXPECT_EQ(value, spec.automatic) << spec.name;
+    }
+    else if (spec.choices.empty())
     {
       ASSERT_TRUE(value.is_number()) << spec.name << ": " << value.dump();
       EXPECT_DOUBLE_EQ(value.get<double>(), spec.defaultValue) << spec.name;
@@ -726,8 +730,9 @@ TEST(CliList, TextListsEveryParameterWithDefaultAndRange)
       }
       else if (spec.choices.empty())
       {
-        expectedDefault = formatNumber(spec.defaultValue);
-        expectedRange = formatNumber(spec.minValue) + " .. " + formatNumber(spec.maxValue);
+        expectedDefault = isAutomaticValue(spec, spec.defaultValue) ? spec.automatic : formatNumber(spec.defaultValue);
+        expectedRange = formatNumber(spec.minValue) + " .. " + formatNumber(spec.maxValue) +
+          (spec.automatic.empty() ? "" : " or " + spec.automatic);
       }
       else
       {
@@ -809,7 +814,11 @@ TEST(CliList, JsonListsTechniquesWithParameterTables)
       EXPECT_EQ(parameter.at("min").get<double>(), spec.minValue) << spec.name;
       EXPECT_EQ(parameter.at("max").get<double>(), spec.maxValue) << spec.name;
       const Json& defaultValue = parameter.at("default");
-      if (spec.choices.empty())
+      if (isAutomaticValue(spec, spec.defaultValue))
+      {
+        EXPECT_EQ(defaultValue, spec.automatic) << name << "." << spec.name;
+      }
+      else if (spec.choices.empty())
       {
         // The default of a numeric parameter: a JSON number would be natural; a numeric string is accepted,
         // its value must be the descriptor's.

@@ -87,8 +87,11 @@ TEST(LightSpaceStructureRegistry, NamesAreUniqueAndEachStructureComesAfterWhatIt
     for (const ParameterSpec& spec : structure.parameters)
     {
       EXPECT_TRUE(parameterNames.insert(spec.name).second) << spec.name << " is declared by two structures";
-      EXPECT_LE(spec.minValue, spec.defaultValue) << structure.name << "." << spec.name;
-      EXPECT_LE(spec.defaultValue, spec.maxValue) << structure.name << "." << spec.name;
+      if (!isAutomaticValue(spec, spec.defaultValue))
+      {
+        EXPECT_LE(spec.minValue, spec.defaultValue) << structure.name << "." << spec.name;
+        EXPECT_LE(spec.defaultValue, spec.maxValue) << structure.name << "." << spec.name;
+      }
       EXPECT_FALSE(spec.doc.empty()) << structure.name << "." << spec.name;
       if (!spec.choices.empty())
       {
@@ -186,8 +189,12 @@ TEST(LightSpaceStructureRegistry, TechniquesDeclareTheirStructuresParametersComp
         EXPECT_EQ(declared->integer, wanted.integer) << label;
         EXPECT_GE(declared->minValue, wanted.minValue) << label;
         EXPECT_LE(declared->maxValue, wanted.maxValue) << label;
-        EXPECT_GE(declared->defaultValue, wanted.minValue) << label;
-        EXPECT_LE(declared->defaultValue, wanted.maxValue) << label;
+        EXPECT_EQ(declared->automatic, wanted.automatic) << label;
+        if (!isAutomaticValue(*declared, declared->defaultValue))
+        {
+          EXPECT_GE(declared->defaultValue, wanted.minValue) << label;
+          EXPECT_LE(declared->defaultValue, wanted.maxValue) << label;
+        }
       }
     }
   }
@@ -238,7 +245,9 @@ TEST(LightSpaceStructureSettings, ReadTheStructuresOwnParametersAtTheirDefaults)
 {
   const ParameterValues shadowMap("shadow_map", shadowMapStructure().parameters);
   const ShadowMapSettings mapSettings = ShadowMapSettings::from(shadowMap);
-  EXPECT_EQ(mapSettings.resolution, static_cast<int>(findParameterSpec(shadowMapStructure().parameters, "shadow_map_size")->defaultValue));
+  // shadow_map_size = auto by default: the focus stage chooses (AutomaticMapSize.h).
+  EXPECT_TRUE(mapSettings.automaticResolution);
+  EXPECT_EQ(mapSettings.resolution, 0);
   EXPECT_EQ(mapSettings.marginTexels, 1.0);
   EXPECT_FALSE(mapSettings.secondDepth);
 

@@ -42,8 +42,11 @@ TEST(TechniqueRegistry, DescriptorsAreConsistent)
     for (const ParameterSpec& spec : technique.parameters)
     {
       EXPECT_TRUE(parameterNames.insert(spec.name).second) << technique.name << "." << spec.name;
-      EXPECT_LE(spec.minValue, spec.defaultValue) << technique.name << "." << spec.name;
-      EXPECT_LE(spec.defaultValue, spec.maxValue) << technique.name << "." << spec.name;
+      if (!isAutomaticValue(spec, spec.defaultValue))
+      {
+        EXPECT_LE(spec.minValue, spec.defaultValue) << technique.name << "." << spec.name;
+        EXPECT_LE(spec.defaultValue, spec.maxValue) << technique.name << "." << spec.name;
+      }
       EXPECT_FALSE(spec.doc.empty()) << technique.name << "." << spec.name;
       if (!spec.choices.empty())
       {
@@ -99,6 +102,14 @@ TEST(ParameterValues, DefaultsAndAssignments)
   EXPECT_EQ(values.choice("pattern"), "poisson");
   EXPECT_DOUBLE_EQ(values.get("bias_slope_texels"), 2.5);
   EXPECT_EQ(values.choice("caster_faces"), "back");
+  // shadow_map_size: auto by default (the frame chooses), a number, then auto again.
+  EXPECT_TRUE(values.automatic("shadow_map_size"));
+  values.set("shadow_map_size=512");
+  EXPECT_FALSE(values.automatic("shadow_map_size"));
+  EXPECT_EQ(values.getInt("shadow_map_size"), 512);
+  values.set("shadow_map_size=auto");
+  EXPECT_TRUE(values.automatic("shadow_map_size"));
+  EXPECT_FALSE(values.automatic("kernel_texels"));
 }
 
 TEST(ParameterValues, BadAssignmentsNameTheKeyAndValue)
@@ -121,6 +132,8 @@ TEST(ParameterValues, BadAssignmentsNameTheKeyAndValue)
     { "kernel_texels", { "key=value" } },                          // no '='
     { "=3", { "key=value" } },
     { "bias_constant_texels=-1", { "bias_constant_texels", "-1" } },
+    { "shadow_map_size=0", { "shadow_map_size", "16", "8192", "or auto" } }, // auto is the word, not 0
+    { "shadow_map_size=big", { "big", "not a number nor auto" } },
   };
   for (const Case& c : cases)
   {

@@ -135,6 +135,9 @@ const LightSpaceStructure& hierarchicalShadowMapStructure()
     s.bind = [data](vtkShaderProgram* program, const FrameResources& frame) {
       return bindMinMaxDepth(program, data(frame), frame.lightView.resolution);
     };
+    s.largestMapSize = [](const ParameterValues& values, int max3dTextureSize) {
+      return hierarchicalShadowMapSettings(values).layout == HsmLayout::NBuffers ? max3dTextureSize : 1 << 30;
+    };
     return s;
   }();
   return structure;

@@ -99,6 +99,7 @@ const LightSpaceStructure& layeredMomentsStructure()
     s.gpuBytes = [](const FrameResources& frame) { return textureBytes(layeredMomentsData(frame).moments, 8); };
     s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
     s.bind = bindLayeredMoments;
+    s.largestMapSize = [](const ParameterValues&, int max3dTextureSize) { return max3dTextureSize; };
     return s;
   }();
   return structure;

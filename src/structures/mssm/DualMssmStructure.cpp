@@ -30,6 +30,8 @@ const LightSpaceStructure& dualMssmStructure()
     s.bind = [data](vtkShaderProgram* program, const FrameResources& frame) {
       return bindMinMaxDepth(program, data(frame), frame.lightView.resolution);
     };
+    // (N + 1)^2 texels per layer (vtkSLHsmPass).
+    s.largestMapSize = [](const ParameterValues&, int max3dTextureSize) { return max3dTextureSize - 1; };
     return s;
   }();
   return structure;

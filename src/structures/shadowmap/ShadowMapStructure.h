@@ -51,7 +51,8 @@ bool declaresDepthLayerGap(const TechniqueDescriptor& technique);
 // The parameters its build reads, typed.
 struct ShadowMapSettings
 {
-  int resolution = 2048;     // shadow_map_size
+  int resolution = 0;        // shadow_map_size; 0 while automaticResolution (the focus stage chooses)
+  bool automaticResolution = false; // shadow_map_size = auto (AutomaticMapSize.h)
   double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
   ShadowMapDepthLayer depthLayer = ShadowMapDepthLayer::First; // depth_layer (survey §5)

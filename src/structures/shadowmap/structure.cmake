@@ -4,4 +4,4 @@ sl_structure(
   STRUCTURE shadowMapStructure ShadowMapStructure.h
   SOURCES ShadowMapStructure.cpp SamplingErrorBuffers.cpp vtkSLFocusPass.cxx vtkSLLightDepthPass.cxx
   SHADERS shaders/DepthLayerCombine.glsl shaders/ReceiverPolygonId.glsl
-  GPU_TESTS tests/DepthLayerTest.cpp)
+  GPU_TESTS tests/DepthLayerTest.cpp tests/AutomaticMapSizeTest.cpp)

@@ -7,6 +7,7 @@
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
 #include "passes/PassUtilities.h"
+#include "lightspace/AutomaticMapSize.h"
 #include "lightspace/FittedVirtualShadowMap.h"
 
 #include <vtkObjectFactory.h>
@@ -40,6 +41,12 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     focus.lightFootprintWidth = frame.light->size;
   }
   sl::adviseBeyondOneMap(frame, focus);
+  if (settings.automaticResolution && !settings.fvsm.active() && (!frame.partitioned || frame.viewIndex == 0))
+  {
+    // Fitted first at the largest allowed size (only the window's margin depends on it), then at the chosen one.
+    focus.resolution = this->LargestAutomaticSize(settings);
+    frame.automaticMapSize.reset();
+  }
   if (frame.partitioned && frame.viewIndex == 0)
   {
     // Views that partition the pixels (survey §4.3): every view is fitted at view 0, with the per-pixel selection the
@@ -78,6 +85,14 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     }
     if (frame.partitions && frame.partitions->kind != sl::PartitionKind::FvsmTiles)
     {
+      if (settings.automaticResolution)
+      {
+        this->ChooseAutomaticSize(frame.partitions->views, focus);
+        const sl::PartitionKind kind = frame.partitions->kind;
+        frame.partitions = kind == sl::PartitionKind::Cascades
+          ? sl::fitCascades(light, *frame.scene, *this->Receivers, focus, settings.cascades)
+          : sl::fitCubeFaces(light, *frame.scene, *this->Receivers, focus);
+      }
       this->WriteSelection(state);
     }
   }
@@ -89,8 +104,51 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
   else
   {
     frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
+    if (settings.automaticResolution && !settings.fvsm.active())
+    {
+      this->ChooseAutomaticSize({ frame.lightView }, focus);
+      frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
+    }
   }
   frame.hasLightView = true;
+}
+
+int vtkSLFocusPass::LargestAutomaticSize(const sl::ShadowMapSettings& settings) const
+{
+  const sl::FrameResources& frame = *this->Frame;
+  GLint max2d = 0, max3d = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max2d);
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  const sl::ParameterSpec* spec = sl::findParameterSpec(sl::shadowMapStructure().parameters, "shadow_map_size");
+  int largest = std::min({ static_cast<int>(spec->maxValue), static_cast<int>(max2d), sl::kAutomaticMapMaxSize });
+  for (const sl::LightSpaceStructure* structure :
+    sl::withBuildDependencies(frame.technique->structuresFor(frame.parameters)))
+  {
+    if (structure->largestMapSize)
+    {
+      largest = std::min(largest, structure->largestMapSize(frame.parameters, static_cast<int>(max3d)));
+    }
+  }
+  // A power of two, as every automatic size is.
+  int size = 1;
+  while (2 * size <= largest)
+  {
+    size *= 2;
+  }
+  SL_CHECK_MSG(size > 2.0 * settings.marginTexels, "shadow_map_size=auto: the GL's largest map (", size,
+    ") leaves no texel inside the filter's margin (", settings.marginTexels, ")");
+  return size;
+}
+
+void vtkSLFocusPass::ChooseAutomaticSize(const std::vector<sl::LightView>& views, sl::FocusSettings& focus)
+{
+  sl::FrameResources& frame = *this->Frame;
+  // The G-buffer read back (a receiver's sampling error is the CPU's, lightspace/ShadowMapMath.h).
+  const sl::ImageF position = sl::readFloatTexture(frame.gbufferPosition, 4);
+  const sl::ImageF normal = sl::readFloatTexture(frame.gbufferNormal, 4);
+  frame.automaticMapSize =
+    sl::automaticMapSize(frame.camera, *frame.light, views, focus.marginTexels, position, normal, focus.resolution);
+  focus.resolution = frame.automaticMapSize->size;
 }
 
 void vtkSLFocusPass::WriteSelection(const vtkRenderState* state)

@@ -9,10 +9,17 @@
 #pragma once
 
 #include "gl/ComputeProgram.h"
+#include "lightspace/LightView.h"
 #include "passes/GpuReceivers.h"
 #include "passes/vtkSLStagePass.h"
 
 #include <memory>
+#include <vector>
+
+namespace sl
+{
+struct ShadowMapSettings;
+}
 
 class vtkSLFocusPass : public vtkSLStagePass
 {
@@ -35,6 +42,10 @@ private:
   // Views that partition the pixels: the per-pixel selection (shaders/lightspace/PartitionSelection.glsl) into
   // FrameResources::viewSelection, with the uniforms of the set's kind.
   void WriteSelection(const vtkRenderState* state);
+  // shadow_map_size = auto (lightspace/AutomaticMapSize.h): the largest size the GL and the frame's structures
+  // allow, and the size chosen for `views` fitted at it (into FrameResources::automaticMapSize and focus.resolution).
+  int LargestAutomaticSize(const sl::ShadowMapSettings& settings) const;
+  void ChooseAutomaticSize(const std::vector<sl::LightView>& views, sl::FocusSettings& focus);
   void SetCascadeUniforms();
   // fvsm: the tile selection (shaders/lightspace/FvsmSelection.glsl) into FrameResources::viewSelection.
   void WriteTileSelection(const vtkRenderState* state);

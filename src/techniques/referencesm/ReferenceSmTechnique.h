@@ -5,7 +5,7 @@
 // up to shadow-map discretisation and bias.
 //
 // Parameters: samples (K), seed (rotation of the sample set), and the shadow-map ones
-// (ShadowMapParameters.h; shadow_map_size defaults to 1024 here, K maps are rendered per frame).
+// (ShadowMapParameters.h; K maps are rendered per frame).
 // Buffers: visibility_stderr (Bernoulli bound over the K samples), sample_count.
 // Point and spot lights have one sample (their centre): the result is `hard`. Directional lights: one map.
 #pragma once

@@ -1,0 +1,122 @@
+// shadow_map_size = auto (lightspace/AutomaticMapSize.h): the size the focus stage chooses gives one texel per pixel
+// or finer to kAutomaticMapQuantile of the shadow-tested pixels, measured on the GPU's own sampling-error buffers
+// (texel_ratio_s, texel_ratio_t, survey Eq. 2) of the frame it rendered, and half of it would not; the frame equals
+// one rendered with that size given explicitly, bit for bit. On datasets and random generated scenes.
+#include "core/Error.h"
+#include "lightspace/AutomaticMapSize.h"
+#include "scene/RandomScenes.h"
+#include "scene/Scene.h"
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace sl
+{
+namespace
+{
+
+// The share of shadow-tested pixels whose larger texel ratio is at most 1 + 1e-3 (one texel per pixel or finer),
+// and how many pixels count (ratio > 0: grazing pixels, whose ratio is 0, do not count, as in the rule).
+struct TexelsPerPixelShare
+{
+  double servedShare = 0.0;
+  int counted = 0;
+};
+
+TexelsPerPixelShare autoMapServedShare(const FrameResult& frame)
+{
+  const ImageF& ratioS = frame.find("texel_ratio_s")->image;
+  const ImageF& ratioT = frame.find("texel_ratio_t")->image;
+  const ImageF& tested = frame.find("shadow_tested")->image;
+  TexelsPerPixelShare share;
+  int served = 0;
+  for (int y = 0; y < tested.height; ++y)
+  {
+    for (int x = 0; x < tested.width; ++x)
+    {
+      const double ratio = std::max(ratioS.at(x, y), ratioT.at(x, y));
+      if (tested.at(x, y) <= 0.5f || !(ratio > 0.0))
+      {
+        continue;
+      }
+      ++share.counted;
+      served += ratio <= 1.0 + 1e-3 ? 1 : 0;
+    }
+  }
+  share.servedShare = share.counted > 0 ? static_cast<double>(served) / share.counted : 1.0;
+  return share;
+}
+
+void expectAutomaticSizeServesTheView(const Scene& scene, int width, int height, const std::string& label)
+{
+  const FrameResult automatic = test::renderDataset(scene, "hard", width, height, {});
+  ASSERT_TRUE(automatic.lightView && automatic.automaticMapSize) << label;
+  const int size = automatic.lightView->resolution;
+  const AutomaticMapSize& choice = *automatic.automaticMapSize;
+  EXPECT_EQ(size, choice.size) << label;
+  EXPECT_EQ(size & (size - 1), 0) << label << ": " << size << " is not a power of two";
+  const TexelsPerPixelShare atSize = autoMapServedShare(automatic);
+  std::cout << "[ measured ] " << label << ": auto " << size << "^2 (required " << choice.requiredTexels << " texels, "
+            << choice.samples << " receivers" << (choice.capped ? ", capped" : "") << "), served "
+            << atSize.servedShare << " of " << atSize.counted << " tested pixels";
+  if (!choice.capped && choice.samples > 0)
+  {
+    // The rule's claim at the chosen size, on the GPU's buffers (sampling a few pixels more or less than the CPU).
+    EXPECT_GE(atSize.servedShare, kAutomaticMapQuantile - 0.02) << label << " at " << size;
+  }
+  const FrameResult explicitSize =
+    test::renderDataset(scene, "hard", width, height, { "shadow_map_size=" + std::to_string(size) });
+  EXPECT_EQ(explicitSize.find("visibility")->image.data, automatic.find("visibility")->image.data)
+    << label << ": auto differs from shadow_map_size=" << size;
+  if (size > kAutomaticMapMinSize && choice.samples > 0)
+  {
+    // Half the size serves fewer than the quantile: the choice is the smallest power of two that does.
+    const FrameResult half =
+      test::renderDataset(scene, "hard", width, height, { "shadow_map_size=" + std::to_string(size / 2) });
+    const TexelsPerPixelShare atHalf = autoMapServedShare(half);
+    std::cout << ", at " << size / 2 << "^2 " << atHalf.servedShare;
+    EXPECT_LT(atHalf.servedShare, kAutomaticMapQuantile + 0.02) << label << " at " << size / 2;
+  }
+  std::cout << "\n";
+}
+
+TEST(AutomaticMapSize, ServesTheQuantileOnTheDatasets)
+{
+  for (const std::string dataset : { "planar-occluder", "bunny", "grazing", "near-light", "sphere-point" })
+  {
+    expectAutomaticSizeServesTheView(test::loadDataset(dataset), 128, 128, dataset);
+  }
+}
+
+TEST(AutomaticMapSize, ServesTheQuantileOnRandomScenes)
+{
+  for (std::uint64_t seed = 1; seed <= 8; ++seed)
+  {
+    const RandomScene generated = randomScene(seed, 96);
+    const Scene scene = parseScene(generated.json, "random scene", test::sourceDir());
+    expectAutomaticSizeServesTheView(scene, scene.camera.resolution.x, scene.camera.resolution.y,
+      "seed " + std::to_string(seed) + " (" + generated.summary + ")");
+  }
+}
+
+TEST(AutomaticMapSize, GrowsWithTheImage)
+{
+  // One texel per pixel: twice the image's side, twice the map's (a power of two either way).
+  const Scene scene = test::loadDataset("planar-occluder");
+  const FrameResult small = test::renderDataset(scene, "hard", 64, 64, {});
+  const FrameResult large = test::renderDataset(scene, "hard", 256, 256, {});
+  ASSERT_TRUE(small.automaticMapSize && large.automaticMapSize);
+  std::cout << "[ measured ] planar-occluder: 64^2 image -> " << small.automaticMapSize->size << "^2 map, 256^2 -> "
+            << large.automaticMapSize->size << "^2\n";
+  EXPECT_NEAR(large.automaticMapSize->requiredTexels / small.automaticMapSize->requiredTexels, 4.0, 0.4);
+  EXPECT_EQ(large.automaticMapSize->size, 4 * small.automaticMapSize->size);
+}
+
+} // namespace
+} // namespace sl
