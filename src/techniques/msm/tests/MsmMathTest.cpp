@@ -291,9 +291,9 @@ TEST(MsmMath, StepsTwoToFourAreTheGeneralAlgorithmForFourMoments)
       std::abs(msm.weights.z - static_cast<double>(reference.weights[2])) });
     const double referenceIntensity = std::clamp(static_cast<double>(reference.intensity), 0.0, 1.0);
     const double intensityError = std::abs(msm.shadowIntensity - referenceIntensity);
-    EXPECT_LT(supportError, 1e-6 * (1.0 + std::abs(msm.supportFar))) << "trial " << trial << " z_f " << zf << ": supports "
-      << msm.supportNear << " " << msm.supportFar << " against " << static_cast<double>(reference.support[1]) << " "
-      << static_cast<double>(reference.support[2]);
+    EXPECT_LT(supportError, 1e-6 * (1.0 + std::abs(msm.supportFar)))
+      << "trial " << trial << " z_f " << zf << ": supports " << msm.supportNear << " " << msm.supportFar
+      << " against " << static_cast<double>(reference.support[1]) << " " << static_cast<double>(reference.support[2]);
     EXPECT_LT(weightError, 1e-7) << "trial " << trial << " z_f " << zf;
     EXPECT_LT(intensityError, 1e-7) << "trial " << trial << " z_f " << zf << ": G " << msm.shadowIntensity
                                     << " against Algorithm 1's " << referenceIntensity;
