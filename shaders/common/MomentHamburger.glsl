@@ -1,6 +1,7 @@
-// Hamburger 4MSM (Peters & Klein 2015, Algorithm 3, in the form public ports of the authors' shader code give it),
-// shared by msm (msm/MsmVisibility.glsl) and msmsoft (msmsoft/MsmSoftVisibility.glsl). Needs the technique's
-// moment_bias parameter (uniform param_moment_bias, alpha). Steps 1-4 as MsmVisibility.glsl's header lists them.
+// Hamburger 4MSM (Peters & Klein 2015, Algorithm 3, in the form of the authors' shader code as public ports give it;
+// steps 2-4 are the m = 4 case of Peters et al. 2017 (JCGT), Alg. 1; msm/README.md, Sources), shared by msm
+// (msm/MsmVisibility.glsl) and msmsoft (msmsoft/MsmSoftVisibility.glsl). Needs the technique's moment_bias parameter
+// (uniform param_moment_bias, alpha). Steps 1-4 as MsmVisibility.glsl's header lists them.
 struct MsmReconstruction
 {
   float intensity; // G, unclamped
@@ -32,10 +33,11 @@ MsmReconstruction hamburger4Msm(vec4 moments, float zf)
   c.z /= d33;
   c.y -= l32 * c.z;          // backward substitution, L^T c = c''
   c.x -= c.y * b.x + c.z * b.y;
-  // Step 3: the other two support points, the roots of c1 + c2 z + c3 z^2. Alg. 3 divides by c3 (p = c2 / c3,
-  // q = c1 / c3); where B is near singular c3 can round to ~0 in float and one root runs off to infinity while
-  // the other cancels. The same roots by the stable form (the large one from -(c2 + sign(c2) sqrt(disc)) / 2, the
-  // other by Vieta), clamped to +-1e6 (a support point that far from [0, 1] carries no weight): finite throughout.
+  // Step 3: the other two support points, the roots of c1 + c2 z + c3 z^2. The authors' code divides by c3
+  // (p = c2 / c3, q = c1 / c3); where B is near singular c3 can round to ~0 in float and one root runs off to
+  // infinity while the other cancels. The same roots by the stable form (the large one from
+  // -(c2 + sign(c2) sqrt(disc)) / 2, the other by Vieta), clamped to +-1e6 (a support point that far from [0, 1]
+  // carries no weight): finite throughout.
   // The discriminant is >= 0 in exact arithmetic (B positive definite); rounding can push it below.
   float root = sqrt(max(c.y * c.y - 4.0 * c.x * c.z, 0.0));
   float large = -0.5 * (c.y + (c.y < 0.0 ? -root : root));

@@ -39,8 +39,8 @@ MsmReconstruction msmHamburger4(const glm::dvec4& moments, double momentBias, do
   c.x -= c.y * b.x + c.z * b.y;
   result.polynomial = c;
   // Step 3: the two other support points, the roots of c1 + c2 z + c3 z^2, by the stable form
-  // common/MomentHamburger.glsl uses (equal to Alg. 3's -p/2 -+ sqrt(p^2/4 - q) in exact arithmetic), clamped to
-  // +-1e6 as there.
+  // common/MomentHamburger.glsl uses (equal to the authors' code's -p/2 -+ sqrt(p^2/4 - q) in exact arithmetic),
+  // clamped to +-1e6 as there.
   const double root = std::sqrt(std::max(c.y * c.y - 4.0 * c.x * c.z, 0.0));
   const double large = -0.5 * (c.y + (c.y < 0.0 ? -root : root));
   const double rootA = std::clamp(large / c.z, -1e6, 1e6);

@@ -1,5 +1,6 @@
 // Moment shadow mapping (Peters & Klein 2015), Hamburger 4MSM (their Algorithm 3, in the form public ports of the
-// authors' shader code give it; not compared with the printed algorithm: README.md, Sources). From the prefiltered
+// authors' shader code give it; the printed Algorithm 3 was not available, steps 2-4 were compared with the general
+// algorithm of Peters et al. 2017, Alg. 1, at m = 4: README.md, Sources). From the prefiltered
 // power moments b = E[(z, z^2, z^3, z^4)] over the filter region (depths normalised to [0, 1], structures/powermoments)
 // and the receiver's depth z_f (its depth minus the bias, normalised alike), in four steps (our grouping, not the
 // printed lines):
