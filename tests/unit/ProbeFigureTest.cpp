@@ -2,7 +2,7 @@
 // on a synthetic frame: an area light 5 units above a ground plane, a 2 x 2 quad caster at height 1, a 64^2
 // shadow map rasterised here by intersecting each texel's ray with the two quads, and a hand-made record (texels,
 // a kernel, nodes, light polygons, samples) whose every item has a known place in the output.
-#include "probe/NumberText.h"
+#include "vis/NumberText.h"
 #include "probe/Probe.h"
 #include "probe/ProbeFigure.h"
 #include "probe/ProbeGeometry.h"
