@@ -1431,10 +1431,11 @@ struct PlotFrame
   }
 };
 
-// Axes in `box` above a text band of `textBand` pixels: the y ticks given, three x ticks (ends and middle), every
+// Axes in `box` above a text band of `textBand` pixels: the y ticks given, the x ticks given (else the ends and
+// the middle), every
 // label with the digits to differ, and the x axis named under its labels (as the Chebyshev and ESM panels).
 PlotFrame drawPlotFrame(ImageU8& panel, const Box& box, int textBand, double xMin, double xMax, double yMin,
-  double yMax, const std::string& xName, const std::vector<double>& yTicks)
+  double yMax, const std::string& xName, const std::vector<double>& yTicks, std::vector<double> xTicks = {})
 {
   PlotFrame frame;
   frame.xMin = xMin;
@@ -1461,7 +1462,10 @@ PlotFrame drawPlotFrame(ImageU8& panel, const Box& box, int textBand, double xMi
     drawLine(panel, at - glm::dvec2(4, 0), at, kBlack, 1.0);
     putText(panel, yLabels[i], kBodyFontPx, int(frame.plot.left) - 6 - textWidth(yLabels[i], kBodyFontPx), int(at.y) - 5);
   }
-  const std::vector<double> xTicks = { frame.xMin, 0.5 * (frame.xMin + frame.xMax), frame.xMax };
+  if (xTicks.empty())
+  {
+    xTicks = { frame.xMin, 0.5 * (frame.xMin + frame.xMax), frame.xMax };
+  }
   const std::vector<std::string> xLabels = distinctTickLabels(xTicks);
   for (std::size_t i = 0; i < xTicks.size(); ++i)
   {
@@ -1718,8 +1722,13 @@ ImageU8 layersPanel(const LayerBounds& bounds, const FigureRect& rect, char lett
   }
   const int textBand = drawDiagramText(panel, box, lines);
 
-  const PlotFrame frame = drawPlotFrame(panel, box, textBand, bounds.ends.front(), bounds.ends.back(), 0.0, 1.0,
-    "linear depth (bars: layer j's bound at phi_j(t))", { 0.0, 0.5, 1.0 });
+  // A margin of 3 % each side, so a receiver at the far end (the last layer's q) stays in sight.
+  const double lo = std::min(bounds.ends.front(), bounds.comparedDepth);
+  const double hi = std::max(bounds.ends.back(), bounds.comparedDepth);
+  const double margin = 0.03 * std::max(hi - lo, 1e-9);
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, lo - margin, hi + margin, 0.0, 1.0,
+    "linear depth (bars: layer j's bound at phi_j(t))", { 0.0, 0.5, 1.0 },
+    { bounds.ends.front(), 0.5 * (bounds.ends.front() + bounds.ends.back()), bounds.ends.back() });
   for (std::size_t j = 0; j + 1 < bounds.ends.size(); ++j)
   {
     const glm::dvec2 a = frame.px(bounds.ends[j], 0.0);
@@ -1811,7 +1820,7 @@ std::optional<MomentDistribution> momentDistributionOf(const ProbeRecord& record
 
 ImageU8 momentBoundPanel(const MomentDistribution& distribution, const FigureRect& rect, char letter)
 {
-  ImageU8 panel = newPanel(rect, panelTag(letter) + "MSM: Hamburger 4MSM three-point distribution (Alg. 3)");
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "MSM Alg. 3: three-point distribution");
   const Box box = contentBox(rect);
   const auto momentText = [](const std::vector<double>& values) {
     std::string text;
@@ -1842,10 +1851,12 @@ ImageU8 momentBoundPanel(const MomentDistribution& distribution, const FigureRec
     kRayColor });
   const int textBand = drawDiagramText(panel, box, lines);
 
-  const double xMin = std::min({ 0.0, distribution.supportNear, distribution.fragmentDepth });
-  const double xMax = std::max({ 1.0, distribution.supportFar, distribution.fragmentDepth });
+  const double xLo = std::min({ 0.0, distribution.supportNear, distribution.fragmentDepth });
+  const double xHi = std::max({ 1.0, distribution.supportFar, distribution.fragmentDepth });
+  const double xMin = xLo - 0.03 * (xHi - xLo);
+  const double xMax = xHi + 0.03 * (xHi - xLo);
   const PlotFrame frame = drawPlotFrame(panel, box, textBand, xMin, xMax, 0.0, 1.0,
-    "moment depth z (stems: weights)", { 0.0, 0.5, 1.0 });
+    "moment depth z (stems: weights)", { 0.0, 0.5, 1.0 }, { 0.0, 0.5, 1.0 });
   const struct
   {
     double depth;
@@ -1868,7 +1879,15 @@ ImageU8 momentBoundPanel(const MomentDistribution& distribution, const FigureRec
     drawLine(panel, foot, head, color, 4.0);
     fillDisk(panel, head, 6.0, kBlack);
     fillDisk(panel, head, 4.0, color);
-    putText(panel, point.name, kBodyFontPx, int(head.x) + 8, int(head.y) + (isReceiver ? 4 : -14), kBlack);
+    // Labels above their disks (clear of the axis' labels): the support points' right of their stems, the
+    // receiver's left, so z_f beside a support point of similar weight keeps both; each flips where it would
+    // leave the plot.
+    const int labelWidth = textWidth(point.name, kBodyFontPx);
+    const bool roomRight = head.x + 8 + labelWidth <= frame.plot.left + frame.plot.width;
+    const bool roomLeft = head.x - 8 - labelWidth >= box.left;
+    const bool labelLeft = isReceiver ? roomLeft : !roomRight;
+    putText(panel, point.name, kBodyFontPx, labelLeft ? int(head.x) - 8 - labelWidth : int(head.x) + 8,
+      int(head.y) + 4, kBlack);
   }
   return panel;
 }
@@ -1881,6 +1900,7 @@ struct FourierSeries
   std::vector<glm::dvec2> filtered;   // (d', f(d')), in order
   std::vector<double> frequencies;    // c_k
   std::vector<double> dampings;       // sigma_k
+  int terms = 0;                      // M
   double seriesDepth = 0.0;           // d_s
   std::optional<double> recordedReconstruction;
   std::optional<double> scale;
@@ -1916,14 +1936,21 @@ std::optional<FourierSeries> fourierSeriesOf(const ProbeRecord& record)
   }
   for (int k = 1; k <= int(*terms); ++k)
   {
-    const std::optional<double> c = recordedScalar(record, format("c", k));
-    const std::optional<double> sigma = recordedScalar(record, format("sigma", k));
+    const std::optional<double> c = recordedScalar(record, format("c_", k));
+    const std::optional<double> sigma = recordedScalar(record, format("sigma_", k));
     if (!c || !sigma)
     {
       break;
     }
     series.frequencies.push_back(*c);
     series.dampings.push_back(*sigma);
+  }
+  series.terms = int(*terms);
+  if (int(series.frequencies.size()) != series.terms)
+  {
+    // Without every c_k and sigma_k the step's series is not the one the technique took: no grey curve.
+    series.frequencies.clear();
+    series.dampings.clear();
   }
   series.seriesDepth = *ds;
   series.recordedReconstruction = recordedScalar(record, "reconstruction");
@@ -1934,7 +1961,7 @@ std::optional<FourierSeries> fourierSeriesOf(const ProbeRecord& record)
 
 ImageU8 fourierPanel(const FourierSeries& series, const FigureRect& rect, char letter)
 {
-  ImageU8 panel = newPanel(rect, panelTag(letter) + format("CSM: the step's Fourier series, M = ", series.frequencies.size()));
+  ImageU8 panel = newPanel(rect, panelTag(letter) + format("CSM: the step's Fourier series, M = ", series.terms));
   const Box box = contentBox(rect);
   // The recorded sample at d_s itself (d' = d_s + 0 / 2M): the receiver's reconstruction.
   std::optional<double> atReceiver;
@@ -1968,6 +1995,7 @@ ImageU8 fourierPanel(const FourierSeries& series, const FigureRect& rect, char l
       stepOvershoot = std::max({ stepOvershoot, value - 1.0, -value });
     }
   }
+  logDrawnValue("step_overshoot", stepOvershoot);
   std::vector<std::pair<std::string, RgbColor>> lines = {
     { "d_s " + numberText(series.seriesDepth, 5) + " (the receiver's depth in the series); blue: f(d') filtered over the kernel at " +
         format(series.filtered.size()) + " recorded d'",
@@ -1995,7 +2023,9 @@ ImageU8 fourierPanel(const FourierSeries& series, const FigureRect& rect, char l
     yMin = std::min(yMin, point.y);
     yMax = std::max(yMax, point.y);
   }
-  const PlotFrame frame = drawPlotFrame(panel, box, textBand, dMin, dMax, yMin, yMax,
+  // A margin of 3 % each side: the recorded depths stop at the series' domain end, where a receiver may sit.
+  const double dMargin = 0.03 * std::max(dMax - dMin, 1e-9);
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, dMin - dMargin, dMax + dMargin, yMin, yMax,
     "d', compared depth in the series (s d_n)", { 0.0, 0.5, 1.0 });
   for (const double level : { 0.0, 1.0 })
   {

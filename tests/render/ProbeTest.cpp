@@ -21,6 +21,7 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <set>
 
 namespace sl
 {
@@ -296,6 +297,37 @@ TEST(Probe, AlgorithmDiagramsDrawWhatTheGpuComputed)
       }
     }
     EXPECT_GE(checked, 3) << testCase.technique << ": too few unambiguous pixels";
+    if (std::string(testCase.technique) != "lvsm")
+    {
+      continue;
+    }
+    // The ground's pixels all lie in the last layer (one depth under this light): also one pixel of every other
+    // layer the GPU wrote (the occluders' tops), found from the recorded ends as the GPU found it.
+    const ImageF& gpuLayer = frame.find("layer")->image;
+    std::set<int> layersChecked;
+    for (int y = 0; y < gpuLayer.height; ++y)
+    {
+      for (int x = 0; x < gpuLayer.width; ++x)
+      {
+        const int layer = int(std::lround(gpuLayer.at(x, y)));
+        if (layer < 0 || layersChecked.count(layer) != 0 || frame.find("coverage")->image.at(x, y) <= 0.5f)
+        {
+          continue;
+        }
+        const ProbeResult probe = probePixel(frame, scene, 0, { x, y });
+        if (!probe.outcome.evaluated || !probe.outcome.ambiguity.empty())
+        {
+          continue;
+        }
+        const std::optional<double> drawn =
+          drawProbeFigure(probe, frame, scene).drawnValue(ProbePanel::Layers, "layer");
+        ASSERT_TRUE(drawn.has_value()) << "lvsm pixel " << x << "," << y;
+        EXPECT_EQ(*drawn, double(layer)) << "lvsm pixel " << x << "," << y;
+        std::cout << "[ measured ] lvsm pixel " << x << "," << y << ": layer drawn " << *drawn << ", GPU " << layer << "\n";
+        layersChecked.insert(layer);
+      }
+    }
+    EXPECT_GE(layersChecked.size(), 2u) << "lvsm: the frame should hold receivers in two layers at least";
   }
 }
 

@@ -1129,8 +1129,8 @@ TEST(ProbeFigure, FourierPanelDrawsTheFilteredSeriesAndTheStepsRinging)
   recorder.beginGroup("fourier");
   recorder.quantity("terms", 1.0, "", "test");
   recorder.quantity("d_series", ds, "", "test");
-  recorder.quantity("c1", test::kPi, "", "test");
-  recorder.quantity("sigma1", 1.0, "", "test");
+  recorder.quantity("c_1", test::kPi, "", "test");
+  recorder.quantity("sigma_1", 1.0, "", "test");
   const auto filtered = [&](double d) { return 0.5 + 2.0 / test::kPi * 0.8 * std::sin(test::kPi * (0.45 - d)); };
   for (int j = -4; j <= 4; ++j)
   {
@@ -1154,6 +1154,11 @@ TEST(ProbeFigure, FourierPanelDrawsTheFilteredSeriesAndTheStepsRinging)
   EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Fourier, "overshoot"), overshoot, 1e-12);
   const std::string text = probeFigurePanelProse(drawing, ProbePanel::Fourier);
   EXPECT_NE(text.find("M = 1"), std::string::npos) << text;
+  // The grey curve, one occluder at d_s in the one-term series 1/2 + (2 / pi) sin(pi (d_s - d')): its overshoot
+  // past 1 is 2 / pi - 1/2 where the sine peaks inside the drawn depths [d_s - 2, d_s + 2].
+  // (drawn from 301 samples of the curve: within 1e-3).
+  ASSERT_TRUE(drawing.drawnValue(ProbePanel::Fourier, "step_overshoot").has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Fourier, "step_overshoot"), 2.0 / test::kPi - 0.5, 1e-3);
 }
 
 TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)
