@@ -1736,12 +1736,6 @@ ImageU8 layersPanel(const LayerBounds& bounds, const FigureRect& rect, char lett
     const RgbColor band = int(j) == layer ? RgbColor{ 1.0, 0.93, 0.6 } : (j % 2 ? RgbColor{ 0.93, 0.93, 0.93 } : kWhite);
     fillRect(panel, int(a.x) + 1, int(a.y) + 1, std::max(1, int(b.x - a.x) - 1), int(b.y - a.y) - 1, band);
     drawLine(panel, { a.x, a.y }, { a.x, b.y }, kDarkGrey, 1.0);
-    const std::string label = format(j);
-    if (b.x - a.x > textWidth(label, kBodyFontPx) + 4)
-    {
-      putText(panel, label, kBodyFontPx, int(0.5 * (a.x + b.x)) - textWidth(label, kBodyFontPx) / 2, int(b.y) - kKeyLinePx,
-        int(j) == layer ? kBlack : kDarkGrey);
-    }
     const std::optional<double> bound = int(j) == layer && !bounds.layerPMax[j] ? bounds.ownPMax : bounds.layerPMax[j];
     if (bound)
     {
@@ -1750,6 +1744,12 @@ ImageU8 layersPanel(const LayerBounds& bounds, const FigureRect& rect, char lett
       const double barWidth = std::max(2.0, (b.x - a.x) / 3.0);
       const double top = frame.px(bounds.ends[j], std::clamp(*bound, 0.0, 1.0)).y;
       fillRect(panel, int(barLeft), int(a.y), int(barWidth), std::max(1, int(top - a.y)), kPenumbraColor);
+    }
+    // The layer's index in its band's left third, beside the bar, where the band is wide enough.
+    const std::string label = format(j);
+    if (b.x - a.x >= 3.0 * (textWidth(label, kBodyFontPx) + 6))
+    {
+      putText(panel, label, kBodyFontPx, int(a.x) + 4, int(b.y) - kKeyLinePx, int(j) == layer ? kBlack : kDarkGrey);
     }
   }
   drawLine(panel, frame.px(bounds.ends.back(), 0.0), frame.px(bounds.ends.back(), 1.0), kDarkGrey, 1.0);
