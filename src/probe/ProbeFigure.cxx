@@ -2053,6 +2053,115 @@ ImageU8 fourierPanel(const FourierSeries& series, const FigureRect& rect, char l
   return panel;
 }
 
+// ss08's level of quality (Schwarz & Stamminger 2008, §4.2): the smoothed LOQ l at the pixel picks the levels
+// floor(l) and ceil(l) of the micro-occluder hierarchy, weighted 1 - a and a (a from l's fractional part through the
+// blend band); each level's back-projection gives V(level), and V = (1 - a) V(floor l) + a V(ceil l).
+struct LevelBlend
+{
+  double loq = 0.0;
+  std::optional<double> blendBand;
+  std::vector<std::pair<int, double>> levels;  // level, its weight (floor first)
+  std::vector<double> levelVisibility;         // V(level), same order
+  std::optional<double> recordedVisibility;
+  double visibility() const
+  {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < levels.size(); ++k)
+    {
+      sum += levels[k].second * levelVisibility[k];
+    }
+    return sum;
+  }
+};
+
+std::optional<LevelBlend> levelBlendOf(const ProbeRecord& record)
+{
+  const std::optional<double> loq = recordedScalar(record, "loq");
+  const std::optional<double> weightFloor = recordedScalar(record, "weight_floor");
+  const std::optional<double> weightCeil = recordedScalar(record, "weight_ceil");
+  if (!loq || !weightFloor || !weightCeil)
+  {
+    return std::nullopt;
+  }
+  LevelBlend blend;
+  blend.loq = *loq;
+  blend.blendBand = recordedScalar(record, "blend_band");
+  blend.recordedVisibility = recordedScalar(record, "visibility");
+  // Each level's V sits in its group "level <k> (floor)" or "level <k> (ceil)", in that order.
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    int level = 0;
+    char role[8] = {};
+    if (quantity.name != "level_visibility" || quantity.value.empty() ||
+      std::sscanf(quantity.group.c_str(), "level %d (%7[a-z])", &level, role) != 2)
+    {
+      continue;
+    }
+    const bool isFloor = std::string(role) == "floor";
+    blend.levels.push_back({ level, isFloor ? *weightFloor : *weightCeil });
+    blend.levelVisibility.push_back(quantity.value[0]);
+  }
+  if (blend.levels.empty())
+  {
+    return std::nullopt;
+  }
+  return blend;
+}
+
+ImageU8 levelBlendPanel(const LevelBlend& blend, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "SS08 §4.2: level of quality and the levels blended");
+  const Box box = contentBox(rect);
+  const double visibility = blend.visibility();
+  logDrawnValue("visibility", visibility);
+  logDrawnValue("loq", blend.loq);
+  std::string levelsText;
+  std::string sumText;
+  for (std::size_t k = 0; k < blend.levels.size(); ++k)
+  {
+    levelsText += format(k ? ", " : "", "level ", blend.levels[k].first, " weight ", numberText(blend.levels[k].second),
+      " V ", numberText(blend.levelVisibility[k]));
+    sumText += (k ? " + " : "") + numberText(blend.levels[k].second) + " x " + numberText(blend.levelVisibility[k]);
+  }
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { "LOQ l = " + numberText(blend.loq) + " levels (the smoothed LOQ map at the pixel)" +
+        (blend.blendBand ? ", blend band " + numberText(*blend.blendBand) : std::string()),
+      kBlack },
+    { levelsText + " (bars: weights, dots: each level's V)", kBlack },
+    { "V = " + sumText + " = " + numberText(visibility) +
+        (blend.recordedVisibility ? " (recorded " + numberText(*blend.recordedVisibility) + ")" : ""),
+      kRayColor },
+  };
+  const int textBand = drawDiagramText(panel, box, lines);
+  int maxLevel = int(std::ceil(blend.loq));
+  for (const auto& level : blend.levels)
+  {
+    maxLevel = std::max(maxLevel, level.first);
+  }
+  maxLevel = std::max(maxLevel + 1, 2);
+  std::vector<double> levelTicks;
+  for (int level = 0; level <= maxLevel; level += std::max(1, maxLevel / 4))
+  {
+    levelTicks.push_back(level);
+  }
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, -0.5, maxLevel + 0.5, 0.0, 1.0,
+    "level of the micro-occluder hierarchy", { 0.0, 0.5, 1.0 }, levelTicks);
+  for (std::size_t k = 0; k < blend.levels.size(); ++k)
+  {
+    const double level = blend.levels[k].first;
+    const glm::dvec2 foot = frame.px(level - 0.3, 0.0);
+    const glm::dvec2 top = frame.px(level + 0.3, std::clamp(blend.levels[k].second, 0.0, 1.0));
+    fillRect(panel, int(foot.x), int(foot.y), std::max(1, int(top.x - foot.x)), std::max(1, int(top.y - foot.y)), kLightGrey);
+    const glm::dvec2 dot = frame.px(level, std::clamp(blend.levelVisibility[k], 0.0, 1.0));
+    fillDisk(panel, dot, 6.0, kBlack);
+    fillDisk(panel, dot, 4.0, kPenumbraColor);
+  }
+  drawDashedLine(panel, frame.px(blend.loq, 0.0), frame.px(blend.loq, 1.0), kProbeMarkerColor, 2.0, 5.0);
+  const glm::dvec2 at = frame.px(blend.loq, std::clamp(visibility, 0.0, 1.0));
+  drawMarker(panel, at, 3.0);
+  return panel;
+}
+
 } // namespace
 
 std::string probeQuantityText(const ProbeQuantity& quantity)
@@ -2479,6 +2588,7 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   const std::optional<LayerBounds> layers = layerBoundsOf(record);
   const std::optional<MomentDistribution> momentBound = momentDistributionOf(record);
   const std::optional<FourierSeries> fourier = fourierSeriesOf(record);
+  const std::optional<LevelBlend> levelBlend = levelBlendOf(record);
 
   // Only panels with content: no map, nothing on the light, no algorithm quantities leave theirs out.
   std::vector<std::pair<ProbeFigurePanel, int>> wanted;
@@ -2520,6 +2630,10 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   if (fourier)
   {
     want(ProbePanel::Fourier, 1);
+  }
+  if (levelBlend)
+  {
+    want(ProbePanel::LevelBlend, 1);
   }
   for (int page = 0; page < pages.pageCount(); ++page)
   {
@@ -2578,6 +2692,9 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
         break;
       case ProbePanel::Fourier:
         panel = fourierPanel(*fourier, placed.rect, placed.letter);
+        break;
+      case ProbePanel::LevelBlend:
+        panel = levelBlendPanel(*levelBlend, placed.rect, placed.letter);
         break;
       case ProbePanel::Legend:
         panel = legendPanel(pages, placed.page, placed.rect, placed.letter);

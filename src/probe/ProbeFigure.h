@@ -11,7 +11,8 @@
 //   | (f) Chebyshev    | (g) key numbers  | (h) key numbers  |   moment techniques (mean, variance, t, p_max),
 //   |     bound        |     page 1       |     page 2       |   ESM's exponential, the depth comparisons of
 //   +------------------+------------------+------------------+   hard and pcf, lvsm's layers, msm's three-point
-//                                                                 distribution, convsm's Fourier series, where the
+//                                                                 distribution, convsm's Fourier series, ss08's
+//                                                                 level of quality and levels blended, where the
 //                                                                 record has their quantities; then as many
 //                                                                 key-number pages as the record needs.
 //
@@ -51,6 +52,7 @@ enum class ProbePanel
   Layers,      // lvsm: the layers along depth, the receiver's layer and each layer's Chebyshev bound
   MomentBound, // msm: the Hamburger 4MSM three-point distribution (support z_f, z_2, z_3 and weights) at the receiver
   Fourier,     // convsm: the filtered step's truncated Fourier series around the receiver's depth, its ringing
+  LevelBlend,  // ss08: the level of quality, the two levels blended with their weights and each level's visibility
   Legend      // technique, pixel, GPU and twin visibility, tolerance, every recorded quantity (one or more pages)
 };
 

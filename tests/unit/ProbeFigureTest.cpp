@@ -1161,6 +1161,37 @@ TEST(ProbeFigure, FourierPanelDrawsTheFilteredSeriesAndTheStepsRinging)
   EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Fourier, "step_overshoot"), 2.0 / test::kPi - 0.5, 1e-3);
 }
 
+TEST(ProbeFigure, LevelBlendPanelBlendsTheTwoLevelsVisibilities)
+{
+  // SS08 §4.2: l = 2.3 blends level 2 (weight 0.7, V 0.5) and level 3 (weight 0.3, V 0.8): V = 0.59.
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("blend");
+  recorder.quantity("loq", 2.3, "levels", "test");
+  recorder.quantity("level_ceil", 3.0, "level", "test");
+  recorder.quantity("blend_band", 1.0, "levels", "test");
+  recorder.quantity("weight_floor", 0.7, "", "test");
+  recorder.quantity("weight_ceil", 0.3, "", "test");
+  recorder.beginGroup("level 2 (floor)");
+  recorder.quantity("level_visibility", 0.5, "", "test");
+  recorder.beginGroup("level 3 (ceil)");
+  recorder.quantity("level_visibility", 0.8, "", "test");
+  recorder.beginGroup("result");
+  recorder.quantity("visibility", 0.59, "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "ss08_level_blend");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::LevelBlend).has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::LevelBlend, "visibility"), 0.7 * 0.5 + 0.3 * 0.8, 1e-12);
+  const std::string text = probeFigurePanelProse(drawing, ProbePanel::LevelBlend);
+  EXPECT_NE(text.find("level 2 weight 0.7 V 0.5, level 3 weight 0.3 V 0.8"), std::string::npos) << text;
+  EXPECT_NE(text.find("= 0.59 (recorded 0.59)"), std::string::npos) << text;
+  // Without the levels' visibilities (a pixel decided before any back-projection) the panel is left out.
+  s = makeSynthetic();
+  EXPECT_FALSE(drawProbeFigure(s.probe, s.frame, s.scene).layout.rect(ProbePanel::LevelBlend).has_value());
+}
+
 TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)
 {
   Synthetic s = makeSynthetic();
