@@ -2162,6 +2162,121 @@ ImageU8 levelBlendPanel(const LevelBlend& blend, const FigureRect& rect, char le
   return panel;
 }
 
+// izb (Johnson et al. 2005; Aila & Laine 2004): the receiver's sample lands in one texel of the light-space grid
+// (a cube face for a point light), whose list holds the samples there; every caster triangle whose conservative
+// cover holds that texel is tested against the sample, and the sample is lit unless one covers it. The record holds
+// the texel and the counts, not the triangles' shapes: the diagram draws the texel around the sample and lists them.
+struct IrregularTexel
+{
+  int face = 0;
+  glm::dvec2 position{ 0.0 };    // in the face, texels
+  double triangleTests = 0.0;
+  std::optional<double> gpuTriangleTests;
+  std::optional<double> gpuListLength;
+  std::vector<std::string> covering;       // "triangle_12", ...: cover the sample
+  std::vector<std::string> withinRounding; // "triangle_7 (within rounding)", ...
+  bool sharedEdgePair = false;
+  std::optional<double> recordedVisibility;
+  double visibility() const { return covering.empty() && !sharedEdgePair ? 1.0 : 0.0; }
+};
+
+std::optional<IrregularTexel> irregularTexelOf(const ProbeRecord& record)
+{
+  const std::optional<double> face = recordedScalar(record, "face");
+  const ProbeQuantity* texel = record.find("texel");
+  const std::optional<double> tests = recordedScalar(record, "izb_triangle_tests");
+  if (!face || texel == nullptr || texel->value.size() != 2 || !tests)
+  {
+    return std::nullopt;
+  }
+  IrregularTexel result;
+  result.face = int(*face);
+  result.position = { texel->value[0], texel->value[1] };
+  result.triangleTests = *tests;
+  result.gpuTriangleTests = recordedScalar(record, "gpu_izb_triangle_tests");
+  result.gpuListLength = recordedScalar(record, "gpu_izb_list_length");
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    // "triangle_<i> (covers)" shadows the sample; "(within rounding)" only makes the pixel ambiguous.
+    const std::string covers = " (covers)";
+    const bool isTriangle = quantity.name.rfind("triangle_", 0) == 0;
+    if (isTriangle && quantity.name.size() > covers.size() &&
+      quantity.name.compare(quantity.name.size() - covers.size(), covers.size(), covers) == 0)
+    {
+      result.covering.push_back(quantity.name.substr(0, quantity.name.size() - covers.size()));
+    }
+    else if (isTriangle)
+    {
+      result.withinRounding.push_back(quantity.name);
+    }
+  }
+  result.sharedEdgePair = record.find("shared_edge_pair") != nullptr;
+  result.recordedVisibility = recordedScalar(record, "visibility");
+  return result;
+}
+
+ImageU8 irregularTexelPanel(const IrregularTexel& texel, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "IZB: the sample's light-space texel");
+  const Box box = contentBox(rect);
+  const double visibility = texel.visibility();
+  logDrawnValue("visibility", visibility);
+  logDrawnValue("covering_triangles", double(texel.covering.size()));
+  const glm::ivec2 cell(int(std::floor(texel.position.x)), int(std::floor(texel.position.y)));
+  std::string coveringText;
+  for (std::size_t i = 0; i < texel.covering.size(); ++i)
+  {
+    coveringText += (i ? ", " : "") + texel.covering[i];
+  }
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { format("face ", texel.face, ", texel (", cell.x, ", ", cell.y, "), sample at (", numberText(texel.position.x, 6),
+        ", ", numberText(texel.position.y, 6), ") texels"),
+      kBlack },
+    { "its list: " + (texel.gpuListLength ? numberText(*texel.gpuListLength) : std::string("?")) +
+        " samples (GPU); triangles whose cover holds it: " + numberText(texel.triangleTests) +
+        (texel.gpuTriangleTests ? " (GPU " + numberText(*texel.gpuTriangleTests) + ")" : ""),
+      kBlack },
+    { texel.covering.empty() ? std::string("no tested triangle covers the sample")
+                             : "covering the sample, between it and the light: " + coveringText,
+      texel.covering.empty() ? kDarkGrey : kBlack },
+  };
+  if (!texel.withinRounding.empty())
+  {
+    std::string text;
+    for (std::size_t i = 0; i < texel.withinRounding.size(); ++i)
+    {
+      text += (i ? ", " : "") + texel.withinRounding[i];
+    }
+    lines.push_back({ "within float rounding of the sample (ambiguous, not covering): " + text, kDarkGrey });
+  }
+  if (texel.sharedEdgePair)
+  {
+    lines.push_back({ "two triangles sharing the edge the sample lies on (README.md, Shared edges)", kBlack });
+  }
+  lines.push_back({ "V = " + numberText(visibility) + (texel.covering.empty() && !texel.sharedEdgePair ? " (lit)" : " (covered)") +
+      (texel.recordedVisibility ? " (recorded " + numberText(*texel.recordedVisibility) + ")" : ""),
+    kRayColor });
+  const int textBand = drawDiagramText(panel, box, lines);
+
+  // The texel and its eight neighbours, the sample's texel filled (dark where covered), the sample marked.
+  const Box gridBox{ box.left, box.bottom + textBand + 4.0, box.width, box.height - textBand - 8.0 };
+  const View2D view = fitView(glm::dvec2(cell) - 1.0, glm::dvec2(cell) + 2.0, gridBox, 0.02);
+  const int side = std::max(1, int(std::floor(view.scale)));
+  for (int dy = -1; dy <= 1; ++dy)
+  {
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      const glm::dvec2 corner = view.toPx(glm::dvec2(cell + glm::ivec2(dx, dy)));
+      const bool own = dx == 0 && dy == 0;
+      const RgbColor fill = !own ? kWhite : visibility < 1.0 ? kCasterColor : RgbColor{ 1.0, 0.93, 0.6 };
+      fillRect(panel, int(corner.x), int(corner.y), side, side, fill);
+      strokeRect(panel, int(corner.x), int(corner.y), side, side, own ? kBlack : kLightGrey, own ? 2 : 1);
+    }
+  }
+  drawMarker(panel, view.toPx(texel.position), 4.0);
+  return panel;
+}
+
 } // namespace
 
 std::string probeQuantityText(const ProbeQuantity& quantity)
@@ -2589,6 +2704,7 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   const std::optional<MomentDistribution> momentBound = momentDistributionOf(record);
   const std::optional<FourierSeries> fourier = fourierSeriesOf(record);
   const std::optional<LevelBlend> levelBlend = levelBlendOf(record);
+  const std::optional<IrregularTexel> irregularTexel = irregularTexelOf(record);
 
   // Only panels with content: no map, nothing on the light, no algorithm quantities leave theirs out.
   std::vector<std::pair<ProbeFigurePanel, int>> wanted;
@@ -2634,6 +2750,10 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   if (levelBlend)
   {
     want(ProbePanel::LevelBlend, 1);
+  }
+  if (irregularTexel)
+  {
+    want(ProbePanel::IrregularTexel, 1);
   }
   for (int page = 0; page < pages.pageCount(); ++page)
   {
@@ -2695,6 +2815,9 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
         break;
       case ProbePanel::LevelBlend:
         panel = levelBlendPanel(*levelBlend, placed.rect, placed.letter);
+        break;
+      case ProbePanel::IrregularTexel:
+        panel = irregularTexelPanel(*irregularTexel, placed.rect, placed.letter);
         break;
       case ProbePanel::Legend:
         panel = legendPanel(pages, placed.page, placed.rect, placed.letter);

@@ -12,7 +12,8 @@
 //   |     bound        |     page 1       |     page 2       |   ESM's exponential, the depth comparisons of
 //   +------------------+------------------+------------------+   hard and pcf, lvsm's layers, msm's three-point
 //                                                                 distribution, convsm's Fourier series, ss08's
-//                                                                 level of quality and levels blended, where the
+//                                                                 level of quality and levels blended, izb's
+//                                                                 light-space texel, where the
 //                                                                 record has their quantities; then as many
 //                                                                 key-number pages as the record needs.
 //
@@ -53,6 +54,7 @@ enum class ProbePanel
   MomentBound, // msm: the Hamburger 4MSM three-point distribution (support z_f, z_2, z_3 and weights) at the receiver
   Fourier,     // convsm: the filtered step's truncated Fourier series around the receiver's depth, its ringing
   LevelBlend,  // ss08: the level of quality, the two levels blended with their weights and each level's visibility
+  IrregularTexel, // izb: the sample's light-space texel, its list's length, the triangles tested and covering
   Legend      // technique, pixel, GPU and twin visibility, tolerance, every recorded quantity (one or more pages)
 };
 

@@ -226,11 +226,11 @@ TEST_P(ProbeAgreement, TwinVisibilityEqualsTheGpuBufferOnLitPenumbraAndUmbraPixe
 
 INSTANTIATE_TEST_SUITE_P(EveryTechnique, ProbeAgreement, testing::ValuesIn(probeCases()), test::datasetTechniqueName);
 
-// Issue 31: the algorithm diagrams of hard, pcf, lvsm, msm, convsm and ss08 draw numbers they compute from the record; on
+// Issue 31: the algorithm diagrams of hard, pcf, lvsm, msm, convsm, ss08 and izb draw numbers they compute from the record; on
 // a rendered frame these are what the GPU computed at the pixel: lvsm's layer (found from the recorded layer ends)
 // and warp equal its `layer` and `warped_depth` buffers; the lit share of hard's and pcf's compared texels, msm's
 // 1 - weight in front of the receiver, convsm's clamp(scale f(d_s)) and ss08's blend of its two levels'
-// visibilities (§4.2) equal the GPU's visibility within the
+// visibilities (§4.2) and izb's "lit unless a tested triangle covers the sample" equal the GPU's visibility within the
 // technique's probe tolerance. Explicit map size: the default is changing to `auto`.
 TEST(Probe, AlgorithmDiagramsDrawWhatTheGpuComputed)
 {
@@ -240,10 +240,14 @@ TEST(Probe, AlgorithmDiagramsDrawWhatTheGpuComputed)
     const char* technique;
     ProbePanel panel;
   } cases[] = { { "hard", ProbePanel::Comparisons }, { "pcf", ProbePanel::Comparisons }, { "lvsm", ProbePanel::Layers },
-    { "msm", ProbePanel::MomentBound }, { "convsm", ProbePanel::Fourier }, { "ss08", ProbePanel::LevelBlend } };
+    { "msm", ProbePanel::MomentBound }, { "convsm", ProbePanel::Fourier }, { "ss08", ProbePanel::LevelBlend },
+    { "izb", ProbePanel::IrregularTexel } };
   for (const auto& testCase : cases)
   {
-    const FrameResult frame = test::renderDataset(scene, testCase.technique, 96, 96, { "shadow_map_size=256" });
+    // izb has no shadow map: its grid's size instead.
+    const bool isIzb = std::string(testCase.technique) == "izb";
+    const FrameResult frame =
+      test::renderDataset(scene, testCase.technique, 96, 96, { isIzb ? "grid_size=256" : "shadow_map_size=256" });
     int checked = 0;
     for (const PixelKind kind : { PixelKind::Penumbra, PixelKind::Umbra, PixelKind::Lit })
     {
@@ -289,6 +293,10 @@ TEST(Probe, AlgorithmDiagramsDrawWhatTheGpuComputed)
           else if (technique == "ss08")
           {
             drawnVisibility = drawing.drawnValue(ProbePanel::LevelBlend, "visibility").value();
+          }
+          else if (technique == "izb")
+          {
+            drawnVisibility = drawing.drawnValue(ProbePanel::IrregularTexel, "visibility").value();
           }
           else if (technique == "convsm")
           {

@@ -1192,6 +1192,43 @@ TEST(ProbeFigure, LevelBlendPanelBlendsTheTwoLevelsVisibilities)
   EXPECT_FALSE(drawProbeFigure(s.probe, s.frame, s.scene).layout.rect(ProbePanel::LevelBlend).has_value());
 }
 
+TEST(ProbeFigure, IrregularTexelPanelIsLitUnlessATestedTriangleCovers)
+{
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("light-space grid");
+  recorder.quantity("face", 3.0, "", "test");
+  recorder.quantity("texel", glm::dvec2(131.52, 187.54), "texels", "test");
+  recorder.beginGroup("triangles over the texel");
+  recorder.quantity("triangle_7 (within rounding)", glm::dvec3(0.0), "world units (first vertex)", "test");
+  recorder.quantity("izb_triangle_tests", 2.0, "triangles", "test");
+  recorder.quantity("gpu_izb_triangle_tests", 2.0, "triangles", "test");
+  recorder.quantity("gpu_izb_list_length", 3.0, "samples", "test");
+  recorder.beginGroup("result");
+  recorder.quantity("visibility", 1.0, "", "test");
+  const ProbeRecord withinRounding = recorder.record();
+  s.probe.record = withinRounding;
+  ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "izb_texel");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::IrregularTexel).has_value());
+  // A triangle within rounding makes the pixel ambiguous, it does not cover: lit.
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "visibility"), 1.0);
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "covering_triangles"), 0.0);
+  std::string text = probeFigurePanelProse(drawing, ProbePanel::IrregularTexel);
+  EXPECT_NE(text.find("texel (131, 187)"), std::string::npos) << text;
+  EXPECT_NE(text.find("its list: 3 samples"), std::string::npos) << text;
+  // One that covers: shadowed.
+  recorder.beginGroup("triangles over the texel");
+  recorder.quantity("triangle_12 (covers)", glm::dvec3(0.0), "world units (first vertex)", "test");
+  s.probe.record = recorder.record();
+  drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "visibility"), 0.0);
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "covering_triangles"), 1.0);
+  text = probeFigurePanelProse(drawing, ProbePanel::IrregularTexel);
+  EXPECT_NE(text.find("between it and the light: triangle_12"), std::string::npos) << text;
+}
+
 TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)
 {
   Synthetic s = makeSynthetic();
