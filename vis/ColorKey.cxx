@@ -2,6 +2,7 @@
 
 #include "core/Error.h"
 #include "vis/Canvas.h"
+#include "vis/NumberText.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,17 +35,26 @@ ColorKey ColorKey::continuous(const ColorMap& colorMap, double valueMin, double 
   SL_CHECK_MSG(valueMin < valueMax, "colour bar range [", valueMin, ", ", valueMax, "]");
   ColorKey key(fontPx);
   key.colorMap_ = colorMap;
-  int labelWidth = 0;
-  for (const double fraction : { 0.0, 0.25, 0.5, 0.75, 1.0 })
+  // Every tick's value first, then labels with the digits to tell them apart (distinctTickLabels): a narrow
+  // range reads 3.475, 3.473, 3.471 rather than 3.48, 3.47, 3.47.
+  const std::vector<double> fractions = { 0.0, 0.25, 0.5, 0.75, 1.0 };
+  std::vector<double> values;
+  for (const double fraction : fractions)
   {
+    values.push_back(signedLogLinearWidth > 0.0
+        ? std::copysign(signedLogLinearWidth *
+              std::expm1(std::abs(2.0 * fraction - 1.0) *
+                std::log1p(std::max(std::abs(valueMin), std::abs(valueMax)) / signedLogLinearWidth)),
+            2.0 * fraction - 1.0)
+        : valueMin + fraction * (valueMax - valueMin));
+  }
+  const std::vector<std::string> labels = distinctTickLabels(values);
+  int labelWidth = 0;
+  for (std::size_t i = 0; i < fractions.size(); ++i)
+  {
+    const double fraction = fractions[i];
     const std::string prefix = fraction == 0.0 && openBelow ? "<=" : fraction == 1.0 && openAbove ? ">=" : "";
-    const double value = signedLogLinearWidth > 0.0
-      ? std::copysign(signedLogLinearWidth *
-            std::expm1(std::abs(2.0 * fraction - 1.0) *
-              std::log1p(std::max(std::abs(valueMin), std::abs(valueMax)) / signedLogLinearWidth)),
-          2.0 * fraction - 1.0)
-      : valueMin + fraction * (valueMax - valueMin);
-    key.ticks_.push_back({ fraction, prefix + formatThreeSignificant(value) });
+    key.ticks_.push_back({ fraction, prefix + labels[i] });
     labelWidth = std::max(labelWidth, measureText(key.ticks_.back().label, fontPx).width);
   }
   key.width_ =
@@ -75,6 +85,14 @@ ColorKey ColorKey::categorical(
   key.width_ = key.paddingPx_ + key.swatchPx_ + key.labelGapPx_ + labelWidth + key.paddingPx_;
   key.minHeight_ = key.paddingPx_ + rowCount * (key.lineHeightPx_ + key.labelGapPx_);
   return key;
+}
+
+std::vector<std::string> ColorKey::tickLabels() const
+{
+  std::vector<std::string> labels;
+  for (const Tick& tick : ticks_)
+    labels.push_back(tick.label);
+  return labels;
 }
 
 void ColorKey::addSwatch(const RgbColor& color, const std::string& label)

@@ -19,7 +19,8 @@ class ColorKey
 {
 public:
   // A bar from valueMin (bottom) to valueMax (top), valueMin < valueMax, with ticks at both ends and in the
-  // middle (and at the quarters when the bar is tall enough), labelled with formatThreeSignificant(). An open end
+  // middle (and at the quarters when the bar is tall enough), labelled with at least 3 significant digits and as
+  // many more as make the five labels differ (vis/NumberText.h distinctTickLabels). An open end
   // (pixels lie beyond it, drawn in its colour) is labelled "<=" or ">=" its value. signedLogLinearWidth > 0: the
   // bar is a symmetric log scale (vis/HeatMap.h colorMapPosition) and the ticks give the values drawn there.
   static ColorKey continuous(const ColorMap& colorMap, double valueMin, double valueMax, int fontPx,
@@ -35,6 +36,10 @@ public:
   // A row under the bar or the classes: a swatch of `color` labelled `label` (pixels drawn outside the scale:
   // "not tested / n.a.", "no surface"). Widens the key and raises minHeight() to fit.
   void addSwatch(const RgbColor& color, const std::string& label);
+
+  // The continuous bar's five tick labels, bottom to top (the quarters' drawn only on a tall bar); empty for a
+  // categorical key.
+  std::vector<std::string> tickLabels() const;
 
   int width() const { return width_; }
   int minHeight() const { return minHeight_; }

@@ -4,6 +4,7 @@ set(SL_VIS_SOURCES
   vis/Canvas.cxx
   vis/CanvasShapes.cxx
   vis/ColorKey.cxx
+  vis/NumberText.cxx
   vis/ColorMap.cxx
   vis/HeatMap.cxx
   vis/Montage.cxx

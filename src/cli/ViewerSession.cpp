@@ -3,7 +3,7 @@
 #include "cli/Commands.h"
 #include "core/Error.h"
 #include "pipeline/ShadowRenderer.h"
-#include "probe/NumberText.h"
+#include "vis/NumberText.h"
 #include "probe/ProbeFigure.h"
 #include "techniques/Registry.h"
 #include "vis/BufferHeatMap.h"

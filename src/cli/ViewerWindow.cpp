@@ -3,7 +3,7 @@
 #include "core/Error.h"
 #include "io/ImageIO.h"
 #include "io/vtkSLOutputWindow.h"
-#include "probe/NumberText.h"
+#include "vis/NumberText.h"
 #include "probe/ProbeFigure.h"
 #include "vis/Canvas.h"
 

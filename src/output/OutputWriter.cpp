@@ -5,6 +5,7 @@
 #include "io/ImageIO.h"
 #include "output/ParaViewScript.h"
 #include "vis/BufferHeatMap.h"
+#include "vis/HeatMap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,20 +45,27 @@ void writeHeatMaps(const std::vector<NamedImage>& images, const std::vector<Name
 
 } // namespace
 
-nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
+nlohmann::json bufferSummary(const NamedImage& named, const ImageU8* valueMask)
 {
   double minimum = 0.0;
   double maximum = 0.0;
   double sum = 0.0;
   std::size_t count = 0;
   std::size_t nonFinite = 0;
+  std::size_t domainPixels = 0;
   const ImageF& image = named.image;
+  // Only the pixels the buffer has a value at (bufferValueMask: covered, and shadow-tested for a quantity declared
+  // there): the 0 a shader writes where no shadow test ran is no value, and would pull min and mean to 0.
+  const auto inDomain = [&](std::size_t i) {
+    return !valueMask || (valueMask->data[i] != 0 && valueMask->data[i] != kNotApplicablePixel);
+  };
   for (std::size_t i = 0; i < image.pixelCount(); ++i)
   {
-    if (coverage && coverage->data[i] <= 0.5f)
+    if (!inDomain(i))
     {
       continue;
     }
+    ++domainPixels;
     for (int c = 0; c < image.components; ++c)
     {
       const double value = image.data[i * image.components + c];
@@ -74,15 +82,15 @@ nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage)
   }
   nlohmann::json statistics = { { "components", image.components }, { "min", minimum }, { "max", maximum },
     { "mean", count ? sum / static_cast<double>(count) : 0.0 }, { "non_finite", nonFinite }, { "unit", named.unit },
-    { "doc", named.doc } };
+    { "doc", named.doc }, { "domain_pixels", domainPixels } };
   if (named.kind == BufferKind::Categorical && image.components == 1)
   {
-    // Pixels per category (covered pixels), by label: how many were lit, penumbra, cut short, ...
+    // Pixels per category (covered pixels, the not-applicable ones included: a "not tested" class counts them), by label: how many were lit, penumbra, cut short, ...
     std::vector<std::size_t> pixels(named.categoryLabels.size(), 0);
     for (std::size_t i = 0; i < image.pixelCount(); ++i)
     {
       const float value = image.data[i];
-      if ((!coverage || coverage->data[i] > 0.5f) && value >= 0.0f && value < static_cast<float>(pixels.size()) &&
+      if ((!valueMask || valueMask->data[i] != 0) && value >= 0.0f && value < static_cast<float>(pixels.size()) &&
         value == std::floor(value))
       {
         ++pixels[static_cast<std::size_t>(value)];
@@ -300,12 +308,17 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
 
 nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers)
 {
-  const NamedImage* coverage = findNamed(buffers, "coverage");
   nlohmann::json summaries = nlohmann::json::object();
+  const bool hasCoverage = findNamed(buffers, "coverage") != nullptr;
   for (const NamedImage& named : buffers)
   {
-    const bool overCovered = coverage && named.name != "coverage";
-    summaries[named.name] = bufferSummary(named, overCovered ? &coverage->image : nullptr);
+    const bool overDomain = hasCoverage && named.name != "coverage";
+    const ImageU8 mask = overDomain ? bufferValueMask(named, buffers) : ImageU8();
+    const bool maskFits = mask.width == named.image.width && mask.height == named.image.height;
+    summaries[named.name] = bufferSummary(named, overDomain && maskFits ? &mask : nullptr);
+    summaries[named.name]["domain"] = !(overDomain && maskFits) ? "all pixels"
+      : named.domain == BufferDomain::ShadowTested && findNamed(buffers, "shadow_tested") ? "shadow_tested"
+                                                                                           : "covered";
   }
   return summaries;
 }

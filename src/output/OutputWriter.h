@@ -23,10 +23,13 @@ struct OutputContext
 };
 
 nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context);
-// min/max/mean/non-finite count of a buffer over the covered pixels (all pixels when coverage is null).
-nlohmann::json bufferSummary(const NamedImage& named, const ImageF* coverage);
-// bufferSummary of each buffer, keyed by name: over the covered pixels (the "coverage" buffer), except
-// coverage itself (over the whole image).
+// min/max/mean/non-finite count of a buffer over the pixels of its domain: where `valueMask` (vis/BufferHeatMap.h
+// bufferValueMask, same size) is neither 0 (no surface) nor kNotApplicablePixel; all pixels when it is null.
+// domain_pixels counts them; category_pixels (categorical buffers) counts every covered pixel.
+nlohmann::json bufferSummary(const NamedImage& named, const ImageU8* valueMask);
+// bufferSummary of each buffer, keyed by name, with "domain" naming its pixels: a buffer declared on shadow-tested
+// pixels (BufferDomain::ShadowTested) over those where shadow_tested is 1, the others over the covered pixels (the
+// "coverage" buffer); coverage itself, and every buffer of a set without coverage, over the whole image.
 nlohmann::json bufferSummaries(const std::vector<NamedImage>& buffers);
 // buffers.vti (+ light_space.vti when not empty), image.png (when given and not empty), visibility.exr
 // (when a visibility buffer exists), a heat map per scalar buffer and open_in_paraview.py, into an existing directory.

@@ -5,13 +5,15 @@
 // read texels, blocked or visible samples) differ in shape or fill as well.
 #include "probe/ProbeFigure.h"
 
-#include "probe/NumberText.h"
+#include "lightspace/LayeredMoments.h"
 #include "probe/Probe.h"
 #include "probe/ProbeGeometry.h"
 #include "vis/Canvas.h"
 #include "vis/CanvasShapes.h"
+#include "vis/ColorKey.h"
 #include "vis/ColorMap.h"
 #include "vis/HeatMap.h"
+#include "vis/NumberText.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,6 +68,7 @@ std::string numberText(double value, int digits = 4)
 struct FigureTextLog
 {
   std::vector<ProbeFigureText>* texts = nullptr;
+  std::vector<ProbeDrawnValue>* drawn = nullptr;
   ProbePanel panel = ProbePanel::Image;
 };
 thread_local FigureTextLog tFigureTextLog;
@@ -300,48 +303,19 @@ void drawKey(ImageU8& panel, const std::vector<KeyEntry>& entries, int left, int
   }
 }
 
-// A vertical colour bar from `valueMin` (bottom) to `valueMax` (top) with five ticks whose labels have the
-// digits to differ (distinctTickLabels). colorBarWidth is its width; drawColorBar returns the labels.
-int colorBarWidth(const ColorMap&, double valueMin, double valueMax)
+// A vertical colour bar from `valueMin` (bottom) to `valueMax` (top): the heat maps' key (vis/ColorKey.h), so its
+// ticks get the digits to differ as theirs do. colorBarWidth is its width; drawColorBar returns the tick labels.
+int colorBarWidth(const ColorMap& colorMap, double valueMin, double valueMax)
 {
-  int labelWidth = 0;
-  std::vector<double> values;
-  for (int i = 0; i <= 4; ++i)
-  {
-    values.push_back(valueMin + 0.25 * i * (valueMax - valueMin));
-  }
-  for (const std::string& label : distinctTickLabels(values))
-  {
-    labelWidth = std::max(labelWidth, textWidth(label, kBodyFontPx));
-  }
-  return 14 + 5 + 3 + labelWidth + 2;
+  return ColorKey::continuous(colorMap, valueMin, valueMax, kBodyFontPx).width();
 }
 
 std::vector<std::string> drawColorBar(ImageU8& panel, const ColorMap& colorMap, double valueMin, double valueMax,
   int left, int bottom, int height)
 {
-  const int barWidth = 14;
-  const int textHeight = measureText("Ag", kBodyFontPx).height;
-  const int barBottom = bottom + textHeight / 2;
-  const int barHeight = std::max(10, height - textHeight);
-  for (int row = 0; row < barHeight; ++row)
-  {
-    fillRect(panel, left, barBottom + row, barWidth, 1, colorMap.map((row + 0.5) / barHeight));
-  }
-  strokeRect(panel, left, barBottom, barWidth, barHeight, kBlack, 1);
-  std::vector<double> values;
-  for (int i = 0; i <= 4; ++i)
-  {
-    values.push_back(valueMin + 0.25 * i * (valueMax - valueMin));
-  }
-  const std::vector<std::string> labels = distinctTickLabels(values);
-  for (int i = 0; i <= 4; ++i)
-  {
-    const int row = barBottom + int(std::lround(0.25 * i * (barHeight - 1)));
-    fillRect(panel, left + barWidth, row, 5, 1, kBlack);
-    putText(panel, labels[std::size_t(i)], kBodyFontPx, left + barWidth + 8, row - textHeight / 2, kBlack);
-  }
-  return labels;
+  const ColorKey key = ColorKey::continuous(colorMap, valueMin, valueMax, kBodyFontPx);
+  key.draw(panel, left, bottom, std::max(height, key.minHeight()));
+  return key.tickLabels();
 }
 
 void paintLineSwatch(ImageU8& canvas, const glm::dvec2& c, const RgbColor& color)
@@ -1421,6 +1395,888 @@ ImageU8 exponentialPanel(const ExponentialTest& test, const FigureRect& rect, ch
   return panel;
 }
 
+// --- the diagrams of pcf and hard, lvsm, msm and convsm (issue 31) --------------------------------------------------
+
+// A number a diagram computed from the record and drew (ProbeFigureDrawing::drawnValues).
+void logDrawnValue(const std::string& name, double value)
+{
+  if (tFigureTextLog.drawn != nullptr)
+  {
+    tFigureTextLog.drawn->push_back({ tFigureTextLog.panel, name, value });
+  }
+}
+
+// The scalar quantity `name`, none when the record lacks it.
+std::optional<double> recordedScalar(const ProbeRecord& record, const std::string& name)
+{
+  const ProbeQuantity* quantity = record.find(name);
+  if (quantity == nullptr || quantity->value.empty())
+  {
+    return std::nullopt;
+  }
+  return quantity->value[0];
+}
+
+// A plot's frame: x over [xMin, xMax] and y over [yMin, yMax] in `plot` (panel pixels).
+struct PlotFrame
+{
+  Box plot;
+  double xMin = 0.0;
+  double xMax = 1.0;
+  double yMin = 0.0;
+  double yMax = 1.0;
+  glm::dvec2 px(double x, double y) const
+  {
+    return { plot.left + (x - xMin) / (xMax - xMin) * plot.width, plot.bottom + (y - yMin) / (yMax - yMin) * plot.height };
+  }
+};
+
+// Axes in `box` above a text band of `textBand` pixels: the y ticks given, the x ticks given (else the ends and
+// the middle), every
+// label with the digits to differ, and the x axis named under its labels (as the Chebyshev and ESM panels).
+PlotFrame drawPlotFrame(ImageU8& panel, const Box& box, int textBand, double xMin, double xMax, double yMin,
+  double yMax, const std::string& xName, const std::vector<double>& yTicks, std::vector<double> xTicks = {})
+{
+  PlotFrame frame;
+  frame.xMin = xMin;
+  frame.xMax = xMax > xMin ? xMax : xMin + 1.0;
+  frame.yMin = yMin;
+  frame.yMax = yMax > yMin ? yMax : yMin + 1.0;
+  const std::vector<std::string> yLabels = distinctTickLabels(yTicks);
+  int yLabelWidth = 0;
+  for (const std::string& label : yLabels)
+  {
+    yLabelWidth = std::max(yLabelWidth, textWidth(label, kBodyFontPx));
+  }
+  const int axisLabelPx = kKeyLinePx + 4;
+  const int leftLabelPx = yLabelWidth + 10;
+  frame.plot = { box.left + leftLabelPx, box.bottom + textBand + axisLabelPx + kKeyLinePx,
+    box.width - leftLabelPx - 10.0, box.height - textBand - axisLabelPx - kKeyLinePx - 8.0 };
+  drawLine(panel, { frame.plot.left, frame.plot.bottom }, { frame.plot.left + frame.plot.width, frame.plot.bottom },
+    kBlack, 1.0);
+  drawLine(panel, { frame.plot.left, frame.plot.bottom }, { frame.plot.left, frame.plot.bottom + frame.plot.height },
+    kBlack, 1.0);
+  for (std::size_t i = 0; i < yTicks.size(); ++i)
+  {
+    const glm::dvec2 at = frame.px(frame.xMin, yTicks[i]);
+    drawLine(panel, at - glm::dvec2(4, 0), at, kBlack, 1.0);
+    putText(panel, yLabels[i], kBodyFontPx, int(frame.plot.left) - 6 - textWidth(yLabels[i], kBodyFontPx), int(at.y) - 5);
+  }
+  if (xTicks.empty())
+  {
+    xTicks = { frame.xMin, 0.5 * (frame.xMin + frame.xMax), frame.xMax };
+  }
+  const std::vector<std::string> xLabels = distinctTickLabels(xTicks);
+  for (std::size_t i = 0; i < xTicks.size(); ++i)
+  {
+    const glm::dvec2 at = frame.px(xTicks[i], frame.yMin);
+    drawLine(panel, at, at - glm::dvec2(0, 4), kBlack, 1.0);
+    const int width = textWidth(xLabels[i], kBodyFontPx);
+    putText(panel, xLabels[i], kBodyFontPx,
+      std::clamp(int(at.x) - width / 2, int(box.left), int(box.left + box.width) - width), int(at.y) - 6 - kKeyLinePx + 4);
+  }
+  // The axis name shrinks rather than run off the panel.
+  const int nameWidthPx = int(box.width) - leftLabelPx;
+  putText(panel, xName, fittingFontPx(xName, kBodyFontPx, nameWidthPx), int(box.left + leftLabelPx),
+    int(box.bottom) + textBand);
+  return frame;
+}
+
+// The text lines on top of a diagram, and the band they take.
+int drawDiagramText(ImageU8& panel, const Box& box, const std::vector<std::pair<std::string, RgbColor>>& lines)
+{
+  const int textBand = wrappedLineCount(lines, int(box.width)) * kKeyLinePx + 4;
+  drawTextLines(panel, lines, int(box.left), int(box.bottom) + textBand, int(box.width));
+  return textBand;
+}
+
+// pcf's taps and hard's nearest texel (Williams 1978; Reeves et al. 1987 §3): every texel the filter compared,
+// with its stored depth, the compared depth and whether the texel lies in front (shadowed), grouped by texel (a
+// Poisson-disk kernel may read one twice). visibility is the weighted share of passed comparisons.
+struct ComparedTexel
+{
+  glm::ivec2 texel{ 0 };
+  double storedDepth = 0.0;
+  bool occluding = false;
+  double weight = 0.0;
+  int reads = 0;
+};
+
+struct ComparisonGrid
+{
+  std::vector<ComparedTexel> texels;
+  std::string role;
+  double comparedDepth = 0.0;
+  double litWeight = 0.0;
+  double totalWeight = 0.0;
+  std::size_t reads = 0;
+  std::size_t droppedReads = 0;
+  std::optional<glm::dvec2> lookup;
+  std::optional<double> recordedVisibility;
+  bool polygonIdsDecide = false;
+  glm::ivec2 lo{ 0 };
+  glm::ivec2 hi{ 0 };
+};
+
+std::optional<ComparisonGrid> comparisonGridOf(const ProbeRecord& record, const ProbeSetting& setting)
+{
+  // Only the filters whose answer is the share of passed comparisons (hard's one texel, pcf's taps); the other
+  // techniques' compared texels (a light-leak PCF, PCSS's filter) serve diagrams of their own.
+  const bool isHard = std::any_of(
+    record.kernels.begin(), record.kernels.end(), [](const ProbeKernel& kernel) { return kernel.role == "nearest texel"; });
+  if (!isHard && record.find("lit_taps") == nullptr)
+  {
+    return std::nullopt;
+  }
+  ComparisonGrid grid;
+  for (const ProbeTexel& texel : record.texels)
+  {
+    if (std::isnan(texel.comparedDepth))
+    {
+      continue;
+    }
+    auto found = std::find_if(
+      grid.texels.begin(), grid.texels.end(), [&](const ComparedTexel& seen) { return seen.texel == texel.texel; });
+    if (found == grid.texels.end())
+    {
+      grid.texels.push_back({ texel.texel, texel.storedDepth, texel.occluding, 0.0, 0 });
+      found = grid.texels.end() - 1;
+    }
+    found->weight += texel.weight;
+    found->reads += 1;
+    grid.litWeight += texel.occluding ? 0.0 : texel.weight;
+    grid.totalWeight += texel.weight;
+    grid.comparedDepth = texel.comparedDepth;
+    grid.role = texel.role;
+    ++grid.reads;
+  }
+  if (grid.texels.empty() || !(grid.totalWeight > 0.0))
+  {
+    return std::nullopt;
+  }
+  grid.droppedReads = record.droppedTexels;
+  grid.lookup = setting.receiver.uvTexels;
+  grid.recordedVisibility = recordedScalar(record, "visibility");
+  grid.polygonIdsDecide = record.find("receiver_polygon_id") != nullptr;
+  grid.lo = grid.hi = grid.texels.front().texel;
+  for (const ComparedTexel& texel : grid.texels)
+  {
+    grid.lo = glm::min(grid.lo, texel.texel);
+    grid.hi = glm::max(grid.hi, texel.texel);
+  }
+  return grid;
+}
+
+ImageU8 comparisonsPanel(const ComparisonGrid& grid, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "depth comparisons: texels lit or shadowed");
+  const Box box = contentBox(rect);
+  const bool windowDepth = grid.role.find("window depth") != std::string::npos;
+  const std::string unit = windowDepth ? "window depth" : "linear depth";
+  const double litFraction = grid.litWeight / grid.totalWeight;
+  std::size_t shadowed = 0;
+  for (const ComparedTexel& texel : grid.texels)
+  {
+    shadowed += texel.occluding ? 1 : 0;
+  }
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { "compared depth d - bias " + numberText(grid.comparedDepth, 6) + " (" + unit + "); a texel is lit where d - bias <= its stored depth",
+      kBlack },
+    { format(grid.texels.size(), " texels (", grid.reads, " reads, ", grid.role, "): ", grid.texels.size() - shadowed,
+        " lit (white), ", shadowed, " shadowed (black)"),
+      kBlack },
+    { "weighted lit share = " + numberText(litFraction) +
+        (grid.recordedVisibility ? " (recorded visibility " + numberText(*grid.recordedVisibility) + ")" : ""),
+      kRayColor },
+  };
+  if (grid.polygonIdsDecide)
+  {
+    lines.push_back({ "depth_layer=polygon_id: the ids decide, these depth tests only fill the margins", kDarkGrey });
+  }
+  if (grid.droppedReads > 0)
+  {
+    lines.push_back({ format(grid.droppedReads, " more reads over the recorder's cap are not drawn"), kRayColor });
+  }
+  logDrawnValue("lit_fraction", litFraction);
+  logDrawnValue("texels", double(grid.texels.size()));
+  const int textBand = drawDiagramText(panel, box, lines);
+
+  // The grid: texel i spans [i, i + 1]; a cell a texel, a margin of half a texel round the kernel.
+  const glm::dvec2 lo = glm::dvec2(grid.lo) - 0.5;
+  const glm::dvec2 hi = glm::dvec2(grid.hi) + 1.5;
+  const Box gridBox{ box.left, box.bottom + textBand + 4.0, box.width, box.height - textBand - 8.0 };
+  const View2D view = fitView(lo, hi, gridBox, 0.0);
+  const double cellPx = view.scale;
+  // Labels where a cell holds them: its stored depth, and its weight where the taps weigh texels differently.
+  const bool weightsDiffer = std::any_of(grid.texels.begin(), grid.texels.end(),
+    [&](const ComparedTexel& texel) { return std::abs(texel.weight - grid.texels.front().weight) > 1e-9; });
+  const std::string sampleLabel = numberText(grid.texels.front().storedDepth, 4);
+  const bool depthFits = cellPx >= textWidth(sampleLabel, kBodyFontPx) + 8.0 && cellPx >= 2.0 * kKeyLinePx;
+  const bool weightFits = depthFits && weightsDiffer && cellPx >= 3.0 * kKeyLinePx;
+  for (const ComparedTexel& texel : grid.texels)
+  {
+    const glm::dvec2 corner = view.toPx(glm::dvec2(texel.texel));
+    const int side = std::max(1, int(std::floor(cellPx)));
+    const RgbColor fill = texel.occluding ? kCasterColor : kWhite;
+    fillRect(panel, int(corner.x), int(corner.y), side, side, fill);
+    strokeRect(panel, int(corner.x), int(corner.y), side, side, kLightGrey, 1);
+    if (depthFits)
+    {
+      const RgbColor ink = texel.occluding ? kWhite : kBlack;
+      const std::string depth = numberText(texel.storedDepth, 4);
+      const int rowY = int(corner.y + 0.5 * cellPx) - (weightFits ? 0 : kKeyLinePx / 2) + 2;
+      putText(panel, depth, kBodyFontPx, int(corner.x + 0.5 * (cellPx - textWidth(depth, kBodyFontPx))), rowY, ink);
+      if (weightFits)
+      {
+        const std::string weight = "w " + numberText(texel.weight, 3);
+        putText(panel, weight, kBodyFontPx, int(corner.x + 0.5 * (cellPx - textWidth(weight, kBodyFontPx))),
+          rowY - kKeyLinePx, ink);
+      }
+    }
+  }
+  if (grid.lookup)
+  {
+    drawMarker(panel, view.toPx(*grid.lookup), 3.0);
+  }
+  return panel;
+}
+
+// lvsm (Lauritzen & McCool 2008): the light's depth range cut into layers [p_i, q_i]; the receiver's depth t falls in
+// one, warped there to phi_i(t) = (t - p_i) / (q_i - p_i); each layer's moments give a Chebyshev bound at phi_j(t).
+struct LayerBounds
+{
+  std::vector<double> ends;     // layer_end_0 .. layer_end_L, linear depth
+  double comparedDepth = 0.0;   // t
+  std::optional<double> recordedLayer;
+  std::vector<std::optional<double>> layerPMax; // layer j's bound (layer_bound=tightest), none where not recorded
+  std::optional<double> ownPMax;
+  std::optional<double> pMax;
+  std::optional<double> warpedDepth;
+  std::optional<double> mean;
+  std::optional<double> variance;
+  std::optional<double> boundSource;
+};
+
+std::optional<LayerBounds> layerBoundsOf(const ProbeRecord& record)
+{
+  LayerBounds bounds;
+  for (int i = 0;; ++i)
+  {
+    const std::optional<double> end = recordedScalar(record, format("layer_end_", i));
+    if (!end)
+    {
+      break;
+    }
+    bounds.ends.push_back(*end);
+  }
+  const std::optional<double> t = recordedScalar(record, "compared_depth");
+  if (bounds.ends.size() < 2 || !t)
+  {
+    return std::nullopt;
+  }
+  bounds.comparedDepth = *t;
+  bounds.recordedLayer = recordedScalar(record, "layer");
+  for (std::size_t j = 0; j + 1 < bounds.ends.size(); ++j)
+  {
+    bounds.layerPMax.push_back(recordedScalar(record, format("layer", j, "_p_max")));
+  }
+  bounds.ownPMax = recordedScalar(record, "own_layer_p_max");
+  bounds.pMax = recordedScalar(record, "p_max");
+  bounds.warpedDepth = recordedScalar(record, "warped_depth");
+  bounds.mean = recordedScalar(record, "mean");
+  bounds.variance = recordedScalar(record, "variance");
+  bounds.boundSource = recordedScalar(record, "bound_source");
+  return bounds;
+}
+
+ImageU8 layersPanel(const LayerBounds& bounds, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "layers along depth, each layer's Chebyshev bound");
+  const Box box = contentBox(rect);
+  // The layer and the warp from the recorded ends, as the twin and the shader take them (lightspace/LayeredMoments.h).
+  const int layer = depthLayerIndex(bounds.comparedDepth, bounds.ends);
+  const double p = bounds.ends[std::size_t(layer)];
+  const double q = bounds.ends[std::size_t(layer) + 1];
+  const double warped = warpIntoLayer(bounds.comparedDepth, depthLayer(layer, bounds.ends));
+  logDrawnValue("layer", layer);
+  logDrawnValue("warped_depth", warped);
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { format(bounds.ends.size() - 1, " layers; t ", numberText(bounds.comparedDepth, 6), " (linear depth) in layer ", layer,
+        " [p, q] = [", numberText(p, 5), ", ", numberText(q, 5), "]",
+        bounds.recordedLayer ? " (recorded layer " + numberText(*bounds.recordedLayer) + ")" : std::string()),
+      kBlack },
+    { "phi(t) = (t - p) / (q - p) = " + numberText(warped) +
+        (bounds.mean && bounds.variance ? ", moments in the layer: mean " + numberText(*bounds.mean) + ", variance " +
+              numberText(*bounds.variance) + " (warped depth)"
+                                         : std::string()),
+      kBlack },
+  };
+  if (bounds.ownPMax)
+  {
+    lines.push_back({ "own layer's bound " + numberText(*bounds.ownPMax) +
+        (bounds.pMax ? "; p_max taken " + numberText(*bounds.pMax) : std::string()) +
+        (bounds.boundSource ? (*bounds.boundSource < 0.0 ? " (from vsm's bound)"
+                                                         : " (from layer " + numberText(*bounds.boundSource) + ")")
+                            : std::string()),
+      kRayColor });
+  }
+  const int textBand = drawDiagramText(panel, box, lines);
+
+  // A margin of 3 % each side, so a receiver at the far end (the last layer's q) stays in sight.
+  const double lo = std::min(bounds.ends.front(), bounds.comparedDepth);
+  const double hi = std::max(bounds.ends.back(), bounds.comparedDepth);
+  const double margin = 0.03 * std::max(hi - lo, 1e-9);
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, lo - margin, hi + margin, 0.0, 1.0,
+    "linear depth (bars: layer j's bound at phi_j(t))", { 0.0, 0.5, 1.0 },
+    { bounds.ends.front(), 0.5 * (bounds.ends.front() + bounds.ends.back()), bounds.ends.back() });
+  for (std::size_t j = 0; j + 1 < bounds.ends.size(); ++j)
+  {
+    const glm::dvec2 a = frame.px(bounds.ends[j], 0.0);
+    const glm::dvec2 b = frame.px(bounds.ends[j + 1], 1.0);
+    const RgbColor band = int(j) == layer ? RgbColor{ 1.0, 0.93, 0.6 } : (j % 2 ? RgbColor{ 0.93, 0.93, 0.93 } : kWhite);
+    fillRect(panel, int(a.x) + 1, int(a.y) + 1, std::max(1, int(b.x - a.x) - 1), int(b.y - a.y) - 1, band);
+    drawLine(panel, { a.x, a.y }, { a.x, b.y }, kDarkGrey, 1.0);
+    const std::optional<double> bound = int(j) == layer && !bounds.layerPMax[j] ? bounds.ownPMax : bounds.layerPMax[j];
+    if (bound)
+    {
+      // The bar in the middle third of the layer's band.
+      const double barLeft = a.x + (b.x - a.x) / 3.0;
+      const double barWidth = std::max(2.0, (b.x - a.x) / 3.0);
+      const double top = frame.px(bounds.ends[j], std::clamp(*bound, 0.0, 1.0)).y;
+      fillRect(panel, int(barLeft), int(a.y), int(barWidth), std::max(1, int(top - a.y)), kPenumbraColor);
+    }
+    // The layer's index in its band's left third, beside the bar, where the band is wide enough.
+    const std::string label = format(j);
+    if (b.x - a.x >= 3.0 * (textWidth(label, kBodyFontPx) + 6))
+    {
+      putText(panel, label, kBodyFontPx, int(a.x) + 4, int(b.y) - kKeyLinePx, int(j) == layer ? kBlack : kDarkGrey);
+    }
+  }
+  drawLine(panel, frame.px(bounds.ends.back(), 0.0), frame.px(bounds.ends.back(), 1.0), kDarkGrey, 1.0);
+  const glm::dvec2 at = frame.px(bounds.comparedDepth, 0.0);
+  drawLine(panel, at, frame.px(bounds.comparedDepth, 1.0), kBlack, 4.0);
+  drawLine(panel, at, frame.px(bounds.comparedDepth, 1.0), kProbeMarkerColor, 2.0);
+  return panel;
+}
+
+// The Hamburger 4MSM of msm and of msmsoft's filter step (Peters & Klein 2015, Alg. 3): the biased moments b' are
+// matched by a distribution on three depths, z_f (the receiver's) and the roots z_2 <= z_3 of the quadratic, with
+// weights w_f, w_2, w_3; the shadow intensity is the weight of the support points in front of z_f (clamped to [0, 1]).
+struct MomentDistribution
+{
+  std::vector<double> moments;       // b_1 .. b_4
+  std::vector<double> biasedMoments; // b'_1 .. b'_4
+  double fragmentDepth = 0.0;        // z_f
+  double supportNear = 0.0;          // z_2
+  double supportFar = 0.0;           // z_3
+  std::vector<double> weights;       // w_f, w_2, w_3
+  std::optional<double> recordedIntensity;
+  double intensity() const
+  {
+    double inFront = 0.0;
+    inFront += supportNear < fragmentDepth ? weights[1] : 0.0;
+    inFront += supportFar < fragmentDepth ? weights[2] : 0.0;
+    return std::clamp(inFront, 0.0, 1.0);
+  }
+};
+
+std::optional<MomentDistribution> momentDistributionOf(const ProbeRecord& record)
+{
+  const ProbeQuantity* weights = record.find("support_weights");
+  const std::optional<double> zf = recordedScalar(record, "fragment_depth");
+  const std::optional<double> z2 = recordedScalar(record, "support_depth_near");
+  const std::optional<double> z3 = recordedScalar(record, "support_depth_far");
+  if (weights == nullptr || weights->value.size() != 3 || !zf || !z2 || !z3)
+  {
+    return std::nullopt;
+  }
+  MomentDistribution distribution;
+  distribution.fragmentDepth = *zf;
+  distribution.supportNear = *z2;
+  distribution.supportFar = *z3;
+  distribution.weights = weights->value;
+  distribution.recordedIntensity = recordedScalar(record, "shadow_intensity");
+  const auto fourMoments = [&](const char* first3, const char* fourth) {
+    std::vector<double> values;
+    if (const ProbeQuantity* three = record.find(first3); three != nullptr && three->value.size() == 3)
+    {
+      values = three->value;
+      if (const std::optional<double> last = recordedScalar(record, fourth))
+      {
+        values.push_back(*last);
+      }
+    }
+    return values;
+  };
+  // msm's moments over its box; msmsoft's over the penumbra kernel, whose reconstruction the support is.
+  distribution.moments = fourMoments("power_moments", "power_moment_4");
+  if (distribution.moments.empty())
+  {
+    distribution.moments = fourMoments("filter_moments", "filter_moment_4");
+  }
+  distribution.biasedMoments = fourMoments("biased_moments", "biased_moment_4");
+  return distribution;
+}
+
+ImageU8 momentBoundPanel(const MomentDistribution& distribution, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "MSM Alg. 3: three-point distribution");
+  const Box box = contentBox(rect);
+  const auto momentText = [](const std::vector<double>& values) {
+    std::string text;
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      text += (i ? ", " : "") + numberText(values[i], 5);
+    }
+    return "(" + text + ")";
+  };
+  const double intensity = distribution.intensity();
+  logDrawnValue("shadow_intensity", intensity);
+  std::vector<std::pair<std::string, RgbColor>> lines;
+  if (distribution.moments.size() == 4)
+  {
+    lines.push_back({ "moments b = E[z, z^2, z^3, z^4] " + momentText(distribution.moments), kBlack });
+  }
+  if (distribution.biasedMoments.size() == 4)
+  {
+    lines.push_back({ "biased b' " + momentText(distribution.biasedMoments), kBlack });
+  }
+  lines.push_back({ "stems as tall as the weights; black: in front of the receiver z_f (magenta), grey: behind", kDarkGrey });
+  lines.push_back({ "support z_f " + numberText(distribution.fragmentDepth, 5) + " (the receiver), z_2 " +
+      numberText(distribution.supportNear, 5) + ", z_3 " + numberText(distribution.supportFar, 5) + "; weights " +
+      momentText(distribution.weights),
+    kBlack });
+  lines.push_back({ "shadow intensity = weight in front of z_f = " + numberText(intensity) +
+      (distribution.recordedIntensity ? " (recorded " + numberText(*distribution.recordedIntensity) + ")" : ""),
+    kRayColor });
+  const int textBand = drawDiagramText(panel, box, lines);
+
+  const double xLo = std::min({ 0.0, distribution.supportNear, distribution.fragmentDepth });
+  const double xHi = std::max({ 1.0, distribution.supportFar, distribution.fragmentDepth });
+  const double xMin = xLo - 0.03 * (xHi - xLo);
+  const double xMax = xHi + 0.03 * (xHi - xLo);
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, xMin, xMax, 0.0, 1.0,
+    "moment depth z (stems: weights)", { 0.0, 0.5, 1.0 }, { 0.0, 0.5, 1.0 });
+  const struct
+  {
+    double depth;
+    double weight;
+    const char* name;
+  } points[] = { { distribution.supportNear, distribution.weights[1], "z_2" },
+    { distribution.supportFar, distribution.weights[2], "z_3" },
+    { distribution.fragmentDepth, distribution.weights[0], "z_f" } };
+  for (const auto& point : points)
+  {
+    const bool isReceiver = std::string(point.name) == "z_f";
+    const bool inFront = !isReceiver && point.depth < distribution.fragmentDepth;
+    const RgbColor color = isReceiver ? kProbeMarkerColor : inFront ? kCasterColor : kLightGrey;
+    const glm::dvec2 foot = frame.px(point.depth, 0.0);
+    const glm::dvec2 head = frame.px(point.depth, std::clamp(point.weight, 0.0, 1.0));
+    if (isReceiver)
+    {
+      drawDashedLine(panel, foot, frame.px(point.depth, 1.0), kProbeMarkerColor, 2.0, 5.0);
+    }
+    drawLine(panel, foot, head, color, 4.0);
+    fillDisk(panel, head, 6.0, kBlack);
+    fillDisk(panel, head, 4.0, color);
+    // Labels above their disks (clear of the axis' labels): the support points' right of their stems, the
+    // receiver's left, so z_f beside a support point of similar weight keeps both; each flips where it would
+    // leave the plot.
+    const int labelWidth = textWidth(point.name, kBodyFontPx);
+    const bool roomRight = head.x + 8 + labelWidth <= frame.plot.left + frame.plot.width;
+    const bool roomLeft = head.x - 8 - labelWidth >= box.left;
+    const bool labelLeft = isReceiver ? roomLeft : !roomRight;
+    putText(panel, point.name, kBodyFontPx, labelLeft ? int(head.x) - 8 - labelWidth : int(head.x) + 8,
+      int(head.y) + 4, kBlack);
+  }
+  return panel;
+}
+
+// convsm (Annen et al. 2007): the test H(z - d) as its Fourier series truncated to M terms, filtered over the kernel:
+// f(d) = 1/2 + 2 sum_k sigma_k / c_k E[sin(c_k (z - d))], recorded at nine depths d' around the receiver's d_s; and,
+// for comparison, the same M terms for one occluder at d_s, whose overshoot is the truncation's ringing.
+struct FourierSeries
+{
+  std::vector<glm::dvec2> filtered;   // (d', f(d')), in order
+  std::vector<double> frequencies;    // c_k
+  std::vector<double> dampings;       // sigma_k
+  int terms = 0;                      // M
+  double seriesDepth = 0.0;           // d_s
+  std::optional<double> recordedReconstruction;
+  std::optional<double> scale;
+  std::optional<double> visibility;
+  double stepAt(double depth) const
+  {
+    double sum = 0.5;
+    for (std::size_t k = 0; k < frequencies.size(); ++k)
+    {
+      sum += 2.0 * dampings[k] / frequencies[k] * std::sin(frequencies[k] * (seriesDepth - depth));
+    }
+    return sum;
+  }
+};
+
+std::optional<FourierSeries> fourierSeriesOf(const ProbeRecord& record)
+{
+  FourierSeries series;
+  for (int j = 0;; ++j)
+  {
+    const ProbeQuantity* sample = record.find(format("reconstructed_step_", j));
+    if (sample == nullptr || sample->value.size() != 2)
+    {
+      break;
+    }
+    series.filtered.push_back({ sample->value[0], sample->value[1] });
+  }
+  const std::optional<double> terms = recordedScalar(record, "terms");
+  const std::optional<double> ds = recordedScalar(record, "d_series");
+  if (series.filtered.size() < 2 || !terms || !ds)
+  {
+    return std::nullopt;
+  }
+  for (int k = 1; k <= int(*terms); ++k)
+  {
+    const std::optional<double> c = recordedScalar(record, format("c_", k));
+    const std::optional<double> sigma = recordedScalar(record, format("sigma_", k));
+    if (!c || !sigma)
+    {
+      break;
+    }
+    series.frequencies.push_back(*c);
+    series.dampings.push_back(*sigma);
+  }
+  series.terms = int(*terms);
+  if (int(series.frequencies.size()) != series.terms)
+  {
+    // Without every c_k and sigma_k the step's series is not the one the technique took: no grey curve.
+    series.frequencies.clear();
+    series.dampings.clear();
+  }
+  series.seriesDepth = *ds;
+  series.recordedReconstruction = recordedScalar(record, "reconstruction");
+  series.scale = recordedScalar(record, "reconstruction_scale");
+  series.visibility = recordedScalar(record, "visibility");
+  return series;
+}
+
+ImageU8 fourierPanel(const FourierSeries& series, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + format("CSM: the step's Fourier series, M = ", series.terms));
+  const Box box = contentBox(rect);
+  // The recorded sample at d_s itself (d' = d_s + 0 / 2M): the receiver's reconstruction.
+  std::optional<double> atReceiver;
+  double overshoot = 0.0;
+  double dMin = series.filtered.front().x;
+  double dMax = series.filtered.front().x;
+  for (const glm::dvec2& sample : series.filtered)
+  {
+    if (std::abs(sample.x - series.seriesDepth) < 1e-12 && !atReceiver)
+    {
+      atReceiver = sample.y;
+    }
+    overshoot = std::max({ overshoot, sample.y - 1.0, -sample.y });
+    dMin = std::min(dMin, sample.x);
+    dMax = std::max(dMax, sample.x);
+  }
+  if (atReceiver)
+  {
+    logDrawnValue("reconstruction", *atReceiver);
+  }
+  logDrawnValue("overshoot", overshoot);
+  double stepOvershoot = 0.0;
+  std::vector<glm::dvec2> stepCurve;
+  if (!series.frequencies.empty())
+  {
+    for (int i = 0; i <= 300; ++i)
+    {
+      const double depth = dMin + (dMax - dMin) * i / 300.0;
+      const double value = series.stepAt(depth);
+      stepCurve.push_back({ depth, value });
+      stepOvershoot = std::max({ stepOvershoot, value - 1.0, -value });
+    }
+  }
+  logDrawnValue("step_overshoot", stepOvershoot);
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { "d_s " + numberText(series.seriesDepth, 5) + " (the receiver's depth in the series); blue: f(d') filtered over the kernel at " +
+        format(series.filtered.size()) + " recorded d'",
+      kBlack },
+    { "grey: the M-term series of one occluder at d_s, overshoot " + numberText(stepOvershoot, 3) +
+        " (ringing); filtered overshoot " + numberText(overshoot, 3),
+      kDarkGrey },
+    { "f(d_s) = " + (atReceiver ? numberText(*atReceiver) : std::string("n/a")) +
+        (series.recordedReconstruction ? " (recorded " + numberText(*series.recordedReconstruction) + ")" : "") +
+        (series.scale && series.visibility
+            ? "; visibility = clamp(" + numberText(*series.scale, 3) + " f, 0, 1) = " + numberText(*series.visibility)
+            : std::string()),
+      kRayColor },
+  };
+  const int textBand = drawDiagramText(panel, box, lines);
+  double yMin = -0.2;
+  double yMax = 1.2;
+  for (const glm::dvec2& point : series.filtered)
+  {
+    yMin = std::min(yMin, point.y);
+    yMax = std::max(yMax, point.y);
+  }
+  for (const glm::dvec2& point : stepCurve)
+  {
+    yMin = std::min(yMin, point.y);
+    yMax = std::max(yMax, point.y);
+  }
+  // A margin of 3 % each side: the recorded depths stop at the series' domain end, where a receiver may sit.
+  const double dMargin = 0.03 * std::max(dMax - dMin, 1e-9);
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, dMin - dMargin, dMax + dMargin, yMin, yMax,
+    "d', compared depth in the series (s d_n)", { 0.0, 0.5, 1.0 });
+  for (const double level : { 0.0, 1.0 })
+  {
+    drawDashedLine(panel, frame.px(dMin, level), frame.px(dMax, level), kLightGrey, 1.0, 4.0);
+  }
+  for (std::size_t i = 1; i < stepCurve.size(); ++i)
+  {
+    drawLine(panel, frame.px(stepCurve[i - 1].x, stepCurve[i - 1].y), frame.px(stepCurve[i].x, stepCurve[i].y), kLightGrey, 2.0);
+  }
+  for (std::size_t i = 1; i < series.filtered.size(); ++i)
+  {
+    drawLine(panel, frame.px(series.filtered[i - 1].x, series.filtered[i - 1].y),
+      frame.px(series.filtered[i].x, series.filtered[i].y), kPenumbraColor, 2.0);
+  }
+  for (const glm::dvec2& sample : series.filtered)
+  {
+    const bool outside = sample.y < 0.0 || sample.y > 1.0;
+    fillDisk(panel, frame.px(sample.x, sample.y), 4.0, outside ? kRayColor : kPenumbraColor);
+  }
+  drawDashedLine(panel, frame.px(series.seriesDepth, yMin), frame.px(series.seriesDepth, yMax), kProbeMarkerColor, 2.0, 5.0);
+  if (atReceiver)
+  {
+    drawMarker(panel, frame.px(series.seriesDepth, *atReceiver), 3.0);
+  }
+  return panel;
+}
+
+// ss08's level of quality (Schwarz & Stamminger 2008, §4.2): the smoothed LOQ l at the pixel picks the levels
+// floor(l) and ceil(l) of the micro-occluder hierarchy, weighted 1 - a and a (a from l's fractional part through the
+// blend band); each level's back-projection gives V(level), and V = (1 - a) V(floor l) + a V(ceil l).
+struct LevelBlend
+{
+  double loq = 0.0;
+  std::optional<double> blendBand;
+  std::vector<std::pair<int, double>> levels;  // level, its weight (floor first)
+  std::vector<double> levelVisibility;         // V(level), same order
+  std::optional<double> recordedVisibility;
+  double visibility() const
+  {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < levels.size(); ++k)
+    {
+      sum += levels[k].second * levelVisibility[k];
+    }
+    return sum;
+  }
+};
+
+std::optional<LevelBlend> levelBlendOf(const ProbeRecord& record)
+{
+  const std::optional<double> loq = recordedScalar(record, "loq");
+  const std::optional<double> weightFloor = recordedScalar(record, "weight_floor");
+  const std::optional<double> weightCeil = recordedScalar(record, "weight_ceil");
+  if (!loq || !weightFloor || !weightCeil)
+  {
+    return std::nullopt;
+  }
+  LevelBlend blend;
+  blend.loq = *loq;
+  blend.blendBand = recordedScalar(record, "blend_band");
+  blend.recordedVisibility = recordedScalar(record, "visibility");
+  // Each level's V sits in its group "level <k> (floor)" or "level <k> (ceil)", in that order.
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    int level = 0;
+    char role[8] = {};
+    if (quantity.name != "level_visibility" || quantity.value.empty() ||
+      std::sscanf(quantity.group.c_str(), "level %d (%7[a-z])", &level, role) != 2)
+    {
+      continue;
+    }
+    const bool isFloor = std::string(role) == "floor";
+    blend.levels.push_back({ level, isFloor ? *weightFloor : *weightCeil });
+    blend.levelVisibility.push_back(quantity.value[0]);
+  }
+  if (blend.levels.empty())
+  {
+    return std::nullopt;
+  }
+  return blend;
+}
+
+ImageU8 levelBlendPanel(const LevelBlend& blend, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "SS08 §4.2: level of quality and the levels blended");
+  const Box box = contentBox(rect);
+  const double visibility = blend.visibility();
+  logDrawnValue("visibility", visibility);
+  logDrawnValue("loq", blend.loq);
+  std::string levelsText;
+  std::string sumText;
+  for (std::size_t k = 0; k < blend.levels.size(); ++k)
+  {
+    levelsText += format(k ? ", " : "", "level ", blend.levels[k].first, " weight ", numberText(blend.levels[k].second),
+      " V ", numberText(blend.levelVisibility[k]));
+    sumText += (k ? " + " : "") + numberText(blend.levels[k].second) + " x " + numberText(blend.levelVisibility[k]);
+  }
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { "LOQ l = " + numberText(blend.loq) + " levels (the smoothed LOQ map at the pixel)" +
+        (blend.blendBand ? ", blend band " + numberText(*blend.blendBand) : std::string()),
+      kBlack },
+    { levelsText + " (bars: weights, dots: each level's V)", kBlack },
+    { "V = " + sumText + " = " + numberText(visibility) +
+        (blend.recordedVisibility ? " (recorded " + numberText(*blend.recordedVisibility) + ")" : ""),
+      kRayColor },
+  };
+  const int textBand = drawDiagramText(panel, box, lines);
+  int maxLevel = int(std::ceil(blend.loq));
+  for (const auto& level : blend.levels)
+  {
+    maxLevel = std::max(maxLevel, level.first);
+  }
+  maxLevel = std::max(maxLevel + 1, 2);
+  std::vector<double> levelTicks;
+  for (int level = 0; level <= maxLevel; level += std::max(1, maxLevel / 4))
+  {
+    levelTicks.push_back(level);
+  }
+  const PlotFrame frame = drawPlotFrame(panel, box, textBand, -0.5, maxLevel + 0.5, 0.0, 1.0,
+    "level of the micro-occluder hierarchy", { 0.0, 0.5, 1.0 }, levelTicks);
+  for (std::size_t k = 0; k < blend.levels.size(); ++k)
+  {
+    const double level = blend.levels[k].first;
+    const glm::dvec2 foot = frame.px(level - 0.3, 0.0);
+    const glm::dvec2 top = frame.px(level + 0.3, std::clamp(blend.levels[k].second, 0.0, 1.0));
+    fillRect(panel, int(foot.x), int(foot.y), std::max(1, int(top.x - foot.x)), std::max(1, int(top.y - foot.y)), kLightGrey);
+    const glm::dvec2 dot = frame.px(level, std::clamp(blend.levelVisibility[k], 0.0, 1.0));
+    fillDisk(panel, dot, 6.0, kBlack);
+    fillDisk(panel, dot, 4.0, kPenumbraColor);
+  }
+  drawDashedLine(panel, frame.px(blend.loq, 0.0), frame.px(blend.loq, 1.0), kProbeMarkerColor, 2.0, 5.0);
+  const glm::dvec2 at = frame.px(blend.loq, std::clamp(visibility, 0.0, 1.0));
+  drawMarker(panel, at, 3.0);
+  return panel;
+}
+
+// izb (Johnson et al. 2005; Aila & Laine 2004): the receiver's sample lands in one texel of the light-space grid
+// (a cube face for a point light), whose list holds the samples there; every caster triangle whose conservative
+// cover holds that texel is tested against the sample, and the sample is lit unless one covers it. The record holds
+// the texel and the counts, not the triangles' shapes: the diagram draws the texel around the sample and lists them.
+struct IrregularTexel
+{
+  int face = 0;
+  glm::dvec2 position{ 0.0 };    // in the face, texels
+  double triangleTests = 0.0;
+  std::optional<double> gpuTriangleTests;
+  std::optional<double> gpuListLength;
+  std::vector<std::string> covering;       // "triangle_12", ...: cover the sample
+  std::vector<std::string> withinRounding; // "triangle_7 (within rounding)", ...
+  bool sharedEdgePair = false;
+  std::optional<double> recordedVisibility;
+  double visibility() const { return covering.empty() && !sharedEdgePair ? 1.0 : 0.0; }
+};
+
+std::optional<IrregularTexel> irregularTexelOf(const ProbeRecord& record)
+{
+  const std::optional<double> face = recordedScalar(record, "face");
+  const ProbeQuantity* texel = record.find("texel");
+  const std::optional<double> tests = recordedScalar(record, "izb_triangle_tests");
+  if (!face || texel == nullptr || texel->value.size() != 2 || !tests)
+  {
+    return std::nullopt;
+  }
+  IrregularTexel result;
+  result.face = int(*face);
+  result.position = { texel->value[0], texel->value[1] };
+  result.triangleTests = *tests;
+  result.gpuTriangleTests = recordedScalar(record, "gpu_izb_triangle_tests");
+  result.gpuListLength = recordedScalar(record, "gpu_izb_list_length");
+  for (const ProbeQuantity& quantity : record.quantities)
+  {
+    // "triangle_<i> (covers)" shadows the sample; "(within rounding)" only makes the pixel ambiguous.
+    const std::string covers = " (covers)";
+    const bool isTriangle = quantity.name.rfind("triangle_", 0) == 0;
+    if (isTriangle && quantity.name.size() > covers.size() &&
+      quantity.name.compare(quantity.name.size() - covers.size(), covers.size(), covers) == 0)
+    {
+      result.covering.push_back(quantity.name.substr(0, quantity.name.size() - covers.size()));
+    }
+    else if (isTriangle)
+    {
+      result.withinRounding.push_back(quantity.name);
+    }
+  }
+  result.sharedEdgePair = record.find("shared_edge_pair") != nullptr;
+  result.recordedVisibility = recordedScalar(record, "visibility");
+  return result;
+}
+
+ImageU8 irregularTexelPanel(const IrregularTexel& texel, const FigureRect& rect, char letter)
+{
+  ImageU8 panel = newPanel(rect, panelTag(letter) + "IZB: the sample's light-space texel");
+  const Box box = contentBox(rect);
+  const double visibility = texel.visibility();
+  logDrawnValue("visibility", visibility);
+  logDrawnValue("covering_triangles", double(texel.covering.size()));
+  const glm::ivec2 cell(int(std::floor(texel.position.x)), int(std::floor(texel.position.y)));
+  std::string coveringText;
+  for (std::size_t i = 0; i < texel.covering.size(); ++i)
+  {
+    coveringText += (i ? ", " : "") + texel.covering[i];
+  }
+  std::vector<std::pair<std::string, RgbColor>> lines = {
+    { format("face ", texel.face, ", texel (", cell.x, ", ", cell.y, "), sample at (", numberText(texel.position.x, 6),
+        ", ", numberText(texel.position.y, 6), ") texels"),
+      kBlack },
+    { "its list: " + (texel.gpuListLength ? numberText(*texel.gpuListLength) : std::string("?")) +
+        " samples (GPU); triangles whose cover holds it: " + numberText(texel.triangleTests) +
+        (texel.gpuTriangleTests ? " (GPU " + numberText(*texel.gpuTriangleTests) + ")" : ""),
+      kBlack },
+    { texel.covering.empty() ? std::string("no tested triangle covers the sample")
+                             : "covering the sample, between it and the light: " + coveringText,
+      texel.covering.empty() ? kDarkGrey : kBlack },
+  };
+  if (!texel.withinRounding.empty())
+  {
+    std::string text;
+    for (std::size_t i = 0; i < texel.withinRounding.size(); ++i)
+    {
+      text += (i ? ", " : "") + texel.withinRounding[i];
+    }
+    lines.push_back({ "within float rounding of the sample (ambiguous, not covering): " + text, kDarkGrey });
+  }
+  if (texel.sharedEdgePair)
+  {
+    lines.push_back({ "two triangles sharing the edge the sample lies on (README.md, Shared edges)", kBlack });
+  }
+  lines.push_back({ "V = " + numberText(visibility) + (texel.covering.empty() && !texel.sharedEdgePair ? " (lit)" : " (covered)") +
+      (texel.recordedVisibility ? " (recorded " + numberText(*texel.recordedVisibility) + ")" : ""),
+    kRayColor });
+  const int textBand = drawDiagramText(panel, box, lines);
+
+  // The texel and its eight neighbours, the sample's texel filled (dark where covered), the sample marked.
+  const Box gridBox{ box.left, box.bottom + textBand + 4.0, box.width, box.height - textBand - 8.0 };
+  const View2D view = fitView(glm::dvec2(cell) - 1.0, glm::dvec2(cell) + 2.0, gridBox, 0.02);
+  const int side = std::max(1, int(std::floor(view.scale)));
+  for (int dy = -1; dy <= 1; ++dy)
+  {
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      const glm::dvec2 corner = view.toPx(glm::dvec2(cell + glm::ivec2(dx, dy)));
+      const bool own = dx == 0 && dy == 0;
+      const RgbColor fill = !own ? kWhite : visibility < 1.0 ? kCasterColor : RgbColor{ 1.0, 0.93, 0.6 };
+      fillRect(panel, int(corner.x), int(corner.y), side, side, fill);
+      strokeRect(panel, int(corner.x), int(corner.y), side, side, own ? kBlack : kLightGrey, own ? 2 : 1);
+    }
+  }
+  drawMarker(panel, view.toPx(texel.position), 4.0);
+  return panel;
+}
+
 } // namespace
 
 std::string probeQuantityText(const ProbeQuantity& quantity)
@@ -1808,6 +2664,18 @@ int ProbeFigureLayout::pages(ProbePanel panel) const
     std::count_if(panels.begin(), panels.end(), [&](const ProbeFigurePanel& placed) { return placed.panel == panel; }));
 }
 
+std::optional<double> ProbeFigureDrawing::drawnValue(ProbePanel panel, const std::string& name) const
+{
+  for (const ProbeDrawnValue& drawn : drawnValues)
+  {
+    if (drawn.panel == panel && drawn.name == name)
+    {
+      return drawn.value;
+    }
+  }
+  return std::nullopt;
+}
+
 ImagePlacement probeImagePlacement(const FigureRect& rect, glm::ivec2 imageSize)
 {
   const Box box = contentBox(rect);
@@ -1831,6 +2699,12 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   const std::optional<PenumbraEstimate> penumbra = penumbraEstimateOf(record, setting);
   const std::optional<ChebyshevPoint> chebyshev = chebyshevPointOf(record);
   const std::optional<ExponentialTest> exponential = exponentialTestOf(record);
+  const std::optional<ComparisonGrid> comparisons = comparisonGridOf(record, setting);
+  const std::optional<LayerBounds> layers = layerBoundsOf(record);
+  const std::optional<MomentDistribution> momentBound = momentDistributionOf(record);
+  const std::optional<FourierSeries> fourier = fourierSeriesOf(record);
+  const std::optional<LevelBlend> levelBlend = levelBlendOf(record);
+  const std::optional<IrregularTexel> irregularTexel = irregularTexelOf(record);
 
   // Only panels with content: no map, nothing on the light, no algorithm quantities leave theirs out.
   std::vector<std::pair<ProbeFigurePanel, int>> wanted;
@@ -1857,6 +2731,30 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   {
     want(ProbePanel::Exponential, 1);
   }
+  if (comparisons)
+  {
+    want(ProbePanel::Comparisons, 1);
+  }
+  if (layers)
+  {
+    want(ProbePanel::Layers, 1);
+  }
+  if (momentBound)
+  {
+    want(ProbePanel::MomentBound, 1);
+  }
+  if (fourier)
+  {
+    want(ProbePanel::Fourier, 1);
+  }
+  if (levelBlend)
+  {
+    want(ProbePanel::LevelBlend, 1);
+  }
+  if (irregularTexel)
+  {
+    want(ProbePanel::IrregularTexel, 1);
+  }
   for (int page = 0; page < pages.pageCount(); ++page)
   {
     want(ProbePanel::Legend, 1, page);
@@ -1867,9 +2765,14 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
   drawing.legendLines = pages.lines;
   drawing.image = ImageU8(drawing.layout.width, drawing.layout.height, 3, 255);
   tFigureTextLog.texts = &drawing.texts;
+  tFigureTextLog.drawn = &drawing.drawnValues;
   struct ResetLog
   {
-    ~ResetLog() { tFigureTextLog.texts = nullptr; }
+    ~ResetLog()
+    {
+      tFigureTextLog.texts = nullptr;
+      tFigureTextLog.drawn = nullptr;
+    }
   } resetLog;
   for (const ProbeFigurePanel& placed : drawing.layout.panels)
   {
@@ -1897,6 +2800,24 @@ ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& 
         break;
       case ProbePanel::Exponential:
         panel = exponentialPanel(*exponential, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Comparisons:
+        panel = comparisonsPanel(*comparisons, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Layers:
+        panel = layersPanel(*layers, placed.rect, placed.letter);
+        break;
+      case ProbePanel::MomentBound:
+        panel = momentBoundPanel(*momentBound, placed.rect, placed.letter);
+        break;
+      case ProbePanel::Fourier:
+        panel = fourierPanel(*fourier, placed.rect, placed.letter);
+        break;
+      case ProbePanel::LevelBlend:
+        panel = levelBlendPanel(*levelBlend, placed.rect, placed.letter);
+        break;
+      case ProbePanel::IrregularTexel:
+        panel = irregularTexelPanel(*irregularTexel, placed.rect, placed.letter);
         break;
       case ProbePanel::Legend:
         panel = legendPanel(pages, placed.page, placed.rect, placed.letter);

@@ -9,8 +9,13 @@
 //   |     centre and the receiver          |     estimate     |   (blocker search, average blocker depth,
 //   +-------------------------------------+------------------+   penumbra width) and the Chebyshev bound of the
 //   | (f) Chebyshev    | (g) key numbers  | (h) key numbers  |   moment techniques (mean, variance, t, p_max),
-//   |     bound        |     page 1       |     page 2       |   where the record has their quantities; then as
-//   +------------------+------------------+------------------+   many key-number pages as the record needs.
+//   |     bound        |     page 1       |     page 2       |   ESM's exponential, the depth comparisons of
+//   +------------------+------------------+------------------+   hard and pcf, lvsm's layers, msm's three-point
+//                                                                 distribution, convsm's Fourier series, ss08's
+//                                                                 level of quality and levels blended, izb's
+//                                                                 light-space texel, where the
+//                                                                 record has their quantities; then as many
+//                                                                 key-number pages as the record needs.
 //
 // Panels are lettered in the order they are laid out. Each has a title band on top and its content inset below
 // it. Tests and the viewer read the geometry from here instead of repeating it.
@@ -44,6 +49,12 @@ enum class ProbePanel
   Penumbra,   // PCSS's similar triangles: light, search plane, average blocker depth, receiver, penumbra width
   Chebyshev,  // the one-tailed Chebyshev bound p_max(t) over t - mean, with the pixel's point
   Exponential, // ESM's exp(-c t) E[exp(c z)] over the normalized compared depth t, with the pixel's point
+  Comparisons, // pcf, hard: the texels compared around the lookup, each lit or shadowed, with its stored depth
+  Layers,      // lvsm: the layers along depth, the receiver's layer and each layer's Chebyshev bound
+  MomentBound, // msm: the Hamburger 4MSM three-point distribution (support z_f, z_2, z_3 and weights) at the receiver
+  Fourier,     // convsm: the filtered step's truncated Fourier series around the receiver's depth, its ringing
+  LevelBlend,  // ss08: the level of quality, the two levels blended with their weights and each level's visibility
+  IrregularTexel, // izb: the sample's light-space texel, its list's length, the triangles tested and covering
   Legend      // technique, pixel, GPU and twin visibility, tolerance, every recorded quantity (one or more pages)
 };
 
@@ -95,6 +106,15 @@ struct ProbeFigureText
   bool inside = true;
 };
 
+// A number a diagram computed from the record and drew (the layer the receiver's depth falls in, the lit fraction
+// of the compared texels): the tests hold it against the recorded quantity or the GPU's buffer.
+struct ProbeDrawnValue
+{
+  ProbePanel panel = ProbePanel::Image;
+  std::string name;
+  double value = 0.0;
+};
+
 // The figure and what went into it.
 struct ProbeFigureDrawing
 {
@@ -103,6 +123,9 @@ struct ProbeFigureDrawing
   std::vector<ProbeFigureText> texts;         // every text drawn, in order
   std::vector<std::string> legendLines;       // the key numbers' lines before wrapping, each drawn in full
   std::vector<std::vector<std::string>> colorBarTicks; // each colour bar's tick labels, bottom to top
+  std::vector<ProbeDrawnValue> drawnValues;   // what the algorithm diagrams computed and drew
+  // The first drawn value called `name` on `panel`, none when not drawn.
+  std::optional<double> drawnValue(ProbePanel panel, const std::string& name) const;
 };
 ProbeFigureDrawing drawProbeFigure(const ProbeResult& probe, const FrameResult& frame, const Scene& scene);
 

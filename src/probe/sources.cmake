@@ -1,6 +1,5 @@
 # What a technique's probe recorded, presented (src/probe/Probe.h): probe.json, probe.vtm, probe.png.
 set(SL_PROBE_SOURCES
-  src/probe/NumberText.cpp
   src/probe/Probe.cpp
   src/probe/ProbeDataSet.cxx
   src/probe/ProbeFigure.cxx

@@ -6,6 +6,7 @@
 #include "lightspace/LightView.h"
 #include "lightspace/ShadowMapMath.h"
 #include "probe/Probe.h"
+#include "probe/ProbeFigure.h"
 #include "probe/ProbeGeometry.h"
 #include "support/TestSupport.h"
 #include "techniques/Registry.h"
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <set>
 
 namespace sl
 {
@@ -223,6 +225,131 @@ TEST_P(ProbeAgreement, TwinVisibilityEqualsTheGpuBufferOnLitPenumbraAndUmbraPixe
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryTechnique, ProbeAgreement, testing::ValuesIn(probeCases()), test::datasetTechniqueName);
+
+// Issue 31: the algorithm diagrams of hard, pcf, lvsm, msm, convsm, ss08 and izb draw numbers they compute from the record; on
+// a rendered frame these are what the GPU computed at the pixel: lvsm's layer (found from the recorded layer ends)
+// and warp equal its `layer` and `warped_depth` buffers; the lit share of hard's and pcf's compared texels, msm's
+// 1 - weight in front of the receiver, convsm's clamp(scale f(d_s)) and ss08's blend of its two levels'
+// visibilities (§4.2) and izb's "lit unless a tested triangle covers the sample" equal the GPU's visibility within the
+// technique's probe tolerance. Explicit map size: the default is changing to `auto`.
+TEST(Probe, AlgorithmDiagramsDrawWhatTheGpuComputed)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const struct
+  {
+    const char* technique;
+    ProbePanel panel;
+  } cases[] = { { "hard", ProbePanel::Comparisons }, { "pcf", ProbePanel::Comparisons }, { "lvsm", ProbePanel::Layers },
+    { "msm", ProbePanel::MomentBound }, { "convsm", ProbePanel::Fourier }, { "ss08", ProbePanel::LevelBlend },
+    { "izb", ProbePanel::IrregularTexel } };
+  for (const auto& testCase : cases)
+  {
+    // izb has no shadow map: its grid's size instead.
+    const bool isIzb = std::string(testCase.technique) == "izb";
+    const FrameResult frame =
+      test::renderDataset(scene, testCase.technique, 96, 96, { isIzb ? "grid_size=256" : "shadow_map_size=256" });
+    int checked = 0;
+    for (const PixelKind kind : { PixelKind::Penumbra, PixelKind::Umbra, PixelKind::Lit })
+    {
+      const std::vector<glm::ivec2> candidates = pixelsOfKind(frame, scene.lights.front(), kind);
+      for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), 3); ++i)
+      {
+        const ProbeResult probe = probePixel(frame, scene, 0, candidates[(2 * i + 1) * candidates.size() / 6]);
+        if (!probe.outcome.evaluated || !probe.outcome.ambiguity.empty())
+        {
+          continue;
+        }
+        const std::string label = format(testCase.technique, " ", kindName(kind), " pixel ", probe.pixel.x, ",", probe.pixel.y);
+        const ProbeFigureDrawing drawing = drawProbeFigure(probe, frame, scene);
+        if (std::string(testCase.technique) == "ss08" && !drawing.layout.rect(testCase.panel).has_value())
+        {
+          // A pixel decided before any back-projection (lit or umbra by its depth range) blends no levels.
+          EXPECT_EQ(probe.record.find("level_visibility"), nullptr) << label;
+          continue;
+        }
+        ASSERT_TRUE(drawing.layout.rect(testCase.panel).has_value()) << label << ": no diagram";
+        const double gpu = probe.gpuVisibility;
+        const double tolerance = probe.outcome.tolerance;
+        const std::string technique = testCase.technique;
+        if (technique == "lvsm")
+        {
+          const std::optional<double> layer = drawing.drawnValue(ProbePanel::Layers, "layer");
+          const std::optional<double> warped = drawing.drawnValue(ProbePanel::Layers, "warped_depth");
+          ASSERT_TRUE(layer && warped) << label;
+          const int x = probe.pixel.x;
+          const int y = probe.pixel.y;
+          EXPECT_EQ(*layer, frame.find("layer")->image.at(x, y)) << label;
+          EXPECT_NEAR(*warped, frame.find("warped_depth")->image.at(x, y), 1e-3) << label;
+          std::cout << "[ measured ] " << label << ": layer drawn " << *layer << ", GPU " << frame.find("layer")->image.at(x, y)
+                    << "; warped drawn " << *warped << ", GPU " << frame.find("warped_depth")->image.at(x, y) << "\n";
+        }
+        else
+        {
+          double drawnVisibility = 0.0;
+          if (technique == "msm")
+          {
+            drawnVisibility = 1.0 - drawing.drawnValue(ProbePanel::MomentBound, "shadow_intensity").value();
+          }
+          else if (technique == "ss08")
+          {
+            drawnVisibility = drawing.drawnValue(ProbePanel::LevelBlend, "visibility").value();
+          }
+          else if (technique == "izb")
+          {
+            drawnVisibility = drawing.drawnValue(ProbePanel::IrregularTexel, "visibility").value();
+          }
+          else if (technique == "convsm")
+          {
+            const double f = drawing.drawnValue(ProbePanel::Fourier, "reconstruction").value();
+            EXPECT_NEAR(f, probe.record.find("reconstruction")->value[0], 1e-12) << label;
+            drawnVisibility = std::clamp(probe.record.find("reconstruction_scale")->value[0] * f, 0.0, 1.0);
+          }
+          else
+          {
+            drawnVisibility = drawing.drawnValue(ProbePanel::Comparisons, "lit_fraction").value();
+          }
+          EXPECT_NEAR(drawnVisibility, gpu, tolerance) << label;
+          std::cout << "[ measured ] " << label << ": drawn visibility " << drawnVisibility << ", GPU " << gpu
+                    << " (tolerance " << tolerance << ")\n";
+        }
+        ++checked;
+      }
+    }
+    EXPECT_GE(checked, std::string(testCase.technique) == "ss08" ? 1 : 3)
+      << testCase.technique << ": too few unambiguous pixels with the diagram";
+    if (std::string(testCase.technique) != "lvsm")
+    {
+      continue;
+    }
+    // The ground's pixels all lie in the last layer (one depth under this light): also one pixel of every other
+    // layer the GPU wrote (the occluders' tops), found from the recorded ends as the GPU found it.
+    const ImageF& gpuLayer = frame.find("layer")->image;
+    std::set<int> layersChecked;
+    for (int y = 0; y < gpuLayer.height; ++y)
+    {
+      for (int x = 0; x < gpuLayer.width; ++x)
+      {
+        const int layer = int(std::lround(gpuLayer.at(x, y)));
+        if (layer < 0 || layersChecked.count(layer) != 0 || frame.find("coverage")->image.at(x, y) <= 0.5f)
+        {
+          continue;
+        }
+        const ProbeResult probe = probePixel(frame, scene, 0, { x, y });
+        if (!probe.outcome.evaluated || !probe.outcome.ambiguity.empty())
+        {
+          continue;
+        }
+        const std::optional<double> drawn =
+          drawProbeFigure(probe, frame, scene).drawnValue(ProbePanel::Layers, "layer");
+        ASSERT_TRUE(drawn.has_value()) << "lvsm pixel " << x << "," << y;
+        EXPECT_EQ(*drawn, double(layer)) << "lvsm pixel " << x << "," << y;
+        std::cout << "[ measured ] lvsm pixel " << x << "," << y << ": layer drawn " << *drawn << ", GPU " << layer << "\n";
+        layersChecked.insert(layer);
+      }
+    }
+    EXPECT_GE(layersChecked.size(), 2u) << "lvsm: the frame should hold receivers in two layers at least";
+  }
+}
 
 // The pixel's footprint in a warped map (survey §4.2): hard with warp=lispsm on deep-view, the nearest ground pixel
 // of the middle column and the middle one of its ground pixels (the farthest touches the horizon: its upper corners'

@@ -148,6 +148,42 @@ TEST(HeatMap, FormatsThreeSignificantDigits)
   EXPECT_EQ(formatThreeSignificant(-0.123456), "-0.123");
 }
 
+// Issue 31: VSM's key read 3.48, 3.47, 3.47, 3.47, 3.46. The heat maps' keys (and the probe figure's, which
+// draws the same ColorKey) label their five ticks with the digits that tell them apart, each the tick's value.
+TEST(ColorKey, TickLabelsAreDistinctAndReadTheirValues)
+{
+  const ColorMap viridis(ColorMapKind::Viridis);
+  const struct
+  {
+    double lo, hi;
+  } ranges[] = { { 3.4668, 3.4752 }, { 0.0, 1.0 }, { 1000.0, 1000.004 }, { -2e-6, 3e-6 }, { 12.0, 4096.0 } };
+  for (const auto& range : ranges)
+  {
+    const ColorKey key = ColorKey::continuous(viridis, range.lo, range.hi, 12);
+    const std::vector<std::string> labels = key.tickLabels();
+    ASSERT_EQ(labels.size(), 5u);
+    EXPECT_EQ(std::set<std::string>(labels.begin(), labels.end()).size(), 5u)
+      << "[" << range.lo << ", " << range.hi << "]: " << labels[0] << " " << labels[1] << " " << labels[2] << " "
+      << labels[3] << " " << labels[4];
+    const double quarter = 0.25 * (range.hi - range.lo);
+    for (int i = 0; i < 5; ++i)
+    {
+      // The label parses back to its tick's value within half the step between ticks: distinct and right.
+      EXPECT_NEAR(std::stod(labels[std::size_t(i)]), range.lo + i * quarter, 0.5 * quarter)
+        << "[" << range.lo << ", " << range.hi << "] tick " << i << " reads " << labels[std::size_t(i)];
+      // Never more digits than it takes: 15 would print 3.46680000000000.
+      EXPECT_LE(labels[std::size_t(i)].size(), 10u) << labels[std::size_t(i)];
+    }
+  }
+  EXPECT_EQ(ColorKey::continuous(viridis, 0.0, 1.0, 12).tickLabels(),
+    (std::vector<std::string>{ "0", "0.25", "0.5", "0.75", "1" }));
+  // Open ends keep their "<=" / ">=" in front of the distinct label.
+  const std::vector<std::string> open = ColorKey::continuous(viridis, 3.4668, 3.4752, 12, true, true).tickLabels();
+  EXPECT_EQ(open.front().rfind("<=3.46", 0), 0u) << open.front();
+  EXPECT_EQ(open.back().rfind(">=3.47", 0), 0u) << open.back();
+  EXPECT_TRUE(ColorKey::categorical(0, 3, { "a", "b", "c" }, 12).tickLabels().empty());
+}
+
 TEST(HeatMap, RampPixelsAreColorMapOfNormalisedValue)
 {
   const int width = 64, height = 48;

@@ -3,6 +3,7 @@
 // scales leave at most about 2 % of the pixels saturated, bit masks are drawn as bit counts, categorical titles give
 // no numeric range, and montage labels never overlap at 128 x 128 panels and list only what differs.
 #include "core/Error.h"
+#include "output/OutputWriter.h"
 #include "vis/BufferHeatMap.h"
 #include "vis/Canvas.h"
 #include "vis/HeatMap.h"
@@ -388,6 +389,56 @@ TEST(MontageLabels, WrapTextBreaksAtSpacesThenBetweenCharacters)
   const int wider = measureText("bias_constant_tex", fontPx).width;
   EXPECT_EQ(wrapText("bias_constant_texels=0.5", wider, fontPx),
     (std::vector<std::string>{ "bias_constant_", "texels=0.5" }));
+}
+
+// stats.json's min/max/mean of a buffer declared on shadow-tested pixels: over those pixels only, not the 0 the
+// shader writes where no test ran (a face turned from the light), nor the background.
+TEST(HonestStats, BufferStatisticsCoverTheBufferDomainOnly)
+{
+  const int width = 4;
+  const int height = 2;
+  NamedImage coverage{ "coverage", ImageF(width, height, 1, 1.0f), "", "" };
+  coverage.image.at(3, 1) = 0.0f; // background
+  NamedImage tested{ "shadow_tested", ImageF(width, height, 1, 1.0f), "", "" };
+  tested.image.at(0, 0) = 0.0f; // covered, turned from the light
+  tested.image.at(1, 0) = 0.0f;
+  tested.image.at(3, 1) = 0.0f;
+  NamedImage margin{ "depth_margin", ImageF(width, height, 1, 0.0f), "linear depth", "" };
+  margin.domain = BufferDomain::ShadowTested;
+  const float testedValues[] = { 0.5f, 0.75f, 2.0f, -0.25f, 1.0f };
+  const int testedPixels[][2] = { { 2, 0 }, { 3, 0 }, { 0, 1 }, { 1, 1 }, { 2, 1 } };
+  double testedSum = 0.0;
+  for (int i = 0; i < 5; ++i)
+  {
+    margin.image.at(testedPixels[i][0], testedPixels[i][1]) = testedValues[i];
+    testedSum += testedValues[i];
+  }
+  margin.image.at(3, 1) = 99.0f; // background: never counted
+  NamedImage depth{ "depth", ImageF(width, height, 1, 3.0f), "linear depth", "" };
+  depth.image.at(0, 0) = 1.0f;
+  depth.image.at(3, 1) = -50.0f; // background
+
+  const nlohmann::json summaries = bufferSummaries({ coverage, tested, margin, depth });
+  const nlohmann::json& marginStats = summaries.at("depth_margin");
+  EXPECT_EQ(marginStats.at("domain"), "shadow_tested");
+  EXPECT_EQ(marginStats.at("domain_pixels"), 5u);
+  EXPECT_DOUBLE_EQ(marginStats.at("min").get<double>(), -0.25) << marginStats.dump();
+  EXPECT_DOUBLE_EQ(marginStats.at("max").get<double>(), 2.0) << marginStats.dump();
+  EXPECT_NEAR(marginStats.at("mean").get<double>(), testedSum / 5.0, 1e-12) << marginStats.dump();
+  // A buffer declared on covered pixels: the two untested covered pixels count, the background does not.
+  const nlohmann::json& depthStats = summaries.at("depth");
+  EXPECT_EQ(depthStats.at("domain"), "covered");
+  EXPECT_EQ(depthStats.at("domain_pixels"), 7u);
+  EXPECT_DOUBLE_EQ(depthStats.at("min").get<double>(), 1.0) << depthStats.dump();
+  EXPECT_NEAR(depthStats.at("mean").get<double>(), (1.0 + 6 * 3.0) / 7.0, 1e-12) << depthStats.dump();
+  EXPECT_EQ(summaries.at("coverage").at("domain"), "all pixels");
+  EXPECT_EQ(summaries.at("coverage").at("domain_pixels"), 8u);
+  // Without shadow_tested (a run written before it existed) the shadow-tested buffer falls back to the covered
+  // pixels, and says so.
+  const nlohmann::json fallback = bufferSummaries({ coverage, margin });
+  EXPECT_EQ(fallback.at("depth_margin").at("domain"), "covered");
+  EXPECT_EQ(fallback.at("depth_margin").at("domain_pixels"), 7u);
+  EXPECT_DOUBLE_EQ(fallback.at("depth_margin").at("min").get<double>(), -0.25);
 }
 
 } // namespace

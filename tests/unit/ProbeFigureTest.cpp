@@ -2,7 +2,7 @@
 // on a synthetic frame: an area light 5 units above a ground plane, a 2 x 2 quad caster at height 1, a 64^2
 // shadow map rasterised here by intersecting each texel's ray with the two quads, and a hand-made record (texels,
 // a kernel, nodes, light polygons, samples) whose every item has a known place in the output.
-#include "probe/NumberText.h"
+#include "vis/NumberText.h"
 #include "probe/Probe.h"
 #include "probe/ProbeFigure.h"
 #include "probe/ProbeGeometry.h"
@@ -979,6 +979,254 @@ TEST(ProbeFigure, MomentPanelIsLeftOutWhenTheMomentsAndTheComparedDepthAreInDiff
   // The quantities are still all in the key numbers.
   EXPECT_NE(std::find(drawing.legendLines.begin(), drawing.legendLines.end(), "mean 0 warped depth"),
     drawing.legendLines.end());
+}
+
+// A panel's texts joined as prose: its wrapped lines rejoined at the spaces they broke at.
+std::string probeFigurePanelProse(const ProbeFigureDrawing& drawing, ProbePanel panel)
+{
+  std::string joined;
+  for (const ProbeFigureText& text : drawing.texts)
+  {
+    joined += text.panel == panel ? text.text + " " : "";
+  }
+  return joined;
+}
+
+// Writes the figure under the test output directory (to look at) and checks that no text of it was cut.
+void writeAndCheckProbeFigure(const ProbeFigureDrawing& drawing, const std::string& name)
+{
+  std::filesystem::create_directories(SL_TEST_OUTPUT_DIR);
+  writePng(std::filesystem::path(SL_TEST_OUTPUT_DIR) / ("probe_figure_" + name + ".png"), drawing.image);
+  expectNoProbeFigureTextCut(drawing);
+}
+
+TEST(ProbeFigure, ComparisonPanelDrawsEachPcfTapLitOrShadowed)
+{
+  // The synthetic record's 3 x 3 taps, weight 1/9 each, 5 in front of the receiver (a checkerboard): pcf's
+  // visibility is the lit share 4/9 (Reeves et al. 1987 §3).
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("result");
+  recorder.quantity("lit_taps", 4.0 / 9.0, "count", "test");
+  recorder.quantity("visibility", 4.0 / 9.0, "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "pcf_comparisons");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Comparisons).has_value());
+  ASSERT_TRUE(drawing.drawnValue(ProbePanel::Comparisons, "lit_fraction").has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Comparisons, "lit_fraction"), 4.0 / 9.0, 1e-12);
+  EXPECT_EQ(*drawing.drawnValue(ProbePanel::Comparisons, "texels"), double(s.comparedTexels.size()));
+  const std::string text = probeFigurePanelProse(drawing, ProbePanel::Comparisons);
+  EXPECT_NE(text.find("4 lit (white), 5 shadowed (black)"), std::string::npos) << text;
+  // Each cell in its colour: the shadowed ones dark (the caster colour), the lit ones white, about 5 : 4.
+  const FigureRect rect = *drawing.layout.rect(ProbePanel::Comparisons);
+  std::size_t dark = 0;
+  for (int y = rect.bottom; y < rect.bottom + rect.height; ++y)
+  {
+    for (int x = rect.left; x < rect.left + rect.width; ++x)
+    {
+      dark += probeFigureHasColor(drawing.image, x, y, { 0.12, 0.12, 0.12 }) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(dark, std::size_t(rect.width * rect.height) / 10) << "the 5 shadowed cells are not drawn";
+  // Without lit_taps (a technique whose compared texels serve another diagram) the panel is left out.
+  s = makeSynthetic();
+  EXPECT_FALSE(drawProbeFigure(s.probe, s.frame, s.scene).layout.rect(ProbePanel::Comparisons).has_value());
+}
+
+TEST(ProbeFigure, LayersPanelFindsTheRecordedLayerFromTheEnds)
+{
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const std::vector<double> ends = { 1.0, 2.0, 2.5, 4.0, 6.0 };
+  const double t = 3.1; // layer 2, phi = (3.1 - 2.5) / 1.5 = 0.4
+  recorder.beginGroup("layer");
+  recorder.quantity("layer", 2.0, "", "test");
+  for (std::size_t i = 0; i < ends.size(); ++i)
+  {
+    recorder.quantity(format("layer_end_", i), ends[i], "linear depth", "test");
+  }
+  recorder.quantity("compared_depth", t, "linear depth", "test");
+  recorder.quantity("warped_depth", 0.4, "", "test");
+  recorder.beginGroup("moments");
+  recorder.quantity("mean", 0.3, "warped depth", "test");
+  recorder.quantity("variance", 0.001, "warped depth^2", "test");
+  recorder.beginGroup("chebyshev");
+  recorder.quantity("own_layer_p_max", 0.0909, "", "test");
+  for (int j = 0; j < 4; ++j)
+  {
+    recorder.quantity(format("layer", j, "_p_max"), 0.2 * (j + 1), "", "test");
+  }
+  recorder.quantity("bound_source", 0.0, "layer", "test");
+  recorder.quantity("p_max", 0.2, "", "test");
+  s.probe.record = recorder.record();
+  ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "lvsm_layers");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Layers).has_value());
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::Layers, "layer"), 2.0);
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Layers, "warped_depth"), 0.4, 1e-12);
+  const std::string text = probeFigurePanelProse(drawing, ProbePanel::Layers);
+  EXPECT_NE(text.find("in layer 2 [p, q] = [2.5, 4]"), std::string::npos) << text;
+  EXPECT_NE(text.find("(from layer 0)"), std::string::npos) << text;
+  // A depth on a boundary belongs to the farther layer (LayeredMoments.h), one past the far end to the last.
+  for (const auto& [depth, layer] : { std::pair<double, double>{ 2.0, 1.0 }, { 7.0, 3.0 }, { 0.5, 0.0 } })
+  {
+    s.probe.record.quantities.erase(std::remove_if(s.probe.record.quantities.begin(), s.probe.record.quantities.end(),
+                                      [](const ProbeQuantity& q) { return q.name == "compared_depth"; }),
+      s.probe.record.quantities.end());
+    s.probe.record.quantities.push_back({ "layer", "compared_depth", { depth }, "linear depth", "test", "" });
+    drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+    EXPECT_EQ(drawing.drawnValue(ProbePanel::Layers, "layer"), layer) << "t = " << depth;
+  }
+}
+
+TEST(ProbeFigure, MomentBoundPanelTakesTheWeightInFrontOfTheReceiver)
+{
+  // A three-point distribution: z_2 = 0.3 (w 0.25) in front of z_f = 0.5 (w 0.6), z_3 = 0.8 (w 0.15) behind:
+  // MSM Alg. 3's shadow intensity is the weight in front, 0.25.
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("moments");
+  recorder.quantity("power_moments", glm::dvec3(0.47, 0.2665, 0.1593), "", "test");
+  recorder.quantity("power_moment_4", 0.0996, "", "test");
+  recorder.beginGroup("hamburger 4msm");
+  recorder.quantity("fragment_depth", 0.5, "moment depth", "test");
+  recorder.quantity("support_depth_near", 0.3, "moment depth", "test");
+  recorder.quantity("support_depth_far", 0.8, "moment depth", "test");
+  recorder.quantity("support_weights", glm::dvec3(0.6, 0.25, 0.15), "", "test");
+  recorder.quantity("shadow_intensity", 0.25, "", "test");
+  s.probe.record = recorder.record();
+  ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "msm_moment_bound");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::MomentBound).has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::MomentBound, "shadow_intensity"), 0.25, 1e-12);
+  const std::string text = probeFigurePanelProse(drawing, ProbePanel::MomentBound);
+  EXPECT_NE(text.find("z_2 0.3"), std::string::npos) << text;
+  EXPECT_NE(text.find("(recorded 0.25)"), std::string::npos) << text;
+  // The receiver behind both: both weights in front, 0.4.
+  for (ProbeQuantity& quantity : s.probe.record.quantities)
+  {
+    if (quantity.name == "fragment_depth")
+    {
+      quantity.value = { 0.9 };
+    }
+  }
+  drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::MomentBound, "shadow_intensity"), 0.4, 1e-12);
+}
+
+TEST(ProbeFigure, FourierPanelDrawsTheFilteredSeriesAndTheStepsRinging)
+{
+  // One term (M = 1, sigma 1) and nine recorded samples of a filtered f: the panel's f(d_s) is the sample at d_s, and
+  // its overshoot the samples' largest excursion outside [0, 1].
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  const double ds = 0.4;
+  recorder.beginGroup("fourier");
+  recorder.quantity("terms", 1.0, "", "test");
+  recorder.quantity("d_series", ds, "", "test");
+  recorder.quantity("c_1", test::kPi, "", "test");
+  recorder.quantity("sigma_1", 1.0, "", "test");
+  const auto filtered = [&](double d) { return 0.5 + 2.0 / test::kPi * 0.8 * std::sin(test::kPi * (0.45 - d)); };
+  for (int j = -4; j <= 4; ++j)
+  {
+    const double d = ds + j / 2.0;
+    recorder.quantity(format("reconstructed_step_", j + 4), glm::dvec2(d, filtered(d)), "", "test");
+  }
+  recorder.quantity("reconstruction", filtered(ds), "", "test");
+  recorder.quantity("reconstruction_scale", 2.0, "", "test");
+  recorder.quantity("visibility", std::clamp(2.0 * filtered(ds), 0.0, 1.0), "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "convsm_fourier");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::Fourier).has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Fourier, "reconstruction"), filtered(ds), 1e-12);
+  double overshoot = 0.0;
+  for (int j = -4; j <= 4; ++j)
+  {
+    const double value = filtered(ds + j / 2.0);
+    overshoot = std::max({ overshoot, value - 1.0, -value });
+  }
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Fourier, "overshoot"), overshoot, 1e-12);
+  const std::string text = probeFigurePanelProse(drawing, ProbePanel::Fourier);
+  EXPECT_NE(text.find("M = 1"), std::string::npos) << text;
+  // The grey curve, one occluder at d_s in the one-term series 1/2 + (2 / pi) sin(pi (d_s - d')): its overshoot
+  // past 1 is 2 / pi - 1/2 where the sine peaks inside the drawn depths [d_s - 2, d_s + 2].
+  // (drawn from 301 samples of the curve: within 1e-3).
+  ASSERT_TRUE(drawing.drawnValue(ProbePanel::Fourier, "step_overshoot").has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::Fourier, "step_overshoot"), 2.0 / test::kPi - 0.5, 1e-3);
+}
+
+TEST(ProbeFigure, LevelBlendPanelBlendsTheTwoLevelsVisibilities)
+{
+  // SS08 §4.2: l = 2.3 blends level 2 (weight 0.7, V 0.5) and level 3 (weight 0.3, V 0.8): V = 0.59.
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("blend");
+  recorder.quantity("loq", 2.3, "levels", "test");
+  recorder.quantity("level_ceil", 3.0, "level", "test");
+  recorder.quantity("blend_band", 1.0, "levels", "test");
+  recorder.quantity("weight_floor", 0.7, "", "test");
+  recorder.quantity("weight_ceil", 0.3, "", "test");
+  recorder.beginGroup("level 2 (floor)");
+  recorder.quantity("level_visibility", 0.5, "", "test");
+  recorder.beginGroup("level 3 (ceil)");
+  recorder.quantity("level_visibility", 0.8, "", "test");
+  recorder.beginGroup("result");
+  recorder.quantity("visibility", 0.59, "", "test");
+  s.probe.record = recorder.record();
+  const ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "ss08_level_blend");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::LevelBlend).has_value());
+  EXPECT_NEAR(*drawing.drawnValue(ProbePanel::LevelBlend, "visibility"), 0.7 * 0.5 + 0.3 * 0.8, 1e-12);
+  const std::string text = probeFigurePanelProse(drawing, ProbePanel::LevelBlend);
+  EXPECT_NE(text.find("level 2 weight 0.7 V 0.5, level 3 weight 0.3 V 0.8"), std::string::npos) << text;
+  EXPECT_NE(text.find("= 0.59 (recorded 0.59)"), std::string::npos) << text;
+  // Without the levels' visibilities (a pixel decided before any back-projection) the panel is left out.
+  s = makeSynthetic();
+  EXPECT_FALSE(drawProbeFigure(s.probe, s.frame, s.scene).layout.rect(ProbePanel::LevelBlend).has_value());
+}
+
+TEST(ProbeFigure, IrregularTexelPanelIsLitUnlessATestedTriangleCovers)
+{
+  Synthetic s = makeSynthetic();
+  ProbeRecorder recorder;
+  recorder.record() = s.probe.record;
+  recorder.beginGroup("light-space grid");
+  recorder.quantity("face", 3.0, "", "test");
+  recorder.quantity("texel", glm::dvec2(131.52, 187.54), "texels", "test");
+  recorder.beginGroup("triangles over the texel");
+  recorder.quantity("triangle_7 (within rounding)", glm::dvec3(0.0), "world units (first vertex)", "test");
+  recorder.quantity("izb_triangle_tests", 2.0, "triangles", "test");
+  recorder.quantity("gpu_izb_triangle_tests", 2.0, "triangles", "test");
+  recorder.quantity("gpu_izb_list_length", 3.0, "samples", "test");
+  recorder.beginGroup("result");
+  recorder.quantity("visibility", 1.0, "", "test");
+  const ProbeRecord withinRounding = recorder.record();
+  s.probe.record = withinRounding;
+  ProbeFigureDrawing drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  writeAndCheckProbeFigure(drawing, "izb_texel");
+  ASSERT_TRUE(drawing.layout.rect(ProbePanel::IrregularTexel).has_value());
+  // A triangle within rounding makes the pixel ambiguous, it does not cover: lit.
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "visibility"), 1.0);
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "covering_triangles"), 0.0);
+  std::string text = probeFigurePanelProse(drawing, ProbePanel::IrregularTexel);
+  EXPECT_NE(text.find("texel (131, 187)"), std::string::npos) << text;
+  EXPECT_NE(text.find("its list: 3 samples"), std::string::npos) << text;
+  // One that covers: shadowed.
+  recorder.beginGroup("triangles over the texel");
+  recorder.quantity("triangle_12 (covers)", glm::dvec3(0.0), "world units (first vertex)", "test");
+  s.probe.record = recorder.record();
+  drawing = drawProbeFigure(s.probe, s.frame, s.scene);
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "visibility"), 0.0);
+  EXPECT_EQ(drawing.drawnValue(ProbePanel::IrregularTexel, "covering_triangles"), 1.0);
+  text = probeFigurePanelProse(drawing, ProbePanel::IrregularTexel);
+  EXPECT_NE(text.find("between it and the light: triangle_12"), std::string::npos) << text;
 }
 
 TEST(ProbeFigure, ColourBarTicksDifferOverANarrowRange)

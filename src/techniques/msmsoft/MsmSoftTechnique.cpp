@@ -285,6 +285,8 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
     recorder->quantity("fragment_depth", zf, "moment depth",
       "MSM Alg. 3: z_f, the receiver's depth minus the bias, normalised as the moments' depths");
     recorder->quantity("light_size", geometry.lightSize, "world units", "Fernando 2005 (w_light; 0 for point and spot lights)");
+    recorder->quantity("search_plane_depth", geometry.nearDepth, "linear depth",
+      "Fernando 2005 step 1: the plane the search kernel w_i is measured on (the map's near plane)");
     recorder->quantity("blocker_kernel_texels", 2.0 * std::max(result.searchHalfTexels.x, result.searchHalfTexels.y),
       "texels", "Fernando 2005 step 1 (VSSM Alg. 1 L7): the search kernel w_i at the near plane");
     recorder->kernel({ "blocker search", uv - result.searchHalfTexels, uv + result.searchHalfTexels, "w_i",

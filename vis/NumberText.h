@@ -1,6 +1,7 @@
-// Numbers and lines as a person reads them (issue 31): the probe figure's colour-bar ticks and key numbers, and the
-// viewer's status line, share these so that a light size reads 1.17 rather than 1.171875, five ticks over a narrow
-// range never print the same label twice, and a status line longer than the window wraps instead of running off it.
+// Numbers and lines as a person reads them (issue 31): the colour keys of heat maps and of the probe figure
+// (vis/ColorKey.h), the probe figure's key numbers and the viewer's status line share these so that a light size
+// reads 1.17 rather than 1.171875, five ticks over a narrow range never print the same label twice, and a status
+// line longer than the window wraps instead of running off it. In vis, the lowest area that draws numbers.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "probe/NumberText.h"
+#include "vis/NumberText.h"
 
 #include <algorithm>
 #include <cmath>
