@@ -4,7 +4,12 @@
 // its light_leak compares against (boxPcf in common/MomentLookup.glsl).
 #pragma once
 
+#include "structures/moments/ReceiverTiles.h"
+
 #include <vtkSmartPointer.h>
+
+#include <memory>
+#include <vector>
 
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
@@ -13,11 +18,36 @@ class vtkTextureObject;
 namespace sl
 {
 
+class ComputeProgram;
 class FullScreenQuad;
+struct FrameResources;
 
 // Returns `texture` box-blurred over blurTexels (a new texture; `texture` itself when blurTexels <= 1), mip-mapped
-// when `mipmap`. `blurQuad` and `framebuffer` are the calling pass's (released with it).
+// when `mipmap`. `blurQuad` and `framebuffer` are the calling pass's (released with it). With a `region`, each blur
+// pass draws only its rectangles (the others are left undefined: nobody reads them).
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
-  FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap);
+  FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
+  const PrefilterRegion* region = nullptr);
+
+// Draws `quad` (its program ready, its target bound) over each of `rects` with the scissor; over the whole target
+// when `rects` is null.
+void renderQuadOver(vtkOpenGLRenderWindow* window, FullScreenQuad& quad, const std::vector<TileRect>* rects);
+
+// The tiles of the frame's light-space map (frame.lightView) that its receivers read: the G-buffer's receivers
+// projected into the map on the GPU (shaders/ReceiverTiles.glsl), the flags read back. Holds its compute program.
+class ReceiverTileMarker
+{
+public:
+  ReceiverTileMarker();
+  ~ReceiverTileMarker();
+  ReceiverTiles mark(const FrameResources& frame, int tileTexels);
+  // The plan of a prefilter of blurTexels over the receivers' tiles (ReceiverTiles::tileTexelsFor the map), after
+  // which VTK's shader cache binds its next program itself (the compute program is left bound behind it).
+  ReceiverPrefilterPlan plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels);
+  void release();
+
+private:
+  std::unique_ptr<ComputeProgram> program_;
+};
 
 } // namespace sl

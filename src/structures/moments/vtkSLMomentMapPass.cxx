@@ -33,6 +33,13 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
   const bool mipmap = settings.mipmap;
   const int blurWidth = settings.blurTexels;
 
+  // prefilter_region = receivers: each draw only over what the next one reads (ReceiverTiles.h).
+  std::optional<sl::ReceiverPrefilterPlan> plan;
+  if (settings.receiversOnly)
+  {
+    plan = this->TileMarker.plan(window, frame, blurWidth);
+  }
+
   auto moments = sl::makeFloatTarget(window, size, size, 4);
   {
     const sl::ScopedRenderTarget target(window, this->Framebuffer, { moments });
@@ -42,13 +49,15 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));
     program->SetUniformf("depthFar", static_cast<float>(frame.lightView.farDepth));
     program->SetUniformf("esmExponent", static_cast<float>(exponent));
-    this->MomentsQuad.render();
+    sl::renderQuadOver(window, this->MomentsQuad, plan ? &plan->source : nullptr);
     bound->Deactivate();
   }
-  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, blurWidth, mipmap);
+  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, blurWidth, mipmap,
+    plan ? &plan->blur : nullptr);
   auto data = std::make_shared<sl::MomentMapData>();
   data->moments = moments;
   data->mipmapped = mipmap;
+  data->region = plan;
   frame.lightSpaceData[sl::momentMapStructure().name] = data;
 }
 
@@ -57,6 +66,7 @@ void vtkSLMomentMapPass::ReleaseGraphicsResources(vtkWindow* window)
   this->MomentsQuad.releaseGraphicsResources(window);
   this->BlurQuad.releaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
+  this->TileMarker.release();
 }
 
 void vtkSLMomentMapPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -1,0 +1,86 @@
+// The tiles of a light-space map that the frame's receivers read (issue 33: a structure costs what is read). A
+// moment-map lookup with prefilter = blur reads one texel, the one holding the receiver's projection
+// (prefilteredFetch, common/MomentLookup.glsl), so the blur is needed only there, and each blur pass only over what
+// the next one reads: the final (vertical) pass over the receivers' tiles, the horizontal pass over those grown by
+// the box's reach along y, the moments from depth over those grown along x.
+#pragma once
+
+#include "core/Image.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace sl
+{
+
+// A rectangle of texels, [x, x + width) x [y, y + height).
+struct TileRect
+{
+  int x = 0;
+  int y = 0;
+  int width = 0;
+  int height = 0;
+};
+
+class ReceiverTiles
+{
+public:
+  ReceiverTiles() = default;
+  // No tile marked, over a mapSize^2 map cut into tileTexels^2 tiles (the last row and column may be partial).
+  ReceiverTiles(int mapSize, int tileTexels);
+  // Every tile marked: the whole map.
+  static ReceiverTiles wholeMap(int mapSize, int tileTexels);
+  // The tile edge, in texels, for a map of mapSize^2: about 64 tiles a side, 8 to 32 texels.
+  static int tileTexelsFor(int mapSize);
+
+  int mapSize() const { return mapSize_; }
+  int tileTexels() const { return tileTexels_; }
+  int tilesPerSide() const { return tilesPerSide_; }
+  bool marked(int tileX, int tileY) const;
+  void mark(int tileX, int tileY);
+  // Marks tile i of a row-major list of tilesPerSide^2 flags (non-zero: marked), as the GPU marking writes them
+  // (shaders/ReceiverTiles.glsl); a non-zero word after them marks every tile.
+  void markFromFlags(const std::vector<std::uint32_t>& flags);
+  int markedCount() const;
+  int texelCount() const; // texels in the marked tiles (partial tiles count their part)
+
+  // Every tile holding a texel within reachX (along x) or reachY (along y) texels of a texel of a marked tile:
+  // what a separable pass reading that far must have built before it.
+  ReceiverTiles grown(int reachX, int reachY) const;
+  // The marked tiles as rectangles of texels (runs along each row of tiles, clipped to the map), for scissored draws.
+  std::vector<TileRect> rectangles() const;
+  // 1 on each texel of a marked tile, 0 elsewhere (mapSize^2).
+  ImageF texelMask() const;
+
+private:
+  int mapSize_ = 0;
+  int tileTexels_ = 1;
+  int tilesPerSide_ = 0;
+  std::vector<std::uint8_t> marked_;
+};
+
+// Where each pass of the blur runs: the horizontal pass over `horizontal`, the vertical one over `vertical` (the
+// texels the lookups read); the source must hold valid texels over `horizontal` grown by the reach along x.
+struct PrefilterRegion
+{
+  std::vector<TileRect> horizontal;
+  std::vector<TileRect> vertical;
+};
+
+// A prefilter built only where the receivers read (prefilter_region = receivers): the vertical pass over the
+// receivers' tiles, the horizontal one over those grown by the box's reach along y, the unfiltered values over those
+// grown again along x (without a blur, over the receivers' tiles).
+struct ReceiverPrefilterPlan
+{
+  ReceiverTiles read;            // the receivers' tiles: where the prefiltered map is built
+  PrefilterRegion blur;
+  std::vector<TileRect> source; // where the unfiltered values are computed
+  int horizontalTiles = 0;       // 0 without a blur
+  int sourceTiles = 0;
+};
+ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels);
+
+// How far a box of boxTexels (BoxBlur.glsl's taps -(w - 1)/2 .. w/2) reaches from its centre texel, the larger side.
+int boxBlurReach(int boxTexels);
+
+} // namespace sl
