@@ -36,7 +36,7 @@ MomentMapSettings momentMapSettings(const FrameResources& frame)
 
 ImageF prefilterBuiltMask(const std::optional<ReceiverPrefilterPlan>& region, int mapSize)
 {
-  return region ? region->read.texelMask() : ImageF(mapSize, mapSize, 1, 1.0f);
+  return region ? region->builtMask() : ImageF(mapSize, mapSize, 1, 1.0f);
 }
 
 void zeroUnbuilt(ImageF& image, const ImageF& builtMask)
@@ -60,6 +60,10 @@ void addPrefilterRegionStatistics(const std::optional<ReceiverPrefilterPlan>& re
   result.techniqueStatistics[prefix + "_receiver_tiles"] = read.markedCount();
   result.techniqueStatistics[prefix + "_horizontal_tiles"] = region->horizontalTiles;
   result.techniqueStatistics[prefix + "_source_tiles"] = region->sourceTiles;
+  // The texels listed as read (repeats included; 0 when the list overflowed), and which passes drew them as points.
+  result.techniqueStatistics[prefix + "_read_texels"] = static_cast<double>(region->readTexels.size());
+  result.techniqueStatistics[prefix + "_point_passes"] =
+    (region->blur.horizontalPoints ? 1 : 0) + (region->blur.verticalPoints ? 1 : 0);
 }
 
 namespace

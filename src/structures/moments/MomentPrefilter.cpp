@@ -12,7 +12,9 @@
 #include <vtkOpenGLFramebufferObject.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
+#include <vtkNew.h>
 #include <vtkOpenGLState.h>
+#include <vtkOpenGLVertexArrayObject.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
@@ -20,25 +22,78 @@
 namespace sl
 {
 
+vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPointer<vtkTextureObject>& slot, int width,
+  int height, int components)
+{
+  if (!(slot && slot->GetContext() == window && slot->GetWidth() == static_cast<unsigned>(width) &&
+        slot->GetHeight() == static_cast<unsigned>(height) && slot->GetComponents() == components))
+  {
+    slot = makeFloatTarget(window, width, height, components);
+  }
+  slot->SetMinificationFilter(vtkTextureObject::Nearest);
+  slot->SetMagnificationFilter(vtkTextureObject::Nearest);
+  return slot;
+}
+
+namespace
+{
+
+// One blur pass drawn as points over the listed texels (shaders/ReceiverTexelPoints.glsl), the fragment shader
+// BoxBlur.glsl as in the full-screen draw; its target is bound.
+void drawReceiverTexelPoints(vtkOpenGLRenderWindow* window, vtkTextureObject* source, const int direction[2],
+  int blurTexels, const PrefilterRegion& region, int pointsPerTexel)
+{
+  SL_CHECK_MSG(region.readTexelBuffer != nullptr, "a blur pass drawn as points needs the receivers' texel list");
+  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+    assembleShader("moments/ReceiverTexelPoints.glsl").c_str(), assembleShader("moments/BoxBlur.glsl").c_str(), "");
+  if (!program)
+  {
+    throw GraphicsError("cannot build the box blur's point program (moments/ReceiverTexelPoints.glsl)");
+  }
+  vtkTextureObject* bound = bindTexture(program, "source", source);
+  program->SetUniform2i("direction", direction);
+  program->SetUniformi("blurWidth", blurTexels);
+  program->SetUniformi("pointsPerTexel", pointsPerTexel);
+  program->SetUniformi("firstOffset", -(blurTexels - 1) / 2);
+  program->SetUniformi("mapSize", static_cast<int>(source->GetWidth()));
+  region.readTexelBuffer->bind(0);
+  vtkNew<vtkOpenGLVertexArrayObject> noAttributes; // core profile: a draw needs a vertex array, even without inputs
+  noAttributes->Bind();
+  glDrawArrays(GL_POINTS, 0, region.readTexelCount * pointsPerTexel);
+  noAttributes->Release();
+  noAttributes->ReleaseGraphicsResources();
+  bound->Deactivate();
+}
+
+} // namespace
+
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
-  const PrefilterRegion* region)
+  const PrefilterRegion* region, PrefilterTargets* targets)
 {
   if (blurTexels > 1)
   {
     const int width = texture->GetWidth();
     const int height = texture->GetHeight();
     const int components = texture->GetComponents();
-    auto horizontal = makeFloatTarget(window, width, height, components);
-    auto blurred = makeFloatTarget(window, width, height, components);
+    PrefilterTargets fresh;
+    PrefilterTargets& kept = targets ? *targets : fresh;
+    vtkSmartPointer<vtkTextureObject> horizontal = reusedFloatTarget(window, kept.horizontal, width, height, components);
+    vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(window, kept.blurred, width, height, components);
     const int directions[2][2] = { { 1, 0 }, { 0, 1 } };
     vtkTextureObject* sources[2] = { texture, horizontal };
-    vtkTextureObject* targets[2] = { horizontal, blurred };
+    vtkTextureObject* passTargets[2] = { horizontal, blurred };
     const std::vector<TileRect>* passRegions[2] = { region ? &region->horizontal : nullptr,
       region ? &region->vertical : nullptr };
+    const bool drawsPoints[2] = { region && region->horizontalPoints, region && region->verticalPoints };
     for (int pass = 0; pass < 2; ++pass)
     {
-      const ScopedRenderTarget target(window, framebuffer, { targets[pass] });
+      const ScopedRenderTarget target(window, framebuffer, { passTargets[pass] });
+      if (drawsPoints[pass])
+      {
+        drawReceiverTexelPoints(window, sources[pass], directions[pass], blurTexels, *region, pass == 0 ? blurTexels : 1);
+        continue;
+      }
       vtkShaderProgram* program = blurQuad.ready(window, assembleShader("moments/BoxBlur.glsl"), "box blur");
       vtkTextureObject* bound = bindTexture(program, "source", sources[pass]);
       program->SetUniform2i("direction", directions[pass]);
@@ -80,7 +135,7 @@ void renderQuadOver(vtkOpenGLRenderWindow* window, FullScreenQuad& quad, const s
 ReceiverTileMarker::ReceiverTileMarker() = default;
 ReceiverTileMarker::~ReceiverTileMarker() = default;
 
-ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexels)
+ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexels, std::vector<std::uint32_t>& readTexels)
 {
   SL_CHECK_MSG(frame.gbufferPosition && frame.gbufferNormal, "the G-buffer must be rendered before the receiver tiles");
   const int mapSize = frame.lightView.resolution;
@@ -94,6 +149,14 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
   StorageBuffer flags(static_cast<std::size_t>(tilesPerSide) * static_cast<std::size_t>(tilesPerSide) + 1);
   flags.clear();
   flags.bind(0);
+  // Up to 2 x 2 texels per pixel (shaders/ReceiverTiles.glsl's half-texel margin), after the count.
+  const std::size_t capacity = 4 * static_cast<std::size_t>(frame.width()) * static_cast<std::size_t>(frame.height());
+  if (!readTexels_ || readTexels_->words() != capacity + 1)
+  {
+    readTexels_ = std::make_unique<StorageBuffer>(capacity + 1);
+  }
+  readTexels_->clear();
+  readTexels_->bind(1);
   frame.gbufferPosition->Activate();
   frame.gbufferNormal->Activate();
   program_->use();
@@ -103,6 +166,7 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
   program_->setInt("shadowMapSize", mapSize);
   program_->setInt("tileTexels", tileTexels);
   program_->setInt("tilesPerSide", tilesPerSide);
+  program_->setInt("readTexelCapacity", static_cast<int>(capacity));
   const Light& light = *frame.light;
   const bool behindLightReads =
     light.type == LightType::Point || (light.type == LightType::Spot && light.coneAngleDeg >= 90.0);
@@ -110,20 +174,32 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
   program_->dispatch({ (frame.width() + 7) / 8, (frame.height() + 7) / 8 });
   frame.gbufferNormal->Deactivate();
   frame.gbufferPosition->Deactivate();
-  tiles.markFromFlags(flags.download());
+  const std::vector<std::uint32_t> flagWords = flags.download();
+  tiles.markFromFlags(flagWords);
+  readTexels.clear();
+  const bool wholeMap = flagWords.back() != 0;
+  const std::vector<std::uint32_t> listed = readTexels_->download();
+  if (!wholeMap && listed[0] <= capacity)
+  {
+    readTexels.assign(listed.begin() + 1, listed.begin() + 1 + listed[0]);
+  }
   return tiles;
 }
 
 ReceiverPrefilterPlan ReceiverTileMarker::plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels)
 {
-  const ReceiverTiles read = mark(frame, ReceiverTiles::tileTexelsFor(frame.lightView.resolution));
+  std::vector<std::uint32_t> readTexels;
+  const ReceiverTiles read = mark(frame, ReceiverTiles::tileTexelsFor(frame.lightView.resolution), readTexels);
   window->GetShaderCache()->ReleaseCurrentShader();
-  return planReceiverPrefilter(read, blurTexels);
+  ReceiverPrefilterPlan plan = planReceiverPrefilter(read, blurTexels, std::move(readTexels));
+  plan.blur.readTexelBuffer = readTexels_.get();
+  return plan;
 }
 
 void ReceiverTileMarker::release()
 {
   program_.reset();
+  readTexels_.reset();
 }
 
 } // namespace sl

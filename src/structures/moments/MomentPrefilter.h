@@ -8,6 +8,7 @@
 
 #include <vtkSmartPointer.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -22,12 +23,27 @@ class ComputeProgram;
 class FullScreenQuad;
 struct FrameResources;
 
-// Returns `texture` box-blurred over blurTexels (a new texture; `texture` itself when blurTexels <= 1), mip-mapped
-// when `mipmap`. `blurQuad` and `framebuffer` are the calling pass's (released with it). With a `region`, each blur
-// pass draws only its rectangles (the others are left undefined: nobody reads them).
+class StorageBuffer;
+
+// The render targets a pass keeps from frame to frame (and sub-light to sub-light) while the map's size and format
+// hold: a fresh 2048^2 RGBA32F target costs llvmpipe ~50 ms to allocate (src/structures/moments/README.md).
+struct PrefilterTargets
+{
+  vtkSmartPointer<vtkTextureObject> horizontal;
+  vtkSmartPointer<vtkTextureObject> blurred;
+};
+// `slot` itself when it is a float target of that size and components in `window`, else a new one put in `slot`;
+// with nearest filtering (a mip-mapped prefilter of an earlier frame sets trilinear).
+vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPointer<vtkTextureObject>& slot, int width,
+  int height, int components);
+
+// Returns `texture` box-blurred over blurTexels (a texture of `targets` when given, else a new one; `texture` itself
+// when blurTexels <= 1), mip-mapped when `mipmap`. `blurQuad` and `framebuffer` are the calling pass's (released
+// with it). With a `region`, each blur pass draws only its rectangles or points (the other texels are left as they
+// were: nobody reads them).
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
-  const PrefilterRegion* region = nullptr);
+  const PrefilterRegion* region = nullptr, PrefilterTargets* targets = nullptr);
 
 // Draws `quad` (its program ready, its target bound) over each of `rects` with the scissor; over the whole target
 // when `rects` is null.
@@ -40,7 +56,8 @@ class ReceiverTileMarker
 public:
   ReceiverTileMarker();
   ~ReceiverTileMarker();
-  ReceiverTiles mark(const FrameResources& frame, int tileTexels);
+  // The tiles, and in `readTexels` the listed texels (empty when there were more than the list holds).
+  ReceiverTiles mark(const FrameResources& frame, int tileTexels, std::vector<std::uint32_t>& readTexels);
   // The plan of a prefilter of blurTexels over the receivers' tiles (ReceiverTiles::tileTexelsFor the map), after
   // which VTK's shader cache binds its next program itself (the compute program is left bound behind it).
   ReceiverPrefilterPlan plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels);
@@ -48,6 +65,7 @@ public:
 
 private:
   std::unique_ptr<ComputeProgram> program_;
+  std::unique_ptr<StorageBuffer> readTexels_; // kept for the point draws (PrefilterRegion::readTexelBuffer)
 };
 
 } // namespace sl

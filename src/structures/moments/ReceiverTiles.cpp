@@ -144,7 +144,7 @@ ImageF ReceiverTiles::texelMask() const
   return mask;
 }
 
-ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels)
+ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels, std::vector<std::uint32_t> readTexels)
 {
   ReceiverPrefilterPlan plan;
   plan.read = read;
@@ -157,11 +157,32 @@ ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurT
   const int reach = boxBlurReach(blurTexels);
   const ReceiverTiles horizontal = read.grown(0, reach);
   const ReceiverTiles source = horizontal.grown(reach, 0);
-  plan.blur = PrefilterRegion{ horizontal.rectangles(), read.rectangles() };
+  plan.blur.horizontal = horizontal.rectangles();
+  plan.blur.vertical = read.rectangles();
   plan.source = source.rectangles();
   plan.horizontalTiles = horizontal.markedCount();
   plan.sourceTiles = source.markedCount();
+  const long long listed = static_cast<long long>(readTexels.size());
+  plan.blur.readTexelCount = static_cast<int>(listed);
+  plan.blur.verticalPoints = listed > 0 && listed * receiverPointCostInFragments < read.texelCount();
+  plan.blur.horizontalPoints =
+    plan.blur.verticalPoints && listed * blurTexels * receiverPointCostInFragments < horizontal.texelCount();
+  plan.readTexels = std::move(readTexels);
   return plan;
+}
+
+ImageF ReceiverPrefilterPlan::builtMask() const
+{
+  if (!blur.verticalPoints)
+  {
+    return read.texelMask();
+  }
+  ImageF mask(read.mapSize(), read.mapSize(), 1);
+  for (const std::uint32_t packed : readTexels)
+  {
+    mask.at(static_cast<int>(packed & 0xFFFFu), static_cast<int>(packed >> 16), 0) = 1.0f;
+  }
+  return mask;
 }
 
 int boxBlurReach(int boxTexels)

@@ -13,6 +13,8 @@
 namespace sl
 {
 
+class StorageBuffer;
+
 // A rectangle of texels, [x, x + width) x [y, y + height).
 struct TileRect
 {
@@ -60,11 +62,17 @@ private:
 };
 
 // Where each pass of the blur runs: the horizontal pass over `horizontal`, the vertical one over `vertical` (the
-// texels the lookups read); the source must hold valid texels over `horizontal` grown by the reach along x.
+// receivers' tiles); the source must hold valid texels over `horizontal` grown by the reach along x. A pass marked
+// as points draws instead one point per listed texel (vertical) or per texel of the box's column around it
+// (horizontal; shaders/ReceiverTexelPoints.glsl), from `readTexelBuffer` (shaders/ReceiverTiles.glsl's list).
 struct PrefilterRegion
 {
   std::vector<TileRect> horizontal;
   std::vector<TileRect> vertical;
+  bool horizontalPoints = false;
+  bool verticalPoints = false;
+  const StorageBuffer* readTexelBuffer = nullptr;
+  int readTexelCount = 0;
 };
 
 // A prefilter built only where the receivers read (prefilter_region = receivers): the vertical pass over the
@@ -72,13 +80,25 @@ struct PrefilterRegion
 // grown again along x (without a blur, over the receivers' tiles).
 struct ReceiverPrefilterPlan
 {
-  ReceiverTiles read;            // the receivers' tiles: where the prefiltered map is built
+  ReceiverTiles read;            // the receivers' tiles
   PrefilterRegion blur;
   std::vector<TileRect> source; // where the unfiltered values are computed
   int horizontalTiles = 0;       // 0 without a blur
   int sourceTiles = 0;
+  // The texels the receivers read (x | y << 16, repeats where receivers share one), when the marking listed them
+  // all; the vertical pass then draws only them if that is cheaper than its tiles, and only they are built.
+  std::vector<std::uint32_t> readTexels;
+
+  // 1 on each texel holding the prefiltered value (the listed texels when the vertical pass drew points, else the
+  // receivers' tiles), 0 elsewhere.
+  ImageF builtMask() const;
 };
-ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels);
+// The plan for the receivers' tiles `read` and, when the marking listed them all, the texels `readTexels`.
+ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels,
+  std::vector<std::uint32_t> readTexels = {});
+// What a point costs llvmpipe against a fragment of a full-screen draw (measured, src/structures/moments/README.md):
+// a pass draws points when points x this < the texels of its tiles.
+constexpr int receiverPointCostInFragments = 4;
 
 // How far a box of boxTexels (BoxBlur.glsl's taps -(w - 1)/2 .. w/2) reaches from its centre texel, the larger side.
 int boxBlurReach(int boxTexels);

@@ -40,7 +40,7 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     plan = this->TileMarker.plan(window, frame, blurWidth);
   }
 
-  auto moments = sl::makeFloatTarget(window, size, size, 4);
+  vtkSmartPointer<vtkTextureObject> moments = sl::reusedFloatTarget(window, this->MomentsTarget, size, size, 4);
   {
     const sl::ScopedRenderTarget target(window, this->Framebuffer, { moments });
     vtkShaderProgram* program =
@@ -53,7 +53,7 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     bound->Deactivate();
   }
   moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, blurWidth, mipmap,
-    plan ? &plan->blur : nullptr);
+    plan ? &plan->blur : nullptr, &this->BlurTargets);
   auto data = std::make_shared<sl::MomentMapData>();
   data->moments = moments;
   data->mipmapped = mipmap;
@@ -67,6 +67,8 @@ void vtkSLMomentMapPass::ReleaseGraphicsResources(vtkWindow* window)
   this->BlurQuad.releaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
   this->TileMarker.release();
+  this->MomentsTarget = nullptr;
+  this->BlurTargets = sl::PrefilterTargets{};
 }
 
 void vtkSLMomentMapPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -9,6 +9,8 @@
 #include "passes/vtkSLStagePass.h"
 
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkTextureObject.h>
 
 class vtkOpenGLFramebufferObject;
 
@@ -34,4 +36,7 @@ private:
   sl::FullScreenQuad MomentsQuad;
   sl::FullScreenQuad BlurQuad;
   sl::ReceiverTileMarker TileMarker;
+  // Kept from frame to frame while the map's size holds (sl::PrefilterTargets).
+  vtkSmartPointer<vtkTextureObject> MomentsTarget;
+  sl::PrefilterTargets BlurTargets;
 };

@@ -19,6 +19,13 @@ layout(std430, binding = 0) buffer ReceiverTileFlags
 {
   uint receiverTileFlags[];
 };
+// The texels themselves, for the passes that draw them as points: word 0 counts them (past the capacity: too many,
+// the tiles are drawn instead), then x | y << 16 each, repeated when several receivers read one texel.
+uniform int readTexelCapacity;
+layout(std430, binding = 1) buffer ReceiverReadTexels
+{
+  uint receiverReadTexels[];
+};
 
 void main()
 {
@@ -51,13 +58,18 @@ void main()
     return;
   }
   vec2 bounded = clamp(uvTexels, vec2(-1.0), vec2(float(shadowMapSize) + 1.0));
-  ivec2 first = clamp(ivec2(floor(bounded - 0.5)), ivec2(0), ivec2(shadowMapSize - 1)) / tileTexels;
-  ivec2 last = clamp(ivec2(floor(bounded + 0.5)), ivec2(0), ivec2(shadowMapSize - 1)) / tileTexels;
-  for (int y = first.y; y <= last.y; ++y)
+  ivec2 firstTexel = clamp(ivec2(floor(bounded - 0.5)), ivec2(0), ivec2(shadowMapSize - 1));
+  ivec2 lastTexel = clamp(ivec2(floor(bounded + 0.5)), ivec2(0), ivec2(shadowMapSize - 1));
+  for (int y = firstTexel.y; y <= lastTexel.y; ++y)
   {
-    for (int x = first.x; x <= last.x; ++x)
+    for (int x = firstTexel.x; x <= lastTexel.x; ++x)
     {
-      receiverTileFlags[y * tilesPerSide + x] = 1u;
+      receiverTileFlags[(y / tileTexels) * tilesPerSide + x / tileTexels] = 1u;
+      uint slot = atomicAdd(receiverReadTexels[0], 1u);
+      if (slot < uint(readTexelCapacity))
+      {
+        receiverReadTexels[1u + slot] = uint(x) | (uint(y) << 16);
+      }
     }
   }
 }

@@ -163,5 +163,43 @@ TEST(ReceiverTiles, FlagsFromTheGpuLayout)
   EXPECT_EQ(ReceiverTiles::tileTexelsFor(4096), 32);
 }
 
+TEST(ReceiverTiles, PlanDrawsPointsOnlyWhenCheaperAndBuildsWhatItDraws)
+{
+  ReceiverTiles read(256, 16);
+  read.mark(3, 4);
+  read.mark(4, 4);
+  // Two listed texels in tile (3, 4): 2 points against 512 tile texels.
+  const std::vector<std::uint32_t> listed = { 50u | (70u << 16), 51u | (70u << 16) };
+  const ReceiverPrefilterPlan plan = planReceiverPrefilter(read, 5, listed);
+  EXPECT_TRUE(plan.blur.verticalPoints);
+  EXPECT_TRUE(plan.blur.horizontalPoints);
+  EXPECT_EQ(plan.blur.readTexelCount, 2);
+  const ImageF built = plan.builtMask();
+  double builtTexels = 0.0;
+  for (const float value : built.data)
+  {
+    builtTexels += value;
+  }
+  EXPECT_EQ(builtTexels, 2.0);
+  EXPECT_EQ(built.at(50, 70), 1.0f);
+  EXPECT_EQ(built.at(51, 70), 1.0f);
+  // The tiles the passes still draw: vertical = the receivers' tiles, horizontal grown by 2 along y, the source by 2
+  // along x too.
+  EXPECT_EQ(plan.horizontalTiles, 6);
+  EXPECT_EQ(plan.sourceTiles, 12);
+
+  // As many points as tile texels / the point cost: the tiles are drawn, and built.
+  const std::vector<std::uint32_t> many(512 / receiverPointCostInFragments, 50u | (70u << 16));
+  const ReceiverPrefilterPlan tiled = planReceiverPrefilter(read, 5, many);
+  EXPECT_FALSE(tiled.blur.verticalPoints);
+  EXPECT_FALSE(tiled.blur.horizontalPoints);
+  EXPECT_EQ(tiled.builtMask().data, read.texelMask().data);
+  // No list (it overflowed) or no blur: tiles.
+  EXPECT_FALSE(planReceiverPrefilter(read, 5).blur.verticalPoints);
+  const ReceiverPrefilterPlan unblurred = planReceiverPrefilter(read, 1, listed);
+  EXPECT_FALSE(unblurred.blur.verticalPoints);
+  EXPECT_EQ(unblurred.sourceTiles, 2);
+}
+
 } // namespace
 } // namespace sl
