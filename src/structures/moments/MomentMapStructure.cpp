@@ -60,10 +60,9 @@ void addPrefilterRegionStatistics(const std::optional<ReceiverPrefilterPlan>& re
   result.techniqueStatistics[prefix + "_receiver_tiles"] = read.markedCount();
   result.techniqueStatistics[prefix + "_horizontal_tiles"] = region->horizontalTiles;
   result.techniqueStatistics[prefix + "_source_tiles"] = region->sourceTiles;
-  // The texels listed as read (repeats included; 0 when the list overflowed), and which passes drew them as points.
+  // The texels listed as read (repeats included; 0 when the list overflowed), and whether the blur ran on them alone.
   result.techniqueStatistics[prefix + "_read_texels"] = static_cast<double>(region->readTexels.size());
-  result.techniqueStatistics[prefix + "_point_passes"] =
-    (region->blur.horizontalPoints ? 1 : 0) + (region->blur.verticalPoints ? 1 : 0);
+  result.techniqueStatistics[prefix + "_sparse_blur"] = region->blur.sparse ? 1 : 0;
 }
 
 namespace

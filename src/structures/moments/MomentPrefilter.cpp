@@ -12,9 +12,7 @@
 #include <vtkOpenGLFramebufferObject.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
-#include <vtkNew.h>
 #include <vtkOpenGLState.h>
-#include <vtkOpenGLVertexArrayObject.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
@@ -38,31 +36,26 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
 namespace
 {
 
-// One blur pass drawn as points over the listed texels (shaders/ReceiverTexelPoints.glsl), the fragment shader
-// BoxBlur.glsl as in the full-screen draw; its target is bound.
-void drawReceiverTexelPoints(vtkOpenGLRenderWindow* window, vtkTextureObject* source, const int direction[2],
-  int blurTexels, const PrefilterRegion& region, int pointsPerTexel)
+// The blur at the listed texels only (shaders/SparseBoxBlur.glsl), written into `target` (RGBA32F).
+void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
+  const PrefilterRegion& region)
 {
-  SL_CHECK_MSG(region.readTexelBuffer != nullptr, "a blur pass drawn as points needs the receivers' texel list");
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    assembleShader("moments/ReceiverTexelPoints.glsl").c_str(), assembleShader("moments/BoxBlur.glsl").c_str(), "");
-  if (!program)
-  {
-    throw GraphicsError("cannot build the box blur's point program (moments/ReceiverTexelPoints.glsl)");
-  }
-  vtkTextureObject* bound = bindTexture(program, "source", source);
-  program->SetUniform2i("direction", direction);
-  program->SetUniformi("blurWidth", blurTexels);
-  program->SetUniformi("pointsPerTexel", pointsPerTexel);
-  program->SetUniformi("firstOffset", -(blurTexels - 1) / 2);
-  program->SetUniformi("mapSize", static_cast<int>(source->GetWidth()));
+  SL_CHECK_MSG(region.readTexelBuffer != nullptr, "the sparse blur needs the receivers' texel list");
+  SL_CHECK_MSG(target->GetComponents() == 4, "the sparse blur writes RGBA32F");
   region.readTexelBuffer->bind(0);
-  vtkNew<vtkOpenGLVertexArrayObject> noAttributes; // core profile: a draw needs a vertex array, even without inputs
-  noAttributes->Bind();
-  glDrawArrays(GL_POINTS, 0, region.readTexelCount * pointsPerTexel);
-  noAttributes->Release();
-  noAttributes->ReleaseGraphicsResources();
-  bound->Deactivate();
+  glBindImageTexture(0, target->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  source->Activate();
+  program.use();
+  program.setInt("source", source->GetTextureUnit());
+  program.setInt("blurWidth", blurTexels);
+  program.setInt("readTexelCount", region.readTexelCount);
+  // 64 invocations a group, in rows of at most 1024 groups (a dispatch's x count is capped).
+  const int groups = (region.readTexelCount + 63) / 64;
+  const int groupsX = std::min(groups, 1024);
+  program.dispatch({ groupsX, (groups + groupsX - 1) / groupsX });
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  source->Deactivate();
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 } // namespace
@@ -71,6 +64,21 @@ vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
   const PrefilterRegion* region, PrefilterTargets* targets)
 {
+  if (blurTexels > 1 && region && region->sparse)
+  {
+    SL_CHECK_MSG(targets != nullptr, "the sparse blur needs its pass's targets (PrefilterTargets)");
+    if (!targets->sparseProgram)
+    {
+      targets->sparseProgram =
+        std::make_unique<ComputeProgram>(assembleShader("moments/SparseBoxBlur.glsl"), "sparse box blur");
+    }
+    vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(
+      window, targets->blurred, texture->GetWidth(), texture->GetHeight(), texture->GetComponents());
+    blurReceiverTexels(*targets->sparseProgram, texture, blurred, blurTexels, *region);
+    // The compute program is bound behind VTK's shader cache: make the next draw bind its own.
+    window->GetShaderCache()->ReleaseCurrentShader();
+    return blurred;
+  }
   if (blurTexels > 1)
   {
     const int width = texture->GetWidth();
@@ -85,15 +93,9 @@ vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window
     vtkTextureObject* passTargets[2] = { horizontal, blurred };
     const std::vector<TileRect>* passRegions[2] = { region ? &region->horizontal : nullptr,
       region ? &region->vertical : nullptr };
-    const bool drawsPoints[2] = { region && region->horizontalPoints, region && region->verticalPoints };
     for (int pass = 0; pass < 2; ++pass)
     {
       const ScopedRenderTarget target(window, framebuffer, { passTargets[pass] });
-      if (drawsPoints[pass])
-      {
-        drawReceiverTexelPoints(window, sources[pass], directions[pass], blurTexels, *region, pass == 0 ? blurTexels : 1);
-        continue;
-      }
       vtkShaderProgram* program = blurQuad.ready(window, assembleShader("moments/BoxBlur.glsl"), "box blur");
       vtkTextureObject* bound = bindTexture(program, "source", sources[pass]);
       program->SetUniform2i("direction", directions[pass]);

@@ -4,6 +4,7 @@
 // its light_leak compares against (boxPcf in common/MomentLookup.glsl).
 #pragma once
 
+#include "gl/ComputeProgram.h"
 #include "structures/moments/ReceiverTiles.h"
 
 #include <vtkSmartPointer.h>
@@ -19,7 +20,6 @@ class vtkTextureObject;
 namespace sl
 {
 
-class ComputeProgram;
 class FullScreenQuad;
 struct FrameResources;
 
@@ -31,6 +31,8 @@ struct PrefilterTargets
 {
   vtkSmartPointer<vtkTextureObject> horizontal;
   vtkSmartPointer<vtkTextureObject> blurred;
+  // The sparse blur's program (shaders/SparseBoxBlur.glsl), for a region that asks for it.
+  std::unique_ptr<ComputeProgram> sparseProgram;
 };
 // `slot` itself when it is a float target of that size and components in `window`, else a new one put in `slot`;
 // with nearest filtering (a mip-mapped prefilter of an earlier frame sets trilinear).
@@ -39,8 +41,8 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
 
 // Returns `texture` box-blurred over blurTexels (a texture of `targets` when given, else a new one; `texture` itself
 // when blurTexels <= 1), mip-mapped when `mipmap`. `blurQuad` and `framebuffer` are the calling pass's (released
-// with it). With a `region`, each blur pass draws only its rectangles or points (the other texels are left as they
-// were: nobody reads them).
+// with it). With a `region`, each blur pass draws only its rectangles, or a sparse region blurs only its listed
+// texels (the other texels are left as they were: nobody reads them).
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
   const PrefilterRegion* region = nullptr, PrefilterTargets* targets = nullptr);

@@ -164,16 +164,14 @@ ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurT
   plan.sourceTiles = source.markedCount();
   const long long listed = static_cast<long long>(readTexels.size());
   plan.blur.readTexelCount = static_cast<int>(listed);
-  plan.blur.verticalPoints = listed > 0 && listed * receiverPointCostInFragments < read.texelCount();
-  plan.blur.horizontalPoints =
-    plan.blur.verticalPoints && listed * blurTexels * receiverPointCostInFragments < horizontal.texelCount();
+  plan.blur.sparse = listed > 0 && sparseBlurIsCheaper(listed, blurTexels, horizontal.texelCount(), read.texelCount());
   plan.readTexels = std::move(readTexels);
   return plan;
 }
 
 ImageF ReceiverPrefilterPlan::builtMask() const
 {
-  if (!blur.verticalPoints)
+  if (!blur.sparse)
   {
     return read.texelMask();
   }
@@ -183,6 +181,12 @@ ImageF ReceiverPrefilterPlan::builtMask() const
     mask.at(static_cast<int>(packed & 0xFFFFu), static_cast<int>(packed >> 16), 0) = 1.0f;
   }
   return mask;
+}
+
+bool sparseBlurIsCheaper(long long listedTexels, int blurTexels, long long horizontalTexels, long long verticalTexels)
+{
+  const long long width = blurTexels;
+  return listedTexels * width * width < (horizontalTexels + verticalTexels) * width;
 }
 
 int boxBlurReach(int boxTexels)

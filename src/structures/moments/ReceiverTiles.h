@@ -61,16 +61,15 @@ private:
   std::vector<std::uint8_t> marked_;
 };
 
-// Where each pass of the blur runs: the horizontal pass over `horizontal`, the vertical one over `vertical` (the
-// receivers' tiles); the source must hold valid texels over `horizontal` grown by the reach along x. A pass marked
-// as points draws instead one point per listed texel (vertical) or per texel of the box's column around it
-// (horizontal; shaders/ReceiverTexelPoints.glsl), from `readTexelBuffer` (shaders/ReceiverTiles.glsl's list).
+// Where the blur runs: the horizontal pass over `horizontal`, the vertical one over `vertical` (the receivers'
+// tiles); the source must hold valid texels over `horizontal` grown by the reach along x. `sparse`: instead of the
+// two passes, one compute invocation per listed texel (shaders/SparseBoxBlur.glsl) from `readTexelBuffer`
+// (shaders/ReceiverTiles.glsl's list), which needs the source over the texels' boxes (`horizontal` grown along x).
 struct PrefilterRegion
 {
   std::vector<TileRect> horizontal;
   std::vector<TileRect> vertical;
-  bool horizontalPoints = false;
-  bool verticalPoints = false;
+  bool sparse = false;
   const StorageBuffer* readTexelBuffer = nullptr;
   int readTexelCount = 0;
 };
@@ -86,19 +85,18 @@ struct ReceiverPrefilterPlan
   int horizontalTiles = 0;       // 0 without a blur
   int sourceTiles = 0;
   // The texels the receivers read (x | y << 16, repeats where receivers share one), when the marking listed them
-  // all; the vertical pass then draws only them if that is cheaper than its tiles, and only they are built.
+  // all; the blur then runs only on them (sparse) if that is cheaper than its tiles, and only they are built.
   std::vector<std::uint32_t> readTexels;
 
-  // 1 on each texel holding the prefiltered value (the listed texels when the vertical pass drew points, else the
-  // receivers' tiles), 0 elsewhere.
+  // 1 on each texel holding the prefiltered value (the listed texels when sparse, else the receivers' tiles), 0
+  // elsewhere.
   ImageF builtMask() const;
 };
 // The plan for the receivers' tiles `read` and, when the marking listed them all, the texels `readTexels`.
 ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels,
   std::vector<std::uint32_t> readTexels = {});
-// What a point costs llvmpipe against a fragment of a full-screen draw (measured, src/structures/moments/README.md):
-// a pass draws points when points x this < the texels of its tiles.
-constexpr int receiverPointCostInFragments = 4;
+// Sparse when its w^2 fetches per listed texel are fewer than the two passes' w fetches per texel of their tiles.
+bool sparseBlurIsCheaper(long long listedTexels, int blurTexels, long long horizontalTexels, long long verticalTexels);
 
 // How far a box of boxTexels (BoxBlur.glsl's taps -(w - 1)/2 .. w/2) reaches from its centre texel, the larger side.
 int boxBlurReach(int boxTexels);

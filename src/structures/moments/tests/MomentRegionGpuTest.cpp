@@ -1,8 +1,8 @@
 // prefilter_region = receivers (structures/moments/ReceiverTiles.h) on llvmpipe: vsm's and esm's frames equal those of
 // prefilter_region = whole_map bit for bit (every buffer), the moment map's built texels equal the whole map's bit for
 // bit, the unbuilt ones are 0 and marked 0 in moment_built, and every shadow-tested pixel's lookup texel is built;
-// on three datasets and random rectangle stacks, with the blur drawn over tiles (small maps) and as points (maps of
-// 512^2 and more at 96^2 pixels). The tile and point counts are printed.
+// on three datasets and random rectangle stacks, with the blur drawn over tiles (small maps) and sparse, at the
+// listed texels alone (maps of 512^2 and more at 96^2 pixels). The tile and texel counts are printed.
 #include "support/TestSupport.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
@@ -117,7 +117,7 @@ void checkMomentRegion(const Scene& scene, const std::string& label, const std::
             << ", moments " << momentRegionStatistic(tiled, "moment_map_source_tiles") << "; built texels "
             << builtTexels << " of " << mapSize * mapSize << ", " << lookups << " lookups, "
             << momentRegionStatistic(tiled, "moment_map_read_texels") << " listed texels, "
-            << momentRegionStatistic(tiled, "moment_map_point_passes") << " passes drawn as points\n";
+            << (momentRegionStatistic(tiled, "moment_map_sparse_blur") > 0 ? "sparse blur" : "blur over tiles") << "\n";
 }
 
 TEST(MomentRegion, ReceiversEqualTheWholeMapOnDatasets)
@@ -131,6 +131,9 @@ TEST(MomentRegion, ReceiversEqualTheWholeMapOnDatasets)
     }
     checkMomentRegion(scene, dataset, "vsm", { "shadow_map_size=512", "prefilter=blur", "prefilter_texels=33" });
     checkMomentRegion(scene, dataset, "vsm", { "shadow_map_size=128", "prefilter=blur", "prefilter_texels=1" });
+    // Sparse: the blur at the listed texels alone.
+    checkMomentRegion(scene, dataset, "esm", { "shadow_map_size=1024", "prefilter=blur", "prefilter_texels=5" });
+    checkMomentRegion(scene, dataset, "vsm", { "shadow_map_size=2048", "prefilter=blur", "prefilter_texels=12" });
   }
 }
 

@@ -163,16 +163,15 @@ TEST(ReceiverTiles, FlagsFromTheGpuLayout)
   EXPECT_EQ(ReceiverTiles::tileTexelsFor(4096), 32);
 }
 
-TEST(ReceiverTiles, PlanDrawsPointsOnlyWhenCheaperAndBuildsWhatItDraws)
+TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
 {
   ReceiverTiles read(256, 16);
   read.mark(3, 4);
   read.mark(4, 4);
-  // Two listed texels in tile (3, 4): 2 points against 512 tile texels.
+  // Two listed texels in tile (3, 4): 2 x 25 fetches against (6 + 2) tiles x 256 texels x 5.
   const std::vector<std::uint32_t> listed = { 50u | (70u << 16), 51u | (70u << 16) };
   const ReceiverPrefilterPlan plan = planReceiverPrefilter(read, 5, listed);
-  EXPECT_TRUE(plan.blur.verticalPoints);
-  EXPECT_TRUE(plan.blur.horizontalPoints);
+  EXPECT_TRUE(plan.blur.sparse);
   EXPECT_EQ(plan.blur.readTexelCount, 2);
   const ImageF built = plan.builtMask();
   double builtTexels = 0.0;
@@ -183,21 +182,24 @@ TEST(ReceiverTiles, PlanDrawsPointsOnlyWhenCheaperAndBuildsWhatItDraws)
   EXPECT_EQ(builtTexels, 2.0);
   EXPECT_EQ(built.at(50, 70), 1.0f);
   EXPECT_EQ(built.at(51, 70), 1.0f);
-  // The tiles the passes still draw: vertical = the receivers' tiles, horizontal grown by 2 along y, the source by 2
-  // along x too.
+  // The tiles of the two passes: vertical = the receivers' tiles, horizontal grown by 2 along y, the source by 2
+  // along x too (what the sparse blur's boxes read).
   EXPECT_EQ(plan.horizontalTiles, 6);
   EXPECT_EQ(plan.sourceTiles, 12);
 
-  // As many points as tile texels / the point cost: the tiles are drawn, and built.
-  const std::vector<std::uint32_t> many(512 / receiverPointCostInFragments, 50u | (70u << 16));
+  // As many fetches as the passes': the tiles are blurred, and built.
+  const long long passFetches = (6 + 2) * 256 * 5;
+  const long long breakEven = (passFetches + 24) / 25; // the fewest listed texels whose 25 fetches each are not fewer
+  EXPECT_TRUE(sparseBlurIsCheaper(breakEven - 1, 5, 6 * 256, 2 * 256));
+  EXPECT_FALSE(sparseBlurIsCheaper(breakEven, 5, 6 * 256, 2 * 256));
+  const std::vector<std::uint32_t> many(static_cast<std::size_t>(breakEven), 50u | (70u << 16));
   const ReceiverPrefilterPlan tiled = planReceiverPrefilter(read, 5, many);
-  EXPECT_FALSE(tiled.blur.verticalPoints);
-  EXPECT_FALSE(tiled.blur.horizontalPoints);
+  EXPECT_FALSE(tiled.blur.sparse);
   EXPECT_EQ(tiled.builtMask().data, read.texelMask().data);
   // No list (it overflowed) or no blur: tiles.
-  EXPECT_FALSE(planReceiverPrefilter(read, 5).blur.verticalPoints);
+  EXPECT_FALSE(planReceiverPrefilter(read, 5).blur.sparse);
   const ReceiverPrefilterPlan unblurred = planReceiverPrefilter(read, 1, listed);
-  EXPECT_FALSE(unblurred.blur.verticalPoints);
+  EXPECT_FALSE(unblurred.blur.sparse);
   EXPECT_EQ(unblurred.sourceTiles, 2);
 }
 
