@@ -137,7 +137,8 @@ void renderQuadOver(vtkOpenGLRenderWindow* window, FullScreenQuad& quad, const s
 ReceiverTileMarker::ReceiverTileMarker() = default;
 ReceiverTileMarker::~ReceiverTileMarker() = default;
 
-ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexels, std::vector<std::uint32_t>& readTexels)
+ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexels, bool listTexels,
+  std::vector<std::uint32_t>& readTexels)
 {
   SL_CHECK_MSG(frame.gbufferPosition && frame.gbufferNormal, "the G-buffer must be rendered before the receiver tiles");
   const int mapSize = frame.lightView.resolution;
@@ -151,8 +152,10 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
   StorageBuffer flags(static_cast<std::size_t>(tilesPerSide) * static_cast<std::size_t>(tilesPerSide) + 1);
   flags.clear();
   flags.bind(0);
-  // Up to 2 x 2 texels per pixel (shaders/ReceiverTiles.glsl's half-texel margin), after the count.
-  const std::size_t capacity = 4 * static_cast<std::size_t>(frame.width()) * static_cast<std::size_t>(frame.height());
+  // Up to 2 x 2 texels per pixel (shaders/ReceiverTiles.glsl's half-texel margin), after the count; none when the
+  // list cannot pay (a map with fewer texels than that to blur).
+  const std::size_t pixels = static_cast<std::size_t>(frame.width()) * static_cast<std::size_t>(frame.height());
+  const std::size_t capacity = listTexels ? 4 * pixels : 0;
   if (!readTexels_ || readTexels_->words() != capacity + 1)
   {
     readTexels_ = std::make_unique<StorageBuffer>(capacity + 1);
@@ -180,8 +183,8 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
   tiles.markFromFlags(flagWords);
   readTexels.clear();
   const bool wholeMap = flagWords.back() != 0;
-  const std::vector<std::uint32_t> listed = readTexels_->download();
-  if (!wholeMap && listed[0] <= capacity)
+  const std::vector<std::uint32_t> listed = listTexels ? readTexels_->download() : std::vector<std::uint32_t>{ 0 };
+  if (listTexels && !wholeMap && listed[0] <= capacity)
   {
     readTexels.assign(listed.begin() + 1, listed.begin() + 1 + listed[0]);
   }
@@ -191,7 +194,10 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
 ReceiverPrefilterPlan ReceiverTileMarker::plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels)
 {
   std::vector<std::uint32_t> readTexels;
-  const ReceiverTiles read = mark(frame, ReceiverTiles::tileTexelsFor(frame.lightView.resolution), readTexels);
+  const int mapSize = frame.lightView.resolution;
+  const bool listTexels =
+    receiverTexelListCanPay(static_cast<long long>(frame.width()) * frame.height(), mapSize, blurTexels);
+  const ReceiverTiles read = mark(frame, ReceiverTiles::tileTexelsFor(mapSize), listTexels, readTexels);
   window->GetShaderCache()->ReleaseCurrentShader();
   ReceiverPrefilterPlan plan = planReceiverPrefilter(read, blurTexels, std::move(readTexels));
   plan.blur.readTexelBuffer = readTexels_.get();

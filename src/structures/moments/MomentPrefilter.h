@@ -58,8 +58,9 @@ class ReceiverTileMarker
 public:
   ReceiverTileMarker();
   ~ReceiverTileMarker();
-  // The tiles, and in `readTexels` the listed texels (empty when there were more than the list holds).
-  ReceiverTiles mark(const FrameResources& frame, int tileTexels, std::vector<std::uint32_t>& readTexels);
+  // The tiles, and with `listTexels` in `readTexels` the listed texels (empty when there were more than the list
+  // holds).
+  ReceiverTiles mark(const FrameResources& frame, int tileTexels, bool listTexels, std::vector<std::uint32_t>& readTexels);
   // The plan of a prefilter of blurTexels over the receivers' tiles (ReceiverTiles::tileTexelsFor the map), after
   // which VTK's shader cache binds its next program itself (the compute program is left bound behind it).
   ReceiverPrefilterPlan plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels);

@@ -144,22 +144,40 @@ ImageF ReceiverTiles::texelMask() const
   return mask;
 }
 
+namespace
+{
+
+// `tiles`' rectangles, or the whole map in one when they cover more than wholeDrawFraction of it.
+std::vector<TileRect> receiverDrawRectangles(const ReceiverTiles& tiles)
+{
+  const double all = static_cast<double>(tiles.tilesPerSide()) * tiles.tilesPerSide();
+  if (tiles.markedCount() > wholeDrawFraction * all)
+  {
+    return { TileRect{ 0, 0, tiles.mapSize(), tiles.mapSize() } };
+  }
+  return tiles.rectangles();
+}
+
+} // namespace
+
 ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels, std::vector<std::uint32_t> readTexels)
 {
   ReceiverPrefilterPlan plan;
   plan.read = read;
   if (blurTexels <= 1)
   {
-    plan.source = read.rectangles();
+    plan.source = receiverDrawRectangles(read);
+    plan.built = plan.source;
     plan.sourceTiles = read.markedCount();
     return plan;
   }
   const int reach = boxBlurReach(blurTexels);
   const ReceiverTiles horizontal = read.grown(0, reach);
   const ReceiverTiles source = horizontal.grown(reach, 0);
-  plan.blur.horizontal = horizontal.rectangles();
-  plan.blur.vertical = read.rectangles();
-  plan.source = source.rectangles();
+  plan.blur.horizontal = receiverDrawRectangles(horizontal);
+  plan.blur.vertical = receiverDrawRectangles(read);
+  plan.built = plan.blur.vertical;
+  plan.source = receiverDrawRectangles(source);
   plan.horizontalTiles = horizontal.markedCount();
   plan.sourceTiles = source.markedCount();
   const long long listed = static_cast<long long>(readTexels.size());
@@ -171,16 +189,32 @@ ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurT
 
 ImageF ReceiverPrefilterPlan::builtMask() const
 {
+  ImageF mask(read.mapSize(), read.mapSize(), 1);
   if (!blur.sparse)
   {
-    return read.texelMask();
+    for (const TileRect& rect : built)
+    {
+      for (int y = rect.y; y < rect.y + rect.height; ++y)
+      {
+        for (int x = rect.x; x < rect.x + rect.width; ++x)
+        {
+          mask.at(x, y, 0) = 1.0f;
+        }
+      }
+    }
+    return mask;
   }
-  ImageF mask(read.mapSize(), read.mapSize(), 1);
   for (const std::uint32_t packed : readTexels)
   {
     mask.at(static_cast<int>(packed & 0xFFFFu), static_cast<int>(packed >> 16), 0) = 1.0f;
   }
   return mask;
+}
+
+bool receiverTexelListCanPay(long long pixels, int mapSize, int blurTexels)
+{
+  const long long texels = static_cast<long long>(mapSize) * mapSize;
+  return blurTexels > 1 && 4 * pixels * blurTexels < 2 * texels;
 }
 
 bool sparseBlurIsCheaper(long long listedTexels, int blurTexels, long long horizontalTexels, long long verticalTexels)

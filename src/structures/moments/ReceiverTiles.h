@@ -87,14 +87,22 @@ struct ReceiverPrefilterPlan
   // The texels the receivers read (x | y << 16, repeats where receivers share one), when the marking listed them
   // all; the blur then runs only on them (sparse) if that is cheaper than its tiles, and only they are built.
   std::vector<std::uint32_t> readTexels;
+  // The texels that hold the prefiltered value when the blur is not sparse: the last draw's rectangles.
+  std::vector<TileRect> built;
 
   // 1 on each texel holding the prefiltered value (the listed texels when sparse, else the receivers' tiles), 0
   // elsewhere.
   ImageF builtMask() const;
 };
-// The plan for the receivers' tiles `read` and, when the marking listed them all, the texels `readTexels`.
+// The plan for the receivers' tiles `read` and, when the marking listed them all, the texels `readTexels`. A draw
+// whose tiles cover more than wholeDrawFraction of the map draws the whole map instead: one draw, not a rectangle
+// per run of tiles, for almost the same texels.
 ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels,
   std::vector<std::uint32_t> readTexels = {});
+constexpr double wholeDrawFraction = 0.75;
+// Whether listing the texels the receivers read can pay: a sparse blur of width blurTexels wins only with fewer
+// than 2 / w texels listed per texel of the map, and the marking lists up to 4 per pixel.
+bool receiverTexelListCanPay(long long pixels, int mapSize, int blurTexels);
 // Sparse when its w^2 fetches per listed texel are fewer than the two passes' w fetches per texel of their tiles.
 bool sparseBlurIsCheaper(long long listedTexels, int blurTexels, long long horizontalTexels, long long verticalTexels);
 

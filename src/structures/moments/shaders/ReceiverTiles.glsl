@@ -20,7 +20,8 @@ layout(std430, binding = 0) buffer ReceiverTileFlags
   uint receiverTileFlags[];
 };
 // The texels themselves, for the passes that draw them as points: word 0 counts them (past the capacity: too many,
-// the tiles are drawn instead), then x | y << 16 each, repeated when several receivers read one texel.
+// the tiles are drawn instead), then x | y << 16 each, repeated when several receivers read one texel. Capacity 0:
+// not listed.
 uniform int readTexelCapacity;
 layout(std430, binding = 1) buffer ReceiverReadTexels
 {
@@ -65,10 +66,13 @@ void main()
     for (int x = firstTexel.x; x <= lastTexel.x; ++x)
     {
       receiverTileFlags[(y / tileTexels) * tilesPerSide + x / tileTexels] = 1u;
-      uint slot = atomicAdd(receiverReadTexels[0], 1u);
-      if (slot < uint(readTexelCapacity))
+      if (readTexelCapacity > 0)
       {
-        receiverReadTexels[1u + slot] = uint(x) | (uint(y) << 16);
+        uint slot = atomicAdd(receiverReadTexels[0], 1u);
+        if (slot < uint(readTexelCapacity))
+        {
+          receiverReadTexels[1u + slot] = uint(x) | (uint(y) << 16);
+        }
       }
     }
   }

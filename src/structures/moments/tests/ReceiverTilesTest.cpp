@@ -201,6 +201,22 @@ TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
   const ReceiverPrefilterPlan unblurred = planReceiverPrefilter(read, 1, listed);
   EXPECT_FALSE(unblurred.blur.sparse);
   EXPECT_EQ(unblurred.sourceTiles, 2);
+  EXPECT_EQ(unblurred.builtMask().data, read.texelMask().data);
+
+  // Tiles over more than wholeDrawFraction of the map: one draw of the whole map, and all of it built.
+  ReceiverTiles most(64, 16); // 4 x 4 tiles
+  for (int tile = 0; tile < 13; ++tile)
+  {
+    most.mark(tile % 4, tile / 4);
+  }
+  const ReceiverPrefilterPlan whole = planReceiverPrefilter(most, 5);
+  ASSERT_EQ(whole.blur.vertical.size(), 1u);
+  EXPECT_EQ(whole.blur.vertical[0].width * whole.blur.vertical[0].height, 64 * 64);
+  EXPECT_EQ(whole.builtMask().data, ReceiverTiles::wholeMap(64, 16).texelMask().data);
+  // Listing pays only with fewer than 2 / w listed texels per map texel (4 per pixel).
+  EXPECT_TRUE(receiverTexelListCanPay(256 * 256, 2048, 5));
+  EXPECT_FALSE(receiverTexelListCanPay(256 * 256, 512, 5));
+  EXPECT_FALSE(receiverTexelListCanPay(16, 2048, 1));
 }
 
 } // namespace
