@@ -36,7 +36,8 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
 namespace
 {
 
-// The blur at the listed texels only (shaders/SparseBoxBlur.glsl), written into `target` (RGBA32F).
+// The blur at the listed texels only (shaders/SparseBoxBlur.glsl), written into `target` (RGBA32F); `program` bound,
+// with its own uniforms set.
 void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
   const PrefilterRegion& region)
 {
@@ -74,6 +75,7 @@ vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window
     }
     vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(
       window, targets->blurred, texture->GetWidth(), texture->GetHeight(), texture->GetComponents());
+    targets->sparseProgram->use();
     blurReceiverTexels(*targets->sparseProgram, texture, blurred, blurTexels, *region);
     // The compute program is bound behind VTK's shader cache: make the next draw bind its own.
     window->GetShaderCache()->ReleaseCurrentShader();
@@ -112,6 +114,29 @@ vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window
     texture->SetMagnificationFilter(vtkTextureObject::Linear);
   }
   return texture;
+}
+
+vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* window, vtkTextureObject* shadowMapLinear,
+  double depthNear, double depthFar, double esmExponent, int blurTexels, const PrefilterRegion& region,
+  PrefilterTargets& targets)
+{
+  SL_CHECK_MSG(region.sparse && blurTexels > 1, "sparseMomentsOfDepth: a sparse region and a blur");
+  if (!targets.sparseDepthProgram)
+  {
+    targets.sparseDepthProgram = std::make_unique<ComputeProgram>(
+      assembleShader("moments/SparseBoxBlur.glsl", { { "SPARSE_SOURCE_DEPTH", "1" } }), "sparse moment blur");
+  }
+  const int size = static_cast<int>(shadowMapLinear->GetWidth());
+  vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(window, targets.blurred, size, size, 4);
+  ComputeProgram& program = *targets.sparseDepthProgram;
+  program.use();
+  // In float, as the moments pass sets them (SetUniformf).
+  program.setFloat("depthNear", static_cast<float>(depthNear));
+  program.setFloat("depthFar", static_cast<float>(depthFar));
+  program.setFloat("esmExponent", static_cast<float>(esmExponent));
+  blurReceiverTexels(program, shadowMapLinear, blurred, blurTexels, region);
+  window->GetShaderCache()->ReleaseCurrentShader();
+  return blurred;
 }
 
 void renderQuadOver(vtkOpenGLRenderWindow* window, FullScreenQuad& quad, const std::vector<TileRect>* rects)

@@ -31,9 +31,18 @@ struct PrefilterTargets
 {
   vtkSmartPointer<vtkTextureObject> horizontal;
   vtkSmartPointer<vtkTextureObject> blurred;
-  // The sparse blur's program (shaders/SparseBoxBlur.glsl), for a region that asks for it.
+  // The sparse blur's programs (shaders/SparseBoxBlur.glsl), for a region that asks for it: of a map of values, and
+  // of the shadow map's moments formed inline (sparseMomentsOfDepth).
   std::unique_ptr<ComputeProgram> sparseProgram;
+  std::unique_ptr<ComputeProgram> sparseDepthProgram;
 };
+
+// The moment map's sparse blur straight from the shadow map (`region.sparse`): each listed texel's box of moments
+// formed inline as shaders/MomentsFromDepth.glsl forms them (shaders/MomentsOfDepth.glsl), so the moments pass is
+// skipped; the result equals prefilterMoments of that pass's output on the listed texels. Returns targets.blurred.
+vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* window, vtkTextureObject* shadowMapLinear,
+  double depthNear, double depthFar, double esmExponent, int blurTexels, const PrefilterRegion& region,
+  PrefilterTargets& targets);
 // `slot` itself when it is a float target of that size and components in `window`, else a new one put in `slot`;
 // with nearest filtering (a mip-mapped prefilter of an earlier frame sets trilinear).
 vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPointer<vtkTextureObject>& slot, int width,

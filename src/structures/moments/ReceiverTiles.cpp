@@ -183,6 +183,7 @@ ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurT
   const long long listed = static_cast<long long>(readTexels.size());
   plan.blur.readTexelCount = static_cast<int>(listed);
   plan.blur.sparse = listed > 0 && sparseBlurIsCheaper(listed, blurTexels, horizontal.texelCount(), read.texelCount());
+  plan.horizontalTiles = plan.blur.sparse ? 0 : plan.horizontalTiles; // no horizontal pass
   plan.readTexels = std::move(readTexels);
   return plan;
 }

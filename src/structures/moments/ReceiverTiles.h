@@ -82,7 +82,7 @@ struct ReceiverPrefilterPlan
   ReceiverTiles read;            // the receivers' tiles
   PrefilterRegion blur;
   std::vector<TileRect> source; // where the unfiltered values are computed
-  int horizontalTiles = 0;       // 0 without a blur
+  int horizontalTiles = 0;       // 0 without a blur or when sparse (no horizontal pass)
   int sourceTiles = 0;
   // The texels the receivers read (x | y << 16, repeats where receivers share one), when the marking listed them
   // all; the blur then runs only on them (sparse) if that is cheaper than its tiles, and only they are built.

@@ -40,6 +40,18 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     plan = this->TileMarker.plan(window, frame, blurWidth);
   }
 
+  if (plan && plan->blur.sparse)
+  {
+    // Only the listed texels, their moments formed inline: no moments pass, no blur passes.
+    auto data = std::make_shared<sl::MomentMapData>();
+    data->moments = sl::sparseMomentsOfDepth(window, frame.shadowMapLinear, frame.lightView.nearDepth,
+      frame.lightView.farDepth, exponent, blurWidth, plan->blur, this->BlurTargets);
+    plan->sourceTiles = 0; // no moments pass
+    data->region = plan;
+    frame.lightSpaceData[sl::momentMapStructure().name] = data;
+    return;
+  }
+
   vtkSmartPointer<vtkTextureObject> moments = sl::reusedFloatTarget(window, this->MomentsTarget, size, size, 4);
   {
     const sl::ScopedRenderTarget target(window, this->Framebuffer, { moments });

@@ -9,7 +9,22 @@ layout(std430, binding = 0) readonly buffer ReceiverReadTexels
 {
   uint receiverReadTexels[];
 };
+#if SPARSE_SOURCE_DEPTH
+// The moment map's sparse blur reads the shadow map and forms each texel's moments inline, as the moments pass
+// would have stored them (the same function), so that pass is skipped.
+#include "moments/MomentsOfDepth.glsl"
+uniform sampler2D source; // the shadow map's linear depth
+vec4 sparseSource(ivec2 texel)
+{
+  return momentsOfDepth(texelFetch(source, texel, 0).r);
+}
+#else
 uniform sampler2D source; // the unfiltered values
+vec4 sparseSource(ivec2 texel)
+{
+  return texelFetch(source, texel, 0);
+}
+#endif
 uniform int blurWidth;
 uniform int readTexelCount;
 layout(rgba32f, binding = 0) uniform writeonly image2D blurred;
@@ -32,7 +47,7 @@ void main()
     vec4 rowSum = vec4(0.0);
     for (int k = 0; k < blurWidth; ++k)
     {
-      rowSum += texelFetch(source, clamp(rowTexel + (first + k) * ivec2(1, 0), ivec2(0), size - 1), 0);
+      rowSum += sparseSource(clamp(rowTexel + (first + k) * ivec2(1, 0), ivec2(0), size - 1));
     }
     sum += rowSum / float(blurWidth);
   }

@@ -182,9 +182,8 @@ TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
   EXPECT_EQ(builtTexels, 2.0);
   EXPECT_EQ(built.at(50, 70), 1.0f);
   EXPECT_EQ(built.at(51, 70), 1.0f);
-  // The tiles of the two passes: vertical = the receivers' tiles, horizontal grown by 2 along y, the source by 2
-  // along x too (what the sparse blur's boxes read).
-  EXPECT_EQ(plan.horizontalTiles, 6);
+  // No horizontal pass; the source over the receivers' tiles grown by 2 along y and x (what the boxes read).
+  EXPECT_EQ(plan.horizontalTiles, 0);
   EXPECT_EQ(plan.sourceTiles, 12);
 
   // As many fetches as the passes': the tiles are blurred, and built.
@@ -195,6 +194,7 @@ TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
   const std::vector<std::uint32_t> many(static_cast<std::size_t>(breakEven), 50u | (70u << 16));
   const ReceiverPrefilterPlan tiled = planReceiverPrefilter(read, 5, many);
   EXPECT_FALSE(tiled.blur.sparse);
+  EXPECT_EQ(tiled.horizontalTiles, 6); // the receivers' tiles grown by 2 along y
   EXPECT_EQ(tiled.builtMask().data, read.texelMask().data);
   // No list (it overflowed) or no blur: tiles.
   EXPECT_FALSE(planReceiverPrefilter(read, 5).blur.sparse);
