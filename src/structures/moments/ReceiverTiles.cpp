@@ -212,6 +212,11 @@ ImageF ReceiverPrefilterPlan::builtMask() const
   return mask;
 }
 
+bool receiverRegionCanPay(long long pixels, int mapSize)
+{
+  return static_cast<long long>(mapSize) * mapSize >= receiverRegionTexelsPerPixel * pixels;
+}
+
 bool receiverTexelListCanPay(long long pixels, int mapSize, int blurTexels)
 {
   const long long texels = static_cast<long long>(mapSize) * mapSize;

@@ -99,7 +99,11 @@ struct ReceiverPrefilterPlan
 // per run of tiles, for almost the same texels.
 ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels,
   std::vector<std::uint32_t> readTexels = {});
-constexpr double wholeDrawFraction = 0.75;
+constexpr double wholeDrawFraction = 0.5;
+// Whether marking the receivers' tiles can pay at all: with fewer than receiverRegionTexelsPerPixel map texels per
+// pixel the focused map's tiles are nearly all read (measured, README.md), and the whole map is built unmarked.
+constexpr long long receiverRegionTexelsPerPixel = 16;
+bool receiverRegionCanPay(long long pixels, int mapSize);
 // Whether listing the texels the receivers read can pay: a sparse blur of width blurTexels wins only with fewer
 // than 2 / w texels listed per texel of the map, and the marking lists up to 4 per pixel.
 bool receiverTexelListCanPay(long long pixels, int mapSize, int blurTexels);

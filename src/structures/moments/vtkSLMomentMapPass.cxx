@@ -35,7 +35,8 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
 
   // prefilter_region = receivers: each draw only over what the next one reads (ReceiverTiles.h).
   std::optional<sl::ReceiverPrefilterPlan> plan;
-  if (settings.receiversOnly)
+  if (settings.receiversOnly &&
+    sl::receiverRegionCanPay(static_cast<long long>(frame.width()) * frame.height(), size))
   {
     plan = this->TileMarker.plan(window, frame, blurWidth);
   }

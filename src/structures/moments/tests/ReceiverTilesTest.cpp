@@ -205,7 +205,7 @@ TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
 
   // Tiles over more than wholeDrawFraction of the map: one draw of the whole map, and all of it built.
   ReceiverTiles most(64, 16); // 4 x 4 tiles
-  for (int tile = 0; tile < 13; ++tile)
+  for (int tile = 0; tile < 9; ++tile)
   {
     most.mark(tile % 4, tile / 4);
   }
@@ -217,6 +217,8 @@ TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
   EXPECT_TRUE(receiverTexelListCanPay(256 * 256, 2048, 5));
   EXPECT_FALSE(receiverTexelListCanPay(256 * 256, 512, 5));
   EXPECT_FALSE(receiverTexelListCanPay(16, 2048, 1));
+  EXPECT_TRUE(receiverRegionCanPay(256 * 256, 1024));
+  EXPECT_FALSE(receiverRegionCanPay(256 * 256, 512));
 }
 
 } // namespace
