@@ -37,7 +37,7 @@ namespace
 {
 
 // The blur at the listed texels only (shaders/SparseBoxBlur.glsl), written into `target` (RGBA32F); `program` bound,
-// with its own uniforms set.
+// with its depth uniforms set.
 void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
   const PrefilterRegion& region)
 {
@@ -65,22 +65,7 @@ vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
   const PrefilterRegion* region, PrefilterTargets* targets)
 {
-  if (blurTexels > 1 && region && region->sparse)
-  {
-    SL_CHECK_MSG(targets != nullptr, "the sparse blur needs its pass's targets (PrefilterTargets)");
-    if (!targets->sparseProgram)
-    {
-      targets->sparseProgram =
-        std::make_unique<ComputeProgram>(assembleShader("moments/SparseBoxBlur.glsl"), "sparse box blur");
-    }
-    vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(
-      window, targets->blurred, texture->GetWidth(), texture->GetHeight(), texture->GetComponents());
-    targets->sparseProgram->use();
-    blurReceiverTexels(*targets->sparseProgram, texture, blurred, blurTexels, *region);
-    // The compute program is bound behind VTK's shader cache: make the next draw bind its own.
-    window->GetShaderCache()->ReleaseCurrentShader();
-    return blurred;
-  }
+  SL_CHECK_MSG(!(region && region->sparse), "a sparse region is blurred by sparseMomentsOfDepth");
   if (blurTexels > 1)
   {
     const int width = texture->GetWidth();
@@ -88,7 +73,8 @@ vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window
     const int components = texture->GetComponents();
     PrefilterTargets fresh;
     PrefilterTargets& kept = targets ? *targets : fresh;
-    vtkSmartPointer<vtkTextureObject> horizontal = reusedFloatTarget(window, kept.horizontal, width, height, components);
+    vtkSmartPointer<vtkTextureObject> horizontal =
+      reusedFloatTarget(window, kept.horizontal, width, height, components);
     vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(window, kept.blurred, width, height, components);
     const int directions[2][2] = { { 1, 0 }, { 0, 1 } };
     vtkTextureObject* sources[2] = { texture, horizontal };
@@ -121,14 +107,14 @@ vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* wi
   PrefilterTargets& targets)
 {
   SL_CHECK_MSG(region.sparse && blurTexels > 1, "sparseMomentsOfDepth: a sparse region and a blur");
-  if (!targets.sparseDepthProgram)
+  if (!targets.sparseProgram)
   {
-    targets.sparseDepthProgram = std::make_unique<ComputeProgram>(
-      assembleShader("moments/SparseBoxBlur.glsl", { { "SPARSE_SOURCE_DEPTH", "1" } }), "sparse moment blur");
+    targets.sparseProgram =
+      std::make_unique<ComputeProgram>(assembleShader("moments/SparseBoxBlur.glsl"), "sparse moment blur");
   }
   const int size = static_cast<int>(shadowMapLinear->GetWidth());
   vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(window, targets.blurred, size, size, 4);
-  ComputeProgram& program = *targets.sparseDepthProgram;
+  ComputeProgram& program = *targets.sparseProgram;
   program.use();
   // In float, as the moments pass sets them (SetUniformf).
   program.setFloat("depthNear", static_cast<float>(depthNear));
@@ -216,7 +202,8 @@ ReceiverTiles ReceiverTileMarker::mark(const FrameResources& frame, int tileTexe
   return tiles;
 }
 
-ReceiverPrefilterPlan ReceiverTileMarker::plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels)
+ReceiverPrefilterPlan ReceiverTileMarker::plan(
+  vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels)
 {
   std::vector<std::uint32_t> readTexels;
   const int mapSize = frame.lightView.resolution;

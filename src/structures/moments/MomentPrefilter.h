@@ -31,10 +31,8 @@ struct PrefilterTargets
 {
   vtkSmartPointer<vtkTextureObject> horizontal;
   vtkSmartPointer<vtkTextureObject> blurred;
-  // The sparse blur's programs (shaders/SparseBoxBlur.glsl), for a region that asks for it: of a map of values, and
-  // of the shadow map's moments formed inline (sparseMomentsOfDepth).
+  // The sparse blur's program (shaders/SparseBoxBlur.glsl, sparseMomentsOfDepth).
   std::unique_ptr<ComputeProgram> sparseProgram;
-  std::unique_ptr<ComputeProgram> sparseDepthProgram;
 };
 
 // The moment map's sparse blur straight from the shadow map (`region.sparse`): each listed texel's box of moments
@@ -50,8 +48,8 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
 
 // Returns `texture` box-blurred over blurTexels (a texture of `targets` when given, else a new one; `texture` itself
 // when blurTexels <= 1), mip-mapped when `mipmap`. `blurQuad` and `framebuffer` are the calling pass's (released
-// with it). With a `region`, each blur pass draws only its rectangles, or a sparse region blurs only its listed
-// texels (the other texels are left as they were: nobody reads them).
+// with it). With a `region` (not sparse: that one is sparseMomentsOfDepth's), each blur pass draws only its
+// rectangles (the other texels are left as they were: nobody reads them).
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
   const PrefilterRegion* region = nullptr, PrefilterTargets* targets = nullptr);
@@ -69,7 +67,8 @@ public:
   ~ReceiverTileMarker();
   // The tiles, and with `listTexels` in `readTexels` the listed texels (empty when there were more than the list
   // holds).
-  ReceiverTiles mark(const FrameResources& frame, int tileTexels, bool listTexels, std::vector<std::uint32_t>& readTexels);
+  ReceiverTiles mark(
+    const FrameResources& frame, int tileTexels, bool listTexels, std::vector<std::uint32_t>& readTexels);
   // The plan of a prefilter of blurTexels over the receivers' tiles (ReceiverTiles::tileTexelsFor the map), after
   // which VTK's shader cache binds its next program itself (the compute program is left bound behind it).
   ReceiverPrefilterPlan plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels);

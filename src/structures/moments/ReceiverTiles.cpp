@@ -160,7 +160,8 @@ std::vector<TileRect> receiverDrawRectangles(const ReceiverTiles& tiles)
 
 } // namespace
 
-ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels, std::vector<std::uint32_t> readTexels)
+ReceiverPrefilterPlan planReceiverPrefilter(
+  const ReceiverTiles& read, int blurTexels, std::vector<std::uint32_t> readTexels)
 {
   ReceiverPrefilterPlan plan;
   plan.read = read;

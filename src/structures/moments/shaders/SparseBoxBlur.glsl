@@ -1,30 +1,18 @@
-// The separable box blur (moments/BoxBlur.glsl, x then y) evaluated only at the texels the receivers read
-// (ReceiverTiles.h), one invocation per listed texel: for each of the vertical pass's rows it forms the horizontal
-// pass's value there as that pass does (the same taps, clamped alike, summed in the same order, divided by the
-// width), then sums them as the vertical pass does. The list is shaders/ReceiverTiles.glsl's: word 0 the count, then
-// x | y << 16 (repeats write the same value twice).
+// The moment map's separable box blur (moments/BoxBlur.glsl, x then y, over the moments of
+// moments/MomentsFromDepth.glsl) evaluated only at the texels the receivers read (ReceiverTiles.h), one invocation
+// per listed texel: for each of the vertical pass's rows it forms the horizontal pass's value there as that pass
+// does (the same taps, clamped alike, summed in the same order, divided by the width), then sums them as the vertical
+// pass does. The list is shaders/ReceiverTiles.glsl's: word 0 the count, then x | y << 16 (repeats write the same
+// value twice).
 layout(local_size_x = 64) in;
+
+#include "moments/MomentsOfDepth.glsl"
 
 layout(std430, binding = 0) readonly buffer ReceiverReadTexels
 {
   uint receiverReadTexels[];
 };
-#if SPARSE_SOURCE_DEPTH
-// The moment map's sparse blur reads the shadow map and forms each texel's moments inline, as the moments pass
-// would have stored them (the same function), so that pass is skipped.
-#include "moments/MomentsOfDepth.glsl"
 uniform sampler2D source; // the shadow map's linear depth
-vec4 sparseSource(ivec2 texel)
-{
-  return momentsOfDepth(texelFetch(source, texel, 0).r);
-}
-#else
-uniform sampler2D source; // the unfiltered values
-vec4 sparseSource(ivec2 texel)
-{
-  return texelFetch(source, texel, 0);
-}
-#endif
 uniform int blurWidth;
 uniform int readTexelCount;
 layout(rgba32f, binding = 0) uniform writeonly image2D blurred;
@@ -47,7 +35,9 @@ void main()
     vec4 rowSum = vec4(0.0);
     for (int k = 0; k < blurWidth; ++k)
     {
-      rowSum += sparseSource(clamp(rowTexel + (first + k) * ivec2(1, 0), ivec2(0), size - 1));
+      // The moments the moments pass would have stored there (the same function, so that pass is skipped).
+      ivec2 tap = clamp(rowTexel + (first + k) * ivec2(1, 0), ivec2(0), size - 1);
+      rowSum += momentsOfDepth(texelFetch(source, tap, 0).r);
     }
     sum += rowSum / float(blurWidth);
   }

@@ -67,7 +67,8 @@ TEST(ReceiverTiles, RectanglesCoverExactlyTheMarkedTexels)
         {
           const int expected = receiverTileTexelMarked(tiles, x, y) ? 1 : 0;
           marked += expected;
-          ASSERT_EQ(covered.at(x, y), expected) << "texel " << x << "," << y << " of " << mapSize << "^2, fraction " << fraction;
+          ASSERT_EQ(covered.at(x, y), expected)
+            << "texel " << x << "," << y << " of " << mapSize << "^2, fraction " << fraction;
           ASSERT_EQ(mask.at(x, y), static_cast<float>(expected));
         }
       }
