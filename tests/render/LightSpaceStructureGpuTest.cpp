@@ -109,7 +109,7 @@ std::vector<StructureCase> structureCases()
 {
   const Names shadowMapArrays = { "shadow_map_depth", "shadow_map_window_depth" };
   const Names tableArrays = { "sat_z", "sat_z2" };
-  const Names momentArrays = { "moment_mean", "moment_second", "moment_exponential" };
+  const Names momentArrays = { "moment_mean", "moment_second", "moment_exponential", "moment_built" };
   const std::size_t large = 128;
   const std::size_t small = 64;
   const int smallLevels = hsmLevelCount(static_cast<int>(small));

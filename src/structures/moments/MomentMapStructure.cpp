@@ -18,6 +18,8 @@ MomentMapSettings MomentMapSettings::from(const ParameterValues& values, const L
   settings.esmExponent = request.momentExponent;
   settings.mipmap = values.has("prefilter") && values.choice("prefilter") == "mipmap";
   settings.blurTexels = values.has("prefilter_texels") && !settings.mipmap ? values.getInt("prefilter_texels") : 1;
+  settings.receiversOnly =
+    !settings.mipmap && values.has("prefilter_region") && values.choice("prefilter_region") == "receivers";
   return settings;
 }
 
@@ -32,6 +34,37 @@ MomentMapSettings momentMapSettings(const FrameResources& frame)
   return momentMapSettings(*frame.technique, frame.parameters);
 }
 
+ImageF prefilterBuiltMask(const std::optional<ReceiverPrefilterPlan>& region, int mapSize)
+{
+  return region ? region->builtMask() : ImageF(mapSize, mapSize, 1, 1.0f);
+}
+
+void zeroUnbuilt(ImageF& image, const ImageF& builtMask)
+{
+  SL_CHECK(image.width == builtMask.width && image.height == builtMask.height && image.components == 1);
+  for (std::size_t i = 0; i < image.data.size(); ++i)
+  {
+    image.data[i] = builtMask.data[i] != 0.0f ? image.data[i] : 0.0f;
+  }
+}
+
+void addPrefilterRegionStatistics(const std::optional<ReceiverPrefilterPlan>& region, const std::string& prefix,
+  FrameResult& result)
+{
+  if (!region)
+  {
+    return;
+  }
+  const ReceiverTiles& read = region->read;
+  result.techniqueStatistics[prefix + "_tiles"] = static_cast<double>(read.tilesPerSide()) * read.tilesPerSide();
+  result.techniqueStatistics[prefix + "_receiver_tiles"] = read.markedCount();
+  result.techniqueStatistics[prefix + "_horizontal_tiles"] = region->horizontalTiles;
+  result.techniqueStatistics[prefix + "_source_tiles"] = region->sourceTiles;
+  // The texels listed as read (repeats included; 0 when the list overflowed), and whether the blur ran on them alone.
+  result.techniqueStatistics[prefix + "_read_texels"] = static_cast<double>(region->readTexels.size());
+  result.techniqueStatistics[prefix + "_sparse_blur"] = region->blur.sparse ? 1 : 0;
+}
+
 namespace
 {
 
@@ -40,16 +73,24 @@ const MomentMapData& momentData(const FrameResources& frame)
   return frame.structureData<MomentMapData>(momentMapStructure().name);
 }
 
-std::vector<NamedImage> exportMoments(const FrameResources& frame, FrameResult&)
+std::vector<NamedImage> exportMoments(const FrameResources& frame, FrameResult& result)
 {
-  const ImageF moments = readFloatTexture(momentData(frame).moments, 4);
+  const MomentMapData& data = momentData(frame);
+  const ImageF moments = readFloatTexture(data.moments, 4);
+  const ImageF built = prefilterBuiltMask(data.region, moments.width);
   const char* names[3] = { "moment_mean", "moment_second", "moment_exponential" };
   const char* docs[3] = { "prefiltered E[z] (linear depth)", "prefiltered E[z^2]", "prefiltered E[exp(c z_n)] (esm)" };
   std::vector<NamedImage> images;
   for (int c = 0; c < 3; ++c)
   {
-    images.push_back({ names[c], moments.channels(c, 1), "", docs[c] });
+    ImageF channel = moments.channels(c, 1);
+    zeroUnbuilt(channel, built);
+    images.push_back({ names[c], std::move(channel), "", docs[c] });
   }
+  images.push_back({ "moment_built", built, "",
+    "1 where the moment map was built (prefilter_region = receivers: the tiles the receivers' lookups read), 0 where "
+    "it was not (the moment arrays hold 0 there, not data)" });
+  addPrefilterRegionStatistics(data.region, "moment_map", result);
   return images;
 }
 
@@ -65,6 +106,7 @@ const LightSpaceStructure& momentMapStructure()
     s.parameters = {
       { "prefilter", 0, 0, 1, "", "blur: separable box blur of the moments; mipmap: trilinear mip-map lookup at log2(width)", { "blur", "mipmap" }, true },
       { "prefilter_texels", 5, 1, 63, "texels", "width of the box the moments are averaged over (odd widths are centred)", {}, true },
+      { "prefilter_region", 0, 0, 1, "", "where prefilter = blur builds and blurs the moment map (vsm, esm): receivers (only the tiles the frame's receivers read, the rest marked not built in moment_built) or whole_map; mipmap, and msm's and convsm's maps, are built whole", { "receivers", "whole_map" }, true },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLMomentMapPass>::New() };

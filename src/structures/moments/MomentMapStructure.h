@@ -3,6 +3,9 @@
 #pragma once
 
 #include "structures/LightSpaceStructure.h"
+#include "structures/moments/ReceiverTiles.h"
+
+#include <optional>
 
 namespace sl
 {
@@ -15,6 +18,9 @@ struct MomentMapSettings
   double esmExponent = 0.0; // the technique's LightSpaceRequest::momentExponent (esm), else 0 (the third moment unused)
   bool mipmap = false;      // prefilter = mipmap
   int blurTexels = 1;       // prefilter_texels for prefilter = blur; 1 = no blur
+  // prefilter_region = receivers: built and blurred only over the tiles the receivers read (ReceiverTiles.h); never
+  // with mipmap (the mip chain averages every texel).
+  bool receiversOnly = false;
 
   static MomentMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});
 };
@@ -27,6 +33,17 @@ struct MomentMapData : LightSpaceData
 {
   vtkSmartPointer<vtkTextureObject> moments; // RGBA32F; with a mip chain when mipmapped
   bool mipmapped = false;
+  // prefilter_region = receivers: where each draw ran; the texels outside region->read are undefined. None: every
+  // texel built.
+  std::optional<ReceiverPrefilterPlan> region;
 };
+
+// For the exports of the prefiltered maps (moment map, power moments, Fourier basis): 1 on the texels `region` built,
+// 0 elsewhere (all 1 without a region); zeroUnbuilt sets every unbuilt texel of `image` to 0 (not data); the
+// region's tile counts go to stats.json as <prefix>_tiles, _receiver_tiles, _horizontal_tiles, _source_tiles.
+ImageF prefilterBuiltMask(const std::optional<ReceiverPrefilterPlan>& region, int mapSize);
+void zeroUnbuilt(ImageF& image, const ImageF& builtMask);
+void addPrefilterRegionStatistics(const std::optional<ReceiverPrefilterPlan>& region, const std::string& prefix,
+  FrameResult& result);
 
 } // namespace sl

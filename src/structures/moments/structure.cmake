@@ -2,5 +2,7 @@
 sl_structure(
   ORDER 20
   STRUCTURE momentMapStructure MomentMapStructure.h
-  SOURCES MomentMapStructure.cpp MomentPrefilter.cpp vtkSLMomentMapPass.cxx
-  SHADERS shaders/MomentsFromDepth.glsl shaders/BoxBlur.glsl)
+  SOURCES MomentMapStructure.cpp MomentPrefilter.cpp ReceiverTiles.cpp vtkSLMomentMapPass.cxx
+  SHADERS shaders/MomentsFromDepth.glsl shaders/BoxBlur.glsl shaders/ReceiverTiles.glsl shaders/SparseBoxBlur.glsl shaders/MomentsOfDepth.glsl
+  UNIT_TESTS tests/ReceiverTilesTest.cpp
+  GPU_TESTS tests/MomentRegionGpuTest.cpp)

@@ -33,7 +33,27 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
   const bool mipmap = settings.mipmap;
   const int blurWidth = settings.blurTexels;
 
-  auto moments = sl::makeFloatTarget(window, size, size, 4);
+  // prefilter_region = receivers: each draw only over what the next one reads (ReceiverTiles.h).
+  std::optional<sl::ReceiverPrefilterPlan> plan;
+  if (settings.receiversOnly &&
+    sl::receiverRegionCanPay(static_cast<long long>(frame.width()) * frame.height(), size))
+  {
+    plan = this->TileMarker.plan(window, frame, blurWidth);
+  }
+
+  if (plan && plan->blur.sparse)
+  {
+    // Only the listed texels, their moments formed inline: no moments pass, no blur passes.
+    auto data = std::make_shared<sl::MomentMapData>();
+    data->moments = sl::sparseMomentsOfDepth(window, frame.shadowMapLinear, frame.lightView.nearDepth,
+      frame.lightView.farDepth, exponent, blurWidth, plan->blur, this->BlurTargets);
+    plan->sourceTiles = 0; // no moments pass
+    data->region = plan;
+    frame.lightSpaceData[sl::momentMapStructure().name] = data;
+    return;
+  }
+
+  vtkSmartPointer<vtkTextureObject> moments = sl::reusedFloatTarget(window, this->MomentsTarget, size, size, 4);
   {
     const sl::ScopedRenderTarget target(window, this->Framebuffer, { moments });
     vtkShaderProgram* program =
@@ -42,13 +62,15 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
     program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));
     program->SetUniformf("depthFar", static_cast<float>(frame.lightView.farDepth));
     program->SetUniformf("esmExponent", static_cast<float>(exponent));
-    this->MomentsQuad.render();
+    sl::renderQuadOver(window, this->MomentsQuad, plan ? &plan->source : nullptr);
     bound->Deactivate();
   }
-  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, blurWidth, mipmap);
+  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, blurWidth, mipmap,
+    plan ? &plan->blur : nullptr, &this->BlurTargets);
   auto data = std::make_shared<sl::MomentMapData>();
   data->moments = moments;
   data->mipmapped = mipmap;
+  data->region = plan;
   frame.lightSpaceData[sl::momentMapStructure().name] = data;
 }
 
@@ -57,6 +79,9 @@ void vtkSLMomentMapPass::ReleaseGraphicsResources(vtkWindow* window)
   this->MomentsQuad.releaseGraphicsResources(window);
   this->BlurQuad.releaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
+  this->TileMarker.release();
+  this->MomentsTarget = nullptr;
+  this->BlurTargets = sl::PrefilterTargets{};
 }
 
 void vtkSLMomentMapPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -1,12 +1,16 @@
 // The moment map's build (structures/moments/MomentMapStructure.h; vsm, esm): the shadow map's moments
 // (structures/moments/shaders/MomentsFromDepth.glsl), prefiltered by a separable box blur of prefilter_texels
-// (prefilter = blur) or mip-mapped (prefilter = mipmap). Parameters read: MomentMapSettings.
+// (prefilter = blur) or mip-mapped (prefilter = mipmap); with prefilter_region = receivers, each of the three draws
+// only over the tiles the next one reads (ReceiverTiles.h). Parameters read: MomentMapSettings.
 #pragma once
 
 #include "passes/FullScreenQuad.h"
+#include "structures/moments/MomentPrefilter.h"
 #include "passes/vtkSLStagePass.h"
 
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkTextureObject.h>
 
 class vtkOpenGLFramebufferObject;
 
@@ -31,4 +35,8 @@ private:
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   sl::FullScreenQuad MomentsQuad;
   sl::FullScreenQuad BlurQuad;
+  sl::ReceiverTileMarker TileMarker;
+  // Kept from frame to frame while the map's size holds (sl::PrefilterTargets).
+  vtkSmartPointer<vtkTextureObject> MomentsTarget;
+  sl::PrefilterTargets BlurTargets;
 };

@@ -3,16 +3,13 @@
 // the exponential stays finite for c up to 80 (e^80 < float max). Empty texels (no caster, 2 x far) are
 // "far away", which lights everything in front of them; clamping them to z_n = 1 keeps that, as every
 // receiver's t_n is at most 1.
+#include "moments/MomentsOfDepth.glsl"
+
 uniform sampler2D shadowMapLinear;
-uniform float depthNear;
-uniform float depthFar;
-uniform float esmExponent;
 
 layout(location = 0) out vec4 outMoments;
 
 void main()
 {
-  float z = texelFetch(shadowMapLinear, ivec2(gl_FragCoord.xy), 0).r;
-  float zNormalized = clamp((z - depthNear) / (depthFar - depthNear), 0.0, 1.0);
-  outMoments = vec4(z, z * z, exp(esmExponent * zNormalized), 1.0);
+  outMoments = momentsOfDepth(texelFetch(shadowMapLinear, ivec2(gl_FragCoord.xy), 0).r);
 }

@@ -1,0 +1,185 @@
+// prefilter_region = receivers (structures/moments/ReceiverTiles.h) on llvmpipe: vsm's and esm's frames equal those of
+// prefilter_region = whole_map bit for bit (every buffer), the moment map's built texels equal the whole map's bit for
+// bit, the unbuilt ones are 0 and marked 0 in moment_built, and every shadow-tested pixel's lookup texel is built;
+// on three datasets and random rectangle stacks, with the blur drawn over tiles (small maps) and sparse, at the
+// listed texels alone (maps of 512^2 and more at 96^2 pixels). The tile and texel counts are printed.
+#include "support/TestSupport.h"
+#include "lightspace/ShadowMapMath.h"
+#include "scene/Scene.h"
+#include "structures/moments/ReceiverTiles.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+namespace sl
+{
+namespace
+{
+
+double momentRegionStatistic(const FrameResult& frame, const std::string& name)
+{
+  const auto found = frame.techniqueStatistics.find(name);
+  return found == frame.techniqueStatistics.end() ? -1.0 : found->second;
+}
+
+void checkMomentRegion(const Scene& scene, const std::string& label, const std::string& technique,
+  const std::vector<std::string>& settings)
+{
+  std::vector<std::string> receivers = settings;
+  receivers.push_back("prefilter_region=receivers");
+  std::vector<std::string> whole = settings;
+  whole.push_back("prefilter_region=whole_map");
+  const FrameResult tiled = test::renderDataset(scene, technique, 96, 96, receivers);
+  const FrameResult full = test::renderDataset(scene, technique, 96, 96, whole);
+  const std::string where = test::caseLabel(label + " " + technique, receivers);
+
+  // Every buffer of the frame, bit for bit.
+  ASSERT_EQ(tiled.buffers.size(), full.buffers.size()) << where;
+  for (std::size_t b = 0; b < full.buffers.size(); ++b)
+  {
+    const NamedImage& mine = tiled.buffers[b];
+    const NamedImage& theirs = full.buffers[b];
+    ASSERT_EQ(mine.name, theirs.name) << where;
+    ASSERT_EQ(mine.image.data.size(), theirs.image.data.size()) << where << " " << mine.name;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < mine.image.data.size(); ++i)
+    {
+      differing += mine.image.data[i] == theirs.image.data[i] ? 0 : 1;
+    }
+    EXPECT_EQ(differing, 0u) << where << ": buffer " << mine.name << " differs from prefilter_region=whole_map";
+  }
+
+  // The moment map: built texels as the whole map's, the others 0 and marked.
+  const ImageF& built = test::lightSpaceArray(tiled, "moment_built");
+  const ImageF& wholeBuilt = test::lightSpaceArray(full, "moment_built");
+  std::size_t builtTexels = 0;
+  for (const float value : wholeBuilt.data)
+  {
+    ASSERT_EQ(value, 1.0f) << where << ": whole_map leaves a texel unbuilt";
+  }
+  for (const char* name : { "moment_mean", "moment_second", "moment_exponential" })
+  {
+    const ImageF& mine = test::lightSpaceArray(tiled, name);
+    const ImageF& theirs = test::lightSpaceArray(full, name);
+    std::size_t differing = 0;
+    std::size_t nonZeroUnbuilt = 0;
+    builtTexels = 0;
+    for (std::size_t i = 0; i < mine.data.size(); ++i)
+    {
+      if (built.data[i] != 0.0f)
+      {
+        ++builtTexels;
+        differing += mine.data[i] == theirs.data[i] ? 0 : 1;
+      }
+      else
+      {
+        nonZeroUnbuilt += mine.data[i] == 0.0f ? 0 : 1;
+      }
+    }
+    EXPECT_EQ(differing, 0u) << where << ": " << name << " differs from whole_map on built texels";
+    EXPECT_EQ(nonZeroUnbuilt, 0u) << where << ": " << name << " holds data on unbuilt texels";
+  }
+
+  // Every texel a lookup reads (the one holding the receiver's projection, prefilteredFetch) is built, by the CPU's
+  // double-precision projection.
+  const ImageF& tested = test::bufferOf(tiled, "shadow_tested");
+  const ImageF& position = test::bufferOf(tiled, "position");
+  const int mapSize = built.width;
+  int lookups = 0;
+  int unbuiltLookups = 0;
+  for (int y = 0; y < tested.height; ++y)
+  {
+    for (int x = 0; x < tested.width; ++x)
+    {
+      if (tested.at(x, y) < 0.5f)
+      {
+        continue;
+      }
+      const ShadowMapSample sample = projectToShadowMap(*tiled.lightView, test::vec3At(position, x, y));
+      const int texelX = std::clamp(static_cast<int>(std::floor(sample.uvTexels.x)), 0, mapSize - 1);
+      const int texelY = std::clamp(static_cast<int>(std::floor(sample.uvTexels.y)), 0, mapSize - 1);
+      ++lookups;
+      unbuiltLookups += built.at(texelX, texelY) != 0.0f ? 0 : 1;
+    }
+  }
+  EXPECT_GT(lookups, 0) << where;
+  EXPECT_EQ(unbuiltLookups, 0) << where << ": lookups of unbuilt texels";
+
+  const double allTiles = momentRegionStatistic(tiled, "moment_map_tiles");
+  if (!receiverRegionCanPay(static_cast<long long>(tested.width) * tested.height, mapSize))
+  {
+    // Too few texels per pixel for the region to pay: the whole map, unmarked.
+    EXPECT_EQ(allTiles, -1.0) << where;
+    EXPECT_EQ(builtTexels, static_cast<std::size_t>(mapSize) * mapSize) << where;
+    std::cout << "[ measured ] " << where << ": " << mapSize << "^2 map, whole (under "
+              << receiverRegionTexelsPerPixel << " texels per pixel)\n";
+    return;
+  }
+  const double receiverTiles = momentRegionStatistic(tiled, "moment_map_receiver_tiles");
+  EXPECT_GT(receiverTiles, 0.0) << where;
+  EXPECT_LE(receiverTiles, allTiles) << where;
+  if (momentRegionStatistic(tiled, "moment_map_sparse_blur") > 0)
+  {
+    // The moments formed inline: neither the moments pass nor the horizontal pass ran.
+    EXPECT_EQ(momentRegionStatistic(tiled, "moment_map_source_tiles"), 0.0) << where;
+    EXPECT_EQ(momentRegionStatistic(tiled, "moment_map_horizontal_tiles"), 0.0) << where;
+  }
+  else
+  {
+    EXPECT_LE(receiverTiles, momentRegionStatistic(tiled, "moment_map_source_tiles")) << where;
+  }
+  std::cout << "[ measured ] " << where << ": " << mapSize << "^2 map, receiver tiles " << receiverTiles << " of "
+            << allTiles << ", horizontal pass " << momentRegionStatistic(tiled, "moment_map_horizontal_tiles")
+            << ", moments " << momentRegionStatistic(tiled, "moment_map_source_tiles") << "; built texels "
+            << builtTexels << " of " << mapSize * mapSize << ", " << lookups << " lookups, "
+            << momentRegionStatistic(tiled, "moment_map_read_texels") << " listed texels, "
+            << (momentRegionStatistic(tiled, "moment_map_sparse_blur") > 0 ? "sparse blur" : "blur over tiles") << "\n";
+}
+
+TEST(MomentRegion, ReceiversEqualTheWholeMapOnDatasets)
+{
+  for (const std::string dataset : { "stacked-occluders", "bunny", "contact" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    for (const std::string technique : { "vsm", "esm" })
+    {
+      checkMomentRegion(scene, dataset, technique, { "shadow_map_size=256", "prefilter=blur", "prefilter_texels=5" });
+    }
+    checkMomentRegion(scene, dataset, "vsm", { "shadow_map_size=512", "prefilter=blur", "prefilter_texels=33" });
+    checkMomentRegion(scene, dataset, "vsm", { "shadow_map_size=128", "prefilter=blur", "prefilter_texels=1" });
+    // Sparse: the blur at the listed texels alone.
+    checkMomentRegion(scene, dataset, "esm", { "shadow_map_size=1024", "prefilter=blur", "prefilter_texels=5" });
+    checkMomentRegion(scene, dataset, "vsm", { "shadow_map_size=2048", "prefilter=blur", "prefilter_texels=12" });
+  }
+}
+
+TEST(MomentRegion, ReceiversEqualTheWholeMapOnRandomStacks)
+{
+  std::mt19937 generator(3303u);
+  std::uniform_int_distribution<int> width(1, 24);
+  for (int k = 0; k < 4; ++k)
+  {
+    const Scene scene = loadScene(test::datasetPath("stacked-occluders"), test::randomRectangleStack(generator, 3));
+    const std::string texels = std::to_string(width(generator));
+    checkMomentRegion(scene, "random stack " + std::to_string(k), k % 2 == 0 ? "vsm" : "esm",
+      { "shadow_map_size=" + std::to_string(k < 2 ? 256 : k == 2 ? 384 : 1024), "prefilter=blur",
+        "prefilter_texels=" + texels });
+  }
+}
+
+TEST(MomentRegion, MipmapBuildsTheWholeMap)
+{
+  const FrameResult frame = test::renderDataset(test::loadDataset("bunny"), "vsm", 64, 64,
+    { "shadow_map_size=128", "prefilter=mipmap", "prefilter_region=receivers" });
+  for (const float value : test::lightSpaceArray(frame, "moment_built").data)
+  {
+    ASSERT_EQ(value, 1.0f) << "prefilter=mipmap averages every texel: the whole map is built";
+  }
+  EXPECT_EQ(momentRegionStatistic(frame, "moment_map_receiver_tiles"), -1.0);
+}
+
+} // namespace
+} // namespace sl
