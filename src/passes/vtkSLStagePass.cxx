@@ -9,11 +9,22 @@ void vtkSLStagePass::Render(const vtkRenderState* state)
 {
   SL_CHECK_MSG(this->Frame, "pass ", this->GetStageName(), " has no frame resources");
   this->NumberOfRenderedProps = 0;
+  if (this->Reuse && this->Reuse->restore(*this->Frame))
+  {
+    ++this->ReusedRuns; // untimed: a reused build costs nothing on the GPU
+    return;
+  }
   sl::checkGlErrors(std::string("before stage ") + this->GetStageName());
+  const double gpuBefore = this->Timer.gpuMilliseconds();
   this->Timer.start();
   this->Execute(state);
   this->Timer.stop();
   sl::checkGlErrors(std::string("stage ") + this->GetStageName());
+  ++this->ExecutedRuns;
+  if (this->Reuse)
+  {
+    this->Reuse->remember(*this->Frame, this->Timer.gpuMilliseconds() - gpuBefore);
+  }
 }
 
 void vtkSLStagePass::PrintSelf(ostream& os, vtkIndent indent)
@@ -21,4 +32,5 @@ void vtkSLStagePass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Stage: " << this->GetStageName() << "\n";
   os << indent << "WallMilliseconds: " << this->GetWallMilliseconds() << "\n";
+  os << indent << "ExecutedRuns: " << this->ExecutedRuns << ", ReusedRuns: " << this->ReusedRuns << "\n";
 }
