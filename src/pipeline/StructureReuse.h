@@ -14,6 +14,7 @@
 // bench repeats, sub-lights whose structure does not depend on the sub-light) reuse; anything else rebuilds.
 #pragma once
 
+#include "passes/FrameResources.h"
 #include "passes/vtkSLStagePass.h"
 
 #include <cstdint>

@@ -19,11 +19,11 @@ namespace
 
 constexpr int kReuseTestSide = 96;
 
-// A renderer of its own, so that the reusing renderer's remembered builds are only what these tests rendered.
+// The tests' shared renderer: one EGL display per process (EglContext terminates it with the first renderer destroyed,
+// so a second renderer in the process would break the other's teardown).
 ShadowRenderer& reusingRenderer()
 {
-  static ShadowRenderer renderer;
-  return renderer;
+  return test::sharedRenderer();
 }
 
 FrameResult renderReuseFrame(ShadowRenderer& renderer, const Scene& scene, const std::string& technique,
@@ -37,11 +37,17 @@ FrameResult renderReuseFrame(ShadowRenderer& renderer, const Scene& scene, const
   return renderer.render(scene, request);
 }
 
-// The frame a renderer that remembers nothing gives: the shared test renderer with every build forgotten first.
+// The frame a renderer that remembers no build gives (every structure built, as by a fresh renderer; its programs
+// and targets are kept, as they were before reuse existed).
 FrameResult renderFromScratch(const Scene& scene, const std::string& technique, const std::vector<std::string>& settings)
 {
-  test::sharedRenderer().forgetLightSpaceBuilds();
-  return renderReuseFrame(test::sharedRenderer(), scene, technique, settings);
+  reusingRenderer().forgetLightSpaceBuilds();
+  const FrameResult frame = renderReuseFrame(reusingRenderer(), scene, technique, settings);
+  for (const auto& [name, build] : frame.lightStructureBuilds)
+  {
+    EXPECT_FALSE(build.reused) << technique << ": " << name << " reused after forgetLightSpaceBuilds";
+  }
+  return frame;
 }
 
 // The number of values of `name` (a per-pixel buffer, or else a light-space array) whose bits differ; -1 when the
