@@ -43,6 +43,7 @@ ShadowRenderer::~ShadowRenderer()
 {
   window_->MakeCurrent();
   renderer_->SetPass(nullptr);
+  forgetLightSpaceBuilds(); // their textures released while the context is current, with the stages' own
   for (auto& [name, stages] : stagesByTechnique_)
   {
     for (const auto& stage : stages)
