@@ -413,6 +413,7 @@ void ShadowRenderer::forgetLightSpaceBuilds()
 void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbufferOnly, FrameResult& result)
 {
   std::map<std::string, int> executedBuildRuns;
+  std::map<std::string, int> reusedBuildRuns;
   for (const auto& stage : stagesFor(frame, gbufferOnly))
   {
     result.stages.push_back({ stage->GetStageName(), stage->GetGpuMilliseconds(), stage->GetWallMilliseconds() });
@@ -421,9 +422,11 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
       const std::string& name = reuse->structure().name;
       FrameResult::LightStructureBuild& build = result.lightStructureBuilds[name];
       executedBuildRuns[name] += stage->GetExecutedRuns();
+      reusedBuildRuns[name] += stage->GetReusedRuns();
       build.buildGpuMs += stage->GetGpuMilliseconds();
       build.buildGpuMsWhenBuilt += reuse->buildGpuMillisecondsWhenBuilt();
-      build.reused = executedBuildRuns[name] == 0;
+      // Reused: every run of its build stages this frame (each sub-light's) was skipped.
+      build.reused = executedBuildRuns[name] == 0 && reusedBuildRuns[name] > 0;
     }
     if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
     {
