@@ -55,6 +55,16 @@ struct FrameResult
   std::vector<NamedPolyData> objectSpace; // geometry an object-space technique exports (vtkSLTechniquePass)
   std::vector<std::string> lightStructureNames; // the structures the technique reads (descriptor order)
   std::map<std::string, std::size_t> lightStructureGpuBytes; // by structure name, every structure that was built
+  // By structure name, every structure whose build can be reused across frames (pipeline/StructureReuse.h): whether
+  // this frame reused it (no run of its build stages executed), the GPU time its builds took in this frame (0 when
+  // reused), and the GPU time of the run that built the results it now holds.
+  struct LightStructureBuild
+  {
+    bool reused = false;
+    double buildGpuMs = 0.0;
+    double buildGpuMsWhenBuilt = 0.0;
+  };
+  std::map<std::string, LightStructureBuild> lightStructureBuilds;
   ImageU8 image;                      // shaded, RGB, row 0 at the bottom
   // The int32 summed-area table as stored (exact, for tests), when a technique built one in that precision.
   std::optional<Image<std::uint32_t>> integerSummedAreaTable;

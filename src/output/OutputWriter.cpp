@@ -167,6 +167,13 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     structureBytes[name] = bytes;
   }
   stats["light_structure_gpu_bytes"] = structureBytes;
+  nlohmann::json structureBuilds = nlohmann::json::object();
+  for (const auto& [name, build] : frame.lightStructureBuilds)
+  {
+    structureBuilds[name] = { { "reused", build.reused }, { "build_ms", build.buildGpuMs },
+      { "build_ms_when_built", build.buildGpuMsWhenBuilt } };
+  }
+  stats["light_structure_builds"] = structureBuilds; // GPU ms; a reused build (an unchanged input) costs 0
   if (!frame.samplePositions.empty())
   {
     nlohmann::json positions = nlohmann::json::array();

@@ -19,6 +19,7 @@
 
 #include <vtkSmartPointer.h>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -101,6 +102,11 @@ struct FrameResources
   // The other light-space structures (structures/LightSpaceStructure.h), by structure name: what each one's
   // build left for its binding and export (e.g. structures/sat/SatStructure.h's SummedAreaTableData).
   std::map<std::string, std::shared_ptr<LightSpaceData>> lightSpaceData;
+  // Reuse of light-space builds across frames (pipeline/StructureReuse.h): a hash of the scene's geometry and
+  // materials, computed once per frame before the stages, and the version of each structure's content in this frame
+  // (a new number at every build, kept when reused), which the key of every structure built from it includes.
+  std::uint64_t sceneGeometryHash = 0;
+  std::map<std::string, std::uint64_t> structureVersions;
 
   // Technique stage: "visibility" plus each buffer the descriptor publishes, all R32F. With sub-lights, the
   // combined targets once vtkSLMultiViewPass has run.

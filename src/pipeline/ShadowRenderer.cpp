@@ -1,6 +1,7 @@
 #include "pipeline/ShadowRenderer.h"
 
 #include "frame/Approximations.h"
+#include "pipeline/StructureReuse.h"
 
 #include "techniques/Registry.h"
 
@@ -8,6 +9,7 @@
 #include "gl/vtkSLEglRenderWindow.h"
 #include "structures/LightSpaceStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
+#include "structures/shadowmap/vtkSLFocusPass.h"
 #include "passes/FrameResources.h"
 #include "passes/vtkSLGBufferPass.h"
 #include "passes/vtkSLMsaaResolvePass.h"
@@ -41,6 +43,7 @@ ShadowRenderer::~ShadowRenderer()
 {
   window_->MakeCurrent();
   renderer_->SetPass(nullptr);
+  forgetLightSpaceBuilds(); // their textures released while the context is current, with the stages' own
   for (auto& [name, stages] : stagesByTechnique_)
   {
     for (const auto& stage : stages)
@@ -92,6 +95,14 @@ std::vector<vtkSmartPointer<vtkSLStagePass>>& ShadowRenderer::stagesFor(const Fr
     {
       for (const auto& pass : structure->createBuildPasses())
       {
+        // Every build stage may be skipped while its inputs are unchanged, except the focus: it depends on the
+        // camera, and fits the light view the other stages' keys hold.
+        if (!vtkSLFocusPass::SafeDownCast(pass))
+        {
+          auto reuse = std::make_shared<StructureBuildReuse>(*structure);
+          pass->SetReuse(reuse);
+          structureReuses_.push_back(reuse);
+        }
         stages.push_back(pass);
       }
     }
@@ -391,11 +402,32 @@ double ShadowRenderer::renderStages(FrameResources& frame, bool gbufferOnly)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
 }
 
+void ShadowRenderer::forgetLightSpaceBuilds()
+{
+  for (const auto& reuse : structureReuses_)
+  {
+    reuse->forget();
+  }
+}
+
 void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbufferOnly, FrameResult& result)
 {
+  std::map<std::string, int> executedBuildRuns;
+  std::map<std::string, int> reusedBuildRuns;
   for (const auto& stage : stagesFor(frame, gbufferOnly))
   {
     result.stages.push_back({ stage->GetStageName(), stage->GetGpuMilliseconds(), stage->GetWallMilliseconds() });
+    if (const auto* reuse = dynamic_cast<const StructureBuildReuse*>(stage->GetReuse()))
+    {
+      const std::string& name = reuse->structure().name;
+      FrameResult::LightStructureBuild& build = result.lightStructureBuilds[name];
+      executedBuildRuns[name] += stage->GetExecutedRuns();
+      reusedBuildRuns[name] += stage->GetReusedRuns();
+      build.buildGpuMs += stage->GetGpuMilliseconds();
+      build.buildGpuMsWhenBuilt += reuse->buildGpuMillisecondsWhenBuilt();
+      // Reused: every run of its build stages this frame (each sub-light's) was skipped.
+      build.reused = executedBuildRuns[name] == 0 && reusedBuildRuns[name] > 0;
+    }
     if (auto* techniquePass = vtkSLTechniquePass::SafeDownCast(stage))
     {
       result.techniqueStatistics = techniquePass->CollectStatistics();
@@ -465,6 +497,10 @@ FrameResult ShadowRenderer::render(const Scene& scene, const RenderRequest& requ
 {
   FrameResources frame;
   setFrameInputs(frame, scene, request, findTechnique(request.technique));
+  if (!request.gbufferOnly)
+  {
+    frame.sceneGeometryHash = sceneGeometryHash(scene); // part of every light-space build's key
+  }
   allocateFrameTargets(frame, scene, request.gbufferOnly);
 
   FrameResult result;

@@ -11,6 +11,7 @@
 #include <vtkSmartPointer.h>
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +62,9 @@ public:
   std::vector<FrameResult> renderSampleGBuffers(const Scene& scene, RenderRequest request, int samples);
 
   vtkSLEglRenderWindow* window() const { return window_; }
+  // Forgets every remembered light-space build, so that the next frame builds every structure (bench's cold repeats).
+  // Frames otherwise reuse a build whose inputs are unchanged (pipeline/StructureReuse.h).
+  void forgetLightSpaceBuilds();
 
 private:
   // The stage passes of each technique, built on first use and kept: their programs, framebuffers and
@@ -82,6 +86,8 @@ private:
   std::map<std::string, std::vector<vtkSmartPointer<vtkSLStagePass>>> stagesByTechnique_;
   // Techniques with sub-lights: the pass that runs their light-space and technique stages per sub-light.
   std::map<std::string, vtkSmartPointer<vtkSLMultiViewPass>> multiViewByTechnique_;
+  // The reuse attached to every light-space build stage of every stage list (forgetLightSpaceBuilds).
+  std::vector<std::shared_ptr<StageReuse>> structureReuses_;
 };
 
 } // namespace sl
