@@ -443,8 +443,8 @@ void ShadowRenderer::collectStageResults(const FrameResources& frame, bool gbuff
   {
     result.lightView = frame.partitions ? frame.partitions->views.front() : frame.lightView;
     result.partitions = frame.partitions;
-    result.automaticMapSize = frame.automaticMapSize;
   }
+  result.automaticMapSize = frame.automaticMapSize;
   result.glRenderer = window_->GetRendererString();
   result.glVersion = window_->GetVersionString();
   result.eglPlatform = window_->GetEglContext()->platformName();

@@ -41,11 +41,14 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     focus.lightFootprintWidth = frame.light->size;
   }
   sl::adviseBeyondOneMap(frame, focus);
-  if (settings.automaticResolution && !settings.fvsm.active() && (!frame.partitioned || frame.viewIndex == 0))
+  if (!frame.partitioned || frame.viewIndex == 0)
   {
-    // Fitted first at the largest allowed size (only the window's margin depends on it), then at the chosen one.
-    focus.resolution = this->LargestAutomaticSize(settings);
     frame.automaticMapSize.reset();
+    if (settings.automaticResolution && !settings.fvsm.active())
+    {
+      // Fitted first at the largest allowed size (only the window's margin depends on it), then at the chosen one.
+      focus.resolution = this->LargestAutomaticSize(settings);
+    }
   }
   if (frame.partitioned && frame.viewIndex == 0)
   {

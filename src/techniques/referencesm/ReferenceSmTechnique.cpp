@@ -162,7 +162,9 @@ ReferenceSmReplay::ReferenceSmReplay(const FrameResult& frame, const Scene& scen
   const bool directional = light_.type == LightType::Directional;
   const std::size_t sampleCount = directional ? 1 : samples.size();
   FocusSettings focus;
-  focus.resolution = settings.shadowMap.resolution;
+  // shadow_map_size = auto: the size the pass chose (from the centre's map, AutomaticMapSize.h).
+  SL_CHECK(!settings.shadowMap.automaticResolution || frame.automaticMapSize);
+  focus.resolution = settings.shadowMap.automaticResolution ? frame.automaticMapSize->size : settings.shadowMap.resolution;
   focus.marginTexels = settings.shadowMap.marginTexels;
   lights_.reserve(sampleCount);
   for (std::size_t k = 0; k < sampleCount; ++k)

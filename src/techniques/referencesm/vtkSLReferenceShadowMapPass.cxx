@@ -47,6 +47,15 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
   focus.resolution = settings.shadowMap.resolution;
   focus.marginTexels = settings.shadowMap.marginTexels;
   sl::adviseBeyondOneMap(frame, focus);
+  if (settings.shadowMap.automaticResolution)
+  {
+    // shadow_map_size = auto: one size for the K maps, the one the light's centre's map would get (AutomaticMapSize.h).
+    focus.resolution = sl::kAutomaticMapMaxSize;
+    const sl::LightView centre = sl::fitLightView(light, *frame.scene, *this->Receivers, focus);
+    frame.automaticMapSize = sl::automaticMapSize(frame.camera, light, { centre }, focus.marginTexels,
+      sl::readFloatTexture(frame.gbufferPosition, 4), sl::readFloatTexture(frame.gbufferNormal, 4), focus.resolution);
+    focus.resolution = frame.automaticMapSize->size;
+  }
   const bool secondDepth = settings.shadowMap.secondDepth;
   const auto linearDepth = sl::makeFloatTarget(window, focus.resolution, focus.resolution, 1);
   const auto hardwareDepth = sl::makeDepthTarget(window, focus.resolution, focus.resolution);
