@@ -23,11 +23,13 @@ Lesson pcfFixedKernelLesson()
       "is the ray-traced visible fraction of the light. A wide kernel compares one receiver depth against texels up "
       "to its radius away; on ground lit from the side those texels hold deeper ground, so the slope bias must grow "
       "with the radius or the lit ground shadows itself: `pcf-15` (radius 7 texels) uses `bias_slope_texels=8`. "
-      "(PCSS compares each tap against the receiver's tangent plane instead, `receiver_plane_bias`.)");
+      "(PCSS compares each tap against the receiver's tangent plane instead, `receiver_plane_bias`.) All three use "
+      "one 2048-texel map, so that a texel means the same on the ground for each.");
     lesson.reference("reference", "contact");
-    lesson.render({ "pcf-3", "contact", "pcf", { "kernel_texels=3" }, {}, "reference" });
-    lesson.render({ "pcf-15", "contact", "pcf", { "kernel_texels=15", "bias_slope_texels=8" }, {}, "reference" });
-    lesson.render({ "pcss", "contact", "pcss", {}, {}, "reference" });
+    lesson.render({ "pcf-3", "contact", "pcf", { "kernel_texels=3", "shadow_map_size=2048" }, {}, "reference" });
+    lesson.render(
+      { "pcf-15", "contact", "pcf", { "kernel_texels=15", "bias_slope_texels=8", "shadow_map_size=2048" }, {}, "reference" });
+    lesson.render({ "pcss", "contact", "pcss", { "shadow_map_size=2048" }, {}, "reference" });
 
     lesson.montage("visibility", "**Visibility** (1 = lit): the reference, two fixed kernels, and PCSS.",
       { "reference", "pcf-3", "pcf-15", "pcss" }, "visibility");

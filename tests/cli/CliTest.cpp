@@ -280,13 +280,13 @@ TEST(CliRender, SuccessfulRunHasCleanStderr)
 
 TEST(CliRender, PixelsCutShortAreWarnedAboutAndCounted)
 {
-  // yfgl09's brute force (hierarchy off) over ~400-texel kernels at the default 1024^2 map outruns llvmpipe's
+  // yfgl09's brute force (hierarchy off) over ~400-texel kernels at a 1024^2 map outruns llvmpipe's
   // loop cap (issue 13): one warning line naming the count and the flag, the count in stats.json; also with
   // --quiet, since the image is not what the user asked for.
   TempDir temp;
   const auto render = [&](const std::string& outName, const std::vector<std::string>& settings) {
     std::vector<std::string> arguments = { "render", datasetScene("stacked-occluders").string(), "--technique", "yfgl09",
-      "--resolution", "16x12", "--quiet", "--out", (temp.path() / outName).string() };
+      "--resolution", "16x12", "--quiet", "--out", (temp.path() / outName).string(), "--set", "shadow_map_size=1024" };
     const std::vector<std::string> scene = test::sceneSetArguments(test::wideKernelOverrides());
     arguments.insert(arguments.end(), scene.begin(), scene.end());
     for (const std::string& setting : settings)
@@ -340,7 +340,7 @@ TEST(CliRender, EsmPixelsWhoseBiasSaturatesTheExponentialAreFlagged)
   // exp(c bias_n) (bias_gain) weighs each lit texel at the receiver's depth by 12 to 10^6, so one lit texel of the
   // 5 x 5 box lights the pixel and every pixel of stacked-occluders read 1 (the reference's mean is 0.818). Each
   // such pixel is flagged (bias_gain >= 2), counted in stats.json, and warned about in one line; without the bias the
-  // same map is close to the truth, and at the default 2048 map nothing is flagged.
+  // same map is close to the truth, and at a 2048 map nothing is flagged.
   TempDir temp;
   const auto render = [&](const std::string& outName, const std::vector<std::string>& settings) {
     std::vector<std::string> arguments = { "render", datasetScene("stacked-occluders").string(), "--technique", "esm",
@@ -401,8 +401,8 @@ TEST(CliRender, EsmPixelsWhoseBiasSaturatesTheExponentialAreFlagged)
   EXPECT_LT(unbiasedMean, 0.9);
   EXPECT_EQ(unbiasedStats.at("technique_statistics").at("bias_gain_flagged_pixels").get<double>(), 0.0);
 
-  // The default map: a clean stderr and nothing flagged.
-  const RunResult fine = render("fine", {});
+  // A fine map: a clean stderr and nothing flagged.
+  const RunResult fine = render("fine", { "shadow_map_size=2048" });
   ASSERT_EQ(fine.exitCode, 0) << fine.describe();
   EXPECT_EQ(withoutNote(fine.err), "") << fine.describe();
   EXPECT_EQ(statsOf("fine").at("technique_statistics").at("bias_gain_flagged_pixels").get<double>(), 0.0);

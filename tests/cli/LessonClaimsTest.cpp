@@ -719,7 +719,7 @@ TEST(LessonClaims, PcfFixedKernel)
   // shrinks with it. Per pixel: where PCSS found blockers, its smallest kernel against its largest; and PCSS's
   // kernel grows with the ray tracer's penumbra (the pixels of full shadow or light next to the box, where the true
   // penumbra is narrow, have smaller kernels on average than the penumbra pixels).
-  const Buffers pcss = lesson.render("pcss", "contact", { "-t", "pcss" });
+  const Buffers pcss = lesson.render("pcss", "contact", { "-t", "pcss", "--set", "shadow_map_size=2048" });
   const Buffers traced = lesson.reference("reference", "contact");
   ASSERT_FALSE(pcss.empty());
   ASSERT_FALSE(traced.empty());

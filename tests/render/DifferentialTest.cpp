@@ -288,7 +288,8 @@ TEST(Differential, ReferenceSmFlagsItsMapsOfAPerforatedCasterAndEdgesWithinATexe
 }
 
 // Seed 1 puts a quad 0.004 below a small light: each of reference-sm's K maps is focused on receivers that include
-// that quad's top, spans ~180 tangent units and sees the ground under the 1.76-high quad as lit (1796 misses). The
+// that quad's top, spans ~180 tangent units and sees the ground under the 1.76-high quad as lit (1796 misses at the
+// 1024^2 maps of the fixed default; 175 at shadow_map_size = auto, which asks more than its 2048 cap there). The
 // "coarse shadow map" flag, from the K views' texels at each receiver, covers them all and leaves seed 3 (an ordinary
 // scene) unflagged.
 TEST(Differential, ReferenceSmFlagsItsCoarseMapsNearTheLight)
@@ -301,7 +302,7 @@ TEST(Differential, ReferenceSmFlagsItsCoarseMapsNearTheLight)
               << outcome.pixels << " flagged, " << outcome.flaggedMisses << " of them beyond tolerance\n";
     EXPECT_FALSE(outcome.failed()) << describeFailure(outcome);
   }
-  EXPECT_GT(outcomes.at(0).flaggedMisses, 1000) << "seed 1's near-light misses are flagged";
+  EXPECT_GT(outcomes.at(0).flaggedMisses, 100) << "seed 1's near-light misses are flagged";
   EXPECT_EQ(outcomes.at(1).flaggedBy.count("coarse shadow map"), 0u) << "seed 3 has no caster near the light";
   // Seed 3 flags only penumbra pixels where more than 2% of the samples' maps place an edge within a texel.
   for (const auto& [flag, count] : outcomes.at(1).flaggedBy)

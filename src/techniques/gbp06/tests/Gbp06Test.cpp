@@ -583,7 +583,8 @@ TEST(Gbp06, KernelsUnderTheLoopCapAreExactAndUnflagged)
         continue;
       }
       const std::string label = "light " + lightSize + ", traversal=" + traversal;
-      const CutShortReport report = cutShortAgainstTheTwin(scene, { "traversal=" + traversal }, 16, 12, label);
+      const CutShortReport report =
+        cutShortAgainstTheTwin(scene, { "traversal=" + traversal, "shadow_map_size=1024" }, 16, 12, label);
       EXPECT_GT(report.penumbra, 40) << label;
       EXPECT_EQ(report.twinOverBudget, 0) << label;
       EXPECT_EQ(report.flagged, 0) << label;
@@ -630,7 +631,9 @@ TEST(Gbp06, KernelsTheLoopCapCutsShortAreFlaggedExactly)
   };
   for (const Case& c : cases)
   {
-    const CutShortReport report = cutShortAgainstTheTwin(c.scene, { "traversal=" + c.traversal }, c.width, c.height, c.label);
+    // A 1024^2 map (the default before auto): the kernels' widths above are in its texels.
+    const CutShortReport report =
+      cutShortAgainstTheTwin(c.scene, { "traversal=" + c.traversal, "shadow_map_size=1024" }, c.width, c.height, c.label);
     EXPECT_GT(report.penumbra, c.width * c.height / 2) << c.label;
     EXPECT_EQ(report.differingFlagged, report.differing) << c.label << ": a pixel differs from the twin without being flagged";
     EXPECT_LE(report.maxUnflagged, 1e-3) << c.label;

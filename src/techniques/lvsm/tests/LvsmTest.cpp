@@ -517,21 +517,33 @@ LvsmLeakCounts lvsmClaimCounts(const std::vector<std::string>& options, const st
 
 TEST(Lvsm, LeaksLessThanVsmWhereVsmLeaks)
 {
-  const LvsmLeakCounts total = lvsmClaimCounts({}, "defaults");
-  EXPECT_GT(total.byCategory[1], 9 * (total.vsmLeaking - total.byCategory[1])) << "layering must leak less almost everywhere";
-  // At the defaults (layer_bound=tightest) the bound is never above vsm's: no pixel may leak more, and the class
-  // "clamped in front" is gone. What remains is inherent (README.md, "Where layering cannot help"): same layer (the
-  // bound is vsm's), saturated (every candidate bound is 1), vsm's bound the tightest (the bound is vsm's).
-  EXPECT_EQ(total.byCategory[static_cast<int>(LvsmVsmComparison::ClampedInFront)], 0);
-  EXPECT_EQ(total.moreThanVsm, 0);
-  // No same-layer box spans an empty bin of the depth histogram: there was no gap the gaps placement left unused.
-  EXPECT_EQ(total.sameLayerWithEmptyBin, 0);
+  // At the defaults (shadow_map_size = auto) and at the 2048^2 map the README's figures were measured at.
+  for (const std::vector<std::string>& options : { std::vector<std::string>{}, std::vector<std::string>{ "shadow_map_size=2048" } })
+  {
+    const std::string label = options.empty() ? "defaults" : "defaults, " + options.front();
+    const LvsmLeakCounts total = lvsmClaimCounts(options, label);
+    EXPECT_GT(total.byCategory[1], 9 * (total.vsmLeaking - total.byCategory[1]))
+      << label << ": layering must leak less almost everywhere";
+    // layer_bound=tightest: the bound is never above vsm's: no pixel may leak more, and the class "clamped in front"
+    // is gone. What remains is inherent (README.md, "Where layering cannot help"): same layer (the bound is vsm's),
+    // saturated (every candidate bound is 1), vsm's bound the tightest (the bound is vsm's).
+    EXPECT_EQ(total.byCategory[static_cast<int>(LvsmVsmComparison::ClampedInFront)], 0) << label;
+    EXPECT_EQ(total.moreThanVsm, 0) << label;
+    if (!options.empty())
+    {
+      // At 2048^2 no same-layer box spans an empty bin of the depth histogram: there was no gap the gaps placement
+      // left unused. At the coarser automatic maps a box spans more depths, and with layers - 1 boundaries for more
+      // empty runs than that some stay unused (measured: 22 of 38 same-layer pixels).
+      EXPECT_EQ(total.sameLayerWithEmptyBin, 0) << label;
+    }
+  }
 }
 
 // Each combination of layer_bound and layer_placement (the defaults are measured above): the counts per class
 // (README.md, "Measured"). tightest can only lower the bound (it takes the own layer's among its candidates), so it
 // leaks less at least where own does and never clearly more than vsm; gaps must not leave more pixels in one layer
-// than uniform.
+// than uniform. At the 2048^2 map the README's table was measured at: at the coarser automatic maps uniform leaves
+// fewer same-layer pixels than gaps (16 against 38 over these scenes; LeaksLessThanVsmWhereVsmLeaks runs both sizes).
 TEST(Lvsm, LeakClassesPerOption)
 {
   LvsmLeakCounts counts[2][2];
@@ -542,7 +554,7 @@ TEST(Lvsm, LeakClassesPerOption)
     for (int placement = 0; placement < 2; ++placement)
     {
       const std::vector<std::string> options{ format("layer_bound=", bounds[bound]),
-        format("layer_placement=", placements[placement]) };
+        format("layer_placement=", placements[placement]), "shadow_map_size=2048" };
       counts[bound][placement] = lvsmClaimCounts(options, format(options[0], " ", options[1]));
     }
   }
@@ -558,7 +570,7 @@ TEST(Lvsm, LeakClassesPerOption)
       counts[bound][0].byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)]) << bounds[bound];
   }
   // More layers split more boxes: the same-layer class shrinks (16 layers, the most allowed).
-  const LvsmLeakCounts sixteen = lvsmClaimCounts({ "layers=16" }, "layers=16");
+  const LvsmLeakCounts sixteen = lvsmClaimCounts({ "layers=16", "shadow_map_size=2048" }, "layers=16");
   EXPECT_LT(sixteen.byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)],
     counts[1][1].byCategory[static_cast<int>(LvsmVsmComparison::SameLayer)]);
 }
