@@ -1164,10 +1164,18 @@ std::string structureShareText(const nlohmann::json& result)
   return text.str();
 }
 
-// bench-run's warm_frame_gpu_ms ({median, min, max} of frames that reuse unchanged structures), when it wrote one.
+// bench-run's warm frames (median, min, max GPU ms of frames that reuse unchanged structures), when it wrote them:
+// warm_frame_gpu_ms with _min and _max beside it as the frame's own spread is written, or one object
+// {median, min, max}.
 std::optional<std::array<double, 3>> warmFrameOf(const nlohmann::json& result)
 {
   const nlohmann::json warm = result.value("warm_frame_gpu_ms", nlohmann::json());
+  if (warm.is_number())
+  {
+    const double median = warm.get<double>();
+    return std::array<double, 3>{ median, result.value("warm_frame_gpu_ms_min", median),
+      result.value("warm_frame_gpu_ms_max", median) };
+  }
   if (!warm.is_object() || !warm.contains("median") || !warm["median"].is_number())
   {
     return std::nullopt;
@@ -1243,7 +1251,8 @@ std::vector<BaselineMatch> matchBaseline(const nlohmann::json& rows, const Bench
     else
     {
       match.baseline = found->second.front();
-      match.rmse = row["result"]["error"]["covered"]["rmse"].get<double>();
+      // Both as bench.csv prints them (6 significant digits): an identical re-run differs by 0, not by the rounding.
+      match.rmse = parseNumber(numberText(row["result"]["error"]["covered"]["rmse"])).value();
       match.worse = baselineWorse(match.rmse, match.baseline.rmse);
     }
     matches.push_back(match);
@@ -1852,7 +1861,7 @@ std::vector<std::string> writeMapSizeGrowthCharts(const nlohmann::json& rows,
       benchChartTitle("cost against shadow_map_size: " + variants[group.first].name + " (" + sizes.texts[group.second] +
           ")",
         environment),
-      { "shadow_map_size (texels across)", "GPU time (ms, median)", true, true }, dir / files.back());
+      { "shadow_map_size (texels across)", "GPU time (ms, median)", true, true, true }, dir / files.back());
   }
   return files;
 }
@@ -1904,7 +1913,7 @@ std::vector<std::string> writeImageSizeGrowthCharts(const nlohmann::json& rows,
       files.push_back(prefix + variantStem(variants[sceneIndex], sceneIndex) + ".png");
       writeSweepChart(points,
         benchChartTitle(what + " against image size: " + variants[sceneIndex].name + " (" + sizeList + ")", environment),
-        { "image size (pixels)", what + " (ms, median)", true, true }, dir / files.back());
+        { "image size (pixels)", what + " (ms, median)", true, true, true }, dir / files.back());
     }
   };
   write(frameCharts, "cost_growth_pixels_", "frame GPU time");

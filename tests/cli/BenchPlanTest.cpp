@@ -205,7 +205,9 @@ TEST(BenchPlan, SeveralSizesPlanCollectAndAWarmFrameColumn)
   // A result as a bench-run that reuses structures writes it.
   const std::filesystem::path runFile = temp.path() / "plan" / "runs" / "1.json";
   nlohmann::json result = test::readJson(runFile);
-  result["warm_frame_gpu_ms"] = { { "median", 1.25 }, { "min", 1.0 }, { "max", 1.5 } };
+  result["warm_frame_gpu_ms"] = 1.25;
+  result["warm_frame_gpu_ms_min"] = 1.0;
+  result["warm_frame_gpu_ms_max"] = 1.5;
   test::writeFile(runFile, result.dump());
   const test::RunResult collected = test::runShadowlabInTempDir(
     { "bench", "--collect", (temp.path() / "plan").string(), "--out", (temp.path() / "collected").string(), "-q" });
