@@ -143,6 +143,18 @@ std::vector<std::string> distinguishingSettings(const std::vector<BaselineSettin
   return result;
 }
 
+std::string sortedSettings(const std::string& settings)
+{
+  std::vector<std::string> items = baselineSplitSettings(settings);
+  std::sort(items.begin(), items.end());
+  std::string text;
+  for (const std::string& item : items)
+  {
+    text += (text.empty() ? "" : " ") + item;
+  }
+  return text;
+}
+
 std::string benchBaselineKey(const std::string& technique, const std::string& sceneFile,
   const std::string& sceneOverrides, const std::string& resolution, const std::string& distinguishing)
 {
@@ -230,9 +242,13 @@ BenchBaseline loadBenchBaseline(const std::string& dir)
     row.rmse = *rmse;
     row.penumbraRmse = optionalNumber(record, "penumbra_rmse");
     row.p99AbsError = optionalNumber(record, "p99_abs_error");
+    const std::string rowResolution = column.count("resolution") ? cell(record, "resolution") : resolution;
     const std::string key = benchBaselineKey(cell(record, "technique"), row.scene, cell(record, "scene_overrides"),
-      column.count("resolution") ? cell(record, "resolution") : resolution, distinguishing[r - 1]);
+      rowResolution, distinguishing[r - 1]);
     baseline.rowsByKey[key].push_back(row);
+    baseline.rowsByFullKey[benchBaselineKey(cell(record, "technique"), row.scene, cell(record, "scene_overrides"),
+                             rowResolution, sortedSettings(row.settings))]
+      .push_back(row);
     ++baseline.rowCount;
   }
   return baseline;

@@ -34,7 +34,10 @@ struct BaselineRow
 struct BenchBaseline
 {
   std::string dir;
-  std::map<std::string, std::vector<BaselineRow>> rowsByKey; // benchBaselineKey -> rows
+  std::map<std::string, std::vector<BaselineRow>> rowsByKey; // benchBaselineKey (distinguishing settings) -> rows
+  // The same rows keyed by all their settings (sortedSettings): where no row matches on the distinguishing settings
+  // (this run sweeps a value the baseline set for every row), a row with the very same settings does.
+  std::map<std::string, std::vector<BaselineRow>> rowsByFullKey;
   std::size_t rowCount = 0;
 };
 
@@ -52,6 +55,9 @@ struct BaselineSettingsOf
 // Per row, its settings less those every row of its technique in the same run has (a --set value, a default the
 // bench spelt out): what is left tells the technique's configurations apart (a --sweep value), sorted.
 std::vector<std::string> distinguishingSettings(const std::vector<BaselineSettingsOf>& rows);
+
+// A settings text ("b=2 a=1") with its items sorted ("a=1 b=2").
+std::string sortedSettings(const std::string& settings);
 
 // The key two benches' rows match on. `sceneFile`: its last two path components are used (the dataset folder and
 // the file), so benches run from another directory or with absolute paths still match.

@@ -1231,14 +1231,25 @@ std::vector<BaselineMatch> matchBaseline(const nlohmann::json& rows, const Bench
     BaselineMatch match;
     const std::string key = benchBaselineKey(row["technique"], row["scene"], row["scene_overrides"],
       row["resolution"], distinguishing[c]);
-    const auto found = baseline.rowsByKey.find(key);
-    if (found == baseline.rowsByKey.end())
+    // The distinguishing settings first, then all of them (a run sweeping a value its baseline set for every row).
+    const std::vector<BaselineRow>* candidates = nullptr;
+    if (const auto found = baseline.rowsByKey.find(key); found != baseline.rowsByKey.end())
+    {
+      candidates = &found->second;
+    }
+    else if (const auto full = baseline.rowsByFullKey.find(benchBaselineKey(row["technique"], row["scene"],
+               row["scene_overrides"], row["resolution"], sortedSettings(row["settings"])));
+             full != baseline.rowsByFullKey.end())
+    {
+      candidates = &full->second;
+    }
+    if (!candidates)
     {
       match.problem = "no baseline row";
     }
-    else if (found->second.size() > 1)
+    else if (candidates->size() > 1)
     {
-      match.problem = format(found->second.size(), " baseline rows match");
+      match.problem = format(candidates->size(), " baseline rows match");
     }
     else if (row["status"] != "ok")
     {
@@ -1250,7 +1261,7 @@ std::vector<BaselineMatch> matchBaseline(const nlohmann::json& rows, const Bench
     }
     else
     {
-      match.baseline = found->second.front();
+      match.baseline = candidates->front();
       // Both as bench.csv prints them (6 significant digits): an identical re-run differs by 0, not by the rounding.
       match.rmse = parseNumber(numberText(row["result"]["error"]["covered"]["rmse"])).value();
       match.worse = baselineWorse(match.rmse, match.baseline.rmse);
@@ -1400,11 +1411,11 @@ std::string baselineMarkdown(const nlohmann::json& rows, const std::vector<Basel
   markdown << "\n## Error against the baseline\n\n"
            << "Baseline: " << baseline.dir << " (" << baseline.rowCount << " rows with errors). Rows are matched by "
            << "technique, scene file, scene overrides, resolution and the settings that tell a technique's "
-           << "configurations apart (those not common to all its rows in the same bench). Rule: "
+           << "configurations apart (those not common to all its rows in the same bench), else by all settings. Rule: "
            << baselineRuleText() << ". " << worse << " of " << compared << " compared configuration(s) worse.\n\n"
-           << "| scene | technique | settings | size | RMSE | baseline RMSE | RMSE change | penumbra RMSE | baseline "
-              "penumbra RMSE | p99 error | baseline p99 | worse |\n"
-           << "| --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+           << "| scene | technique | settings | size | baseline settings | RMSE | baseline RMSE | RMSE change | "
+              "penumbra RMSE | baseline penumbra RMSE | p99 error | baseline p99 | worse |\n"
+           << "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
   const auto optionalCell = [](const std::optional<double>& value) {
     return value ? numberText(nlohmann::json(*value)) : std::string("-");
   };
@@ -1416,16 +1427,17 @@ std::string baselineMarkdown(const nlohmann::json& rows, const std::vector<Basel
              << row["settings"].get<std::string>() << " | " << row["resolution"].get<std::string>() << " | ";
     if (!match.problem.empty())
     {
-      markdown << match.problem << " | | | | | | | |\n";
+      markdown << match.problem << " | | | | | | | | |\n";
       continue;
     }
+    markdown << match.baseline.settings << " | ";
     const nlohmann::json& error = row["result"]["error"];
     const std::optional<double> penumbra = error["penumbra"].value("pixels", 0.0) > 0.0
       ? std::optional<double>(error["penumbra"]["rmse"].get<double>())
       : std::nullopt;
     markdown << numberText(nlohmann::json(match.rmse)) << " | " << numberText(nlohmann::json(match.baseline.rmse))
-             << " | " << std::showpos << numberText(nlohmann::json(match.rmse - match.baseline.rmse)) << std::noshowpos
-             << " | " << optionalCell(penumbra) << " | " << optionalCell(match.baseline.penumbraRmse) << " | "
+             << " | " << (match.rmse > match.baseline.rmse ? "+" : "")
+             << numberText(nlohmann::json(match.rmse - match.baseline.rmse)) << " | " << optionalCell(penumbra) << " | " << optionalCell(match.baseline.penumbraRmse) << " | "
              << numberText(error["covered"]["p99_abs_error"]) << " | " << optionalCell(match.baseline.p99AbsError)
              << " | " << (match.worse ? "**worse**" : "no") << " |\n";
   }

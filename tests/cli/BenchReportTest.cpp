@@ -452,6 +452,18 @@ TEST(BenchReport, BaselineFlagsAWorseConfigurationAndNotAnIdenticalRerun)
   EXPECT_EQ(againSummary.find("**worse**"), std::string::npos) << againSummary;
   EXPECT_NE(againSummary.find("no baseline row"), std::string::npos) << againSummary;
   EXPECT_NE(againSummary.find("0 of 2 compared configuration(s) worse"), std::string::npos) << againSummary;
+
+  // A run sweeping the map size matches its baseline row by all settings where the swept value is the one the
+  // baseline set for every row; the other value has no row to compare with.
+  const std::filesystem::path swept = test::freshOutputDir("bench-baseline-swept");
+  const RunResult sweptRun = test::runShadowlabInTempDir({ "bench", scene, "-t", "hard", "-r", "64x64", "--sweep",
+    "shadow_map_size=512,32", "--repeat", "1", "--reference-samples", "16", "--quiet", "--cache", cache.string(),
+    "--out", swept.string(), "--baseline", base.string() });
+  ASSERT_EQ(sweptRun.exitCode, 0) << sweptRun.err;
+  const nlohmann::json sweptRows = test::readJson(swept / "bench.json").at("configurations");
+  ASSERT_EQ(sweptRows.size(), 2u);
+  EXPECT_EQ(sweptRows[0].at("baseline").at("rmse_delta").get<double>(), 0.0) << sweptRows[0].at("baseline").dump();
+  EXPECT_EQ(sweptRows[1].at("baseline").at("problem"), "no baseline row") << sweptRows[1].at("baseline").dump();
 }
 
 // A --baseline that is not a bench's output: one line naming it, and no output written (not even the cache).
