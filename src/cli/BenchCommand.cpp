@@ -2467,6 +2467,10 @@ int runBench(const BenchOptions& given, std::ostream& log)
   const std::vector<Configuration> configurations =
     expandConfigurations(variants.size(), sizes.texts.size(), techniqueNames, options.settings, sweeps);
   std::vector<std::filesystem::path> inputs = benchInputs(options, variants, configurations);
+  if (baseline)
+  {
+    inputs.push_back(given.baselineDir); // --out may neither be nor hold nor lie inside it
+  }
   if (!options.planDir.empty())
   {
     writeBenchPlan(options, benchPlanJobs(options, sizes, variants, configurations, log), inputs, log);
