@@ -193,25 +193,36 @@ BenchBaseline loadBenchBaseline(const std::string& dir)
       throw InputError(named + ": bench.csv has no column '" + needed + "'");
     }
   }
-  // Benches before the resolution column ran one size, which bench.json states.
-  std::string resolution;
-  if (!column.count("resolution"))
+  // Benches before the resolution column ran one size, which bench.json states; it also names the references'
+  // sample count.
+  nlohmann::json benchJson;
   {
     std::ifstream jsonFile(std::filesystem::path(dir) / "bench.json");
     try
     {
-      resolution = jsonFile ? nlohmann::json::parse(jsonFile).value("resolution", std::string()) : std::string();
+      benchJson = jsonFile ? nlohmann::json::parse(jsonFile) : nlohmann::json();
     }
     catch (const nlohmann::json::exception&)
     {
-      resolution.clear();
+      benchJson = nlohmann::json();
     }
+  }
+  BenchBaseline baseline;
+  if (benchJson.is_object() && benchJson.contains("reference_samples") && benchJson["reference_samples"].is_number())
+  {
+    baseline.referenceSamples = benchJson["reference_samples"].get<int>();
+  }
+  std::string resolution;
+  if (!column.count("resolution"))
+  {
+    resolution = benchJson.is_object() && benchJson.contains("resolution") && benchJson["resolution"].is_string()
+      ? benchJson["resolution"].get<std::string>()
+      : std::string();
     if (resolution.empty() || resolution.find(',') != std::string::npos)
     {
       throw InputError(named + ": bench.csv has no resolution column and bench.json names no single resolution");
     }
   }
-  BenchBaseline baseline;
   baseline.dir = dir;
   std::vector<std::vector<std::string>> usable;
   std::vector<BaselineSettingsOf> settings;

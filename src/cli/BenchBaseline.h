@@ -39,6 +39,7 @@ struct BenchBaseline
   // (this run sweeps a value the baseline set for every row), a row with the very same settings does.
   std::map<std::string, std::vector<BaselineRow>> rowsByFullKey;
   std::size_t rowCount = 0;
+  int referenceSamples = 0; // of its references (its bench.json's reference_samples; 0 when it names none)
 };
 
 // The rows of DIR/bench.csv (resolution from its `resolution` column, else from DIR/bench.json's "resolution", as

@@ -1401,7 +1401,7 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
 
 // summary.md's "error against the baseline" table (--baseline), with the rule it applies.
 std::string baselineMarkdown(const nlohmann::json& rows, const std::vector<BaselineMatch>& matches,
-  const BenchBaseline& baseline)
+  const BenchBaseline& baseline, int referenceSamples)
 {
   std::ostringstream markdown;
   const std::size_t worse = static_cast<std::size_t>(
@@ -1412,7 +1412,13 @@ std::string baselineMarkdown(const nlohmann::json& rows, const std::vector<Basel
            << "Baseline: " << baseline.dir << " (" << baseline.rowCount << " rows with errors). Rows are matched by "
            << "technique, scene file, scene overrides, resolution and the settings that tell a technique's "
            << "configurations apart (those not common to all its rows in the same bench), else by all settings. Rule: "
-           << baselineRuleText() << ". " << worse << " of " << compared << " compared configuration(s) worse.\n\n"
+           << baselineRuleText() << ". " << worse << " of " << compared << " compared configuration(s) worse."
+           << (baseline.referenceSamples > 0 && baseline.referenceSamples != referenceSamples
+                  ? format(" The baseline's references have ", baseline.referenceSamples, " samples, this run's ",
+                      referenceSamples, ": an RMSE change then includes the references' own noise (compare at equal "
+                      "--reference-samples).")
+                  : std::string())
+           << "\n\n"
            << "| scene | technique | settings | size | baseline settings | RMSE | baseline RMSE | RMSE change | "
               "penumbra RMSE | baseline penumbra RMSE | p99 error | baseline p99 | worse |\n"
            << "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
@@ -2274,7 +2280,7 @@ void writeBenchResults(const nlohmann::json& rows, const std::vector<Configurati
   writeViewStatisticCharts(rows, configurations, variants, options, sweeps, environment, dir);
   writeFileChecked(dir / "open_in_paraview.py", benchParaViewScript());
   writeFileChecked(dir / "summary.md", summaryMarkdown(rows, options, sizes, environment, charts,
-                                         baseline ? baselineMarkdown(rows, matches, *baseline) : std::string()));
+                                         baseline ? baselineMarkdown(rows, matches, *baseline, options.referenceSamples) : std::string()));
 }
 
 // bench --plan (cli/BenchPlan.h): every reference the configurations need and is not in the cache yet (whole, or as
