@@ -236,7 +236,8 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
     "columns and charts against the first --sweep key");
   benchCommand->add_option("--baseline", bench.baselineDir,
     "An earlier bench's output DIR (with bench.csv): summary.md compares RMSE, penumbra RMSE and p99 per technique x "
-    "scene with its rows and flags the worse ones; bench.csv gains baseline_rmse and rmse_delta");
+    "scene with its rows and flags the worse ones (RMSE up by more than 1e-4 and 1 %); bench.csv gains baseline_rmse and "
+    "rmse_delta");
   benchCommand->add_option("--plan", bench.planDir,
     "Write the bench as jobs (jobs.txt, Slurm job arrays: submit.sh) into DIR instead of running it (docs/cluster.md)");
   benchCommand->add_option("--collect", bench.collectDir,
