@@ -1841,8 +1841,14 @@ std::vector<std::string> writeMapSizeGrowthCharts(const nlohmann::json& rows,
   std::map<ChartGroup, std::vector<SweepPoint>> charts;
   for (std::size_t c = 0; c < rows.size(); ++c)
   {
-    const std::optional<double> size = settingNumber(configurations[c].settings, key);
-    if (rows[c]["status"] != "ok" || !size || !(*size > 0.0))
+    if (rows[c]["status"] != "ok")
+    {
+      continue;
+    }
+    // A swept "auto" is placed at the size the frame chose, where its result says.
+    std::optional<double> size = settingNumber(configurations[c].settings, key);
+    size = size ? size : parseNumber(chosenMapSizeText(rows[c]["result"]));
+    if (!size || !(*size > 0.0))
     {
       continue;
     }
