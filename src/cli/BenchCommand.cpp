@@ -1848,6 +1848,7 @@ std::vector<std::string> writeMapSizeGrowthCharts(const nlohmann::json& rows,
     // A swept "auto" is placed at the size the frame chose, where its result says.
     std::optional<double> size = settingNumber(configurations[c].settings, key);
     size = size ? size : parseNumber(chosenMapSizeText(rows[c]["result"]));
+    size = size ? size : parseNumber(parameterText(rows[c]["result"].value("light_view_resolution", nlohmann::json())));
     if (!size || !(*size > 0.0))
     {
       continue;
@@ -1945,15 +1946,16 @@ std::vector<std::string> writeImageSizeGrowthCharts(const nlohmann::json& rows,
   return files;
 }
 
-// cost_growth.csv, beside any cost-growth chart: per ok configuration its size, map size (as set, and as chosen
-// under shadow_map_size=auto where the result says), frame and technique-pass GPU times, and each structure's build
-// time and bytes.
+// cost_growth.csv, beside any cost-growth chart: per ok configuration its size, map size (as set, as chosen under
+// shadow_map_size=auto where the result says, and as rendered: light_view_resolution), frame and technique-pass GPU
+// times, and each structure's build time and bytes.
 void writeCostGrowthCsv(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
   const BenchSizes& sizes, const std::filesystem::path& dir)
 {
   const std::vector<std::string> structures = structureColumns(rows);
   std::vector<std::string> header{ "technique", "settings", "scene", "scene_overrides", "resolution", "pixels",
-    "shadow_map_size", "shadow_map_size_chosen", "frame_gpu_ms", "technique_gpu_ms", "structures_build_gpu_ms" };
+    "shadow_map_size", "shadow_map_size_chosen", "light_view_resolution", "frame_gpu_ms", "technique_gpu_ms",
+    "structures_build_gpu_ms" };
   for (const std::string& structure : structures)
   {
     header.insert(header.end(), { structure + "_build_gpu_ms", structure + "_gpu_bytes" });
@@ -1975,6 +1977,7 @@ void writeCostGrowthCsv(const nlohmann::json& rows, const std::vector<Configurat
       csvField(row["scene"]), csvField(row["scene_overrides"]), row["resolution"].get<std::string>(),
       format(static_cast<long long>(size.x) * size.y),
       parameterText(parameters.value("shadow_map_size", nlohmann::json())), chosenMapSizeText(result),
+      parameterText(result.value("light_view_resolution", nlohmann::json())),
       number(timingValue(result, "frame_gpu_ms")),
       result["stages"].contains("technique") ? number(timingValue(result["stages"]["technique"], "gpu_ms")) : "" };
     const std::vector<StructureCost> costs = structureCostsOf(result);

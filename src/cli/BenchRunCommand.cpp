@@ -294,6 +294,12 @@ int runBenchConfiguration(const BenchRunOptions& options)
   };
   putTimingSpread(result, "frame_gpu_ms", frameGpu);
   putTimingSpread(result, "frame_wall_ms", frameWall);
+  if (last.lightView)
+  {
+    // The texels across of the shadow map the frame rendered (stats.json light_view.resolution; view 0's where views
+    // partition the pixels): the map size a cost was paid for, whatever shadow_map_size said.
+    result["light_view_resolution"] = last.lightView->resolution;
+  }
   // Small copies of the visibility (and, against a reference, of the reference and the error) beside the result,
   // <result>.thumbnail.vti: bench lays them out as its per-scene strip and removes them.
   const int thumbnailSide = 96;
