@@ -294,12 +294,6 @@ int runBenchConfiguration(const BenchRunOptions& options)
   };
   putTimingSpread(result, "frame_gpu_ms", frameGpu);
   putTimingSpread(result, "frame_wall_ms", frameWall);
-  if (last.lightView)
-  {
-    // The texels across of the shadow map the frame rendered (stats.json light_view.resolution; view 0's where views
-    // partition the pixels): the map size a cost was paid for, whatever shadow_map_size said.
-    result["light_view_resolution"] = last.lightView->resolution;
-  }
   // Small copies of the visibility (and, against a reference, of the reference and the error) beside the result,
   // <result>.thumbnail.vti: bench lays them out as its per-scene strip and removes them.
   const int thumbnailSide = 96;
@@ -326,6 +320,12 @@ int runBenchConfiguration(const BenchRunOptions& options)
   std::filesystem::path thumbnailFile = options.resultFile;
   thumbnailFile.replace_extension(".thumbnail.vti");
   writeVti(thumbnailFile, thumbnails);
+  if (last.lightView)
+  {
+    // The texels across of the shadow map the frame rendered (stats.json light_view.resolution; view 0's where views
+    // partition the pixels): the map size a cost was paid for, whatever shadow_map_size said.
+    result["light_view_resolution"] = last.lightView->resolution;
+  }
   if (profileSettings)
   {
     result["depth_profile"] = depthProfileJson(depthProfile(last, *profileSettings));
