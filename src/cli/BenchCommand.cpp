@@ -1451,7 +1451,7 @@ std::string baselineMarkdown(const nlohmann::json& rows, const std::vector<Basel
 }
 
 std::string summaryMarkdown(const nlohmann::json& rows, const BenchOptions& options, const BenchSizes& sizes,
-  const BenchEnvironment& environment, const std::vector<std::string>& chartFiles, const std::string& baselineTable)
+  const BenchEnvironment& environment, const std::vector<std::string>& chartFiles, const std::string& moreSections)
 {
   const bool warm = anyWarmFrame(rows);
   std::ostringstream markdown;
@@ -1516,7 +1516,7 @@ std::string summaryMarkdown(const nlohmann::json& rows, const BenchOptions& opti
              << errorCell("covered", "fraction_above_0.05") << " | " << errorCell("covered", "max_abs_error") << " | "
              << bytes.str() << " | " << structureShareText(result) << " | " << compactStatisticsText(result) << " |\n";
   }
-  markdown << baselineTable;
+  markdown << moreSections; // cost growth against image size, error against the baseline
   if (!chartFiles.empty())
   {
     markdown << "\nCharts:\n\n";
@@ -1946,6 +1946,109 @@ std::vector<std::string> writeImageSizeGrowthCharts(const nlohmann::json& rows,
   return files;
 }
 
+// The least-squares slope of log(value) against log(x): the exponent k of value ~ x^k. Empty with fewer than two
+// distinct positive x or a value <= 0.
+std::optional<double> logLogSlope(const std::vector<std::pair<double, double>>& points)
+{
+  double sumX = 0.0;
+  double sumY = 0.0;
+  for (const auto& [x, y] : points)
+  {
+    if (!(x > 0.0) || !(y > 0.0))
+    {
+      return std::nullopt;
+    }
+    sumX += std::log(x);
+    sumY += std::log(y);
+  }
+  const double n = static_cast<double>(points.size());
+  double sxx = 0.0;
+  double sxy = 0.0;
+  for (const auto& [x, y] : points)
+  {
+    sxx += (std::log(x) - sumX / n) * (std::log(x) - sumX / n);
+    sxy += (std::log(x) - sumX / n) * (std::log(y) - sumY / n);
+  }
+  return points.size() >= 2 && sxx > 0.0 ? std::optional<double>(sxy / sxx) : std::nullopt;
+}
+
+// summary.md's "Cost growth against image size" (several -r sizes): per scene and configuration the frame GPU ms at
+// each size and the exponents k of frame ms ~ pixels^k and technique-pass ms ~ pixels^k (least squares on log-log
+// axes; 1: the cost grows as the pixels, 0: it does not depend on them, as a structure built at a fixed map size).
+std::string costGrowthMarkdown(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const BenchSizes& sizes)
+{
+  if (!sizes.several())
+  {
+    return {};
+  }
+  struct Growth
+  {
+    std::map<std::size_t, double> frameMs; // by size index
+    std::vector<std::pair<double, double>> frame;
+    std::vector<std::pair<double, double>> pass;
+  };
+  std::map<std::pair<std::size_t, std::string>, Growth> series; // (scene, technique and settings)
+  std::vector<std::pair<std::size_t, std::string>> order;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    if (rows[c]["status"] != "ok")
+    {
+      continue;
+    }
+    const Configuration& configuration = configurations[c];
+    const std::pair<std::size_t, std::string> key{ configuration.sceneIndex, costGrowthSeries(configuration, "") };
+    if (!series.count(key))
+    {
+      order.push_back(key);
+    }
+    Growth& growth = series[key];
+    const nlohmann::json& result = rows[c]["result"];
+    const glm::ivec2 size = sizes.sizes[configuration.resolutionIndex];
+    const double pixels = static_cast<double>(size.x) * static_cast<double>(size.y);
+    growth.frameMs[configuration.resolutionIndex] = timingValue(result, "frame_gpu_ms");
+    growth.frame.emplace_back(pixels, timingValue(result, "frame_gpu_ms"));
+    if (result["stages"].contains("technique"))
+    {
+      growth.pass.emplace_back(pixels, timingValue(result["stages"]["technique"], "gpu_ms"));
+    }
+  }
+  std::ostringstream markdown;
+  markdown << "\n## Cost growth against image size\n\n"
+           << "Frame GPU ms (median) at " << joined(sizes.texts, ", ")
+           << "; k: the exponent of time ~ pixels^k, a least-squares fit on log-log axes (1: the time grows as the "
+              "pixels; near 0: it is spent on work the image size does not change, such as a structure built at a "
+              "fixed map size). Charts: cost_growth_pixels_<scene>.png, cost_growth_pass_pixels_<scene>.png; every "
+              "number in cost_growth.csv.\n\n"
+           << "| scene | configuration | frame ms | frame k | technique pass k |\n| --- | --- | --- | ---: | ---: |\n";
+  const auto exponent = [](const std::optional<double>& k) {
+    std::ostringstream text;
+    if (k)
+    {
+      text << std::fixed << std::setprecision(2) << *k;
+    }
+    return k ? text.str() : std::string("-");
+  };
+  for (const auto& key : order)
+  {
+    const Growth& growth = series.at(key);
+    std::string times;
+    for (std::size_t r = 0; r < sizes.texts.size(); ++r)
+    {
+      std::ostringstream cell;
+      cell << std::fixed << std::setprecision(2);
+      if (growth.frameMs.count(r))
+      {
+        cell << growth.frameMs.at(r);
+      }
+      times += (r == 0 ? "" : ", ") + (growth.frameMs.count(r) ? cell.str() : std::string("-"));
+    }
+    markdown << "| " << variants[key.first].name << " | " << key.second << " | " << times << " | "
+             << exponent(logLogSlope(growth.frame)) << " | " << exponent(logLogSlope(growth.pass)) << " |\n";
+  }
+  return markdown.str();
+}
+
 // cost_growth.csv, beside any cost-growth chart: per ok configuration its size, map size (as set, as chosen under
 // shadow_map_size=auto where the result says, and as rendered: light_view_resolution), frame and technique-pass GPU
 // times, and each structure's build time and bytes.
@@ -2288,8 +2391,10 @@ void writeBenchResults(const nlohmann::json& rows, const std::vector<Configurati
   writeDepthProfiles(rows, configurations, variants, options, environment, dir);
   writeViewStatisticCharts(rows, configurations, variants, options, sweeps, environment, dir);
   writeFileChecked(dir / "open_in_paraview.py", benchParaViewScript());
-  writeFileChecked(dir / "summary.md", summaryMarkdown(rows, options, sizes, environment, charts,
-                                         baseline ? baselineMarkdown(rows, matches, *baseline, options.referenceSamples) : std::string()));
+  writeFileChecked(dir / "summary.md",
+    summaryMarkdown(rows, options, sizes, environment, charts,
+      costGrowthMarkdown(rows, configurations, variants, sizes) +
+        (baseline ? baselineMarkdown(rows, matches, *baseline, options.referenceSamples) : std::string())));
 }
 
 // bench --plan (cli/BenchPlan.h): every reference the configurations need and is not in the cache yet (whole, or as

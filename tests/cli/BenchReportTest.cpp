@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -379,6 +380,18 @@ TEST(BenchReport, SeveralSizesGiveRowsPerSizeCostGrowthAndStructureColumns)
   EXPECT_NE(summary.find("structures ms (share of frame)"), std::string::npos) << summary;
   EXPECT_NE(summary.find(": shadow_map "), std::string::npos) << "the largest structure is named\n" << summary;
   EXPECT_EQ(summary.find("warm frame ms"), std::string::npos) << "no run wrote warm_frame_gpu_ms";
+  // The cost-growth table: per configuration its exponent k of frame ms ~ pixels^k, through its two sizes' times.
+  const std::string growthRow = "| planar-occluder | pcf shadow_map_size=256 | ";
+  const std::size_t growthAt = summary.find(growthRow);
+  ASSERT_NE(growthAt, std::string::npos) << summary;
+  const std::string growthLine = summary.substr(growthAt, summary.find('\n', growthAt) - growthAt);
+  const double pcfFrame64 = rows[1].at("result").at("frame_gpu_ms").get<double>();
+  const double pcfFrame96 = rows[3].at("result").at("frame_gpu_ms").get<double>();
+  ASSERT_EQ(rows[3].at("technique"), "pcf");
+  const double exponent = std::log(pcfFrame96 / pcfFrame64) / std::log(9216.0 / 4096.0);
+  std::ostringstream expected;
+  expected << std::fixed << std::setprecision(2) << exponent;
+  EXPECT_NE(growthLine.find(" | " + expected.str() + " | "), std::string::npos) << growthLine << " vs k " << exponent;
   for (const std::string chart : { "cost_growth_pixels_planar-occluder.png", "cost_growth_pass_pixels_planar-occluder.png",
          "stages_planar-occluder_64x64.png", "stages_planar-occluder_96x96.png",
          "speed_vs_error_planar-occluder_64x64.png", "speed_vs_error_planar-occluder_96x96.png",
