@@ -1196,7 +1196,8 @@ std::string parameterText(const nlohmann::json& value)
   return value.is_number() ? numberText(value) : value.is_string() ? value.get<std::string>() : std::string();
 }
 
-// The map size the frame chose under shadow_map_size=auto (stats.json shadow_map_size_chosen), where the result has it.
+// The map size the frame rendered, given or chosen under shadow_map_size=auto (bench-run's and stats.json's
+// shadow_map_size_chosen), where the result has it.
 std::string chosenMapSizeText(const nlohmann::json& result)
 {
   if (result.contains("shadow_map_size_chosen"))
@@ -1848,7 +1849,6 @@ std::vector<std::string> writeMapSizeGrowthCharts(const nlohmann::json& rows,
     // A swept "auto" is placed at the size the frame chose, where its result says.
     std::optional<double> size = settingNumber(configurations[c].settings, key);
     size = size ? size : parseNumber(chosenMapSizeText(rows[c]["result"]));
-    size = size ? size : parseNumber(parameterText(rows[c]["result"].value("light_view_resolution", nlohmann::json())));
     if (!size || !(*size > 0.0))
     {
       continue;
@@ -2049,16 +2049,15 @@ std::string costGrowthMarkdown(const nlohmann::json& rows, const std::vector<Con
   return markdown.str();
 }
 
-// cost_growth.csv, beside any cost-growth chart: per ok configuration its size, map size (as set, as chosen under
-// shadow_map_size=auto where the result says, and as rendered: light_view_resolution), frame and technique-pass GPU
-// times, and each structure's build time and bytes.
+// cost_growth.csv, beside any cost-growth chart: per ok configuration its size, map size (as set, and as the frame
+// rendered it, chosen under shadow_map_size=auto: bench-run's shadow_map_size_chosen where the result has it), frame
+// and technique-pass GPU times, and each structure's build time and bytes.
 void writeCostGrowthCsv(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
   const BenchSizes& sizes, const std::filesystem::path& dir)
 {
   const std::vector<std::string> structures = structureColumns(rows);
   std::vector<std::string> header{ "technique", "settings", "scene", "scene_overrides", "resolution", "pixels",
-    "shadow_map_size", "shadow_map_size_chosen", "light_view_resolution", "frame_gpu_ms", "technique_gpu_ms",
-    "structures_build_gpu_ms" };
+    "shadow_map_size", "shadow_map_size_chosen", "frame_gpu_ms", "technique_gpu_ms", "structures_build_gpu_ms" };
   for (const std::string& structure : structures)
   {
     header.insert(header.end(), { structure + "_build_gpu_ms", structure + "_gpu_bytes" });
@@ -2080,7 +2079,6 @@ void writeCostGrowthCsv(const nlohmann::json& rows, const std::vector<Configurat
       csvField(row["scene"]), csvField(row["scene_overrides"]), row["resolution"].get<std::string>(),
       format(static_cast<long long>(size.x) * size.y),
       parameterText(parameters.value("shadow_map_size", nlohmann::json())), chosenMapSizeText(result),
-      parameterText(result.value("light_view_resolution", nlohmann::json())),
       number(timingValue(result, "frame_gpu_ms")),
       result["stages"].contains("technique") ? number(timingValue(result["stages"]["technique"], "gpu_ms")) : "" };
     const std::vector<StructureCost> costs = structureCostsOf(result);

@@ -320,12 +320,6 @@ int runBenchConfiguration(const BenchRunOptions& options)
   std::filesystem::path thumbnailFile = options.resultFile;
   thumbnailFile.replace_extension(".thumbnail.vti");
   writeVti(thumbnailFile, thumbnails);
-  if (last.lightView)
-  {
-    // The texels across of the shadow map the frame rendered (stats.json light_view.resolution; view 0's where views
-    // partition the pixels): the map size a cost was paid for, whatever shadow_map_size said.
-    result["light_view_resolution"] = last.lightView->resolution;
-  }
   if (profileSettings)
   {
     result["depth_profile"] = depthProfileJson(depthProfile(last, *profileSettings));
