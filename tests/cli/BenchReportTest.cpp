@@ -380,7 +380,19 @@ TEST(BenchReport, SeveralSizesGiveRowsPerSizeCostGrowthAndStructureColumns)
   EXPECT_NE(summary.find("Resolutions 64x64, 96x96"), std::string::npos) << summary;
   EXPECT_NE(summary.find("structures ms (share of frame)"), std::string::npos) << summary;
   EXPECT_NE(summary.find(": shadow_map "), std::string::npos) << "the largest structure is named\n" << summary;
-  EXPECT_EQ(summary.find("warm frame ms"), std::string::npos) << "no run wrote warm_frame_gpu_ms";
+  // "warm frame ms" where bench-run writes warm frames (a build with light-space reuse), with the first row's spread.
+  const nlohmann::json& first = rows[0].at("result");
+  EXPECT_EQ(summary.find("| warm frame ms |") != std::string::npos, first.contains("warm_frame_gpu_ms")) << summary;
+  if (first.contains("warm_frame_gpu_ms"))
+  {
+    std::ostringstream warmCell;
+    warmCell << std::fixed << std::setprecision(2) << "| " << first.at("warm_frame_gpu_ms").get<double>() << " ("
+             << first.at("warm_frame_gpu_ms_min").get<double>() << "-" << first.at("warm_frame_gpu_ms_max").get<double>()
+             << ") |";
+    EXPECT_NE(summary.find(warmCell.str()), std::string::npos) << warmCell.str() << "\n" << summary;
+    EXPECT_NEAR(std::stod(csv.cell(0, "warm_frame_gpu_ms")), first.at("warm_frame_gpu_ms").get<double>(),
+      1e-5 * first.at("warm_frame_gpu_ms").get<double>());
+  }
   // The cost-growth table: per configuration its exponent k of frame ms ~ pixels^k, through its two sizes' times.
   const std::string growthRow = "| planar-occluder | pcf shadow_map_size=256 | ";
   const std::size_t growthAt = summary.find(growthRow);
