@@ -5,6 +5,7 @@
 #include "vis/ColorMap.h"
 
 #include <vtkAxis.h>
+#include <vtkChartLegend.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
 #include <vtkPlot.h>
@@ -29,6 +30,10 @@ void writeSweepChart(const std::vector<SweepPoint>& points, const std::string& t
     return logarithmic ? std::log10(value) : value;
   };
   const OffscreenChart offscreen = makeOffscreenChart(title);
+  if (axes.legendBottom)
+  {
+    offscreen.chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
+  }
   std::map<std::string, std::vector<SweepPoint>> bySeries;
   for (const SweepPoint& point : points)
   {

@@ -23,6 +23,9 @@ struct SweepAxes
   std::string valueTitle;     // "frame GPU time (ms)"
   bool logParameter = false;
   bool logValue = false;
+  // The legend at the bottom right instead of the top right: where a chart's lines rise to the right (cost against
+  // size), the top right holds their last points.
+  bool legendBottom = false;
 };
 
 // Throws GraphicsError without an EGL context, InputError when the PNG cannot be written or a logarithmic

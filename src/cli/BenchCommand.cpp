@@ -4,16 +4,20 @@
 // machines by any batch system and a crash in one configuration is reported while the rest go on. The
 // ray-traced reference of each scene is computed once (`shadowlab reference`, also a child process) and
 // cached under --cache, keyed by a hash of the loaded scene (geometry, lights, camera), the resolution and
-// the sample count. Outputs (atomically, into --out): bench.csv, bench.json, summary.md (the renderer and the
-// machine, then a row per configuration: time spread, stages, errors, memory, key counters), per scene
-// stages_<scene>.png (stacked stage times), speed_vs_error_<scene>.png and speed_vs_penumbra_error_<scene>.png (log
-// axes, sweeps joined and labelled), thumbnails_<scene>.png (visibility and error of every configuration),
-// cost_growth_<scene>.png when a --sweep varies shadow_map_size, runs/<n>.json (each child's result), logs/ (a
-// child's stdout and stderr, kept only when it printed something).
+// the sample count. -r takes a comma list of sizes: every configuration runs at each. Outputs (atomically, into
+// --out): bench.csv, bench.json, summary.md (the renderer and the machine, then a row per configuration: time
+// spread, stages, errors, memory, structures' build time, key counters; with --baseline, the error against an
+// earlier bench's rows), per scene (and size, when several) stages_<scene>.png (stacked stage times),
+// speed_vs_error_<scene>.png and speed_vs_penumbra_error_<scene>.png (log axes, sweeps joined and labelled),
+// thumbnails_<scene>.png (visibility and error of every configuration), cost_growth_<scene>.png when a --sweep
+// varies shadow_map_size, cost_growth_pixels_<scene>.png and cost_growth_pass_pixels_<scene>.png with several sizes,
+// cost_growth.csv beside those, runs/<n>.json (each child's result), logs/ (a child's stdout and stderr, kept only
+// when it printed something).
 // Exit status: 0 when every configuration ran, 4 when some failed (their rows say why) or a reference could not
 // be made (an error line says why).
 #include "cli/Commands.h"
 
+#include "cli/BenchBaseline.h"
 #include "cli/BenchPlan.h"
 #include "cli/CommandProgress.h"
 #include "core/Error.h"
@@ -24,6 +28,7 @@
 #include "metrics/Comparison.h"
 #include "metrics/DepthProfile.h"
 #include "scene/Scene.h"
+#include "structures/LightSpaceStructure.h"
 #include "techniques/Registry.h"
 #include "vis/SpeedErrorChart.h"
 #include "vis/DepthProfileChart.h"
@@ -34,6 +39,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +68,7 @@ struct Configuration
   std::size_t sceneIndex = 0;
   std::string technique;
   std::vector<std::string> settings;
+  std::size_t resolutionIndex = 0; // into BenchSizes
 };
 
 // The comma-separated items of `text`; an empty item ("3,,9", "3,9,", "pcf,") is refused, naming `shown` (the
@@ -84,6 +91,33 @@ std::vector<std::string> splitList(const std::string& text, const std::string& s
     }
     start = comma + 1;
   }
+}
+
+// The image sizes of -r/--resolution ("128x128,256x256"): every configuration runs at each. The text of each is
+// what the reference cache's key hashes, so a single size keys the cache as it always did.
+struct BenchSizes
+{
+  std::vector<std::string> texts;
+  std::vector<glm::ivec2> sizes;
+
+  bool several() const { return texts.size() > 1; }
+  // The file-name part of size `index` ("_128x128") when several are run, else "" (the names of one size's bench).
+  std::string stemSuffix(std::size_t index) const { return several() ? "_" + texts[index] : std::string(); }
+};
+
+BenchSizes parseBenchSizes(const std::string& resolution)
+{
+  BenchSizes sizes;
+  for (const std::string& text : splitList(resolution, "--resolution " + resolution))
+  {
+    if (std::find(sizes.texts.begin(), sizes.texts.end(), text) != sizes.texts.end())
+    {
+      throw InputError("--resolution " + resolution + ": " + text + " is given twice");
+    }
+    sizes.sizes.push_back(parseResolution(text));
+    sizes.texts.push_back(text);
+  }
+  return sizes;
 }
 
 // FNV-1a over everything that changes the reference image.
@@ -539,18 +573,22 @@ std::vector<std::vector<std::string>> settingCombinations(const TechniqueDescrip
   return combinations;
 }
 
-// Scene variants x techniques x setting combinations, in the order the rows are written.
-std::vector<Configuration> expandConfigurations(std::size_t variantCount, const std::vector<std::string>& techniqueNames,
-  const std::vector<std::string>& settings, const std::vector<SettingSweep>& sweeps)
+// Scene variants x image sizes x techniques x setting combinations, in the order the rows are written.
+std::vector<Configuration> expandConfigurations(std::size_t variantCount, std::size_t sizeCount,
+  const std::vector<std::string>& techniqueNames, const std::vector<std::string>& settings,
+  const std::vector<SettingSweep>& sweeps)
 {
   std::vector<Configuration> configurations;
   for (std::size_t sceneIndex = 0; sceneIndex < variantCount; ++sceneIndex)
   {
-    for (const std::string& name : techniqueNames)
+    for (std::size_t sizeIndex = 0; sizeIndex < sizeCount; ++sizeIndex)
     {
-      for (const auto& combination : settingCombinations(findTechnique(name), settings, sweeps))
+      for (const std::string& name : techniqueNames)
       {
-        configurations.push_back({ sceneIndex, name, combination });
+        for (const auto& combination : settingCombinations(findTechnique(name), settings, sweeps))
+        {
+          configurations.push_back({ sceneIndex, name, combination, sizeIndex });
+        }
       }
     }
   }
@@ -609,23 +647,25 @@ std::string referenceFailure(const ChildResult& child, const std::filesystem::pa
 // buffers.vti of `variant`'s ray-traced reference: the cached one when it is usable, else computed into the
 // cache by a `shadowlab reference` child. Empty (with an error line, counted in `failures`) when none could be
 // made; the variant's configurations then run without error metrics and bench exits 4.
-std::string referenceFileFor(const BenchOptions& options, const glm::ivec2& resolution, const SceneVariant& variant,
-  int msaa, const std::filesystem::path& logFile, std::ostream& log, int& failures)
+std::string referenceFileFor(const BenchOptions& options, const std::string& resolutionText,
+  const glm::ivec2& resolution, const SceneVariant& variant, int msaa, const std::filesystem::path& logFile,
+  std::ostream& log, int& failures)
 {
   const std::filesystem::path cached = std::filesystem::path(options.cacheDir) /
-    referenceKey(variant.scene, options.resolution, options.referenceSamples, msaa);
+    referenceKey(variant.scene, resolutionText, options.referenceSamples, msaa);
   // A cache entry is re-validated on every use; a bad one (cut short, altered) is computed again.
   if (const std::string problem = cachedReferenceProblem(cached, resolution); !problem.empty())
   {
     if (!options.quiet)
     {
-      log << "bench: ray-traced reference of " << variant.name << " (" << options.referenceSamples << " samples"
+      log << "bench: ray-traced reference of " << variant.name << " (" << resolutionText << ", "
+          << options.referenceSamples << " samples"
           << (msaa > 1 ? format(", ", msaa, " per pixel") : std::string()) << ") -> " << cached.string()
           << (problem == "missing" ? std::string() : " (the cached one is unusable: " + problem + ")") << "\n";
     }
     // --force: the entry (named by its hash) belongs to the cache; a bad one is replaced, marker or not.
     std::vector<std::string> arguments{ "reference", variant.file, "--reference-samples",
-      std::to_string(options.referenceSamples), "--resolution", options.resolution, "--msaa", std::to_string(msaa),
+      std::to_string(options.referenceSamples), "--resolution", resolutionText, "--msaa", std::to_string(msaa),
       "--out", cached.string(), "--quiet", "--force" };
     for (const std::string& override : variant.overrides)
     {
@@ -666,35 +706,39 @@ int multisamplesOf(const Configuration& configuration)
   return technique.multisampleFor(values).samples;
 }
 
-// Per scene variant, by samples per pixel, the references its configurations need, before any configuration runs.
-using ReferenceFiles = std::vector<std::map<int, std::string>>;
-ReferenceFiles prepareReferences(const BenchOptions& options, const glm::ivec2& resolution,
+// Per scene variant and image size, by samples per pixel, the references its configurations need, before any
+// configuration runs.
+using ReferenceFiles = std::map<std::pair<std::size_t, std::size_t>, std::map<int, std::string>>;
+ReferenceFiles prepareReferences(const BenchOptions& options, const BenchSizes& sizes,
   const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations,
   const std::filesystem::path& logsDir, std::ostream& log, int& failures)
 {
-  std::vector<std::set<int>> needed(variants.size());
+  std::map<std::pair<std::size_t, std::size_t>, std::set<int>> needed;
   for (const Configuration& configuration : configurations)
   {
-    needed[configuration.sceneIndex].insert(multisamplesOf(configuration));
+    needed[{ configuration.sceneIndex, configuration.resolutionIndex }].insert(multisamplesOf(configuration));
   }
-  ReferenceFiles referenceFiles(variants.size());
-  for (std::size_t s = 0; s < variants.size(); ++s)
+  ReferenceFiles referenceFiles;
+  for (const auto& [group, samples] : needed)
   {
-    for (const int msaa : needed[s])
+    const auto [s, r] = group;
+    for (const int msaa : samples)
     {
-      referenceFiles[s][msaa] = referenceFileFor(options, resolution, variants[s], msaa,
-        logsDir / (msaa > 1 ? format("reference-", s, "-msaa", msaa, ".txt") : format("reference-", s, ".txt")), log,
-        failures);
+      // One size keeps the log names of a one-size bench.
+      const std::string stem = sizes.several() ? format("reference-", s, "-", sizes.texts[r]) : format("reference-", s);
+      referenceFiles[group][msaa] = referenceFileFor(options, sizes.texts[r], sizes.sizes[r], variants[s], msaa,
+        logsDir / (msaa > 1 ? format(stem, "-msaa", msaa, ".txt") : stem + ".txt"), log, failures);
     }
   }
   return referenceFiles;
 }
 
-std::vector<std::string> benchRunArguments(const BenchOptions& options, const SceneVariant& variant,
-  const Configuration& configuration, const std::string& referenceFile, const std::filesystem::path& resultFile)
+std::vector<std::string> benchRunArguments(const BenchOptions& options, const BenchSizes& sizes,
+  const SceneVariant& variant, const Configuration& configuration, const std::string& referenceFile,
+  const std::filesystem::path& resultFile)
 {
   std::vector<std::string> arguments{ "bench-run", variant.file, "--technique", configuration.technique,
-    "--resolution", options.resolution, "--repeat", std::to_string(options.repeat), "--result", resultFile.string() };
+    "--resolution", sizes.texts[configuration.resolutionIndex], "--repeat", std::to_string(options.repeat), "--result", resultFile.string() };
   if (!referenceFile.empty())
   {
     arguments.insert(arguments.end(), { "--reference", referenceFile });
@@ -759,11 +803,11 @@ std::string numberText(const nlohmann::json& value)
 // One row of bench.json: "ok" with the result in `resultFile` when `failure` is empty, else "failed" with it (a
 // result that does not parse, cut short on a shared filesystem, is a failure too).
 nlohmann::json configurationRow(const SceneVariant& variant, const Configuration& configuration,
-  const std::filesystem::path& resultFile, const std::string& failure)
+  const BenchSizes& sizes, const std::filesystem::path& resultFile, const std::string& failure)
 {
   nlohmann::json row = { { "scene", variant.file }, { "scene_overrides", joined(variant.overrides, " ") },
-    { "scene_name", variant.name },
-    { "technique", configuration.technique }, { "settings", joined(configuration.settings, " ") } };
+    { "scene_name", variant.name }, { "technique", configuration.technique },
+    { "settings", joined(configuration.settings, " ") }, { "resolution", sizes.texts[configuration.resolutionIndex] } };
   row["status"] = "failed";
   row["error"] = failure;
   if (failure.empty())
@@ -785,8 +829,9 @@ nlohmann::json configurationRow(const SceneVariant& variant, const Configuration
 
 // Runs every configuration in its own `shadowlab bench-run` child; one row of bench.json each, "ok" with the
 // child's result or "failed" with its last line.
-nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<SceneVariant>& variants,
-  const std::vector<Configuration>& configurations, const ReferenceFiles& referenceFiles,
+nlohmann::json runConfigurations(const BenchOptions& options, const BenchSizes& sizes,
+  const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations,
+  const ReferenceFiles& referenceFiles,
   const std::filesystem::path& dir, std::ostream& log)
 {
   nlohmann::json rows = nlohmann::json::array();
@@ -800,11 +845,13 @@ nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<
     const std::filesystem::path resultFile = dir / "runs" / format(c, ".json");
     const SceneVariant& variant = variants[configuration.sceneIndex];
     const ChildResult child =
-      runChild(benchRunArguments(options, variant, configuration,
-                 referenceFiles[configuration.sceneIndex].at(multisamplesOf(configuration)), resultFile),
+      runChild(benchRunArguments(options, sizes, variant, configuration,
+                 referenceFiles.at({ configuration.sceneIndex, configuration.resolutionIndex })
+                   .at(multisamplesOf(configuration)),
+                 resultFile),
         dir / "logs" / format("run-", c, ".txt"));
     const bool ran = child.exitCode == 0 && std::filesystem::is_regular_file(resultFile);
-    const nlohmann::json row = configurationRow(variant, configuration, resultFile,
+    const nlohmann::json row = configurationRow(variant, configuration, sizes, resultFile,
       ran ? std::string() : child.lastLine.empty() ? format("exit status ", child.exitCode) : child.lastLine);
     // Pixels cut short (a GL's loop cap) make the row's error and time not those of the technique as written:
     // said even with --quiet.
@@ -812,7 +859,8 @@ nlohmann::json runConfigurations(const BenchOptions& options, const std::vector<
     if (!options.quiet || cutShort > 0.0)
     {
       log << "bench: [" << (c + 1) << "/" << configurations.size() << "] " << configuration.technique << " "
-          << joined(configuration.settings, " ") << " on " << variant.name << ": "
+          << joined(configuration.settings, " ") << " on " << variant.name
+          << (sizes.several() ? " at " + sizes.texts[configuration.resolutionIndex] : std::string()) << ": "
           << (row["status"] == "ok" ? "ok" : "FAILED: " + row["error"].get<std::string>())
           << (cutShort > 0.0 ? ", warning: " + numberText(nlohmann::json(cutShort)) + " pixel(s) cut short, not exact (cut_short_pixels)" : "")
           << "\n";
@@ -1011,6 +1059,219 @@ double structureBytesOf(const nlohmann::json& result)
   return result.value("light_structure_gpu_bytes_total", 0.0);
 }
 
+// The stages of each light-space structure's build: its build passes' stage names (LightSpaceStructure.h: one timed
+// stage per pass), e.g. shadow_map: focus, shadow_map. Asked of the registry, so results written before the bench
+// had structure columns (a --baseline's, a plan's) get them too.
+const std::map<std::string, std::vector<std::string>>& structureBuildStages()
+{
+  static const std::map<std::string, std::vector<std::string>> stages = [] {
+    std::map<std::string, std::vector<std::string>> byStructure;
+    for (const LightSpaceStructure* structure : lightSpaceStructureRegistry())
+    {
+      for (const vtkSmartPointer<vtkSLStagePass>& pass : structure->createBuildPasses())
+      {
+        byStructure[structure->name].push_back(pass->GetStageName());
+      }
+    }
+    return byStructure;
+  }();
+  return stages;
+}
+
+// One light-space structure a configuration built: the summed median GPU times of its build stages and its bytes.
+struct StructureCost
+{
+  std::string name;
+  double buildMs = 0.0;
+  double bytes = 0.0;
+};
+
+// Every structure the result built (its light_structure_gpu_bytes), in registry (build) order. A stage two of them
+// share (the dual MSSM is built by the HSM's pass) is counted for the first only, so the costs sum to the time
+// the structures took.
+std::vector<StructureCost> structureCostsOf(const nlohmann::json& result)
+{
+  const nlohmann::json bytes = result.value("light_structure_gpu_bytes", nlohmann::json::object());
+  const nlohmann::json stages = result.value("stages", nlohmann::json::object());
+  std::vector<StructureCost> costs;
+  std::set<std::string> counted;
+  for (const LightSpaceStructure* structure : lightSpaceStructureRegistry())
+  {
+    if (!bytes.contains(structure->name))
+    {
+      continue;
+    }
+    StructureCost cost{ structure->name, 0.0, bytes[structure->name].get<double>() };
+    const auto known = structureBuildStages().find(structure->name);
+    for (const std::string& stage : known == structureBuildStages().end() ? std::vector<std::string>{} : known->second)
+    {
+      if (stages.contains(stage) && counted.insert(stage).second)
+      {
+        cost.buildMs += timingValue(stages[stage], "gpu_ms");
+      }
+    }
+    costs.push_back(cost);
+  }
+  return costs;
+}
+
+// The structure names any ok row built, in registry order: one bench.csv column pair each.
+std::vector<std::string> structureColumns(const nlohmann::json& rows)
+{
+  std::set<std::string> built;
+  for (const nlohmann::json& row : rows)
+  {
+    if (row["status"] == "ok")
+    {
+      for (const StructureCost& cost : structureCostsOf(row["result"]))
+      {
+        built.insert(cost.name);
+      }
+    }
+  }
+  std::vector<std::string> names;
+  for (const LightSpaceStructure* structure : lightSpaceStructureRegistry())
+  {
+    if (built.count(structure->name))
+    {
+      names.push_back(structure->name);
+    }
+  }
+  return names;
+}
+
+// "24.1 (71 %): shadow_map 19.5 (57 %)": every structure's build time and its share of the frame's median GPU time,
+// then the largest structure's; "-" when none was built.
+std::string structureShareText(const nlohmann::json& result)
+{
+  const std::vector<StructureCost> costs = structureCostsOf(result);
+  if (costs.empty())
+  {
+    return "-";
+  }
+  double total = 0.0;
+  const StructureCost* largest = &costs.front();
+  for (const StructureCost& cost : costs)
+  {
+    total += cost.buildMs;
+    largest = cost.buildMs > largest->buildMs ? &cost : largest;
+  }
+  const double frame = timingValue(result, "frame_gpu_ms");
+  const auto share = [&](double ms) { return frame > 0.0 ? format(" (", std::lround(100.0 * ms / frame), " %)") : ""; };
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << total << share(total) << ": " << largest->name << " "
+       << largest->buildMs << share(largest->buildMs);
+  return text.str();
+}
+
+// bench-run's warm frames (median, min, max GPU ms of frames that reuse unchanged structures), when it wrote them:
+// warm_frame_gpu_ms with _min and _max beside it as the frame's own spread is written, or one object
+// {median, min, max}.
+std::optional<std::array<double, 3>> warmFrameOf(const nlohmann::json& result)
+{
+  const nlohmann::json warm = result.value("warm_frame_gpu_ms", nlohmann::json());
+  if (warm.is_number())
+  {
+    const double median = warm.get<double>();
+    return std::array<double, 3>{ median, result.value("warm_frame_gpu_ms_min", median),
+      result.value("warm_frame_gpu_ms_max", median) };
+  }
+  if (!warm.is_object() || !warm.contains("median") || !warm["median"].is_number())
+  {
+    return std::nullopt;
+  }
+  const double median = warm["median"].get<double>();
+  return std::array<double, 3>{ median, warm.value("min", median), warm.value("max", median) };
+}
+
+bool anyWarmFrame(const nlohmann::json& rows)
+{
+  return std::any_of(rows.begin(), rows.end(),
+    [](const nlohmann::json& row) { return row["status"] == "ok" && warmFrameOf(row["result"]).has_value(); });
+}
+
+// A shadow-map size as a cell: the number, or the word a choice holds ("auto").
+std::string parameterText(const nlohmann::json& value)
+{
+  return value.is_number() ? numberText(value) : value.is_string() ? value.get<std::string>() : std::string();
+}
+
+// The map size the frame rendered, given or chosen under shadow_map_size=auto (bench-run's and stats.json's
+// shadow_map_size_chosen), where the result has it.
+std::string chosenMapSizeText(const nlohmann::json& result)
+{
+  if (result.contains("shadow_map_size_chosen"))
+  {
+    return parameterText(result["shadow_map_size_chosen"]);
+  }
+  return parameterText(
+    result.value("technique_statistics", nlohmann::json::object()).value("shadow_map_size_chosen", nlohmann::json()));
+}
+
+// --baseline: this run's rows matched with the baseline's (cli/BenchBaseline.h), one entry per row.
+struct BaselineMatch
+{
+  std::string problem; // "no baseline row", "2 baseline rows match", "failed here", "no error metrics here"
+  BaselineRow baseline;
+  double rmse = 0.0;
+  bool worse = false;
+};
+
+std::vector<BaselineMatch> matchBaseline(const nlohmann::json& rows, const BenchBaseline& baseline)
+{
+  std::vector<BaselineSettingsOf> settings;
+  for (const nlohmann::json& row : rows)
+  {
+    settings.push_back({ row["technique"].get<std::string>(), row["settings"].get<std::string>() });
+  }
+  const std::vector<std::string> distinguishing = distinguishingSettings(settings);
+  std::vector<BaselineMatch> matches;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const nlohmann::json& row = rows[c];
+    BaselineMatch match;
+    const std::string key = benchBaselineKey(row["technique"], row["scene"], row["scene_overrides"],
+      row["resolution"], distinguishing[c]);
+    // The distinguishing settings first, then all of them (a run sweeping a value its baseline set for every row).
+    const std::vector<BaselineRow>* candidates = nullptr;
+    if (const auto found = baseline.rowsByKey.find(key); found != baseline.rowsByKey.end())
+    {
+      candidates = &found->second;
+    }
+    else if (const auto full = baseline.rowsByFullKey.find(benchBaselineKey(row["technique"], row["scene"],
+               row["scene_overrides"], row["resolution"], sortedSettings(row["settings"])));
+             full != baseline.rowsByFullKey.end())
+    {
+      candidates = &full->second;
+    }
+    if (!candidates)
+    {
+      match.problem = "no baseline row";
+    }
+    else if (candidates->size() > 1)
+    {
+      match.problem = format(candidates->size(), " baseline rows match");
+    }
+    else if (row["status"] != "ok")
+    {
+      match.problem = "failed here";
+    }
+    else if (!row["result"].contains("error"))
+    {
+      match.problem = "no error metrics here";
+    }
+    else
+    {
+      match.baseline = candidates->front();
+      // Both as bench.csv prints them (6 significant digits): an identical re-run differs by 0, not by the rounding.
+      match.rmse = parseNumber(numberText(row["result"]["error"]["covered"]["rmse"])).value();
+      match.worse = baselineWorse(match.rmse, match.baseline.rmse);
+    }
+    matches.push_back(match);
+  }
+  return matches;
+}
+
 // The error columns of bench.csv, in order, with where each comes from in a result's "error".
 struct ErrorColumn
 {
@@ -1028,11 +1289,19 @@ const std::vector<ErrorColumn>& benchErrorColumns()
   return columns;
 }
 
-std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& statisticNames)
+// bench.csv: a row per configuration. `baseline` (--baseline): a match per row, adding baseline_rmse and rmse_delta.
+std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& statisticNames,
+  const std::vector<BaselineMatch>* baseline)
 {
   const std::vector<std::string> stages = stageColumns(rows);
-  std::vector<std::string> header{ "scene", "scene_overrides", "technique", "settings", "status", "frame_gpu_ms",
-    "frame_gpu_ms_min", "frame_gpu_ms_max", "frame_wall_ms", "frame_wall_ms_min", "frame_wall_ms_max" };
+  const std::vector<std::string> structures = structureColumns(rows);
+  const bool warm = anyWarmFrame(rows);
+  std::vector<std::string> header{ "scene", "scene_overrides", "technique", "settings", "resolution", "status",
+    "frame_gpu_ms", "frame_gpu_ms_min", "frame_gpu_ms_max", "frame_wall_ms", "frame_wall_ms_min", "frame_wall_ms_max" };
+  if (warm)
+  {
+    header.insert(header.end(), { "warm_frame_gpu_ms", "warm_frame_gpu_ms_min", "warm_frame_gpu_ms_max" });
+  }
   for (const std::string& stage : stages)
   {
     for (const char* suffix : { "_gpu_ms", "_gpu_ms_min", "_gpu_ms_max" })
@@ -1041,18 +1310,29 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
     }
   }
   header.push_back("light_structure_gpu_bytes");
+  header.push_back("structures_build_gpu_ms");
+  for (const std::string& structure : structures)
+  {
+    header.insert(header.end(), { structure + "_build_gpu_ms", structure + "_gpu_bytes" });
+  }
   header.insert(header.end(), statisticNames.begin(), statisticNames.end());
   for (const ErrorColumn& column : benchErrorColumns())
   {
     header.push_back(column.header);
   }
+  if (baseline)
+  {
+    header.insert(header.end(), { "baseline_rmse", "rmse_delta" });
+  }
   header.insert(header.end(), { "renderer", "error" });
   std::ostringstream csv;
   csv << joined(header, ",") << "\n";
-  for (const nlohmann::json& row : rows)
+  for (std::size_t r = 0; r < rows.size(); ++r)
   {
+    const nlohmann::json& row = rows[r];
     std::vector<std::string> cells{ csvField(row["scene"]), csvField(row["scene_overrides"]),
-      row["technique"].get<std::string>(), csvField(row["settings"]), row["status"].get<std::string>() };
+      row["technique"].get<std::string>(), csvField(row["settings"]), row["resolution"].get<std::string>(),
+      row["status"].get<std::string>() };
     if (row["status"] != "ok")
     {
       cells.resize(header.size() - 1);
@@ -1067,6 +1347,14 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
       cells.insert(cells.end(),
         { number(timingValue(result, key)), number(timingMin(result, key)), number(timingMax(result, key)) });
     }
+    if (warm)
+    {
+      const auto warmFrame = warmFrameOf(result);
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        cells.push_back(warmFrame ? number((*warmFrame)[k]) : "");
+      }
+    }
     for (const std::string& stage : stages)
     {
       const bool ran = result["stages"].contains(stage);
@@ -1075,6 +1363,20 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
         ran ? number(timingMin(timing, "gpu_ms")) : "", ran ? number(timingMax(timing, "gpu_ms")) : "" });
     }
     cells.push_back(format(static_cast<unsigned long long>(structureBytesOf(result))));
+    const std::vector<StructureCost> costs = structureCostsOf(result);
+    double structuresMs = 0.0;
+    for (const StructureCost& cost : costs)
+    {
+      structuresMs += cost.buildMs;
+    }
+    cells.push_back(number(structuresMs));
+    for (const std::string& structure : structures)
+    {
+      const auto cost = std::find_if(
+        costs.begin(), costs.end(), [&](const StructureCost& item) { return item.name == structure; });
+      cells.push_back(cost == costs.end() ? "" : number(cost->buildMs));
+      cells.push_back(cost == costs.end() ? "" : format(static_cast<unsigned long long>(cost->bytes)));
+    }
     const nlohmann::json statistics = statisticsOf(result);
     for (const std::string& name : statisticNames)
     {
@@ -1085,6 +1387,12 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
       const bool has = result.contains("error") && result["error"][column.set].contains(column.key);
       cells.push_back(has ? numberText(result["error"][column.set][column.key]) : "");
     }
+    if (baseline)
+    {
+      const BaselineMatch& match = (*baseline)[r];
+      cells.push_back(match.problem.empty() ? number(match.baseline.rmse) : "");
+      cells.push_back(match.problem.empty() ? number(match.rmse - match.baseline.rmse) : "");
+    }
     cells.push_back(csvField(result.value("gl_renderer", std::string())));
     cells.push_back(result.contains("error") ? "" : "no reference");
     csv << joined(cells, ",") << "\n";
@@ -1092,30 +1400,91 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
   return csv.str();
 }
 
-std::string summaryMarkdown(const nlohmann::json& rows, const BenchOptions& options, const BenchEnvironment& environment,
-  const std::vector<std::string>& chartFiles)
+// summary.md's "error against the baseline" table (--baseline), with the rule it applies.
+std::string baselineMarkdown(const nlohmann::json& rows, const std::vector<BaselineMatch>& matches,
+  const BenchBaseline& baseline, int referenceSamples)
 {
+  std::ostringstream markdown;
+  const std::size_t worse = static_cast<std::size_t>(
+    std::count_if(matches.begin(), matches.end(), [](const BaselineMatch& match) { return match.worse; }));
+  const std::size_t compared = static_cast<std::size_t>(
+    std::count_if(matches.begin(), matches.end(), [](const BaselineMatch& match) { return match.problem.empty(); }));
+  markdown << "\n## Error against the baseline\n\n"
+           << "Baseline: " << baseline.dir << " (" << baseline.rowCount << " rows with errors). Rows are matched by "
+           << "technique, scene file, scene overrides, resolution and the settings that tell a technique's "
+           << "configurations apart (those not common to all its rows in the same bench), else by all settings. Rule: "
+           << baselineRuleText() << ". " << worse << " of " << compared << " compared configuration(s) worse."
+           << (baseline.referenceSamples > 0 && baseline.referenceSamples != referenceSamples
+                  ? format(" The baseline's references have ", baseline.referenceSamples, " samples, this run's ",
+                      referenceSamples, ": an RMSE change then includes the references' own noise (compare at equal "
+                      "--reference-samples).")
+                  : std::string())
+           << "\n\n"
+           << "| scene | technique | settings | size | baseline settings | RMSE | baseline RMSE | RMSE change | "
+              "penumbra RMSE | baseline penumbra RMSE | p99 error | baseline p99 | worse |\n"
+           << "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+  const auto optionalCell = [](const std::optional<double>& value) {
+    return value ? numberText(nlohmann::json(*value)) : std::string("-");
+  };
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    const nlohmann::json& row = rows[r];
+    const BaselineMatch& match = matches[r];
+    markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
+             << row["settings"].get<std::string>() << " | " << row["resolution"].get<std::string>() << " | ";
+    if (!match.problem.empty())
+    {
+      markdown << match.problem << " | | | | | | | | |\n";
+      continue;
+    }
+    markdown << match.baseline.settings << " | ";
+    const nlohmann::json& error = row["result"]["error"];
+    const std::optional<double> penumbra = error["penumbra"].value("pixels", 0.0) > 0.0
+      ? std::optional<double>(error["penumbra"]["rmse"].get<double>())
+      : std::nullopt;
+    markdown << numberText(nlohmann::json(match.rmse)) << " | " << numberText(nlohmann::json(match.baseline.rmse))
+             << " | " << (match.rmse > match.baseline.rmse ? "+" : "")
+             << numberText(nlohmann::json(match.rmse - match.baseline.rmse)) << " | " << optionalCell(penumbra) << " | " << optionalCell(match.baseline.penumbraRmse) << " | "
+             << numberText(error["covered"]["p99_abs_error"]) << " | " << optionalCell(match.baseline.p99AbsError)
+             << " | " << (match.worse ? "**worse**" : "no") << " |\n";
+  }
+  return markdown.str();
+}
+
+std::string summaryMarkdown(const nlohmann::json& rows, const BenchOptions& options, const BenchSizes& sizes,
+  const BenchEnvironment& environment, const std::vector<std::string>& chartFiles, const std::string& moreSections)
+{
+  const bool warm = anyWarmFrame(rows);
   std::ostringstream markdown;
   markdown << "Renderer: " << (environment.renderer.empty() ? std::string("unknown") : environment.renderer)
            << (environment.glVersion.empty() ? std::string() : ", OpenGL " + environment.glVersion) << ".  \n"
            << "Machine: " << (environment.cpu.empty() ? std::string("unknown CPU") : environment.cpu) << ", "
            << environment.logicalCores << " logical cores.  \n"
-           << "Resolution " << options.resolution << "; times are the median (min-max) of " << options.repeat
+           << (sizes.several() ? "Resolutions " : "Resolution ") << joined(sizes.texts, ", ")
+           << "; times are the median (min-max) of " << options.repeat
            << " timed frame(s) after one warm-up; errors are of visibility against a " << options.referenceSamples
            << "-sample ray-traced reference over covered pixels, the penumbra being the pixels whose reference is "
               "strictly between 0 and 1; p99 is the 99th percentile of |error|, > 0.05 the share of pixels off by more "
-              "than 0.05. Structures: GPU memory of the light-space structures built. Statistics: at most three key "
-              "counters; every counter is in bench.json and bench.csv.\n\n";
-  markdown << "| scene | technique | settings | GPU ms median (min-max) | largest stages, GPU ms (share) | wall ms | "
-              "RMSE | penumbra RMSE | p99 error | penumbra p99 | > 0.05 | max error | structures MiB | statistics |\n"
-           << "| --- | --- | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+              "than 0.05. Structures: GPU memory of the light-space structures built, and the GPU time of their build stages, "
+              "all structures (share of the frame's median): the largest one (share); per structure in bench.csv. "
+           << (warm ? "Warm frame: the median (min-max) of frames that reuse the structures while light and casters "
+                      "are unchanged. "
+                    : "")
+           << "Statistics: at most three key counters; every counter is in bench.json and bench.csv.\n\n";
+  markdown << "| scene | technique | settings | " << (sizes.several() ? "size | " : "") << "GPU ms median (min-max) | "
+           << (warm ? "warm frame ms | " : "")
+           << "largest stages, GPU ms (share) | wall ms | RMSE | penumbra RMSE | p99 error | penumbra p99 | > 0.05 | "
+              "max error | structures MiB | structures ms (share of frame) | statistics |\n"
+           << "| --- | --- | --- | " << (sizes.several() ? "--- | " : "") << "---: | " << (warm ? "---: | " : "")
+           << "--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n";
   for (const nlohmann::json& row : rows)
   {
+    markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
+             << row["settings"].get<std::string>() << " | "
+             << (sizes.several() ? row["resolution"].get<std::string>() + " | " : std::string());
     if (row["status"] != "ok")
     {
-      markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
-               << row["settings"].get<std::string>() << " | failed: " << row["error"].get<std::string>()
-               << " | | | | | | | | | | |\n";
+      markdown << "failed: " << row["error"].get<std::string>() << (warm ? " |" : "") << " | | | | | | | | | | | |\n";
       continue;
     }
     const nlohmann::json& result = row["result"];
@@ -1130,13 +1499,25 @@ std::string summaryMarkdown(const nlohmann::json& rows, const BenchOptions& opti
     wall << std::fixed << std::setprecision(2) << timingValue(result, "frame_wall_ms");
     std::ostringstream bytes;
     bytes << std::fixed << std::setprecision(2) << structureBytesOf(result) / (1024.0 * 1024.0);
-    markdown << "| " << row["scene_name"].get<std::string>() << " | " << row["technique"].get<std::string>() << " | "
-             << row["settings"].get<std::string>() << " | " << time.str() << " | " << stageShareText(result) << " | "
+    std::string warmCell;
+    if (warm)
+    {
+      const auto warmFrame = warmFrameOf(result);
+      std::ostringstream cell;
+      cell << std::fixed << std::setprecision(2);
+      if (warmFrame)
+      {
+        cell << (*warmFrame)[0] << " (" << (*warmFrame)[1] << "-" << (*warmFrame)[2] << ")";
+      }
+      warmCell = (warmFrame ? cell.str() : std::string("-")) + " | ";
+    }
+    markdown << time.str() << " | " << warmCell << stageShareText(result) << " | "
              << wall.str() << " | " << errorCell("covered", "rmse") << " | " << errorCell("penumbra", "rmse") << " | "
              << errorCell("covered", "p99_abs_error") << " | " << errorCell("penumbra", "p99_abs_error") << " | "
              << errorCell("covered", "fraction_above_0.05") << " | " << errorCell("covered", "max_abs_error") << " | "
-             << bytes.str() << " | " << compactStatisticsText(result) << " |\n";
+             << bytes.str() << " | " << structureShareText(result) << " | " << compactStatisticsText(result) << " |\n";
   }
+  markdown << moreSections; // cost growth against image size, error against the baseline
   if (!chartFiles.empty())
   {
     markdown << "\nCharts:\n\n";
@@ -1200,16 +1581,29 @@ std::pair<std::string, std::string> seriesAndLabel(const Configuration& configur
   return { labelKeys.empty() ? series : series + ", labels: " + labelKeys, label };
 }
 
+// A chart of one scene variant at one image size: (scene index, size index).
+using ChartGroup = std::pair<std::size_t, std::size_t>;
+ChartGroup chartGroupOf(const Configuration& configuration)
+{
+  return { configuration.sceneIndex, configuration.resolutionIndex };
+}
+
+// The file-name stem of a chart group: the variant's, with the size when several are run ("planar-occluder_128x128").
+std::string chartGroupStem(const std::vector<SceneVariant>& variants, const BenchSizes& sizes, const ChartGroup& group)
+{
+  return variantStem(variants[group.first], group.first) + sizes.stemSuffix(group.second);
+}
+
 // speed_vs_error_<scene>.png (RMSE) and, where the reference has a penumbra, speed_vs_penumbra_error_<scene>.png: one
 // per scene variant with error metrics; one series per technique and fixed settings, a sweep's configurations being
 // its points, joined and labelled by their swept values.
 std::vector<std::string> writeSpeedErrorCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const std::vector<SettingSweep>& sweeps, const std::string& resolution,
+  const std::vector<SceneVariant>& variants, const std::vector<SettingSweep>& sweeps, const BenchSizes& sizes,
   const BenchEnvironment& environment, const std::filesystem::path& dir)
 {
   const std::set<std::string> swept = sweptKeys(sweeps);
-  std::map<std::size_t, std::vector<ChartPoint>> chartPoints;
-  std::map<std::size_t, std::vector<ChartPoint>> penumbraPoints;
+  std::map<ChartGroup, std::vector<ChartPoint>> chartPoints;
+  std::map<ChartGroup, std::vector<ChartPoint>> penumbraPoints;
   for (std::size_t c = 0; c < rows.size(); ++c)
   {
     const nlohmann::json& row = rows[c];
@@ -1218,29 +1612,30 @@ std::vector<std::string> writeSpeedErrorCharts(const nlohmann::json& rows, const
       const nlohmann::json& result = row["result"];
       const auto [series, label] = seriesAndLabel(configurations[c], swept);
       const double time = result["frame_gpu_ms"].get<double>();
-      chartPoints[configurations[c].sceneIndex].push_back(
+      chartPoints[chartGroupOf(configurations[c])].push_back(
         { series, time, result["error"]["covered"]["rmse"].get<double>(), label });
       if (result["error"]["penumbra"]["pixels"].get<std::size_t>() > 0)
       {
-        penumbraPoints[configurations[c].sceneIndex].push_back(
+        penumbraPoints[chartGroupOf(configurations[c])].push_back(
           { series, time, result["error"]["penumbra"]["rmse"].get<double>(), label });
       }
     }
   }
   std::vector<std::string> files;
-  for (const auto& [sceneIndex, points] : chartPoints)
+  for (const auto& [group, points] : chartPoints)
   {
-    const SceneVariant& variant = variants[sceneIndex];
-    const std::string stem = variantStem(variant, sceneIndex);
+    const SceneVariant& variant = variants[group.first];
+    const std::string& resolution = sizes.texts[group.second];
+    const std::string stem = chartGroupStem(variants, sizes, group);
     files.push_back("speed_vs_error_" + stem + ".png");
     writeSpeedErrorChart(points,
       benchChartTitle("speed vs error: " + variant.name + " (" + resolution + ")", environment), dir / files.back());
-    if (penumbraPoints.count(sceneIndex))
+    if (penumbraPoints.count(group))
     {
       files.push_back("speed_vs_penumbra_error_" + stem + ".png");
       SpeedErrorAxes axes;
       axes.errorTitle = "penumbra RMSE (reference strictly inside (0, 1))";
-      writeSpeedErrorChart(penumbraPoints.at(sceneIndex),
+      writeSpeedErrorChart(penumbraPoints.at(group),
         benchChartTitle("speed vs penumbra error: " + variant.name + " (" + resolution + ")", environment),
         dir / files.back(), axes);
     }
@@ -1250,20 +1645,20 @@ std::vector<std::string> writeSpeedErrorCharts(const nlohmann::json& rows, const
 
 // stages_<scene>.png: per scene variant, a bar per configuration stacked from its stages' median GPU times.
 std::vector<std::string> writeStageCharts(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const std::string& resolution, const BenchEnvironment& environment,
+  const std::vector<SceneVariant>& variants, const BenchSizes& sizes, const BenchEnvironment& environment,
   const std::filesystem::path& dir)
 {
   const std::vector<std::string> allStages = stageColumns(rows);
-  std::map<std::size_t, std::vector<std::size_t>> byVariant;
+  std::map<ChartGroup, std::vector<std::size_t>> byVariant;
   for (std::size_t c = 0; c < rows.size(); ++c)
   {
     if (rows[c]["status"] == "ok")
     {
-      byVariant[configurations[c].sceneIndex].push_back(c);
+      byVariant[chartGroupOf(configurations[c])].push_back(c);
     }
   }
   std::vector<std::string> files;
-  for (const auto& [sceneIndex, indices] : byVariant)
+  for (const auto& [group, indices] : byVariant)
   {
     StageChartSpec spec;
     for (const std::string& stage : allStages)
@@ -1290,10 +1685,11 @@ std::vector<std::string> writeStageCharts(const nlohmann::json& rows, const std:
       }
       bars.push_back(bar);
     }
-    const SceneVariant& variant = variants[sceneIndex];
-    spec.title = benchChartTitle("GPU time by stage: " + variant.name + " (" + resolution + "; label: frame median (min-max))",
+    const SceneVariant& variant = variants[group.first];
+    spec.title = benchChartTitle(
+      "GPU time by stage: " + variant.name + " (" + sizes.texts[group.second] + "; label: frame median (min-max))",
       environment);
-    files.push_back("stages_" + variantStem(variant, sceneIndex) + ".png");
+    files.push_back("stages_" + chartGroupStem(variants, sizes, group) + ".png");
     writeStageChart(bars, spec, dir / files.back());
   }
   return files;
@@ -1319,11 +1715,11 @@ ImageU8 stackImages(const ImageU8& top, const ImageU8& bottom)
 // configuration's error against the reference (one signed scale), from the children's <n>.thumbnail.vti, which are
 // removed afterwards (they are the strip's inputs, not results).
 std::vector<std::string> writeThumbnailStrips(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const std::string& resolution, const BenchEnvironment& environment,
+  const std::vector<SceneVariant>& variants, const BenchSizes& sizes, const BenchEnvironment& environment,
   const std::filesystem::path& dir)
 {
-  std::map<std::size_t, std::vector<MontagePanel>> visibilityPanels;
-  std::map<std::size_t, std::vector<MontagePanel>> errorPanels;
+  std::map<ChartGroup, std::vector<MontagePanel>> visibilityPanels;
+  std::map<ChartGroup, std::vector<MontagePanel>> errorPanels;
   const auto maskOf = [](const ImageF& mask) {
     ImageU8 valid(mask.width, mask.height, 1, 0);
     for (std::size_t i = 0; i < mask.pixelCount(); ++i)
@@ -1340,7 +1736,7 @@ std::vector<std::string> writeThumbnailStrips(const nlohmann::json& rows, const 
       continue;
     }
     const std::vector<NamedImage> thumbnails = readVti(file);
-    const std::size_t sceneIndex = configurations[c].sceneIndex;
+    const ChartGroup sceneIndex = chartGroupOf(configurations[c]);
     const nlohmann::json& result = rows[c]["result"];
     std::vector<std::string> labels{ rows[c]["technique"].get<std::string>() };
     for (const std::string& setting : configurations[c].settings)
@@ -1374,9 +1770,10 @@ std::vector<std::string> writeThumbnailStrips(const nlohmann::json& rows, const 
   std::vector<std::string> files;
   for (const auto& [sceneIndex, panels] : visibilityPanels)
   {
-    const SceneVariant& variant = variants[sceneIndex];
+    const SceneVariant& variant = variants[sceneIndex.first];
     MontageOptions visibility;
-    visibility.title = "visibility: " + variant.name + " (" + resolution + ", thumbnails) - " + environment.renderer;
+    visibility.title =
+      "visibility: " + variant.name + " (" + sizes.texts[sceneIndex.second] + ", thumbnails) - " + environment.renderer;
     ImageU8 strip = renderMontage(panels, visibility);
     if (errorPanels.count(sceneIndex))
     {
@@ -1385,7 +1782,7 @@ std::vector<std::string> writeThumbnailStrips(const nlohmann::json& rows, const 
       error.kind = BufferKind::Signed;
       strip = stackImages(strip, renderMontage(errorPanels.at(sceneIndex), error));
     }
-    files.push_back("thumbnails_" + variantStem(variant, sceneIndex) + ".png");
+    files.push_back("thumbnails_" + chartGroupStem(variants, sizes, sceneIndex) + ".png");
     writePng(dir / files.back(), strip);
   }
   for (std::size_t c = 0; c < rows.size(); ++c)
@@ -1396,12 +1793,45 @@ std::vector<std::string> writeThumbnailStrips(const nlohmann::json& rows, const 
   return files;
 }
 
+// A guide line through `anchor` growing as the x value to `power` up to `largestX`, named so that it sorts last in the
+// legend ("~"): against it a series' slope reads off how the cost grows.
+void addGrowthGuide(std::vector<SweepPoint>& points, const std::string& name, double power)
+{
+  const SweepPoint anchor = *std::min_element(points.begin(), points.end(),
+    [](const SweepPoint& a, const SweepPoint& b) { return a.parameter < b.parameter; });
+  double largestX = anchor.parameter;
+  for (const SweepPoint& point : points)
+  {
+    largestX = std::max(largestX, point.parameter);
+  }
+  const std::string guide = "~ " + name + ", from " + anchor.series;
+  points.push_back({ guide, anchor.parameter, anchor.value });
+  points.push_back({ guide, largestX, anchor.value * std::pow(largestX / anchor.parameter, power) });
+}
+
+void dropNonPositive(std::vector<SweepPoint>& points)
+{
+  points.erase(std::remove_if(points.begin(), points.end(), [](const SweepPoint& p) { return !(p.value > 0.0); }),
+    points.end());
+}
+
+// A configuration's series on a cost-growth chart: the technique and every setting but `omitted` (the x axis's key).
+std::string costGrowthSeries(const Configuration& configuration, const std::string& omitted)
+{
+  std::string series = configuration.technique;
+  for (const std::string& setting : configuration.settings)
+  {
+    series += !omitted.empty() && setting.rfind(omitted + "=", 0) == 0 ? "" : " " + setting;
+  }
+  return series;
+}
+
 // cost_growth_<scene>.png, when a --sweep varies shadow_map_size: each series' frame GPU time and its largest stage's
 // against the map size on log-log axes, beside a line growing as the texel count (size squared) from the smallest
-// size's frame time of the first series: a slope reads off how the cost grows.
-std::vector<std::string> writeCostGrowthCharts(const nlohmann::json& rows,
+// size's frame time of the first series: a slope reads off how the cost grows. One chart per image size.
+std::vector<std::string> writeMapSizeGrowthCharts(const nlohmann::json& rows,
   const std::vector<Configuration>& configurations, const std::vector<SceneVariant>& variants,
-  const std::vector<SettingSweep>& sweeps, const std::string& resolution, const BenchEnvironment& environment,
+  const std::vector<SettingSweep>& sweeps, const BenchSizes& sizes, const BenchEnvironment& environment,
   const std::filesystem::path& dir)
 {
   const std::string key = "shadow_map_size";
@@ -1409,24 +1839,24 @@ std::vector<std::string> writeCostGrowthCharts(const nlohmann::json& rows,
   {
     return {};
   }
-  std::set<std::string> others = sweptKeys(sweeps);
-  others.erase(key);
-  std::map<std::size_t, std::vector<SweepPoint>> charts;
+  std::map<ChartGroup, std::vector<SweepPoint>> charts;
   for (std::size_t c = 0; c < rows.size(); ++c)
   {
-    const std::optional<double> size = settingNumber(configurations[c].settings, key);
-    if (rows[c]["status"] != "ok" || !size || !(*size > 0.0))
+    if (rows[c]["status"] != "ok")
+    {
+      continue;
+    }
+    // A swept "auto" is placed at the size the frame chose, where its result says.
+    std::optional<double> size = settingNumber(configurations[c].settings, key);
+    size = size ? size : parseNumber(chosenMapSizeText(rows[c]["result"]));
+    if (!size || !(*size > 0.0))
     {
       continue;
     }
     // Series: the technique with every setting but the map size (other swept keys too: each is its own line).
-    std::string series = configurations[c].technique;
-    for (const std::string& setting : configurations[c].settings)
-    {
-      series += setting.rfind(key + "=", 0) == 0 ? "" : " " + setting;
-    }
+    const std::string series = costGrowthSeries(configurations[c], key);
     const nlohmann::json& result = rows[c]["result"];
-    charts[configurations[c].sceneIndex].push_back({ series + " frame", *size, timingValue(result, "frame_gpu_ms") });
+    charts[chartGroupOf(configurations[c])].push_back({ series + " frame", *size, timingValue(result, "frame_gpu_ms") });
     std::string largest;
     double largestMs = -1.0;
     for (const auto& [stage, timing] : result["stages"].items())
@@ -1439,35 +1869,242 @@ std::vector<std::string> writeCostGrowthCharts(const nlohmann::json& rows,
     }
     if (largestMs > 0.0)
     {
-      charts[configurations[c].sceneIndex].push_back({ series + " " + largest, *size, largestMs });
+      charts[chartGroupOf(configurations[c])].push_back({ series + " " + largest, *size, largestMs });
     }
   }
   std::vector<std::string> files;
-  for (auto& [sceneIndex, points] : charts)
+  for (auto& [group, points] : charts)
   {
-    points.erase(std::remove_if(points.begin(), points.end(), [](const SweepPoint& p) { return !(p.value > 0.0); }),
-      points.end());
+    dropNonPositive(points);
     if (points.empty())
     {
       continue;
     }
-    const SweepPoint anchor = *std::min_element(points.begin(), points.end(),
-      [](const SweepPoint& a, const SweepPoint& b) { return a.parameter < b.parameter; });
-    double largestSize = anchor.parameter;
-    for (const SweepPoint& point : points)
-    {
-      largestSize = std::max(largestSize, point.parameter);
-    }
-    const std::string guide = "~ size^2 (texels), from " + anchor.series; // "~" sorts it last in the legend
-    points.push_back({ guide, anchor.parameter, anchor.value });
-    points.push_back({ guide, largestSize, anchor.value * (largestSize / anchor.parameter) * (largestSize / anchor.parameter) });
-    const SceneVariant& variant = variants[sceneIndex];
-    files.push_back("cost_growth_" + variantStem(variant, sceneIndex) + ".png");
+    addGrowthGuide(points, "size^2 (texels)", 2.0);
+    files.push_back("cost_growth_" + chartGroupStem(variants, sizes, group) + ".png");
     writeSweepChart(points,
-      benchChartTitle("cost against shadow_map_size: " + variant.name + " (" + resolution + ")", environment),
-      { "shadow_map_size (texels across)", "GPU time (ms, median)", true, true }, dir / files.back());
+      benchChartTitle("cost against shadow_map_size: " + variants[group.first].name + " (" + sizes.texts[group.second] +
+          ")",
+        environment),
+      { "shadow_map_size (texels across)", "GPU time (ms, median)", true, true, true }, dir / files.back());
   }
   return files;
+}
+
+// With several -r sizes, per scene variant: cost_growth_pixels_<scene>.png (frame GPU time) and
+// cost_growth_pass_pixels_<scene>.png (the technique stage's GPU time) against the image's pixel count, log-log, one
+// series per configuration (technique and settings) joined over the sizes, beside a line growing as the pixel count
+// from the smallest size's time of the first series.
+std::vector<std::string> writeImageSizeGrowthCharts(const nlohmann::json& rows,
+  const std::vector<Configuration>& configurations, const std::vector<SceneVariant>& variants, const BenchSizes& sizes,
+  const BenchEnvironment& environment, const std::filesystem::path& dir)
+{
+  if (!sizes.several())
+  {
+    return {};
+  }
+  std::map<std::size_t, std::vector<SweepPoint>> frameCharts;
+  std::map<std::size_t, std::vector<SweepPoint>> passCharts;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    if (rows[c]["status"] != "ok")
+    {
+      continue;
+    }
+    const Configuration& configuration = configurations[c];
+    const glm::ivec2 size = sizes.sizes[configuration.resolutionIndex];
+    const double pixels = static_cast<double>(size.x) * static_cast<double>(size.y);
+    const nlohmann::json& result = rows[c]["result"];
+    const std::string series = costGrowthSeries(configuration, "");
+    frameCharts[configuration.sceneIndex].push_back({ series, pixels, timingValue(result, "frame_gpu_ms") });
+    if (result["stages"].contains("technique"))
+    {
+      passCharts[configuration.sceneIndex].push_back(
+        { series, pixels, timingValue(result["stages"]["technique"], "gpu_ms") });
+    }
+  }
+  std::vector<std::string> files;
+  const std::string sizeList = joined(sizes.texts, ", ");
+  const auto write = [&](std::map<std::size_t, std::vector<SweepPoint>>& charts, const std::string& prefix,
+                       const std::string& what) {
+    for (auto& [sceneIndex, points] : charts)
+    {
+      dropNonPositive(points);
+      if (points.empty())
+      {
+        continue;
+      }
+      addGrowthGuide(points, "pixels", 1.0);
+      files.push_back(prefix + variantStem(variants[sceneIndex], sceneIndex) + ".png");
+      writeSweepChart(points,
+        benchChartTitle(what + " against image size: " + variants[sceneIndex].name + " (" + sizeList + ")", environment),
+        { "image size (pixels)", what + " (ms, median)", true, true, true }, dir / files.back());
+    }
+  };
+  write(frameCharts, "cost_growth_pixels_", "frame GPU time");
+  write(passCharts, "cost_growth_pass_pixels_", "technique pass GPU time");
+  return files;
+}
+
+// The least-squares slope of log(value) against log(x): the exponent k of value ~ x^k. Empty with fewer than two
+// distinct positive x or a value <= 0.
+std::optional<double> logLogSlope(const std::vector<std::pair<double, double>>& points)
+{
+  double sumX = 0.0;
+  double sumY = 0.0;
+  for (const auto& [x, y] : points)
+  {
+    if (!(x > 0.0) || !(y > 0.0))
+    {
+      return std::nullopt;
+    }
+    sumX += std::log(x);
+    sumY += std::log(y);
+  }
+  const double n = static_cast<double>(points.size());
+  double sxx = 0.0;
+  double sxy = 0.0;
+  for (const auto& [x, y] : points)
+  {
+    sxx += (std::log(x) - sumX / n) * (std::log(x) - sumX / n);
+    sxy += (std::log(x) - sumX / n) * (std::log(y) - sumY / n);
+  }
+  return points.size() >= 2 && sxx > 0.0 ? std::optional<double>(sxy / sxx) : std::nullopt;
+}
+
+// summary.md's "Cost growth against image size" (several -r sizes): per scene and configuration the frame GPU ms at
+// each size and the exponents k of frame ms ~ pixels^k and technique-pass ms ~ pixels^k (least squares on log-log
+// axes; 1: the cost grows as the pixels, 0: it does not depend on them, as a structure built at a fixed map size).
+std::string costGrowthMarkdown(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const std::vector<SceneVariant>& variants, const BenchSizes& sizes)
+{
+  if (!sizes.several())
+  {
+    return {};
+  }
+  struct Growth
+  {
+    std::map<std::size_t, double> frameMs; // by size index
+    std::vector<std::pair<double, double>> frame;
+    std::vector<std::pair<double, double>> pass;
+  };
+  std::map<std::pair<std::size_t, std::string>, Growth> series; // (scene, technique and settings)
+  std::vector<std::pair<std::size_t, std::string>> order;
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    if (rows[c]["status"] != "ok")
+    {
+      continue;
+    }
+    const Configuration& configuration = configurations[c];
+    const std::pair<std::size_t, std::string> key{ configuration.sceneIndex, costGrowthSeries(configuration, "") };
+    if (!series.count(key))
+    {
+      order.push_back(key);
+    }
+    Growth& growth = series[key];
+    const nlohmann::json& result = rows[c]["result"];
+    const glm::ivec2 size = sizes.sizes[configuration.resolutionIndex];
+    const double pixels = static_cast<double>(size.x) * static_cast<double>(size.y);
+    growth.frameMs[configuration.resolutionIndex] = timingValue(result, "frame_gpu_ms");
+    growth.frame.emplace_back(pixels, timingValue(result, "frame_gpu_ms"));
+    if (result["stages"].contains("technique"))
+    {
+      growth.pass.emplace_back(pixels, timingValue(result["stages"]["technique"], "gpu_ms"));
+    }
+  }
+  std::ostringstream markdown;
+  markdown << "\n## Cost growth against image size\n\n"
+           << "Frame GPU ms (median) at " << joined(sizes.texts, ", ")
+           << "; k: the exponent of time ~ pixels^k, a least-squares fit on log-log axes (1: the time grows as the "
+              "pixels; near 0: it is spent on work the image size does not change, such as a structure built at a "
+              "fixed map size). Charts: cost_growth_pixels_<scene>.png, cost_growth_pass_pixels_<scene>.png; every "
+              "number in cost_growth.csv.\n\n"
+           << "| scene | configuration | frame ms | frame k | technique pass k |\n| --- | --- | --- | ---: | ---: |\n";
+  const auto exponent = [](const std::optional<double>& k) {
+    std::ostringstream text;
+    if (k)
+    {
+      text << std::fixed << std::setprecision(2) << *k;
+    }
+    return k ? text.str() : std::string("-");
+  };
+  for (const auto& key : order)
+  {
+    const Growth& growth = series.at(key);
+    std::string times;
+    for (std::size_t r = 0; r < sizes.texts.size(); ++r)
+    {
+      std::ostringstream cell;
+      cell << std::fixed << std::setprecision(2);
+      if (growth.frameMs.count(r))
+      {
+        cell << growth.frameMs.at(r);
+      }
+      times += (r == 0 ? "" : ", ") + (growth.frameMs.count(r) ? cell.str() : std::string("-"));
+    }
+    markdown << "| " << variants[key.first].name << " | " << key.second << " | " << times << " | "
+             << exponent(logLogSlope(growth.frame)) << " | " << exponent(logLogSlope(growth.pass)) << " |\n";
+  }
+  return markdown.str();
+}
+
+// cost_growth.csv, beside any cost-growth chart: per ok configuration its size, map size (as set, and as the frame
+// rendered it, chosen under shadow_map_size=auto: bench-run's shadow_map_size_chosen where the result has it), frame
+// and technique-pass GPU times, and each structure's build time and bytes.
+void writeCostGrowthCsv(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
+  const BenchSizes& sizes, const std::filesystem::path& dir)
+{
+  const std::vector<std::string> structures = structureColumns(rows);
+  std::vector<std::string> header{ "technique", "settings", "scene", "scene_overrides", "resolution", "pixels",
+    "shadow_map_size", "shadow_map_size_chosen", "frame_gpu_ms", "technique_gpu_ms", "structures_build_gpu_ms" };
+  for (const std::string& structure : structures)
+  {
+    header.insert(header.end(), { structure + "_build_gpu_ms", structure + "_gpu_bytes" });
+  }
+  std::ostringstream csv;
+  csv << joined(header, ",") << "\n";
+  for (std::size_t c = 0; c < rows.size(); ++c)
+  {
+    const nlohmann::json& row = rows[c];
+    if (row["status"] != "ok")
+    {
+      continue;
+    }
+    const nlohmann::json& result = row["result"];
+    const glm::ivec2 size = sizes.sizes[configurations[c].resolutionIndex];
+    const auto number = [](double value) { return numberText(nlohmann::json(value)); };
+    const nlohmann::json parameters = result.value("parameters", nlohmann::json::object());
+    std::vector<std::string> cells{ row["technique"].get<std::string>(), csvField(row["settings"]),
+      csvField(row["scene"]), csvField(row["scene_overrides"]), row["resolution"].get<std::string>(),
+      format(static_cast<long long>(size.x) * size.y),
+      parameterText(parameters.value("shadow_map_size", nlohmann::json())), chosenMapSizeText(result),
+      number(timingValue(result, "frame_gpu_ms")),
+      result["stages"].contains("technique") ? number(timingValue(result["stages"]["technique"], "gpu_ms")) : "" };
+    const std::vector<StructureCost> costs = structureCostsOf(result);
+    double structuresMs = 0.0;
+    for (const StructureCost& cost : costs)
+    {
+      structuresMs += cost.buildMs;
+    }
+    cells.push_back(number(structuresMs));
+    for (const std::string& structure : structures)
+    {
+      const auto cost =
+        std::find_if(costs.begin(), costs.end(), [&](const StructureCost& item) { return item.name == structure; });
+      cells.push_back(cost == costs.end() ? "" : number(cost->buildMs));
+      cells.push_back(cost == costs.end() ? "" : format(static_cast<unsigned long long>(cost->bytes)));
+    }
+    csv << joined(cells, ",") << "\n";
+  }
+  writeFileChecked(dir / "cost_growth.csv", csv.str());
+}
+
+// " 128x128": a row's image size for a series name when the bench runs several (its lines would join sizes
+// otherwise), else "".
+std::string seriesSizeTag(const nlohmann::json& row, const BenchOptions& options)
+{
+  return options.resolution.find(',') == std::string::npos ? std::string() : " " + row["resolution"].get<std::string>();
 }
 
 // With exactly one numeric --scene-sweep (e.g. light sizes): sweep_time_<scene>.png and sweep_rmse_<scene>.png,
@@ -1494,7 +2131,8 @@ void writeSceneSweepCharts(const nlohmann::json& rows, const std::vector<Configu
     const std::string& swept = variant.swept.front();
     const std::optional<double> parameter = parseNumber(swept.substr(swept.find('=') + 1));
     const std::string series = row["technique"].get<std::string>() +
-      (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>());
+      (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>()) +
+      seriesSizeTag(row, options);
     if (parameter)
     {
       sweepTimes[variant.file].push_back({ series, *parameter, result["frame_gpu_ms"].get<double>() });
@@ -1545,7 +2183,8 @@ void writeDepthProfiles(const nlohmann::json& rows, const std::vector<Configurat
     };
     DepthProfileSeries series;
     series.name = row["technique"].get<std::string>() +
-      (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>());
+      (row["settings"].get<std::string>().empty() ? "" : " " + row["settings"].get<std::string>()) +
+      seriesSizeTag(row, options);
     for (std::size_t b = 0; b < profile["bins"].size(); ++b)
     {
       const nlohmann::json& bin = profile["bins"][b];
@@ -1640,6 +2279,7 @@ void writeViewStatisticCharts(const nlohmann::json& rows, const std::vector<Conf
       const std::string key = setting.substr(0, setting.find('='));
       series += std::find(axisKeys.begin(), axisKeys.end(), key) == axisKeys.end() ? " " + setting : "";
     }
+    series += seriesSizeTag(row, options);
     const nlohmann::json& result = row["result"];
     auto& sceneCharts = charts[configurations[c].sceneIndex];
     for (const std::string& buffer : buffers)
@@ -1683,69 +2323,111 @@ void writeViewStatisticCharts(const nlohmann::json& rows, const std::vector<Conf
 }
 
 // bench.json, bench.csv, the charts and thumbnail strips, then summary.md (which lists them).
+// bench.json, bench.csv, the charts and thumbnail strips, cost_growth.csv beside a cost-growth chart, then summary.md
+// (which lists them); `baseline` (--baseline): the comparison with an earlier bench's rows.
 void writeBenchResults(const nlohmann::json& rows, const std::vector<Configuration>& configurations,
-  const std::vector<SceneVariant>& variants, const BenchOptions& options, const std::vector<SettingSweep>& sweeps,
-  const std::filesystem::path& dir)
+  const std::vector<SceneVariant>& variants, const BenchOptions& options, const BenchSizes& sizes,
+  const std::vector<SettingSweep>& sweeps, const std::optional<BenchBaseline>& baseline, const std::filesystem::path& dir)
 {
   const BenchEnvironment environment = benchEnvironment(rows);
+  const std::vector<BaselineMatch> matches = baseline ? matchBaseline(rows, *baseline) : std::vector<BaselineMatch>{};
   nlohmann::json configurationsJson = rows;
-  for (nlohmann::json& row : configurationsJson)
+  for (std::size_t r = 0; r < configurationsJson.size(); ++r)
   {
+    nlohmann::json& row = configurationsJson[r];
     if (row["status"] == "ok")
     {
       row["statistics"] = statisticsOf(row["result"]); // every counter; summary.md shows at most three
+      nlohmann::json structures = nlohmann::json::object();
+      for (const StructureCost& cost : structureCostsOf(row["result"]))
+      {
+        const auto stages = structureBuildStages().find(cost.name);
+        structures[cost.name] = { { "build_gpu_ms", cost.buildMs }, { "gpu_bytes", cost.bytes },
+          { "stages", stages == structureBuildStages().end() ? std::vector<std::string>{} : stages->second } };
+      }
+      row["structures"] = structures;
+    }
+    if (baseline)
+    {
+      const BaselineMatch& match = matches[r];
+      row["baseline"] = match.problem.empty()
+        ? nlohmann::json{ { "rmse", match.baseline.rmse }, { "rmse_delta", match.rmse - match.baseline.rmse },
+            { "penumbra_rmse", match.baseline.penumbraRmse ? nlohmann::json(*match.baseline.penumbraRmse) : nlohmann::json() },
+            { "p99_abs_error", match.baseline.p99AbsError ? nlohmann::json(*match.baseline.p99AbsError) : nlohmann::json() },
+            { "settings", match.baseline.settings }, { "worse", match.worse } }
+        : nlohmann::json{ { "problem", match.problem } };
     }
   }
-  writeJson({ { "resolution", options.resolution }, { "repeat", options.repeat },
-              { "reference_samples", options.referenceSamples }, { "renderer", environment.renderer },
-              { "gl_version", environment.glVersion },
-              { "machine", { { "cpu", environment.cpu }, { "logical_cores", environment.logicalCores } } },
-              { "configurations", configurationsJson } },
-    dir / "bench.json");
+  nlohmann::json benchJson = { { "resolution", options.resolution }, { "resolutions", sizes.texts },
+    { "repeat", options.repeat }, { "reference_samples", options.referenceSamples },
+    { "renderer", environment.renderer }, { "gl_version", environment.glVersion },
+    { "machine", { { "cpu", environment.cpu }, { "logical_cores", environment.logicalCores } } },
+    { "configurations", configurationsJson } };
+  if (baseline)
+  {
+    benchJson["baseline"] = { { "dir", baseline->dir }, { "rule", baselineRuleText() },
+      { "worse_absolute", kBaselineWorseAbsolute }, { "worse_relative", kBaselineWorseRelative } };
+  }
+  writeJson(benchJson, dir / "bench.json");
   const std::set<std::string> statisticNames = statisticNamesOf(rows);
-  writeFileChecked(dir / "bench.csv", benchCsv(rows, statisticNames));
-  std::vector<std::string> charts = writeStageCharts(rows, configurations, variants, options.resolution, environment, dir);
+  writeFileChecked(dir / "bench.csv", benchCsv(rows, statisticNames, baseline ? &matches : nullptr));
+  std::vector<std::string> charts = writeStageCharts(rows, configurations, variants, sizes, environment, dir);
   for (const std::vector<std::string>& more :
-    { writeSpeedErrorCharts(rows, configurations, variants, sweeps, options.resolution, environment, dir),
-      writeThumbnailStrips(rows, configurations, variants, options.resolution, environment, dir),
-      writeCostGrowthCharts(rows, configurations, variants, sweeps, options.resolution, environment, dir) })
+    { writeSpeedErrorCharts(rows, configurations, variants, sweeps, sizes, environment, dir),
+      writeThumbnailStrips(rows, configurations, variants, sizes, environment, dir),
+      writeMapSizeGrowthCharts(rows, configurations, variants, sweeps, sizes, environment, dir),
+      writeImageSizeGrowthCharts(rows, configurations, variants, sizes, environment, dir) })
   {
     charts.insert(charts.end(), more.begin(), more.end());
+  }
+  if (std::any_of(charts.begin(), charts.end(), [](const std::string& file) { return file.rfind("cost_growth", 0) == 0; }))
+  {
+    writeCostGrowthCsv(rows, configurations, sizes, dir);
+    charts.push_back("cost_growth.csv");
   }
   writeSceneSweepCharts(rows, configurations, variants, options, environment, dir);
   writeDepthProfiles(rows, configurations, variants, options, environment, dir);
   writeViewStatisticCharts(rows, configurations, variants, options, sweeps, environment, dir);
   writeFileChecked(dir / "open_in_paraview.py", benchParaViewScript());
-  writeFileChecked(dir / "summary.md", summaryMarkdown(rows, options, environment, charts));
+  writeFileChecked(dir / "summary.md",
+    summaryMarkdown(rows, options, sizes, environment, charts,
+      costGrowthMarkdown(rows, configurations, variants, sizes) +
+        (baseline ? baselineMarkdown(rows, matches, *baseline, options.referenceSamples) : std::string())));
 }
 
 // bench --plan (cli/BenchPlan.h): every reference the configurations need and is not in the cache yet (whole, or as
 // --reference-tiles row tiles and their merge), then every configuration; paths absolute, results under the plan.
-std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2& resolution,
+std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const BenchSizes& sizes,
   const std::vector<SceneVariant>& variants, const std::vector<Configuration>& configurations, std::ostream& log)
 {
   const std::filesystem::path planDir = planDirectory(options);
-  if (options.referenceTiles > resolution.y)
+  for (std::size_t r = 0; r < sizes.sizes.size(); ++r)
   {
-    throw InputError(format("--reference-tiles ", options.referenceTiles, ": more than the ", resolution.y,
-      " rows of --resolution ", options.resolution));
+    if (options.referenceTiles > sizes.sizes[r].y)
+    {
+      throw InputError(format("--reference-tiles ", options.referenceTiles, ": more than the ", sizes.sizes[r].y,
+        " rows of --resolution ", sizes.texts[r]));
+    }
   }
-  std::vector<std::set<int>> needed(variants.size());
+  std::map<ChartGroup, std::set<int>> needed;
   for (const Configuration& configuration : configurations)
   {
-    needed[configuration.sceneIndex].insert(multisamplesOf(configuration));
+    needed[chartGroupOf(configuration)].insert(multisamplesOf(configuration));
   }
   std::vector<PlanJob> jobs;
   std::set<std::string> planned;
-  for (std::size_t s = 0; s < variants.size(); ++s)
+  for (const auto& [group, samples] : needed)
   {
-    const SceneVariant& variant = variants[s];
-    for (const int msaa : needed[s])
+    const SceneVariant& variant = variants[group.first];
+    const std::string& resolutionText = sizes.texts[group.second];
+    for (const int msaa : samples)
     {
-      const std::string key = referenceKey(variant.scene, options.resolution, options.referenceSamples, msaa);
+      const std::string key = referenceKey(variant.scene, resolutionText, options.referenceSamples, msaa);
       const std::filesystem::path cached = std::filesystem::path(options.cacheDir) / key;
-      const std::string name = "reference of " + variant.name + (msaa > 1 ? format(" (", msaa, " per pixel)") : "");
-      if (cachedReferenceProblem(cached, resolution).empty())
+      const std::string name = "reference of " + variant.name +
+        (sizes.several() ? " at " + resolutionText : std::string()) +
+        (msaa > 1 ? format(" (", msaa, " per pixel)") : "");
+      if (cachedReferenceProblem(cached, sizes.sizes[group.second]).empty())
       {
         if (!options.quiet)
         {
@@ -1758,7 +2440,7 @@ std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2
         continue;
       }
       std::vector<std::string> arguments{ "reference", variant.file, "--reference-samples",
-        std::to_string(options.referenceSamples), "--resolution", options.resolution, "--msaa", std::to_string(msaa),
+        std::to_string(options.referenceSamples), "--resolution", resolutionText, "--msaa", std::to_string(msaa),
         "--quiet" };
       for (const std::string& override : variant.overrides)
       {
@@ -1790,13 +2472,15 @@ std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2
     const Configuration& configuration = configurations[c];
     const SceneVariant& variant = variants[configuration.sceneIndex];
     const std::filesystem::path result = planDir / "runs" / format(c, ".json");
+    const std::string& resolutionText = sizes.texts[configuration.resolutionIndex];
     const std::filesystem::path reference = std::filesystem::path(options.cacheDir) /
-      referenceKey(variant.scene, options.resolution, options.referenceSamples, multisamplesOf(configuration)) /
+      referenceKey(variant.scene, resolutionText, options.referenceSamples, multisamplesOf(configuration)) /
       "buffers.vti";
     jobs.push_back({ "configurations",
       format("configuration ", c, " (", configuration.technique, configuration.settings.empty() ? "" : " ",
-        joined(configuration.settings, " "), " on ", variant.name, ")"),
-      benchRunArguments(options, variant, configuration, reference.string(), result.string() + ".partial"),
+        joined(configuration.settings, " "), " on ", variant.name,
+        sizes.several() ? " at " + resolutionText : std::string(), ")"),
+      benchRunArguments(options, sizes, variant, configuration, reference.string(), result.string() + ".partial"),
       format("logs/run-", c, ".txt"), result.string() });
   }
   return jobs;
@@ -1808,7 +2492,7 @@ std::vector<PlanJob> benchPlanJobs(const BenchOptions& options, const glm::ivec2
 // (bench-run's <result>.thumbnail.vti, the result being named <n>.json.partial in a plan) to where
 // writeThumbnailStrips reads a bench's.
 nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVariant>& variants,
-  const std::vector<Configuration>& configurations, std::vector<PlanJob>& unfinished, std::ostream& log,
+  const std::vector<Configuration>& configurations, const BenchSizes& sizes, std::vector<PlanJob>& unfinished, std::ostream& log,
   const std::filesystem::path& dir)
 {
   std::vector<const PlanJob*> configurationJobs;
@@ -1834,7 +2518,7 @@ nlohmann::json collectedRows(const LoadedPlan& plan, const std::vector<SceneVari
   for (std::size_t c = 0; c < configurations.size(); ++c)
   {
     const PlanJob& job = *configurationJobs[c];
-    rows.push_back(configurationRow(variants[configurations[c].sceneIndex], configurations[c], job.result,
+    rows.push_back(configurationRow(variants[configurations[c].sceneIndex], configurations[c], sizes, job.result,
       planJobProblem(plan.dir, job)));
     if (rows.back()["status"] != "ok")
     {
@@ -1881,7 +2565,14 @@ int runBench(const BenchOptions& given, std::ostream& log)
   // Everything the user typed is checked before any child runs.
   checkScenesRepeatAndSamples(options);
   checkSceneOverrides(options.sceneOverrides, options.sceneSweeps);
-  const glm::ivec2 resolution = parseResolution(options.resolution);
+  const BenchSizes sizes = parseBenchSizes(options.resolution);
+  if (!given.baselineDir.empty() && !given.planDir.empty())
+  {
+    throw InputError("--baseline " + given.baselineDir + ": give it to bench --collect, not to --plan");
+  }
+  // Read before any child runs: a bad DIR is one line and no output.
+  const std::optional<BenchBaseline> baseline =
+    given.baselineDir.empty() ? std::nullopt : std::optional(loadBenchBaseline(given.baselineDir));
   const std::vector<SceneVariant> variants = loadSceneVariants(options);
   const std::vector<std::string> techniqueNames = selectedTechniqueNames(options.techniques);
   const std::vector<SettingSweep> sweeps = parseSettingSweeps(options.sweeps);
@@ -1892,11 +2583,15 @@ int runBench(const BenchOptions& given, std::ostream& log)
   }
   checkSettingKeys(options.settings, sweeps, techniqueNames);
   const std::vector<Configuration> configurations =
-    expandConfigurations(variants.size(), techniqueNames, options.settings, sweeps);
+    expandConfigurations(variants.size(), sizes.texts.size(), techniqueNames, options.settings, sweeps);
   std::vector<std::filesystem::path> inputs = benchInputs(options, variants, configurations);
+  if (baseline)
+  {
+    inputs.push_back(given.baselineDir); // --out may neither be nor hold nor lie inside it
+  }
   if (!options.planDir.empty())
   {
-    writeBenchPlan(options, benchPlanJobs(options, resolution, variants, configurations, log), inputs, log);
+    writeBenchPlan(options, benchPlanJobs(options, sizes, variants, configurations, log), inputs, log);
     return 0;
   }
   if (plan)
@@ -1910,9 +2605,9 @@ int runBench(const BenchOptions& given, std::ostream& log)
     std::vector<PlanJob> unfinished;
     int failed = 0;
     writeDirectoryAtomically(output, [&](const std::filesystem::path& dir) {
-      const nlohmann::json rows = collectedRows(*plan, variants, configurations, unfinished, log, dir);
+      const nlohmann::json rows = collectedRows(*plan, variants, configurations, sizes, unfinished, log, dir);
       failed = countFailed(rows);
-      writeBenchResults(rows, configurations, variants, options, sweeps, dir);
+      writeBenchResults(rows, configurations, variants, options, sizes, sweeps, baseline, dir);
       if (!unfinished.empty())
       {
         writeRetryLists(plan->dir, unfinished, dir);
@@ -1938,11 +2633,11 @@ int runBench(const BenchOptions& given, std::ostream& log)
     std::filesystem::create_directories(dir / "runs");
     std::filesystem::create_directories(dir / "logs");
     const ReferenceFiles referenceFiles =
-      prepareReferences(options, resolution, variants, configurations, dir / "logs", log, referenceFailures);
-    const nlohmann::json rows = runConfigurations(options, variants, configurations, referenceFiles, dir, log);
+      prepareReferences(options, sizes, variants, configurations, dir / "logs", log, referenceFailures);
+    const nlohmann::json rows = runConfigurations(options, sizes, variants, configurations, referenceFiles, dir, log);
     failures = countFailed(rows);
     removeIfEmptyDirectory(dir / "logs");
-    writeBenchResults(rows, configurations, variants, options, sweeps, dir);
+    writeBenchResults(rows, configurations, variants, options, sizes, sweeps, baseline, dir);
   });
   if (!options.quiet)
   {

@@ -105,7 +105,7 @@ struct BenchOptions
   std::vector<std::string> sceneOverrides;     // "/json/pointer=value" applied to every scene
   std::vector<std::string> sceneSweeps;        // "/json/pointer=v1,v2,..." (several: all combinations)
   int repeat = 5;                              // timed frames after one warm-up frame
-  std::string resolution = "256x256";
+  std::string resolution = "256x256";          // WxH, or a comma list: every configuration at every size
   int referenceSamples = 1024;                 // --reference-samples (old spelling --samples)
   std::string referenceSamplesOption = "--reference-samples"; // the spelling the user typed, as errors name it
   std::string cacheDir = ".shadowlab-cache";   // ray-traced references, keyed by scene + resolution + samples
@@ -131,6 +131,9 @@ struct BenchOptions
   int slurmGpus = 0;
   int slurmThrottle = 0;
   int referenceTiles = 1; // row tiles per reference in a plan (reference --tile K/N, then reference-merge)
+  // --baseline DIR: an earlier bench's output; summary.md compares this run's errors with its rows
+  // (cli/BenchBaseline.h), bench.csv gains baseline_rmse and rmse_delta.
+  std::string baselineDir;
 };
 int runBench(const BenchOptions& options, std::ostream& log);
 

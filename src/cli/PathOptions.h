@@ -54,6 +54,7 @@ inline constexpr PathArgument kPathArguments[] = {
   { "bench", "--out", PathRole::WritesDirectory },
   { "bench", "--plan", PathRole::WritesDirectory },
   { "bench", "--collect", PathRole::Reads },
+  { "bench", "--baseline", PathRole::Reads },
   { "reference-merge", "tiles", PathRole::Reads },
   { "reference-merge", "--out", PathRole::WritesDirectory },
   { "bench-run", "scene", PathRole::Reads },

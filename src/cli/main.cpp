@@ -212,7 +212,11 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
     "Scene values to sweep, /json/pointer=v1,v2,... e.g. /lights/0/size=0.25,0.5,1,2,4 (repeatable: all combinations)");
   benchCommand->add_option("--repeat", bench.repeat, "Timed frames after one warm-up frame (median, min and max reported)")
     ->capture_default_str();
-  benchCommand->add_option("--resolution,-r", bench.resolution, "Image size WxH")->capture_default_str();
+  benchCommand
+    ->add_option("--resolution,-r", bench.resolution,
+      "Image size WxH, or a comma list (128x128,256x256,...): every configuration at every size, a resolution column, "
+      "charts per size and cost_growth_pixels_<scene>.png (frame and technique-pass time against pixels, log-log)")
+    ->capture_default_str();
   CLI::Option* referenceSamples = benchCommand
     ->add_option("--reference-samples", bench.referenceSamples,
       "Light samples per pixel of the ray-traced reference (not a technique's `--set samples=`); old spelling --samples")
@@ -230,6 +234,10 @@ Command addBenchCommand(CLI::App& app, sl::BenchOptions& bench, std::vector<std:
   benchCommand->add_option("--view-stats", bench.viewStats,
     "Buffers (e.g. texel_ratio,perspective_factor) whose max, 99th percentile and mean over the view become bench.csv "
     "columns and charts against the first --sweep key");
+  benchCommand->add_option("--baseline", bench.baselineDir,
+    "An earlier bench's output DIR (with bench.csv): summary.md compares RMSE, penumbra RMSE and p99 per technique x "
+    "scene with its rows and flags the worse ones (RMSE up by more than 1e-4 and 1 %); bench.csv gains baseline_rmse and "
+    "rmse_delta");
   benchCommand->add_option("--plan", bench.planDir,
     "Write the bench as jobs (jobs.txt, Slurm job arrays: submit.sh) into DIR instead of running it (docs/cluster.md)");
   benchCommand->add_option("--collect", bench.collectDir,

@@ -8,6 +8,7 @@ set(SL_CLI_SOURCES
   src/cli/ReferenceCommand.cpp
   src/cli/ReferenceTiles.cpp
   src/cli/BenchPlan.cpp
+  src/cli/BenchBaseline.cpp
   src/cli/CompareCommand.cpp
   src/cli/BenchCommand.cpp
   src/cli/BenchRunCommand.cpp

@@ -184,6 +184,62 @@ TEST(BenchPlan, StatsNameTheEglDeviceAndWhetherAnAssignmentApplied)
     .find("the GPU assignment in the environment does not apply"), std::string::npos);
 }
 
+// Several -r sizes in a plan (issue 33): a reference job and configurations per size, collected into the rows a
+// direct bench writes; a run result that holds warm_frame_gpu_ms (frames reusing unchanged structures) becomes the
+// "warm frame ms" column, absent from a bench whose results have none.
+TEST(BenchPlan, SeveralSizesPlanCollectAndAWarmFrameColumn)
+{
+  const test::TempDir temp;
+  const std::string scene = test::datasetPath("planar-occluder").string();
+  const std::vector<std::string> options = { "-t", "hard,pcf", "-r", "48x32,32x32", "--reference-samples", "16",
+    "--repeat", "1", "--set", "shadow_map_size=256", "--quiet" };
+  std::vector<std::string> plan = { "bench", scene, "--plan", (temp.path() / "plan").string(), "--cache",
+    (temp.path() / "plan-cache").string() };
+  plan.insert(plan.end(), options.begin(), options.end());
+  const test::RunResult planned = test::runShadowlabInTempDir(plan);
+  ASSERT_EQ(planned.exitCode, 0) << planned.describe();
+  EXPECT_EQ(lineCount(temp.path() / "plan" / "references.txt"), 2u) << "a reference per size";
+  EXPECT_EQ(lineCount(temp.path() / "plan" / "configurations.txt"), 4u);
+  ASSERT_EQ(runJobList(temp.path() / "plan" / "jobs.txt"), 0);
+
+  // A result as a bench-run that reuses structures writes it.
+  const std::filesystem::path runFile = temp.path() / "plan" / "runs" / "1.json";
+  nlohmann::json result = test::readJson(runFile);
+  result["warm_frame_gpu_ms"] = 1.25;
+  result["warm_frame_gpu_ms_min"] = 1.0;
+  result["warm_frame_gpu_ms_max"] = 1.5;
+  test::writeFile(runFile, result.dump());
+  const test::RunResult collected = test::runShadowlabInTempDir(
+    { "bench", "--collect", (temp.path() / "plan").string(), "--out", (temp.path() / "collected").string(), "-q" });
+  ASSERT_EQ(collected.exitCode, 0) << collected.describe();
+
+  std::vector<std::string> direct = { "bench", scene, "--cache", (temp.path() / "direct-cache").string(), "--out",
+    (temp.path() / "direct").string() };
+  direct.insert(direct.end(), options.begin(), options.end());
+  const test::RunResult run = test::runShadowlabInTempDir(direct);
+  ASSERT_EQ(run.exitCode, 0) << run.describe();
+  const nlohmann::json collectedRows = test::readJson(temp.path() / "collected" / "bench.json").at("configurations");
+  const nlohmann::json directRows = test::readJson(temp.path() / "direct" / "bench.json").at("configurations");
+  ASSERT_EQ(collectedRows.size(), 4u);
+  ASSERT_EQ(directRows.size(), 4u);
+  for (std::size_t c = 0; c < directRows.size(); ++c)
+  {
+    EXPECT_EQ(planTestMetricsOf(collectedRows[c]), planTestMetricsOf(directRows[c])) << "configuration " << c;
+    EXPECT_EQ(collectedRows[c].at("resolution"), directRows[c].at("resolution"));
+    EXPECT_EQ(collectedRows[c].at("resolution"), c < 2 ? "48x32" : "32x32");
+  }
+  EXPECT_EQ(test::entriesOf(temp.path() / "collected"), test::entriesOf(temp.path() / "direct"));
+
+  const std::string collectedSummary = test::readFile(temp.path() / "collected" / "summary.md");
+  EXPECT_NE(collectedSummary.find("| warm frame ms |"), std::string::npos) << collectedSummary;
+  EXPECT_NE(collectedSummary.find("| 1.25 (1.00-1.50) |"), std::string::npos) << collectedSummary;
+  // The direct bench has the column exactly when its runs wrote warm frames (a build with light-space reuse).
+  EXPECT_EQ(test::readFile(temp.path() / "direct" / "summary.md").find("| warm frame ms |") != std::string::npos,
+    directRows[0].at("result").contains("warm_frame_gpu_ms"));
+  const std::string csv = test::readFile(temp.path() / "collected" / "bench.csv");
+  EXPECT_NE(csv.substr(0, csv.find('\n')).find("warm_frame_gpu_ms_min"), std::string::npos);
+}
+
 TEST(BenchPlan, BadInputIsOneLineWithNoOutput)
 {
   const test::TempDir temp;
