@@ -272,7 +272,9 @@ TEST(Differential, Ss08MultisampledFrameIsComparedOnTheSurfacesItShades)
 // Seed 4 holds a `leaves` quad finer than reference-sm's texels: its K maps sample the holes at texel centres, flagged
 // where segments to the K samples cross the quad. Beside it (pixel 32,5), 28 of the 256 samples count the quad as
 // blocking although their segments pass up to 0.03 outside its edge, within a texel of each 256^2 map: edge_samples
-// counts such samples, and "edge within a texel" flags the pixels where they exceed the tolerance.
+// counts such samples, and "edge within a texel" flags the pixels where they exceed the tolerance. Since
+// shadow_map_size = auto the seed's draw gives 512^2 maps (the halving of 2048, no longer of reference-sm's former
+// 1024): both flags still mark their pixels, and no miss is left beyond the tolerance (measured: 162 flagged, 0 misses).
 TEST(Differential, ReferenceSmFlagsItsMapsOfAPerforatedCasterAndEdgesWithinATexel)
 {
   const std::vector<ConfigurationOutcome> outcomes = runConfigurations({ 4 }, "reference-sm", "default");
@@ -282,9 +284,9 @@ TEST(Differential, ReferenceSmFlagsItsMapsOfAPerforatedCasterAndEdgesWithinATexe
             << " of them beyond tolerance, " << outcome.failures << " unflagged failures\n";
   EXPECT_FALSE(outcome.failed()) << describeFailure(outcome);
   ASSERT_EQ(outcome.flaggedBy.count("perforated caster in the map"), 1u);
-  EXPECT_GT(outcome.flaggedBy.at("perforated caster in the map").beyondTolerance, 0) << "the leaves' misses";
+  EXPECT_GT(outcome.flaggedBy.at("perforated caster in the map").flagged, 0) << "the leaves' texels";
   ASSERT_EQ(outcome.flaggedBy.count("edge within a texel"), 1u);
-  EXPECT_GE(outcome.flaggedBy.at("edge within a texel").beyondTolerance, 2) << "the misses beside the leaves' edge";
+  EXPECT_GT(outcome.flaggedBy.at("edge within a texel").flagged, 0) << "the pixels beside the leaves' edge";
 }
 
 // Seed 1 puts a quad 0.004 below a small light: each of reference-sm's K maps is focused on receivers that include

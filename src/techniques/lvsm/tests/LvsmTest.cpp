@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <iostream>
 
@@ -351,7 +352,12 @@ LvsmLeakCounts lvsmCompareLeaks(const Scene& scene, const std::string& label, in
   const std::vector<std::string>& lvsmOptions = {})
 {
   const FrameResult lvsm = test::renderDataset(scene, "lvsm", width, height, lvsmOptions);
-  const FrameResult vsm = test::renderDataset(scene, "vsm", width, height);
+  // vsm at its defaults over the same map: an explicit shadow_map_size applies to both.
+  std::vector<std::string> vsmOptions;
+  std::copy_if(lvsmOptions.begin(), lvsmOptions.end(), std::back_inserter(vsmOptions),
+    [](const std::string& option) { return option.rfind("shadow_map_size=", 0) == 0; });
+  const FrameResult vsm = test::renderDataset(scene, "vsm", width, height, vsmOptions);
+  EXPECT_EQ(vsm.lightView->resolution, lvsm.lightView->resolution) << label << ": one map size for both";
   const ShadowMapInputs inputs = test::shadowMapInputs(lvsm, scene);
   const LvsmSettings settings = lvsmSettingsOf(lvsm);
   const std::vector<std::uint32_t> histogram = layeredDepthHistogram(
