@@ -1142,6 +1142,16 @@ std::vector<std::string> structureColumns(const nlohmann::json& rows)
 
 // "24.1 (71 %): shadow_map 19.5 (57 %)": every structure's build time and its share of the frame's median GPU time,
 // then the largest structure's; "-" when none was built.
+double totalBuildMs(const std::vector<StructureCost>& costs)
+{
+  double total = 0.0;
+  for (const StructureCost& cost : costs)
+  {
+    total += cost.buildMs;
+  }
+  return total;
+}
+
 std::string structureShareText(const nlohmann::json& result)
 {
   const std::vector<StructureCost> costs = structureCostsOf(result);
@@ -1364,12 +1374,7 @@ std::string benchCsv(const nlohmann::json& rows, const std::set<std::string>& st
     }
     cells.push_back(format(static_cast<unsigned long long>(structureBytesOf(result))));
     const std::vector<StructureCost> costs = structureCostsOf(result);
-    double structuresMs = 0.0;
-    for (const StructureCost& cost : costs)
-    {
-      structuresMs += cost.buildMs;
-    }
-    cells.push_back(number(structuresMs));
+    cells.push_back(number(totalBuildMs(costs)));
     for (const std::string& structure : structures)
     {
       const auto cost = std::find_if(
@@ -2082,12 +2087,7 @@ void writeCostGrowthCsv(const nlohmann::json& rows, const std::vector<Configurat
       number(timingValue(result, "frame_gpu_ms")),
       result["stages"].contains("technique") ? number(timingValue(result["stages"]["technique"], "gpu_ms")) : "" };
     const std::vector<StructureCost> costs = structureCostsOf(result);
-    double structuresMs = 0.0;
-    for (const StructureCost& cost : costs)
-    {
-      structuresMs += cost.buildMs;
-    }
-    cells.push_back(number(structuresMs));
+    cells.push_back(number(totalBuildMs(costs)));
     for (const std::string& structure : structures)
     {
       const auto cost =

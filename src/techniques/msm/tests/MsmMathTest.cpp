@@ -46,6 +46,25 @@ struct MsmTestDistribution
   }
 };
 
+// 2 to 7 depths in [0, 1) with positive weights summing to 1.
+MsmTestDistribution randomMsmTestDistribution(std::mt19937& generator, std::uniform_real_distribution<double>& unit)
+{
+  MsmTestDistribution distribution;
+  const int count = 2 + static_cast<int>(unit(generator) * 6);
+  double total = 0.0;
+  for (int i = 0; i < count; ++i)
+  {
+    distribution.depths.push_back(unit(generator));
+    distribution.weights.push_back(0.05 + unit(generator));
+    total += distribution.weights.back();
+  }
+  for (double& weight : distribution.weights)
+  {
+    weight /= total;
+  }
+  return distribution;
+}
+
 TEST(MsmMath, TheThreePointDistributionReproducesAllFourBiasedMoments)
 {
   const MsmTestDistribution distribution{ { 0.2, 0.35, 0.5, 0.9 }, { 0.1, 0.4, 0.3, 0.2 } };
@@ -111,19 +130,7 @@ TEST(MsmMath, IsTheSharpestLowerBoundOnRandomDistributions)
   constexpr int trials = 2000;
   for (int trial = 0; trial < trials; ++trial)
   {
-    MsmTestDistribution distribution;
-    const int count = 2 + static_cast<int>(unit(generator) * 6);
-    double total = 0.0;
-    for (int i = 0; i < count; ++i)
-    {
-      distribution.depths.push_back(unit(generator));
-      distribution.weights.push_back(0.05 + unit(generator));
-      total += distribution.weights.back();
-    }
-    for (double& weight : distribution.weights)
-    {
-      weight /= total;
-    }
+    const MsmTestDistribution distribution = randomMsmTestDistribution(generator, unit);
     const double zf = unit(generator);
     const double biasedTruth = (1.0 - alpha) * distribution.fractionInFront(zf) + 0.5 * alpha; // z_f in (0, 1)
     const MsmReconstruction msm = msmHamburger4(distribution.moments(), alpha, zf);
@@ -262,19 +269,7 @@ TEST(MsmMath, StepsTwoToFourAreTheGeneralAlgorithmForFourMoments)
   int positive = 0;
   for (int trial = 0; trial < 2000; ++trial)
   {
-    MsmTestDistribution distribution;
-    const int count = 2 + static_cast<int>(unit(generator) * 6);
-    double total = 0.0;
-    for (int i = 0; i < count; ++i)
-    {
-      distribution.depths.push_back(unit(generator));
-      distribution.weights.push_back(0.05 + unit(generator));
-      total += distribution.weights.back();
-    }
-    for (double& weight : distribution.weights)
-    {
-      weight /= total;
-    }
+    const MsmTestDistribution distribution = randomMsmTestDistribution(generator, unit);
     const double zf = unit(generator);
     const MsmReconstruction msm = msmHamburger4(distribution.moments(), alpha, zf);
     const MsmAlgorithmOneResult reference = msmAlgorithmOneReference(msm.biasedMoments, zf);
