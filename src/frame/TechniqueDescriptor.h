@@ -231,6 +231,10 @@ struct TechniqueDescriptor
   // The shadow map must hold every caster that hides any part of an area light, not only its centre
   // (soft-shadow techniques): the focus stage widens the light frustum by the light's footprint.
   bool coversLightArea = false;
+  // shadow_map_size = auto never chooses more than this (lightspace/AutomaticMapSize.h caps every technique at 2048,
+  // the fixed default before auto); the back-projection techniques, ss08, reference-sm and temporal keep 1024, their
+  // fixed default, past which their per-texel work outgrows the frame (and llvmpipe's loop cap cuts kernels short).
+  int largestAutomaticMapSize = 2048;
   // An object-space technique (shadow volumes, penumbra wedges) draws the scene's geometry itself: the pipeline
   // gives its pass the casters with welded connectivity (FrameResources::weldedCasters) and the G-buffer's
   // depth-stencil texture to test against and write stencil into; it may export vtkPolyData

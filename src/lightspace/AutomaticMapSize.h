@@ -27,7 +27,8 @@ constexpr int kAutomaticMapMinSize = 64;
 // The largest automatic size, the fixed default before `auto`: where the view asks for more (a receiver close to a
 // wide perspective light, a deep view), the need comes from perspective aliasing, which the survey answers with
 // warping and partitioning (§4.2-4.3: warp, cascades, fvsm), not with one map's size; an automatic map is never
-// larger, so never slower, than the fixed default was. `capped` says the view asked for more.
+// larger, so never slower, than the fixed default was (a technique may lower it to its own former default,
+// TechniqueDescriptor::largestAutomaticMapSize). `capped` says the view asked for more.
 constexpr int kAutomaticMapMaxSize = 2048;
 // Receivers measured at most (every k-th pixel in x and y beyond it): a 0.9 quantile of 4096 samples is within about
 // half a percent of its rank, and the rule rounds to a power of two.

@@ -83,6 +83,14 @@ TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string tit
   return shadowMapDescriptor(std::move(name), std::move(title), std::move(paper), shadowMapParameters());
 }
 
+TechniqueDescriptor describeShadowMapTechnique(
+  std::string name, std::string title, std::string paper, int largestAutomaticMapSize)
+{
+  TechniqueDescriptor descriptor = describeShadowMapTechnique(std::move(name), std::move(title), std::move(paper));
+  descriptor.largestAutomaticMapSize = largestAutomaticMapSize;
+  return descriptor;
+}
+
 BufferSpec texelRatioBuffer()
 {
   return onShadowTestedPixels({ "texel_ratio", "pixels/texel",

@@ -46,6 +46,9 @@ std::vector<ParameterSpec> shadowMapCubeParameters();
 // A shadow-map technique's descriptor before its own parameters and buffers: its identity, shadowMapParameters
 // (shadow_map_size = auto by default), the shadow-map structure and shadowMapLights.
 TechniqueDescriptor describeShadowMapTechnique(std::string name, std::string title, std::string paper);
+// The same with shadow_map_size = auto at most `largestAutomaticMapSize` (TechniqueDescriptor).
+TechniqueDescriptor describeShadowMapTechnique(
+  std::string name, std::string title, std::string paper, int largestAutomaticMapSize);
 
 // Buffers every technique that compares against one shadow map can publish, declared once.
 BufferSpec texelRatioBuffer(); // survey Eq. 2's aliasing error m

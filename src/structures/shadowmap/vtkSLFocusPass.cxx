@@ -123,7 +123,8 @@ int vtkSLFocusPass::LargestAutomaticSize(const sl::ShadowMapSettings& settings) 
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max2d);
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
   const sl::ParameterSpec* spec = sl::findParameterSpec(sl::shadowMapStructure().parameters, "shadow_map_size");
-  int largest = std::min({ static_cast<int>(spec->maxValue), static_cast<int>(max2d), sl::kAutomaticMapMaxSize });
+  int largest = std::min({ static_cast<int>(spec->maxValue), static_cast<int>(max2d), sl::kAutomaticMapMaxSize,
+    frame.technique->largestAutomaticMapSize });
   for (const sl::LightSpaceStructure* structure :
     sl::withBuildDependencies(frame.technique->structuresFor(frame.parameters)))
   {

@@ -34,7 +34,7 @@ TechniqueDescriptor gbp06Technique()
   TechniqueDescriptor descriptor = describeShadowMapTechnique("gbp06",
     "Soft shadow mapping by back-projection of micropatches, with gap filling and a DU07 traversal",
     "Guennebaud et al. 2006; Dmitriev & Uralsky 2007 (HSM traversal); Yang et al. 2009 §2.3, Eq. 1; "
-    "Schwarz & Stamminger 2008 (gap-filling rule)");
+    "Schwarz & Stamminger 2008 (gap-filling rule)", 1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "hsm", 1, 0, 2, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007), mipmap (the HSM of Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level for the ranges, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },

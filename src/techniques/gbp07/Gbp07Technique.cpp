@@ -23,7 +23,7 @@ TechniqueDescriptor gbp07Technique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("gbp07",
     "Contour-based soft shadow mapping (back-projection, radial integration)",
-    "Guennebaud et al. 2007; Yang et al. 2009 §4, Eq. 1; Schwarz & Stamminger 2007 (MSSM kernels)");
+    "Guennebaud et al. 2007; Yang et al. 2009 §4, Eq. 1; Schwarz & Stamminger 2007 (MSSM kernels)", 1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "hsm", 1, 0, 2, "", "min-max structure for kernels and lit/umbra: nbuffers (the MSSM's exact ranges, Schwarz & Stamminger 2007), mipmap (a conservative HSM, Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },

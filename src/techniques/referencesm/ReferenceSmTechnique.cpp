@@ -32,7 +32,7 @@ TechniqueDescriptor referenceSmTechnique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("reference-sm",
     "Accumulated hard shadow maps from K light samples (GPU reference)",
-    "the papers' reference, e.g. VSSM (Yang et al. 2010) §7; survey §5 bias per map");
+    "the papers' reference, e.g. VSSM (Yang et al. 2010) §7; survey §5 bias per map", 1024);
   // K maps per frame
   descriptor.addParameters({
     { "samples", 256, 1, 4096, "light samples", "K: shadow maps rendered from points spread over the area light (papers: 1024)", {}, true },

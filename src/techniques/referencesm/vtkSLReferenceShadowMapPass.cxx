@@ -20,6 +20,8 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkSLReferenceShadowMapPass);
 
 vtkSLReferenceShadowMapPass::vtkSLReferenceShadowMapPass() = default;
@@ -50,7 +52,7 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
   if (settings.shadowMap.automaticResolution)
   {
     // shadow_map_size = auto: one size for the K maps, the one the light's centre's map would get (AutomaticMapSize.h).
-    focus.resolution = sl::kAutomaticMapMaxSize;
+    focus.resolution = std::min(sl::kAutomaticMapMaxSize, frame.technique->largestAutomaticMapSize);
     const sl::LightView centre = sl::fitLightView(light, *frame.scene, *this->Receivers, focus);
     frame.automaticMapSize = sl::automaticMapSize(frame.camera, light, { centre }, focus.marginTexels,
       sl::readFloatTexture(frame.gbufferPosition, 4), sl::readFloatTexture(frame.gbufferNormal, 4), focus.resolution);

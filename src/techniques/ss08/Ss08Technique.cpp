@@ -122,7 +122,7 @@ TechniqueDescriptor ss08Technique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("ss08",
     "Quality-scalable soft shadow mapping: budget map, smoothed LOQ map, blended levels, microrects",
-    "Schwarz & Stamminger 2008 (Fig. 3, §4.2, §5.2, §6); Guennebaud et al. 2006 (micropatches)");
+    "Schwarz & Stamminger 2008 (Fig. 3, §4.2, §5.2, §6); Guennebaud et al. 2006 (micropatches)", 1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (SS08 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },

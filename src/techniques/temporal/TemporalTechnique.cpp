@@ -219,7 +219,7 @@ ProbeOutcome probeTemporal(const ProbeContext& context, glm::ivec2 pixel, ProbeR
 TechniqueDescriptor temporalTechnique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("temporal",
-    "Temporal reprojection with shadow-test confidence", "Scherzer, Jeschke & Wimmer 2007; survey (Scherzer et al. 2011) §4.6");
+    "Temporal reprojection with shadow-test confidence", "Scherzer, Jeschke & Wimmer 2007; survey (Scherzer et al. 2011) §4.6", 1024);
   descriptor.addParameters({
     { "temporal_frames", 16, 1, 256, "frames",
       "K: frames of the static scene, each with the shadow map's viewport jittered by a sub-texel Halton (2, 3) offset (survey §4.6)",

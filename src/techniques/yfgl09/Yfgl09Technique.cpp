@@ -117,7 +117,7 @@ TechniqueDescriptor yfgl09Technique()
 {
   TechniqueDescriptor descriptor = describeShadowMapTechnique("yfgl09",
     "Packet-based hierarchical soft shadow mapping (contours, packets, dual-grid MSSM traversal)",
-    "Yang, Feng, Guennebaud and Liu 2009, §4, Eq. 1-6, Alg. 1-3");
+    "Yang, Feng, Guennebaud and Liu 2009, §4, Eq. 1-6, Alg. 1-3", 1024);
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min from the MSSM)", {}, true },
