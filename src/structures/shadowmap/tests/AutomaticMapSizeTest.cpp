@@ -7,6 +7,7 @@
 #include "scene/RandomScenes.h"
 #include "scene/Scene.h"
 #include "support/TestSupport.h"
+#include "techniques/Registry.h"
 
 #include <gtest/gtest.h>
 
@@ -116,6 +117,25 @@ TEST(AutomaticMapSize, GrowsWithTheImage)
             << large.automaticMapSize->size << "^2\n";
   EXPECT_NEAR(large.automaticMapSize->requiredTexels / small.automaticMapSize->requiredTexels, 4.0, 0.4);
   EXPECT_EQ(large.automaticMapSize->size, 4 * small.automaticMapSize->size);
+}
+
+TEST(AutomaticMapSize, StaysWithinTheTechniquesFormerDefault)
+{
+  // contact at 256^2 asks more than 1024 texels: hard takes the power of two above (at most 2048), reference-sm
+  // (its K maps at the size its centre's map would get) stops at its former default, 1024, and says it was capped.
+  const Scene scene = test::loadDataset("contact");
+  const FrameResult hard = test::renderDataset(scene, "hard", 256, 256, {});
+  const FrameResult referenceSm = test::renderDataset(scene, "reference-sm", 256, 256, { "samples=4" });
+  ASSERT_TRUE(hard.automaticMapSize && referenceSm.automaticMapSize);
+  std::cout << "[ measured ] contact 256^2: hard auto " << hard.automaticMapSize->size << "^2 (required "
+            << hard.automaticMapSize->requiredTexels << "), reference-sm " << referenceSm.automaticMapSize->size
+            << "^2 (required " << referenceSm.automaticMapSize->requiredTexels << ")\n";
+  EXPECT_GT(hard.automaticMapSize->requiredTexels, 1024.0);
+  EXPECT_EQ(hard.automaticMapSize->size, 2048);
+  EXPECT_FALSE(hard.automaticMapSize->capped);
+  EXPECT_EQ(findTechnique("reference-sm").largestAutomaticMapSize, 1024);
+  EXPECT_EQ(referenceSm.automaticMapSize->size, 1024);
+  EXPECT_TRUE(referenceSm.automaticMapSize->capped);
 }
 
 } // namespace
