@@ -44,9 +44,13 @@ int runRender(const RenderOptions& options, std::ostream& log)
     }
     // The map's size as rendered; "(auto)" when shadow_map_size = auto chose it.
     std::string map;
-    if (frame.lightView)
+    if (frame.automaticMapSize)
     {
-      map = format(", shadow map ", frame.lightView->resolution, "^2", frame.automaticMapSize ? " (auto)" : "");
+      map = format(", shadow map ", frame.automaticMapSize->size, "^2 (auto)");
+    }
+    else if (frame.lightView)
+    {
+      map = format(", shadow map ", frame.lightView->resolution, "^2");
     }
     log << "shadowlab: rendered " << printable(options.sceneFile) << " with " << frame.technique << " at " << frame.resolution.x
         << "x" << frame.resolution.y << map << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)

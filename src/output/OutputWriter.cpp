@@ -196,13 +196,6 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
     };
     // The map's size as rendered, whether given or chosen (shadow_map_size = auto, AutomaticMapSize.h).
     stats["shadow_map_size_chosen"] = view.resolution;
-    if (frame.automaticMapSize)
-    {
-      const AutomaticMapSize& choice = *frame.automaticMapSize;
-      stats["shadow_map_size_automatic"] = { { "quantile", kAutomaticMapQuantile },
-        { "required_texels", choice.requiredTexels }, { "receiver_samples", choice.samples },
-        { "pixel_stride", choice.pixelStride }, { "capped", choice.capped } };
-    }
     if (view.warp.active())
     {
       // Survey §4.2: P's free parameter and the angle that sets LiSPSM's falloff (n null: degraded to uniform).
@@ -212,6 +205,15 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
         { "n_opt", finiteOr(warp.nOpt) }, { "gamma_deg", warp.gammaDeg }, { "z_near", warp.zNear },
         { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
     }
+  }
+  if (frame.automaticMapSize)
+  {
+    // shadow_map_size = auto; also for reference-sm, whose K maps have no light_view of their own.
+    const AutomaticMapSize& choice = *frame.automaticMapSize;
+    stats["shadow_map_size_chosen"] = choice.size;
+    stats["shadow_map_size_automatic"] = { { "quantile", kAutomaticMapQuantile },
+      { "required_texels", choice.requiredTexels }, { "receiver_samples", choice.samples },
+      { "pixel_stride", choice.pixelStride }, { "capped", choice.capped } };
   }
   if (frame.partitions && frame.partitions->kind == PartitionKind::FvsmTiles)
   {
