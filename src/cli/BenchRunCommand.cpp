@@ -309,10 +309,9 @@ int runBenchConfiguration(const BenchRunOptions& options)
     { "light_structure_gpu_bytes", structureBytes },
     { "light_structure_gpu_bytes_total", structureBytesTotal },
   };
-  if (last.automaticMapSize || last.lightView)
+  if (const std::optional<int> size = last.shadowMapSize())
   {
-    // Given, or chosen by shadow_map_size = auto (reference-sm's K maps have no light view of their own).
-    result["shadow_map_size_chosen"] = last.automaticMapSize ? last.automaticMapSize->size : last.lightView->resolution;
+    result["shadow_map_size_chosen"] = *size; // given, or chosen by shadow_map_size = auto
   }
   putTimingSpread(result, "frame_gpu_ms", frameGpu);
   putTimingSpread(result, "frame_wall_ms", frameWall);

@@ -44,13 +44,9 @@ int runRender(const RenderOptions& options, std::ostream& log)
     }
     // The map's size as rendered; "(auto)" when shadow_map_size = auto chose it.
     std::string map;
-    if (frame.automaticMapSize)
+    if (const std::optional<int> size = frame.shadowMapSize())
     {
-      map = format(", shadow map ", frame.automaticMapSize->size, "^2 (auto)");
-    }
-    else if (frame.lightView)
-    {
-      map = format(", shadow map ", frame.lightView->resolution, "^2");
+      map = format(", shadow map ", *size, "^2", frame.automaticMapSize ? " (auto)" : "");
     }
     log << "shadowlab: rendered " << printable(options.sceneFile) << " with " << frame.technique << " at " << frame.resolution.x
         << "x" << frame.resolution.y << map << " on " << frame.glRenderer << ": GPU " << std::fixed << std::setprecision(2)

@@ -8,6 +8,15 @@
 namespace sl
 {
 
+std::optional<int> FrameResult::shadowMapSize() const
+{
+  if (automaticMapSize)
+  {
+    return automaticMapSize->size;
+  }
+  return lightView ? std::optional<int>(lightView->resolution) : std::nullopt;
+}
+
 const NamedImage* FrameResult::find(const std::string& name) const
 {
   return findNamed(buffers, name);

@@ -83,6 +83,9 @@ struct FrameResult
   std::vector<glm::dvec2> samplePositions;
 
   const NamedImage* find(const std::string& name) const;
+  // The shadow map's size as rendered, given or chosen by shadow_map_size = auto (reference-sm's K maps have no
+  // light view of their own, only the automatic choice); nullopt for a frame without a map.
+  std::optional<int> shadowMapSize() const;
 };
 
 // Pixels whose value was cut short (BufferSpec::cutShortCode of the technique's categorical buffers): not exact.

@@ -22,6 +22,16 @@ int powerOfTwoAtLeast(double value)
   return size;
 }
 
+int powerOfTwoAtMost(double value)
+{
+  int size = 1;
+  while (2.0 * size <= value && size < (1 << 30))
+  {
+    size *= 2;
+  }
+  return size;
+}
+
 AutomaticMapSize automaticMapSize(const CameraView& camera, const Light& light, const std::vector<LightView>& views,
   double marginTexels, const ImageF& position, const ImageF& normal, int maxSize)
 {

@@ -49,7 +49,8 @@ struct AutomaticMapSize
 AutomaticMapSize automaticMapSize(const CameraView& camera, const Light& light, const std::vector<LightView>& views,
   double marginTexels, const ImageF& position, const ImageF& normal, int maxSize);
 
-// The smallest power of two >= value (at least 1).
+// The smallest power of two >= value (at least 1); the largest <= value (at least 1).
 int powerOfTwoAtLeast(double value);
+int powerOfTwoAtMost(double value);
 
 } // namespace sl

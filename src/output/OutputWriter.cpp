@@ -194,8 +194,6 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
       { "window", { view.window.x, view.window.y, view.window.z, view.window.w } },
       { "receiver_samples", view.receiverSampleCount },
     };
-    // The map's size as rendered, whether given or chosen (shadow_map_size = auto, AutomaticMapSize.h).
-    stats["shadow_map_size_chosen"] = view.resolution;
     if (view.warp.active())
     {
       // Survey §4.2: P's free parameter and the angle that sets LiSPSM's falloff (n null: degraded to uniform).
@@ -206,11 +204,13 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
         { "z_far", warp.zFar }, { "near", finiteOr(warp.nearDistance) }, { "far", finiteOr(warp.farDistance) } };
     }
   }
+  if (const std::optional<int> size = frame.shadowMapSize())
+  {
+    stats["shadow_map_size_chosen"] = *size; // as rendered, given or chosen (shadow_map_size = auto)
+  }
   if (frame.automaticMapSize)
   {
-    // shadow_map_size = auto; also for reference-sm, whose K maps have no light_view of their own.
     const AutomaticMapSize& choice = *frame.automaticMapSize;
-    stats["shadow_map_size_chosen"] = choice.size;
     stats["shadow_map_size_automatic"] = { { "quantile", kAutomaticMapQuantile },
       { "required_texels", choice.requiredTexels }, { "receiver_samples", choice.samples },
       { "pixel_stride", choice.pixelStride }, { "capped", choice.capped } };

@@ -90,11 +90,16 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     {
       if (settings.automaticResolution)
       {
+        // Fitted again only at another size: the fit at the same size is the same set of views.
+        const int fittedAt = focus.resolution;
         this->ChooseAutomaticSize(frame.partitions->views, focus);
-        const sl::PartitionKind kind = frame.partitions->kind;
-        frame.partitions = kind == sl::PartitionKind::Cascades
-          ? sl::fitCascades(light, *frame.scene, *this->Receivers, focus, settings.cascades)
-          : sl::fitCubeFaces(light, *frame.scene, *this->Receivers, focus);
+        if (focus.resolution != fittedAt)
+        {
+          const sl::PartitionKind kind = frame.partitions->kind;
+          frame.partitions = kind == sl::PartitionKind::Cascades
+            ? sl::fitCascades(light, *frame.scene, *this->Receivers, focus, settings.cascades)
+            : sl::fitCubeFaces(light, *frame.scene, *this->Receivers, focus);
+        }
       }
       this->WriteSelection(state);
     }
@@ -109,8 +114,13 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
     if (settings.automaticResolution && !settings.fvsm.active())
     {
+      // Fitted again only at another size: the fit at the same size is the same view.
+      const int fittedAt = focus.resolution;
       this->ChooseAutomaticSize({ frame.lightView }, focus);
-      frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
+      if (focus.resolution != fittedAt)
+      {
+        frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
+      }
     }
   }
   frame.hasLightView = true;
@@ -133,12 +143,7 @@ int vtkSLFocusPass::LargestAutomaticSize(const sl::ShadowMapSettings& settings) 
       largest = std::min(largest, structure->largestMapSize(frame.parameters, static_cast<int>(max3d)));
     }
   }
-  // A power of two, as every automatic size is.
-  int size = 1;
-  while (2 * size <= largest)
-  {
-    size *= 2;
-  }
+  const int size = sl::powerOfTwoAtMost(largest); // a power of two, as every automatic size is
   SL_CHECK_MSG(size > 2.0 * settings.marginTexels, "shadow_map_size=auto: the GL's largest map (", size,
     ") leaves no texel inside the filter's margin (", settings.marginTexels, ")");
   return size;
