@@ -41,8 +41,10 @@ public:
       std::memcpy(&value, bytes + offset, 8);
       word(value);
     }
+    // An empty vector's data() may be null, and memcpy from null is undefined even for 0 bytes.
     std::uint64_t tail = 0;
-    std::memcpy(&tail, bytes + offset, size - offset);
+    if (size > offset)
+      std::memcpy(&tail, bytes + offset, size - offset);
     word(tail);
   }
   template <class T>
