@@ -33,10 +33,11 @@ int powerOfTwoAtMost(double value)
 }
 
 AutomaticMapSize automaticMapSize(const CameraView& camera, const Light& light, const std::vector<LightView>& views,
-  double marginTexels, const ImageF& position, const ImageF& normal, int maxSize)
+  double marginTexels, const ImageF& position, const ImageF& normal, int maxSize, double texelsPerPixel)
 {
-  SL_CHECK(!views.empty() && position.width == normal.width && position.height == normal.height);
+  SL_CHECK(!views.empty() && position.width == normal.width && position.height == normal.height && texelsPerPixel > 0.0);
   AutomaticMapSize choice;
+  choice.texelsPerPixel = texelsPerPixel;
   const double pixels = static_cast<double>(position.width) * position.height;
   choice.pixelStride = std::max(1, static_cast<int>(std::ceil(std::sqrt(pixels / kAutomaticMapMaxSamples))));
   std::vector<double> required;
@@ -66,7 +67,7 @@ AutomaticMapSize automaticMapSize(const CameraView& camera, const Light& light, 
         const double ratio = std::max(error.texelRatioS, error.texelRatioT);
         if (ratio > 0.0 && std::isfinite(ratio))
         {
-          finest = std::min(finest, ratio * (view.resolution - 2.0 * marginTexels));
+          finest = std::min(finest, texelsPerPixel * ratio * (view.resolution - 2.0 * marginTexels));
         }
       }
       if (std::isfinite(finest))

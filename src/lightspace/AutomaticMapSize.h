@@ -2,7 +2,8 @@
 // map). Survey Eq. 2 per axis gives, at each visible receiver, how many pixels one texel of a fitted map spans
 // (texel_ratio_s, texel_ratio_t); a map of N texels per side spans N - 2 margin of them over the receivers, so the
 // pixel gets at least one texel per pixel along both axes iff N - 2 margin >= max(r_s, r_t) (N0 - 2 margin) for the
-// ratios measured in a map of N0. The chosen size meets that at kAutomaticMapQuantile of the receivers, rounded up to
+// ratios measured in a map of N0 (d texels per pixel: d times that, auto_texels_per_pixel). The chosen size meets
+// that at kAutomaticMapQuantile of the receivers, rounded up to
 // a power of two and bounded by kAutomaticMapMinSize and kAutomaticMapMaxSize (and the GL's limits); receivers the eye or the light
 // grazes (ratio 0: unbounded, no size serves them) do not count. With several views that partition the pixels
 // (cascades, cube faces) a receiver counts in the finest view that holds it, and all views share the size.
@@ -37,6 +38,7 @@ constexpr int kAutomaticMapMaxSamples = 1 << 12;
 struct AutomaticMapSize
 {
   int size = 0;               // texels per side, a power of two
+  double texelsPerPixel = 1;  // the density asked for (auto_texels_per_pixel)
   double requiredTexels = 0;  // texels across the receivers at the quantile (before margin and rounding)
   int samples = 0;            // receivers measured
   int pixelStride = 1;        // every pixelStride-th pixel in x and y was measured
@@ -45,9 +47,10 @@ struct AutomaticMapSize
 
 // `views`: the map (or the views that partition the pixels) as fitted at any resolution (each view's `resolution`);
 // `marginTexels`: the filter margin the fit keeps outside the receivers; position and normal as the G-buffer (xyz,
-// w = coverage / receives shadows); `maxSize`: the largest size the GL and the parameter allow.
+// w = coverage / receives shadows); `maxSize`: the largest size the GL and the parameter allow; `texelsPerPixel`: the
+// texels per pixel along each axis to serve (1: one texel per pixel).
 AutomaticMapSize automaticMapSize(const CameraView& camera, const Light& light, const std::vector<LightView>& views,
-  double marginTexels, const ImageF& position, const ImageF& normal, int maxSize);
+  double marginTexels, const ImageF& position, const ImageF& normal, int maxSize, double texelsPerPixel = 1.0);
 
 // The smallest power of two >= value (at least 1); the largest <= value (at least 1).
 int powerOfTwoAtLeast(double value);

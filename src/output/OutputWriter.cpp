@@ -211,7 +211,7 @@ nlohmann::json frameStats(const FrameResult& frame, const OutputContext& context
   if (frame.automaticMapSize)
   {
     const AutomaticMapSize& choice = *frame.automaticMapSize;
-    stats["shadow_map_size_automatic"] = { { "quantile", kAutomaticMapQuantile },
+    stats["shadow_map_size_automatic"] = { { "quantile", kAutomaticMapQuantile }, { "texels_per_pixel", choice.texelsPerPixel },
       { "required_texels", choice.requiredTexels }, { "receiver_samples", choice.samples },
       { "pixel_stride", choice.pixelStride }, { "capped", choice.capped } };
   }

@@ -156,7 +156,8 @@ void vtkSLFocusPass::ChooseAutomaticSize(const std::vector<sl::LightView>& views
   const sl::ImageF position = sl::readFloatTexture(frame.gbufferPosition, 4);
   const sl::ImageF normal = sl::readFloatTexture(frame.gbufferNormal, 4);
   frame.automaticMapSize =
-    sl::automaticMapSize(frame.camera, *frame.light, views, focus.marginTexels, position, normal, focus.resolution);
+    sl::automaticMapSize(frame.camera, *frame.light, views, focus.marginTexels, position, normal, focus.resolution,
+      sl::shadowMapSettings(frame).automaticTexelsPerPixel);
   focus.resolution = frame.automaticMapSize->size;
 }
 

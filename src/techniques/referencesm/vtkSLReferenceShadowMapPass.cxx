@@ -55,7 +55,8 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
     focus.resolution = std::min(sl::kAutomaticMapMaxSize, frame.technique->largestAutomaticMapSize);
     const sl::LightView centre = sl::fitLightView(light, *frame.scene, *this->Receivers, focus);
     frame.automaticMapSize = sl::automaticMapSize(frame.camera, light, { centre }, focus.marginTexels,
-      sl::readFloatTexture(frame.gbufferPosition, 4), sl::readFloatTexture(frame.gbufferNormal, 4), focus.resolution);
+      sl::readFloatTexture(frame.gbufferPosition, 4), sl::readFloatTexture(frame.gbufferNormal, 4), focus.resolution,
+      settings.shadowMap.automaticTexelsPerPixel);
     focus.resolution = frame.automaticMapSize->size;
   }
   const bool secondDepth = settings.shadowMap.secondDepth;

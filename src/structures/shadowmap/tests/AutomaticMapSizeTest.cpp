@@ -30,7 +30,8 @@ struct TexelsPerPixelShare
   int counted = 0;
 };
 
-TexelsPerPixelShare autoMapServedShare(const FrameResult& frame)
+// `texelsPerPixel` texels per pixel or finer: ratio at most 1 / texelsPerPixel.
+TexelsPerPixelShare autoMapServedShare(const FrameResult& frame, double texelsPerPixel = 1.0)
 {
   const ImageF& ratioS = frame.find("texel_ratio_s")->image;
   const ImageF& ratioT = frame.find("texel_ratio_t")->image;
@@ -47,7 +48,7 @@ TexelsPerPixelShare autoMapServedShare(const FrameResult& frame)
         continue;
       }
       ++share.counted;
-      served += ratio <= 1.0 + 1e-3 ? 1 : 0;
+      served += ratio * texelsPerPixel <= 1.0 + 1e-3 ? 1 : 0;
     }
   }
   share.servedShare = share.counted > 0 ? static_cast<double>(served) / share.counted : 1.0;
@@ -136,6 +137,48 @@ TEST(AutomaticMapSize, StaysWithinTheTechniquesFormerDefault)
   EXPECT_EQ(findTechnique("reference-sm").largestAutomaticMapSize, 1024);
   EXPECT_EQ(referenceSm.automaticMapSize->size, 1024);
   EXPECT_TRUE(referenceSm.automaticMapSize->capped);
+}
+
+} // namespace
+} // namespace sl
+
+namespace sl
+{
+namespace
+{
+
+TEST(AutomaticMapSize, ServesTheAskedTexelsPerPixel)
+{
+  // auto_texels_per_pixel = d asks d times the texels of every receiver (the same first fit, so exactly d times the
+  // quantile), and the chosen size gives d texels per pixel or more to the quantile of the tested pixels.
+  for (const std::string dataset : { "planar-occluder", "bunny" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    const FrameResult one = test::renderDataset(scene, "hard", 128, 128, {});
+    ASSERT_TRUE(one.automaticMapSize) << dataset;
+    for (const double density : { 0.5, 2.0, 4.0 })
+    {
+      const FrameResult asked =
+        test::renderDataset(scene, "hard", 128, 128, { "auto_texels_per_pixel=" + std::to_string(density) });
+      ASSERT_TRUE(asked.automaticMapSize) << dataset << " at " << density;
+      const AutomaticMapSize& choice = *asked.automaticMapSize;
+      EXPECT_EQ(choice.texelsPerPixel, density);
+      EXPECT_NEAR(choice.requiredTexels, density * one.automaticMapSize->requiredTexels,
+        1e-9 * choice.requiredTexels) << dataset << " at " << density;
+      const TexelsPerPixelShare served = autoMapServedShare(asked, density);
+      std::cout << "[ measured ] " << dataset << " 128^2, auto_texels_per_pixel=" << density << ": " << choice.size
+                << "^2 (1: " << one.automaticMapSize->size << "^2), served " << served.servedShare << "\n";
+      if (!choice.capped && choice.size > kAutomaticMapMinSize)
+      {
+        EXPECT_GE(served.servedShare, kAutomaticMapQuantile - 0.02) << dataset << " at " << density;
+        // ... and half the size would not: the smallest power of two that does.
+        const FrameResult half = test::renderDataset(scene, "hard", 128, 128,
+          { "shadow_map_size=" + std::to_string(choice.size / 2) });
+        EXPECT_LT(autoMapServedShare(half, density).servedShare, kAutomaticMapQuantile + 0.02)
+          << dataset << " at " << density << ", " << choice.size / 2 << "^2";
+      }
+    }
+  }
 }
 
 } // namespace
