@@ -345,6 +345,12 @@ double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec
   }
   const glm::dvec4 inFrontPlane(0.0, 0.0, -1.0, -depthEpsilon);     // depth >= depthEpsilon
   const glm::dvec4 beforeFarPlane(0.0, 0.0, 1.0, receivers.farDepth); // depth <= the receivers' far depth
+  std::vector<glm::dvec4> planes = sidePlanes;
+  planes.push_back(beforeFarPlane);
+  if (view.projection == LightProjection::Perspective)
+  {
+    planes.push_back(inFrontPlane);
+  }
   for (const SceneObject& object : scene.objects)
   {
     if (!object.castShadows)
@@ -354,11 +360,38 @@ double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec
     const TriangleMesh& mesh = object.mesh;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
-      std::vector<glm::dvec3> polygon;
+      std::vector<glm::dvec3> polygon(3);
       for (int k = 0; k < 3; ++k)
       {
         const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
-        polygon.push_back(glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0)));
+        polygon[static_cast<std::size_t>(k)] = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
+      }
+      // Most triangles lie wholly inside every plane or wholly outside one (clipPolygon's own test, dot >= 0): the
+      // clip would keep them unchanged or empty, so only those that straddle a plane are clipped (the fence's 63k
+      // triangles, fitted twice for shadow_map_size = auto, made this loop most of the focus stage).
+      bool inside = true;
+      bool outside = false;
+      for (const glm::dvec4& plane : planes)
+      {
+        int in = 0;
+        for (const glm::dvec3& pLs : polygon)
+        {
+          in += glm::dot(plane, glm::dvec4(pLs, 1.0)) >= 0.0 ? 1 : 0;
+        }
+        inside = inside && in == 3;
+        outside = outside || in == 0;
+      }
+      if (outside)
+      {
+        continue;
+      }
+      if (inside)
+      {
+        for (const glm::dvec3& pLs : polygon)
+        {
+          nearest = std::min(nearest, -pLs.z);
+        }
+        continue;
       }
       if (view.projection == LightProjection::Perspective)
       {
