@@ -49,11 +49,30 @@ void GpuReceivers::setGBuffer(vtkTextureObject* gbufferPosition, vtkTextureObjec
 {
   position_ = gbufferPosition;
   normal_ = gbufferNormal;
+  reductions_.clear();
 }
 
-std::vector<std::uint32_t> GpuReceivers::run(const ComputeProgram& program, const Light& light)
+std::vector<std::uint32_t> GpuReceivers::run(const ComputeProgram& program, const Light& light, const std::string& query)
 {
   SL_CHECK(position_ && normal_);
+  std::string key = query;
+  const auto append = [&key](const auto& value) {
+    key.append(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  append(&program);
+  append(lightTypeCode(light.type));
+  append(light.center);
+  append(light.normal);
+  append(light.direction);
+  append(light.coneAngleDeg);
+  for (const glm::dvec4& plane : ownerPlanes())
+  {
+    append(plane);
+  }
+  if (const auto found = reductions_.find(key); found != reductions_.end())
+  {
+    return found->second;
+  }
   program.use();
   position_->Activate();
   normal_->Activate();
@@ -74,13 +93,13 @@ std::vector<std::uint32_t> GpuReceivers::run(const ComputeProgram& program, cons
   position_->Deactivate();
   normal_->Deactivate();
   checkGlErrors("focus reduction");
-  return result_.download();
+  return reductions_[key] = result_.download();
 }
 
 ReceiverSummary GpuReceivers::summary(const Light& light)
 {
   result_.upload({ untouchedMin, untouchedMin, untouchedMin, untouchedMax, untouchedMax, untouchedMax, 0u, 0u, 0u });
-  const std::vector<std::uint32_t> words = run(*summaryProgram_, light);
+  const std::vector<std::uint32_t> words = run(*summaryProgram_, light, {});
   ReceiverSummary summary;
   summary.count = static_cast<int>(words[6]);
   if (summary.count > 0)
@@ -99,7 +118,15 @@ ReceiverExtent GpuReceivers::extent(const Light& light, const LightView& view, c
   extentProgram_->setInt("lightIsPerspective", view.projection == LightProjection::Perspective ? 1 : 0);
   extentProgram_->setVector("lightEyeWs", view.eyeWs);
   extentProgram_->setVector("lightAxisWs", axis);
-  const std::vector<std::uint32_t> words = run(*extentProgram_, light);
+  std::string query;
+  const auto append = [&query](const auto& value) {
+    query.append(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  append(view.viewFromWorld);
+  append(view.projection);
+  append(view.eyeWs);
+  append(axis);
+  const std::vector<std::uint32_t> words = run(*extentProgram_, light, query);
   ReceiverExtent extent;
   extent.inFront = static_cast<int>(words[7]);
   extent.reachable = static_cast<int>(words[8]);
