@@ -370,6 +370,13 @@ TEST(GpuCpuFocus, GpuReductionFitsTheSameLightViewAsTheCpu)
       continue;
     }
     expectSameView(*frame.lightView, fitLightView(scene.lights[0], scene, positionRgba, normalRgba, focus), dataset);
+    // shadow_map_size = auto fits twice on one G-buffer, the second fit's reduction answered from the first
+    // (GpuReceivers): the view at the chosen size is still the CPU's fit at that size.
+    const FrameResult automatic = test::renderDataset(scene, "pcf", 96, 80, {});
+    ASSERT_TRUE(automatic.automaticMapSize) << dataset;
+    focus.resolution = automatic.automaticMapSize->size;
+    expectSameView(*automatic.lightView, fitLightView(scene.lights[0], scene, positionRgba, normalRgba, focus),
+      dataset + " auto " + std::to_string(focus.resolution));
   }
 }
 
