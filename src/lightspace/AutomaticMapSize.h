@@ -2,8 +2,8 @@
 // map). Survey Eq. 2 per axis gives, at each visible receiver, how many pixels one texel of a fitted map spans
 // (texel_ratio_s, texel_ratio_t); a map of N texels per side spans N - 2 margin of them over the receivers, so the
 // pixel gets at least one texel per pixel along both axes iff N - 2 margin >= max(r_s, r_t) (N0 - 2 margin) for the
-// ratios measured in a map of N0 (d texels per pixel: d times that, auto_texels_per_pixel). The chosen size meets
-// that at kAutomaticMapQuantile of the receivers, rounded up to
+// ratios measured in a map of N0, and gets d texels per pixel iff d times that (auto_texels_per_pixel, 2 by default:
+// the shadow map's page says why). The chosen size meets that at kAutomaticMapQuantile of the receivers, rounded up to
 // a power of two and bounded by kAutomaticMapMinSize and kAutomaticMapMaxSize (and the GL's limits); receivers the eye or the light
 // grazes (ratio 0: unbounded, no size serves them) do not count. With several views that partition the pixels
 // (cascades, cube faces) a receiver counts in the finest view that holds it, and all views share the size.
@@ -19,7 +19,7 @@ namespace sl
 
 struct CameraView;
 
-// The share of visible receivers that get at least one texel per pixel: 0.9, so most of the image is served at
+// The share of visible receivers that get at least the texels per pixel asked for: 0.9, so most of the image is served at
 // the size while the few grazing pixels whose need grows without bound (projection aliasing, survey §3) do not
 // decide it. The shadow map's page (src/structures/shadowmap/README.md) measures the choice on the datasets.
 constexpr double kAutomaticMapQuantile = 0.9;

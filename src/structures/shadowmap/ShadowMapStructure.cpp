@@ -22,7 +22,7 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
   ShadowMapSettings settings;
   settings.automaticResolution = values.automatic("shadow_map_size");
   settings.resolution = settings.automaticResolution ? 0 : values.getInt("shadow_map_size");
-  settings.automaticTexelsPerPixel = values.has("auto_texels_per_pixel") ? values.get("auto_texels_per_pixel") : 1.0;
+  settings.automaticTexelsPerPixel = values.has("auto_texels_per_pixel") ? values.get("auto_texels_per_pixel") : 2.0;
   // A filter reaches width/2 texels past a receiver; one more for the bilinear footprint. The moment techniques'
   // prefilter box reaches as far as pcf's kernel (and clamps at the map's edge without the margin), and the same
   // width focuses the same map: vsm and pcf over one box read the same texels (the light_leak lesson).
@@ -448,8 +448,8 @@ const LightSpaceStructure& shadowMapStructure()
     s.doc = "linear (R32F) and window (D32F) depth from the light's centre, focused on the visible receivers (survey §4.1); "
             "publishes its sampling error per pixel (texel_ratio_s/_t, perspective_factor, projection_factor: survey §3)";
     s.parameters = {
-      { "shadow_map_size", kAutomaticValue, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1); auto: about one texel per pixel on the visible receivers (resolution matching, survey §4.3.3), a power of two", {}, true, false, "auto" },
-      { "auto_texels_per_pixel", 1.0, 0.25, 8.0, "texels per pixel", "shadow_map_size = auto: texels per pixel along each map axis that the chosen size gives at the 0.9 quantile of visible receivers (1: resolution matching, survey §4.3.3; more where a technique's error keeps falling with a finer map)", {}, false },
+      { "shadow_map_size", kAutomaticValue, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1); auto: auto_texels_per_pixel texels per pixel on the visible receivers (resolution matching, survey §4.3.3), a power of two", {}, true, false, "auto" },
+      { "auto_texels_per_pixel", 2.0, 0.25, 8.0, "texels per pixel", "shadow_map_size = auto: texels per pixel along each map axis that the chosen size gives at the 0.9 quantile of visible receivers (2: two samples per pixel, above the image's Nyquist rate as survey §3 asks of the initial sampling; 1: one texel per pixel, between under- and oversampling, §3.1)", {}, false },
       { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },
       { "depth_layer", 0, 0, 3, "", "the depth compared (survey §5): first = the nearest caster's; midpoint = (z1 + z2) / 2 of the nearest and the second-nearest (depth-peeled) surface (Woo 1992); dual = min((z1 + z2) / 2, z1 + dual_max_offset_texels texel footprints) (Weiskopf & Ertl 2003); polygon_id = the nearest triangle's id (32 bits), lit iff it is the receiver's own (Hourcade & Nicolas 1985; hard only; flagged where the receiver's 3 x 3 texels hold several ids)", { "first", "midpoint", "dual", "polygon_id" }, true },
       { "dual_max_offset_texels", 4.0, 0, 1e4, "texel footprints", "depth_layer = dual: the most the compared depth lies behind the nearest caster, in texel footprints at its depth (limits the effective caster thickness)", {}, false },

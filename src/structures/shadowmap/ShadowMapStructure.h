@@ -53,7 +53,7 @@ struct ShadowMapSettings
 {
   int resolution = 0;        // shadow_map_size; 0 while automaticResolution (the focus stage chooses)
   bool automaticResolution = false; // shadow_map_size = auto (AutomaticMapSize.h)
-  double automaticTexelsPerPixel = 1.0; // auto_texels_per_pixel: the density auto serves at its quantile
+  double automaticTexelsPerPixel = 2.0; // auto_texels_per_pixel: the density auto serves at its quantile
   double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
   ShadowMapDepthLayer depthLayer = ShadowMapDepthLayer::First; // depth_layer (survey §5)

@@ -174,6 +174,12 @@ TechniqueDescriptor msmSoftTechnique()
         "ill-conditioned above 1e-3");
       noteAmbiguity(outcome.ambiguity, "headroom against float rounding (1e-3 / rounding sensitivity)",
         msmSoftSensitivityLimit / std::max(sample.sensitivity.visibility, 1e-300), 1.0);
+      // A root of a nearly linear or degenerate quadratic (c3 near 0, a lit kernel) moves far with the moments: the
+      // recorded support depths may then differ from the GPU's float ones though the visibility agrees, so the probe
+      // counts them instead of comparing them (as the tests do every ill-conditioned quantity).
+      recorder.quantity("support_depth_sensitivity", sample.sensitivity.supportDepth, "",
+        "ShadowLab: sum of the support depths' largest change (relative beyond 1) when a moment or z_f moves by 1e-6; "
+        "ill-conditioned above 1e-3");
     }
     return outcome;
   };
@@ -266,11 +272,17 @@ MsmSoftSample msmSoftReference(const ShadowMapInputs& inputs, const MsmSoftSetti
       largest.averageDepth = std::max(largest.averageDepth,
         std::abs(moved.averageBlockerDepth - steps.averageBlockerDepth) / steps.averageBlockerDepth);
       largest.kernel = std::max(largest.kernel, std::abs(movedKernel - kernel) / kernel);
+      for (const auto root : { &MsmReconstruction::supportNear, &MsmReconstruction::supportFar })
+      {
+        largest.supportDepth = std::max(largest.supportDepth,
+          std::abs(moved.filter.*root - steps.filter.*root) / std::max(1.0, std::abs(steps.filter.*root)));
+      }
     }
     result.sensitivity.visibility += largest.visibility;
     result.sensitivity.blockerIntensity += largest.blockerIntensity;
     result.sensitivity.averageDepth += largest.averageDepth;
     result.sensitivity.kernel += largest.kernel;
+    result.sensitivity.supportDepth += largest.supportDepth;
   }
   result.sample.visibility = 1.0 - result.filter.shadowIntensity;
   result.coverLo = glm::clamp(glm::ivec2(glm::floor(result.filterMin)), glm::ivec2(0), glm::ivec2(size - 1));

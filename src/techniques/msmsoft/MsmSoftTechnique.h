@@ -61,6 +61,7 @@ struct MsmSoftSensitivity
   double blockerIntensity = 0.0; // G_b (clamped at 1 as the buffer)
   double averageDepth = 0.0;     // relative change of the linear average blocker depth
   double kernel = 0.0;           // relative change of penumbra_kernel_texels
+  double supportDepth = 0.0;     // change of the filter's support depths (MSM Alg. 3's roots), relative beyond 1
 };
 // Above this a quantity is ill-conditioned (a near-singular Hankel matrix): tests and the probe count it instead of
 // comparing it (msm's msmSensitivityLimit).

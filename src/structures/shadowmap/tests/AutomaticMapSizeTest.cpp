@@ -1,5 +1,5 @@
-// shadow_map_size = auto (lightspace/AutomaticMapSize.h): the size the focus stage chooses gives one texel per pixel
-// or finer to kAutomaticMapQuantile of the shadow-tested pixels, measured on the GPU's own sampling-error buffers
+// shadow_map_size = auto (lightspace/AutomaticMapSize.h): the size the focus stage chooses gives auto_texels_per_pixel
+// texels per pixel (2 by default) or finer to kAutomaticMapQuantile of the shadow-tested pixels, measured on the GPU's own sampling-error buffers
 // (texel_ratio_s, texel_ratio_t, survey Eq. 2) of the frame it rendered, and half of it would not; the frame equals
 // one rendered with that size given explicitly, bit for bit. On datasets and random generated scenes.
 #include "core/Error.h"
@@ -63,7 +63,7 @@ void expectAutomaticSizeServesTheView(const Scene& scene, int width, int height,
   const AutomaticMapSize& choice = *automatic.automaticMapSize;
   EXPECT_EQ(size, choice.size) << label;
   EXPECT_EQ(size & (size - 1), 0) << label << ": " << size << " is not a power of two";
-  const TexelsPerPixelShare atSize = autoMapServedShare(automatic);
+  const TexelsPerPixelShare atSize = autoMapServedShare(automatic, choice.texelsPerPixel);
   std::cout << "[ measured ] " << label << ": auto " << size << "^2 (required " << choice.requiredTexels << " texels, "
             << choice.samples << " receivers" << (choice.capped ? ", capped" : "") << "), served "
             << atSize.servedShare << " of " << atSize.counted << " tested pixels";
@@ -81,7 +81,7 @@ void expectAutomaticSizeServesTheView(const Scene& scene, int width, int height,
     // Half the size serves fewer than the quantile: the choice is the smallest power of two that does.
     const FrameResult half =
       test::renderDataset(scene, "hard", width, height, { "shadow_map_size=" + std::to_string(size / 2) });
-    const TexelsPerPixelShare atHalf = autoMapServedShare(half);
+    const TexelsPerPixelShare atHalf = autoMapServedShare(half, choice.texelsPerPixel);
     std::cout << ", at " << size / 2 << "^2 " << atHalf.servedShare;
     EXPECT_LT(atHalf.servedShare, kAutomaticMapQuantile + 0.02) << label << " at " << size / 2;
   }
@@ -109,7 +109,7 @@ TEST(AutomaticMapSize, ServesTheQuantileOnRandomScenes)
 
 TEST(AutomaticMapSize, GrowsWithTheImage)
 {
-  // One texel per pixel: twice the image's side, twice the map's (a power of two either way).
+  // A fixed density: twice the image's side, twice the map's (a power of two either way).
   const Scene scene = test::loadDataset("planar-occluder");
   const FrameResult small = test::renderDataset(scene, "hard", 64, 64, {});
   const FrameResult large = test::renderDataset(scene, "hard", 256, 256, {});
@@ -122,11 +122,13 @@ TEST(AutomaticMapSize, GrowsWithTheImage)
 
 TEST(AutomaticMapSize, StaysWithinTheTechniquesFormerDefault)
 {
-  // contact at 256^2 asks more than 1024 texels: hard takes the power of two above (at most 2048), reference-sm
-  // (its K maps at the size its centre's map would get) stops at its former default, 1024, and says it was capped.
+  // contact at 256^2 asks more than 1024 texels at one texel per pixel: hard takes the power of two above (at most
+  // 2048), reference-sm (its K maps at the size its centre's map would get) stops at its former default, 1024, and says
+  // it was capped.
   const Scene scene = test::loadDataset("contact");
-  const FrameResult hard = test::renderDataset(scene, "hard", 256, 256, {});
-  const FrameResult referenceSm = test::renderDataset(scene, "reference-sm", 256, 256, { "samples=4" });
+  const FrameResult hard = test::renderDataset(scene, "hard", 256, 256, { "auto_texels_per_pixel=1" });
+  const FrameResult referenceSm =
+    test::renderDataset(scene, "reference-sm", 256, 256, { "samples=4", "auto_texels_per_pixel=1" });
   ASSERT_TRUE(hard.automaticMapSize && referenceSm.automaticMapSize);
   std::cout << "[ measured ] contact 256^2: hard auto " << hard.automaticMapSize->size << "^2 (required "
             << hard.automaticMapSize->requiredTexels << "), reference-sm " << referenceSm.automaticMapSize->size
@@ -154,7 +156,7 @@ TEST(AutomaticMapSize, ServesTheAskedTexelsPerPixel)
   for (const std::string dataset : { "planar-occluder", "bunny" })
   {
     const Scene scene = test::loadDataset(dataset);
-    const FrameResult one = test::renderDataset(scene, "hard", 128, 128, {});
+    const FrameResult one = test::renderDataset(scene, "hard", 128, 128, { "auto_texels_per_pixel=1" });
     ASSERT_TRUE(one.automaticMapSize) << dataset;
     for (const double density : { 0.5, 2.0, 4.0 })
     {
@@ -163,6 +165,13 @@ TEST(AutomaticMapSize, ServesTheAskedTexelsPerPixel)
       ASSERT_TRUE(asked.automaticMapSize) << dataset << " at " << density;
       const AutomaticMapSize& choice = *asked.automaticMapSize;
       EXPECT_EQ(choice.texelsPerPixel, density);
+      if (density == 2.0)
+      {
+        // The default.
+        const FrameResult byDefault = test::renderDataset(scene, "hard", 128, 128, {});
+        ASSERT_TRUE(byDefault.automaticMapSize);
+        EXPECT_EQ(byDefault.automaticMapSize->size, choice.size) << dataset;
+      }
       EXPECT_NEAR(choice.requiredTexels, density * one.automaticMapSize->requiredTexels,
         1e-9 * choice.requiredTexels) << dataset << " at " << density;
       const TexelsPerPixelShare served = autoMapServedShare(asked, density);
