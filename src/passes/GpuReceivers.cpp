@@ -16,6 +16,13 @@ namespace
 {
 
 constexpr std::uint32_t untouchedMin = 0xFFFFFFFFu;
+
+// A reduction's input appended to its memo key as bytes (bit-identical inputs, the same key).
+template <class T>
+void appendBytes(std::string& key, const T& value)
+{
+  key.append(reinterpret_cast<const char*>(&value), sizeof(value));
+}
 constexpr std::uint32_t untouchedMax = 0u;
 
 std::unique_ptr<ComputeProgram> makeProgram(int pass)
@@ -56,18 +63,15 @@ std::vector<std::uint32_t> GpuReceivers::run(const ComputeProgram& program, cons
 {
   SL_CHECK(position_ && normal_);
   std::string key = query;
-  const auto append = [&key](const auto& value) {
-    key.append(reinterpret_cast<const char*>(&value), sizeof(value));
-  };
-  append(&program);
-  append(lightTypeCode(light.type));
-  append(light.center);
-  append(light.normal);
-  append(light.direction);
-  append(light.coneAngleDeg);
+  appendBytes(key, &program);
+  appendBytes(key, lightTypeCode(light.type));
+  appendBytes(key, light.center);
+  appendBytes(key, light.normal);
+  appendBytes(key, light.direction);
+  appendBytes(key, light.coneAngleDeg);
   for (const glm::dvec4& plane : ownerPlanes())
   {
-    append(plane);
+    appendBytes(key, plane);
   }
   if (const auto found = reductions_.find(key); found != reductions_.end())
   {
@@ -119,13 +123,10 @@ ReceiverExtent GpuReceivers::extent(const Light& light, const LightView& view, c
   extentProgram_->setVector("lightEyeWs", view.eyeWs);
   extentProgram_->setVector("lightAxisWs", axis);
   std::string query;
-  const auto append = [&query](const auto& value) {
-    query.append(reinterpret_cast<const char*>(&value), sizeof(value));
-  };
-  append(view.viewFromWorld);
-  append(view.projection);
-  append(view.eyeWs);
-  append(axis);
+  appendBytes(query, view.viewFromWorld);
+  appendBytes(query, view.projection);
+  appendBytes(query, view.eyeWs);
+  appendBytes(query, axis);
   const std::vector<std::uint32_t> words = run(*extentProgram_, light, query);
   ReceiverExtent extent;
   extent.inFront = static_cast<int>(words[7]);
