@@ -360,11 +360,11 @@ double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec
     const TriangleMesh& mesh = object.mesh;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
-      std::vector<glm::dvec3> polygon(3);
+      std::array<glm::dvec3, 3> triangle;
       for (int k = 0; k < 3; ++k)
       {
         const glm::dvec3 pWs(mesh.positions[mesh.indices[3 * t + k]]);
-        polygon[static_cast<std::size_t>(k)] = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
+        triangle[static_cast<std::size_t>(k)] = glm::dvec3(view.viewFromWorld * glm::dvec4(pWs, 1.0));
       }
       // Most triangles lie wholly inside every plane or wholly outside one (clipPolygon's own test, dot >= 0): the
       // clip would keep them unchanged or empty, so only those that straddle a plane are clipped (the fence's 63k
@@ -374,7 +374,7 @@ double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec
       for (const glm::dvec4& plane : planes)
       {
         int in = 0;
-        for (const glm::dvec3& pLs : polygon)
+        for (const glm::dvec3& pLs : triangle)
         {
           in += glm::dot(plane, glm::dvec4(pLs, 1.0)) >= 0.0 ? 1 : 0;
         }
@@ -387,12 +387,13 @@ double nearestDepthIn(const Scene& scene, const LightView& view, const glm::dvec
       }
       if (inside)
       {
-        for (const glm::dvec3& pLs : polygon)
+        for (const glm::dvec3& pLs : triangle)
         {
           nearest = std::min(nearest, -pLs.z);
         }
         continue;
       }
+      std::vector<glm::dvec3> polygon(triangle.begin(), triangle.end());
       if (view.projection == LightProjection::Perspective)
       {
         polygon = clipPolygon(polygon, inFrontPlane);
