@@ -22,7 +22,10 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
   ShadowMapSettings settings;
   settings.automaticResolution = values.automatic("shadow_map_size");
   settings.resolution = settings.automaticResolution ? 0 : values.getInt("shadow_map_size");
-  settings.automaticTexelsPerPixel = values.has("auto_texels_per_pixel") ? values.get("auto_texels_per_pixel") : 2.0;
+  if (values.has("auto_texels_per_pixel"))
+  {
+    settings.automaticTexelsPerPixel = values.get("auto_texels_per_pixel");
+  }
   // A filter reaches width/2 texels past a receiver; one more for the bilinear footprint. The moment techniques'
   // prefilter box reaches as far as pcf's kernel (and clamps at the map's edge without the margin), and the same
   // width focuses the same map: vsm and pcf over one box read the same texels (the light_leak lesson).
