@@ -2,8 +2,8 @@
 // map). Survey Eq. 2 per axis gives, at each visible receiver, how many pixels one texel of a fitted map spans
 // (texel_ratio_s, texel_ratio_t); a map of N texels per side spans N - 2 margin of them over the receivers, so the
 // pixel gets at least one texel per pixel along both axes iff N - 2 margin >= max(r_s, r_t) (N0 - 2 margin) for the
-// ratios measured in a map of N0, and gets d texels per pixel iff d times that (auto_texels_per_pixel, 2 by default:
-// the shadow map's page says why). The chosen size meets that at kAutomaticMapQuantile of the receivers, rounded up to
+// ratios measured in a map of N0, and gets d texels per pixel iff d times that (auto_texels_per_pixel, 2 by default,
+// under an area light; auto_texels_per_pixel_hard, 4, under the others: the shadow map's page says why). The chosen size meets that at kAutomaticMapQuantile of the receivers, rounded up to
 // a power of two and bounded by kAutomaticMapMinSize and kAutomaticMapMaxSize (and the GL's limits); receivers the eye or the light
 // grazes (ratio 0: unbounded, no size serves them) do not count. With several views that partition the pixels
 // (cascades, cube faces) a receiver counts in the finest view that holds it, and all views share the size.
@@ -38,7 +38,7 @@ constexpr int kAutomaticMapMaxSamples = 1 << 12;
 struct AutomaticMapSize
 {
   int size = 0;               // texels per side, a power of two
-  double texelsPerPixel = 1;  // the density asked for (auto_texels_per_pixel)
+  double texelsPerPixel = 1;  // the density asked for (auto_texels_per_pixel or auto_texels_per_pixel_hard)
   double requiredTexels = 0;  // texels across the receivers at the quantile (before margin and rounding)
   int samples = 0;            // receivers measured
   int pixelStride = 1;        // every pixelStride-th pixel in x and y was measured

@@ -26,6 +26,10 @@ ShadowMapSettings ShadowMapSettings::from(const ParameterValues& values, const L
   {
     settings.automaticTexelsPerPixel = values.get("auto_texels_per_pixel");
   }
+  if (values.has("auto_texels_per_pixel_hard"))
+  {
+    settings.automaticTexelsPerPixelHard = values.get("auto_texels_per_pixel_hard");
+  }
   // A filter reaches width/2 texels past a receiver; one more for the bilinear footprint. The moment techniques'
   // prefilter box reaches as far as pcf's kernel (and clamps at the map's edge without the margin), and the same
   // width focuses the same map: vsm and pcf over one box read the same texels (the light_leak lesson).
@@ -148,6 +152,11 @@ void adviseBeyondOneMap(const FrameResources& frame, FocusSettings& focus)
     focus.beyondOneMapAdvice =
       ": render it with cube shadow maps (techniques " + frame.cubeMapTechniques + ") or use a spot or area light";
   }
+}
+
+double ShadowMapSettings::automaticTexelsPerPixelFor(const Light& light) const
+{
+  return light.type == LightType::Area ? automaticTexelsPerPixel : automaticTexelsPerPixelHard;
 }
 
 bool ShadowMapSettings::mayPartition(const Light& light) const
@@ -453,6 +462,7 @@ const LightSpaceStructure& shadowMapStructure()
     s.parameters = {
       { "shadow_map_size", kAutomaticValue, 16, 8192, "texels", "texels per side of the shadow map (focused on visible receivers, survey §4.1); auto: auto_texels_per_pixel texels per pixel on the visible receivers (resolution matching, survey §4.3.3), a power of two", {}, true, false, "auto" },
       { "auto_texels_per_pixel", 2.0, 0.25, 8.0, "texels per pixel", "shadow_map_size = auto: texels per pixel along each map axis that the chosen size gives at the 0.9 quantile of visible receivers (2: two samples per pixel, above the image's Nyquist rate as survey §3 asks of the initial sampling; 1: one texel per pixel, between under- and oversampling, §3.1)", {}, false },
+      { "auto_texels_per_pixel_hard", 4.0, 0.25, 8.0, "texels per pixel", "shadow_map_size = auto under a point, spot or directional light: as auto_texels_per_pixel, for shadows that are hard everywhere (no penumbra hides where a filter or box given in texels puts the edge)", {}, false },
       { "caster_faces", 0, 0, 1, "", "front = first-depth map; back = second-depth map (Wang & Molnar 1994, survey §5; needs closed casters)", { "front", "back" }, true },
       { "depth_layer", 0, 0, 3, "", "the depth compared (survey §5): first = the nearest caster's; midpoint = (z1 + z2) / 2 of the nearest and the second-nearest (depth-peeled) surface (Woo 1992); dual = min((z1 + z2) / 2, z1 + dual_max_offset_texels texel footprints) (Weiskopf & Ertl 2003); polygon_id = the nearest triangle's id (32 bits), lit iff it is the receiver's own (Hourcade & Nicolas 1985; hard only; flagged where the receiver's 3 x 3 texels hold several ids)", { "first", "midpoint", "dual", "polygon_id" }, true },
       { "dual_max_offset_texels", 4.0, 0, 1e4, "texel footprints", "depth_layer = dual: the most the compared depth lies behind the nearest caster, in texel footprints at its depth (limits the effective caster thickness)", {}, false },

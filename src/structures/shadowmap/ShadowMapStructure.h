@@ -53,7 +53,8 @@ struct ShadowMapSettings
 {
   int resolution = 0;        // shadow_map_size; 0 while automaticResolution (the focus stage chooses)
   bool automaticResolution = false; // shadow_map_size = auto (AutomaticMapSize.h)
-  double automaticTexelsPerPixel = 2.0; // auto_texels_per_pixel: the density auto serves at its quantile
+  double automaticTexelsPerPixel = 2.0; // auto_texels_per_pixel: the density auto serves under an area light
+  double automaticTexelsPerPixelHard = 4.0; // auto_texels_per_pixel_hard: under a point, spot or directional light
   double marginTexels = 1.0; // the technique's filter width w (LightSpaceRequest): ceil(w / 2) + 1, else 1
   bool secondDepth = false;  // caster_faces = back (Wang & Molnar 1994, survey §5)
   ShadowMapDepthLayer depthLayer = ShadowMapDepthLayer::First; // depth_layer (survey §5)
@@ -68,6 +69,9 @@ struct ShadowMapSettings
   // Whether a frame with `light` may run as views that partition the pixels (the renderer's stage pipeline, before
   // GL): cascades > 1, fvsm, or a point light whose technique may use cube faces.
   bool mayPartition(const Light& light) const;
+  // The density shadow_map_size = auto serves for `light` (the scene's light, not a sub-light sample): a light
+  // without area casts hard edges everywhere, which no penumbra softens (the shadow map's page, "Texels per pixel").
+  double automaticTexelsPerPixelFor(const Light& light) const;
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).
   static ShadowMapSettings from(const ParameterValues& values, const LightSpaceRequest& request = {});

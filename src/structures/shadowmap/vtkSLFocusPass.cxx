@@ -92,7 +92,7 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
       {
         // Fitted again only at another size: the fit at the same size is the same set of views.
         const int fittedAt = focus.resolution;
-        this->ChooseAutomaticSize(frame.partitions->views, settings.automaticTexelsPerPixel, focus);
+        this->ChooseAutomaticSize(frame.partitions->views, settings.automaticTexelsPerPixelFor(light), focus);
         if (focus.resolution != fittedAt)
         {
           const sl::PartitionKind kind = frame.partitions->kind;
@@ -116,7 +116,7 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     {
       // Fitted again only at another size: the fit at the same size is the same view.
       const int fittedAt = focus.resolution;
-      this->ChooseAutomaticSize({ frame.lightView }, settings.automaticTexelsPerPixel, focus);
+      this->ChooseAutomaticSize({ frame.lightView }, settings.automaticTexelsPerPixelFor(*frame.light), focus);
       if (focus.resolution != fittedAt)
       {
         frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);

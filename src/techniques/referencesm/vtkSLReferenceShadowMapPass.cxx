@@ -56,7 +56,7 @@ void vtkSLReferenceShadowMapPass::Execute(const vtkRenderState* state)
     const sl::LightView centre = sl::fitLightView(light, *frame.scene, *this->Receivers, focus);
     frame.automaticMapSize = sl::automaticMapSize(frame.camera, light, { centre }, focus.marginTexels,
       sl::readFloatTexture(frame.gbufferPosition, 4), sl::readFloatTexture(frame.gbufferNormal, 4), focus.resolution,
-      settings.shadowMap.automaticTexelsPerPixel);
+      settings.shadowMap.automaticTexelsPerPixelFor(light));
     focus.resolution = frame.automaticMapSize->size;
   }
   const bool secondDepth = settings.shadowMap.secondDepth;
