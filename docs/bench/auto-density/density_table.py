@@ -2,7 +2,9 @@
 """The error table of docs/bench/auto-density/README.md: per technique, configurations whose RMSE is worse than the
 fixed default's (the bench's --baseline rule) and the sizes chosen, at each auto_texels_per_pixel. Frame times are
 not compared here: the runs were timed at different times under different loads (timing.py pairs them in one run).
-Usage: density_table.py BASELINE_DIR NAME=BENCH_DIR [NAME=BENCH_DIR ...]"""
+Usage: density_table.py BASELINE_DIR NAME=BENCH_DIR[+BENCH_DIR ...] [NAME=...]
+A column NAME=A+B joins runs of different datasets: B's rows replace A's for the same technique and dataset (the
+defaults column: d2's area lights with hard/'s point and directional lights)."""
 import csv
 import json
 import sys
@@ -34,8 +36,15 @@ def worse(rmse, baseline):
     return rmse - baseline > 1e-4 and rmse - baseline > 0.01 * baseline
 
 
+def load_joined(directories):
+    rows = {}
+    for directory in directories.split("+"):
+        rows.update(load(directory))
+    return rows
+
+
 baseline = load(sys.argv[1])
-runs = [(arg.split("=", 1)[0], load(arg.split("=", 1)[1])) for arg in sys.argv[2:]]
+runs = [(arg.split("=", 1)[0], load_joined(arg.split("=", 1)[1])) for arg in sys.argv[2:]]
 # The techniques of the last run (the density sweep covers the shadow-map techniques whose size it changes).
 techniques = sorted({key[0] for key in runs[-1][1]})
 header = "| technique | " + " | ".join(f"{name}: worse / compared (where), sizes chosen" for name, _ in runs) + " |"
