@@ -132,6 +132,14 @@ std::vector<std::uint32_t> StorageBuffer::download() const
   return words;
 }
 
+void StorageBuffer::copyToTexture(
+  unsigned int texture, int row, int width, int rows, unsigned int format, unsigned int type) const
+{
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer_);
+  glTextureSubImage2D(texture, 0, 0, row, width, rows, format, type, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+}
+
 void StorageBuffer::bind(unsigned int binding) const
 {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_);

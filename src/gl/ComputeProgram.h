@@ -51,6 +51,9 @@ public:
   void clear() const;
   std::vector<std::uint32_t> download() const;
   void bind(unsigned int binding) const;
+  // Rows [row, row + rows) of level 0 of `texture` (a 2-D texture `width` texels wide) from the buffer's start, as
+  // texels of `format` and `type` (a pixel unpack from the buffer, no round trip through the CPU).
+  void copyToTexture(unsigned int texture, int row, int width, int rows, unsigned int format, unsigned int type) const;
 
 private:
   unsigned int buffer_ = 0;

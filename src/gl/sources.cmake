@@ -4,4 +4,5 @@ set(SL_GL_SOURCES
   src/gl/vtkSLEglRenderWindow.cxx
   src/gl/ShaderLibrary.cpp
   src/gl/GlResources.cpp
-  src/gl/ComputeProgram.cpp)
+  src/gl/ComputeProgram.cpp
+  src/gl/BandedPrefixSums.cpp)

@@ -6,9 +6,12 @@
 #include "support/TempDir.h"
 #include "support/TestSupport.h"
 
+#include "gl/BandedPrefixSums.h"
 #include "lightspace/HierarchicalShadowMap.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include <cctype>
@@ -40,7 +43,10 @@ std::size_t shadowMapBytes(std::size_t n)
 }
 std::size_t summedAreaTableBytes(std::size_t n)
 {
-  return 8 * n * n; // RG32F (float_centred) or RG32UI (int32): two 32-bit sums per texel
+  // RG32F (float_centred) or RG32UI (int32): two 32-bit sums per texel; and the build's buffers, kept with the table
+  // (gl/BandedPrefixSums.h): a band of as many rows as fit its bytes, and one row of carries.
+  const std::size_t bandRows = std::clamp<std::size_t>(BandedPrefixSums::kBandBytes / (8 * n), 1, n);
+  return 8 * n * n + 8 * n * bandRows + 8 * n;
 }
 std::size_t blurredMomentBytes(std::size_t n)
 {

@@ -89,7 +89,10 @@ const LightSpaceStructure& summedAreaTableStructure()
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLSatPass>::New() };
     };
     s.exportImages = exportTable;
-    s.gpuBytes = [](const FrameResources& frame) { return textureBytes(summedAreaTableData(frame).table, 8); };
+    s.gpuBytes = [](const FrameResources& frame) {
+      const SummedAreaTableData& data = summedAreaTableData(frame);
+      return textureBytes(data.table, 8) + data.bandBytes;
+    };
     s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
     s.bind = bindTable;
     return s;

@@ -23,6 +23,7 @@ struct SummedAreaTableData : LightSpaceData
   vtkSmartPointer<vtkTextureObject> table;
   bool integer = false;
   double fixedPointScale = 0.0; // int32: 2^b - 1 (satFixedPointScale)
+  std::size_t bandBytes = 0;    // the build's band and carry buffers, kept with the table (gl/BandedPrefixSums.h)
 };
 const SummedAreaTableData& summedAreaTableData(const FrameResources& frame);
 

@@ -3,4 +3,5 @@ sl_structure(
   ORDER 30
   STRUCTURE summedAreaTableStructure SatStructure.h
   SOURCES SatStructure.cpp vtkSLSatPass.cxx
-  SHADERS shaders/SatBuild.glsl)
+  SHADERS shaders/SatBuild.glsl
+  GPU_TESTS tests/SatBuildTest.cpp)

@@ -1,6 +1,7 @@
 #include "structures/sat/vtkSLSatPass.h"
 
 #include "core/Error.h"
+#include "gl/BandedPrefixSums.h"
 #include "gl/GlResources.h"
 #include "gl/ShaderLibrary.h"
 #include "structures/sat/SatStructure.h"
@@ -56,10 +57,10 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
     this->TableInternalFormat = internalFormat;
   }
   vtkTextureObject* table = this->Table;
-  glBindImageTexture(0, table->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, integer ? GL_RG32UI : GL_RG32F);
   frame.shadowMapLinear->Activate();
-  for (int pass = 0; pass < 2; ++pass)
-  {
+  const sl::BandedPrefixSums::Table tableTexels{ table->GetHandle(), static_cast<unsigned>(integer ? GL_RG_INTEGER : GL_RG),
+    static_cast<unsigned>(integer ? GL_UNSIGNED_INT : GL_FLOAT), 2 };
+  this->Bands.build(size, { tableTexels }, [&](int pass, int firstRow, int rows) {
     auto& program = this->Programs[{ integer, pass }];
     if (!program)
     {
@@ -72,16 +73,18 @@ void vtkSLSatPass::Execute(const vtkRenderState* state)
     program->setFloat("depthNear", frame.lightView.nearDepth);
     program->setFloat("depthFar", frame.lightView.farDepth);
     program->setFloat("fixedPointScale", fixedPointScale);
-    // One invocation per row (pass 0) or column (pass 1); the image writes of pass 0 must be visible to pass 1.
-    program->dispatch({ (size + 63) / 64, 1 });
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  }
+    program->setInt("mapSize", size);
+    program->setInt("bandFirstRow", firstRow);
+    program->setInt("bandRows", rows);
+    // One invocation per row of the band (pass 0) or per column (pass 1).
+    program->dispatch({ ((pass == 0 ? rows : size) + 63) / 64, 1 });
+  });
   frame.shadowMapLinear->Deactivate();
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
   auto data = std::make_shared<sl::SummedAreaTableData>();
   data->table = table;
   data->integer = integer;
   data->fixedPointScale = fixedPointScale;
+  data->bandBytes = this->Bands.bytes();
   frame.lightSpaceData[sl::summedAreaTableStructure().name] = data;
 }
 
@@ -89,6 +92,7 @@ void vtkSLSatPass::ReleaseGraphicsResources(vtkWindow*)
 {
   this->Programs.clear();
   this->Table = nullptr;
+  this->Bands = sl::BandedPrefixSums();
 }
 
 void vtkSLSatPass::PrintSelf(ostream& os, vtkIndent indent)

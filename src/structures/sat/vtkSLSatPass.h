@@ -1,8 +1,9 @@
 // The summed-area table's build (structures/sat/SatStructure.h; savsm, vssm): the summed-area table of the
-// shadow map's (z, z^2), two compute passes (structures/sat/shaders/SatBuild.glsl). Parameter read: sat_precision
-// (float_centred | int32).
+// shadow map's (z, z^2), two compute passes per band of rows (structures/sat/shaders/SatBuild.glsl,
+// gl/BandedPrefixSums.h). Parameter read: sat_precision (float_centred | int32).
 #pragma once
 
+#include "gl/BandedPrefixSums.h"
 #include "gl/ComputeProgram.h"
 #include "passes/vtkSLStagePass.h"
 
@@ -35,4 +36,6 @@ private:
   // The last table built, reused by the next frame when its size and format fit.
   vtkSmartPointer<vtkTextureObject> Table;
   unsigned TableInternalFormat = 0;
+  // The band and carry buffers the table is built in (gl/BandedPrefixSums.h), kept with the table.
+  sl::BandedPrefixSums Bands;
 };
