@@ -116,7 +116,7 @@ const LightSpaceStructure& momentSatStructure()
     s.exportImages = exportMomentSat;
     s.gpuBytes = [](const FrameResources& frame) {
       const MomentSatData& data = momentSatData(frame);
-      return textureBytes(data.low, 16) + (data.high ? textureBytes(data.high, 16) : 0u);
+      return textureBytes(data.low, 16) + (data.high ? textureBytes(data.high, 16) : 0u) + data.bandBytes;
     };
     s.shaderDefines = [](const FrameResources&) { return ShaderDefines{}; };
     s.bind = [](vtkShaderProgram* program, const FrameResources& frame) {

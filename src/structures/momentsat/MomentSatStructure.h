@@ -24,6 +24,7 @@ struct MomentSatData : LightSpaceData
   vtkSmartPointer<vtkTextureObject> low;  // RGBA32UI: the low 32 bits of the four prefix sums
   vtkSmartPointer<vtkTextureObject> high; // RGBA32UI: the high 32 bits (int64 only)
   MomentSatFormat format;
+  std::size_t bandBytes = 0; // the build's band and carry buffers, kept with the tables (gl/BandedPrefixSums.h)
 };
 const MomentSatData& momentSatData(const FrameResources& frame);
 

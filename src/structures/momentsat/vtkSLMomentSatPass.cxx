@@ -1,6 +1,7 @@
 #include "structures/momentsat/vtkSLMomentSatPass.h"
 
 #include "core/Error.h"
+#include "gl/BandedPrefixSums.h"
 #include "gl/ShaderLibrary.h"
 #include "lightspace/MomentSummedAreaTable.h"
 #include "passes/FrameResources.h"
@@ -12,6 +13,8 @@
 #include <vtkRenderer.h>
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
+
+#include <vector>
 
 vtkStandardNewMacro(vtkSLMomentSatPass);
 
@@ -61,14 +64,13 @@ void vtkSLMomentSatPass::Execute(const vtkRenderState* state)
   {
     this->High = momentSatWords(window, size);
   }
-  glBindImageTexture(0, this->Low->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
+  std::vector<sl::BandedPrefixSums::Table> tables{ { this->Low->GetHandle(), GL_RGBA_INTEGER, GL_UNSIGNED_INT, 4 } };
   if (format.wide)
   {
-    glBindImageTexture(1, this->High->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
+    tables.push_back({ this->High->GetHandle(), GL_RGBA_INTEGER, GL_UNSIGNED_INT, 4 });
   }
   frame.shadowMapLinear->Activate();
-  for (int pass = 0; pass < 2; ++pass)
-  {
+  this->Bands.build(size, tables, [&](int pass, int firstRow, int rows) {
     auto& program = this->Programs[{ format.wide, pass }];
     if (!program)
     {
@@ -82,17 +84,18 @@ void vtkSLMomentSatPass::Execute(const vtkRenderState* state)
     program->setFloat("depthNear", frame.lightView.nearDepth);
     program->setFloat("depthFar", frame.lightView.farDepth);
     program->setFloat("fixedPointScale", format.scale());
-    // One invocation per row (pass 0) or column (pass 1); the image writes of pass 0 must be visible to pass 1.
-    program->dispatch({ (size + 63) / 64, 1 });
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  }
+    program->setInt("mapSize", size);
+    program->setInt("bandFirstRow", firstRow);
+    program->setInt("bandRows", rows);
+    // One invocation per row of the band (pass 0) or per column (pass 1).
+    program->dispatch({ ((pass == 0 ? rows : size) + 63) / 64, 1 });
+  });
   frame.shadowMapLinear->Deactivate();
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
-  glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
   auto data = std::make_shared<sl::MomentSatData>();
   data->low = this->Low;
   data->high = format.wide ? this->High : nullptr;
   data->format = format;
+  data->bandBytes = this->Bands.bytes();
   frame.lightSpaceData[sl::momentSatStructure().name] = data;
 }
 
@@ -101,6 +104,7 @@ void vtkSLMomentSatPass::ReleaseGraphicsResources(vtkWindow*)
   this->Programs.clear();
   this->Low = nullptr;
   this->High = nullptr;
+  this->Bands = sl::BandedPrefixSums();
 }
 
 void vtkSLMomentSatPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -1,9 +1,10 @@
 // The moment summed-area table's build (structures/momentsat/MomentSatStructure.h; msmsoft): the summed-area table of
-// the shadow map's four power moments (64-bit or 32-bit sums), two compute passes
-// (structures/momentsat/shaders/MomentSatBuild.glsl). Parameters read: moment_sat_precision,
+// the shadow map's four power moments (64-bit or 32-bit sums), two compute passes per band of rows
+// (structures/momentsat/shaders/MomentSatBuild.glsl, gl/BandedPrefixSums.h). Parameters read: moment_sat_precision,
 // moment_sat_max_kernel_texels.
 #pragma once
 
+#include "gl/BandedPrefixSums.h"
 #include "gl/ComputeProgram.h"
 #include "passes/vtkSLStagePass.h"
 
@@ -36,4 +37,6 @@ private:
   // The last tables built (low and high words; int32 uses the low only), reused when their size fits.
   vtkSmartPointer<vtkTextureObject> Low;
   vtkSmartPointer<vtkTextureObject> High;
+  // The band and carry buffers the tables are built in (gl/BandedPrefixSums.h), kept with them.
+  sl::BandedPrefixSums Bands;
 };

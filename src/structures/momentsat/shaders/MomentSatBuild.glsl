@@ -1,10 +1,11 @@
-// Summed-area table of the four power moments (moment soft shadow mapping, Peters et al. 2016/2017; Crow 1984), in
-// two compute passes as sat/SatBuild.glsl: prefix sums along each row (MOMENT_SAT_PASS 0, from the shadow map), then
-// along each column in place (MOMENT_SAT_PASS 1).
+// Summed-area table of the four power moments (moment soft shadow mapping, Peters et al. 2016/2017; Crow 1984),
+// built band by band as sat/SatBuild.glsl (gl/BandedPrefixSums.h): prefix sums along each of the band's rows
+// (MOMENT_SAT_PASS 0, from the shadow map), then along each column in place, continuing from the table's row above
+// the band (MOMENT_SAT_PASS 1, the carries), in storage buffers the pass copies into the tables.
 // Precision: each texel's moments b = (z, z^2, z^3, z^4) (z normalised to the light's range and clamped, as the
 // power-moment map computes them) become fixed point floor(m 2^b) (m = 1: 2^b - 1), fixedPointScale = 2^b.
 //  - MOMENT_SAT_WIDE 1 (int64): b = 32 and the sums are 64-bit integers held as two words (low: momentSatLow,
-//    high: momentSatHigh), added with uaddCarry. An N x N map sums below N^2 2^32 (2^58 at 8192^2): the table holds
+//    high: the high band), added with uaddCarry. An N x N map sums below N^2 2^32 (2^58 at 8192^2): the table holds
 //    the true prefix sums and every box sum (usubBorrow) is exact.
 //  - MOMENT_SAT_WIDE 0 (int32, the authors' form): b = 32 - ceil(log2(w^2)) and 32-bit sums that wrap: a box sum is
 //    exact modulo 2^32, hence exact for boxes of at most w^2 texels.
@@ -15,13 +16,31 @@ uniform sampler2D shadowMapLinear;
 uniform float depthNear;
 uniform float depthFar;
 uniform float fixedPointScale; // 2^b
+uniform int mapSize;           // texels per side of the map and of the tables
+uniform int bandFirstRow;      // the map row of the band's row 0
+uniform int bandRows;          // rows in this band
 
-layout(rgba32ui, binding = 0) uniform uimage2D momentSatLow;
+// The band's sums, row-major (mapSize per row), as the tables' RGBA32UI texels; per column, the table's value in the
+// row above the band (0 above the first band), which the column pass updates.
+layout(std430, binding = 0) restrict buffer MomentSatLowBand
+{
+  uvec4 lowSums[];
+};
+layout(std430, binding = 1) restrict buffer MomentSatLowCarry
+{
+  uvec4 lowCarry[];
+};
 #if MOMENT_SAT_WIDE
-layout(rgba32ui, binding = 1) uniform uimage2D momentSatHigh;
+layout(std430, binding = 2) restrict buffer MomentSatHighBand
+{
+  uvec4 highSums[];
+};
+layout(std430, binding = 3) restrict buffer MomentSatHighCarry
+{
+  uvec4 highCarry[];
+};
 #endif
 
-// A shadow-map texel's quantised moments (momentSatTexel).
 uvec4 quantisedMoments(float depth)
 {
   float z = clamp((depth - depthNear) / (depthFar - depthNear), 0.0, 1.0);
@@ -37,39 +56,50 @@ uvec4 quantisedMoments(float depth)
 void main()
 {
   int line = int(gl_GlobalInvocationID.x);
-  ivec2 size = imageSize(momentSatLow);
-  uvec4 low = uvec4(0u);
   uvec4 carry;
+#if MOMENT_SAT_PASS == 0
+  // One invocation per row of the band.
+  if (line >= bandRows)
+  {
+    return;
+  }
+  uvec4 low = uvec4(0u);
 #if MOMENT_SAT_WIDE
   uvec4 high = uvec4(0u);
 #endif
-#if MOMENT_SAT_PASS == 0
-  if (line >= size.y)
+  for (int x = 0; x < mapSize; ++x)
   {
-    return;
-  }
-  for (int x = 0; x < size.x; ++x)
-  {
-    low = uaddCarry(low, quantisedMoments(texelFetch(shadowMapLinear, ivec2(x, line), 0).r), carry);
-    imageStore(momentSatLow, ivec2(x, line), low);
+    int index = line * mapSize + x;
+    low = uaddCarry(low, quantisedMoments(texelFetch(shadowMapLinear, ivec2(x, bandFirstRow + line), 0).r), carry);
+    lowSums[index] = low;
 #if MOMENT_SAT_WIDE
     high += carry;
-    imageStore(momentSatHigh, ivec2(x, line), high);
+    highSums[index] = high;
 #endif
   }
 #else
-  if (line >= size.x)
+  // One invocation per column.
+  if (line >= mapSize)
   {
     return;
   }
-  for (int y = 0; y < size.y; ++y)
-  {
-    low = uaddCarry(low, imageLoad(momentSatLow, ivec2(line, y)), carry);
-    imageStore(momentSatLow, ivec2(line, y), low);
+  uvec4 low = lowCarry[line];
 #if MOMENT_SAT_WIDE
-    high += imageLoad(momentSatHigh, ivec2(line, y)) + carry;
-    imageStore(momentSatHigh, ivec2(line, y), high);
+  uvec4 high = highCarry[line];
+#endif
+  for (int y = 0; y < bandRows; ++y)
+  {
+    int index = y * mapSize + line;
+    low = uaddCarry(low, lowSums[index], carry);
+    lowSums[index] = low;
+#if MOMENT_SAT_WIDE
+    high += highSums[index] + carry;
+    highSums[index] = high;
 #endif
   }
+  lowCarry[line] = low;
+#if MOMENT_SAT_WIDE
+  highCarry[line] = high;
+#endif
 #endif
 }
