@@ -5,25 +5,43 @@
 #include <vtk_glew.h>
 
 #include <algorithm>
+#include <string>
 
 namespace sl
 {
 
-int BandedPrefixSums::bandRowsFor(int size, int texelWords)
+std::size_t BandedPrefixSums::bandBytesOfThisGl()
+{
+  static const std::size_t bytes = [] {
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string name = renderer ? renderer : "";
+    if (name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos)
+    {
+      return kCpuBandBytes;
+    }
+    GLint64 largestBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largestBlock);
+    return std::clamp<std::size_t>(static_cast<std::size_t>(largestBlock), kCpuBandBytes, kGpuBandBytes);
+  }();
+  return bytes;
+}
+
+int BandedPrefixSums::bandRowsFor(int size, int texelWords, std::size_t bandBytes)
 {
   const std::size_t rowBytes = static_cast<std::size_t>(size) * static_cast<std::size_t>(texelWords) * 4;
-  return std::clamp(static_cast<int>(kBandBytes / rowBytes), 1, size);
+  return static_cast<int>(std::clamp<std::size_t>(bandBytes / rowBytes, 1, static_cast<std::size_t>(size)));
 }
 
 void BandedPrefixSums::build(int size, const std::vector<Table>& tables,
   const std::function<void(int pass, int firstRow, int rows)>& dispatchPass)
 {
   SL_CHECK(size > 0 && !tables.empty());
-  // The rows of the tightest table decide the band, so that every table's band fits kBandBytes.
+  // The rows of the tightest table decide the band, so that every table's band fits the band bytes.
+  const std::size_t bandBytes = bandBytesOfThisGl();
   int bandRows = size;
   for (const Table& table : tables)
   {
-    bandRows = std::min(bandRows, bandRowsFor(size, table.texelWords));
+    bandRows = std::min(bandRows, bandRowsFor(size, table.texelWords, bandBytes));
   }
   bool fits = size_ == size && bandRows_ == bandRows && buffers_.size() == tables.size();
   for (std::size_t k = 0; fits && k < tables.size(); ++k)

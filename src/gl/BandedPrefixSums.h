@@ -30,11 +30,18 @@ public:
     int texelWords = 0;
   };
 
-  // The most bytes of a band buffer: small enough for the processor's cache, large enough that the dispatches per
-  // band do not dominate (measured on llvmpipe against 1 and 32 MiB: src/structures/README.md).
-  static constexpr std::size_t kBandBytes = std::size_t(4) << 20;
-  // The rows of a band of a table `size` texels wide with texels of `texelWords` words (at least 1).
-  static int bandRowsFor(int size, int texelWords);
+  // The most bytes of a band buffer on a CPU rasterizer (llvmpipe): small enough for the processor's cache, large
+  // enough that the dispatches per band do not dominate (measured against 1 and 32 MiB: src/structures/README.md).
+  // A GPU gets bands of up to kGpuBandBytes (within GL_MAX_SHADER_STORAGE_BLOCK_SIZE): there a band of few rows
+  // leaves most of it idle in the row pass (one invocation per row); a 2048^2 SAT is one band. The table is the same
+  // whatever the band height.
+  static constexpr std::size_t kCpuBandBytes = std::size_t(4) << 20;
+  static constexpr std::size_t kGpuBandBytes = std::size_t(64) << 20;
+  // The band bytes of the current GL context's renderer (one renderer per process: the result is kept).
+  static std::size_t bandBytesOfThisGl();
+  // The rows of a band of at most `bandBytes` of a table `size` texels wide with texels of `texelWords` words (at
+  // least 1, at most size).
+  static int bandRowsFor(int size, int texelWords, std::size_t bandBytes);
 
   // Builds `tables` (each size x size) band by band. Table k's band buffer is bound at storage binding 2k, its
   // carry (one texel per column, the table's row above the band, zero above the first) at 2k + 1. For each band,
@@ -47,6 +54,8 @@ public:
 
   // The bytes of the band and carry buffers held.
   std::size_t bytes() const;
+  // The rows of the bands of the last build (tests: how many bands it took).
+  int bandRows() const { return bandRows_; }
 
 private:
   struct Buffers
