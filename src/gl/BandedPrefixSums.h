@@ -54,8 +54,6 @@ public:
 
   // The bytes of the band and carry buffers held.
   std::size_t bytes() const;
-  // The rows of the bands of the last build (tests: how many bands it took).
-  int bandRows() const { return bandRows_; }
 
 private:
   struct Buffers
