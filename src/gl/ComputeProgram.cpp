@@ -135,9 +135,22 @@ std::vector<std::uint32_t> StorageBuffer::download() const
 void StorageBuffer::copyToTexture(
   unsigned int texture, int row, int width, int rows, unsigned int format, unsigned int type) const
 {
+  // Rows packed one after the other from the buffer's start, whatever unpack state VTK left; restored after.
+  const GLenum unpackState[] = { GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_ALIGNMENT };
+  const GLint packed[] = { 0, 0, 0, 4 };
+  GLint saved[4] = {};
+  for (int k = 0; k < 4; ++k)
+  {
+    glGetIntegerv(unpackState[k], &saved[k]);
+    glPixelStorei(unpackState[k], packed[k]);
+  }
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer_);
   glTextureSubImage2D(texture, 0, 0, row, width, rows, format, type, nullptr);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  for (int k = 0; k < 4; ++k)
+  {
+    glPixelStorei(unpackState[k], saved[k]);
+  }
 }
 
 void StorageBuffer::bind(unsigned int binding) const
