@@ -70,7 +70,7 @@ struct ShadowMapSettings
   // GL): cascades > 1, fvsm, or a point light whose technique may use cube faces.
   bool mayPartition(const Light& light) const;
   // The density shadow_map_size = auto serves for `light` (the scene's light, not a sub-light sample): a light
-  // without area casts hard edges everywhere, which no penumbra softens (the shadow map's page, "Texels per pixel").
+  // without area casts hard edges everywhere, which no penumbra softens (the shadow map's page, "Four under a light without area").
   double automaticTexelsPerPixelFor(const Light& light) const;
 
   // Throws InputError when the filter's margin leaves no texel for the receivers (2 x margin >= shadow_map_size).

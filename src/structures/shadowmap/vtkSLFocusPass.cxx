@@ -92,7 +92,7 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
       {
         // Fitted again only at another size: the fit at the same size is the same set of views.
         const int fittedAt = focus.resolution;
-        this->ChooseAutomaticSize(frame.partitions->views, settings.automaticTexelsPerPixelFor(light), focus);
+        this->ChooseAutomaticSize(frame.partitions->views, settings, focus);
         if (focus.resolution != fittedAt)
         {
           const sl::PartitionKind kind = frame.partitions->kind;
@@ -116,7 +116,7 @@ void vtkSLFocusPass::Execute(const vtkRenderState* state)
     {
       // Fitted again only at another size: the fit at the same size is the same view.
       const int fittedAt = focus.resolution;
-      this->ChooseAutomaticSize({ frame.lightView }, settings.automaticTexelsPerPixelFor(*frame.light), focus);
+      this->ChooseAutomaticSize({ frame.lightView }, settings, focus);
       if (focus.resolution != fittedAt)
       {
         frame.lightView = sl::fitLightView(*frame.light, *frame.scene, *this->Receivers, focus);
@@ -150,7 +150,7 @@ int vtkSLFocusPass::LargestAutomaticSize(const sl::ShadowMapSettings& settings) 
 }
 
 void vtkSLFocusPass::ChooseAutomaticSize(
-  const std::vector<sl::LightView>& views, double texelsPerPixel, sl::FocusSettings& focus)
+  const std::vector<sl::LightView>& views, const sl::ShadowMapSettings& settings, sl::FocusSettings& focus)
 {
   sl::FrameResources& frame = *this->Frame;
   // The G-buffer read back (a receiver's sampling error is the CPU's, lightspace/ShadowMapMath.h).
@@ -158,7 +158,7 @@ void vtkSLFocusPass::ChooseAutomaticSize(
   const sl::ImageF normal = sl::readFloatTexture(frame.gbufferNormal, 4);
   frame.automaticMapSize =
     sl::automaticMapSize(frame.camera, *frame.light, views, focus.marginTexels, position, normal, focus.resolution,
-      texelsPerPixel);
+      settings.automaticTexelsPerPixelFor(*frame.light));
   focus.resolution = frame.automaticMapSize->size;
 }
 

@@ -45,7 +45,8 @@ private:
   // shadow_map_size = auto (lightspace/AutomaticMapSize.h): the largest size the GL and the frame's structures
   // allow, and the size chosen for `views` fitted at it (into FrameResources::automaticMapSize and focus.resolution).
   int LargestAutomaticSize(const sl::ShadowMapSettings& settings) const;
-  void ChooseAutomaticSize(const std::vector<sl::LightView>& views, double texelsPerPixel, sl::FocusSettings& focus);
+  void ChooseAutomaticSize(
+    const std::vector<sl::LightView>& views, const sl::ShadowMapSettings& settings, sl::FocusSettings& focus);
   void SetCascadeUniforms();
   // fvsm: the tile selection (shaders/lightspace/FvsmSelection.glsl) into FrameResources::viewSelection.
   void WriteTileSelection(const vtkRenderState* state);
