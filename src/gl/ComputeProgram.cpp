@@ -64,6 +64,15 @@ void ComputeProgram::setVector(const char* name, const glm::dvec3& value) const
   glProgramUniform3fv(program_, glGetUniformLocation(program_, name), 1, glm::value_ptr(single));
 }
 
+void ComputeProgram::setFloats(const char* name, const std::vector<double>& values) const
+{
+  const std::vector<float> single(values.begin(), values.end());
+  if (!single.empty())
+  {
+    glProgramUniform1fv(program_, glGetUniformLocation(program_, name), static_cast<GLsizei>(single.size()), single.data());
+  }
+}
+
 void ComputeProgram::setVectors(const char* name, const std::vector<glm::dvec4>& values) const
 {
   std::vector<glm::vec4> single(values.begin(), values.end());
@@ -92,7 +101,12 @@ void ComputeProgram::setMatrix(const char* name, const glm::dmat4& value) const
 
 void ComputeProgram::dispatch(glm::ivec2 groups) const
 {
-  glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), 1);
+  dispatch(glm::ivec3(groups, 1));
+}
+
+void ComputeProgram::dispatch(glm::ivec3 groups) const
+{
+  glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), static_cast<GLuint>(groups.z));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -23,12 +23,15 @@ public:
   void setInt(const char* name, int value) const;
   void setFloat(const char* name, double value) const;
   void setVector(const char* name, const glm::dvec3& value) const;
+  // A float uniform array from its element 0; nothing for an empty list.
+  void setFloats(const char* name, const std::vector<double>& values) const;
   void setMatrix(const char* name, const glm::dmat4& value) const;
   // A uniform array from its element 0 (in float); nothing for an empty list.
   void setVectors(const char* name, const std::vector<glm::dvec4>& values) const;
   void setMatrices(const char* name, const std::vector<glm::dmat4>& values) const;
   // Runs groups.x * groups.y work groups and waits until their storage writes are visible.
   void dispatch(glm::ivec2 groups) const;
+  void dispatch(glm::ivec3 groups) const;
 
 private:
   unsigned int program_ = 0;

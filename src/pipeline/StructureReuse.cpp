@@ -140,6 +140,14 @@ void writeStructureParameters(KeyWriter& key, const FrameResources& frame, const
         key.text(frame.parameters.file(spec.name));
       }
     }
+    for (const std::string& name : each->sharedParameters)
+    {
+      if (frame.parameters.has(name))
+      {
+        key.text(name);
+        key.raw(frame.parameters.get(name));
+      }
+    }
   }
 }
 

@@ -43,6 +43,9 @@ struct LightSpaceStructure
   // that needs the structure declares each of them, with the same choices and a range inside this one
   // (LightSpaceStructureTest checks).
   std::vector<ParameterSpec> parameters;
+  // Parameters another structure declares (a name belongs to one structure) that its build reads too, such as the
+  // moment map's prefilter_texels and prefilter_region for the layered moments: they key its reuse across frames.
+  std::vector<std::string> sharedParameters;
   // Its build, one timed stage per pass (the pass's GetStageName() names the stage in stats.json).
   std::function<std::vector<vtkSmartPointer<vtkSLStagePass>>()> createBuildPasses;
   // Its arrays in light_space.vti, read back after the frame; `result` receives anything else it exports.

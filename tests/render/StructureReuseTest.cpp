@@ -254,6 +254,38 @@ TEST(StructureReuse, StructureParameterRebuildsItLikeAFreshRenderer)
   expectChangeRebuildsLikeAFreshRenderer("vsm", { "prefilter_texels=9", {}, { "prefilter_texels=9" } }, { "moment_map" });
   expectChangeRebuildsLikeAFreshRenderer(
     "vssm", { "sat_precision=float_centred", {}, { "sat_precision=float_centred" } }, { "summed_area_table" });
+  // The moment map's prefilter, which the power moments and the Fourier basis read (their sharedParameters).
+  expectChangeRebuildsLikeAFreshRenderer("msm", { "prefilter=mipmap", {}, { "prefilter=mipmap" } }, { "power_moment_map" });
+  expectChangeRebuildsLikeAFreshRenderer("convsm", { "prefilter_texels=9", {}, { "prefilter_texels=9" } }, { "fourier_basis" });
+}
+
+// A parameter another structure declares keys a build that reads it (LightSpaceStructure::sharedParameters): lvsm's
+// layered moments read the moment map's prefilter_region. After warm whole-map frames, prefilter_region=receivers
+// rebuilds them, and its frame equals a fresh renderer's, light-space arrays included (the texels the region leaves
+// unbuilt still hold the whole map's values in the kept texture: they must be exported as 0, as a fresh build's).
+TEST(StructureReuse, SharedParameterRebuildsTheStructureReadingIt)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const std::vector<std::string> whole{ "shadow_map_size=512", "prefilter_region=whole_map" };
+  const std::vector<std::string> receivers{ "shadow_map_size=512", "prefilter_region=receivers" };
+  renderReuseFrame(reusingRenderer(), scene, "lvsm", whole);
+  const FrameResult warm = renderReuseFrame(reusingRenderer(), scene, "lvsm", whole);
+  EXPECT_TRUE(warm.lightStructureBuilds.at("layered_moments").reused);
+  const FrameResult changed = renderReuseFrame(reusingRenderer(), scene, "lvsm", receivers);
+  std::cout << "[ measured ] lvsm after prefilter_region=receivers: " << buildSummary(changed) << "\n";
+  EXPECT_TRUE(changed.lightStructureBuilds.at("shadow_map").reused);
+  EXPECT_FALSE(changed.lightStructureBuilds.at("layered_moments").reused);
+  ASSERT_GT(changed.techniqueStatistics.count("layered_moments_receiver_tiles"), 0u) << "the region must pay here";
+  const FrameResult fresh = renderFromScratch(scene, "lvsm", receivers);
+  expectSameFrame(changed, fresh, "lvsm prefilter_region=receivers after warm whole-map frames");
+  // The region leaves texels unbuilt, and the warm frame's map holds data there.
+  int unbuilt = 0;
+  for (const float value : test::lightSpaceArray(changed, "layered_moment_built").data)
+  {
+    unbuilt += value == 0.0f ? 1 : 0;
+  }
+  EXPECT_GT(unbuilt, 0);
+  EXPECT_GT(differingValues(changed, warm, "layer0_mean"), 0);
 }
 
 TEST(StructureReuse, OnlyTheChangedStructureRebuilds)

@@ -5,6 +5,7 @@
 #include "gl/GlResources.h"
 #include "passes/PassUtilities.h"
 #include "structures/fourier/vtkSLFourierBasisPass.h"
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
 #include <vtkTextureObject.h>
@@ -34,7 +35,21 @@ FourierBasisSettings FourierBasisSettings::from(const ParameterValues& values)
     "a technique listing fourier_basis must declare the moment map's prefilter parameters");
   settings.mipmap = values.choice("prefilter") == "mipmap";
   settings.blurTexels = settings.mipmap ? 1 : values.getInt("prefilter_texels");
+  settings.receiversOnly =
+    !settings.mipmap && values.has("prefilter_region") && values.choice("prefilter_region") == "receivers";
   return settings;
+}
+
+bool fourierSparseBlurIsCheaper(const ReceiverPrefilterPlan& plan, int blurTexels, int textures)
+{
+  const int reach = boxBlurReach(blurTexels);
+  const ReceiverTiles horizontal = plan.read.grown(0, reach);
+  const double source = static_cast<double>(horizontal.grown(reach, 0).texelCount());
+  const double blurred = static_cast<double>(horizontal.texelCount() + plan.read.texelCount());
+  const double width = blurTexels;
+  const double tiles = source * (1.0 + textures * fourierTermCost) + blurred * width * textures;
+  const double sparse = static_cast<double>(plan.readTexels.size()) * width * width * textures * (1.0 + fourierTermCost);
+  return sparse < tiles;
 }
 
 namespace
@@ -45,9 +60,10 @@ const FourierBasisData& fourierBasisData(const FrameResources& frame)
   return frame.structureData<FourierBasisData>(fourierBasisStructure().name);
 }
 
-std::vector<NamedImage> exportFourierBasis(const FrameResources& frame, FrameResult&)
+std::vector<NamedImage> exportFourierBasis(const FrameResources& frame, FrameResult& result)
 {
   const FourierBasisData& data = fourierBasisData(frame);
+  const ImageF built = prefilterBuiltMask(data.region, frame.lightView.resolution);
   std::vector<NamedImage> images;
   const auto exportSet = [&](const std::vector<vtkSmartPointer<vtkTextureObject>>& textures, const char* function) {
     for (std::size_t texture = 0; texture < textures.size(); ++texture)
@@ -56,13 +72,19 @@ std::vector<NamedImage> exportFourierBasis(const FrameResources& frame, FrameRes
       for (int channel = 0; channel < fourierTermsPerTexture; ++channel)
       {
         const int k = static_cast<int>(texture) * fourierTermsPerTexture + channel + 1;
-        images.push_back({ format("fourier_", function, "_", k), basis.channels(channel, 1), "",
+        ImageF term = basis.channels(channel, 1);
+        zeroUnbuilt(term, built);
+        images.push_back({ format("fourier_", function, "_", k), std::move(term), "",
           format("prefiltered ", function, "(c_k s z_n), c_k = pi (2k - 1), k = ", k, ", s = depth_range (Annen et al. 2007)") });
       }
     }
   };
   exportSet(data.sine, "sin");
   exportSet(data.cosine, "cos");
+  images.push_back({ "fourier_built", built, "",
+    "1 where the Fourier basis was built (prefilter_region = receivers: the tiles the receivers' lookups read, or "
+    "those texels alone when the blur was sparse), 0 where not (its arrays hold 0 there)" });
+  addPrefilterRegionStatistics(data.region, "fourier_basis", result);
   return images;
 }
 
@@ -80,6 +102,7 @@ const LightSpaceStructure& fourierBasisStructure()
       { "depth_range", 0.5, 0, 1, "",
         "s in (0, 1] (0 is refused): normalised depths z_n in [0, 1] enter the series as s z_n, so every gap s (z_n - d_n) stays in [-s, s], away from the period-2 series' jump back at +-1 (ShadowLab; 1: the whole period, the series reads 1/2 where z_n - d_n = -1)", {}, false },
     };
+    s.sharedParameters = { "prefilter", "prefilter_texels", "prefilter_region" };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLFourierBasisPass>::New() };
     };

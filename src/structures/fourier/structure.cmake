@@ -3,4 +3,4 @@ sl_structure(
   ORDER 83
   STRUCTURE fourierBasisStructure FourierBasisStructure.h
   SOURCES FourierBasisStructure.cpp vtkSLFourierBasisPass.cxx
-  SHADERS shaders/FourierBasis.glsl shaders/FourierTerms.glsl)
+  SHADERS shaders/FourierBasis.glsl shaders/FourierTerms.glsl shaders/FourierBasisSparseBlur.glsl)

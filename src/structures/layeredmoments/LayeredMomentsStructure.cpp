@@ -5,6 +5,7 @@
 #include "gl/GlResources.h"
 #include "passes/PassUtilities.h"
 #include "structures/layeredmoments/vtkSLLayeredMomentsPass.h"
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
 #include <vtkShaderProgram.h>
@@ -20,7 +21,14 @@ LayeredMomentsSettings LayeredMomentsSettings::from(const ParameterValues& value
   settings.blurTexels = values.getInt("prefilter_texels");
   settings.placement =
     choiceOf<LayerPlacement>(values, "layer_placement", { { "uniform", LayerPlacement::Uniform }, { "gaps", LayerPlacement::Gaps } });
+  settings.receiversOnly = values.has("prefilter_region") && values.choice("prefilter_region") == "receivers";
   return settings;
+}
+
+bool layeredSparseBlurFits(int blurTexels, int layers)
+{
+  const long long width = blurTexels;
+  return width * width * (layers + 1) + width * (2 * layers + 1) + 2 * layers < 65535;
 }
 
 std::vector<double> layeredEndsOf(const std::map<std::string, double>& statistics)
@@ -50,17 +58,29 @@ const LayeredMomentsData& layeredMomentsData(const FrameResources& frame)
   return frame.structureData<LayeredMomentsData>(layeredMomentsStructure().name);
 }
 
-std::vector<NamedImage> exportLayeredMoments(const FrameResources& frame, FrameResult&)
+std::vector<NamedImage> exportLayeredMoments(const FrameResources& frame, FrameResult& result)
 {
-  const std::vector<ImageF> slices = readFloatTextureLayers(layeredMomentsData(frame).moments, 2);
+  const LayeredMomentsData& data = layeredMomentsData(frame);
+  const std::vector<ImageF> slices = readFloatTextureLayers(data.moments, 2);
+  const int mapSize = frame.lightView.resolution;
+  const ImageF built = prefilterBuiltMask(data.region, mapSize);
   std::vector<NamedImage> images;
   for (std::size_t layer = 0; layer < slices.size(); ++layer)
   {
-    images.push_back({ format("layer", layer, "_mean"), slices[layer].channels(0, 1), "",
+    // The texels outside the receivers' tiles hold whatever an earlier frame left there: 0, not data.
+    ImageF mean = slices[layer].channels(0, 1);
+    ImageF second = slices[layer].channels(1, 1);
+    zeroUnbuilt(mean, built);
+    zeroUnbuilt(second, built);
+    images.push_back({ format("layer", layer, "_mean"), std::move(mean), "",
       format("layer ", layer, ": prefiltered E[phi(z)], the depth warped into the layer (Lauritzen & McCool 2008)") });
-    images.push_back({ format("layer", layer, "_second_moment"), slices[layer].channels(1, 1), "",
+    images.push_back({ format("layer", layer, "_second_moment"), std::move(second), "",
       format("layer ", layer, ": prefiltered E[phi(z)^2]") });
   }
+  images.push_back({ "layered_moment_built", built, "",
+    "1 where every layer of the layered moment map was built (prefilter_region = receivers: the tiles the receivers' "
+    "lookups read, or those texels alone when the blur was sparse), 0 where not (its layer arrays hold 0 there)" });
+  addPrefilterRegionStatistics(data.region, "layered_moments", result);
   return images;
 }
 
@@ -92,6 +112,7 @@ const LightSpaceStructure& layeredMomentsStructure()
       { "layers", 4, 1, 16, "", "depth layers: disjoint intervals of the light's depth range (Lauritzen & McCool 2008)", {}, true },
       { "layer_placement", 1, 0, 1, "", "where the layers' boundaries lie: uniform, equal intervals; gaps (ShadowLab's, not LM08's placement), in the widest empty runs of the shadow map's depth histogram (256 bins over [near, far], counted on the GPU), so that surfaces separated in depth fall into different layers", { "uniform", "gaps" }, true },
     };
+    s.sharedParameters = { "prefilter_texels", "prefilter_region" };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLLayeredMomentsPass>::New() };
     };

@@ -7,10 +7,12 @@
 #pragma once
 
 #include "structures/LightSpaceStructure.h"
+#include "structures/moments/ReceiverTiles.h"
 #include "lightspace/LayeredMoments.h"
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,14 +21,15 @@ namespace sl
 
 const LightSpaceStructure& layeredMomentsStructure();
 
-// The parameters its build reads, typed: `layers`, which it declares, and `prefilter_texels`, the box width the moment
-// map (structures/moments) declares with the same meaning (a parameter name belongs to one structure), which a
-// technique reading the layered moments declares with it.
+// The parameters its build reads, typed: `layers` and `layer_placement`, which it declares, and `prefilter_texels` and
+// `prefilter_region`, which the moment map (structures/moments) declares with the same meaning (a parameter name
+// belongs to one structure) and a technique reading the layered moments declares with them.
 struct LayeredMomentsSettings
 {
   int layers = 1;     // layers
   int blurTexels = 1; // prefilter_texels
   LayerPlacement placement = LayerPlacement::Uniform; // layer_placement
+  bool receiversOnly = false; // prefilter_region = receivers (absent: whole_map)
 
   static LayeredMomentsSettings from(const ParameterValues& values);
 };
@@ -38,7 +41,15 @@ struct LayeredMomentsData : LightSpaceData
   int layers = 1;
   std::vector<double> ends; // the layers' ends, layers + 1 linear depths (float-rounded, as the shaders get them)
   std::vector<std::uint32_t> histogram; // layer_placement=gaps: the depth histogram they were placed from (else empty)
+  // prefilter_region = receivers, where marking could pay: the moment map's plan (structures/moments/ReceiverTiles.h),
+  // whose built texels (ReceiverPrefilterPlan::builtMask) are the only ones built, in every layer; the x pass warps
+  // the depths itself (sourceTiles 0). None: every texel built.
+  std::optional<ReceiverPrefilterPlan> region;
 };
+
+// Whether the sparse blur (shaders/LayeredMomentsSparseBlur.glsl: per listed texel, w^2 taps, each warped into every
+// layer) stays within the loop iterations llvmpipe allows one invocation (65535); where not, the blur runs over tiles.
+bool layeredSparseBlurFits(int blurTexels, int layers);
 
 // The layers' ends of a rendered frame (FrameResult::techniqueStatistics layer_end_<i>, which a technique reading
 // the layered moments publishes with layeredEndStatistics); empty where the frame has none.

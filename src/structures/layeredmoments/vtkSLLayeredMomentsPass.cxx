@@ -7,10 +7,13 @@
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
+
+#include <algorithm>
 
 vtkStandardNewMacro(vtkSLLayeredMomentsPass);
 
@@ -88,12 +91,78 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
   {
     data->ends = sl::layeredUniformEnds(settings.layers, nearDepth, farDepth);
   }
-  // x pass into `horizontal` (warping each tap into the layer), y pass into `moments`.
-  vtkSmartPointer<vtkTextureObject> horizontal = makeLayeredMomentTexture(window, size, settings.layers);
-  vtkSmartPointer<vtkTextureObject> moments = makeLayeredMomentTexture(window, size, settings.layers);
-  vtkTextureObject* targets[2] = { horizontal, moments };
+  const auto fits = [&](const vtkSmartPointer<vtkTextureObject>& texture) {
+    return texture && texture->GetContext() == window && texture->GetWidth() == static_cast<unsigned>(size) &&
+      texture->GetDepth() == static_cast<unsigned>(settings.layers);
+  };
+  if (!fits(this->MomentsTarget))
+  {
+    this->MomentsTarget = makeLayeredMomentTexture(window, size, settings.layers);
+  }
+  // prefilter_region = receivers, as the moment map: the blur over the receivers' tiles (the x pass over those grown
+  // by the box's reach along y), or only at the texels they read (sparse), or the whole map.
+  data->region = this->TileMarker.planWhereItPays(window, frame, settings.blurTexels, settings.receiversOnly);
+  if (data->region)
+  {
+    sl::ReceiverPrefilterPlan& plan = *data->region;
+    if (!sl::layeredSparseBlurFits(settings.blurTexels, settings.layers))
+    {
+      sl::planOverTiles(plan, settings.blurTexels);
+    }
+    plan.sourceTiles = 0; // the x pass warps the shadow map's depths itself: no pass of its own
+  }
+  if (data->region && data->region->blur.sparse)
+  {
+    this->BlurSparse(frame, *data);
+  }
+  else
+  {
+    // The x pass's target, only for a blur over tiles (the sparse blur needs none).
+    if (!fits(this->HorizontalTarget))
+    {
+      this->HorizontalTarget = makeLayeredMomentTexture(window, size, settings.layers);
+    }
+    this->BlurTiles(frame, *data);
+  }
+  vtkTextureObject* moments = this->MomentsTarget;
+  data->moments = moments;
+  frame.lightSpaceData[sl::layeredMomentsStructure().name] = data;
+}
+
+void vtkSLLayeredMomentsPass::BlurTiles(sl::FrameResources& frame, const sl::LayeredMomentsData& data)
+{
+  const sl::LayeredMomentsSettings settings = sl::LayeredMomentsSettings::from(frame.parameters);
+  const int size = frame.lightView.resolution;
+  // Each pass's tiles as x | y << 16 words (LayeredMomentsBuild.glsl): the plan's rectangles (tile-aligned runs, or
+  // the whole map where most tiles are read), so that the built texels are the plan's; every tile without a plan.
+  const int tileTexels = data.region ? data.region->read.tileTexels() : sl::ReceiverTiles::tileTexelsFor(size);
+  const auto tileWords = [&](const std::vector<sl::TileRect>* rects) {
+    const std::vector<sl::TileRect> whole{ sl::TileRect{ 0, 0, size, size } };
+    std::vector<std::uint32_t> words;
+    for (const sl::TileRect& rect : rects ? *rects : whole)
+    {
+      for (int y = rect.y / tileTexels; y * tileTexels < rect.y + rect.height; ++y)
+      {
+        for (int x = rect.x / tileTexels; x * tileTexels < rect.x + rect.width; ++x)
+        {
+          words.push_back(static_cast<std::uint32_t>(x) | static_cast<std::uint32_t>(y) << 16);
+        }
+      }
+    }
+    return words;
+  };
+  const std::vector<std::uint32_t> passTiles[2] = {
+    tileWords(data.region ? &data.region->blur.horizontal : nullptr),
+    tileWords(data.region ? &data.region->blur.vertical : nullptr),
+  };
+  // x pass into `horizontal` (warping each tap into the layer), y pass into the map; every layer in one dispatch.
+  vtkTextureObject* targets[2] = { this->HorizontalTarget, this->MomentsTarget };
   for (int pass = 0; pass < 2; ++pass)
   {
+    if (passTiles[pass].empty())
+    {
+      continue; // no receiver reads the map
+    }
     auto& program = this->BlurPrograms[pass];
     if (!program)
     {
@@ -101,27 +170,57 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
         sl::assembleShader("layeredmoments/LayeredMomentsBuild.glsl", { { "LAYERED_BLUR_PASS", std::to_string(pass) } }),
         pass == 0 ? "layered moments (x)" : "layered moments (y)");
     }
-    vtkTextureObject* source = pass == 0 ? frame.shadowMapLinear.Get() : horizontal.Get();
+    const sl::StorageBuffer tiles(passTiles[pass].size());
+    tiles.upload(passTiles[pass]);
+    tiles.bind(1);
+    vtkTextureObject* source = pass == 0 ? frame.shadowMapLinear.Get() : targets[0];
     source->Activate();
     program->use();
     program->setInt(pass == 0 ? "shadowMapLinear" : "horizontal", source->GetTextureUnit());
     program->setInt("blurWidth", settings.blurTexels);
     program->setInt("mapSize", size);
+    program->setInt("tileTexels", tileTexels);
+    program->setInt("layeredLayers", data.layers);
+    program->setFloats("layeredEnds", data.ends);
     glBindImageTexture(0, targets[pass]->GetHandle(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
-    for (int layer = 0; layer < settings.layers; ++layer)
-    {
-      program->setInt("layer", layer);
-      program->setFloat("layerNearEnd", data->ends[static_cast<std::size_t>(layer)]);
-      program->setFloat("layerFarEnd", data->ends[static_cast<std::size_t>(layer) + 1]);
-      program->dispatch({ (size + 7) / 8, (size + 7) / 8 });
-    }
+    program->dispatch(glm::ivec3(static_cast<int>(passTiles[pass].size()), 1, data.layers));
     // The y pass and the technique read these image writes through samplers.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
     source->Deactivate();
   }
-  data->moments = moments;
-  frame.lightSpaceData[sl::layeredMomentsStructure().name] = data;
+}
+
+void vtkSLLayeredMomentsPass::BlurSparse(sl::FrameResources& frame, const sl::LayeredMomentsData& data)
+{
+  const sl::LayeredMomentsSettings settings = sl::LayeredMomentsSettings::from(frame.parameters);
+  const sl::PrefilterRegion& region = data.region->blur;
+  SL_CHECK_MSG(region.readTexelBuffer != nullptr, "the sparse layered blur needs the receivers' texel list");
+  if (!this->SparseProgram)
+  {
+    this->SparseProgram = std::make_unique<sl::ComputeProgram>(
+      sl::assembleShader("layeredmoments/LayeredMomentsSparseBlur.glsl"), "layered moments (sparse)");
+  }
+  sl::ComputeProgram& program = *this->SparseProgram;
+  region.readTexelBuffer->bind(0);
+  frame.shadowMapLinear->Activate();
+  program.use();
+  program.setInt("shadowMapLinear", frame.shadowMapLinear->GetTextureUnit());
+  program.setInt("blurWidth", settings.blurTexels);
+  program.setInt("mapSize", frame.lightView.resolution);
+  program.setInt("readTexelCount", region.readTexelCount);
+  program.setInt("layeredLayers", data.layers);
+  program.setFloats("layeredEnds", data.ends);
+  glBindImageTexture(0, this->MomentsTarget->GetHandle(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
+  // 64 invocations a group, in rows of at most 1024 groups.
+  const int groups = (region.readTexelCount + 63) / 64;
+  const int groupsX = std::max(1, std::min(groups, 1024));
+  program.dispatch({ groupsX, (groups + groupsX - 1) / groupsX });
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+  frame.shadowMapLinear->Deactivate();
 }
 
 void vtkSLLayeredMomentsPass::ReleaseGraphicsResources(vtkWindow*)
@@ -129,6 +228,10 @@ void vtkSLLayeredMomentsPass::ReleaseGraphicsResources(vtkWindow*)
   this->BlurPrograms[0].reset();
   this->BlurPrograms[1].reset();
   this->HistogramProgram.reset();
+  this->SparseProgram.reset();
+  this->TileMarker.release();
+  this->HorizontalTarget = nullptr;
+  this->MomentsTarget = nullptr;
 }
 
 void vtkSLLayeredMomentsPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -106,7 +106,7 @@ const LightSpaceStructure& momentMapStructure()
     s.parameters = {
       { "prefilter", 0, 0, 1, "", "blur: separable box blur of the moments; mipmap: trilinear mip-map lookup at log2(width)", { "blur", "mipmap" }, true },
       { "prefilter_texels", 5, 1, 63, "texels", "width of the box the moments are averaged over (odd widths are centred)", {}, true },
-      { "prefilter_region", 0, 0, 1, "", "where prefilter = blur builds and blurs the moment map (vsm, esm): receivers (only the tiles the frame's receivers read, the rest marked not built in moment_built) or whole_map; mipmap, and msm's and convsm's maps, are built whole", { "receivers", "whole_map" }, true },
+      { "prefilter_region", 0, 0, 1, "", "where prefilter = blur builds and blurs the moment map (vsm, esm), msm's power moments, convsm's Fourier basis and lvsm's layered moments: receivers (only where the frame's receivers read, the rest marked not built in moment_built, power_moment_built, fourier_built, layered_moment_built) or whole_map; prefilter = mipmap builds the whole map", { "receivers", "whole_map" }, true },
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLMomentMapPass>::New() };

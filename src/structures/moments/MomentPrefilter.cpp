@@ -33,11 +33,6 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
   return slot;
 }
 
-namespace
-{
-
-// The blur at the listed texels only (shaders/SparseBoxBlur.glsl), written into `target` (RGBA32F); `program` bound,
-// with its depth uniforms set.
 void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
   const PrefilterRegion& region)
 {
@@ -58,8 +53,6 @@ void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTe
   source->Deactivate();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
-
-} // namespace
 
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
   FullScreenQuad& blurQuad, vtkSmartPointer<vtkTextureObject> texture, int blurTexels, bool mipmap,
@@ -110,7 +103,7 @@ vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* wi
   if (!targets.sparseProgram)
   {
     targets.sparseProgram =
-      std::make_unique<ComputeProgram>(assembleShader("moments/SparseBoxBlur.glsl"), "sparse moment blur");
+      std::make_unique<ComputeProgram>(assembleShader("moments/SparseMomentsBlur.glsl"), "sparse moment blur");
   }
   const int size = static_cast<int>(shadowMapLinear->GetWidth());
   vtkSmartPointer<vtkTextureObject> blurred = reusedFloatTarget(window, targets.blurred, size, size, 4);
@@ -214,6 +207,17 @@ ReceiverPrefilterPlan ReceiverTileMarker::plan(
   ReceiverPrefilterPlan plan = planReceiverPrefilter(read, blurTexels, std::move(readTexels));
   plan.blur.readTexelBuffer = readTexels_.get();
   return plan;
+}
+
+std::optional<ReceiverPrefilterPlan> ReceiverTileMarker::planWhereItPays(
+  vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels, bool receiversOnly)
+{
+  if (!receiversOnly ||
+    !receiverRegionCanPay(static_cast<long long>(frame.width()) * frame.height(), frame.lightView.resolution))
+  {
+    return std::nullopt;
+  }
+  return plan(window, frame, blurTexels);
 }
 
 void ReceiverTileMarker::release()

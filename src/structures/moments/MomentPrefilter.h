@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 class vtkOpenGLFramebufferObject;
@@ -31,7 +32,7 @@ struct PrefilterTargets
 {
   vtkSmartPointer<vtkTextureObject> horizontal;
   vtkSmartPointer<vtkTextureObject> blurred;
-  // The sparse blur's program (shaders/SparseBoxBlur.glsl, sparseMomentsOfDepth).
+  // The sparse blur's program (shaders/SparseMomentsBlur.glsl, sparseMomentsOfDepth).
   std::unique_ptr<ComputeProgram> sparseProgram;
 };
 
@@ -41,6 +42,11 @@ struct PrefilterTargets
 vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* window, vtkTextureObject* shadowMapLinear,
   double depthNear, double depthFar, double esmExponent, int blurTexels, const PrefilterRegion& region,
   PrefilterTargets& targets);
+// The blur at the listed texels of a sparse `region` only, written into `target` (RGBA32F) by `program`: a shader
+// built on shaders/SparseBoxBlur.glsl whose momentsOfDepth uniforms are set; it reads `source` (the shadow map's
+// linear depth).
+void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
+  const PrefilterRegion& region);
 // `slot` itself when it is a float target of that size and components in `window`, else a new one put in `slot`;
 // with nearest filtering (a mip-mapped prefilter of an earlier frame sets trilinear).
 vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPointer<vtkTextureObject>& slot, int width,
@@ -72,6 +78,10 @@ public:
   // The plan of a prefilter of blurTexels over the receivers' tiles (ReceiverTiles::tileTexelsFor the map), after
   // which VTK's shader cache binds its next program itself (the compute program is left bound behind it).
   ReceiverPrefilterPlan plan(vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels);
+  // That plan where prefilter_region = receivers (`receiversOnly`) and marking can pay (receiverRegionCanPay for the
+  // frame's pixels), else none: the whole map.
+  std::optional<ReceiverPrefilterPlan> planWhereItPays(
+    vtkOpenGLRenderWindow* window, const FrameResources& frame, int blurTexels, bool receiversOnly);
   void release();
 
 private:

@@ -189,6 +189,15 @@ ReceiverPrefilterPlan planReceiverPrefilter(
   return plan;
 }
 
+void planOverTiles(ReceiverPrefilterPlan& plan, int blurTexels)
+{
+  if (plan.blur.sparse)
+  {
+    plan.blur.sparse = false;
+    plan.horizontalTiles = plan.read.grown(0, boxBlurReach(blurTexels)).markedCount();
+  }
+}
+
 ImageF ReceiverPrefilterPlan::builtMask() const
 {
   ImageF mask(read.mapSize(), read.mapSize(), 1);

@@ -100,6 +100,8 @@ struct ReceiverPrefilterPlan
 ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurTexels,
   std::vector<std::uint32_t> readTexels = {});
 constexpr double wholeDrawFraction = 0.5;
+// Turns a sparse plan of blurTexels into the blur over its tiles (for a build whose sparse path would cost more).
+void planOverTiles(ReceiverPrefilterPlan& plan, int blurTexels);
 // Whether marking the receivers' tiles can pay at all: with fewer than receiverRegionTexelsPerPixel map texels per
 // pixel the focused map's tiles are nearly all read (measured, README.md), and the whole map is built unmarked.
 constexpr long long receiverRegionTexelsPerPixel = 16;

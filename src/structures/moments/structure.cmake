@@ -3,6 +3,7 @@ sl_structure(
   ORDER 20
   STRUCTURE momentMapStructure MomentMapStructure.h
   SOURCES MomentMapStructure.cpp MomentPrefilter.cpp ReceiverTiles.cpp vtkSLMomentMapPass.cxx
-  SHADERS shaders/MomentsFromDepth.glsl shaders/BoxBlur.glsl shaders/ReceiverTiles.glsl shaders/SparseBoxBlur.glsl shaders/MomentsOfDepth.glsl
+  SHADERS shaders/MomentsFromDepth.glsl shaders/BoxBlur.glsl shaders/ReceiverTiles.glsl shaders/SparseBoxBlur.glsl shaders/SparseMomentsBlur.glsl
+    shaders/MomentsOfDepth.glsl
   UNIT_TESTS tests/ReceiverTilesTest.cpp
   GPU_TESTS tests/MomentRegionGpuTest.cpp)

@@ -34,12 +34,8 @@ void vtkSLMomentMapPass::Execute(const vtkRenderState* state)
   const int blurWidth = settings.blurTexels;
 
   // prefilter_region = receivers: each draw only over what the next one reads (ReceiverTiles.h).
-  std::optional<sl::ReceiverPrefilterPlan> plan;
-  if (settings.receiversOnly &&
-    sl::receiverRegionCanPay(static_cast<long long>(frame.width()) * frame.height(), size))
-  {
-    plan = this->TileMarker.plan(window, frame, blurWidth);
-  }
+  std::optional<sl::ReceiverPrefilterPlan> plan =
+    this->TileMarker.planWhereItPays(window, frame, blurWidth, settings.receiversOnly);
 
   if (plan && plan->blur.sparse)
   {

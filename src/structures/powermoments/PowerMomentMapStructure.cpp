@@ -4,6 +4,7 @@
 #include "frame/FrameResult.h"
 #include "gl/GlResources.h"
 #include "passes/PassUtilities.h"
+#include "structures/moments/MomentMapStructure.h"
 #include "structures/powermoments/vtkSLPowerMomentMapPass.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
@@ -23,6 +24,8 @@ PowerMomentMapSettings PowerMomentMapSettings::from(const ParameterValues& value
     "a technique listing power_moment_map must declare the moment map's prefilter parameters");
   settings.mipmap = values.choice("prefilter") == "mipmap";
   settings.blurTexels = settings.mipmap ? 1 : values.getInt("prefilter_texels");
+  settings.receiversOnly =
+    !settings.mipmap && values.has("prefilter_region") && values.choice("prefilter_region") == "receivers";
   return settings;
 }
 
@@ -39,17 +42,25 @@ const PowerMomentMapData& powerMomentData(const FrameResources& frame)
   return frame.structureData<PowerMomentMapData>(powerMomentMapStructure().name);
 }
 
-std::vector<NamedImage> exportPowerMoments(const FrameResources& frame, FrameResult&)
+std::vector<NamedImage> exportPowerMoments(const FrameResources& frame, FrameResult& result)
 {
-  const ImageF moments = readFloatTexture(powerMomentData(frame).moments, 4);
+  const PowerMomentMapData& data = powerMomentData(frame);
+  const ImageF moments = readFloatTexture(data.moments, 4);
+  const ImageF built = prefilterBuiltMask(data.region, moments.width);
   const char* names[4] = { "power_moment_1", "power_moment_2", "power_moment_3", "power_moment_4" };
   const char* docs[4] = { "prefiltered E[z] (z = (d - near) / (far - near) in [0, 1])", "prefiltered E[z^2]",
     "prefiltered E[z^3]", "prefiltered E[z^4]" };
   std::vector<NamedImage> images;
   for (int c = 0; c < 4; ++c)
   {
-    images.push_back({ names[c], moments.channels(c, 1), "", docs[c] });
+    ImageF channel = moments.channels(c, 1);
+    zeroUnbuilt(channel, built);
+    images.push_back({ names[c], std::move(channel), "", docs[c] });
   }
+  images.push_back({ "power_moment_built", built, "",
+    "1 where the power-moment map was built (prefilter_region = receivers: the tiles the receivers' lookups read, or "
+    "those texels alone when the blur was sparse), 0 where not (its arrays hold 0 there)" });
+  addPrefilterRegionStatistics(data.region, "power_moment_map", result);
   return images;
 }
 
@@ -62,6 +73,7 @@ const LightSpaceStructure& powerMomentMapStructure()
     s.name = "power_moment_map";
     s.doc = "(z, z^2, z^3, z^4) of the normalised shadow-map depth, box-blurred or mip-mapped (Peters & Klein 2015)";
     s.builtFrom = { &shadowMapStructure() };
+    s.sharedParameters = { "prefilter", "prefilter_texels", "prefilter_region" };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLPowerMomentMapPass>::New() };
     };

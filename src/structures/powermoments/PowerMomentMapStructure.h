@@ -5,6 +5,9 @@
 #pragma once
 
 #include "structures/LightSpaceStructure.h"
+#include "structures/moments/ReceiverTiles.h"
+
+#include <optional>
 
 namespace sl
 {
@@ -16,6 +19,7 @@ struct PowerMomentMapSettings
 {
   bool mipmap = false; // prefilter = mipmap
   int blurTexels = 1;  // prefilter_texels for prefilter = blur; 1 = no blur
+  bool receiversOnly = false; // prefilter_region = receivers with prefilter = blur
 
   // The depth in the moments' [0, 1] of a linear depth (clamped to the light's range), as the build maps it.
   static double normalisedDepth(double depth, double nearDepth, double farDepth);
@@ -28,6 +32,8 @@ struct PowerMomentMapData : LightSpaceData
 {
   vtkSmartPointer<vtkTextureObject> moments; // RGBA32F (z, z^2, z^3, z^4); with a mip chain when mipmapped
   bool mipmapped = false;
+  // prefilter_region = receivers: the moment map's plan; the texels it did not build are not data. None: all built.
+  std::optional<ReceiverPrefilterPlan> region;
 };
 
 } // namespace sl

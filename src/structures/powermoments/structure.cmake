@@ -3,4 +3,4 @@ sl_structure(
   ORDER 81
   STRUCTURE powerMomentMapStructure PowerMomentMapStructure.h
   SOURCES PowerMomentMapStructure.cpp vtkSLPowerMomentMapPass.cxx
-  SHADERS shaders/PowerMomentsFromDepth.glsl)
+  SHADERS shaders/PowerMomentsFromDepth.glsl shaders/PowerMomentsOfDepth.glsl shaders/PowerMomentsSparseBlur.glsl)

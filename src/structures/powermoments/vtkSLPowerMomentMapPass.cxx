@@ -11,6 +11,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLFramebufferObject.h>
 #include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
 #include <vtkRenderState.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
@@ -30,7 +31,31 @@ void vtkSLPowerMomentMapPass::Execute(const vtkRenderState* state)
   const sl::PowerMomentMapSettings settings = sl::PowerMomentMapSettings::from(frame.parameters);
   const int size = frame.lightView.resolution;
 
-  auto moments = sl::makeFloatTarget(window, size, size, 4);
+  auto data = std::make_shared<sl::PowerMomentMapData>();
+  data->mipmapped = settings.mipmap;
+  // prefilter_region = receivers, as the moment map (structures/moments/README.md).
+  data->region = this->TileMarker.planWhereItPays(window, frame, settings.blurTexels, settings.receiversOnly);
+  if (data->region && data->region->blur.sparse)
+  {
+    // Only the listed texels, their power moments formed inline: no moments pass, no blur passes.
+    if (!this->SparseProgram)
+    {
+      this->SparseProgram = std::make_unique<sl::ComputeProgram>(
+        sl::assembleShader("powermoments/PowerMomentsSparseBlur.glsl"), "sparse power-moment blur");
+    }
+    this->SparseProgram->use();
+    // In float, as the moments pass sets them (SetUniformf).
+    this->SparseProgram->setFloat("depthNear", static_cast<float>(frame.lightView.nearDepth));
+    this->SparseProgram->setFloat("depthFar", static_cast<float>(frame.lightView.farDepth));
+    data->moments = sl::reusedFloatTarget(window, this->BlurTargets.blurred, size, size, 4);
+    sl::blurReceiverTexels(
+      *this->SparseProgram, frame.shadowMapLinear, data->moments, settings.blurTexels, data->region->blur);
+    window->GetShaderCache()->ReleaseCurrentShader();
+    data->region->sourceTiles = 0; // no moments pass
+    frame.lightSpaceData[sl::powerMomentMapStructure().name] = data;
+    return;
+  }
+  vtkSmartPointer<vtkTextureObject> moments = sl::reusedFloatTarget(window, this->MomentsTarget, size, size, 4);
   {
     const sl::ScopedRenderTarget target(window, this->Framebuffer, { moments });
     vtkShaderProgram* program = this->MomentsQuad.ready(
@@ -38,14 +63,12 @@ void vtkSLPowerMomentMapPass::Execute(const vtkRenderState* state)
     vtkTextureObject* bound = sl::bindTexture(program, "shadowMapLinear", frame.shadowMapLinear);
     program->SetUniformf("depthNear", static_cast<float>(frame.lightView.nearDepth));
     program->SetUniformf("depthFar", static_cast<float>(frame.lightView.farDepth));
-    this->MomentsQuad.render();
+    sl::renderQuadOver(window, this->MomentsQuad, data->region ? &data->region->source : nullptr);
     bound->Deactivate();
   }
   // The moment map's prefilter: the same texels as vsm's and esm's.
-  moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, settings.blurTexels, settings.mipmap);
-  auto data = std::make_shared<sl::PowerMomentMapData>();
-  data->moments = moments;
-  data->mipmapped = settings.mipmap;
+  data->moments = sl::prefilterMoments(window, this->Framebuffer, this->BlurQuad, moments, settings.blurTexels,
+    settings.mipmap, data->region ? &data->region->blur : nullptr, &this->BlurTargets);
   frame.lightSpaceData[sl::powerMomentMapStructure().name] = data;
 }
 
@@ -54,6 +77,10 @@ void vtkSLPowerMomentMapPass::ReleaseGraphicsResources(vtkWindow* window)
   this->MomentsQuad.releaseGraphicsResources(window);
   this->BlurQuad.releaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);
+  this->TileMarker.release();
+  this->SparseProgram.reset();
+  this->MomentsTarget = nullptr;
+  this->BlurTargets = sl::PrefilterTargets{};
 }
 
 void vtkSLPowerMomentMapPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -67,10 +67,11 @@ TechniqueDescriptor lvsmTechnique()
     }
   }
   descriptor.addParameters(layeredMomentsStructure().parameters);
-  // The box the layers are blurred over: the moment map's prefilter_texels (LayeredMomentsSettings).
+  // The box the layers are blurred over and where: the moment map's prefilter_texels and prefilter_region
+  // (LayeredMomentsSettings).
   for (const ParameterSpec& spec : momentMapStructure().parameters)
   {
-    if (spec.name == "prefilter_texels")
+    if (spec.name == "prefilter_texels" || spec.name == "prefilter_region")
     {
       descriptor.addParameters({ spec });
     }

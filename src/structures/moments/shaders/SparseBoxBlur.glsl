@@ -1,12 +1,12 @@
-// The moment map's separable box blur (moments/BoxBlur.glsl, x then y, over the moments of
-// moments/MomentsFromDepth.glsl) evaluated only at the texels the receivers read (ReceiverTiles.h), one invocation
-// per listed texel: for each of the vertical pass's rows it forms the horizontal pass's value there as that pass
-// does (the same taps, clamped alike, summed in the same order, divided by the width), then sums them as the vertical
-// pass does. The list is shaders/ReceiverTiles.glsl's: word 0 the count, then x | y << 16 (repeats write the same
-// value twice).
+// A prefiltered map's separable box blur (moments/BoxBlur.glsl, x then y, over the values a fragment pass forms from
+// each shadow-map depth) evaluated only at the texels the receivers read (ReceiverTiles.h), one invocation per listed
+// texel: for each of the vertical pass's rows it forms the horizontal pass's value there as that pass does (the same
+// taps, clamped alike, summed in the same order, divided by the width), then sums them as the vertical pass does. The
+// values of each tap are formed inline by `vec4 momentsOfDepth(float depth)`, which the including shader defines
+// with the code its fragment pass uses (moments/SparseMomentsBlur.glsl: vsm's and esm's moments; the power moments';
+// the Fourier basis'), so that pass is skipped. The list is shaders/ReceiverTiles.glsl's: word 0 the count, then
+// x | y << 16 (repeats write the same value twice).
 layout(local_size_x = 64) in;
-
-#include "moments/MomentsOfDepth.glsl"
 
 layout(std430, binding = 0) readonly buffer ReceiverReadTexels
 {

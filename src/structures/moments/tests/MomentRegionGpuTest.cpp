@@ -1,8 +1,9 @@
-// prefilter_region = receivers (structures/moments/ReceiverTiles.h) on llvmpipe: vsm's and esm's frames equal those of
-// prefilter_region = whole_map bit for bit (every buffer), the moment map's built texels equal the whole map's bit for
-// bit, the unbuilt ones are 0 and marked 0 in moment_built, and every shadow-tested pixel's lookup texel is built;
-// on three datasets and random rectangle stacks, with the blur drawn over tiles (small maps) and sparse, at the
-// listed texels alone (maps of 512^2 and more at 96^2 pixels). The tile and texel counts are printed.
+// prefilter_region = receivers (structures/moments/ReceiverTiles.h) on llvmpipe: the frames of vsm and esm (moment
+// map), msm (power-moment map) and convsm (Fourier basis) equal those of prefilter_region = whole_map bit for bit
+// (every buffer), the map's built texels equal the whole map's bit for bit, the unbuilt ones are 0 and marked 0 in its
+// `*_built` array, and every shadow-tested pixel's lookup texel is built; on three datasets and random rectangle
+// stacks, with the blur drawn over tiles (small maps) and sparse, at the listed texels alone (maps of 512^2 and more
+// at 96^2 pixels). The tile and texel counts are printed.
 #include "support/TestSupport.h"
 #include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
@@ -25,9 +26,42 @@ double momentRegionStatistic(const FrameResult& frame, const std::string& name)
   return found == frame.techniqueStatistics.end() ? -1.0 : found->second;
 }
 
+// The prefiltered map a technique reads, as light_space.vti exports it: its built mask, its arrays, the prefix of its
+// statistics.
+struct PrefilteredMapExport
+{
+  std::string built;
+  std::vector<std::string> arrays;
+  std::string statistics;
+};
+
+PrefilteredMapExport prefilteredMapOf(const std::string& technique)
+{
+  if (technique == "msm")
+  {
+    return { "power_moment_built", { "power_moment_1", "power_moment_2", "power_moment_3", "power_moment_4" },
+      "power_moment_map" };
+  }
+  if (technique == "convsm")
+  {
+    PrefilteredMapExport basis{ "fourier_built", {}, "fourier_basis" };
+    for (int k = 1; k <= 16; ++k)
+    {
+      basis.arrays.push_back(format("fourier_sin_", k));
+      basis.arrays.push_back(format("fourier_cos_", k));
+    }
+    return basis;
+  }
+  return { "moment_built", { "moment_mean", "moment_second", "moment_exponential" }, "moment_map" };
+}
+
 void checkMomentRegion(const Scene& scene, const std::string& label, const std::string& technique,
   const std::vector<std::string>& settings)
 {
+  const PrefilteredMapExport map = prefilteredMapOf(technique);
+  const auto momentRegionStatistic = [&](const FrameResult& frame, const std::string& name) {
+    return sl::momentRegionStatistic(frame, map.statistics + name);
+  };
   std::vector<std::string> receivers = settings;
   receivers.push_back("prefilter_region=receivers");
   std::vector<std::string> whole = settings;
@@ -53,14 +87,14 @@ void checkMomentRegion(const Scene& scene, const std::string& label, const std::
   }
 
   // The moment map: built texels as the whole map's, the others 0 and marked.
-  const ImageF& built = test::lightSpaceArray(tiled, "moment_built");
-  const ImageF& wholeBuilt = test::lightSpaceArray(full, "moment_built");
+  const ImageF& built = test::lightSpaceArray(tiled, map.built);
+  const ImageF& wholeBuilt = test::lightSpaceArray(full, map.built);
   std::size_t builtTexels = 0;
   for (const float value : wholeBuilt.data)
   {
     ASSERT_EQ(value, 1.0f) << where << ": whole_map leaves a texel unbuilt";
   }
-  for (const char* name : { "moment_mean", "moment_second", "moment_exponential" })
+  for (const std::string& name : map.arrays)
   {
     const ImageF& mine = test::lightSpaceArray(tiled, name);
     const ImageF& theirs = test::lightSpaceArray(full, name);
@@ -108,7 +142,7 @@ void checkMomentRegion(const Scene& scene, const std::string& label, const std::
   EXPECT_GT(lookups, 0) << where;
   EXPECT_EQ(unbuiltLookups, 0) << where << ": lookups of unbuilt texels";
 
-  const double allTiles = momentRegionStatistic(tiled, "moment_map_tiles");
+  const double allTiles = momentRegionStatistic(tiled, "_tiles");
   if (!receiverRegionCanPay(static_cast<long long>(tested.width) * tested.height, mapSize))
   {
     // Too few texels per pixel for the region to pay: the whole map, unmarked.
@@ -118,25 +152,25 @@ void checkMomentRegion(const Scene& scene, const std::string& label, const std::
               << receiverRegionTexelsPerPixel << " texels per pixel)\n";
     return;
   }
-  const double receiverTiles = momentRegionStatistic(tiled, "moment_map_receiver_tiles");
+  const double receiverTiles = momentRegionStatistic(tiled, "_receiver_tiles");
   EXPECT_GT(receiverTiles, 0.0) << where;
   EXPECT_LE(receiverTiles, allTiles) << where;
-  if (momentRegionStatistic(tiled, "moment_map_sparse_blur") > 0)
+  if (momentRegionStatistic(tiled, "_sparse_blur") > 0)
   {
     // The moments formed inline: neither the moments pass nor the horizontal pass ran.
-    EXPECT_EQ(momentRegionStatistic(tiled, "moment_map_source_tiles"), 0.0) << where;
-    EXPECT_EQ(momentRegionStatistic(tiled, "moment_map_horizontal_tiles"), 0.0) << where;
+    EXPECT_EQ(momentRegionStatistic(tiled, "_source_tiles"), 0.0) << where;
+    EXPECT_EQ(momentRegionStatistic(tiled, "_horizontal_tiles"), 0.0) << where;
   }
   else
   {
-    EXPECT_LE(receiverTiles, momentRegionStatistic(tiled, "moment_map_source_tiles")) << where;
+    EXPECT_LE(receiverTiles, momentRegionStatistic(tiled, "_source_tiles")) << where;
   }
   std::cout << "[ measured ] " << where << ": " << mapSize << "^2 map, receiver tiles " << receiverTiles << " of "
-            << allTiles << ", horizontal pass " << momentRegionStatistic(tiled, "moment_map_horizontal_tiles")
-            << ", moments " << momentRegionStatistic(tiled, "moment_map_source_tiles") << "; built texels "
+            << allTiles << ", horizontal pass " << momentRegionStatistic(tiled, "_horizontal_tiles")
+            << ", moments " << momentRegionStatistic(tiled, "_source_tiles") << "; built texels "
             << builtTexels << " of " << mapSize * mapSize << ", " << lookups << " lookups, "
-            << momentRegionStatistic(tiled, "moment_map_read_texels") << " listed texels, "
-            << (momentRegionStatistic(tiled, "moment_map_sparse_blur") > 0 ? "sparse blur" : "blur over tiles") << "\n";
+            << momentRegionStatistic(tiled, "_read_texels") << " listed texels, "
+            << (momentRegionStatistic(tiled, "_sparse_blur") > 0 ? "sparse blur" : "blur over tiles") << "\n";
 }
 
 TEST(MomentRegion, ReceiversEqualTheWholeMapOnDatasets)
@@ -167,6 +201,27 @@ TEST(MomentRegion, ReceiversEqualTheWholeMapOnRandomStacks)
     checkMomentRegion(scene, "random stack " + std::to_string(k), k % 2 == 0 ? "vsm" : "esm",
       { "shadow_map_size=" + std::to_string(k < 2 ? 256 : k == 2 ? 384 : 1024), "prefilter=blur",
         "prefilter_texels=" + texels });
+  }
+}
+
+// msm's power moments and convsm's Fourier basis follow the moment map's plan: over tiles, sparse (each with its own
+// inline function of the depth, shaders/SparseBoxBlur.glsl), without a blur, and the whole map below 16 texels a pixel.
+TEST(MomentRegion, PowerMomentsAndFourierBasisEqualTheWholeMap)
+{
+  std::mt19937 generator(3309u);
+  std::uniform_int_distribution<int> width(1, 24);
+  for (const std::string dataset : { "stacked-occluders", "bunny", "contact" })
+  {
+    const Scene scene = test::loadDataset(dataset);
+    for (const std::string technique : { "msm", "convsm" })
+    {
+      checkMomentRegion(scene, dataset, technique, { "shadow_map_size=256", "prefilter=blur", "prefilter_texels=5" });
+      checkMomentRegion(scene, dataset, technique, { "shadow_map_size=512", "prefilter=blur", "prefilter_texels=33" });
+      checkMomentRegion(scene, dataset, technique, { "shadow_map_size=512", "prefilter=blur", "prefilter_texels=1" });
+      checkMomentRegion(scene, dataset, technique, { "shadow_map_size=1024", "prefilter=blur", "prefilter_texels=5" });
+      checkMomentRegion(scene, dataset, technique,
+        { "shadow_map_size=1024", "prefilter=blur", "prefilter_texels=" + std::to_string(width(generator)) });
+    }
   }
 }
 
