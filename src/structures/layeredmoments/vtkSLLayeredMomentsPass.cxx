@@ -151,9 +151,12 @@ void vtkSLLayeredMomentsPass::BlurTiles(sl::FrameResources& frame, const sl::Lay
     }
     return words;
   };
+  // Without a blur (prefilter_texels = 1) the plan has no blur passes: both passes run over its source tiles, the ones
+  // it marks built.
+  const bool blurred = settings.blurTexels > 1;
   const std::vector<std::uint32_t> passTiles[2] = {
-    tileWords(data.region ? &data.region->blur.horizontal : nullptr),
-    tileWords(data.region ? &data.region->blur.vertical : nullptr),
+    tileWords(data.region ? (blurred ? &data.region->blur.horizontal : &data.region->source) : nullptr),
+    tileWords(data.region ? (blurred ? &data.region->blur.vertical : &data.region->source) : nullptr),
   };
   // x pass into `horizontal` (warping each tap into the layer), y pass into the map; every layer in one dispatch.
   vtkTextureObject* targets[2] = { this->HorizontalTarget, this->MomentsTarget };
