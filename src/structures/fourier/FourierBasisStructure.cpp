@@ -72,18 +72,14 @@ std::vector<NamedImage> exportFourierBasis(const FrameResources& frame, FrameRes
       for (int channel = 0; channel < fourierTermsPerTexture; ++channel)
       {
         const int k = static_cast<int>(texture) * fourierTermsPerTexture + channel + 1;
-        ImageF term = basis.channels(channel, 1);
-        zeroUnbuilt(term, built);
-        images.push_back({ format("fourier_", function, "_", k), std::move(term), "",
+        images.push_back({ format("fourier_", function, "_", k), builtChannel(basis, channel, built), "",
           format("prefiltered ", function, "(c_k s z_n), c_k = pi (2k - 1), k = ", k, ", s = depth_range (Annen et al. 2007)") });
       }
     }
   };
   exportSet(data.sine, "sin");
   exportSet(data.cosine, "cos");
-  images.push_back({ "fourier_built", built, "",
-    "1 where the Fourier basis was built (prefilter_region = receivers: the tiles the receivers' lookups read, or "
-    "those texels alone when the blur was sparse), 0 where not (its arrays hold 0 there)" });
+  images.push_back(prefilterBuiltArray("fourier_built", built, "the Fourier basis"));
   addPrefilterRegionStatistics(data.region, "fourier_basis", result);
   return images;
 }

@@ -68,18 +68,12 @@ std::vector<NamedImage> exportLayeredMoments(const FrameResources& frame, FrameR
   for (std::size_t layer = 0; layer < slices.size(); ++layer)
   {
     // The texels outside the receivers' tiles hold whatever an earlier frame left there: 0, not data.
-    ImageF mean = slices[layer].channels(0, 1);
-    ImageF second = slices[layer].channels(1, 1);
-    zeroUnbuilt(mean, built);
-    zeroUnbuilt(second, built);
-    images.push_back({ format("layer", layer, "_mean"), std::move(mean), "",
+    images.push_back({ format("layer", layer, "_mean"), builtChannel(slices[layer], 0, built), "",
       format("layer ", layer, ": prefiltered E[phi(z)], the depth warped into the layer (Lauritzen & McCool 2008)") });
-    images.push_back({ format("layer", layer, "_second_moment"), std::move(second), "",
+    images.push_back({ format("layer", layer, "_second_moment"), builtChannel(slices[layer], 1, built), "",
       format("layer ", layer, ": prefiltered E[phi(z)^2]") });
   }
-  images.push_back({ "layered_moment_built", built, "",
-    "1 where every layer of the layered moment map was built (prefilter_region = receivers: the tiles the receivers' "
-    "lookups read, or those texels alone when the blur was sparse), 0 where not (its layer arrays hold 0 there)" });
+  images.push_back(prefilterBuiltArray("layered_moment_built", built, "every layer of the layered moment map"));
   addPrefilterRegionStatistics(data.region, "layered_moments", result);
   return images;
 }

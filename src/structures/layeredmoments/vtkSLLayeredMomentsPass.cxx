@@ -13,8 +13,6 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
-#include <algorithm>
-
 vtkStandardNewMacro(vtkSLLayeredMomentsPass);
 
 vtkSLLayeredMomentsPass::vtkSLLayeredMomentsPass() = default;
@@ -113,7 +111,7 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
   }
   if (data->region && data->region->blur.sparse)
   {
-    this->BlurSparse(frame, *data);
+    this->BlurSparse(frame, *data, settings);
   }
   else
   {
@@ -122,16 +120,15 @@ void vtkSLLayeredMomentsPass::Execute(const vtkRenderState* state)
     {
       this->HorizontalTarget = makeLayeredMomentTexture(window, size, settings.layers);
     }
-    this->BlurTiles(frame, *data);
+    this->BlurTiles(frame, *data, settings);
   }
-  vtkTextureObject* moments = this->MomentsTarget;
-  data->moments = moments;
+  data->moments = this->MomentsTarget;
   frame.lightSpaceData[sl::layeredMomentsStructure().name] = data;
 }
 
-void vtkSLLayeredMomentsPass::BlurTiles(sl::FrameResources& frame, const sl::LayeredMomentsData& data)
+void vtkSLLayeredMomentsPass::BlurTiles(
+  sl::FrameResources& frame, const sl::LayeredMomentsData& data, const sl::LayeredMomentsSettings& settings)
 {
-  const sl::LayeredMomentsSettings settings = sl::LayeredMomentsSettings::from(frame.parameters);
   const int size = frame.lightView.resolution;
   // Each pass's tiles as x | y << 16 words (LayeredMomentsBuild.glsl): the plan's rectangles (tile-aligned runs, or
   // the whole map where most tiles are read), so that the built texels are the plan's; every tile without a plan.
@@ -195,9 +192,9 @@ void vtkSLLayeredMomentsPass::BlurTiles(sl::FrameResources& frame, const sl::Lay
   }
 }
 
-void vtkSLLayeredMomentsPass::BlurSparse(sl::FrameResources& frame, const sl::LayeredMomentsData& data)
+void vtkSLLayeredMomentsPass::BlurSparse(
+  sl::FrameResources& frame, const sl::LayeredMomentsData& data, const sl::LayeredMomentsSettings& settings)
 {
-  const sl::LayeredMomentsSettings settings = sl::LayeredMomentsSettings::from(frame.parameters);
   const sl::PrefilterRegion& region = data.region->blur;
   SL_CHECK_MSG(region.readTexelBuffer != nullptr, "the sparse layered blur needs the receivers' texel list");
   if (!this->SparseProgram)
@@ -216,10 +213,7 @@ void vtkSLLayeredMomentsPass::BlurSparse(sl::FrameResources& frame, const sl::La
   program.setInt("layeredLayers", data.layers);
   program.setFloats("layeredEnds", data.ends);
   glBindImageTexture(0, this->MomentsTarget->GetHandle(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
-  // 64 invocations a group, in rows of at most 1024 groups.
-  const int groups = (region.readTexelCount + 63) / 64;
-  const int groupsX = std::max(1, std::min(groups, 1024));
-  program.dispatch({ groupsX, (groups + groupsX - 1) / groupsX });
+  program.dispatch(sl::listedTexelGroups(region.readTexelCount));
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);

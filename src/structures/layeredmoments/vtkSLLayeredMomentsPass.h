@@ -18,6 +18,7 @@ namespace sl
 {
 struct FrameResources;
 struct LayeredMomentsData;
+struct LayeredMomentsSettings;
 }
 
 class vtkSLLayeredMomentsPass : public vtkSLStagePass
@@ -38,8 +39,8 @@ private:
   vtkSLLayeredMomentsPass(const vtkSLLayeredMomentsPass&) = delete;
   void operator=(const vtkSLLayeredMomentsPass&) = delete;
   // The separable blur over the plan's tiles (every tile without a region), and the sparse one at its listed texels.
-  void BlurTiles(sl::FrameResources& frame, const sl::LayeredMomentsData& data);
-  void BlurSparse(sl::FrameResources& frame, const sl::LayeredMomentsData& data);
+  void BlurTiles(sl::FrameResources& frame, const sl::LayeredMomentsData& data, const sl::LayeredMomentsSettings& settings);
+  void BlurSparse(sl::FrameResources& frame, const sl::LayeredMomentsData& data, const sl::LayeredMomentsSettings& settings);
 
   std::unique_ptr<sl::ComputeProgram> BlurPrograms[2]; // x (warping), y
   std::unique_ptr<sl::ComputeProgram> HistogramProgram; // layer_placement=gaps: the depth histogram

@@ -39,13 +39,22 @@ ImageF prefilterBuiltMask(const std::optional<ReceiverPrefilterPlan>& region, in
   return region ? region->builtMask() : ImageF(mapSize, mapSize, 1, 1.0f);
 }
 
-void zeroUnbuilt(ImageF& image, const ImageF& builtMask)
+ImageF builtChannel(const ImageF& image, int channel, const ImageF& builtMask)
 {
-  SL_CHECK(image.width == builtMask.width && image.height == builtMask.height && image.components == 1);
-  for (std::size_t i = 0; i < image.data.size(); ++i)
+  ImageF values = image.channels(channel, 1);
+  SL_CHECK(values.width == builtMask.width && values.height == builtMask.height);
+  for (std::size_t i = 0; i < values.data.size(); ++i)
   {
-    image.data[i] = builtMask.data[i] != 0.0f ? image.data[i] : 0.0f;
+    values.data[i] = builtMask.data[i] != 0.0f ? values.data[i] : 0.0f;
   }
+  return values;
+}
+
+NamedImage prefilterBuiltArray(const std::string& name, const ImageF& builtMask, const std::string& map)
+{
+  return { name, builtMask, "",
+    "1 where " + map + " was built (prefilter_region = receivers: the tiles the receivers' lookups read, or those "
+    "texels alone when the blur was sparse), 0 where not (its arrays hold 0 there, not data)" };
 }
 
 void addPrefilterRegionStatistics(const std::optional<ReceiverPrefilterPlan>& region, const std::string& prefix,
@@ -83,13 +92,9 @@ std::vector<NamedImage> exportMoments(const FrameResources& frame, FrameResult& 
   std::vector<NamedImage> images;
   for (int c = 0; c < 3; ++c)
   {
-    ImageF channel = moments.channels(c, 1);
-    zeroUnbuilt(channel, built);
-    images.push_back({ names[c], std::move(channel), "", docs[c] });
+    images.push_back({ names[c], builtChannel(moments, c, built), "", docs[c] });
   }
-  images.push_back({ "moment_built", built, "",
-    "1 where the moment map was built (prefilter_region = receivers: the tiles the receivers' lookups read), 0 where "
-    "it was not (the moment arrays hold 0 there, not data)" });
+  images.push_back(prefilterBuiltArray("moment_built", built, "the moment map"));
   addPrefilterRegionStatistics(data.region, "moment_map", result);
   return images;
 }

@@ -38,11 +38,13 @@ struct MomentMapData : LightSpaceData
   std::optional<ReceiverPrefilterPlan> region;
 };
 
-// For the exports of the prefiltered maps (moment map, power moments, Fourier basis): 1 on the texels `region` built,
-// 0 elsewhere (all 1 without a region); zeroUnbuilt sets every unbuilt texel of `image` to 0 (not data); the
-// region's tile counts go to stats.json as <prefix>_tiles, _receiver_tiles, _horizontal_tiles, _source_tiles.
+// For the exports of the prefiltered maps (moment map, power moments, Fourier basis, layered moments): 1 on the texels
+// `region` built, 0 elsewhere (all 1 without a region); builtChannel is channel `channel` of `image` with every unbuilt
+// texel 0 (not data); prefilterBuiltArray is the mask as the `<name>` array of `map`; the region's tile counts go to
+// stats.json as <prefix>_tiles, _receiver_tiles, _horizontal_tiles, _source_tiles, _read_texels, _sparse_blur.
 ImageF prefilterBuiltMask(const std::optional<ReceiverPrefilterPlan>& region, int mapSize);
-void zeroUnbuilt(ImageF& image, const ImageF& builtMask);
+ImageF builtChannel(const ImageF& image, int channel, const ImageF& builtMask);
+NamedImage prefilterBuiltArray(const std::string& name, const ImageF& builtMask, const std::string& map);
 void addPrefilterRegionStatistics(const std::optional<ReceiverPrefilterPlan>& region, const std::string& prefix,
   FrameResult& result);
 

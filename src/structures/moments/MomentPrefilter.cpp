@@ -17,6 +17,8 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
+#include <algorithm>
+
 namespace sl
 {
 
@@ -33,6 +35,13 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
   return slot;
 }
 
+glm::ivec2 listedTexelGroups(int listedTexels)
+{
+  const int groups = (listedTexels + 63) / 64;
+  const int groupsX = std::max(1, std::min(groups, 1024));
+  return { groupsX, (groups + groupsX - 1) / groupsX };
+}
+
 void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
   const PrefilterRegion& region)
 {
@@ -45,10 +54,7 @@ void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTe
   program.setInt("source", source->GetTextureUnit());
   program.setInt("blurWidth", blurTexels);
   program.setInt("readTexelCount", region.readTexelCount);
-  // 64 invocations a group, in rows of at most 1024 groups (a dispatch's x count is capped).
-  const int groups = (region.readTexelCount + 63) / 64;
-  const int groupsX = std::min(groups, 1024);
-  program.dispatch({ groupsX, (groups + groupsX - 1) / groupsX });
+  program.dispatch(listedTexelGroups(region.readTexelCount));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   source->Deactivate();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);

@@ -53,13 +53,9 @@ std::vector<NamedImage> exportPowerMoments(const FrameResources& frame, FrameRes
   std::vector<NamedImage> images;
   for (int c = 0; c < 4; ++c)
   {
-    ImageF channel = moments.channels(c, 1);
-    zeroUnbuilt(channel, built);
-    images.push_back({ names[c], std::move(channel), "", docs[c] });
+    images.push_back({ names[c], builtChannel(moments, c, built), "", docs[c] });
   }
-  images.push_back({ "power_moment_built", built, "",
-    "1 where the power-moment map was built (prefilter_region = receivers: the tiles the receivers' lookups read, or "
-    "those texels alone when the blur was sparse), 0 where not (its arrays hold 0 there)" });
+  images.push_back(prefilterBuiltArray("power_moment_built", built, "the power-moment map"));
   addPrefilterRegionStatistics(data.region, "power_moment_map", result);
   return images;
 }
