@@ -4,6 +4,7 @@
 #include "techniques/ProbeSupport.h"
 
 #include "core/Error.h"
+#include "lightspace/ShadowMapMath.h"
 #include "io/ImageIO.h"
 #include "techniques/Registry.h"
 
@@ -426,6 +427,73 @@ void expectFiniteBuffersAndVisibilityInRange(const FrameResult& frame, const std
     outside += value >= 0.0f && value <= 1.0f ? 0 : 1;
   }
   EXPECT_EQ(outside, 0u) << label << ": visibility values outside [0, 1]";
+}
+
+void expectBuffersBitIdentical(const FrameResult& actual, const FrameResult& expected, const std::string& where)
+{
+  EXPECT_EQ(actual.buffers.size(), expected.buffers.size()) << where;
+  for (std::size_t b = 0; b < std::min(actual.buffers.size(), expected.buffers.size()); ++b)
+  {
+    const NamedImage& mine = actual.buffers[b];
+    const NamedImage& theirs = expected.buffers[b];
+    EXPECT_EQ(mine.name, theirs.name) << where;
+    EXPECT_EQ(mine.image.data.size(), theirs.image.data.size()) << where << " " << mine.name;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < std::min(mine.image.data.size(), theirs.image.data.size()); ++i)
+    {
+      differing += mine.image.data[i] == theirs.image.data[i] ? 0 : 1;
+    }
+    EXPECT_EQ(differing, 0u) << where << ": buffer " << mine.name << " differs";
+  }
+}
+
+void expectBuiltTexelsOfWhole(
+  const FrameResult& actual, const FrameResult& whole, const std::string& name, const ImageF& builtMask, const std::string& where)
+{
+  const ImageF& mine = lightSpaceArray(actual, name);
+  const ImageF& theirs = lightSpaceArray(whole, name);
+  ASSERT_EQ(mine.data.size(), builtMask.data.size()) << where << ": " << name;
+  ASSERT_EQ(theirs.data.size(), builtMask.data.size()) << where << ": " << name;
+  std::size_t differing = 0;
+  std::size_t nonZeroUnbuilt = 0;
+  for (std::size_t i = 0; i < mine.data.size(); ++i)
+  {
+    if (builtMask.data[i] != 0.0f)
+    {
+      differing += mine.data[i] == theirs.data[i] ? 0 : 1;
+    }
+    else
+    {
+      nonZeroUnbuilt += mine.data[i] == 0.0f ? 0 : 1;
+    }
+  }
+  EXPECT_EQ(differing, 0u) << where << ": " << name << " differs from whole_map on built texels";
+  EXPECT_EQ(nonZeroUnbuilt, 0u) << where << ": " << name << " holds data on unbuilt texels";
+}
+
+int unbuiltLookupTexels(const FrameResult& frame, const ImageF& builtMask, int& lookups)
+{
+  const ImageF& tested = bufferOf(frame, "shadow_tested");
+  const ImageF& position = bufferOf(frame, "position");
+  const int mapSize = builtMask.width;
+  lookups = 0;
+  int unbuilt = 0;
+  for (int y = 0; y < tested.height; ++y)
+  {
+    for (int x = 0; x < tested.width; ++x)
+    {
+      if (tested.at(x, y) < 0.5f)
+      {
+        continue;
+      }
+      const ShadowMapSample sample = projectToShadowMap(*frame.lightView, vec3At(position, x, y));
+      const int texelX = std::clamp(static_cast<int>(std::floor(sample.uvTexels.x)), 0, mapSize - 1);
+      const int texelY = std::clamp(static_cast<int>(std::floor(sample.uvTexels.y)), 0, mapSize - 1);
+      ++lookups;
+      unbuilt += builtMask.at(texelX, texelY) != 0.0f ? 0 : 1;
+    }
+  }
+  return unbuilt;
 }
 
 const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name)

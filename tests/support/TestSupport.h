@@ -162,6 +162,18 @@ std::string caseLabel(const std::string& dataset, const std::vector<std::string>
 // default frames, the sweep to the variants).
 void expectFiniteBuffersAndVisibilityInRange(const FrameResult& frame, const std::string& label);
 
+// Adds a gtest failure, naming `where` and the buffer, for every buffer of `actual` that is not `expected`'s bit for
+// bit (a structure built differently must leave the frame unchanged: prefilter_region, reuse).
+void expectBuffersBitIdentical(const FrameResult& actual, const FrameResult& expected, const std::string& where);
+// Light-space array `name` of a frame that built it only where `builtMask` is not 0, against `whole`'s (built
+// everywhere): a gtest failure naming `where` when a built texel differs in any bit or an unbuilt one is not 0.
+void expectBuiltTexelsOfWhole(
+  const FrameResult& actual, const FrameResult& whole, const std::string& name, const ImageF& builtMask, const std::string& where);
+// Of the shadow-tested pixels of `frame`, how many read a texel `builtMask` marks 0: each pixel's texel is the one
+// holding its projection into the frame's light view (the CPU's double-precision projection, clamped to the map, as a
+// prefiltered lookup reads it). `lookups` receives the number of shadow-tested pixels.
+int unbuiltLookupTexels(const FrameResult& frame, const ImageF& builtMask, int& lookups);
+
 // A light-space array of a frame by name (throws when the frame has none of that name).
 const ImageF& lightSpaceArray(const FrameResult& frame, const std::string& name);
 // The float summed-area table as stored (2 components, centred z and z^2), from sat_z and sat_z2.

@@ -4,14 +4,12 @@
 // shadow-tested pixel's lookup texel is built; on three datasets and random rectangle stacks, with the blur over tiles
 // and sparse (at the listed texels alone), uniform and gap layers. The tile and texel counts are printed.
 #include "support/TestSupport.h"
-#include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
 #include "structures/layeredmoments/LayeredMomentsStructure.h"
 #include "structures/moments/ReceiverTiles.h"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <iostream>
 #include <random>
 
@@ -44,20 +42,7 @@ LayeredBlur checkLayeredRegion(const Scene& scene, const std::string& label, con
   const std::string where = test::caseLabel(label + " lvsm", receivers);
 
   // Every buffer of the frame, bit for bit.
-  EXPECT_EQ(tiled.buffers.size(), full.buffers.size()) << where;
-  for (std::size_t b = 0; b < std::min(tiled.buffers.size(), full.buffers.size()); ++b)
-  {
-    const NamedImage& mine = tiled.buffers[b];
-    const NamedImage& theirs = full.buffers[b];
-    EXPECT_EQ(mine.name, theirs.name) << where;
-    EXPECT_EQ(mine.image.data.size(), theirs.image.data.size()) << where << " " << mine.name;
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < std::min(mine.image.data.size(), theirs.image.data.size()); ++i)
-    {
-      differing += mine.image.data[i] == theirs.image.data[i] ? 0 : 1;
-    }
-    EXPECT_EQ(differing, 0u) << where << ": buffer " << mine.name << " differs from prefilter_region=whole_map";
-  }
+  test::expectBuffersBitIdentical(tiled, full, where + " against prefilter_region=whole_map");
 
   // Every layer: built texels as the whole map's, the others 0 and marked.
   const ImageF& built = test::lightSpaceArray(tiled, "layered_moment_built");
@@ -79,54 +64,20 @@ LayeredBlur checkLayeredRegion(const Scene& scene, const std::string& label, con
   {
     for (const std::string moment : { "_mean", "_second_moment" })
     {
-      const std::string name = format("layer", layer, moment);
-      const ImageF& mine = test::lightSpaceArray(tiled, name);
-      const ImageF& theirs = test::lightSpaceArray(full, name);
-      std::size_t differing = 0;
-      std::size_t nonZeroUnbuilt = 0;
-      for (std::size_t i = 0; i < mine.data.size(); ++i)
-      {
-        if (built.data[i] != 0.0f)
-        {
-          differing += mine.data[i] == theirs.data[i] ? 0 : 1;
-        }
-        else
-        {
-          nonZeroUnbuilt += mine.data[i] == 0.0f ? 0 : 1;
-        }
-      }
-      EXPECT_EQ(differing, 0u) << where << ": " << name << " differs from whole_map on built texels";
-      EXPECT_EQ(nonZeroUnbuilt, 0u) << where << ": " << name << " holds data on unbuilt texels";
+      test::expectBuiltTexelsOfWhole(tiled, full, format("layer", layer, moment), built, where);
     }
   }
 
   // Every texel a lookup reads (the one holding the receiver's projection, LvsmVisibility.glsl's layerBound) is built,
   // by the CPU's double-precision projection.
-  const ImageF& tested = test::bufferOf(tiled, "shadow_tested");
-  const ImageF& position = test::bufferOf(tiled, "position");
-  const int mapSize = built.width;
   int lookups = 0;
-  int unbuiltLookups = 0;
-  for (int y = 0; y < tested.height; ++y)
-  {
-    for (int x = 0; x < tested.width; ++x)
-    {
-      if (tested.at(x, y) < 0.5f)
-      {
-        continue;
-      }
-      const ShadowMapSample sample = projectToShadowMap(*tiled.lightView, test::vec3At(position, x, y));
-      const int texelX = std::clamp(static_cast<int>(std::floor(sample.uvTexels.x)), 0, mapSize - 1);
-      const int texelY = std::clamp(static_cast<int>(std::floor(sample.uvTexels.y)), 0, mapSize - 1);
-      ++lookups;
-      unbuiltLookups += built.at(texelX, texelY) != 0.0f ? 0 : 1;
-    }
-  }
+  const int unbuiltLookups = test::unbuiltLookupTexels(tiled, built, lookups);
+  const int mapSize = built.width;
   EXPECT_GT(lookups, 0) << where;
   EXPECT_EQ(unbuiltLookups, 0) << where << ": lookups of unbuilt texels";
 
   const double allTiles = regionStatistic(tiled, "layered_moments_tiles");
-  if (!receiverRegionCanPay(static_cast<long long>(tested.width) * tested.height, mapSize))
+  if (!receiverRegionCanPay(static_cast<long long>(tiled.resolution.x) * tiled.resolution.y, mapSize))
   {
     EXPECT_EQ(allTiles, -1.0) << where;
     EXPECT_EQ(builtTexels, static_cast<std::size_t>(mapSize) * mapSize) << where;

@@ -5,13 +5,11 @@
 // stacks, with the blur drawn over tiles (small maps) and sparse, at the listed texels alone (maps of 512^2 and more
 // at 96^2 pixels). The tile and texel counts are printed.
 #include "support/TestSupport.h"
-#include "lightspace/ShadowMapMath.h"
 #include "scene/Scene.h"
 #include "structures/moments/ReceiverTiles.h"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <iostream>
 #include <random>
 
@@ -71,20 +69,7 @@ void checkMomentRegion(const Scene& scene, const std::string& label, const std::
   const std::string where = test::caseLabel(label + " " + technique, receivers);
 
   // Every buffer of the frame, bit for bit.
-  ASSERT_EQ(tiled.buffers.size(), full.buffers.size()) << where;
-  for (std::size_t b = 0; b < full.buffers.size(); ++b)
-  {
-    const NamedImage& mine = tiled.buffers[b];
-    const NamedImage& theirs = full.buffers[b];
-    ASSERT_EQ(mine.name, theirs.name) << where;
-    ASSERT_EQ(mine.image.data.size(), theirs.image.data.size()) << where << " " << mine.name;
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < mine.image.data.size(); ++i)
-    {
-      differing += mine.image.data[i] == theirs.image.data[i] ? 0 : 1;
-    }
-    EXPECT_EQ(differing, 0u) << where << ": buffer " << mine.name << " differs from prefilter_region=whole_map";
-  }
+  test::expectBuffersBitIdentical(tiled, full, where + " against prefilter_region=whole_map");
 
   // The moment map: built texels as the whole map's, the others 0 and marked.
   const ImageF& built = test::lightSpaceArray(tiled, map.built);
@@ -96,54 +81,23 @@ void checkMomentRegion(const Scene& scene, const std::string& label, const std::
   }
   for (const std::string& name : map.arrays)
   {
-    const ImageF& mine = test::lightSpaceArray(tiled, name);
-    const ImageF& theirs = test::lightSpaceArray(full, name);
-    std::size_t differing = 0;
-    std::size_t nonZeroUnbuilt = 0;
-    builtTexels = 0;
-    for (std::size_t i = 0; i < mine.data.size(); ++i)
-    {
-      if (built.data[i] != 0.0f)
-      {
-        ++builtTexels;
-        differing += mine.data[i] == theirs.data[i] ? 0 : 1;
-      }
-      else
-      {
-        nonZeroUnbuilt += mine.data[i] == 0.0f ? 0 : 1;
-      }
-    }
-    EXPECT_EQ(differing, 0u) << where << ": " << name << " differs from whole_map on built texels";
-    EXPECT_EQ(nonZeroUnbuilt, 0u) << where << ": " << name << " holds data on unbuilt texels";
+    test::expectBuiltTexelsOfWhole(tiled, full, name, built, where);
+  }
+  for (const float value : built.data)
+  {
+    builtTexels += value != 0.0f ? 1 : 0;
   }
 
   // Every texel a lookup reads (the one holding the receiver's projection, prefilteredFetch) is built, by the CPU's
   // double-precision projection.
-  const ImageF& tested = test::bufferOf(tiled, "shadow_tested");
-  const ImageF& position = test::bufferOf(tiled, "position");
-  const int mapSize = built.width;
   int lookups = 0;
-  int unbuiltLookups = 0;
-  for (int y = 0; y < tested.height; ++y)
-  {
-    for (int x = 0; x < tested.width; ++x)
-    {
-      if (tested.at(x, y) < 0.5f)
-      {
-        continue;
-      }
-      const ShadowMapSample sample = projectToShadowMap(*tiled.lightView, test::vec3At(position, x, y));
-      const int texelX = std::clamp(static_cast<int>(std::floor(sample.uvTexels.x)), 0, mapSize - 1);
-      const int texelY = std::clamp(static_cast<int>(std::floor(sample.uvTexels.y)), 0, mapSize - 1);
-      ++lookups;
-      unbuiltLookups += built.at(texelX, texelY) != 0.0f ? 0 : 1;
-    }
-  }
+  const int unbuiltLookups = test::unbuiltLookupTexels(tiled, built, lookups);
+  const int mapSize = built.width;
   EXPECT_GT(lookups, 0) << where;
   EXPECT_EQ(unbuiltLookups, 0) << where << ": lookups of unbuilt texels";
 
   const double allTiles = momentRegionStatistic(tiled, "_tiles");
-  if (!receiverRegionCanPay(static_cast<long long>(tested.width) * tested.height, mapSize))
+  if (!receiverRegionCanPay(static_cast<long long>(tiled.resolution.x) * tiled.resolution.y, mapSize))
   {
     // Too few texels per pixel for the region to pay: the whole map, unmarked.
     EXPECT_EQ(allTiles, -1.0) << where;
