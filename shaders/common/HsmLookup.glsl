@@ -7,6 +7,9 @@
 uniform sampler2D hsmTexture; // the atlas of levels 1..L
 #else
 uniform sampler3D hsmTexture; // N-buffers: layer k - 1 holds level k; dual-grid MSSM: layer k holds level k
+// The last level built (HierarchicalShadowMap::topLevel, minMaxTopLevel): the N-buffers and the dual grid are built
+// only up to the level of the frame's widest query, and wider queries tile with squares of this level.
+uniform int hsmTopLevel;
 #endif
 #if HSM_LAYOUT == HSM_LAYOUT_YSM
 // The Y shadow map's MSSM part (SS08 §6): N-buffers over the nodes of HSM level ysmBaseLevel
@@ -64,13 +67,19 @@ vec2 hsmSquare(int level, ivec2 texel)
 }
 
 // (min, max) over the inclusive rectangle [lo, hi] of that grid, tiled by the largest squares not wider than
-// its shorter side, the last of each axis ending at hi (exact; at most 2 squares along the shorter side).
+// its shorter side nor above the top level built, the last of each axis ending at hi (exact; at most 2 squares
+// along the shorter side below the top level).
 vec2 hsmTiledRange(ivec2 lo, ivec2 hi)
 {
   ivec2 extent = hi - lo + 1;
   vec2 range = vec2(1e30, -1e30);
+#if HSM_LAYOUT == HSM_LAYOUT_YSM
+  int topLevel = 30; // the MSSM part is built whole (as wide as any query of it)
+#else
+  int topLevel = hsmTopLevel;
+#endif
   int level = 0;
-  while ((2 << level) <= min(extent.x, extent.y))
+  while (level < topLevel && (2 << level) <= min(extent.x, extent.y))
   {
     ++level;
   }

@@ -162,6 +162,10 @@ struct LightSpaceRequest
   double filterTexels = 0.0;
   // c of the moment map's exp(c z_n) channel (esm_exponent, Annen et al. 2008); 0: the channel holds 1.
   double momentExponent = 0.0;
+  // true: no range query it makes of the N-buffers or the dual-grid MSSM is wider than Eq. 1's initial kernel of the
+  // farthest receiver (Yang et al. 2009; the blocker search region of VSSM Alg. 1), plus its ring, so those are built
+  // only up to that level (hsm_levels / mssm_levels = read; structures/hsm/HsmStructure.h). Wider queries stay exact.
+  bool minMaxQueriesWithinNearPlaneKernel = false;
 };
 
 struct MultisampleSettings

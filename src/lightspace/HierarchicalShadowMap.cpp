@@ -56,6 +56,11 @@ int ysmMssmPartLevelCount(int mapSize)
   return hsmLevelCount(ysmMssmPartSize(mapSize));
 }
 
+int minMaxTopLevel(int levelCount, int levelRead)
+{
+  return std::clamp(levelRead, std::max(levelCount - minMaxMaxLevelsLeftOut, 0), levelCount);
+}
+
 glm::ivec2 hsmAtlasOffset(int mapSize, int level)
 {
   glm::ivec2 offset(0, 0);
@@ -122,16 +127,57 @@ ImageF nBufferLevel(const ImageF& finer, int level)
   return coarser;
 }
 
+// The inclusive rectangle [first, last] of an N-buffer grid tiled by its largest squares not wider than the
+// rectangle's shorter side nor above `topLevel`: squares start every `side` texels and the last one of each axis ends
+// exactly at `last` (overlaps are harmless for min and max), so the tiling is exact; at most 2 squares along the
+// shorter side unless the top level is narrower. GLSL: hsmTiledRange.
+template <typename VisitSquare>
+void tileWithSquares(glm::ivec2 first, glm::ivec2 last, int topLevel, VisitSquare&& visitSquare)
+{
+  const glm::ivec2 extent = last - first + 1;
+  int level = 0;
+  while (level < topLevel && (2 << level) <= std::min(extent.x, extent.y))
+  {
+    ++level;
+  }
+  const int side = 1 << level;
+  for (int y = first.y;; y += side)
+  {
+    const int sy = std::min(y, last.y - side + 1);
+    for (int x = first.x;; x += side)
+    {
+      const int sx = std::min(x, last.x - side + 1);
+      visitSquare(level, sx, sy);
+      if (sx + side > last.x)
+      {
+        break;
+      }
+    }
+    if (sy + side > last.y)
+    {
+      break;
+    }
+  }
+}
+
+int builtTopLevel(int levelCount, int topLevel)
+{
+  return topLevel < 0 ? levelCount : std::min(topLevel, levelCount);
+}
+
 } // namespace
 
-HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear, HsmLayout layout)
+HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear, HsmLayout layout, int topLevel)
 {
   SL_CHECK(layout != HsmLayout::DualMssm); // buildDual
   SL_CHECK_MSG(shadowMapLinear.width == shadowMapLinear.height, "the HSM needs a square shadow map");
+  // The mip-map's levels above k hold less than a third of level k, and the YSM's MSSM part is built from a fixed
+  // level: only the N-buffers are built to a top level.
+  SL_CHECK(topLevel < 0 || layout == HsmLayout::NBuffers);
   HierarchicalShadowMap hsm;
   hsm.layout = layout;
   hsm.mapSize = shadowMapLinear.width;
-  const int levelCount = hsmLevelCount(hsm.mapSize);
+  const int levelCount = builtTopLevel(hsmLevelCount(hsm.mapSize), topLevel);
   ImageF base(hsm.mapSize, hsm.mapSize, 2);
   for (int y = 0; y < hsm.mapSize; ++y)
   {
@@ -184,7 +230,7 @@ HierarchicalShadowMap HierarchicalShadowMap::build(const ImageF& shadowMapLinear
   return hsm;
 }
 
-HierarchicalShadowMap HierarchicalShadowMap::buildDual(const ImageF& shadowMapLinear, float outsideDepth)
+HierarchicalShadowMap HierarchicalShadowMap::buildDual(const ImageF& shadowMapLinear, float outsideDepth, int topLevel)
 {
   SL_CHECK_MSG(shadowMapLinear.width == shadowMapLinear.height, "the MSSM needs a square shadow map");
   HierarchicalShadowMap mssm;
@@ -208,7 +254,7 @@ HierarchicalShadowMap HierarchicalShadowMap::buildDual(const ImageF& shadowMapLi
   }
   mssm.levels.push_back(std::move(cells));
   // Level k: the four level k - 1 squares at offsets {0, 2^(k-1)}, clamped to the last cell.
-  for (int level = 1; level <= dualMssmLevelCount(mssm.mapSize); ++level)
+  for (int level = 1; level <= builtTopLevel(dualMssmLevelCount(mssm.mapSize), topLevel); ++level)
   {
     mssm.levels.push_back(nBufferLevel(mssm.levels.back(), level));
   }
@@ -226,39 +272,18 @@ glm::dvec2 HierarchicalShadowMap::dualRange(glm::ivec2 cellLo, glm::ivec2 cellHi
 {
   SL_CHECK(layout == HsmLayout::DualMssm);
   glm::dvec2 result(1e300, -1e300);
-  const glm::ivec2 extent = cellHi - cellLo + 1;
-  int level = 0;
-  while ((2 << level) <= std::min(extent.x, extent.y))
-  {
-    ++level;
-  }
-  const int side = 1 << level;
   int reads = 0;
-  for (int y = cellLo.y;; y += side)
-  {
-    const int sy = std::min(y, cellHi.y - side + 1);
-    for (int x = cellLo.x;; x += side)
+  tileWithSquares(cellLo, cellHi, topLevel(), [&](int level, int sx, int sy) {
+    const glm::dvec2 node = dualNode(level, { sx, sy });
+    result = { std::min(result.x, node.x), std::max(result.y, node.y) };
+    ++reads;
+    if (nodes)
     {
-      const int sx = std::min(x, cellHi.x - side + 1);
-      const glm::dvec2 node = dualNode(level, { sx, sy });
-      result = { std::min(result.x, node.x), std::max(result.y, node.y) };
-      ++reads;
-      if (nodes)
-      {
-        // Cells [s, s + side - 1] hold the samples [s, s + side].
-        nodes->push_back({ "dual-grid mssm", level, glm::max(glm::ivec2(sx, sy), glm::ivec2(0)),
-          glm::min(glm::ivec2(sx, sy) + side, glm::ivec2(mapSize - 1)), node });
-      }
-      if (sx + side > cellHi.x)
-      {
-        break;
-      }
+      // Cells [s, s + side - 1] hold the samples [s, s + side].
+      nodes->push_back({ "dual-grid mssm", level, glm::max(glm::ivec2(sx, sy), glm::ivec2(0)),
+        glm::min(glm::ivec2(sx, sy) + (1 << level), glm::ivec2(mapSize - 1)), node });
     }
-    if (sy + side > cellHi.y)
-    {
-      break;
-    }
-  }
+  });
   if (fetches)
   {
     *fetches = reads;
@@ -301,35 +326,6 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
     visitImage(levels[static_cast<std::size_t>(level)], x, y, nBuffers ? "n-buffers" : "mip-map", level,
       nBuffers ? glm::ivec2(x, y) : glm::ivec2(x, y) << level, 1 << level);
   };
-  // The largest square not wider than the shorter side of the rectangle [first, last] of a grid; squares start
-  // every `side` texels and the last one of each axis ends exactly at `last` (overlaps are harmless for min and
-  // max). Reads at most 2 squares along the shorter side.
-  const auto tile = [](glm::ivec2 first, glm::ivec2 last, auto&& visitSquare) {
-    const glm::ivec2 extent = last - first + 1;
-    int level = 0;
-    while ((2 << level) <= std::min(extent.x, extent.y))
-    {
-      ++level;
-    }
-    const int side = 1 << level;
-    for (int y = first.y;; y += side)
-    {
-      const int sy = std::min(y, last.y - side + 1);
-      for (int x = first.x;; x += side)
-      {
-        const int sx = std::min(x, last.x - side + 1);
-        visitSquare(level, sx, sy);
-        if (sx + side > last.x)
-        {
-          break;
-        }
-      }
-      if (sy + side > last.y)
-      {
-        break;
-      }
-    }
-  };
   const glm::ivec2 extent = hi - lo + 1;
   if (layout == HsmLayout::MipMap || layout == HsmLayout::Ysm)
   {
@@ -344,7 +340,7 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
     {
       // YSM (SS08 §6): the level-b nodes the rectangle touches, tiled exactly by the MSSM part (its level 0 is
       // HSM level b). They lie inside the level-k nodes the mip-map query reads, so the range is never looser.
-      tile(lo >> ysmBaseLevel, hi >> ysmBaseLevel, [&](int partLevel, int x, int y) {
+      tileWithSquares(lo >> ysmBaseLevel, hi >> ysmBaseLevel, static_cast<int>(mssmPart.size()), [&](int partLevel, int x, int y) {
         visitImage(partLevel == 0 ? levels[static_cast<std::size_t>(ysmBaseLevel)]
                                   : mssmPart[static_cast<std::size_t>(partLevel - 1)], x, y,
           partLevel == 0 ? "mip-map" : "ysm mssm part", ysmBaseLevel + partLevel, glm::ivec2(x, y) << ysmBaseLevel,
@@ -366,7 +362,7 @@ glm::dvec2 HierarchicalShadowMap::range(glm::ivec2 lo, glm::ivec2 hi, int* fetch
   }
   else
   {
-    tile(lo, hi, visit); // N-buffers: exact
+    tileWithSquares(lo, hi, topLevel(), visit); // N-buffers: exact
   }
   if (fetches)
   {

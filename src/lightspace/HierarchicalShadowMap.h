@@ -64,6 +64,14 @@ int ysmMssmPartSize(int mapSize);
 // YSM: levels of the MSSM part stored (1..ceil(log2 M); level 0 is HSM level b).
 int ysmMssmPartLevelCount(int mapSize);
 
+// The top level an exactly tiled hierarchy (N-buffers, dual-grid MSSM) is built to when the frame's queries read
+// levels up to `levelRead`: that level, within [levelCount - maxLevelsLeftOut, levelCount]. Each level of those
+// layouts holds N^2 texels, so the levels above it are that share of the build (issue 33: structures built at the
+// level of detail the frame reads). Queries wider than that stay exact: they are tiled with more squares of the top
+// level, at most (2^maxLevelsLeftOut + 1)^2 for the whole map, which the floor bounds.
+constexpr int minMaxMaxLevelsLeftOut = 4;
+int minMaxTopLevel(int levelCount, int levelRead);
+
 // A node a range query read (`shadowlab probe` records them): the shadow-map texels it covers (inclusive,
 // clipped to the map; for the dual-grid MSSM the samples of its cells), the range it holds, and its width as a
 // level: a node of `level` spans 2^level texels (cells) per side.
@@ -80,14 +88,17 @@ struct HierarchicalShadowMap
 {
   HsmLayout layout = HsmLayout::MipMap;
   int mapSize = 0;
-  std::vector<ImageF> levels; // levels[k]: 2 components (min, max); levels[0] from the shadow map
+  std::vector<ImageF> levels; // levels[k]: 2 components (min, max); levels[0] from the shadow map, up to topLevel()
   // YSM only: the MSSM part, mssmPart[j - 1] = its N-buffer level j (M x M) over the nodes of HSM level
   // ysmBaseLevel (its level 0).
   int ysmBaseLevel = 0;
   std::vector<ImageF> mssmPart;
 
-  static HierarchicalShadowMap build(const ImageF& shadowMapLinear, HsmLayout layout);
-  static HierarchicalShadowMap buildDual(const ImageF& shadowMapLinear, float outsideDepth);
+  // `topLevel` (N-buffers and dual grid only; -1: every level): the last level built (minMaxTopLevel). Queries
+  // tile with squares of at most that level, so every range stays exact; the GPU builds (vtkSLHsmPass) alike.
+  static HierarchicalShadowMap build(const ImageF& shadowMapLinear, HsmLayout layout, int topLevel = -1);
+  static HierarchicalShadowMap buildDual(const ImageF& shadowMapLinear, float outsideDepth, int topLevel = -1);
+  int topLevel() const { return static_cast<int>(levels.size()) - 1; }
 
   // (min, max) depth over the inclusive texel rectangle [lo, hi] (inside the map): exact for N-buffers and the
   // dual-grid MSSM (there [lo, hi] must be at least 2 x 2), the range of the covering nodes for the mip-map. `fetches` (optional) counts the texels read.

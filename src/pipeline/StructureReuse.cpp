@@ -203,6 +203,7 @@ std::string structureBuildKey(const FrameResources& frame, const LightSpaceStruc
   key.text(request.filterParameter);
   key.raw(request.filterTexels);
   key.raw(request.momentExponent);
+  key.raw(request.minMaxQueriesWithinNearPlaneKernel);
   for (const LightSpaceStructure* source : structure.builtFrom)
   {
     const auto version = frame.structureVersions.find(source->name);

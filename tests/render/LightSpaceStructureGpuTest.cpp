@@ -172,8 +172,9 @@ std::vector<StructureCase> structureCases()
       concatenated({ shadowMapArrays, tableArrays, { "hsm_min", "hsm_max" }, perLevel("ysm_mssm_", 1, 7) }) },
     // Multi-view: everything between the G-buffer and the shading runs per sub-light (4 times here), but each
     // stage is reported once (its timer sums the runs, which this test does not observe) and the structures'
-    // memory is that of one sub-light's.
-    { "yfgl09", { "shadow_map_size=64", "sublights=2" }, 64, { "shadow_map", "dual_mssm" },
+    // memory is that of one sub-light's. Every level (mssm_levels=all): HsmTopLevelFrame checks a build to the
+    // levels the frame reads.
+    { "yfgl09", { "shadow_map_size=64", "sublights=2", "mssm_levels=all" }, 64, { "shadow_map", "dual_mssm" },
       { { "shadow_map", shadowMapBytes(small) }, { "dual_mssm", dualMssmBytes(small) } },
       { "gbuffer", "focus", "shadow_map", "hierarchical_shadow_map", "technique", "sublight_accumulate", "shading" },
       concatenated({ shadowMapArrays, perLevel("mssm_dual_", 0, smallDualLevels) }) },

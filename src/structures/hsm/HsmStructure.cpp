@@ -1,5 +1,6 @@
 #include "structures/hsm/HsmStructure.h"
 
+#include "frame/FrameResult.h"
 #include "gl/GlResources.h"
 #include "structures/hsm/vtkSLHsmPass.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
@@ -7,6 +8,9 @@
 
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace sl
 {
@@ -16,7 +20,36 @@ HierarchicalShadowMapSettings hierarchicalShadowMapSettings(const ParameterValue
   HierarchicalShadowMapSettings settings;
   const std::string choice = values.choice("hsm");
   settings.layout = choice == "nbuffers" ? HsmLayout::NBuffers : choice == "ysm" ? HsmLayout::Ysm : HsmLayout::MipMap;
+  settings.levelsRead = values.choice("hsm_levels") == "read";
   return settings;
+}
+
+int minMaxTopLevel(HsmLayout layout, const LightView& view, const Light& light, bool boundedQueries)
+{
+  const bool dual = layout == HsmLayout::DualMssm;
+  const int levelCount = dual ? dualMssmLevelCount(view.resolution) : hsmLevelCount(view.resolution);
+  if (!boundedQueries || !(dual || layout == HsmLayout::NBuffers) || view.projection != LightProjection::Perspective)
+  {
+    return levelCount;
+  }
+  // kernelHalfTexels (common/SoftShadowKernels.glsl) at d = far, plane = near: the widest kernel of any receiver
+  // the map holds; nearer receivers have narrower ones.
+  const double lightSize = light.type == LightType::Area ? light.size : 0.0;
+  const double halfTangent = 0.5 * lightSize * (view.farDepth - view.nearDepth) / (view.nearDepth * view.farDepth);
+  const double texelTangent = std::min(view.window.y - view.window.x, view.window.w - view.window.z) / view.resolution;
+  const double widestQueryTexels = 2.0 * std::ceil(halfTangent / texelTangent) + 4.0;
+  // A range query tiles with squares no wider than its shorter side (floor); yfgl09's traversal starts from a node
+  // as wide as its region (ceil).
+  const double levelRead = dual ? std::ceil(std::log2(widestQueryTexels)) : std::floor(std::log2(widestQueryTexels));
+  return sl::minMaxTopLevel(levelCount, static_cast<int>(std::min(levelRead, 30.0)));
+}
+
+int minMaxTopLevel(HsmLayout layout, const FrameResources& frame)
+{
+  const std::string parameter = layout == HsmLayout::DualMssm ? "mssm_levels" : "hsm_levels";
+  const bool bounded = frame.technique->lightSpaceRequestFor(frame.parameters).minMaxQueriesWithinNearPlaneKernel &&
+    frame.parameters.choice(parameter) == "read";
+  return minMaxTopLevel(layout, frame.lightView, *frame.light, bounded);
 }
 
 HierarchicalShadowMap buildHierarchicalShadowMap(const ImageF& shadowMapLinear, const ParameterValues& values)
@@ -24,8 +57,23 @@ HierarchicalShadowMap buildHierarchicalShadowMap(const ImageF& shadowMapLinear, 
   return HierarchicalShadowMap::build(shadowMapLinear, hierarchicalShadowMapSettings(values).layout);
 }
 
-std::vector<NamedImage> exportMinMaxDepth(const MinMaxDepthData& data, int mapSize)
+HierarchicalShadowMap buildHierarchicalShadowMap(const ImageF& shadowMapLinear, const ParameterValues& values,
+  const LightView& view, const Light& light, bool queriesWithinNearPlaneKernel)
 {
+  const HierarchicalShadowMapSettings settings = hierarchicalShadowMapSettings(values);
+  if (settings.layout != HsmLayout::NBuffers)
+  {
+    return HierarchicalShadowMap::build(shadowMapLinear, settings.layout);
+  }
+  return HierarchicalShadowMap::build(shadowMapLinear, settings.layout,
+    minMaxTopLevel(settings.layout, view, light, queriesWithinNearPlaneKernel && settings.levelsRead));
+}
+
+std::vector<NamedImage> exportMinMaxDepth(const MinMaxDepthData& data, int mapSize, FrameResult& result,
+  const std::string& statisticsPrefix)
+{
+  result.techniqueStatistics[statisticsPrefix + "_top_level"] = data.topLevel;
+  result.techniqueStatistics[statisticsPrefix + "_level_count"] = data.levelCount;
   // Mip-map: the atlas as stored (levels 1..L, HierarchicalShadowMap.h); N-buffers: one pair per level;
   // dual-grid MSSM: one pair per level, point (i, j) holding cell (i, j) (texel (i + 1, j + 1)); YSM: the atlas,
   // then one pair per level of the MSSM part, point (i, j) holding the part's texel (i >> b, j >> b), i.e. the
@@ -101,12 +149,18 @@ std::size_t minMaxDepthBytes(const MinMaxDepthData& data)
 std::vector<vtkTextureObject*> bindMinMaxDepth(vtkShaderProgram* program, const MinMaxDepthData& data, int mapSize)
 {
   setIntIfUsed(program, "hsmMapSize", mapSize);
+  setIntIfUsed(program, "hsmTopLevel", data.topLevel);
   if (data.layout == HsmLayout::Ysm)
   {
     setIntIfUsed(program, "ysmBaseLevel", data.ysmBaseLevel);
     return { bindTexture(program, "hsmTexture", data.texture), bindTexture(program, "ysmMssmTexture", data.mssmPart) };
   }
   return { bindTexture(program, "hsmTexture", data.texture) };
+}
+
+ParameterSpec hsmLevelsParameter(const std::string& name, const std::string& layout)
+{
+  return { name, 0, 0, 1, "", "read: the " + layout + " built only up to the level of the widest range query the technique can make in this frame (Eq. 1's kernel of the farthest receiver; wider queries stay exact, tiled by more squares), where the technique bounds its queries; all: every level (issue 33)", { "read", "all" }, true };
 }
 
 const LightSpaceStructure& hierarchicalShadowMapStructure()
@@ -118,6 +172,7 @@ const LightSpaceStructure& hierarchicalShadowMapStructure()
     s.builtFrom = { &shadowMapStructure() };
     s.parameters = {
       { "hsm", 0, 0, 2, "", "min-max hierarchical shadow map: mipmap (conservative ranges), nbuffers (exact ranges, L times the memory) or ysm (the mip-map plus N-buffers of its ~256^2 level: ranges exact on that level's blocks, + 4 MiB at 1024^2 and 2048^2; Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
+      hsmLevelsParameter("hsm_levels", "N-buffers"),
     };
     s.createBuildPasses = [] {
       return std::vector<vtkSmartPointer<vtkSLStagePass>>{ vtkSmartPointer<vtkSLHsmPass>::New() };
@@ -125,8 +180,8 @@ const LightSpaceStructure& hierarchicalShadowMapStructure()
     const auto data = [](const FrameResources& frame) -> const MinMaxDepthData& {
       return frame.structureData<MinMaxDepthData>(hierarchicalShadowMapStructure().name);
     };
-    s.exportImages = [data](const FrameResources& frame, FrameResult&) {
-      return exportMinMaxDepth(data(frame), frame.lightView.resolution);
+    s.exportImages = [data](const FrameResources& frame, FrameResult& result) {
+      return exportMinMaxDepth(data(frame), frame.lightView.resolution, result, "hsm");
     };
     s.gpuBytes = [data](const FrameResources& frame) { return minMaxDepthBytes(data(frame)); };
     s.shaderDefines = [](const FrameResources& frame) {

@@ -3,4 +3,6 @@ sl_structure(
   ORDER 40
   STRUCTURE hierarchicalShadowMapStructure HsmStructure.h
   SOURCES HsmStructure.cpp vtkSLHsmPass.cxx
-  SHADERS shaders/HsmBuild.glsl shaders/YsmMssmBuild.glsl)
+  SHADERS shaders/HsmBuild.glsl shaders/YsmMssmBuild.glsl
+  UNIT_TESTS tests/HsmTopLevelTest.cpp
+  GPU_TESTS tests/HsmTopLevelGpuTest.cpp)

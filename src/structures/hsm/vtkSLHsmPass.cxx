@@ -31,7 +31,10 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   const bool nBuffers = layout == sl::HsmLayout::NBuffers;
   const bool dual = layout == sl::HsmLayout::DualMssm;
   const int size = frame.lightView.resolution;
-  const int levels = dual ? sl::dualMssmLevelCount(size) : sl::hsmLevelCount(size);
+  const int levelCount = dual ? sl::dualMssmLevelCount(size) : sl::hsmLevelCount(size);
+  // The N-buffers and the dual grid stop at the level of the frame's widest query (issue 33); every other layout
+  // builds all its levels.
+  const int levels = sl::minMaxTopLevel(layout, frame);
   const int textureSize = sl::hsmLevelSize(layout, size, 1);
   const int layers = dual ? levels + 1 : std::max(levels, 1);
 
@@ -52,7 +55,7 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   // level's dispatch rewrites the same texels each time, and a fresh 2048^2 atlas (32 MB, cleared) costs
   // llvmpipe more wall time than the build itself.
   const bool fits = this->Texture && this->Texture->GetContext() == window && this->TextureLayout == stored &&
-    this->TextureMapSize == size;
+    this->TextureMapSize == size && this->TextureLayers == layers;
   if (!fits)
   {
     auto hsm = vtkSmartPointer<vtkTextureObject>::New();
@@ -81,6 +84,7 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
     this->Texture = hsm;
     this->TextureLayout = stored;
     this->TextureMapSize = size;
+    this->TextureLayers = layers;
   }
   vtkTextureObject* hsm = this->Texture;
   auto& program = this->Programs[stored];
@@ -109,6 +113,8 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   auto data = std::make_shared<sl::MinMaxDepthData>();
   data->texture = hsm;
   data->layout = layout;
+  data->topLevel = levels;
+  data->levelCount = levelCount;
   if (layout == sl::HsmLayout::Ysm)
   {
     data->ysmBaseLevel = sl::ysmBaseLevel(size);

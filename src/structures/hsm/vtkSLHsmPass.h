@@ -46,10 +46,11 @@ private:
 
   std::map<sl::HsmLayout, std::unique_ptr<sl::ComputeProgram>> Programs;
   bool DualGrid = false;
-  // The last texture built, reused by the next frame when its layout and map size fit.
+  // The last texture built, reused by the next frame when its layout, map size and layers (levels built) fit.
   vtkSmartPointer<vtkTextureObject> Texture;
   sl::HsmLayout TextureLayout = sl::HsmLayout::MipMap;
   int TextureMapSize = 0;
+  int TextureLayers = 0;
   // The YSM's MSSM part and its build, likewise reused.
   std::unique_ptr<sl::ComputeProgram> MssmPartProgram;
   vtkSmartPointer<vtkTextureObject> MssmPartTexture;

@@ -14,6 +14,7 @@ const LightSpaceStructure& dualMssmStructure()
     s.name = "dual_mssm";
     s.doc = "the MSSM on the dual grid of 2 x 2 sample blocks (Yang et al. 2009 §4.2)";
     s.builtFrom = { &shadowMapStructure() };
+    s.parameters = { hsmLevelsParameter("mssm_levels", "dual-grid MSSM") };
     s.createBuildPasses = [] {
       auto pass = vtkSmartPointer<vtkSLHsmPass>::New();
       pass->SetDualGrid(true);
@@ -22,8 +23,8 @@ const LightSpaceStructure& dualMssmStructure()
     const auto data = [](const FrameResources& frame) -> const MinMaxDepthData& {
       return frame.structureData<MinMaxDepthData>(dualMssmStructure().name);
     };
-    s.exportImages = [data](const FrameResources& frame, FrameResult&) {
-      return exportMinMaxDepth(data(frame), frame.lightView.resolution);
+    s.exportImages = [data](const FrameResources& frame, FrameResult& result) {
+      return exportMinMaxDepth(data(frame), frame.lightView.resolution, result, "mssm");
     };
     s.gpuBytes = [data](const FrameResources& frame) { return minMaxDepthBytes(data(frame)); };
     s.shaderDefines = [](const FrameResources&) { return vtkSLHsmPass::LayoutDefines(HsmLayout::DualMssm); };

@@ -38,11 +38,19 @@ TechniqueDescriptor gbp06Technique()
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "hsm", 1, 0, 2, "", "min-max structure for kernels, lit/umbra and the hsm traversal: nbuffers (exact ranges, Schwarz & Stamminger 2007), mipmap (the HSM of Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level for the ranges, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
+    hsmLevelsParameter("hsm_levels", "N-buffers"),
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     { "gap_filling", 1, 0, 2, "", "extend each occluding micropatch's back-projection to the shared edges of its occluding neighbours, closing the gaps between micropatches of different depths: left_bottom, to its left and bottom neighbours in texture space, GBP06's rule as Schwarz & Stamminger 2008 describe it (SS08 §3); right_top, to its right and top ones (the mirror convention); off", { "off", "left_bottom", "right_top" }, true },
     { "traversal", 0, 0, 1, "", "micropatches from every texel of the kernel, or from a depth-first walk of the min-max quadtree pruning nodes that cannot occlude (Dmitriev & Uralsky 2007); same visibility", { "kernel", "hsm" }, true },
   });
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure() };
+  // traversal=kernel queries the hierarchy for Eq. 1's kernel ranges only; the DU07 walk starts from the node that
+  // holds the whole region, up to the top of the quadtree.
+  descriptor.lightSpaceRequest = [](const ParameterValues& values) {
+    LightSpaceRequest request;
+    request.minMaxQueriesWithinNearPlaneKernel = Gbp06Settings::from(values).traversal == Gbp06Traversal::Kernel;
+    return request;
+  };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the kernel searched for occluding micropatches (Eq. 1, Yang 2009 Fig. 5 left)" },
     { "occluding_texels", "texels", "occluding micropatches back-projected and accumulated" },
@@ -62,7 +70,8 @@ TechniqueDescriptor gbp06Technique()
   descriptor.createPass = newTechniquePass<vtkSLGbp06Pass>;
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);
+    const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters,
+      inputs.lightView, *inputs.light, Gbp06Settings::from(context.frame->parameters).traversal == Gbp06Traversal::Kernel);
     const Gbp06Sample sample = gbp06Reference(inputs, hsm, Gbp06Settings::from(context.frame->parameters), pixel.x, pixel.y, &recorder);
     // Gbp06Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping, ~1e-7 of the light per
     // micropatch), on pixels without a decision near its boundary; visited_nodes where no pruning test is.

@@ -27,10 +27,17 @@ TechniqueDescriptor gbp07Technique()
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "hsm", 1, 0, 2, "", "min-max structure for kernels and lit/umbra: nbuffers (the MSSM's exact ranges, Schwarz & Stamminger 2007), mipmap (a conservative HSM, Guennebaud et al. 2006) or ysm (the HSM plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
+    hsmLevelsParameter("hsm_levels", "N-buffers"),
     { "kernel_refinements", 2, 0, 4, "iterations", "times the kernel is shrunk to the minimum occluder depth inside it (Eq. 1 with z_occ_min)", {}, true },
     subLightsParameter(),
   });
   descriptor.lightStructures = { &shadowMapStructure(), &hierarchicalShadowMapStructure() };
+  // Its only queries of the hierarchy are the kernel ranges of Eq. 1 (ContourKernel.glsl).
+  descriptor.lightSpaceRequest = [](const ParameterValues&) {
+    LightSpaceRequest request;
+    request.minMaxQueriesWithinNearPlaneKernel = true;
+    return request;
+  };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the kernel searched for contour edges (Eq. 1, Yang 2009 Fig. 5 left)" },
     { "contour_edges", "edges", "contour edges extracted and back-projected (summed over sub-lights)", BufferKind::Continuous, {}, SubLightCombine::Sum },
@@ -51,7 +58,8 @@ TechniqueDescriptor gbp07Technique()
   descriptor.probe = [](const ProbeContext& context, glm::ivec2 pixel, ProbeRecorder& recorder) {
     requireSingleSubLight(*context.frame);
     const ShadowMapInputs inputs = shadowMapInputsOf(*context.frame, *context.scene, context.lightIndex);
-    const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters);
+    const HierarchicalShadowMap hsm = buildHierarchicalShadowMap(inputs.shadowMapLinear, context.frame->parameters,
+      inputs.lightView, *inputs.light, true);
     const Gbp07Sample sample = gbp07Reference(inputs, hsm, Gbp07Settings::from(context.frame->parameters), pixel.x, pixel.y, &recorder);
     // Gbp07Test.MatchesTheCpuImplementation: 1e-3 (float back-projection and clipping over up to a few hundred
     // edges), on pixels without a decision near its boundary.

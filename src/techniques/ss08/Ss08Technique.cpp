@@ -126,6 +126,7 @@ TechniqueDescriptor ss08Technique()
   descriptor.parameters.push_back(receiverPlaneBiasParameter());
   descriptor.addParameters({
     { "hsm", 2, 0, 2, "", "acceleration structure for search-area pruning (SS08 §6, Fig. 8): mipmap = the HSM, nbuffers = the MSSM (N-buffers), ysm = the Y shadow map (HSM levels plus an MSSM of level log2(N/256), the paper's choice)", { "mipmap", "nbuffers", "ysm" }, true },
+    hsmLevelsParameter("hsm_levels", "N-buffers"),
     { "kernel_refinements", 2, 0, 4, "iterations", "times the search area is shrunk to the minimum depth inside it (SS08 Fig. 2 b)", {}, true },
     { "budget", 12, 0, 64, "micro-occluders per axis", "b_mo: micro-occluders per light axis at level ceil(l) (SS08 §4.2); 0 = unlimited (level 0, no smoothing or blending); with budget_map=ramp_x the value at the centre column", {}, true },
     { "budget_map", 0, 0, 2, "", "the budget map b_mo(x, y): uniform `budget`; ramp_x, `budget` at the centre column falling linearly to `budget_border` at the left and right borders (SS08 Fig. 1 d: 12 to 5); image, the grey values of `budget_image` (0 = unlimited)", { "uniform", "ramp_x", "image" }, true },

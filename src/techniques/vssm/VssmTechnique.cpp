@@ -236,6 +236,7 @@ TechniqueDescriptor vssmTechnique()
   descriptor.addParameters({
     { "sat_precision", 1, 0, 1, "", "float_centred: float SAT of z - (near + far) / 2; int32: fixed point, exact box sums (§6.4)", { "float_centred", "int32" }, true },
     { "hsm", 0, 0, 2, "", "min-max hierarchical shadow map: mipmap (conservative ranges, the paper's choice), nbuffers (exact ranges, L times the memory) (§6.1) or ysm (the mip-map plus an MSSM of its ~256^2 level, Schwarz & Stamminger 2008 §6)", { "mipmap", "nbuffers", "ysm" }, true },
+    hsmLevelsParameter("hsm_levels", "N-buffers (hsm=nbuffers)"),
     { "hsm_early_out", 1, 0, 1, "", "on: lit / umbra pixels decided from the HSM over w_i (Alg. 1 L8-10)", { "off", "on" }, true },
     { "blocker_subdivision", 1, 0, 2, "", "sub-kernels of w_i for the average blocker depth (§5): none (VSM's lit assumption), uniform m x m, adaptive (Alg. 2)", schemes, true },
     { "blocker_uniform_m", 5, 1, 16, "sub-kernels per axis", "m of the uniform blocker subdivision (§6.2: m = 5)", {}, true },
@@ -403,7 +404,7 @@ VssmReferenceInputs vssmReferenceInputs(const ShadowMapInputs& shadowMap, const 
 {
   VssmReferenceInputs inputs;
   inputs.shadowMap = &shadowMap;
-  inputs.hsm = buildHierarchicalShadowMap(shadowMap.shadowMapLinear, values);
+  inputs.hsm = buildHierarchicalShadowMap(shadowMap.shadowMapLinear, values, shadowMap.lightView, *shadowMap.light, true);
   const bool integer = VssmSettings::from(values).sat.integer;
   if (integer)
   {

@@ -2,6 +2,7 @@
 
 #include "techniques/ApproximationRules.h"
 
+#include "structures/hsm/HsmStructure.h"
 #include "structures/mssm/DualMssmStructure.h"
 #include "structures/shadowmap/ShadowMapStructure.h"
 
@@ -131,8 +132,16 @@ TechniqueDescriptor yfgl09Technique()
     { "packet_cost", 0, 0, 1, "", "Eq. 6's visibility term for the packet: paper = Q_v w h, every pixel of the packet (Yang et al. 2009 §4.3); penumbra_pixels = Q_v times the packet's penumbra pixels only (trivial pixels integrate nothing)", { "paper", "penumbra_pixels" }, true },
     { "coherence_depth", 0, 0, 2, "", "the depths Eq. 4's P_null compares (§4.3): linear = the packet's pixel depths minus bias against the kernel samples' linear light depths (the text's reading); comparison = the receiver-plane comparison depths over the packet kernel, the range Eq. 3's statuses use; window = the linear reading in the map's window (post-projective, hyperbolic) depth, as a depth buffer stores it", { "linear", "comparison", "window" }, true },
     subLightsParameter(),
+    hsmLevelsParameter("mssm_levels", "dual-grid MSSM"),
   });
   descriptor.lightStructures = { &shadowMapStructure(), &dualMssmStructure() };
+  // Its ranges (Eq. 1's kernels) and traversals (the packets' kernels, Alg. 3) stay within the farthest receiver's
+  // initial kernel but for packets across a depth edge, whose wider regions start from several roots.
+  descriptor.lightSpaceRequest = [](const ParameterValues&) {
+    LightSpaceRequest request;
+    request.minMaxQueriesWithinNearPlaneKernel = true;
+    return request;
+  };
   descriptor.buffers = {
     { "kernel_texels", "texels", "width of the pixel's kernel (Eq. 1, Fig. 5 left)" },
     { "coherence", "", "Eq. 2 over the pixel's packet: max_i |k_i \\ k_0| / |k_i| (Fig. 5 right)" },
@@ -159,8 +168,7 @@ TechniqueDescriptor yfgl09Technique()
     const FrameResult& frame = *context.frame;
     requireSingleSubLight(frame);
     const ShadowMapInputs inputs = shadowMapInputsOf(frame, *context.scene, context.lightIndex);
-    const HierarchicalShadowMap mssm =
-      HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth));
+    const HierarchicalShadowMap mssm = yfgl09Mssm(inputs, frame.parameters);
     std::vector<Yfgl09Pixel> packet;
     const Yfgl09Pixel result = yfgl09ReferencePixel(inputs, mssm, Yfgl09Settings::from(frame.parameters), pixel.x, pixel.y, &recorder, &packet);
     // Yfgl09Test.MatchesTheCpuImplementation: visibility within 1e-3 on pixels without a decision near its
@@ -291,29 +299,47 @@ private:
   }
 
   // Alg. 3 through the dual-grid MSSM (§4.2): from the lowest node covering the region (at least 2 x 2 cells)
-  // with the same first cell, depth first, pruning the nodes of Fig. 6 cases 4 and 5. The path of child indices
-  // (2 bits per level) replaces the stack.
+  // with the same first cell; where that node lies above the MSSM's top level (mssm_levels), from the top level's
+  // nodes covering the region, row by row (the shader's traverseMssm).
   bool traverseMssm(const Cells& region)
   {
     const glm::ivec2 extent = region.hi - region.lo + 1;
     int rootLevel = 1;
-    while ((1 << rootLevel) < std::max(extent.x, extent.y))
+    while (rootLevel < mssm_.topLevel() && (1 << rootLevel) < std::max(extent.x, extent.y))
     {
       ++rootLevel;
     }
+    const int side = 1 << rootLevel;
+    const glm::ivec2 roots = (extent + side - 1) / side;
     if (recorder_)
     {
       recorder_->beginGroup(name_ + " (Alg. 3)");
       recorder_->quantity("root_level", rootLevel, "level",
-        "§4.2, YFGL09: the lowest MSSM level whose node covers the kernel, its top-left side on the kernel's");
+        "§4.2, YFGL09: the lowest MSSM level whose node covers the kernel, its top-left side on the kernel's (at most the top level built)");
+      recorder_->quantity("roots", roots.x * roots.y, "nodes",
+        "nodes of the root level covering the kernel: 1 unless the kernel is wider than the top level built (mssm_levels)");
     }
+    for (int k = 0; k < roots.x * roots.y; ++k)
+    {
+      if (!traverseRoot(rootLevel, region.lo + side * glm::ivec2(k % roots.x, k / roots.x), region))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Alg. 3 below one root, the node of `rootLevel` whose first cell is `rootCell`, depth first, pruning the nodes of
+  // Fig. 6 cases 4 and 5. The path of child indices (2 bits per level) replaces the stack.
+  bool traverseRoot(int rootLevel, glm::ivec2 rootCell, const Cells& region)
+  {
     ++visitedNodes;
-    if (!overlaps(rootLevel, region.lo))
+    if (!overlaps(rootLevel, rootCell))
     {
       return true;
     }
     int level = rootLevel; // the level of the node whose children are being examined
-    glm::ivec2 origin = region.lo;
+    glm::ivec2 origin = rootCell;
     unsigned path = 0;
     int child = 0;
     while (true)
@@ -981,6 +1007,14 @@ std::string packetClassLabel(PacketClass packetClass)
   const std::size_t code = static_cast<std::size_t>(packetClass);
   SL_CHECK(code < std::size(packetCategories));
   return packetCategories[code].label;
+}
+
+HierarchicalShadowMap yfgl09Mssm(const ShadowMapInputs& inputs, const ParameterValues& values)
+{
+  const int topLevel = minMaxTopLevel(HsmLayout::DualMssm, inputs.lightView, *inputs.light,
+    values.choice("mssm_levels") == "read");
+  return HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth),
+    topLevel);
 }
 
 Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const Yfgl09Settings& settings)

@@ -91,8 +91,11 @@ struct Yfgl09Frame
   std::vector<double> decisionMargin;
 };
 
-// CPU reference (double precision) of both passes over the whole image; `mssm` is the dual-grid MSSM of
-// inputs.shadowMapLinear (HierarchicalShadowMap::buildDual with 2 x far outside).
+// The dual-grid MSSM the GPU built for the frame, on the CPU: HierarchicalShadowMap::buildDual of
+// inputs.shadowMapLinear with 2 x far outside, up to the frame's top level (mssm_levels, minMaxTopLevel).
+HierarchicalShadowMap yfgl09Mssm(const ShadowMapInputs& inputs, const ParameterValues& values);
+
+// CPU reference (double precision) of both passes over the whole image; `mssm` is yfgl09Mssm's.
 Yfgl09Frame yfgl09Reference(const ShadowMapInputs& inputs, const HierarchicalShadowMap& mssm, const Yfgl09Settings& settings);
 
 // What the twin computes for one pixel: Yfgl09Frame's values at it.

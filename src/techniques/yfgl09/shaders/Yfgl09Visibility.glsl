@@ -351,24 +351,18 @@ int traverseEveryCell(ivec2 regionLo, ivec2 regionHi)
   return reachedLastCell ? TRAVERSAL_DONE : TRAVERSAL_CUT_SHORT;
 }
 #else
-// Alg. 3 through the dual-grid MSSM (§4.2): from the lowest node covering [regionLo, regionHi] with the same
-// first cell, depth first, pruning the nodes of Fig. 6 cases 4 and 5; the path of child indices (2 bits per
-// level) replaces the stack.
-int traverseMssm(ivec2 regionLo, ivec2 regionHi)
+// Alg. 3 below one root, the node of `rootLevel` whose first cell is `rootCell`: depth first over its children
+// inside the region, pruning the nodes of Fig. 6 cases 4 and 5; the path of child indices (2 bits per level)
+// replaces the stack.
+int traverseMssmRoot(int rootLevel, ivec2 rootCell, ivec2 regionHi)
 {
-  ivec2 extent = regionHi - regionLo + 1;
-  int rootLevel = 1;
-  while ((1 << rootLevel) < max(extent.x, extent.y))
-  {
-    ++rootLevel;
-  }
   ++visitedNodes;
-  if (!nodeOverlaps(rootLevel, regionLo))
+  if (!nodeOverlaps(rootLevel, rootCell))
   {
     return TRAVERSAL_DONE;
   }
   int level = rootLevel; // the node whose children are examined
-  ivec2 origin = regionLo;
+  ivec2 origin = rootCell;
   uint path = 0u;
   int child = 0;
   while (true)
@@ -418,6 +412,32 @@ int traverseMssm(ivec2 regionLo, ivec2 regionHi)
     }
   }
   return TRAVERSAL_CUT_SHORT; // only the loop cap leaves the loop without returning
+}
+
+// Alg. 3 through the dual-grid MSSM (§4.2): from the lowest node covering [regionLo, regionHi] with the same
+// first cell. Where that node lies above the MSSM's top level (built only up to the frame's widest kernel,
+// mssm_levels), the region is covered by the top level's nodes from regionLo, row by row.
+int traverseMssm(ivec2 regionLo, ivec2 regionHi)
+{
+  ivec2 extent = regionHi - regionLo + 1;
+  int rootLevel = 1;
+  while (rootLevel < hsmTopLevel && (1 << rootLevel) < max(extent.x, extent.y))
+  {
+    ++rootLevel;
+  }
+  int side = 1 << rootLevel;
+  ivec2 roots = (extent + side - 1) / side;
+  bool reachedLastRoot = false;
+  for (int k = 0; k < roots.x * roots.y; ++k)
+  {
+    reachedLastRoot = k == roots.x * roots.y - 1;
+    int outcome = traverseMssmRoot(rootLevel, regionLo + side * ivec2(k % roots.x, k / roots.x), regionHi);
+    if (outcome != TRAVERSAL_DONE)
+    {
+      return outcome;
+    }
+  }
+  return reachedLastRoot ? TRAVERSAL_DONE : TRAVERSAL_CUT_SHORT;
 }
 #endif
 

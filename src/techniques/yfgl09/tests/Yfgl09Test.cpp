@@ -22,11 +22,6 @@ namespace sl
 namespace
 {
 
-HierarchicalShadowMap dualMssm(const ShadowMapInputs& inputs)
-{
-  return HierarchicalShadowMap::buildDual(inputs.shadowMapLinear, static_cast<float>(2.0 * inputs.lightView.farDepth));
-}
-
 // Pixels per packet class, indexed by the PacketClass code (the one declaration the shader's codes come from).
 constexpr std::size_t packetClassCount = static_cast<std::size_t>(PacketClass::CutShort) + 1;
 using PacketClassCounts = std::array<int, packetClassCount>;
@@ -97,7 +92,7 @@ TEST(Yfgl09, MatchesTheCpuImplementation)
     const Scene scene = test::loadDataset(c.dataset);
     const FrameResult frame = test::renderDataset(scene, "yfgl09", width, height, c.settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, yfgl09Mssm(inputs, frame.parameters), Yfgl09Settings::from(frame.parameters));
     const std::string label = test::caseLabel(c.dataset, c.settings);
     double maxDifference = 0.0;
     int compared = 0;
@@ -169,7 +164,7 @@ TEST(Yfgl09, ProbeReplaysThePixelsPacketAndRecordsWhatTheGpuCounted)
   {
     const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, settings);
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const HierarchicalShadowMap mssm = dualMssm(inputs);
+    const HierarchicalShadowMap mssm = yfgl09Mssm(inputs, frame.parameters);
     const Yfgl09Frame cpu = yfgl09Reference(inputs, mssm, Yfgl09Settings::from(frame.parameters));
     const ImageF& classes = frame.find("packet_class")->image;
     // The candidates of each kind (trivial lit, trivial umbra, each traversing class with partial visibility), taken
@@ -533,7 +528,7 @@ TEST(Yfgl09, KernelsWiderThan256TexelsAtA1024MapStayExact)
     const Scene scene = loadScene(test::datasetPath("stacked-occluders"), c.overrides);
     const FrameResult frame = test::renderDataset(scene, "yfgl09", 64, 48, { "shadow_map_size=1024" });
     const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-    const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
+    const Yfgl09Frame cpu = yfgl09Reference(inputs, yfgl09Mssm(inputs, frame.parameters), Yfgl09Settings::from(frame.parameters));
     const TwinComparison result = compareWithTwin(frame, cpu, c.what);
     const PacketClassCounts classes = packetClassHistogram(frame);
     std::cout << "[ measured ] yfgl09 at 1024^2, " << c.what << ": widest kernel " << result.maxKernel << " texels, "
@@ -556,7 +551,7 @@ TEST(Yfgl09, PixelsCutShortByTheLoopCapAreFlaggedAndCounted)
     stackedRectangles({ { -0.8, 1.0, 0.0, 1.2, 0.8 }, { 0.4, 2.0, 0.3, 1.0, 1.4 }, { 0.2, 3.0, -0.4, 0.8, 0.6 } }, 4.0, 2.0));
   const FrameResult frame = test::renderDataset(scene, "yfgl09", 24, 18, { "hierarchy=off", "shadow_map_size=1024" });
   const ShadowMapInputs inputs = test::shadowMapInputs(frame, scene);
-  const Yfgl09Frame cpu = yfgl09Reference(inputs, dualMssm(inputs), Yfgl09Settings::from(frame.parameters));
+  const Yfgl09Frame cpu = yfgl09Reference(inputs, yfgl09Mssm(inputs, frame.parameters), Yfgl09Settings::from(frame.parameters));
   const TwinComparison result = compareWithTwin(frame, cpu, "hierarchy off");
   std::cout << "[ measured ] yfgl09 brute force at 1024^2 on " << frame.glRenderer << ": " << result.cutShort << " of 432 pixels cut short, "
             << result.differing << " differing from the twin by > 1e-3 (" << result.differingFlagged << " of them flagged), max |gpu - cpu| "
