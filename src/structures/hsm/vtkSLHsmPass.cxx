@@ -103,8 +103,8 @@ void vtkSLHsmPass::Execute(const vtkRenderState* state)
   for (int level = dual ? 0 : 1; level <= levels; ++level)
   {
     program->setInt("level", level);
-    const int levelSize = sl::hsmLevelSize(layout, size, level);
-    program->dispatch({ (levelSize + 7) / 8, (levelSize + 7) / 8 });
+    const int invocations = LevelInvocations(stored, size, level);
+    program->dispatch({ (invocations + 7) / 8, (invocations + 7) / 8 });
     // Level k + 1 reads level k's image writes.
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
@@ -183,6 +183,19 @@ vtkTextureObject* vtkSLHsmPass::BuildYsmMssmPart(vtkOpenGLRenderWindow* window, 
   frame.shadowMapLinear->Deactivate();
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
   return this->MssmPartTexture;
+}
+
+int vtkSLHsmPass::LevelInvocations(sl::HsmLayout layout, int mapSize, int level)
+{
+  const int levelSize = sl::hsmLevelSize(layout, mapSize, level);
+  if (layout == sl::HsmLayout::MipMap || level == 0)
+  {
+    return levelSize;
+  }
+  // One invocation per 2 x 2 texels (x, y) + 2^(level-1) {0, 1}^2 (HsmBuild.glsl): per axis, stride invocations per
+  // block of 2 stride texels.
+  const int stride = 1 << (level - 1);
+  return (levelSize + 2 * stride - 1) / (2 * stride) * stride;
 }
 
 sl::ShaderDefines vtkSLHsmPass::LayoutDefines(sl::HsmLayout layout)

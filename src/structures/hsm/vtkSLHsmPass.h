@@ -30,6 +30,9 @@ public:
   // Builds the dual-grid MSSM instead of the hierarchical shadow map of the `hsm` parameter.
   void SetDualGrid(bool dualGrid) { this->DualGrid = dualGrid; }
   // HSM_LAYOUT and HSM_LAYOUT_* for common/HsmLayout.glsl (the build and the lookups).
+  // Invocations per axis that build `level` of `layout` (HsmBuild.glsl): one per texel for the mip-map and the dual
+  // grid's level 0, one per 2 x 2 texels sharing their finer squares for the N-buffers and the dual grid's levels.
+  static int LevelInvocations(sl::HsmLayout layout, int mapSize, int level);
   static sl::ShaderDefines LayoutDefines(sl::HsmLayout layout);
   void ReleaseGraphicsResources(vtkWindow* window) override;
 

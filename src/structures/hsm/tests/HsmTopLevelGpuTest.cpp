@@ -35,6 +35,9 @@ const std::vector<TopLevelCase> topLevelCases = {
   { "bunny", "gbp07", 256 },
   { "contact", "gbp07", 512 },
   { "stacked-occluders", "yfgl09", 256 },
+  // Not a power of two: the last blocks of 2 x 2 texels per invocation (HsmBuild.glsl) are cut by the edge.
+  { "planar-occluder", "gbp07", 200 },
+  { "contact", "yfgl09", 200 },
   // Packets wider than the top level: a small light (top level 5 of 9, the floor), 4 x 4 packets over pixels ~20
   // texels apart, traversed packet-wise (no prediction sends them pixel-wise).
   { "bunny", "yfgl09", 256, 0.1, 16, 12, { "packet_width=4", "packet_height=4", "coherence_test=off" } },
@@ -90,37 +93,39 @@ TEST_P(HsmTopLevelFrame, BuildsTheLevelsReadAndLeavesTheFrameAsEveryLevel)
   EXPECT_EQ(read.lightStructureGpuBytes.at(structure), levelBytes * static_cast<std::size_t>(dual ? top + 1 : top)) << label;
   EXPECT_EQ(all.lightStructureGpuBytes.at(structure), levelBytes * static_cast<std::size_t>(dual ? levelCount + 1 : levelCount)) << label;
 
-  // The exported levels: exactly 1..top (0..top for the dual grid), each the CPU build's bit for bit.
-  const ImageF& depth = test::lightSpaceArray(read, "shadow_map_depth");
-  const HierarchicalShadowMap cpu = dual
-    ? HierarchicalShadowMap::buildDual(depth, static_cast<float>(2.0 * read.lightView->farDepth), top)
-    : HierarchicalShadowMap::build(depth, HsmLayout::NBuffers, top);
-  int differing = 0;
-  for (int level = dual ? 0 : 1; level <= levelCount; ++level)
+  // The exported levels of both frames: exactly 1..top (0..top for the dual grid), each the CPU build's bit for bit.
+  for (const FrameResult* frame : { &read, &all })
   {
-    const std::string suffix = std::to_string(level);
-    const std::string minName = dual ? "mssm_dual_min_" + suffix : "hsm_min_" + suffix;
-    const std::string maxName = dual ? "mssm_dual_max_" + suffix : "hsm_max_" + suffix;
-    const NamedImage* gpuMin = findNamed(read.lightSpace, minName);
-    if (level > top)
+    const int frameTop = frame == &read ? top : levelCount;
+    const ImageF& depth = test::lightSpaceArray(*frame, "shadow_map_depth");
+    const HierarchicalShadowMap cpu = dual
+      ? HierarchicalShadowMap::buildDual(depth, static_cast<float>(2.0 * frame->lightView->farDepth), frameTop)
+      : HierarchicalShadowMap::build(depth, HsmLayout::NBuffers, frameTop);
+    int differing = 0;
+    for (int level = dual ? 0 : 1; level <= levelCount; ++level)
     {
-      EXPECT_EQ(gpuMin, nullptr) << label << ": level " << level << " above the top level is exported";
-      continue;
-    }
-    ASSERT_NE(gpuMin, nullptr) << label << ": level " << level;
-    const ImageF& gpuMax = test::lightSpaceArray(read, maxName);
-    const ImageF& stored = cpu.levels[static_cast<std::size_t>(level)];
-    const int offset = dual ? 1 : 0; // the dual grid's texel t holds cell t - 1; the export starts at cell 0
-    for (int y = 0; y < n; ++y)
-    {
-      for (int x = 0; x < n; ++x)
+      const std::string suffix = std::to_string(level);
+      const NamedImage* gpuMin = findNamed(frame->lightSpace, (dual ? "mssm_dual_min_" : "hsm_min_") + suffix);
+      if (level > frameTop)
       {
-        differing += gpuMin->image.at(x, y) != stored.at(x + offset, y + offset, 0) ||
-            gpuMax.at(x, y) != stored.at(x + offset, y + offset, 1) ? 1 : 0;
+        EXPECT_EQ(gpuMin, nullptr) << label << ": level " << level << " above the top level is exported";
+        continue;
+      }
+      ASSERT_NE(gpuMin, nullptr) << label << ": level " << level;
+      const ImageF& gpuMax = test::lightSpaceArray(*frame, (dual ? "mssm_dual_max_" : "hsm_max_") + suffix);
+      const ImageF& stored = cpu.levels[static_cast<std::size_t>(level)];
+      const int offset = dual ? 1 : 0; // the dual grid's texel t holds cell t - 1; the export starts at cell 0
+      for (int y = 0; y < n; ++y)
+      {
+        for (int x = 0; x < n; ++x)
+        {
+          differing += gpuMin->image.at(x, y) != stored.at(x + offset, y + offset, 0) ||
+              gpuMax.at(x, y) != stored.at(x + offset, y + offset, 1) ? 1 : 0;
+        }
       }
     }
+    EXPECT_EQ(differing, 0) << label << (frame == &read ? " (read)" : " (all)");
   }
-  EXPECT_EQ(differing, 0) << label;
 
   if (!dual)
   {
