@@ -4,5 +4,4 @@ sl_structure(
   STRUCTURE hierarchicalShadowMapStructure HsmStructure.h
   SOURCES HsmStructure.cpp vtkSLHsmPass.cxx
   SHADERS shaders/HsmBuild.glsl shaders/YsmMssmBuild.glsl
-  UNIT_TESTS tests/HsmTopLevelTest.cpp
-  GPU_TESTS tests/HsmTopLevelGpuTest.cpp)
+  UNIT_TESTS tests/HsmTopLevelTest.cpp)
