@@ -160,7 +160,7 @@ std::vector<vtkTextureObject*> bindMinMaxDepth(vtkShaderProgram* program, const 
 
 ParameterSpec hsmLevelsParameter(const std::string& name, const std::string& layout)
 {
-  return { name, 0, 0, 1, "", "read: the " + layout + " built only up to the level of the widest range query the technique can make in this frame (Eq. 1's kernel of the farthest receiver; wider queries stay exact, tiled by more squares), where the technique bounds its queries; all: every level (issue 33)", { "read", "all" }, true };
+  return { name, 0, 0, 1, "", "read: the " + layout + " built only up to the level of the widest range query the technique can make in this frame (Eq. 1's kernel of the farthest receiver; wider queries stay exact, tiled by more squares), where the technique bounds its queries; all: every level", { "read", "all" }, true };
 }
 
 const LightSpaceStructure& hierarchicalShadowMapStructure()
