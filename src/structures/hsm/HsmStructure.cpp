@@ -38,10 +38,14 @@ int minMaxTopLevel(HsmLayout layout, const LightView& view, const Light& light, 
   const double halfTangent = 0.5 * lightSize * (view.farDepth - view.nearDepth) / (view.nearDepth * view.farDepth);
   const double texelTangent = std::min(view.window.y - view.window.x, view.window.w - view.window.z) / view.resolution;
   const double widestQueryTexels = 2.0 * std::ceil(halfTangent / texelTangent) + 4.0;
+  if (!(widestQueryTexels < static_cast<double>(1 << 30)))
+  {
+    return levelCount; // a degenerate view (near depth 0, an empty window): no bound
+  }
   // A range query tiles with squares no wider than its shorter side (floor); yfgl09's traversal starts from a node
   // as wide as its region (ceil).
   const double levelRead = dual ? std::ceil(std::log2(widestQueryTexels)) : std::floor(std::log2(widestQueryTexels));
-  return sl::minMaxTopLevel(levelCount, static_cast<int>(std::min(levelRead, 30.0)));
+  return sl::minMaxTopLevel(levelCount, static_cast<int>(levelRead));
 }
 
 int minMaxTopLevel(HsmLayout layout, const FrameResources& frame)

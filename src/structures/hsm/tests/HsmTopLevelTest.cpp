@@ -193,6 +193,13 @@ TEST(HsmTopLevel, FrameTopLevelFollowsTheFarthestReceiversKernel)
   light.size = 3.0;
   EXPECT_EQ(minMaxTopLevel(HsmLayout::NBuffers, view, light, true), 10);
   EXPECT_EQ(minMaxTopLevel(HsmLayout::DualMssm, view, light, true), 11);
+  // Degenerate views bound nothing: a near depth of 0 (an infinite kernel), an empty window (0 / 0).
+  view.nearDepth = 0.0;
+  EXPECT_EQ(minMaxTopLevel(HsmLayout::NBuffers, view, light, true), 10);
+  view.nearDepth = 1.0;
+  view.window = { 0.0, 0.0, 0.0, 0.0 };
+  light.size = 0.0;
+  EXPECT_EQ(minMaxTopLevel(HsmLayout::DualMssm, view, light, true), 11);
 }
 
 } // namespace
