@@ -8,7 +8,7 @@
 //    the 2^k x 2^k cells starting there, in layer k of a 2D array texture.
 // Reads past the finer level's edge are clamped, which keeps every range inside the map. The N-buffers' and the
 // dual grid's levels >= 1 run one invocation per 2 x 2 texels (x, y) + 2^(k-1) {0, 1}^2, whose finer squares
-// overlap: 3 x 3 reads instead of 4 x 4 (HSM_PAIRED; vtkSLHsmPass::LevelInvocations sizes the dispatch).
+// overlap: 3 x 3 reads instead of 4 x 4 (vtkSLHsmPass::LevelInvocations sizes the dispatch).
 // CPU mirror: src/lightspace/HierarchicalShadowMap.cpp.
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -31,23 +31,6 @@ float sampleOrOutside(ivec2 texel)
 {
   bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, ivec2(hsmMapSize)));
   return inside ? texelFetch(shadowMapLinear, texel, 0).r : outsideDepth;
-}
-
-// Dual level 0: the range of each cell's 2 x 2 samples (texel t holds cell t - 1).
-void buildCells()
-{
-  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  int size = hsmLevelSize(0);
-  if (texel.x >= size || texel.y >= size)
-  {
-    return;
-  }
-  ivec2 cell = texel - 1;
-  float a = sampleOrOutside(cell);
-  float b = sampleOrOutside(cell + ivec2(1, 0));
-  float c = sampleOrOutside(cell + ivec2(0, 1));
-  float d = sampleOrOutside(cell + ivec2(1, 1));
-  imageStore(hsmImage, ivec3(texel, 0), vec4(min(min(a, b), min(c, d)), max(max(a, b), max(c, d)), 0.0, 0.0));
 }
 #endif
 
@@ -87,6 +70,22 @@ vec2 rangeOf(vec2 a, vec2 b, vec2 c, vec2 d)
 {
   return vec2(min(min(a.x, b.x), min(c.x, d.x)), max(max(a.y, b.y), max(c.y, d.y)));
 }
+
+#if HSM_LAYOUT == HSM_LAYOUT_DUAL
+// Dual level 0: the range of each cell's 2 x 2 samples (texel t holds cell t - 1).
+void buildCells()
+{
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  int size = hsmLevelSize(0);
+  if (texel.x >= size || texel.y >= size)
+  {
+    return;
+  }
+  ivec2 cell = texel - 1;
+  storeRange(texel, rangeOf(vec2(sampleOrOutside(cell)), vec2(sampleOrOutside(cell + ivec2(1, 0))),
+    vec2(sampleOrOutside(cell + ivec2(0, 1))), vec2(sampleOrOutside(cell + ivec2(1, 1)))));
+}
+#endif
 
 #if HSM_LAYOUT == HSM_LAYOUT_MIPMAP
 // Mip-map: texel (x, y) from the finer texels 2 (x, y) + {0, 1}^2, which no other texel reads.
