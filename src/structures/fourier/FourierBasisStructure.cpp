@@ -42,13 +42,18 @@ FourierBasisSettings FourierBasisSettings::from(const ParameterValues& values)
 
 bool fourierSparseBlurIsCheaper(const ReceiverPrefilterPlan& plan, int blurTexels, int textures)
 {
+  if (plan.readTexels.empty() || blurTexels <= 1)
+  {
+    return false; // nothing listed, or no blur: the tiles
+  }
   const int reach = boxBlurReach(blurTexels);
   const ReceiverTiles horizontal = plan.read.grown(0, reach);
   const double source = static_cast<double>(horizontal.grown(reach, 0).texelCount());
   const double blurred = static_cast<double>(horizontal.texelCount() + plan.read.texelCount());
   const double width = blurTexels;
-  const double tiles = source * (1.0 + textures * fourierTermCost) + blurred * width * textures;
-  const double sparse = static_cast<double>(plan.readTexels.size()) * width * width * textures * (1.0 + fourierTermCost);
+  const double tiles = source * (1.0 + textures) + blurred * width * textures;
+  const double sparse =
+    static_cast<double>(plan.readTexels.size()) * width * width * (1.0 + textures * fourierSparseTermCost);
   return sparse < tiles;
 }
 

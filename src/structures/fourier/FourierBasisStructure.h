@@ -37,11 +37,12 @@ struct FourierBasisSettings
 
 // Whether the sparse blur of prefilter_region = receivers costs less than the basis pass and the blur over the plan's
 // tiles. Unlike the moment map's rule (sparseBlurIsCheaper, fetches alone) it counts the basis: the sparse blur forms
-// every texture's terms at each of the w^2 taps of each listed texel, while the basis pass forms them once per texel
-// of its tiles and each texture's two blur passes then read w texels per texel. A vec4 sine or cosine is taken as
-// fourierTermCost fetches (calibrated on llvmpipe: it picks the faster path on stacked-occluders at 1024^2, tiles,
-// and bunny and contact at 2048^2, sparse; the structures' page).
-inline constexpr double fourierTermCost = 4.0;
+// every texture's terms at each of the w^2 taps of each listed texel (one fetch, then per texture a rotation to its
+// four terms and their sums: fourierSparseTermCost fetches), while the basis pass forms them once per texel of its
+// tiles (taken as a fetch per texture written) and each texture's two blur passes then read w texels per texel.
+// Calibrated on llvmpipe with each path forced on six scenes at 1024^2 and 2048^2 (docs/bench/fourier-terms): the
+// model's ratio of the two paths' costs lies within 17 % of the measured one.
+inline constexpr double fourierSparseTermCost = 0.8;
 bool fourierSparseBlurIsCheaper(const ReceiverPrefilterPlan& plan, int blurTexels, int textures);
 
 // What the build leaves in the frame (FrameResources::structureData<FourierBasisData>("fourier_basis")).

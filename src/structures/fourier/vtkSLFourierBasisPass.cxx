@@ -40,9 +40,17 @@ void vtkSLFourierBasisPass::Execute(const vtkRenderState* state)
   data->mipmapped = settings.mipmap;
   // prefilter_region = receivers, as the moment map (structures/moments/README.md).
   data->region = this->TileMarker.planWhereItPays(window, frame, settings.blurTexels, settings.receiversOnly);
-  if (data->region && !sl::fourierSparseBlurIsCheaper(*data->region, settings.blurTexels, 2 * textures))
+  if (data->region)
   {
-    sl::planOverTiles(*data->region, settings.blurTexels);
+    // The moment map's rule counts fetches alone; the basis decides by its own (its terms cost more than a fetch).
+    if (sl::fourierSparseBlurIsCheaper(*data->region, settings.blurTexels, 2 * textures))
+    {
+      sl::planSparse(*data->region);
+    }
+    else
+    {
+      sl::planOverTiles(*data->region, settings.blurTexels);
+    }
   }
   // The targets kept from frame to frame while the map's size holds: one per basis texture (its blurred one), the
   // blur's horizontal scratch shared by all.
@@ -51,7 +59,7 @@ void vtkSLFourierBasisPass::Execute(const vtkRenderState* state)
   std::vector<vtkSmartPointer<vtkTextureObject>> basis;
   if (data->region && data->region->blur.sparse)
   {
-    // Only the listed texels, each texture's four terms formed inline: no basis pass, no blur passes.
+    // Only the listed texels, every texture's terms formed inline in one dispatch: no basis pass, no blur passes.
     if (!this->SparseProgram || this->SparseProgramTerms != settings.terms)
     {
       this->SparseProgram = std::make_unique<sl::ComputeProgram>(
@@ -65,13 +73,13 @@ void vtkSLFourierBasisPass::Execute(const vtkRenderState* state)
     program.setFloat("depthNear", static_cast<float>(frame.lightView.nearDepth));
     program.setFloat("depthFar", static_cast<float>(frame.lightView.farDepth));
     program.setFloat("depthRange", static_cast<float>(settings.depthRange));
+    std::vector<vtkTextureObject*> targets;
     for (int i = 0; i < 2 * textures; ++i)
     {
-      program.setInt("fourierGroup", i % textures);
-      program.setInt("fourierCosine", i < textures ? 0 : 1);
       basis.push_back(sl::reusedFloatTarget(window, this->Blurred[static_cast<std::size_t>(i)], size, size, 4));
-      sl::blurReceiverTexels(program, frame.shadowMapLinear, basis.back(), settings.blurTexels, data->region->blur);
+      targets.push_back(basis.back());
     }
+    sl::blurReceiverTexels(program, frame.shadowMapLinear, targets, settings.blurTexels, data->region->blur);
     window->GetShaderCache()->ReleaseCurrentShader();
     data->region->sourceTiles = 0; // no basis pass
   }

@@ -42,13 +42,17 @@ glm::ivec2 listedTexelGroups(int listedTexels)
   return { groupsX, (groups + groupsX - 1) / groupsX };
 }
 
-void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
-  const PrefilterRegion& region)
+void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source,
+  const std::vector<vtkTextureObject*>& targets, int blurTexels, const PrefilterRegion& region)
 {
   SL_CHECK_MSG(region.readTexelBuffer != nullptr, "the sparse blur needs the receivers' texel list");
-  SL_CHECK_MSG(target->GetComponents() == 4, "the sparse blur writes RGBA32F");
   region.readTexelBuffer->bind(0);
-  glBindImageTexture(0, target->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  for (std::size_t unit = 0; unit < targets.size(); ++unit)
+  {
+    SL_CHECK_MSG(targets[unit]->GetComponents() == 4, "the sparse blur writes RGBA32F");
+    glBindImageTexture(static_cast<GLuint>(unit), targets[unit]->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+      GL_RGBA32F);
+  }
   source->Activate();
   program.use();
   program.setInt("source", source->GetTextureUnit());
@@ -57,7 +61,10 @@ void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTe
   program.dispatch(listedTexelGroups(region.readTexelCount));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   source->Deactivate();
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  for (std::size_t unit = 0; unit < targets.size(); ++unit)
+  {
+    glBindImageTexture(static_cast<GLuint>(unit), 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  }
 }
 
 vtkSmartPointer<vtkTextureObject> prefilterMoments(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* framebuffer,
@@ -119,7 +126,7 @@ vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* wi
   program.setFloat("depthNear", static_cast<float>(depthNear));
   program.setFloat("depthFar", static_cast<float>(depthFar));
   program.setFloat("esmExponent", static_cast<float>(esmExponent));
-  blurReceiverTexels(program, shadowMapLinear, blurred, blurTexels, region);
+  blurReceiverTexels(program, shadowMapLinear, { blurred }, blurTexels, region);
   window->GetShaderCache()->ReleaseCurrentShader();
   return blurred;
 }

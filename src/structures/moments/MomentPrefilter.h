@@ -42,11 +42,11 @@ struct PrefilterTargets
 vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* window, vtkTextureObject* shadowMapLinear,
   double depthNear, double depthFar, double esmExponent, int blurTexels, const PrefilterRegion& region,
   PrefilterTargets& targets);
-// The blur at the listed texels of a sparse `region` only, written into `target` (RGBA32F) by `program`: a shader
-// built on shaders/SparseBoxBlur.glsl whose momentsOfDepth uniforms are set; it reads `source` (the shadow map's
-// linear depth).
-void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source, vtkTextureObject* target, int blurTexels,
-  const PrefilterRegion& region);
+// The blur at the listed texels of a sparse `region` only, written into `targets` (RGBA32F, image units 0 ..
+// targets.size() - 1, as many as the shader's SPARSE_BLUR_IMAGES) by `program`: a shader built on
+// shaders/SparseBoxBlur.glsl whose momentsOfDepth uniforms are set; it reads `source` (the shadow map's linear depth).
+void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source,
+  const std::vector<vtkTextureObject*>& targets, int blurTexels, const PrefilterRegion& region);
 // The work groups of a dispatch with one invocation per listed texel: 64 invocations a group, in rows of at most 1024
 // groups (a dispatch's x count is capped); the shader numbers its entry gl_GlobalInvocationID.y * rowWidth + .x.
 glm::ivec2 listedTexelGroups(int listedTexels);

@@ -198,6 +198,15 @@ void planOverTiles(ReceiverPrefilterPlan& plan, int blurTexels)
   }
 }
 
+void planSparse(ReceiverPrefilterPlan& plan)
+{
+  if (plan.blur.readTexelCount > 0)
+  {
+    plan.blur.sparse = true;
+    plan.horizontalTiles = 0; // no horizontal pass
+  }
+}
+
 ImageF ReceiverPrefilterPlan::builtMask() const
 {
   ImageF mask(read.mapSize(), read.mapSize(), 1);

@@ -102,6 +102,9 @@ ReceiverPrefilterPlan planReceiverPrefilter(const ReceiverTiles& read, int blurT
 constexpr double wholeDrawFraction = 0.5;
 // Turns a sparse plan of blurTexels into the blur over its tiles (for a build whose sparse path would cost more).
 void planOverTiles(ReceiverPrefilterPlan& plan, int blurTexels);
+// Turns a blurred plan that lists its texels into the sparse blur (for a build whose sparse path costs less than
+// sparseBlurIsCheaper, fetches alone, says); a plan without a list is left as it is.
+void planSparse(ReceiverPrefilterPlan& plan);
 // Whether marking the receivers' tiles can pay at all: with fewer than receiverRegionTexelsPerPixel map texels per
 // pixel the focused map's tiles are nearly all read (measured, README.md), and the whole map is built unmarked.
 constexpr long long receiverRegionTexelsPerPixel = 16;

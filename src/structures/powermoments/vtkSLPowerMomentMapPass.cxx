@@ -49,7 +49,7 @@ void vtkSLPowerMomentMapPass::Execute(const vtkRenderState* state)
     this->SparseProgram->setFloat("depthFar", static_cast<float>(frame.lightView.farDepth));
     data->moments = sl::reusedFloatTarget(window, this->BlurTargets.blurred, size, size, 4);
     sl::blurReceiverTexels(
-      *this->SparseProgram, frame.shadowMapLinear, data->moments, settings.blurTexels, data->region->blur);
+      *this->SparseProgram, frame.shadowMapLinear, { data->moments }, settings.blurTexels, data->region->blur);
     window->GetShaderCache()->ReleaseCurrentShader();
     data->region->sourceTiles = 0; // no moments pass
     frame.lightSpaceData[sl::powerMomentMapStructure().name] = data;

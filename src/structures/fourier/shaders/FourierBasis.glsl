@@ -4,8 +4,9 @@
 // z_s - d_s lies in [-s, s]; 1/2 keeps it half a period from the jump), and for k = 1..FOURIER_TERMS with
 // c_k = pi (2k - 1):
 //   sin(c_k z_s) into the sine textures (locations 0 .. T - 1), cos(c_k z_s) into the cosine ones (T .. 2T - 1),
-// four terms per RGBA texture, T = FOURIER_TERMS / 4. Empty texels (no caster, 2 x far) clamp to z_n = 1: every
-// receiver's d_n is at most 1, so they light it. CPU mirror: convsmBasisAverage (convsm/ConvsmTechnique.cpp).
+// four terms per RGBA texture, T = FOURIER_TERMS / 4 (formed by fourierBasisTerms). Empty texels (no caster,
+// 2 x far) clamp to z_n = 1: every receiver's d_n is at most 1, so they light it. CPU mirror: convsmBasisAverage
+// (convsm/ConvsmTechnique.cpp).
 #include "fourier/FourierTerms.glsl"
 
 uniform sampler2D shadowMapLinear;
@@ -13,17 +14,17 @@ uniform float depthNear;
 uniform float depthFar;
 uniform float depthRange; // s
 
-const int FOURIER_TEXTURES = FOURIER_TERMS / 4;
 layout(location = 0) out vec4 outBasis[2 * FOURIER_TEXTURES];
 
 void main()
 {
   float z = texelFetch(shadowMapLinear, ivec2(gl_FragCoord.xy), 0).r;
-  float zSeries = fourierSeriesDepth(z, depthNear, depthFar, depthRange);
+  vec4 sines[FOURIER_TEXTURES];
+  vec4 cosines[FOURIER_TEXTURES];
+  fourierBasisTerms(fourierSeriesDepth(z, depthNear, depthFar, depthRange), sines, cosines);
   for (int group = 0; group < FOURIER_TEXTURES; ++group)
   {
-    vec4 ck = fourierFrequencies(fourierTermNumbers(group));
-    outBasis[group] = sin(ck * zSeries);
-    outBasis[FOURIER_TEXTURES + group] = cos(ck * zSeries);
+    outBasis[group] = sines[group];
+    outBasis[FOURIER_TEXTURES + group] = cosines[group];
   }
 }

@@ -179,6 +179,22 @@ TEST(MomentRegion, PowerMomentsAndFourierBasisEqualTheWholeMap)
   }
 }
 
+// The Fourier basis decides between the tiles and the sparse blur by its own cost (fourierSparseBlurIsCheaper): here
+// the moment map's rule, fetches alone, blurs msm's power moments over tiles while the basis, whose terms cost more
+// than a fetch per texel of the tiles, takes the sparse blur, and still equals the whole map bit for bit.
+TEST(MomentRegion, FourierBasisTakesTheSparseBlurByItsOwnCost)
+{
+  const Scene scene = test::loadDataset("stacked-occluders");
+  const std::vector<std::string> settings = { "shadow_map_size=512", "prefilter=blur", "prefilter_texels=12",
+    "prefilter_region=receivers" };
+  const FrameResult powerMoments = test::renderDataset(scene, "msm", 96, 96, settings);
+  const FrameResult basis = test::renderDataset(scene, "convsm", 96, 96, settings);
+  EXPECT_GT(momentRegionStatistic(powerMoments, "power_moment_map_read_texels"), 0.0);
+  EXPECT_EQ(momentRegionStatistic(powerMoments, "power_moment_map_sparse_blur"), 0.0);
+  EXPECT_EQ(momentRegionStatistic(basis, "fourier_basis_sparse_blur"), 1.0);
+  checkMomentRegion(scene, "stacked-occluders", "convsm", { "shadow_map_size=512", "prefilter=blur", "prefilter_texels=12" });
+}
+
 TEST(MomentRegion, MipmapBuildsTheWholeMap)
 {
   const FrameResult frame = test::renderDataset(test::loadDataset("bunny"), "vsm", 64, 64,

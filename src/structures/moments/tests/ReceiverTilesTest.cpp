@@ -197,8 +197,21 @@ TEST(ReceiverTiles, PlanIsSparseOnlyWhenCheaperAndBuildsWhatItBlurs)
   EXPECT_FALSE(tiled.blur.sparse);
   EXPECT_EQ(tiled.horizontalTiles, 6); // the receivers' tiles grown by 2 along y
   EXPECT_EQ(tiled.builtMask().data, read.texelMask().data);
+  // A build whose own rule finds the sparse path cheaper (the Fourier basis) turns it back, and over tiles again.
+  ReceiverPrefilterPlan turned = tiled;
+  planSparse(turned);
+  EXPECT_TRUE(turned.blur.sparse);
+  EXPECT_EQ(turned.horizontalTiles, 0);
+  EXPECT_EQ(turned.builtMask().at(50, 70), 1.0f);
+  EXPECT_EQ(turned.builtMask().at(52, 70), 0.0f);
+  planOverTiles(turned, 5);
+  EXPECT_FALSE(turned.blur.sparse);
+  EXPECT_EQ(turned.horizontalTiles, 6);
   // No list (it overflowed) or no blur: tiles.
   EXPECT_FALSE(planReceiverPrefilter(read, 5).blur.sparse);
+  ReceiverPrefilterPlan unlisted = planReceiverPrefilter(read, 5);
+  planSparse(unlisted);
+  EXPECT_FALSE(unlisted.blur.sparse);
   const ReceiverPrefilterPlan unblurred = planReceiverPrefilter(read, 1, listed);
   EXPECT_FALSE(unblurred.blur.sparse);
   EXPECT_EQ(unblurred.sourceTiles, 2);
