@@ -19,12 +19,5 @@ layout(location = 0) out vec4 outBasis[2 * FOURIER_TEXTURES];
 void main()
 {
   float z = texelFetch(shadowMapLinear, ivec2(gl_FragCoord.xy), 0).r;
-  vec4 sines[FOURIER_TEXTURES];
-  vec4 cosines[FOURIER_TEXTURES];
-  fourierBasisTerms(fourierSeriesDepth(z, depthNear, depthFar, depthRange), sines, cosines);
-  for (int group = 0; group < FOURIER_TEXTURES; ++group)
-  {
-    outBasis[group] = sines[group];
-    outBasis[FOURIER_TEXTURES + group] = cosines[group];
-  }
+  fourierBasisTerms(fourierSeriesDepth(z, depthNear, depthFar, depthRange), outBasis);
 }

@@ -10,14 +10,7 @@ uniform float depthRange; // s
 #define SPARSE_BLUR_IMAGES (FOURIER_TERMS / 2)
 void momentsOfDepthImages(float z, out vec4 values[SPARSE_BLUR_IMAGES])
 {
-  vec4 sines[FOURIER_TEXTURES];
-  vec4 cosines[FOURIER_TEXTURES];
-  fourierBasisTerms(fourierSeriesDepth(z, depthNear, depthFar, depthRange), sines, cosines);
-  for (int group = 0; group < FOURIER_TEXTURES; ++group)
-  {
-    values[group] = sines[group];
-    values[FOURIER_TEXTURES + group] = cosines[group];
-  }
+  fourierBasisTerms(fourierSeriesDepth(z, depthNear, depthFar, depthRange), values);
 }
 
 #include "moments/SparseBoxBlur.glsl"

@@ -23,12 +23,13 @@ vec4 fourierFrequencies(vec4 k)
 #ifdef FOURIER_TERMS
 const int FOURIER_TEXTURES = FOURIER_TERMS / 4;
 
-// Every basis term of one depth, sin(c_k z_s) and cos(c_k z_s) for k = 1 .. FOURIER_TERMS, four per vec4 as the
-// textures hold them. Two transcendentals, then each term from the one before by the angle-addition rotation
-// through 2 pi z_s (c_{k+1} = c_k + 2 pi): in float this is as accurate as sin(c_k z_s) itself (the argument's
-// rounding, up to 31 pi z_s, dominates both), and the builds form FOURIER_TERMS x 2 values per tap of the blur.
-// `precise` keeps every build path's products unfused, so the two builds store the same bits.
-void fourierBasisTerms(float zSeries, out vec4 sines[FOURIER_TEXTURES], out vec4 cosines[FOURIER_TEXTURES])
+// Every basis term of one depth as the basis textures hold them: sin(c_k z_s) for k = 1 .. FOURIER_TERMS, four per
+// vec4, in basis[0 .. T - 1], then cos(c_k z_s) in basis[T .. 2T - 1]. Two transcendentals, then each term from the
+// one before by the angle-addition rotation through 2 pi z_s (c_{k+1} = c_k + 2 pi): in float this is as accurate
+// as sin(c_k z_s) itself (the argument's rounding, up to 31 pi z_s, dominates both), and the builds form
+// FOURIER_TERMS x 2 values per tap of the blur. `precise` keeps every build path's products unfused, so the two
+// builds store the same bits.
+void fourierBasisTerms(float zSeries, out vec4 basis[2 * FOURIER_TEXTURES])
 {
   precise float firstAngle = fourierFrequencies(vec4(1.0)).x * zSeries;
   precise float sine = sin(firstAngle);
@@ -39,8 +40,8 @@ void fourierBasisTerms(float zSeries, out vec4 sines[FOURIER_TEXTURES], out vec4
   {
     for (int term = 0; term < 4; ++term)
     {
-      sines[group][term] = sine;
-      cosines[group][term] = cosine;
+      basis[group][term] = sine;
+      basis[FOURIER_TEXTURES + group][term] = cosine;
       precise float nextSine = sine * stepCosine + cosine * stepSine;
       precise float nextCosine = cosine * stepCosine - sine * stepSine;
       sine = nextSine;
