@@ -35,9 +35,9 @@ vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPoint
   return slot;
 }
 
-glm::ivec2 listedTexelGroups(int listedTexels)
+glm::ivec2 listedTexelGroups(int listedItems)
 {
-  const int groups = (listedTexels + 63) / 64;
+  const int groups = (listedItems + 63) / 64;
   const int groupsX = std::max(1, std::min(groups, 1024));
   return { groupsX, (groups + groupsX - 1) / groupsX };
 }
@@ -58,7 +58,9 @@ void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source,
   program.setInt("source", source->GetTextureUnit());
   program.setInt("blurWidth", blurTexels);
   program.setInt("readTexelCount", region.readTexelCount);
-  program.dispatch(listedTexelGroups(region.readTexelCount));
+  // One invocation per pixel's footprint: the list holds four entries per pixel (shaders/ReceiverTiles.glsl).
+  SL_CHECK_MSG(region.readTexelCount % 4 == 0, "the receivers' texel list holds four entries per pixel");
+  program.dispatch(listedTexelGroups(region.readTexelCount / 4));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   source->Deactivate();
   for (std::size_t unit = 0; unit < targets.size(); ++unit)

@@ -47,9 +47,10 @@ vtkSmartPointer<vtkTextureObject> sparseMomentsOfDepth(vtkOpenGLRenderWindow* wi
 // shaders/SparseBoxBlur.glsl whose momentsOfDepth uniforms are set; it reads `source` (the shadow map's linear depth).
 void blurReceiverTexels(ComputeProgram& program, vtkTextureObject* source,
   const std::vector<vtkTextureObject*>& targets, int blurTexels, const PrefilterRegion& region);
-// The work groups of a dispatch with one invocation per listed texel: 64 invocations a group, in rows of at most 1024
-// groups (a dispatch's x count is capped); the shader numbers its entry gl_GlobalInvocationID.y * rowWidth + .x.
-glm::ivec2 listedTexelGroups(int listedTexels);
+// The work groups of a dispatch with one invocation per listed item (a texel, or a pixel's footprint of four): 64
+// invocations a group, in rows of at most 1024 groups (a dispatch's x count is capped); the shader numbers its item
+// gl_GlobalInvocationID.y * rowWidth + .x.
+glm::ivec2 listedTexelGroups(int listedItems);
 // `slot` itself when it is a float target of that size and components in `window`, else a new one put in `slot`;
 // with nearest filtering (a mip-mapped prefilter of an earlier frame sets trilinear).
 vtkTextureObject* reusedFloatTarget(vtkOpenGLRenderWindow* window, vtkSmartPointer<vtkTextureObject>& slot, int width,

@@ -20,8 +20,8 @@ layout(std430, binding = 0) buffer ReceiverTileFlags
   uint receiverTileFlags[];
 };
 // The texels themselves, for the passes that draw them as points: word 0 counts them (past the capacity: too many,
-// the tiles are drawn instead), then x | y << 16 each, repeated when several receivers read one texel. Capacity 0:
-// not listed.
+// the tiles are drawn instead), then x | y << 16 each, four per pixel (its footprint, below), repeated when several
+// receivers read one texel. Capacity 0: not listed.
 uniform int readTexelCapacity;
 layout(std430, binding = 1) buffer ReceiverReadTexels
 {
@@ -66,13 +66,20 @@ void main()
     for (int x = firstTexel.x; x <= lastTexel.x; ++x)
     {
       receiverTileFlags[(y / tileTexels) * tilesPerSide + x / tileTexels] = 1u;
-      if (readTexelCapacity > 0)
+    }
+  }
+  if (readTexelCapacity > 0)
+  {
+    // The pixel's footprint as four consecutive entries, (0, 0), (1, 0), (0, 1), (1, 1) from firstTexel, each clamped
+    // to lastTexel (the two differ by at most 1 per axis): a footprint the clamp narrowed repeats its texels. The
+    // sparse blur (SparseBoxBlur.glsl) forms a footprint's texels together from the taps they share.
+    uint slot = atomicAdd(receiverReadTexels[0], 4u);
+    if (slot + 4u <= uint(readTexelCapacity))
+    {
+      for (int entry = 0; entry < 4; ++entry)
       {
-        uint slot = atomicAdd(receiverReadTexels[0], 1u);
-        if (slot < uint(readTexelCapacity))
-        {
-          receiverReadTexels[1u + slot] = uint(x) | (uint(y) << 16);
-        }
+        ivec2 texel = min(firstTexel + ivec2(entry & 1, entry >> 1), lastTexel);
+        receiverReadTexels[1u + slot + uint(entry)] = uint(texel.x) | (uint(texel.y) << 16);
       }
     }
   }
