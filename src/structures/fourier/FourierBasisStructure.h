@@ -40,8 +40,8 @@ struct FourierBasisSettings
 // every texture's terms at each of the w^2 taps of each listed texel (one fetch, then per texture a rotation to its
 // four terms and their sums: fourierSparseTermCost fetches), while the basis pass forms them once per texel of its
 // tiles (taken as a fetch per texture written) and each texture's two blur passes then read w texels per texel.
-// Calibrated on llvmpipe with each path forced on six scenes at 1024^2 and 2048^2 (docs/bench/fourier-terms): the
-// model's ratio of the two paths' costs lies within 17 % of the measured one.
+// Calibrated on llvmpipe with each path forced (docs/bench/fourier-terms), before the sparse blur shared its taps
+// across each pixel's footprint (docs/bench/footprint-blur): the rule now underrates the sparse path.
 inline constexpr double fourierSparseTermCost = 0.8;
 bool fourierSparseBlurIsCheaper(const ReceiverPrefilterPlan& plan, int blurTexels, int textures);
 
