@@ -63,8 +63,9 @@ private:
 
 // Where the blur runs: the horizontal pass over `horizontal`, the vertical one over `vertical` (the receivers'
 // tiles); the source must hold valid texels over `horizontal` grown by the reach along x. `sparse`: instead of the
-// two passes, one compute invocation per listed texel (shaders/SparseBoxBlur.glsl) from `readTexelBuffer`
-// (shaders/ReceiverTiles.glsl's list), which needs the source over the texels' boxes (`horizontal` grown along x).
+// two passes, one compute invocation per pixel's footprint of listed texels (shaders/SparseBoxBlur.glsl) from
+// `readTexelBuffer` (shaders/ReceiverTiles.glsl's list), which needs the source over the texels' boxes (`horizontal`
+// grown along x).
 struct PrefilterRegion
 {
   std::vector<TileRect> horizontal;
@@ -84,8 +85,8 @@ struct ReceiverPrefilterPlan
   std::vector<TileRect> source; // where the unfiltered values are computed
   int horizontalTiles = 0;       // 0 without a blur or when sparse (no horizontal pass)
   int sourceTiles = 0;
-  // The texels the receivers read (x | y << 16, repeats where receivers share one), when the marking listed them
-  // all; the blur then runs only on them (sparse) if that is cheaper than its tiles, and only they are built.
+  // The texels the receivers read (x | y << 16, four per receiving pixel: its footprint, with repeats where the map's
+  // edge narrows it or receivers share a texel), when the marking listed them all; the blur then runs only on them (sparse) if that is cheaper than its tiles, and only they are built.
   std::vector<std::uint32_t> readTexels;
   // The texels that hold the prefiltered value when the blur is not sparse: the last draw's rectangles.
   std::vector<TileRect> built;
@@ -110,7 +111,7 @@ void planSparse(ReceiverPrefilterPlan& plan);
 constexpr long long receiverRegionTexelsPerPixel = 16;
 bool receiverRegionCanPay(long long pixels, int mapSize);
 // Whether listing the texels the receivers read can pay: a sparse blur of width blurTexels wins only with fewer
-// than 2 / w texels listed per texel of the map, and the marking lists up to 4 per pixel.
+// than 2 / w texels listed per texel of the map, and the marking lists 4 per receiving pixel.
 bool receiverTexelListCanPay(long long pixels, int mapSize, int blurTexels);
 // Sparse when its w^2 fetches per listed texel are fewer than the two passes' w fetches per texel of their tiles.
 bool sparseBlurIsCheaper(long long listedTexels, int blurTexels, long long horizontalTexels, long long verticalTexels);
